@@ -1,0 +1,352 @@
+//! The effective model (`k → ∞`, physics.md §2–3): the adiabatic constant `theta`, the
+//! effective potential and energy, the regime of a start, turning points, the half period and
+//! the limit's spin-reversal times by quadrature, and the tapping acceleration.
+//!
+//! Symbols follow the paper: `V(α) = θ g(α)^{−1/2}`, `E_eff = ½ iz α̇² + V(α)`.
+
+use serde::Serialize;
+use std::f64::consts::{FRAC_PI_2, PI};
+
+use super::model::{State, initial_state, transverse_energy};
+use super::params::{Params, Problem};
+use super::quadrature::integrate_adaptive;
+
+/// Relative closeness of `E_eff` to `V_max` under which a start counts as on the separatrix.
+pub const SEPARATRIX_RELATIVE_BAND: f64 = 1e-13;
+
+/// Relative accuracy requested from the quadratures.
+const QUADRATURE_TOLERANCE: f64 = 1e-13;
+
+/// The kind of effective motion a start leads to (physics.md §3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Regime {
+    /// `ix = iy` or no fast energy (`θ = 0`): `V` is constant and the spin is uniform.
+    Uniform,
+    /// `E_eff < V_max`: `α` swings between two turning points; one reversal per half period.
+    Trapped,
+    /// `E_eff > V_max`: `α` is monotone; no reversal.
+    Rotating,
+    /// `E_eff = V_max`: the motion approaches the potential maximum in infinite time.
+    Separatrix,
+}
+
+impl Regime {
+    /// The name used in presets, JSON and the interface.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Uniform => "uniform",
+            Self::Trapped => "trapped",
+            Self::Rotating => "rotating",
+            Self::Separatrix => "separatrix",
+        }
+    }
+}
+
+/// The effective motion of one start.
+#[derive(Clone, Copy, Debug)]
+pub struct Effective {
+    params: Params,
+    theta: f64,
+    alpha0: f64,
+    alpha_dot0: f64,
+    energy: f64,
+    phase0: f64,
+}
+
+impl Effective {
+    /// The effective motion of a problem's start.
+    #[must_use]
+    pub fn new(problem: &Problem) -> Self {
+        let p = *problem.params();
+        let s = problem.start();
+        let y0 = initial_state(s);
+        let g0 = p.g(s.alpha);
+        // θ = E⊥(0) · g(α0)^{1/2} (physics.md §2), covers γ0 ≠ 0.
+        let theta = transverse_energy(&p, &y0) * g0.sqrt();
+        let energy = 0.5 * p.iz * s.alpha_dot * s.alpha_dot + theta / g0.sqrt();
+        // Phase of the fast oscillation: γ = a sin φ, γ̇ = a ω cos φ.
+        let phase0 = (s.gamma * p.omega(s.alpha)).atan2(s.gamma_dot);
+        Self {
+            params: p,
+            theta,
+            alpha0: s.alpha,
+            alpha_dot0: s.alpha_dot,
+            energy,
+            phase0,
+        }
+    }
+
+    /// The adiabatic constant `θ = E⊥(0) g(α0)^{1/2}`.
+    #[must_use]
+    pub fn theta(&self) -> f64 {
+        self.theta
+    }
+
+    /// The parameters the motion belongs to.
+    #[must_use]
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    /// Initial phase of the fast oscillation, `atan2(γ0 ω0, γ̇0)`.
+    #[must_use]
+    pub fn phase0(&self) -> f64 {
+        self.phase0
+    }
+
+    /// Effective potential `V(α) = θ g(α)^{−1/2}`.
+    #[must_use]
+    pub fn potential(&self, alpha: f64) -> f64 {
+        self.theta / self.params.g(alpha).sqrt()
+    }
+
+    /// Effective energy `½ iz α̇² + V(α)` of any slow state.
+    #[must_use]
+    pub fn energy_of(&self, alpha: f64, alpha_dot: f64) -> f64 {
+        0.5 * self.params.iz * alpha_dot * alpha_dot + self.potential(alpha)
+    }
+
+    /// Effective energy of the start.
+    #[must_use]
+    pub fn energy(&self) -> f64 {
+        self.energy
+    }
+
+    /// `V_max = θ / sqrt(min(ix, iy))`.
+    #[must_use]
+    pub fn potential_max(&self) -> f64 {
+        self.theta / self.params.ix.min(self.params.iy).sqrt()
+    }
+
+    /// `V_min = θ / sqrt(max(ix, iy))`.
+    #[must_use]
+    pub fn potential_min(&self) -> f64 {
+        self.theta / self.params.ix.max(self.params.iy).sqrt()
+    }
+
+    /// `α̈ = θ g'(α) g(α)^{−3/2} / (2 iz)`.
+    #[must_use]
+    #[inline]
+    pub fn acceleration(&self, alpha: f64) -> f64 {
+        let g = self.params.g(alpha);
+        self.theta * self.params.g_prime(alpha) / (g * g.sqrt() * 2.0 * self.params.iz)
+    }
+
+    /// The regime of the start.
+    #[must_use]
+    pub fn regime(&self) -> Regime {
+        #[allow(clippy::float_cmp)]
+        if self.params.ix == self.params.iy || self.theta == 0.0 {
+            return Regime::Uniform;
+        }
+        let vmax = self.potential_max();
+        let gap = self.energy - vmax;
+        if gap.abs() <= SEPARATRIX_RELATIVE_BAND * vmax {
+            Regime::Separatrix
+        } else if gap < 0.0 {
+            Regime::Trapped
+        } else {
+            Regime::Rotating
+        }
+    }
+
+    /// The start's ratio `α̇0² / γ̇0²`, or `None` when `γ̇0 = 0`.
+    #[must_use]
+    pub fn start_ratio(&self, problem: &Problem) -> Option<f64> {
+        let s = problem.start();
+        (s.gamma_dot != 0.0).then(|| (s.alpha_dot / s.gamma_dot).powi(2))
+    }
+
+    /// The critical value of `α̇0² / γ̇0²` for this start's `α0`, `γ0`, `γ̇0`: the ratio at which
+    /// `E_eff = V_max`. Below it the start is trapped and reverses (Theorem 1.1), above it the
+    /// spin is monotone (Theorem 1.2). With `α0 = γ0 = 0` and `iy < ix` it is the paper's
+    /// `(ix / iz) (sqrt(ix / iy) − 1)`. `None` when `γ̇0 = 0` or the motion is uniform.
+    #[must_use]
+    pub fn critical_ratio(&self, problem: &Problem) -> Option<f64> {
+        let s = problem.start();
+        if s.gamma_dot == 0.0 || self.regime() == Regime::Uniform {
+            return None;
+        }
+        let alpha_dot_sq = 2.0 / self.params.iz * (self.potential_max() - self.potential(s.alpha));
+        Some(alpha_dot_sq / (s.gamma_dot * s.gamma_dot))
+    }
+
+    /// The well the start is trapped in: its centre (a minimum of `V`) and half width `α*`.
+    fn well(&self) -> Option<Well> {
+        if self.regime() != Regime::Trapped {
+            return None;
+        }
+        let p = &self.params;
+        let (g_centre, g_other) = (p.ix.max(p.iy), p.ix.min(p.iy));
+        let minimum = if p.ix > p.iy { 0.0 } else { FRAC_PI_2 };
+        let centre = minimum + PI * ((self.alpha0 - minimum) / PI).round();
+        let g_turn = (self.theta / self.energy).powi(2);
+        let sin_sq = ((g_centre - g_turn) / (g_centre - g_other)).clamp(0.0, 1.0);
+        let half_width = sin_sq.sqrt().asin();
+        Some(Well {
+            centre,
+            half_width,
+            g_centre,
+            g_other,
+        })
+    }
+
+    /// The turning points `(centre − α*, centre + α*)` of a trapped start.
+    #[must_use]
+    pub fn turning_points(&self) -> Option<(f64, f64)> {
+        self.well()
+            .map(|w| (w.centre - w.half_width, w.centre + w.half_width))
+    }
+
+    /// Time between turning points, `∫ dα / sqrt((2/iz)(E_eff − V(α)))` over the well, by
+    /// adaptive Gauss–Legendre quadrature after the substitution `α = α* sin φ`.
+    #[must_use]
+    pub fn half_period(&self) -> Option<f64> {
+        let w = self.well()?;
+        (w.half_width > 0.0).then(|| self.time_between(&w, -FRAC_PI_2, FRAC_PI_2))
+    }
+
+    /// Reversal times of the effective motion in `(0, t_end]`.
+    #[must_use]
+    pub fn reversal_times(&self, t_end: f64) -> Vec<f64> {
+        let Some(w) = self.well() else {
+            return Vec::new();
+        };
+        if w.half_width == 0.0 {
+            return Vec::new();
+        }
+        let half = self.time_between(&w, -FRAC_PI_2, FRAC_PI_2);
+        let u0 = (self.alpha0 - w.centre).clamp(-w.half_width, w.half_width);
+        let phi0 = (u0 / w.half_width).clamp(-1.0, 1.0).asin();
+        let first = if self.alpha_dot0 > 0.0 {
+            self.time_between(&w, phi0, FRAC_PI_2)
+        } else if self.alpha_dot0 < 0.0 {
+            self.time_between(&w, -FRAC_PI_2, phi0)
+        } else if u0 == 0.0 {
+            // At rest at the bottom of the well: no motion, no reversal.
+            return Vec::new();
+        } else {
+            // At rest at a turning point: the first reversal is at the other one.
+            half
+        };
+        let mut times = Vec::new();
+        let mut n = 0.0;
+        loop {
+            let t = first + n * half;
+            if t > t_end || !t.is_finite() {
+                break;
+            }
+            if t > 0.0 {
+                times.push(t);
+            }
+            n += 1.0;
+        }
+        times
+    }
+
+    /// `∫ dt` for `φ` from `a` to `b`, with `α = centre + α* sin φ`.
+    ///
+    /// With `x = α*(1 − sin φ)`, `y = α*(1 + sin φ)`, the identity
+    /// `g(α) − g* = (g_c − g_o) sin x sin y` gives a smooth integrand free of cancellation:
+    /// `dt/dφ = [ (2/iz) θ (g_c − g_o) sinc x sinc y / D ]^{−1/2}`,
+    /// `D = sqrt(g g*) (sqrt g + sqrt g*)`.
+    fn time_between(&self, w: &Well, a: f64, b: f64) -> f64 {
+        let sin_sq_star = w.half_width.sin().powi(2);
+        let g_star = w.g_centre - (w.g_centre - w.g_other) * sin_sq_star;
+        let scale = 2.0 / self.params.iz * self.theta * (w.g_centre - w.g_other);
+        let mut integrand = |phi: f64| {
+            let s = phi.sin();
+            let u = w.half_width * s;
+            let x = w.half_width * (1.0 - s);
+            let y = w.half_width * (1.0 + s);
+            let g = w.g_centre - (w.g_centre - w.g_other) * u.sin().powi(2);
+            let d = (g * g_star).sqrt() * (g.sqrt() + g_star.sqrt());
+            (d / (scale * sinc(x) * sinc(y))).sqrt()
+        };
+        integrate_adaptive(a, b, QUADRATURE_TOLERANCE, &mut integrand)
+    }
+
+    /// A full-model-shaped state from an effective state `(α, α̇, φ)`: the fast oscillation is
+    /// reconstructed from the adiabatic invariant, `γ = a sin φ`, `γ̇ = a ω cos φ`, with
+    /// `a = sqrt(2 E⊥ / k)` and `E⊥ = θ g(α)^{−1/2}`.
+    #[must_use]
+    pub fn to_full_state(&self, alpha: f64, alpha_dot: f64, phase: f64) -> State {
+        let p = &self.params;
+        let e_perp = self.potential(alpha);
+        let amplitude = (2.0 * e_perp / p.k).sqrt();
+        let (s, c) = phase.sin_cos();
+        State::new(
+            amplitude * s,
+            alpha,
+            amplitude * p.omega(alpha) * c,
+            alpha_dot,
+        )
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Well {
+    centre: f64,
+    half_width: f64,
+    g_centre: f64,
+    g_other: f64,
+}
+
+fn sinc(x: f64) -> f64 {
+    if x.abs() < 1e-4 {
+        1.0 - x * x / 6.0
+    } else {
+        x.sin() / x
+    }
+}
+
+/// The tapping effect (the paper's remark): the spin acceleration at `t = 0`,
+/// `α̈(0) = g'(α0) γ̇0² / (2 iz)`, nonzero even for a body at rest in `α`.
+#[must_use]
+pub fn tapping_acceleration(problem: &Problem) -> f64 {
+    let p = problem.params();
+    let s = problem.start();
+    p.g_prime(s.alpha) * s.gamma_dot * s.gamma_dot / (2.0 * p.iz)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::params::Start;
+
+    fn problem(alpha_dot: f64) -> Problem {
+        Problem::new(
+            Params {
+                ix: 2.0,
+                iy: 1.0,
+                iz: 1.0,
+                k: 1e4,
+            },
+            Start {
+                gamma: 0.0,
+                alpha: 0.0,
+                gamma_dot: 1.0,
+                alpha_dot,
+            },
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn critical_ratio_is_the_papers_for_a_zero_start() {
+        let pr = problem(0.5);
+        let eff = Effective::new(&pr);
+        let paper = 2.0 * (2f64.sqrt() - 1.0);
+        assert!((eff.critical_ratio(&pr).unwrap() - paper).abs() < 1e-14);
+        assert!((eff.theta() - 0.5 * 2f64.powf(1.5)).abs() < 1e-15);
+        assert_eq!(eff.regime(), Regime::Trapped);
+        assert_eq!(Effective::new(&problem(1.0)).regime(), Regime::Rotating);
+    }
+
+    #[test]
+    fn sinc_is_continuous_at_the_switch() {
+        assert!((sinc(1e-4) - sinc(1.000_001e-4)).abs() < 1e-12);
+    }
+}

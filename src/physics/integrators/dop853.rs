@@ -1,0 +1,319 @@
+//! `dop853`: Dormand–Prince 8(5,3), adaptive, with its 7th-order dense output.
+//!
+//! Order 8, not symplectic. Cost: 12 right-hand-side evaluations per accepted step (11 per
+//! rejected attempt plus one reused first-same-as-last stage), and 3 more for the dense output,
+//! which is only computed when asked (an event inside the step, or a sample). Step-size control
+//! follows Hairer's code: the error norm mixes the 5th- and 3rd-order estimates, the factor is
+//! `0.9 err^{−1/8}` clamped to `[1/3, 6]`. The scale of component `i` is
+//! `tol (u_i + max(|y_i|, |y_new_i|))` (relative and absolute tolerance both `tol`, in the
+//! component's natural unit `u_i`), except for angles ([`Field::is_angle`]), whose scale is
+//! `tol u_i`. The full model measures `γ` in units of `1/ω_max` so that the fast oscillation's
+//! two halves, `γ` and `γ̇`, are held to the same energy-relative accuracy.
+//!
+//! The core is generic over the dimension so the full model (4) and the effective model (3)
+//! share it.
+
+use nalgebra::SVector;
+
+use super::StepError;
+use super::dop853_tableau::{A, B, D, E3, E5, STAGES, STAGES_DENSE};
+
+/// Counters of the work done by an integrator.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Stats {
+    /// Accepted steps.
+    pub steps: u64,
+    /// Rejected step attempts.
+    pub rejected: u64,
+    /// Right-hand-side evaluations (for the splittings: exact fast sub-flows).
+    pub rhs_evaluations: u64,
+}
+
+/// The right-hand side of an autonomous system `y' = f(y)`.
+pub trait Field<const N: usize> {
+    /// Evaluates `f(y)`.
+    fn eval(&self, y: &SVector<f64, N>) -> SVector<f64, N>;
+
+    /// The error scale of component `i` is `tol · (unit(i) + max(|y_i|, |y_new_i|))`; the unit
+    /// is the component's natural size (1 by default).
+    fn unit(&self, i: usize) -> f64 {
+        let _ = i;
+        1.0
+    }
+
+    /// Whether component `i` is an unbounded angle, whose error is controlled in absolute
+    /// terms (`tol · unit(i)`): its unwrapped size carries no meaning, so it must not loosen
+    /// the tolerance.
+    fn is_angle(&self, i: usize) -> bool {
+        let _ = i;
+        false
+    }
+}
+
+impl<const N: usize, F: Fn(&SVector<f64, N>) -> SVector<f64, N>> Field<N> for F {
+    fn eval(&self, y: &SVector<f64, N>) -> SVector<f64, N> {
+        self(y)
+    }
+}
+
+/// Adaptive DOP853 on an autonomous system `y' = f(y)` of dimension `N`.
+pub struct Dop853<const N: usize, F> {
+    f: F,
+    tol: f64,
+    t: f64,
+    y: SVector<f64, N>,
+    /// `f(y)` at the current point (first stage of the next step).
+    f_now: SVector<f64, N>,
+    /// Proposed size of the next step.
+    h_next: f64,
+    t_prev: f64,
+    y_prev: SVector<f64, N>,
+    h_last: f64,
+    k: [SVector<f64, N>; STAGES_DENSE],
+    dense: Option<[SVector<f64, N>; 7]>,
+    stats: Stats,
+}
+
+impl<const N: usize, F: Field<N>> Dop853<N, F> {
+    /// Starts at `(t0, y0)` with relative and absolute tolerance `tol`.
+    pub fn new(f: F, t0: f64, y0: SVector<f64, N>, tol: f64) -> Self {
+        let f_now = f.eval(&y0);
+        let mut me = Self {
+            f,
+            tol,
+            t: t0,
+            y: y0,
+            f_now,
+            h_next: 0.0,
+            t_prev: t0,
+            y_prev: y0,
+            h_last: 0.0,
+            k: [SVector::zeros(); STAGES_DENSE],
+            dense: None,
+            stats: Stats {
+                rhs_evaluations: 1,
+                ..Stats::default()
+            },
+        };
+        me.h_next = me.initial_step();
+        me
+    }
+
+    fn scale(&self, a: &SVector<f64, N>, b: &SVector<f64, N>, i: usize) -> f64 {
+        if self.f.is_angle(i) {
+            self.tol * self.f.unit(i)
+        } else {
+            self.tol * (self.f.unit(i) + a[i].abs().max(b[i].abs()))
+        }
+    }
+
+    fn rms(&self, v: &SVector<f64, N>) -> f64 {
+        let mut sum = 0.0;
+        for i in 0..N {
+            sum += (v[i] / self.scale(&self.y, &self.y, i)).powi(2);
+        }
+        #[allow(clippy::cast_precision_loss)]
+        let n = N as f64;
+        (sum / n).sqrt()
+    }
+
+    /// Hairer's starting step: balance the first and second derivatives' sizes.
+    fn initial_step(&mut self) -> f64 {
+        let d0 = self.rms(&self.y);
+        let d1 = self.rms(&self.f_now);
+        let h0 = if d0 < 1e-10 || d1 < 1e-10 {
+            1e-6
+        } else {
+            0.01 * d0 / d1
+        };
+        let y1 = self.y + self.f_now * h0;
+        let f1 = self.f.eval(&y1);
+        self.stats.rhs_evaluations += 1;
+        let d2 = self.rms(&(f1 - self.f_now)) / h0;
+        let h1 = if d1.max(d2) <= 1e-15 {
+            (h0 * 1e-3).max(1e-6)
+        } else {
+            (0.01 / d1.max(d2)).powf(1.0 / 8.0)
+        };
+        (100.0 * h0).min(h1)
+    }
+
+    /// Current time.
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// Current state.
+    pub fn state(&self) -> SVector<f64, N> {
+        self.y
+    }
+
+    /// Start of the last accepted step.
+    pub fn time_prev(&self) -> f64 {
+        self.t_prev
+    }
+
+    /// State at the start of the last accepted step.
+    pub fn state_prev(&self) -> SVector<f64, N> {
+        self.y_prev
+    }
+
+    /// Work counters.
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    /// Takes one accepted step, never past `t_limit` (which must exceed the current time).
+    ///
+    /// # Errors
+    /// When the step size underflows or the solution stops being finite.
+    pub fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
+        let mut rejected_once = false;
+        loop {
+            let remaining = t_limit - self.t;
+            let last = self.h_next >= remaining;
+            let h = if last { remaining } else { self.h_next };
+            if h <= 16.0 * f64::EPSILON * self.t.abs() && !last {
+                return Err(StepError::StepTooSmall { t: self.t, h });
+            }
+            self.k[0] = self.f_now;
+            for s in 1..STAGES {
+                let mut acc = SVector::<f64, N>::zeros();
+                for j in 0..s {
+                    if A[s][j] != 0.0 {
+                        acc += self.k[j] * A[s][j];
+                    }
+                }
+                self.k[s] = self.f.eval(&(self.y + acc * h));
+            }
+            self.stats.rhs_evaluations += (STAGES - 1) as u64;
+            let mut incr = SVector::<f64, N>::zeros();
+            let mut err5 = SVector::<f64, N>::zeros();
+            let mut err3 = SVector::<f64, N>::zeros();
+            for j in 0..STAGES {
+                incr += self.k[j] * B[j];
+                err5 += self.k[j] * E5[j];
+                err3 += self.k[j] * E3[j];
+            }
+            let y_new = self.y + incr * h;
+            let (mut e5, mut e3) = (0.0, 0.0);
+            for i in 0..N {
+                let sk = self.scale(&self.y, &y_new, i);
+                e5 += (err5[i] / sk).powi(2);
+                e3 += (err3[i] / sk).powi(2);
+            }
+            #[allow(clippy::cast_precision_loss)]
+            let n = N as f64;
+            let err = if e5 == 0.0 && e3 == 0.0 {
+                0.0
+            } else {
+                h.abs() * e5 / ((e5 + 0.01 * e3) * n).sqrt()
+            };
+            if !err.is_finite() || !y_new.iter().all(|v| v.is_finite()) {
+                self.stats.rejected += 1;
+                self.h_next = h * 0.1;
+                if self.h_next <= f64::EPSILON * self.t.abs().max(1.0) {
+                    return Err(StepError::NonFinite { t: self.t });
+                }
+                rejected_once = true;
+                continue;
+            }
+            if err <= 1.0 {
+                let f_new = self.f.eval(&y_new);
+                self.stats.rhs_evaluations += 1;
+                self.k[STAGES] = f_new;
+                self.t_prev = self.t;
+                self.y_prev = self.y;
+                self.t = if last { t_limit } else { self.t + h };
+                self.y = y_new;
+                self.f_now = f_new;
+                self.h_last = h;
+                self.dense = None;
+                self.stats.steps += 1;
+                let mut factor = if err == 0.0 {
+                    6.0
+                } else {
+                    (0.9 * err.powf(-0.125)).clamp(1.0 / 3.0, 6.0)
+                };
+                if rejected_once {
+                    factor = factor.min(1.0);
+                }
+                // A step shortened to land on `t_limit` says little about the natural size.
+                self.h_next = if last {
+                    self.h_next.max(h * factor)
+                } else {
+                    h * factor
+                };
+                return Ok(());
+            }
+            self.stats.rejected += 1;
+            rejected_once = true;
+            self.h_next = h * (0.9 * err.powf(-0.125)).max(0.2);
+        }
+    }
+
+    fn dense_coefficients(&mut self) -> [SVector<f64, N>; 7] {
+        if let Some(d) = self.dense {
+            return d;
+        }
+        let h = self.h_last;
+        for s in STAGES + 1..STAGES_DENSE {
+            let mut acc = SVector::<f64, N>::zeros();
+            for j in 0..s {
+                if A[s][j] != 0.0 {
+                    acc += self.k[j] * A[s][j];
+                }
+            }
+            self.k[s] = self.f.eval(&(self.y_prev + acc * h));
+        }
+        self.stats.rhs_evaluations += 3;
+        let dy = self.y - self.y_prev;
+        let mut d = [SVector::<f64, N>::zeros(); 7];
+        d[0] = dy;
+        d[1] = self.k[0] * h - dy;
+        d[2] = dy * 2.0 - (self.k[STAGES] + self.k[0]) * h;
+        for (row, coeffs) in D.iter().enumerate() {
+            let mut acc = SVector::<f64, N>::zeros();
+            for (j, &c) in coeffs.iter().enumerate() {
+                if c != 0.0 {
+                    acc += self.k[j] * c;
+                }
+            }
+            d[3 + row] = acc * h;
+        }
+        self.dense = Some(d);
+        d
+    }
+
+    /// The dense-output interpolant of the last step at `t` in `[time_prev, time]`.
+    pub fn interpolate(&mut self, t: f64) -> SVector<f64, N> {
+        if self.h_last == 0.0 {
+            return self.y;
+        }
+        let d = self.dense_coefficients();
+        let x = (t - self.t_prev) / self.h_last;
+        let x1 = 1.0 - x;
+        let v = d[0] + (d[1] + (d[2] + (d[3] + (d[4] + (d[5] + d[6] * x) * x1) * x) * x1) * x) * x1;
+        self.y_prev + v * x
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector2;
+
+    #[test]
+    fn harmonic_oscillator_to_tolerance_with_accurate_dense_output() {
+        let f = |y: &Vector2<f64>| Vector2::new(y[1], -y[0]);
+        let mut ode = Dop853::new(f, 0.0, Vector2::new(0.0, 1.0), 1e-12);
+        let mut worst: f64 = 0.0;
+        while ode.time() < 10.0 {
+            ode.step(10.0).unwrap();
+            let tm = 0.5 * (ode.time_prev() + ode.time());
+            worst = worst.max((ode.interpolate(tm)[0] - tm.sin()).abs());
+        }
+        assert!((ode.state()[0] - 10f64.sin()).abs() < 1e-10);
+        assert!(worst < 1e-10, "dense output error {worst}");
+    }
+}

@@ -1,0 +1,81 @@
+//! `dop853` on the full model: the generic core of [`super::dop853`] with the Euler–Lagrange
+//! right-hand side. Order 8, not symplectic, 12 evaluations per step (see the core's doc).
+
+use super::dop853::{Dop853, Field, Stats};
+use super::roots::find_root;
+use super::{Integrator, Method, StepError};
+use crate::physics::model::{ALPHA_DOT, State, energy, initial_state, rhs};
+use crate::physics::params::{Params, Problem};
+
+/// The Euler–Lagrange field of one parameter set, with `1/ω_max`, the natural unit of `γ`.
+pub struct FullField(Params, f64);
+
+impl Field<4> for FullField {
+    #[inline]
+    fn eval(&self, y: &State) -> State {
+        rhs(&self.0, y)
+    }
+    fn unit(&self, i: usize) -> f64 {
+        if i == crate::physics::model::GAMMA {
+            self.1
+        } else {
+            1.0
+        }
+    }
+    fn is_angle(&self, i: usize) -> bool {
+        i == crate::physics::model::ALPHA
+    }
+}
+
+/// DOP853 on `(γ, α, γ̇, α̇)`.
+pub struct FullDop853 {
+    params: Params,
+    core: Dop853<4, FullField>,
+}
+
+impl FullDop853 {
+    /// Starts at the problem's initial values with tolerance `tol`.
+    pub fn new(problem: &Problem, tol: f64) -> Self {
+        let params = *problem.params();
+        Self {
+            params,
+            core: Dop853::new(
+                FullField(params, 1.0 / params.omega_max()),
+                0.0,
+                initial_state(problem.start()),
+                tol,
+            ),
+        }
+    }
+}
+
+impl Integrator for FullDop853 {
+    fn method(&self) -> Method {
+        Method::Dop853
+    }
+    fn time(&self) -> f64 {
+        self.core.time()
+    }
+    fn time_prev(&self) -> f64 {
+        self.core.time_prev()
+    }
+    fn state(&self) -> State {
+        self.core.state()
+    }
+    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
+        self.core.step(t_limit)
+    }
+    fn interpolate(&mut self, t: f64) -> State {
+        self.core.interpolate(t)
+    }
+    fn locate_alpha_dot_zero(&mut self) -> f64 {
+        let (a, b) = (self.core.time_prev(), self.core.time());
+        find_root(|t| self.core.interpolate(t)[ALPHA_DOT], a, b)
+    }
+    fn energy(&self, y: &State) -> f64 {
+        energy(&self.params, y)
+    }
+    fn stats(&self) -> Stats {
+        self.core.stats()
+    }
+}

@@ -1,0 +1,202 @@
+//! Integrators of the full and effective models behind one interface.
+//!
+//! Every method is deterministic: the same problem, settings and build give bit-identical
+//! results. Each file holds one method and states its order, whether it is symplectic and its
+//! cost per step. Reversals (sign changes of `α̇`) are located inside a step by each method's
+//! own interpolant or closed-form sub-flow ([`Integrator::locate_alpha_dot_zero`]).
+
+pub mod dop853;
+mod dop853_tableau;
+mod effective;
+mod full_dop853;
+pub mod reversals;
+mod rk4;
+pub(crate) mod roots;
+pub mod splitting;
+
+use serde::Serialize;
+
+pub use dop853::Stats;
+
+use super::model::State;
+use super::params::Problem;
+
+/// The closed set of methods; names are the ones used in presets and on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// Classical Runge–Kutta, fixed step, order 4.
+    Rk4,
+    /// Dormand–Prince 8(5,3), adaptive, order 8.
+    Dop853,
+    /// Strang splitting with exact sub-flows, order 2, symplectic.
+    Strang,
+    /// Yoshida's triple-jump composition of Strang, order 4, symplectic.
+    Yoshida4,
+    /// Yoshida's 7-stage composition of Strang, order 6, symplectic.
+    Yoshida6,
+    /// The 15-stage composition of Strang (Suzuki–Umeno, McLachlan), order 8, symplectic.
+    Suzuki8,
+    /// The effective `k → ∞` model, integrated by DOP853.
+    Effective,
+}
+
+impl Method {
+    /// Every method, in the order tables list them.
+    pub const ALL: [Self; 7] = [
+        Self::Rk4,
+        Self::Dop853,
+        Self::Strang,
+        Self::Yoshida4,
+        Self::Yoshida6,
+        Self::Suzuki8,
+        Self::Effective,
+    ];
+
+    /// The name used in presets, on the command line and in JSON.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Rk4 => "rk4",
+            Self::Dop853 => "dop853",
+            Self::Strang => "strang",
+            Self::Yoshida4 => "yoshida4",
+            Self::Yoshida6 => "yoshida6",
+            Self::Suzuki8 => "suzuki8",
+            Self::Effective => "effective",
+        }
+    }
+
+    /// Parses a name from [`Method::name`].
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// Comma-separated list of valid names, for error messages.
+    #[must_use]
+    pub fn names() -> String {
+        Self::ALL.map(Self::name).join(", ")
+    }
+
+    /// Classical order of accuracy.
+    #[must_use]
+    pub fn order(self) -> u32 {
+        match self {
+            Self::Strang => 2,
+            Self::Rk4 | Self::Yoshida4 => 4,
+            Self::Yoshida6 => 6,
+            Self::Dop853 | Self::Suzuki8 | Self::Effective => 8,
+        }
+    }
+
+    /// Whether the method takes a fixed step (`step` applies) rather than adapting to `tolerance`.
+    #[must_use]
+    pub fn is_fixed_step(self) -> bool {
+        !matches!(self, Self::Dop853 | Self::Effective)
+    }
+
+    /// Whether the method integrates the effective model rather than the full one.
+    #[must_use]
+    pub fn is_effective(self) -> bool {
+        matches!(self, Self::Effective)
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Why a step could not be taken.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum StepError {
+    /// The adaptive step size underflowed.
+    #[error("step size underflow at t = {t} (h = {h:e})")]
+    StepTooSmall {
+        /// Time reached.
+        t: f64,
+        /// The step size that was too small.
+        h: f64,
+    },
+    /// The solution stopped being finite.
+    #[error("the solution is no longer finite at t = {t}")]
+    NonFinite {
+        /// Time reached.
+        t: f64,
+    },
+}
+
+/// How a method is to be run.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Settings {
+    /// Tolerance of adaptive methods; for fixed-step methods it picks the default step.
+    pub tolerance: f64,
+    /// Fixed step size; `None` derives one from the tolerance.
+    pub step: Option<f64>,
+}
+
+/// A running integration of one problem.
+pub trait Integrator: Send {
+    /// Which method this is.
+    fn method(&self) -> Method;
+    /// Current time.
+    fn time(&self) -> f64;
+    /// Start of the last step (equal to [`Integrator::time`] before the first).
+    fn time_prev(&self) -> f64;
+    /// Current state `(γ, α, γ̇, α̇)`; the effective model reconstructs `γ, γ̇` from its
+    /// adiabatic invariant and fast phase.
+    fn state(&self) -> State;
+    /// Takes one step, never past `t_limit`, which must exceed the current time.
+    ///
+    /// # Errors
+    /// When the step cannot be completed with a finite result.
+    fn step(&mut self, t_limit: f64) -> Result<(), StepError>;
+    /// The state at `t` within the last step, from the method's own interpolant.
+    fn interpolate(&mut self, t: f64) -> State;
+    /// Where `α̇` vanishes within the last step, given that it changes sign over the step.
+    fn locate_alpha_dot_zero(&mut self) -> f64;
+    /// The quantity the method conserves: the energy, or `E_eff` for the effective model.
+    fn energy(&self, y: &State) -> f64;
+    /// Work counters.
+    fn stats(&self) -> Stats;
+}
+
+/// Default fixed step for `method` at `tolerance`: `c · tol^{1/p} / ν` with `ν` the fastest
+/// rate of the problem (the fast frequency, or the slow rate at small `k`).
+#[must_use]
+pub fn default_step(method: Method, problem: &Problem, tolerance: f64) -> f64 {
+    let p = problem.params();
+    let s = problem.start();
+    let y0 = super::model::initial_state(s);
+    let e = super::model::energy(p, &y0);
+    let slow = (2.0 * e / p.ix.min(p.iy).min(p.iz)).sqrt();
+    let rate = p.omega_max().max(slow).max(1e-3);
+    let (c, order) = match method {
+        Method::Rk4 => (0.5, 4.0),
+        Method::Strang => (0.3, 2.0),
+        Method::Yoshida4 => (0.6, 4.0),
+        Method::Yoshida6 => (1.0, 6.0),
+        Method::Suzuki8 => (1.5, 8.0),
+        Method::Dop853 | Method::Effective => (1.0, 8.0),
+    };
+    c * tolerance.powf(1.0 / order) / rate
+}
+
+/// Builds a ready-to-step integrator at `t = 0`.
+#[must_use]
+pub fn build(method: Method, problem: &Problem, settings: Settings) -> Box<dyn Integrator> {
+    let step = settings
+        .step
+        .unwrap_or_else(|| default_step(method, problem, settings.tolerance));
+    match method {
+        Method::Rk4 => Box::new(rk4::Rk4::new(problem, step)),
+        Method::Dop853 => Box::new(full_dop853::FullDop853::new(problem, settings.tolerance)),
+        Method::Strang | Method::Yoshida4 | Method::Yoshida6 | Method::Suzuki8 => Box::new(
+            splitting::Splitting::new(problem, splitting::Composition::of(method), step),
+        ),
+        Method::Effective => Box::new(effective::EffectiveDop853::new(problem, settings.tolerance)),
+    }
+}

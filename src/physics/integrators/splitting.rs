@@ -1,0 +1,324 @@
+//! `strang`, `yoshida4`, `yoshida6`, `suzuki8`: splitting with exactly solved sub-flows
+//! (physics.md §4) and its symmetric compositions.
+//!
+//! `H = H1 + H2`, `H1 = pα²/(2 iz)` (a drift of `α`), `H2 = pγ²/(2 g(α)) + ½ k γ²` (with `α`
+//! frozen: a rotation of `(γ, pγ)` at `ω = sqrt(k/g)` and a kick of `pα` by the closed-form
+//! integral of `pγ²`). A Strang step is `H1(h/2) H2(h) H1(h/2)`; a composition applies Strang
+//! steps of sizes `w_i h`.
+//!
+//! | method | order | stages (exact fast flows per step) | symplectic |
+//! |---|---|---|---|
+//! | strang | 2 | 1 | yes |
+//! | yoshida4 | 4 | 3 | yes |
+//! | yoshida6 | 6 | 7 | yes |
+//! | suzuki8 | 8 | 15 | yes |
+//!
+//! There is no stability limit in `k`: the fast flow is exact for any `ω h`. Its weakness is
+//! step-size resonance (`ω h` near a multiple of π), see physics.md §4.
+//!
+//! Reversals: only `H2` changes `pα`, and inside one `H2` sub-flow `pα(s)` is monotone (its
+//! derivative is `g' pγ²/(2g²)`, of fixed sign), so the crossing inside a sub-flow is unique and
+//! is found on the closed form itself.
+
+use super::dop853::Stats;
+use super::roots::find_root;
+use super::{Integrator, Method, StepError};
+use crate::physics::model::{State, energy, initial_state};
+use crate::physics::params::{Params, Problem};
+
+/// Yoshida's 4th-order triple jump, `w1 = 1/(2 − 2^{1/3})`, `w0 = 1 − 2 w1`.
+const YOSHIDA4: [f64; 3] = [
+    1.351_207_191_959_657_8,
+    -1.702_414_383_919_315_5,
+    1.351_207_191_959_657_8,
+];
+
+/// Yoshida's (1990) 6th-order solution A, 7 stages.
+const YOSHIDA6: [f64; 7] = [
+    0.784_513_610_477_557_3,
+    0.235_573_213_359_358_1,
+    -1.177_679_984_178_871,
+    1.315_186_320_683_911_2,
+    -1.177_679_984_178_871,
+    0.235_573_213_359_358_1,
+    0.784_513_610_477_557_3,
+];
+
+/// The 15-stage 8th-order symmetric composition (Suzuki & Umeno 1993; McLachlan 1995).
+const SUZUKI8: [f64; 15] = [
+    0.741_670_364_350_612_9,
+    -0.409_100_825_800_031_6,
+    0.190_754_710_296_238_4,
+    -0.573_862_471_116_082_3,
+    0.299_064_181_303_655_9,
+    0.334_624_918_245_298_2,
+    0.315_293_092_396_766_6,
+    -0.796_887_939_352_916_4,
+    0.315_293_092_396_766_6,
+    0.334_624_918_245_298_2,
+    0.299_064_181_303_655_9,
+    -0.573_862_471_116_082_3,
+    0.190_754_710_296_238_4,
+    -0.409_100_825_800_031_6,
+    0.741_670_364_350_612_9,
+];
+
+/// A symmetric composition of Strang steps.
+#[derive(Clone, Copy, Debug)]
+pub struct Composition {
+    method: Method,
+    weights: &'static [f64],
+}
+
+impl Composition {
+    /// The composition of a splitting method.
+    ///
+    /// # Panics
+    /// When `method` is not a splitting method (a programming error).
+    #[must_use]
+    pub fn of(method: Method) -> Self {
+        let weights: &'static [f64] = match method {
+            Method::Strang => &[1.0],
+            Method::Yoshida4 => &YOSHIDA4,
+            Method::Yoshida6 => &YOSHIDA6,
+            Method::Suzuki8 => &SUZUKI8,
+            other => panic!("{other} is not a splitting method"),
+        };
+        Self { method, weights }
+    }
+
+    /// Strang stages per step.
+    #[must_use]
+    pub fn stages(&self) -> usize {
+        self.weights.len()
+    }
+}
+
+/// Canonical state `(γ, α, pγ, pα)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Canonical {
+    /// Tilt.
+    pub gamma: f64,
+    /// Spin angle.
+    pub alpha: f64,
+    /// `pγ = g(α) γ̇`.
+    pub p_gamma: f64,
+    /// `pα = iz α̇`.
+    pub p_alpha: f64,
+}
+
+impl Canonical {
+    /// From `(γ, α, γ̇, α̇)`.
+    #[must_use]
+    pub fn from_state(p: &Params, y: &State) -> Self {
+        Self {
+            gamma: y[0],
+            alpha: y[1],
+            p_gamma: p.g(y[1]) * y[2],
+            p_alpha: p.iz * y[3],
+        }
+    }
+
+    /// To `(γ, α, γ̇, α̇)`.
+    #[must_use]
+    pub fn to_state(&self, p: &Params) -> State {
+        State::new(
+            self.gamma,
+            self.alpha,
+            self.p_gamma / p.g(self.alpha),
+            self.p_alpha / p.iz,
+        )
+    }
+}
+
+/// The exact fast sub-flow `H2` for time `tau`, `α` frozen: returns the new state.
+///
+/// `pα += g'/(2g²) · J`, `J = ∫₀^τ pγ(s)² ds`
+/// `= τ/2 (pγ² + (gωγ)²) + sc/(2ω) (pγ² − (gωγ)²) − pγ gωγ s²/ω` with `s, c = sin, cos ωτ`.
+#[must_use]
+#[inline]
+pub fn fast_flow(p: &Params, y: &Canonical, tau: f64) -> Canonical {
+    let fast = FastFlow::new(p, y);
+    let (s, c) = (fast.omega * tau).sin_cos();
+    Canonical {
+        gamma: y.gamma * c + y.p_gamma / fast.g_omega * s,
+        alpha: y.alpha,
+        p_gamma: y.p_gamma * c - fast.g_omega * y.gamma * s,
+        p_alpha: y.p_alpha + fast.kick(y, tau, s, c),
+    }
+}
+
+/// Quantities of one `H2` sub-flow that do not depend on its duration.
+struct FastFlow {
+    omega: f64,
+    g_omega: f64,
+    kick_scale: f64,
+}
+
+impl FastFlow {
+    fn new(p: &Params, y: &Canonical) -> Self {
+        let (sa, ca) = y.alpha.sin_cos();
+        let g = p.ix * ca * ca + p.iy * sa * sa;
+        let g_prime = 2.0 * (p.iy - p.ix) * sa * ca;
+        let omega = (p.k / g).sqrt();
+        Self {
+            omega,
+            g_omega: g * omega,
+            kick_scale: g_prime / (2.0 * g * g),
+        }
+    }
+
+    /// `g'/(2g²) ∫₀^τ pγ(s)² ds`, given `s, c = sin, cos ωτ`.
+    #[inline]
+    fn kick(&self, y: &Canonical, tau: f64, s: f64, c: f64) -> f64 {
+        let a = y.p_gamma;
+        let b = self.g_omega * y.gamma;
+        let j = 0.5 * tau * (a * a + b * b) + s * c / (2.0 * self.omega) * (a * a - b * b)
+            - a * b * s * s / self.omega;
+        self.kick_scale * j
+    }
+}
+
+/// One composed step of size `h` from `y`.
+#[must_use]
+pub fn composed_step(p: &Params, weights: &[f64], y: &Canonical, h: f64) -> Canonical {
+    let mut y = *y;
+    let drift = 1.0 / p.iz;
+    for &w in weights {
+        let tau = w * h;
+        y.alpha += 0.5 * tau * y.p_alpha * drift;
+        y = fast_flow(p, &y, tau);
+        y.alpha += 0.5 * tau * y.p_alpha * drift;
+    }
+    y
+}
+
+/// A splitting integrator with a fixed step.
+pub struct Splitting {
+    params: Params,
+    composition: Composition,
+    h: f64,
+    t: f64,
+    y: Canonical,
+    t_prev: f64,
+    y_prev: Canonical,
+    stats: Stats,
+}
+
+impl Splitting {
+    /// Starts at the problem's initial values with step `h`.
+    #[must_use]
+    pub fn new(problem: &Problem, composition: Composition, h: f64) -> Self {
+        let params = *problem.params();
+        let y = Canonical::from_state(&params, &initial_state(problem.start()));
+        Self {
+            params,
+            composition,
+            h,
+            t: 0.0,
+            y,
+            t_prev: 0.0,
+            y_prev: y,
+            stats: Stats::default(),
+        }
+    }
+}
+
+impl Integrator for Splitting {
+    fn method(&self) -> Method {
+        self.composition.method
+    }
+    fn time(&self) -> f64 {
+        self.t
+    }
+    fn time_prev(&self) -> f64 {
+        self.t_prev
+    }
+    fn state(&self) -> State {
+        self.y.to_state(&self.params)
+    }
+    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
+        let remaining = t_limit - self.t;
+        let last = self.h >= remaining;
+        let h = if last { remaining } else { self.h };
+        let y_new = composed_step(&self.params, self.composition.weights, &self.y, h);
+        if ![y_new.gamma, y_new.alpha, y_new.p_gamma, y_new.p_alpha]
+            .iter()
+            .all(|v| v.is_finite())
+        {
+            return Err(StepError::NonFinite { t: self.t });
+        }
+        self.t_prev = self.t;
+        self.y_prev = self.y;
+        self.t = if last { t_limit } else { self.t + h };
+        self.y = y_new;
+        self.stats.steps += 1;
+        self.stats.rhs_evaluations += self.composition.stages() as u64;
+        Ok(())
+    }
+    /// The method's own step of size `t − t_prev` from the step's start: the same order as a
+    /// full step, and exact in the fast oscillation.
+    fn interpolate(&mut self, t: f64) -> State {
+        let y = composed_step(
+            &self.params,
+            self.composition.weights,
+            &self.y_prev,
+            t - self.t_prev,
+        );
+        y.to_state(&self.params)
+    }
+    fn locate_alpha_dot_zero(&mut self) -> f64 {
+        let p = self.params;
+        let h = self.t - self.t_prev;
+        // The sign α̇ ends the step with; a stage crosses when it moves p_alpha onto that side.
+        let target = self.y.p_alpha > 0.0;
+        let mut y = self.y_prev;
+        // The fast sub-flow of a stage stands for the whole stage, `[offset, offset + τ]`.
+        let mut offset = 0.0;
+        let mut fallback = None;
+        for &w in self.composition.weights {
+            let tau = w * h;
+            y.alpha += 0.5 * tau * y.p_alpha / p.iz;
+            let after = fast_flow(&p, &y, tau);
+            let on_target = |v: f64| v != 0.0 && (v > 0.0) == target;
+            if !on_target(y.p_alpha) && on_target(after.p_alpha) {
+                let before = y;
+                let fast = FastFlow::new(&p, &before);
+                let p_alpha_at = |s: f64| {
+                    let (sn, cs) = (fast.omega * s).sin_cos();
+                    before.p_alpha + fast.kick(&before, s, sn, cs)
+                };
+                let s = find_root(p_alpha_at, 0.0, tau);
+                let t = (self.t_prev + offset + s).clamp(self.t_prev, self.t);
+                if tau > 0.0 {
+                    return t;
+                }
+                fallback.get_or_insert(t);
+            }
+            y = after;
+            y.alpha += 0.5 * tau * y.p_alpha / p.iz;
+            offset += tau;
+        }
+        fallback.unwrap_or(self.t)
+    }
+    fn energy(&self, y: &State) -> f64 {
+        energy(&self.params, y)
+    }
+    fn stats(&self) -> Stats {
+        self.stats
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn composition_weights_are_consistent_and_symmetric() {
+        for w in [&YOSHIDA4[..], &YOSHIDA6[..], &SUZUKI8[..]] {
+            let sum: f64 = w.iter().sum();
+            assert!((sum - 1.0).abs() < 1e-15, "weights sum to {sum}");
+            assert!(w.iter().eq(w.iter().rev()), "composition is not symmetric");
+        }
+    }
+}

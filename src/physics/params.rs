@@ -1,0 +1,239 @@
+//! Validated physical parameters and initial values.
+//!
+//! Raw numbers come from presets or the command line; `Problem::new` is the only way to obtain
+//! a `Problem`, so every integrator can assume finite values, strictly positive inertia moments
+//! and a strictly positive Hooke constant.
+
+use serde::Serialize;
+
+/// Inertia moments and Hooke constant of the body (physics.md §1).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Params {
+    /// Inertia moment about the body's x axis.
+    pub ix: f64,
+    /// Inertia moment about the body's y axis.
+    pub iy: f64,
+    /// Inertia moment about the vertical axis (the spin axis).
+    pub iz: f64,
+    /// Hooke constant of the spring holding the tilt `gamma`.
+    pub k: f64,
+}
+
+/// Initial values of the coordinates and their rates.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Start {
+    /// Stiff tilt angle.
+    pub gamma: f64,
+    /// Spin angle.
+    pub alpha: f64,
+    /// Rate of the tilt.
+    pub gamma_dot: f64,
+    /// Spin rate.
+    pub alpha_dot: f64,
+}
+
+/// A value outside what the model allows.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ParamError {
+    /// The value is NaN or infinite.
+    #[error("{field} = {value} is not a finite number; allowed: {allowed}")]
+    NotFinite {
+        /// Name of the field, as in presets (`ix`, `k`, `gamma_dot`, ...).
+        field: &'static str,
+        /// The rejected value.
+        value: f64,
+        /// What the field accepts.
+        allowed: &'static str,
+    },
+    /// The value is finite but out of range.
+    #[error("{field} = {value} is out of range; allowed: {allowed}")]
+    OutOfRange {
+        /// Name of the field.
+        field: &'static str,
+        /// The rejected value.
+        value: f64,
+        /// What the field accepts.
+        allowed: &'static str,
+    },
+}
+
+impl ParamError {
+    /// The name of the offending field.
+    #[must_use]
+    pub fn field(&self) -> &'static str {
+        match self {
+            Self::NotFinite { field, .. } | Self::OutOfRange { field, .. } => field,
+        }
+    }
+}
+
+const POSITIVE: &str = "a finite number > 0";
+const FINITE: &str = "any finite number";
+
+fn check(field: &'static str, value: f64, positive: bool) -> Result<(), ParamError> {
+    let allowed = if positive { POSITIVE } else { FINITE };
+    if !value.is_finite() {
+        return Err(ParamError::NotFinite {
+            field,
+            value,
+            allowed,
+        });
+    }
+    if positive && value <= 0.0 {
+        return Err(ParamError::OutOfRange {
+            field,
+            value,
+            allowed,
+        });
+    }
+    Ok(())
+}
+
+impl Params {
+    /// Checks that all values are finite and strictly positive.
+    ///
+    /// # Errors
+    /// The first field that violates its range.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        check("ix", self.ix, true)?;
+        check("iy", self.iy, true)?;
+        check("iz", self.iz, true)?;
+        check("k", self.k, true)
+    }
+
+    /// `g(α) = ix cos²α + iy sin²α`, the tilt's inertia at spin angle `α` (physics.md §1).
+    #[must_use]
+    #[inline]
+    pub fn g(&self, alpha: f64) -> f64 {
+        let (s, c) = alpha.sin_cos();
+        self.ix * c * c + self.iy * s * s
+    }
+
+    /// `g'(α) = (iy − ix) sin 2α`.
+    #[must_use]
+    #[inline]
+    pub fn g_prime(&self, alpha: f64) -> f64 {
+        (self.iy - self.ix) * (2.0 * alpha).sin()
+    }
+
+    /// Fast frequency `ω(α) = sqrt(k / g(α))`.
+    #[must_use]
+    #[inline]
+    pub fn omega(&self, alpha: f64) -> f64 {
+        (self.k / self.g(alpha)).sqrt()
+    }
+
+    /// The largest fast frequency over all `α`, `sqrt(k / min(ix, iy))`.
+    #[must_use]
+    pub fn omega_max(&self) -> f64 {
+        (self.k / self.ix.min(self.iy)).sqrt()
+    }
+}
+
+impl Start {
+    /// Checks that all values are finite.
+    ///
+    /// # Errors
+    /// The first field that is NaN or infinite.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        check("gamma", self.gamma, false)?;
+        check("alpha", self.alpha, false)?;
+        check("gamma_dot", self.gamma_dot, false)?;
+        check("alpha_dot", self.alpha_dot, false)
+    }
+}
+
+/// A validated pair of parameters and initial values: the input of every integrator.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Problem {
+    params: Params,
+    start: Start,
+}
+
+impl Problem {
+    /// Validates both parts.
+    ///
+    /// # Errors
+    /// The first field out of its allowed range.
+    pub fn new(params: Params, start: Start) -> Result<Self, ParamError> {
+        params.validate()?;
+        start.validate()?;
+        Ok(Self { params, start })
+    }
+
+    /// The body and spring.
+    #[must_use]
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    /// The initial values.
+    #[must_use]
+    pub fn start(&self) -> &Start {
+        &self.start
+    }
+
+    /// The same problem with another Hooke constant.
+    ///
+    /// # Errors
+    /// When `k` is not finite and positive.
+    pub fn with_k(&self, k: f64) -> Result<Self, ParamError> {
+        Self::new(Params { k, ..self.params }, self.start)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn params() -> Params {
+        Params {
+            ix: 2.0,
+            iy: 1.0,
+            iz: 1.0,
+            k: 1e4,
+        }
+    }
+
+    #[test]
+    fn rejects_non_positive_inertia_and_k() {
+        let start = Start {
+            gamma: 0.0,
+            alpha: 0.0,
+            gamma_dot: 1.0,
+            alpha_dot: 0.5,
+        };
+        let err = Problem::new(
+            Params {
+                iy: -1.0,
+                ..params()
+            },
+            start,
+        )
+        .unwrap_err();
+        assert_eq!(err.field(), "iy");
+        assert!(err.to_string().contains("> 0"), "{err}");
+        let err = Problem::new(Params { k: 0.0, ..params() }, start).unwrap_err();
+        assert_eq!(err.field(), "k");
+        let err = Problem::new(
+            params(),
+            Start {
+                alpha_dot: f64::NAN,
+                ..start
+            },
+        )
+        .unwrap_err();
+        assert_eq!(err.field(), "alpha_dot");
+        assert!(err.to_string().contains("finite"), "{err}");
+    }
+
+    #[test]
+    fn g_matches_definition_at_quarter_turns() {
+        let p = params();
+        assert!((p.g(0.0) - 2.0).abs() < 1e-15);
+        assert!((p.g(std::f64::consts::FRAC_PI_2) - 1.0).abs() < 1e-15);
+        assert!(p.g_prime(0.0).abs() < 1e-15);
+        assert!((p.g_prime(std::f64::consts::FRAC_PI_4) + 1.0).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,119 @@
+//! One headless trajectory: integrate to `t_end`, collect reversals, the energy error and
+//! optional samples. Used by `simulate`, the tests and the benchmarks.
+
+use serde::Serialize;
+
+use super::integrators::reversals::ReversalTracker;
+use super::integrators::{self, Method, Settings, Stats, StepError};
+use super::model::{State, initial_state};
+use super::params::Problem;
+
+/// What to run.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct RunSpec {
+    /// The integrator.
+    pub method: Method,
+    /// Tolerance (adaptive methods) or the default step's target (fixed-step methods).
+    pub tolerance: f64,
+    /// Fixed step, for fixed-step methods; `None` derives it from `tolerance`.
+    pub step: Option<f64>,
+    /// Final time.
+    pub t_end: f64,
+    /// Evenly spaced samples over `[0, t_end]` to record (0: none, so none are computed).
+    pub samples: usize,
+}
+
+/// One recorded point of the trajectory.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Sample {
+    /// Time.
+    pub t: f64,
+    /// `(γ, α, γ̇, α̇)`.
+    pub state: State,
+}
+
+/// The outcome of a run.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RunResult {
+    /// Time reached (`t_end`).
+    pub t: f64,
+    /// State at `t`.
+    pub final_state: State,
+    /// Times of the spin reversals in `(0, t]`.
+    pub reversals: Vec<f64>,
+    /// Conserved quantity at `t = 0` (energy, or `E_eff` for the effective model).
+    pub energy_initial: f64,
+    /// The same at `t`.
+    pub energy_final: f64,
+    /// Largest `|E − E0| / |E0|` seen at step ends (absolute when `E0 = 0`).
+    pub max_relative_energy_error: f64,
+    /// Work counters.
+    pub stats: Stats,
+    /// Requested samples.
+    pub samples: Vec<Sample>,
+}
+
+/// Integrates `problem` as `spec` says.
+///
+/// # Errors
+/// When the integrator cannot continue (step underflow, non-finite state).
+pub fn run(problem: &Problem, spec: &RunSpec) -> Result<RunResult, StepError> {
+    let settings = Settings {
+        tolerance: spec.tolerance,
+        step: spec.step,
+    };
+    let mut integrator = integrators::build(spec.method, problem, settings);
+    let y0 = initial_state(problem.start());
+    let e0 = integrator.energy(&integrator.state());
+    let scale = if e0 == 0.0 { 1.0 } else { e0.abs() };
+    let mut tracker = ReversalTracker::new(y0[3]);
+    let mut reversals = Vec::new();
+    let mut max_err: f64 = 0.0;
+    let mut samples = Vec::with_capacity(spec.samples);
+    let sample_time = |i: usize| {
+        if spec.samples <= 1 {
+            0.0
+        } else {
+            #[allow(clippy::cast_precision_loss)]
+            let f = i as f64 / (spec.samples - 1) as f64;
+            spec.t_end * f
+        }
+    };
+    let mut next_sample = 0;
+    if spec.samples > 0 {
+        samples.push(Sample {
+            t: 0.0,
+            state: integrator.state(),
+        });
+        next_sample = 1;
+    }
+    while integrator.time() < spec.t_end {
+        integrator.step(spec.t_end)?;
+        if let Some(t) = tracker.after_step(integrator.as_mut()) {
+            reversals.push(t);
+        }
+        let y = integrator.state();
+        max_err = max_err.max((integrator.energy(&y) - e0).abs() / scale);
+        while next_sample < spec.samples && sample_time(next_sample) <= integrator.time() {
+            let t = sample_time(next_sample);
+            let state = if t >= integrator.time() {
+                y
+            } else {
+                integrator.interpolate(t)
+            };
+            samples.push(Sample { t, state });
+            next_sample += 1;
+        }
+    }
+    let final_state = integrator.state();
+    Ok(RunResult {
+        t: integrator.time(),
+        final_state,
+        reversals,
+        energy_initial: e0,
+        energy_final: integrator.energy(&final_state),
+        max_relative_energy_error: max_err,
+        stats: integrator.stats(),
+        samples,
+    })
+}
