@@ -2,4 +2,7 @@
 //!
 //! Layers (each module's doc says what it may import): `physics` ← `scenario` ← `cli`.
 
+pub mod cli;
 pub mod physics;
+pub mod scenario;
+pub mod simulate;

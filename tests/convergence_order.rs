@@ -14,6 +14,7 @@ fn alpha_at(method: Method, h: f64) -> (f64, f64) {
         step: Some(h),
         t_end: 4.0,
         samples: 0,
+        monitor_energy: true,
     };
     let r = run(&problem, &spec).expect("integrates");
     (r.final_state[1], r.final_state[3])
@@ -35,6 +36,7 @@ fn each_method_shows_its_order() {
         (Method::Rk4, 0.1),
         (Method::Strang, 0.05),
         (Method::Yoshida4, 0.1),
+        (Method::BlanesMoan4, 0.2),
         (Method::Yoshida6, 0.2),
         (Method::Suzuki8, 0.25),
     ] {

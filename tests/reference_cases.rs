@@ -61,6 +61,7 @@ fn full_model_matches_reference_with_every_resolved_method() {
                 step: None,
                 t_end: num(&case, "t_end"),
                 samples: 0,
+                monitor_energy: true,
             };
             let r = run(&problem, &spec).expect("integrates");
             check(
@@ -93,6 +94,7 @@ fn effective_model_matches_reference_by_ode_and_by_quadrature() {
             step: None,
             t_end,
             samples: 0,
+            monitor_energy: true,
         };
         let r = run(&problem, &spec).expect("integrates");
         check(

@@ -7,6 +7,9 @@
 /// Nodes and weights of the `n`-point Gauss–Legendre rule on `[-1, 1]`.
 ///
 /// Computed by Newton's method on the Legendre polynomial, accurate to rounding.
+///
+/// # Panics
+/// When `n` is 0.
 #[must_use]
 pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
     assert!(n > 0, "a quadrature rule needs at least one node");

@@ -163,6 +163,8 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         self.stats
     }
 
+    // Butcher-tableau loops index several arrays by stage; iterators would obscure them.
+    #[allow(clippy::needless_range_loop)]
     /// Takes one accepted step, never past `t_limit` (which must exceed the current time).
     ///
     /// # Errors
@@ -252,6 +254,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         }
     }
 
+    #[allow(clippy::needless_range_loop)]
     fn dense_coefficients(&mut self) -> [SVector<f64, N>; 7] {
         if let Some(d) = self.dense {
             return d;

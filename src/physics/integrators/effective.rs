@@ -63,6 +63,9 @@ impl Integrator for EffectiveDop853 {
     fn state(&self) -> State {
         self.lift(&self.core.state())
     }
+    fn alpha_dot(&self) -> f64 {
+        self.core.state()[1]
+    }
     fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
         self.core.step(t_limit)
     }

@@ -35,19 +35,22 @@ pub enum Method {
     Yoshida4,
     /// Yoshida's 7-stage composition of Strang, order 6, symplectic.
     Yoshida6,
-    /// The 15-stage composition of Strang (Suzuki–Umeno, McLachlan), order 8, symplectic.
+    /// The 15-stage composition of Strang (Suzuki–Umeno, `McLachlan`), order 8, symplectic.
     Suzuki8,
+    /// Blanes & Moan's optimised 6-stage splitting, order 4, symplectic.
+    BlanesMoan4,
     /// The effective `k → ∞` model, integrated by DOP853.
     Effective,
 }
 
 impl Method {
     /// Every method, in the order tables list them.
-    pub const ALL: [Self; 7] = [
+    pub const ALL: [Self; 8] = [
         Self::Rk4,
         Self::Dop853,
         Self::Strang,
         Self::Yoshida4,
+        Self::BlanesMoan4,
         Self::Yoshida6,
         Self::Suzuki8,
         Self::Effective,
@@ -63,6 +66,7 @@ impl Method {
             Self::Yoshida4 => "yoshida4",
             Self::Yoshida6 => "yoshida6",
             Self::Suzuki8 => "suzuki8",
+            Self::BlanesMoan4 => "blanes-moan4",
             Self::Effective => "effective",
         }
     }
@@ -84,7 +88,7 @@ impl Method {
     pub fn order(self) -> u32 {
         match self {
             Self::Strang => 2,
-            Self::Rk4 | Self::Yoshida4 => 4,
+            Self::Rk4 | Self::Yoshida4 | Self::BlanesMoan4 => 4,
             Self::Yoshida6 => 6,
             Self::Dop853 | Self::Suzuki8 | Self::Effective => 8,
         }
@@ -149,6 +153,10 @@ pub trait Integrator: Send {
     /// Current state `(γ, α, γ̇, α̇)`; the effective model reconstructs `γ, γ̇` from its
     /// adiabatic invariant and fast phase.
     fn state(&self) -> State;
+    /// Current `α̇`, cheaper than a whole [`Integrator::state`] (no `γ̇` reconstruction).
+    fn alpha_dot(&self) -> f64 {
+        self.state()[3]
+    }
     /// Takes one step, never past `t_limit`, which must exceed the current time.
     ///
     /// # Errors
@@ -164,10 +172,15 @@ pub trait Integrator: Send {
     fn stats(&self) -> Stats;
 }
 
-/// Default fixed step for `method` at `tolerance`: `c · tol^{1/p} / ν` with `ν` the fastest
-/// rate of the problem (the fast frequency, or the slow rate at small `k`).
+/// Most steps a default step may lead to over the horizon; an explicit step is not capped.
+pub const DEFAULT_STEP_BUDGET: f64 = 2e6;
+
+/// Default fixed step for `method` at `tolerance` over `[0, t_end]`: `c · tol^{1/p} / ν` with
+/// `ν` the fastest rate of the problem (the fast frequency, or the slow rate at small `k`), but
+/// never more than [`DEFAULT_STEP_BUDGET`] steps: a low-order method at a tight tolerance would
+/// otherwise ask for billions.
 #[must_use]
-pub fn default_step(method: Method, problem: &Problem, tolerance: f64) -> f64 {
+pub fn default_step(method: Method, problem: &Problem, tolerance: f64, t_end: f64) -> f64 {
     let p = problem.params();
     let s = problem.start();
     let y0 = super::model::initial_state(s);
@@ -178,25 +191,38 @@ pub fn default_step(method: Method, problem: &Problem, tolerance: f64) -> f64 {
         Method::Rk4 => (0.5, 4.0),
         Method::Strang => (0.3, 2.0),
         Method::Yoshida4 => (0.6, 4.0),
+        Method::BlanesMoan4 => (1.2, 4.0),
         Method::Yoshida6 => (1.0, 6.0),
         Method::Suzuki8 => (1.5, 8.0),
         Method::Dop853 | Method::Effective => (1.0, 8.0),
     };
-    c * tolerance.powf(1.0 / order) / rate
+    (c * tolerance.powf(1.0 / order) / rate).max(t_end / DEFAULT_STEP_BUDGET)
 }
 
-/// Builds a ready-to-step integrator at `t = 0`.
+/// Builds a ready-to-step integrator at `t = 0`; `t_end` is the horizon a default step is
+/// budgeted for.
 #[must_use]
-pub fn build(method: Method, problem: &Problem, settings: Settings) -> Box<dyn Integrator> {
+pub fn build(
+    method: Method,
+    problem: &Problem,
+    settings: Settings,
+    t_end: f64,
+) -> Box<dyn Integrator> {
     let step = settings
         .step
-        .unwrap_or_else(|| default_step(method, problem, settings.tolerance));
+        .unwrap_or_else(|| default_step(method, problem, settings.tolerance, t_end));
     match method {
         Method::Rk4 => Box::new(rk4::Rk4::new(problem, step)),
         Method::Dop853 => Box::new(full_dop853::FullDop853::new(problem, settings.tolerance)),
-        Method::Strang | Method::Yoshida4 | Method::Yoshida6 | Method::Suzuki8 => Box::new(
-            splitting::Splitting::new(problem, splitting::Composition::of(method), step),
-        ),
+        Method::Strang
+        | Method::Yoshida4
+        | Method::BlanesMoan4
+        | Method::Yoshida6
+        | Method::Suzuki8 => Box::new(splitting::Splitting::new(
+            problem,
+            splitting::Composition::of(method),
+            step,
+        )),
         Method::Effective => Box::new(effective::EffectiveDop853::new(problem, settings.tolerance)),
     }
 }

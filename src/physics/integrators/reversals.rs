@@ -5,7 +5,6 @@
 //! reversal is reported per step; its time comes from the method's own locator.
 
 use super::Integrator;
-use crate::physics::model::ALPHA_DOT;
 
 /// Follows the sign of `α̇` from step to step.
 #[derive(Clone, Copy, Debug, Default)]
@@ -24,10 +23,12 @@ impl ReversalTracker {
 
     /// Checks the step just taken; returns the reversal time inside it, if any.
     pub fn after_step(&mut self, integrator: &mut dyn Integrator) -> Option<f64> {
-        let now = sign(integrator.state()[ALPHA_DOT]);
+        let now = sign(integrator.alpha_dot());
         if now == 0.0 {
             return None;
         }
+        // Signs are exactly -1, 0 or 1.
+        #[allow(clippy::float_cmp)]
         let reversed = self.last_sign != 0.0 && now != self.last_sign;
         self.last_sign = now;
         reversed.then(|| integrator.locate_alpha_dot_zero())

@@ -1,0 +1,119 @@
+//! Command-line arguments: parsed raw by clap, with values checked as they are parsed so a bad
+//! flag gets a specific message and exit code 2.
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+use crate::physics::Method;
+use crate::scenario::preset::{Override, TOLERANCE_RANGE};
+use crate::scenario::shipped::DEFAULT_PRESET;
+
+/// Explore the holonomic rattleback: spin reversals and the stiff-spring limit.
+#[derive(Debug, Parser)]
+#[command(name = "rattleback", version, about, long_about = None)]
+pub struct Cli {
+    /// What to do; without a command, the explorer opens.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// Preset to open: a shipped name or a path to a TOML file.
+    #[arg(long, value_name = "NAME|PATH", default_value = DEFAULT_PRESET)]
+    pub preset: String,
+}
+
+/// Subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Run one trajectory headless and print the result.
+    Simulate(SimulateArgs),
+}
+
+/// Output format of `simulate`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// One JSON object.
+    Json,
+    /// The sampled trajectory as CSV (see `--samples`).
+    Csv,
+    /// A summary for people.
+    Table,
+}
+
+/// Arguments of `simulate`.
+#[derive(Debug, Args)]
+pub struct SimulateArgs {
+    /// Preset: a shipped name or a path to a TOML file.
+    #[arg(long, value_name = "NAME|PATH", default_value = DEFAULT_PRESET)]
+    pub preset: String,
+    /// Override a preset value, e.g. `--set spring.k=1e6` (repeatable).
+    #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
+    pub set: Vec<Override>,
+    /// Integrator (overrides the preset's `run.method`).
+    #[arg(long, value_parser = parse_method)]
+    pub method: Option<Method>,
+    /// Tolerance: relative and absolute for adaptive methods; picks the step of fixed-step ones.
+    #[arg(long, value_parser = parse_tolerance)]
+    pub tolerance: Option<f64>,
+    /// Fixed step size for fixed-step methods (overrides the one derived from the tolerance).
+    #[arg(long, value_parser = parse_positive)]
+    pub step: Option<f64>,
+    /// Final time (overrides the preset's `run.t_end`).
+    #[arg(long = "t-end", value_parser = parse_positive)]
+    pub t_end: Option<f64>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+    /// Number of evenly spaced samples for `--format csv`.
+    #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u32).range(2..=10_000_000))]
+    pub samples: u32,
+}
+
+fn parse_method(s: &str) -> Result<Method, String> {
+    Method::from_name(s).ok_or_else(|| format!("unknown method; allowed: {}", Method::names()))
+}
+
+fn parse_finite(s: &str) -> Result<f64, String> {
+    let v: f64 = s.parse().map_err(|_| "not a number".to_owned())?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err("not a finite number".to_owned())
+    }
+}
+
+fn parse_positive(s: &str) -> Result<f64, String> {
+    let v = parse_finite(s)?;
+    if v > 0.0 {
+        Ok(v)
+    } else {
+        Err("allowed: a finite number > 0".to_owned())
+    }
+}
+
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    let v = parse_finite(s)?;
+    let (lo, hi) = TOLERANCE_RANGE;
+    if (lo..=hi).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("allowed: a number in [{lo:e}, {hi:e}]"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bad_flag_values_are_refused_with_the_allowed_range() {
+        let err = Cli::try_parse_from(["rattleback", "simulate", "--tolerance", "0"]).unwrap_err();
+        assert!(err.to_string().contains("allowed: a number in"), "{err}");
+        let err = Cli::try_parse_from(["rattleback", "simulate", "--method", "euler"]).unwrap_err();
+        assert!(err.to_string().contains("dop853"), "{err}");
+        let err = Cli::try_parse_from(["rattleback", "simulate", "--t-end", "NaN"]).unwrap_err();
+        assert!(err.to_string().contains("finite"), "{err}");
+        let ok = Cli::try_parse_from(["rattleback", "simulate", "--set", "spring.k=1e6"]).unwrap();
+        let Some(Command::Simulate(args)) = ok.command else {
+            panic!("simulate expected")
+        };
+        assert_eq!(args.set[0].key, "spring.k");
+    }
+}

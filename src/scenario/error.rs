@@ -1,0 +1,135 @@
+//! Errors of preset files, located by file, line and key.
+
+use std::fmt;
+
+/// A preset that cannot be used, with where and why.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum PresetError {
+    /// The file could not be read.
+    #[error("{path}: cannot read the file: {source}")]
+    Unreadable {
+        /// The file.
+        path: String,
+        /// What the system said.
+        source: std::io::Error,
+    },
+    /// No file at that path and no preset of that name.
+    #[error("no preset named or at '{name}'; shipped presets: {available}")]
+    NotFound {
+        /// What was asked for.
+        name: String,
+        /// Names that exist.
+        available: String,
+    },
+    /// The content is wrong: syntax, an unknown key, a wrong type, a missing or invalid value.
+    #[error("{}", Located(.path, .line, .key, .message))]
+    Invalid {
+        /// The file (or `--set` for a command-line override).
+        path: String,
+        /// 1-based line, when the problem has one.
+        line: Option<usize>,
+        /// `section.key`, when the problem concerns one key.
+        key: Option<String>,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
+}
+
+struct Located<'a>(
+    &'a String,
+    &'a Option<usize>,
+    &'a Option<String>,
+    &'a String,
+);
+
+impl fmt::Display for Located<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.0)?;
+        if let Some(line) = self.1 {
+            write!(f, ":{line}")?;
+        }
+        write!(f, ": ")?;
+        if let Some(key) = self.2 {
+            write!(f, "{key}: ")?;
+        }
+        write!(f, "{}", self.3)
+    }
+}
+
+impl PresetError {
+    /// The `section.key` the error concerns, if any.
+    #[must_use]
+    pub fn key(&self) -> Option<&str> {
+        match self {
+            Self::Invalid { key, .. } => key.as_deref(),
+            _ => None,
+        }
+    }
+
+    /// The 1-based line the error points at, if any.
+    #[must_use]
+    pub fn line(&self) -> Option<usize> {
+        match self {
+            Self::Invalid { line, .. } => *line,
+            _ => None,
+        }
+    }
+}
+
+/// Where things are in a TOML source: lines, section headers and keys.
+pub(crate) struct SourceMap<'a> {
+    src: &'a str,
+}
+
+impl<'a> SourceMap<'a> {
+    pub(crate) fn new(src: &'a str) -> Self {
+        Self { src }
+    }
+
+    /// 1-based line of a byte offset.
+    pub(crate) fn line_of(&self, offset: usize) -> usize {
+        let end = offset.min(self.src.len());
+        self.src[..end].bytes().filter(|&b| b == b'\n').count() + 1
+    }
+
+    /// The `[section]` header in force at `line`, if any.
+    pub(crate) fn section_at(&self, line: usize) -> Option<String> {
+        self.src
+            .lines()
+            .take(line)
+            .filter_map(|l| {
+                let t = l.trim();
+                (t.starts_with('[') && t.ends_with(']'))
+                    .then(|| t.trim_matches(|c| c == '[' || c == ']').trim().to_owned())
+            })
+            .last()
+    }
+
+    /// The key assigned on `line` (`key = value`), if any.
+    pub(crate) fn key_at(&self, line: usize) -> Option<String> {
+        let text = self.src.lines().nth(line.checked_sub(1)?)?;
+        let (key, _) = text.split_once('=')?;
+        let key = key.trim().trim_matches('"');
+        (!key.is_empty() && !key.starts_with('#')).then(|| key.to_owned())
+    }
+
+    /// The line where `key` is set inside `[section]`.
+    pub(crate) fn find_key(&self, section: &str, key: &str) -> Option<usize> {
+        let mut current = String::new();
+        for (i, l) in self.src.lines().enumerate() {
+            let t = l.trim();
+            if t.starts_with('[') && t.ends_with(']') {
+                t.trim_matches(|c| c == '[' || c == ']')
+                    .trim()
+                    .clone_into(&mut current);
+            } else if current == section
+                && t.split_once('=')
+                    .is_some_and(|(k, _)| k.trim().trim_matches('"') == key)
+            {
+                return Some(i + 1);
+            }
+        }
+        None
+    }
+}

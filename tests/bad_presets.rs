@@ -1,0 +1,191 @@
+//! One bad preset file per failure mode, run through the real binary: exit code 2, one clear
+//! line naming the file, the line, the key and what is allowed; never a panic.
+
+use std::process::Command;
+
+fn simulate(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        .arg("simulate")
+        .args(args)
+        .output()
+        .expect("binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[track_caller]
+fn rejects(file: &str, needles: &[&str]) {
+    let path = format!("{}/tests/fixtures/bad/{file}", env!("CARGO_MANIFEST_DIR"));
+    let (code, stdout, stderr) = simulate(&["--preset", &path]);
+    assert_eq!(code, 2, "{file}: exit code {code}, stderr: {stderr}");
+    assert!(stdout.is_empty(), "{file}: printed a result: {stdout}");
+    assert!(!stderr.contains("panicked"), "{file}: panicked: {stderr}");
+    assert_eq!(
+        stderr.trim().lines().count(),
+        1,
+        "{file}: not one line: {stderr}"
+    );
+    assert!(
+        stderr.contains(file),
+        "{file}: message does not name the file: {stderr}"
+    );
+    for needle in needles {
+        assert!(
+            stderr.contains(needle),
+            "{file}: message lacks '{needle}': {stderr}"
+        );
+    }
+}
+
+#[test]
+fn typo_in_a_key() {
+    rejects(
+        "typo-key.toml",
+        &[":5:", "body.iyy", "unknown field `iyy`", "`iy`"],
+    );
+}
+
+#[test]
+fn wrong_type() {
+    rejects("wrong-type.toml", &[":6:", "body.iz", "expected a number"]);
+}
+
+#[test]
+fn negative_inertia() {
+    rejects("negative-inertia.toml", &[":5:", "body.iy", "-1", "> 0"]);
+}
+
+#[test]
+fn zero_hooke_constant() {
+    rejects("k-zero.toml", &[":8:", "spring.k", "> 0"]);
+}
+
+#[test]
+fn nan_value() {
+    rejects("nan.toml", &[":11:", "initial.alpha_dot", "NaN", "finite"]);
+}
+
+#[test]
+fn infinite_value() {
+    rejects("infinite.toml", &[":4:", "body.ix", "finite"]);
+}
+
+#[test]
+fn missing_required_value() {
+    rejects("missing-k.toml", &["spring.k", "missing required value"]);
+}
+
+#[test]
+fn non_positive_end_time() {
+    rejects("t-end-zero.toml", &[":13:", "run.t_end", "> 0"]);
+}
+
+#[test]
+fn unknown_method() {
+    rejects(
+        "unknown-method.toml",
+        &[":14:", "run.method", "euler", "dop853", "strang"],
+    );
+}
+
+#[test]
+fn tolerance_out_of_range() {
+    rejects("bad-tolerance.toml", &[":14:", "run.tolerance", "allowed"]);
+}
+
+#[test]
+fn unknown_section() {
+    rejects("unknown-section.toml", &[":7:", "sprung", "expected"]);
+}
+
+#[test]
+fn syntax_error() {
+    rejects("syntax.toml", &[":9:"]);
+}
+
+#[test]
+fn missing_file_and_unknown_name() {
+    let (code, _, stderr) = simulate(&["--preset", "no/such/file.toml"]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("no/such/file.toml") && stderr.contains("cannot read"),
+        "{stderr}"
+    );
+    let (code, _, stderr) = simulate(&["--preset", "nonesuch"]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("nonesuch") && stderr.contains("subcritical"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn bad_override_names_the_flag() {
+    let (code, _, stderr) = simulate(&["--set", "spring.kk=3"]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("--set") && stderr.contains("spring.kk") && stderr.contains("spring.k"),
+        "{stderr}"
+    );
+    let (code, _, stderr) = simulate(&["--set", "spring.k=-3"]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("--set") && stderr.contains("> 0"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn good_run_prints_the_json_contract() {
+    let (code, stdout, stderr) = simulate(&["--format", "json", "--t-end", "5"]);
+    assert_eq!(code, 0, "{stderr}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).expect("valid JSON");
+    for key in [
+        "params",
+        "method",
+        "tolerance",
+        "t_end",
+        "final",
+        "reversals",
+        "energy",
+        "effective",
+        "stats",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key}");
+    }
+    for key in ["t", "gamma", "alpha", "gamma_dot", "alpha_dot"] {
+        assert!(v["final"][key].is_number(), "final.{key}");
+    }
+    for key in [
+        "theta",
+        "regime",
+        "critical_ratio",
+        "alpha",
+        "alpha_dot",
+        "half_period",
+        "reversals",
+    ] {
+        assert!(v["effective"].get(key).is_some(), "effective.{key}");
+    }
+    for key in ["steps", "rhs_evaluations", "wall_seconds"] {
+        assert!(v["stats"][key].is_number(), "stats.{key}");
+    }
+    assert_eq!(
+        v["reversals"]["count"],
+        v["reversals"]["times"].as_array().unwrap().len()
+    );
+    assert_eq!(v["effective"]["regime"], "trapped");
+}
+
+#[test]
+fn csv_has_the_requested_samples() {
+    let (code, stdout, _) = simulate(&["--format", "csv", "--samples", "11", "--t-end", "1"]);
+    assert_eq!(code, 0);
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines[0], "t,gamma,alpha,gamma_dot,alpha_dot,energy");
+    assert_eq!(lines.len(), 12);
+    assert!(lines[11].starts_with("1,"), "{}", lines[11]);
+}
