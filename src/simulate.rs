@@ -8,6 +8,7 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::cli::{Format, SimulateArgs};
+use crate::physics::auto::run_auto;
 use crate::physics::effective::{Effective, tapping_acceleration};
 use crate::physics::integrators::{Method, default_step};
 use crate::physics::model::energy;
@@ -18,7 +19,7 @@ use crate::scenario::Preset;
 /// Tolerance when neither the command line nor the preset gives one.
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 /// Method when neither the command line nor the preset names one.
-pub const DEFAULT_METHOD: Method = Method::Dop853;
+pub const DEFAULT_METHOD: Method = Method::Auto;
 
 /// The resolved settings of one run.
 #[derive(Clone, Copy, Debug)]
@@ -68,6 +69,11 @@ struct Report {
     params: ParamsOut,
     initial: crate::physics::Start,
     method: Method,
+    /// With `method = auto`: the method it chose (also in `auto.choice`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    auto_choice: Option<Method>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    auto: Option<AutoOut>,
     tolerance: f64,
     step: Option<f64>,
     t_end: f64,
@@ -77,6 +83,17 @@ struct Report {
     energy: EnergyOut,
     effective: EffectiveOut,
     stats: StatsOut,
+}
+
+#[derive(Serialize)]
+struct AutoOut {
+    choice: Method,
+    reason: String,
+    tolerance: f64,
+    step: Option<f64>,
+    predicted_error: f64,
+    error_estimate: f64,
+    refinements: u32,
 }
 
 #[derive(Serialize)]
@@ -153,7 +170,21 @@ pub fn simulate(preset: &Preset, resolved: &Resolved, format: Format) -> Result<
     let problem = &preset.problem;
     let spec = resolved.spec;
     let clock = Instant::now();
-    let result = run(problem, &spec)?;
+    let (result, auto) = if spec.method == Method::Auto {
+        let v = run_auto(problem, spec.tolerance, spec.t_end, spec.samples, true)?;
+        let auto = AutoOut {
+            choice: v.plan.method,
+            reason: v.plan.reason.clone(),
+            tolerance: v.plan.tolerance,
+            step: v.plan.step,
+            predicted_error: v.plan.predicted_error,
+            error_estimate: v.error_estimate,
+            refinements: v.refinements,
+        };
+        (v.result, Some(auto))
+    } else {
+        (run(problem, &spec)?, None)
+    };
     let wall_seconds = clock.elapsed().as_secs_f64();
     if format == Format::Csv {
         return Ok(csv(preset, &result));
@@ -180,8 +211,10 @@ pub fn simulate(preset: &Preset, resolved: &Resolved, format: Format) -> Result<
         },
         initial: *problem.start(),
         method: spec.method,
+        auto_choice: auto.as_ref().map(|a| a.choice),
+        step: auto.as_ref().map_or(spec.step, |a| a.step),
+        auto,
         tolerance: spec.tolerance,
-        step: spec.step,
         t_end: spec.t_end,
         final_: FinalOut {
             t: result.t,
@@ -281,6 +314,13 @@ fn table(r: &Report) -> String {
         "method        {} (tolerance {:e}{step}), t_end = {}",
         r.method, r.tolerance, r.t_end
     );
+    if let Some(a) = &r.auto {
+        let _ = writeln!(
+            o,
+            "auto chose    {}: {} (estimated error {:.1e})",
+            a.choice, a.reason, a.error_estimate
+        );
+    }
     let _ = writeln!(o);
     let _ = writeln!(
         o,

@@ -178,6 +178,17 @@ fn good_run_prints_the_json_contract() {
         v["reversals"]["times"].as_array().unwrap().len()
     );
     assert_eq!(v["effective"]["regime"], "trapped");
+    // The default method is auto, which says what it chose and how accurate it thinks it is.
+    assert_eq!(v["method"], "auto");
+    let choice = v["auto_choice"].as_str().expect("auto_choice");
+    assert_eq!(v["auto"]["choice"], choice);
+    let estimate = v["auto"]["error_estimate"]
+        .as_f64()
+        .expect("error estimate");
+    assert!(
+        estimate <= v["tolerance"].as_f64().unwrap(),
+        "estimate {estimate}"
+    );
 }
 
 #[test]

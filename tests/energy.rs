@@ -26,7 +26,7 @@ fn energy_error_early_and_late(
     let (mut early, mut late) = (0.0f64, 0.0f64);
     while integ.time() < t_end {
         integ.step(t_end).expect("finite");
-        let err = (integ.energy(&integ.state()) - e0).abs() / e0;
+        let err = (integ.energy() - e0).abs() / e0;
         if integ.time() < 0.1 * t_end {
             early = early.max(err);
         } else if integ.time() > 0.9 * t_end {
@@ -80,13 +80,21 @@ fn dop853_energy_error_stays_near_its_tolerance_on_the_low_k_case() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+    // A fixed seed keeps CI deterministic; change it locally to explore new cases.
+    #![proptest_config(ProptestConfig {
+        cases: 64,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x5EED_2026),
+        ..ProptestConfig::default()
+    })]
 
-    /// Over tens of fast periods, DOP853's relative energy error is within 10× its tolerance.
+    /// Over tens of fast periods, DOP853's relative energy error is within 10× its tolerance
+    /// for states of order one (`gamma_dot ≥ 0.5`): on much smaller states the absolute part of
+    /// the tolerance dominates and a *relative* energy error may exceed it (seen: 22× at
+    /// `gamma_dot = 0.1`, energy 2e-3).
     #[test]
     fn dop853_energy_within_ten_tolerances(
         ix in 0.2f64..5.0, iy in 0.2f64..5.0, iz in 0.2f64..5.0, k in 0.5f64..50.0,
-        alpha in -3.0f64..3.0, gamma_dot in 0.1f64..2.0, alpha_dot in -2.0f64..2.0,
+        alpha in -3.0f64..3.0, gamma_dot in 0.5f64..2.0, alpha_dot in -2.0f64..2.0,
         tol_exp in 8i32..12,
     ) {
         let problem = common::problem(ix, iy, iz, k, [0.0, alpha, gamma_dot, alpha_dot]);
@@ -98,12 +106,16 @@ proptest! {
     }
 
     /// A symmetric composition is time-reversible: a step forward then back is the identity.
+    /// The tilt is drawn on the energy scale, `γ = a / sqrt(k)` (a tilt energy `½ a²` of order
+    /// one): a fixed `γ` at `k = 1e8` would mean a tilt energy in the thousands, whose huge
+    /// kicks amplify rounding beyond any fixed bound.
     #[test]
     fn compositions_are_reversible(
         ix in 0.1f64..10.0, iy in 0.1f64..10.0, iz in 0.1f64..10.0, k in 1.0f64..1e8,
-        gamma in -0.01f64..0.01, alpha in -3.0f64..3.0, gamma_dot in -2.0f64..2.0,
+        tilt in -1.0f64..1.0, alpha in -3.0f64..3.0, gamma_dot in -2.0f64..2.0,
         alpha_dot in -2.0f64..2.0, h in 1e-4f64..0.1,
     ) {
+        let gamma = tilt / k.sqrt();
         let problem = common::problem(ix, iy, iz, k, [gamma, alpha, gamma_dot, alpha_dot]);
         let p = *problem.params();
         let y0 = Canonical::from_state(&p, &initial_state(problem.start()));

@@ -78,6 +78,18 @@ impl Effective {
         }
     }
 
+    /// The same motion with another adiabatic constant (the corrected model's averaged `θ`).
+    #[must_use]
+    pub fn with_theta(self, theta: f64) -> Self {
+        let energy =
+            self.energy - self.potential(self.alpha0) + theta / self.params.g(self.alpha0).sqrt();
+        Self {
+            theta,
+            energy,
+            ..self
+        }
+    }
+
     /// The adiabatic constant `θ = E⊥(0) g(α0)^{1/2}`.
     #[must_use]
     pub fn theta(&self) -> f64 {

@@ -7,6 +7,7 @@
 //! This layer depends on std, nalgebra and serde only. It must never import a terminal crate:
 //! a test fails if a file below `src/physics/` mentions one.
 
+pub mod auto;
 pub mod effective;
 pub mod integrators;
 pub mod model;

@@ -1,9 +1,14 @@
-//! `effective`: the `k → ∞` model `α̈ = θ g' g^{−3/2} / (2 iz)` with the fast phase
-//! `φ̇ = ω(α)` carried along, integrated by the DOP853 core.
+//! `effective` and `effective-corrected`: the `k → ∞` model `α̈ = θ g' g^{−3/2} / (2 iz)` with
+//! the fast phase `φ̇ = ω(α)` carried along, integrated by the DOP853 core.
 //!
-//! Order 8 in the step, not symplectic; 12 evaluations per step. Its cost does not depend on
-//! `k` except through `φ`, which only feeds the reconstructed `γ, γ̇`. Its error against the
-//! full model is the model error, O(1/k) in `α` (physics.md §2).
+//! Order 8 in the step, not symplectic; 12 evaluations per step. The cost does not depend on
+//! `k` (`φ` is measured relative to its size). The error against the full model is the model
+//! error: O(1/k) in `α`; in `α̇`, O(1/sqrt(k)) for `effective`, which lacks the fast ripple,
+//! and O(1/k) for `effective-corrected`, which adds it back (physics.md §4b):
+//! `α̇ ≈ α̇_eff + c(α) I sin 2φ / iz`, `c = g'/(4g)`, `I = θ/sqrt(k)`, with the averaged motion
+//! started from `α̇0` minus the same term at `φ0`. The action itself oscillates: each drift of
+//! `α` changes it by `δI/I = −(g'/2g) cos 2φ δα`, so `I(t) = Ī − I c α̇ sin 2φ / ω`, and the
+//! averaged motion starts from `θ̄ = θ (1 + c α̇0 sin 2φ0 / ω0)` (zero shift when `γ0 = 0`).
 
 use nalgebra::Vector3;
 
@@ -27,32 +32,64 @@ impl Field<3> for EffectiveField {
     }
 }
 
-/// DOP853 on `(α, α̇, φ)`.
+/// DOP853 on `(α, α̇_eff, φ)`.
 pub struct EffectiveDop853 {
     model: Effective,
     core: Dop853<3, EffectiveField>,
+    /// The fast action `I = θ/sqrt(k)` when the ripple is added back, else 0.
+    ripple_action: f64,
 }
 
 impl EffectiveDop853 {
-    /// Starts at the problem's initial values with tolerance `tol`.
-    pub fn new(problem: &Problem, tol: f64) -> Self {
-        let model = Effective::new(problem);
+    /// Starts at the problem's initial values with tolerance `tol`; `corrected` adds the
+    /// first-order ripple of `α̇`.
+    pub fn new(problem: &Problem, tol: f64, corrected: bool) -> Self {
+        let mut model = Effective::new(problem);
         let s = problem.start();
-        let y0 = Vector3::new(s.alpha, s.alpha_dot, model.phase0());
+        let p = problem.params();
+        let ripple_action = if corrected {
+            let c = p.g_prime(s.alpha) / (4.0 * p.g(s.alpha));
+            let shift = c * s.alpha_dot * (2.0 * model.phase0()).sin() / p.omega(s.alpha);
+            model = model.with_theta(model.theta() * (1.0 + shift));
+            model.theta() / p.k.sqrt()
+        } else {
+            0.0
+        };
+        let phase0 = model.phase0();
+        let ripple0 = ripple(&model, ripple_action, s.alpha, phase0);
+        let y0 = Vector3::new(s.alpha, s.alpha_dot - ripple0, phase0);
         Self {
             model,
             core: Dop853::new(EffectiveField(model), 0.0, y0, tol),
+            ripple_action,
         }
     }
 
-    fn lift(&self, y: &Vector3<f64>) -> State {
-        self.model.to_full_state(y[0], y[1], y[2])
+    fn spin_rate(&self, y: &Vector3<f64>) -> f64 {
+        y[1] + ripple(&self.model, self.ripple_action, y[0], y[2])
     }
+
+    fn lift(&self, y: &Vector3<f64>) -> State {
+        self.model.to_full_state(y[0], self.spin_rate(y), y[2])
+    }
+}
+
+/// The fast ripple of `α̇`, `c(α) I sin 2φ / iz` with `c = g'/(4g)`.
+fn ripple(model: &Effective, action: f64, alpha: f64, phase: f64) -> f64 {
+    if action == 0.0 {
+        return 0.0;
+    }
+    let p = model.params();
+    p.g_prime(alpha) / (4.0 * p.g(alpha)) * action * (2.0 * phase).sin() / p.iz
 }
 
 impl Integrator for EffectiveDop853 {
     fn method(&self) -> Method {
-        Method::Effective
+        if self.ripple_action == 0.0 {
+            Method::Effective
+        } else {
+            Method::EffectiveCorrected
+        }
     }
     fn time(&self) -> f64 {
         self.core.time()
@@ -64,7 +101,7 @@ impl Integrator for EffectiveDop853 {
         self.lift(&self.core.state())
     }
     fn alpha_dot(&self) -> f64 {
-        self.core.state()[1]
+        self.spin_rate(&self.core.state())
     }
     fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
         self.core.step(t_limit)
@@ -75,10 +112,18 @@ impl Integrator for EffectiveDop853 {
     }
     fn locate_alpha_dot_zero(&mut self) -> f64 {
         let (a, b) = (self.core.time_prev(), self.core.time());
-        find_root(|t| self.core.interpolate(t)[1], a, b)
+        find_root(
+            |t| {
+                let y = self.core.interpolate(t);
+                self.spin_rate(&y)
+            },
+            a,
+            b,
+        )
     }
-    fn energy(&self, y: &State) -> f64 {
-        self.model.energy_of(y[1], y[3])
+    fn energy(&self) -> f64 {
+        let y = self.core.state();
+        self.model.energy_of(y[0], y[1])
     }
     fn stats(&self) -> Stats {
         self.core.stats()

@@ -72,8 +72,8 @@ impl Integrator for FullDop853 {
         let (a, b) = (self.core.time_prev(), self.core.time());
         find_root(|t| self.core.interpolate(t)[ALPHA_DOT], a, b)
     }
-    fn energy(&self, y: &State) -> f64 {
-        energy(&self.params, y)
+    fn energy(&self) -> f64 {
+        energy(&self.params, &self.state())
     }
     fn stats(&self) -> Stats {
         self.core.stats()

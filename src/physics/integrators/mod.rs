@@ -41,11 +41,18 @@ pub enum Method {
     BlanesMoan4,
     /// The effective `k → ∞` model, integrated by DOP853.
     Effective,
+    /// Strang splitting with phase-locked steps: no step-size resonance, cost independent of `k`.
+    Locked,
+    /// The effective model with its first-order correction (the fast ripple of `α̇`).
+    EffectiveCorrected,
+    /// Chooses the cheapest method that meets the tolerance (see `physics::auto`).
+    Auto,
 }
 
 impl Method {
     /// Every method, in the order tables list them.
-    pub const ALL: [Self; 8] = [
+    pub const ALL: [Self; 11] = [
+        Self::Auto,
         Self::Rk4,
         Self::Dop853,
         Self::Strang,
@@ -53,7 +60,23 @@ impl Method {
         Self::BlanesMoan4,
         Self::Yoshida6,
         Self::Suzuki8,
+        Self::Locked,
         Self::Effective,
+        Self::EffectiveCorrected,
+    ];
+
+    /// Every concrete method (all but `auto`, which resolves to one of them).
+    pub const CONCRETE: [Self; 10] = [
+        Self::Rk4,
+        Self::Dop853,
+        Self::Strang,
+        Self::Yoshida4,
+        Self::BlanesMoan4,
+        Self::Yoshida6,
+        Self::Suzuki8,
+        Self::Locked,
+        Self::Effective,
+        Self::EffectiveCorrected,
     ];
 
     /// The name used in presets, on the command line and in JSON.
@@ -68,6 +91,9 @@ impl Method {
             Self::Suzuki8 => "suzuki8",
             Self::BlanesMoan4 => "blanes-moan4",
             Self::Effective => "effective",
+            Self::Locked => "locked",
+            Self::EffectiveCorrected => "effective-corrected",
+            Self::Auto => "auto",
         }
     }
 
@@ -87,23 +113,27 @@ impl Method {
     #[must_use]
     pub fn order(self) -> u32 {
         match self {
-            Self::Strang => 2,
+            Self::Strang | Self::Locked => 2,
+            Self::Auto => 0,
             Self::Rk4 | Self::Yoshida4 | Self::BlanesMoan4 => 4,
             Self::Yoshida6 => 6,
-            Self::Dop853 | Self::Suzuki8 | Self::Effective => 8,
+            Self::Dop853 | Self::Suzuki8 | Self::Effective | Self::EffectiveCorrected => 8,
         }
     }
 
     /// Whether the method takes a fixed step (`step` applies) rather than adapting to `tolerance`.
     #[must_use]
     pub fn is_fixed_step(self) -> bool {
-        !matches!(self, Self::Dop853 | Self::Effective)
+        !matches!(
+            self,
+            Self::Dop853 | Self::Effective | Self::EffectiveCorrected | Self::Auto
+        )
     }
 
     /// Whether the method integrates the effective model rather than the full one.
     #[must_use]
     pub fn is_effective(self) -> bool {
-        matches!(self, Self::Effective)
+        matches!(self, Self::Effective | Self::EffectiveCorrected)
     }
 }
 
@@ -166,8 +196,9 @@ pub trait Integrator: Send {
     fn interpolate(&mut self, t: f64) -> State;
     /// Where `α̇` vanishes within the last step, given that it changes sign over the step.
     fn locate_alpha_dot_zero(&mut self) -> f64;
-    /// The quantity the method conserves: the energy, or `E_eff` for the effective model.
-    fn energy(&self, y: &State) -> f64;
+    /// The quantity the method conserves, at the current state: the energy, or `E_eff` of the
+    /// averaged motion for the effective models.
+    fn energy(&self) -> f64;
     /// Work counters.
     fn stats(&self) -> Stats;
 }
@@ -190,17 +221,21 @@ pub fn default_step(method: Method, problem: &Problem, tolerance: f64, t_end: f6
     let (c, order) = match method {
         Method::Rk4 => (0.5, 4.0),
         Method::Strang => (0.3, 2.0),
+        // Phase-locked steps: error ≈ 0.05 h² whatever k (physics.md §4), so h = sqrt(tol/0.05).
+        Method::Locked => return (tolerance / 0.05).sqrt().max(t_end / DEFAULT_STEP_BUDGET),
         Method::Yoshida4 => (0.6, 4.0),
         Method::BlanesMoan4 => (1.2, 4.0),
         Method::Yoshida6 => (1.0, 6.0),
         Method::Suzuki8 => (1.5, 8.0),
-        Method::Dop853 | Method::Effective => (1.0, 8.0),
+        Method::Dop853 | Method::Effective | Method::EffectiveCorrected | Method::Auto => {
+            (1.0, 8.0)
+        }
     };
     (c * tolerance.powf(1.0 / order) / rate).max(t_end / DEFAULT_STEP_BUDGET)
 }
 
 /// Builds a ready-to-step integrator at `t = 0`; `t_end` is the horizon a default step is
-/// budgeted for.
+/// budgeted for. `auto` is planned first ([`crate::physics::auto::plan`]).
 #[must_use]
 pub fn build(
     method: Method,
@@ -208,6 +243,10 @@ pub fn build(
     settings: Settings,
     t_end: f64,
 ) -> Box<dyn Integrator> {
+    if method == Method::Auto {
+        let plan = crate::physics::auto::plan(problem, settings.tolerance, t_end);
+        return build(plan.method, problem, plan.settings(), t_end);
+    }
     let step = settings
         .step
         .unwrap_or_else(|| default_step(method, problem, settings.tolerance, t_end));
@@ -223,6 +262,17 @@ pub fn build(
             splitting::Composition::of(method),
             step,
         )),
-        Method::Effective => Box::new(effective::EffectiveDop853::new(problem, settings.tolerance)),
+        Method::Locked => Box::new(splitting::Splitting::phase_locked(problem, step)),
+        Method::Effective => Box::new(effective::EffectiveDop853::new(
+            problem,
+            settings.tolerance,
+            false,
+        )),
+        Method::EffectiveCorrected => Box::new(effective::EffectiveDop853::new(
+            problem,
+            settings.tolerance,
+            true,
+        )),
+        Method::Auto => unreachable!("auto is planned above"),
     }
 }

@@ -100,8 +100,8 @@ impl Integrator for Rk4 {
         let (a, b) = (self.t_prev, self.t);
         find_root(|t| self.interpolate(t)[ALPHA_DOT], a, b)
     }
-    fn energy(&self, y: &State) -> f64 {
-        energy(&self.params, y)
+    fn energy(&self) -> f64 {
+        energy(&self.params, &self.state())
     }
     fn stats(&self) -> Stats {
         self.stats

@@ -1,0 +1,370 @@
+//! `auto`: the cheapest method that meets a tolerance on the slow observables (`α`, `α̇`,
+//! reversal times), chosen from a cost and error model of each candidate.
+//!
+//! Candidates and their error models (calibrated on this machine, docs/benchmarks.md), for a
+//! horizon `T` and `ν` the fastest rate of the problem:
+//! - `dop853`, resolved, run at a local tolerance 100× tighter than asked, and tighter still
+//!   beyond `T = 20` (its tolerance is local; the margin covers the growth of the global error
+//!   over many periods; the same local tolerance serves the corrected effective model);
+//! - `blanes-moan4`, resolved with `ν h ≤ 2.4`: error ≈ `C_BM (ν h)^4 T`;
+//! - `locked` once `ω_min h ≥ π/2`: error ≈ `C_LOCKED h² T`, whatever `k`;
+//! - `effective-corrected` when `k` is large: its O(1/k) error is measured, not assumed, by
+//!   probes — the full model against the corrected model at `k = 1e4` and `1e5` — as the larger
+//!   coefficient `k · gap`, divided by `k`, with a safety factor of 2. (The coefficient
+//!   oscillates with the fast phase at `T`, by about 3× between troughs and crests; two
+//!   stiffnesses sample two phases.)
+//!
+//! Cost is predicted in nanoseconds from per-evaluation costs measured here. Pure: no clock.
+//!
+//! The models are only a guide to the choice. [`run_auto`] then checks the result a posteriori
+//! against a finer companion run (half the step, or a 16× tighter tolerance): with `Δ` their
+//! difference in `α(T)`, `α̇(T)` and the reversal times, `Δ · 2^p / (2^p − 1)` estimates the
+//! coarser run's error, and the finer run — more accurate still — is the one returned. It
+//! refines until that estimate meets the tolerance. (A coarser companion is cheaper but leaves
+//! the asymptotic regime at large `ω h`, where it over-estimates wildly.)
+
+use std::fmt::Write as _;
+
+use serde::Serialize;
+
+use super::effective::Effective;
+use super::integrators::StepError;
+use super::integrators::{Method, Settings};
+use super::params::Problem;
+use super::run::{RunResult, RunSpec, run};
+
+/// Error of `blanes-moan4` per unit time at `ν h = 1`.
+pub const C_BLANES_MOAN: f64 = 3e-12;
+/// Error of `locked` per unit time at `h = 1` for spin rates up to 0.5 (physics.md: ≈ 0.05 h²
+/// over T = 20; measured 1.7e-3 per unit time, doubled for safety).
+pub const C_LOCKED: f64 = 3.4e-3;
+/// Growth of the locked error with the largest spin rate: `(α̇_max / 0.5)^4.7`, fitted to
+/// rotating starts (4.4e-2 per unit time at `α̇ = 1`).
+pub const LOCKED_SPIN_EXPONENT: f64 = 4.7;
+/// Largest `ν h` used for `blanes-moan4` (its largest kick, 0.434 ν h, stays below π/2).
+pub const BLANES_MOAN_MAX_NU_H: f64 = 2.4;
+/// Hooke constants at which the corrected effective model's error is probed.
+pub const K_PROBES: [f64; 2] = [1e4, 1e5];
+/// Safety factor on the probed O(1/k) error coefficient.
+pub const PROBE_SAFETY: f64 = 2.0;
+
+const NS_DOP853_EVAL: f64 = 36.0;
+const NS_FAST_FLOW: f64 = 70.0;
+const NS_EFFECTIVE_PER_TIME: f64 = 3_000.0;
+
+/// What `auto` decided, and why.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Plan {
+    /// The method chosen.
+    pub method: Method,
+    /// Tolerance handed to it (adaptive methods).
+    pub tolerance: f64,
+    /// Step handed to it (fixed-step methods).
+    pub step: Option<f64>,
+    /// The error the model predicts for `α(T)`, `α̇(T)`.
+    pub predicted_error: f64,
+    /// Predicted run time in seconds on the calibration machine.
+    pub predicted_seconds: f64,
+    /// One sentence on the choice.
+    pub reason: String,
+}
+
+impl Plan {
+    /// The integrator settings of the plan.
+    #[must_use]
+    pub fn settings(&self) -> Settings {
+        Settings {
+            tolerance: self.tolerance,
+            step: self.step,
+        }
+    }
+}
+
+/// The fastest rate of the problem: its largest fast frequency, or its slow rate at small `k`.
+#[must_use]
+pub fn fastest_rate(problem: &Problem) -> f64 {
+    let p = problem.params();
+    let y0 = super::model::initial_state(problem.start());
+    let e = super::model::energy(p, &y0);
+    let slow = (2.0 * e / p.ix.min(p.iy).min(p.iz)).sqrt();
+    p.omega_max().max(slow).max(1e-3)
+}
+
+/// Chooses the method for `problem` over `[0, t_end]` at `tolerance`.
+///
+/// # Panics
+/// Never: the resolved candidates are always present, so a minimum exists.
+#[must_use]
+pub fn plan(problem: &Problem, tolerance: f64, t_end: f64) -> Plan {
+    let p = problem.params();
+    let nu = fastest_rate(problem);
+    let periods = nu * t_end / std::f64::consts::TAU;
+    let mut candidates = Vec::new();
+
+    // Adaptive candidates run at a local tolerance 100× tighter, and tighter again on long
+    // horizons: their global error grows with the number of steps (cost only like tol^{-1/8}).
+    let local = (tolerance / 100.0 * (20.0 / t_end).min(1.0)).max(1e-14);
+    let evals = 155.0 * (1e-10 / local).powf(0.125) * periods.max(1.0);
+    candidates.push(Plan {
+        method: Method::Dop853,
+        tolerance: local,
+        step: None,
+        predicted_error: tolerance,
+        predicted_seconds: evals * NS_DOP853_EVAL * 1e-9,
+        reason: "resolved adaptive integration".to_owned(),
+    });
+
+    // Resolved Blanes–Moan at ν h ≤ 2.4.
+    let nu_h = (tolerance / (C_BLANES_MOAN * t_end))
+        .powf(0.25)
+        .min(BLANES_MOAN_MAX_NU_H);
+    let steps = nu * t_end / nu_h;
+    candidates.push(Plan {
+        method: Method::BlanesMoan4,
+        tolerance,
+        step: Some(nu_h / nu),
+        predicted_error: C_BLANES_MOAN * nu_h.powi(4) * t_end,
+        predicted_seconds: 6.0 * steps * NS_FAST_FLOW * 1e-9,
+        reason: format!("resolved exact-flow splitting at ν·h = {nu_h:.2}"),
+    });
+
+    // Phase-locked Strang, only once its steps are past the first quarter period.
+    let eff = Effective::new(problem);
+    let spin_max = (2.0 * (eff.energy() - eff.potential_min()) / p.iz)
+        .max(0.0)
+        .sqrt();
+    let c_locked = C_LOCKED * (spin_max / 0.5).max(1.0).powf(LOCKED_SPIN_EXPONENT);
+    let h = (tolerance / (c_locked * t_end)).sqrt();
+    let omega_min = (p.k / p.ix.max(p.iy)).sqrt();
+    if omega_min * h >= std::f64::consts::FRAC_PI_2 {
+        candidates.push(Plan {
+            method: Method::Locked,
+            tolerance,
+            step: Some(h),
+            predicted_error: c_locked * h * h * t_end,
+            predicted_seconds: t_end / h * NS_FAST_FLOW * 1e-9,
+            reason: format!("phase-locked steps of {h:.2e}, cost independent of k"),
+        });
+    }
+
+    // The corrected effective model, when its probed O(1/k) error is small enough.
+    if p.k > 100.0 * K_PROBES[1] {
+        let coefficient = K_PROBES
+            .iter()
+            .map(|&k| probe_effective_error(problem, k, t_end) * k)
+            .fold(0.0, f64::max);
+        let predicted = coefficient / p.k * PROBE_SAFETY;
+        let probe_cost: f64 = K_PROBES
+            .iter()
+            .map(|&k| probe_cost(problem, k, t_end))
+            .sum();
+        if predicted <= tolerance {
+            candidates.push(Plan {
+                method: Method::EffectiveCorrected,
+                tolerance: local,
+                step: None,
+                predicted_error: predicted,
+                predicted_seconds: NS_EFFECTIVE_PER_TIME * t_end * 1e-9 + probe_cost,
+                reason: format!(
+                    "k large enough: the corrected limit's error, probed at k = 1e4 and 1e5, scales to {predicted:.1e}"
+                ),
+            });
+        }
+    }
+
+    let meets: Vec<Plan> = candidates
+        .iter()
+        .filter(|c| c.predicted_error <= tolerance)
+        .cloned()
+        .collect();
+    let pool = if meets.is_empty() { candidates } else { meets };
+    pool.into_iter()
+        .min_by(|a, b| a.predicted_seconds.total_cmp(&b.predicted_seconds))
+        .expect("at least one candidate")
+}
+
+fn probe_cost(problem: &Problem, k: f64, t_end: f64) -> f64 {
+    let nu = fastest_rate(&problem.with_k(k).expect("probe k is valid"));
+    6.0 * nu * t_end / 1.2 * NS_FAST_FLOW * 1e-9
+}
+
+/// `max(|Δα(T)|, |Δα̇(T)|)` between the full model and the corrected effective model at
+/// stiffness `k`; the full model by `blanes-moan4` at `ν h = 1.2` (error ≈ 1e-10 there).
+/// Infinite when either run fails.
+///
+/// # Panics
+/// When `k` is not a valid Hooke constant (callers pass the fixed probes).
+#[must_use]
+pub fn probe_effective_error(problem: &Problem, k: f64, t_end: f64) -> f64 {
+    let probe = problem.with_k(k).expect("probe k is valid");
+    let nu = fastest_rate(&probe);
+    let full = run(
+        &probe,
+        &RunSpec {
+            method: Method::BlanesMoan4,
+            tolerance: 1e-10,
+            step: Some(1.2 / nu),
+            t_end,
+            samples: 0,
+            monitor_energy: false,
+        },
+    );
+    let limit = run(
+        &probe,
+        &RunSpec {
+            method: Method::EffectiveCorrected,
+            tolerance: 1e-12,
+            step: None,
+            t_end,
+            samples: 0,
+            monitor_energy: false,
+        },
+    );
+    match (full, limit) {
+        (Ok(a), Ok(b)) => (a.final_state[1] - b.final_state[1])
+            .abs()
+            .max((a.final_state[3] - b.final_state[3]).abs()),
+        _ => f64::INFINITY,
+    }
+}
+
+/// A run chosen by `auto`, with its error estimate.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Verified {
+    /// The plan finally run (after refinements).
+    pub plan: Plan,
+    /// Its result.
+    pub result: RunResult,
+    /// Estimated error of `α(T)`, `α̇(T)` and the reversal times (the largest).
+    pub error_estimate: f64,
+    /// How many times the first plan had to be refined.
+    pub refinements: u32,
+}
+
+/// Most refinements before `auto` reports what it has.
+pub const MAX_REFINEMENTS: u32 = 4;
+
+/// Plans, runs and verifies: see the module documentation. The returned result is the finer
+/// of the two runs; `error_estimate` bounds the coarser one's error.
+///
+/// # Errors
+/// When an integration fails.
+pub fn run_auto(
+    problem: &Problem,
+    tolerance: f64,
+    t_end: f64,
+    samples: usize,
+    monitor_energy: bool,
+) -> Result<Verified, StepError> {
+    let mut plan = plan(problem, tolerance, t_end);
+    let mut refinements = 0;
+    loop {
+        let spec = RunSpec {
+            method: plan.method,
+            tolerance: plan.tolerance,
+            step: plan.step,
+            t_end,
+            samples,
+            monitor_energy,
+        };
+        let (result, estimate) = if plan.method == Method::EffectiveCorrected {
+            // Model error (probed) plus integration error (from a finer companion).
+            let coarse = run(problem, &spec)?;
+            let (finer, divisor) = finer_companion(&plan);
+            let fine = run(
+                problem,
+                &RunSpec {
+                    tolerance: finer.tolerance,
+                    ..spec
+                },
+            )?;
+            let estimate = plan.predicted_error + difference(&coarse, &fine) / divisor;
+            (fine, estimate)
+        } else {
+            let coarse = run(
+                problem,
+                &RunSpec {
+                    samples: 0,
+                    monitor_energy: false,
+                    ..spec
+                },
+            )?;
+            let (finer, divisor) = finer_companion(&plan);
+            let fine = run(
+                problem,
+                &RunSpec {
+                    tolerance: finer.tolerance,
+                    step: finer.step,
+                    ..spec
+                },
+            )?;
+            let estimate = difference(&coarse, &fine) / divisor;
+            (fine, estimate)
+        };
+        if estimate <= tolerance || refinements == MAX_REFINEMENTS {
+            return Ok(Verified {
+                plan,
+                result,
+                error_estimate: estimate,
+                refinements,
+            });
+        }
+        plan = refine(plan, estimate / tolerance);
+        refinements += 1;
+    }
+}
+
+/// The largest difference in `α(T)`, `α̇(T)` and reversal times (infinite when the reversal
+/// counts differ).
+#[must_use]
+pub fn difference(a: &RunResult, b: &RunResult) -> f64 {
+    let mut d = (a.final_state[1] - b.final_state[1])
+        .abs()
+        .max((a.final_state[3] - b.final_state[3]).abs());
+    if a.reversals.len() != b.reversals.len() {
+        return f64::INFINITY;
+    }
+    for (x, y) in a.reversals.iter().zip(&b.reversals) {
+        d = d.max((x - y).abs());
+    }
+    d
+}
+
+/// The finer companion of a plan, and the divisor `1 − 2^{−p}` (or `1 − 1/16` for DOP853)
+/// that turns the difference into the coarser run's error.
+fn finer_companion(plan: &Plan) -> (Settings, f64) {
+    match plan.method {
+        Method::Dop853 | Method::EffectiveCorrected => (
+            Settings {
+                tolerance: (plan.tolerance / 16.0).max(1e-14),
+                step: None,
+            },
+            15.0 / 16.0,
+        ),
+        method => {
+            let p = i32::try_from(method.order()).unwrap_or(2);
+            (
+                Settings {
+                    tolerance: plan.tolerance,
+                    step: plan.step.map(|h| 0.5 * h),
+                },
+                1.0 - 2f64.powi(-p),
+            )
+        }
+    }
+}
+
+fn refine(mut plan: Plan, excess: f64) -> Plan {
+    let excess = if excess.is_finite() { excess } else { 16.0 };
+    match plan.method {
+        Method::Dop853 | Method::EffectiveCorrected => {
+            plan.tolerance = (plan.tolerance / (2.0 * excess)).max(1e-14);
+        }
+        method => {
+            let p = f64::from(method.order().max(1));
+            plan.step = plan.step.map(|h| h / (1.25 * excess.powf(1.0 / p)));
+        }
+    }
+    let _ = write!(plan.reason, "; refined ×{excess:.1}");
+    plan
+}
