@@ -5,41 +5,15 @@
 //! stderr; criterion then times the integration alone (no energy monitoring, no samples).
 //! Run: `cargo bench --bench methods`.
 
+mod common;
+
+use common::problem;
 use criterion::{Criterion, criterion_group, criterion_main};
-use rattleback::physics::{Method, Params, Problem, RunSpec, Start, run};
+use rattleback::physics::{Method, Problem, run};
 use std::hint::black_box;
 use std::time::Duration;
 
 const T_END: f64 = 20.0;
-
-fn problem(k: f64) -> Problem {
-    Problem::new(
-        Params {
-            ix: 2.0,
-            iy: 1.0,
-            iz: 1.0,
-            k,
-        },
-        Start {
-            gamma: 0.0,
-            alpha: 0.0,
-            gamma_dot: 1.0,
-            alpha_dot: 0.5,
-        },
-    )
-    .expect("valid")
-}
-
-fn spec(method: Method, tolerance: f64, step: Option<f64>) -> RunSpec {
-    RunSpec {
-        method,
-        tolerance,
-        step,
-        t_end: T_END,
-        samples: 0,
-        monitor_energy: false,
-    }
-}
 
 /// `(method, tolerance, ω_max·h)` of each timed configuration.
 const CONFIGS: &[(Method, f64, Option<f64>)] = &[
@@ -65,14 +39,17 @@ const CONFIGS: &[(Method, f64, Option<f64>)] = &[
 
 fn work_precision(c: &mut Criterion) {
     for k in [1e2, 1e4, 1e6] {
-        let problem = problem(k);
+        let problem = problem(k, 0.5);
         let omega = problem.params().omega_max();
-        let reference = run(&problem, &spec(Method::Dop853, 1e-13, None))
+        let reference = run(&problem, &common::spec(Method::Dop853, 1e-13, None, T_END))
             .unwrap()
             .final_state;
-        let check = run(&problem, &spec(Method::Suzuki8, 0.0, Some(0.05 / omega)))
-            .unwrap()
-            .final_state;
+        let check = run(
+            &problem,
+            &common::spec(Method::Suzuki8, 0.0, Some(0.05 / omega), T_END),
+        )
+        .unwrap()
+        .final_state;
         eprintln!(
             "k = {k:e}: reference alpha(T) = {:.15}, cross-check differs by {:.1e}",
             reference[1],
@@ -83,7 +60,7 @@ fn work_precision(c: &mut Criterion) {
         group.warm_up_time(Duration::from_millis(300));
         group.measurement_time(Duration::from_secs(2));
         for &(method, tolerance, omega_h) in CONFIGS {
-            let s = spec(method, tolerance, omega_h.map(|wh| wh / omega));
+            let s = common::spec(method, tolerance, omega_h.map(|wh| wh / omega), T_END);
             let r = run(&problem, &s).unwrap();
             let setting =
                 omega_h.map_or_else(|| format!("tol={tolerance:e}"), |wh| format!("wh={wh}"));

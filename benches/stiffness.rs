@@ -5,52 +5,31 @@
 //! the corrected effective model at tolerance 1e-13 beyond (its O(1/k) error is < 1e-10 there).
 //! Run: `cargo bench --bench stiffness`.
 
+mod common;
+
+use common::problem;
 use criterion::{Criterion, criterion_group, criterion_main};
 use rattleback::physics::auto::run_auto;
-use rattleback::physics::{Method, Params, Problem, RunSpec, Start, run};
+use rattleback::physics::{Method, Problem, run};
 use std::hint::black_box;
 use std::time::Duration;
 
 const T_END: f64 = 20.0;
 const TOL: f64 = 1e-8;
 
-fn problem(k: f64, alpha_dot: f64) -> Problem {
-    Problem::new(
-        Params {
-            ix: 2.0,
-            iy: 1.0,
-            iz: 1.0,
-            k,
-        },
-        Start {
-            gamma: 0.0,
-            alpha: 0.0,
-            gamma_dot: 1.0,
-            alpha_dot,
-        },
-    )
-    .expect("valid")
-}
-
-fn spec(method: Method, tolerance: f64, step: Option<f64>) -> RunSpec {
-    RunSpec {
-        method,
-        tolerance,
-        step,
-        t_end: T_END,
-        samples: 0,
-        monitor_energy: false,
-    }
-}
-
 fn reference(p: &Problem) -> (f64, f64) {
     let k = p.params().k;
     let s = if k <= 1e6 {
-        spec(Method::Dop853, 1e-13, None)
+        common::spec(Method::Dop853, 1e-13, None, T_END)
     } else if k <= 1e8 {
-        spec(Method::BlanesMoan4, 0.0, Some(0.8 / p.params().omega_max()))
+        common::spec(
+            Method::BlanesMoan4,
+            0.0,
+            Some(0.8 / p.params().omega_max()),
+            T_END,
+        )
     } else {
-        spec(Method::EffectiveCorrected, 1e-13, None)
+        common::spec(Method::EffectiveCorrected, 1e-13, None, T_END)
     };
     let y = run(p, &s).unwrap().final_state;
     (y[1], y[3])
@@ -81,7 +60,7 @@ fn stiffness(c: &mut Criterion) {
         let p = problem(1e8, alpha_dot);
         let r = reference(&p);
         for tol in [1e-11, 1e-12] {
-            let s = spec(Method::Dop853, tol, None);
+            let s = common::spec(Method::Dop853, tol, None, T_END);
             let y = run(&p, &s).unwrap().final_state;
             eprintln!(
                 "{regime} k=1e8: dop853 tol {tol:e}, error {:.2e}",
