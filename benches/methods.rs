@@ -9,7 +9,7 @@ mod common;
 
 use common::problem;
 use criterion::{Criterion, criterion_group, criterion_main};
-use rattleback::physics::{Method, Problem, run};
+use rattleback::physics::{Method, run};
 use std::hint::black_box;
 use std::time::Duration;
 
