@@ -17,6 +17,23 @@ pub struct Cli {
     /// Preset to open: a shipped name or a path to a TOML file.
     #[arg(long, value_name = "NAME|PATH", default_value = DEFAULT_PRESET)]
     pub preset: String,
+    /// Frame-rate cap of the explorer.
+    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
+    pub fps: u32,
+    /// Canvas marker, for fonts without Braille.
+    #[arg(long, value_enum, default_value_t = MarkerChoice::Braille)]
+    pub marker: MarkerChoice,
+}
+
+/// `--marker`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum MarkerChoice {
+    /// Braille dots: 2×4 per cell (finest).
+    Braille,
+    /// Half blocks: 1×2 per cell.
+    Halfblock,
+    /// Dots: 1 per cell.
+    Dot,
 }
 
 /// Subcommands.

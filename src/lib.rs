@@ -1,8 +1,14 @@
 //! The holonomic rattleback explorer: physics core, scenarios and the headless commands.
 //!
-//! Layers (each module's doc says what it may import): `physics` ← `scenario` ← `cli`.
+//! Layers (each module's doc says what it may import):
+//! `physics` ← `scenario` ← `sim`, `app` ← `ui` ← `explorer`, `terminal` ← `main`.
 
+pub mod app;
 pub mod cli;
+pub mod explorer;
 pub mod physics;
 pub mod scenario;
+pub mod sim;
 pub mod simulate;
+pub mod terminal;
+pub mod ui;

@@ -5,25 +5,48 @@ use std::io::Write as _;
 use std::process::ExitCode;
 
 use clap::Parser;
-use rattleback::cli::{Cli, Command, Format, SimulateArgs};
+use rattleback::cli::{Cli, Command, MarkerChoice, SimulateArgs};
+use rattleback::explorer::{self, ExplorerOptions};
 use rattleback::scenario::shipped::resolve;
 use rattleback::simulate::{resolve as resolve_run, simulate};
+use rattleback::ui::UiOptions;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Some(Command::Simulate(args)) => run_simulate(&args),
-        // Until the interactive explorer exists, the default action is a summary of the preset.
-        None => run_simulate(&SimulateArgs {
-            preset: cli.preset,
-            set: Vec::new(),
-            method: None,
-            tolerance: None,
-            step: None,
-            t_end: None,
-            format: Format::Table,
-            samples: 2,
-        }),
+        None => run_explorer(&cli),
+    }
+}
+
+fn run_explorer(cli: &Cli) -> ExitCode {
+    let preset = match resolve(&cli.preset, &[]) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("rattleback: error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let marker = match cli.marker {
+        MarkerChoice::Braille => ratatui::symbols::Marker::Braille,
+        MarkerChoice::Halfblock => ratatui::symbols::Marker::HalfBlock,
+        MarkerChoice::Dot => ratatui::symbols::Marker::Dot,
+    };
+    let options = ExplorerOptions {
+        fps: f64::from(cli.fps),
+        ui: UiOptions {
+            marker,
+            ..UiOptions::default()
+        },
+    };
+    match explorer::run(&preset, options) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!(
+                "rattleback: the explorer needs an interactive terminal ({e}); for headless runs use `rattleback simulate`"
+            );
+            ExitCode::from(1)
+        }
     }
 }
 

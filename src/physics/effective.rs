@@ -45,7 +45,7 @@ impl Regime {
 }
 
 /// The effective motion of one start.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Effective {
     params: Params,
     theta: f64,

@@ -1,0 +1,443 @@
+//! Application state and actions: decides, never draws. No ratatui types here; no clock
+//! either (`tick` is handed the elapsed wall time), so every decision is testable.
+//!
+//! The flow: a key becomes an [`Action`] through the keymap table; [`App::update`] changes
+//! state and returns the [`Command`]s for the worker; [`App::on_sim`] takes the worker's
+//! events; [`App::tick`] advances the simulated clock while playing.
+
+pub mod fields;
+pub mod keys;
+pub mod portrait;
+
+use crate::physics::effective::Effective;
+use crate::scenario::Preset;
+use crate::sim::{self, Command, Point, SimEvent};
+use fields::{Field, Settings};
+pub use keys::{Action, Key};
+use portrait::{Bounds, Level, View};
+
+/// Most trail points kept (the oldest half is dropped beyond).
+pub const TRAIL_CAP: usize = 40_000;
+/// Samples per frame asked from the worker.
+const SAMPLES_PER_FRAME: f64 = 8.0;
+/// Speed limits (simulated seconds per wall second).
+pub const SPEED_RANGE: (f64, f64) = (1.0 / 64.0, 1024.0);
+
+/// Options fixed at start-up.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// Frame-rate cap.
+    pub fps: f64,
+}
+
+/// Derived values shown read-only under the parameters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Derived {
+    /// The effective model of the start.
+    pub effective: Effective,
+    /// `alpha_dot² / gamma_dot²`.
+    pub ratio: Option<f64>,
+    /// The critical ratio.
+    pub critical: Option<f64>,
+}
+
+/// The whole explorer state.
+// Independent toggles of the interface, each a plain yes/no.
+#[allow(clippy::struct_excessive_bools)]
+pub struct App {
+    /// Preset name.
+    pub name: String,
+    /// What the preset says to look for.
+    pub description: String,
+    /// Editable parameters.
+    pub settings: Settings,
+    /// Derived from the settings.
+    pub derived: Derived,
+    /// Selected row of the panel.
+    pub selected: usize,
+    /// Text being typed (Enter), if any.
+    pub editing: Option<String>,
+    /// A message for the user, and whether it is an error.
+    pub message: Option<(String, bool)>,
+    /// Playing or paused.
+    pub playing: bool,
+    /// Simulated seconds per wall second.
+    pub speed: f64,
+    /// Simulated time asked of the worker.
+    pub target: f64,
+    /// Time reached by the samples received.
+    pub reached: f64,
+    /// Stamp of the current run.
+    pub generation: u64,
+    /// Samples of the full motion.
+    pub trail: Vec<Point>,
+    /// Samples of the effective motion.
+    pub effective_trail: Vec<Point>,
+    /// Reversal times of the full motion.
+    pub reversals: Vec<f64>,
+    /// Reversal times of the effective motion.
+    pub effective_reversals: Vec<f64>,
+    /// Zoom, pan, wrap.
+    pub view: View,
+    /// Effective overlay shown.
+    pub show_effective: bool,
+    /// Time-series pane shown.
+    pub show_series: bool,
+    /// Help overlay shown.
+    pub show_help: bool,
+    /// The run reached `t_end`.
+    pub finished: bool,
+    /// The run failed.
+    pub failed: Option<String>,
+    /// Steps taken by the worker in this run.
+    pub steps: u64,
+    /// The method integrating this run (what `auto` chose), once the worker says.
+    pub method_in_use: Option<crate::physics::Method>,
+    /// Steps per wall second, smoothed.
+    pub rate: f64,
+    /// Quit requested.
+    pub quit: bool,
+    /// Start-up options.
+    pub options: Options,
+    steps_at_tick: u64,
+    contour_cache: Option<(ContourKey, Vec<Level>)>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct ContourKey {
+    settings: Settings,
+    bounds: Bounds,
+    samples: usize,
+}
+
+impl App {
+    /// A paused explorer on `preset`; returns the commands that start its run.
+    #[must_use]
+    pub fn new(preset: &Preset, options: Options) -> (Self, Vec<Command>) {
+        let settings = Settings {
+            params: *preset.problem.params(),
+            start: *preset.problem.start(),
+            t_end: preset.run.t_end,
+            method: preset.run.method.unwrap_or(crate::physics::Method::Auto),
+            tolerance: preset.run.tolerance.unwrap_or(1e-8),
+        };
+        let mut app = Self {
+            name: preset.name.clone(),
+            description: preset.description.clone(),
+            derived: derive(&settings),
+            settings,
+            selected: 0,
+            editing: None,
+            message: None,
+            playing: false,
+            speed: 1.0,
+            target: 0.0,
+            reached: 0.0,
+            generation: 0,
+            trail: Vec::new(),
+            effective_trail: Vec::new(),
+            reversals: Vec::new(),
+            effective_reversals: Vec::new(),
+            view: View::default(),
+            show_effective: true,
+            show_series: false,
+            show_help: false,
+            finished: false,
+            failed: None,
+            steps: 0,
+            method_in_use: None,
+            rate: 0.0,
+            quit: false,
+            options,
+            steps_at_tick: 0,
+            contour_cache: None,
+        };
+        let commands = app.restart();
+        (app, commands)
+    }
+
+    /// The selected field.
+    #[must_use]
+    pub fn field(&self) -> Field {
+        Field::ALL[self.selected]
+    }
+
+    fn restart(&mut self) -> Vec<Command> {
+        self.generation += 1;
+        self.derived = derive(&self.settings);
+        self.target = 0.0;
+        self.reached = 0.0;
+        self.trail.clear();
+        self.effective_trail.clear();
+        self.reversals.clear();
+        self.effective_reversals.clear();
+        self.finished = false;
+        self.failed = None;
+        self.steps = 0;
+        self.steps_at_tick = 0;
+        self.method_in_use = None;
+        vec![
+            Command::Restart {
+                generation: self.generation,
+                spec: sim::spec(
+                    self.settings.problem(),
+                    self.settings.method,
+                    self.settings.tolerance,
+                    self.settings.t_end,
+                    self.show_effective,
+                ),
+            },
+            self.advance_command(),
+        ]
+    }
+
+    fn sample_dt(&self) -> f64 {
+        self.speed / (self.options.fps * SAMPLES_PER_FRAME)
+    }
+
+    fn advance_command(&self) -> Command {
+        Command::AdvanceTo {
+            generation: self.generation,
+            t: self.target,
+            sample_dt: self.sample_dt(),
+        }
+    }
+
+    /// Handles a key: text entry while editing, else the keymap.
+    pub fn on_key(&mut self, key: Key) -> Vec<Command> {
+        if let Some(buffer) = self.editing.as_mut() {
+            match key {
+                Key::Char(c) => buffer.push(c),
+                Key::Backspace => {
+                    buffer.pop();
+                }
+                Key::Esc => {
+                    self.editing = None;
+                    self.message = None;
+                }
+                Key::CtrlC => self.quit = true,
+                Key::Enter => {
+                    let text = self.editing.take().unwrap_or_default();
+                    return self.apply(self.field().with_text(&self.settings, &text));
+                }
+                _ => {}
+            }
+            return Vec::new();
+        }
+        if self.show_help && matches!(key, Key::Esc) {
+            self.show_help = false;
+            return Vec::new();
+        }
+        keys::action_for(key).map_or_else(Vec::new, |a| self.update(a))
+    }
+
+    fn apply(&mut self, result: Result<Settings, String>) -> Vec<Command> {
+        match result {
+            Ok(s) => {
+                self.message = None;
+                if s == self.settings {
+                    return Vec::new();
+                }
+                self.settings = s;
+                self.restart()
+            }
+            Err(reason) => {
+                self.message = Some((reason, true));
+                Vec::new()
+            }
+        }
+    }
+
+    /// Carries out an action; returns the commands for the worker.
+    pub fn update(&mut self, action: Action) -> Vec<Command> {
+        let field = self.field();
+        match action {
+            Action::Quit => self.quit = true,
+            Action::SelectPrev => {
+                self.selected = (self.selected + Field::ALL.len() - 1) % Field::ALL.len();
+                self.message = None;
+            }
+            Action::SelectNext => {
+                self.selected = (self.selected + 1) % Field::ALL.len();
+                self.message = None;
+            }
+            Action::Decrease => return self.apply(field.nudge(&self.settings, -1.0, false)),
+            Action::Increase => return self.apply(field.nudge(&self.settings, 1.0, false)),
+            Action::DecreaseCoarse => return self.apply(field.nudge(&self.settings, -1.0, true)),
+            Action::IncreaseCoarse => return self.apply(field.nudge(&self.settings, 1.0, true)),
+            Action::Edit => {
+                self.editing = Some(String::new());
+                self.message = Some((
+                    format!("type {} and press Enter (Esc cancels)", field.label()),
+                    false,
+                ));
+            }
+            Action::TogglePlay => {
+                if self.finished {
+                    let mut c = self.restart();
+                    self.playing = true;
+                    c.push(self.advance_command());
+                    return c;
+                }
+                self.playing = !self.playing;
+            }
+            Action::Step => {
+                self.playing = false;
+                self.target =
+                    (self.target + self.speed / self.options.fps).min(self.settings.t_end);
+                return vec![self.advance_command()];
+            }
+            Action::Reset => return self.restart(),
+            Action::Faster => self.speed = (self.speed * 2.0).min(SPEED_RANGE.1),
+            Action::Slower => self.speed = (self.speed / 2.0).max(SPEED_RANGE.0),
+            Action::ToggleEffective => {
+                self.show_effective = !self.show_effective;
+                if !self.show_effective {
+                    self.effective_trail.clear();
+                    self.effective_reversals.clear();
+                }
+                return vec![Command::SetEffective(self.show_effective)];
+            }
+            Action::ToggleSeries => self.show_series = !self.show_series,
+            Action::ZoomIn => self.view.zoom = (self.view.zoom * 1.5).min(1e6),
+            Action::ZoomOut => self.view.zoom = (self.view.zoom / 1.5).max(0.1),
+            Action::PanLeft => self.view.pan_x -= 0.1,
+            Action::PanRight => self.view.pan_x += 0.1,
+            Action::PanUp => self.view.pan_y += 0.1,
+            Action::PanDown => self.view.pan_y -= 0.1,
+            Action::ToggleWrap => self.view.wrap = !self.view.wrap,
+            Action::ClearTrail => {
+                self.trail.clear();
+                self.effective_trail.clear();
+            }
+            Action::ToggleHelp => self.show_help = !self.show_help,
+        }
+        Vec::new()
+    }
+
+    /// Advances the simulated clock by `wall_seconds × speed` while playing.
+    pub fn tick(&mut self, wall_seconds: f64) -> Vec<Command> {
+        let done = self.steps.saturating_sub(self.steps_at_tick) as f64;
+        self.steps_at_tick = self.steps;
+        if wall_seconds > 0.0 {
+            let now = done / wall_seconds;
+            self.rate = if self.rate == 0.0 {
+                now
+            } else {
+                0.8 * self.rate + 0.2 * now
+            };
+        }
+        if !self.playing || self.finished || self.failed.is_some() {
+            return Vec::new();
+        }
+        self.target = (self.target + wall_seconds * self.speed).min(self.settings.t_end);
+        vec![self.advance_command()]
+    }
+
+    /// Takes an event from the worker (stale runs are ignored). Returns whether anything
+    /// visible changed.
+    pub fn on_sim(&mut self, event: SimEvent) -> bool {
+        match event {
+            SimEvent::Started { generation, method } if generation == self.generation => {
+                self.method_in_use = Some(method);
+                true
+            }
+            SimEvent::Samples {
+                generation,
+                full,
+                effective,
+                t,
+                steps,
+            } if generation == self.generation => {
+                let changed = !full.is_empty() || !effective.is_empty();
+                push_capped(&mut self.trail, full);
+                push_capped(&mut self.effective_trail, effective);
+                self.reached = self.reached.max(t);
+                self.steps = steps;
+                changed
+            }
+            SimEvent::Reversal {
+                generation,
+                t,
+                effective,
+            } if generation == self.generation => {
+                if effective {
+                    self.effective_reversals.push(t);
+                } else {
+                    self.reversals.push(t);
+                }
+                true
+            }
+            SimEvent::Finished { generation } if generation == self.generation => {
+                self.finished = true;
+                self.playing = false;
+                true
+            }
+            SimEvent::Failed {
+                generation,
+                message,
+            } if generation == self.generation => {
+                self.failed = Some(message.clone());
+                self.message = Some((format!("integration failed: {message}"), true));
+                self.playing = false;
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// The portrait's bounds now.
+    #[must_use]
+    pub fn bounds(&self) -> Bounds {
+        let s = &self.settings;
+        let auto = portrait::auto_bounds(
+            &self.derived.effective,
+            s.start.alpha,
+            s.start.alpha_dot,
+            &self.trail,
+            self.view.wrap,
+        );
+        portrait::apply_view(auto, &self.view)
+    }
+
+    /// The level sets for the current settings and bounds, recomputed only when either changed.
+    ///
+    /// # Panics
+    /// Never: the cache is filled just before it is read.
+    pub fn contours(&mut self, samples: usize) -> &[Level] {
+        let key = ContourKey {
+            settings: self.settings,
+            bounds: self.bounds(),
+            samples,
+        };
+        if self.contour_cache.as_ref().is_none_or(|(k, _)| *k != key) {
+            let eff = &self.derived.effective;
+            let levels = portrait::levels(eff, &key.bounds, eff.energy(), samples);
+            self.contour_cache = Some((key, levels));
+        }
+        &self.contour_cache.as_ref().expect("just filled").1
+    }
+
+    /// The latest sample of the full motion.
+    #[must_use]
+    pub fn current(&self) -> Option<&Point> {
+        self.trail.last()
+    }
+}
+
+fn push_capped(trail: &mut Vec<Point>, new: Vec<Point>) {
+    trail.extend(new);
+    if trail.len() > TRAIL_CAP {
+        trail.drain(..trail.len() - TRAIL_CAP / 2);
+    }
+}
+
+fn derive(s: &Settings) -> Derived {
+    let problem = s.problem();
+    let effective = Effective::new(&problem);
+    Derived {
+        ratio: effective.start_ratio(&problem),
+        critical: effective.critical_ratio(&problem),
+        effective,
+    }
+}

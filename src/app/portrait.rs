@@ -1,0 +1,312 @@
+//! Geometry of the phase portrait: the view's bounds (automatic range, zoom, pan, wrap), the
+//! level sets of the effective energy, and trail decimation to the canvas resolution. Pure
+//! data, no drawing.
+
+use std::f64::consts::PI;
+
+use crate::physics::effective::Effective;
+use crate::sim::Point;
+
+/// Zoom, pan and wrap chosen by the user.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    /// > 1 zooms in.
+    pub zoom: f64,
+    /// Pan as a fraction of the visible width.
+    pub pan_x: f64,
+    /// Pan as a fraction of the visible height.
+    pub pan_y: f64,
+    /// Show `alpha` modulo one period of `V` (π).
+    pub wrap: bool,
+}
+
+impl Default for View {
+    fn default() -> Self {
+        Self {
+            zoom: 1.0,
+            pan_x: 0.0,
+            pan_y: 0.0,
+            wrap: false,
+        }
+    }
+}
+
+/// Axis bounds of the portrait.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds {
+    /// `alpha` range.
+    pub x: [f64; 2],
+    /// `alpha_dot` range.
+    pub y: [f64; 2],
+}
+
+/// One energy level: polylines in `(alpha, alpha_dot)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Level {
+    /// The energy.
+    pub energy: f64,
+    /// What it is.
+    pub kind: LevelKind,
+    /// Its curves.
+    pub lines: Vec<Vec<(f64, f64)>>,
+}
+
+/// How a level is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LevelKind {
+    /// A background level.
+    Plain,
+    /// The separatrix through the potential maximum.
+    Separatrix,
+    /// The start's own level.
+    Start,
+}
+
+/// Number of background levels drawn.
+pub const LEVELS: usize = 6;
+
+/// Centre of the period shown when wrapped: the potential's minimum.
+#[must_use]
+pub fn wrap_centre(eff: &Effective) -> f64 {
+    let p = eff.params();
+    if p.ix >= p.iy { 0.0 } else { PI / 2.0 }
+}
+
+/// `alpha` as displayed: unchanged, or folded into one period around the minimum.
+#[must_use]
+pub fn display_alpha(alpha: f64, centre: f64, wrap: bool) -> f64 {
+    if wrap {
+        centre + (alpha - centre + PI / 2.0).rem_euclid(PI) - PI / 2.0
+    } else {
+        alpha
+    }
+}
+
+/// The automatic bounds (before zoom and pan): the separatrix's height, the start, the trail.
+#[must_use]
+pub fn auto_bounds(
+    eff: &Effective,
+    alpha0: f64,
+    alpha_dot0: f64,
+    trail: &[Point],
+    wrap: bool,
+) -> Bounds {
+    let iz = eff.params().iz;
+    let centre = wrap_centre(eff);
+    let sep = (2.0 * (eff.potential_max() - eff.potential_min()) / iz)
+        .max(0.0)
+        .sqrt();
+    let mut y_max = sep.max(alpha_dot0.abs()).max(1e-3);
+    let (mut x_lo, mut x_hi) = if wrap {
+        (centre - PI / 2.0, centre + PI / 2.0)
+    } else {
+        let c = centre + PI * ((alpha0 - centre) / PI).round();
+        (c - PI / 2.0, c + PI / 2.0)
+    };
+    for p in trail {
+        y_max = y_max.max(p.alpha_dot.abs());
+        if !wrap {
+            x_lo = x_lo.min(p.alpha);
+            x_hi = x_hi.max(p.alpha);
+        }
+    }
+    if !wrap {
+        x_lo = x_lo.min(alpha0);
+        x_hi = x_hi.max(alpha0);
+    }
+    Bounds {
+        x: [x_lo, x_hi],
+        y: [-1.15 * y_max, 1.15 * y_max],
+    }
+}
+
+/// Applies zoom and pan to automatic bounds.
+#[must_use]
+pub fn apply_view(b: Bounds, view: &View) -> Bounds {
+    let scale = |[lo, hi]: [f64; 2], pan: f64| {
+        let half = 0.5 * (hi - lo) / view.zoom;
+        let mid = 0.5 * (hi + lo) + pan * 2.0 * half;
+        [mid - half, mid + half]
+    };
+    Bounds {
+        x: scale(b.x, view.pan_x),
+        y: scale(b.y, view.pan_y),
+    }
+}
+
+/// Level sets of `E_eff = ½ iz α̇² + V(α)` over the bounds, on `samples` points across: the
+/// background levels, the separatrix and the start's level.
+#[must_use]
+pub fn levels(eff: &Effective, bounds: &Bounds, start_energy: f64, samples: usize) -> Vec<Level> {
+    let iz = eff.params().iz;
+    let (vmin, vmax) = (eff.potential_min(), eff.potential_max());
+    let top = vmax.max(vmin + 0.5 * iz * bounds.y[1].max(-bounds.y[0]).powi(2));
+    let mut out = Vec::new();
+    for i in 1..=LEVELS {
+        let e = vmin + (top - vmin) * i as f64 / (LEVELS + 1) as f64;
+        out.push(level(eff, bounds, e, LevelKind::Plain, samples));
+    }
+    if vmax > vmin {
+        out.push(level(eff, bounds, vmax, LevelKind::Separatrix, samples));
+    }
+    out.push(level(eff, bounds, start_energy, LevelKind::Start, samples));
+    out
+}
+
+fn level(eff: &Effective, bounds: &Bounds, energy: f64, kind: LevelKind, samples: usize) -> Level {
+    let iz = eff.params().iz;
+    let n = samples.max(8);
+    let [x0, x1] = bounds.x;
+    let speed = |a: f64| {
+        let d = energy - eff.potential(a);
+        (d >= 0.0).then(|| (2.0 * d / iz).sqrt())
+    };
+    // Runs of consecutive α where the level exists.
+    let mut runs: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut run: Vec<(f64, f64)> = Vec::new();
+    for i in 0..=n {
+        let a = x0 + (x1 - x0) * i as f64 / n as f64;
+        match speed(a) {
+            Some(v) => run.push((a, v)),
+            None => {
+                if !run.is_empty() {
+                    runs.push(std::mem::take(&mut run));
+                }
+            }
+        }
+    }
+    if !run.is_empty() {
+        runs.push(run);
+    }
+    let mut lines = Vec::new();
+    for run in runs {
+        let open = run.first().is_some_and(|p| p.0 <= x0) || run.last().is_some_and(|p| p.0 >= x1);
+        let upper: Vec<(f64, f64)> = run.clone();
+        let lower: Vec<(f64, f64)> = run.iter().rev().map(|&(a, v)| (a, -v)).collect();
+        if open {
+            // Reaches the edge of the view: two separate branches.
+            lines.push(upper);
+            lines.push(lower);
+        } else {
+            // A closed orbit around a well.
+            let mut closed = upper;
+            closed.extend(lower);
+            if let Some(&first) = closed.first() {
+                closed.push(first);
+            }
+            lines.push(closed);
+        }
+    }
+    Level {
+        energy,
+        kind,
+        lines,
+    }
+}
+
+/// Keeps the points of `trail` that land in a new canvas cell (`cols × rows` cells over the
+/// bounds), plus the last one: the trail costs no more to draw than the canvas can show.
+#[must_use]
+pub fn decimate(
+    trail: &[(f64, f64)],
+    bounds: &Bounds,
+    cols: usize,
+    rows: usize,
+) -> Vec<(f64, f64)> {
+    let cell = |(x, y): (f64, f64)| {
+        let cx = ((x - bounds.x[0]) / (bounds.x[1] - bounds.x[0]) * cols as f64).floor();
+        let cy = ((y - bounds.y[0]) / (bounds.y[1] - bounds.y[0]) * rows as f64).floor();
+        (cx as i64, cy as i64)
+    };
+    let mut out: Vec<(f64, f64)> = Vec::with_capacity(trail.len().min(cols * rows));
+    let mut last = None;
+    for &p in trail {
+        let c = cell(p);
+        if Some(c) != last {
+            out.push(p);
+            last = Some(c);
+        }
+    }
+    if let (Some(&end), Some(&kept)) = (trail.last(), out.last())
+        && end != kept
+    {
+        out.push(end);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::{Params, Problem, Start};
+
+    fn eff() -> Effective {
+        Effective::new(
+            &Problem::new(
+                Params {
+                    ix: 2.0,
+                    iy: 1.0,
+                    iz: 1.0,
+                    k: 1e4,
+                },
+                Start {
+                    gamma: 0.0,
+                    alpha: 0.0,
+                    gamma_dot: 1.0,
+                    alpha_dot: 0.5,
+                },
+            )
+            .unwrap(),
+        )
+    }
+
+    #[test]
+    fn level_points_lie_on_their_energy() {
+        let e = eff();
+        let b = auto_bounds(&e, 0.0, 0.5, &[], false);
+        for level in levels(&e, &b, e.energy(), 200) {
+            for line in &level.lines {
+                for &(a, v) in line {
+                    let got = e.energy_of(a, v);
+                    assert!(
+                        (got - level.energy).abs() < 1e-9 * level.energy.max(1.0),
+                        "{got} vs {}",
+                        level.energy
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn trapped_start_level_is_a_closed_orbit_and_separatrix_exists() {
+        let e = eff();
+        let b = auto_bounds(&e, 0.0, 0.5, &[], false);
+        let all = levels(&e, &b, e.energy(), 200);
+        let start = all.iter().find(|l| l.kind == LevelKind::Start).unwrap();
+        assert_eq!(start.lines.len(), 1);
+        assert_eq!(start.lines[0].first(), start.lines[0].last());
+        assert!(all.iter().any(|l| l.kind == LevelKind::Separatrix));
+    }
+
+    #[test]
+    fn decimation_keeps_one_point_per_cell() {
+        let b = Bounds {
+            x: [0.0, 1.0],
+            y: [0.0, 1.0],
+        };
+        let trail: Vec<(f64, f64)> = (0..10_000)
+            .map(|i| (f64::from(i) / 10_000.0, 0.5))
+            .collect();
+        let d = decimate(&trail, &b, 100, 10);
+        assert!(d.len() <= 101, "{}", d.len());
+        assert_eq!(d.last(), trail.last());
+    }
+
+    #[test]
+    fn wrapping_folds_into_one_period() {
+        let a = display_alpha(3.0 * PI + 0.1, 0.0, true);
+        assert!((a - 0.1).abs() < 1e-12);
+        assert!((display_alpha(5.0, 0.0, false) - 5.0).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,128 @@
+//! The only place that touches the tty: raw mode, the alternate screen, synchronized output
+//! around each frame, a panic hook that restores the terminal before the message prints, and
+//! translation of crossterm's key events into the app's [`Key`]. Mouse capture is never
+//! enabled. Restoring is idempotent and also happens on drop.
+
+use std::io::{self, Stdout, Write};
+use std::sync::Once;
+
+use ratatui::Frame;
+use ratatui::Terminal;
+use ratatui::backend::CrosstermBackend;
+use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use ratatui::crossterm::terminal::{
+    BeginSynchronizedUpdate, EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen,
+    disable_raw_mode, enable_raw_mode,
+};
+use ratatui::crossterm::{cursor, execute, queue};
+
+use crate::app::Key;
+
+/// The terminal in explorer mode; restores it when dropped.
+pub struct Tty {
+    terminal: Terminal<CrosstermBackend<Stdout>>,
+}
+
+static HOOK: Once = Once::new();
+
+/// Puts the terminal back: cooked mode, main screen, visible cursor. Safe to call twice.
+pub fn restore() {
+    let _ = disable_raw_mode();
+    let _ = execute!(
+        io::stdout(),
+        EndSynchronizedUpdate,
+        LeaveAlternateScreen,
+        cursor::Show
+    );
+}
+
+impl Tty {
+    /// Enters raw mode and the alternate screen, and installs the panic hook.
+    ///
+    /// # Errors
+    /// When stdout is not a terminal or cannot be configured.
+    pub fn enter() -> io::Result<Self> {
+        HOOK.call_once(|| {
+            let previous = std::panic::take_hook();
+            std::panic::set_hook(Box::new(move |info| {
+                restore();
+                previous(info);
+            }));
+        });
+        enable_raw_mode()?;
+        if let Err(e) = execute!(io::stdout(), EnterAlternateScreen, cursor::Hide) {
+            restore();
+            return Err(e);
+        }
+        let terminal =
+            Terminal::new(CrosstermBackend::new(io::stdout())).inspect_err(|_| restore())?;
+        Ok(Self { terminal })
+    }
+
+    /// Draws one frame wrapped in synchronized-output escapes, so the terminal shows it whole.
+    ///
+    /// # Errors
+    /// When writing to the terminal fails.
+    pub fn draw(&mut self, render: impl FnOnce(&mut Frame<'_>)) -> io::Result<()> {
+        queue!(self.terminal.backend_mut(), BeginSynchronizedUpdate)?;
+        self.terminal.draw(render)?;
+        queue!(self.terminal.backend_mut(), EndSynchronizedUpdate)?;
+        self.terminal.backend_mut().flush()
+    }
+
+    /// Forces a full redraw on the next frame (after a resize).
+    ///
+    /// # Errors
+    /// When the size cannot be read.
+    pub fn autoresize(&mut self) -> io::Result<()> {
+        self.terminal.autoresize()
+    }
+}
+
+impl Drop for Tty {
+    fn drop(&mut self) {
+        restore();
+    }
+}
+
+/// What a terminal event means to the explorer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Input {
+    /// A key.
+    Key(Key),
+    /// The terminal changed size.
+    Resize,
+}
+
+/// Translates a crossterm event; `None` for events the explorer ignores.
+#[must_use]
+pub fn translate(event: &Event) -> Option<Input> {
+    match event {
+        Event::Resize(..) => Some(Input::Resize),
+        Event::Key(k) => translate_key(k).map(Input::Key),
+        _ => None,
+    }
+}
+
+fn translate_key(k: &KeyEvent) -> Option<Key> {
+    if k.kind == KeyEventKind::Release {
+        return None;
+    }
+    let shift = k.modifiers.contains(KeyModifiers::SHIFT);
+    Some(match k.code {
+        KeyCode::Char('c') if k.modifiers.contains(KeyModifiers::CONTROL) => Key::CtrlC,
+        KeyCode::Char(c) => Key::Char(c),
+        KeyCode::Up if shift => Key::ShiftUp,
+        KeyCode::Down if shift => Key::ShiftDown,
+        KeyCode::Left if shift => Key::ShiftLeft,
+        KeyCode::Right if shift => Key::ShiftRight,
+        KeyCode::Up => Key::Up,
+        KeyCode::Down => Key::Down,
+        KeyCode::Left => Key::Left,
+        KeyCode::Right => Key::Right,
+        KeyCode::Enter => Key::Enter,
+        KeyCode::Esc => Key::Esc,
+        KeyCode::Backspace => Key::Backspace,
+        _ => return None,
+    })
+}

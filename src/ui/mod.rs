@@ -1,0 +1,128 @@
+//! Widgets that draw the app's state into ratatui buffers: they draw, never decide. Nothing
+//! imports `ui` but `main` (and the explorer loop).
+
+mod help;
+mod params;
+mod portrait;
+mod series;
+mod status;
+
+use ratatui::Frame;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::symbols::Marker;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Paragraph, Wrap};
+
+use crate::app::App;
+use crate::app::keys::FOOTER;
+
+/// Smallest terminal the explorer draws into.
+pub const MIN_SIZE: (u16, u16) = (80, 24);
+
+/// Colours of the interface (a 16-colour default that reads well over plain SSH).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Theme {
+    /// Background energy levels.
+    pub contour: Color,
+    /// The separatrix.
+    pub separatrix: Color,
+    /// The start's own level.
+    pub start_level: Color,
+    /// The full trajectory.
+    pub trail: Color,
+    /// The effective trajectory.
+    pub effective: Color,
+    /// The current point.
+    pub current: Color,
+    /// Reversal ticks.
+    pub reversal: Color,
+    /// Error messages.
+    pub error: Color,
+    /// Axis labels and secondary text.
+    pub dim: Color,
+}
+
+impl Default for Theme {
+    fn default() -> Self {
+        Self {
+            contour: Color::DarkGray,
+            separatrix: Color::Yellow,
+            start_level: Color::Cyan,
+            trail: Color::Green,
+            effective: Color::Magenta,
+            current: Color::Red,
+            reversal: Color::Yellow,
+            error: Color::Red,
+            dim: Color::Gray,
+        }
+    }
+}
+
+/// How to draw.
+#[derive(Clone, Copy, Debug)]
+pub struct UiOptions {
+    /// Canvas marker (`--marker`).
+    pub marker: Marker,
+    /// Colours.
+    pub theme: Theme,
+}
+
+impl Default for UiOptions {
+    fn default() -> Self {
+        Self {
+            marker: Marker::Braille,
+            theme: Theme::default(),
+        }
+    }
+}
+
+/// Draws the whole screen.
+pub fn draw(frame: &mut Frame<'_>, app: &mut App, options: &UiOptions) {
+    let area = frame.area();
+    if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
+        let text = format!(
+            "terminal too small: {}x{} needed, this one is {}x{}",
+            MIN_SIZE.0, MIN_SIZE.1, area.width, area.height
+        );
+        frame.render_widget(Paragraph::new(text).wrap(Wrap { trim: true }), area);
+        return;
+    }
+    let [main, status_area, footer] = Layout::vertical([
+        Constraint::Min(0),
+        Constraint::Length(1),
+        Constraint::Length(1),
+    ])
+    .areas(area);
+    let [left, right] =
+        Layout::horizontal([Constraint::Length(30), Constraint::Min(0)]).areas(main);
+    params::draw(frame, left, app, options);
+    if app.show_series {
+        let [top, bottom] =
+            Layout::vertical([Constraint::Percentage(65), Constraint::Percentage(35)]).areas(right);
+        portrait::draw(frame, top, app, options);
+        series::draw(frame, bottom, app, options);
+    } else {
+        portrait::draw(frame, right, app, options);
+    }
+    status::draw(frame, status_area, app, options);
+    draw_footer(frame, footer, options);
+    if app.show_help {
+        help::draw(frame, area, options);
+    }
+}
+
+fn draw_footer(frame: &mut Frame<'_>, area: Rect, options: &UiOptions) {
+    let mut spans = Vec::new();
+    for (i, (key, what)) in FOOTER.iter().enumerate() {
+        if i > 0 {
+            spans.push(Span::styled(" · ", Style::default().fg(options.theme.dim)));
+        }
+        spans.push(Span::styled(
+            *key,
+            Style::default().add_modifier(Modifier::BOLD),
+        ));
+        spans.push(Span::raw(format!(" {what}")));
+    }
+    frame.render_widget(Paragraph::new(Line::from(spans)), area);
+}
