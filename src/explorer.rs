@@ -98,7 +98,14 @@ pub fn run(preset: &Preset, options: ExplorerOptions) -> std::io::Result<()> {
         } else {
             Duration::from_millis(250)
         };
-        match rx.recv_timeout(timeout) {
+        let event = rx.recv_timeout(timeout);
+        if matches!(event, Err(RecvTimeoutError::Timeout))
+            && ratatui::crossterm::terminal::size().is_err()
+        {
+            // The terminal went away without a signal: leave as on SIGHUP.
+            break Ok(());
+        }
+        match event {
             Ok(AppEvent::Input(key)) => {
                 send(app.on_key(key));
                 dirty = true;
@@ -132,7 +139,10 @@ pub fn run(preset: &Preset, options: ExplorerOptions) -> std::io::Result<()> {
     stop.store(true, Ordering::Relaxed);
     drop(rx);
     worker.join();
-    let _ = input.join();
+    // The input thread is not joined: on a hung-up terminal crossterm's blocking read can spin
+    // without returning, and the thread ends with the process anyway. A live terminal's thread
+    // sees `stop` within 100 ms.
+    drop(input);
     drop(tty);
     result
 }
