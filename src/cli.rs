@@ -20,6 +20,10 @@ pub struct Cli {
     /// Frame-rate cap of the explorer.
     #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
     pub fps: u32,
+    /// Colour theme: a shipped name (default, dark, light, high-contrast), a user theme or a
+    /// path. `NO_COLOR` turns colours off whatever the theme.
+    #[arg(long, value_name = "NAME|PATH", default_value = "default")]
+    pub theme: String,
     /// Canvas marker, for fonts without Braille.
     #[arg(long, value_enum, default_value_t = MarkerChoice::Braille)]
     pub marker: MarkerChoice,
@@ -41,6 +45,35 @@ pub enum MarkerChoice {
 pub enum Command {
     /// Run one trajectory headless and print the result.
     Simulate(SimulateArgs),
+    /// List every preset (shipped and the user's) with its source, path and description.
+    Presets(PresetsArgs),
+    /// Validate preset or theme files and report every problem (exit 2 if any).
+    Check(CheckArgs),
+}
+
+/// Arguments of `presets`.
+#[derive(Debug, Args)]
+pub struct PresetsArgs {
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = ListFormat::Table)]
+    pub format: ListFormat,
+}
+
+/// Output format of `presets`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ListFormat {
+    /// An array of objects with `name`, `title`, `source`, `path`, `description`.
+    Json,
+    /// For people.
+    Table,
+}
+
+/// Arguments of `check`.
+#[derive(Debug, Args)]
+pub struct CheckArgs {
+    /// Files to check: presets, or themes (files with a `[theme]` or `[colors]` table).
+    #[arg(required = true, value_name = "FILE")]
+    pub files: Vec<std::path::PathBuf>,
 }
 
 /// Output format of `simulate`.

@@ -30,12 +30,14 @@ pub enum AppEvent {
 const INBOX: usize = 64;
 
 /// How the explorer runs.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct ExplorerOptions {
     /// Frame-rate cap.
     pub fps: f64,
     /// Drawing options.
     pub ui: UiOptions,
+    /// Problems found at start-up (invalid user themes), shown in a dialog.
+    pub startup_problems: Vec<String>,
 }
 
 fn input_thread(tx: SyncSender<AppEvent>, stop: Arc<AtomicBool>) -> std::thread::JoinHandle<()> {
@@ -64,7 +66,7 @@ fn input_thread(tx: SyncSender<AppEvent>, stop: Arc<AtomicBool>) -> std::thread:
 ///
 /// # Errors
 /// When the terminal cannot be set up or written to.
-pub fn run(preset: &Preset, options: ExplorerOptions) -> std::io::Result<()> {
+pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<()> {
     let hangup = Arc::new(AtomicBool::new(false));
     for signal in [signal_hook::consts::SIGTERM, signal_hook::consts::SIGHUP] {
         signal_hook::flag::register(signal, Arc::clone(&hangup))?;
@@ -80,6 +82,9 @@ pub fn run(preset: &Preset, options: ExplorerOptions) -> std::io::Result<()> {
     let send = |commands: Vec<Command>| commands.into_iter().for_each(|c| worker.send(c));
 
     let (mut app, commands) = App::new(preset, Options { fps: options.fps });
+    if !options.startup_problems.is_empty() {
+        app.dialog = Some(options.startup_problems.join("\n"));
+    }
     send(commands);
     let frame = Duration::from_secs_f64(1.0 / options.fps);
     let mut dirty = true;

@@ -5,6 +5,7 @@
 
 pub mod app;
 pub mod cli;
+pub mod commands;
 pub mod explorer;
 pub mod physics;
 pub mod scenario;

@@ -6,6 +6,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use rattleback::cli::{Cli, Command, MarkerChoice, SimulateArgs};
+use rattleback::commands;
 use rattleback::explorer::{self, ExplorerOptions};
 use rattleback::scenario::shipped::resolve;
 use rattleback::simulate::{resolve as resolve_run, simulate};
@@ -15,6 +16,8 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Some(Command::Simulate(args)) => run_simulate(&args),
+        Some(Command::Presets(args)) => commands::presets(&args),
+        Some(Command::Check(args)) => commands::check(&args),
         None => run_explorer(&cli),
     }
 }
@@ -32,14 +35,23 @@ fn run_explorer(cli: &Cli) -> ExitCode {
         MarkerChoice::Halfblock => ratatui::symbols::Marker::HalfBlock,
         MarkerChoice::Dot => ratatui::symbols::Marker::Dot,
     };
+    let theme = match rattleback::scenario::theme::theme(&cli.theme) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("rattleback: error: {e}");
+            return ExitCode::from(2);
+        }
+    };
     let options = ExplorerOptions {
         fps: f64::from(cli.fps),
-        ui: UiOptions {
-            marker,
-            ..UiOptions::default()
-        },
+        ui: UiOptions::new(marker, &theme, no_color()),
+        startup_problems: rattleback::scenario::theme::themes()
+            .1
+            .iter()
+            .map(ToString::to_string)
+            .collect(),
     };
-    match explorer::run(&preset, options) {
+    match explorer::run(&preset, &options) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!(
@@ -48,6 +60,11 @@ fn run_explorer(cli: &Cli) -> ExitCode {
             ExitCode::from(1)
         }
     }
+}
+
+/// `NO_COLOR` set to anything non-empty turns colours off (<https://no-color.org>).
+fn no_color() -> bool {
+    std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty())
 }
 
 fn run_simulate(args: &SimulateArgs) -> ExitCode {

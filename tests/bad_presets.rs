@@ -44,13 +44,16 @@ fn rejects(file: &str, needles: &[&str]) {
 fn typo_in_a_key() {
     rejects(
         "typo-key.toml",
-        &[":5:", "body.iyy", "unknown field `iyy`", "`iy`"],
+        &[":5:", "body.iyy", "unknown key `iyy`", "`iy`"],
     );
 }
 
 #[test]
 fn wrong_type() {
-    rejects("wrong-type.toml", &[":6:", "body.iz", "expected a number"]);
+    rejects(
+        "wrong-type.toml",
+        &[":6:", "body.iz", "expected a finite number", "found text"],
+    );
 }
 
 #[test]

@@ -84,6 +84,12 @@ pub enum Action {
     ClearTrail,
     /// Show or hide the help.
     ToggleHelp,
+    /// Open the preset picker.
+    OpenPicker,
+    /// Save the current parameters as a user preset.
+    Save,
+    /// Next colour theme.
+    CycleTheme,
 }
 
 /// One row of the keymap.
@@ -234,6 +240,24 @@ pub const KEYMAP: &[Binding] = &[
         help: "clear the trail",
     },
     Binding {
+        keys: &[Key::Char('p')],
+        label: "p",
+        action: Action::OpenPicker,
+        help: "pick a preset",
+    },
+    Binding {
+        keys: &[Key::Char('s')],
+        label: "s",
+        action: Action::Save,
+        help: "save as a user preset",
+    },
+    Binding {
+        keys: &[Key::Char('T')],
+        label: "T",
+        action: Action::CycleTheme,
+        help: "next colour theme",
+    },
+    Binding {
         keys: &[Key::Char('?')],
         label: "?",
         action: Action::ToggleHelp,
@@ -269,6 +293,8 @@ pub const FOOTER: &[(&str, &str)] = &[
     ("t", "series"),
     ("z/Z", "zoom"),
     ("w", "wrap"),
+    ("p", "presets"),
+    ("s", "save"),
     ("?", "help"),
     ("q", "quit"),
 ];

@@ -10,7 +10,9 @@ pub mod keys;
 pub mod portrait;
 
 use crate::physics::effective::Effective;
-use crate::scenario::Preset;
+use crate::scenario::preset::{RunConfig, ViewConfig};
+use crate::scenario::shipped::{Entry, catalogue_in, resolve, user_preset_dir};
+use crate::scenario::{Preset, store};
 use crate::sim::{self, Command, Point, SimEvent};
 use fields::{Field, Settings};
 pub use keys::{Action, Key};
@@ -28,6 +30,26 @@ pub const SPEED_RANGE: (f64, f64) = (1.0 / 64.0, 1024.0);
 pub struct Options {
     /// Frame-rate cap.
     pub fps: f64,
+}
+
+/// The preset picker (`p`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Picker {
+    /// Every preset.
+    pub entries: Vec<Entry>,
+    /// Highlighted row.
+    pub selected: usize,
+    /// Problems found in the user's folder.
+    pub problems: Vec<String>,
+}
+
+/// The save prompt (`s`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SavePrompt {
+    /// The name typed so far.
+    pub name: String,
+    /// The file exists and Enter again will overwrite it.
+    pub confirm: bool,
 }
 
 /// Derived values shown read-only under the parameters.
@@ -99,6 +121,16 @@ pub struct App {
     pub quit: bool,
     /// Start-up options.
     pub options: Options,
+    /// Index of the colour theme (the UI holds the list).
+    pub theme: usize,
+    /// The preset picker, when open.
+    pub picker: Option<Picker>,
+    /// The save prompt, when open.
+    pub saving: Option<SavePrompt>,
+    /// An error shown in a dialog until a key is pressed; the explorer keeps running.
+    pub dialog: Option<String>,
+    /// The user's preset folder (from `RATTLEBACK_CONFIG_DIR` or the platform's).
+    pub user_dir: Option<std::path::PathBuf>,
     steps_at_tick: u64,
     contour_cache: Option<(ContourKey, Vec<Level>)>,
 }
@@ -107,6 +139,7 @@ pub struct App {
 struct ContourKey {
     settings: Settings,
     bounds: Bounds,
+    levels: usize,
     samples: usize,
 }
 
@@ -114,13 +147,7 @@ impl App {
     /// A paused explorer on `preset`; returns the commands that start its run.
     #[must_use]
     pub fn new(preset: &Preset, options: Options) -> (Self, Vec<Command>) {
-        let settings = Settings {
-            params: *preset.problem.params(),
-            start: *preset.problem.start(),
-            t_end: preset.run.t_end,
-            method: preset.run.method.unwrap_or(crate::physics::Method::Auto),
-            tolerance: preset.run.tolerance.unwrap_or(1e-8),
-        };
+        let settings = settings_of(preset);
         let mut app = Self {
             name: preset.name.clone(),
             description: preset.description.clone(),
@@ -149,11 +176,151 @@ impl App {
             rate: 0.0,
             quit: false,
             options,
+            theme: 0,
+            picker: None,
+            saving: None,
+            dialog: None,
+            user_dir: user_preset_dir(),
             steps_at_tick: 0,
             contour_cache: None,
         };
+        app.apply_view(preset);
         let commands = app.restart();
         (app, commands)
+    }
+
+    fn apply_view(&mut self, preset: &Preset) {
+        let v = &preset.view;
+        self.view = View {
+            wrap: v.wrap.unwrap_or(false),
+            alpha_range: v.alpha_range,
+            alpha_dot_range: v.alpha_dot_range,
+            levels: v.contours.unwrap_or(portrait::LEVELS),
+            ..View::default()
+        };
+        self.show_effective = v.effective_overlay.unwrap_or(true);
+        self.show_series = v.series.unwrap_or(false);
+    }
+
+    /// Replaces the scenario with `preset` and restarts.
+    pub fn load(&mut self, preset: &Preset) -> Vec<Command> {
+        self.name.clone_from(&preset.name);
+        self.description.clone_from(&preset.description);
+        self.settings = settings_of(preset);
+        self.apply_view(preset);
+        self.message = Some((format!("loaded {}", preset.name), false));
+        let mut commands = self.restart();
+        commands.push(Command::SetEffective(self.show_effective));
+        commands
+    }
+
+    /// The current state as a preset named `name` (what `s` saves).
+    #[must_use]
+    pub fn to_preset(&self, name: &str) -> Preset {
+        Preset {
+            name: name.to_owned(),
+            description: self.description.clone(),
+            problem: self.settings.problem(),
+            run: RunConfig {
+                t_end: self.settings.t_end,
+                method: Some(self.settings.method),
+                tolerance: Some(self.settings.tolerance),
+                step: None,
+            },
+            view: ViewConfig {
+                alpha_range: self.view.alpha_range,
+                alpha_dot_range: self.view.alpha_dot_range,
+                contours: Some(self.view.levels),
+                effective_overlay: Some(self.show_effective),
+                series: Some(self.show_series),
+                wrap: Some(self.view.wrap),
+            },
+        }
+    }
+
+    fn on_dialog_key(&mut self, key: Key) -> Vec<Command> {
+        if key == Key::CtrlC {
+            self.quit = true;
+        }
+        self.dialog = None;
+        Vec::new()
+    }
+
+    fn on_save_key(&mut self, key: Key) -> Vec<Command> {
+        let Some(prompt) = self.saving.as_mut() else {
+            return Vec::new();
+        };
+        match key {
+            Key::Char(c) => {
+                prompt.name.push(c);
+                prompt.confirm = false;
+            }
+            Key::Backspace => {
+                prompt.name.pop();
+                prompt.confirm = false;
+            }
+            Key::Esc => self.saving = None,
+            Key::CtrlC => self.quit = true,
+            Key::Enter => {
+                let (name, confirm) = (prompt.name.clone(), prompt.confirm);
+                let text = self.to_preset(&name).to_toml();
+                match store::save(self.user_dir.as_deref(), &name, &text, confirm) {
+                    Ok(path) => {
+                        self.saving = None;
+                        self.message = Some((format!("saved {}", path.display()), false));
+                    }
+                    Err(store::SaveError::Exists(path)) => {
+                        if let Some(p) = self.saving.as_mut() {
+                            p.confirm = true;
+                        }
+                        self.message = Some((
+                            format!("{} exists: Enter overwrites, Esc cancels", path.display()),
+                            true,
+                        ));
+                    }
+                    Err(e) => {
+                        self.saving = None;
+                        self.dialog = Some(e.to_string());
+                    }
+                }
+            }
+            _ => {}
+        }
+        Vec::new()
+    }
+
+    fn on_picker_key(&mut self, key: Key) -> Vec<Command> {
+        let Some(picker) = self.picker.as_mut() else {
+            return Vec::new();
+        };
+        let n = picker.entries.len().max(1);
+        match key {
+            Key::Up | Key::Char('k') => picker.selected = (picker.selected + n - 1) % n,
+            Key::Down | Key::Char('j') => picker.selected = (picker.selected + 1) % n,
+            Key::Esc | Key::Char('p' | 'q') => self.picker = None,
+            Key::CtrlC => self.quit = true,
+            Key::Enter => {
+                let Some(entry) = picker.entries.get(picker.selected).cloned() else {
+                    return Vec::new();
+                };
+                self.picker = None;
+                let source = if entry.source == crate::scenario::shipped::Source::User {
+                    entry.path
+                } else {
+                    entry.name
+                };
+                return match resolve(&source, &[]) {
+                    Ok(preset) => self.load(&preset),
+                    Err(e) => {
+                        self.dialog =
+                            Some(format!("{e}\n\nThe explorer keeps the current scenario."));
+                        Vec::new()
+                    }
+                };
+            }
+            _ => {}
+        }
+        Vec::new()
     }
 
     /// The selected field.
@@ -203,8 +370,18 @@ impl App {
         }
     }
 
-    /// Handles a key: text entry while editing, else the keymap.
+    /// Handles a key: the dialog, the save prompt, the picker or text entry when open, else
+    /// the keymap.
     pub fn on_key(&mut self, key: Key) -> Vec<Command> {
+        if self.dialog.is_some() {
+            return self.on_dialog_key(key);
+        }
+        if self.saving.is_some() {
+            return self.on_save_key(key);
+        }
+        if self.picker.is_some() {
+            return self.on_picker_key(key);
+        }
         if let Some(buffer) = self.editing.as_mut() {
             match key {
                 Key::Char(c) => buffer.push(c),
@@ -311,6 +488,30 @@ impl App {
                 self.effective_trail.clear();
             }
             Action::ToggleHelp => self.show_help = !self.show_help,
+            Action::OpenPicker => {
+                let (entries, problems) = catalogue_in(self.user_dir.as_deref());
+                let selected = entries
+                    .iter()
+                    .position(|e| e.title == self.name)
+                    .unwrap_or(0);
+                self.picker = Some(Picker {
+                    entries,
+                    selected,
+                    problems: problems.iter().map(ToString::to_string).collect(),
+                });
+            }
+            Action::Save => {
+                self.saving = Some(SavePrompt {
+                    name: String::new(),
+                    confirm: false,
+                });
+                self.message = Some((
+                    "name the preset (letters, digits, - and _), Enter saves, Esc cancels"
+                        .to_owned(),
+                    false,
+                ));
+            }
+            Action::CycleTheme => self.theme = self.theme.wrapping_add(1),
         }
         Vec::new()
     }
@@ -408,11 +609,13 @@ impl App {
         let key = ContourKey {
             settings: self.settings,
             bounds: self.bounds(),
+            levels: self.view.levels,
             samples,
         };
         if self.contour_cache.as_ref().is_none_or(|(k, _)| *k != key) {
             let eff = &self.derived.effective;
-            let levels = portrait::levels(eff, &key.bounds, eff.energy(), samples);
+            let levels =
+                portrait::levels(eff, &key.bounds, eff.energy(), self.view.levels, samples);
             self.contour_cache = Some((key, levels));
         }
         &self.contour_cache.as_ref().expect("just filled").1
@@ -429,6 +632,16 @@ fn push_capped(trail: &mut Vec<Point>, new: Vec<Point>) {
     trail.extend(new);
     if trail.len() > TRAIL_CAP {
         trail.drain(..trail.len() - TRAIL_CAP / 2);
+    }
+}
+
+fn settings_of(preset: &Preset) -> Settings {
+    Settings {
+        params: *preset.problem.params(),
+        start: *preset.problem.start(),
+        t_end: preset.run.t_end,
+        method: preset.run.method.unwrap_or(crate::physics::Method::Auto),
+        tolerance: preset.run.tolerance.unwrap_or(1e-8),
     }
 }
 

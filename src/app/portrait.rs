@@ -18,6 +18,12 @@ pub struct View {
     pub pan_y: f64,
     /// Show `alpha` modulo one period of `V` (π).
     pub wrap: bool,
+    /// Fixed `alpha` range from the preset (else automatic).
+    pub alpha_range: Option<[f64; 2]>,
+    /// Fixed `alpha_dot` range from the preset (else automatic).
+    pub alpha_dot_range: Option<[f64; 2]>,
+    /// Background energy levels drawn.
+    pub levels: usize,
 }
 
 impl Default for View {
@@ -27,6 +33,9 @@ impl Default for View {
             pan_x: 0.0,
             pan_y: 0.0,
             wrap: false,
+            alpha_range: None,
+            alpha_dot_range: None,
+            levels: LEVELS,
         }
     }
 }
@@ -120,9 +129,13 @@ pub fn auto_bounds(
     }
 }
 
-/// Applies zoom and pan to automatic bounds.
+/// Applies fixed ranges, zoom and pan to automatic bounds.
 #[must_use]
 pub fn apply_view(b: Bounds, view: &View) -> Bounds {
+    let b = Bounds {
+        x: view.alpha_range.unwrap_or(b.x),
+        y: view.alpha_dot_range.unwrap_or(b.y),
+    };
     let scale = |[lo, hi]: [f64; 2], pan: f64| {
         let half = 0.5 * (hi - lo) / view.zoom;
         let mid = 0.5 * (hi + lo) + pan * 2.0 * half;
@@ -137,13 +150,19 @@ pub fn apply_view(b: Bounds, view: &View) -> Bounds {
 /// Level sets of `E_eff = ½ iz α̇² + V(α)` over the bounds, on `samples` points across: the
 /// background levels, the separatrix and the start's level.
 #[must_use]
-pub fn levels(eff: &Effective, bounds: &Bounds, start_energy: f64, samples: usize) -> Vec<Level> {
+pub fn levels(
+    eff: &Effective,
+    bounds: &Bounds,
+    start_energy: f64,
+    count: usize,
+    samples: usize,
+) -> Vec<Level> {
     let iz = eff.params().iz;
     let (vmin, vmax) = (eff.potential_min(), eff.potential_max());
     let top = vmax.max(vmin + 0.5 * iz * bounds.y[1].max(-bounds.y[0]).powi(2));
     let mut out = Vec::new();
-    for i in 1..=LEVELS {
-        let e = vmin + (top - vmin) * i as f64 / (LEVELS + 1) as f64;
+    for i in 1..=count {
+        let e = vmin + (top - vmin) * i as f64 / (count + 1) as f64;
         out.push(level(eff, bounds, e, LevelKind::Plain, samples));
     }
     if vmax > vmin {
@@ -264,7 +283,7 @@ mod tests {
     fn level_points_lie_on_their_energy() {
         let e = eff();
         let b = auto_bounds(&e, 0.0, 0.5, &[], false);
-        for level in levels(&e, &b, e.energy(), 200) {
+        for level in levels(&e, &b, e.energy(), LEVELS, 200) {
             for line in &level.lines {
                 for &(a, v) in line {
                     let got = e.energy_of(a, v);
@@ -282,7 +301,7 @@ mod tests {
     fn trapped_start_level_is_a_closed_orbit_and_separatrix_exists() {
         let e = eff();
         let b = auto_bounds(&e, 0.0, 0.5, &[], false);
-        let all = levels(&e, &b, e.energy(), 200);
+        let all = levels(&e, &b, e.energy(), LEVELS, 200);
         let start = all.iter().find(|l| l.kind == LevelKind::Start).unwrap();
         assert_eq!(start.lines.len(), 1);
         assert_eq!(start.lines[0].first(), start.lines[0].last());

@@ -15,7 +15,7 @@ pub enum PresetError {
         source: std::io::Error,
     },
     /// No file at that path and no preset of that name.
-    #[error("no preset named or at '{name}'; shipped presets: {available}")]
+    #[error("no preset named or at '{name}'; available: {available}")]
     NotFound {
         /// What was asked for.
         name: String,
@@ -93,25 +93,15 @@ impl<'a> SourceMap<'a> {
         self.src[..end].bytes().filter(|&b| b == b'\n').count() + 1
     }
 
-    /// The `[section]` header in force at `line`, if any.
-    pub(crate) fn section_at(&self, line: usize) -> Option<String> {
+    /// The line of the `[section]` header.
+    pub(crate) fn find_section(&self, section: &str) -> Option<usize> {
         self.src
             .lines()
-            .take(line)
-            .filter_map(|l| {
+            .position(|l| {
                 let t = l.trim();
-                (t.starts_with('[') && t.ends_with(']'))
-                    .then(|| t.trim_matches(|c| c == '[' || c == ']').trim().to_owned())
+                t.starts_with('[') && t.trim_matches(|c| c == '[' || c == ']').trim() == section
             })
-            .last()
-    }
-
-    /// The key assigned on `line` (`key = value`), if any.
-    pub(crate) fn key_at(&self, line: usize) -> Option<String> {
-        let text = self.src.lines().nth(line.checked_sub(1)?)?;
-        let (key, _) = text.split_once('=')?;
-        let key = key.trim().trim_matches('"');
-        (!key.is_empty() && !key.starts_with('#')).then(|| key.to_owned())
+            .map(|i| i + 1)
     }
 
     /// The line where `key` is set inside `[section]`.

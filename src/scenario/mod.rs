@@ -6,6 +6,8 @@
 pub mod error;
 pub mod preset;
 pub mod shipped;
+pub mod store;
+pub mod theme;
 
 pub use error::PresetError;
 pub use preset::{Preset, RunConfig};

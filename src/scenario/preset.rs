@@ -1,89 +1,114 @@
-//! Preset files: a scenario in TOML (`[preset]`, `[body]`, `[spring]`, `[initial]`, `[run]`).
+//! Preset files: a scenario in TOML (`[preset]`, `[body]`, `[spring]`, `[initial]`, `[run]`,
+//! `[view]`).
 //!
-//! Parse raw, then validate: the raw structs accept any shape serde can read (every value
-//! optional, unknown keys refused), command-line overrides (`--set section.key=value`) are
-//! applied to them, and `validate` turns them into a [`Preset`] or a [`PresetError`] that names
-//! the file, line and key.
+//! Parse raw, then validate against one schema ([`SCHEMA`]): the text is parsed into a TOML
+//! table (syntax errors stop there), command-line overrides (`--set section.key=value`) are
+//! applied to the table, then every section and key is checked: unknown names, wrong types,
+//! missing required values, non-finite or out-of-range numbers. All problems are collected
+//! ([`check`] reports them all, [`Preset::parse`] the first), each with file, line and key.
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
+use toml::{Table, Value};
 
 use super::error::{PresetError, SourceMap};
 use crate::physics::{Method, Params, Problem, Start};
 
 /// Smallest and largest tolerance accepted.
 pub const TOLERANCE_RANGE: (f64, f64) = (1e-14, 1e-1);
+/// Most energy levels a view may ask for.
+pub const MAX_CONTOURS: i64 = 40;
 
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawPreset {
-    preset: Option<RawMeta>,
-    body: Option<RawBody>,
-    spring: Option<RawSpring>,
-    initial: Option<RawInitial>,
-    run: Option<RawRun>,
+/// What a key holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// Free text.
+    Text,
+    /// Any finite number.
+    Number,
+    /// A finite number > 0.
+    Positive,
+    /// A method name.
+    Method,
+    /// A tolerance in [`TOLERANCE_RANGE`].
+    Tolerance,
+    /// `true` or `false`.
+    Bool,
+    /// `[low, high]`, finite, `low < high`.
+    Range,
+    /// A whole number of energy levels, 0 to [`MAX_CONTOURS`].
+    Count,
 }
 
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawMeta {
-    name: Option<String>,
-    description: Option<String>,
+impl Kind {
+    fn allowed(self) -> String {
+        match self {
+            Self::Text => "text in quotes".to_owned(),
+            Self::Number => "any finite number".to_owned(),
+            Self::Positive => "a finite number > 0".to_owned(),
+            Self::Method => format!("one of {}", Method::names()),
+            Self::Tolerance => format!(
+                "a number in [{:e}, {:e}]",
+                TOLERANCE_RANGE.0, TOLERANCE_RANGE.1
+            ),
+            Self::Bool => "true or false".to_owned(),
+            Self::Range => "[low, high] with finite low < high".to_owned(),
+            Self::Count => format!("a whole number from 0 to {MAX_CONTOURS}"),
+        }
+    }
 }
 
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawBody {
-    ix: Option<f64>,
-    iy: Option<f64>,
-    iz: Option<f64>,
+/// One key of the schema.
+#[derive(Clone, Copy, Debug)]
+pub struct KeySpec {
+    /// Section.
+    pub section: &'static str,
+    /// Key.
+    pub key: &'static str,
+    /// What it holds.
+    pub kind: Kind,
+    /// Whether a preset must give it.
+    pub required: bool,
 }
 
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawSpring {
-    k: Option<f64>,
+const fn spec(section: &'static str, key: &'static str, kind: Kind, required: bool) -> KeySpec {
+    KeySpec {
+        section,
+        key,
+        kind,
+        required,
+    }
 }
 
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawInitial {
-    gamma: Option<f64>,
-    alpha: Option<f64>,
-    gamma_dot: Option<f64>,
-    alpha_dot: Option<f64>,
-}
-
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawRun {
-    t_end: Option<f64>,
-    method: Option<String>,
-    tolerance: Option<f64>,
-    step: Option<f64>,
-}
-
-/// Every key a preset may hold, as `section.key`, with whether it is required.
-pub const KEYS: [(&str, bool); 14] = [
-    ("preset.name", false),
-    ("preset.description", false),
-    ("body.ix", true),
-    ("body.iy", true),
-    ("body.iz", true),
-    ("spring.k", true),
-    ("initial.gamma", false),
-    ("initial.alpha", false),
-    ("initial.gamma_dot", true),
-    ("initial.alpha_dot", true),
-    ("run.t_end", true),
-    ("run.method", false),
-    ("run.tolerance", false),
-    ("run.step", false),
+/// Every key a preset may hold. Names are a contract: add, never rename.
+pub const SCHEMA: &[KeySpec] = &[
+    spec("preset", "name", Kind::Text, false),
+    spec("preset", "description", Kind::Text, false),
+    spec("body", "ix", Kind::Positive, true),
+    spec("body", "iy", Kind::Positive, true),
+    spec("body", "iz", Kind::Positive, true),
+    spec("spring", "k", Kind::Positive, true),
+    spec("initial", "gamma", Kind::Number, false),
+    spec("initial", "alpha", Kind::Number, false),
+    spec("initial", "gamma_dot", Kind::Number, true),
+    spec("initial", "alpha_dot", Kind::Number, true),
+    spec("run", "t_end", Kind::Positive, true),
+    spec("run", "method", Kind::Method, false),
+    spec("run", "tolerance", Kind::Tolerance, false),
+    spec("run", "step", Kind::Positive, false),
+    spec("view", "alpha_range", Kind::Range, false),
+    spec("view", "alpha_dot_range", Kind::Range, false),
+    spec("view", "contours", Kind::Count, false),
+    spec("view", "effective_overlay", Kind::Bool, false),
+    spec("view", "series", Kind::Bool, false),
+    spec("view", "wrap", Kind::Bool, false),
 ];
+
+const SECTIONS: [&str; 6] = ["preset", "body", "spring", "initial", "run", "view"];
 
 /// How a preset asks to be run; absent values fall back to the command line or defaults.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RunConfig {
-    /// Final time of a headless run (the explorer runs on past it).
+    /// Final time of a run.
     pub t_end: f64,
     /// Integrator, if the preset names one.
     pub method: Option<Method>,
@@ -91,6 +116,23 @@ pub struct RunConfig {
     pub tolerance: Option<f64>,
     /// Fixed step for fixed-step methods, if given.
     pub step: Option<f64>,
+}
+
+/// How a preset asks to be shown; absent values keep the explorer's defaults.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct ViewConfig {
+    /// Fixed `alpha` range (else automatic).
+    pub alpha_range: Option<[f64; 2]>,
+    /// Fixed `alpha_dot` range (else automatic).
+    pub alpha_dot_range: Option<[f64; 2]>,
+    /// Number of background energy levels.
+    pub contours: Option<usize>,
+    /// Effective overlay on or off.
+    pub effective_overlay: Option<bool>,
+    /// Time-series pane on or off.
+    pub series: Option<bool>,
+    /// `alpha` wrapped to one period.
+    pub wrap: Option<bool>,
 }
 
 /// A validated scenario.
@@ -104,6 +146,8 @@ pub struct Preset {
     pub problem: Problem,
     /// Run settings.
     pub run: RunConfig,
+    /// View settings.
+    pub view: ViewConfig,
 }
 
 /// One `--set section.key=value` override.
@@ -128,11 +172,273 @@ impl std::str::FromStr for Override {
     }
 }
 
+/// Collects problems with their location.
+struct Problems<'a> {
+    map: SourceMap<'a>,
+    label: &'a str,
+    overridden: Vec<String>,
+    found: Vec<PresetError>,
+}
+
+impl Problems<'_> {
+    fn at_key(&mut self, section: &str, key: &str, message: String) {
+        let full = format!("{section}.{key}");
+        let overridden = self.overridden.contains(&full);
+        self.found.push(PresetError::Invalid {
+            path: if overridden {
+                "--set".to_owned()
+            } else {
+                self.label.to_owned()
+            },
+            line: if overridden {
+                None
+            } else {
+                self.map.find_key(section, key)
+            },
+            key: Some(full),
+            message,
+        });
+    }
+
+    fn at_section(&mut self, section: &str, message: String) {
+        self.found.push(PresetError::Invalid {
+            path: self.label.to_owned(),
+            line: self.map.find_section(section),
+            key: Some(section.to_owned()),
+            message,
+        });
+    }
+}
+
+fn allowed_keys(section: &str) -> String {
+    SCHEMA
+        .iter()
+        .filter(|s| s.section == section)
+        .map(|s| format!("`{}`", s.key))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn number(v: &Value) -> Option<f64> {
+    match v {
+        Value::Float(f) => Some(*f),
+        #[allow(clippy::cast_precision_loss)]
+        Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    }
+}
+
+fn type_name(v: &Value) -> &'static str {
+    match v {
+        Value::String(_) => "text",
+        Value::Integer(_) | Value::Float(_) => "a number",
+        Value::Boolean(_) => "a boolean",
+        Value::Array(_) => "an array",
+        Value::Table(_) => "a table",
+        Value::Datetime(_) => "a date",
+    }
+}
+
+/// Checks one value against its kind; `Err` is the message.
+fn check_value(kind: Kind, v: &Value) -> Result<(), String> {
+    let expected = || format!("expected {}, found {}", kind.allowed(), type_name(v));
+    match kind {
+        Kind::Text => v.as_str().map(|_| ()).ok_or_else(expected),
+        Kind::Bool => v.as_bool().map(|_| ()).ok_or_else(expected),
+        Kind::Method => {
+            let name = v.as_str().ok_or_else(expected)?;
+            Method::from_name(name)
+                .map(|_| ())
+                .ok_or_else(|| format!("unknown method '{name}'; allowed: {}", Method::names()))
+        }
+        Kind::Count => {
+            let n = v.as_integer().ok_or_else(expected)?;
+            if (0..=MAX_CONTOURS).contains(&n) {
+                Ok(())
+            } else {
+                Err(format!("{n} is out of range; allowed: {}", kind.allowed()))
+            }
+        }
+        Kind::Range => {
+            let a = v.as_array().ok_or_else(expected)?;
+            let pair: Vec<f64> = a.iter().filter_map(number).collect();
+            if a.len() == 2
+                && pair.len() == 2
+                && pair.iter().all(|x| x.is_finite())
+                && pair[0] < pair[1]
+            {
+                Ok(())
+            } else {
+                Err(format!("not allowed; allowed: {}", kind.allowed()))
+            }
+        }
+        Kind::Number | Kind::Positive | Kind::Tolerance => {
+            let x = number(v).ok_or_else(expected)?;
+            if !x.is_finite() {
+                return Err(format!(
+                    "{x} is not a finite number; allowed: {}",
+                    kind.allowed()
+                ));
+            }
+            let ok = match kind {
+                Kind::Positive => x > 0.0,
+                Kind::Tolerance => (TOLERANCE_RANGE.0..=TOLERANCE_RANGE.1).contains(&x),
+                _ => true,
+            };
+            if ok {
+                Ok(())
+            } else {
+                Err(format!("{x} is out of range; allowed: {}", kind.allowed()))
+            }
+        }
+    }
+}
+
+/// Turns a `--set` value into a TOML value of the key's kind.
+fn parse_override(kind: Kind, text: &str) -> Value {
+    let text = text.trim();
+    match kind {
+        Kind::Text | Kind::Method => Value::String(text.trim_matches('"').to_owned()),
+        _ => format!("v = {text}")
+            .parse::<Table>()
+            .ok()
+            .and_then(|mut t| t.remove("v"))
+            .unwrap_or_else(|| Value::String(text.to_owned())),
+    }
+}
+
+/// Every problem of a preset text (empty when it is valid).
+#[must_use]
+pub fn check(src: &str, label: &str) -> Vec<PresetError> {
+    match collect(src, label, &[]) {
+        Ok(_) => Vec::new(),
+        Err(problems) => problems,
+    }
+}
+
+fn collect(
+    src: &str,
+    label: &str,
+    overrides: &[Override],
+) -> Result<(Table, Vec<PresetError>), Vec<PresetError>> {
+    let map = SourceMap::new(src);
+    let mut table: Table = src.parse().map_err(|e: toml::de::Error| {
+        vec![PresetError::Invalid {
+            path: label.to_owned(),
+            line: e.span().map(|s| map.line_of(s.start)),
+            key: None,
+            message: e.message().trim().to_owned(),
+        }]
+    })?;
+    let mut problems = Problems {
+        map,
+        label,
+        overridden: overrides.iter().map(|o| o.key.clone()).collect(),
+        found: Vec::new(),
+    };
+    for o in overrides {
+        let Some(spec) = SCHEMA
+            .iter()
+            .find(|s| format!("{}.{}", s.section, s.key) == o.key)
+        else {
+            let keys: Vec<String> = SCHEMA
+                .iter()
+                .map(|s| format!("{}.{}", s.section, s.key))
+                .collect();
+            return Err(vec![PresetError::Invalid {
+                path: "--set".to_owned(),
+                line: None,
+                key: Some(o.key.clone()),
+                message: format!("unknown key '{}'; allowed: {}", o.key, keys.join(", ")),
+            }]);
+        };
+        let section = table
+            .entry(spec.section)
+            .or_insert_with(|| Value::Table(Table::new()));
+        if let Value::Table(t) = section {
+            t.insert(spec.key.to_owned(), parse_override(spec.kind, &o.value));
+        }
+    }
+    for (name, value) in &table {
+        if !SECTIONS.contains(&name.as_str()) {
+            let allowed = SECTIONS.map(|s| format!("`{s}`")).join(", ");
+            problems.at_section(
+                name,
+                format!("unknown section `{name}`, expected one of {allowed}"),
+            );
+            continue;
+        }
+        let Value::Table(section) = value else {
+            problems.at_section(name, format!("`{name}` must be a [{name}] table"));
+            continue;
+        };
+        for (key, v) in section {
+            match SCHEMA.iter().find(|s| s.section == name && s.key == key) {
+                None => problems.at_key(
+                    name,
+                    key,
+                    format!(
+                        "unknown key `{key}`, expected one of {}",
+                        allowed_keys(name)
+                    ),
+                ),
+                Some(spec) => {
+                    if let Err(message) = check_value(spec.kind, v) {
+                        problems.at_key(name, key, message);
+                    }
+                }
+            }
+        }
+    }
+    for spec in SCHEMA.iter().filter(|s| s.required) {
+        let present = table
+            .get(spec.section)
+            .and_then(Value::as_table)
+            .is_some_and(|t| t.contains_key(spec.key));
+        if !present {
+            problems.at_key(
+                spec.section,
+                spec.key,
+                format!("missing required value ({})", spec.kind.allowed()),
+            );
+        }
+    }
+    if problems.found.is_empty() {
+        Ok((table, Vec::new()))
+    } else {
+        Err(problems.found)
+    }
+}
+
+/// Reads a validated table (every lookup below was checked by `collect`).
+struct Reader<'a>(&'a Table);
+
+impl Reader<'_> {
+    fn get(&self, section: &str, key: &str) -> Option<&Value> {
+        self.0.get(section)?.as_table()?.get(key)
+    }
+    fn num(&self, section: &str, key: &str) -> Option<f64> {
+        self.get(section, key).and_then(number)
+    }
+    fn text(&self, section: &str, key: &str) -> Option<String> {
+        self.get(section, key)
+            .and_then(Value::as_str)
+            .map(str::to_owned)
+    }
+    fn flag(&self, section: &str, key: &str) -> Option<bool> {
+        self.get(section, key).and_then(Value::as_bool)
+    }
+    fn range(&self, section: &str, key: &str) -> Option<[f64; 2]> {
+        let a = self.get(section, key)?.as_array()?;
+        Some([number(&a[0])?, number(&a[1])?])
+    }
+}
+
 impl Preset {
     /// Reads and validates a preset file, applying `overrides`.
     ///
     /// # Errors
-    /// An unreadable file or any [`PresetError::Invalid`] problem.
+    /// An unreadable file or the first problem found.
     pub fn load(path: &std::path::Path, overrides: &[Override]) -> Result<Self, PresetError> {
         let label = path.display().to_string();
         let src = std::fs::read_to_string(path).map_err(|source| PresetError::Unreadable {
@@ -149,202 +455,118 @@ impl Preset {
     /// file has no `preset.name`.
     ///
     /// # Errors
-    /// Syntax errors, unknown keys, wrong types, missing or out-of-range values.
+    /// The first problem found (see [`check`] for all of them).
     pub fn parse(
         src: &str,
         label: &str,
         fallback_name: &str,
         overrides: &[Override],
     ) -> Result<Self, PresetError> {
-        let map = SourceMap::new(src);
-        let mut raw: RawPreset = toml::from_str(src).map_err(|e| toml_error(&map, label, &e))?;
-        for o in overrides {
-            raw.set(&o.key, &o.value)
-                .map_err(|message| PresetError::Invalid {
-                    path: "--set".to_owned(),
-                    line: None,
-                    key: Some(o.key.clone()),
-                    message,
-                })?;
-        }
-        raw.validate(&map, label, fallback_name, overrides)
-    }
-}
-
-fn toml_error(map: &SourceMap<'_>, label: &str, e: &toml::de::Error) -> PresetError {
-    let line = e.span().map(|s| map.line_of(s.start));
-    // On a section header there is no key; the message then names the section.
-    let key = line.and_then(|l| {
-        let key = map.key_at(l)?;
-        Some(match map.section_at(l) {
-            Some(section) => format!("{section}.{key}"),
-            None => key,
-        })
-    });
-    let mut message = e
-        .message()
-        .trim()
-        .replace("expected f64", "expected a number");
-    if message.starts_with("unknown field") {
-        message = format!("{message}; see the preset schema in README.md");
-    }
-    PresetError::Invalid {
-        path: label.to_owned(),
-        line,
-        key,
-        message,
-    }
-}
-
-fn parse_number(value: &str) -> Result<f64, String> {
-    let v = value.trim();
-    v.parse::<f64>()
-        .map_err(|_| format!("'{v}' is not a number"))
-}
-
-impl RawPreset {
-    /// Applies `section.key = value` from the command line.
-    fn set(&mut self, key: &str, value: &str) -> Result<(), String> {
-        let text = || value.trim().trim_matches('"').to_owned();
-        match key {
-            "preset.name" => self.preset.get_or_insert_default().name = Some(text()),
-            "preset.description" => {
-                self.preset.get_or_insert_default().description = Some(text());
-            }
-            "body.ix" => self.body.get_or_insert_default().ix = Some(parse_number(value)?),
-            "body.iy" => self.body.get_or_insert_default().iy = Some(parse_number(value)?),
-            "body.iz" => self.body.get_or_insert_default().iz = Some(parse_number(value)?),
-            "spring.k" => self.spring.get_or_insert_default().k = Some(parse_number(value)?),
-            "initial.gamma" => {
-                self.initial.get_or_insert_default().gamma = Some(parse_number(value)?);
-            }
-            "initial.alpha" => {
-                self.initial.get_or_insert_default().alpha = Some(parse_number(value)?);
-            }
-            "initial.gamma_dot" => {
-                self.initial.get_or_insert_default().gamma_dot = Some(parse_number(value)?);
-            }
-            "initial.alpha_dot" => {
-                self.initial.get_or_insert_default().alpha_dot = Some(parse_number(value)?);
-            }
-            "run.t_end" => self.run.get_or_insert_default().t_end = Some(parse_number(value)?),
-            "run.method" => self.run.get_or_insert_default().method = Some(text()),
-            "run.tolerance" => {
-                self.run.get_or_insert_default().tolerance = Some(parse_number(value)?);
-            }
-            "run.step" => self.run.get_or_insert_default().step = Some(parse_number(value)?),
-            other => {
-                let keys: Vec<&str> = KEYS.iter().map(|(k, _)| *k).collect();
-                return Err(format!(
-                    "unknown key '{other}'; allowed: {}",
-                    keys.join(", ")
-                ));
-            }
-        }
-        Ok(())
-    }
-
-    fn validate(
-        self,
-        map: &SourceMap<'_>,
-        label: &str,
-        fallback_name: &str,
-        overrides: &[Override],
-    ) -> Result<Preset, PresetError> {
-        // Locates `section.key`: on the command line if overridden, else in the file.
-        let invalid = |key: &str, message: String| {
-            let overridden = overrides.iter().any(|o| o.key == key);
-            let (section, name) = key.split_once('.').unwrap_or(("", key));
-            PresetError::Invalid {
-                path: if overridden {
-                    "--set".to_owned()
-                } else {
-                    label.to_owned()
-                },
-                line: if overridden {
-                    None
-                } else {
-                    map.find_key(section, name)
-                },
-                key: Some(key.to_owned()),
-                message,
-            }
-        };
-        let required = |key: &str, v: Option<f64>| {
-            v.ok_or_else(|| invalid(key, "missing required value (a number)".to_owned()))
-        };
-        let body = self.body.unwrap_or_default();
-        let spring = self.spring.unwrap_or_default();
-        let initial = self.initial.unwrap_or_default();
-        let run = self.run.unwrap_or_default();
-        let meta = self.preset.unwrap_or_default();
+        let (table, _) = collect(src, label, overrides).map_err(|mut p| p.swap_remove(0))?;
+        let r = Reader(&table);
+        let n = |s: &str, k: &str| r.num(s, k).unwrap_or(0.0);
         let params = Params {
-            ix: required("body.ix", body.ix)?,
-            iy: required("body.iy", body.iy)?,
-            iz: required("body.iz", body.iz)?,
-            k: required("spring.k", spring.k)?,
+            ix: n("body", "ix"),
+            iy: n("body", "iy"),
+            iz: n("body", "iz"),
+            k: n("spring", "k"),
         };
         let start = Start {
-            gamma: initial.gamma.unwrap_or(0.0),
-            alpha: initial.alpha.unwrap_or(0.0),
-            gamma_dot: required("initial.gamma_dot", initial.gamma_dot)?,
-            alpha_dot: required("initial.alpha_dot", initial.alpha_dot)?,
+            gamma: n("initial", "gamma"),
+            alpha: n("initial", "alpha"),
+            gamma_dot: n("initial", "gamma_dot"),
+            alpha_dot: n("initial", "alpha_dot"),
         };
-        let problem = Problem::new(params, start).map_err(|e| {
-            let section = match e.field() {
-                "ix" | "iy" | "iz" => "body",
-                "k" => "spring",
-                _ => "initial",
-            };
-            invalid(&format!("{section}.{}", e.field()), e.to_string())
+        let problem = Problem::new(params, start).map_err(|e| PresetError::Invalid {
+            path: label.to_owned(),
+            line: None,
+            key: Some(e.field().to_owned()),
+            message: e.to_string(),
         })?;
-        let t_end = required("run.t_end", run.t_end)?;
-        if !(t_end.is_finite() && t_end > 0.0) {
-            return Err(invalid(
-                "run.t_end",
-                format!("t_end = {t_end} is not allowed; allowed: a finite number > 0"),
-            ));
-        }
-        let method = run
-            .method
-            .map(|name| {
-                Method::from_name(&name).ok_or_else(|| {
-                    invalid(
-                        "run.method",
-                        format!("unknown method '{name}'; allowed: {}", Method::names()),
-                    )
-                })
-            })
-            .transpose()?;
-        if let Some(tol) = run.tolerance {
-            let (lo, hi) = TOLERANCE_RANGE;
-            if !(tol.is_finite() && (lo..=hi).contains(&tol)) {
-                return Err(invalid(
-                    "run.tolerance",
-                    format!(
-                        "tolerance = {tol} is not allowed; allowed: a number in [{lo:e}, {hi:e}]"
-                    ),
-                ));
-            }
-        }
-        if let Some(step) = run.step
-            && !(step.is_finite() && step > 0.0)
-        {
-            return Err(invalid(
-                "run.step",
-                format!("step = {step} is not allowed; allowed: a finite number > 0"),
-            ));
-        }
-        Ok(Preset {
-            name: meta.name.unwrap_or_else(|| fallback_name.to_owned()),
-            description: meta.description.unwrap_or_default(),
+        Ok(Self {
+            name: r
+                .text("preset", "name")
+                .unwrap_or_else(|| fallback_name.to_owned()),
+            description: r.text("preset", "description").unwrap_or_default(),
             problem,
             run: RunConfig {
-                t_end,
-                method,
-                tolerance: run.tolerance,
-                step: run.step,
+                t_end: n("run", "t_end"),
+                method: r.text("run", "method").and_then(|m| Method::from_name(&m)),
+                tolerance: r.num("run", "tolerance"),
+                step: r.num("run", "step"),
+            },
+            view: ViewConfig {
+                alpha_range: r.range("view", "alpha_range"),
+                alpha_dot_range: r.range("view", "alpha_dot_range"),
+                contours: r
+                    .get("view", "contours")
+                    .and_then(Value::as_integer)
+                    .and_then(|c| usize::try_from(c).ok()),
+                effective_overlay: r.flag("view", "effective_overlay"),
+                series: r.flag("view", "series"),
+                wrap: r.flag("view", "wrap"),
             },
         })
+    }
+
+    /// The preset as TOML, in the schema's order; parsing it gives the same preset back.
+    #[must_use]
+    pub fn to_toml(&self) -> String {
+        use std::fmt::Write as _;
+        let p = self.problem.params();
+        let s = self.problem.start();
+        let q = |t: &str| Value::String(t.to_owned()).to_string();
+        let mut o = String::new();
+        let _ = writeln!(
+            o,
+            "[preset]\nname = {}\ndescription = {}\n",
+            q(&self.name),
+            q(&self.description)
+        );
+        let _ = writeln!(
+            o,
+            "[body]\nix = {:?}\niy = {:?}\niz = {:?}\n",
+            p.ix, p.iy, p.iz
+        );
+        let _ = writeln!(o, "[spring]\nk = {:?}\n", p.k);
+        let _ = writeln!(
+            o,
+            "[initial]\ngamma = {:?}\nalpha = {:?}\ngamma_dot = {:?}\nalpha_dot = {:?}\n",
+            s.gamma, s.alpha, s.gamma_dot, s.alpha_dot
+        );
+        let _ = writeln!(o, "[run]\nt_end = {:?}", self.run.t_end);
+        if let Some(m) = self.run.method {
+            let _ = writeln!(o, "method = {}", q(m.name()));
+        }
+        if let Some(t) = self.run.tolerance {
+            let _ = writeln!(o, "tolerance = {t:?}");
+        }
+        if let Some(h) = self.run.step {
+            let _ = writeln!(o, "step = {h:?}");
+        }
+        let v = &self.view;
+        let mut view = String::new();
+        if let Some([a, b]) = v.alpha_range {
+            let _ = writeln!(view, "alpha_range = [{a:?}, {b:?}]");
+        }
+        if let Some([a, b]) = v.alpha_dot_range {
+            let _ = writeln!(view, "alpha_dot_range = [{a:?}, {b:?}]");
+        }
+        if let Some(c) = v.contours {
+            let _ = writeln!(view, "contours = {c}");
+        }
+        for (key, flag) in [
+            ("effective_overlay", v.effective_overlay),
+            ("series", v.series),
+            ("wrap", v.wrap),
+        ] {
+            if let Some(f) = flag {
+                let _ = writeln!(view, "{key} = {f}");
+            }
+        }
+        if !view.is_empty() {
+            let _ = write!(o, "\n[view]\n{view}");
+        }
+        o
     }
 }

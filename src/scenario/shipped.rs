@@ -1,7 +1,11 @@
-//! Presets shipped inside the binary, so an installed program has them, and the resolution of
-//! `--preset NAME|PATH`.
+//! Where presets and themes come from: a path; else the user's folder
+//! (`~/.config/rattleback/{presets,themes}` on Linux via `directories`, or
+//! `$RATTLEBACK_CONFIG_DIR/{presets,themes}`); else the ones shipped inside the binary, so an
+//! installed program has them. A user file with a shipped name shadows the shipped one.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
 
 use super::error::PresetError;
 use super::preset::{Override, Preset};
@@ -16,14 +20,46 @@ pub const SHIPPED: &[(&str, &str)] = &[
         "supercritical",
         include_str!("../../presets/supercritical.toml"),
     ),
+    ("just-below", include_str!("../../presets/just-below.toml")),
+    ("just-above", include_str!("../../presets/just-above.toml")),
+    ("symmetric", include_str!("../../presets/symmetric.toml")),
+    ("iy-greater", include_str!("../../presets/iy-greater.toml")),
+    ("tapping", include_str!("../../presets/tapping.toml")),
+    (
+        "stiff-spring",
+        include_str!("../../presets/stiff-spring.toml"),
+    ),
     (
         "soft-spring",
         include_str!("../../presets/soft-spring.toml"),
+    ),
+    (
+        "tilted-start",
+        include_str!("../../presets/tilted-start.toml"),
     ),
 ];
 
 /// The preset `cargo run --release` opens.
 pub const DEFAULT_PRESET: &str = "subcritical";
+
+/// The environment variable that replaces the config folder.
+pub const CONFIG_ENV: &str = "RATTLEBACK_CONFIG_DIR";
+
+/// The user's config folder: `$RATTLEBACK_CONFIG_DIR`, else the platform's
+/// (`~/.config/rattleback` on Linux). `None` when neither exists (no home directory).
+#[must_use]
+pub fn config_dir() -> Option<PathBuf> {
+    if let Some(dir) = std::env::var_os(CONFIG_ENV).filter(|d| !d.is_empty()) {
+        return Some(PathBuf::from(dir));
+    }
+    directories::ProjectDirs::from("", "", "rattleback").map(|d| d.config_dir().to_path_buf())
+}
+
+/// The user's preset folder.
+#[must_use]
+pub fn user_preset_dir() -> Option<PathBuf> {
+    config_dir().map(|d| d.join("presets"))
+}
 
 /// Names of the shipped presets, comma-separated.
 #[must_use]
@@ -35,7 +71,112 @@ pub fn shipped_names() -> String {
         .join(", ")
 }
 
-/// Loads `name_or_path`: an existing file path, else a shipped preset of that name.
+/// Where a preset comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Source {
+    /// Inside the binary.
+    Shipped,
+    /// The user's preset folder.
+    User,
+}
+
+/// One entry of the catalogue.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Entry {
+    /// What `--preset` takes (the file stem).
+    pub name: String,
+    /// The preset's own `preset.name`.
+    pub title: String,
+    /// Shipped or user.
+    pub source: Source,
+    /// The file (`presets/NAME.toml` inside the binary for shipped ones).
+    pub path: String,
+    /// What to look for.
+    pub description: String,
+}
+
+/// Every preset: shipped ones, then the user's (a user preset with a shipped name replaces
+/// it). Invalid user files and two presets sharing a `preset.name` are reported, not hidden.
+#[must_use]
+pub fn catalogue() -> (Vec<Entry>, Vec<PresetError>) {
+    catalogue_in(user_preset_dir().as_deref())
+}
+
+/// [`catalogue`] with the user presets taken from `user_dir`.
+#[must_use]
+pub fn catalogue_in(user_dir: Option<&Path>) -> (Vec<Entry>, Vec<PresetError>) {
+    let mut entries = Vec::new();
+    let mut problems = Vec::new();
+    for (name, src) in SHIPPED {
+        match Preset::parse(src, &format!("presets/{name}.toml (shipped)"), name, &[]) {
+            Ok(p) => entries.push(Entry {
+                name: (*name).to_owned(),
+                title: p.name,
+                source: Source::Shipped,
+                path: format!("presets/{name}.toml"),
+                description: p.description,
+            }),
+            Err(e) => problems.push(e),
+        }
+    }
+    if let Some(dir) = user_dir {
+        for path in toml_files(dir) {
+            let name = stem(&path);
+            match Preset::load(&path, &[]) {
+                Ok(p) => {
+                    entries.retain(|e| e.name != name);
+                    entries.push(Entry {
+                        name,
+                        title: p.name,
+                        source: Source::User,
+                        path: path.display().to_string(),
+                        description: p.description,
+                    });
+                }
+                Err(e) => problems.push(e),
+            }
+        }
+    }
+    for (i, a) in entries.iter().enumerate() {
+        if let Some(b) = entries[i + 1..].iter().find(|b| b.title == a.title) {
+            problems.push(PresetError::Invalid {
+                path: b.path.clone(),
+                line: None,
+                key: Some("preset.name".to_owned()),
+                message: format!(
+                    "two presets are named \"{}\" ({} and {}); rename one",
+                    a.title, a.path, b.path
+                ),
+            });
+        }
+    }
+    (entries, problems)
+}
+
+/// The `.toml` files of a folder, sorted (none if it does not exist).
+#[must_use]
+pub fn toml_files(dir: &Path) -> Vec<PathBuf> {
+    let Ok(read) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let mut files: Vec<PathBuf> = read
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    files
+}
+
+fn stem(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+/// Loads `name_or_path`: an existing file path; else a user preset of that name; else a
+/// shipped one.
 ///
 /// # Errors
 /// No such file or preset, or an invalid preset.
@@ -43,6 +184,11 @@ pub fn resolve(name_or_path: &str, overrides: &[Override]) -> Result<Preset, Pre
     let path = Path::new(name_or_path);
     if path.is_file() {
         return Preset::load(path, overrides);
+    }
+    if let Some(user) = user_preset_dir().map(|d| d.join(format!("{name_or_path}.toml")))
+        && user.is_file()
+    {
+        return Preset::load(&user, overrides);
     }
     if let Some((name, src)) = SHIPPED.iter().find(|(n, _)| *n == name_or_path) {
         let label = format!("presets/{name}.toml (shipped)");
@@ -52,8 +198,12 @@ pub fn resolve(name_or_path: &str, overrides: &[Override]) -> Result<Preset, Pre
         // Looks like a path: say so, with the system's reason.
         return Preset::load(path, overrides);
     }
+    let mut available: Vec<String> = SHIPPED.iter().map(|(n, _)| (*n).to_owned()).collect();
+    if let Some(dir) = user_preset_dir() {
+        available.extend(toml_files(&dir).iter().map(|p| stem(p)));
+    }
     Err(PresetError::NotFound {
         name: name_or_path.to_owned(),
-        available: shipped_names(),
+        available: available.join(", "),
     })
 }

@@ -6,10 +6,10 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph};
 
-use super::UiOptions;
+use super::Look;
 use crate::app::keys::KEYMAP;
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, _options: &UiOptions) {
+pub fn draw(frame: &mut Frame<'_>, area: Rect, _options: &Look) {
     let rows: Vec<Line> = KEYMAP
         .iter()
         .filter(|b| !b.label.is_empty())

@@ -7,7 +7,7 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Wrap};
 
-use super::UiOptions;
+use super::Look;
 use crate::app::App;
 use crate::app::fields::{Field, format_number};
 
@@ -15,7 +15,7 @@ fn opt(v: Option<f64>) -> String {
     v.map_or_else(|| "-".to_owned(), format_number)
 }
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, options: &UiOptions) {
+pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, options: &Look) {
     let mut lines = Vec::new();
     for (i, field) in Field::ALL.iter().enumerate() {
         let selected = i == app.selected;
@@ -58,6 +58,13 @@ pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, options: &UiOptions) {
             Style::default().add_modifier(Modifier::BOLD),
         ),
     ]));
+    if let Some(prompt) = &app.saving {
+        lines.push(Line::raw(""));
+        lines.push(Line::styled(
+            format!("save as: {}▏", prompt.name),
+            Style::default().add_modifier(Modifier::REVERSED),
+        ));
+    }
     if let Some((text, error)) = &app.message {
         let style = if *error {
             Style::default()

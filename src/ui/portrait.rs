@@ -10,7 +10,7 @@ use ratatui::text::{Line as TextLine, Span};
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 use ratatui::widgets::{Block, Paragraph};
 
-use super::UiOptions;
+use super::Look;
 use crate::app::App;
 use crate::app::fields::format_number;
 use crate::app::portrait::{Bounds, LevelKind, decimate, display_alpha, wrap_centre};
@@ -27,7 +27,7 @@ fn resolution(marker: Marker) -> (usize, usize) {
     }
 }
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &mut App, options: &UiOptions) {
+pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &mut App, options: &Look) {
     let wrap = if app.view.wrap {
         "wrapped"
     } else {
@@ -112,7 +112,7 @@ fn draw_axes(
     x_axis: Rect,
     plot: Rect,
     b: &Bounds,
-    options: &UiOptions,
+    options: &Look,
 ) {
     let dim = Style::default().fg(options.theme.dim);
     // alpha_dot: top, middle, bottom.

@@ -7,13 +7,13 @@ use ratatui::style::Style;
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 use ratatui::widgets::{Block, Paragraph};
 
-use super::UiOptions;
+use super::Look;
 use crate::app::App;
 
 /// Width of the time window, in simulated time.
 const WINDOW: f64 = 20.0;
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, options: &UiOptions) {
+pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, options: &Look) {
     let block = Block::bordered().title(" alpha_dot(t), reversals │ energy error ");
     let inner = block.inner(area);
     frame.render_widget(block, area);

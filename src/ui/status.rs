@@ -6,10 +6,10 @@ use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::widgets::Paragraph;
 
-use super::UiOptions;
+use super::Look;
 use crate::app::App;
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, _options: &UiOptions) {
+pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, _options: &Look) {
     let state = if app.failed.is_some() {
         "failed"
     } else if app.finished {

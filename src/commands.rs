@@ -1,0 +1,83 @@
+//! The small headless commands: `presets` (the catalogue) and `check` (validate files).
+//! Output goes to stdout, problems to stderr; exit 2 on any problem.
+
+use std::fmt::Write as _;
+use std::process::ExitCode;
+
+use crate::cli::{CheckArgs, ListFormat, PresetsArgs};
+use crate::scenario::PresetError;
+use crate::scenario::preset;
+use crate::scenario::shipped::catalogue;
+use crate::scenario::theme::ThemeSpec;
+
+/// `rattleback presets`.
+#[must_use]
+pub fn presets(args: &PresetsArgs) -> ExitCode {
+    let (entries, problems) = catalogue();
+    let out = match args.format {
+        ListFormat::Json => {
+            let mut s = serde_json::to_string_pretty(&entries).unwrap_or_else(|_| "[]".to_owned());
+            s.push('\n');
+            s
+        }
+        ListFormat::Table => {
+            let mut s = String::new();
+            for e in &entries {
+                let _ = writeln!(
+                    s,
+                    "{:<16} {:<8} {}\n                 {}\n                 {}\n",
+                    e.name,
+                    format!("{:?}", e.source).to_lowercase(),
+                    e.title,
+                    e.path,
+                    e.description
+                );
+            }
+            s
+        }
+    };
+    print!("{out}");
+    report(&problems)
+}
+
+fn report(problems: &[PresetError]) -> ExitCode {
+    for p in problems {
+        eprintln!("rattleback: {p}");
+    }
+    if problems.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(2)
+    }
+}
+
+/// Whether a file is a theme rather than a preset.
+fn is_theme(src: &str) -> bool {
+    src.parse::<toml::Table>()
+        .is_ok_and(|t| t.contains_key("theme") || t.contains_key("colors"))
+}
+
+/// `rattleback check FILE...`.
+#[must_use]
+pub fn check(args: &CheckArgs) -> ExitCode {
+    let mut problems = Vec::new();
+    for path in &args.files {
+        let label = path.display().to_string();
+        match std::fs::read_to_string(path) {
+            Err(source) => problems.push(PresetError::Unreadable {
+                path: label,
+                source,
+            }),
+            Ok(src) if is_theme(&src) => {
+                if let Err(mut e) = ThemeSpec::parse(&src, &label, &label) {
+                    problems.append(&mut e);
+                }
+            }
+            Ok(src) => problems.extend(preset::check(&src, &label)),
+        }
+    }
+    if problems.is_empty() {
+        println!("{} file(s) ok", args.files.len());
+    }
+    report(&problems)
+}

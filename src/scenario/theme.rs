@@ -1,0 +1,291 @@
+//! Themes: the colours of the interface, from TOML (`[theme]` name and description, `[colors]`
+//! by role). A colour is an ANSI name (`red`, `dark_gray`, `light_blue`, `default`, …) or
+//! `#rrggbb`. No terminal types here: the UI maps [`Colour`] to its own.
+
+use serde::Serialize;
+use toml::{Table, Value};
+
+use super::error::{PresetError, SourceMap};
+use super::shipped::{config_dir, toml_files};
+
+/// A colour as written in a theme.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Colour {
+    /// The terminal's own foreground.
+    Default,
+    /// One of the 16 ANSI colours, by index 0–15.
+    Ansi(u8),
+    /// 24-bit colour.
+    Rgb(u8, u8, u8),
+}
+
+/// ANSI names, in index order; `grey` spellings are accepted too.
+pub const ANSI_NAMES: [&str; 16] = [
+    "black",
+    "red",
+    "green",
+    "yellow",
+    "blue",
+    "magenta",
+    "cyan",
+    "gray",
+    "dark_gray",
+    "light_red",
+    "light_green",
+    "light_yellow",
+    "light_blue",
+    "light_magenta",
+    "light_cyan",
+    "white",
+];
+
+impl std::str::FromStr for Colour {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        let t = s
+            .trim()
+            .to_ascii_lowercase()
+            .replace(['-', ' '], "_")
+            .replace("grey", "gray");
+        if t == "default" || t == "reset" {
+            return Ok(Self::Default);
+        }
+        if let Some(hex) = t.strip_prefix('#') {
+            if hex.len() == 6
+                && let Ok(v) = u32::from_str_radix(hex, 16)
+            {
+                let [_, r, g, b] = v.to_be_bytes();
+                return Ok(Self::Rgb(r, g, b));
+            }
+            return Err(format!("'{s}' is not a colour: hex colours are #rrggbb"));
+        }
+        ANSI_NAMES
+            .iter()
+            .position(|n| *n == t)
+            .map(|i| Self::Ansi(u8::try_from(i).unwrap_or(0)))
+            .ok_or_else(|| {
+                format!(
+                    "unknown colour '{s}'; allowed: {}, default, or #rrggbb",
+                    ANSI_NAMES.join(", ")
+                )
+            })
+    }
+}
+
+/// The roles a theme colours. Names are a contract: add, never rename.
+pub const ROLES: [&str; 9] = [
+    "contour",
+    "separatrix",
+    "start_level",
+    "trail",
+    "effective",
+    "current",
+    "reversal",
+    "error",
+    "dim",
+];
+
+/// A validated theme.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ThemeSpec {
+    /// Display name.
+    pub name: String,
+    /// When to use it.
+    pub description: String,
+    /// Colour of each role, in [`ROLES`] order.
+    pub colours: [Colour; 9],
+}
+
+impl ThemeSpec {
+    /// The colour of a role from [`ROLES`].
+    ///
+    /// # Panics
+    /// On a role name not in [`ROLES`] (a programming error).
+    #[must_use]
+    pub fn colour(&self, role: &str) -> Colour {
+        let i = ROLES.iter().position(|r| *r == role).expect("known role");
+        self.colours[i]
+    }
+
+    /// Parses and validates a theme; `label` names it in errors.
+    ///
+    /// # Errors
+    /// Every problem, each with file, line and key.
+    pub fn parse(src: &str, label: &str, fallback_name: &str) -> Result<Self, Vec<PresetError>> {
+        let map = SourceMap::new(src);
+        let table: Table = src.parse().map_err(|e: toml::de::Error| {
+            vec![PresetError::Invalid {
+                path: label.to_owned(),
+                line: e.span().map(|s| map.line_of(s.start)),
+                key: None,
+                message: e.message().trim().to_owned(),
+            }]
+        })?;
+        let mut problems = Vec::new();
+        let mut problem = |section: &str, key: &str, message: String| {
+            problems.push(PresetError::Invalid {
+                path: label.to_owned(),
+                line: map
+                    .find_key(section, key)
+                    .or_else(|| map.find_section(section)),
+                key: Some(if key.is_empty() {
+                    section.to_owned()
+                } else {
+                    format!("{section}.{key}")
+                }),
+                message,
+            });
+        };
+        let mut name = fallback_name.to_owned();
+        let mut description = String::new();
+        let mut colours = [Colour::Default; 9];
+        let mut seen = [false; 9];
+        for (section, value) in &table {
+            let Some(t) = value.as_table() else {
+                problem(section, "", format!("`{section}` must be a table"));
+                continue;
+            };
+            match section.as_str() {
+                "theme" => {
+                    for (k, v) in t {
+                        match (k.as_str(), v) {
+                            ("name", Value::String(s)) => name.clone_from(s),
+                            ("description", Value::String(s)) => description.clone_from(s),
+                            ("name" | "description", _) => {
+                                problem(section, k, "expected text in quotes".to_owned());
+                            }
+                            _ => problem(
+                                section,
+                                k,
+                                format!("unknown key `{k}`, expected one of `name`, `description`"),
+                            ),
+                        }
+                    }
+                }
+                "colors" => {
+                    for (k, v) in t {
+                        let Some(i) = ROLES.iter().position(|r| r == k) else {
+                            let allowed = ROLES.map(|r| format!("`{r}`")).join(", ");
+                            problem(
+                                section,
+                                k,
+                                format!("unknown key `{k}`, expected one of {allowed}"),
+                            );
+                            continue;
+                        };
+                        match v.as_str().map(str::parse::<Colour>) {
+                            Some(Ok(c)) => {
+                                colours[i] = c;
+                                seen[i] = true;
+                            }
+                            Some(Err(e)) => problem(section, k, e),
+                            None => problem(
+                                section,
+                                k,
+                                "expected a colour name or \"#rrggbb\" in quotes".to_owned(),
+                            ),
+                        }
+                    }
+                }
+                other => problem(
+                    other,
+                    "",
+                    format!("unknown section `{other}`, expected `theme` or `colors`"),
+                ),
+            }
+        }
+        for (i, role) in ROLES.iter().enumerate() {
+            if !seen[i] {
+                problem("colors", role, "missing colour".to_owned());
+            }
+        }
+        if problems.is_empty() {
+            Ok(Self {
+                name,
+                description,
+                colours,
+            })
+        } else {
+            Err(problems)
+        }
+    }
+}
+
+/// `(name, TOML text)` of the shipped themes; the first is the default.
+pub const SHIPPED_THEMES: &[(&str, &str)] = &[
+    ("default", include_str!("../../themes/default.toml")),
+    ("dark", include_str!("../../themes/dark.toml")),
+    ("light", include_str!("../../themes/light.toml")),
+    (
+        "high-contrast",
+        include_str!("../../themes/high-contrast.toml"),
+    ),
+];
+
+/// Every theme, shipped then the user's (`<config>/themes/*.toml`; same name replaces), with
+/// the problems of invalid user files.
+#[must_use]
+pub fn themes() -> (Vec<(String, ThemeSpec)>, Vec<PresetError>) {
+    let mut out: Vec<(String, ThemeSpec)> = Vec::new();
+    let mut problems = Vec::new();
+    for (name, src) in SHIPPED_THEMES {
+        match ThemeSpec::parse(src, &format!("themes/{name}.toml (shipped)"), name) {
+            Ok(t) => out.push(((*name).to_owned(), t)),
+            Err(mut e) => problems.append(&mut e),
+        }
+    }
+    if let Some(dir) = config_dir().map(|d| d.join("themes")) {
+        for path in toml_files(&dir) {
+            let stem = path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            let label = path.display().to_string();
+            match std::fs::read_to_string(&path) {
+                Ok(src) => match ThemeSpec::parse(&src, &label, &stem) {
+                    Ok(t) => {
+                        out.retain(|(n, _)| *n != stem);
+                        out.push((stem, t));
+                    }
+                    Err(mut e) => problems.append(&mut e),
+                },
+                Err(source) => problems.push(PresetError::Unreadable {
+                    path: label,
+                    source,
+                }),
+            }
+        }
+    }
+    (out, problems)
+}
+
+/// The theme called `name` (a path, a user theme or a shipped one).
+///
+/// # Errors
+/// An unknown name or an invalid file (its first problem).
+pub fn theme(name: &str) -> Result<ThemeSpec, PresetError> {
+    let path = std::path::Path::new(name);
+    if path.is_file() {
+        let label = path.display().to_string();
+        let src = std::fs::read_to_string(path).map_err(|source| PresetError::Unreadable {
+            path: label.clone(),
+            source,
+        })?;
+        return ThemeSpec::parse(&src, &label, name).map_err(|mut e| e.swap_remove(0));
+    }
+    let (all, mut problems) = themes();
+    if let Some((_, t)) = all.into_iter().find(|(n, _)| n == name) {
+        return Ok(t);
+    }
+    if !problems.is_empty() {
+        return Err(problems.swap_remove(0));
+    }
+    Err(PresetError::NotFound {
+        name: name.to_owned(),
+        available: SHIPPED_THEMES
+            .iter()
+            .map(|(n, _)| *n)
+            .collect::<Vec<_>>()
+            .join(", "),
+    })
+}

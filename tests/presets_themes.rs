@@ -1,0 +1,184 @@
+//! Issue 5: shipped presets and themes, `presets`, `check`, themes and `NO_COLOR`, saving.
+
+use std::process::Command;
+
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::style::{Color, Modifier};
+use rattleback::app::{App, Options};
+use rattleback::scenario::preset::{self, Preset};
+use rattleback::scenario::shipped::{SHIPPED, resolve};
+use rattleback::scenario::store::{self, SaveError};
+use rattleback::scenario::theme::{SHIPPED_THEMES, ThemeSpec};
+use rattleback::ui::{self, UiOptions};
+
+fn bin(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        .args(args)
+        .env("RATTLEBACK_CONFIG_DIR", "/nonexistent/rattleback-test")
+        .output()
+        .expect("binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn fixture(name: &str) -> String {
+    format!("{}/tests/fixtures/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn every_shipped_preset_and_theme_is_valid_and_described() {
+    assert!(SHIPPED.len() >= 10);
+    for (name, src) in SHIPPED {
+        let p = Preset::parse(src, name, name, &[]).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(
+            p.description.len() > 40,
+            "{name} needs a description of what to look for"
+        );
+        // The file on disk is the one embedded.
+        let disk = std::fs::read_to_string(format!(
+            "{}/presets/{name}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .unwrap();
+        assert_eq!(&disk, src);
+        // Saving and reading back gives the same preset.
+        let again = Preset::parse(&p.to_toml(), "roundtrip", name, &[]).unwrap();
+        assert_eq!(again, p, "{name} does not round-trip");
+    }
+    assert!(SHIPPED_THEMES.len() >= 4);
+    for (name, src) in SHIPPED_THEMES {
+        ThemeSpec::parse(src, name, name).unwrap_or_else(|e| panic!("{name}: {e:?}"));
+    }
+}
+
+#[test]
+fn presets_lists_name_source_path_description_as_json() {
+    let (code, out, err) = bin(&["presets", "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let list = v.as_array().unwrap();
+    assert_eq!(list.len(), SHIPPED.len());
+    for e in list {
+        for key in ["name", "source", "path", "description"] {
+            assert!(e[key].is_string(), "{key} in {e}");
+        }
+        assert_eq!(e["source"], "shipped");
+    }
+}
+
+#[test]
+fn check_reports_every_problem_with_line_and_key() {
+    let (code, out, err) = bin(&["check", &fixture("bad/many-problems.toml")]);
+    assert_eq!(code, 2, "{out}");
+    for needle in [
+        ":5: body.ix",
+        ":6: body.iyy",
+        ":7: body.iz",
+        ":10: spring.k",
+        ":13: initial.gamma_dot",
+        ":17: run.t_end",
+        ":18: run.method",
+        "body.iy: missing",
+    ] {
+        assert!(err.contains(needle), "missing '{needle}' in:\n{err}");
+    }
+    let shipped: Vec<String> = SHIPPED
+        .iter()
+        .map(|(n, _)| format!("{}/presets/{n}.toml", env!("CARGO_MANIFEST_DIR")))
+        .collect();
+    let mut args = vec!["check"];
+    args.extend(shipped.iter().map(String::as_str));
+    let (code, out, err) = bin(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("10 file(s) ok"), "{out}");
+}
+
+#[test]
+fn bad_theme_colours_are_named_with_line_and_allowed_values() {
+    let (code, _, err) = bin(&["check", &fixture("bad-themes/unknown-colour.toml")]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains(":6: colors.separatrix: unknown colour 'yelow'; allowed:"),
+        "{err}"
+    );
+    assert!(
+        err.contains(":8: colors.trail") && err.contains("#rrggbb"),
+        "{err}"
+    );
+    let (code, _, err) = bin(&["--theme", "nonesuch"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("nonesuch") && err.contains("high-contrast"),
+        "{err}"
+    );
+}
+
+#[test]
+fn unreadable_file_is_reported_not_panicked() {
+    let dir = fixture("bad");
+    let (code, _, err) = bin(&["check", &dir]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("cannot read") && !err.contains("panicked"),
+        "{err}"
+    );
+}
+
+#[test]
+fn no_color_leaves_no_colour_but_keeps_the_selection_visible() {
+    let preset = resolve("subcritical", &[]).unwrap();
+    let (mut app, _) = App::new(&preset, Options { fps: 30.0 });
+    let spec = ThemeSpec::parse(SHIPPED_THEMES[0].1, "default", "default").unwrap();
+    let options = UiOptions::new(ratatui::symbols::Marker::Braille, &spec, true);
+    let mut terminal = Terminal::new(TestBackend::new(80, 24)).unwrap();
+    terminal.draw(|f| ui::draw(f, &mut app, &options)).unwrap();
+    let buffer = terminal.backend().buffer();
+    assert!(
+        buffer.content().iter().all(|c| c.fg == Color::Reset),
+        "a coloured cell under NO_COLOR"
+    );
+    let selected = buffer
+        .content()
+        .iter()
+        .filter(|c| c.modifier.contains(Modifier::REVERSED))
+        .count();
+    assert!(
+        selected > 20,
+        "selection and status must stay visible without colour"
+    );
+}
+
+#[test]
+fn saving_is_atomic_and_never_overwrites_without_consent() {
+    let dir = std::env::temp_dir().join(format!("rattleback-save-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let text = resolve("tapping", &[]).unwrap().to_toml();
+    let path = store::save(Some(&dir), "mine", &text, false).unwrap();
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), text);
+    assert!(matches!(
+        store::save(Some(&dir), "mine", "x", false),
+        Err(SaveError::Exists(_))
+    ));
+    assert_eq!(
+        std::fs::read_to_string(&path).unwrap(),
+        text,
+        "refused save changed the file"
+    );
+    store::save(Some(&dir), "mine", &text, true).unwrap();
+    assert!(matches!(
+        store::save(Some(&dir), "../evil", &text, false),
+        Err(SaveError::BadName(_))
+    ));
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(Result::ok)
+        .filter(|e| e.file_name().to_string_lossy().contains("tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "temporary files left behind");
+    assert!(preset::check(&text, "saved").is_empty());
+    let _ = std::fs::remove_dir_all(&dir);
+}
