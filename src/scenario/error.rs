@@ -93,6 +93,18 @@ impl<'a> SourceMap<'a> {
         self.src[..end].bytes().filter(|&b| b == b'\n').count() + 1
     }
 
+    /// Parses the text as a TOML table; a syntax error becomes a located problem.
+    pub(crate) fn parse_table(&self, label: &str) -> Result<toml::Table, PresetError> {
+        self.src
+            .parse()
+            .map_err(|e: toml::de::Error| PresetError::Invalid {
+                path: label.to_owned(),
+                line: e.span().map(|s| self.line_of(s.start)),
+                key: None,
+                message: e.message().trim().to_owned(),
+            })
+    }
+
     /// The line of the `[section]` header.
     pub(crate) fn find_section(&self, section: &str) -> Option<usize> {
         self.src

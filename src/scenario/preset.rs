@@ -322,14 +322,7 @@ fn collect(
     overrides: &[Override],
 ) -> Result<(Table, Vec<PresetError>), Vec<PresetError>> {
     let map = SourceMap::new(src);
-    let mut table: Table = src.parse().map_err(|e: toml::de::Error| {
-        vec![PresetError::Invalid {
-            path: label.to_owned(),
-            line: e.span().map(|s| map.line_of(s.start)),
-            key: None,
-            message: e.message().trim().to_owned(),
-        }]
-    })?;
+    let mut table = map.parse_table(label).map_err(|e| vec![e])?;
     let mut problems = Problems {
         map,
         label,

@@ -3,7 +3,7 @@
 //! `#rrggbb`. No terminal types here: the UI maps [`Colour`] to its own.
 
 use serde::Serialize;
-use toml::{Table, Value};
+use toml::Value;
 
 use super::error::{PresetError, SourceMap};
 use super::shipped::{config_dir, toml_files};
@@ -113,14 +113,7 @@ impl ThemeSpec {
     /// Every problem, each with file, line and key.
     pub fn parse(src: &str, label: &str, fallback_name: &str) -> Result<Self, Vec<PresetError>> {
         let map = SourceMap::new(src);
-        let table: Table = src.parse().map_err(|e: toml::de::Error| {
-            vec![PresetError::Invalid {
-                path: label.to_owned(),
-                line: e.span().map(|s| map.line_of(s.start)),
-                key: None,
-                message: e.message().trim().to_owned(),
-            }]
-        })?;
+        let table = map.parse_table(label).map_err(|e| vec![e])?;
         let mut problems = Vec::new();
         let mut problem = |section: &str, key: &str, message: String| {
             problems.push(PresetError::Invalid {
