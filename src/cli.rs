@@ -24,6 +24,9 @@ pub struct Cli {
     /// path. `NO_COLOR` turns colours off whatever the theme.
     #[arg(long, value_name = "NAME|PATH", default_value = "default")]
     pub theme: String,
+    /// Record the session into this file (a key, R, also starts and stops recording).
+    #[arg(long, value_name = "FILE")]
+    pub record: Option<std::path::PathBuf>,
     /// Canvas marker, for fonts without Braille.
     #[arg(long, value_enum, default_value_t = MarkerChoice::Braille)]
     pub marker: MarkerChoice,
@@ -49,6 +52,21 @@ pub enum Command {
     Presets(PresetsArgs),
     /// Validate preset or theme files and report every problem (exit 2 if any).
     Check(CheckArgs),
+    /// Replay a recorded session in the explorer, check it, or export it.
+    Replay(ReplayArgs),
+}
+
+/// Arguments of `replay`.
+#[derive(Debug, Args)]
+pub struct ReplayArgs {
+    /// The session file.
+    pub file: std::path::PathBuf,
+    /// Re-run it headless and check every checkpoint bit for bit (exit 1 on a divergence).
+    #[arg(long)]
+    pub verify: bool,
+    /// Write an asciicast v2 file (asciinema-player plays it), chapters as markers.
+    #[arg(long, value_name = "OUT.cast")]
+    pub export_cast: Option<std::path::PathBuf>,
 }
 
 /// Arguments of `presets`.

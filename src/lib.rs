@@ -8,6 +8,7 @@ pub mod cli;
 pub mod commands;
 pub mod explorer;
 pub mod physics;
+pub mod record;
 pub mod scenario;
 pub mod sim;
 pub mod simulate;

@@ -5,9 +5,10 @@ use std::io::Write as _;
 use std::process::ExitCode;
 
 use clap::Parser;
-use rattleback::cli::{Cli, Command, MarkerChoice, SimulateArgs};
+use rattleback::cli::{Cli, Command, MarkerChoice, ReplayArgs, SimulateArgs};
 use rattleback::commands;
 use rattleback::explorer::{self, ExplorerOptions};
+use rattleback::record;
 use rattleback::scenario::shipped::resolve;
 use rattleback::simulate::{resolve as resolve_run, simulate};
 use rattleback::ui::UiOptions;
@@ -18,7 +19,82 @@ fn main() -> ExitCode {
         Some(Command::Simulate(args)) => run_simulate(&args),
         Some(Command::Presets(args)) => commands::presets(&args),
         Some(Command::Check(args)) => commands::check(&args),
+        Some(Command::Replay(ref args)) => run_replay(&cli, args),
         None => run_explorer(&cli),
+    }
+}
+
+fn run_replay(cli: &Cli, args: &ReplayArgs) -> ExitCode {
+    let path = args.file.display().to_string();
+    let rec = match record::read(&args.file) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("rattleback: error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    for w in &rec.warnings {
+        eprintln!("rattleback: warning: {w}");
+    }
+    if args.verify {
+        return match record::verify(&rec, &path) {
+            Ok(n) => {
+                println!("{path}: {n} checkpoint(s) reproduced bit for bit");
+                ExitCode::SUCCESS
+            }
+            Err(Ok(d)) => {
+                eprintln!(
+                    "rattleback: {path}:{}: divergence at t = {}: expected {}, got {}",
+                    d.line, d.t, d.expected, d.got
+                );
+                ExitCode::from(1)
+            }
+            Err(Err(e)) => {
+                eprintln!("rattleback: error: {e}");
+                ExitCode::from(2)
+            }
+        };
+    }
+    if let Some(out) = &args.export_cast {
+        let theme = match rattleback::scenario::theme::theme(&cli.theme) {
+            Ok(t) => t,
+            Err(e) => {
+                eprintln!("rattleback: error: {e}");
+                return ExitCode::from(2);
+            }
+        };
+        let options = UiOptions::new(marker(cli.marker), &theme, no_color());
+        return match record::export_cast(&rec, &path, out, &options) {
+            Ok(frames) => {
+                println!("{}: {frames} frames", out.display());
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("rattleback: error: {e}");
+                ExitCode::from(2)
+            }
+        };
+    }
+    let preset = match rattleback::scenario::Preset::parse(
+        &rec.header.preset,
+        &format!("{path} (header)"),
+        "recorded",
+        &[],
+    ) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("rattleback: error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    explore(cli, &preset, None, Some(rec))
+}
+
+fn marker(choice: MarkerChoice) -> ratatui::symbols::Marker {
+    match choice {
+        MarkerChoice::Braille => ratatui::symbols::Marker::Braille,
+        MarkerChoice::Halfblock => ratatui::symbols::Marker::HalfBlock,
+        MarkerChoice::Dot => ratatui::symbols::Marker::Dot,
     }
 }
 
@@ -30,11 +106,16 @@ fn run_explorer(cli: &Cli) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let marker = match cli.marker {
-        MarkerChoice::Braille => ratatui::symbols::Marker::Braille,
-        MarkerChoice::Halfblock => ratatui::symbols::Marker::HalfBlock,
-        MarkerChoice::Dot => ratatui::symbols::Marker::Dot,
-    };
+    explore(cli, &preset, cli.record.clone(), None)
+}
+
+fn explore(
+    cli: &Cli,
+    preset: &rattleback::scenario::Preset,
+    record: Option<std::path::PathBuf>,
+    replay: Option<record::Recording>,
+) -> ExitCode {
+    let marker = marker(cli.marker);
     let theme = match rattleback::scenario::theme::theme(&cli.theme) {
         Ok(t) => t,
         Err(e) => {
@@ -50,8 +131,10 @@ fn run_explorer(cli: &Cli) -> ExitCode {
             .iter()
             .map(ToString::to_string)
             .collect(),
+        record,
+        replay,
     };
-    match explorer::run(&preset, &options) {
+    match explorer::run(preset, &options) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!(

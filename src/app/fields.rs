@@ -92,6 +92,21 @@ impl Field {
         }
     }
 
+    /// The current value as text that parses back to exactly the same value.
+    #[must_use]
+    pub fn exact(self, s: &Settings) -> String {
+        match self {
+            Self::Method => s.method.name().to_owned(),
+            _ => format!("{:?}", self.value(s)),
+        }
+    }
+
+    /// The field called `name`.
+    #[must_use]
+    pub fn named(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|f| f.label() == name)
+    }
+
     /// The current value as shown.
     #[must_use]
     pub fn show(self, s: &Settings) -> String {

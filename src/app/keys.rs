@@ -90,6 +90,12 @@ pub enum Action {
     Save,
     /// Next colour theme.
     CycleTheme,
+    /// Type a note into the recording.
+    Note,
+    /// Type a chapter marker into the recording.
+    Chapter,
+    /// Start or stop recording.
+    ToggleRecording,
 }
 
 /// One row of the keymap.
@@ -109,39 +115,39 @@ pub struct Binding {
 pub const KEYMAP: &[Binding] = &[
     Binding {
         keys: &[Key::Up, Key::Char('k')],
-        label: "↑/k",
+        label: "↑↓ / k j",
         action: Action::SelectPrev,
-        help: "select previous parameter",
+        help: "select the previous / next parameter",
     },
     Binding {
         keys: &[Key::Down, Key::Char('j')],
-        label: "↓/j",
+        label: "",
         action: Action::SelectNext,
-        help: "select next parameter",
+        help: "",
     },
     Binding {
         keys: &[Key::Left, Key::Char('h')],
-        label: "←/h",
+        label: "←→ / h l",
         action: Action::Decrease,
-        help: "decrease (fine; k on a log scale)",
+        help: "decrease / increase (fine; k on a log scale)",
     },
     Binding {
         keys: &[Key::Right, Key::Char('l')],
-        label: "→/l",
+        label: "",
         action: Action::Increase,
-        help: "increase (fine)",
+        help: "",
     },
     Binding {
         keys: &[Key::Char('H')],
-        label: "H",
+        label: "H / L",
         action: Action::DecreaseCoarse,
-        help: "decrease (coarse)",
+        help: "decrease / increase (coarse)",
     },
     Binding {
         keys: &[Key::Char('L')],
-        label: "L",
+        label: "",
         action: Action::IncreaseCoarse,
-        help: "increase (coarse)",
+        help: "",
     },
     Binding {
         keys: &[Key::Enter],
@@ -181,15 +187,15 @@ pub const KEYMAP: &[Binding] = &[
     },
     Binding {
         keys: &[Key::Char('e')],
-        label: "e",
+        label: "e / t",
         action: Action::ToggleEffective,
-        help: "effective motion overlay",
+        help: "effective overlay / time-series pane",
     },
     Binding {
         keys: &[Key::Char('t')],
-        label: "t",
+        label: "",
         action: Action::ToggleSeries,
-        help: "time-series pane",
+        help: "",
     },
     Binding {
         keys: &[Key::Char('z')],
@@ -256,6 +262,24 @@ pub const KEYMAP: &[Binding] = &[
         label: "T",
         action: Action::CycleTheme,
         help: "next colour theme",
+    },
+    Binding {
+        keys: &[Key::Char('R')],
+        label: "R",
+        action: Action::ToggleRecording,
+        help: "start / stop recording a session",
+    },
+    Binding {
+        keys: &[Key::Char('n')],
+        label: "n/m",
+        action: Action::Note,
+        help: "note / chapter marker (recording)",
+    },
+    Binding {
+        keys: &[Key::Char('m')],
+        label: "",
+        action: Action::Chapter,
+        help: "",
     },
     Binding {
         keys: &[Key::Char('?')],

@@ -6,6 +6,7 @@
 //! events; [`App::tick`] advances the simulated clock while playing.
 
 pub mod fields;
+pub mod journal;
 pub mod keys;
 pub mod portrait;
 
@@ -15,6 +16,7 @@ use crate::scenario::shipped::{Entry, catalogue_in, resolve, user_preset_dir};
 use crate::scenario::{Preset, store};
 use crate::sim::{self, Command, Point, SimEvent};
 use fields::{Field, Settings};
+use journal::Event;
 pub use keys::{Action, Key};
 use portrait::{Bounds, Level, View};
 
@@ -43,12 +45,25 @@ pub struct Picker {
     pub problems: Vec<String>,
 }
 
-/// The save prompt (`s`).
+/// What a text prompt is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PromptFor {
+    /// Saving a user preset (`s`).
+    Save,
+    /// A note in the recording (`n`).
+    Note,
+    /// A chapter marker in the recording (`m`).
+    Chapter,
+}
+
+/// A one-line text prompt.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SavePrompt {
-    /// The name typed so far.
+    /// What it is for.
+    pub purpose: PromptFor,
+    /// The text typed so far.
     pub name: String,
-    /// The file exists and Enter again will overwrite it.
+    /// The file exists and Enter again will overwrite it (saving only).
     pub confirm: bool,
 }
 
@@ -131,6 +146,12 @@ pub struct App {
     pub dialog: Option<String>,
     /// The user's preset folder (from `RATTLEBACK_CONFIG_DIR` or the platform's).
     pub user_dir: Option<std::path::PathBuf>,
+    /// Semantic events are journaled (a recording is on).
+    pub recording: bool,
+    /// Journaled events not yet written: `(simulated time, generation, event)`.
+    pub journal: Vec<(f64, u64, Event)>,
+    /// The user pressed the record key; the explorer starts or stops the recording.
+    pub recording_requested: bool,
     steps_at_tick: u64,
     contour_cache: Option<(ContourKey, Vec<Level>)>,
 }
@@ -181,6 +202,9 @@ impl App {
             saving: None,
             dialog: None,
             user_dir: user_preset_dir(),
+            recording: false,
+            journal: Vec::new(),
+            recording_requested: false,
             steps_at_tick: 0,
             contour_cache: None,
         };
@@ -204,6 +228,9 @@ impl App {
 
     /// Replaces the scenario with `preset` and restarts.
     pub fn load(&mut self, preset: &Preset) -> Vec<Command> {
+        self.log(Event::Preset {
+            toml: preset.to_toml(),
+        });
         self.name.clone_from(&preset.name);
         self.description.clone_from(&preset.description);
         self.settings = settings_of(preset);
@@ -261,6 +288,19 @@ impl App {
             }
             Key::Esc => self.saving = None,
             Key::CtrlC => self.quit = true,
+            Key::Enter if prompt.purpose != PromptFor::Save => {
+                let text = prompt.name.clone();
+                let event = if prompt.purpose == PromptFor::Note {
+                    Event::Note { text: text.clone() }
+                } else {
+                    Event::Chapter {
+                        title: text.clone(),
+                    }
+                };
+                self.saving = None;
+                self.message = Some((format!("marked: {text}"), false));
+                self.log(event);
+            }
             Key::Enter => {
                 let (name, confirm) = (prompt.name.clone(), prompt.confirm);
                 let text = self.to_preset(&name).to_toml();
@@ -408,6 +448,12 @@ impl App {
         keys::action_for(key).map_or_else(Vec::new, |a| self.update(a))
     }
 
+    fn log(&mut self, event: Event) {
+        if self.recording {
+            self.journal.push((self.target, self.generation, event));
+        }
+    }
+
     fn apply(&mut self, result: Result<Settings, String>) -> Vec<Command> {
         match result {
             Ok(s) => {
@@ -415,7 +461,13 @@ impl App {
                 if s == self.settings {
                     return Vec::new();
                 }
+                let field = self.field();
                 self.settings = s;
+                let value = field.exact(&self.settings);
+                self.log(Event::Set {
+                    field: field.label().to_owned(),
+                    value,
+                });
                 self.restart()
             }
             Err(reason) => {
@@ -425,8 +477,172 @@ impl App {
         }
     }
 
-    /// Carries out an action; returns the commands for the worker.
+    /// Carries out an action; returns the commands for the worker. While recording, the
+    /// actions that change what is shown are journaled.
     pub fn update(&mut self, action: Action) -> Vec<Command> {
+        let commands = self.carry_out(action);
+        let event = match action {
+            Action::TogglePlay if self.playing => Some(Event::Play),
+            Action::TogglePlay => Some(Event::Pause),
+            Action::Step => Some(Event::Step),
+            Action::Reset => Some(Event::Reset),
+            Action::Faster | Action::Slower => Some(Event::Speed { value: self.speed }),
+            Action::ZoomIn
+            | Action::ZoomOut
+            | Action::PanLeft
+            | Action::PanRight
+            | Action::PanUp
+            | Action::PanDown
+            | Action::ToggleWrap => Some(Event::View {
+                zoom: self.view.zoom,
+                pan_x: self.view.pan_x,
+                pan_y: self.view.pan_y,
+                wrap: self.view.wrap,
+            }),
+            Action::ToggleEffective | Action::ToggleSeries => Some(Event::Panes {
+                effective: self.show_effective,
+                series: self.show_series,
+            }),
+            Action::ClearTrail => Some(Event::ClearTrail),
+            _ => None,
+        };
+        if let Some(e) = event {
+            self.log(e);
+        }
+        commands
+    }
+
+    /// Replays one recorded event (used by `replay` and `replay --verify`).
+    pub fn apply_event(&mut self, event: &Event) -> Vec<Command> {
+        match event {
+            Event::Set { field, value } => {
+                let Some(f) = Field::named(field) else {
+                    self.message =
+                        Some((format!("unknown field '{field}' in the recording"), true));
+                    return Vec::new();
+                };
+                self.selected = Field::ALL.iter().position(|x| *x == f).unwrap_or(0);
+                self.apply(f.with_text(&self.settings, value))
+            }
+            Event::Play => {
+                if self.playing {
+                    Vec::new()
+                } else {
+                    self.carry_out(Action::TogglePlay)
+                }
+            }
+            Event::Pause => {
+                self.playing = false;
+                Vec::new()
+            }
+            Event::Step => self.carry_out(Action::Step),
+            Event::Reset => self.carry_out(Action::Reset),
+            Event::Speed { value } => {
+                self.speed = value.clamp(SPEED_RANGE.0, SPEED_RANGE.1);
+                Vec::new()
+            }
+            Event::View {
+                zoom,
+                pan_x,
+                pan_y,
+                wrap,
+            } => {
+                self.view.zoom = *zoom;
+                self.view.pan_x = *pan_x;
+                self.view.pan_y = *pan_y;
+                self.view.wrap = *wrap;
+                Vec::new()
+            }
+            Event::Panes { effective, series } => {
+                self.show_series = *series;
+                if *effective == self.show_effective {
+                    Vec::new()
+                } else {
+                    self.carry_out(Action::ToggleEffective)
+                }
+            }
+            Event::ClearTrail => self.carry_out(Action::ClearTrail),
+            Event::Preset { toml } => match Preset::parse(toml, "recorded preset", "recorded", &[])
+            {
+                Ok(p) => self.load(&p),
+                Err(e) => {
+                    self.dialog = Some(e.to_string());
+                    Vec::new()
+                }
+            },
+            Event::Note { text } => {
+                self.message = Some((format!("note: {text}"), false));
+                Vec::new()
+            }
+            Event::Chapter { title } => {
+                self.message = Some((format!("chapter: {title}"), false));
+                Vec::new()
+            }
+            Event::Checkpoint { .. } => Vec::new(),
+        }
+    }
+
+    /// Asks the worker for the exact state at the current target (journaled on arrival).
+    #[must_use]
+    pub fn checkpoint(&self) -> Command {
+        Command::Checkpoint {
+            generation: self.generation,
+            t: self.target,
+        }
+    }
+
+    /// Opens the picker or a prompt.
+    fn open_dialog(&mut self, action: Action) {
+        match action {
+            Action::OpenPicker => {
+                let (entries, problems) = catalogue_in(self.user_dir.as_deref());
+                let selected = entries
+                    .iter()
+                    .position(|e| e.title == self.name)
+                    .unwrap_or(0);
+                self.picker = Some(Picker {
+                    entries,
+                    selected,
+                    problems: problems.iter().map(ToString::to_string).collect(),
+                });
+            }
+            Action::Note | Action::Chapter => {
+                if !self.recording {
+                    self.message = Some((
+                        "notes and chapters go into a recording: start one with R".to_owned(),
+                        true,
+                    ));
+                    return;
+                }
+                let purpose = if action == Action::Note {
+                    PromptFor::Note
+                } else {
+                    PromptFor::Chapter
+                };
+                self.saving = Some(SavePrompt {
+                    purpose,
+                    name: String::new(),
+                    confirm: false,
+                });
+                self.message = Some(("type it, Enter marks, Esc cancels".to_owned(), false));
+            }
+            Action::Save => {
+                self.saving = Some(SavePrompt {
+                    purpose: PromptFor::Save,
+                    name: String::new(),
+                    confirm: false,
+                });
+                self.message = Some((
+                    "name the preset (letters, digits, - and _), Enter saves, Esc cancels"
+                        .to_owned(),
+                    false,
+                ));
+            }
+            _ => {}
+        }
+    }
+
+    fn carry_out(&mut self, action: Action) -> Vec<Command> {
         let field = self.field();
         match action {
             Action::Quit => self.quit = true,
@@ -488,29 +704,10 @@ impl App {
                 self.effective_trail.clear();
             }
             Action::ToggleHelp => self.show_help = !self.show_help,
-            Action::OpenPicker => {
-                let (entries, problems) = catalogue_in(self.user_dir.as_deref());
-                let selected = entries
-                    .iter()
-                    .position(|e| e.title == self.name)
-                    .unwrap_or(0);
-                self.picker = Some(Picker {
-                    entries,
-                    selected,
-                    problems: problems.iter().map(ToString::to_string).collect(),
-                });
+            Action::OpenPicker | Action::Note | Action::Chapter | Action::Save => {
+                self.open_dialog(action);
             }
-            Action::Save => {
-                self.saving = Some(SavePrompt {
-                    name: String::new(),
-                    confirm: false,
-                });
-                self.message = Some((
-                    "name the preset (letters, digits, - and _), Enter saves, Esc cancels"
-                        .to_owned(),
-                    false,
-                ));
-            }
+            Action::ToggleRecording => self.recording_requested = true,
             Action::CycleTheme => self.theme = self.theme.wrapping_add(1),
         }
         Vec::new()
@@ -568,6 +765,26 @@ impl App {
                     self.reversals.push(t);
                 }
                 true
+            }
+            SimEvent::Checkpoint {
+                generation,
+                t,
+                state,
+                reversals,
+            } if generation == self.generation => {
+                if self.recording {
+                    let hash = journal::state_hash(t, &state, reversals);
+                    self.journal.push((
+                        t,
+                        generation,
+                        Event::Checkpoint {
+                            state,
+                            reversals,
+                            hash,
+                        },
+                    ));
+                }
+                false
             }
             SimEvent::Finished { generation } if generation == self.generation => {
                 self.finished = true;

@@ -37,6 +37,13 @@ pub enum Command {
     },
     /// Integrate the effective overlay too, or stop doing so.
     SetEffective(bool),
+    /// Report the exact state at simulated time `t` (integrating there first).
+    Checkpoint {
+        /// Run this applies to.
+        generation: u64,
+        /// The time.
+        t: f64,
+    },
     /// Stop the worker.
     Quit,
 }
@@ -73,6 +80,17 @@ pub enum SimEvent {
         /// Of the effective motion (else the full one).
         effective: bool,
     },
+    /// The exact state asked by [`Command::Checkpoint`].
+    Checkpoint {
+        /// Run stamp.
+        generation: u64,
+        /// Its time.
+        t: f64,
+        /// `(gamma, alpha, gamma_dot, alpha_dot)` at `t`.
+        state: [f64; 4],
+        /// Reversals of the full motion up to `t`.
+        reversals: usize,
+    },
     /// The run reached `t_end`.
     Finished {
         /// Run stamp.
@@ -85,6 +103,61 @@ pub enum SimEvent {
         /// Why.
         message: String,
     },
+}
+
+/// Runs worker commands synchronously on `session`, handing the events to `on_event`: the
+/// worker's behaviour without a thread (replay verification, cast export, tests).
+pub fn drive(
+    session: &mut Option<Session>,
+    commands: Vec<Command>,
+    on_event: &mut dyn FnMut(SimEvent),
+) {
+    for c in commands {
+        match c {
+            Command::Restart { generation, spec } => {
+                let s = Session::new(generation, spec);
+                on_event(SimEvent::Started {
+                    generation,
+                    method: s.method(),
+                });
+                *session = Some(s);
+            }
+            Command::AdvanceTo {
+                generation,
+                t,
+                sample_dt,
+            } => {
+                if let Some(s) = session.as_mut().filter(|s| s.generation() == generation) {
+                    s.advance(t, sample_dt, usize::MAX)
+                        .0
+                        .into_iter()
+                        .for_each(&mut *on_event);
+                }
+            }
+            Command::Checkpoint { generation, t } => {
+                if let Some(s) = session.as_mut().filter(|s| s.generation() == generation) {
+                    s.advance(t, 1.0, usize::MAX)
+                        .0
+                        .into_iter()
+                        .for_each(&mut *on_event);
+                    if let Some((state, reversals)) = s.checkpoint(t) {
+                        on_event(SimEvent::Checkpoint {
+                            generation,
+                            t,
+                            state,
+                            reversals,
+                        });
+                    }
+                }
+            }
+            Command::SetEffective(on) => {
+                if let Some(s) = session.as_mut() {
+                    s.set_effective(on);
+                }
+            }
+            Command::Quit => {}
+        }
+    }
 }
 
 /// Convenience: a session spec for a problem.

@@ -82,6 +82,7 @@ pub struct Session {
     effective: Option<Track>,
     next_sample: f64,
     finished: bool,
+    reversals: Vec<f64>,
 }
 
 impl Session {
@@ -96,7 +97,32 @@ impl Session {
             effective,
             next_sample: 0.0,
             finished: false,
+            reversals: Vec::new(),
         }
+    }
+
+    /// Time the full integrator has reached.
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        self.full.integrator.time()
+    }
+
+    /// The exact state at `t` and the reversals up to it, once the run has reached `t` with
+    /// `t` inside its last step (as `advance(t, ..)` leaves it); `None` otherwise.
+    pub fn checkpoint(&mut self, t: f64) -> Option<([f64; 4], usize)> {
+        let i = &mut self.full.integrator;
+        // Exactly the end of the last step: its state, not an interpolation.
+        #[allow(clippy::float_cmp)]
+        let at_end = t == i.time();
+        let y = if at_end {
+            i.state()
+        } else if t >= i.time_prev() && t < i.time() {
+            i.interpolate(t)
+        } else {
+            return None;
+        };
+        let reversals = self.reversals.iter().filter(|r| **r <= t).count();
+        Some(([y[0], y[1], y[2], y[3]], reversals))
     }
 
     /// The run's stamp.
@@ -188,6 +214,7 @@ impl Session {
             }
             steps += 1;
             if let Some(tr) = self.full.tracker.after_step(self.full.integrator.as_mut()) {
+                self.reversals.push(tr);
                 events.push(SimEvent::Reversal {
                     generation,
                     t: tr,

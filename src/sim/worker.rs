@@ -2,6 +2,7 @@
 //! works in chunks of steps and checks for commands between chunks, so a restart cancels
 //! in-flight work at once. Its sink is bounded: when the UI is slow, `send` blocks.
 
+use std::collections::VecDeque;
 use std::sync::mpsc::{self, Receiver, Sender, TryRecvError};
 use std::thread::JoinHandle;
 
@@ -55,12 +56,130 @@ struct Pending {
     sample_dt: f64,
 }
 
+/// The worker's state between commands.
+struct Loop {
+    session: Option<Session>,
+    pending: Option<Pending>,
+    /// Checkpoints wait until the run reaches their time; the run stops there first so the
+    /// step containing the time is the last one (the trajectory is the same either way).
+    checkpoints: VecDeque<(u64, f64)>,
+    /// Sample spacing of the last advance, kept for checkpoint-only advances.
+    last_dt: f64,
+}
+
+impl Loop {
+    fn busy(&self) -> bool {
+        self.pending.is_some() || !self.checkpoints.is_empty()
+    }
+
+    /// Takes a command; `false` means stop.
+    fn handle(&mut self, command: &Command, sink: &mut impl FnMut(SimEvent) -> bool) -> bool {
+        match *command {
+            Command::Quit => return false,
+            Command::Restart { generation, spec } => {
+                let s = Session::new(generation, spec);
+                let started = SimEvent::Started {
+                    generation,
+                    method: s.method(),
+                };
+                self.session = Some(s);
+                self.pending = None;
+                self.checkpoints.clear();
+                return sink(started);
+            }
+            Command::AdvanceTo {
+                generation,
+                t,
+                sample_dt,
+            } => {
+                if self
+                    .session
+                    .as_ref()
+                    .is_some_and(|s| s.generation() == generation)
+                {
+                    self.pending = Some(Pending {
+                        generation,
+                        target: t,
+                        sample_dt,
+                    });
+                }
+            }
+            Command::Checkpoint { generation, t } => self.checkpoints.push_back((generation, t)),
+            Command::SetEffective(on) => {
+                if let Some(s) = self.session.as_mut() {
+                    s.set_effective(on);
+                }
+            }
+        }
+        true
+    }
+
+    /// Works one chunk towards the next target or checkpoint; `false` means stop.
+    fn work(&mut self, sink: &mut impl FnMut(SimEvent) -> bool) -> bool {
+        let Some(s) = self.session.as_mut() else {
+            self.pending = None;
+            self.checkpoints.clear();
+            return true;
+        };
+        self.checkpoints.retain(|(g, _)| *g == s.generation());
+        if self
+            .pending
+            .as_ref()
+            .is_some_and(|p| p.generation != s.generation())
+        {
+            self.pending = None;
+        }
+        let due = self.checkpoints.front().map(|c| c.1);
+        let target = match (self.pending.as_ref(), due) {
+            (Some(p), Some(c)) => p.target.min(c),
+            (Some(p), None) => p.target,
+            (None, Some(c)) => c,
+            (None, None) => return true,
+        };
+        if let Some(p) = self.pending.as_ref() {
+            self.last_dt = p.sample_dt;
+        }
+        let (events, reached) = s.advance(target, self.last_dt, CHUNK_STEPS);
+        for e in events {
+            if !sink(e) {
+                return false;
+            }
+        }
+        if !reached {
+            return true;
+        }
+        if let Some(c) = due.filter(|c| *c <= target) {
+            self.checkpoints.pop_front();
+            let generation = s.generation();
+            if let Some((state, reversals)) = s.checkpoint(c)
+                && !sink(SimEvent::Checkpoint {
+                    generation,
+                    t: c,
+                    state,
+                    reversals,
+                })
+            {
+                return false;
+            }
+        }
+        if self.pending.as_ref().is_some_and(|p| target >= p.target) {
+            self.pending = None;
+        }
+        true
+    }
+}
+
 fn run(rx: &Receiver<Command>, mut sink: impl FnMut(SimEvent) -> bool) {
-    let mut session: Option<Session> = None;
-    let mut pending: Option<Pending> = None;
+    let mut state = Loop {
+        session: None,
+        pending: None,
+        checkpoints: VecDeque::new(),
+        last_dt: 0.1,
+    };
     loop {
-        // Block when idle, poll when busy.
-        let command = if pending.is_some() {
+        // Block when idle, poll when busy: commands are checked between chunks, so a restart
+        // cancels in-flight work at once.
+        let command = if state.busy() {
             match rx.try_recv() {
                 Ok(c) => Some(c),
                 Err(TryRecvError::Empty) => None,
@@ -72,62 +191,12 @@ fn run(rx: &Receiver<Command>, mut sink: impl FnMut(SimEvent) -> bool) {
                 Err(_) => return,
             }
         };
-        match command {
-            Some(Command::Quit) => return,
-            Some(Command::Restart { generation, spec }) => {
-                let s = Session::new(generation, spec);
-                let started = SimEvent::Started {
-                    generation,
-                    method: s.method(),
-                };
-                session = Some(s);
-                pending = None;
-                if !sink(started) {
-                    return;
-                }
-                continue;
-            }
-            Some(Command::AdvanceTo {
-                generation,
-                t,
-                sample_dt,
-            }) => {
-                if session
-                    .as_ref()
-                    .is_some_and(|s| s.generation() == generation)
-                {
-                    pending = Some(Pending {
-                        generation,
-                        target: t,
-                        sample_dt,
-                    });
-                }
-                continue;
-            }
-            Some(Command::SetEffective(on)) => {
-                if let Some(s) = session.as_mut() {
-                    s.set_effective(on);
-                }
-                continue;
-            }
-            None => {}
-        }
-        let (Some(s), Some(p)) = (session.as_mut(), pending.as_ref()) else {
-            pending = None;
-            continue;
+        let go_on = match command {
+            Some(c) => state.handle(&c, &mut sink),
+            None => state.work(&mut sink),
         };
-        if s.generation() != p.generation {
-            pending = None;
-            continue;
-        }
-        let (events, reached) = s.advance(p.target, p.sample_dt, CHUNK_STEPS);
-        for e in events {
-            if !sink(e) {
-                return;
-            }
-        }
-        if reached {
-            pending = None;
+        if !go_on {
+            return;
         }
     }
 }

@@ -24,7 +24,7 @@ pub fn draw(frame: &mut Frame<'_>, area: Rect, _options: &Look) {
         })
         .collect();
     let height = (rows.len() as u16 + 2).min(area.height);
-    let width = 56.min(area.width);
+    let width = 64.min(area.width);
     let popup = Rect {
         x: area.x + (area.width - width) / 2,
         y: area.y + (area.height - height) / 2,

@@ -1,0 +1,131 @@
+//! `replay --export-cast`: render a session into an asciicast v2 file (asciinema-player plays
+//! it), with chapters as markers. Rendered headless at the recorded terminal size, 10 frames
+//! per second of recorded time; written to a temporary file and renamed, so a failure leaves
+//! nothing half-written.
+
+use std::cell::RefCell;
+use std::io::Write as _;
+use std::path::Path;
+use std::rc::Rc;
+
+use ratatui::backend::CrosstermBackend;
+use ratatui::layout::Rect;
+use ratatui::{Terminal, TerminalOptions, Viewport};
+
+use super::verify::start;
+use super::{RecordError, Recording};
+use crate::app::journal::Event;
+use crate::sim::{Command, Session, drive};
+use crate::ui::{self, UiOptions};
+
+/// Frames per second of the exported cast.
+const CAST_FPS: f64 = 10.0;
+
+/// A writer whose bytes can be taken out between frames.
+#[derive(Clone, Default)]
+struct Shared(Rc<RefCell<Vec<u8>>>);
+
+impl std::io::Write for Shared {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.0.borrow_mut().extend_from_slice(buf);
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// Writes `rec` as an asciicast v2 file at `out`. Returns the number of frames.
+///
+/// # Errors
+/// A bad header preset, or the output cannot be written.
+pub fn export_cast(
+    rec: &Recording,
+    path: &str,
+    out: &Path,
+    options: &UiOptions,
+) -> Result<usize, RecordError> {
+    let io = |source| RecordError::Io {
+        path: out.display().to_string(),
+        source,
+    };
+    let (mut app, commands) = start(rec, path)?;
+    let size = rec.header.terminal;
+    let area = Rect::new(0, 0, size.width.max(1), size.height.max(1));
+    let screen = Shared::default();
+    let mut terminal = Terminal::with_options(
+        CrosstermBackend::new(screen.clone()),
+        TerminalOptions {
+            viewport: Viewport::Fixed(area),
+        },
+    )
+    .map_err(io)?;
+    let mut session: Option<Session> = None;
+    let run = |commands: Vec<Command>, session: &mut Option<Session>, app: &mut crate::app::App| {
+        drive(session, commands, &mut |e| {
+            app.on_sim(e);
+        });
+    };
+    run(commands, &mut session, &mut app);
+    let mut cast = String::new();
+    let header = serde_json::json!({
+        "version": 2,
+        "width": area.width,
+        "height": area.height,
+        "title": format!("rattleback: {}", app.name),
+        "env": {"TERM": "xterm-256color"},
+    });
+    cast.push_str(&header.to_string());
+    cast.push('\n');
+    let end = rec.lines.last().map_or(0.0, |(_, l)| l.wall) + 1.0;
+    let mut next = 0;
+    let mut frames = 0;
+    let mut clock = 0.0;
+    while clock <= end {
+        while next < rec.lines.len() && rec.lines[next].1.wall <= clock {
+            let line = &rec.lines[next].1;
+            if let Event::Chapter { title } = &line.event {
+                cast.push_str(&serde_json::json!([line.wall, "m", title]).to_string());
+                cast.push('\n');
+            }
+            app.target = line.t;
+            let c = app.apply_event(&line.event);
+            run(c, &mut session, &mut app);
+            next += 1;
+        }
+        let c = app.tick(1.0 / CAST_FPS);
+        run(c, &mut session, &mut app);
+        terminal
+            .draw(|f| ui::draw(f, &mut app, options))
+            .map_err(io)?;
+        let bytes = std::mem::take(&mut *screen.0.borrow_mut());
+        if !bytes.is_empty() {
+            let text = String::from_utf8_lossy(&bytes);
+            cast.push_str(&serde_json::json!([clock, "o", text]).to_string());
+            cast.push('\n');
+            frames += 1;
+        }
+        clock += 1.0 / CAST_FPS;
+    }
+    let dir = out
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let tmp = dir.join(format!(
+        ".{}.tmp-{}",
+        out.file_name()
+            .map_or_else(|| "cast".into(), |n| n.to_string_lossy()),
+        std::process::id()
+    ));
+    let write = || -> std::io::Result<()> {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(cast.as_bytes())?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, out)
+    };
+    write().map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        io(e)
+    })?;
+    Ok(frames)
+}

@@ -1,0 +1,147 @@
+//! Writing and reading session files.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+use super::{FORMAT, Header, Line, RecordError, VERSION};
+
+/// Writes a session as it goes, one flushed line per event.
+pub struct Recorder {
+    out: BufWriter<File>,
+    path: String,
+}
+
+impl Recorder {
+    /// Creates the file (never replacing an existing one) and writes the header.
+    ///
+    /// # Errors
+    /// The file exists or cannot be written.
+    pub fn create(path: &Path, header: &Header) -> Result<Self, RecordError> {
+        let label = path.display().to_string();
+        let file = File::options()
+            .write(true)
+            .create_new(true)
+            .open(path)
+            .map_err(|source| {
+                if source.kind() == std::io::ErrorKind::AlreadyExists {
+                    RecordError::Exists(label.clone())
+                } else {
+                    RecordError::Io {
+                        path: label.clone(),
+                        source,
+                    }
+                }
+            })?;
+        let mut me = Self {
+            out: BufWriter::new(file),
+            path: label,
+        };
+        me.write_json(header)?;
+        Ok(me)
+    }
+
+    fn write_json<T: serde::Serialize>(&mut self, value: &T) -> Result<(), RecordError> {
+        let io = |source| RecordError::Io {
+            path: self.path.clone(),
+            source,
+        };
+        let text = serde_json::to_string(value).map_err(|e| RecordError::Io {
+            path: self.path.clone(),
+            source: std::io::Error::other(e),
+        })?;
+        self.out.write_all(text.as_bytes()).map_err(io)?;
+        self.out.write_all(b"\n").map_err(io)?;
+        self.out.flush().map_err(io)
+    }
+
+    /// Appends one event and flushes it.
+    ///
+    /// # Errors
+    /// When the file cannot be written.
+    pub fn write(&mut self, line: &Line) -> Result<(), RecordError> {
+        self.write_json(line)
+    }
+
+    /// The file being written.
+    #[must_use]
+    pub fn path(&self) -> &str {
+        &self.path
+    }
+}
+
+/// A session read back.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Recording {
+    /// Its header.
+    pub header: Header,
+    /// `(1-based line number, event)`.
+    pub lines: Vec<(usize, Line)>,
+    /// Things tolerated, such as a truncated last line.
+    pub warnings: Vec<String>,
+}
+
+/// Reads a session file. A truncated last line (no final newline, not valid JSON) is ignored
+/// with a warning; any other bad line is an error naming its line.
+///
+/// # Errors
+/// An unreadable file, a bad header, a version or format mismatch, or a corrupt line.
+pub fn read(path: &Path) -> Result<Recording, RecordError> {
+    let label = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|source| RecordError::Io {
+        path: label.clone(),
+        source,
+    })?;
+    let corrupt = |line: usize, message: String| RecordError::Corrupt {
+        path: label.clone(),
+        line,
+        message,
+    };
+    let mut rows = text.split_inclusive('\n').enumerate();
+    let Some((_, first)) = rows.next() else {
+        return Err(corrupt(
+            1,
+            "empty file: expected a session header".to_owned(),
+        ));
+    };
+    let probe: serde_json::Value = serde_json::from_str(first)
+        .map_err(|e| corrupt(1, format!("not a session header: {e}")))?;
+    if probe.get("format").and_then(|f| f.as_str()) != Some(FORMAT) {
+        return Err(corrupt(
+            1,
+            format!("not a rattleback session (format must be \"{FORMAT}\")"),
+        ));
+    }
+    if let Some(v) = probe.get("version").and_then(serde_json::Value::as_u64)
+        && v != u64::from(VERSION)
+    {
+        return Err(corrupt(
+            1,
+            format!("format version {v} is not supported; this build reads version {VERSION}"),
+        ));
+    }
+    let header: Header =
+        serde_json::from_value(probe).map_err(|e| corrupt(1, format!("bad header: {e}")))?;
+    let mut lines = Vec::new();
+    let mut warnings = Vec::new();
+    for (i, row) in rows {
+        let number = i + 1;
+        if row.trim().is_empty() {
+            continue;
+        }
+        match serde_json::from_str::<Line>(row) {
+            Ok(line) => lines.push((number, line)),
+            Err(e) if !row.ends_with('\n') => {
+                warnings.push(format!(
+                    "{label}:{number}: truncated last line ignored ({e})"
+                ));
+            }
+            Err(e) => return Err(corrupt(number, format!("bad event: {e}"))),
+        }
+    }
+    Ok(Recording {
+        header,
+        lines,
+        warnings,
+    })
+}

@@ -1,0 +1,101 @@
+//! Session recording, replay and export.
+//!
+//! A session file is JSON Lines: a [`Header`] (format, version, program version, the preset
+//! inline, method and tolerance, terminal size, theme, frame rate), then one [`Line`] per
+//! semantic event, stamped with the wall-clock offset (pacing) and the simulated time at which
+//! it applies. Lines are flushed one by one, so a crash or a dropped connection loses at most
+//! the last. Checkpoints hold the exact state at their time and a hash of its bits; because
+//! trajectories do not depend on pacing, `replay --verify` re-runs the events headless and
+//! compares them bit for bit.
+
+mod cast;
+mod file;
+mod verify;
+
+pub use cast::export_cast;
+pub use file::{Recorder, Recording, read};
+pub use verify::{Divergence, verify};
+
+use serde::{Deserialize, Serialize};
+
+use crate::app::journal::Event;
+
+/// The `format` field of every session file.
+pub const FORMAT: &str = "rattleback-session";
+/// The format version this build writes and reads.
+pub const VERSION: u32 = 1;
+
+/// First line of a session file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Header {
+    /// Always [`FORMAT`].
+    pub format: String,
+    /// Format version.
+    pub version: u32,
+    /// Version of the program that wrote it.
+    pub program: String,
+    /// The scenario at the start of the recording, as preset TOML.
+    pub preset: String,
+    /// Method at the start.
+    pub method: String,
+    /// Tolerance at the start.
+    pub tolerance: f64,
+    /// Terminal size when recording.
+    pub terminal: Size,
+    /// Theme index.
+    pub theme: usize,
+    /// Frame-rate cap.
+    pub fps: f64,
+}
+
+/// Terminal size.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Size {
+    /// Columns.
+    pub width: u16,
+    /// Rows.
+    pub height: u16,
+}
+
+/// One event line.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Line {
+    /// Seconds since the recording started.
+    pub wall: f64,
+    /// Simulated time at which it applies.
+    pub t: f64,
+    /// Run stamp in the recording explorer (informational).
+    pub generation: u64,
+    /// What happened.
+    #[serde(flatten)]
+    pub event: Event,
+}
+
+/// Problems with a session file.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum RecordError {
+    /// Cannot read or write the file.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// What the system said.
+        source: std::io::Error,
+    },
+    /// The file exists and would be overwritten.
+    #[error("{0}: exists; choose another file name (nothing was overwritten)")]
+    Exists(String),
+    /// A line that is not what it must be.
+    #[error("{path}:{line}: {message}")]
+    Corrupt {
+        /// The file.
+        path: String,
+        /// 1-based line.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+}
