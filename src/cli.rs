@@ -54,6 +54,19 @@ pub enum Command {
     Check(CheckArgs),
     /// Replay a recorded session in the explorer, check it, or export it.
     Replay(ReplayArgs),
+    /// Work–precision study of every method over k = 1e2 … 1e12, and a stability report.
+    Bench(BenchArgs),
+}
+
+/// Arguments of `bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// The short version (under a minute here): fewer settings, T = 5, no repeats.
+    #[arg(long)]
+    pub quick: bool,
+    /// Folder for `work_precision.csv`, `work_precision.svg` and `stability.csv`.
+    #[arg(long, value_name = "DIR", default_value = "bench-results")]
+    pub out: std::path::PathBuf,
 }
 
 /// Arguments of `replay`.

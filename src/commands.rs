@@ -57,6 +57,64 @@ fn is_theme(src: &str) -> bool {
         .is_ok_and(|t| t.contains_key("theme") || t.contains_key("colors"))
 }
 
+/// `rattleback bench`.
+#[must_use]
+pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
+    use crate::bench;
+    let config = bench::Config { quick: args.quick };
+    if let Err(e) = std::fs::create_dir_all(&args.out) {
+        eprintln!("rattleback: error: {}: {e}", args.out.display());
+        return ExitCode::from(2);
+    }
+    let rows = bench::work_precision(config, &mut |line| eprintln!("{line}"));
+    print!("{}", bench::table(&rows));
+    println!();
+    for k in [1e4, 1e8] {
+        print!("{}", bench::terminal_diagram(&rows, k, 72, 16));
+    }
+    let csv = args.out.join("work_precision.csv");
+    let svg = args.out.join("work_precision.svg");
+    if let Err(e) = bench::write_csv(&rows, &csv) {
+        eprintln!("rattleback: error: {}: {e}", csv.display());
+        return ExitCode::from(1);
+    }
+    if let Err(e) = bench::write_svg(&rows, &svg) {
+        eprintln!("rattleback: error: {}: {e}", svg.display());
+        return ExitCode::from(1);
+    }
+    let stability = bench::stability(config);
+    println!("\nStability\n{}", bench::stability_table(&stability));
+    let path = args.out.join("stability.csv");
+    let mut text = String::from(
+        "case,method,t_end,max_energy_error,action_drift,reversals,expected_reversals,seconds\n",
+    );
+    for r in &stability {
+        let _ = writeln!(
+            text,
+            "\"{}\",{},{},{:e},{:e},{},{},{:e}",
+            r.case,
+            r.method,
+            r.t_end,
+            r.max_energy_error,
+            r.action_drift,
+            r.reversals.0,
+            r.reversals.1,
+            r.seconds
+        );
+    }
+    if let Err(e) = std::fs::write(&path, text) {
+        eprintln!("rattleback: error: {}: {e}", path.display());
+        return ExitCode::from(1);
+    }
+    println!(
+        "wrote {}, {}, {}",
+        csv.display(),
+        svg.display(),
+        path.display()
+    );
+    ExitCode::SUCCESS
+}
+
 /// `rattleback check FILE...`.
 #[must_use]
 pub fn check(args: &CheckArgs) -> ExitCode {

@@ -4,6 +4,7 @@
 //! `physics` ← `scenario` ← `sim`, `app` ← `ui` ← `explorer`, `terminal` ← `main`.
 
 pub mod app;
+pub mod bench;
 pub mod cli;
 pub mod commands;
 pub mod explorer;

@@ -20,6 +20,7 @@ fn main() -> ExitCode {
         Some(Command::Presets(args)) => commands::presets(&args),
         Some(Command::Check(args)) => commands::check(&args),
         Some(Command::Replay(ref args)) => run_replay(&cli, args),
+        Some(Command::Bench(ref args)) => commands::bench(args),
         None => run_explorer(&cli),
     }
 }

@@ -309,7 +309,7 @@ pub fn run_auto(
                 refinements,
             });
         }
-        plan = refine(plan, estimate / tolerance);
+        plan = refine(problem, plan, estimate / tolerance, t_end);
         refinements += 1;
     }
 }
@@ -354,8 +354,28 @@ fn finer_companion(plan: &Plan) -> (Settings, f64) {
     }
 }
 
-fn refine(mut plan: Plan, excess: f64) -> Plan {
+fn refine(problem: &Problem, mut plan: Plan, excess: f64, t_end: f64) -> Plan {
     let excess = if excess.is_finite() { excess } else { 16.0 };
+    if plan.method == Method::Locked {
+        // Locked steps missed: their error constant varies with the start (near the separatrix
+        // it is large) and halving them gets expensive fast. Resolve the fast motion instead,
+        // with blanes-moan4, whose error model holds.
+        let nu = fastest_rate(problem);
+        let nu_h = (plan.predicted_error / excess / (C_BLANES_MOAN * t_end))
+            .powf(0.25)
+            .min(BLANES_MOAN_MAX_NU_H);
+        return Plan {
+            method: Method::BlanesMoan4,
+            tolerance: plan.tolerance,
+            step: Some(nu_h / nu),
+            predicted_error: C_BLANES_MOAN * nu_h.powi(4) * t_end,
+            predicted_seconds: 6.0 * nu * t_end / nu_h * NS_FAST_FLOW * 1e-9,
+            reason: format!(
+                "{}; locked missed ×{excess:.1}, resolved instead",
+                plan.reason
+            ),
+        };
+    }
     match plan.method {
         Method::Dop853 | Method::EffectiveCorrected => {
             plan.tolerance = (plan.tolerance / (2.0 * excess)).max(1e-14);
