@@ -69,6 +69,9 @@ pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
     let rows = bench::work_precision(config, &mut |line| eprintln!("{line}"));
     print!("{}", bench::table(&rows));
     println!();
+    if rows.iter().any(|r| r.method.starts_with("peer-")) {
+        println!("{}", bench::peer_summary(&rows, 1e-8));
+    }
     for k in [1e4, 1e8] {
         print!("{}", bench::terminal_diagram(&rows, k, 72, 16));
     }

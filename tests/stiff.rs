@@ -137,3 +137,31 @@ fn auto_meets_its_tolerance_and_changes_method_with_k() {
     let soft = common::problem(2.0, 1.0, 1.0, 1e2, [0.0, 0.0, 1.0, 0.5]);
     assert!(!plan(&soft, 1e-8, 20.0).method.is_effective());
 }
+
+/// Implicit stiff solvers are no way out (physics.md §4b): backward Euler, L-stable like Radau
+/// and BDF, damps the fast oscillation at ωh ≫ 1, θ drains away and the reversals vanish,
+/// while an exact-flow method at the same step keeps them.
+#[test]
+fn an_implicit_stiff_method_converges_to_the_wrong_motion() {
+    let problem = common::problem(2.0, 1.0, 1.0, 1e8, [0.0, 0.0, 1.0, 0.5]);
+    let predicted = rattleback::physics::effective::Effective::new(&problem)
+        .reversal_times(10.0)
+        .len();
+    assert!(predicted >= 2);
+    let implicit = rattleback::bench::implicit::backward_euler(&problem, 1e-3, 10.0);
+    assert!(
+        implicit.fast_energy_ratio < 1e-3,
+        "fast energy kept: {}",
+        implicit.fast_energy_ratio
+    );
+    assert_eq!(implicit.reversals, 0);
+    let spec = RunSpec {
+        method: Method::Locked,
+        tolerance: 1e-8,
+        step: Some(1e-3),
+        t_end: 10.0,
+        samples: 0,
+        monitor_energy: false,
+    };
+    assert_eq!(run(&problem, &spec).unwrap().reversals.len(), predicted);
+}

@@ -3,6 +3,7 @@
 //! against a reference whose source the output names (tight DOP853 for k ≤ 1e6, fine
 //! blanes-moan4 at 1e8, the corrected effective model beyond), itself cross-checked.
 
+pub mod implicit;
 mod plot;
 mod stability;
 
@@ -255,8 +256,114 @@ pub fn work_precision(config: Config, log: &mut dyn FnMut(&str)) -> Vec<Row> {
                 reference: source.clone(),
             });
         }
+        #[cfg(feature = "peer")]
+        peer_rows(config, k, &reference, &source, &mut rows, log);
     }
     rows
+}
+
+/// The peer's rows for one stiffness (feature `peer`).
+#[cfg(feature = "peer")]
+fn peer_rows(
+    config: Config,
+    k: f64,
+    reference: &RunResult,
+    source: &str,
+    rows: &mut Vec<Row>,
+    log: &mut dyn FnMut(&str),
+) {
+    use peer::Peer;
+    let p = problem(k);
+    let t_end = config.t_end();
+    let omega = p.params().omega_max();
+    let tols = if config.quick {
+        vec![1e-6, 1e-9]
+    } else {
+        vec![1e-6, 1e-8, 1e-10, 1e-12]
+    };
+    for which in [Peer::Dop853, Peer::Vern9] {
+        for &tol in &tols {
+            let work = predicted_work(Method::Dop853, tol, None, omega, t_end) * 1.3;
+            if work > config.budget() {
+                log(&format!(
+                    "  {:<20} skipped: about {work:.1e} evaluations",
+                    format!("{} tol={tol:.0e}", which.name())
+                ));
+                continue;
+            }
+            let (y, evals) = match peer::run(&p, which, tol, t_end) {
+                Ok(r) => r,
+                Err(e) => {
+                    log(&format!("  {} tol={tol:.0e} failed: {e}", which.name()));
+                    continue;
+                }
+            };
+            let mut best = f64::INFINITY;
+            for _ in 0..config.repeats() {
+                let clock = Instant::now();
+                let _ = std::hint::black_box(peer::run(&p, which, tol, t_end));
+                best = best.min(clock.elapsed().as_secs_f64());
+            }
+            rows.push(Row {
+                method: which.name().to_owned(),
+                k,
+                tolerance: Some(tol),
+                omega_h: None,
+                error_alpha: (y[1] - reference.final_state[1]).abs(),
+                error_alpha_dot: (y[3] - reference.final_state[3]).abs(),
+                error_reversals: f64::NAN,
+                seconds: best,
+                rhs_evaluations: evals,
+                reference: source.to_owned(),
+            });
+        }
+    }
+}
+
+/// For each stiffness, the fastest of ours and of the peer's whose `alpha(T)` and
+/// `alpha_dot(T)` errors are both within `level`, and ours divided by the peer's.
+#[must_use]
+pub fn peer_summary(rows: &[Row], level: f64) -> String {
+    fn fastest(it: Vec<&Row>) -> Option<&Row> {
+        it.into_iter()
+            .min_by(|a, b| a.seconds.total_cmp(&b.seconds))
+    }
+    let mut o = format!("fastest within {level:e} (alpha and alpha_dot): ours vs the peer's\n");
+    let within = |r: &&Row| r.error_alpha <= level && r.error_alpha_dot <= level;
+    for k in KS {
+        #[allow(clippy::float_cmp)]
+        let at: Vec<&Row> = rows.iter().filter(|r| r.k == k).filter(within).collect();
+        let ours = fastest(
+            at.iter()
+                .copied()
+                .filter(|r| !r.method.starts_with("peer-"))
+                .collect(),
+        );
+        let theirs = fastest(
+            at.iter()
+                .copied()
+                .filter(|r| r.method.starts_with("peer-"))
+                .collect(),
+        );
+        let _ = match (ours, theirs) {
+            (Some(a), Some(b)) => writeln!(
+                o,
+                "  k = {k:e}: ours {} {:.3e} s, peer {} {:.3e} s, ours/peer = {:.3}",
+                a.method,
+                a.seconds,
+                b.method,
+                b.seconds,
+                a.seconds / b.seconds
+            ),
+            (Some(a), None) => writeln!(
+                o,
+                "  k = {k:e}: ours {} {:.3e} s, no peer run within {level:e}",
+                a.method, a.seconds
+            ),
+            _ => writeln!(o, "  k = {k:e}: nothing within {level:e}"),
+        };
+    }
+    o
 }
 
 fn label(method: Method, tol: f64, wh: Option<f64>) -> String {
@@ -327,3 +434,5 @@ pub fn write_csv(rows: &[Row], path: &Path) -> std::io::Result<()> {
 
 pub use plot::{terminal_diagram, write_svg};
 pub use stability::{StabilityRow, stability, stability_table};
+#[cfg(feature = "peer")]
+pub mod peer;

@@ -125,6 +125,26 @@ pub fn stability(config: Config) -> Vec<StabilityRow> {
             2.0,
         ));
     }
+    // An implicit stiff method at large k: damps the fast energy, loses the reversals.
+    let stiff = problem(2.0, 1.0, 1e8, 0.5);
+    let t_end = if config.quick { 10.0 } else { 20.0 };
+    let clock = Instant::now();
+    let outcome = super::implicit::backward_euler(&stiff, 1e-3, t_end);
+    rows.push(StabilityRow {
+        case: "implicit stiff method, k = 1e8, h = 1e-3 (ωh ≈ 10)".to_owned(),
+        method: format!(
+            "backward Euler (fast energy ×{:.1e})",
+            outcome.fast_energy_ratio
+        ),
+        t_end,
+        max_energy_error: (1.0 - outcome.fast_energy_ratio).abs(),
+        action_drift: f64::NAN,
+        reversals: (
+            outcome.reversals,
+            Effective::new(&stiff).reversal_times(t_end).len(),
+        ),
+        seconds: clock.elapsed().as_secs_f64(),
+    });
     for (case, p, t_end) in cases {
         let clock = Instant::now();
         if let Ok(v) = run_auto(&p, 1e-6, t_end, 0, true) {
