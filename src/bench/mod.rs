@@ -66,30 +66,33 @@ pub struct Row {
     pub reference: String,
 }
 
-/// The problem every row integrates: trapped start of the public cases.
+/// A start of the public cases' family: `iz = 1`, `gamma = alpha = 0`, `gamma_dot = 1`.
 ///
 /// # Panics
-/// Never for the positive `k` of [`KS`].
+/// For non-positive inertias or `k` (the callers pass positive constants).
 #[must_use]
-pub fn problem(k: f64) -> Problem {
+pub fn case(ix: f64, iy: f64, k: f64, alpha_dot: f64) -> Problem {
     Problem::new(
-        Params {
-            ix: 2.0,
-            iy: 1.0,
-            iz: 1.0,
-            k,
-        },
+        Params { ix, iy, iz: 1.0, k },
         Start {
             gamma: 0.0,
             alpha: 0.0,
             gamma_dot: 1.0,
-            alpha_dot: 0.5,
+            alpha_dot,
         },
     )
     .expect("valid")
 }
 
-fn spec(method: Method, tolerance: f64, step: Option<f64>, t_end: f64) -> RunSpec {
+/// The problem every row integrates: the trapped start of the public cases.
+#[must_use]
+pub fn problem(k: f64) -> Problem {
+    case(2.0, 1.0, k, 0.5)
+}
+
+/// A run of the integrator alone: no samples, no energy monitoring.
+#[must_use]
+pub fn spec(method: Method, tolerance: f64, step: Option<f64>, t_end: f64) -> RunSpec {
     RunSpec {
         method,
         tolerance,

@@ -6,13 +6,13 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use super::Config;
+use super::{Config, case};
 use crate::physics::auto::run_auto;
 use crate::physics::effective::Effective;
 use crate::physics::integrators::Method;
 use crate::physics::model::{initial_state, transverse_energy};
 use crate::physics::run::RunResult;
-use crate::physics::{Params, Problem, RunSpec, Start, State, run};
+use crate::physics::{Params, Problem, RunSpec, State, run};
 
 /// One line of the report.
 #[derive(Clone, Debug, Serialize)]
@@ -66,25 +66,12 @@ fn row(
     }
 }
 
-fn problem(ix: f64, iy: f64, k: f64, alpha_dot: f64) -> Problem {
-    Problem::new(
-        Params { ix, iy, iz: 1.0, k },
-        Start {
-            gamma: 0.0,
-            alpha: 0.0,
-            gamma_dot: 1.0,
-            alpha_dot,
-        },
-    )
-    .expect("valid")
-}
-
 /// Runs the report.
 #[must_use]
 pub fn stability(config: Config) -> Vec<StabilityRow> {
     let mut rows = Vec::new();
     let long = if config.quick { 1e3 } else { 1e4 };
-    let p = problem(2.0, 1.0, 1e4, 0.5);
+    let p = case(2.0, 1.0, 1e4, 0.5);
     let omega = p.params().omega_max();
     for (method, tol, step) in [
         (Method::Dop853, 1e-10, None),
@@ -114,19 +101,19 @@ pub fn stability(config: Config) -> Vec<StabilityRow> {
         }
     }
     // Near the separatrix and at extreme inertia ratios: what auto does.
-    let probe = problem(2.0, 1.0, 1e8, 0.0);
+    let probe = case(2.0, 1.0, 1e8, 0.0);
     let critical = Effective::new(&probe).critical_ratio(&probe).unwrap_or(1.0);
-    let near = problem(2.0, 1.0, 1e8, (critical * (1.0 - 1e-6)).sqrt());
+    let near = case(2.0, 1.0, 1e8, (critical * (1.0 - 1e-6)).sqrt());
     let mut cases = vec![("within 1e-6 below the critical ratio, k = 1e8", near, 60.0)];
     for iy in [1e-6, 1e6] {
         cases.push((
             "inertia ratio iy/ix = 1e-6 / 1e6, k = 1e4",
-            problem(1.0, iy, 1e4, 0.2),
+            case(1.0, iy, 1e4, 0.2),
             2.0,
         ));
     }
     // An implicit stiff method at large k: damps the fast energy, loses the reversals.
-    let stiff = problem(2.0, 1.0, 1e8, 0.5);
+    let stiff = case(2.0, 1.0, 1e8, 0.5);
     let t_end = if config.quick { 10.0 } else { 20.0 };
     let clock = Instant::now();
     let outcome = super::implicit::backward_euler(&stiff, 1e-3, t_end);
