@@ -155,6 +155,7 @@ impl Replayer {
                 let back = self.chapters().into_iter().rfind(|&i| i + 1 < self.next);
                 let (fresh, commands) = App::new(preset, Options { fps });
                 *app = fresh;
+                app.replaying = true;
                 send(commands);
                 self.next = 0;
                 self.clock = back.map_or(0.0, |i| self.lines[i].wall);
@@ -346,6 +347,7 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<()> {
         app.dialog = Some(options.startup_problems.join("\n"));
     }
     send(commands);
+    app.replaying = options.replay.is_some();
     let mut replay = options.replay.as_ref().map(|r| Replayer {
         lines: r.lines.iter().map(|(_, l)| l.clone()).collect(),
         next: 0,

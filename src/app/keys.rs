@@ -323,6 +323,15 @@ pub const FOOTER: &[(&str, &str)] = &[
     ("q", "quit"),
 ];
 
+/// Footer hints while replaying a session (keys drive the replay, not the explorer).
+pub const REPLAY_FOOTER: &[(&str, &str)] = &[
+    ("space", "pause"),
+    ("+/-", "pace"),
+    ("]", "next chapter"),
+    ("[", "previous chapter"),
+    ("q", "quit"),
+];
+
 #[cfg(test)]
 mod tests {
     use super::*;

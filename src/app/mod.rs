@@ -152,6 +152,8 @@ pub struct App {
     pub journal: Vec<(f64, u64, Event)>,
     /// The user pressed the record key; the explorer starts or stops the recording.
     pub recording_requested: bool,
+    /// A session is being replayed: keys drive the replay, and the footer says so.
+    pub replaying: bool,
     steps_at_tick: u64,
     contour_cache: Option<(ContourKey, Vec<Level>)>,
 }
@@ -205,6 +207,7 @@ impl App {
             recording: false,
             journal: Vec::new(),
             recording_requested: false,
+            replaying: false,
             steps_at_tick: 0,
             contour_cache: None,
         };

@@ -16,7 +16,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Wrap};
 
 use crate::app::App;
-use crate::app::keys::FOOTER;
+use crate::app::keys::{FOOTER, REPLAY_FOOTER};
 use crate::scenario::theme::{Colour, ThemeSpec};
 
 /// Smallest terminal the explorer draws into.
@@ -190,7 +190,12 @@ pub fn draw(frame: &mut Frame<'_>, app: &mut App, options: &UiOptions) {
         portrait::draw(frame, right, app, options);
     }
     status::draw(frame, status_area, app, options);
-    draw_footer(frame, footer, options);
+    draw_footer(
+        frame,
+        footer,
+        if app.replaying { REPLAY_FOOTER } else { FOOTER },
+        options,
+    );
     if app.show_help {
         help::draw(frame, area, options);
     }
@@ -202,9 +207,9 @@ pub fn draw(frame: &mut Frame<'_>, app: &mut App, options: &UiOptions) {
     }
 }
 
-fn draw_footer(frame: &mut Frame<'_>, area: Rect, options: &Look) {
+fn draw_footer(frame: &mut Frame<'_>, area: Rect, hints: &[(&str, &str)], options: &Look) {
     let mut spans = Vec::new();
-    for (i, (key, what)) in FOOTER.iter().enumerate() {
+    for (i, (key, what)) in hints.iter().enumerate() {
         if i > 0 {
             spans.push(Span::styled(" · ", Style::default().fg(options.theme.dim)));
         }
