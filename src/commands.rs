@@ -88,24 +88,7 @@ pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
     let stability = bench::stability(config);
     println!("\nStability\n{}", bench::stability_table(&stability));
     let path = args.out.join("stability.csv");
-    let mut text = String::from(
-        "case,method,t_end,max_energy_error,action_drift,reversals,expected_reversals,seconds\n",
-    );
-    for r in &stability {
-        let _ = writeln!(
-            text,
-            "\"{}\",{},{},{:e},{:e},{},{},{:e}",
-            r.case,
-            r.method,
-            r.t_end,
-            r.max_energy_error,
-            r.action_drift,
-            r.reversals.0,
-            r.reversals.1,
-            r.seconds
-        );
-    }
-    if let Err(e) = std::fs::write(&path, text) {
+    if let Err(e) = bench::write_stability_csv(&stability, &path) {
         eprintln!("rattleback: error: {}: {e}", path.display());
         return ExitCode::from(1);
     }

@@ -14,14 +14,7 @@ fn run_with(
     step: Option<f64>,
     t_end: f64,
 ) -> (f64, f64) {
-    let spec = RunSpec {
-        method,
-        tolerance,
-        step,
-        t_end,
-        samples: 0,
-        monitor_energy: false,
-    };
+    let spec = rattleback::bench::spec(method, tolerance, step, t_end);
     let y = run(problem, &spec).expect("integrates").final_state;
     (y[1], y[3])
 }

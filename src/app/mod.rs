@@ -821,11 +821,9 @@ impl App {
         portrait::apply_view(auto, &self.view)
     }
 
-    /// The level sets for the current settings and bounds, recomputed only when either changed.
-    ///
-    /// # Panics
-    /// Never: the cache is filled just before it is read.
-    pub fn contours(&mut self, samples: usize) -> &[Level] {
+    /// Recomputes the level sets if the settings, bounds or sampling changed since last time;
+    /// read them with [`App::levels`].
+    pub fn refresh_contours(&mut self, samples: usize) {
         let key = ContourKey {
             settings: self.settings,
             bounds: self.bounds(),
@@ -838,7 +836,14 @@ impl App {
                 portrait::levels(eff, &key.bounds, eff.energy(), self.view.levels, samples);
             self.contour_cache = Some((key, levels));
         }
-        &self.contour_cache.as_ref().expect("just filled").1
+    }
+
+    /// The level sets of the last [`App::refresh_contours`] (none before the first).
+    #[must_use]
+    pub fn levels(&self) -> &[Level] {
+        self.contour_cache
+            .as_ref()
+            .map_or(&[], |(_, l)| l.as_slice())
     }
 
     /// The latest sample of the full motion.

@@ -227,7 +227,7 @@ fn level(eff: &Effective, bounds: &Bounds, energy: f64, kind: LevelKind, samples
 /// bounds), plus the last one: the trail costs no more to draw than the canvas can show.
 #[must_use]
 pub fn decimate(
-    trail: &[(f64, f64)],
+    trail: impl IntoIterator<Item = (f64, f64)>,
     bounds: &Bounds,
     cols: usize,
     rows: usize,
@@ -237,17 +237,19 @@ pub fn decimate(
         let cy = ((y - bounds.y[0]) / (bounds.y[1] - bounds.y[0]) * rows as f64).floor();
         (cx as i64, cy as i64)
     };
-    let mut out: Vec<(f64, f64)> = Vec::with_capacity(trail.len().min(cols * rows));
-    let mut last = None;
-    for &p in trail {
+    let mut out: Vec<(f64, f64)> = Vec::new();
+    let mut last_cell = None;
+    let mut end = None;
+    for p in trail {
         let c = cell(p);
-        if Some(c) != last {
+        if Some(c) != last_cell {
             out.push(p);
-            last = Some(c);
+            last_cell = Some(c);
         }
+        end = Some(p);
     }
-    if let (Some(&end), Some(&kept)) = (trail.last(), out.last())
-        && end != kept
+    if let Some(end) = end
+        && out.last() != Some(&end)
     {
         out.push(end);
     }
@@ -317,7 +319,7 @@ mod tests {
         let trail: Vec<(f64, f64)> = (0..10_000)
             .map(|i| (f64::from(i) / 10_000.0, 0.5))
             .collect();
-        let d = decimate(&trail, &b, 100, 10);
+        let d = decimate(trail.iter().copied(), &b, 100, 10);
         assert!(d.len() <= 101, "{}", d.len());
         assert_eq!(d.last(), trail.last());
     }

@@ -436,6 +436,6 @@ pub fn write_csv(rows: &[Row], path: &Path) -> std::io::Result<()> {
 }
 
 pub use plot::{terminal_diagram, write_svg};
-pub use stability::{StabilityRow, stability, stability_table};
+pub use stability::{StabilityRow, stability, stability_table, write_stability_csv};
 #[cfg(feature = "peer")]
 pub mod peer;

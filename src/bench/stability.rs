@@ -149,6 +149,31 @@ pub fn stability(config: Config) -> Vec<StabilityRow> {
     rows
 }
 
+/// Writes `stability.csv`.
+///
+/// # Errors
+/// When the file cannot be written.
+pub fn write_stability_csv(rows: &[StabilityRow], path: &std::path::Path) -> std::io::Result<()> {
+    let mut text = String::from(
+        "case,method,t_end,max_energy_error,action_drift,reversals,expected_reversals,seconds\n",
+    );
+    for r in rows {
+        let _ = writeln!(
+            text,
+            "\"{}\",{},{},{:e},{:e},{},{},{:e}",
+            r.case,
+            r.method,
+            r.t_end,
+            r.max_energy_error,
+            r.action_drift,
+            r.reversals.0,
+            r.reversals.1,
+            r.seconds
+        );
+    }
+    std::fs::write(path, text)
+}
+
 /// The report for people.
 #[must_use]
 pub fn stability_table(rows: &[StabilityRow]) -> String {

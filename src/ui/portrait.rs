@@ -43,23 +43,15 @@ pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &mut App, options: &Look) {
     let (rx, ry) = resolution(options.marker);
     let (cols, rows) = (plot.width as usize * rx, plot.height as usize * ry);
     let theme = options.theme;
-    let levels = app.contours(cols.max(16)).to_vec();
+    app.refresh_contours(cols.max(16));
+    let app: &App = app;
+    let levels = app.levels();
     let centre = wrap_centre(&app.derived.effective);
     let wrap = app.view.wrap;
     let to_xy = |p: &crate::sim::Point| (display_alpha(p.alpha, centre, wrap), p.alpha_dot);
-    let trail = decimate(
-        &app.trail.iter().map(to_xy).collect::<Vec<_>>(),
-        &bounds,
-        cols,
-        rows,
-    );
+    let trail = decimate(app.trail.iter().map(to_xy), &bounds, cols, rows);
     let overlay = if app.show_effective {
-        decimate(
-            &app.effective_trail.iter().map(to_xy).collect::<Vec<_>>(),
-            &bounds,
-            cols,
-            rows,
-        )
+        decimate(app.effective_trail.iter().map(to_xy), &bounds, cols, rows)
     } else {
         Vec::new()
     };

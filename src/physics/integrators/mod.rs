@@ -65,19 +65,16 @@ impl Method {
         Self::EffectiveCorrected,
     ];
 
-    /// Every concrete method (all but `auto`, which resolves to one of them).
-    pub const CONCRETE: [Self; 10] = [
-        Self::Rk4,
-        Self::Dop853,
-        Self::Strang,
-        Self::Yoshida4,
-        Self::BlanesMoan4,
-        Self::Yoshida6,
-        Self::Suzuki8,
-        Self::Locked,
-        Self::Effective,
-        Self::EffectiveCorrected,
-    ];
+    /// Every concrete method: [`Method::ALL`] without `auto`, which resolves to one of them.
+    pub const CONCRETE: [Self; 10] = {
+        let mut out = [Self::Rk4; 10];
+        let mut i = 0;
+        while i < 10 {
+            out[i] = Self::ALL[i + 1];
+            i += 1;
+        }
+        out
+    };
 
     /// The name used in presets, on the command line and in JSON.
     #[must_use]
