@@ -5,26 +5,31 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
-use rattleback::app::{App, Key, Options};
+use rattleback::app::effects::commands;
+use rattleback::app::{App, Effect, Key, Options};
 use rattleback::scenario::shipped::resolve;
-use rattleback::sim::{Command, Session};
-use rattleback::ui::{self, UiOptions};
+use rattleback::sim::{Engine, PlanBook, drive};
+use rattleback::ui::{self, Cache, UiOptions};
 
+/// The default preset played to `t` through the worker's own interpreter, then paused.
 fn app_at(t: f64) -> App {
     let preset = resolve("subcritical", &[]).expect("shipped preset");
-    let (mut app, commands) = App::new(&preset, Options { fps: 30.0 });
-    let spec = commands
-        .iter()
-        .find_map(|c| match c {
-            Command::Restart { spec, .. } => Some(*spec),
-            _ => None,
-        })
-        .expect("restart");
-    let mut session = Session::new(app.generation, spec);
-    let (events, _) = session.advance(t, 1.0 / 240.0, usize::MAX);
-    for e in events {
-        app.on_sim(e);
+    let (mut app, start) = App::new(&preset, Options::at(30.0));
+    let mut engine = Engine::new(PlanBook::default());
+    let mut exec = |app: &mut App, effects: Vec<Effect>| {
+        drive(&mut engine, commands(effects), &mut |e| {
+            app.on_sim(e);
+        });
+    };
+    exec(&mut app, start);
+    let play = app.on_key(Key::Char(' '));
+    exec(&mut app, play);
+    while app.run.shown < t {
+        let tick = app.tick(1.0 / 30.0);
+        exec(&mut app, tick);
     }
+    let pause = app.on_key(Key::Char(' '));
+    exec(&mut app, pause);
     app
 }
 
@@ -35,11 +40,12 @@ fn frame(c: &mut Criterion) {
     let mut app = app_at(20.0);
     app.on_key(Key::Char('t'));
     let mut terminal = Terminal::new(TestBackend::new(160, 48)).unwrap();
-    eprintln!("trail points: {}", app.trail.len());
+    eprintln!("trail points: {}", app.run.trail.len());
+    let mut cache = Cache::default();
     group.bench_function("steady", |b| {
         b.iter(|| {
             terminal
-                .draw(|f| ui::draw(f, &mut app, &options))
+                .draw(|f| ui::draw(f, &app, &options, &mut cache))
                 .unwrap()
                 .area
                 .width
@@ -51,7 +57,7 @@ fn frame(c: &mut Criterion) {
             app.on_key(Key::Char(if zoom_in { 'z' } else { 'Z' }));
             zoom_in = !zoom_in;
             terminal
-                .draw(|f| ui::draw(f, &mut app, &options))
+                .draw(|f| ui::draw(f, &app, &options, &mut cache))
                 .unwrap()
                 .area
                 .width

@@ -24,9 +24,13 @@ pub struct Cli {
     /// path. `NO_COLOR` turns colours off whatever the theme.
     #[arg(long, value_name = "NAME|PATH", default_value = "default")]
     pub theme: String,
-    /// Record the session into this file (a key, R, also starts and stops recording).
+    /// Record the session into this file (a key, R, also starts and stops recording). An
+    /// existing file is refused (exit 2) unless `--force`.
     #[arg(long, value_name = "FILE")]
     pub record: Option<std::path::PathBuf>,
+    /// Replace an existing `--record` file.
+    #[arg(long)]
+    pub force: bool,
     /// Canvas marker, for fonts without Braille.
     #[arg(long, value_enum, default_value_t = MarkerChoice::Braille)]
     pub marker: MarkerChoice,
@@ -77,9 +81,14 @@ pub struct ReplayArgs {
     /// Re-run it headless and check every checkpoint bit for bit (exit 1 on a divergence).
     #[arg(long)]
     pub verify: bool,
-    /// Write an asciicast v2 file (asciinema-player plays it), chapters as markers.
+    /// Write an asciicast v2 file (asciinema-player plays it), chapters as markers. With
+    /// `--verify`, the session is checked first and exported only if it verifies. An existing
+    /// file is refused (exit 2) unless `--force`.
     #[arg(long, value_name = "OUT.cast")]
     pub export_cast: Option<std::path::PathBuf>,
+    /// Replace an existing `--export-cast` file (never the session itself).
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// Arguments of `presets`.

@@ -25,8 +25,39 @@ fn main() -> ExitCode {
     }
 }
 
+/// Refuses an output that exists (unless `force`) or that is `input` itself.
+fn check_output(
+    out: &std::path::Path,
+    input: Option<&std::path::Path>,
+    force: bool,
+    flag: &str,
+) -> Result<(), String> {
+    let same = |a: &std::path::Path, b: &std::path::Path| {
+        a == b || matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y)
+    };
+    if input.is_some_and(|i| same(out, i)) {
+        return Err(format!(
+            "{flag} {}: that is the session being read; choose another file",
+            out.display()
+        ));
+    }
+    if !force && std::fs::symlink_metadata(out).is_ok() {
+        return Err(format!(
+            "{flag} {}: the file exists; choose another name or add --force to replace it",
+            out.display()
+        ));
+    }
+    Ok(())
+}
+
 fn run_replay(cli: &Cli, args: &ReplayArgs) -> ExitCode {
     let path = args.file.display().to_string();
+    if let Some(out) = &args.export_cast
+        && let Err(e) = check_output(out, Some(&args.file), args.force, "--export-cast")
+    {
+        eprintln!("rattleback: error: {e}");
+        return ExitCode::from(2);
+    }
     let rec = match record::read(&args.file) {
         Ok(r) => r,
         Err(e) => {
@@ -38,34 +69,32 @@ fn run_replay(cli: &Cli, args: &ReplayArgs) -> ExitCode {
         eprintln!("rattleback: warning: {w}");
     }
     if args.verify {
-        return match record::verify(&rec, &path) {
-            Ok(n) => {
-                println!("{path}: {n} checkpoint(s) reproduced bit for bit");
-                ExitCode::SUCCESS
-            }
-            Err(Ok(d)) => {
+        match record::verify(&rec, &path) {
+            Ok(n) => println!("{path}: {n} checkpoint(s) reproduced bit for bit"),
+            Err(record::VerifyError::Diverged(d)) => {
                 eprintln!(
                     "rattleback: {path}:{}: divergence at t = {}: expected {}, got {}",
                     d.line, d.t, d.expected, d.got
                 );
-                ExitCode::from(1)
+                return ExitCode::from(1);
             }
-            Err(Err(e)) => {
+            Err(record::VerifyError::Record(e)) => {
                 eprintln!("rattleback: error: {e}");
-                ExitCode::from(2)
+                return ExitCode::from(2);
             }
-        };
+        }
     }
     if let Some(out) = &args.export_cast {
-        let theme = match rattleback::scenario::theme::theme(&cli.theme) {
-            Ok(t) => t,
+        let (theme, all) = match rattleback::scenario::theme::theme(&cli.theme) {
+            Ok(t) => (t, rattleback::scenario::theme::themes().0),
             Err(e) => {
                 eprintln!("rattleback: error: {e}");
                 return ExitCode::from(2);
             }
         };
-        let options = UiOptions::new(marker(cli.marker), &theme, no_color());
-        return match record::export_cast(&rec, &path, out, &options) {
+        let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
+        let options = UiOptions::new(marker(cli.marker), &theme, &all, no_color());
+        return match rattleback::cast::export_cast(&rec, &path, out, &options) {
             Ok(frames) => {
                 println!("{}: {frames} frames", out.display());
                 ExitCode::SUCCESS
@@ -75,6 +104,9 @@ fn run_replay(cli: &Cli, args: &ReplayArgs) -> ExitCode {
                 ExitCode::from(2)
             }
         };
+    }
+    if args.verify {
+        return ExitCode::SUCCESS;
     }
     let preset = match rattleback::scenario::Preset::parse(
         &rec.header.preset,
@@ -107,6 +139,18 @@ fn run_explorer(cli: &Cli) -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if let Some(out) = &cli.record
+        && let Err(e) = check_output(out, None, cli.force, "--record")
+    {
+        eprintln!("rattleback: error: {e}");
+        return ExitCode::from(2);
+    }
+    if cli.force
+        && let Some(out) = &cli.record
+    {
+        // Replacing was asked for: the recorder itself never replaces a file.
+        let _ = std::fs::remove_file(out);
+    }
     explore(cli, &preset, cli.record.clone(), None)
 }
 
@@ -124,14 +168,12 @@ fn explore(
             return ExitCode::from(2);
         }
     };
+    let (all, problems) = rattleback::scenario::theme::themes();
+    let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
     let options = ExplorerOptions {
         fps: f64::from(cli.fps),
-        ui: UiOptions::new(marker, &theme, no_color()),
-        startup_problems: rattleback::scenario::theme::themes()
-            .1
-            .iter()
-            .map(ToString::to_string)
-            .collect(),
+        ui: UiOptions::new(marker, &theme, &all, no_color()),
+        startup_problems: problems.iter().map(ToString::to_string).collect(),
         record,
         replay,
     };

@@ -17,7 +17,7 @@ use crate::physics::{RunSpec, StepError, run};
 use crate::scenario::Preset;
 
 /// Tolerance when neither the command line nor the preset gives one.
-pub const DEFAULT_TOLERANCE: f64 = 1e-9;
+pub const DEFAULT_TOLERANCE: f64 = crate::physics::DEFAULT_TOLERANCE;
 /// Method when neither the command line nor the preset names one.
 pub const DEFAULT_METHOD: Method = Method::Auto;
 

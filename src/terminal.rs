@@ -70,6 +70,29 @@ impl Tty {
         self.terminal.backend_mut().flush()
     }
 
+    /// Clears the screen and forces a full redraw on the next frame (Ctrl-L: a line noise or
+    /// another program scribbled on the terminal).
+    ///
+    /// # Errors
+    /// When writing to the terminal fails.
+    pub fn clear(&mut self) -> io::Result<()> {
+        self.terminal.clear()
+    }
+
+    /// Suspends the process like a shell's Ctrl-Z: restores the terminal, stops until `fg`
+    /// (SIGCONT), then re-enters raw mode and the alternate screen and redraws everything.
+    ///
+    /// # Errors
+    /// When the terminal cannot be set up again.
+    pub fn suspend(&mut self) -> io::Result<()> {
+        restore();
+        // SIGTSTP's default action stops the process; it returns here on SIGCONT.
+        signal_hook::low_level::raise(signal_hook::consts::SIGTSTP)?;
+        enable_raw_mode()?;
+        execute!(io::stdout(), EnterAlternateScreen, cursor::Hide)?;
+        self.terminal.clear()
+    }
+
     /// Forces a full redraw on the next frame (after a resize).
     ///
     /// # Errors
@@ -109,9 +132,14 @@ fn translate_key(k: &KeyEvent) -> Option<Key> {
         return None;
     }
     let shift = k.modifiers.contains(KeyModifiers::SHIFT);
+    let ctrl = k.modifiers.contains(KeyModifiers::CONTROL);
+    let alt = k.modifiers.contains(KeyModifiers::ALT);
     Some(match k.code {
-        KeyCode::Char('c') if k.modifiers.contains(KeyModifiers::CONTROL) => Key::CtrlC,
+        // Modifiers are kept: Ctrl-P is not p, Alt-q is not q.
+        KeyCode::Char(c) if ctrl => Key::Ctrl(c.to_ascii_lowercase()),
+        KeyCode::Char(c) if alt => Key::Alt(c),
         KeyCode::Char(c) => Key::Char(c),
+        _ if ctrl || alt => return None,
         KeyCode::Up if shift => Key::ShiftUp,
         KeyCode::Down if shift => Key::ShiftDown,
         KeyCode::Left if shift => Key::ShiftLeft,
@@ -125,4 +153,38 @@ fn translate_key(k: &KeyEvent) -> Option<Key> {
         KeyCode::Backspace => Key::Backspace,
         _ => return None,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn key(code: KeyCode, modifiers: KeyModifiers) -> Option<Key> {
+        translate_key(&KeyEvent::new(code, modifiers))
+    }
+
+    #[test]
+    fn modifiers_are_respected() {
+        assert_eq!(
+            key(KeyCode::Char('l'), KeyModifiers::CONTROL),
+            Some(Key::Ctrl('l'))
+        );
+        assert_eq!(
+            key(KeyCode::Char('p'), KeyModifiers::CONTROL),
+            Some(Key::Ctrl('p'))
+        );
+        assert_eq!(
+            key(KeyCode::Char('q'), KeyModifiers::ALT),
+            Some(Key::Alt('q'))
+        );
+        assert_eq!(
+            key(KeyCode::Char('L'), KeyModifiers::SHIFT),
+            Some(Key::Char('L'))
+        );
+        assert_eq!(key(KeyCode::Left, KeyModifiers::CONTROL), None);
+        assert_eq!(
+            key(KeyCode::Left, KeyModifiers::SHIFT),
+            Some(Key::ShiftLeft)
+        );
+    }
 }

@@ -21,7 +21,7 @@ fn energy_error_early_and_late(
         tolerance: 1e-9,
         step: Some(step),
     };
-    let mut integ = build(method, problem, settings, t_end);
+    let mut integ = build(method, problem, settings, t_end).expect("a concrete method");
     let e0 = energy(problem.params(), &initial_state(problem.start()));
     let (mut early, mut late) = (0.0f64, 0.0f64);
     while integ.time() < t_end {

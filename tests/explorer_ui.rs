@@ -1,51 +1,43 @@
 //! Whole screens rendered through ratatui's `TestBackend`, snapshotted with insta at 80×24 and
 //! 160×48, with the colours and styles of key cells asserted separately.
 
+mod common;
+
+use common::Headless;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
 use ratatui::style::{Color, Modifier};
 
-use rattleback::app::{App, Key, Options};
+use rattleback::app::{App, Key, PlanState};
 use rattleback::physics::Method;
-use rattleback::scenario::shipped::resolve;
-use rattleback::sim::{Session, SimEvent};
-use rattleback::ui::{self, UiOptions};
+use rattleback::scenario::shipped::{SHIPPED, resolve};
+use rattleback::ui::{self, Cache, UiOptions};
 
-/// The default preset, run synchronously to `t` (deterministic, no threads).
+/// The default preset, played through the worker's interpreter until the display shows `t`.
 fn app_at(t: f64) -> App {
     preset_at("subcritical", t)
 }
 
 fn preset_at(name: &str, t: f64) -> App {
-    let preset = resolve(name, &[]).expect("shipped preset");
-    let (mut app, commands) = App::new(&preset, Options { fps: 30.0 });
-    let spec = commands
-        .iter()
-        .find_map(|c| match c {
-            rattleback::sim::Command::Restart { spec, .. } => Some(*spec),
-            _ => None,
-        })
-        .expect("a restart");
-    let mut session = Session::new(app.generation, spec);
-    app.on_sim(SimEvent::Started {
-        generation: app.generation,
-        method: session.method(),
-    });
-    let (events, _) = session.advance(t, 0.02, usize::MAX);
-    for e in events {
-        app.on_sim(e);
+    let mut h = Headless::new(name);
+    if t > 0.0 {
+        h.play_until(t, 4.0);
+        h.key(Key::Char(' '));
     }
-    app.reached = t;
-    app
+    h.app
 }
 
-fn render(app: &mut App, width: u16, height: u16) -> Buffer {
+fn render_with(app: &App, width: u16, height: u16, options: &UiOptions) -> Buffer {
     let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
     terminal
-        .draw(|f| ui::draw(f, app, &UiOptions::default()))
+        .draw(|f| ui::draw(f, app, options, &mut Cache::default()))
         .unwrap();
     terminal.backend().buffer().clone()
+}
+
+fn render(app: &App, width: u16, height: u16) -> Buffer {
+    render_with(app, width, height, &UiOptions::default())
 }
 
 fn text(buffer: &Buffer) -> String {
@@ -76,8 +68,8 @@ fn find(buffer: &Buffer, needle: &str) -> Option<(u16, u16)> {
 
 #[test]
 fn screen_80x24_after_ten_seconds() {
-    let mut app = app_at(10.0);
-    let buffer = render(&mut app, 80, 24);
+    let app = app_at(10.0);
+    let buffer = render(&app, 80, 24);
     insta::assert_snapshot!("screen_80x24", text(&buffer));
 }
 
@@ -85,7 +77,7 @@ fn screen_80x24_after_ten_seconds() {
 fn screen_160x48_with_series_pane() {
     let mut app = app_at(10.0);
     app.on_key(Key::Char('t'));
-    let buffer = render(&mut app, 160, 48);
+    let buffer = render(&app, 160, 48);
     insta::assert_snapshot!("screen_160x48_series", text(&buffer));
 }
 
@@ -93,14 +85,19 @@ fn screen_160x48_with_series_pane() {
 fn help_overlay_lists_the_bindings() {
     let mut app = app_at(0.0);
     app.on_key(Key::Char('?'));
-    let buffer = render(&mut app, 80, 24);
+    let buffer = render(&app, 80, 24);
     insta::assert_snapshot!("help_80x24", text(&buffer));
+    app.on_key(Key::Char('?'));
+    let legend = text(&render(&app, 80, 24));
+    for what in ["separatrix", "limit", "ΔE/E", "vs critical", "REC"] {
+        assert!(legend.contains(what), "legend lacks {what}:\n{legend}");
+    }
 }
 
 #[test]
 fn key_cells_have_their_styles_and_colours() {
-    let mut app = app_at(10.0);
-    let buffer = render(&mut app, 80, 24);
+    let app = app_at(10.0);
+    let buffer = render(&app, 80, 24);
     // The selected row is reverse video: visible without colour.
     let (x, y) = find(&buffer, "› ix").expect("selected row");
     assert!(buffer[(x + 2, y)].modifier.contains(Modifier::REVERSED));
@@ -115,13 +112,13 @@ fn key_cells_have_their_styles_and_colours() {
         assert!(colours.contains(&colour), "no {what} cell ({colour:?})");
     }
     // At k = 1e4 the limit's trail lies under the full one; with a soft spring they part.
-    let soft = render(&mut preset_at("soft-spring", 20.0), 80, 24);
+    let soft = render(&preset_at("soft-spring", 20.0), 80, 24);
     assert!(
         soft.content().iter().any(|c| c.fg == Color::Magenta),
         "no effective-overlay cell"
     );
     // The trail runs along the start's own level and covers it; before it, the level shows.
-    let fresh = render(&mut app_at(0.0), 80, 24);
+    let fresh = render(&app_at(0.0), 80, 24);
     assert!(
         fresh.content().iter().any(|c| c.fg == Color::Cyan),
         "no start-level cell"
@@ -130,12 +127,15 @@ fn key_cells_have_their_styles_and_colours() {
 
 #[test]
 fn status_counts_reversals_and_names_the_chosen_method() {
-    let mut app = app_at(10.0);
-    let buffer = render(&mut app, 160, 48);
+    let app = app_at(10.0);
+    let buffer = render(&app, 160, 48);
     let screen = text(&buffer);
     // Reversals of the limit before t = 10: 2.217 and 6.651.
-    assert!(screen.contains("reversals 2 (limit 2)"), "{screen}");
-    let chosen = app.method_in_use.expect("worker said");
+    assert!(screen.contains("reversals 2 limit 2"), "{screen}");
+    let PlanState::Running { plan, .. } = app.run.plan else {
+        panic!("worker said nothing")
+    };
+    let chosen = plan.method;
     assert_ne!(chosen, Method::Auto);
     assert!(screen.contains(&format!("auto→{chosen}")), "{screen}");
 }
@@ -143,8 +143,8 @@ fn status_counts_reversals_and_names_the_chosen_method() {
 #[test]
 fn tiny_terminals_get_a_message_not_a_panic() {
     for (w, h) in [(20, 5), (79, 24), (80, 23), (1, 1)] {
-        let mut app = app_at(0.0);
-        let buffer = render(&mut app, w, h);
+        let app = app_at(0.0);
+        let buffer = render(&app, w, h);
         if w >= 20 {
             assert!(text(&buffer).contains("too small"), "{w}x{h}");
         }
@@ -153,14 +153,12 @@ fn tiny_terminals_get_a_message_not_a_panic() {
 
 #[test]
 fn marker_option_changes_the_canvas() {
-    let mut app = app_at(5.0);
-    let mut terminal = Terminal::new(TestBackend::new(80, 24)).unwrap();
+    let app = app_at(5.0);
     let options = UiOptions {
         marker: ratatui::symbols::Marker::Dot,
         ..UiOptions::default()
     };
-    terminal.draw(|f| ui::draw(f, &mut app, &options)).unwrap();
-    let screen = text(terminal.backend().buffer());
+    let screen = text(&render_with(&app, 80, 24, &options));
     assert!(
         !screen
             .chars()
@@ -168,4 +166,147 @@ fn marker_option_changes_the_canvas() {
         "Braille with --marker dot"
     );
     assert!(screen.contains('•'), "dots expected");
+}
+
+/// Item 5: at 80 and 100 columns the footer keeps `? help` and `q quit`; the status bar drops
+/// whole fields and never cuts a number; any method name fits the panel.
+#[test]
+fn narrow_screens_drop_whole_fields_never_parts() {
+    let mut app = preset_at("subcritical", 3.0);
+    for width in [80, 100, 160] {
+        let screen = text(&render(&app, width, 24));
+        let rows: Vec<&str> = screen.lines().collect();
+        let footer = rows[rows.len() - 1];
+        assert!(
+            footer.contains("? help") && footer.contains("q quit"),
+            "{width}: {footer}"
+        );
+        let status = rows[rows.len() - 2];
+        // Every number of the status bar is whole: ΔE/E, when shown, has its exponent.
+        if let Some(i) = status.find("ΔE/E") {
+            let field: String = status[i..].split('│').next().unwrap().trim().to_owned();
+            assert!(
+                field.contains('e'),
+                "{width}: cut field '{field}' in '{status}'"
+            );
+        }
+        assert!(status.contains("reversals"), "{width}: {status}");
+    }
+    // The longest method name fits the panel.
+    for _ in 0..9 {
+        app.on_key(Key::Down);
+    }
+    assert_eq!(app.field().label(), "method");
+    app.on_key(Key::Enter);
+    for c in "effective-corrected".chars() {
+        app.on_key(Key::Char(c));
+    }
+    app.on_key(Key::Enter);
+    let screen = text(&render(&app, 80, 24));
+    assert!(screen.contains("method effective-corrected"), "{screen}");
+    assert!(
+        screen.contains("tolerance"),
+        "the next row survives:\n{screen}"
+    );
+}
+
+/// Item 5: under `NO_COLOR` the curves differ by shape: the limit's marks, the dotted levels,
+/// the solid separatrix; bold for the current point.
+#[test]
+fn curves_are_told_apart_without_colour() {
+    let spec = rattleback::scenario::theme::theme("default").unwrap();
+    let options = UiOptions::new(ratatui::symbols::Marker::Braille, &spec, &[], true);
+    let app = preset_at("soft-spring", 20.0);
+    let buffer = render_with(&app, 80, 24, &options);
+    assert!(buffer.content().iter().all(|c| c.fg == Color::Reset));
+    let screen = text(&buffer);
+    assert!(screen.contains('∘'), "limit marks:\n{screen}");
+    let (x, y) = find(&buffer, "●").expect("current point");
+    assert!(buffer[(x, y)].modifier.contains(Modifier::BOLD));
+}
+
+/// Item 5: a theme sets the background; `T` names the theme it switched to.
+#[test]
+fn themes_set_their_background_and_t_names_them() {
+    let (all, _) = rattleback::scenario::theme::themes();
+    let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
+    let first = rattleback::scenario::theme::theme("default").unwrap();
+    let options = UiOptions::new(ratatui::symbols::Marker::Braille, &first, &all, false);
+    let mut h = Headless::new("subcritical");
+    let (app, _) = App::new(
+        &resolve("subcritical", &[]).unwrap(),
+        rattleback::app::Options {
+            fps: 30.0,
+            theme_names: options.theme_names(),
+        },
+    );
+    h.app = app;
+    h.key(Key::Char('T'));
+    let screen = text(&render_with(&h.app, 80, 24, &options));
+    assert!(screen.contains("Dark"), "{screen}");
+    let buffer = render_with(&h.app, 80, 24, &options);
+    assert_eq!(buffer[(40, 10)].bg, Color::Rgb(0x1e, 0x21, 0x27));
+}
+
+/// Item 5: the regime is the limit's, and the side of the threshold a signed distance.
+#[test]
+fn the_regime_is_labelled_as_the_limits() {
+    for name in ["just-above", "just-below"] {
+        let screen = text(&render(&app_at_preset(name), 80, 24));
+        assert!(screen.contains("limit regime"), "{screen}");
+        let sign = if name == "just-above" { "+" } else { "-" };
+        let row = screen
+            .lines()
+            .find(|l| l.contains("vs critical"))
+            .expect("distance row");
+        assert!(row.contains(sign) && row.contains('%'), "{name}: {row}");
+    }
+}
+
+fn app_at_preset(name: &str) -> App {
+    preset_at(name, 0.0)
+}
+
+/// Item 8: the picker scrolls at 80×24: the selection stays on screen.
+#[test]
+fn the_picker_keeps_the_selection_on_screen() {
+    let mut app = app_at(0.0);
+    let (entries, _) = rattleback::scenario::shipped::catalogue();
+    let many: Vec<_> = (0..3)
+        .flat_map(|i| {
+            entries.iter().cloned().map(move |mut e| {
+                e.name = format!("p{i}-{}", e.name);
+                e
+            })
+        })
+        .collect();
+    let last = many.last().unwrap().name.clone();
+    app.on_outcome(rattleback::app::Outcome::Catalogue(many, Vec::new()));
+    for _ in 0..29 {
+        app.on_key(Key::Down);
+    }
+    let screen = text(&render(&app, 80, 24));
+    assert!(screen.contains(&last), "{screen}");
+    assert!(screen.contains("30/30"), "{screen}");
+}
+
+/// Every shipped preset draws at 80×24 at ×1 and at top speed with its numbers whole.
+#[test]
+fn every_shipped_preset_draws_at_80x24() {
+    for (name, _) in SHIPPED {
+        for speed in [1.0, 1024.0] {
+            let mut h = Headless::new(name);
+            h.play_until(2.0, speed);
+            let screen = text(&render(&h.app, 80, 24));
+            let status = screen.lines().nth(22).unwrap();
+            assert!(
+                status.contains(&format!("t {:.2}", h.app.run.shown)),
+                "{name}: {status}"
+            );
+            assert!(
+                status.contains(&format!("reversals {}", h.app.run.reversals_shown().len())),
+                "{name}: {status}"
+            );
+        }
+    }
 }

@@ -131,11 +131,13 @@ fn unreadable_file_is_reported_not_panicked() {
 #[test]
 fn no_color_leaves_no_colour_but_keeps_the_selection_visible() {
     let preset = resolve("subcritical", &[]).unwrap();
-    let (mut app, _) = App::new(&preset, Options { fps: 30.0 });
+    let (app, _) = App::new(&preset, Options::at(30.0));
     let spec = ThemeSpec::parse(SHIPPED_THEMES[0].1, "default", "default").unwrap();
-    let options = UiOptions::new(ratatui::symbols::Marker::Braille, &spec, true);
+    let options = UiOptions::new(ratatui::symbols::Marker::Braille, &spec, &[], true);
     let mut terminal = Terminal::new(TestBackend::new(80, 24)).unwrap();
-    terminal.draw(|f| ui::draw(f, &mut app, &options)).unwrap();
+    terminal
+        .draw(|f| ui::draw(f, &app, &options, &mut ui::Cache::default()))
+        .unwrap();
     let buffer = terminal.backend().buffer();
     assert!(
         buffer.content().iter().all(|c| c.fg == Color::Reset),

@@ -3,11 +3,12 @@
 
 use std::process::Command as Process;
 
+mod common;
+
+use common::Headless;
 use rattleback::app::journal::Event;
-use rattleback::app::{App, Key, Options};
+use rattleback::app::{Key, Outcome};
 use rattleback::record::{self, FORMAT, Header, Line, RecordError, Recorder, Size, VERSION};
-use rattleback::scenario::shipped::resolve;
-use rattleback::sim::{Command, Session};
 
 fn bin(args: &[&str]) -> (i32, String, String) {
     let out = Process::new(env!("CARGO_BIN_EXE_rattleback"))
@@ -36,26 +37,17 @@ fn temp(name: &str) -> std::path::PathBuf {
     p
 }
 
-/// Runs commands through a synchronous session, feeding its events back to the app.
-fn pump(app: &mut App, session: &mut Option<Session>, commands: Vec<Command>) {
-    rattleback::sim::drive(session, commands, &mut |e| {
-        app.on_sim(e);
-    });
-}
-
 #[test]
 fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
-    let preset = resolve("subcritical", &[]).unwrap();
-    let (mut app, commands) = App::new(&preset, Options { fps: 30.0 });
-    let mut session = None;
-    pump(&mut app, &mut session, commands);
+    let mut h = Headless::new("subcritical");
+    let app = &h.app;
     let header = Header {
         format: FORMAT.to_owned(),
         version: VERSION,
         program: "test".to_owned(),
-        preset: app.to_preset(&app.name).to_toml(),
-        method: app.settings.method.name().to_owned(),
-        tolerance: app.settings.tolerance,
+        preset: app.to_preset(&app.scenario.name).to_toml(),
+        method: app.scenario.settings.method.name().to_owned(),
+        tolerance: app.scenario.settings.tolerance,
         terminal: Size {
             width: 80,
             height: 24,
@@ -63,44 +55,50 @@ fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
         theme: 0,
         fps: 30.0,
     };
-    app.recording = true;
-    let script: Vec<Key> = vec![Key::Char(' ')];
-    for k in script {
-        let c = app.on_key(k);
-        pump(&mut app, &mut session, c);
-    }
-    let c = app.tick(1.7);
-    pump(&mut app, &mut session, c);
-    let c = vec![app.checkpoint()];
-    pump(&mut app, &mut session, c);
+    assert_eq!(
+        h.app.on_key(Key::Char('R')),
+        vec![rattleback::app::Effect::StartRecording]
+    );
+    h.app
+        .on_outcome(Outcome::Recording(Ok("recorded.jsonl".to_owned())));
+    h.key(Key::Char(' '));
+    h.tick(1.7);
+    let c = vec![h.app.checkpoint()];
+    h.exec(c);
     for k in [Key::Char('j'), Key::Char('j'), Key::Char('L')] {
-        let c = app.on_key(k); // iz coarse up: restarts
-        pump(&mut app, &mut session, c);
+        h.key(k); // iz coarse up: restarts
     }
     for _ in 0..3 {
-        let c = app.tick(0.9);
-        pump(&mut app, &mut session, c);
+        h.tick(0.9);
     }
-    let c = vec![app.checkpoint()];
-    pump(&mut app, &mut session, c);
-    assert!(
-        app.journal
+    // Paused after the worker ran ahead: the checkpoint is served at its step's end.
+    h.key(Key::Char(' '));
+    let c = vec![h.app.checkpoint()];
+    h.exec(c);
+    let journal = h.app.take_journal();
+    assert_eq!(
+        journal
             .iter()
             .filter(|(_, _, e)| matches!(e, Event::Checkpoint { .. }))
-            .count()
-            == 2
+            .count(),
+        2
     );
     assert!(
-        app.journal
+        journal
             .iter()
             .any(|(_, _, e)| matches!(e, Event::Set { field, .. } if field == "iz"))
+    );
+    assert!(
+        journal
+            .iter()
+            .any(|(_, _, e)| matches!(e, Event::Plan { .. })),
+        "the resolved plan is recorded"
     );
 
     let path = temp("recorded.jsonl");
     let mut rec = Recorder::create(&path, &header).unwrap();
-    let lines: Vec<Line> = app
-        .journal
-        .drain(..)
+    let lines: Vec<Line> = journal
+        .into_iter()
         .enumerate()
         .map(|(i, (t, generation, event))| Line {
             wall: i as f64 * 0.5,

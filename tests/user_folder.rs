@@ -5,7 +5,8 @@
 
 use std::process::Command;
 
-use rattleback::app::{App, Key, Options};
+use rattleback::app::mode::{Confirm, PickerRow};
+use rattleback::app::{App, Key, Mode, Options};
 use rattleback::scenario::shipped::resolve;
 
 const USER: &str = "[preset]\nname = \"My lecture\"\ndescription = \"A user preset.\"\n[body]\nix = 3.0\niy = 1.0\niz = 1.0\n[spring]\nk = 100.0\n[initial]\ngamma_dot = 1.0\nalpha_dot = 0.2\n[run]\nt_end = 5.0\n";
@@ -24,6 +25,7 @@ fn bin(config: &std::path::Path, args: &[&str]) -> (i32, String, String) {
 }
 
 #[test]
+#[allow(clippy::too_many_lines)] // One scenario, told start to end.
 fn user_folder_end_to_end() {
     let config = std::env::temp_dir().join(format!("rattleback-config-{}", std::process::id()));
     let presets = config.join("presets");
@@ -65,68 +67,84 @@ fn user_folder_end_to_end() {
     );
     std::fs::remove_file(presets.join("lecture-copy.toml")).unwrap();
 
-    // The explorer: save a user preset, pick it, and survive a broken one.
-    let (mut app, _) = App::new(&resolve("subcritical", &[]).unwrap(), Options { fps: 30.0 });
-    app.user_dir = Some(presets.clone());
-    app.on_key(Key::Char('s'));
-    for c in "saved-one".chars() {
-        app.on_key(Key::Char(c));
-    }
-    app.on_key(Key::Enter);
-    assert!(
-        presets.join("saved-one.toml").is_file(),
-        "{:?}",
-        app.message
-    );
+    // The explorer: save a user preset, pick it, and survive a broken one. File effects run
+    // as the loop runs them.
+    let (mut app, _) = App::new(&resolve("subcritical", &[]).unwrap(), Options::at(30.0));
+    let dir = Some(presets.clone());
+    let mut press = |app: &mut App, key: Key| {
+        let mut effects = app.on_key(key);
+        let mut n = 0;
+        while let Some(e) = effects.pop() {
+            if let Some(o) = rattleback::explorer::file_outcome(&e, dir.as_deref()) {
+                effects.extend(app.on_outcome(o));
+            }
+            n += 1;
+        }
+        n
+    };
+    let type_in = |app: &mut App, text: &str| {
+        for c in text.chars() {
+            press(app, Key::Char(c));
+        }
+    };
+    press(&mut app, Key::Char('s'));
+    type_in(&mut app, "saved-one");
+    press(&mut app, Key::Enter);
+    type_in(&mut app, "for the lecture");
+    press(&mut app, Key::Enter);
+    let saved = std::fs::read_to_string(presets.join("saved-one.toml"))
+        .unwrap_or_else(|e| panic!("{e}: {:?}", app.status));
+    assert!(saved.contains("for the lecture"), "{saved}");
     // Saving again under the same name asks first.
-    app.on_key(Key::Char('s'));
-    for c in "saved-one".chars() {
-        app.on_key(Key::Char(c));
-    }
-    app.on_key(Key::Enter);
+    press(&mut app, Key::Char('s'));
+    type_in(&mut app, "saved-one");
+    press(&mut app, Key::Enter);
+    press(&mut app, Key::Enter);
     assert!(
-        app.saving.as_ref().is_some_and(|p| p.confirm),
-        "must ask before overwriting"
+        matches!(&app.mode, Mode::Prompt(p) if p.confirm == Confirm::Overwrite),
+        "must ask before overwriting: {:?}",
+        app.mode
     );
-    app.on_key(Key::Esc);
+    press(&mut app, Key::Esc);
 
-    app.on_key(Key::Char('p'));
-    let picker = app.picker.as_ref().expect("picker open");
-    let i = picker
-        .entries
-        .iter()
-        .position(|e| e.name == "lecture")
-        .expect("user preset in picker");
-    while app.picker.as_ref().unwrap().selected != i {
-        app.on_key(Key::Down);
-    }
-    let commands = app.on_key(Key::Enter);
-    assert!(!commands.is_empty(), "loading restarts");
-    assert_eq!(app.name, "My lecture");
-    assert!((app.settings.params.ix - 3.0).abs() < 1e-15);
+    let select = |app: &mut App, press: &mut dyn FnMut(&mut App, Key) -> usize| {
+        press(app, Key::Char('p'));
+        let Mode::Picker(picker) = &app.mode else {
+            panic!("picker open")
+        };
+        let i = picker
+            .rows
+            .iter()
+            .position(|r| matches!(r, PickerRow::Preset(e) if e.name == "lecture"))
+            .expect("user preset in picker");
+        while !matches!(&app.mode, Mode::Picker(p) if p.selected == i) {
+            press(app, Key::Down);
+        }
+    };
+    select(&mut app, &mut press);
+    press(&mut app, Key::Enter);
+    assert_eq!(app.scenario.name, "My lecture");
+    assert!((app.scenario.settings.params.ix - 3.0).abs() < 1e-15);
 
     // Broken between listing and loading: a dialog, and the current scenario stays.
-    app.on_key(Key::Char('p'));
-    let i = app
-        .picker
-        .as_ref()
-        .unwrap()
-        .entries
-        .iter()
-        .position(|e| e.name == "lecture")
-        .unwrap();
-    while app.picker.as_ref().unwrap().selected != i {
-        app.on_key(Key::Down);
-    }
+    select(&mut app, &mut press);
     std::fs::write(presets.join("lecture.toml"), "[body]\nix = -1\n").unwrap();
-    app.on_key(Key::Enter);
-    let dialog = app.dialog.clone().expect("error dialog");
+    press(&mut app, Key::Enter);
+    let Mode::Dialog(dialog) = app.mode.clone() else {
+        panic!("error dialog expected: {:?}", app.mode)
+    };
     assert!(
         dialog.contains("lecture.toml") && dialog.contains("keeps the current"),
         "{dialog}"
     );
-    assert_eq!(app.name, "My lecture");
-    app.on_key(Key::Char('x'));
-    assert!(app.dialog.is_none() && !app.quit);
+    assert_eq!(app.scenario.name, "My lecture");
+    press(&mut app, Key::Char('x'));
+    assert!(app.mode == Mode::Normal && !app.quit);
+    // The broken file is its own row of the picker, with its own error.
+    press(&mut app, Key::Char('p'));
+    let Mode::Picker(picker) = &app.mode else {
+        panic!("picker open")
+    };
+    assert!(picker.rows.iter().any(|r| matches!(r, PickerRow::Broken { name, error } if name == "lecture" && error.contains("ix"))));
     let _ = std::fs::remove_dir_all(&config);
 }

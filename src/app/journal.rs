@@ -63,6 +63,14 @@ pub enum Event {
         /// Its title.
         title: String,
     },
+    /// The concrete plan a run integrates (what `auto` resolved to), so replay uses it and no
+    /// later change of `auto` can change an old session (format 2 on).
+    Plan {
+        /// What it was resolved for.
+        key: crate::sim::PlanKey,
+        /// The plan.
+        plan: crate::physics::Resolved,
+    },
     /// The exact state of the run at simulated time `t`.
     Checkpoint {
         /// `(gamma, alpha, gamma_dot, alpha_dot)`.

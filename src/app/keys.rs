@@ -1,6 +1,5 @@
-//! Keys, actions and the keymap table. The help overlay is generated from the table, so it
-//! always lists the actual bindings; the footer is a short chosen subset (checked against the
-//! table by a test).
+//! Keys, actions and the keymap tables (the explorer's and the replay's). The help overlay and
+//! the footers are generated from the tables, so they always list the actual bindings.
 
 /// A key press, independent of the terminal library.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -29,8 +28,10 @@ pub enum Key {
     Esc,
     /// Backspace.
     Backspace,
-    /// Ctrl-C.
-    CtrlC,
+    /// A letter with Ctrl (lower case): Ctrl-C, Ctrl-L, Ctrl-Z…
+    Ctrl(char),
+    /// A character with Alt (Meta).
+    Alt(char),
 }
 
 /// What a key asks for.
@@ -96,202 +97,261 @@ pub enum Action {
     Chapter,
     /// Start or stop recording.
     ToggleRecording,
+    /// Redraw the whole screen (Ctrl-L).
+    Redraw,
+    /// Suspend to the shell (Ctrl-Z); `fg` resumes.
+    Suspend,
+    /// Back to the preset's view: zoom 1, no pan.
+    ResetView,
 }
 
-/// One row of the keymap.
+/// One row of a keymap.
 #[derive(Clone, Copy, Debug)]
-pub struct Binding {
+pub struct Binding<A: 'static> {
     /// Keys that trigger it.
     pub keys: &'static [Key],
     /// How the keys are written in help.
     pub label: &'static str,
     /// The action.
-    pub action: Action,
+    pub action: A,
     /// What it does.
     pub help: &'static str,
+    /// In the footer: `(keys, word, rank)`; lower ranks are dropped last when it is narrow.
+    pub footer: Option<(&'static str, &'static str, u8)>,
 }
 
 /// The keymap, in the order help lists it.
-pub const KEYMAP: &[Binding] = &[
+pub const KEYMAP: &[Binding<Action>] = &[
     Binding {
         keys: &[Key::Up, Key::Char('k')],
         label: "↑↓ / k j",
         action: Action::SelectPrev,
         help: "select the previous / next parameter",
+        footer: Some(("↑↓", "select", 5)),
     },
     Binding {
         keys: &[Key::Down, Key::Char('j')],
         label: "",
         action: Action::SelectNext,
         help: "",
+        footer: None,
     },
     Binding {
         keys: &[Key::Left, Key::Char('h')],
         label: "←→ / h l",
         action: Action::Decrease,
         help: "decrease / increase (fine; k on a log scale)",
+        footer: Some(("←→", "change", 5)),
     },
     Binding {
         keys: &[Key::Right, Key::Char('l')],
         label: "",
         action: Action::Increase,
         help: "",
+        footer: None,
     },
     Binding {
         keys: &[Key::Char('H')],
         label: "H / L",
         action: Action::DecreaseCoarse,
         help: "decrease / increase (coarse)",
+        footer: None,
     },
     Binding {
         keys: &[Key::Char('L')],
         label: "",
         action: Action::IncreaseCoarse,
         help: "",
+        footer: None,
     },
     Binding {
         keys: &[Key::Enter],
         label: "Enter",
         action: Action::Edit,
         help: "type an exact value",
+        footer: Some(("Enter", "edit", 6)),
     },
     Binding {
         keys: &[Key::Char(' ')],
         label: "space",
         action: Action::TogglePlay,
         help: "play / pause",
+        footer: Some(("space", "play", 1)),
     },
     Binding {
         keys: &[Key::Char('.')],
         label: ".",
         action: Action::Step,
         help: "single step (paused)",
+        footer: Some((".", "step", 3)),
     },
     Binding {
         keys: &[Key::Char('r')],
         label: "r",
         action: Action::Reset,
         help: "reset to t = 0",
+        footer: Some(("r", "reset", 4)),
     },
     Binding {
         keys: &[Key::Char('+'), Key::Char('=')],
         label: "+/-",
         action: Action::Faster,
         help: "faster / slower",
+        footer: Some(("+/-", "speed", 2)),
     },
     Binding {
         keys: &[Key::Char('-'), Key::Char('_')],
         label: "",
         action: Action::Slower,
         help: "",
+        footer: None,
     },
     Binding {
         keys: &[Key::Char('e')],
         label: "e / t",
         action: Action::ToggleEffective,
         help: "effective overlay / time-series pane",
+        footer: Some(("e", "limit", 7)),
     },
     Binding {
         keys: &[Key::Char('t')],
         label: "",
         action: Action::ToggleSeries,
         help: "",
+        footer: Some(("t", "series", 7)),
     },
     Binding {
         keys: &[Key::Char('z')],
         label: "z/Z",
         action: Action::ZoomIn,
         help: "zoom in / out",
+        footer: Some(("z/Z", "zoom", 8)),
     },
     Binding {
         keys: &[Key::Char('Z')],
         label: "",
         action: Action::ZoomOut,
         help: "",
+        footer: None,
     },
     Binding {
         keys: &[Key::ShiftLeft],
         label: "shift+arrows",
         action: Action::PanLeft,
         help: "pan",
+        footer: None,
     },
     Binding {
         keys: &[Key::ShiftRight],
         label: "",
         action: Action::PanRight,
         help: "",
+        footer: None,
     },
     Binding {
         keys: &[Key::ShiftUp],
         label: "",
         action: Action::PanUp,
         help: "",
+        footer: None,
     },
     Binding {
         keys: &[Key::ShiftDown],
         label: "",
         action: Action::PanDown,
         help: "",
+        footer: None,
     },
     Binding {
         keys: &[Key::Char('w')],
-        label: "w",
+        label: "w / 0",
         action: Action::ToggleWrap,
-        help: "wrap alpha to one period",
+        help: "wrap alpha to one period / reset the view",
+        footer: Some(("w", "wrap", 9)),
+    },
+    Binding {
+        keys: &[Key::Char('0')],
+        label: "",
+        action: Action::ResetView,
+        help: "",
+        footer: None,
     },
     Binding {
         keys: &[Key::Char('c')],
         label: "c",
         action: Action::ClearTrail,
         help: "clear the trail",
+        footer: None,
     },
     Binding {
         keys: &[Key::Char('p')],
         label: "p",
         action: Action::OpenPicker,
         help: "pick a preset",
+        footer: Some(("p", "presets", 6)),
     },
     Binding {
         keys: &[Key::Char('s')],
         label: "s",
         action: Action::Save,
         help: "save as a user preset",
+        footer: Some(("s", "save", 9)),
     },
     Binding {
         keys: &[Key::Char('T')],
         label: "T",
         action: Action::CycleTheme,
         help: "next colour theme",
+        footer: None,
     },
     Binding {
         keys: &[Key::Char('R')],
         label: "R",
         action: Action::ToggleRecording,
         help: "start / stop recording a session",
+        footer: None,
     },
     Binding {
         keys: &[Key::Char('n')],
         label: "n/m",
         action: Action::Note,
         help: "note / chapter marker (recording)",
+        footer: None,
     },
     Binding {
         keys: &[Key::Char('m')],
         label: "",
         action: Action::Chapter,
         help: "",
+        footer: None,
     },
     Binding {
         keys: &[Key::Char('?')],
         label: "?",
         action: Action::ToggleHelp,
-        help: "this help",
+        help: "this help; ? again: the legend",
+        footer: Some(("?", "help", 0)),
     },
     Binding {
-        keys: &[Key::Char('q'), Key::Esc, Key::CtrlC],
+        keys: &[Key::Ctrl('l')],
+        label: "Ctrl-L / Z",
+        action: Action::Redraw,
+        help: "redraw the screen / suspend (fg resumes)",
+        footer: None,
+    },
+    Binding {
+        keys: &[Key::Ctrl('z')],
+        label: "",
+        action: Action::Suspend,
+        help: "",
+        footer: None,
+    },
+    Binding {
+        keys: &[Key::Char('q'), Key::Esc, Key::Ctrl('c')],
         label: "q/Esc/Ctrl-C",
         action: Action::Quit,
         help: "quit",
+        footer: Some(("q", "quit", 0)),
     },
 ];
 
@@ -304,48 +364,148 @@ pub fn action_for(key: Key) -> Option<Action> {
         .map(|b| b.action)
 }
 
-/// Short hints for the footer, from the table.
-pub const FOOTER: &[(&str, &str)] = &[
-    ("space", "play"),
-    (".", "step"),
-    ("r", "reset"),
-    ("+/-", "speed"),
-    ("↑↓", "select"),
-    ("←→", "change"),
-    ("Enter", "edit"),
-    ("e", "limit"),
-    ("t", "series"),
-    ("z/Z", "zoom"),
-    ("w", "wrap"),
-    ("p", "presets"),
-    ("s", "save"),
-    ("?", "help"),
-    ("q", "quit"),
+/// What a key does while a session is replayed (the recording drives the explorer).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReplayAction {
+    /// Pause or resume the replay.
+    TogglePause,
+    /// Replay faster.
+    Faster,
+    /// Replay slower.
+    Slower,
+    /// Jump to the next chapter.
+    NextChapter,
+    /// Jump back to the previous chapter.
+    PreviousChapter,
+    /// Show or hide the help.
+    ToggleHelp,
+    /// Redraw the screen.
+    Redraw,
+    /// Suspend to the shell.
+    Suspend,
+    /// Leave.
+    Quit,
+}
+
+/// The replay's keymap, in the order help lists it.
+pub const REPLAY_KEYMAP: &[Binding<ReplayAction>] = &[
+    Binding {
+        keys: &[Key::Char(' ')],
+        label: "space",
+        action: ReplayAction::TogglePause,
+        help: "pause / resume the replay",
+        footer: Some(("space", "pause", 1)),
+    },
+    Binding {
+        keys: &[Key::Char('+'), Key::Char('=')],
+        label: "+/-",
+        action: ReplayAction::Faster,
+        help: "replay faster / slower",
+        footer: Some(("+/-", "pace", 2)),
+    },
+    Binding {
+        keys: &[Key::Char('-'), Key::Char('_')],
+        label: "",
+        action: ReplayAction::Slower,
+        help: "",
+        footer: None,
+    },
+    Binding {
+        keys: &[Key::Char(']')],
+        label: "] / [",
+        action: ReplayAction::NextChapter,
+        help: "next / previous chapter",
+        footer: Some(("[ ]", "chapters", 1)),
+    },
+    Binding {
+        keys: &[Key::Char('[')],
+        label: "",
+        action: ReplayAction::PreviousChapter,
+        help: "",
+        footer: None,
+    },
+    Binding {
+        keys: &[Key::Char('?')],
+        label: "?",
+        action: ReplayAction::ToggleHelp,
+        help: "this help",
+        footer: Some(("?", "help", 0)),
+    },
+    Binding {
+        keys: &[Key::Ctrl('l')],
+        label: "Ctrl-L",
+        action: ReplayAction::Redraw,
+        help: "redraw the screen",
+        footer: None,
+    },
+    Binding {
+        keys: &[Key::Ctrl('z')],
+        label: "Ctrl-Z",
+        action: ReplayAction::Suspend,
+        help: "suspend to the shell (fg resumes)",
+        footer: None,
+    },
+    Binding {
+        keys: &[Key::Char('q'), Key::Esc, Key::Ctrl('c')],
+        label: "q/Esc/Ctrl-C",
+        action: ReplayAction::Quit,
+        help: "quit",
+        footer: Some(("q", "quit", 0)),
+    },
 ];
 
-/// Footer hints while replaying a session (keys drive the replay, not the explorer).
-pub const REPLAY_FOOTER: &[(&str, &str)] = &[
-    ("space", "pause"),
-    ("+/-", "pace"),
-    ("]", "next chapter"),
-    ("[", "previous chapter"),
-    ("q", "quit"),
-];
+/// The replay action bound to `key`, if any.
+#[must_use]
+pub fn replay_action_for(key: Key) -> Option<ReplayAction> {
+    REPLAY_KEYMAP
+        .iter()
+        .find(|b| b.keys.contains(&key))
+        .map(|b| b.action)
+}
+
+/// A footer hint: the keys, the word, and its rank (0 is never dropped).
+pub type Hint = (&'static str, &'static str, u8);
+
+/// The footer hints of a keymap, in table order.
+#[must_use]
+pub fn footer<A>(map: &[Binding<A>]) -> Vec<Hint> {
+    map.iter().filter_map(|b| b.footer).collect()
+}
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    #[test]
-    fn every_key_maps_to_one_action_and_footer_keys_exist() {
+    fn unique<A>(map: &[Binding<A>]) {
         let mut seen = std::collections::HashSet::new();
-        for b in KEYMAP {
+        for b in map {
             for k in b.keys {
                 assert!(seen.insert(*k), "{k:?} bound twice");
             }
         }
+    }
+
+    #[test]
+    fn every_key_maps_to_one_action() {
+        unique(KEYMAP);
+        unique(REPLAY_KEYMAP);
         assert_eq!(action_for(Key::Char('q')), Some(Action::Quit));
-        assert_eq!(action_for(Key::CtrlC), Some(Action::Quit));
+        assert_eq!(action_for(Key::Ctrl('c')), Some(Action::Quit));
+        assert_eq!(action_for(Key::Ctrl('l')), Some(Action::Redraw));
+        assert_eq!(action_for(Key::Ctrl('p')), None, "Ctrl-P is not p");
+        assert_eq!(action_for(Key::Alt('q')), None, "Alt-q is not q");
         assert_eq!(action_for(Key::Char('x')), None);
+        assert_eq!(
+            replay_action_for(Key::Char('?')),
+            Some(ReplayAction::ToggleHelp)
+        );
+    }
+
+    #[test]
+    fn footers_come_from_the_tables_and_keep_help_and_quit() {
+        for hints in [footer(KEYMAP), footer(REPLAY_KEYMAP)] {
+            let never: Vec<&str> = hints.iter().filter(|h| h.2 == 0).map(|h| h.1).collect();
+            assert_eq!(never, ["help", "quit"]);
+        }
     }
 }

@@ -1,472 +1,466 @@
-//! Application state and actions: decides, never draws. No ratatui types here; no clock
-//! either (`tick` is handed the elapsed wall time), so every decision is testable.
+//! Application state and actions: decides, never draws. No ratatui types here, no clock and no
+//! file I/O: `tick` is handed the elapsed wall time, and what touches files, the recorder, the
+//! worker or the terminal is returned as an [`Effect`] that the loop executes and answers with
+//! an [`Outcome`]. Every decision is testable.
 //!
-//! The flow: a key becomes an [`Action`] through the keymap table; [`App::update`] changes
-//! state and returns the [`Command`]s for the worker; [`App::on_sim`] takes the worker's
-//! events; [`App::tick`] advances the simulated clock while playing.
+//! State is split by concern: the scenario (what is simulated), the run (what the worker sent
+//! and what is displayed), the view (zoom, panes, theme), one [`Mode`] for whatever has the
+//! keyboard, the status line, the caption (notes and chapters), and the journal of a recording.
 
+pub mod effects;
 pub mod fields;
 pub mod journal;
 pub mod keys;
+pub mod mode;
+pub mod panes;
 pub mod portrait;
+pub mod run;
+mod scenario;
 
-use crate::physics::effective::Effective;
-use crate::scenario::preset::{RunConfig, ViewConfig};
-use crate::scenario::shipped::{Entry, catalogue_in, resolve, user_preset_dir};
-use crate::scenario::{Preset, store};
-use crate::sim::{self, Command, Point, SimEvent};
-use fields::{Field, Settings};
-use journal::Event;
+pub use effects::{Effect, Outcome};
 pub use keys::{Action, Key};
-use portrait::{Bounds, Level, View};
+pub use mode::Mode;
+pub use run::{PlanState, RunState, TRAIL_CAP};
+pub use scenario::{Derived, Scenario};
 
-/// Most trail points kept (the oldest half is dropped beyond).
-pub const TRAIL_CAP: usize = 40_000;
-/// Samples per frame asked from the worker.
-const SAMPLES_PER_FRAME: f64 = 8.0;
+use crate::scenario::Preset;
+use crate::scenario::text::clean;
+use crate::sim::{Command, SimEvent};
+use fields::Field;
+use journal::Event;
+use mode::{Confirm, HelpPage, Picker, PickerRow, Prompt, PromptFor};
+use panes::{Pane, Panes};
+use portrait::{Bounds, View};
+
 /// Speed limits (simulated seconds per wall second).
 pub const SPEED_RANGE: (f64, f64) = (1.0 / 64.0, 1024.0);
 
 /// Options fixed at start-up.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Options {
     /// Frame-rate cap.
     pub fps: f64,
+    /// Names of the colour themes `T` cycles through.
+    pub theme_names: Vec<String>,
 }
 
-/// The preset picker (`p`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Picker {
-    /// Every preset.
-    pub entries: Vec<Entry>,
-    /// Highlighted row.
-    pub selected: usize,
-    /// Problems found in the user's folder.
-    pub problems: Vec<String>,
+impl Options {
+    /// Options at `fps` with the default theme only.
+    #[must_use]
+    pub fn at(fps: f64) -> Self {
+        Self {
+            fps,
+            theme_names: vec!["default".to_owned()],
+        }
+    }
 }
 
-/// What a text prompt is for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum PromptFor {
-    /// Saving a user preset (`s`).
-    Save,
-    /// A note in the recording (`n`).
-    Note,
-    /// A chapter marker in the recording (`m`).
-    Chapter,
-}
-
-/// A one-line text prompt.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct SavePrompt {
-    /// What it is for.
-    pub purpose: PromptFor,
-    /// The text typed so far.
-    pub name: String,
-    /// The file exists and Enter again will overwrite it (saving only).
-    pub confirm: bool,
-}
-
-/// Derived values shown read-only under the parameters.
+/// Zoom, pan, panes, overlay and theme.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Derived {
-    /// The effective model of the start.
-    pub effective: Effective,
-    /// `alpha_dot² / gamma_dot²`.
-    pub ratio: Option<f64>,
-    /// The critical ratio.
-    pub critical: Option<f64>,
+pub struct ViewState {
+    /// Zoom, pan, wrap, fixed ranges.
+    pub view: View,
+    /// The preset's view, which `0` returns to.
+    pub home: View,
+    /// Visible panes.
+    pub panes: Panes,
+    /// Effective overlay shown (and so integrated).
+    pub overlay: bool,
+    /// Index of the colour theme.
+    pub theme: usize,
+}
+
+/// A line for the user: information or an error.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Message {
+    /// The text (control characters stripped).
+    pub text: String,
+    /// Whether it reports an error.
+    pub error: bool,
+}
+
+impl Message {
+    // Always `Some`: they fill `App::status`, an `Option`, at every call site.
+    #[allow(clippy::unnecessary_wraps)]
+    fn info(text: impl Into<String>) -> Option<Self> {
+        Some(Self {
+            text: clean(&text.into()),
+            error: false,
+        })
+    }
+
+    #[allow(clippy::unnecessary_wraps)]
+    fn error(text: impl Into<String>) -> Option<Self> {
+        Some(Self {
+            text: clean(&text.into()),
+            error: true,
+        })
+    }
+}
+
+/// A note or chapter title on screen: it stays until the next one.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Caption {
+    /// A chapter (else a note).
+    pub chapter: bool,
+    /// The text.
+    pub text: String,
+    /// Simulated time it belongs to.
+    pub t: f64,
+}
+
+/// The replay's state, as shown.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReplayInfo {
+    /// Replay pace (×).
+    pub pace: f64,
+    /// Paused.
+    pub paused: bool,
+    /// Chapters passed.
+    pub chapter: usize,
+    /// Chapters in the file.
+    pub chapters: usize,
+    /// The recording's end was reached.
+    pub ended: bool,
+    /// Wall seconds of the recording replayed.
+    pub at: f64,
+    /// Wall seconds the recording lasts.
+    pub length: f64,
+}
+
+/// Whether a recording is on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum RecState {
+    /// No recording.
+    #[default]
+    Off,
+    /// Journaling.
+    On,
+    /// Waiting for the final checkpoint before closing.
+    Stopping,
+}
+
+/// The journal of a recording: semantic events `(simulated time, generation, event)`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Journal {
+    /// Whether one is on.
+    pub state: RecState,
+    entries: Vec<(f64, u64, Event)>,
 }
 
 /// The whole explorer state.
-// Independent toggles of the interface, each a plain yes/no.
-#[allow(clippy::struct_excessive_bools)]
 pub struct App {
-    /// Preset name.
-    pub name: String,
-    /// What the preset says to look for.
-    pub description: String,
-    /// Editable parameters.
-    pub settings: Settings,
-    /// Derived from the settings.
-    pub derived: Derived,
-    /// Selected row of the panel.
-    pub selected: usize,
-    /// Text being typed (Enter), if any.
-    pub editing: Option<String>,
-    /// A message for the user, and whether it is an error.
-    pub message: Option<(String, bool)>,
-    /// Playing or paused.
-    pub playing: bool,
-    /// Simulated seconds per wall second.
-    pub speed: f64,
-    /// Simulated time asked of the worker.
-    pub target: f64,
-    /// Time reached by the samples received.
-    pub reached: f64,
-    /// Stamp of the current run.
-    pub generation: u64,
-    /// Samples of the full motion.
-    pub trail: Vec<Point>,
-    /// Samples of the effective motion.
-    pub effective_trail: Vec<Point>,
-    /// Reversal times of the full motion.
-    pub reversals: Vec<f64>,
-    /// Reversal times of the effective motion.
-    pub effective_reversals: Vec<f64>,
-    /// Zoom, pan, wrap.
-    pub view: View,
-    /// Effective overlay shown.
-    pub show_effective: bool,
-    /// Time-series pane shown.
-    pub show_series: bool,
-    /// Help overlay shown.
-    pub show_help: bool,
-    /// The run reached `t_end`.
-    pub finished: bool,
-    /// The run failed.
-    pub failed: Option<String>,
-    /// Steps taken by the worker in this run.
-    pub steps: u64,
-    /// The method integrating this run (what `auto` chose), once the worker says.
-    pub method_in_use: Option<crate::physics::Method>,
-    /// Steps per wall second, smoothed.
-    pub rate: f64,
-    /// Quit requested.
-    pub quit: bool,
+    /// What is simulated.
+    pub scenario: Scenario,
+    /// The run and the display clock.
+    pub run: RunState,
+    /// Zoom, panes, overlay, theme.
+    pub view: ViewState,
+    /// What has the keyboard.
+    pub mode: Mode,
+    /// The last message.
+    pub status: Option<Message>,
+    /// The current note or chapter.
+    pub caption: Option<Caption>,
+    /// Set while a session is replayed.
+    pub replay: Option<ReplayInfo>,
+    /// The recording's journal.
+    pub journal: Journal,
     /// Start-up options.
     pub options: Options,
-    /// Index of the colour theme (the UI holds the list).
-    pub theme: usize,
-    /// The preset picker, when open.
-    pub picker: Option<Picker>,
-    /// The save prompt, when open.
-    pub saving: Option<SavePrompt>,
-    /// An error shown in a dialog until a key is pressed; the explorer keeps running.
-    pub dialog: Option<String>,
-    /// The user's preset folder (from `RATTLEBACK_CONFIG_DIR` or the platform's).
-    pub user_dir: Option<std::path::PathBuf>,
-    /// Semantic events are journaled (a recording is on).
-    pub recording: bool,
-    /// Journaled events not yet written: `(simulated time, generation, event)`.
-    pub journal: Vec<(f64, u64, Event)>,
-    /// The user pressed the record key; the explorer starts or stops the recording.
-    pub recording_requested: bool,
-    /// A session is being replayed: keys drive the replay, and the footer says so.
-    pub replaying: bool,
-    steps_at_tick: u64,
-    contour_cache: Option<(ContourKey, Vec<Level>)>,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct ContourKey {
-    settings: Settings,
-    bounds: Bounds,
-    levels: usize,
-    samples: usize,
+    /// Quit requested.
+    pub quit: bool,
 }
 
 impl App {
-    /// A paused explorer on `preset`; returns the commands that start its run.
+    /// A paused explorer on `preset`; returns the effects that start its run.
     #[must_use]
-    pub fn new(preset: &Preset, options: Options) -> (Self, Vec<Command>) {
-        let settings = settings_of(preset);
+    pub fn new(preset: &Preset, options: Options) -> (Self, Vec<Effect>) {
+        let scenario = Scenario::of(preset);
         let mut app = Self {
-            name: preset.name.clone(),
-            description: preset.description.clone(),
-            derived: derive(&settings),
-            settings,
-            selected: 0,
-            editing: None,
-            message: None,
-            playing: false,
-            speed: 1.0,
-            target: 0.0,
-            reached: 0.0,
-            generation: 0,
-            trail: Vec::new(),
-            effective_trail: Vec::new(),
-            reversals: Vec::new(),
-            effective_reversals: Vec::new(),
-            view: View::default(),
-            show_effective: true,
-            show_series: false,
-            show_help: false,
-            finished: false,
-            failed: None,
-            steps: 0,
-            method_in_use: None,
-            rate: 0.0,
-            quit: false,
+            run: RunState::new(scenario.settings.t_end),
+            scenario,
+            view: ViewState {
+                view: View::default(),
+                home: View::default(),
+                panes: Panes::default(),
+                overlay: true,
+                theme: 0,
+            },
+            mode: Mode::Normal,
+            status: None,
+            caption: None,
+            replay: None,
+            journal: Journal::default(),
             options,
-            theme: 0,
-            picker: None,
-            saving: None,
-            dialog: None,
-            user_dir: user_preset_dir(),
-            recording: false,
-            journal: Vec::new(),
-            recording_requested: false,
-            replaying: false,
-            steps_at_tick: 0,
-            contour_cache: None,
+            quit: false,
         };
         app.apply_view(preset);
-        let commands = app.restart();
-        (app, commands)
+        let effects = app.restart();
+        (app, effects)
+    }
+
+    /// A fresh explorer on `preset` whose runs are numbered after `old`'s, so no event of the
+    /// old runs can pass for one of the new (replay's jump back to a chapter).
+    #[must_use]
+    pub fn new_after(preset: &Preset, options: Options, old: &Self) -> (Self, Vec<Effect>) {
+        let (mut app, _) = Self::new(preset, options);
+        app.run.generation = old.run.generation;
+        app.run.epoch = old.run.epoch + 1;
+        let mut effects = vec![Effect::Sim(app.run.set_overlay(app.view.overlay))];
+        effects.extend(app.restart());
+        (app, effects)
+    }
+
+    /// Shows an error dialog (start-up problems); the explorer keeps running.
+    pub fn show_dialog(&mut self, text: &str) {
+        self.mode = Mode::Dialog(clean(text));
+    }
+
+    /// The replay's state, for the status bar.
+    pub fn set_replay(&mut self, info: ReplayInfo) {
+        self.replay = Some(info);
     }
 
     fn apply_view(&mut self, preset: &Preset) {
         let v = &preset.view;
-        self.view = View {
+        let view = View {
             wrap: v.wrap.unwrap_or(false),
             alpha_range: v.alpha_range,
             alpha_dot_range: v.alpha_dot_range,
             levels: v.contours.unwrap_or(portrait::LEVELS),
             ..View::default()
         };
-        self.show_effective = v.effective_overlay.unwrap_or(true);
-        self.show_series = v.series.unwrap_or(false);
+        self.view.view = view;
+        self.view.home = view;
+        self.view.overlay = v.effective_overlay.unwrap_or(true);
+        self.view.panes.set(Pane::Series, v.series.unwrap_or(false));
     }
 
     /// Replaces the scenario with `preset` and restarts.
-    pub fn load(&mut self, preset: &Preset) -> Vec<Command> {
+    pub fn load(&mut self, preset: &Preset) -> Vec<Effect> {
         self.log(Event::Preset {
             toml: preset.to_toml(),
         });
-        self.name.clone_from(&preset.name);
-        self.description.clone_from(&preset.description);
-        self.settings = settings_of(preset);
+        self.scenario = Scenario::of(preset);
         self.apply_view(preset);
-        self.message = Some((format!("loaded {}", preset.name), false));
-        let mut commands = self.restart();
-        commands.push(Command::SetEffective(self.show_effective));
-        commands
+        self.status = Message::info(format!("loaded {}", self.scenario.name));
+        let overlay = self.run.set_overlay(self.view.overlay);
+        let mut effects = vec![Effect::Sim(overlay)];
+        effects.extend(self.restart());
+        effects
     }
 
     /// The current state as a preset named `name` (what `s` saves).
     #[must_use]
     pub fn to_preset(&self, name: &str) -> Preset {
-        Preset {
-            name: name.to_owned(),
-            description: self.description.clone(),
-            problem: self.settings.problem(),
-            run: RunConfig {
-                t_end: self.settings.t_end,
-                method: Some(self.settings.method),
-                tolerance: Some(self.settings.tolerance),
-                step: None,
-            },
-            view: ViewConfig {
-                alpha_range: self.view.alpha_range,
-                alpha_dot_range: self.view.alpha_dot_range,
-                contours: Some(self.view.levels),
-                effective_overlay: Some(self.show_effective),
-                series: Some(self.show_series),
-                wrap: Some(self.view.wrap),
-            },
-        }
+        self.scenario
+            .to_preset(name, &self.view.view, self.view.overlay, self.series())
     }
 
-    fn on_dialog_key(&mut self, key: Key) -> Vec<Command> {
-        if key == Key::CtrlC {
-            self.quit = true;
-        }
-        self.dialog = None;
-        Vec::new()
-    }
-
-    fn on_save_key(&mut self, key: Key) -> Vec<Command> {
-        let Some(prompt) = self.saving.as_mut() else {
-            return Vec::new();
-        };
-        match key {
-            Key::Char(c) => {
-                prompt.name.push(c);
-                prompt.confirm = false;
-            }
-            Key::Backspace => {
-                prompt.name.pop();
-                prompt.confirm = false;
-            }
-            Key::Esc => self.saving = None,
-            Key::CtrlC => self.quit = true,
-            Key::Enter if prompt.purpose != PromptFor::Save => {
-                let text = prompt.name.clone();
-                let event = if prompt.purpose == PromptFor::Note {
-                    Event::Note { text: text.clone() }
-                } else {
-                    Event::Chapter {
-                        title: text.clone(),
-                    }
-                };
-                self.saving = None;
-                self.message = Some((format!("marked: {text}"), false));
-                self.log(event);
-            }
-            Key::Enter => {
-                let (name, confirm) = (prompt.name.clone(), prompt.confirm);
-                let text = self.to_preset(&name).to_toml();
-                match store::save(self.user_dir.as_deref(), &name, &text, confirm) {
-                    Ok(path) => {
-                        self.saving = None;
-                        self.message = Some((format!("saved {}", path.display()), false));
-                    }
-                    Err(store::SaveError::Exists(path)) => {
-                        if let Some(p) = self.saving.as_mut() {
-                            p.confirm = true;
-                        }
-                        self.message = Some((
-                            format!("{} exists: Enter overwrites, Esc cancels", path.display()),
-                            true,
-                        ));
-                    }
-                    Err(e) => {
-                        self.saving = None;
-                        self.dialog = Some(e.to_string());
-                    }
-                }
-            }
-            _ => {}
-        }
-        Vec::new()
-    }
-
-    fn on_picker_key(&mut self, key: Key) -> Vec<Command> {
-        let Some(picker) = self.picker.as_mut() else {
-            return Vec::new();
-        };
-        let n = picker.entries.len().max(1);
-        match key {
-            Key::Up | Key::Char('k') => picker.selected = (picker.selected + n - 1) % n,
-            Key::Down | Key::Char('j') => picker.selected = (picker.selected + 1) % n,
-            Key::Esc | Key::Char('p' | 'q') => self.picker = None,
-            Key::CtrlC => self.quit = true,
-            Key::Enter => {
-                let Some(entry) = picker.entries.get(picker.selected).cloned() else {
-                    return Vec::new();
-                };
-                self.picker = None;
-                let source = if entry.source == crate::scenario::shipped::Source::User {
-                    entry.path
-                } else {
-                    entry.name
-                };
-                return match resolve(&source, &[]) {
-                    Ok(preset) => self.load(&preset),
-                    Err(e) => {
-                        self.dialog =
-                            Some(format!("{e}\n\nThe explorer keeps the current scenario."));
-                        Vec::new()
-                    }
-                };
-            }
-            _ => {}
-        }
-        Vec::new()
+    /// Whether the time-series pane is shown.
+    #[must_use]
+    pub fn series(&self) -> bool {
+        self.view.panes.shows(Pane::Series)
     }
 
     /// The selected field.
     #[must_use]
     pub fn field(&self) -> Field {
-        Field::ALL[self.selected]
+        Field::ALL[self.scenario.selected]
     }
 
-    fn restart(&mut self) -> Vec<Command> {
-        self.generation += 1;
-        self.derived = derive(&self.settings);
-        self.target = 0.0;
-        self.reached = 0.0;
-        self.trail.clear();
-        self.effective_trail.clear();
-        self.reversals.clear();
-        self.effective_reversals.clear();
-        self.finished = false;
-        self.failed = None;
-        self.steps = 0;
-        self.steps_at_tick = 0;
-        self.method_in_use = None;
-        vec![
-            Command::Restart {
-                generation: self.generation,
-                spec: sim::spec(
-                    self.settings.problem(),
-                    self.settings.method,
-                    self.settings.tolerance,
-                    self.settings.t_end,
-                    self.show_effective,
-                ),
+    fn restart(&mut self) -> Vec<Effect> {
+        let spec = self.scenario.spec(self.view.overlay);
+        self.run
+            .restart(spec)
+            .into_iter()
+            .map(Effect::Sim)
+            .collect()
+    }
+
+    /// Handles a key: the open mode first, else the keymap.
+    pub fn on_key(&mut self, key: Key) -> Vec<Effect> {
+        if key == Key::Ctrl('c') {
+            self.quit = true;
+            return Vec::new();
+        }
+        match std::mem::take(&mut self.mode) {
+            Mode::Normal => keys::action_for(key).map_or_else(Vec::new, |a| self.update(a)),
+            Mode::Dialog(_) => Vec::new(),
+            Mode::Help(page) => match keys::action_for(key) {
+                Some(Action::ToggleHelp) if page == HelpPage::Keys => {
+                    self.mode = Mode::Help(HelpPage::Legend);
+                    Vec::new()
+                }
+                Some(Action::ToggleHelp) | None => Vec::new(),
+                Some(Action::Quit) if key == Key::Esc => Vec::new(),
+                Some(a) => self.update(a),
             },
-            self.advance_command(),
-        ]
-    }
-
-    fn sample_dt(&self) -> f64 {
-        self.speed / (self.options.fps * SAMPLES_PER_FRAME)
-    }
-
-    fn advance_command(&self) -> Command {
-        Command::AdvanceTo {
-            generation: self.generation,
-            t: self.target,
-            sample_dt: self.sample_dt(),
+            Mode::Editing(text) => self.on_edit_key(text, key),
+            Mode::Prompt(prompt) => self.on_prompt_key(prompt, key),
+            Mode::Picker(picker) => self.on_picker_key(picker, key),
         }
     }
 
-    /// Handles a key: the dialog, the save prompt, the picker or text entry when open, else
-    /// the keymap.
-    pub fn on_key(&mut self, key: Key) -> Vec<Command> {
-        if self.dialog.is_some() {
-            return self.on_dialog_key(key);
-        }
-        if self.saving.is_some() {
-            return self.on_save_key(key);
-        }
-        if self.picker.is_some() {
-            return self.on_picker_key(key);
-        }
-        if let Some(buffer) = self.editing.as_mut() {
-            match key {
-                Key::Char(c) => buffer.push(c),
-                Key::Backspace => {
-                    buffer.pop();
-                }
-                Key::Esc => {
-                    self.editing = None;
-                    self.message = None;
-                }
-                Key::CtrlC => self.quit = true,
-                Key::Enter => {
-                    let text = self.editing.take().unwrap_or_default();
-                    return self.apply(self.field().with_text(&self.settings, &text));
-                }
-                _ => {}
+    fn on_edit_key(&mut self, mut text: String, key: Key) -> Vec<Effect> {
+        match key {
+            Key::Char(c) => text.push(c),
+            Key::Backspace => {
+                text.pop();
             }
-            return Vec::new();
+            Key::Esc => {
+                self.status = None;
+                return Vec::new();
+            }
+            Key::Enter => {
+                return self.apply(self.field().with_text(&self.scenario.settings, &text));
+            }
+            _ => {}
         }
-        if self.show_help && matches!(key, Key::Esc) {
-            self.show_help = false;
-            return Vec::new();
+        self.mode = Mode::Editing(text);
+        Vec::new()
+    }
+
+    fn on_prompt_key(&mut self, mut prompt: Prompt, key: Key) -> Vec<Effect> {
+        match key {
+            Key::Char(c) if !c.is_control() => {
+                prompt.text.push(c);
+                prompt.confirm = Confirm::No;
+            }
+            Key::Backspace => {
+                prompt.text.pop();
+                prompt.confirm = Confirm::No;
+            }
+            Key::Esc => {
+                self.status = Message::info("cancelled");
+                return Vec::new();
+            }
+            Key::Enter => return self.submit(prompt),
+            _ => {}
         }
-        keys::action_for(key).map_or_else(Vec::new, |a| self.update(a))
+        self.mode = Mode::Prompt(prompt);
+        Vec::new()
+    }
+
+    /// Enter in a prompt.
+    fn submit(&mut self, prompt: Prompt) -> Vec<Effect> {
+        let text = clean(prompt.text.trim());
+        match prompt.purpose {
+            PromptFor::Note | PromptFor::Chapter => {
+                let chapter = prompt.purpose == PromptFor::Chapter;
+                self.log(if chapter {
+                    Event::Chapter {
+                        title: text.clone(),
+                    }
+                } else {
+                    Event::Note { text: text.clone() }
+                });
+                self.caption = Some(Caption {
+                    chapter,
+                    text,
+                    t: self.run.shown,
+                });
+                Vec::new()
+            }
+            PromptFor::SaveName => {
+                if !crate::scenario::store::valid_name(&text) {
+                    self.status = Message::error(format!(
+                        "'{text}' cannot be a preset name: letters, digits, - and _"
+                    ));
+                    self.mode = Mode::Prompt(prompt);
+                    return Vec::new();
+                }
+                if prompt.confirm == Confirm::No && crate::scenario::shipped::is_shipped(&text) {
+                    self.status = Message::error(format!(
+                        "'{text}' is a shipped preset: your copy would replace it in every later run. Enter: save anyway, Esc: cancel"
+                    ));
+                    self.mode = Mode::Prompt(Prompt {
+                        confirm: Confirm::Shipped,
+                        ..prompt
+                    });
+                    return Vec::new();
+                }
+                self.status = Message::info(format!(
+                    "describe it (Enter with nothing keeps \"{}\", marked as a copy)",
+                    ellipsis(&self.scenario.description, 40)
+                ));
+                self.mode = Mode::Prompt(Prompt::new(PromptFor::SaveDescription { name: text }));
+                Vec::new()
+            }
+            PromptFor::SaveDescription { ref name } => {
+                let description = if text.is_empty() {
+                    format!(
+                        "Saved from the explorer as {name}, from \"{}\": {}",
+                        self.scenario.name, self.scenario.description
+                    )
+                } else {
+                    text
+                };
+                let mut preset = self.to_preset(name);
+                preset.description = description;
+                let overwrite = prompt.confirm == Confirm::Overwrite;
+                let effect = Effect::SavePreset {
+                    name: name.clone(),
+                    text: preset.to_toml(),
+                    overwrite,
+                };
+                self.mode = Mode::Prompt(prompt);
+                vec![effect]
+            }
+        }
+    }
+
+    fn on_picker_key(&mut self, mut picker: Picker, key: Key) -> Vec<Effect> {
+        match key {
+            Key::Up | Key::Char('k') => picker.move_by(false),
+            Key::Down | Key::Char('j') => picker.move_by(true),
+            Key::Esc | Key::Char('p' | 'q') => return Vec::new(),
+            Key::Enter => match picker.rows.get(picker.selected) {
+                Some(PickerRow::Preset(entry)) => {
+                    let source = if entry.source == crate::scenario::shipped::Source::User {
+                        entry.path.clone()
+                    } else {
+                        entry.name.clone()
+                    };
+                    return vec![Effect::LoadPreset(source)];
+                }
+                Some(PickerRow::Broken { error, .. }) => {
+                    self.mode =
+                        Mode::Dialog(format!("{error}\n\nFix the file, then open p again."));
+                    return Vec::new();
+                }
+                None => {}
+            },
+            _ => {}
+        }
+        self.mode = Mode::Picker(picker);
+        Vec::new()
     }
 
     fn log(&mut self, event: Event) {
-        if self.recording {
-            self.journal.push((self.target, self.generation, event));
+        if self.journal.state != RecState::Off {
+            self.journal
+                .entries
+                .push((self.run.shown, self.run.generation, event));
         }
     }
 
-    fn apply(&mut self, result: Result<Settings, String>) -> Vec<Command> {
+    /// Takes the journaled events not yet written.
+    pub fn take_journal(&mut self) -> Vec<(f64, u64, Event)> {
+        std::mem::take(&mut self.journal.entries)
+    }
+
+    fn apply(&mut self, result: Result<fields::Settings, String>) -> Vec<Effect> {
         match result {
             Ok(s) => {
-                self.message = None;
-                if s == self.settings {
+                self.status = None;
+                if s == self.scenario.settings {
                     return Vec::new();
                 }
                 let field = self.field();
-                self.settings = s;
-                let value = field.exact(&self.settings);
+                self.scenario.set(s);
+                let value = field.exact(&self.scenario.settings);
                 self.log(Event::Set {
                     field: field.label().to_owned(),
                     value,
@@ -474,37 +468,40 @@ impl App {
                 self.restart()
             }
             Err(reason) => {
-                self.message = Some((reason, true));
+                self.status = Message::error(reason);
                 Vec::new()
             }
         }
     }
 
-    /// Carries out an action; returns the commands for the worker. While recording, the
-    /// actions that change what is shown are journaled.
-    pub fn update(&mut self, action: Action) -> Vec<Command> {
-        let commands = self.carry_out(action);
+    /// Carries out an action; returns the effects. While recording, the actions that change
+    /// what is shown are journaled.
+    pub fn update(&mut self, action: Action) -> Vec<Effect> {
+        let effects = self.carry_out(action);
         let event = match action {
-            Action::TogglePlay if self.playing => Some(Event::Play),
+            Action::TogglePlay if self.run.playing => Some(Event::Play),
             Action::TogglePlay => Some(Event::Pause),
             Action::Step => Some(Event::Step),
             Action::Reset => Some(Event::Reset),
-            Action::Faster | Action::Slower => Some(Event::Speed { value: self.speed }),
+            Action::Faster | Action::Slower => Some(Event::Speed {
+                value: self.run.speed,
+            }),
             Action::ZoomIn
             | Action::ZoomOut
             | Action::PanLeft
             | Action::PanRight
             | Action::PanUp
             | Action::PanDown
-            | Action::ToggleWrap => Some(Event::View {
-                zoom: self.view.zoom,
-                pan_x: self.view.pan_x,
-                pan_y: self.view.pan_y,
-                wrap: self.view.wrap,
+            | Action::ToggleWrap
+            | Action::ResetView => Some(Event::View {
+                zoom: self.view.view.zoom,
+                pan_x: self.view.view.pan_x,
+                pan_y: self.view.view.pan_y,
+                wrap: self.view.view.wrap,
             }),
             Action::ToggleEffective | Action::ToggleSeries => Some(Event::Panes {
-                effective: self.show_effective,
-                series: self.show_series,
+                effective: self.view.overlay,
+                series: self.series(),
             }),
             Action::ClearTrail => Some(Event::ClearTrail),
             _ => None,
@@ -512,36 +509,28 @@ impl App {
         if let Some(e) = event {
             self.log(e);
         }
-        commands
+        effects
     }
 
     /// Replays one recorded event (used by `replay` and `replay --verify`).
-    pub fn apply_event(&mut self, event: &Event) -> Vec<Command> {
+    pub fn apply_event(&mut self, event: &Event) -> Vec<Effect> {
         match event {
             Event::Set { field, value } => {
                 let Some(f) = Field::named(field) else {
-                    self.message =
-                        Some((format!("unknown field '{field}' in the recording"), true));
+                    self.status =
+                        Message::error(format!("unknown field '{field}' in the recording"));
                     return Vec::new();
                 };
-                self.selected = Field::ALL.iter().position(|x| *x == f).unwrap_or(0);
-                self.apply(f.with_text(&self.settings, value))
+                self.scenario.selected = Field::ALL.iter().position(|x| *x == f).unwrap_or(0);
+                self.apply(f.with_text(&self.scenario.settings, value))
             }
-            Event::Play => {
-                if self.playing {
-                    Vec::new()
-                } else {
-                    self.carry_out(Action::TogglePlay)
-                }
-            }
-            Event::Pause => {
-                self.playing = false;
-                Vec::new()
-            }
+            Event::Play if self.run.playing => Vec::new(),
+            Event::Play => self.carry_out(Action::TogglePlay),
+            Event::Pause => vec![Effect::Sim(self.run.pause())],
             Event::Step => self.carry_out(Action::Step),
             Event::Reset => self.carry_out(Action::Reset),
             Event::Speed { value } => {
-                self.speed = value.clamp(SPEED_RANGE.0, SPEED_RANGE.1);
+                self.run.speed = value.clamp(SPEED_RANGE.0, SPEED_RANGE.1);
                 Vec::new()
             }
             Event::View {
@@ -550,15 +539,13 @@ impl App {
                 pan_y,
                 wrap,
             } => {
-                self.view.zoom = *zoom;
-                self.view.pan_x = *pan_x;
-                self.view.pan_y = *pan_y;
-                self.view.wrap = *wrap;
+                let v = &mut self.view.view;
+                (v.zoom, v.pan_x, v.pan_y, v.wrap) = (*zoom, *pan_x, *pan_y, *wrap);
                 Vec::new()
             }
             Event::Panes { effective, series } => {
-                self.show_series = *series;
-                if *effective == self.show_effective {
+                self.view.panes.set(Pane::Series, *series);
+                if *effective == self.view.overlay {
                     Vec::new()
                 } else {
                     self.carry_out(Action::ToggleEffective)
@@ -569,215 +556,243 @@ impl App {
             {
                 Ok(p) => self.load(&p),
                 Err(e) => {
-                    self.dialog = Some(e.to_string());
+                    self.mode = Mode::Dialog(clean(&e.to_string()));
                     Vec::new()
                 }
             },
-            Event::Note { text } => {
-                self.message = Some((format!("note: {text}"), false));
+            Event::Note { text } | Event::Chapter { title: text } => {
+                self.caption = Some(Caption {
+                    chapter: matches!(event, Event::Chapter { .. }),
+                    text: clean(text),
+                    t: self.run.shown,
+                });
                 Vec::new()
             }
-            Event::Chapter { title } => {
-                self.message = Some((format!("chapter: {title}"), false));
-                Vec::new()
-            }
-            Event::Checkpoint { .. } => Vec::new(),
+            Event::Checkpoint { .. } | Event::Plan { .. } => Vec::new(),
         }
     }
 
-    /// Asks the worker for the exact state at the current target (journaled on arrival).
+    /// Moves the displayed clock to a recorded time (replay).
+    pub fn seek(&mut self, t: f64) -> Vec<Effect> {
+        vec![Effect::Sim(self.run.seek(t))]
+    }
+
+    /// Asks the worker for the exact state at the time asked of it (journaled on arrival).
     #[must_use]
-    pub fn checkpoint(&self) -> Command {
-        Command::Checkpoint {
-            generation: self.generation,
-            t: self.target,
-        }
+    pub fn checkpoint(&self) -> Effect {
+        Effect::Sim(Command::Checkpoint {
+            generation: self.run.generation,
+            t: self.run.target(),
+        })
     }
 
-    /// Opens the picker or a prompt.
-    fn open_dialog(&mut self, action: Action) {
-        match action {
-            Action::OpenPicker => {
-                let (entries, problems) = catalogue_in(self.user_dir.as_deref());
-                let selected = entries
-                    .iter()
-                    .position(|e| e.title == self.name)
-                    .unwrap_or(0);
-                self.picker = Some(Picker {
-                    entries,
-                    selected,
-                    problems: problems.iter().map(ToString::to_string).collect(),
-                });
-            }
-            Action::Note | Action::Chapter => {
-                if !self.recording {
-                    self.message = Some((
-                        "notes and chapters go into a recording: start one with R".to_owned(),
-                        true,
-                    ));
-                    return;
-                }
-                let purpose = if action == Action::Note {
-                    PromptFor::Note
-                } else {
-                    PromptFor::Chapter
-                };
-                self.saving = Some(SavePrompt {
-                    purpose,
-                    name: String::new(),
-                    confirm: false,
-                });
-                self.message = Some(("type it, Enter marks, Esc cancels".to_owned(), false));
-            }
-            Action::Save => {
-                self.saving = Some(SavePrompt {
-                    purpose: PromptFor::Save,
-                    name: String::new(),
-                    confirm: false,
-                });
-                self.message = Some((
-                    "name the preset (letters, digits, - and _), Enter saves, Esc cancels"
-                        .to_owned(),
-                    false,
-                ));
-            }
-            _ => {}
+    /// Opens a prompt (notes and chapters need a recording).
+    fn open_prompt(&mut self, purpose: PromptFor) {
+        if matches!(purpose, PromptFor::Note | PromptFor::Chapter)
+            && self.journal.state == RecState::Off
+        {
+            self.status =
+                Message::error("notes and chapters go into a recording: start one with R");
+            return;
         }
+        self.status = Message::info(match purpose {
+            PromptFor::SaveName => "name the preset (letters, digits, - and _), Enter, Esc cancels",
+            _ => "type it, Enter marks, Esc cancels",
+        });
+        self.mode = Mode::Prompt(Prompt::new(purpose));
     }
 
-    fn carry_out(&mut self, action: Action) -> Vec<Command> {
+    fn carry_out(&mut self, action: Action) -> Vec<Effect> {
         let field = self.field();
+        let n = Field::ALL.len();
+        let settings = self.scenario.settings;
+        let v = &mut self.view.view;
         match action {
             Action::Quit => self.quit = true,
-            Action::SelectPrev => {
-                self.selected = (self.selected + Field::ALL.len() - 1) % Field::ALL.len();
-                self.message = None;
+            Action::SelectPrev | Action::SelectNext => {
+                let d = if action == Action::SelectPrev {
+                    n - 1
+                } else {
+                    1
+                };
+                self.scenario.selected = (self.scenario.selected + d) % n;
+                self.status = None;
             }
-            Action::SelectNext => {
-                self.selected = (self.selected + 1) % Field::ALL.len();
-                self.message = None;
-            }
-            Action::Decrease => return self.apply(field.nudge(&self.settings, -1.0, false)),
-            Action::Increase => return self.apply(field.nudge(&self.settings, 1.0, false)),
-            Action::DecreaseCoarse => return self.apply(field.nudge(&self.settings, -1.0, true)),
-            Action::IncreaseCoarse => return self.apply(field.nudge(&self.settings, 1.0, true)),
+            Action::Decrease => return self.apply(field.nudge(&settings, -1.0, false)),
+            Action::Increase => return self.apply(field.nudge(&settings, 1.0, false)),
+            Action::DecreaseCoarse => return self.apply(field.nudge(&settings, -1.0, true)),
+            Action::IncreaseCoarse => return self.apply(field.nudge(&settings, 1.0, true)),
             Action::Edit => {
-                self.editing = Some(String::new());
-                self.message = Some((
-                    format!("type {} and press Enter (Esc cancels)", field.label()),
-                    false,
+                self.mode = Mode::Editing(String::new());
+                self.status = Message::info(format!(
+                    "type {} and press Enter (Esc cancels)",
+                    field.label()
                 ));
             }
+            Action::TogglePlay if self.run.done() => {
+                let mut effects = self.restart();
+                self.run.playing = true;
+                effects.push(Effect::Sim(self.run.advance_command()));
+                return effects;
+            }
+            Action::TogglePlay if self.run.playing => return vec![Effect::Sim(self.run.pause())],
             Action::TogglePlay => {
-                if self.finished {
-                    let mut c = self.restart();
-                    self.playing = true;
-                    c.push(self.advance_command());
-                    return c;
-                }
-                self.playing = !self.playing;
+                self.run.playing = true;
+                return vec![Effect::Sim(self.run.advance_command())];
             }
             Action::Step => {
-                self.playing = false;
-                self.target =
-                    (self.target + self.speed / self.options.fps).min(self.settings.t_end);
-                return vec![self.advance_command()];
+                let dt = self.run.speed / self.options.fps;
+                return vec![Effect::Sim(self.run.step(dt))];
             }
             Action::Reset => return self.restart(),
-            Action::Faster => self.speed = (self.speed * 2.0).min(SPEED_RANGE.1),
-            Action::Slower => self.speed = (self.speed / 2.0).max(SPEED_RANGE.0),
+            Action::Faster => self.run.speed = (self.run.speed * 2.0).min(SPEED_RANGE.1),
+            Action::Slower => self.run.speed = (self.run.speed / 2.0).max(SPEED_RANGE.0),
             Action::ToggleEffective => {
-                self.show_effective = !self.show_effective;
-                if !self.show_effective {
-                    self.effective_trail.clear();
-                    self.effective_reversals.clear();
-                }
-                return vec![Command::SetEffective(self.show_effective)];
+                self.view.overlay = !self.view.overlay;
+                return vec![Effect::Sim(self.run.set_overlay(self.view.overlay))];
             }
-            Action::ToggleSeries => self.show_series = !self.show_series,
-            Action::ZoomIn => self.view.zoom = (self.view.zoom * 1.5).min(1e6),
-            Action::ZoomOut => self.view.zoom = (self.view.zoom / 1.5).max(0.1),
-            Action::PanLeft => self.view.pan_x -= 0.1,
-            Action::PanRight => self.view.pan_x += 0.1,
-            Action::PanUp => self.view.pan_y += 0.1,
-            Action::PanDown => self.view.pan_y -= 0.1,
-            Action::ToggleWrap => self.view.wrap = !self.view.wrap,
-            Action::ClearTrail => {
-                self.trail.clear();
-                self.effective_trail.clear();
+            Action::ToggleSeries => self.view.panes.toggle(Pane::Series),
+            Action::ZoomIn => v.zoom = (v.zoom * 1.5).min(1e6),
+            Action::ZoomOut => v.zoom = (v.zoom / 1.5).max(0.1),
+            Action::PanLeft => v.pan_x -= 0.1,
+            Action::PanRight => v.pan_x += 0.1,
+            Action::PanUp => v.pan_y += 0.1,
+            Action::PanDown => v.pan_y -= 0.1,
+            Action::ToggleWrap => v.wrap = !v.wrap,
+            Action::ResetView => {
+                *v = View {
+                    wrap: v.wrap,
+                    ..self.view.home
+                };
+                self.status = Message::info("view reset");
             }
-            Action::ToggleHelp => self.show_help = !self.show_help,
-            Action::OpenPicker | Action::Note | Action::Chapter | Action::Save => {
-                self.open_dialog(action);
+            Action::ClearTrail => self.run.clear_trails(),
+            Action::ToggleHelp => self.mode = Mode::Help(HelpPage::Keys),
+            Action::OpenPicker => return vec![Effect::ReadCatalogue],
+            Action::Save => self.open_prompt(PromptFor::SaveName),
+            Action::Note => self.open_prompt(PromptFor::Note),
+            Action::Chapter => self.open_prompt(PromptFor::Chapter),
+            Action::ToggleRecording => return self.toggle_recording(),
+            Action::CycleTheme => {
+                let names = &self.options.theme_names;
+                self.view.theme = (self.view.theme + 1) % names.len().max(1);
+                let name = names.get(self.view.theme).map_or("default", String::as_str);
+                self.status = Message::info(format!(
+                    "theme {}/{}: {name}",
+                    self.view.theme + 1,
+                    names.len().max(1)
+                ));
             }
-            Action::ToggleRecording => self.recording_requested = true,
-            Action::CycleTheme => self.theme = self.theme.wrapping_add(1),
+            Action::Redraw => return vec![Effect::Redraw],
+            Action::Suspend => return vec![Effect::Suspend],
         }
         Vec::new()
     }
 
-    /// Advances the simulated clock by `wall_seconds × speed` while playing.
-    pub fn tick(&mut self, wall_seconds: f64) -> Vec<Command> {
-        let done = self.steps.saturating_sub(self.steps_at_tick) as f64;
-        self.steps_at_tick = self.steps;
-        if wall_seconds > 0.0 {
-            let now = done / wall_seconds;
-            self.rate = if self.rate == 0.0 {
-                now
-            } else {
-                0.8 * self.rate + 0.2 * now
-            };
+    fn toggle_recording(&mut self) -> Vec<Effect> {
+        match self.journal.state {
+            RecState::Off if self.replay.is_some() => {
+                self.status = Message::error("a replay cannot be recorded");
+                Vec::new()
+            }
+            RecState::Off => vec![Effect::StartRecording],
+            RecState::On => {
+                self.journal.state = RecState::Stopping;
+                self.status = Message::info("closing the recording…");
+                vec![self.checkpoint(), Effect::StopRecording]
+            }
+            RecState::Stopping => Vec::new(),
         }
-        if !self.playing || self.finished || self.failed.is_some() {
-            return Vec::new();
-        }
-        self.target = (self.target + wall_seconds * self.speed).min(self.settings.t_end);
-        vec![self.advance_command()]
     }
 
-    /// Takes an event from the worker (stale runs are ignored). Returns whether anything
-    /// visible changed.
+    /// Takes what came of an effect.
+    pub fn on_outcome(&mut self, outcome: Outcome) -> Vec<Effect> {
+        match outcome {
+            Outcome::Recording(Ok(path)) => {
+                self.journal.state = RecState::On;
+                self.status = Message::info(format!("recording to {path}"));
+                // The plan of the run in progress belongs in the file too.
+                if let PlanState::Running { plan, .. } = self.run.plan {
+                    self.log_plan(plan);
+                }
+            }
+            Outcome::Recording(Err(e)) => self.mode = Mode::Dialog(clean(&e)),
+            Outcome::RecordingSaved(path) => {
+                self.journal.state = RecState::Off;
+                self.status = Message::info(format!("recording saved to {path}"));
+            }
+            Outcome::RecordingFailed(e) => {
+                self.journal.state = RecState::Off;
+                self.mode = Mode::Dialog(clean(&format!("recording stopped: {e}")));
+            }
+            Outcome::Saved(Ok(path)) => {
+                self.mode = Mode::Normal;
+                self.status = Message::info(format!("saved {}", path.display()));
+            }
+            Outcome::Saved(Err(crate::scenario::store::SaveError::Exists(path))) => {
+                if let Mode::Prompt(p) = &mut self.mode {
+                    p.confirm = Confirm::Overwrite;
+                }
+                self.status = Message::error(format!(
+                    "{} exists: Enter replaces it, Esc cancels",
+                    path.display()
+                ));
+            }
+            Outcome::Saved(Err(e)) => self.mode = Mode::Dialog(clean(&e.to_string())),
+            Outcome::Catalogue(entries, broken) => {
+                let selected = entries
+                    .iter()
+                    .position(|e| e.title == self.scenario.name)
+                    .unwrap_or(0);
+                let mut rows: Vec<PickerRow> = entries.into_iter().map(PickerRow::Preset).collect();
+                rows.extend(broken.into_iter().map(|(name, error)| PickerRow::Broken {
+                    name: clean(&name),
+                    error: clean(&error),
+                }));
+                self.mode = Mode::Picker(Picker { rows, selected });
+            }
+            Outcome::Loaded(result) => match *result {
+                Ok(preset) => return self.load(&preset),
+                Err(e) => {
+                    self.mode = Mode::Dialog(clean(&format!(
+                        "{e}\n\nThe explorer keeps the current scenario."
+                    )));
+                }
+            },
+        }
+        Vec::new()
+    }
+
+    fn log_plan(&mut self, plan: crate::physics::Resolved) {
+        let spec = self.scenario.spec(self.view.overlay);
+        self.log(Event::Plan {
+            key: crate::sim::PlanKey::of(&spec),
+            plan,
+        });
+    }
+
+    /// Advances the displayed clock by `wall_seconds × speed` while playing.
+    pub fn tick(&mut self, wall_seconds: f64) -> Vec<Effect> {
+        self.run
+            .tick(wall_seconds)
+            .into_iter()
+            .map(Effect::Sim)
+            .collect()
+    }
+
+    /// Takes an event from the worker (stale runs are ignored); whether anything visible
+    /// changed.
     pub fn on_sim(&mut self, event: SimEvent) -> bool {
         match event {
-            SimEvent::Started { generation, method } if generation == self.generation => {
-                self.method_in_use = Some(method);
-                true
-            }
-            SimEvent::Samples {
-                generation,
-                full,
-                effective,
-                t,
-                steps,
-            } if generation == self.generation => {
-                let changed = !full.is_empty() || !effective.is_empty();
-                push_capped(&mut self.trail, full);
-                push_capped(&mut self.effective_trail, effective);
-                self.reached = self.reached.max(t);
-                self.steps = steps;
-                changed
-            }
-            SimEvent::Reversal {
-                generation,
-                t,
-                effective,
-            } if generation == self.generation => {
-                if effective {
-                    self.effective_reversals.push(t);
-                } else {
-                    self.reversals.push(t);
-                }
-                true
-            }
             SimEvent::Checkpoint {
                 generation,
                 t,
                 state,
                 reversals,
-            } if generation == self.generation => {
-                if self.recording {
+            } if generation == self.run.generation => {
+                if self.journal.state != RecState::Off {
                     let hash = journal::state_hash(t, &state, reversals);
-                    self.journal.push((
+                    self.journal.entries.push((
                         t,
                         generation,
                         Event::Checkpoint {
@@ -789,93 +804,45 @@ impl App {
                 }
                 false
             }
-            SimEvent::Finished { generation } if generation == self.generation => {
-                self.finished = true;
-                self.playing = false;
-                true
+            SimEvent::Started {
+                generation, plan, ..
+            } if generation == self.run.generation => {
+                self.log_plan(plan);
+                self.run.on_sim(event, self.view.overlay)
             }
             SimEvent::Failed {
                 generation,
-                message,
-            } if generation == self.generation => {
-                self.failed = Some(message.clone());
-                self.message = Some((format!("integration failed: {message}"), true));
-                self.playing = false;
-                true
+                ref message,
+            } if generation == self.run.generation => {
+                self.status = Message::error(format!("integration failed: {message}"));
+                self.run.on_sim(event, self.view.overlay)
             }
-            _ => false,
+            other => self.run.on_sim(other, self.view.overlay),
         }
     }
 
     /// The portrait's bounds now.
     #[must_use]
     pub fn bounds(&self) -> Bounds {
-        let s = &self.settings;
+        let s = &self.scenario.settings;
         let auto = portrait::auto_bounds(
-            &self.derived.effective,
+            &self.scenario.derived.effective,
             s.start.alpha,
             s.start.alpha_dot,
-            &self.trail,
-            self.view.wrap,
+            self.run.trail_shown(),
+            self.view.view.wrap,
         );
-        portrait::apply_view(auto, &self.view)
-    }
-
-    /// Recomputes the level sets if the settings, bounds or sampling changed since last time;
-    /// read them with [`App::levels`].
-    pub fn refresh_contours(&mut self, samples: usize) {
-        let key = ContourKey {
-            settings: self.settings,
-            bounds: self.bounds(),
-            levels: self.view.levels,
-            samples,
-        };
-        if self.contour_cache.as_ref().is_none_or(|(k, _)| *k != key) {
-            let eff = &self.derived.effective;
-            let levels =
-                portrait::levels(eff, &key.bounds, eff.energy(), self.view.levels, samples);
-            self.contour_cache = Some((key, levels));
-        }
-    }
-
-    /// The level sets of the last [`App::refresh_contours`] (none before the first).
-    #[must_use]
-    pub fn levels(&self) -> &[Level] {
-        self.contour_cache
-            .as_ref()
-            .map_or(&[], |(_, l)| l.as_slice())
-    }
-
-    /// The latest sample of the full motion.
-    #[must_use]
-    pub fn current(&self) -> Option<&Point> {
-        self.trail.last()
+        portrait::apply_view(auto, &self.view.view)
     }
 }
 
-fn push_capped(trail: &mut Vec<Point>, new: Vec<Point>) {
-    trail.extend(new);
-    if trail.len() > TRAIL_CAP {
-        trail.drain(..trail.len() - TRAIL_CAP / 2);
+/// `text` cut to `width` characters, ending in `…` when cut.
+#[must_use]
+pub fn ellipsis(text: &str, width: usize) -> String {
+    if text.chars().count() <= width {
+        return text.to_owned();
     }
-}
-
-fn settings_of(preset: &Preset) -> Settings {
-    Settings {
-        params: *preset.problem.params(),
-        start: *preset.problem.start(),
-        t_end: preset.run.t_end,
-        method: preset.run.method.unwrap_or(crate::physics::Method::Auto),
-        tolerance: preset.run.tolerance.unwrap_or(1e-8),
-    }
-}
-
-fn derive(s: &Settings) -> Derived {
-    let problem = s.problem();
-    let effective = Effective::new(&problem);
-    Derived {
-        ratio: effective.start_ratio(&problem),
-        critical: effective.critical_ratio(&problem),
-        effective,
-    }
+    let mut s: String = text.chars().take(width.saturating_sub(1)).collect();
+    s.push('…');
+    s
 }

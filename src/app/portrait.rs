@@ -91,7 +91,13 @@ pub fn display_alpha(alpha: f64, centre: f64, wrap: bool) -> f64 {
     }
 }
 
-/// The automatic bounds (before zoom and pan): the separatrix's height, the start, the trail.
+/// Periods of `V` beyond which an unwrapped view follows the motion instead of showing all of
+/// it (a long rotating run would otherwise crush the portrait to vertical lines).
+pub const FOLLOW_PERIODS: f64 = 3.0;
+
+/// The automatic bounds (before zoom and pan): the separatrix's height, the start with a
+/// margin whatever the inertia order, and the trail; an unwrapped trail wider than
+/// [`FOLLOW_PERIODS`] periods is followed by a window of that width ending at its last point.
 #[must_use]
 pub fn auto_bounds(
     eff: &Effective,
@@ -106,11 +112,15 @@ pub fn auto_bounds(
         .max(0.0)
         .sqrt();
     let mut y_max = sep.max(alpha_dot0.abs()).max(1e-3);
+    let margin = 0.08 * PI;
     let (mut x_lo, mut x_hi) = if wrap {
-        (centre - PI / 2.0, centre + PI / 2.0)
+        (centre - PI / 2.0 - margin, centre + PI / 2.0 + margin)
     } else {
         let c = centre + PI * ((alpha0 - centre) / PI).round();
-        (c - PI / 2.0, c + PI / 2.0)
+        (
+            (c - PI / 2.0).min(alpha0 - PI / 4.0),
+            (c + PI / 2.0).max(alpha0 + PI / 4.0),
+        )
     };
     for p in trail {
         y_max = y_max.max(p.alpha_dot.abs());
@@ -119,14 +129,53 @@ pub fn auto_bounds(
             x_hi = x_hi.max(p.alpha);
         }
     }
-    if !wrap {
-        x_lo = x_lo.min(alpha0);
-        x_hi = x_hi.max(alpha0);
+    if !wrap
+        && x_hi - x_lo > FOLLOW_PERIODS * PI
+        && let Some(last) = trail.last()
+    {
+        let width = FOLLOW_PERIODS * PI;
+        // The window trails the motion: the current point sits a sixth from its leading edge.
+        let ahead = width / 6.0;
+        (x_lo, x_hi) = if last.alpha_dot >= 0.0 {
+            (last.alpha + ahead - width, last.alpha + ahead)
+        } else {
+            (last.alpha - ahead, last.alpha - ahead + width)
+        };
     }
     Bounds {
         x: [x_lo, x_hi],
         y: [-1.15 * y_max, 1.15 * y_max],
     }
+}
+
+/// Whether the unwrapped view is following a long run (see [`auto_bounds`]).
+#[must_use]
+pub fn following(trail: &[Point], wrap: bool) -> bool {
+    if wrap {
+        return false;
+    }
+    let (lo, hi) = trail
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.alpha), hi.max(p.alpha))
+        });
+    hi - lo > FOLLOW_PERIODS * PI
+}
+
+/// Spacing of the sample grid: fine enough that consecutive samples of the limit's motion are
+/// less than a cell apart on a large screen (about 64 samples per unit of the fastest slow
+/// rate), whatever the playback speed.
+#[must_use]
+pub fn sample_spacing(eff: &Effective, alpha_dot0: f64) -> f64 {
+    let iz = eff.params().iz;
+    let sep = (2.0 * (eff.potential_max() - eff.potential_min()) / iz)
+        .max(0.0)
+        .sqrt();
+    let top = (2.0 * (eff.energy() - eff.potential_min()) / iz)
+        .max(0.0)
+        .sqrt();
+    let rate = sep.max(top).max(alpha_dot0.abs()).max(1e-3);
+    (1.0 / (64.0 * rate)).min(0.05)
 }
 
 /// Applies fixed ranges, zoom and pan to automatic bounds.

@@ -31,7 +31,7 @@ use super::effective::Effective;
 use super::integrators::StepError;
 use super::integrators::{Method, Settings};
 use super::params::Problem;
-use super::run::{RunResult, RunSpec, run};
+use super::run::{RunResult, RunSpec, run_cancellable};
 
 /// Error of `blanes-moan4` per unit time at `ν h = 1`.
 pub const C_BLANES_MOAN: f64 = 3e-12;
@@ -91,11 +91,40 @@ pub fn fastest_rate(problem: &Problem) -> f64 {
 }
 
 /// Chooses the method for `problem` over `[0, t_end]` at `tolerance`.
+#[must_use]
+pub fn plan(problem: &Problem, tolerance: f64, t_end: f64) -> Plan {
+    match plan_cancellable(problem, tolerance, t_end, &mut |_| true) {
+        Ok(p) => p,
+        Err(_) => unreachable_plan(problem, tolerance, t_end),
+    }
+}
+
+/// Only reached if a never-cancelling probe were cancelled: plain DOP853.
+fn unreachable_plan(problem: &Problem, tolerance: f64, t_end: f64) -> Plan {
+    let _ = (problem, t_end);
+    Plan {
+        method: Method::Dop853,
+        tolerance: (tolerance / 100.0).max(1e-14),
+        step: None,
+        predicted_error: tolerance,
+        predicted_seconds: 0.0,
+        reason: "resolved adaptive integration".to_owned(),
+    }
+}
+
+/// [`plan`], asking `go_on` between probe steps whether to continue.
+///
+/// # Errors
+/// [`StepError::Cancelled`] when `go_on` says stop during a probe.
 ///
 /// # Panics
 /// Never: the resolved candidates are always present, so a minimum exists.
-#[must_use]
-pub fn plan(problem: &Problem, tolerance: f64, t_end: f64) -> Plan {
+pub fn plan_cancellable(
+    problem: &Problem,
+    tolerance: f64,
+    t_end: f64,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<Plan, StepError> {
     let p = problem.params();
     let nu = fastest_rate(problem);
     let periods = nu * t_end / std::f64::consts::TAU;
@@ -149,10 +178,10 @@ pub fn plan(problem: &Problem, tolerance: f64, t_end: f64) -> Plan {
 
     // The corrected effective model, when its probed O(1/k) error is small enough.
     if p.k > 100.0 * K_PROBES[1] {
-        let coefficient = K_PROBES
-            .iter()
-            .map(|&k| probe_effective_error(problem, k, t_end) * k)
-            .fold(0.0, f64::max);
+        let mut coefficient: f64 = 0.0;
+        for k in K_PROBES {
+            coefficient = coefficient.max(probe_error(problem, k, t_end, go_on)? * k);
+        }
         let predicted = coefficient / p.k * PROBE_SAFETY;
         let probe_cost: f64 = K_PROBES
             .iter()
@@ -178,9 +207,10 @@ pub fn plan(problem: &Problem, tolerance: f64, t_end: f64) -> Plan {
         .cloned()
         .collect();
     let pool = if meets.is_empty() { candidates } else { meets };
-    pool.into_iter()
+    Ok(pool
+        .into_iter()
         .min_by(|a, b| a.predicted_seconds.total_cmp(&b.predicted_seconds))
-        .expect("at least one candidate")
+        .expect("at least one candidate"))
 }
 
 fn probe_cost(problem: &Problem, k: f64, t_end: f64) -> f64 {
@@ -196,9 +226,19 @@ fn probe_cost(problem: &Problem, k: f64, t_end: f64) -> f64 {
 /// When `k` is not a valid Hooke constant (callers pass the fixed probes).
 #[must_use]
 pub fn probe_effective_error(problem: &Problem, k: f64, t_end: f64) -> f64 {
+    probe_error(problem, k, t_end, &mut |_| true).unwrap_or(f64::INFINITY)
+}
+
+/// [`probe_effective_error`], cancellable: `Err` only when `go_on` stopped it.
+fn probe_error(
+    problem: &Problem,
+    k: f64,
+    t_end: f64,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<f64, StepError> {
     let probe = problem.with_k(k).expect("probe k is valid");
     let nu = fastest_rate(&probe);
-    let full = run(
+    let full = run_cancellable(
         &probe,
         &RunSpec {
             method: Method::BlanesMoan4,
@@ -208,8 +248,9 @@ pub fn probe_effective_error(problem: &Problem, k: f64, t_end: f64) -> f64 {
             samples: 0,
             monitor_energy: false,
         },
+        go_on,
     );
-    let limit = run(
+    let limit = run_cancellable(
         &probe,
         &RunSpec {
             method: Method::EffectiveCorrected,
@@ -219,13 +260,17 @@ pub fn probe_effective_error(problem: &Problem, k: f64, t_end: f64) -> f64 {
             samples: 0,
             monitor_energy: false,
         },
+        go_on,
     );
-    match (full, limit) {
+    Ok(match (full, limit) {
+        (Err(e @ StepError::Cancelled { .. }), _) | (_, Err(e @ StepError::Cancelled { .. })) => {
+            return Err(e);
+        }
         (Ok(a), Ok(b)) => (a.final_state[1] - b.final_state[1])
             .abs()
             .max((a.final_state[3] - b.final_state[3]).abs()),
         _ => f64::INFINITY,
-    }
+    })
 }
 
 /// A run chosen by `auto`, with its error estimate.
@@ -239,6 +284,9 @@ pub struct Verified {
     pub error_estimate: f64,
     /// How many times the first plan had to be refined.
     pub refinements: u32,
+    /// The settings of the returned (finer) run: integrating `plan.method` with these gives
+    /// `result` bit for bit, which is how the explorer shows exactly what `simulate` reports.
+    pub run_settings: Settings,
 }
 
 /// Most refinements before `auto` reports what it has.
@@ -256,7 +304,37 @@ pub fn run_auto(
     samples: usize,
     monitor_energy: bool,
 ) -> Result<Verified, StepError> {
-    let mut plan = plan(problem, tolerance, t_end);
+    run_auto_cancellable(
+        problem,
+        &RunSpec {
+            method: Method::Auto,
+            tolerance,
+            step: None,
+            t_end,
+            samples,
+            monitor_energy,
+        },
+        &mut |_| true,
+    )
+}
+
+/// [`run_auto`] for `spec` (its `method` and `step` are ignored), asking `go_on` every few
+/// hundred steps whether to continue.
+///
+/// # Errors
+/// When an integration fails, or [`StepError::Cancelled`] when `go_on` says stop.
+pub fn run_auto_cancellable(
+    problem: &Problem,
+    spec: &RunSpec,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<Verified, StepError> {
+    let (tolerance, t_end, samples, monitor_energy) = (
+        spec.tolerance,
+        spec.t_end,
+        spec.samples,
+        spec.monitor_energy,
+    );
+    let mut plan = plan_cancellable(problem, tolerance, t_end, go_on)?;
     let mut refinements = 0;
     loop {
         let spec = RunSpec {
@@ -269,44 +347,49 @@ pub fn run_auto(
         };
         let (result, estimate) = if plan.method == Method::EffectiveCorrected {
             // Model error (probed) plus integration error (from a finer companion).
-            let coarse = run(problem, &spec)?;
+            let coarse = run_cancellable(problem, &spec, go_on)?;
             let (finer, divisor) = finer_companion(&plan);
-            let fine = run(
+            let fine = run_cancellable(
                 problem,
                 &RunSpec {
                     tolerance: finer.tolerance,
                     ..spec
                 },
+                go_on,
             )?;
             let estimate = plan.predicted_error + difference(&coarse, &fine) / divisor;
             (fine, estimate)
         } else {
-            let coarse = run(
+            let coarse = run_cancellable(
                 problem,
                 &RunSpec {
                     samples: 0,
                     monitor_energy: false,
                     ..spec
                 },
+                go_on,
             )?;
             let (finer, divisor) = finer_companion(&plan);
-            let fine = run(
+            let fine = run_cancellable(
                 problem,
                 &RunSpec {
                     tolerance: finer.tolerance,
                     step: finer.step,
                     ..spec
                 },
+                go_on,
             )?;
             let estimate = difference(&coarse, &fine) / divisor;
             (fine, estimate)
         };
         if estimate <= tolerance || refinements == MAX_REFINEMENTS {
+            let run_settings = finer_companion(&plan).0;
             return Ok(Verified {
                 plan,
                 result,
                 error_estimate: estimate,
                 refinements,
+                run_settings,
             });
         }
         plan = refine(problem, plan, estimate / tolerance, t_end);

@@ -12,10 +12,12 @@ pub mod effective;
 pub mod integrators;
 pub mod model;
 pub mod params;
+pub mod plan;
 pub mod quadrature;
 pub mod run;
 
 pub use integrators::{Integrator, Method, StepError};
 pub use model::State;
 pub use params::{ParamError, Params, Problem, Start};
+pub use plan::{DEFAULT_TOLERANCE, Resolved};
 pub use run::{RunResult, RunSpec, run};

@@ -57,16 +57,33 @@ pub struct RunResult {
     pub samples: Vec<Sample>,
 }
 
+/// Steps between two calls of a run's cancellation check.
+pub const CHECK_EVERY: u64 = 256;
+
 /// Integrates `problem` as `spec` says.
 ///
 /// # Errors
-/// When the integrator cannot continue (step underflow, non-finite state).
+/// When the integrator cannot continue (step underflow, non-finite state), or for `auto`
+/// ([`StepError::Unplanned`]: resolve it with `physics::plan` first).
 pub fn run(problem: &Problem, spec: &RunSpec) -> Result<RunResult, StepError> {
+    run_cancellable(problem, spec, &mut |_| true)
+}
+
+/// [`run`], asking `go_on(t)` every [`CHECK_EVERY`] steps whether to continue (`t` is the time
+/// reached, for progress); the physics stays clock-free, the caller decides.
+///
+/// # Errors
+/// As [`run`], and [`StepError::Cancelled`] when `go_on` says stop.
+pub fn run_cancellable(
+    problem: &Problem,
+    spec: &RunSpec,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<RunResult, StepError> {
     let settings = Settings {
         tolerance: spec.tolerance,
         step: spec.step,
     };
-    let mut integrator = integrators::build(spec.method, problem, settings, spec.t_end);
+    let mut integrator = integrators::build(spec.method, problem, settings, spec.t_end)?;
     let e0 = integrator.energy();
     let scale = if e0 == 0.0 { 1.0 } else { e0.abs() };
     let mut tracker = ReversalTracker::new(problem.start().alpha_dot);
@@ -90,7 +107,14 @@ pub fn run(problem: &Problem, spec: &RunSpec) -> Result<RunResult, StepError> {
         });
         next_sample = 1;
     }
+    let mut steps: u64 = 0;
     while integrator.time() < spec.t_end {
+        steps += 1;
+        if steps.is_multiple_of(CHECK_EVERY) && !go_on(integrator.time()) {
+            return Err(StepError::Cancelled {
+                t: integrator.time(),
+            });
+        }
         integrator.step(spec.t_end)?;
         if let Some(t) = tracker.after_step(integrator.as_mut()) {
             reversals.push(t);

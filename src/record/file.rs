@@ -113,11 +113,13 @@ pub fn read(path: &Path) -> Result<Recording, RecordError> {
         ));
     }
     if let Some(v) = probe.get("version").and_then(serde_json::Value::as_u64)
-        && v != u64::from(VERSION)
+        && !(1..=u64::from(VERSION)).contains(&v)
     {
         return Err(corrupt(
             1,
-            format!("format version {v} is not supported; this build reads version {VERSION}"),
+            format!(
+                "format version {v} is not supported; this build reads versions 1 to {VERSION}"
+            ),
         ));
     }
     let header: Header =

@@ -7,14 +7,18 @@
 //! the last. Checkpoints hold the exact state at their time and a hash of its bits; because
 //! trajectories do not depend on pacing, `replay --verify` re-runs the events headless and
 //! compares them bit for bit.
+//!
+//! Format 2 adds `plan` lines: the concrete plan each run integrated (what `auto` resolved
+//! to); replay integrates the recorded plan. Format 1 files, which have none, replay `auto`
+//! as it was then (its first plan, unverified), so they keep verifying.
+//!
+//! Nothing here draws: the cast export, which renders, lives above both (`crate::cast`).
 
-mod cast;
 mod file;
 mod verify;
 
-pub use cast::export_cast;
 pub use file::{Recorder, Recording, read};
-pub use verify::{Divergence, verify};
+pub use verify::{Divergence, VerifyError, plan_book, start, verify};
 
 use serde::{Deserialize, Serialize};
 
@@ -23,7 +27,7 @@ use crate::app::journal::Event;
 /// The `format` field of every session file.
 pub const FORMAT: &str = "rattleback-session";
 /// The format version this build writes and reads.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 /// First line of a session file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -1,10 +1,13 @@
-//! `replay --verify`: re-run a session headless and check every checkpoint bit for bit.
+//! `replay --verify`: re-run a session headless through the worker's own interpreter and check
+//! every checkpoint bit for bit.
 
 use super::{RecordError, Recording};
+use crate::app::effects::commands;
 use crate::app::journal::{Event, state_hash};
-use crate::app::{App, Options};
+use crate::app::{App, Effect, Options};
+use crate::physics::plan::AutoPolicy;
 use crate::scenario::Preset;
-use crate::sim::{Command, Session};
+use crate::sim::{Command, Engine, PlanBook, SimEvent, drive};
 
 /// The first checkpoint that did not reproduce.
 #[derive(Clone, Debug, PartialEq)]
@@ -19,11 +22,43 @@ pub struct Divergence {
     pub got: String,
 }
 
+/// Why a session did not verify.
+#[derive(Debug, thiserror::Error)]
+pub enum VerifyError {
+    /// A checkpoint did not reproduce.
+    #[error("{}: divergence at t = {}: expected {}, got {}", .0.line, .0.t, .0.expected, .0.got)]
+    Diverged(Divergence),
+    /// The file itself is bad.
+    #[error(transparent)]
+    Record(#[from] RecordError),
+}
+
+/// How `auto` resolves in a replay of `rec`: the plans it recorded, and for format 1 files
+/// (which recorded none) `auto` as it was then.
+#[must_use]
+pub fn plan_book(rec: &Recording) -> PlanBook {
+    PlanBook {
+        policy: if rec.header.version < 2 {
+            AutoPolicy::Legacy
+        } else {
+            AutoPolicy::Verified
+        },
+        recorded: rec
+            .lines
+            .iter()
+            .filter_map(|(_, l)| match &l.event {
+                Event::Plan { key, plan } => Some((*key, *plan)),
+                _ => None,
+            })
+            .collect(),
+    }
+}
+
 /// Rebuilds the explorer state of a recording's start.
 ///
 /// # Errors
 /// When the inline preset is not valid.
-pub fn start(rec: &Recording, path: &str) -> Result<(App, Vec<Command>), RecordError> {
+pub fn start(rec: &Recording, path: &str) -> Result<(App, Vec<Effect>), RecordError> {
     let preset = Preset::parse(
         &rec.header.preset,
         &format!("{path} (header preset)"),
@@ -35,29 +70,26 @@ pub fn start(rec: &Recording, path: &str) -> Result<(App, Vec<Command>), RecordE
         line: 1,
         message: e.to_string(),
     })?;
-    Ok(App::new(
-        &preset,
-        Options {
-            fps: rec.header.fps,
-        },
-    ))
+    Ok(App::new(&preset, Options::at(rec.header.fps)))
+}
+
+/// The commands that decide the trajectory: restarts, the overlay and checkpoints. Pacing
+/// (`AdvanceTo`) is dropped: trajectories do not depend on it.
+fn trajectory(effects: Vec<Effect>) -> Vec<Command> {
+    commands(effects)
+        .into_iter()
+        .filter(|c| !matches!(c, Command::AdvanceTo { .. }))
+        .collect()
 }
 
 /// Re-runs `rec` and compares every checkpoint. `Ok(n)`: all `n` checkpoints reproduced.
 ///
 /// # Errors
-/// A bad header preset (`Err(Err)`), or the first divergence (`Err(Ok)`).
-pub fn verify(rec: &Recording, path: &str) -> Result<usize, Result<Divergence, RecordError>> {
-    let (mut app, commands) = start(rec, path).map_err(Err)?;
-    let mut session = None;
-    let feed = |commands: Vec<Command>, session: &mut Option<Session>| {
-        for c in commands {
-            if let Command::Restart { generation, spec } = c {
-                *session = Some(Session::new(generation, spec));
-            }
-        }
-    };
-    feed(commands, &mut session);
+/// A bad header preset, or the first divergence.
+pub fn verify(rec: &Recording, path: &str) -> Result<usize, VerifyError> {
+    let (mut app, effects) = start(rec, path)?;
+    let mut engine = Engine::new(plan_book(rec));
+    drive(&mut engine, trajectory(effects), &mut |_| {});
     let mut checked = 0;
     for (number, line) in &rec.lines {
         if let Event::Checkpoint {
@@ -66,16 +98,32 @@ pub fn verify(rec: &Recording, path: &str) -> Result<usize, Result<Divergence, R
             hash,
         } = &line.event
         {
-            let Some(s) = session.as_mut() else { continue };
-            s.advance(line.t, 1.0, usize::MAX);
-            let got = s.checkpoint(line.t);
-            let (got_state, got_rev) = got.unwrap_or(([f64::NAN; 4], usize::MAX));
-            let got_hash = state_hash(line.t, &got_state, got_rev);
+            let mut got = None;
+            drive(
+                &mut engine,
+                vec![Command::Checkpoint {
+                    generation: app.run.generation,
+                    t: line.t,
+                }],
+                &mut |e| {
+                    if let SimEvent::Checkpoint {
+                        t,
+                        state,
+                        reversals,
+                        ..
+                    } = e
+                    {
+                        got = Some((t, state, reversals));
+                    }
+                },
+            );
+            let (got_t, got_state, got_rev) = got.unwrap_or((line.t, [f64::NAN; 4], usize::MAX));
+            let got_hash = state_hash(got_t, &got_state, got_rev);
             if got_hash != *hash
                 || got_state.map(f64::to_bits) != state.map(f64::to_bits)
                 || got_rev != *reversals
             {
-                return Err(Ok(Divergence {
+                return Err(VerifyError::Diverged(Divergence {
                     line: *number,
                     t: line.t,
                     expected: format!("state {state:?}, {reversals} reversals, hash {hash}"),
@@ -84,8 +132,8 @@ pub fn verify(rec: &Recording, path: &str) -> Result<usize, Result<Divergence, R
             }
             checked += 1;
         } else {
-            let commands = app.apply_event(&line.event);
-            feed(commands, &mut session);
+            let effects = app.apply_event(&line.event);
+            drive(&mut engine, trajectory(effects), &mut |_| {});
         }
     }
     Ok(checked)

@@ -58,6 +58,19 @@ impl fmt::Display for Located<'_> {
 }
 
 impl PresetError {
+    /// The file's name without folder and `.toml` (how the picker lists it).
+    #[must_use]
+    pub fn file_name(&self) -> String {
+        let path = match self {
+            Self::Unreadable { path, .. } | Self::Invalid { path, .. } => path.as_str(),
+            _ => "",
+        };
+        let name = std::path::Path::new(path)
+            .file_stem()
+            .map_or_else(|| path.to_owned(), |s| s.to_string_lossy().into_owned());
+        crate::scenario::text::clean(&name)
+    }
+
     /// The `section.key` the error concerns, if any.
     #[must_use]
     pub fn key(&self) -> Option<&str> {

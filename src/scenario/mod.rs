@@ -7,6 +7,7 @@ pub mod error;
 pub mod preset;
 pub mod shipped;
 pub mod store;
+pub mod text;
 pub mod theme;
 
 pub use error::PresetError;

@@ -61,6 +61,12 @@ pub fn user_preset_dir() -> Option<PathBuf> {
     config_dir().map(|d| d.join("presets"))
 }
 
+/// Whether `name` is a shipped preset's (saving a user preset under it would hide it).
+#[must_use]
+pub fn is_shipped(name: &str) -> bool {
+    SHIPPED.iter().any(|(n, _)| *n == name)
+}
+
 /// Names of the shipped presets, comma-separated.
 #[must_use]
 pub fn shipped_names() -> String {

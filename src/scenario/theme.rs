@@ -72,8 +72,10 @@ impl std::str::FromStr for Colour {
     }
 }
 
-/// The roles a theme colours. Names are a contract: add, never rename.
-pub const ROLES: [&str; 9] = [
+/// The roles a theme colours. Names are a contract: add, never rename. Roles from
+/// [`FIRST_OPTIONAL`] on may be left out (they default to the terminal's own colours), so
+/// adding a role never breaks a user's theme file.
+pub const ROLES: [&str; 11] = [
     "contour",
     "separatrix",
     "start_level",
@@ -83,7 +85,12 @@ pub const ROLES: [&str; 9] = [
     "reversal",
     "error",
     "dim",
+    "background",
+    "text",
 ];
+
+/// Index of the first role a theme may leave out.
+pub const FIRST_OPTIONAL: usize = 9;
 
 /// A validated theme.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -93,7 +100,7 @@ pub struct ThemeSpec {
     /// When to use it.
     pub description: String,
     /// Colour of each role, in [`ROLES`] order.
-    pub colours: [Colour; 9],
+    pub colours: [Colour; 11],
 }
 
 impl ThemeSpec {
@@ -131,8 +138,8 @@ impl ThemeSpec {
         };
         let mut name = fallback_name.to_owned();
         let mut description = String::new();
-        let mut colours = [Colour::Default; 9];
-        let mut seen = [false; 9];
+        let mut colours = [Colour::Default; 11];
+        let mut seen = [false; 11];
         for (section, value) in &table {
             let Some(t) = value.as_table() else {
                 problem(section, "", format!("`{section}` must be a table"));
@@ -187,7 +194,7 @@ impl ThemeSpec {
                 ),
             }
         }
-        for (i, role) in ROLES.iter().enumerate() {
+        for (i, role) in ROLES.iter().enumerate().take(FIRST_OPTIONAL) {
             if !seen[i] {
                 problem("colors", role, "missing colour".to_owned());
             }

@@ -7,36 +7,41 @@
 //! method and build give the same bits whatever the frame rate, which replays rely on.
 //! Imports `physics` only; never the UI.
 
+mod engine;
 mod session;
 mod worker;
 
+pub use engine::{Engine, PlanBook, PlanKey, drive};
 pub use session::{Point, Session, SessionSpec};
 pub use worker::Worker;
 
-use crate::physics::Problem;
 use crate::physics::integrators::Method;
+use crate::physics::plan::Resolved;
 
 /// UI to worker.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Command {
-    /// Start over (cancels in-flight work at once).
+    /// Start over (cancels in-flight work at once, planning included).
     Restart {
         /// Stamp echoed in every event of this run; stale events are ignored.
         generation: u64,
         /// What to run.
         spec: SessionSpec,
     },
-    /// Integrate up to simulated time `t`, sampling every `sample_dt`.
+    /// Integrate up to simulated time `t` (samples come on the run's own grid).
     AdvanceTo {
         /// Run this applies to.
         generation: u64,
-        /// Target time.
+        /// Target time; a target behind the run stops it where it is.
         t: f64,
-        /// Spacing of the samples sent back.
-        sample_dt: f64,
     },
-    /// Integrate the effective overlay too, or stop doing so.
-    SetEffective(bool),
+    /// Integrate the effective overlay too (from `t = 0`, catching up), or stop doing so.
+    SetEffective {
+        /// On or off.
+        on: bool,
+        /// Stamp of this life of the overlay, echoed in its samples and reversals.
+        epoch: u64,
+    },
     /// Report the exact state at simulated time `t` (integrating there first).
     Checkpoint {
         /// Run this applies to.
@@ -51,30 +56,42 @@ pub enum Command {
 /// Worker to UI.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SimEvent {
-    /// A run started; `method` is what integrates (what `auto` chose).
+    /// `auto` is being planned and verified over the whole run before anything is shown.
+    Planning {
+        /// Run stamp.
+        generation: u64,
+    },
+    /// A run started; `plan` is what integrates (what `auto` resolved to).
     Started {
         /// Run stamp.
         generation: u64,
-        /// The concrete method.
-        method: Method,
+        /// The concrete plan.
+        plan: Resolved,
+        /// `auto`'s error estimate of the run (absent for a concrete or recorded plan).
+        error_estimate: Option<f64>,
     },
-    /// New samples of the full (and, if enabled, effective) motion, up to `t`.
+    /// New samples of the full (and, if enabled, effective) motion.
     Samples {
         /// Run stamp.
         generation: u64,
-        /// Full model samples.
+        /// Overlay stamp of the effective samples.
+        epoch: u64,
+        /// Full model samples, on the run's grid.
         full: Vec<Point>,
-        /// Effective model samples (empty when the overlay is off).
+        /// Effective model samples on the same grid (empty when the overlay is off).
         effective: Vec<Point>,
-        /// Time reached by the samples.
-        t: f64,
+        /// Time of the last full sample, if any.
+        t: Option<f64>,
         /// Steps taken so far by the full integrator.
         steps: u64,
     },
-    /// A spin reversal.
+    /// A spin reversal (possibly ahead of the samples sent: the display counts it when it
+    /// reaches its time).
     Reversal {
         /// Run stamp.
         generation: u64,
+        /// Overlay stamp (for effective reversals).
+        epoch: u64,
         /// Its time.
         t: f64,
         /// Of the effective motion (else the full one).
@@ -96,7 +113,7 @@ pub enum SimEvent {
         /// Run stamp.
         generation: u64,
     },
-    /// The integration failed.
+    /// The integration (or `auto`'s planning) failed.
     Failed {
         /// Run stamp.
         generation: u64,
@@ -105,75 +122,13 @@ pub enum SimEvent {
     },
 }
 
-/// Runs worker commands synchronously on `session`, handing the events to `on_event`: the
-/// worker's behaviour without a thread (replay verification, cast export, tests).
-pub fn drive(
-    session: &mut Option<Session>,
-    commands: Vec<Command>,
-    on_event: &mut dyn FnMut(SimEvent),
-) {
-    for c in commands {
-        match c {
-            Command::Restart { generation, spec } => {
-                let s = Session::new(generation, spec);
-                on_event(SimEvent::Started {
-                    generation,
-                    method: s.method(),
-                });
-                *session = Some(s);
-            }
-            Command::AdvanceTo {
-                generation,
-                t,
-                sample_dt,
-            } => {
-                if let Some(s) = session.as_mut().filter(|s| s.generation() == generation) {
-                    s.advance(t, sample_dt, usize::MAX)
-                        .0
-                        .into_iter()
-                        .for_each(&mut *on_event);
-                }
-            }
-            Command::Checkpoint { generation, t } => {
-                if let Some(s) = session.as_mut().filter(|s| s.generation() == generation) {
-                    s.advance(t, 1.0, usize::MAX)
-                        .0
-                        .into_iter()
-                        .for_each(&mut *on_event);
-                    if let Some((state, reversals)) = s.checkpoint(t) {
-                        on_event(SimEvent::Checkpoint {
-                            generation,
-                            t,
-                            state,
-                            reversals,
-                        });
-                    }
-                }
-            }
-            Command::SetEffective(on) => {
-                if let Some(s) = session.as_mut() {
-                    s.set_effective(on);
-                }
-            }
-            Command::Quit => {}
+impl SimEvent {
+    /// The method of a `Started` event.
+    #[must_use]
+    pub fn method(&self) -> Option<Method> {
+        match self {
+            Self::Started { plan, .. } => Some(plan.method),
+            _ => None,
         }
-    }
-}
-
-/// Convenience: a session spec for a problem.
-#[must_use]
-pub fn spec(
-    problem: Problem,
-    method: Method,
-    tolerance: f64,
-    t_end: f64,
-    effective: bool,
-) -> SessionSpec {
-    SessionSpec {
-        problem,
-        method,
-        tolerance,
-        t_end,
-        effective,
     }
 }

@@ -1,26 +1,32 @@
-//! One run of the explorer: the full integrator, optionally the effective one, reversal
-//! trackers, and interpolated samples at the times the UI asks for.
+//! One run of the explorer: the full integrator of a resolved plan, optionally the effective
+//! one, reversal trackers, and samples on a fixed time grid.
+//!
+//! The grid (`i · sample_dt`, and `t_end` exactly) depends on the dynamics only, never on the
+//! playback speed or the frame rate, so the trail at ×1024 is the same curve as at ×1.
 
 use serde::{Deserialize, Serialize};
 
 use super::SimEvent;
 use crate::physics::Problem;
 use crate::physics::integrators::reversals::ReversalTracker;
-use crate::physics::integrators::{self, Integrator, Method, Settings};
+use crate::physics::integrators::{self, Integrator, Method, Settings, StepError};
+use crate::physics::plan::Resolved;
 
 /// What a session runs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SessionSpec {
     /// Body, spring and start.
     pub problem: Problem,
-    /// Method (`auto` is planned once, at the start).
+    /// Method as asked (`auto` is resolved by the engine before the session starts).
     pub method: Method,
-    /// Tolerance.
+    /// Tolerance as asked.
     pub tolerance: f64,
     /// End of the run.
     pub t_end: f64,
-    /// Whether the effective overlay is integrated.
+    /// Whether the effective overlay is integrated from the start (the engine turns it on).
     pub effective: bool,
+    /// Spacing of the sample grid (simulated time), set by the dynamics.
+    pub sample_dt: f64,
 }
 
 /// A sample of the motion for drawing.
@@ -41,22 +47,29 @@ struct Track {
     tracker: ReversalTracker,
     e0: f64,
     scale: f64,
+    /// Index of the next grid sample this track emits.
+    next: u64,
+    /// Reversals found so far.
+    reversals: Vec<f64>,
 }
 
 impl Track {
-    fn new(spec: &SessionSpec, method: Method) -> Self {
-        let settings = Settings {
-            tolerance: spec.tolerance,
-            step: None,
-        };
-        let integrator = integrators::build(method, &spec.problem, settings, spec.t_end);
+    fn new(
+        problem: &Problem,
+        method: Method,
+        settings: Settings,
+        t_end: f64,
+    ) -> Result<Self, StepError> {
+        let integrator = integrators::build(method, problem, settings, t_end)?;
         let e0 = integrator.energy();
-        Self {
+        Ok(Self {
             integrator,
-            tracker: ReversalTracker::new(spec.problem.start().alpha_dot),
+            tracker: ReversalTracker::new(problem.start().alpha_dot),
             e0,
             scale: if e0 == 0.0 { 1.0 } else { e0.abs() },
-        }
+            next: 0,
+            reversals: Vec::new(),
+        })
     }
 
     fn point(&mut self, t: f64) -> Point {
@@ -72,39 +85,66 @@ impl Track {
             energy_error: (self.integrator.energy() - self.e0) / self.scale,
         }
     }
+
+    /// One step; the reversal inside it, if any.
+    fn step(&mut self, t_end: f64) -> Result<Option<f64>, StepError> {
+        self.integrator.step(t_end)?;
+        let r = self.tracker.after_step(self.integrator.as_mut());
+        if let Some(t) = r {
+            self.reversals.push(t);
+        }
+        Ok(r)
+    }
 }
 
 /// A synchronous run: `advance` integrates to a target and returns what happened.
 pub struct Session {
     spec: SessionSpec,
+    plan: Resolved,
     generation: u64,
     full: Track,
     effective: Option<Track>,
-    next_sample: f64,
+    /// Stamp of the overlay's current life: samples of an older one are ignored by the app.
+    epoch: u64,
     finished: bool,
-    reversals: Vec<f64>,
+    failed: bool,
 }
 
 impl Session {
-    /// Starts a run at `t = 0`.
-    #[must_use]
-    pub fn new(generation: u64, spec: SessionSpec) -> Self {
-        let effective = spec.effective.then(|| Track::new(&spec, Method::Effective));
-        Self {
-            full: Track::new(&spec, spec.method),
+    /// Starts a run of the resolved `plan` at `t = 0`.
+    ///
+    /// # Errors
+    /// [`StepError::Unplanned`] when `plan` is still `auto`.
+    pub fn new(generation: u64, spec: SessionSpec, plan: Resolved) -> Result<Self, StepError> {
+        let full = Track::new(&spec.problem, plan.method, plan.settings(), spec.t_end)?;
+        Ok(Self {
             spec,
+            plan,
             generation,
-            effective,
-            next_sample: 0.0,
+            full,
+            effective: None,
+            epoch: 0,
             finished: false,
-            reversals: Vec::new(),
-        }
+            failed: false,
+        })
     }
 
     /// Time the full integrator has reached.
     #[must_use]
     pub fn time(&self) -> f64 {
         self.full.integrator.time()
+    }
+
+    /// Start of the full integrator's last step.
+    #[must_use]
+    pub fn time_prev_step(&self) -> f64 {
+        self.full.integrator.time_prev()
+    }
+
+    /// The resolved plan this run integrates.
+    #[must_use]
+    pub fn plan(&self) -> Resolved {
+        self.plan
     }
 
     /// The exact state at `t` and the reversals up to it, once the run has reached `t` with
@@ -121,7 +161,7 @@ impl Session {
         } else {
             return None;
         };
-        let reversals = self.reversals.iter().filter(|r| **r <= t).count();
+        let reversals = self.full.reversals.iter().filter(|r| **r <= t).count();
         Some(([y[0], y[1], y[2], y[3]], reversals))
     }
 
@@ -137,104 +177,158 @@ impl Session {
         self.full.integrator.method()
     }
 
-    /// Turns the effective overlay on (from the current time's state of the limit) or off.
-    pub fn set_effective(&mut self, on: bool) {
-        if on && self.effective.is_none() {
-            let mut track = Track::new(&self.spec, Method::Effective);
-            let t = self.full.integrator.time();
-            // Catch up from 0 (cheap: its cost does not depend on k).
-            while track.integrator.time() < t {
-                if track.integrator.step(self.spec.t_end).is_err() {
-                    return;
-                }
-                track.tracker.after_step(track.integrator.as_mut());
-            }
-            self.effective = Some(track);
-        } else if !on {
-            self.effective = None;
-        }
+    /// Turns the effective overlay on or off; `epoch` stamps what it sends from now on. When
+    /// turned on, the limit starts again from `t = 0` and catches up, sample by sample and
+    /// reversal by reversal, with the full motion.
+    pub fn set_effective(&mut self, on: bool, epoch: u64) {
+        self.epoch = epoch;
+        self.effective = if on {
+            Track::new(
+                &self.spec.problem,
+                Method::Effective,
+                Settings {
+                    tolerance: self.spec.tolerance,
+                    step: None,
+                },
+                self.spec.t_end,
+            )
+            .ok()
+        } else {
+            None
+        };
     }
 
-    /// Integrates until `t` (clamped to `t_end`), at most `max_steps` steps; samples every
-    /// `sample_dt` from the last sample on. Returns the events, and whether `t` was reached.
-    pub fn advance(&mut self, t: f64, sample_dt: f64, max_steps: usize) -> (Vec<SimEvent>, bool) {
+    /// Time of grid sample `i` (the last one is `t_end` exactly).
+    fn grid(&self, i: u64) -> f64 {
+        grid_time(i, self.spec.sample_dt, self.spec.t_end)
+    }
+
+    /// Whether grid sample `i` exists (the grid stops at `t_end`).
+    fn on_grid(&self, i: u64) -> bool {
+        i == 0 || self.grid(i - 1) < self.spec.t_end
+    }
+
+    /// Integrates until `t` (clamped to `t_end`), at most `max_steps` steps of the full model;
+    /// emits the grid samples passed, and the reversals. Returns the events, and whether `t`
+    /// was reached.
+    pub fn advance(&mut self, t: f64, max_steps: usize) -> (Vec<SimEvent>, bool) {
         let mut events = Vec::new();
-        if self.finished {
+        if self.failed || (self.finished && !self.effective_behind()) {
             return (events, true);
         }
         let target = t.min(self.spec.t_end);
         let generation = self.generation;
         let mut full = Vec::new();
-        let mut effective = Vec::new();
         let mut steps = 0;
-        let mut reached = false;
-        loop {
-            // Emit the samples the full motion has already passed.
-            while self.next_sample <= target && self.next_sample <= self.full.integrator.time() {
-                let ts = self.next_sample;
+        let reached = loop {
+            while self.on_grid(self.full.next)
+                && self.grid(self.full.next) <= target
+                && self.grid(self.full.next) <= self.full.integrator.time()
+            {
+                let ts = self.grid(self.full.next);
                 full.push(self.full.point(ts));
-                if let Some(track) = self.effective.as_mut() {
-                    while track.integrator.time() < ts {
-                        if let Err(e) = track.integrator.step(self.spec.t_end) {
-                            events.push(SimEvent::Failed {
-                                generation,
-                                message: format!("effective model: {e}"),
-                            });
-                            self.effective = None;
-                            break;
-                        }
-                        if let Some(tr) = track.tracker.after_step(track.integrator.as_mut()) {
-                            events.push(SimEvent::Reversal {
-                                generation,
-                                t: tr,
-                                effective: true,
-                            });
-                        }
-                    }
-                    if let Some(track) = self.effective.as_mut() {
-                        effective.push(track.point(ts));
-                    }
-                }
-                self.next_sample += sample_dt.max(1e-12);
+                self.full.next += 1;
             }
             if self.full.integrator.time() >= target {
-                reached = true;
-                break;
+                break true;
             }
             if steps >= max_steps {
-                break;
+                break false;
             }
-            if let Err(e) = self.full.integrator.step(self.spec.t_end) {
-                events.push(SimEvent::Failed {
+            match self.full.step(self.spec.t_end) {
+                Ok(Some(tr)) => events.push(SimEvent::Reversal {
                     generation,
-                    message: e.to_string(),
-                });
-                self.finished = true;
-                break;
-            }
-            steps += 1;
-            if let Some(tr) = self.full.tracker.after_step(self.full.integrator.as_mut()) {
-                self.reversals.push(tr);
-                events.push(SimEvent::Reversal {
-                    generation,
+                    epoch: self.epoch,
                     t: tr,
                     effective: false,
-                });
+                }),
+                Ok(None) => {}
+                Err(e) => {
+                    events.push(SimEvent::Failed {
+                        generation,
+                        message: e.to_string(),
+                    });
+                    self.failed = true;
+                    break false;
+                }
             }
-        }
-        let t_reached = full.last().map_or(self.next_sample.min(target), |p| p.t);
+            steps += 1;
+        };
+        let effective = self.catch_up_effective(&mut events, max_steps);
+        let t_reached = full.last().map(|p| p.t);
         events.push(SimEvent::Samples {
             generation,
+            epoch: self.epoch,
             full,
             effective,
             t: t_reached,
             steps: self.full.integrator.stats().steps,
         });
         if reached && target >= self.spec.t_end && !self.finished {
-            // Make sure the very end is sampled, then stop.
             self.finished = true;
             events.push(SimEvent::Finished { generation });
         }
         (events, reached)
     }
+
+    /// Brings the overlay to the full motion's last emitted sample (at most `max_steps` of its
+    /// own steps), returning its samples.
+    fn catch_up_effective(&mut self, events: &mut Vec<SimEvent>, max_steps: usize) -> Vec<Point> {
+        let mut out = Vec::new();
+        let upto = self.full.next;
+        let (generation, epoch, t_end, dt) = (
+            self.generation,
+            self.epoch,
+            self.spec.t_end,
+            self.spec.sample_dt,
+        );
+        let Some(track) = self.effective.as_mut() else {
+            return out;
+        };
+        let mut steps = 0;
+        while track.next < upto {
+            let ts = grid_time(track.next, dt, t_end);
+            if track.integrator.time() < ts {
+                if steps >= max_steps {
+                    break;
+                }
+                steps += 1;
+                match track.step(t_end) {
+                    Ok(Some(tr)) => events.push(SimEvent::Reversal {
+                        generation,
+                        epoch,
+                        t: tr,
+                        effective: true,
+                    }),
+                    Ok(None) => {}
+                    Err(e) => {
+                        events.push(SimEvent::Failed {
+                            generation,
+                            message: format!("effective model: {e}"),
+                        });
+                        self.effective = None;
+                        return out;
+                    }
+                }
+                continue;
+            }
+            out.push(track.point(ts));
+            track.next += 1;
+        }
+        out
+    }
+
+    /// Whether the overlay is behind the full motion's samples.
+    #[must_use]
+    pub fn effective_behind(&self) -> bool {
+        self.effective
+            .as_ref()
+            .is_some_and(|e| e.next < self.full.next)
+    }
+}
+
+/// Time of grid sample `i`: `i · dt`, never past `t_end` (computed from the index, so no
+/// rounding accumulates).
+fn grid_time(i: u64, dt: f64, t_end: f64) -> f64 {
+    (i as f64 * dt).min(t_end)
 }

@@ -1,15 +1,21 @@
-//! The worker thread around a [`Session`]: idle, it blocks on its command channel; busy, it
-//! works in chunks of steps and checks for commands between chunks, so a restart cancels
-//! in-flight work at once. Its sink is bounded: when the UI is slow, `send` blocks.
+//! The worker thread around an [`Engine`]: idle, it blocks on its command channel; busy, it
+//! works in slices bounded in wall time and checks for commands between them, so a pause, a
+//! restart or a quit takes effect within a frame. `auto`'s planning is cancelled as soon as a
+//! restart or a quit is waiting. Events of a slice are coalesced before they are sent; the sink
+//! is bounded, so when the UI is slow, `send` blocks.
 
+use std::cell::RefCell;
 use std::collections::VecDeque;
 use std::sync::mpsc::{self, Receiver, Sender, TryRecvError};
 use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
 
-use super::{Command, Session, SimEvent};
+use super::{Command, Engine, PlanBook, SimEvent};
 
-/// Steps per chunk between command checks.
-const CHUNK_STEPS: usize = 2_000;
+/// Steps between two looks at the clock and the channel.
+const CHUNK_STEPS: usize = 256;
+/// Longest slice of work between two sends.
+const SLICE: Duration = Duration::from_millis(8);
 
 /// A running worker; dropping it without [`Worker::join`] leaves the thread to stop by itself
 /// when its sink closes.
@@ -25,10 +31,18 @@ impl Worker {
     /// # Panics
     /// When the OS cannot spawn a thread.
     pub fn spawn(sink: impl FnMut(SimEvent) -> bool + Send + 'static) -> Self {
+        Self::spawn_with(PlanBook::default(), sink)
+    }
+
+    /// [`Worker::spawn`] resolving `auto` with `book` (replays pass the recorded plans).
+    ///
+    /// # Panics
+    /// When the OS cannot spawn a thread.
+    pub fn spawn_with(book: PlanBook, sink: impl FnMut(SimEvent) -> bool + Send + 'static) -> Self {
         let (commands, rx) = mpsc::channel();
         let handle = std::thread::Builder::new()
             .name("rattleback-sim".to_owned())
-            .spawn(move || run(&rx, sink))
+            .spawn(move || run(&rx, Engine::new(book), sink))
             .expect("spawn the integration worker");
         Self {
             commands,
@@ -41,7 +55,8 @@ impl Worker {
         let _ = self.commands.send(command);
     }
 
-    /// Asks the worker to stop and waits for it.
+    /// Asks the worker to stop and waits for it (at most one slice: planning is cancelled by
+    /// the quit).
     pub fn join(mut self) {
         let _ = self.commands.send(Command::Quit);
         if let Some(h) = self.handle.take() {
@@ -50,152 +65,120 @@ impl Worker {
     }
 }
 
-struct Pending {
-    generation: u64,
-    target: f64,
-    sample_dt: f64,
-}
-
-/// The worker's state between commands.
-struct Loop {
-    session: Option<Session>,
-    pending: Option<Pending>,
-    /// Checkpoints wait until the run reaches their time; the run stops there first so the
-    /// step containing the time is the last one (the trajectory is the same either way).
-    checkpoints: VecDeque<(u64, f64)>,
-    /// Sample spacing of the last advance, kept for checkpoint-only advances.
-    last_dt: f64,
-}
-
-impl Loop {
-    fn busy(&self) -> bool {
-        self.pending.is_some() || !self.checkpoints.is_empty()
-    }
-
-    /// Takes a command; `false` means stop.
-    fn handle(&mut self, command: &Command, sink: &mut impl FnMut(SimEvent) -> bool) -> bool {
-        match *command {
-            Command::Quit => return false,
-            Command::Restart { generation, spec } => {
-                let s = Session::new(generation, spec);
-                let started = SimEvent::Started {
-                    generation,
-                    method: s.method(),
-                };
-                self.session = Some(s);
-                self.pending = None;
-                self.checkpoints.clear();
-                return sink(started);
-            }
-            Command::AdvanceTo {
-                generation,
-                t,
-                sample_dt,
-            } => {
-                if self
-                    .session
-                    .as_ref()
-                    .is_some_and(|s| s.generation() == generation)
-                {
-                    self.pending = Some(Pending {
-                        generation,
-                        target: t,
-                        sample_dt,
-                    });
-                }
-            }
-            Command::Checkpoint { generation, t } => self.checkpoints.push_back((generation, t)),
-            Command::SetEffective(on) => {
-                if let Some(s) = self.session.as_mut() {
-                    s.set_effective(on);
-                }
-            }
-        }
-        true
-    }
-
-    /// Works one chunk towards the next target or checkpoint; `false` means stop.
-    fn work(&mut self, sink: &mut impl FnMut(SimEvent) -> bool) -> bool {
-        let Some(s) = self.session.as_mut() else {
-            self.pending = None;
-            self.checkpoints.clear();
-            return true;
-        };
-        self.checkpoints.retain(|(g, _)| *g == s.generation());
-        if self
-            .pending
-            .as_ref()
-            .is_some_and(|p| p.generation != s.generation())
-        {
-            self.pending = None;
-        }
-        let due = self.checkpoints.front().map(|c| c.1);
-        let target = match (self.pending.as_ref(), due) {
-            (Some(p), Some(c)) => p.target.min(c),
-            (Some(p), None) => p.target,
-            (None, Some(c)) => c,
-            (None, None) => return true,
-        };
-        if let Some(p) = self.pending.as_ref() {
-            self.last_dt = p.sample_dt;
-        }
-        let (events, reached) = s.advance(target, self.last_dt, CHUNK_STEPS);
-        for e in events {
-            if !sink(e) {
-                return false;
-            }
-        }
-        if !reached {
-            return true;
-        }
-        if let Some(c) = due.filter(|c| *c <= target) {
-            self.checkpoints.pop_front();
-            let generation = s.generation();
-            if let Some((state, reversals)) = s.checkpoint(c)
-                && !sink(SimEvent::Checkpoint {
-                    generation,
-                    t: c,
-                    state,
-                    reversals,
-                })
-            {
-                return false;
-            }
-        }
-        if self.pending.as_ref().is_some_and(|p| target >= p.target) {
-            self.pending = None;
-        }
-        true
-    }
-}
-
-fn run(rx: &Receiver<Command>, mut sink: impl FnMut(SimEvent) -> bool) {
-    let mut state = Loop {
-        session: None,
-        pending: None,
-        checkpoints: VecDeque::new(),
-        last_dt: 0.1,
-    };
+/// Moves every waiting command into `queue`; a closed channel becomes a quit.
+fn drain(rx: &Receiver<Command>, queue: &mut VecDeque<Command>) {
     loop {
-        // Block when idle, poll when busy: commands are checked between chunks, so a restart
-        // cancels in-flight work at once.
-        let command = if state.busy() {
-            match rx.try_recv() {
-                Ok(c) => Some(c),
-                Err(TryRecvError::Empty) => None,
-                Err(TryRecvError::Disconnected) => return,
+        match rx.try_recv() {
+            Ok(c) => queue.push_back(c),
+            Err(TryRecvError::Empty) => return,
+            Err(TryRecvError::Disconnected) => {
+                queue.push_back(Command::Quit);
+                return;
             }
-        } else {
-            match rx.recv() {
-                Ok(c) => Some(c),
-                Err(_) => return,
+        }
+    }
+}
+
+/// Merges consecutive sample batches of one run and overlay life into one event.
+fn coalesce(events: Vec<SimEvent>) -> Vec<SimEvent> {
+    let mut out: Vec<SimEvent> = Vec::with_capacity(events.len());
+    for e in events {
+        if let (
+            Some(SimEvent::Samples {
+                generation: g0,
+                epoch: e0,
+                full: f0,
+                effective: v0,
+                t: t0,
+                steps: s0,
+            }),
+            SimEvent::Samples {
+                generation,
+                epoch,
+                full,
+                effective,
+                t,
+                steps,
+            },
+        ) = (out.last_mut(), &e)
+            && *g0 == *generation
+            && *e0 == *epoch
+        {
+            f0.extend_from_slice(full);
+            v0.extend_from_slice(effective);
+            *t0 = t.or(*t0);
+            *s0 = *steps;
+            continue;
+        }
+        out.push(e);
+    }
+    out.retain(|e| {
+        !matches!(e, SimEvent::Samples { full, effective, .. } if full.is_empty() && effective.is_empty())
+    });
+    out
+}
+
+fn run(rx: &Receiver<Command>, mut engine: Engine, mut sink: impl FnMut(SimEvent) -> bool) {
+    let shared = RefCell::new(VecDeque::new());
+    loop {
+        let mut queue_now = shared.borrow_mut();
+        let queue = &mut *queue_now;
+        if queue.is_empty() {
+            if engine.busy() {
+                drain(rx, queue);
+            } else {
+                match rx.recv() {
+                    Ok(c) => queue.push_back(c),
+                    Err(_) => return,
+                }
             }
-        };
-        let go_on = match command {
-            Some(c) => state.handle(&c, &mut sink),
-            None => state.work(&mut sink),
-        };
-        if !go_on {
+        }
+        if let Some(c) = queue.pop_front() {
+            if !engine.handle(&c, &mut sink) {
+                return;
+            }
+            continue;
+        }
+        drop(queue_now);
+        // A slice: chunks of steps until the slice's time is up or a command waits.
+        let end = Instant::now() + SLICE;
+        let mut events = Vec::new();
+        let mut stop = false;
+        {
+            let mut collect = |e| {
+                events.push(e);
+                true
+            };
+            // Planning is cancelled only by what makes it moot: a restart or a quit.
+            let mut go_on = |_t: f64| {
+                let mut q = shared.borrow_mut();
+                drain(rx, &mut q);
+                !q.iter()
+                    .any(|c| matches!(c, Command::Restart { .. } | Command::Quit))
+            };
+            while engine.busy() {
+                if !engine.work(CHUNK_STEPS, &mut go_on, &mut collect) {
+                    stop = true;
+                    break;
+                }
+                if Instant::now() >= end {
+                    break;
+                }
+                let mut q = shared.borrow_mut();
+                drain(rx, &mut q);
+                if !q.is_empty() {
+                    break;
+                }
+            }
+        }
+        let mut sent = Vec::new();
+        std::mem::swap(&mut sent, &mut events);
+        for e in coalesce(sent) {
+            if !sink(e) {
+                return;
+            }
+        }
+        if stop {
             return;
         }
     }

@@ -1,15 +1,18 @@
-//! Pop-ups: the preset picker (names and what to look for) and the error dialog.
+//! Pop-ups: the preset picker (scrolling; each broken user file on its own row with its own
+//! error) and the error dialog.
 
 use ratatui::Frame;
-use ratatui::layout::Rect;
+use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
-use ratatui::text::{Line, Span};
+use ratatui::text::Line;
 use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
 
 use super::Look;
-use crate::app::App;
+use crate::app::ellipsis;
+use crate::app::mode::{Picker, PickerRow};
 
-fn centred(area: Rect, width: u16, height: u16) -> Rect {
+/// A `width × height` rectangle centred in `area`.
+pub fn centred(area: Rect, width: u16, height: u16) -> Rect {
     let (w, h) = (width.min(area.width), height.min(area.height));
     Rect {
         x: area.x + (area.width - w) / 2,
@@ -19,49 +22,63 @@ fn centred(area: Rect, width: u16, height: u16) -> Rect {
     }
 }
 
-pub fn picker(frame: &mut Frame<'_>, area: Rect, app: &App, look: &Look) {
-    let Some(p) = &app.picker else { return };
+pub fn picker(frame: &mut Frame<'_>, area: Rect, p: &Picker, look: &Look) {
     let popup = centred(
         area,
         area.width.saturating_sub(8).min(100),
         area.height.saturating_sub(4),
     );
+    let block = Block::bordered().title(format!(
+        " presets {}/{}: ↑/↓ choose, Enter load, Esc close ",
+        p.selected + 1,
+        p.rows.len()
+    ));
+    let inner = block.inner(popup);
+    frame.render_widget(Clear, popup);
+    frame.render_widget(block, popup);
+    let [list, detail] = Layout::vertical([Constraint::Min(1), Constraint::Length(5)]).areas(inner);
+    let height = list.height as usize;
+    let first = p.first_visible(height);
+    let width = list.width as usize;
     let mut lines = Vec::new();
-    for (i, e) in p.entries.iter().enumerate() {
+    for (i, row) in p.rows.iter().enumerate().skip(first).take(height) {
         let style = if i == p.selected {
             Style::default().add_modifier(Modifier::REVERSED | Modifier::BOLD)
         } else {
             Style::default()
         };
-        let source = if e.source == crate::scenario::shipped::Source::User {
-            "user"
-        } else {
-            ""
+        let text = match row {
+            PickerRow::Preset(e) => {
+                let source = if e.source == crate::scenario::shipped::Source::User {
+                    "user"
+                } else {
+                    ""
+                };
+                format!(" {:<16} {:<4} {}", e.name, source, e.title)
+            }
+            PickerRow::Broken { name, .. } => format!(" {name:<16} ✗    cannot be loaded"),
         };
-        lines.push(Line::styled(
-            format!(" {:<16} {:<4} {}", e.name, source, e.title),
-            style,
-        ));
+        let style = if matches!(row, PickerRow::Broken { .. }) {
+            style.fg(look.theme.error)
+        } else {
+            style
+        };
+        lines.push(Line::styled(ellipsis(&text, width), style));
     }
-    if let Some(e) = p.entries.get(p.selected) {
-        lines.push(Line::raw(""));
-        lines.push(Line::from(Span::styled(
-            e.description.clone(),
-            Style::default().fg(look.theme.dim),
-        )));
-    }
-    for problem in &p.problems {
-        lines.push(Line::styled(
-            problem.clone(),
-            Style::default().fg(look.theme.error),
-        ));
-    }
-    frame.render_widget(Clear, popup);
+    frame.render_widget(Paragraph::new(lines), list);
+    let (text, style) = match p.rows.get(p.selected) {
+        Some(PickerRow::Preset(e)) => (e.description.clone(), look.dim()),
+        Some(PickerRow::Broken { error, .. }) => {
+            (error.clone(), Style::default().fg(look.theme.error))
+        }
+        None => (String::new(), Style::default()),
+    };
     frame.render_widget(
-        Paragraph::new(lines)
+        Paragraph::new(text)
+            .style(style)
             .wrap(Wrap { trim: false })
-            .block(Block::bordered().title(" presets: ↑/↓ choose, Enter load, Esc close ")),
-        popup,
+            .block(Block::new().borders(ratatui::widgets::Borders::TOP)),
+        detail,
     );
 }
 

@@ -1,30 +1,72 @@
-//! The help overlay, generated from the keymap table.
+//! The help overlay: the keys (generated from the keymap table in use) and, on its second page,
+//! the legend of every colour, mark and status field.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Clear, Paragraph};
+use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
 
 use super::Look;
-use crate::app::keys::KEYMAP;
+use crate::app::keys::{Binding, KEYMAP, REPLAY_KEYMAP};
+use crate::app::mode::HelpPage;
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, _options: &Look) {
-    let rows: Vec<Line> = KEYMAP
-        .iter()
+fn key_rows<A>(map: &[Binding<A>]) -> Vec<Line<'static>> {
+    map.iter()
         .filter(|b| !b.label.is_empty())
         .map(|b| {
             Line::from(vec![
                 Span::styled(
-                    format!(" {:<14}", b.label),
+                    format!(" {:<13}", b.label),
                     Style::default().add_modifier(Modifier::BOLD),
                 ),
                 Span::raw(b.help),
             ])
         })
-        .collect();
+        .collect()
+}
+
+fn legend(look: &Look) -> Vec<Line<'static>> {
+    let t = look.theme;
+    let swatch = |mark: &'static str, colour, what: &'static str| {
+        Line::from(vec![
+            Span::styled(format!(" {mark:<4}"), Style::default().fg(colour)),
+            Span::raw(what),
+        ])
+    };
+    vec![
+        swatch("⣀⣀", t.trail, "full motion at this k (dense dots)"),
+        swatch("∘", t.effective, "the limit k → ∞ (marks), e toggles"),
+        swatch("●", t.current, "the displayed point"),
+        swatch("───", t.separatrix, "separatrix of the limit (solid)"),
+        swatch("- -", t.start_level, "the start's level of E_eff (dashed)"),
+        swatch("· ·", t.contour, "other levels of E_eff (dotted)"),
+        swatch("╷", t.reversal, "reversal ticks (time series)"),
+        Line::raw(""),
+        Line::styled(
+            " status bar:",
+            Style::default().add_modifier(Modifier::BOLD),
+        ),
+        Line::raw(" t shown/end · ▶ paused done verifying · ×speed"),
+        Line::raw(" reversals (full) and limit (k → ∞), up to t shown"),
+        Line::raw(" ΔE/E: relative energy error of the full motion"),
+        Line::raw(" method (auto→choice), est: auto's verified error"),
+        Line::raw(" ✓ within the tolerance · steps/s · ● REC recording"),
+        Line::raw(" panel: limit regime; vs critical = (ratio−crit)/crit"),
+    ]
+}
+
+pub fn draw(frame: &mut Frame<'_>, area: Rect, page: HelpPage, replay: bool, look: &Look) {
+    let (rows, heading) = match page {
+        HelpPage::Keys if replay => (
+            key_rows(REPLAY_KEYMAP),
+            " replay keys: ? legend · Esc closes ",
+        ),
+        HelpPage::Keys => (key_rows(KEYMAP), " keys: ? legend · Esc closes "),
+        HelpPage::Legend => (legend(look), " legend: ? or Esc closes "),
+    };
     let height = (rows.len() as u16 + 2).min(area.height);
-    let width = 64.min(area.width);
+    let width = 66.min(area.width);
     let popup = Rect {
         x: area.x + (area.width - width) / 2,
         y: area.y + (area.height - height) / 2,
@@ -33,7 +75,9 @@ pub fn draw(frame: &mut Frame<'_>, area: Rect, _options: &Look) {
     };
     frame.render_widget(Clear, popup);
     frame.render_widget(
-        Paragraph::new(rows).block(Block::bordered().title(" keys (? or Esc closes) ")),
+        Paragraph::new(rows)
+            .wrap(Wrap { trim: false })
+            .block(Block::bordered().title(heading)),
         popup,
     );
 }

@@ -1,5 +1,19 @@
-//! Widgets that draw the app's state into ratatui buffers: they draw, never decide. Nothing
-//! imports `ui` but `main` (and the explorer loop).
+//! Widgets that draw the app's state into ratatui buffers: they draw, never decide, and borrow
+//! the app immutably. Nothing imports `ui` but the explorer loop (and the cast export above
+//! both). The only state of its own is the [`Cache`] of level sets, keyed by what they depend
+//! on.
+//!
+//! ```text
+//! ┌ name ──────────┐┌ phase portrait ─────────────────────────┐
+//! │ parameters     ││ level sets, separatrix, trail, limit    │
+//! │ derived values ││                                          │
+//! │ message        │├ time series (t) ─────────────────────────┤
+//! │                ││ alpha_dot, limit, reversals, energy error│
+//! └────────────────┘└──────────────────────────────────────────┘
+//!  ▌ chapter / note (when there is one)
+//!  status: time, state, speed, reversals, energy error, method…   (fields dropped by priority)
+//!  footer: key hints from the keymap table (? help and q quit always kept)
+//! ```
 
 mod dialogs;
 mod help;
@@ -13,18 +27,25 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Paragraph, Wrap};
+use ratatui::widgets::{Block, Paragraph, Wrap};
 
-use crate::app::App;
-use crate::app::keys::{FOOTER, REPLAY_FOOTER};
+use crate::app::keys::{self, Hint, KEYMAP, REPLAY_KEYMAP};
+use crate::app::panes::Pane;
+use crate::app::{App, Mode};
 use crate::scenario::theme::{Colour, ThemeSpec};
+
+pub use portrait::Cache;
 
 /// Smallest terminal the explorer draws into.
 pub const MIN_SIZE: (u16, u16) = (80, 24);
+/// Width of the parameter column.
+pub const PARAMS_WIDTH: u16 = 30;
 
 /// Colours of the interface (a 16-colour default that reads well over plain SSH).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Theme {
+    /// Its name (what `T` announces).
+    pub name: String,
     /// Background energy levels.
     pub contour: Color,
     /// The separatrix.
@@ -43,11 +64,16 @@ pub struct Theme {
     pub error: Color,
     /// Axis labels and secondary text.
     pub dim: Color,
+    /// Background of the whole screen (`Reset`: the terminal's).
+    pub background: Color,
+    /// Plain text (`Reset`: the terminal's).
+    pub text: Color,
 }
 
 impl Default for Theme {
     fn default() -> Self {
         Self {
+            name: "Default (16 colours)".to_owned(),
             contour: Color::DarkGray,
             separatrix: Color::Yellow,
             start_level: Color::Cyan,
@@ -57,6 +83,8 @@ impl Default for Theme {
             reversal: Color::Yellow,
             error: Color::Red,
             dim: Color::Gray,
+            background: Color::Reset,
+            text: Color::Reset,
         }
     }
 }
@@ -68,6 +96,8 @@ pub struct UiOptions {
     pub marker: Marker,
     /// The themes `T` cycles through, the starting one first.
     pub themes: Vec<Theme>,
+    /// `NO_COLOR`: every colour is off; shapes, density and bold tell the curves apart.
+    pub no_color: bool,
 }
 
 impl Default for UiOptions {
@@ -75,41 +105,62 @@ impl Default for UiOptions {
         Self {
             marker: Marker::Braille,
             themes: vec![Theme::default()],
+            no_color: false,
         }
     }
 }
 
 impl UiOptions {
-    /// Options starting from `first`, then every other available theme; `no_color` (the
-    /// `NO_COLOR` convention) drops every colour, leaving the bold and reverse-video cues that
-    /// do not depend on it.
+    /// Options starting from `first`, then every other theme of `all`; `no_color` (the
+    /// `NO_COLOR` convention) drops every colour, leaving the shapes, bold and reverse-video
+    /// cues that do not depend on it.
     #[must_use]
-    pub fn new(marker: Marker, first: &ThemeSpec, no_color: bool) -> Self {
+    pub fn new(marker: Marker, first: &ThemeSpec, all: &[ThemeSpec], no_color: bool) -> Self {
         let mut themes = vec![Theme::from_spec(first, no_color)];
-        for (_, spec) in crate::scenario::theme::themes().0 {
-            let t = Theme::from_spec(&spec, no_color);
-            if !themes.contains(&t) {
+        for spec in all {
+            let t = Theme::from_spec(spec, no_color);
+            if !themes.iter().any(|x| x.name == t.name) {
                 themes.push(t);
             }
         }
-        Self { marker, themes }
+        Self {
+            marker,
+            themes,
+            no_color,
+        }
     }
 
-    fn look(&self, theme: usize) -> Look {
+    /// The theme names, in `T` order.
+    #[must_use]
+    pub fn theme_names(&self) -> Vec<String> {
+        self.themes.iter().map(|t| t.name.clone()).collect()
+    }
+
+    fn look(&self, theme: usize) -> Look<'_> {
         Look {
             marker: self.marker,
-            theme: self.themes[theme % self.themes.len().max(1)],
+            theme: &self.themes[theme % self.themes.len().max(1)],
+            no_color: self.no_color,
         }
     }
 }
 
 /// The marker and the theme in use for one frame.
 #[derive(Clone, Copy, Debug)]
-pub struct Look {
+pub struct Look<'a> {
     /// Canvas marker.
     pub marker: Marker,
     /// Colours.
-    pub theme: Theme,
+    pub theme: &'a Theme,
+    /// No colours at all.
+    pub no_color: bool,
+}
+
+impl Look<'_> {
+    /// Secondary text.
+    fn dim(&self) -> Style {
+        Style::default().fg(self.theme.dim)
+    }
 }
 
 fn colour(c: Colour, no_color: bool) -> Color {
@@ -146,6 +197,7 @@ impl Theme {
     pub fn from_spec(spec: &ThemeSpec, no_color: bool) -> Self {
         let c = |role: &str| colour(spec.colour(role), no_color);
         Self {
+            name: crate::scenario::text::clean(&spec.name),
             contour: c("contour"),
             separatrix: c("separatrix"),
             start_level: c("start_level"),
@@ -155,63 +207,117 @@ impl Theme {
             reversal: c("reversal"),
             error: c("error"),
             dim: c("dim"),
+            background: c("background"),
+            text: c("text"),
         }
     }
 }
 
-/// Draws the whole screen.
-pub fn draw(frame: &mut Frame<'_>, app: &mut App, options: &UiOptions) {
-    let look = options.look(app.theme);
-    let options = &look;
+/// Draws the whole screen from `app`; `cache` keeps the level sets between frames.
+pub fn draw(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mut Cache) {
+    let look = options.look(app.view.theme);
     let area = frame.area();
+    frame.render_widget(
+        Block::new().style(
+            Style::default()
+                .bg(look.theme.background)
+                .fg(look.theme.text),
+        ),
+        area,
+    );
     if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
         let text = format!(
-            "terminal too small: {}x{} needed, this one is {}x{}",
+            "terminal too small: {}x{} needed, this one is {}x{} (q quits)",
             MIN_SIZE.0, MIN_SIZE.1, area.width, area.height
         );
         frame.render_widget(Paragraph::new(text).wrap(Wrap { trim: true }), area);
         return;
     }
-    let [main, status_area, footer] = Layout::vertical([
+    let caption = u16::from(app.caption.is_some());
+    let [main, caption_area, status_area, footer] = Layout::vertical([
         Constraint::Min(0),
+        Constraint::Length(caption),
         Constraint::Length(1),
         Constraint::Length(1),
     ])
     .areas(area);
     let [left, right] =
-        Layout::horizontal([Constraint::Length(30), Constraint::Min(0)]).areas(main);
-    params::draw(frame, left, app, options);
-    if app.show_series {
-        let [top, bottom] =
-            Layout::vertical([Constraint::Percentage(65), Constraint::Percentage(35)]).areas(right);
-        portrait::draw(frame, top, app, options);
-        series::draw(frame, bottom, app, options);
+        Layout::horizontal([Constraint::Length(PARAMS_WIDTH), Constraint::Min(0)]).areas(main);
+    params::draw(frame, left, app, &look);
+    let column = app.view.panes.column();
+    let areas = Layout::vertical(column.iter().map(|(_, w)| Constraint::Fill(*w))).split(right);
+    for ((pane, _), area) in column.iter().zip(areas.iter()) {
+        match pane {
+            Pane::Portrait => portrait::draw(frame, *area, app, &look, cache),
+            Pane::Series => series::draw(frame, *area, app, &look),
+            Pane::Params => {}
+        }
+    }
+    if let Some(c) = &app.caption {
+        draw_caption(frame, caption_area, c, &look);
+    }
+    status::draw(frame, status_area, app, &look);
+    let hints = if app.replay.is_some() {
+        keys::footer(REPLAY_KEYMAP)
     } else {
-        portrait::draw(frame, right, app, options);
-    }
-    status::draw(frame, status_area, app, options);
-    draw_footer(
-        frame,
-        footer,
-        if app.replaying { REPLAY_FOOTER } else { FOOTER },
-        options,
-    );
-    if app.show_help {
-        help::draw(frame, area, options);
-    }
-    if app.picker.is_some() {
-        dialogs::picker(frame, area, app, options);
-    }
-    if let Some(text) = &app.dialog {
-        dialogs::error(frame, area, text, options);
+        keys::footer(KEYMAP)
+    };
+    draw_footer(frame, footer, &hints, &look);
+    match &app.mode {
+        Mode::Help(page) => help::draw(frame, area, *page, app.replay.is_some(), &look),
+        Mode::Picker(p) => dialogs::picker(frame, area, p, &look),
+        Mode::Dialog(text) => dialogs::error(frame, area, text, &look),
+        _ => {}
     }
 }
 
-fn draw_footer(frame: &mut Frame<'_>, area: Rect, hints: &[(&str, &str)], options: &Look) {
+fn draw_caption(frame: &mut Frame<'_>, area: Rect, c: &crate::app::Caption, look: &Look) {
+    let kind = if c.chapter { "chapter" } else { "note" };
+    let text = c.text.replace(['\n', '\t'], " ");
+    let head = format!(" ▌ {kind} (t {:.2}): ", c.t);
+    let room = (area.width as usize).saturating_sub(head.chars().count());
+    frame.render_widget(
+        Paragraph::new(Line::from(vec![
+            Span::styled(head, look.dim()),
+            Span::styled(
+                crate::app::ellipsis(&text, room),
+                Style::default().add_modifier(Modifier::BOLD),
+            ),
+        ])),
+        area,
+    );
+}
+
+/// The hints that fit in `width`, dropping the highest ranks first; rank 0 always stays.
+#[must_use]
+pub fn fit_hints(hints: &[Hint], width: usize) -> Vec<Hint> {
+    let len = |h: &[Hint]| -> usize {
+        h.iter()
+            .map(|(k, w, _)| k.chars().count() + 1 + w.chars().count())
+            .sum::<usize>()
+            + 3 * h.len().saturating_sub(1)
+    };
+    let mut kept = hints.to_vec();
+    while len(&kept) > width {
+        let Some(worst) = kept
+            .iter()
+            .enumerate()
+            .filter(|(_, h)| h.2 > 0)
+            .max_by_key(|(i, h)| (h.2, *i))
+            .map(|(i, _)| i)
+        else {
+            break;
+        };
+        kept.remove(worst);
+    }
+    kept
+}
+
+fn draw_footer(frame: &mut Frame<'_>, area: Rect, hints: &[Hint], look: &Look) {
     let mut spans = Vec::new();
-    for (i, (key, what)) in hints.iter().enumerate() {
+    for (i, (key, what, _)) in fit_hints(hints, area.width as usize).iter().enumerate() {
         if i > 0 {
-            spans.push(Span::styled(" · ", Style::default().fg(options.theme.dim)));
+            spans.push(Span::styled(" · ", look.dim()));
         }
         spans.push(Span::styled(
             *key,
@@ -220,4 +326,12 @@ fn draw_footer(frame: &mut Frame<'_>, area: Rect, hints: &[(&str, &str)], option
         spans.push(Span::raw(format!(" {what}")));
     }
     frame.render_widget(Paragraph::new(Line::from(spans)), area);
+}
+
+/// A block title cut to fit `width` columns, ending in `…` when cut.
+fn title(text: &str, width: u16) -> String {
+    format!(
+        " {} ",
+        crate::app::ellipsis(text, (width as usize).saturating_sub(4))
+    )
 }

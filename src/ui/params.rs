@@ -1,5 +1,6 @@
-//! The parameter panel: editable fields, the selection (reverse video, visible without
-//! colour), the text being typed, derived values and the last message.
+//! The parameter panel: editable fields (the selection in reverse video, visible without
+//! colour), the text being typed or the open prompt (labelled by what it is for), the limit's
+//! derived values and the last message. Any value fits: the label gives way to a long value.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -7,27 +8,38 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Wrap};
 
-use super::Look;
-use crate::app::App;
+use super::{Look, title};
 use crate::app::fields::{Field, format_number};
+use crate::app::{App, Mode};
 
 fn opt(v: Option<f64>) -> String {
     v.map_or_else(|| "-".to_owned(), format_number)
 }
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, options: &Look) {
+/// `label` and `value` on one row of `width` columns, the value right-aligned; the label is
+/// shortened with `…` only if the value needs the room.
+fn row(marker: &str, label: &str, value: &str, width: usize) -> String {
+    let value_w = value.chars().count();
+    let room = width.saturating_sub(marker.chars().count() + value_w + 1);
+    let label = crate::app::ellipsis(label, room);
+    let pad = width.saturating_sub(marker.chars().count() + label.chars().count() + value_w);
+    format!("{marker}{label}{}{value}", " ".repeat(pad))
+}
+
+pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, look: &Look) {
+    let width = area.width.saturating_sub(2) as usize;
     let mut lines = Vec::new();
     for (i, field) in Field::ALL.iter().enumerate() {
-        let selected = i == app.selected;
-        let value = match (&app.editing, selected) {
-            (Some(buffer), true) => format!("{buffer}▏"),
-            _ => field.show(&app.settings),
+        let selected = i == app.scenario.selected;
+        let value = match (&app.mode, selected) {
+            (Mode::Editing(buffer), true) => format!("{buffer}▏"),
+            _ => field.show(&app.scenario.settings),
         };
-        let text = format!(
-            "{} {:<10}{:>16}",
-            if selected { "›" } else { " " },
+        let text = row(
+            if selected { "› " } else { "  " },
             field.label(),
-            value
+            &value,
+            width,
         );
         let style = if selected {
             Style::default().add_modifier(Modifier::REVERSED | Modifier::BOLD)
@@ -36,51 +48,79 @@ pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, options: &Look) {
         };
         lines.push(Line::styled(text, style));
     }
-    let d = &app.derived;
-    let dim = Style::default().fg(options.theme.dim);
-    lines.push(Line::raw(""));
+    let d = &app.scenario.derived;
+    let dim = look.dim();
     lines.push(Line::styled(
-        format!("  theta     {:>16}", format_number(d.effective.theta())),
+        row(
+            "  ",
+            "limit theta",
+            &format_number(d.effective.theta()),
+            width,
+        ),
         dim,
     ));
+    lines.push(Line::styled(row("  ", "ratio", &opt(d.ratio), width), dim));
     lines.push(Line::styled(
-        format!("  ratio     {:>16}", opt(d.ratio)),
+        row("  ", "critical", &opt(d.critical), width),
         dim,
     ));
-    lines.push(Line::styled(
-        format!("  critical  {:>16}", opt(d.critical)),
-        dim,
-    ));
+    let side = d
+        .threshold_distance()
+        .map_or_else(|| "-".to_owned(), |x| format!("{:+.3}%", 100.0 * x));
+    lines.push(Line::styled(row("  ", "vs critical", &side, width), dim));
     lines.push(Line::from(vec![
-        Span::styled("  regime    ", dim),
+        Span::styled("  limit regime", dim),
         Span::styled(
-            format!("{:>16}", d.effective.regime().name()),
+            format!(
+                "{:>w$}",
+                d.effective.regime().name(),
+                w = width.saturating_sub(14)
+            ),
             Style::default().add_modifier(Modifier::BOLD),
         ),
     ]));
-    if let Some(prompt) = &app.saving {
-        lines.push(Line::raw(""));
+    if let Mode::Prompt(prompt) = &app.mode {
         lines.push(Line::styled(
-            format!("save as: {}▏", prompt.name),
+            format!("{}: {}▏", prompt.purpose.label(), prompt.text),
             Style::default().add_modifier(Modifier::REVERSED),
         ));
     }
-    if let Some((text, error)) = &app.message {
-        let style = if *error {
+    if let Some(m) = &app.status {
+        let style = if m.error {
             Style::default()
-                .fg(options.theme.error)
+                .fg(look.theme.error)
                 .add_modifier(Modifier::BOLD)
         } else {
             Style::default()
         };
-        lines.push(Line::raw(""));
-        lines.push(Line::styled(text.clone(), style));
+        lines.push(Line::styled(m.text.clone(), style));
     }
-    let block = Block::bordered().title(format!(" {} ", app.name));
+    let block = Block::bordered().title(title(&app.scenario.name, area.width));
     frame.render_widget(
         Paragraph::new(lines)
             .block(block)
             .wrap(Wrap { trim: false }),
         area,
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::row;
+
+    #[test]
+    fn long_values_push_the_label_aside_never_out() {
+        assert_eq!(
+            row("› ", "method", "auto", 28),
+            "› method                auto"
+        );
+        let r = row("› ", "method", "effective-corrected", 28);
+        assert_eq!(r, "› method effective-corrected");
+        let r = row("  ", "tolerance", "a-very-long-value-here", 28);
+        assert!(
+            r.ends_with("a-very-long-value-here") && r.contains('…'),
+            "{r}"
+        );
+        assert_eq!(r.chars().count(), 28);
+    }
 }

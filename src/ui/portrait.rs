@@ -1,25 +1,33 @@
 //! The phase portrait of `(alpha, alpha_dot)`: effective-energy level sets (separatrix and the
-//! start's level distinct), the full trail, the effective overlay, the current point, and axes
-//! with tick labels.
+//! start's level distinct), the full trail up to the displayed time, the limit's overlay, the
+//! current point, and axes with tick labels.
+//!
+//! The curves differ by shape as well as colour, so they read under `NO_COLOR`: background
+//! levels are dotted, the start's level dashed, the separatrix solid; the trail is a dense
+//! line of dots and the limit's overlay a row of `∘` marks.
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::Style;
+use ratatui::style::{Modifier, Style};
 use ratatui::symbols::Marker;
 use ratatui::text::{Line as TextLine, Span};
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 use ratatui::widgets::{Block, Paragraph};
 
-use super::Look;
+use super::{Look, title};
 use crate::app::App;
-use crate::app::fields::format_number;
-use crate::app::portrait::{Bounds, LevelKind, decimate, display_alpha, wrap_centre};
+use crate::app::fields::{Settings, format_number};
+use crate::app::portrait::{
+    Bounds, Level, LevelKind, decimate, display_alpha, following, levels, wrap_centre,
+};
 
 /// Width of the `alpha_dot` tick labels.
 const Y_LABELS: u16 = 8;
+/// Marks of the limit's overlay across the plot (about one per this many columns).
+const OVERLAY_MARK_EVERY: usize = 3;
 
 /// Canvas cells per terminal cell for a marker.
-fn resolution(marker: Marker) -> (usize, usize) {
+pub fn resolution(marker: Marker) -> (usize, usize) {
     match marker {
         Marker::Braille => (2, 4),
         Marker::HalfBlock => (1, 2),
@@ -27,75 +35,126 @@ fn resolution(marker: Marker) -> (usize, usize) {
     }
 }
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &mut App, options: &Look) {
-    let wrap = if app.view.wrap {
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Key {
+    settings: Settings,
+    bounds: Bounds,
+    levels: usize,
+    samples: usize,
+}
+
+/// The level sets of the last frame, recomputed only when what they depend on changes.
+#[derive(Debug, Default)]
+pub struct Cache {
+    contours: Option<(Key, Vec<Level>)>,
+}
+
+impl Cache {
+    fn levels(&mut self, app: &App, bounds: Bounds, samples: usize) -> &[Level] {
+        let key = Key {
+            settings: app.scenario.settings,
+            bounds,
+            levels: app.view.view.levels,
+            samples,
+        };
+        if self.contours.as_ref().is_none_or(|(k, _)| *k != key) {
+            let eff = &app.scenario.derived.effective;
+            let l = levels(eff, &bounds, eff.energy(), key.levels, samples);
+            self.contours = Some((key, l));
+        }
+        self.contours.as_ref().map_or(&[], |(_, l)| l.as_slice())
+    }
+}
+
+pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, look: &Look, cache: &mut Cache) {
+    let trail_shown = app.run.trail_shown();
+    let wrap = app.view.view.wrap;
+    let mode = if wrap {
         "wrapped"
+    } else if following(trail_shown, wrap) {
+        "following"
     } else {
         "unwrapped"
     };
-    let block = Block::bordered().title(format!(" phase portrait: alpha ({wrap}) vs alpha_dot "));
+    let block = Block::bordered().title(title(
+        &format!("phase portrait: alpha ({mode}) vs alpha_dot"),
+        area.width,
+    ));
     let inner = block.inner(area);
     frame.render_widget(block, area);
     let [body, x_axis] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)]).areas(inner);
     let [y_axis, plot] =
         Layout::horizontal([Constraint::Length(Y_LABELS), Constraint::Min(0)]).areas(body);
     let bounds = app.bounds();
-    let (rx, ry) = resolution(options.marker);
+    let (rx, ry) = resolution(look.marker);
     let (cols, rows) = (plot.width as usize * rx, plot.height as usize * ry);
-    let theme = options.theme;
-    app.refresh_contours(cols.max(16));
-    let app: &App = app;
-    let levels = app.levels();
-    let centre = wrap_centre(&app.derived.effective);
-    let wrap = app.view.wrap;
+    let theme = look.theme;
+    let levels = cache.levels(app, bounds, cols.max(16));
+    let centre = wrap_centre(&app.scenario.derived.effective);
     let to_xy = |p: &crate::sim::Point| (display_alpha(p.alpha, centre, wrap), p.alpha_dot);
-    let trail = decimate(app.trail.iter().map(to_xy), &bounds, cols, rows);
-    let overlay = if app.show_effective {
-        decimate(app.effective_trail.iter().map(to_xy), &bounds, cols, rows)
+    let trail = decimate(trail_shown.iter().map(to_xy), &bounds, cols, rows);
+    let overlay = if app.view.overlay {
+        decimate(
+            app.run.effective_shown().iter().map(to_xy),
+            &bounds,
+            (plot.width as usize / OVERLAY_MARK_EVERY).max(1),
+            (plot.height as usize / 2).max(1),
+        )
     } else {
         Vec::new()
     };
-    let current = app.current().map(to_xy);
+    let current = app.run.current().map(to_xy);
     let canvas = Canvas::default()
-        .marker(options.marker)
+        .marker(look.marker)
+        .background_color(look.theme.background)
         .x_bounds(bounds.x)
         .y_bounds(bounds.y)
         .paint(move |ctx| {
-            for kind in [LevelKind::Plain, LevelKind::Separatrix, LevelKind::Start] {
-                let color = match kind {
-                    LevelKind::Plain => theme.contour,
-                    LevelKind::Separatrix => theme.separatrix,
-                    LevelKind::Start => theme.start_level,
+            for kind in [LevelKind::Plain, LevelKind::Start, LevelKind::Separatrix] {
+                let (color, every) = match kind {
+                    LevelKind::Plain => (theme.contour, 3),
+                    LevelKind::Start => (theme.start_level, 2),
+                    LevelKind::Separatrix => (theme.separatrix, 1),
                 };
                 for level in levels.iter().filter(|l| l.kind == kind) {
                     for line in &level.lines {
-                        for w in line.windows(2) {
-                            ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, color));
+                        for (i, w) in line.windows(2).enumerate() {
+                            // Dotted, dashed or solid: readable without colour.
+                            if i % every == 0 {
+                                ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, color));
+                            }
                         }
                     }
                 }
                 ctx.layer();
             }
             ctx.draw(&Points {
-                coords: &overlay,
-                color: theme.effective,
-            });
-            ctx.layer();
-            ctx.draw(&Points {
                 coords: &trail,
                 color: theme.trail,
             });
             ctx.layer();
+            for &(x, y) in &overlay {
+                ctx.print(
+                    x,
+                    y,
+                    TextLine::styled("∘", Style::default().fg(theme.effective)),
+                );
+            }
             if let Some((x, y)) = current {
                 ctx.print(
                     x,
                     y,
-                    TextLine::styled("●", Style::default().fg(theme.current)),
+                    TextLine::styled(
+                        "●",
+                        Style::default()
+                            .fg(theme.current)
+                            .add_modifier(Modifier::BOLD),
+                    ),
                 );
             }
         });
     frame.render_widget(canvas, plot);
-    draw_axes(frame, y_axis, x_axis, plot, &bounds, options);
+    draw_axes(frame, y_axis, x_axis, plot, &bounds, look);
 }
 
 fn draw_axes(
@@ -104,19 +163,13 @@ fn draw_axes(
     x_axis: Rect,
     plot: Rect,
     b: &Bounds,
-    options: &Look,
+    look: &Look,
 ) {
-    let dim = Style::default().fg(options.theme.dim);
-    // alpha_dot: top, middle, bottom.
-    let mut ylines = vec![TextLine::raw(""); y_axis.height as usize];
-    let h = ylines.len();
-    if h >= 3 {
-        let fmt = |v: f64| format!("{:>7} ", short(v));
-        ylines[0] = TextLine::styled(fmt(b.y[1]), dim);
-        ylines[h / 2] = TextLine::styled(fmt(0.5 * (b.y[0] + b.y[1])), dim);
-        ylines[h - 1] = TextLine::styled(fmt(b.y[0]), dim);
-    }
-    frame.render_widget(Paragraph::new(ylines), y_axis);
+    let dim = look.dim();
+    frame.render_widget(
+        Paragraph::new(y_labels(b.y, y_axis.height as usize, dim)),
+        y_axis,
+    );
     // alpha: five ticks across the plot.
     let width = plot.width as usize;
     let mut row = vec![' '; x_axis.width as usize];
@@ -143,10 +196,27 @@ fn draw_axes(
     );
 }
 
-fn short(v: f64) -> String {
+/// Labels of a vertical axis `[lo, hi]` over `h` rows: top, middle, bottom.
+pub fn y_labels(y: [f64; 2], h: usize, style: Style) -> Vec<TextLine<'static>> {
+    let mut lines = vec![TextLine::raw(""); h];
+    if h >= 3 {
+        let fmt = |v: f64| format!("{:>7} ", short(v));
+        lines[0] = TextLine::styled(fmt(y[1]), style);
+        lines[h / 2] = TextLine::styled(fmt(0.5 * (y[0] + y[1])), style);
+        lines[h - 1] = TextLine::styled(fmt(y[0]), style);
+    }
+    lines
+}
+
+/// A tick label: at most 7 characters.
+pub fn short(v: f64) -> String {
     if v.abs() < 5e-13 {
-        "0".to_owned()
+        return "0".to_owned();
+    }
+    let s = format_number((v * 1e3).round() / 1e3);
+    if s.chars().count() <= 7 {
+        s
     } else {
-        format_number((v * 1e3).round() / 1e3)
+        format!("{v:.1e}")
     }
 }

@@ -1,41 +1,79 @@
-//! The time-series pane (toggle `t`): `alpha_dot(t)` over a recent window with reversal ticks,
-//! and the energy error. Not drawn, so not computed, when hidden.
+//! The time-series pane (toggle `t`): `alpha_dot(t)` of the full motion and of the limit over a
+//! window that widens with the playback speed, reversal ticks, a y scale, and the energy error
+//! as a plot of `log10 |ΔE/E|`. Not drawn, so not computed, when hidden.
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::Style;
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 use ratatui::widgets::{Block, Paragraph};
 
-use super::Look;
+use super::portrait::{resolution, y_labels};
+use super::{Look, title};
 use crate::app::App;
+use crate::sim::Point;
 
-/// Width of the time window, in simulated time.
-const WINDOW: f64 = 20.0;
+/// Wall seconds of motion the window shows (at least 10 simulated seconds).
+const WINDOW_WALL: f64 = 15.0;
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, options: &Look) {
-    let block = Block::bordered().title(" alpha_dot(t), reversals │ energy error ");
+/// The time window `[t0, t1]` ending at the displayed time.
+#[must_use]
+pub fn window(app: &App) -> (f64, f64) {
+    let w = (WINDOW_WALL * app.run.speed)
+        .max(10.0)
+        .min(app.scenario.settings.t_end.max(1e-9));
+    let t1 = app.run.shown.max(w);
+    (t1 - w, t1)
+}
+
+fn thin(points: &[Point], t0: f64, cols: usize, f: impl Fn(&Point) -> f64) -> Vec<(f64, f64)> {
+    let from = points.partition_point(|p| p.t < t0);
+    let slice = &points[from..];
+    let step = (slice.len() / (cols.max(1) * 4)).max(1);
+    slice.iter().step_by(step).map(|p| (p.t, f(p))).collect()
+}
+
+pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, look: &Look) {
+    let block = Block::bordered().title(title(
+        "alpha_dot(t): full · limit ∘, reversals │ log10|ΔE/E|",
+        area.width,
+    ));
     let inner = block.inner(area);
     frame.render_widget(block, area);
-    let [plot, text] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)]).areas(inner);
-    let t1 = app.reached.max(WINDOW);
-    let t0 = t1 - WINDOW;
-    let (cols, _) = (plot.width as usize * 2, plot.height as usize * 4);
-    let step = ((app.trail.len() as f64) / (cols.max(1) as f64 * 4.0))
-        .ceil()
-        .max(1.0) as usize;
-    let points: Vec<(f64, f64)> = app
-        .trail
+    let [top, energy_area] =
+        Layout::vertical([Constraint::Min(2), Constraint::Length(3)]).areas(inner);
+    let [y_axis, plot] = Layout::horizontal([Constraint::Length(8), Constraint::Min(0)]).areas(top);
+    let [e_axis, e_plot] =
+        Layout::horizontal([Constraint::Length(8), Constraint::Min(0)]).areas(energy_area);
+    let (t0, t1) = window(app);
+    let (rx, _) = resolution(look.marker);
+    let cols = plot.width as usize * rx;
+    let full = thin(app.run.trail_shown(), t0, cols, |p| p.alpha_dot);
+    let limit = if app.view.overlay {
+        thin(
+            app.run.effective_shown(),
+            t0,
+            (plot.width as usize / 3).max(1) / 4,
+            |p| p.alpha_dot,
+        )
+    } else {
+        Vec::new()
+    };
+    let y = full
         .iter()
-        .filter(|p| p.t >= t0)
-        .step_by(step)
-        .map(|p| (p.t, p.alpha_dot))
+        .chain(&limit)
+        .fold(1e-3f64, |m, p| m.max(p.1.abs()))
+        * 1.1;
+    let theme = look.theme;
+    let ticks: Vec<f64> = app
+        .run
+        .reversals_shown()
+        .iter()
+        .copied()
+        .filter(|t| *t >= t0)
         .collect();
-    let y = points.iter().fold(1e-3f64, |m, p| m.max(p.1.abs())) * 1.1;
-    let theme = options.theme;
-    let ticks: Vec<f64> = app.reversals.iter().copied().filter(|t| *t >= t0).collect();
     let canvas = Canvas::default()
-        .marker(options.marker)
+        .marker(look.marker)
+        .background_color(look.theme.background)
         .x_bounds([t0, t1])
         .y_bounds([-y, y])
         .paint(move |ctx| {
@@ -45,21 +83,53 @@ pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, options: &Look) {
             }
             ctx.layer();
             ctx.draw(&Points {
-                coords: &points,
+                coords: &full,
                 color: theme.trail,
             });
+            ctx.layer();
+            for &(x, v) in &limit {
+                ctx.print(
+                    x,
+                    v,
+                    ratatui::text::Line::styled(
+                        "∘",
+                        ratatui::style::Style::default().fg(theme.effective),
+                    ),
+                );
+            }
         });
     frame.render_widget(canvas, plot);
-    let worst = app
-        .trail
-        .iter()
-        .fold(0.0f64, |m, p| m.max(p.energy_error.abs()));
-    let now = app.current().map_or(0.0, |p| p.energy_error);
     frame.render_widget(
-        Paragraph::new(format!(
-            "t ∈ [{t0:.1}, {t1:.1}]   energy error now {now:.2e}, worst {worst:.2e}"
-        ))
-        .style(Style::default().fg(options.theme.dim)),
-        text,
+        Paragraph::new(y_labels([-y, y], y_axis.height as usize, look.dim())),
+        y_axis,
+    );
+    // The energy error, on a log scale from 1e-16 up.
+    let errors = thin(app.run.trail_shown(), t0, cols, |p| {
+        p.energy_error.abs().max(1e-16).log10()
+    });
+    let hi = errors.iter().fold(-12.0f64, |m, p| m.max(p.1)).ceil() + 1.0;
+    let lo = -16.0;
+    frame.render_widget(
+        Canvas::default()
+            .marker(look.marker)
+            .background_color(look.theme.background)
+            .x_bounds([t0, t1])
+            .y_bounds([lo, hi])
+            .paint(move |ctx| {
+                ctx.draw(&Points {
+                    coords: &errors,
+                    color: theme.dim,
+                });
+            }),
+        e_plot,
+    );
+    let label = |v: f64| format!("{:>7} ", format!("1e{v:.0}"));
+    frame.render_widget(
+        Paragraph::new(vec![
+            ratatui::text::Line::styled(label(hi), look.dim()),
+            ratatui::text::Line::raw(""),
+            ratatui::text::Line::styled(label(lo), look.dim()),
+        ]),
+        e_axis,
     );
 }

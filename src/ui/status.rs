@@ -1,5 +1,6 @@
-//! The status bar: time and speed, reversals (full and effective), regime, method, energy
-//! error and integration rate. Reverse video, so it reads without colour.
+//! The status bar: time, state, speed, reversals (full and limit), energy error, method and
+//! `auto`'s verdict, integration rate. Reverse video, so it reads without colour. When it is
+//! narrow, whole fields are dropped by priority; a number is never cut.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -7,39 +8,113 @@ use ratatui::style::{Modifier, Style};
 use ratatui::widgets::Paragraph;
 
 use super::Look;
-use crate::app::App;
+use crate::app::{App, PlanState, RecState};
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, _options: &Look) {
-    let state = if app.failed.is_some() {
+/// A field of the status bar and its priority (0 is kept first).
+struct Field {
+    text: String,
+    priority: u8,
+}
+
+fn field(text: String, priority: u8) -> Field {
+    Field { text, priority }
+}
+
+/// The status fields in display order.
+fn fields(app: &App) -> Vec<Field> {
+    let run = &app.run;
+    let s = &app.scenario.settings;
+    let mut out = Vec::new();
+    if app.journal.state != RecState::Off {
+        out.push(field("● REC".to_owned(), 0));
+    }
+    out.push(field(format!("t {:.2}/{}", run.shown, s.t_end), 0));
+    let state = if run.failed.is_some() {
         "failed"
-    } else if app.finished {
+    } else if run.plan == PlanState::Verifying {
+        "verifying auto…"
+    } else if run.done() {
         "done"
-    } else if app.playing {
+    } else if run.playing {
         "▶"
     } else {
         "paused"
     };
-    let energy = app.current().map_or(0.0, |p| p.energy_error);
-    let limit = if app.show_effective {
-        format!(" (limit {})", app.effective_reversals.len())
+    out.push(field(state.to_owned(), 0));
+    match app.replay {
+        Some(r) => {
+            let state = if r.ended {
+                "replay ended".to_owned()
+            } else if r.paused {
+                "replay paused".to_owned()
+            } else {
+                format!("replay ×{}", r.pace)
+            };
+            out.push(field(state, 0));
+            out.push(field(format!("{:.0}/{:.0} s", r.at, r.length), 2));
+            out.push(field(format!("chapter {}/{}", r.chapter, r.chapters), 1));
+        }
+        None => out.push(field(format!("×{}", run.speed), 1)),
+    }
+    let limit = if app.view.overlay {
+        format!(" limit {}", run.effective_reversals_shown().len())
     } else {
         String::new()
     };
-    let method = match app.method_in_use {
-        Some(m) if m != app.settings.method => format!("{}→{m}", app.settings.method),
-        _ => app.settings.method.to_string(),
+    out.push(field(
+        format!("reversals {}{limit}", run.reversals_shown().len()),
+        0,
+    ));
+    if let Some(p) = run.current() {
+        out.push(field(format!("ΔE/E {:.1e}", p.energy_error), 2));
+    }
+    let method = match run.plan {
+        PlanState::Running { plan, .. } if plan.method != s.method => {
+            format!("{}→{}", s.method, plan.method)
+        }
+        _ => s.method.to_string(),
     };
-    let text = format!(
-        " t {:.3}/{} ×{} {state} │ reversals {}{limit} │ {} │ {} │ ΔE/E {:.1e} │ {} steps/s",
-        app.reached,
-        app.settings.t_end,
-        app.speed,
-        app.reversals.len(),
-        app.derived.effective.regime().name(),
-        method,
-        energy,
-        human(app.rate),
-    );
+    out.push(field(method, 3));
+    if let PlanState::Running {
+        estimate: Some(e), ..
+    } = run.plan
+    {
+        let verdict = if e <= s.tolerance {
+            "✓"
+        } else {
+            "✗ above tol"
+        };
+        out.push(field(format!("est {e:.0e} {verdict}"), 4));
+    }
+    out.push(field(format!("{} steps/s", human(run.rate)), 5));
+    out
+}
+
+/// The fields that fit in `width`, in display order.
+fn fit(fields: &[Field], width: usize) -> String {
+    let sep = " │ ";
+    let mut keep = vec![false; fields.len()];
+    let mut used = 1;
+    let mut order: Vec<usize> = (0..fields.len()).collect();
+    order.sort_by_key(|&i| (fields[i].priority, i));
+    for i in order {
+        let w = fields[i].text.chars().count() + if used > 1 { sep.chars().count() } else { 0 };
+        if used + w <= width {
+            keep[i] = true;
+            used += w;
+        }
+    }
+    let kept: Vec<&str> = fields
+        .iter()
+        .zip(keep)
+        .filter(|(_, k)| *k)
+        .map(|(f, _)| f.text.as_str())
+        .collect();
+    format!(" {}", kept.join(sep))
+}
+
+pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, _look: &Look) {
+    let text = fit(&fields(app), area.width as usize);
     frame.render_widget(
         Paragraph::new(text).style(Style::default().add_modifier(Modifier::REVERSED)),
         area,
@@ -53,5 +128,23 @@ fn human(v: f64) -> String {
         format!("{:.1}k", v / 1e3)
     } else {
         format!("{v:.0}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn narrow_bars_drop_whole_fields_by_priority() {
+        let f = vec![
+            field("t 1.00/30".to_owned(), 0),
+            field("ΔE/E -5.6e-10".to_owned(), 2),
+            field("a-rather-long-method-name".to_owned(), 3),
+            field("reversals 2".to_owned(), 0),
+        ];
+        let text = fit(&f, 40);
+        assert_eq!(text, " t 1.00/30 │ ΔE/E -5.6e-10 │ reversals 2");
+        assert!(text.chars().count() <= 40);
     }
 }

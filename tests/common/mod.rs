@@ -63,3 +63,82 @@ pub fn case_problem(case: &toml::Table) -> Problem {
         ],
     )
 }
+
+/// The explorer driven headless through the worker's own interpreter: the app decides, the
+/// engine integrates, nothing depends on a clock (each tick is a given wall time).
+pub struct Headless {
+    /// The explorer state.
+    pub app: rattleback::app::App,
+    /// The worker's interpreter.
+    pub engine: rattleback::sim::Engine,
+    /// Effects other than worker commands, in order (for assertions).
+    pub effects: Vec<rattleback::app::Effect>,
+}
+
+impl Headless {
+    /// A paused explorer on `preset` (a shipped name), started like the real one.
+    pub fn new(preset: &str) -> Self {
+        let preset = rattleback::scenario::shipped::resolve(preset, &[]).expect("preset");
+        Self::of(&preset)
+    }
+
+    /// A paused explorer on `preset`.
+    pub fn of(preset: &rattleback::scenario::Preset) -> Self {
+        let (app, effects) = rattleback::app::App::new(preset, rattleback::app::Options::at(30.0));
+        let mut h = Self {
+            app,
+            engine: rattleback::sim::Engine::new(rattleback::sim::PlanBook::default()),
+            effects: Vec::new(),
+        };
+        h.exec(effects);
+        h
+    }
+
+    /// Executes effects: worker commands run to completion on the engine.
+    pub fn exec(&mut self, effects: Vec<rattleback::app::Effect>) {
+        for e in effects {
+            match e {
+                rattleback::app::Effect::Sim(c) => {
+                    let app = &mut self.app;
+                    rattleback::sim::drive(&mut self.engine, vec![c], &mut |ev| {
+                        app.on_sim(ev);
+                    });
+                }
+                other => self.effects.push(other),
+            }
+        }
+    }
+
+    /// Presses a key.
+    pub fn key(&mut self, key: rattleback::app::Key) {
+        let effects = self.app.on_key(key);
+        self.exec(effects);
+    }
+
+    /// One frame of `wall` seconds.
+    pub fn tick(&mut self, wall: f64) {
+        let effects = self.app.tick(wall);
+        self.exec(effects);
+    }
+
+    /// Plays at `speed` (a power of two) at 30 frames per second until the display reaches
+    /// `t` (or the end of the run); returns the number of frames.
+    pub fn play_until(&mut self, t: f64, speed: f64) -> usize {
+        while self.app.run.speed < speed {
+            self.key(rattleback::app::Key::Char('+'));
+        }
+        while self.app.run.speed > speed {
+            self.key(rattleback::app::Key::Char('-'));
+        }
+        if !self.app.run.playing {
+            self.key(rattleback::app::Key::Char(' '));
+        }
+        let mut frames = 0;
+        while self.app.run.shown < t && !self.app.run.done() {
+            self.tick(1.0 / 30.0);
+            frames += 1;
+            assert!(frames < 10_000_000, "the display never reached {t}");
+        }
+        frames
+    }
+}

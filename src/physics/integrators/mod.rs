@@ -22,7 +22,7 @@ use super::model::State;
 use super::params::Problem;
 
 /// The closed set of methods; names are the ones used in presets and on the command line.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Method {
     /// Classical Runge–Kutta, fixed step, order 4.
@@ -158,6 +158,15 @@ pub enum StepError {
         /// Time reached.
         t: f64,
     },
+    /// The caller cancelled the run (a restart or quit arrived).
+    #[error("cancelled at t = {t}")]
+    Cancelled {
+        /// Time reached.
+        t: f64,
+    },
+    /// `auto` is a planner, not an integrator: resolve it first (`physics::plan`).
+    #[error("method auto must be resolved to a concrete method before integrating")]
+    Unplanned,
 }
 
 /// How a method is to be run.
@@ -232,22 +241,21 @@ pub fn default_step(method: Method, problem: &Problem, tolerance: f64, t_end: f6
 }
 
 /// Builds a ready-to-step integrator at `t = 0`; `t_end` is the horizon a default step is
-/// budgeted for. `auto` is planned first ([`crate::physics::auto::plan`]).
-#[must_use]
+/// budgeted for.
+///
+/// # Errors
+/// [`StepError::Unplanned`] for `auto`, which is resolved above the integrators
+/// (`physics::plan`), so this layer never calls back up into the planner.
 pub fn build(
     method: Method,
     problem: &Problem,
     settings: Settings,
     t_end: f64,
-) -> Box<dyn Integrator> {
-    if method == Method::Auto {
-        let plan = crate::physics::auto::plan(problem, settings.tolerance, t_end);
-        return build(plan.method, problem, plan.settings(), t_end);
-    }
+) -> Result<Box<dyn Integrator>, StepError> {
     let step = settings
         .step
         .unwrap_or_else(|| default_step(method, problem, settings.tolerance, t_end));
-    match method {
+    Ok(match method {
         Method::Rk4 => Box::new(rk4::Rk4::new(problem, step)),
         Method::Dop853 => Box::new(full_dop853::FullDop853::new(problem, settings.tolerance)),
         Method::Strang
@@ -270,6 +278,6 @@ pub fn build(
             settings.tolerance,
             true,
         )),
-        Method::Auto => unreachable!("auto is planned above"),
-    }
+        Method::Auto => return Err(StepError::Unplanned),
+    })
 }

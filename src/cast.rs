@@ -12,11 +12,11 @@ use ratatui::backend::CrosstermBackend;
 use ratatui::layout::Rect;
 use ratatui::{Terminal, TerminalOptions, Viewport};
 
-use super::verify::start;
-use super::{RecordError, Recording};
+use crate::app::effects::commands;
 use crate::app::journal::Event;
-use crate::sim::{Command, Session, drive};
-use crate::ui::{self, UiOptions};
+use crate::record::{RecordError, Recording, plan_book, start};
+use crate::sim::{Engine, drive};
+use crate::ui::{self, Cache, UiOptions};
 
 /// Frames per second of the exported cast.
 const CAST_FPS: f64 = 10.0;
@@ -49,7 +49,7 @@ pub fn export_cast(
         path: out.display().to_string(),
         source,
     };
-    let (mut app, commands) = start(rec, path)?;
+    let (mut app, start_effects) = start(rec, path)?;
     let size = rec.header.terminal;
     let area = Rect::new(0, 0, size.width.max(1), size.height.max(1));
     let screen = Shared::default();
@@ -60,19 +60,20 @@ pub fn export_cast(
         },
     )
     .map_err(io)?;
-    let mut session: Option<Session> = None;
-    let run = |commands: Vec<Command>, session: &mut Option<Session>, app: &mut crate::app::App| {
-        drive(session, commands, &mut |e| {
+    let mut engine = Engine::new(plan_book(rec));
+    let mut cache = Cache::default();
+    let run = |effects: Vec<crate::app::Effect>, engine: &mut Engine, app: &mut crate::app::App| {
+        drive(engine, commands(effects), &mut |e| {
             app.on_sim(e);
         });
     };
-    run(commands, &mut session, &mut app);
+    run(start_effects, &mut engine, &mut app);
     let mut cast = String::new();
     let header = serde_json::json!({
         "version": 2,
         "width": area.width,
         "height": area.height,
-        "title": format!("rattleback: {}", app.name),
+        "title": format!("rattleback: {}", app.scenario.name),
         "env": {"TERM": "xterm-256color"},
     });
     cast.push_str(&header.to_string());
@@ -88,15 +89,16 @@ pub fn export_cast(
                 cast.push_str(&serde_json::json!([line.wall, "m", title]).to_string());
                 cast.push('\n');
             }
-            app.target = line.t;
+            let c = app.seek(line.t);
+            run(c, &mut engine, &mut app);
             let c = app.apply_event(&line.event);
-            run(c, &mut session, &mut app);
+            run(c, &mut engine, &mut app);
             next += 1;
         }
         let c = app.tick(1.0 / CAST_FPS);
-        run(c, &mut session, &mut app);
+        run(c, &mut engine, &mut app);
         terminal
-            .draw(|f| ui::draw(f, &mut app, options))
+            .draw(|f| ui::draw(f, &app, options, &mut cache))
             .map_err(io)?;
         let bytes = std::mem::take(&mut *screen.0.borrow_mut());
         if !bytes.is_empty() {

@@ -1,0 +1,65 @@
+//! What the app asks the loop to do, and what the loop reports back. The app decides; the loop
+//! executes (files, the recorder, the worker, the terminal) and never writes the app's fields.
+
+use std::path::PathBuf;
+
+use crate::scenario::Preset;
+use crate::scenario::shipped::Entry;
+use crate::sim::Command;
+
+/// A side effect for the loop.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Effect {
+    /// A command for the worker.
+    Sim(Command),
+    /// Open a recording (answered by [`Outcome::Recording`]).
+    StartRecording,
+    /// Close the recording once its final checkpoint is written.
+    StopRecording,
+    /// Write a user preset (answered by [`Outcome::Saved`]).
+    SavePreset {
+        /// File stem.
+        name: String,
+        /// TOML text.
+        text: String,
+        /// Replace an existing file.
+        overwrite: bool,
+    },
+    /// Read the preset catalogue (answered by [`Outcome::Catalogue`]).
+    ReadCatalogue,
+    /// Load a preset by shipped name or path (answered by [`Outcome::Loaded`]).
+    LoadPreset(String),
+    /// Redraw the whole screen.
+    Redraw,
+    /// Suspend the process (terminal restored, then re-entered on resume).
+    Suspend,
+}
+
+/// What came of an effect.
+#[derive(Debug)]
+pub enum Outcome {
+    /// The recording started (its path) or could not.
+    Recording(Result<String, String>),
+    /// The recording was closed (its path).
+    RecordingSaved(String),
+    /// Writing the recording failed; it stopped.
+    RecordingFailed(String),
+    /// The preset was written, or why not (`Exists` asks for confirmation).
+    Saved(Result<PathBuf, crate::scenario::store::SaveError>),
+    /// The catalogue: presets and the problems of broken user files (`(name, error)`).
+    Catalogue(Vec<Entry>, Vec<(String, String)>),
+    /// A preset to load, or why it did not load.
+    Loaded(Box<Result<Preset, String>>),
+}
+
+/// The worker commands among `effects` (what headless drivers execute).
+#[must_use]
+pub fn commands(effects: Vec<Effect>) -> Vec<Command> {
+    effects
+        .into_iter()
+        .filter_map(|e| match e {
+            Effect::Sim(c) => Some(c),
+            _ => None,
+        })
+        .collect()
+}

@@ -1,0 +1,97 @@
+//! The panes of the explorer as a closed set with a visible set: the layout is computed from
+//! the set, so a new pane is one variant, not a new branch per combination.
+
+/// A pane of the main area.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Pane {
+    /// The parameter panel (left column).
+    Params,
+    /// The phase portrait.
+    Portrait,
+    /// The time series of `alpha_dot` and the energy error.
+    Series,
+}
+
+impl Pane {
+    /// Every pane, in layout order.
+    pub const ALL: [Self; 3] = [Self::Params, Self::Portrait, Self::Series];
+
+    /// Share of the right-hand column's height (the parameter panel has its own column).
+    #[must_use]
+    pub fn weight(self) -> u16 {
+        match self {
+            Self::Params => 0,
+            Self::Portrait => 65,
+            Self::Series => 35,
+        }
+    }
+
+    /// Whether the user may hide it.
+    #[must_use]
+    pub fn optional(self) -> bool {
+        self == Self::Series
+    }
+}
+
+/// The visible panes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Panes(u8);
+
+impl Default for Panes {
+    fn default() -> Self {
+        Self::of(&[Pane::Params, Pane::Portrait])
+    }
+}
+
+impl Panes {
+    /// A set of panes.
+    #[must_use]
+    pub fn of(panes: &[Pane]) -> Self {
+        Self(panes.iter().fold(0, |m, p| m | (1 << *p as u8)))
+    }
+
+    /// Whether `pane` is shown.
+    #[must_use]
+    pub fn shows(self, pane: Pane) -> bool {
+        self.0 & (1 << pane as u8) != 0
+    }
+
+    /// Shows or hides `pane` (only optional panes can be hidden).
+    pub fn set(&mut self, pane: Pane, on: bool) {
+        if on {
+            self.0 |= 1 << pane as u8;
+        } else if pane.optional() {
+            self.0 &= !(1 << pane as u8);
+        }
+    }
+
+    /// Toggles `pane`.
+    pub fn toggle(&mut self, pane: Pane) {
+        self.set(pane, !self.shows(pane));
+    }
+
+    /// The visible panes of the right-hand column, with their weights.
+    #[must_use]
+    pub fn column(self) -> Vec<(Pane, u16)> {
+        Pane::ALL
+            .into_iter()
+            .filter(|p| *p != Pane::Params && self.shows(*p))
+            .map(|p| (p, p.weight()))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_column_lists_the_visible_panes_in_order() {
+        let mut p = Panes::default();
+        assert_eq!(p.column(), vec![(Pane::Portrait, 65)]);
+        p.toggle(Pane::Series);
+        assert_eq!(p.column(), vec![(Pane::Portrait, 65), (Pane::Series, 35)]);
+        p.set(Pane::Portrait, false);
+        assert!(p.shows(Pane::Portrait), "the portrait cannot be hidden");
+    }
+}

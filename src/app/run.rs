@@ -1,0 +1,327 @@
+//! The run as the screen shows it: the displayed time, the samples and events received from the
+//! worker, and the pacing that asks the worker for more.
+//!
+//! Two clocks: `reached` is how far the worker's samples go; `shown` is the displayed time,
+//! which never passes `reached` nor the `goal` the user's clock set. Everything drawn and
+//! counted is cut at `shown`: a reversal the worker found ahead of the display is counted when
+//! the display gets there. The worker is asked for at most a short lead beyond the goal, so a
+//! pause or a change takes effect at once, however slow the integration.
+
+use crate::physics::plan::Resolved;
+use crate::sim::{Command, Point, SessionSpec, SimEvent};
+
+/// Most trail points kept per trail (the oldest half is dropped beyond).
+pub const TRAIL_CAP: usize = 40_000;
+/// Wall seconds of lead the worker is asked to compute beyond the displayed clock.
+const LEAD: f64 = 0.25;
+
+/// Where `auto`'s plan stands.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PlanState {
+    /// Not known yet (the worker has not answered).
+    Pending,
+    /// `auto` is verifying its choice over the whole run; nothing is shown until it is done.
+    Verifying,
+    /// Integrating this plan; `estimate` is `auto`'s verified error when it planned.
+    Running {
+        /// The plan.
+        plan: Resolved,
+        /// `auto`'s error estimate.
+        estimate: Option<f64>,
+    },
+}
+
+/// Progress of the current run.
+#[derive(Clone, Debug)]
+pub struct RunState {
+    /// Stamp of the run; events of older runs are ignored.
+    pub generation: u64,
+    /// Stamp of the overlay's life; its samples from an older life are ignored.
+    pub epoch: u64,
+    /// Playing or paused.
+    pub playing: bool,
+    /// Simulated seconds per wall second.
+    pub speed: f64,
+    /// Where the user's clock has got to.
+    pub goal: f64,
+    /// The displayed time.
+    pub shown: f64,
+    /// Time of the last sample received.
+    pub reached: f64,
+    /// End of the run.
+    pub t_end: f64,
+    /// Samples of the full motion (possibly ahead of `shown`).
+    pub trail: Vec<Point>,
+    /// Samples of the effective motion.
+    pub effective_trail: Vec<Point>,
+    /// Reversal times of the full motion (possibly ahead of `shown`).
+    pub reversals: Vec<f64>,
+    /// Reversal times of the effective motion.
+    pub effective_reversals: Vec<f64>,
+    /// The worker reached `t_end`.
+    pub finished: bool,
+    /// The run failed.
+    pub failed: Option<String>,
+    /// Steps taken by the worker in this run.
+    pub steps: u64,
+    /// The plan integrating.
+    pub plan: PlanState,
+    /// Steps per wall second, smoothed.
+    pub rate: f64,
+    steps_at_tick: u64,
+}
+
+impl RunState {
+    /// A paused run at `t = 0`, not started.
+    #[must_use]
+    pub fn new(t_end: f64) -> Self {
+        Self {
+            generation: 0,
+            epoch: 0,
+            playing: false,
+            speed: 1.0,
+            goal: 0.0,
+            shown: 0.0,
+            reached: 0.0,
+            t_end,
+            trail: Vec::new(),
+            effective_trail: Vec::new(),
+            reversals: Vec::new(),
+            effective_reversals: Vec::new(),
+            finished: false,
+            failed: None,
+            steps: 0,
+            plan: PlanState::Pending,
+            rate: 0.0,
+            steps_at_tick: 0,
+        }
+    }
+
+    /// Starts `spec` from `t = 0` as a new generation; the commands that start it.
+    pub fn restart(&mut self, spec: SessionSpec) -> Vec<Command> {
+        let (generation, epoch, playing, speed, rate) = (
+            self.generation + 1,
+            self.epoch,
+            self.playing,
+            self.speed,
+            self.rate,
+        );
+        *self = Self {
+            generation,
+            epoch,
+            playing,
+            speed,
+            rate,
+            ..Self::new(spec.t_end)
+        };
+        vec![
+            Command::Restart { generation, spec },
+            self.advance_command(),
+        ]
+    }
+
+    /// What the worker is asked to reach: the goal, plus a short lead while playing.
+    #[must_use]
+    pub fn target(&self) -> f64 {
+        let lead = if self.playing { LEAD * self.speed } else { 0.0 };
+        (self.goal + lead).min(self.t_end)
+    }
+
+    /// The worker command for the current target.
+    #[must_use]
+    pub fn advance_command(&self) -> Command {
+        Command::AdvanceTo {
+            generation: self.generation,
+            t: self.target(),
+        }
+    }
+
+    /// The display reached the end of the run (or it failed).
+    #[must_use]
+    pub fn done(&self) -> bool {
+        self.failed.is_some() || (self.finished && self.shown >= self.reached)
+    }
+
+    /// Pauses at the displayed time: the worker stops where it is.
+    pub fn pause(&mut self) -> Command {
+        self.playing = false;
+        self.goal = self.shown;
+        self.advance_command()
+    }
+
+    /// Moves the displayed clock one frame (`dt` simulated seconds) forward, paused.
+    pub fn step(&mut self, dt: f64) -> Command {
+        self.playing = false;
+        self.goal = (self.shown + dt).min(self.t_end);
+        self.advance_command()
+    }
+
+    /// Sets the displayed clock to `t` (replay keeps the recorded times).
+    pub fn seek(&mut self, t: f64) -> Command {
+        self.goal = t.min(self.t_end);
+        self.show();
+        self.advance_command()
+    }
+
+    fn show(&mut self) {
+        self.shown = self.goal.min(self.reached);
+        if self.playing && self.finished && self.shown >= self.reached {
+            self.playing = false;
+        }
+    }
+
+    /// Advances the clock by `wall_seconds × speed` while playing; the command asking for more.
+    pub fn tick(&mut self, wall_seconds: f64) -> Vec<Command> {
+        let done = self.steps.saturating_sub(self.steps_at_tick) as f64;
+        self.steps_at_tick = self.steps;
+        if wall_seconds > 0.0 {
+            let now = done / wall_seconds;
+            self.rate = if self.rate == 0.0 {
+                now
+            } else {
+                0.8 * self.rate + 0.2 * now
+            };
+        }
+        if !self.playing || self.failed.is_some() {
+            return Vec::new();
+        }
+        // The clock never runs ahead of what is computed by more than one tick: when the
+        // integration cannot keep up, the display follows it instead of piling up a backlog.
+        let dt = wall_seconds * self.speed;
+        self.goal = (self.goal + dt).min(self.reached + dt).min(self.t_end);
+        self.show();
+        vec![self.advance_command()]
+    }
+
+    /// Takes a worker event of this run; whether anything visible changed.
+    pub fn on_sim(&mut self, event: SimEvent, overlay: bool) -> bool {
+        match event {
+            SimEvent::Planning { generation } if generation == self.generation => {
+                self.plan = PlanState::Verifying;
+                true
+            }
+            SimEvent::Started {
+                generation,
+                plan,
+                error_estimate,
+            } if generation == self.generation => {
+                self.plan = PlanState::Running {
+                    plan,
+                    estimate: error_estimate,
+                };
+                true
+            }
+            SimEvent::Samples {
+                generation,
+                epoch,
+                full,
+                effective,
+                t,
+                steps,
+            } if generation == self.generation => {
+                if let Some(t) = t {
+                    self.reached = self.reached.max(t);
+                }
+                push_capped(&mut self.trail, full);
+                if overlay && epoch == self.epoch {
+                    push_capped(&mut self.effective_trail, effective);
+                }
+                self.steps = steps;
+                let before = self.shown;
+                self.show();
+                self.shown > before || self.trail.len() <= 1
+            }
+            SimEvent::Reversal {
+                generation,
+                epoch,
+                t,
+                effective,
+            } if generation == self.generation => {
+                if !effective {
+                    self.reversals.push(t);
+                } else if overlay && epoch == self.epoch {
+                    self.effective_reversals.push(t);
+                }
+                t <= self.shown
+            }
+            SimEvent::Finished { generation } if generation == self.generation => {
+                self.finished = true;
+                self.show();
+                true
+            }
+            SimEvent::Failed {
+                generation,
+                message,
+            } if generation == self.generation => {
+                self.failed = Some(message);
+                self.playing = false;
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// A new life of the overlay (on or off); its old samples are dropped.
+    pub fn set_overlay(&mut self, on: bool) -> Command {
+        self.epoch += 1;
+        self.effective_trail.clear();
+        self.effective_reversals.clear();
+        Command::SetEffective {
+            on,
+            epoch: self.epoch,
+        }
+    }
+
+    /// The full trail up to the displayed time.
+    #[must_use]
+    pub fn trail_shown(&self) -> &[Point] {
+        upto(&self.trail, self.shown)
+    }
+
+    /// The effective trail up to the displayed time.
+    #[must_use]
+    pub fn effective_shown(&self) -> &[Point] {
+        upto(&self.effective_trail, self.shown)
+    }
+
+    /// Reversals of the full motion up to the displayed time.
+    #[must_use]
+    pub fn reversals_shown(&self) -> &[f64] {
+        &self.reversals[..self.reversals.partition_point(|t| *t <= self.shown)]
+    }
+
+    /// Reversals of the limit up to the displayed time.
+    #[must_use]
+    pub fn effective_reversals_shown(&self) -> &[f64] {
+        &self.effective_reversals[..self
+            .effective_reversals
+            .partition_point(|t| *t <= self.shown)]
+    }
+
+    /// The displayed point of the full motion.
+    #[must_use]
+    pub fn current(&self) -> Option<&Point> {
+        self.trail_shown().last()
+    }
+
+    /// Forgets the drawn trails (not the counts).
+    pub fn clear_trails(&mut self) {
+        let keep = |trail: &mut Vec<Point>, shown: f64| {
+            let n = upto(trail, shown).len();
+            trail.drain(..n.saturating_sub(1));
+        };
+        keep(&mut self.trail, self.shown);
+        keep(&mut self.effective_trail, self.shown);
+    }
+}
+
+fn upto(trail: &[Point], t: f64) -> &[Point] {
+    &trail[..trail.partition_point(|p| p.t <= t)]
+}
+
+fn push_capped(trail: &mut Vec<Point>, new: Vec<Point>) {
+    trail.extend(new);
+    if trail.len() > TRAIL_CAP {
+        trail.drain(..trail.len() - TRAIL_CAP / 2);
+    }
+}

@@ -1,0 +1,95 @@
+//! The recording in progress: the file, its wall clock, periodic checkpoints, and closing it
+//! once the final checkpoint is written.
+
+use std::time::Instant;
+
+use crate::app::journal::Event;
+use crate::app::{App, Effect, Outcome};
+use crate::record::{Header, Line, Recorder, Size};
+
+/// Wall seconds between checkpoints while recording.
+pub const CHECKPOINT_EVERY: f64 = 2.0;
+
+/// A recording in progress.
+pub struct ActiveRecording {
+    recorder: Recorder,
+    started: Instant,
+    last_checkpoint: Instant,
+    /// Close once the final checkpoint is written.
+    pub stopping: bool,
+}
+
+/// The header of a recording of `app` now.
+#[must_use]
+pub fn header(app: &App, size: (u16, u16), fps: f64) -> Header {
+    Header {
+        format: crate::record::FORMAT.to_owned(),
+        version: crate::record::VERSION,
+        program: env!("CARGO_PKG_VERSION").to_owned(),
+        preset: app.to_preset(&app.scenario.name).to_toml(),
+        method: app.scenario.settings.method.name().to_owned(),
+        tolerance: app.scenario.settings.tolerance,
+        terminal: Size {
+            width: size.0,
+            height: size.1,
+        },
+        theme: app.view.theme,
+        fps,
+    }
+}
+
+impl ActiveRecording {
+    /// Opens `path` (never replacing a file) with the header of `app`.
+    ///
+    /// # Errors
+    /// The file exists or cannot be written.
+    pub fn start(
+        app: &App,
+        path: &std::path::Path,
+        size: (u16, u16),
+        fps: f64,
+    ) -> Result<Self, String> {
+        let recorder =
+            Recorder::create(path, &header(app, size, fps)).map_err(|e| e.to_string())?;
+        let now = Instant::now();
+        Ok(Self {
+            recorder,
+            started: now,
+            last_checkpoint: now,
+            stopping: false,
+        })
+    }
+
+    /// The file.
+    #[must_use]
+    pub fn path(&self) -> String {
+        self.recorder.path().to_owned()
+    }
+
+    /// A periodic checkpoint, when one is due.
+    pub fn due(&mut self, app: &App) -> Option<Effect> {
+        (self.last_checkpoint.elapsed().as_secs_f64() >= CHECKPOINT_EVERY).then(|| {
+            self.last_checkpoint = Instant::now();
+            app.checkpoint()
+        })
+    }
+
+    /// Writes the journal. `Ok(Some(outcome))` when the recording is over (closed after its
+    /// final checkpoint); `Err` when writing failed (it stopped).
+    pub fn flush(&mut self, app: &mut App) -> Result<Option<Outcome>, Outcome> {
+        let wall = self.started.elapsed().as_secs_f64();
+        let mut checkpoint = false;
+        for (t, generation, event) in app.take_journal() {
+            checkpoint |= matches!(event, Event::Checkpoint { .. });
+            self.recorder
+                .write(&Line {
+                    wall,
+                    t,
+                    generation,
+                    event,
+                })
+                .map_err(|e| Outcome::RecordingFailed(e.to_string()))?;
+        }
+        Ok((checkpoint && self.stopping).then(|| Outcome::RecordingSaved(self.path())))
+    }
+}

@@ -1,0 +1,157 @@
+//! Replay in the explorer: the recording drives the app at its own pace; keys (from the
+//! replay keymap) pause, change the pace and jump between chapters.
+
+use crate::app::keys::{ReplayAction, replay_action_for};
+use crate::app::{App, Effect, Key, ReplayInfo};
+use crate::record::Line;
+
+/// The replay's clock and position in the file.
+pub struct Replayer {
+    lines: Vec<Line>,
+    chapters: Vec<usize>,
+    next: usize,
+    clock: f64,
+    pace: f64,
+    paused: bool,
+}
+
+/// Pace limits (×).
+const PACE: (f64, f64) = (1.0 / 16.0, 64.0);
+
+impl Replayer {
+    /// A replay of `lines` from its start.
+    #[must_use]
+    pub fn new(lines: Vec<Line>) -> Self {
+        let chapters = (0..lines.len())
+            .filter(|&i| matches!(lines[i].event, crate::app::journal::Event::Chapter { .. }))
+            .collect();
+        Self {
+            lines,
+            chapters,
+            next: 0,
+            clock: 0.0,
+            pace: 1.0,
+            paused: false,
+        }
+    }
+
+    /// Chapters already passed.
+    fn passed(&self) -> usize {
+        self.chapters.iter().filter(|&&i| i < self.next).count()
+    }
+
+    /// What the status bar shows.
+    #[must_use]
+    pub fn info(&self) -> ReplayInfo {
+        let length = self.lines.last().map_or(0.0, |l| l.wall);
+        ReplayInfo {
+            pace: self.pace,
+            paused: self.paused,
+            chapter: self.passed(),
+            chapters: self.chapters.len(),
+            ended: self.next >= self.lines.len(),
+            at: self.clock.min(length),
+            length,
+        }
+    }
+
+    /// Whether the clock runs.
+    #[must_use]
+    pub fn running(&self) -> bool {
+        !self.paused && self.next < self.lines.len()
+    }
+
+    /// Applies every line up to the clock.
+    pub fn catch_up(&mut self, app: &mut App) -> Vec<Effect> {
+        let mut effects = Vec::new();
+        while self.next < self.lines.len() && self.lines[self.next].wall <= self.clock {
+            let line = &self.lines[self.next];
+            effects.extend(app.seek(line.t));
+            effects.extend(app.apply_event(&line.event));
+            self.next += 1;
+        }
+        app.set_replay(self.info());
+        effects
+    }
+
+    /// Advances the clock by `wall` seconds (scaled by the pace).
+    pub fn advance(&mut self, wall: f64, app: &mut App) -> Vec<Effect> {
+        let mut effects = Vec::new();
+        if self.running() {
+            self.clock += wall * self.pace;
+            effects.extend(self.catch_up(app));
+        }
+        if app.run.playing {
+            effects.extend(app.tick(wall * self.pace));
+        }
+        effects
+    }
+
+    /// Jumps to the wall time of line `index` (the start when `None`), replaying from the
+    /// beginning when that is behind: `rebuild` gives a fresh app at the recording's start.
+    fn jump(
+        &mut self,
+        index: Option<usize>,
+        app: &mut App,
+        rebuild: &dyn Fn(&App) -> (App, Vec<Effect>),
+    ) -> Vec<Effect> {
+        let mut effects = Vec::new();
+        let back = index.is_none_or(|i| i < self.next);
+        if back {
+            let (fresh, start) = rebuild(app);
+            *app = fresh;
+            effects.extend(start);
+            self.next = 0;
+        }
+        self.clock = index.map_or(0.0, |i| self.lines[i].wall);
+        effects.extend(self.catch_up(app));
+        effects
+    }
+
+    /// Handles a key; `rebuild` makes a fresh app at the recording's start (for going back).
+    pub fn key(
+        &mut self,
+        key: Key,
+        app: &mut App,
+        rebuild: &dyn Fn(&App) -> (App, Vec<Effect>),
+    ) -> Vec<Effect> {
+        let Some(action) = replay_action_for(key) else {
+            return Vec::new();
+        };
+        let effects = match action {
+            ReplayAction::TogglePause => {
+                self.paused = !self.paused;
+                Vec::new()
+            }
+            ReplayAction::Faster => {
+                self.pace = (self.pace * 2.0).min(PACE.1);
+                Vec::new()
+            }
+            ReplayAction::Slower => {
+                self.pace = (self.pace / 2.0).max(PACE.0);
+                Vec::new()
+            }
+            ReplayAction::NextChapter => match self.chapters.get(self.passed()).copied() {
+                Some(i) => self.jump(Some(i), app, rebuild),
+                None => Vec::new(),
+            },
+            ReplayAction::PreviousChapter => {
+                // The chapter before the current one (or the start): one chapter per press.
+                let passed = self.passed();
+                let target = passed
+                    .checked_sub(2)
+                    .and_then(|c| self.chapters.get(c).copied());
+                self.jump(target, app, rebuild)
+            }
+            ReplayAction::ToggleHelp => app.update(crate::app::Action::ToggleHelp),
+            ReplayAction::Redraw => vec![Effect::Redraw],
+            ReplayAction::Suspend => vec![Effect::Suspend],
+            ReplayAction::Quit => {
+                app.update(crate::app::Action::Quit);
+                Vec::new()
+            }
+        };
+        app.set_replay(self.info());
+        effects
+    }
+}

@@ -1,0 +1,122 @@
+//! Turning a requested method into the concrete integration that runs: `auto` is resolved
+//! here, above [`run`](super::run) and the integrators, so nothing below calls back up into the
+//! planner. The explorer and `simulate` both go through [`resolve`], which is what makes them
+//! show the same trajectory.
+//!
+//! A [`Resolved`] plan is plain data (method, tolerance, step): recordings store it, and replay
+//! integrates the recorded plan, so a later change of `auto` never breaks an old session.
+
+use serde::{Deserialize, Serialize};
+
+use super::auto::{self, Verified};
+use super::integrators::{Method, Settings, StepError};
+use super::params::Problem;
+use super::run::RunSpec;
+
+/// Tolerance when neither the command line, the preset nor the explorer gives one: one value
+/// for `simulate` and the explorer.
+pub const DEFAULT_TOLERANCE: f64 = 1e-9;
+
+/// The concrete integration of a run: what the integrator is built with.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Resolved {
+    /// A concrete method (never `auto`).
+    pub method: Method,
+    /// Tolerance handed to the integrator (adaptive methods; picks the default step of
+    /// fixed-step ones when `step` is absent).
+    pub tolerance: f64,
+    /// Fixed step, if any.
+    pub step: Option<f64>,
+}
+
+impl Resolved {
+    /// The integrator settings.
+    #[must_use]
+    pub fn settings(&self) -> Settings {
+        Settings {
+            tolerance: self.tolerance,
+            step: self.step,
+        }
+    }
+}
+
+/// How `auto` is resolved.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum AutoPolicy {
+    /// Plan, run, verify against a finer companion and refine until the estimate meets the
+    /// tolerance; the finer run's settings are returned (what `simulate` reports).
+    #[default]
+    Verified,
+    /// The first plan, unverified: how session files of format 1 were recorded. Only replay of
+    /// such files uses it.
+    Legacy,
+}
+
+/// What [`resolve`] found, with `auto`'s reasoning when it was asked.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Resolution {
+    /// What to integrate.
+    pub plan: Resolved,
+    /// `auto`'s verified run (absent for a concrete method or the legacy policy).
+    pub verified: Option<Verified>,
+}
+
+/// Resolves `method` for `problem` over `[0, t_end]` at `tolerance`; `go_on(t)` is asked every
+/// few hundred steps of `auto`'s probes and verification runs whether to continue.
+///
+/// # Errors
+/// When a verification run fails, or [`StepError::Cancelled`].
+pub fn resolve(
+    problem: &Problem,
+    method: Method,
+    tolerance: f64,
+    t_end: f64,
+    policy: AutoPolicy,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<Resolution, StepError> {
+    if method != Method::Auto {
+        return Ok(Resolution {
+            plan: Resolved {
+                method,
+                tolerance,
+                step: None,
+            },
+            verified: None,
+        });
+    }
+    match policy {
+        AutoPolicy::Legacy => {
+            let p = auto::plan_cancellable(problem, tolerance, t_end, go_on)?;
+            Ok(Resolution {
+                plan: Resolved {
+                    method: p.method,
+                    tolerance: p.tolerance,
+                    step: p.step,
+                },
+                verified: None,
+            })
+        }
+        AutoPolicy::Verified => {
+            let v = auto::run_auto_cancellable(
+                problem,
+                &RunSpec {
+                    method,
+                    tolerance,
+                    step: None,
+                    t_end,
+                    samples: 0,
+                    monitor_energy: false,
+                },
+                go_on,
+            )?;
+            Ok(Resolution {
+                plan: Resolved {
+                    method: v.plan.method,
+                    tolerance: v.run_settings.tolerance,
+                    step: v.run_settings.step,
+                },
+                verified: Some(v),
+            })
+        }
+    }
+}

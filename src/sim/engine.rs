@@ -1,0 +1,265 @@
+//! The one interpreter of the worker protocol. The worker thread, `replay --verify`, the cast
+//! export, the tests and the benchmarks all drive an [`Engine`]: `handle` takes a command,
+//! `work` does a bounded slice of what is pending (planning `auto`, integrating towards the
+//! target, checkpoints, the overlay's catch-up).
+
+use std::collections::VecDeque;
+
+use serde::{Deserialize, Serialize};
+
+use super::{Command, Session, SessionSpec, SimEvent};
+use crate::physics::integrators::{Method, StepError};
+use crate::physics::plan::{self, AutoPolicy, Resolved};
+use crate::physics::{Params, Start};
+
+/// What a plan was resolved for: `auto`'s choice depends on these only.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PlanKey {
+    /// Body and spring.
+    pub params: Params,
+    /// Start.
+    pub start: Start,
+    /// Tolerance asked.
+    pub tolerance: f64,
+    /// Horizon.
+    pub t_end: f64,
+}
+
+impl PlanKey {
+    /// The key of a session spec.
+    #[must_use]
+    pub fn of(spec: &SessionSpec) -> Self {
+        Self {
+            params: *spec.problem.params(),
+            start: *spec.problem.start(),
+            tolerance: spec.tolerance,
+            t_end: spec.t_end,
+        }
+    }
+}
+
+/// How `auto` is resolved: a policy, and the plans a recording already resolved (replay uses
+/// them, so a later change of `auto` never changes an old session's trajectory).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PlanBook {
+    /// Policy for keys not recorded.
+    pub policy: AutoPolicy,
+    /// Recorded plans.
+    pub recorded: Vec<(PlanKey, Resolved)>,
+}
+
+impl PlanBook {
+    fn lookup(&self, spec: &SessionSpec) -> Option<Resolved> {
+        let key = PlanKey::of(spec);
+        self.recorded
+            .iter()
+            .find(|(k, _)| *k == key)
+            .map(|(_, plan)| *plan)
+    }
+}
+
+/// The worker's state between commands.
+pub struct Engine {
+    book: PlanBook,
+    session: Option<Session>,
+    /// A restart whose plan is not resolved yet.
+    planning: Option<(u64, SessionSpec)>,
+    /// `(generation, target)` asked by the last `AdvanceTo`.
+    pending: Option<(u64, f64)>,
+    /// Checkpoints wait until the run reaches their time; the run stops there first so the
+    /// step containing the time is the last one (the trajectory is the same either way).
+    checkpoints: VecDeque<(u64, f64)>,
+    /// Stamp of the overlay's current life.
+    epoch: u64,
+}
+
+impl Engine {
+    /// An idle engine resolving `auto` with `book`.
+    #[must_use]
+    pub fn new(book: PlanBook) -> Self {
+        Self {
+            book,
+            session: None,
+            planning: None,
+            pending: None,
+            checkpoints: VecDeque::new(),
+            epoch: 0,
+        }
+    }
+
+    fn generation(&self) -> Option<u64> {
+        self.planning
+            .as_ref()
+            .map(|(g, _)| *g)
+            .or_else(|| self.session.as_ref().map(Session::generation))
+    }
+
+    /// Whether `work` has anything to do.
+    #[must_use]
+    pub fn busy(&self) -> bool {
+        self.planning.is_some()
+            || self.pending.is_some()
+            || !self.checkpoints.is_empty()
+            || self.session.as_ref().is_some_and(Session::effective_behind)
+    }
+
+    /// Takes a command; `false` means stop (quit, or nobody listens any more).
+    pub fn handle(&mut self, command: &Command, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
+        match *command {
+            Command::Quit => return false,
+            Command::Restart { generation, spec } => {
+                self.session = None;
+                self.pending = None;
+                self.checkpoints.clear();
+                let needs_planning =
+                    spec.method == Method::Auto && self.book.lookup(&spec).is_none();
+                self.planning = Some((generation, spec));
+                if needs_planning {
+                    return sink(SimEvent::Planning { generation });
+                }
+            }
+            Command::AdvanceTo { generation, t } => {
+                if self.generation() == Some(generation) {
+                    self.pending = Some((generation, t));
+                }
+            }
+            Command::Checkpoint { generation, t } => self.checkpoints.push_back((generation, t)),
+            Command::SetEffective { on, epoch } => {
+                self.epoch = epoch;
+                if let Some(spec) = self.planning.as_mut().map(|(_, s)| s) {
+                    spec.effective = on;
+                }
+                if let Some(s) = self.session.as_mut() {
+                    s.set_effective(on, epoch);
+                }
+            }
+        }
+        true
+    }
+
+    /// Resolves the pending restart's plan; `go_on` may cancel `auto`'s verification (a new
+    /// command arrived), in which case planning resumes from scratch on the next call.
+    fn plan(
+        &mut self,
+        go_on: &mut dyn FnMut(f64) -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+    ) -> bool {
+        let Some((generation, spec)) = self.planning else {
+            return true;
+        };
+        let resolved = match self.book.lookup(&spec) {
+            Some(plan) => Ok((plan, None)),
+            None => plan::resolve(
+                &spec.problem,
+                spec.method,
+                spec.tolerance,
+                spec.t_end,
+                self.book.policy,
+                go_on,
+            )
+            .map(|r| (r.plan, r.verified.map(|v| v.error_estimate))),
+        };
+        let started = match resolved {
+            Err(StepError::Cancelled { .. }) => return true,
+            Err(e) => Err(e),
+            Ok((plan, estimate)) => Session::new(generation, spec, plan).map(|s| (s, estimate)),
+        };
+        self.planning = None;
+        match started {
+            Ok((mut session, error_estimate)) => {
+                session.set_effective(spec.effective, self.epoch);
+                let plan = session.plan();
+                self.session = Some(session);
+                sink(SimEvent::Started {
+                    generation,
+                    plan,
+                    error_estimate,
+                })
+            }
+            Err(e) => {
+                self.pending = None;
+                self.checkpoints.clear();
+                sink(SimEvent::Failed {
+                    generation,
+                    message: format!("planning {}: {e}", spec.method),
+                })
+            }
+        }
+    }
+
+    /// Works one slice (at most `max_steps` steps, or one planning) towards the next target or
+    /// checkpoint; `false` means stop.
+    pub fn work(
+        &mut self,
+        max_steps: usize,
+        go_on: &mut dyn FnMut(f64) -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+    ) -> bool {
+        if self.planning.is_some() {
+            return self.plan(go_on, sink);
+        }
+        let Some(s) = self.session.as_mut() else {
+            self.pending = None;
+            self.checkpoints.clear();
+            return true;
+        };
+        let generation = s.generation();
+        self.checkpoints.retain(|(g, _)| *g == generation);
+        if self.pending.is_some_and(|(g, _)| g != generation) {
+            self.pending = None;
+        }
+        let due = self.checkpoints.front().map(|c| c.1);
+        let target = match (self.pending.map(|p| p.1), due) {
+            (Some(p), Some(c)) => p.min(c),
+            (Some(p), None) => p,
+            (None, Some(c)) => c,
+            // Only the overlay is behind: catch it up (a target at 0 moves nothing else).
+            (None, None) => 0.0,
+        };
+        let (events, reached) = s.advance(target, max_steps);
+        for e in events {
+            if !sink(e) {
+                return false;
+            }
+        }
+        if !reached {
+            return true;
+        }
+        if let Some(c) = due.filter(|c| *c <= target) {
+            self.checkpoints.pop_front();
+            // A time the run has already passed (it ran ahead of a pause) is served by the end
+            // of its current step instead: the event says which time it is, and a replay
+            // reaches exactly that step end.
+            let at = if c < s.time_prev_step() { s.time() } else { c };
+            if let Some((state, reversals)) = s.checkpoint(at)
+                && !sink(SimEvent::Checkpoint {
+                    generation,
+                    t: at,
+                    state,
+                    reversals,
+                })
+            {
+                return false;
+            }
+        }
+        if self.pending.is_some_and(|(_, p)| target >= p) {
+            self.pending = None;
+        }
+        true
+    }
+}
+
+/// Runs commands to completion on `engine`, synchronously, handing the events to `on_event`:
+/// the worker's behaviour without a thread (replay verification, cast export, tests).
+pub fn drive(engine: &mut Engine, commands: Vec<Command>, on_event: &mut dyn FnMut(SimEvent)) {
+    let mut sink = |e| {
+        on_event(e);
+        true
+    };
+    for c in commands {
+        engine.handle(&c, &mut sink);
+    }
+    while engine.busy() {
+        engine.work(usize::MAX, &mut |_| true, &mut sink);
+    }
+}
