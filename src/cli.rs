@@ -127,6 +127,31 @@ pub enum Format {
     Table,
 }
 
+impl From<Format> for crate::simulate::Format {
+    fn from(f: Format) -> Self {
+        match f {
+            Format::Json => Self::Json,
+            Format::Csv => Self::Csv,
+            Format::Table => Self::Table,
+        }
+    }
+}
+
+impl SimulateArgs {
+    /// The run this asks for, in the library's terms.
+    #[must_use]
+    pub fn request(&self) -> crate::simulate::Request {
+        crate::simulate::Request {
+            method: self.method,
+            tolerance: self.tolerance,
+            step: self.step,
+            t_end: self.t_end,
+            format: self.format.into(),
+            samples: self.samples,
+        }
+    }
+}
+
 /// Arguments of `simulate`.
 #[derive(Debug, Args)]
 pub struct SimulateArgs {

@@ -201,8 +201,9 @@ fn run_simulate(args: &SimulateArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let resolved = resolve_run(&preset, args);
-    match simulate(&preset, &resolved, args.format) {
+    let request = args.request();
+    let resolved = resolve_run(&preset, &request);
+    match simulate(&preset, &resolved, request.format) {
         Ok(text) => {
             let mut out = std::io::stdout().lock();
             // A closed pipe (e.g. `| head`) is not an error worth a panic.

@@ -7,7 +7,6 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::cli::{Format, SimulateArgs};
 use crate::physics::auto::run_auto;
 use crate::physics::effective::{Effective, tapping_acceleration};
 use crate::physics::integrators::{Method, default_step};
@@ -21,6 +20,34 @@ pub const DEFAULT_TOLERANCE: f64 = crate::physics::DEFAULT_TOLERANCE;
 /// Method when neither the command line nor the preset names one.
 pub const DEFAULT_METHOD: Method = Method::Auto;
 
+/// Output format of `simulate`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// One JSON object.
+    Json,
+    /// The sampled trajectory as CSV.
+    Csv,
+    /// A summary for people.
+    Table,
+}
+
+/// What the command line asks of one run (each absent value falls back to the preset).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Request {
+    /// Method.
+    pub method: Option<Method>,
+    /// Tolerance.
+    pub tolerance: Option<f64>,
+    /// Fixed step.
+    pub step: Option<f64>,
+    /// Final time.
+    pub t_end: Option<f64>,
+    /// Output format.
+    pub format: Format,
+    /// Samples of the CSV output.
+    pub samples: u32,
+}
+
 /// The resolved settings of one run.
 #[derive(Clone, Copy, Debug)]
 pub struct Resolved {
@@ -30,7 +57,7 @@ pub struct Resolved {
 
 /// Combines the preset's `[run]` section with command-line flags (flags win).
 #[must_use]
-pub fn resolve(preset: &Preset, args: &SimulateArgs) -> Resolved {
+pub fn resolve(preset: &Preset, args: &Request) -> Resolved {
     let method = args.method.or(preset.run.method).unwrap_or(DEFAULT_METHOD);
     let tolerance = args
         .tolerance

@@ -583,3 +583,38 @@ fn worker_runs_on_command_and_a_restart_cancels_in_flight_work() {
     worker.join();
     assert!(joined.elapsed() < Duration::from_secs(1));
 }
+
+/// Item 3: on every shipped preset, consecutive samples of the ×1024 trail are at most two
+/// cells apart on the 160×48 portrait (120 × 43 cells of plot): the trail is a curve.
+#[test]
+fn the_trail_has_no_gap_wider_than_two_cells() {
+    use rattleback::app::portrait::{display_alpha, wrap_centre};
+    for (name, _) in SHIPPED {
+        let mut h = Headless::new(name);
+        h.play_until(f64::INFINITY, 1024.0);
+        let app = &h.app;
+        let b = app.bounds();
+        let (dx, dy) = ((b.x[1] - b.x[0]) / 120.0, (b.y[1] - b.y[0]) / 43.0);
+        let centre = wrap_centre(&app.scenario.derived.effective);
+        let wrap = app.view.view.wrap;
+        let inside = |x: f64, y: f64| x >= b.x[0] && x <= b.x[1] && y >= b.y[0] && y <= b.y[1];
+        let mut worst: f64 = 0.0;
+        for w in app.run.trail_shown().windows(2) {
+            let (x0, x1) = (
+                display_alpha(w[0].alpha, centre, wrap),
+                display_alpha(w[1].alpha, centre, wrap),
+            );
+            if !inside(x0, w[0].alpha_dot) || !inside(x1, w[1].alpha_dot) {
+                continue;
+            }
+            if wrap && (x1 - x0).abs() > 0.5 * std::f64::consts::PI {
+                continue; // across the fold
+            }
+            let gap = ((x1 - x0) / dx)
+                .abs()
+                .max(((w[1].alpha_dot - w[0].alpha_dot) / dy).abs());
+            worst = worst.max(gap);
+        }
+        assert!(worst <= 2.0, "{name}: a gap of {worst:.2} cells");
+    }
+}

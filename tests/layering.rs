@@ -1,8 +1,12 @@
-//! The physics core stays headless: no file under `src/physics/` may mention a terminal crate.
+//! The layering rules the README states, checked on the sources:
+//! - `physics` is headless: no terminal crate, no threads, no clock;
+//! - `scenario` imports only `physics`; `sim` only `physics`; `app` no `ui`, no terminal crate,
+//!   no `record`; `record` never `ui` (the cast export, which draws, is `cast.rs`, above both);
+//! - only `main.rs` and `commands.rs` (the binary shell) import `cli`.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     for entry in std::fs::read_dir(dir).expect("readable source dir") {
         let path = entry.expect("entry").path();
         if path.is_dir() {
@@ -13,28 +17,114 @@ fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
     }
 }
 
-#[test]
-fn physics_never_mentions_a_terminal_crate() {
+fn src() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+}
+
+/// Every file of `layer` (a folder or a file under `src/`) with its text.
+fn layer(name: &str) -> Vec<(PathBuf, String)> {
+    let path = src().join(name);
     let mut files = Vec::new();
-    rust_files(
-        &Path::new(env!("CARGO_MANIFEST_DIR")).join("src/physics"),
-        &mut files,
-    );
-    assert!(files.len() > 5, "physics sources not found");
-    for file in files {
-        let text = std::fs::read_to_string(&file).expect("readable");
-        for banned in [
+    if path.is_dir() {
+        rust_files(&path, &mut files);
+    } else {
+        files.push(path.with_extension("rs"));
+    }
+    assert!(!files.is_empty(), "{name}: no sources");
+    files
+        .into_iter()
+        .map(|f| {
+            let text = std::fs::read_to_string(&f).expect("readable");
+            (f, text)
+        })
+        .collect()
+}
+
+#[track_caller]
+fn forbid(name: &str, banned: &[&str]) {
+    for (file, text) in layer(name) {
+        for b in banned {
+            assert!(!text.contains(b), "{} mentions {b}", file.display());
+        }
+    }
+}
+
+#[test]
+fn physics_is_headless() {
+    forbid(
+        "physics",
+        &[
             "ratatui",
             "crossterm",
             "std::thread",
             "std::time",
             "Instant",
-        ] {
-            assert!(
-                !text.contains(banned),
-                "{} mentions {banned}",
-                file.display()
-            );
+            "crate::sim",
+            "crate::app",
+        ],
+    );
+}
+
+#[test]
+fn each_layer_imports_only_below_it() {
+    let above_physics = ["crate::sim", "crate::app", "crate::ui", "crate::record"];
+    forbid("scenario", &above_physics);
+    forbid(
+        "sim",
+        &[
+            "crate::app",
+            "crate::ui",
+            "crate::record",
+            "crate::scenario",
+            "ratatui::",
+        ],
+    );
+    forbid(
+        "app",
+        &[
+            "crate::ui",
+            "crate::record",
+            "ratatui::",
+            "crossterm::",
+            "std::fs",
+        ],
+    );
+    forbid("record", &["crate::ui", "ratatui::", "crate::explorer"]);
+    forbid(
+        "ui",
+        &["crate::record", "crate::explorer", "crate::sim::Worker"],
+    );
+}
+
+#[test]
+fn only_the_binary_shell_sees_the_command_line() {
+    let mut files = Vec::new();
+    rust_files(&src(), &mut files);
+    for file in files {
+        let name = file
+            .strip_prefix(src())
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        if ["main.rs", "commands.rs", "cli.rs"].contains(&name.as_str()) {
+            continue;
         }
+        let text = std::fs::read_to_string(&file).unwrap();
+        assert!(!text.contains("crate::cli"), "{name} imports cli");
+    }
+}
+
+#[test]
+fn physics_has_no_import_cycle_through_auto() {
+    // `auto` is resolved in plan.rs, above the integrators: nothing below calls the planner.
+    for (file, text) in layer("physics/integrators") {
+        assert!(
+            !text.contains("auto::") && !text.contains("plan::"),
+            "{} calls up into the planner",
+            file.display()
+        );
+    }
+    for (file, text) in layer("physics/run") {
+        assert!(!text.contains("auto::"), "{}", file.display());
     }
 }

@@ -257,3 +257,164 @@ fn exported_cast_is_asciicast_v2_with_chapters() {
     );
     assert!(events.iter().filter(|e| e[1] == "o").count() > 50);
 }
+
+/// Item 8: an existing output is refused before anything starts (unless `--force`), the
+/// session itself never, and `--verify --export-cast` does both.
+#[test]
+fn outputs_are_never_clobbered_and_verify_exports_too() {
+    let out = temp("kept.cast");
+    std::fs::write(&out, "keep me").unwrap();
+    let (code, _, err) = bin(&["replay", &example(), "--export-cast", out.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("exists") && err.contains("--force"), "{err}");
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "keep me");
+    // The session itself, even with --force.
+    let copy = temp("self.jsonl");
+    std::fs::copy(example(), &copy).unwrap();
+    let (code, _, err) = bin(&[
+        "replay",
+        copy.to_str().unwrap(),
+        "--export-cast",
+        copy.to_str().unwrap(),
+        "--force",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("session being read"), "{err}");
+    assert_eq!(
+        std::fs::read(&copy).unwrap(),
+        std::fs::read(example()).unwrap()
+    );
+    // --verify --export-cast: both, and --force replaces.
+    let (code, stdout, err) = bin(&[
+        "replay",
+        &example(),
+        "--verify",
+        "--export-cast",
+        out.to_str().unwrap(),
+        "--force",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        stdout.contains("reproduced bit for bit") && stdout.contains("frames"),
+        "{stdout}"
+    );
+    assert!(std::fs::read_to_string(&out).unwrap().starts_with('{'));
+    // --record to an existing file: exit 2 before the terminal is touched.
+    let rec = temp("taken.jsonl");
+    std::fs::write(&rec, "keep me").unwrap();
+    let (code, _, err) = bin(&["--record", rec.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--record") && err.contains("exists"), "{err}");
+    assert_eq!(std::fs::read_to_string(&rec).unwrap(), "keep me");
+}
+
+/// Item 6: replay shows notes and chapters at their time and keeps them; `]` and `[` move one
+/// chapter each press, both ways; the end is a state; `?` opens the replay's help.
+#[test]
+fn replay_teaches_notes_chapters_and_its_end() {
+    use rattleback::app::Mode;
+    use rattleback::explorer::replay::Replayer;
+
+    // A recording with three chapters and a note, made through the app.
+    let mut h = Headless::new("subcritical");
+    h.app
+        .on_outcome(Outcome::Recording(Ok("lesson.jsonl".to_owned())));
+    let mut lines = Vec::new();
+    let mut wall = 0.0;
+    let mut mark = |h: &mut Headless, key: char, text: &str| {
+        h.key(Key::Char(key));
+        for c in text.chars() {
+            h.key(Key::Char(c));
+        }
+        h.key(Key::Enter);
+    };
+    for (i, title) in ["Start", "First reversal", "Second"].iter().enumerate() {
+        mark(&mut h, 'm', title);
+        if i == 1 {
+            mark(&mut h, 'n', "watch alpha_dot cross zero");
+        }
+        h.play_until(3.0 * (i as f64 + 1.0), 1.0);
+        h.key(Key::Char(' '));
+    }
+    for (t, generation, event) in h.app.take_journal() {
+        wall += 1.0;
+        lines.push(Line {
+            wall,
+            t,
+            generation,
+            event,
+        });
+    }
+    let preset = resolve_header(&h);
+    let rebuild = |old: &rattleback::app::App| {
+        rattleback::app::App::new_after(&preset, rattleback::app::Options::at(30.0), old)
+    };
+    let mut r = Replayer::new(lines);
+    let mut replay = Headless::of(&preset);
+    let _ = r.catch_up(&mut replay.app);
+    let step = |r: &mut Replayer, h: &mut Headless, wall: f64| {
+        let e = r.advance(wall, &mut h.app);
+        h.exec(e);
+    };
+    let mut steps = 0;
+    while replay.app.caption.is_none() {
+        step(&mut r, &mut replay, 0.5);
+        steps += 1;
+        assert!(steps < 20, "no caption");
+    }
+    let c = replay.app.caption.clone().unwrap();
+    assert!(c.chapter && c.text == "Start", "{c:?}");
+    // The chapter stays while the replay plays on (the status line does not replace it)...
+    for _ in 0..3 {
+        step(&mut r, &mut replay, 0.5);
+        assert!(replay.app.caption.is_some());
+    }
+    // ...until the next chapter, then the note.
+    while !replay
+        .app
+        .caption
+        .as_ref()
+        .is_some_and(|c| c.text.contains("alpha_dot"))
+    {
+        step(&mut r, &mut replay, 0.5);
+        steps += 1;
+        assert!(steps < 60, "no note");
+    }
+    assert!(!replay.app.caption.as_ref().unwrap().chapter);
+    let info = replay.app.replay.unwrap();
+    assert_eq!((info.chapter, info.chapters), (2, 3));
+    // ] goes to the third chapter, [ back to the second, [ again to the first: one per press.
+    let mut press = |r: &mut Replayer, h: &mut Headless, k: char| {
+        let e = r.key(Key::Char(k), &mut h.app, &rebuild);
+        h.exec(e);
+        h.app.replay.unwrap().chapter
+    };
+    assert_eq!(press(&mut r, &mut replay, ']'), 3);
+    assert_eq!(press(&mut r, &mut replay, '['), 2);
+    assert_eq!(press(&mut r, &mut replay, '['), 1);
+    assert_eq!(replay.app.caption.as_ref().unwrap().text, "Start");
+    assert_eq!(press(&mut r, &mut replay, '['), 0, "back to the start");
+    assert_eq!(press(&mut r, &mut replay, ']'), 1);
+    // ? opens the replay's help.
+    let e = r.key(Key::Char('?'), &mut replay.app, &rebuild);
+    replay.exec(e);
+    assert!(matches!(replay.app.mode, Mode::Help(_)));
+    replay.app.on_key(Key::Esc);
+    // The end is a state, not a stop.
+    for _ in 0..100 {
+        step(&mut r, &mut replay, 1.0);
+    }
+    let info = replay.app.replay.unwrap();
+    assert!(info.ended, "{info:?}");
+    assert!(!r.running());
+}
+
+fn resolve_header(h: &Headless) -> rattleback::scenario::Preset {
+    rattleback::scenario::Preset::parse(
+        &h.app.to_preset(&h.app.scenario.name).to_toml(),
+        "header",
+        "recorded",
+        &[],
+    )
+    .unwrap()
+}

@@ -4,8 +4,8 @@
 //! the app's fields. A frame is drawn only when something changed, at most `fps` times a
 //! second; paused and idle, it writes nothing.
 
-mod recording;
-mod replay;
+pub mod recording;
+pub mod replay;
 
 use std::collections::VecDeque;
 use std::sync::Arc;
