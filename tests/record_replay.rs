@@ -321,7 +321,7 @@ fn replay_teaches_notes_chapters_and_its_end() {
         .on_outcome(Outcome::Recording(Ok("lesson.jsonl".to_owned())));
     let mut lines = Vec::new();
     let mut wall = 0.0;
-    let mut mark = |h: &mut Headless, key: char, text: &str| {
+    let mark = |h: &mut Headless, key: char, text: &str| {
         h.key(Key::Char(key));
         for c in text.chars() {
             h.key(Key::Char(c));
@@ -384,7 +384,7 @@ fn replay_teaches_notes_chapters_and_its_end() {
     let info = replay.app.replay.unwrap();
     assert_eq!((info.chapter, info.chapters), (2, 3));
     // ] goes to the third chapter, [ back to the second, [ again to the first: one per press.
-    let mut press = |r: &mut Replayer, h: &mut Headless, k: char| {
+    let press = |r: &mut Replayer, h: &mut Headless, k: char| {
         let e = r.key(Key::Char(k), &mut h.app, &rebuild);
         h.exec(e);
         h.app.replay.unwrap().chapter
