@@ -145,6 +145,31 @@ fn checked_in_example_verifies() {
     );
 }
 
+/// A format-2 recording made in the explorer (chapters, a note, a change of k, the series pane):
+/// it records the plans `auto` resolved to, and verifies with them.
+#[test]
+fn checked_in_lesson_of_format_2_verifies_with_its_recorded_plans() {
+    let path = format!(
+        "{}/tests/fixtures/sessions/lesson.jsonl",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let rec = record::read(std::path::Path::new(&path)).unwrap();
+    assert_eq!(rec.header.version, 2);
+    let book = record::plan_book(&rec);
+    assert_eq!(book.recorded.len(), 2, "one plan per run");
+    assert_eq!(record::verify(&rec, &path).unwrap(), 5);
+    // A recorded plan wins over what auto would choose today: change it and the trajectory,
+    // hence the first checkpoint, changes.
+    let text = std::fs::read_to_string(&path).unwrap();
+    let changed = text.replacen("\"method\":\"dop853\"", "\"method\":\"blanes-moan4\"", 1);
+    assert_ne!(changed, text, "the fixture records a dop853 plan");
+    let tmp = temp("lesson-changed-plan.jsonl");
+    std::fs::write(&tmp, changed).unwrap();
+    let (code, _, err) = bin(&["replay", tmp.to_str().unwrap(), "--verify"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("divergence"), "{err}");
+}
+
 #[test]
 fn truncated_last_line_is_ignored_with_a_warning() {
     let text = std::fs::read_to_string(example()).unwrap();

@@ -526,7 +526,8 @@ impl App {
             }
             Event::Play if self.run.playing => Vec::new(),
             Event::Play => self.carry_out(Action::TogglePlay),
-            Event::Pause => vec![Effect::Sim(self.run.pause())],
+            // At the recorded time (the replay sought it), not where the display has got to.
+            Event::Pause => vec![Effect::Sim(self.run.pause_at_goal())],
             Event::Step => self.carry_out(Action::Step),
             Event::Reset => self.carry_out(Action::Reset),
             Event::Speed { value } => {
@@ -564,7 +565,7 @@ impl App {
                 self.caption = Some(Caption {
                     chapter: matches!(event, Event::Chapter { .. }),
                     text: clean(text),
-                    t: self.run.shown,
+                    t: self.run.goal,
                 });
                 Vec::new()
             }

@@ -149,6 +149,13 @@ impl RunState {
         self.advance_command()
     }
 
+    /// Pauses at the goal (a replayed pause, at the recorded time the replay sought).
+    pub fn pause_at_goal(&mut self) -> Command {
+        self.playing = false;
+        self.show();
+        self.advance_command()
+    }
+
     /// Moves the displayed clock one frame (`dt` simulated seconds) forward, paused.
     pub fn step(&mut self, dt: f64) -> Command {
         self.playing = false;

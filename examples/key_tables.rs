@@ -1,0 +1,14 @@
+//! Prints the explorer's and the replay's key tables in Markdown, from the keymap tables
+//! (the README's tables are this output; `tests/readme.rs` checks it): `cargo run --example key_tables`.
+
+fn main() {
+    print!(
+        "{}",
+        rattleback::app::keys::markdown(rattleback::app::keys::KEYMAP)
+    );
+    println!();
+    print!(
+        "{}",
+        rattleback::app::keys::markdown(rattleback::app::keys::REPLAY_KEYMAP)
+    );
+}
