@@ -466,12 +466,12 @@ pub fn replay_action_for(key: Key) -> Option<ReplayAction> {
 /// A keymap as a Markdown table (the README's key tables are this, checked by a test).
 #[must_use]
 pub fn markdown<A>(map: &[Binding<A>]) -> String {
-    let rows: String = map
-        .iter()
-        .filter(|b| !b.label.is_empty())
-        .map(|b| format!("| `{}` | {} |\n", b.label, b.help))
-        .collect();
-    format!("| key | action |\n|---|---|\n{rows}")
+    use std::fmt::Write as _;
+    let mut out = String::from("| key | action |\n|---|---|\n");
+    for b in map.iter().filter(|b| !b.label.is_empty()) {
+        let _ = writeln!(out, "| `{}` | {} |", b.label, b.help);
+    }
+    out
 }
 
 /// A footer hint: the keys, the word, and its rank (0 is never dropped).
