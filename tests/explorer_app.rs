@@ -415,7 +415,7 @@ fn saving_asks_what_it_must() {
         "{text}"
     );
     // Notes need a recording and are labelled as notes.
-    let (mut app, _) = app_on();
+    let (mut app, _) = self::app();
     app.on_key(Key::Char('n'));
     assert!(app.status.as_ref().unwrap().error);
     app.on_outcome(rattleback::app::Outcome::Recording(
@@ -427,10 +427,6 @@ fn saving_asks_what_it_must() {
     };
     assert_eq!(p.purpose, PromptFor::Note);
     assert_eq!(p.purpose.label(), "note");
-}
-
-fn app_on() -> (App, Vec<Effect>) {
-    app()
 }
 
 #[test]

@@ -35,6 +35,9 @@ pub enum AppEvent {
     Sim(SimEvent),
 }
 
+/// Longest wall time one tick of the clock may cover.
+const MAX_TICK: f64 = 0.25;
+
 /// Capacity of the inbox: bounded, so a slow terminal slows the worker.
 const INBOX: usize = 64;
 
@@ -345,7 +348,8 @@ fn event_loop(
         let dt = last_tick.elapsed();
         if dt >= frame {
             last_tick = Instant::now();
-            let wall = dt.as_secs_f64();
+            // A long gap (suspended with Ctrl-Z, a stalled terminal) is not played through.
+            let wall = dt.as_secs_f64().min(MAX_TICK);
             let effects = match replay.as_deref_mut() {
                 Some(r) => r.advance(wall, app),
                 None => app.tick(wall),

@@ -86,14 +86,25 @@ impl Track {
         }
     }
 
-    /// One step; the reversal inside it, if any.
-    fn step(&mut self, t_end: f64) -> Result<Option<f64>, StepError> {
+    /// One step; the reversal inside it, if any, as the event that reports it.
+    fn step(
+        &mut self,
+        t_end: f64,
+        generation: u64,
+        epoch: u64,
+        effective: bool,
+    ) -> Result<Option<SimEvent>, StepError> {
         self.integrator.step(t_end)?;
         let r = self.tracker.after_step(self.integrator.as_mut());
         if let Some(t) = r {
             self.reversals.push(t);
         }
-        Ok(r)
+        Ok(r.map(|t| SimEvent::Reversal {
+            generation,
+            epoch,
+            t,
+            effective,
+        }))
     }
 }
 
@@ -235,14 +246,11 @@ impl Session {
             if steps >= max_steps {
                 break false;
             }
-            match self.full.step(self.spec.t_end) {
-                Ok(Some(tr)) => events.push(SimEvent::Reversal {
-                    generation,
-                    epoch: self.epoch,
-                    t: tr,
-                    effective: false,
-                }),
-                Ok(None) => {}
+            match self
+                .full
+                .step(self.spec.t_end, generation, self.epoch, false)
+            {
+                Ok(reversal) => events.extend(reversal),
                 Err(e) => {
                     events.push(SimEvent::Failed {
                         generation,
@@ -293,14 +301,8 @@ impl Session {
                     break;
                 }
                 steps += 1;
-                match track.step(t_end) {
-                    Ok(Some(tr)) => events.push(SimEvent::Reversal {
-                        generation,
-                        epoch,
-                        t: tr,
-                        effective: true,
-                    }),
-                    Ok(None) => {}
+                match track.step(t_end, generation, epoch, true) {
+                    Ok(reversal) => events.extend(reversal),
                     Err(e) => {
                         events.push(SimEvent::Failed {
                             generation,
