@@ -192,32 +192,34 @@ impl Shell<'_> {
             }
         }
     }
+}
 
-    /// Ends a recording with a checkpoint at the final time: ask, wait briefly, write.
-    fn finish_recording(&mut self, app: &mut App, rx: &Receiver<AppEvent>) {
-        let Some(mut rec) = self.recording.take() else {
-            return;
-        };
-        self.worker.send(match app.checkpoint() {
-            Effect::Sim(c) => c,
-            _ => return,
-        });
-        let deadline = Instant::now() + Duration::from_secs(3);
-        while Instant::now() < deadline {
-            match rx.recv_timeout(Duration::from_millis(50)) {
-                Ok(AppEvent::Sim(e)) => {
-                    let checkpoint = matches!(e, SimEvent::Checkpoint { .. });
-                    app.on_sim(e);
-                    if checkpoint {
-                        break;
-                    }
+/// Ends a recording with a checkpoint at the final time: ask, wait briefly, write.
+fn finish_recording(
+    mut rec: ActiveRecording,
+    worker: &Worker,
+    app: &mut App,
+    rx: &Receiver<AppEvent>,
+) {
+    worker.send(match app.checkpoint() {
+        Effect::Sim(c) => c,
+        _ => return,
+    });
+    let deadline = Instant::now() + Duration::from_secs(3);
+    while Instant::now() < deadline {
+        match rx.recv_timeout(Duration::from_millis(50)) {
+            Ok(AppEvent::Sim(e)) => {
+                let checkpoint = matches!(e, SimEvent::Checkpoint { .. });
+                app.on_sim(e);
+                if checkpoint {
+                    break;
                 }
-                Ok(_) | Err(RecvTimeoutError::Timeout) => {}
-                Err(RecvTimeoutError::Disconnected) => break,
             }
+            Ok(_) | Err(RecvTimeoutError::Timeout) => {}
+            Err(RecvTimeoutError::Disconnected) => break,
         }
-        let _ = rec.flush(app);
     }
+    let _ = rec.flush(app);
 }
 
 /// Runs the explorer on `preset` until the user quits or a SIGTERM/SIGHUP arrives.
@@ -254,13 +256,13 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<()> {
         options,
         user_dir: user_preset_dir(),
     };
+    let mut effects = effects;
     let mut replay = options.replay.as_ref().map(|r| {
         let mut replayer = Replayer::new(r.lines.iter().map(|(_, l)| l.clone()).collect());
-        let _ = replayer.catch_up(&mut app);
+        effects.extend(replayer.catch_up(&mut app));
         replayer
     });
     let rebuild = |old: &App| App::new_after(preset, app_options.clone(), old);
-    let mut effects = effects;
     if !options.startup_problems.is_empty() {
         app.show_dialog(&options.startup_problems.join("\n"));
     }
@@ -276,12 +278,20 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<()> {
         &rx,
         &hangup,
     );
-    shell.finish_recording(&mut app, &rx);
     stop.store(true, Ordering::Relaxed);
+    // The terminal is restored before waiting for anything: the final checkpoint, the worker.
+    let Shell {
+        worker,
+        tty,
+        recording,
+        ..
+    } = shell;
+    drop(tty);
+    if let Some(rec) = recording {
+        finish_recording(rec, &worker, &mut app, &rx);
+    }
     drop(rx);
-    // The terminal is restored before waiting for anything.
-    drop(shell.tty);
-    shell.worker.join();
+    worker.join();
     // The input thread is not joined: on a hung-up terminal crossterm's blocking read can spin
     // without returning, and the thread ends with the process anyway. A live terminal's thread
     // sees `stop` within 100 ms.

@@ -1,5 +1,6 @@
-//! Widgets that draw the app's state into ratatui buffers: they draw, never decide, and borrow
-//! the app immutably. Nothing imports `ui` but the explorer loop (and the cast export above
+//! Widgets that draw the app's state into ratatui buffers: they draw, never decide. Each panel
+//! is a widget struct that borrows only what it draws (`ParamsPanel`, `PortraitPane`,
+//! `SeriesPane`, `StatusBar`); `draw` builds them from `&App`. Nothing imports `ui` but the explorer loop (and the cast export above
 //! both). The only state of its own is the [`Cache`] of level sets, keyed by what they depend
 //! on.
 //!
@@ -243,20 +244,60 @@ pub fn draw(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mut C
     .areas(area);
     let [left, right] =
         Layout::horizontal([Constraint::Length(PARAMS_WIDTH), Constraint::Min(0)]).areas(main);
-    params::draw(frame, left, app, &look);
+    let (editing, prompt) = match &app.mode {
+        Mode::Editing(text) => (Some(text.as_str()), None),
+        Mode::Prompt(p) => (None, Some(p)),
+        _ => (None, None),
+    };
+    frame.render_widget(
+        params::ParamsPanel {
+            scenario: &app.scenario,
+            editing,
+            prompt,
+            status: app.status.as_ref(),
+            look: &look,
+        },
+        left,
+    );
     let column = app.view.panes.column();
     let areas = Layout::vertical(column.iter().map(|(_, w)| Constraint::Fill(*w))).split(right);
     for ((pane, _), area) in column.iter().zip(areas.iter()) {
         match pane {
-            Pane::Portrait => portrait::draw(frame, *area, app, &look, cache),
-            Pane::Series => series::draw(frame, *area, app, &look),
+            Pane::Portrait => frame.render_stateful_widget(
+                portrait::PortraitPane {
+                    scenario: &app.scenario,
+                    run: &app.run,
+                    view: &app.view,
+                    bounds: app.bounds(),
+                    look: &look,
+                },
+                *area,
+                cache,
+            ),
+            Pane::Series => frame.render_widget(
+                series::SeriesPane {
+                    run: &app.run,
+                    overlay: app.view.overlay,
+                    look: &look,
+                },
+                *area,
+            ),
             Pane::Params => {}
         }
     }
     if let Some(c) = &app.caption {
         draw_caption(frame, caption_area, c, &look);
     }
-    status::draw(frame, status_area, app, &look);
+    frame.render_widget(
+        status::StatusBar {
+            run: &app.run,
+            settings: &app.scenario.settings,
+            replay: app.replay,
+            recording: app.journal.state != crate::app::RecState::Off,
+            overlay: app.view.overlay,
+        },
+        status_area,
+    );
     let hints = if app.replay.is_some() {
         keys::footer(REPLAY_KEYMAP)
     } else {

@@ -2,15 +2,30 @@
 //! colour), the text being typed or the open prompt (labelled by what it is for), the limit's
 //! derived values and the last message. Any value fits: the label gives way to a long value.
 
-use ratatui::Frame;
+use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Paragraph, Wrap};
+use ratatui::widgets::{Block, Paragraph, Widget, Wrap};
 
 use super::{Look, title};
 use crate::app::fields::{Field, format_number};
-use crate::app::{App, Mode};
+use crate::app::mode::Prompt;
+use crate::app::{Message, Scenario};
+
+/// The parameter panel: what it shows, borrowed.
+pub struct ParamsPanel<'a> {
+    /// Name, settings, derived values, selection.
+    pub scenario: &'a Scenario,
+    /// The value being typed, if any.
+    pub editing: Option<&'a str>,
+    /// The open prompt, if any.
+    pub prompt: Option<&'a Prompt>,
+    /// The last message.
+    pub status: Option<&'a Message>,
+    /// Marker and colours.
+    pub look: &'a Look<'a>,
+}
 
 fn opt(v: Option<f64>) -> String {
     v.map_or_else(|| "-".to_owned(), format_number)
@@ -26,14 +41,21 @@ fn row(marker: &str, label: &str, value: &str, width: usize) -> String {
     format!("{marker}{label}{}{value}", " ".repeat(pad))
 }
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, look: &Look) {
+impl Widget for ParamsPanel<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        panel(&self, area, buf);
+    }
+}
+
+fn panel(p: &ParamsPanel<'_>, area: Rect, buf: &mut Buffer) {
+    let look = p.look;
     let width = area.width.saturating_sub(2) as usize;
     let mut lines = Vec::new();
     for (i, field) in Field::ALL.iter().enumerate() {
-        let selected = i == app.scenario.selected;
-        let value = match (&app.mode, selected) {
-            (Mode::Editing(buffer), true) => format!("{buffer}▏"),
-            _ => field.show(&app.scenario.settings),
+        let selected = i == p.scenario.selected;
+        let value = match (p.editing, selected) {
+            (Some(buffer), true) => format!("{buffer}▏"),
+            _ => field.show(&p.scenario.settings),
         };
         let text = row(
             if selected { "› " } else { "  " },
@@ -48,7 +70,7 @@ pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, look: &Look) {
         };
         lines.push(Line::styled(text, style));
     }
-    let d = &app.scenario.derived;
+    let d = &p.scenario.derived;
     let dim = look.dim();
     lines.push(Line::styled(
         row(
@@ -79,13 +101,13 @@ pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, look: &Look) {
             Style::default().add_modifier(Modifier::BOLD),
         ),
     ]));
-    if let Mode::Prompt(prompt) = &app.mode {
+    if let Some(prompt) = p.prompt {
         lines.push(Line::styled(
             format!("{}: {}▏", prompt.purpose.label(), prompt.text),
             Style::default().add_modifier(Modifier::REVERSED),
         ));
     }
-    if let Some(m) = &app.status {
+    if let Some(m) = p.status {
         let style = if m.error {
             Style::default()
                 .fg(look.theme.error)
@@ -95,13 +117,11 @@ pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, look: &Look) {
         };
         lines.push(Line::styled(m.text.clone(), style));
     }
-    let block = Block::bordered().title(title(&app.scenario.name, area.width));
-    frame.render_widget(
-        Paragraph::new(lines)
-            .block(block)
-            .wrap(Wrap { trim: false }),
-        area,
-    );
+    let block = Block::bordered().title(title(&p.scenario.name, area.width));
+    Paragraph::new(lines)
+        .block(block)
+        .wrap(Wrap { trim: false })
+        .render(area, buf);
 }
 
 #[cfg(test)]

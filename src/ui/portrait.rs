@@ -6,20 +6,20 @@
 //! levels are dotted, the start's level dashed, the separatrix solid; the trail is a dense
 //! line of dots and the limit's overlay a row of `∘` marks.
 
-use ratatui::Frame;
+use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
 use ratatui::symbols::Marker;
 use ratatui::text::{Line as TextLine, Span};
 use ratatui::widgets::canvas::{Canvas, Line, Points};
-use ratatui::widgets::{Block, Paragraph};
+use ratatui::widgets::{Block, Paragraph, StatefulWidget, Widget};
 
 use super::{Look, title};
-use crate::app::App;
 use crate::app::fields::{Settings, format_number};
 use crate::app::portrait::{
-    Bounds, Level, LevelKind, decimate, display_alpha, following, levels, wrap_centre,
+    Bounds, Level, LevelKind, decimate, display_alpha, following, levels as level_sets, wrap_centre,
 };
+use crate::app::{RunState, Scenario, ViewState};
 
 /// Width of the `alpha_dot` tick labels.
 const Y_LABELS: u16 = 8;
@@ -50,25 +50,54 @@ pub struct Cache {
 }
 
 impl Cache {
-    fn levels(&mut self, app: &App, bounds: Bounds, samples: usize) -> &[Level] {
+    fn levels(
+        &mut self,
+        scenario: &Scenario,
+        levels: usize,
+        bounds: Bounds,
+        samples: usize,
+    ) -> &[Level] {
         let key = Key {
-            settings: app.scenario.settings,
+            settings: scenario.settings,
             bounds,
-            levels: app.view.view.levels,
+            levels,
             samples,
         };
         if self.contours.as_ref().is_none_or(|(k, _)| *k != key) {
-            let eff = &app.scenario.derived.effective;
-            let l = levels(eff, &bounds, eff.energy(), key.levels, samples);
+            let eff = &scenario.derived.effective;
+            let l = level_sets(eff, &bounds, eff.energy(), key.levels, samples);
             self.contours = Some((key, l));
         }
         self.contours.as_ref().map_or(&[], |(_, l)| l.as_slice())
     }
 }
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, look: &Look, cache: &mut Cache) {
-    let trail_shown = app.run.trail_shown();
-    let wrap = app.view.view.wrap;
+/// The phase portrait: what it shows, borrowed; its state is the level-set cache.
+pub struct PortraitPane<'a> {
+    /// The limit's potential and the settings.
+    pub scenario: &'a Scenario,
+    /// Samples up to the displayed time.
+    pub run: &'a RunState,
+    /// Zoom, wrap, overlay.
+    pub view: &'a ViewState,
+    /// The axes' bounds.
+    pub bounds: Bounds,
+    /// Marker and colours.
+    pub look: &'a Look<'a>,
+}
+
+impl StatefulWidget for PortraitPane<'_> {
+    type State = Cache;
+
+    fn render(self, area: Rect, buf: &mut Buffer, cache: &mut Cache) {
+        pane(&self, area, buf, cache);
+    }
+}
+
+fn pane(p: &PortraitPane<'_>, area: Rect, buf: &mut Buffer, cache: &mut Cache) {
+    let look = p.look;
+    let trail_shown = p.run.trail_shown();
+    let wrap = p.view.view.wrap;
     let mode = if wrap {
         "wrapped"
     } else if following(trail_shown, wrap) {
@@ -81,21 +110,21 @@ pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, look: &Look, cache: &m
         area.width,
     ));
     let inner = block.inner(area);
-    frame.render_widget(block, area);
+    block.render(area, buf);
     let [body, x_axis] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)]).areas(inner);
     let [y_axis, plot] =
         Layout::horizontal([Constraint::Length(Y_LABELS), Constraint::Min(0)]).areas(body);
-    let bounds = app.bounds();
+    let bounds = p.bounds;
     let (rx, ry) = resolution(look.marker);
     let (cols, rows) = (plot.width as usize * rx, plot.height as usize * ry);
     let theme = look.theme;
-    let levels = cache.levels(app, bounds, cols.max(16));
-    let centre = wrap_centre(&app.scenario.derived.effective);
+    let levels = cache.levels(p.scenario, p.view.view.levels, bounds, cols.max(16));
+    let centre = wrap_centre(&p.scenario.derived.effective);
     let to_xy = |p: &crate::sim::Point| (display_alpha(p.alpha, centre, wrap), p.alpha_dot);
     let trail = decimate(trail_shown.iter().map(to_xy), &bounds, cols, rows);
-    let overlay = if app.view.overlay {
+    let overlay = if p.view.overlay {
         decimate(
-            app.run.effective_shown().iter().map(to_xy),
+            p.run.effective_shown().iter().map(to_xy),
             &bounds,
             (plot.width as usize / OVERLAY_MARK_EVERY).max(1),
             (plot.height as usize / 2).max(1),
@@ -103,7 +132,7 @@ pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, look: &Look, cache: &m
     } else {
         Vec::new()
     };
-    let current = app.run.current().map(to_xy);
+    let current = p.run.current().map(to_xy);
     let canvas = Canvas::default()
         .marker(look.marker)
         .background_color(look.theme.background)
@@ -153,23 +182,13 @@ pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, look: &Look, cache: &m
                 );
             }
         });
-    frame.render_widget(canvas, plot);
-    draw_axes(frame, y_axis, x_axis, plot, &bounds, look);
+    canvas.render(plot, buf);
+    draw_axes(buf, y_axis, x_axis, plot, &bounds, look);
 }
 
-fn draw_axes(
-    frame: &mut Frame<'_>,
-    y_axis: Rect,
-    x_axis: Rect,
-    plot: Rect,
-    b: &Bounds,
-    look: &Look,
-) {
+fn draw_axes(buf: &mut Buffer, y_axis: Rect, x_axis: Rect, plot: Rect, b: &Bounds, look: &Look) {
     let dim = look.dim();
-    frame.render_widget(
-        Paragraph::new(y_labels(b.y, y_axis.height as usize, dim)),
-        y_axis,
-    );
+    Paragraph::new(y_labels(b.y, y_axis.height as usize, dim)).render(y_axis, buf);
     // alpha: five ticks across the plot.
     let width = plot.width as usize;
     let mut row = vec![' '; x_axis.width as usize];
@@ -187,13 +206,11 @@ fn draw_axes(
             }
         }
     }
-    frame.render_widget(
-        Paragraph::new(TextLine::from(Span::styled(
-            row.into_iter().collect::<String>(),
-            dim,
-        ))),
-        x_axis,
-    );
+    Paragraph::new(TextLine::from(Span::styled(
+        row.into_iter().collect::<String>(),
+        dim,
+    )))
+    .render(x_axis, buf);
 }
 
 /// Labels of a vertical axis `[lo, hi]` over `h` rows: top, middle, bottom.

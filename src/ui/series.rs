@@ -2,26 +2,34 @@
 //! window that widens with the playback speed, reversal ticks, a y scale, and the energy error
 //! as a plot of `log10 |ΔE/E|`. Not drawn, so not computed, when hidden.
 
-use ratatui::Frame;
+use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::widgets::canvas::{Canvas, Line, Points};
-use ratatui::widgets::{Block, Paragraph};
+use ratatui::widgets::{Block, Paragraph, Widget};
 
 use super::portrait::{resolution, y_labels};
 use super::{Look, title};
-use crate::app::App;
+use crate::app::RunState;
 use crate::sim::Point;
+
+/// The time-series pane: what it shows, borrowed.
+pub struct SeriesPane<'a> {
+    /// Samples, reversals, the displayed time and the speed.
+    pub run: &'a RunState,
+    /// The limit is shown.
+    pub overlay: bool,
+    /// Marker and colours.
+    pub look: &'a Look<'a>,
+}
 
 /// Wall seconds of motion the window shows (at least 10 simulated seconds).
 const WINDOW_WALL: f64 = 15.0;
 
 /// The time window `[t0, t1]` ending at the displayed time.
 #[must_use]
-pub fn window(app: &App) -> (f64, f64) {
-    let w = (WINDOW_WALL * app.run.speed)
-        .max(10.0)
-        .min(app.scenario.settings.t_end.max(1e-9));
-    let t1 = app.run.shown.max(w);
+pub fn window(run: &RunState) -> (f64, f64) {
+    let w = (WINDOW_WALL * run.speed).max(10.0).min(run.t_end.max(1e-9));
+    let t1 = run.shown.max(w);
     (t1 - w, t1)
 }
 
@@ -32,25 +40,32 @@ fn thin(points: &[Point], t0: f64, cols: usize, f: impl Fn(&Point) -> f64) -> Ve
     slice.iter().step_by(step).map(|p| (p.t, f(p))).collect()
 }
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, look: &Look) {
+impl Widget for SeriesPane<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        pane(&self, area, buf);
+    }
+}
+
+fn pane(pane: &SeriesPane<'_>, area: Rect, buf: &mut Buffer) {
+    let (run, look) = (pane.run, pane.look);
     let block = Block::bordered().title(title(
         "alpha_dot(t): full · limit ∘, reversals │ log10|ΔE/E|",
         area.width,
     ));
     let inner = block.inner(area);
-    frame.render_widget(block, area);
+    block.render(area, buf);
     let [top, energy_area] =
         Layout::vertical([Constraint::Min(2), Constraint::Length(3)]).areas(inner);
     let [y_axis, plot] = Layout::horizontal([Constraint::Length(8), Constraint::Min(0)]).areas(top);
     let [e_axis, e_plot] =
         Layout::horizontal([Constraint::Length(8), Constraint::Min(0)]).areas(energy_area);
-    let (t0, t1) = window(app);
+    let (t0, t1) = window(run);
     let (rx, _) = resolution(look.marker);
     let cols = plot.width as usize * rx;
-    let full = thin(app.run.trail_shown(), t0, cols, |p| p.alpha_dot);
-    let limit = if app.view.overlay {
+    let full = thin(run.trail_shown(), t0, cols, |p| p.alpha_dot);
+    let limit = if pane.overlay {
         thin(
-            app.run.effective_shown(),
+            run.effective_shown(),
             t0,
             (plot.width as usize / 3).max(1) / 4,
             |p| p.alpha_dot,
@@ -64,8 +79,7 @@ pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, look: &Look) {
         .fold(1e-3f64, |m, p| m.max(p.1.abs()))
         * 1.1;
     let theme = look.theme;
-    let ticks: Vec<f64> = app
-        .run
+    let ticks: Vec<f64> = run
         .reversals_shown()
         .iter()
         .copied()
@@ -98,38 +112,31 @@ pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, look: &Look) {
                 );
             }
         });
-    frame.render_widget(canvas, plot);
-    frame.render_widget(
-        Paragraph::new(y_labels([-y, y], y_axis.height as usize, look.dim())),
-        y_axis,
-    );
+    canvas.render(plot, buf);
+    Paragraph::new(y_labels([-y, y], y_axis.height as usize, look.dim())).render(y_axis, buf);
     // The energy error, on a log scale from 1e-16 up.
-    let errors = thin(app.run.trail_shown(), t0, cols, |p| {
+    let errors = thin(run.trail_shown(), t0, cols, |p| {
         p.energy_error.abs().max(1e-16).log10()
     });
     let hi = errors.iter().fold(-12.0f64, |m, p| m.max(p.1)).ceil() + 1.0;
     let lo = -16.0;
-    frame.render_widget(
-        Canvas::default()
-            .marker(look.marker)
-            .background_color(look.theme.background)
-            .x_bounds([t0, t1])
-            .y_bounds([lo, hi])
-            .paint(move |ctx| {
-                ctx.draw(&Points {
-                    coords: &errors,
-                    color: theme.dim,
-                });
-            }),
-        e_plot,
-    );
+    Canvas::default()
+        .marker(look.marker)
+        .background_color(look.theme.background)
+        .x_bounds([t0, t1])
+        .y_bounds([lo, hi])
+        .paint(move |ctx| {
+            ctx.draw(&Points {
+                coords: &errors,
+                color: theme.dim,
+            });
+        })
+        .render(e_plot, buf);
     let label = |v: f64| format!("{:>7} ", format!("1e{v:.0}"));
-    frame.render_widget(
-        Paragraph::new(vec![
-            ratatui::text::Line::styled(label(hi), look.dim()),
-            ratatui::text::Line::raw(""),
-            ratatui::text::Line::styled(label(lo), look.dim()),
-        ]),
-        e_axis,
-    );
+    Paragraph::new(vec![
+        ratatui::text::Line::styled(label(hi), look.dim()),
+        ratatui::text::Line::raw(""),
+        ratatui::text::Line::styled(label(lo), look.dim()),
+    ])
+    .render(e_axis, buf);
 }

@@ -2,13 +2,27 @@
 //! `auto`'s verdict, integration rate. Reverse video, so it reads without colour. When it is
 //! narrow, whole fields are dropped by priority; a number is never cut.
 
-use ratatui::Frame;
+use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
-use ratatui::widgets::Paragraph;
+use ratatui::widgets::{Paragraph, Widget};
 
-use super::Look;
-use crate::app::{App, PlanState, RecState};
+use crate::app::fields::Settings;
+use crate::app::{PlanState, ReplayInfo, RunState};
+
+/// The status bar: what it shows, borrowed.
+pub struct StatusBar<'a> {
+    /// The run and its clock.
+    pub run: &'a RunState,
+    /// The settings (end time, method, tolerance).
+    pub settings: &'a Settings,
+    /// The replay's state, when replaying.
+    pub replay: Option<ReplayInfo>,
+    /// A recording is on.
+    pub recording: bool,
+    /// The limit is shown.
+    pub overlay: bool,
+}
 
 /// A field of the status bar and its priority (0 is kept first).
 struct Field {
@@ -21,11 +35,11 @@ fn field(text: String, priority: u8) -> Field {
 }
 
 /// The status fields in display order.
-fn fields(app: &App) -> Vec<Field> {
-    let run = &app.run;
-    let s = &app.scenario.settings;
+fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
+    let run = bar.run;
+    let s = bar.settings;
     let mut out = Vec::new();
-    if app.journal.state != RecState::Off {
+    if bar.recording {
         out.push(field("● REC".to_owned(), 0));
     }
     out.push(field(format!("t {:.2}/{}", run.shown, s.t_end), 0));
@@ -41,7 +55,7 @@ fn fields(app: &App) -> Vec<Field> {
         "paused"
     };
     out.push(field(state.to_owned(), 0));
-    match app.replay {
+    match bar.replay {
         Some(r) => {
             let state = if r.ended {
                 "replay ended".to_owned()
@@ -56,7 +70,7 @@ fn fields(app: &App) -> Vec<Field> {
         }
         None => out.push(field(format!("×{}", run.speed), 1)),
     }
-    let limit = if app.view.overlay {
+    let limit = if bar.overlay {
         format!(" limit {}", run.effective_reversals_shown().len())
     } else {
         String::new()
@@ -113,12 +127,13 @@ fn fit(fields: &[Field], width: usize) -> String {
     format!(" {}", kept.join(sep))
 }
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, _look: &Look) {
-    let text = fit(&fields(app), area.width as usize);
-    frame.render_widget(
-        Paragraph::new(text).style(Style::default().add_modifier(Modifier::REVERSED)),
-        area,
-    );
+impl Widget for StatusBar<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let text = fit(&fields(&self), area.width as usize);
+        Paragraph::new(text)
+            .style(Style::default().add_modifier(Modifier::REVERSED))
+            .render(area, buf);
+    }
 }
 
 fn human(v: f64) -> String {
