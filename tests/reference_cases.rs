@@ -1,10 +1,11 @@
-//! Every case of `../shared/reference/cases.toml`, an independent 8th-order integration at
+//! Every case of the reference cases (carried in `tests/fixtures/reference/cases.toml` from
+//! `../shared/reference/cases.toml`), an independent 8th-order integration at
 //! relative tolerance 1e-13: final `alpha` and `alpha_dot` to 1e-7, reversal counts exact,
 //! reversal times to 1e-6, for the full model (several methods) and the effective limit.
 
 mod common;
 
-use common::{case_problem, num, reference_cases};
+use common::{case_problem, num, reference_cases, reference_path, shared_reference_path};
 use rattleback::physics::effective::Effective;
 use rattleback::physics::{Method, RunSpec, run};
 
@@ -112,5 +113,21 @@ fn effective_model_matches_reference_by_ode_and_by_quadrature() {
             &by_quadrature,
             want,
         );
+    }
+}
+
+/// The carried copy is the shared file's content, unchanged (checked where `../shared` exists).
+#[test]
+fn the_carried_reference_equals_the_shared_one() {
+    let carried = std::fs::read_to_string(reference_path()).unwrap();
+    assert!(carried.contains("[case.subcritical]"), "carried fixture present");
+    if let Some(shared) = shared_reference_path() {
+        let shared = std::fs::read_to_string(shared).unwrap();
+        let body: String = carried
+            .lines()
+            .skip_while(|l| !l.starts_with("# Public reference cases"))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        assert_eq!(body, shared, "tests/fixtures/reference/cases.toml drifted from ../shared");
     }
 }

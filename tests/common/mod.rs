@@ -3,13 +3,22 @@
 
 use rattleback::physics::{Params, Problem, Start};
 
-/// Path of the shared reference cases (`../shared/reference/cases.toml` beside the checkout),
-/// overridable with `RATTLEBACK_REFERENCE`.
+/// Path of the reference cases: the copy carried in `tests/fixtures/reference/cases.toml`
+/// (from `../shared/reference/cases.toml`), overridable with `RATTLEBACK_REFERENCE`.
 pub fn reference_path() -> std::path::PathBuf {
     std::env::var_os("RATTLEBACK_REFERENCE").map_or_else(
-        || std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/reference/cases.toml"),
+        || {
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("tests/fixtures/reference/cases.toml")
+        },
         Into::into,
     )
+}
+
+/// The shared original of the carried reference cases, when a `../shared` is beside the clone.
+pub fn shared_reference_path() -> Option<std::path::PathBuf> {
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/reference/cases.toml");
+    p.is_file().then_some(p)
 }
 
 /// The parsed reference file; a missing file is a failure, not a skip.
