@@ -4,7 +4,6 @@
 //! nothing half-written.
 
 use std::cell::RefCell;
-use std::io::Write as _;
 use std::path::Path;
 use std::rc::Rc;
 
@@ -35,7 +34,8 @@ impl std::io::Write for Shared {
     }
 }
 
-/// Writes `rec` as an asciicast v2 file at `out`. Returns the number of frames.
+/// Writes `rec` as an asciicast v2 file at `out` (replacing an existing file only when
+/// `replace`). Returns the number of frames.
 ///
 /// # Errors
 /// A bad header preset, or the output cannot be written.
@@ -44,6 +44,7 @@ pub fn export_cast(
     path: &str,
     out: &Path,
     options: &UiOptions,
+    replace: bool,
 ) -> Result<usize, RecordError> {
     let io = |source| RecordError::Io {
         path: out.display().to_string(),
@@ -109,25 +110,6 @@ pub fn export_cast(
         }
         clock += 1.0 / CAST_FPS;
     }
-    let dir = out
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let tmp = dir.join(format!(
-        ".{}.tmp-{}",
-        out.file_name()
-            .map_or_else(|| "cast".into(), |n| n.to_string_lossy()),
-        std::process::id()
-    ));
-    let write = || -> std::io::Result<()> {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(cast.as_bytes())?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, out)
-    };
-    write().map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        io(e)
-    })?;
+    crate::scenario::write::write_atomic(out, cast.as_bytes(), replace).map_err(io)?;
     Ok(frames)
 }

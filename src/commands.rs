@@ -10,6 +10,18 @@ use crate::scenario::preset;
 use crate::scenario::shipped::catalogue;
 use crate::scenario::theme::ThemeSpec;
 
+/// Untrusted text (names, descriptions, echoed values) never reaches a terminal raw: every line
+/// printed goes through `clean`.
+macro_rules! say {
+    ($($t:tt)*) => { println!("{}", crate::scenario::text::clean(&format!($($t)*))) };
+}
+macro_rules! say_err {
+    ($($t:tt)*) => { eprintln!("{}", crate::scenario::text::clean(&format!($($t)*))) };
+}
+macro_rules! say_raw {
+    ($($t:tt)*) => { print!("{}", crate::scenario::text::clean(&format!($($t)*))) };
+}
+
 /// `rattleback presets`.
 #[must_use]
 pub fn presets(args: &PresetsArgs) -> ExitCode {
@@ -36,13 +48,13 @@ pub fn presets(args: &PresetsArgs) -> ExitCode {
             s
         }
     };
-    print!("{out}");
+    say_raw!("{out}");
     report(&problems)
 }
 
 fn report(problems: &[PresetError]) -> ExitCode {
     for p in problems {
-        eprintln!("rattleback: {p}");
+        say_err!("rattleback: {p}");
     }
     if problems.is_empty() {
         ExitCode::SUCCESS
@@ -63,36 +75,36 @@ pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
     use crate::bench;
     let config = bench::Config { quick: args.quick };
     if let Err(e) = std::fs::create_dir_all(&args.out) {
-        eprintln!("rattleback: error: {}: {e}", args.out.display());
+        say_err!("rattleback: error: {}: {e}", args.out.display());
         return ExitCode::from(2);
     }
-    let rows = bench::work_precision(config, &mut |line| eprintln!("{line}"));
-    print!("{}", bench::table(&rows));
-    println!();
+    let rows = bench::work_precision(config, &mut |line| say_err!("{line}"));
+    say_raw!("{}", bench::table(&rows));
+    say!("");
     if rows.iter().any(|r| r.method.starts_with("peer-")) {
-        println!("{}", bench::peer_summary(&rows, 1e-8));
+        say!("{}", bench::peer_summary(&rows, 1e-8));
     }
     for k in [1e4, 1e8] {
-        print!("{}", bench::terminal_diagram(&rows, k, 72, 16));
+        say_raw!("{}", bench::terminal_diagram(&rows, k, 72, 16));
     }
     let csv = args.out.join("work_precision.csv");
     let svg = args.out.join("work_precision.svg");
     if let Err(e) = bench::write_csv(&rows, &csv) {
-        eprintln!("rattleback: error: {}: {e}", csv.display());
+        say_err!("rattleback: error: {}: {e}", csv.display());
         return ExitCode::from(1);
     }
     if let Err(e) = bench::write_svg(&rows, &svg) {
-        eprintln!("rattleback: error: {}: {e}", svg.display());
+        say_err!("rattleback: error: {}: {e}", svg.display());
         return ExitCode::from(1);
     }
     let stability = bench::stability(config);
-    println!("\nStability\n{}", bench::stability_table(&stability));
+    say!("\nStability\n{}", bench::stability_table(&stability));
     let path = args.out.join("stability.csv");
     if let Err(e) = bench::write_stability_csv(&stability, &path) {
-        eprintln!("rattleback: error: {}: {e}", path.display());
+        say_err!("rattleback: error: {}: {e}", path.display());
         return ExitCode::from(1);
     }
-    println!(
+    say!(
         "wrote {}, {}, {}",
         csv.display(),
         svg.display(),
@@ -121,7 +133,7 @@ pub fn check(args: &CheckArgs) -> ExitCode {
         }
     }
     if problems.is_empty() {
-        println!("{} file(s) ok", args.files.len());
+        say!("{} file(s) ok", args.files.len());
     }
     report(&problems)
 }

@@ -13,6 +13,15 @@ use rattleback::scenario::shipped::resolve;
 use rattleback::simulate::{resolve as resolve_run, simulate};
 use rattleback::ui::UiOptions;
 
+/// Untrusted text (names, descriptions, echoed values) never reaches a terminal raw: every line
+/// printed goes through `clean`.
+macro_rules! say {
+    ($($t:tt)*) => { println!("{}", rattleback::scenario::text::clean(&format!($($t)*))) };
+}
+macro_rules! say_err {
+    ($($t:tt)*) => { eprintln!("{}", rattleback::scenario::text::clean(&format!($($t)*))) };
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
@@ -55,31 +64,34 @@ fn run_replay(cli: &Cli, args: &ReplayArgs) -> ExitCode {
     if let Some(out) = &args.export_cast
         && let Err(e) = check_output(out, Some(&args.file), args.force, "--export-cast")
     {
-        eprintln!("rattleback: error: {e}");
+        say_err!("rattleback: error: {e}");
         return ExitCode::from(2);
     }
     let rec = match record::read(&args.file) {
         Ok(r) => r,
         Err(e) => {
-            eprintln!("rattleback: error: {e}");
+            say_err!("rattleback: error: {e}");
             return ExitCode::from(2);
         }
     };
     for w in &rec.warnings {
-        eprintln!("rattleback: warning: {w}");
+        say_err!("rattleback: warning: {w}");
     }
     if args.verify {
         match record::verify(&rec, &path) {
-            Ok(n) => println!("{path}: {n} checkpoint(s) reproduced bit for bit"),
+            Ok(n) => say!("{path}: {n} checkpoint(s) reproduced bit for bit"),
             Err(record::VerifyError::Diverged(d)) => {
-                eprintln!(
+                say_err!(
                     "rattleback: {path}:{}: divergence at t = {}: expected {}, got {}",
-                    d.line, d.t, d.expected, d.got
+                    d.line,
+                    d.t,
+                    d.expected,
+                    d.got
                 );
                 return ExitCode::from(1);
             }
             Err(record::VerifyError::Record(e)) => {
-                eprintln!("rattleback: error: {e}");
+                say_err!("rattleback: error: {e}");
                 return ExitCode::from(2);
             }
         }
@@ -88,19 +100,19 @@ fn run_replay(cli: &Cli, args: &ReplayArgs) -> ExitCode {
         let (theme, all) = match rattleback::scenario::theme::theme(&cli.theme) {
             Ok(t) => (t, rattleback::scenario::theme::themes().0),
             Err(e) => {
-                eprintln!("rattleback: error: {e}");
+                say_err!("rattleback: error: {e}");
                 return ExitCode::from(2);
             }
         };
         let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
         let options = UiOptions::new(marker(cli.marker), &theme, &all, no_color());
-        return match rattleback::cast::export_cast(&rec, &path, out, &options) {
+        return match rattleback::cast::export_cast(&rec, &path, out, &options, args.force) {
             Ok(frames) => {
-                println!("{}: {frames} frames", out.display());
+                say!("{}: {frames} frames", out.display());
                 ExitCode::SUCCESS
             }
             Err(e) => {
-                eprintln!("rattleback: error: {e}");
+                say_err!("rattleback: error: {e}");
                 ExitCode::from(2)
             }
         };
@@ -116,7 +128,7 @@ fn run_replay(cli: &Cli, args: &ReplayArgs) -> ExitCode {
     ) {
         Ok(p) => p,
         Err(e) => {
-            eprintln!("rattleback: error: {e}");
+            say_err!("rattleback: error: {e}");
             return ExitCode::from(2);
         }
     };
@@ -135,14 +147,14 @@ fn run_explorer(cli: &Cli) -> ExitCode {
     let preset = match resolve(&cli.preset, &[]) {
         Ok(p) => p,
         Err(e) => {
-            eprintln!("rattleback: error: {e}");
+            say_err!("rattleback: error: {e}");
             return ExitCode::from(2);
         }
     };
     if let Some(out) = &cli.record
         && let Err(e) = check_output(out, None, cli.force, "--record")
     {
-        eprintln!("rattleback: error: {e}");
+        say_err!("rattleback: error: {e}");
         return ExitCode::from(2);
     }
     if cli.force
@@ -164,7 +176,7 @@ fn explore(
     let theme = match rattleback::scenario::theme::theme(&cli.theme) {
         Ok(t) => t,
         Err(e) => {
-            eprintln!("rattleback: error: {e}");
+            say_err!("rattleback: error: {e}");
             return ExitCode::from(2);
         }
     };
@@ -180,7 +192,7 @@ fn explore(
     match explorer::run(preset, &options) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!(
+            say_err!(
                 "rattleback: the explorer needs an interactive terminal ({e}); for headless runs use `rattleback simulate`"
             );
             ExitCode::from(1)
@@ -197,7 +209,7 @@ fn run_simulate(args: &SimulateArgs) -> ExitCode {
     let preset = match resolve(&args.preset, &args.set) {
         Ok(p) => p,
         Err(e) => {
-            eprintln!("rattleback: error: {e}");
+            say_err!("rattleback: error: {e}");
             return ExitCode::from(2);
         }
     };
@@ -205,13 +217,19 @@ fn run_simulate(args: &SimulateArgs) -> ExitCode {
     let resolved = resolve_run(&preset, &request);
     match simulate(&preset, &resolved, request.format) {
         Ok(text) => {
+            // JSON escapes control characters itself; the table and CSV are cleaned.
+            let text = if request.format == rattleback::simulate::Format::Json {
+                text
+            } else {
+                rattleback::scenario::text::clean(&text)
+            };
             let mut out = std::io::stdout().lock();
             // A closed pipe (e.g. `| head`) is not an error worth a panic.
             let _ = out.write_all(text.as_bytes());
             ExitCode::SUCCESS
         }
         Err(e) => {
-            eprintln!("rattleback: integration failed: {e}");
+            say_err!("rattleback: integration failed: {e}");
             ExitCode::from(1)
         }
     }

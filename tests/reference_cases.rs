@@ -120,7 +120,10 @@ fn effective_model_matches_reference_by_ode_and_by_quadrature() {
 #[test]
 fn the_carried_reference_equals_the_shared_one() {
     let carried = std::fs::read_to_string(reference_path()).unwrap();
-    assert!(carried.contains("[case.subcritical]"), "carried fixture present");
+    assert!(
+        carried.contains("[case.subcritical]"),
+        "carried fixture present"
+    );
     if let Some(shared) = shared_reference_path() {
         let shared = std::fs::read_to_string(shared).unwrap();
         let body: String = carried
@@ -128,6 +131,9 @@ fn the_carried_reference_equals_the_shared_one() {
             .skip_while(|l| !l.starts_with("# Public reference cases"))
             .map(|l| format!("{l}\n"))
             .collect();
-        assert_eq!(body, shared, "tests/fixtures/reference/cases.toml drifted from ../shared");
+        assert_eq!(
+            body, shared,
+            "tests/fixtures/reference/cases.toml drifted from ../shared"
+        );
     }
 }

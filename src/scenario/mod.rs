@@ -9,6 +9,7 @@ pub mod shipped;
 pub mod store;
 pub mod text;
 pub mod theme;
+pub mod write;
 
 pub use error::PresetError;
 pub use preset::{Preset, RunConfig};

@@ -1,7 +1,6 @@
 //! Saving user presets: checked names, never overwriting without consent, atomic writes (a
 //! temporary file in the same folder, then a rename), so a crash never leaves half a file.
 
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 /// Why a preset could not be saved.
@@ -53,7 +52,7 @@ pub fn save(
     }
     let dir = dir.ok_or(SaveError::NoFolder)?;
     let path = dir.join(format!("{name}.toml"));
-    if path.exists() && !overwrite {
+    if !overwrite && std::fs::symlink_metadata(&path).is_ok() {
         return Err(SaveError::Exists(path));
     }
     let io = |source| SaveError::Io {
@@ -61,16 +60,12 @@ pub fn save(
         source,
     };
     std::fs::create_dir_all(dir).map_err(io)?;
-    let tmp = dir.join(format!(".{name}.toml.tmp-{}", std::process::id()));
-    let write = || -> std::io::Result<()> {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(text.as_bytes())?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, &path)
-    };
-    write().map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        io(e)
+    super::write::write_atomic(&path, text.as_bytes(), overwrite).map_err(|e| {
+        if e.kind() == std::io::ErrorKind::AlreadyExists {
+            SaveError::Exists(path.clone())
+        } else {
+            io(e)
+        }
     })?;
     Ok(path)
 }

@@ -1,0 +1,105 @@
+//! Hostile input (issue "Never hang, never clobber, never inject"): escape sequences in files
+//! never reach a terminal, planted links are not followed.
+
+use std::process::Command;
+
+fn bin(args: &[&str], config: &std::path::Path) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        .args(args)
+        .env("RATTLEBACK_CONFIG_DIR", config)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn temp(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("rattleback-hostile-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+const EVIL: &str = "[preset]\nname = \"Evil \\u001b]0;pwned\\u0007 name\"\n\
+description = \"clears \\u001b[2J the screen, copies \\u001b]52;c;aGk=\\u001b\\\\ too\"\n\
+[body]\nix = 2.0\niy = 1.0\niz = 1.0\n[spring]\nk = 1e4\n[initial]\ngamma_dot = 1.0\n\
+alpha_dot = 0.5\n[run]\nt_end = 1.0\n";
+
+fn clean(text: &str) -> bool {
+    !text
+        .chars()
+        .any(|c| c.is_control() && c != '\n' && c != '\t')
+}
+
+#[test]
+fn escape_sequences_in_files_never_reach_the_terminal() {
+    let config = temp("escapes");
+    let presets = config.join("presets");
+    std::fs::create_dir_all(&presets).unwrap();
+    let evil = presets.join("evil.toml");
+    std::fs::write(&evil, EVIL).unwrap();
+    let path = evil.to_str().unwrap();
+    for args in [
+        vec!["simulate", "--preset", path, "--format", "table"],
+        vec!["simulate", "--preset", path, "--format", "json"],
+        vec!["presets"],
+        vec!["presets", "--format", "json"],
+    ] {
+        let (code, out, err) = bin(&args, &config);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        assert!(
+            clean(&out) && clean(&err),
+            "{args:?} printed a control character"
+        );
+        assert!(
+            out.contains("Evil") || out.contains("evil"),
+            "{args:?}: {out}"
+        );
+    }
+    // An invalid value is echoed in the error, cleaned.
+    std::fs::write(&evil, "[body]\nix = \"\u{1b}[2J\u{7}\"\n").unwrap();
+    let (code, out, err) = bin(&["check", path], &config);
+    assert_eq!(code, 2);
+    assert!(
+        clean(&out) && clean(&err),
+        "check echoed a control character: {err:?}"
+    );
+    let _ = std::fs::remove_dir_all(&config);
+}
+
+#[test]
+fn saving_never_follows_a_planted_link() {
+    let d = temp("links");
+    let outside = d.join("outside.txt");
+    std::fs::write(&outside, "keep").unwrap();
+    let presets = d.join("presets");
+    std::fs::create_dir_all(&presets).unwrap();
+    // The old temporary name, and the target itself, planted as links.
+    let pid_guess = std::process::id();
+    std::os::unix::fs::symlink(
+        &outside,
+        presets.join(format!(".mine.toml.tmp-{pid_guess}")),
+    )
+    .unwrap();
+    std::os::unix::fs::symlink(&outside, presets.join("linked.toml")).unwrap();
+    let text = rattleback::scenario::shipped::resolve("tapping", &[])
+        .unwrap()
+        .to_toml();
+    rattleback::scenario::store::save(Some(&presets), "mine", &text, false).unwrap();
+    assert!(matches!(
+        rattleback::scenario::store::save(Some(&presets), "linked", &text, false),
+        Err(rattleback::scenario::store::SaveError::Exists(_))
+    ));
+    rattleback::scenario::store::save(Some(&presets), "linked", &text, true).unwrap();
+    assert_eq!(std::fs::read_to_string(&outside).unwrap(), "keep");
+    assert!(
+        !std::fs::symlink_metadata(presets.join("linked.toml"))
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
