@@ -215,6 +215,12 @@ fn run_simulate(args: &SimulateArgs) -> ExitCode {
     };
     let request = args.request();
     let resolved = resolve_run(&preset, &request);
+    if let Some(h) = resolved.spec.step
+        && let Err(e) = rattleback::physics::run::check_step(h, resolved.spec.t_end)
+    {
+        say_err!("rattleback: error: --step: {e}");
+        return ExitCode::from(2);
+    }
     match simulate(&preset, &resolved, request.format) {
         Ok(text) => {
             // JSON escapes control characters itself; the table and CSV are cleaned.

@@ -212,6 +212,9 @@ pub fn simulate(preset: &Preset, resolved: &Resolved, format: Format) -> Result<
     } else {
         (run(problem, &spec)?, None)
     };
+    if let Some(what) = non_finite(&result) {
+        return Err(StepError::NotFinite { what, t: result.t });
+    }
     let wall_seconds = clock.elapsed().as_secs_f64();
     if format == Format::Csv {
         return Ok(csv(preset, &result));
@@ -393,4 +396,19 @@ fn table(r: &Report) -> String {
         r.stats.steps, r.stats.rejected, r.stats.rhs_evaluations, r.stats.wall_seconds
     );
     o
+}
+
+/// The first part of a result that is not a finite number, named for the error message.
+fn non_finite(r: &RunResult) -> Option<&'static str> {
+    const NAMES: [&str; 4] = ["gamma", "alpha", "gamma_dot", "alpha_dot"];
+    if let Some(i) = r.final_state.iter().position(|x| !x.is_finite()) {
+        return Some(NAMES[i]);
+    }
+    if !r.energy_final.is_finite() || !r.max_relative_energy_error.is_finite() {
+        return Some("the energy");
+    }
+    r.reversals
+        .iter()
+        .any(|t| !t.is_finite())
+        .then_some("a reversal time")
 }

@@ -103,3 +103,79 @@ fn saving_never_follows_a_planted_link() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn numbers_that_cannot_be_honest_are_refused() {
+    let config = temp("numbers");
+    // NaN never reaches an output with exit 0: an effective method at a vanishing k.
+    let (code, out, err) = bin(
+        &[
+            "simulate",
+            "--set",
+            "spring.k=1e-309",
+            "--method",
+            "effective",
+            "--format",
+            "json",
+        ],
+        &config,
+    );
+    assert_eq!(code, 1, "{out}");
+    assert!(err.contains("gamma is not a finite number"), "{err}");
+    assert!(!out.contains("null") && !out.contains("NaN"));
+    // A step too small to advance time is refused before running, from the flag or a preset.
+    let (code, _, err) = bin(
+        &["simulate", "--method", "rk4", "--step", "1e-300"],
+        &config,
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--step") && err.contains("cannot advance"),
+        "{err}"
+    );
+    let tiny = config.join("tiny.toml");
+    std::fs::write(
+        &tiny,
+        "[body]\nix = 2.0\niy = 1.0\niz = 1.0\n[spring]\nk = 1e4\n[initial]\ngamma_dot = 1.0\n\
+         alpha_dot = 0.5\n[run]\nt_end = 30.0\nmethod = \"rk4\"\nstep = 1e-300\n",
+    )
+    .unwrap();
+    let (code, _, err) = bin(&["simulate", "--preset", tiny.to_str().unwrap()], &config);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("run.step"), "{err}");
+    // --set takes one value, not a TOML document smuggled in with a newline.
+    let (code, _, err) = bin(
+        &["simulate", "--set", "spring.k=1e4\n[body]\nix = -1"],
+        &config,
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("spring.k"), "{err}");
+    let _ = std::fs::remove_dir_all(&config);
+}
+
+#[test]
+fn devices_and_fifos_are_refused_without_being_read() {
+    let config = temp("fifo");
+    let presets = config.join("presets");
+    std::fs::create_dir_all(&presets).unwrap();
+    let fifo = presets.join("stuck.toml");
+    let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
+    assert!(made.success());
+    let start = std::time::Instant::now();
+    let (code, out, err) = bin(&["presets"], &config);
+    assert!(
+        start.elapsed() < std::time::Duration::from_secs(5),
+        "presets blocked"
+    );
+    // Listed without it; the folder's problem is reported (exit 2, as for any broken file).
+    assert_eq!(code, 2, "{err}");
+    assert!(out.contains("subcritical"));
+    assert!(
+        err.contains("stuck.toml") && err.contains("not a regular file"),
+        "{err}"
+    );
+    let (code, _, err) = bin(&["simulate", "--preset", "/dev/zero"], &config);
+    assert_eq!(code, 2);
+    assert!(err.contains("not a regular file"), "{err}");
+    let _ = std::fs::remove_dir_all(&config);
+}

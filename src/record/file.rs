@@ -87,10 +87,14 @@ pub struct Recording {
 /// # Errors
 /// An unreadable file, a bad header, a version or format mismatch, or a corrupt line.
 pub fn read(path: &Path) -> Result<Recording, RecordError> {
+    /// Largest session file read (an hour of lectures is a few megabytes).
+    const MAX_SESSION_BYTES: u64 = 256 << 20;
     let label = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| RecordError::Io {
-        path: label.clone(),
-        source,
+    let text = crate::scenario::write::read_bounded(path, MAX_SESSION_BYTES).map_err(|source| {
+        RecordError::Io {
+            path: label.clone(),
+            source,
+        }
     })?;
     let corrupt = |line: usize, message: String| RecordError::Corrupt {
         path: label.clone(),

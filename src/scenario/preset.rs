@@ -299,9 +299,13 @@ fn parse_override(kind: Kind, text: &str) -> Value {
     let text = text.trim();
     match kind {
         Kind::Text | Kind::Method => Value::String(text.trim_matches('"').to_owned()),
+        // One TOML value on one line: anything else (a newline smuggling in more keys, a
+        // control character) stays text and fails the type check with its reason.
+        _ if text.chars().any(char::is_control) => Value::String(text.to_owned()),
         _ => format!("v = {text}")
             .parse::<Table>()
             .ok()
+            .filter(|t| t.len() == 1)
             .and_then(|mut t| t.remove("v"))
             .unwrap_or_else(|| Value::String(text.to_owned())),
     }
@@ -434,10 +438,13 @@ impl Preset {
     /// An unreadable file or the first problem found.
     pub fn load(path: &std::path::Path, overrides: &[Override]) -> Result<Self, PresetError> {
         let label = path.display().to_string();
-        let src = std::fs::read_to_string(path).map_err(|source| PresetError::Unreadable {
-            path: label.clone(),
-            source,
-        })?;
+        let src =
+            super::write::read_bounded(path, super::write::MAX_CONFIG_BYTES).map_err(|source| {
+                PresetError::Unreadable {
+                    path: label.clone(),
+                    source,
+                }
+            })?;
         let stem = path
             .file_stem()
             .map_or_else(|| label.clone(), |s| s.to_string_lossy().into_owned());
@@ -476,6 +483,15 @@ impl Preset {
             key: Some(e.field().to_owned()),
             message: e.to_string(),
         })?;
+        let (t_end, step) = (n("run", "t_end"), r.num("run", "step"));
+        if let Some(h) = step {
+            crate::physics::run::check_step(h, t_end).map_err(|message| PresetError::Invalid {
+                path: label.to_owned(),
+                line: None,
+                key: Some("run.step".to_owned()),
+                message,
+            })?;
+        }
         Ok(Self {
             name: r
                 .text("preset", "name")

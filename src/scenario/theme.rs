@@ -241,7 +241,7 @@ pub fn themes() -> (Vec<(String, ThemeSpec)>, Vec<PresetError>) {
                 .map(|s| s.to_string_lossy().into_owned())
                 .unwrap_or_default();
             let label = path.display().to_string();
-            match std::fs::read_to_string(&path) {
+            match super::write::read_bounded(&path, super::write::MAX_CONFIG_BYTES) {
                 Ok(src) => match ThemeSpec::parse(&src, &label, &stem) {
                     Ok(t) => {
                         out.retain(|(n, _)| *n != stem);
@@ -265,12 +265,15 @@ pub fn themes() -> (Vec<(String, ThemeSpec)>, Vec<PresetError>) {
 /// An unknown name or an invalid file (its first problem).
 pub fn theme(name: &str) -> Result<ThemeSpec, PresetError> {
     let path = std::path::Path::new(name);
-    if path.is_file() {
+    if path.exists() && !path.is_dir() {
         let label = path.display().to_string();
-        let src = std::fs::read_to_string(path).map_err(|source| PresetError::Unreadable {
-            path: label.clone(),
-            source,
-        })?;
+        let src =
+            super::write::read_bounded(path, super::write::MAX_CONFIG_BYTES).map_err(|source| {
+                PresetError::Unreadable {
+                    path: label.clone(),
+                    source,
+                }
+            })?;
         return ThemeSpec::parse(&src, &label, name).map_err(|mut e| e.swap_remove(0));
     }
     let (all, mut problems) = themes();

@@ -7,6 +7,40 @@ use std::fs::{File, OpenOptions};
 use std::io::{self, Write as _};
 use std::path::{Path, PathBuf};
 
+/// Largest preset, theme or lesson file read (they are a few kilobytes).
+pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
+
+/// Reads a text file that must be a regular file of at most `limit` bytes: a FIFO, a device
+/// (`/dev/zero`) or a folder is refused without being opened, so nothing blocks or fills
+/// memory.
+///
+/// # Errors
+/// `InvalidInput` for a file that is not regular or too large, else what the system says.
+pub fn read_bounded(path: &Path, limit: u64) -> io::Result<String> {
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            "not a regular file (a FIFO, a device or a folder); skipped",
+        ));
+    }
+    if meta.len() > limit {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("{} bytes, more than the {limit} allowed", meta.len()),
+        ));
+    }
+    let mut text = String::new();
+    io::Read::read_to_string(&mut io::Read::take(File::open(path)?, limit + 1), &mut text)?;
+    if text.len() as u64 > limit {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("more than the {limit} bytes allowed"),
+        ));
+    }
+    Ok(text)
+}
+
 /// Writes `bytes` to `path` atomically. With `replace = false` an existing `path` (file, link or
 /// anything else) is an `AlreadyExists` error and is left untouched.
 ///

@@ -164,6 +164,17 @@ pub enum StepError {
         /// Time reached.
         t: f64,
     },
+    /// The run finished but part of its result is not a finite number (for example the tilt
+    /// reconstructed by an effective method at a vanishing `k`).
+    #[error(
+        "{what} is not a finite number at t = {t}: the method cannot represent this problem; try another method or a larger k"
+    )]
+    NotFinite {
+        /// Which part of the result.
+        what: &'static str,
+        /// Time reached.
+        t: f64,
+    },
     /// `auto` is a planner, not an integrator: resolve it first (`physics::plan`).
     #[error("method auto must be resolved to a concrete method before integrating")]
     Unplanned,
