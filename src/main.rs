@@ -190,7 +190,9 @@ fn explore(
         replay,
     };
     match explorer::run(preset, &options) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(None) => ExitCode::SUCCESS,
+        // Ended by a signal: the terminal is restored; exit as the convention says.
+        Ok(Some(n)) => ExitCode::from(u8::try_from(128 + n).unwrap_or(1)),
         Err(e) => {
             say_err!(
                 "rattleback: the explorer needs an interactive terminal ({e}); for headless runs use `rattleback simulate`"

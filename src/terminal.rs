@@ -67,7 +67,7 @@ impl Tty {
         queue!(self.terminal.backend_mut(), BeginSynchronizedUpdate)?;
         self.terminal.draw(render)?;
         queue!(self.terminal.backend_mut(), EndSynchronizedUpdate)?;
-        self.terminal.backend_mut().flush()
+        Write::flush(self.terminal.backend_mut())
     }
 
     /// Clears the screen and forces a full redraw on the next frame (Ctrl-L: a line noise or
@@ -76,7 +76,25 @@ impl Tty {
     /// # Errors
     /// When writing to the terminal fails.
     pub fn clear(&mut self) -> io::Result<()> {
-        self.terminal.clear()
+        self.invalidate()
+    }
+
+    /// Clears the screen and makes the next frame rewrite every cell. Ratatui's own `clear`
+    /// asks the terminal for the cursor position, which blocks (and fails) on terminals that
+    /// do not answer; this only writes. The next frame is drawn over a frame of hidden cells,
+    /// which differs from it everywhere, inside one synchronized update.
+    fn invalidate(&mut self) -> io::Result<()> {
+        use ratatui::backend::{Backend, ClearType};
+        use ratatui::style::{Modifier, Style};
+        queue!(self.terminal.backend_mut(), BeginSynchronizedUpdate)?;
+        self.terminal.backend_mut().clear_region(ClearType::All)?;
+        self.terminal.draw(|f| {
+            let area = f.area();
+            f.buffer_mut()
+                .set_style(area, Style::new().add_modifier(Modifier::HIDDEN));
+        })?;
+        queue!(self.terminal.backend_mut(), EndSynchronizedUpdate)?;
+        Write::flush(self.terminal.backend_mut())
     }
 
     /// Suspends the process like a shell's Ctrl-Z: restores the terminal, stops until `fg`
@@ -86,11 +104,12 @@ impl Tty {
     /// When the terminal cannot be set up again.
     pub fn suspend(&mut self) -> io::Result<()> {
         restore();
-        // SIGTSTP's default action stops the process; it returns here on SIGCONT.
-        signal_hook::low_level::raise(signal_hook::consts::SIGTSTP)?;
+        // SIGTSTP's default action stops the process (the explorer also catches SIGTSTP to get
+        // here, so the default is emulated); it returns here on SIGCONT.
+        signal_hook::low_level::emulate_default_handler(signal_hook::consts::SIGTSTP)?;
         enable_raw_mode()?;
         execute!(io::stdout(), EnterAlternateScreen, cursor::Hide)?;
-        self.terminal.clear()
+        self.invalidate()
     }
 
     /// Forces a full redraw on the next frame (after a resize).

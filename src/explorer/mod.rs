@@ -9,7 +9,7 @@ pub mod replay;
 
 use std::collections::VecDeque;
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc::{Receiver, RecvTimeoutError, SyncSender, sync_channel};
 use std::time::{Duration, Instant};
 
@@ -222,15 +222,32 @@ fn finish_recording(
     let _ = rec.flush(app);
 }
 
-/// Runs the explorer on `preset` until the user quits or a SIGTERM/SIGHUP arrives.
+/// Signals that end the explorer: the terminal is restored, then the process exits with
+/// `128 + n`.
+pub const ENDING_SIGNALS: [i32; 6] = [
+    signal_hook::consts::SIGTERM,
+    signal_hook::consts::SIGHUP,
+    signal_hook::consts::SIGINT,
+    signal_hook::consts::SIGQUIT,
+    signal_hook::consts::SIGUSR1,
+    signal_hook::consts::SIGALRM,
+];
+
+/// Runs the explorer on `preset` until the user quits (`Ok(None)`) or a signal of
+/// [`ENDING_SIGNALS`] arrives (`Ok(Some(n))`; the terminal is restored either way). A SIGTSTP
+/// (`kill -TSTP`, or Ctrl-Z from outside raw mode) suspends like Ctrl-Z.
 ///
 /// # Errors
 /// When the terminal cannot be set up or written to.
-pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<()> {
-    let hangup = Arc::new(AtomicBool::new(false));
-    for signal in [signal_hook::consts::SIGTERM, signal_hook::consts::SIGHUP] {
-        signal_hook::flag::register(signal, Arc::clone(&hangup))?;
+pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option<i32>> {
+    let signal = Arc::new(AtomicUsize::new(0));
+    for n in ENDING_SIGNALS
+        .into_iter()
+        .chain([signal_hook::consts::SIGTSTP])
+    {
+        signal_hook::flag::register_usize(n, Arc::clone(&signal), n as usize)?;
     }
+    let hangup = &*signal;
     let tty = Tty::enter()?;
     let (tx, rx) = sync_channel::<AppEvent>(INBOX);
     let book = options
@@ -276,7 +293,7 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<()> {
         &rebuild,
         effects,
         &rx,
-        &hangup,
+        hangup,
     );
     stop.store(true, Ordering::Relaxed);
     // The terminal is restored before waiting for anything: the final checkpoint, the worker.
@@ -306,8 +323,8 @@ fn event_loop(
     rebuild: &dyn Fn(&App) -> (App, Vec<Effect>),
     start: Vec<Effect>,
     rx: &Receiver<AppEvent>,
-    hangup: &AtomicBool,
-) -> std::io::Result<()> {
+    signal: &AtomicUsize,
+) -> std::io::Result<Option<i32>> {
     let options = shell.options;
     shell.execute(app, start)?;
     let frame = Duration::from_secs_f64(1.0 / options.fps);
@@ -318,22 +335,31 @@ fn event_loop(
         .unwrap_or_else(Instant::now);
     let mut last_tick = Instant::now();
     loop {
-        if hangup.load(Ordering::Relaxed) || app.quit {
-            return Ok(());
+        match i32::try_from(signal.swap(0, Ordering::Relaxed)).unwrap_or(0) {
+            0 => {}
+            signal_hook::consts::SIGTSTP => {
+                shell.tty.suspend()?;
+                dirty = true;
+            }
+            n => return Ok(Some(n)),
+        }
+        if app.quit {
+            return Ok(None);
         }
         let animating = app.run.playing || replay.as_ref().is_some_and(|r| r.running());
         let until_frame = frame.saturating_sub(last_frame.elapsed());
         let timeout = if animating || dirty {
             until_frame
         } else {
-            Duration::from_millis(250)
+            // Idle: wake now and then to notice a signal or a vanished terminal within 100 ms.
+            Duration::from_millis(100)
         };
         let event = rx.recv_timeout(timeout);
         if matches!(event, Err(RecvTimeoutError::Timeout))
             && ratatui::crossterm::terminal::size().is_err()
         {
             // The terminal went away without a signal: leave as on SIGHUP.
-            return Ok(());
+            return Ok(Some(signal_hook::consts::SIGHUP));
         }
         match event {
             Ok(AppEvent::Input(key)) => {
@@ -352,7 +378,7 @@ fn event_loop(
             }
             Ok(AppEvent::Sim(e)) => dirty |= app.on_sim(e),
             Err(RecvTimeoutError::Timeout) => {}
-            Err(RecvTimeoutError::Disconnected) => return Ok(()),
+            Err(RecvTimeoutError::Disconnected) => return Ok(None),
         }
         // The clocks move once a frame has passed.
         let dt = last_tick.elapsed();

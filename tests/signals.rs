@@ -1,0 +1,180 @@
+//! Signals end the explorer with the terminal restored and exit `128 + n`; SIGTSTP suspends
+//! and SIGCONT resumes it in raw mode on the alternate screen. The explorer runs in a real
+//! pseudo-terminal (`script`, from util-linux, on every Debian system).
+
+use std::io::Write as _;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+const ENTER_ALT: &[u8] = b"\x1b[?1049h";
+const LEAVE_ALT: &[u8] = b"\x1b[?1049l";
+const SHOW_CURSOR: &[u8] = b"\x1b[?25h";
+
+struct Explorer {
+    script: Child,
+    log: std::path::PathBuf,
+}
+
+fn ppid_and_comm(pid: u32) -> Option<(u32, String)> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+    let open = stat.find('(')?;
+    let close = stat.rfind(')')?;
+    let comm = stat[open + 1..close].to_owned();
+    let ppid = stat[close + 2..].split_whitespace().nth(1)?.parse().ok()?;
+    Some((ppid, comm))
+}
+
+fn state(pid: u32) -> char {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).unwrap_or_default();
+    stat.rfind(')')
+        .and_then(|i| stat[i + 2..].chars().next())
+        .unwrap_or('?')
+}
+
+impl Explorer {
+    fn start(name: &str) -> Self {
+        let log = std::env::temp_dir().join(format!(
+            "rattleback-signal-{name}-{}.out",
+            std::process::id()
+        ));
+        let _ = std::fs::remove_file(&log);
+        // A 100×30 pseudo-terminal from the start (nobody answers a cursor query here).
+        let command = format!(
+            "stty rows 30 cols 100; exec {}",
+            env!("CARGO_BIN_EXE_rattleback")
+        );
+        let script = Command::new("script")
+            .args(["-qfec", &command])
+            .arg(&log)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("`script` (util-linux) runs the explorer in a pseudo-terminal");
+        let me = Self { script, log };
+        me.wait_for(|out| out.windows(ENTER_ALT.len()).any(|w| w == ENTER_ALT));
+        me
+    }
+
+    /// The explorer's pid: the `rattleback` process below `script`.
+    fn pid(&self) -> u32 {
+        let root = self.script.id();
+        let start = Instant::now();
+        while start.elapsed() < Duration::from_secs(5) {
+            for entry in std::fs::read_dir("/proc").unwrap().filter_map(Result::ok) {
+                let Ok(pid) = entry.file_name().to_string_lossy().parse::<u32>() else {
+                    continue;
+                };
+                let Some((ppid, comm)) = ppid_and_comm(pid) else {
+                    continue;
+                };
+                let grand = ppid_and_comm(ppid).map(|(p, _)| p);
+                if comm == "rattleback" && (ppid == root || grand == Some(root)) {
+                    return pid;
+                }
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        panic!("no explorer process below script");
+    }
+
+    fn output(&self) -> Vec<u8> {
+        std::fs::read(&self.log).unwrap_or_default()
+    }
+
+    fn wait_for(&self, done: impl Fn(&[u8]) -> bool) {
+        let start = Instant::now();
+        while start.elapsed() < Duration::from_secs(10) {
+            if done(&self.output()) {
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        panic!(
+            "timed out; output: {:?}",
+            String::from_utf8_lossy(&self.output())
+        );
+    }
+
+    fn finish(mut self) -> i32 {
+        let start = Instant::now();
+        loop {
+            if let Some(status) = self.script.try_wait().unwrap() {
+                return status.code().unwrap_or(-1);
+            }
+            assert!(
+                start.elapsed() < Duration::from_secs(10),
+                "the explorer did not exit"
+            );
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+}
+
+fn last(haystack: &[u8], needle: &[u8]) -> Option<usize> {
+    haystack.windows(needle.len()).rposition(|w| w == needle)
+}
+
+fn kill(pid: u32, signal: &str) {
+    let ok = Command::new("kill")
+        .args([&format!("-{signal}"), &pid.to_string()])
+        .status()
+        .unwrap()
+        .success();
+    assert!(ok, "kill -{signal}");
+}
+
+#[test]
+fn ending_signals_restore_the_terminal_and_exit_128_plus_n() {
+    for (signal, n) in [
+        ("INT", 2),
+        ("QUIT", 3),
+        ("HUP", 1),
+        ("USR1", 10),
+        ("ALRM", 14),
+        ("TERM", 15),
+    ] {
+        let e = Explorer::start(signal);
+        let pid = e.pid();
+        kill(pid, signal);
+        let out_before = e.log.clone();
+        let code = e.finish();
+        assert_eq!(code, 128 + n, "SIGTERM-style exit for SIG{signal}");
+        let out = std::fs::read(&out_before).unwrap();
+        let entered = last(&out, ENTER_ALT).expect("alternate screen entered");
+        let left = last(&out, LEAVE_ALT).expect("alternate screen left");
+        assert!(left > entered, "SIG{signal}: still on the alternate screen");
+        assert!(
+            last(&out, SHOW_CURSOR).is_some_and(|c| c > entered),
+            "SIG{signal}: cursor left hidden"
+        );
+    }
+}
+
+#[test]
+fn tstp_suspends_and_cont_resumes_in_raw_mode() {
+    let mut e = Explorer::start("tstp");
+    let pid = e.pid();
+    kill(pid, "TSTP");
+    e.wait_for(|out| last(out, LEAVE_ALT).is_some());
+    let start = Instant::now();
+    while state(pid) != 'T' {
+        assert!(
+            start.elapsed() < Duration::from_secs(5),
+            "not stopped: {}",
+            state(pid)
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    kill(pid, "CONT");
+    // `script` stops itself when its child stops (job control); it resumes too, as under `fg`.
+    kill(e.script.id(), "CONT");
+    // Back on the alternate screen, and keys arrive one by one (raw mode): q without Enter.
+    e.wait_for(|out| match (last(out, ENTER_ALT), last(out, LEAVE_ALT)) {
+        (Some(a), Some(b)) => a > b,
+        _ => false,
+    });
+    e.script.stdin.as_mut().unwrap().write_all(b"q").unwrap();
+    e.script.stdin.as_mut().unwrap().flush().unwrap();
+    assert_eq!(e.finish(), 0);
+}
