@@ -62,14 +62,41 @@ pub fn export_cast(
     )
     .map_err(io)?;
     let mut engine = Engine::new(plan_book(rec));
+    drive(&mut engine, commands(start_effects), &mut |e| {
+        app.on_sim(e);
+    });
+    crate::scenario::write::write_atomic_with(out, replace, &mut |cast| {
+        frames_of(
+            rec,
+            &mut app,
+            &mut engine,
+            &mut terminal,
+            &screen,
+            options,
+            cast,
+        )
+    })
+    .map_err(io)
+}
+
+/// Writes the cast, frame by frame, into `cast` (streamed: nothing is kept but the screen).
+/// Idle stretches (paused, no event due) are skipped in one jump, not drawn frame by frame.
+fn frames_of(
+    rec: &Recording,
+    app: &mut crate::app::App,
+    engine: &mut Engine,
+    terminal: &mut Terminal<CrosstermBackend<Shared>>,
+    screen: &Shared,
+    options: &UiOptions,
+    cast: &mut dyn std::io::Write,
+) -> std::io::Result<usize> {
     let mut cache = Cache::default();
     let run = |effects: Vec<crate::app::Effect>, engine: &mut Engine, app: &mut crate::app::App| {
         drive(engine, commands(effects), &mut |e| {
             app.on_sim(e);
         });
     };
-    run(start_effects, &mut engine, &mut app);
-    let mut cast = String::new();
+    let area = terminal.get_frame().area();
     let header = serde_json::json!({
         "version": 2,
         "width": area.width,
@@ -77,8 +104,7 @@ pub fn export_cast(
         "title": format!("rattleback: {}", app.scenario.name),
         "env": {"TERM": "xterm-256color"},
     });
-    cast.push_str(&header.to_string());
-    cast.push('\n');
+    writeln!(cast, "{header}")?;
     let end = rec.lines.last().map_or(0.0, |(_, l)| l.wall) + 1.0;
     let mut next = 0;
     let mut frames = 0;
@@ -87,29 +113,31 @@ pub fn export_cast(
         while next < rec.lines.len() && rec.lines[next].1.wall <= clock {
             let line = &rec.lines[next].1;
             if let Event::Chapter { title } = &line.event {
-                cast.push_str(&serde_json::json!([line.wall, "m", title]).to_string());
-                cast.push('\n');
+                writeln!(cast, "{}", serde_json::json!([line.wall, "m", title]))?;
             }
             let c = app.seek(line.t);
-            run(c, &mut engine, &mut app);
+            run(c, engine, app);
             let c = app.apply_event(&line.event);
-            run(c, &mut engine, &mut app);
+            run(c, engine, app);
             next += 1;
         }
         let c = app.tick(1.0 / CAST_FPS);
-        run(c, &mut engine, &mut app);
-        terminal
-            .draw(|f| ui::draw(f, &app, options, &mut cache))
-            .map_err(io)?;
+        run(c, engine, app);
+        terminal.draw(|f| ui::draw(f, app, options, &mut cache))?;
         let bytes = std::mem::take(&mut *screen.0.borrow_mut());
         if !bytes.is_empty() {
             let text = String::from_utf8_lossy(&bytes);
-            cast.push_str(&serde_json::json!([clock, "o", text]).to_string());
-            cast.push('\n');
+            writeln!(cast, "{}", serde_json::json!([clock, "o", text]))?;
             frames += 1;
         }
         clock += 1.0 / CAST_FPS;
+        // Nothing moves until the next event: jump there (on the frame grid).
+        if !app.run.playing
+            && let Some((_, l)) = rec.lines.get(next)
+            && l.wall > clock
+        {
+            clock += ((l.wall - clock) * CAST_FPS).floor() / CAST_FPS;
+        }
     }
-    crate::scenario::write::write_atomic(out, cast.as_bytes(), replace).map_err(io)?;
     Ok(frames)
 }

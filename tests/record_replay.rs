@@ -104,6 +104,7 @@ fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
             wall: i as f64 * 0.5,
             t,
             generation,
+            chain: None,
             event,
         })
         .collect();
@@ -117,9 +118,16 @@ fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
     assert_eq!(
         back.lines
             .iter()
-            .map(|(_, l)| l.clone())
+            .map(|(_, l)| Line {
+                chain: None,
+                ..l.clone()
+            })
             .collect::<Vec<_>>(),
         lines
+    );
+    assert!(
+        back.lines.iter().all(|(_, l)| l.chain.is_some()),
+        "every line chained"
     );
     // Bytes: writing what was read gives the same file.
     let again = temp("again.jsonl");
@@ -157,17 +165,30 @@ fn checked_in_lesson_of_format_2_verifies_with_its_recorded_plans() {
     assert_eq!(rec.header.version, 2);
     let book = record::plan_book(&rec);
     assert_eq!(book.recorded.len(), 2, "one plan per run");
-    assert_eq!(record::verify(&rec, &path).unwrap(), 5);
-    // A recorded plan wins over what auto would choose today: change it and the trajectory,
-    // hence the first checkpoint, changes.
-    let text = std::fs::read_to_string(&path).unwrap();
-    let changed = text.replacen("\"method\":\"dop853\"", "\"method\":\"blanes-moan4\"", 1);
-    assert_ne!(changed, text, "the fixture records a dop853 plan");
+    assert_eq!(record::verify(&rec, &path).unwrap(), 6);
+    // A recorded plan wins over what auto would choose today: record another plan (with a
+    // valid chain) and the trajectory, hence the first checkpoint after it, changes.
     let tmp = temp("lesson-changed-plan.jsonl");
-    std::fs::write(&tmp, changed).unwrap();
-    let (code, _, err) = bin(&["replay", tmp.to_str().unwrap(), "--verify"]);
-    assert_eq!(code, 1, "{err}");
-    assert!(err.contains("divergence"), "{err}");
+    let mut out = Recorder::create(&tmp, &rec.header).unwrap();
+    let mut changed = false;
+    for (_, line) in &rec.lines {
+        let mut line = line.clone();
+        if let Event::Plan { plan, .. } = &mut line.event
+            && !changed
+        {
+            plan.method = rattleback::physics::Method::BlanesMoan4;
+            changed = true;
+        }
+        out.write(&line).unwrap();
+    }
+    drop(out);
+    let back = record::read(&tmp).unwrap();
+    match record::verify(&back, "changed") {
+        Err(record::VerifyError::Diverged(d)) => {
+            assert!(d.expected.contains("state"), "{d:?}");
+        }
+        other => panic!("{other:?}"),
+    }
 }
 
 #[test]
@@ -367,6 +388,7 @@ fn replay_teaches_notes_chapters_and_its_end() {
             wall,
             t,
             generation,
+            chain: None,
             event,
         });
     }
@@ -442,4 +464,80 @@ fn resolve_header(h: &Headless) -> rattleback::scenario::Preset {
         &[],
     )
     .unwrap()
+}
+
+/// Every line is checked, not only checkpoints: an edit after the last checkpoint, a deleted
+/// checkpoint and a changed header field are all found, named by line.
+#[test]
+fn verify_checks_every_line_through_the_hash_chain() {
+    let path = format!(
+        "{}/tests/fixtures/sessions/lesson.jsonl",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let check = |name: &str, edited: Vec<String>, want_line: usize| {
+        let p = temp(name);
+        std::fs::write(&p, edited.join("\n") + "\n").unwrap();
+        let (code, _, err) = bin(&["replay", p.to_str().unwrap(), "--verify"]);
+        assert_eq!(code, 1, "{name}: {err}");
+        assert!(
+            err.contains(&format!(":{want_line}: divergence")),
+            "{name}: {err}"
+        );
+    };
+    let owned = |v: &[&str]| v.iter().map(|s| (*s).to_owned()).collect::<Vec<_>>();
+    // A note's text changed after the last checkpoint.
+    let last = lines.len();
+    let mut edited = owned(&lines);
+    let i = edited
+        .iter()
+        .rposition(|l| l.contains("\"kind\":\"panes\""))
+        .expect("a panes line");
+    edited[i] = edited[i].replace("\"series\":true", "\"series\":false");
+    check("edited-late", edited, i + 1);
+    // A checkpoint deleted: the next line is named.
+    let mut edited = owned(&lines);
+    let c = edited
+        .iter()
+        .position(|l| l.contains("checkpoint"))
+        .unwrap();
+    edited.remove(c);
+    check("deleted", edited, c + 1);
+    // An unused header field changed: the first event is named.
+    let mut edited = owned(&lines);
+    edited[0] = edited[0].replace("\"theme\":0", "\"theme\":3");
+    assert_ne!(edited[0], lines[0]);
+    check("header", edited, 2);
+    assert!(last > 5);
+}
+
+/// Header fields and times out of any sane range are refused with their line, before anything
+/// is allocated from them.
+#[test]
+fn absurd_headers_and_times_are_refused() {
+    let text = std::fs::read_to_string(example()).unwrap();
+    let lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    for (name, from, to, line, what) in [
+        ("huge", "\"width\":100", "\"width\":65535", 0, "terminal"),
+        ("fps", "\"fps\":30.0", "\"fps\":-30.0", 0, "fps"),
+        ("fps-big", "\"fps\":30.0", "\"fps\":1e300", 0, "fps"),
+        ("wall", "\"wall\":1.203068726", "\"wall\":1e300", 1, "wall"),
+    ] {
+        let mut edited = lines.clone();
+        assert!(edited[line].contains(from), "{name}: fixture changed");
+        edited[line] = edited[line].replace(from, to);
+        let p = temp(&format!("{name}.jsonl"));
+        std::fs::write(&p, edited.join("\n") + "\n").unwrap();
+        for args in [vec!["--verify"], vec!["--export-cast", "/tmp/never.cast"]] {
+            let mut all = vec!["replay", p.to_str().unwrap()];
+            all.extend(args);
+            let (code, _, err) = bin(&all);
+            assert_eq!(code, 2, "{name}: {err}");
+            assert!(
+                err.contains(&format!(":{}: ", line + 1)) && err.contains(what),
+                "{name}: {err}"
+            );
+        }
+    }
 }

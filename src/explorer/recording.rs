@@ -86,6 +86,7 @@ impl ActiveRecording {
                     wall,
                     t,
                     generation,
+                    chain: None,
                     event,
                 })
                 .map_err(|e| Outcome::RecordingFailed(e.to_string()))?;

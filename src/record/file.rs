@@ -10,6 +10,8 @@ use super::{FORMAT, Header, Line, RecordError, VERSION};
 pub struct Recorder {
     out: BufWriter<File>,
     path: String,
+    /// The chain value of the last line written.
+    chain: String,
 }
 
 impl Recorder {
@@ -36,12 +38,14 @@ impl Recorder {
         let mut me = Self {
             out: BufWriter::new(file),
             path: label,
+            chain: String::new(),
         };
-        me.write_json(header)?;
+        me.chain = me.write_json(header)?;
         Ok(me)
     }
 
-    fn write_json<T: serde::Serialize>(&mut self, value: &T) -> Result<(), RecordError> {
+    /// Writes one JSON line; returns its text.
+    fn write_json<T: serde::Serialize>(&mut self, value: &T) -> Result<String, RecordError> {
         let io = |source| RecordError::Io {
             path: self.path.clone(),
             source,
@@ -52,7 +56,8 @@ impl Recorder {
         })?;
         self.out.write_all(text.as_bytes()).map_err(io)?;
         self.out.write_all(b"\n").map_err(io)?;
-        self.out.flush().map_err(io)
+        self.out.flush().map_err(io)?;
+        Ok(text)
     }
 
     /// Appends one event and flushes it.
@@ -60,7 +65,21 @@ impl Recorder {
     /// # Errors
     /// When the file cannot be written.
     pub fn write(&mut self, line: &Line) -> Result<(), RecordError> {
-        self.write_json(line)
+        let bare = Line {
+            chain: None,
+            ..line.clone()
+        };
+        let text = serde_json::to_string(&bare).map_err(|e| RecordError::Io {
+            path: self.path.clone(),
+            source: std::io::Error::other(e),
+        })?;
+        let chain = super::chain_after(&self.chain, &text);
+        self.write_json(&Line {
+            chain: Some(chain.clone()),
+            ..bare
+        })?;
+        self.chain = chain;
+        Ok(())
     }
 
     /// The file being written.
@@ -75,6 +94,8 @@ impl Recorder {
 pub struct Recording {
     /// Its header.
     pub header: Header,
+    /// The header line as written (the start of the hash chain).
+    pub header_text: String,
     /// `(1-based line number, event)`.
     pub lines: Vec<(usize, Line)>,
     /// Things tolerated, such as a truncated last line.
@@ -128,6 +149,7 @@ pub fn read(path: &Path) -> Result<Recording, RecordError> {
     }
     let header: Header =
         serde_json::from_value(probe).map_err(|e| corrupt(1, format!("bad header: {e}")))?;
+    super::check_header(&header).map_err(|e| corrupt(1, e))?;
     let mut lines = Vec::new();
     let mut warnings = Vec::new();
     for (i, row) in rows {
@@ -136,6 +158,20 @@ pub fn read(path: &Path) -> Result<Recording, RecordError> {
             continue;
         }
         match serde_json::from_str::<Line>(row) {
+            Ok(line)
+                if !(line.wall.is_finite() && (0.0..=super::MAX_WALL).contains(&line.wall)) =>
+            {
+                return Err(corrupt(
+                    number,
+                    format!("wall = {}: allowed 0 to {} s", line.wall, super::MAX_WALL),
+                ));
+            }
+            Ok(line) if !line.t.is_finite() => {
+                return Err(corrupt(
+                    number,
+                    format!("t = {}: not a finite time", line.t),
+                ));
+            }
             Ok(line) => lines.push((number, line)),
             Err(e) if !row.ends_with('\n') => {
                 warnings.push(format!(
@@ -147,6 +183,7 @@ pub fn read(path: &Path) -> Result<Recording, RecordError> {
     }
     Ok(Recording {
         header,
+        header_text: first.trim_end_matches(['\n', '\r']).to_owned(),
         lines,
         warnings,
     })

@@ -72,10 +72,52 @@ pub struct Line {
     pub t: f64,
     /// Run stamp in the recording explorer (informational).
     pub generation: u64,
+    /// Format 2 on: FNV-1a of the previous line's chain (the header's text for the first) and
+    /// of this line without its chain, in hex. `--verify` recomputes it, so an edit, a deleted
+    /// or an inserted line anywhere is found and named, not only a changed checkpoint.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub chain: Option<String>,
     /// What happened.
     #[serde(flatten)]
     pub event: Event,
 }
+
+/// The chain value after `text` (see [`Line::chain`]).
+#[must_use]
+pub fn chain_after(previous: &str, text: &str) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in previous.bytes().chain([b'\n']).chain(text.bytes()) {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    format!("{h:016x}")
+}
+
+/// Sane bounds on a header, checked before anything is built from it.
+///
+/// # Errors
+/// Which field is out of range and what is allowed.
+pub fn check_header(h: &Header) -> Result<(), String> {
+    if !(1..=1000).contains(&h.terminal.width) || !(1..=1000).contains(&h.terminal.height) {
+        return Err(format!(
+            "terminal {}x{}: allowed sizes are 1 to 1000 columns and rows",
+            h.terminal.width, h.terminal.height
+        ));
+    }
+    if !(h.fps.is_finite() && (1.0..=240.0).contains(&h.fps)) {
+        return Err(format!("fps {}: allowed 1 to 240", h.fps));
+    }
+    if !(h.tolerance.is_finite() && h.tolerance > 0.0) {
+        return Err(format!(
+            "tolerance {}: must be a finite number > 0",
+            h.tolerance
+        ));
+    }
+    Ok(())
+}
+
+/// Longest recording replayed or exported, in wall seconds (a week).
+pub const MAX_WALL: f64 = 7.0 * 24.0 * 3600.0;
 
 /// Problems with a session file.
 #[derive(Debug, thiserror::Error)]

@@ -82,11 +82,42 @@ fn trajectory(effects: Vec<Effect>) -> Vec<Command> {
         .collect()
 }
 
+/// Checks the hash chain of a format-2 file: the first line whose chain differs is named (an
+/// edited, deleted or inserted line there or just before).
+fn check_chain(rec: &Recording) -> Result<(), VerifyError> {
+    if rec.header.version < 2 {
+        return Ok(());
+    }
+    let mut previous = rec.header_text.clone();
+    for (number, line) in &rec.lines {
+        let bare = serde_json::to_string(&super::Line {
+            chain: None,
+            ..line.clone()
+        })
+        .unwrap_or_default();
+        let expected = super::chain_after(&previous, &bare);
+        if line.chain.as_deref() != Some(expected.as_str()) {
+            return Err(VerifyError::Diverged(Divergence {
+                line: *number,
+                t: line.t,
+                expected: format!("hash chain {expected}"),
+                got: format!(
+                    "{} (this line, or the one before it, was edited, deleted or inserted)",
+                    line.chain.as_deref().unwrap_or("no chain")
+                ),
+            }));
+        }
+        previous = expected;
+    }
+    Ok(())
+}
+
 /// Re-runs `rec` and compares every checkpoint. `Ok(n)`: all `n` checkpoints reproduced.
 ///
 /// # Errors
 /// A bad header preset, or the first divergence.
 pub fn verify(rec: &Recording, path: &str) -> Result<usize, VerifyError> {
+    check_chain(rec)?;
     let (mut app, effects) = start(rec, path)?;
     let mut engine = Engine::new(plan_book(rec));
     drive(&mut engine, trajectory(effects), &mut |_| {});

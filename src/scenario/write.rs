@@ -4,7 +4,7 @@
 //! one, never half of either, and no planted link can redirect the write.
 
 use std::fs::{File, OpenOptions};
-use std::io::{self, Write as _};
+use std::io;
 use std::path::{Path, PathBuf};
 
 /// Largest preset, theme or lesson file read (they are a few kilobytes).
@@ -47,6 +47,19 @@ pub fn read_bounded(path: &Path, limit: u64) -> io::Result<String> {
 /// # Errors
 /// `AlreadyExists`, or what the system says; the temporary file is removed on every error.
 pub fn write_atomic(path: &Path, bytes: &[u8], replace: bool) -> io::Result<()> {
+    write_atomic_with(path, replace, &mut |w| w.write_all(bytes))
+}
+
+/// [`write_atomic`] for content produced by `fill` as it goes (streamed through a buffer into
+/// the temporary file, never held whole in memory); returns what `fill` returned.
+///
+/// # Errors
+/// As [`write_atomic`], and `fill`'s own errors.
+pub fn write_atomic_with<T>(
+    path: &Path,
+    replace: bool,
+    fill: &mut dyn FnMut(&mut dyn io::Write) -> io::Result<T>,
+) -> io::Result<T> {
     let dir = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
@@ -60,19 +73,22 @@ pub fn write_atomic(path: &Path, bytes: &[u8], replace: bool) -> io::Result<()> 
             format!("{} exists", path.display()),
         ));
     }
-    let (tmp, mut file) = create_temporary(dir, &name.to_string_lossy())?;
+    let (tmp, file) = create_temporary(dir, &name.to_string_lossy())?;
     let result = (|| {
-        file.write_all(bytes)?;
+        let mut out = io::BufWriter::new(file);
+        let value = fill(&mut out)?;
+        let file = out.into_inner().map_err(io::IntoInnerError::into_error)?;
         file.sync_all()?;
         drop(file);
         if replace {
             // rename replaces the target itself, never what a link there points to.
-            std::fs::rename(&tmp, path)
+            std::fs::rename(&tmp, path)?;
         } else {
             // A hard link fails if the target appeared meanwhile: no clobbering, even in a race.
             std::fs::hard_link(&tmp, path)?;
-            std::fs::remove_file(&tmp)
+            std::fs::remove_file(&tmp)?;
         }
+        Ok(value)
     })();
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
