@@ -217,7 +217,7 @@ fn every_shipped_preset_ends_where_simulate_and_a_tight_reference_end() {
             "{name}: the screen and simulate differ"
         );
         assert_eq!(
-            app.run.reversals_shown().len(),
+            app.run.reversals_shown(),
             simulated.reversals.len(),
             "{name}: reversal count"
         );
@@ -258,14 +258,20 @@ fn counted_events_never_run_ahead_of_the_display() {
             h.tick(1.0 / 30.0);
             let run = &h.app.run;
             let shown = run.shown;
-            assert!(run.reversals_shown().iter().all(|t| *t <= shown));
-            assert!(run.effective_reversals_shown().iter().all(|t| *t <= shown));
+            assert!(run.reversal_ticks().iter().all(|t| *t <= shown));
             if let Some(p) = run.current() {
                 assert!(p.t <= shown);
             }
             // Every reversal before the shown time is counted.
-            let all = run.reversals.iter().filter(|t| **t <= shown).count();
-            assert_eq!(run.reversals_shown().len(), all);
+            let all = run.reversals.kept().iter().filter(|t| **t <= shown).count();
+            assert_eq!(run.reversals_shown(), all);
+            let limit = run
+                .effective_reversals
+                .kept()
+                .iter()
+                .filter(|t| **t <= shown)
+                .count();
+            assert_eq!(run.effective_reversals_shown(), limit);
             if run.done() {
                 break;
             }
@@ -279,7 +285,7 @@ fn counted_events_never_run_ahead_of_the_display() {
 fn the_limit_hidden_then_shown_catches_up() {
     let mut h = Headless::new("subcritical");
     h.play_until(12.0, 4.0);
-    let before = h.app.run.effective_reversals_shown().len();
+    let before = h.app.run.effective_reversals_shown();
     assert!(before >= 2, "the limit reverses twice before t = 12");
     h.key(Key::Char('e'));
     assert!(h.app.run.effective_trail.is_empty());
@@ -294,8 +300,8 @@ fn the_limit_hidden_then_shown_catches_up() {
         .effective
         .reversal_times(run.shown)
         .len();
-    assert_eq!(run.effective_reversals_shown().len(), expected);
-    assert!(run.effective_reversals_shown().len() > before);
+    assert_eq!(run.effective_reversals_shown(), expected);
+    assert!(run.effective_reversals_shown() > before);
     let first = run.effective_shown().first().expect("caught-up trail");
     assert_eq!(first.t, 0.0, "the trail is back from t = 0");
 }
@@ -613,4 +619,18 @@ fn the_trail_has_no_gap_wider_than_two_cells() {
         }
         assert!(worst <= 2.0, "{name}: a gap of {worst:.2} cells");
     }
+}
+
+/// Memory stays bounded however many reversals a run makes: old times are counted, not kept.
+#[test]
+fn reversal_history_is_bounded_and_counts_stay_exact() {
+    let mut e = rattleback::app::Events::default();
+    for i in 0..100_000 {
+        let t = f64::from(i) * 0.01;
+        e.push(t, t);
+    }
+    assert!(e.kept().len() <= rattleback::app::run::EVENTS_CAP);
+    assert_eq!(e.count_upto(1e9), 100_000);
+    assert_eq!(e.count_upto(999.995), 100_000);
+    assert_eq!(e.count_upto(999.985), 99_999);
 }

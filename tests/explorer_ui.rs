@@ -304,7 +304,7 @@ fn every_shipped_preset_draws_at_80x24() {
                 "{name}: {status}"
             );
             assert!(
-                status.contains(&format!("reversals {}", h.app.run.reversals_shown().len())),
+                status.contains(&format!("reversals {}", h.app.run.reversals_shown())),
                 "{name}: {status}"
             );
         }

@@ -20,7 +20,7 @@ mod scenario;
 pub use effects::{Effect, Outcome};
 pub use keys::{Action, Key};
 pub use mode::Mode;
-pub use run::{PlanState, RunState, TRAIL_CAP};
+pub use run::{Events, PlanState, RunState, TRAIL_CAP};
 pub use scenario::{Derived, Scenario};
 
 use crate::scenario::Preset;

@@ -12,6 +12,58 @@ use crate::sim::{Command, Point, SessionSpec, SimEvent};
 
 /// Most trail points kept per trail (the oldest half is dropped beyond).
 pub const TRAIL_CAP: usize = 40_000;
+/// Most event times kept per motion; older ones already on screen are only counted.
+pub const EVENTS_CAP: usize = 4_096;
+
+/// Times of events (reversals) in order: the recent ones kept, the older ones counted, so
+/// memory stays bounded however long a run reverses.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Events {
+    dropped: usize,
+    times: Vec<f64>,
+}
+
+impl Events {
+    /// Records an event at `t`; when too many are kept, forgets the oldest that are at or before
+    /// `shown` (they stay counted).
+    pub fn push(&mut self, t: f64, shown: f64) {
+        self.times.push(t);
+        if self.times.len() > EVENTS_CAP {
+            let old =
+                self.times[..self.times.len() - EVENTS_CAP / 2].partition_point(|x| *x <= shown);
+            self.times.drain(..old);
+            self.dropped += old;
+        }
+    }
+
+    /// How many happened at or before `t` (`t` at least the last forgotten one's time).
+    #[must_use]
+    pub fn count_upto(&self, t: f64) -> usize {
+        self.dropped + self.times.partition_point(|x| *x <= t)
+    }
+
+    /// The kept times at or before `t`.
+    #[must_use]
+    pub fn recent_upto(&self, t: f64) -> &[f64] {
+        &self.times[..self.times.partition_point(|x| *x <= t)]
+    }
+
+    /// Every kept time (possibly ahead of the display).
+    #[must_use]
+    pub fn kept(&self) -> &[f64] {
+        &self.times
+    }
+
+    /// No events.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.dropped == 0 && self.times.is_empty()
+    }
+
+    fn clear(&mut self) {
+        *self = Self::default();
+    }
+}
 /// Wall seconds of lead the worker is asked to compute beyond the displayed clock.
 const LEAD: f64 = 0.25;
 
@@ -55,9 +107,9 @@ pub struct RunState {
     /// Samples of the effective motion.
     pub effective_trail: Vec<Point>,
     /// Reversal times of the full motion (possibly ahead of `shown`).
-    pub reversals: Vec<f64>,
+    pub reversals: Events,
     /// Reversal times of the effective motion.
-    pub effective_reversals: Vec<f64>,
+    pub effective_reversals: Events,
     /// The worker reached `t_end`.
     pub finished: bool,
     /// The run failed.
@@ -86,8 +138,8 @@ impl RunState {
             t_end,
             trail: Vec::new(),
             effective_trail: Vec::new(),
-            reversals: Vec::new(),
-            effective_reversals: Vec::new(),
+            reversals: Events::default(),
+            effective_reversals: Events::default(),
             finished: false,
             failed: None,
             steps: 0,
@@ -245,9 +297,9 @@ impl RunState {
                 effective,
             } if generation == self.generation => {
                 if !effective {
-                    self.reversals.push(t);
+                    self.reversals.push(t, self.shown);
                 } else if overlay && epoch == self.epoch {
-                    self.effective_reversals.push(t);
+                    self.effective_reversals.push(t, self.shown);
                 }
                 t <= self.shown
             }
@@ -291,18 +343,22 @@ impl RunState {
         upto(&self.effective_trail, self.shown)
     }
 
-    /// Reversals of the full motion up to the displayed time.
+    /// Number of reversals of the full motion up to the displayed time.
     #[must_use]
-    pub fn reversals_shown(&self) -> &[f64] {
-        &self.reversals[..self.reversals.partition_point(|t| *t <= self.shown)]
+    pub fn reversals_shown(&self) -> usize {
+        self.reversals.count_upto(self.shown)
     }
 
-    /// Reversals of the limit up to the displayed time.
+    /// Number of reversals of the limit up to the displayed time.
     #[must_use]
-    pub fn effective_reversals_shown(&self) -> &[f64] {
-        &self.effective_reversals[..self
-            .effective_reversals
-            .partition_point(|t| *t <= self.shown)]
+    pub fn effective_reversals_shown(&self) -> usize {
+        self.effective_reversals.count_upto(self.shown)
+    }
+
+    /// The recent reversal times of the full motion up to the displayed time (for ticks).
+    #[must_use]
+    pub fn reversal_ticks(&self) -> &[f64] {
+        self.reversals.recent_upto(self.shown)
     }
 
     /// The displayed point of the full motion.

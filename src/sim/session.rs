@@ -49,8 +49,10 @@ struct Track {
     scale: f64,
     /// Index of the next grid sample this track emits.
     next: u64,
-    /// Reversals found so far.
-    reversals: Vec<f64>,
+    /// Reversals found so far, and the time of the last (a step holds at most one, so this is
+    /// all a checkpoint inside the last step needs; memory stays bounded).
+    reversals: usize,
+    last_reversal: Option<f64>,
 }
 
 impl Track {
@@ -68,7 +70,8 @@ impl Track {
             e0,
             scale: if e0 == 0.0 { 1.0 } else { e0.abs() },
             next: 0,
-            reversals: Vec::new(),
+            reversals: 0,
+            last_reversal: None,
         })
     }
 
@@ -97,7 +100,8 @@ impl Track {
         self.integrator.step(t_end)?;
         let r = self.tracker.after_step(self.integrator.as_mut());
         if let Some(t) = r {
-            self.reversals.push(t);
+            self.reversals += 1;
+            self.last_reversal = Some(t);
         }
         Ok(r.map(|t| SimEvent::Reversal {
             generation,
@@ -172,7 +176,9 @@ impl Session {
         } else {
             return None;
         };
-        let reversals = self.full.reversals.iter().filter(|r| **r <= t).count();
+        // `t` lies in the last step, which holds at most the last reversal.
+        let reversals =
+            self.full.reversals - usize::from(self.full.last_reversal.is_some_and(|r| r > t));
         Some(([y[0], y[1], y[2], y[3]], reversals))
     }
 

@@ -80,7 +80,7 @@ fn pane(pane: &SeriesPane<'_>, area: Rect, buf: &mut Buffer) {
         * 1.1;
     let theme = look.theme;
     let ticks: Vec<f64> = run
-        .reversals_shown()
+        .reversal_ticks()
         .iter()
         .copied()
         .filter(|t| *t >= t0)

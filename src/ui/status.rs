@@ -71,12 +71,12 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
         None => out.push(field(format!("×{}", run.speed), 1)),
     }
     let limit = if bar.overlay {
-        format!(" limit {}", run.effective_reversals_shown().len())
+        format!(" limit {}", run.effective_reversals_shown())
     } else {
         String::new()
     };
     out.push(field(
-        format!("reversals {}{limit}", run.reversals_shown().len()),
+        format!("reversals {}{limit}", run.reversals_shown()),
         0,
     ));
     if let Some(p) = run.current() {
