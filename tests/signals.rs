@@ -33,6 +33,10 @@ fn state(pid: u32) -> char {
 
 impl Explorer {
     fn start(name: &str) -> Self {
+        Self::start_with(name, &[])
+    }
+
+    fn start_with(name: &str, args: &[&str]) -> Self {
         let log = std::env::temp_dir().join(format!(
             "rattleback-signal-{name}-{}.out",
             std::process::id()
@@ -40,8 +44,9 @@ impl Explorer {
         let _ = std::fs::remove_file(&log);
         // A 100×30 pseudo-terminal from the start (nobody answers a cursor query here).
         let command = format!(
-            "stty rows 30 cols 100; exec {}",
-            env!("CARGO_BIN_EXE_rattleback")
+            "stty rows 30 cols 100; exec {} {}",
+            env!("CARGO_BIN_EXE_rattleback"),
+            args.join(" ")
         );
         let script = Command::new("script")
             .args(["-qfec", &command])
@@ -177,4 +182,37 @@ fn tstp_suspends_and_cont_resumes_in_raw_mode() {
     e.script.stdin.as_mut().unwrap().write_all(b"q").unwrap();
     e.script.stdin.as_mut().unwrap().flush().unwrap();
     assert_eq!(e.finish(), 0);
+}
+
+/// Quit and signals take effect at once even while `auto` verifies an enormous run (`t_end` =
+/// 1e9 at k = 1e8): the verification is cancelled, the terminal restored, nothing waits.
+#[test]
+fn quit_and_signals_are_immediate_while_auto_verifies_a_huge_run() {
+    let preset = std::env::temp_dir().join(format!("rattleback-heavy-{}.toml", std::process::id()));
+    std::fs::write(
+        &preset,
+        "[preset]\nname = \"Heavy\"\n[body]\nix = 2.0\niy = 1.0\niz = 1.0\n[spring]\nk = 1e8\n\
+         [initial]\ngamma_dot = 1.0\nalpha_dot = 0.5\n[run]\nt_end = 1e9\n",
+    )
+    .unwrap();
+    let path = preset.to_str().unwrap();
+    for how in ["q", "TERM"] {
+        let mut e = Explorer::start_with(&format!("heavy-{how}"), &["--preset", path]);
+        e.wait_for(|out| String::from_utf8_lossy(out).contains("verifying auto"));
+        let start = Instant::now();
+        if how == "q" {
+            e.script.stdin.as_mut().unwrap().write_all(b"q").unwrap();
+            e.script.stdin.as_mut().unwrap().flush().unwrap();
+        } else {
+            kill(e.pid(), how);
+        }
+        let code = e.finish();
+        assert!(
+            start.elapsed() < Duration::from_secs(2),
+            "{how} took {:?}",
+            start.elapsed()
+        );
+        assert_eq!(code, if how == "q" { 0 } else { 143 });
+    }
+    let _ = std::fs::remove_file(&preset);
 }
