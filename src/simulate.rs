@@ -170,8 +170,13 @@ struct EffectiveOut {
     critical_ratio: Option<f64>,
     start_ratio: Option<f64>,
     energy: f64,
-    alpha: f64,
-    alpha_dot: f64,
+    /// The limit's own `α(T)`; `null` only when its comparison run failed (`comparison_error`).
+    alpha: Option<f64>,
+    /// The limit's own `α̇(T)`, likewise.
+    alpha_dot: Option<f64>,
+    /// Why the comparison with the limit could not be made (the requested run succeeded).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    comparison_error: Option<String>,
     half_period: Option<f64>,
     turning_points: Option<(f64, f64)>,
     tapping_acceleration: f64,
@@ -227,7 +232,11 @@ pub fn simulate(preset: &Preset, resolved: &Resolved, format: Format) -> Result<
         step: None,
         ..spec
     };
-    let eff_run = run(problem, &eff_spec)?;
+    // A failure of this extra comparison does not discard the requested run: it is reported.
+    let eff_run = run(problem, &eff_spec).and_then(|r| match non_finite(&r) {
+        Some(what) => Err(StepError::NotFinite { what, t: r.t }),
+        None => Ok(r),
+    });
     let eff = Effective::new(problem);
     let p = problem.params();
     let y = result.final_state;
@@ -265,8 +274,9 @@ pub fn simulate(preset: &Preset, resolved: &Resolved, format: Format) -> Result<
             critical_ratio: eff.critical_ratio(problem),
             start_ratio: eff.start_ratio(problem),
             energy: eff.energy(),
-            alpha: eff_run.final_state[1],
-            alpha_dot: eff_run.final_state[3],
+            alpha: eff_run.as_ref().ok().map(|r| r.final_state[1]),
+            alpha_dot: eff_run.as_ref().ok().map(|r| r.final_state[3]),
+            comparison_error: eff_run.as_ref().err().map(ToString::to_string),
             half_period: eff.half_period(),
             turning_points: eff.turning_points(),
             tapping_acceleration: tapping_acceleration(problem),
@@ -356,16 +366,22 @@ fn table(r: &Report) -> String {
         o,
         "                   full model          effective (k → ∞)"
     );
+    let limit = |v: Option<f64>| v.map_or_else(|| "n/a".to_owned(), |x| format!("{x:.9}"));
     let _ = writeln!(
         o,
-        "alpha(T)      {:>16.9}    {:>16.9}",
-        r.final_.alpha, e.alpha
+        "alpha(T)      {:>16.9}    {:>16}",
+        r.final_.alpha,
+        limit(e.alpha)
     );
     let _ = writeln!(
         o,
-        "alpha_dot(T)  {:>16.9}    {:>16.9}",
-        r.final_.alpha_dot, e.alpha_dot
+        "alpha_dot(T)  {:>16.9}    {:>16}",
+        r.final_.alpha_dot,
+        limit(e.alpha_dot)
     );
+    if let Some(why) = &e.comparison_error {
+        let _ = writeln!(o, "  (no comparison with the limit: {why})");
+    }
     let _ = writeln!(
         o,
         "reversals     {:>16}    {:>16}",

@@ -179,3 +179,36 @@ fn devices_and_fifos_are_refused_without_being_read() {
     assert!(err.contains("not a regular file"), "{err}");
     let _ = std::fs::remove_dir_all(&config);
 }
+
+/// When only the extra comparison with the limit fails, the requested run is still reported
+/// (exit 0), the comparison's values are `null` with the reason, and nothing is NaN.
+#[test]
+fn a_failed_comparison_does_not_discard_the_requested_run() {
+    let config = temp("comparison");
+    let (code, out, err) = bin(
+        &[
+            "simulate",
+            "--set",
+            "spring.k=1e-309",
+            "--method",
+            "dop853",
+            "--t-end",
+            "1",
+            "--format",
+            "json",
+        ],
+        &config,
+    );
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!(v["final"]["alpha"].as_f64().is_some_and(f64::is_finite));
+    assert!(v["effective"]["alpha"].is_null());
+    assert!(
+        v["effective"]["comparison_error"]
+            .as_str()
+            .is_some_and(|e| e.contains("not a finite number")),
+        "{out}"
+    );
+    assert!(!out.contains("NaN"));
+    let _ = std::fs::remove_dir_all(&config);
+}
