@@ -44,16 +44,19 @@ struct Located<'a>(
 );
 
 impl fmt::Display for Located<'_> {
+    /// Paths, keys and messages may echo what a file holds: control characters are stripped
+    /// here, at the source, as well as at every terminal.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.0)?;
+        let clean = crate::scenario::text::clean;
+        write!(f, "{}", clean(self.0))?;
         if let Some(line) = self.1 {
             write!(f, ":{line}")?;
         }
         write!(f, ": ")?;
         if let Some(key) = self.2 {
-            write!(f, "{key}: ")?;
+            write!(f, "{}: ", clean(key))?;
         }
-        write!(f, "{}", self.3)
+        write!(f, "{}", clean(self.3))
     }
 }
 

@@ -1,0 +1,149 @@
+//! Property tests with hostile input: mutated presets, themes and sessions are refused with a
+//! clean message (or accepted), never a panic; session errors always name their line.
+//!
+//! Sessions are mutated in structure (lines deleted, duplicated, swapped, cut, fields retyped),
+//! not in their times: a recorded time of 1e300 is still integrated to (a work budget is not
+//! enforced yet).
+
+use proptest::prelude::*;
+use rattleback::record;
+use rattleback::scenario::Preset;
+use rattleback::scenario::shipped::SHIPPED;
+use rattleback::scenario::text::clean;
+use rattleback::scenario::theme::{SHIPPED_THEMES, ThemeSpec};
+
+fn config() -> ProptestConfig {
+    ProptestConfig {
+        cases: 160,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x0BAD_F00D),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    }
+}
+
+/// Values a user (or an attacker) might type.
+fn hostile_value() -> impl Strategy<Value = String> {
+    prop_oneof![
+        Just("nan".to_owned()),
+        Just("inf".to_owned()),
+        Just("-inf".to_owned()),
+        Just("1e400".to_owned()),
+        Just("-1e400".to_owned()),
+        Just("0".to_owned()),
+        Just("-0.0".to_owned()),
+        Just("1e-320".to_owned()),
+        Just("1e308".to_owned()),
+        Just("99999999999999999999999".to_owned()),
+        Just("\"text\"".to_owned()),
+        Just("\"\\u001b]0;pwned\\u0007\"".to_owned()),
+        Just("[1, 2, 3]".to_owned()),
+        Just("{ a = 1 }".to_owned()),
+        Just("true".to_owned()),
+        Just(String::new()),
+        "[ -~]{0,12}",
+    ]
+}
+
+/// A preset or theme text with line `line` mutated as `how` says.
+fn mutate_toml(src: &str, line: usize, how: u8, value: &str) -> String {
+    let mut lines: Vec<String> = src.lines().map(str::to_owned).collect();
+    let i = line % lines.len().max(1);
+    match how % 4 {
+        0 => {
+            if let Some((key, _)) = lines[i].clone().split_once('=') {
+                lines[i] = format!("{key}= {value}");
+            }
+        }
+        1 => {
+            lines.remove(i);
+        }
+        2 => {
+            let l = lines[i].clone();
+            lines.insert(i, l);
+        }
+        _ => value.clone_into(&mut lines[i]),
+    }
+    lines.join("\n") + "\n"
+}
+
+fn message_is_clean(text: &str) -> bool {
+    !text.is_empty() && clean(text) == text && !text.contains("panicked")
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn mutated_presets_are_refused_cleanly_or_accepted(
+        which in 0..SHIPPED.len(), line in 0usize..60, how in 0u8..4, value in hostile_value()
+    ) {
+        let src = mutate_toml(SHIPPED[which].1, line, how, &value);
+        let outcome = std::panic::catch_unwind(|| Preset::parse(&src, "mutated.toml", "m", &[]));
+        prop_assert!(outcome.is_ok(), "panic on:\n{src}");
+        match outcome.unwrap() {
+            Ok(p) => {
+                // An accepted preset is a valid, finite problem that round-trips.
+                prop_assert!(p.run.t_end.is_finite() && p.run.t_end > 0.0);
+                let again = Preset::parse(&p.to_toml(), "again", "m", &[]);
+                prop_assert!(again.is_ok(), "{:?}", again.err());
+            }
+            Err(e) => prop_assert!(message_is_clean(&e.to_string()), "{e}"),
+        }
+    }
+
+    #[test]
+    fn mutated_themes_are_refused_cleanly_or_accepted(
+        which in 0..SHIPPED_THEMES.len(), line in 0usize..20, how in 0u8..4, value in hostile_value()
+    ) {
+        let src = mutate_toml(SHIPPED_THEMES[which].1, line, how, &value);
+        let outcome = std::panic::catch_unwind(|| ThemeSpec::parse(&src, "mutated.toml", "m"));
+        prop_assert!(outcome.is_ok(), "panic on:\n{src}");
+        if let Err(problems) = outcome.unwrap() {
+            prop_assert!(!problems.is_empty());
+            for p in problems {
+                prop_assert!(message_is_clean(&p.to_string()), "{p}");
+            }
+        }
+    }
+
+    #[test]
+    fn mutated_sessions_are_refused_by_line_or_verify(
+        line in 0usize..40, other in 0usize..40, how in 0u8..5, cut in 0usize..200
+    ) {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/sessions/lesson.jsonl");
+        let text = std::fs::read_to_string(path).unwrap();
+        let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+        let n = lines.len();
+        let (i, j) = (line % n, other % n);
+        match how {
+            0 => { lines.remove(i); }
+            1 => { let l = lines[i].clone(); lines.insert(j, l); }
+            2 => lines.swap(i, j),
+            3 => { let l = &lines[i]; let c = cut.min(l.len()); let end = l.floor_char_boundary(c); lines[i].truncate(end); }
+            _ => lines[i] = lines[i].replace("\"t\":", "\"t\":\"x\",\"u\":"),
+        }
+        let out = std::env::temp_dir().join(format!(
+            "rattleback-prop-{}-{line}-{other}-{how}-{cut}.jsonl",
+            std::process::id()
+        ));
+        let mutated = lines.join("\n") + "\n";
+        let unchanged = mutated == text;
+        std::fs::write(&out, &mutated).unwrap();
+        let outcome = std::panic::catch_unwind(|| {
+            record::read(&out).map(|rec| record::verify(&rec, "mutated").map(|_| ()))
+        });
+        let _ = std::fs::remove_file(&out);
+        prop_assert!(outcome.is_ok(), "panic");
+        match outcome.unwrap() {
+            Err(record::RecordError::Corrupt { line, message, .. }) => {
+                prop_assert!(line >= 1 && line <= n + 1, "line {line}");
+                prop_assert!(message_is_clean(&message), "{message}");
+            }
+            Err(e) => prop_assert!(message_is_clean(&e.to_string()), "{e}"),
+            Ok(Err(record::VerifyError::Diverged(d))) => prop_assert!(d.line >= 1 && d.line <= n + 1),
+            Ok(Err(e)) => prop_assert!(message_is_clean(&e.to_string()), "{e}"),
+            // Only an unchanged file (a line swapped with itself, a cut past its end) verifies.
+            Ok(Ok(())) => prop_assert!(unchanged, "a changed session verified"),
+        }
+    }
+}
