@@ -12,8 +12,11 @@ pub mod fields;
 pub mod journal;
 pub mod keys;
 pub mod mode;
+mod outcomes;
 pub mod panes;
 pub mod portrait;
+mod prompts;
+mod replayed;
 pub mod run;
 mod scenario;
 
@@ -25,10 +28,10 @@ pub use scenario::{Derived, Scenario};
 
 use crate::scenario::Preset;
 use crate::scenario::text::clean;
-use crate::sim::{Command, SimEvent};
+use crate::sim::SimEvent;
 use fields::Field;
 use journal::Event;
-use mode::{Confirm, HelpPage, Picker, PickerRow, Prompt, PromptFor};
+use mode::{HelpPage, PromptFor};
 use panes::{Pane, Panes};
 use portrait::{Bounds, View};
 
@@ -303,141 +306,6 @@ impl App {
         }
     }
 
-    fn on_edit_key(&mut self, mut text: String, key: Key) -> Vec<Effect> {
-        match key {
-            Key::Char(c) => text.push(c),
-            Key::Backspace => {
-                text.pop();
-            }
-            Key::Esc => {
-                self.status = None;
-                return Vec::new();
-            }
-            Key::Enter => {
-                return self.apply(self.field().with_text(&self.scenario.settings, &text));
-            }
-            _ => {}
-        }
-        self.mode = Mode::Editing(text);
-        Vec::new()
-    }
-
-    fn on_prompt_key(&mut self, mut prompt: Prompt, key: Key) -> Vec<Effect> {
-        match key {
-            Key::Char(c) if !c.is_control() => {
-                prompt.text.push(c);
-                prompt.confirm = Confirm::No;
-            }
-            Key::Backspace => {
-                prompt.text.pop();
-                prompt.confirm = Confirm::No;
-            }
-            Key::Esc => {
-                self.status = Message::info("cancelled");
-                return Vec::new();
-            }
-            Key::Enter => return self.submit(prompt),
-            _ => {}
-        }
-        self.mode = Mode::Prompt(prompt);
-        Vec::new()
-    }
-
-    /// Enter in a prompt.
-    fn submit(&mut self, prompt: Prompt) -> Vec<Effect> {
-        let text = clean(prompt.text.trim());
-        match prompt.purpose {
-            PromptFor::Note | PromptFor::Chapter => {
-                let chapter = prompt.purpose == PromptFor::Chapter;
-                self.log(if chapter {
-                    Event::Chapter {
-                        title: text.clone(),
-                    }
-                } else {
-                    Event::Note { text: text.clone() }
-                });
-                self.caption = Some(Caption {
-                    chapter,
-                    text,
-                    t: self.run.shown,
-                });
-                Vec::new()
-            }
-            PromptFor::SaveName => {
-                if !crate::scenario::store::valid_name(&text) {
-                    self.status = Message::error(format!(
-                        "'{text}' cannot be a preset name: letters, digits, - and _"
-                    ));
-                    self.mode = Mode::Prompt(prompt);
-                    return Vec::new();
-                }
-                if prompt.confirm == Confirm::No && crate::scenario::shipped::is_shipped(&text) {
-                    self.status = Message::error(format!(
-                        "'{text}' is a shipped preset: your copy would replace it in every later run. Enter: save anyway, Esc: cancel"
-                    ));
-                    self.mode = Mode::Prompt(Prompt {
-                        confirm: Confirm::Shipped,
-                        ..prompt
-                    });
-                    return Vec::new();
-                }
-                self.status = Message::info(format!(
-                    "describe it (Enter with nothing keeps \"{}\", marked as a copy)",
-                    ellipsis(&self.scenario.description, 40)
-                ));
-                self.mode = Mode::Prompt(Prompt::new(PromptFor::SaveDescription { name: text }));
-                Vec::new()
-            }
-            PromptFor::SaveDescription { ref name } => {
-                let description = if text.is_empty() {
-                    format!(
-                        "Saved from the explorer as {name}, from \"{}\": {}",
-                        self.scenario.name, self.scenario.description
-                    )
-                } else {
-                    text
-                };
-                let mut preset = self.to_preset(name);
-                preset.description = description;
-                let overwrite = prompt.confirm == Confirm::Overwrite;
-                let effect = Effect::SavePreset {
-                    name: name.clone(),
-                    text: preset.to_toml(),
-                    overwrite,
-                };
-                self.mode = Mode::Prompt(prompt);
-                vec![effect]
-            }
-        }
-    }
-
-    fn on_picker_key(&mut self, mut picker: Picker, key: Key) -> Vec<Effect> {
-        match key {
-            Key::Up | Key::Char('k') => picker.move_by(false),
-            Key::Down | Key::Char('j') => picker.move_by(true),
-            Key::Esc | Key::Char('p' | 'q') => return Vec::new(),
-            Key::Enter => match picker.rows.get(picker.selected) {
-                Some(PickerRow::Preset(entry)) => {
-                    let source = if entry.source == crate::scenario::shipped::Source::User {
-                        entry.path.clone()
-                    } else {
-                        entry.name.clone()
-                    };
-                    return vec![Effect::LoadPreset(source)];
-                }
-                Some(PickerRow::Broken { error, .. }) => {
-                    self.mode =
-                        Mode::Dialog(format!("{error}\n\nFix the file, then open p again."));
-                    return Vec::new();
-                }
-                None => {}
-            },
-            _ => {}
-        }
-        self.mode = Mode::Picker(picker);
-        Vec::new()
-    }
-
     fn log(&mut self, event: Event) {
         if self.journal.state != RecState::Off {
             self.journal
@@ -510,97 +378,6 @@ impl App {
             self.log(e);
         }
         effects
-    }
-
-    /// Replays one recorded event (used by `replay` and `replay --verify`).
-    pub fn apply_event(&mut self, event: &Event) -> Vec<Effect> {
-        match event {
-            Event::Set { field, value } => {
-                let Some(f) = Field::named(field) else {
-                    self.status =
-                        Message::error(format!("unknown field '{field}' in the recording"));
-                    return Vec::new();
-                };
-                self.scenario.selected = Field::ALL.iter().position(|x| *x == f).unwrap_or(0);
-                self.apply(f.with_text(&self.scenario.settings, value))
-            }
-            Event::Play if self.run.playing => Vec::new(),
-            Event::Play => self.carry_out(Action::TogglePlay),
-            // At the recorded time (the replay sought it), not where the display has got to.
-            Event::Pause => vec![Effect::Sim(self.run.pause_at_goal())],
-            Event::Step => self.carry_out(Action::Step),
-            Event::Reset => self.carry_out(Action::Reset),
-            Event::Speed { value } => {
-                self.run.speed = value.clamp(SPEED_RANGE.0, SPEED_RANGE.1);
-                Vec::new()
-            }
-            Event::View {
-                zoom,
-                pan_x,
-                pan_y,
-                wrap,
-            } => {
-                let v = &mut self.view.view;
-                (v.zoom, v.pan_x, v.pan_y, v.wrap) = (*zoom, *pan_x, *pan_y, *wrap);
-                Vec::new()
-            }
-            Event::Panes { effective, series } => {
-                self.view.panes.set(Pane::Series, *series);
-                if *effective == self.view.overlay {
-                    Vec::new()
-                } else {
-                    self.carry_out(Action::ToggleEffective)
-                }
-            }
-            Event::ClearTrail => self.carry_out(Action::ClearTrail),
-            Event::Preset { toml } => match Preset::parse(toml, "recorded preset", "recorded", &[])
-            {
-                Ok(p) => self.load(&p),
-                Err(e) => {
-                    self.mode = Mode::Dialog(clean(&e.to_string()));
-                    Vec::new()
-                }
-            },
-            Event::Note { text } | Event::Chapter { title: text } => {
-                self.caption = Some(Caption {
-                    chapter: matches!(event, Event::Chapter { .. }),
-                    text: clean(text),
-                    t: self.run.goal,
-                });
-                Vec::new()
-            }
-            Event::Checkpoint { .. } | Event::Plan { .. } => Vec::new(),
-        }
-    }
-
-    /// Moves the displayed clock to a recorded time (replay).
-    pub fn seek(&mut self, t: f64) -> Vec<Effect> {
-        vec![Effect::Sim(self.run.seek(t))]
-    }
-
-    /// Asks the worker for the exact state at the time asked of it (journaled on arrival).
-    #[must_use]
-    pub fn checkpoint(&self) -> Effect {
-        Effect::Sim(Command::Checkpoint {
-            generation: self.run.generation,
-            t: self.run.target(),
-        })
-    }
-
-    /// Opens a prompt (notes and chapters need a recording).
-    fn open_prompt(&mut self, purpose: PromptFor) {
-        if matches!(purpose, PromptFor::Note | PromptFor::Chapter)
-            && self.journal.state == RecState::Off
-        {
-            self.status =
-                Message::error("notes and chapters go into a recording: start one with R");
-            return;
-        }
-        self.status = Message::info(match purpose {
-            PromptFor::SaveName => "name the preset (letters, digits, - and _), Enter, Esc cancels",
-            _ => "type it, Enter marks, Esc cancels",
-        });
-        self.mode = Mode::Prompt(Prompt::new(purpose));
     }
 
     fn carry_out(&mut self, action: Action) -> Vec<Effect> {
@@ -688,88 +465,6 @@ impl App {
             Action::Suspend => return vec![Effect::Suspend],
         }
         Vec::new()
-    }
-
-    fn toggle_recording(&mut self) -> Vec<Effect> {
-        match self.journal.state {
-            RecState::Off if self.replay.is_some() => {
-                self.status = Message::error("a replay cannot be recorded");
-                Vec::new()
-            }
-            RecState::Off => vec![Effect::StartRecording],
-            RecState::On => {
-                self.journal.state = RecState::Stopping;
-                self.status = Message::info("closing the recording…");
-                vec![self.checkpoint(), Effect::StopRecording]
-            }
-            RecState::Stopping => Vec::new(),
-        }
-    }
-
-    /// Takes what came of an effect.
-    pub fn on_outcome(&mut self, outcome: Outcome) -> Vec<Effect> {
-        match outcome {
-            Outcome::Recording(Ok(path)) => {
-                self.journal.state = RecState::On;
-                self.status = Message::info(format!("recording to {path}"));
-                // The plan of the run in progress belongs in the file too.
-                if let PlanState::Running { plan, .. } = self.run.plan {
-                    self.log_plan(plan);
-                }
-            }
-            Outcome::Recording(Err(e)) => self.mode = Mode::Dialog(clean(&e)),
-            Outcome::RecordingSaved(path) => {
-                self.journal.state = RecState::Off;
-                self.status = Message::info(format!("recording saved to {path}"));
-            }
-            Outcome::RecordingFailed(e) => {
-                self.journal.state = RecState::Off;
-                self.mode = Mode::Dialog(clean(&format!("recording stopped: {e}")));
-            }
-            Outcome::Saved(Ok(path)) => {
-                self.mode = Mode::Normal;
-                self.status = Message::info(format!("saved {}", path.display()));
-            }
-            Outcome::Saved(Err(crate::scenario::store::SaveError::Exists(path))) => {
-                if let Mode::Prompt(p) = &mut self.mode {
-                    p.confirm = Confirm::Overwrite;
-                }
-                self.status = Message::error(format!(
-                    "{} exists: Enter replaces it, Esc cancels",
-                    path.display()
-                ));
-            }
-            Outcome::Saved(Err(e)) => self.mode = Mode::Dialog(clean(&e.to_string())),
-            Outcome::Catalogue(entries, broken) => {
-                let selected = entries
-                    .iter()
-                    .position(|e| e.title == self.scenario.name)
-                    .unwrap_or(0);
-                let mut rows: Vec<PickerRow> = entries.into_iter().map(PickerRow::Preset).collect();
-                rows.extend(broken.into_iter().map(|(name, error)| PickerRow::Broken {
-                    name: clean(&name),
-                    error: clean(&error),
-                }));
-                self.mode = Mode::Picker(Picker { rows, selected });
-            }
-            Outcome::Loaded(result) => match *result {
-                Ok(preset) => return self.load(&preset),
-                Err(e) => {
-                    self.mode = Mode::Dialog(clean(&format!(
-                        "{e}\n\nThe explorer keeps the current scenario."
-                    )));
-                }
-            },
-        }
-        Vec::new()
-    }
-
-    fn log_plan(&mut self, plan: crate::physics::Resolved) {
-        let spec = self.scenario.spec(self.view.overlay);
-        self.log(Event::Plan {
-            key: crate::sim::PlanKey::of(&spec),
-            plan,
-        });
     }
 
     /// Advances the displayed clock by `wall_seconds × speed` while playing.

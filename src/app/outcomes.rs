@@ -1,0 +1,90 @@
+//! Recording on and off, and what the loop reports back after executing an effect.
+
+use super::mode::{Confirm, Picker, PickerRow};
+use super::{App, Effect, Message, Mode, Outcome, PlanState, RecState};
+use crate::app::journal::Event;
+use crate::scenario::text::clean;
+
+impl App {
+    pub(super) fn toggle_recording(&mut self) -> Vec<Effect> {
+        match self.journal.state {
+            RecState::Off if self.replay.is_some() => {
+                self.status = Message::error("a replay cannot be recorded");
+                Vec::new()
+            }
+            RecState::Off => vec![Effect::StartRecording],
+            RecState::On => {
+                self.journal.state = RecState::Stopping;
+                self.status = Message::info("closing the recording…");
+                vec![self.checkpoint(), Effect::StopRecording]
+            }
+            RecState::Stopping => Vec::new(),
+        }
+    }
+
+    /// Takes what came of an effect.
+    pub fn on_outcome(&mut self, outcome: Outcome) -> Vec<Effect> {
+        match outcome {
+            Outcome::Recording(Ok(path)) => {
+                self.journal.state = RecState::On;
+                self.status = Message::info(format!("recording to {path}"));
+                // The plan of the run in progress belongs in the file too.
+                if let PlanState::Running { plan, .. } = self.run.plan {
+                    self.log_plan(plan);
+                }
+            }
+            Outcome::Recording(Err(e)) => self.mode = Mode::Dialog(clean(&e)),
+            Outcome::RecordingSaved(path) => {
+                self.journal.state = RecState::Off;
+                self.status = Message::info(format!("recording saved to {path}"));
+            }
+            Outcome::RecordingFailed(e) => {
+                self.journal.state = RecState::Off;
+                self.mode = Mode::Dialog(clean(&format!("recording stopped: {e}")));
+            }
+            Outcome::Saved(Ok(path)) => {
+                self.mode = Mode::Normal;
+                self.status = Message::info(format!("saved {}", path.display()));
+            }
+            Outcome::Saved(Err(crate::scenario::store::SaveError::Exists(path))) => {
+                if let Mode::Prompt(p) = &mut self.mode {
+                    p.confirm = Confirm::Overwrite;
+                }
+                self.status = Message::error(format!(
+                    "{} exists: Enter replaces it, Esc cancels",
+                    path.display()
+                ));
+            }
+            Outcome::Saved(Err(e)) => self.mode = Mode::Dialog(clean(&e.to_string())),
+            Outcome::Catalogue(entries, broken) => {
+                let selected = entries
+                    .iter()
+                    .position(|e| e.title == self.scenario.name)
+                    .unwrap_or(0);
+                let mut rows: Vec<PickerRow> = entries.into_iter().map(PickerRow::Preset).collect();
+                rows.extend(broken.into_iter().map(|(name, error)| PickerRow::Broken {
+                    name: clean(&name),
+                    error: clean(&error),
+                }));
+                self.mode = Mode::Picker(Picker { rows, selected });
+            }
+            Outcome::Loaded(result) => match *result {
+                Ok(preset) => return self.load(&preset),
+                Err(e) => {
+                    self.mode = Mode::Dialog(clean(&format!(
+                        "{e}\n\nThe explorer keeps the current scenario."
+                    )));
+                }
+            },
+        }
+        Vec::new()
+    }
+
+    pub(super) fn log_plan(&mut self, plan: crate::physics::Resolved) {
+        let spec = self.scenario.spec(self.view.overlay);
+        self.log(Event::Plan {
+            key: crate::sim::PlanKey::of(&spec),
+            plan,
+        });
+    }
+}

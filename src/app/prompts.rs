@@ -1,0 +1,160 @@
+//! Keys while a value is typed, a prompt or the picker is open: saving a preset (name, then
+//! description, with the confirmations a shipped or existing name needs), notes and chapters.
+
+use super::mode::{Confirm, Picker, PickerRow, Prompt, PromptFor};
+use super::{App, Caption, Effect, Key, Message, Mode, RecState, ellipsis};
+use crate::app::journal::Event;
+use crate::scenario::text::clean;
+
+impl App {
+    pub(super) fn on_edit_key(&mut self, mut text: String, key: Key) -> Vec<Effect> {
+        match key {
+            Key::Char(c) => text.push(c),
+            Key::Backspace => {
+                text.pop();
+            }
+            Key::Esc => {
+                self.status = None;
+                return Vec::new();
+            }
+            Key::Enter => {
+                return self.apply(self.field().with_text(&self.scenario.settings, &text));
+            }
+            _ => {}
+        }
+        self.mode = Mode::Editing(text);
+        Vec::new()
+    }
+
+    pub(super) fn on_prompt_key(&mut self, mut prompt: Prompt, key: Key) -> Vec<Effect> {
+        match key {
+            Key::Char(c) if !c.is_control() => {
+                prompt.text.push(c);
+                prompt.confirm = Confirm::No;
+            }
+            Key::Backspace => {
+                prompt.text.pop();
+                prompt.confirm = Confirm::No;
+            }
+            Key::Esc => {
+                self.status = Message::info("cancelled");
+                return Vec::new();
+            }
+            Key::Enter => return self.submit(prompt),
+            _ => {}
+        }
+        self.mode = Mode::Prompt(prompt);
+        Vec::new()
+    }
+
+    /// Enter in a prompt.
+    pub(super) fn submit(&mut self, prompt: Prompt) -> Vec<Effect> {
+        let text = clean(prompt.text.trim());
+        match prompt.purpose {
+            PromptFor::Note | PromptFor::Chapter => {
+                let chapter = prompt.purpose == PromptFor::Chapter;
+                self.log(if chapter {
+                    Event::Chapter {
+                        title: text.clone(),
+                    }
+                } else {
+                    Event::Note { text: text.clone() }
+                });
+                self.caption = Some(Caption {
+                    chapter,
+                    text,
+                    t: self.run.shown,
+                });
+                Vec::new()
+            }
+            PromptFor::SaveName => {
+                if !crate::scenario::store::valid_name(&text) {
+                    self.status = Message::error(format!(
+                        "'{text}' cannot be a preset name: letters, digits, - and _"
+                    ));
+                    self.mode = Mode::Prompt(prompt);
+                    return Vec::new();
+                }
+                if prompt.confirm == Confirm::No && crate::scenario::shipped::is_shipped(&text) {
+                    self.status = Message::error(format!(
+                        "'{text}' is a shipped preset: your copy would replace it in every later run. Enter: save anyway, Esc: cancel"
+                    ));
+                    self.mode = Mode::Prompt(Prompt {
+                        confirm: Confirm::Shipped,
+                        ..prompt
+                    });
+                    return Vec::new();
+                }
+                self.status = Message::info(format!(
+                    "describe it (Enter with nothing keeps \"{}\", marked as a copy)",
+                    ellipsis(&self.scenario.description, 40)
+                ));
+                self.mode = Mode::Prompt(Prompt::new(PromptFor::SaveDescription { name: text }));
+                Vec::new()
+            }
+            PromptFor::SaveDescription { ref name } => {
+                let description = if text.is_empty() {
+                    format!(
+                        "Saved from the explorer as {name}, from \"{}\": {}",
+                        self.scenario.name, self.scenario.description
+                    )
+                } else {
+                    text
+                };
+                let mut preset = self.to_preset(name);
+                preset.description = description;
+                let overwrite = prompt.confirm == Confirm::Overwrite;
+                let effect = Effect::SavePreset {
+                    name: name.clone(),
+                    text: preset.to_toml(),
+                    overwrite,
+                };
+                self.mode = Mode::Prompt(prompt);
+                vec![effect]
+            }
+        }
+    }
+
+    pub(super) fn on_picker_key(&mut self, mut picker: Picker, key: Key) -> Vec<Effect> {
+        match key {
+            Key::Up | Key::Char('k') => picker.move_by(false),
+            Key::Down | Key::Char('j') => picker.move_by(true),
+            Key::Esc | Key::Char('p' | 'q') => return Vec::new(),
+            Key::Enter => match picker.rows.get(picker.selected) {
+                Some(PickerRow::Preset(entry)) => {
+                    let source = if entry.source == crate::scenario::shipped::Source::User {
+                        entry.path.clone()
+                    } else {
+                        entry.name.clone()
+                    };
+                    return vec![Effect::LoadPreset(source)];
+                }
+                Some(PickerRow::Broken { error, .. }) => {
+                    self.mode =
+                        Mode::Dialog(format!("{error}\n\nFix the file, then open p again."));
+                    return Vec::new();
+                }
+                None => {}
+            },
+            _ => {}
+        }
+        self.mode = Mode::Picker(picker);
+        Vec::new()
+    }
+
+    /// Opens a prompt (notes and chapters need a recording).
+    pub(super) fn open_prompt(&mut self, purpose: PromptFor) {
+        if matches!(purpose, PromptFor::Note | PromptFor::Chapter)
+            && self.journal.state == RecState::Off
+        {
+            self.status =
+                Message::error("notes and chapters go into a recording: start one with R");
+            return;
+        }
+        self.status = Message::info(match purpose {
+            PromptFor::SaveName => "name the preset (letters, digits, - and _), Enter, Esc cancels",
+            _ => "type it, Enter marks, Esc cancels",
+        });
+        self.mode = Mode::Prompt(Prompt::new(purpose));
+    }
+}
