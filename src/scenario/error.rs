@@ -61,6 +61,20 @@ impl fmt::Display for Located<'_> {
 }
 
 impl PresetError {
+    /// Reads a preset, theme or lesson file: a regular file of bounded size, else
+    /// [`PresetError::Unreadable`] naming it.
+    ///
+    /// # Errors
+    /// Not a regular file, too large, or unreadable.
+    pub fn read(path: &std::path::Path) -> Result<String, Self> {
+        super::write::read_bounded(path, super::write::MAX_CONFIG_BYTES).map_err(|source| {
+            Self::Unreadable {
+                path: path.display().to_string(),
+                source,
+            }
+        })
+    }
+
     /// The file's name without folder and `.toml` (how the picker lists it).
     #[must_use]
     pub fn file_name(&self) -> String {

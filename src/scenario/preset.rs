@@ -438,13 +438,7 @@ impl Preset {
     /// An unreadable file or the first problem found.
     pub fn load(path: &std::path::Path, overrides: &[Override]) -> Result<Self, PresetError> {
         let label = path.display().to_string();
-        let src =
-            super::write::read_bounded(path, super::write::MAX_CONFIG_BYTES).map_err(|source| {
-                PresetError::Unreadable {
-                    path: label.clone(),
-                    source,
-                }
-            })?;
+        let src = PresetError::read(path)?;
         let stem = path
             .file_stem()
             .map_or_else(|| label.clone(), |s| s.to_string_lossy().into_owned());

@@ -267,13 +267,7 @@ pub fn theme(name: &str) -> Result<ThemeSpec, PresetError> {
     let path = std::path::Path::new(name);
     if path.exists() && !path.is_dir() {
         let label = path.display().to_string();
-        let src =
-            super::write::read_bounded(path, super::write::MAX_CONFIG_BYTES).map_err(|source| {
-                PresetError::Unreadable {
-                    path: label.clone(),
-                    source,
-                }
-            })?;
+        let src = PresetError::read(path)?;
         return ThemeSpec::parse(&src, &label, name).map_err(|mut e| e.swap_remove(0));
     }
     let (all, mut problems) = themes();
