@@ -10,6 +10,7 @@ pub mod cli;
 pub mod commands;
 pub mod explorer;
 pub mod physics;
+pub mod progress;
 pub mod record;
 pub mod scenario;
 pub mod sim;

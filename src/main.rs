@@ -8,9 +8,10 @@ use clap::Parser;
 use rattleback::cli::{Cli, Command, MarkerChoice, ReplayArgs, SimulateArgs};
 use rattleback::commands;
 use rattleback::explorer::{self, ExplorerOptions};
+use rattleback::physics::StepError;
 use rattleback::record;
 use rattleback::scenario::shipped::resolve;
-use rattleback::simulate::{resolve as resolve_run, simulate};
+use rattleback::simulate::{Failure, resolve as resolve_run, simulate_to};
 use rattleback::ui::UiOptions;
 
 /// Untrusted text (names, descriptions, echoed values) never reaches a terminal raw: every line
@@ -223,22 +224,57 @@ fn run_simulate(args: &SimulateArgs) -> ExitCode {
         say_err!("rattleback: error: --step: {e}");
         return ExitCode::from(2);
     }
-    match simulate(&preset, &resolved, request.format) {
-        Ok(text) => {
-            // JSON escapes control characters itself; the table and CSV are cleaned.
-            let text = if request.format == rattleback::simulate::Format::Json {
-                text
-            } else {
-                rattleback::scenario::text::clean(&text)
-            };
-            let mut out = std::io::stdout().lock();
-            // A closed pipe (e.g. `| head`) is not an error worth a panic.
-            let _ = out.write_all(text.as_bytes());
-            ExitCode::SUCCESS
+    let format = request.format;
+    let mut progress = rattleback::progress::Progress::stderr("simulate", resolved.spec.t_end);
+    let outcome = if format == rattleback::simulate::Format::Table {
+        // The table holds the preset's own text: cleaned of control characters first.
+        simulate_to_text(&preset, &resolved, &mut progress)
+    } else {
+        // JSON escapes control characters itself; the CSV holds numbers only. Streamed.
+        let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+        simulate_to(&preset, &resolved, format, &mut out, &mut |t| {
+            progress.tick(t)
+        })
+    };
+    progress.finish();
+    match outcome {
+        Ok(()) => ExitCode::SUCCESS,
+        // A closed pipe (e.g. `| head`) ends the output early; not an error worth a message.
+        Err(Failure::Output(e)) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(Failure::Output(e)) => {
+            say_err!("rattleback: error: writing the output: {e}");
+            ExitCode::from(1)
         }
-        Err(e) => {
+        Err(Failure::Run(e @ StepError::OverBudget { .. })) => {
+            say_err!(
+                "rattleback: error: {e}; shorten --t-end, loosen --tolerance or choose another --method (`rattleback simulate --help`), or pass --force to run it anyway"
+            );
+            ExitCode::from(2)
+        }
+        Err(Failure::Run(e)) => {
             say_err!("rattleback: integration failed: {e}");
             ExitCode::from(1)
         }
     }
+}
+
+fn simulate_to_text(
+    preset: &rattleback::scenario::Preset,
+    resolved: &rattleback::simulate::Resolved,
+    progress: &mut rattleback::progress::Progress,
+) -> Result<(), Failure> {
+    let mut text = Vec::new();
+    simulate_to(
+        preset,
+        resolved,
+        rattleback::simulate::Format::Table,
+        &mut text,
+        &mut |t| progress.tick(t),
+    )?;
+    progress.finish();
+    let text = rattleback::scenario::text::clean(&String::from_utf8_lossy(&text));
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())?;
+    out.flush()?;
+    Ok(())
 }

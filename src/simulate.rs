@@ -7,12 +7,14 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::physics::auto::run_auto;
+use crate::physics::auto::run_auto_cancellable;
+use crate::physics::budget::{self, BUDGET_SECONDS};
 use crate::physics::effective::{Effective, tapping_acceleration};
 use crate::physics::integrators::{Method, default_step};
 use crate::physics::model::energy;
-use crate::physics::run::RunResult;
-use crate::physics::{RunSpec, StepError, run};
+use crate::physics::plan;
+use crate::physics::run::{RunResult, run_cancellable, run_streaming};
+use crate::physics::{RunSpec, StepError};
 use crate::scenario::Preset;
 
 /// Tolerance when neither the command line nor the preset gives one.
@@ -46,6 +48,8 @@ pub struct Request {
     pub format: Format,
     /// Samples of the CSV output.
     pub samples: u32,
+    /// Run even when the work is predicted over [`BUDGET_SECONDS`].
+    pub force: bool,
 }
 
 /// The resolved settings of one run.
@@ -53,6 +57,8 @@ pub struct Request {
 pub struct Resolved {
     /// Run settings.
     pub spec: RunSpec,
+    /// Work budget in predicted seconds ([`BUDGET_SECONDS`], or infinite when forced).
+    pub budget: f64,
 }
 
 /// Combines the preset's `[run]` section with command-line flags (flags win).
@@ -87,7 +93,41 @@ pub fn resolve(preset: &Preset, args: &Request) -> Resolved {
             samples,
             monitor_energy: true,
         },
+        budget: if args.force {
+            f64::INFINITY
+        } else {
+            BUDGET_SECONDS
+        },
     }
+}
+
+/// Predicted seconds of everything `simulate` would run for `resolved` in `format`: the run
+/// (for `auto`, planned and verified), then the limit's comparison run (JSON, table) or the
+/// streamed rerun of `auto`'s plan (CSV).
+#[must_use]
+pub fn predicted_seconds(preset: &Preset, resolved: &Resolved, format: Format) -> f64 {
+    let spec = resolved.spec;
+    let problem = &preset.problem;
+    let main = plan::predicted_seconds(problem, spec.method, spec.tolerance, spec.step, spec.t_end);
+    let extra = match format {
+        Format::Csv if spec.method == Method::Auto => main / plan::VERIFY_FACTOR,
+        Format::Csv => 0.0,
+        Format::Json | Format::Table => {
+            budget::cost_seconds(problem, Method::Effective, spec.tolerance, None, spec.t_end)
+        }
+    };
+    main + extra
+}
+
+/// Why `simulate` produced no (complete) output.
+#[derive(Debug, thiserror::Error)]
+pub enum Failure {
+    /// The integration failed, was refused by the work budget, or produced a non-finite number.
+    #[error("{0}")]
+    Run(#[from] StepError),
+    /// The output could not be written (a closed pipe, a full disk).
+    #[error("writing the output: {0}")]
+    Output(#[from] std::io::Error),
 }
 
 #[derive(Serialize)]
@@ -147,11 +187,10 @@ struct Reversals {
 }
 
 impl Reversals {
-    fn of(times: Vec<f64>) -> Self {
-        Self {
-            count: times.len(),
-            times,
-        }
+    /// `times` holds the first reversals (at most `physics::run::MAX_REVERSAL_TIMES`), `count`
+    /// all of them.
+    fn of(times: Vec<f64>, count: usize) -> Self {
+        Self { count, times }
     }
 }
 
@@ -191,39 +230,55 @@ struct StatsOut {
     wall_seconds: f64,
 }
 
-/// Runs `preset` as `resolved` says and renders the report in `format`.
+/// Runs `preset` as `resolved` says and renders the report in `format` (CSV included: this
+/// holds it all in memory; the command streams it with [`simulate_to`]).
 ///
 /// # Errors
-/// When the integration fails (non-finite state, step underflow).
+/// As [`simulate_to`].
+pub fn simulate(preset: &Preset, resolved: &Resolved, format: Format) -> Result<String, Failure> {
+    let mut out = Vec::new();
+    simulate_to(preset, resolved, format, &mut out, &mut |_| true)?;
+    Ok(String::from_utf8_lossy(&out).into_owned())
+}
+
+/// Runs `preset` as `resolved` says and writes the report in `format` to `out`; the CSV is
+/// written sample by sample as the integration goes, so memory does not grow with
+/// `--samples`. `progress(t)` is called every few hundred steps with the time reached (it
+/// restarts from 0 for each of `auto`'s runs) and may cancel by returning `false`.
+///
+/// Nothing starts when the work is predicted over `resolved.budget`
+/// ([`StepError::OverBudget`]); `auto` also checks each of its verification runs.
+///
+/// # Errors
+/// The integration failed or was refused, a result is not a finite number (an error naming
+/// it, never a NaN in the output), or `out` failed.
 ///
 /// # Panics
 /// Never in practice: the report holds only finite numbers and strings, which serialize.
-pub fn simulate(preset: &Preset, resolved: &Resolved, format: Format) -> Result<String, StepError> {
+pub fn simulate_to(
+    preset: &Preset,
+    resolved: &Resolved,
+    format: Format,
+    out: &mut dyn std::io::Write,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<(), Failure> {
     let problem = &preset.problem;
     let spec = resolved.spec;
+    within_budget(preset, resolved, format)?;
     let clock = Instant::now();
-    let (result, auto) = if spec.method == Method::Auto {
-        let v = run_auto(problem, spec.tolerance, spec.t_end, spec.samples, true)?;
-        let auto = AutoOut {
-            choice: v.plan.method,
-            reason: v.plan.reason.clone(),
-            tolerance: v.plan.tolerance,
-            step: v.plan.step,
-            predicted_error: v.plan.predicted_error,
-            error_estimate: v.error_estimate,
-            refinements: v.refinements,
-        };
-        (v.result, Some(auto))
-    } else {
-        (run(problem, &spec)?, None)
-    };
+    if format == Format::Csv {
+        let result = csv(preset, resolved, out, progress)?;
+        if let Some(what) = non_finite(&result) {
+            return Err(StepError::NotFinite { what, t: result.t }.into());
+        }
+        out.flush()?;
+        return Ok(());
+    }
+    let (result, auto) = requested_run(problem, resolved, progress)?;
     if let Some(what) = non_finite(&result) {
-        return Err(StepError::NotFinite { what, t: result.t });
+        return Err(StepError::NotFinite { what, t: result.t }.into());
     }
     let wall_seconds = clock.elapsed().as_secs_f64();
-    if format == Format::Csv {
-        return Ok(csv(preset, &result));
-    }
     // The limit's own trajectory at t_end, for comparison (cheap: cost independent of k).
     let eff_spec = RunSpec {
         method: Method::Effective,
@@ -233,10 +288,11 @@ pub fn simulate(preset: &Preset, resolved: &Resolved, format: Format) -> Result<
         ..spec
     };
     // A failure of this extra comparison does not discard the requested run: it is reported.
-    let eff_run = run(problem, &eff_spec).and_then(|r| match non_finite(&r) {
-        Some(what) => Err(StepError::NotFinite { what, t: r.t }),
-        None => Ok(r),
-    });
+    let eff_run =
+        run_cancellable(problem, &eff_spec, progress).and_then(|r| match non_finite(&r) {
+            Some(what) => Err(StepError::NotFinite { what, t: r.t }),
+            None => Ok(r),
+        });
     let eff = Effective::new(problem);
     let p = problem.params();
     let y = result.final_state;
@@ -262,7 +318,7 @@ pub fn simulate(preset: &Preset, resolved: &Resolved, format: Format) -> Result<
             gamma_dot: y[2],
             alpha_dot: y[3],
         },
-        reversals: Reversals::of(result.reversals.clone()),
+        reversals: Reversals::of(result.reversals.clone(), result.reversal_count),
         energy: EnergyOut {
             initial: result.energy_initial,
             final_: result.energy_final,
@@ -280,7 +336,10 @@ pub fn simulate(preset: &Preset, resolved: &Resolved, format: Format) -> Result<
             half_period: eff.half_period(),
             turning_points: eff.turning_points(),
             tapping_acceleration: tapping_acceleration(problem),
-            reversals: Reversals::of(eff.reversal_times(spec.t_end)),
+            reversals: Reversals::of(
+                eff.reversal_times(spec.t_end),
+                eff.reversal_count(spec.t_end),
+            ),
         },
         stats: StatsOut {
             steps: result.stats.steps,
@@ -289,33 +348,119 @@ pub fn simulate(preset: &Preset, resolved: &Resolved, format: Format) -> Result<
             wall_seconds,
         },
     };
-    Ok(match format {
+    let text = match format {
         Format::Json => {
             let mut s = serde_json::to_string_pretty(&report).expect("report serializes");
             s.push('\n');
             s
         }
         Format::Table | Format::Csv => table(&report),
+    };
+    out.write_all(text.as_bytes())?;
+    out.flush()?;
+    Ok(())
+}
+
+/// Refuses, before anything runs, work predicted over the budget.
+fn within_budget(preset: &Preset, resolved: &Resolved, format: Format) -> Result<(), StepError> {
+    let spec = resolved.spec;
+    budget::check(predicted_seconds(preset, resolved, format), resolved.budget).map_err(|over| {
+        StepError::OverBudget {
+            what: format!(
+                "this run ({}, t_end = {})",
+                spec.method,
+                compact(spec.t_end)
+            ),
+            over,
+        }
     })
 }
 
-fn csv(preset: &Preset, result: &RunResult) -> String {
-    let p = preset.problem.params();
-    let mut out = String::from("t,gamma,alpha,gamma_dot,alpha_dot,energy\n");
-    for s in &result.samples {
-        let y = s.state;
-        let _ = writeln!(
-            out,
-            "{},{},{},{},{},{}",
-            s.t,
-            y[0],
-            y[1],
-            y[2],
-            y[3],
-            energy(p, &y)
-        );
+/// The requested run, and `auto`'s account of it.
+fn requested_run(
+    problem: &crate::physics::Problem,
+    resolved: &Resolved,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<(RunResult, Option<AutoOut>), StepError> {
+    let spec = resolved.spec;
+    if spec.method != Method::Auto {
+        return Ok((run_cancellable(problem, &spec, progress)?, None));
     }
-    out
+    let v = run_auto_cancellable(problem, &spec, resolved.budget, progress)?;
+    let auto = AutoOut {
+        choice: v.plan.method,
+        reason: v.plan.reason.clone(),
+        tolerance: v.plan.tolerance,
+        step: v.plan.step,
+        predicted_error: v.plan.predicted_error,
+        error_estimate: v.error_estimate,
+        refinements: v.refinements,
+    };
+    Ok((v.result, Some(auto)))
+}
+
+/// Streams the CSV: `auto` is planned and verified first (no samples), then its plan is run
+/// again with the samples, which gives the verified run bit for bit.
+fn csv(
+    preset: &Preset,
+    resolved: &Resolved,
+    out: &mut dyn std::io::Write,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<RunResult, Failure> {
+    let problem = &preset.problem;
+    let mut spec = resolved.spec;
+    if spec.method == Method::Auto {
+        let plan = plan::resolve(
+            problem,
+            spec.method,
+            spec.tolerance,
+            spec.t_end,
+            plan::AutoPolicy::Verified,
+            resolved.budget,
+            progress,
+        )?
+        .plan;
+        spec.method = plan.method;
+        spec.tolerance = plan.tolerance;
+        spec.step = plan.step;
+    }
+    let p = problem.params();
+    out.write_all(b"t,gamma,alpha,gamma_dot,alpha_dot,energy\n")?;
+    let mut failure: Option<Failure> = None;
+    let result = run_streaming(problem, &spec, progress, &mut |s| {
+        let y = s.state;
+        let e = energy(p, &y);
+        if let Some(i) = y.iter().position(|x| !x.is_finite()) {
+            failure = Some(
+                StepError::NotFinite {
+                    what: STATE_NAMES[i],
+                    t: s.t,
+                }
+                .into(),
+            );
+            return false;
+        }
+        match writeln!(out, "{},{},{},{},{},{}", s.t, y[0], y[1], y[2], y[3], e) {
+            Ok(()) => true,
+            Err(err) => {
+                failure = Some(err.into());
+                false
+            }
+        }
+    });
+    match (result, failure) {
+        (_, Some(f)) => Err(f),
+        (r, None) => Ok(r?),
+    }
+}
+
+/// `30`, `1000`, `1e9`, `1e100`: plain below a million, scientific above.
+fn compact(x: f64) -> String {
+    if x.abs() < 1e6 {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
 }
 
 fn opt(v: Option<f64>) -> String {
@@ -414,11 +559,12 @@ fn table(r: &Report) -> String {
     o
 }
 
+const STATE_NAMES: [&str; 4] = ["gamma", "alpha", "gamma_dot", "alpha_dot"];
+
 /// The first part of a result that is not a finite number, named for the error message.
 fn non_finite(r: &RunResult) -> Option<&'static str> {
-    const NAMES: [&str; 4] = ["gamma", "alpha", "gamma_dot", "alpha_dot"];
     if let Some(i) = r.final_state.iter().position(|x| !x.is_finite()) {
-        return Some(NAMES[i]);
+        return Some(STATE_NAMES[i]);
     }
     if !r.energy_final.is_finite() || !r.max_relative_energy_error.is_finite() {
         return Some("the energy");

@@ -188,6 +188,7 @@ fn every_shipped_preset_ends_where_simulate_and_a_tight_reference_end() {
             s.tolerance,
             s.t_end,
             AutoPolicy::Verified,
+            f64::INFINITY,
             &mut |_| true,
         )
         .unwrap();

@@ -200,7 +200,7 @@ fn reference(k: f64, t_end: f64) -> (RunResult, String) {
 }
 
 fn reversal_error(a: &RunResult, b: &RunResult) -> f64 {
-    if a.reversals.len() != b.reversals.len() {
+    if a.reversal_count != b.reversal_count {
         return f64::INFINITY;
     }
     a.reversals

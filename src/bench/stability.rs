@@ -59,8 +59,8 @@ fn row(
         max_energy_error: r.max_relative_energy_error,
         action_drift: drift,
         reversals: (
-            r.reversals.len(),
-            Effective::new(problem).reversal_times(t_end).len(),
+            r.reversal_count,
+            Effective::new(problem).reversal_count(t_end),
         ),
         seconds,
     }
@@ -128,7 +128,7 @@ pub fn stability(config: Config) -> Vec<StabilityRow> {
         action_drift: f64::NAN,
         reversals: (
             outcome.reversals,
-            Effective::new(&stiff).reversal_times(t_end).len(),
+            Effective::new(&stiff).reversal_count(t_end),
         ),
         seconds: clock.elapsed().as_secs_f64(),
     });

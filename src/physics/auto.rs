@@ -27,6 +27,10 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
+pub use super::budget::fastest_rate;
+use super::budget::{
+    NS_DOP853_EVAL, NS_EFFECTIVE_PER_TIME, NS_FAST_FLOW, cost_seconds, dop853_evaluations,
+};
 use super::effective::Effective;
 use super::integrators::StepError;
 use super::integrators::{Method, Settings};
@@ -47,10 +51,6 @@ pub const BLANES_MOAN_MAX_NU_H: f64 = 2.4;
 pub const K_PROBES: [f64; 2] = [1e4, 1e5];
 /// Safety factor on the probed O(1/k) error coefficient.
 pub const PROBE_SAFETY: f64 = 2.0;
-
-const NS_DOP853_EVAL: f64 = 36.0;
-const NS_FAST_FLOW: f64 = 70.0;
-const NS_EFFECTIVE_PER_TIME: f64 = 3_000.0;
 
 /// What `auto` decided, and why.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -80,16 +80,6 @@ impl Plan {
     }
 }
 
-/// The fastest rate of the problem: its largest fast frequency, or its slow rate at small `k`.
-#[must_use]
-pub fn fastest_rate(problem: &Problem) -> f64 {
-    let p = problem.params();
-    let y0 = super::model::initial_state(problem.start());
-    let e = super::model::energy(p, &y0);
-    let slow = (2.0 * e / p.ix.min(p.iy).min(p.iz)).sqrt();
-    p.omega_max().max(slow).max(1e-3)
-}
-
 /// Chooses the method for `problem` over `[0, t_end]` at `tolerance`.
 #[must_use]
 pub fn plan(problem: &Problem, tolerance: f64, t_end: f64) -> Plan {
@@ -112,19 +102,11 @@ fn unreachable_plan(problem: &Problem, tolerance: f64, t_end: f64) -> Plan {
     }
 }
 
-/// [`plan`], asking `go_on` between probe steps whether to continue.
-///
-/// # Errors
-/// [`StepError::Cancelled`] when `go_on` says stop during a probe.
-///
-/// # Panics
-/// Never: the resolved candidates are always present, so a minimum exists.
-pub fn plan_cancellable(
-    problem: &Problem,
-    tolerance: f64,
-    t_end: f64,
-    go_on: &mut dyn FnMut(f64) -> bool,
-) -> Result<Plan, StepError> {
+/// The candidates that need no probe (resolved DOP853, resolved Blanes–Moan, and phase-locked
+/// Strang when its steps are long enough), with their predicted errors and costs. Pure and
+/// cheap: the work budget uses it before anything runs.
+#[must_use]
+pub fn resolved_candidates(problem: &Problem, tolerance: f64, t_end: f64) -> Vec<Plan> {
     let p = problem.params();
     let nu = fastest_rate(problem);
     let periods = nu * t_end / std::f64::consts::TAU;
@@ -133,7 +115,7 @@ pub fn plan_cancellable(
     // Adaptive candidates run at a local tolerance 100× tighter, and tighter again on long
     // horizons: their global error grows with the number of steps (cost only like tol^{-1/8}).
     let local = (tolerance / 100.0 * (20.0 / t_end).min(1.0)).max(1e-14);
-    let evals = 155.0 * (1e-10 / local).powf(0.125) * periods.max(1.0);
+    let evals = dop853_evaluations(local, periods);
     candidates.push(Plan {
         method: Method::Dop853,
         tolerance: local,
@@ -176,6 +158,26 @@ pub fn plan_cancellable(
         });
     }
 
+    candidates
+}
+
+/// [`plan`], asking `go_on` between probe steps whether to continue.
+///
+/// # Errors
+/// [`StepError::Cancelled`] when `go_on` says stop during a probe.
+///
+/// # Panics
+/// Never: the resolved candidates are always present, so a minimum exists.
+pub fn plan_cancellable(
+    problem: &Problem,
+    tolerance: f64,
+    t_end: f64,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<Plan, StepError> {
+    let p = problem.params();
+    let local = (tolerance / 100.0 * (20.0 / t_end).min(1.0)).max(1e-14);
+    let mut candidates = resolved_candidates(problem, tolerance, t_end);
+
     // The corrected effective model, when its probed O(1/k) error is small enough.
     if p.k > 100.0 * K_PROBES[1] {
         let mut coefficient: f64 = 0.0;
@@ -211,6 +213,20 @@ pub fn plan_cancellable(
         .into_iter()
         .min_by(|a, b| a.predicted_seconds.total_cmp(&b.predicted_seconds))
         .expect("at least one candidate"))
+}
+
+/// Predicted seconds of `auto`'s probes of the corrected limit (zero when `k` is too small for
+/// them to run).
+#[must_use]
+pub fn probes_cost(problem: &Problem, t_end: f64) -> f64 {
+    if problem.params().k > 100.0 * K_PROBES[1] {
+        K_PROBES
+            .iter()
+            .map(|&k| probe_cost(problem, k, t_end))
+            .sum()
+    } else {
+        0.0
+    }
 }
 
 fn probe_cost(problem: &Problem, k: f64, t_end: f64) -> f64 {
@@ -314,18 +330,23 @@ pub fn run_auto(
             samples,
             monitor_energy,
         },
+        f64::INFINITY,
         &mut |_| true,
     )
 }
 
-/// [`run_auto`] for `spec` (its `method` and `step` are ignored), asking `go_on` every few
-/// hundred steps whether to continue.
+/// [`run_auto`] for `spec` (its `method` and `step` are ignored), within a work `budget` in
+/// predicted seconds (see [`super::budget`]), asking `go_on` every few hundred steps whether
+/// to continue.
 ///
 /// # Errors
-/// When an integration fails, or [`StepError::Cancelled`] when `go_on` says stop.
+/// When an integration fails, [`StepError::OverBudget`] before a probe, verification or
+/// refinement that would take the predicted total over `budget`, or [`StepError::Cancelled`]
+/// when `go_on` says stop.
 pub fn run_auto_cancellable(
     problem: &Problem,
     spec: &RunSpec,
+    budget: f64,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Verified, StepError> {
     let (tolerance, t_end, samples, monitor_energy) = (
@@ -334,9 +355,23 @@ pub fn run_auto_cancellable(
         spec.samples,
         spec.monitor_energy,
     );
+    let mut spent = probes_cost(problem, t_end);
+    over_budget("auto's probing of the corrected limit", spent, budget)?;
     let mut plan = plan_cancellable(problem, tolerance, t_end, go_on)?;
     let mut refinements = 0;
     loop {
+        let finer = finer_companion(&plan).0;
+        spent += cost_seconds(problem, plan.method, plan.tolerance, plan.step, t_end)
+            + cost_seconds(problem, plan.method, finer.tolerance, finer.step, t_end);
+        over_budget(
+            &if refinements == 0 {
+                format!("auto's run and verification with {}", plan.method)
+            } else {
+                format!("auto's refinement {refinements} ({})", plan.reason)
+            },
+            spent,
+            budget,
+        )?;
         let spec = RunSpec {
             method: plan.method,
             tolerance: plan.tolerance,
@@ -397,6 +432,13 @@ pub fn run_auto_cancellable(
     }
 }
 
+fn over_budget(what: &str, predicted: f64, budget: f64) -> Result<(), StepError> {
+    super::budget::check(predicted, budget).map_err(|over| StepError::OverBudget {
+        what: what.to_owned(),
+        over,
+    })
+}
+
 /// The largest difference in `α(T)`, `α̇(T)` and reversal times (infinite when the reversal
 /// counts differ).
 #[must_use]
@@ -404,7 +446,7 @@ pub fn difference(a: &RunResult, b: &RunResult) -> f64 {
     let mut d = (a.final_state[1] - b.final_state[1])
         .abs()
         .max((a.final_state[3] - b.final_state[3]).abs());
-    if a.reversals.len() != b.reversals.len() {
+    if a.reversal_count != b.reversal_count {
         return f64::INFINITY;
     }
     for (x, y) in a.reversals.iter().zip(&b.reversals) {

@@ -220,14 +220,57 @@ impl Effective {
         (w.half_width > 0.0).then(|| self.time_between(&w, -FRAC_PI_2, FRAC_PI_2))
     }
 
-    /// Reversal times of the effective motion in `(0, t_end]`.
+    /// Reversal times of the effective motion in `(0, t_end]`: the first
+    /// [`super::run::MAX_REVERSAL_TIMES`] of them ([`Effective::reversal_count`] counts all).
     #[must_use]
     pub fn reversal_times(&self, t_end: f64) -> Vec<f64> {
-        let Some(w) = self.well() else {
+        let Some((first, half)) = self.reversal_schedule() else {
             return Vec::new();
         };
+        let count = Self::count_in(first, half, t_end).min(super::run::MAX_REVERSAL_TIMES);
+        (0..count)
+            .map(|n| {
+                #[allow(clippy::cast_precision_loss)]
+                let n = n as f64;
+                first + n * half
+            })
+            .collect()
+    }
+
+    /// How many reversals the limit makes in `(0, t_end]` (all of them, where
+    /// [`Effective::reversal_times`] keeps the first [`super::run::MAX_REVERSAL_TIMES`]).
+    #[must_use]
+    pub fn reversal_count(&self, t_end: f64) -> usize {
+        self.reversal_schedule()
+            .map_or(0, |(first, half)| Self::count_in(first, half, t_end))
+    }
+
+    /// `first + n · half` in `(0, t_end]`, counted without stepping through them (a loop over
+    /// `t += half` would never end where `half` is below the spacing of floats near `t`).
+    fn count_in(first: f64, half: f64, t_end: f64) -> usize {
+        if !(first.is_finite() && half.is_finite() && half > 0.0) || first > t_end {
+            return 0;
+        }
+        let mut n = ((t_end - first) / half).floor();
+        // Guard the rounding of the division at both ends.
+        while n >= 0.0 && first + n * half > t_end {
+            n -= 1.0;
+        }
+        while first + (n + 1.0) * half <= t_end && n < 9e15 {
+            n += 1.0;
+        }
+        let skip = usize::from(first <= 0.0);
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let total = (n + 1.0).min(9e15) as usize;
+        total.saturating_sub(skip)
+    }
+
+    /// The first reversal time and the half period between reversals, or `None` when the limit
+    /// does not reverse (no well, a flat well, or at rest at its bottom).
+    fn reversal_schedule(&self) -> Option<(f64, f64)> {
+        let w = self.well()?;
         if w.half_width == 0.0 {
-            return Vec::new();
+            return None;
         }
         let half = self.time_between(&w, -FRAC_PI_2, FRAC_PI_2);
         let u0 = (self.alpha0 - w.centre).clamp(-w.half_width, w.half_width);
@@ -238,24 +281,12 @@ impl Effective {
             self.time_between(&w, -FRAC_PI_2, phi0)
         } else if u0 == 0.0 {
             // At rest at the bottom of the well: no motion, no reversal.
-            return Vec::new();
+            return None;
         } else {
             // At rest at a turning point: the first reversal is at the other one.
             half
         };
-        let mut times = Vec::new();
-        let mut n = 0.0;
-        loop {
-            let t = first + n * half;
-            if t > t_end || !t.is_finite() {
-                break;
-            }
-            if t > 0.0 {
-                times.push(t);
-            }
-            n += 1.0;
-        }
-        times
+        Some((first, half))
     }
 
     /// `∫ dt` for `φ` from `a` to `b`, with `α = centre + α* sin φ`.

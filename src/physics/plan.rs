@@ -9,6 +9,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::auto::{self, Verified};
+use super::budget;
 use super::integrators::{Method, Settings, StepError};
 use super::params::Problem;
 use super::run::RunSpec;
@@ -62,16 +63,18 @@ pub struct Resolution {
 }
 
 /// Resolves `method` for `problem` over `[0, t_end]` at `tolerance`; `go_on(t)` is asked every
-/// few hundred steps of `auto`'s probes and verification runs whether to continue.
+/// few hundred steps of `auto`'s probes and verification runs whether to continue, and none of
+/// them starts if it would take the predicted total over `budget` seconds.
 ///
 /// # Errors
-/// When a verification run fails, or [`StepError::Cancelled`].
+/// When a verification run fails, [`StepError::OverBudget`], or [`StepError::Cancelled`].
 pub fn resolve(
     problem: &Problem,
     method: Method,
     tolerance: f64,
     t_end: f64,
     policy: AutoPolicy,
+    budget: f64,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Resolution, StepError> {
     if method != Method::Auto {
@@ -107,6 +110,7 @@ pub fn resolve(
                     samples: 0,
                     monitor_energy: false,
                 },
+                budget,
                 go_on,
             )?;
             Ok(Resolution {
@@ -120,3 +124,48 @@ pub fn resolve(
         }
     }
 }
+
+/// Predicted seconds of a whole run of `method` (for `auto`: its probes, when `k` calls for
+/// them, then the cheapest candidate predicted to meet the tolerance, run and verified; the
+/// corrected limit counted as admitted by the probes). Checked against the budget before
+/// anything starts; `auto` checks its actual plan and each refinement again as it goes.
+#[must_use]
+pub fn predicted_seconds(
+    problem: &Problem,
+    method: Method,
+    tolerance: f64,
+    step: Option<f64>,
+    t_end: f64,
+) -> f64 {
+    if method != Method::Auto {
+        return budget::cost_seconds(problem, method, tolerance, step, t_end);
+    }
+    let candidates = auto::resolved_candidates(problem, tolerance, t_end);
+    let cheapest_of = |meeting: bool| {
+        candidates
+            .iter()
+            .filter(|c| !meeting || c.predicted_error <= tolerance)
+            .map(|c| budget::cost_seconds(problem, c.method, c.tolerance, c.step, t_end))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut cheapest = cheapest_of(true);
+    if cheapest.is_infinite() {
+        cheapest = cheapest_of(false);
+    }
+    let probes = auto::probes_cost(problem, t_end);
+    if probes > 0.0 {
+        let local = (tolerance / 100.0 * (20.0 / t_end).min(1.0)).max(1e-14);
+        cheapest = cheapest.min(budget::cost_seconds(
+            problem,
+            Method::EffectiveCorrected,
+            local,
+            None,
+            t_end,
+        ));
+    }
+    probes + VERIFY_FACTOR * cheapest
+}
+
+/// How much `auto`'s verification costs over its plan alone: the plan, then a finer companion
+/// (half the step, or a 16× tighter tolerance).
+pub const VERIFY_FACTOR: f64 = 3.0;

@@ -42,8 +42,11 @@ pub struct RunResult {
     pub t: f64,
     /// State at `t`.
     pub final_state: State,
-    /// Times of the spin reversals in `(0, t]`.
+    /// Times of the spin reversals in `(0, t]`: the first [`MAX_REVERSAL_TIMES`] of them
+    /// (memory stays bounded for any run length; `reversal_count` counts them all).
     pub reversals: Vec<f64>,
+    /// How many spin reversals there were in `(0, t]`.
+    pub reversal_count: usize,
     /// Conserved quantity at `t = 0` (energy, or `E_eff` for the effective model).
     pub energy_initial: f64,
     /// The same at `t`.
@@ -74,6 +77,9 @@ pub fn check_step(step: f64, t_end: f64) -> Result<(), String> {
     }
 }
 
+/// Most reversal times a run keeps (8 MB); later ones are counted only.
+pub const MAX_REVERSAL_TIMES: usize = 1_000_000;
+
 /// Steps between two calls of a run's cancellation check.
 pub const CHECK_EVERY: u64 = 256;
 
@@ -96,6 +102,28 @@ pub fn run_cancellable(
     spec: &RunSpec,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<RunResult, StepError> {
+    let mut samples = Vec::with_capacity(spec.samples.min(1 << 20));
+    let mut result = run_streaming(problem, spec, go_on, &mut |s| {
+        samples.push(s);
+        true
+    })?;
+    result.samples = samples;
+    Ok(result)
+}
+
+/// [`run_cancellable`], handing each sample to `on_sample` as it is computed instead of
+/// collecting them (the result's `samples` stays empty), so memory does not grow with
+/// `spec.samples`. `on_sample` returning `false` cancels the run like `go_on` does (a closed
+/// output, say).
+///
+/// # Errors
+/// As [`run_cancellable`].
+pub fn run_streaming(
+    problem: &Problem,
+    spec: &RunSpec,
+    go_on: &mut dyn FnMut(f64) -> bool,
+    on_sample: &mut dyn FnMut(Sample) -> bool,
+) -> Result<RunResult, StepError> {
     let settings = Settings {
         tolerance: spec.tolerance,
         step: spec.step,
@@ -105,8 +133,8 @@ pub fn run_cancellable(
     let scale = if e0 == 0.0 { 1.0 } else { e0.abs() };
     let mut tracker = ReversalTracker::new(problem.start().alpha_dot);
     let mut reversals = Vec::new();
+    let mut reversal_count = 0;
     let mut max_err: f64 = 0.0;
-    let mut samples = Vec::with_capacity(spec.samples);
     let sample_time = |i: usize| {
         if spec.samples <= 1 {
             0.0
@@ -118,10 +146,12 @@ pub fn run_cancellable(
     };
     let mut next_sample = 0;
     if spec.samples > 0 {
-        samples.push(Sample {
+        if !on_sample(Sample {
             t: 0.0,
             state: integrator.state(),
-        });
+        }) {
+            return Err(StepError::Cancelled { t: 0.0 });
+        }
         next_sample = 1;
     }
     let mut steps: u64 = 0;
@@ -134,7 +164,10 @@ pub fn run_cancellable(
         }
         integrator.step(spec.t_end)?;
         if let Some(t) = tracker.after_step(integrator.as_mut()) {
-            reversals.push(t);
+            reversal_count += 1;
+            if reversals.len() < MAX_REVERSAL_TIMES {
+                reversals.push(t);
+            }
         }
         if spec.monitor_energy {
             max_err = max_err.max((integrator.energy() - e0).abs() / scale);
@@ -146,7 +179,9 @@ pub fn run_cancellable(
             } else {
                 integrator.interpolate(t)
             };
-            samples.push(Sample { t, state });
+            if !on_sample(Sample { t, state }) {
+                return Err(StepError::Cancelled { t });
+            }
             next_sample += 1;
         }
     }
@@ -157,10 +192,11 @@ pub fn run_cancellable(
         t: integrator.time(),
         final_state,
         reversals,
+        reversal_count,
         energy_initial: e0,
         energy_final,
         max_relative_energy_error: max_err,
         stats: integrator.stats(),
-        samples,
+        samples: Vec::new(),
     })
 }

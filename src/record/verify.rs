@@ -51,6 +51,7 @@ pub fn plan_book(rec: &Recording) -> PlanBook {
                 _ => None,
             })
             .collect(),
+        ..PlanBook::default()
     }
 }
 

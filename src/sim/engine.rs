@@ -40,12 +40,25 @@ impl PlanKey {
 
 /// How `auto` is resolved: a policy, and the plans a recording already resolved (replay uses
 /// them, so a later change of `auto` never changes an old session's trajectory).
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct PlanBook {
     /// Policy for keys not recorded.
     pub policy: AutoPolicy,
     /// Recorded plans.
     pub recorded: Vec<(PlanKey, Resolved)>,
+    /// Work budget of `auto`'s verification, in predicted seconds: over it, planning fails
+    /// with a message instead of computing for hours before the first frame.
+    pub budget: f64,
+}
+
+impl Default for PlanBook {
+    fn default() -> Self {
+        Self {
+            policy: AutoPolicy::default(),
+            recorded: Vec::new(),
+            budget: crate::physics::budget::BUDGET_SECONDS,
+        }
+    }
 }
 
 impl PlanBook {
@@ -155,6 +168,7 @@ impl Engine {
                 spec.tolerance,
                 spec.t_end,
                 self.book.policy,
+                self.book.budget,
                 go_on,
             )
             .map(|r| (r.plan, r.verified.map(|v| v.error_estimate))),
@@ -179,9 +193,18 @@ impl Engine {
             Err(e) => {
                 self.pending = None;
                 self.checkpoints.clear();
+                // Short enough for the parameter panel at 80×24.
+                let message = match &e {
+                    StepError::OverBudget { over, .. } => format!(
+                        "auto needs about {} to verify (budget {}): pick a method in the panel or a shorter t_end",
+                        crate::physics::budget::duration(over.predicted),
+                        crate::physics::budget::duration(over.budget)
+                    ),
+                    e => format!("planning {}: {e}", spec.method),
+                };
                 sink(SimEvent::Failed {
                     generation,
-                    message: format!("planning {}: {e}", spec.method),
+                    message,
                 })
             }
         }

@@ -178,6 +178,15 @@ pub enum StepError {
     /// `auto` is a planner, not an integrator: resolve it first (`physics::plan`).
     #[error("method auto must be resolved to a concrete method before integrating")]
     Unplanned,
+    /// A run (or `auto`'s next probe, verification or refinement) is predicted to exceed the
+    /// work budget it was given; nothing of it was started.
+    #[error("{what} is {over}")]
+    OverBudget {
+        /// What would have run.
+        what: String,
+        /// The prediction and the budget.
+        over: super::budget::OverBudget,
+    },
 }
 
 /// How a method is to be run.
