@@ -119,11 +119,10 @@ pub fn check(args: &CheckArgs) -> ExitCode {
     let mut problems = Vec::new();
     for path in &args.files {
         let label = path.display().to_string();
-        match std::fs::read_to_string(path) {
-            Err(source) => problems.push(PresetError::Unreadable {
-                path: label,
-                source,
-            }),
+        // Bounded, regular files only (a FIFO or /dev/zero is refused, not read), and an
+        // encoding error names its line.
+        match PresetError::read(path) {
+            Err(e) => problems.push(e),
             Ok(src) if is_theme(&src) => {
                 if let Err(mut e) = ThemeSpec::parse(&src, &label, &label) {
                     problems.append(&mut e);

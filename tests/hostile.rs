@@ -212,3 +212,82 @@ fn a_failed_comparison_does_not_discard_the_requested_run() {
     assert!(!out.contains("NaN"));
     let _ = std::fs::remove_dir_all(&config);
 }
+
+#[test]
+fn schema_errors_name_a_line_and_describe_what_was_written() {
+    let dir = temp("schema");
+    let write = |name: &str, bytes: &[u8]| {
+        let p = dir.join(name);
+        std::fs::write(&p, bytes).unwrap();
+        p.to_str().unwrap().to_owned()
+    };
+    // A missing key points at its section; a missing section at the end of the file.
+    let missing = write(
+        "missing.toml",
+        b"[preset]\nname = \"x\"\n[body]\nix = 2.0\niy = 1.0\n[spring]\nk = 1e4\n",
+    );
+    let (code, _, err) = bin(&["check", &missing], &dir);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("missing.toml:3: body.iz: missing required value"),
+        "{err}"
+    );
+    assert!(
+        err.contains("missing.toml:7: initial.gamma_dot: missing required value")
+            && err.contains("no [initial] section"),
+        "{err}"
+    );
+    // A dotted key names its line.
+    let dotted = write(
+        "dotted.toml",
+        b"[body]\nix = 2.0\niy = 1.0\niz = 1.0\n[spring]\nk = 1e4\n[initial]\ngamma_dot = 1.0\nalpha_dot = 0.5\n[run]\nt_end = 1.0\nfoo.bar = 1\n",
+    );
+    let (_, _, err) = bin(&["check", &dotted], &dir);
+    assert!(
+        err.contains("dotted.toml:12: run.foo: unknown key"),
+        "{err}"
+    );
+    // Invalid UTF-8: its line, in presets and in sessions.
+    let bad = write("utf8.toml", b"[preset]\nname = \"x\xff\"\n");
+    let (code, _, err) = bin(&["check", &bad], &dir);
+    assert_eq!(code, 2);
+    assert!(err.contains("utf8.toml:2: not valid UTF-8"), "{err}");
+    let session = write("s.jsonl", b"{\"format\":\"rattleback-session\"}\n\xfe\n");
+    let (code, _, err) = bin(&["replay", &session, "--verify"], &dir);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains(":2") && err.contains("not valid UTF-8"),
+        "{err}"
+    );
+    // 1e400 is a number too large, not "text".
+    let (code, _, err) = bin(&["simulate", "--set", "body.ix=1e400"], &dir);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("not a finite number") && !err.contains("text"),
+        "{err}"
+    );
+    // A bad colour is reported once, as bad, not also as missing.
+    let theme = write(
+        "theme.toml",
+        b"[theme]\nname = \"t\"\n[colors]\ntrail = \"blorange\"\n",
+    );
+    let (code, _, err) = bin(&["check", &theme], &dir);
+    assert_eq!(code, 2);
+    assert_eq!(err.matches("colors.trail").count(), 1, "{err}");
+    assert!(
+        err.contains("theme.toml:4: colors.trail: unknown colour"),
+        "{err}"
+    );
+    // `check` refuses a FIFO instead of blocking on it.
+    let fifo = dir.join("fifo.toml");
+    assert!(
+        Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success()
+    );
+    let (code, _, err) = bin(&["check", fifo.to_str().unwrap()], &dir);
+    assert_eq!(code, 2);
+    assert!(err.contains("not a regular file"), "{err}");
+}

@@ -40,6 +40,11 @@ fn hostile_value() -> impl Strategy<Value = String> {
         Just("{ a = 1 }".to_owned()),
         Just("true".to_owned()),
         Just(String::new()),
+        Just("[".repeat(300)),
+        Just("foo.bar = 1".to_owned()),
+        Just("[run.extra]".to_owned()),
+        Just("[[run]]".to_owned()),
+        Just("[initial]".to_owned()),
         "[ -~]{0,12}",
     ]
 }
@@ -70,6 +75,14 @@ fn message_is_clean(text: &str) -> bool {
     !text.is_empty() && clean(text) == text && !text.contains("panicked")
 }
 
+/// `mutated.toml:N: …` with `1 ≤ N ≤ lines + 1`: every schema error carries a line.
+fn names_a_line(text: &str, src: &str) -> bool {
+    text.strip_prefix("mutated.toml:")
+        .and_then(|rest| rest.split_once(':'))
+        .and_then(|(n, _)| n.parse::<usize>().ok())
+        .is_some_and(|n| n >= 1 && n <= src.lines().count() + 1)
+}
+
 proptest! {
     #![proptest_config(config())]
 
@@ -87,8 +100,38 @@ proptest! {
                 let again = Preset::parse(&p.to_toml(), "again", "m", &[]);
                 prop_assert!(again.is_ok(), "{:?}", again.err());
             }
-            Err(e) => prop_assert!(message_is_clean(&e.to_string()), "{e}"),
+            Err(e) => {
+                prop_assert!(message_is_clean(&e.to_string()), "{e}");
+                prop_assert!(names_a_line(&e.to_string(), &src), "no line: {e}\n{src}");
+                for p in rattleback::scenario::preset::check(&src, "mutated.toml") {
+                    prop_assert!(names_a_line(&p.to_string(), &src), "no line: {p}\n{src}");
+                }
+            }
         }
+    }
+
+    #[test]
+    fn invalid_utf8_is_refused_at_its_line(
+        which in 0..SHIPPED.len(), at in 0usize..2000, byte in 0x80u8..=0xff
+    ) {
+        let src = SHIPPED[which].1.as_bytes();
+        let at = at % src.len();
+        // Only a byte that breaks the encoding there (a lone continuation or lead byte).
+        let mut bytes = src[..at].to_vec();
+        bytes.push(byte);
+        bytes.push(b'\n');
+        bytes.extend_from_slice(&src[at..]);
+        prop_assume!(std::str::from_utf8(&bytes).is_err());
+        let path = std::env::temp_dir().join(format!(
+            "rattleback-utf8-{}-{which}-{at}-{byte}.toml",
+            std::process::id()
+        ));
+        std::fs::write(&path, &bytes).unwrap();
+        let err = rattleback::scenario::PresetError::read(&path).expect_err("refused");
+        let _ = std::fs::remove_file(&path);
+        let expected = src[..at].iter().fold(1, |n, &b| n + usize::from(b == b'\n'));
+        let text = err.to_string();
+        prop_assert!(text.contains(&format!(".toml:{expected}: not valid UTF-8")), "{text}");
     }
 
     #[test]
@@ -100,8 +143,14 @@ proptest! {
         prop_assert!(outcome.is_ok(), "panic on:\n{src}");
         if let Err(problems) = outcome.unwrap() {
             prop_assert!(!problems.is_empty());
+            let mut keys = std::collections::HashSet::new();
             for p in problems {
                 prop_assert!(message_is_clean(&p.to_string()), "{p}");
+                prop_assert!(names_a_line(&p.to_string(), &src), "no line: {p}\n{src}");
+                // One problem per key: a bad colour is not also reported missing.
+                if let rattleback::scenario::PresetError::Invalid { key: Some(k), .. } = &p {
+                    prop_assert!(keys.insert(k.clone()), "{k} reported twice\n{src}");
+                }
             }
         }
     }

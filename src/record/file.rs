@@ -111,10 +111,19 @@ pub fn read(path: &Path) -> Result<Recording, RecordError> {
     /// Largest session file read (an hour of lectures is a few megabytes).
     const MAX_SESSION_BYTES: u64 = 256 << 20;
     let label = path.display().to_string();
-    let text = crate::scenario::write::read_bounded(path, MAX_SESSION_BYTES).map_err(|source| {
-        RecordError::Io {
+    let bytes =
+        crate::scenario::write::read_bounded_bytes(path, MAX_SESSION_BYTES).map_err(|source| {
+            RecordError::Io {
+                path: label.clone(),
+                source,
+            }
+        })?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let at = e.utf8_error().valid_up_to();
+        RecordError::Corrupt {
             path: label.clone(),
-            source,
+            line: crate::scenario::text::line_at(e.as_bytes(), at),
+            message: "not valid UTF-8; a session file is UTF-8 JSON lines".to_owned(),
         }
     })?;
     let corrupt = |line: usize, message: String| RecordError::Corrupt {

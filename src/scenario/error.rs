@@ -67,10 +67,23 @@ impl PresetError {
     /// # Errors
     /// Not a regular file, too large, or unreadable.
     pub fn read(path: &std::path::Path) -> Result<String, Self> {
-        super::write::read_bounded(path, super::write::MAX_CONFIG_BYTES).map_err(|source| {
-            Self::Unreadable {
+        let bytes = super::write::read_bounded_bytes(path, super::write::MAX_CONFIG_BYTES)
+            .map_err(|source| Self::Unreadable {
                 path: path.display().to_string(),
                 source,
+            })?;
+        String::from_utf8(bytes).map_err(|e| {
+            let bytes = e.as_bytes();
+            let at = e.utf8_error().valid_up_to();
+            let line = super::text::line_at(bytes, at);
+            let column = at - bytes[..at].iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1) + 1;
+            Self::Invalid {
+                path: path.display().to_string(),
+                line: Some(line),
+                key: None,
+                message: format!(
+                    "not valid UTF-8 (byte {column} of the line); presets, themes and lessons are UTF-8 text"
+                ),
             }
         })
     }
@@ -146,22 +159,50 @@ impl<'a> SourceMap<'a> {
             .map(|i| i + 1)
     }
 
-    /// The line where `key` is set inside `[section]`.
+    /// The line where `key` is set inside `[section]`: `key = …`, a dotted `key.sub = …`, a
+    /// `[section.key]` header, or `section.key = …` at the top.
     pub(crate) fn find_key(&self, section: &str, key: &str) -> Option<usize> {
         let mut current = String::new();
+        let first = |k: &str| {
+            k.split('.')
+                .next()
+                .unwrap_or("")
+                .trim()
+                .trim_matches(|c| c == '"' || c == '\'')
+                .to_owned()
+        };
+        let dotted = format!("{section}.{key}");
         for (i, l) in self.src.lines().enumerate() {
             let t = l.trim();
             if t.starts_with('[') && t.ends_with(']') {
-                t.trim_matches(|c| c == '[' || c == ']')
-                    .trim()
-                    .clone_into(&mut current);
-            } else if current == section
-                && t.split_once('=')
-                    .is_some_and(|(k, _)| k.trim().trim_matches('"') == key)
-            {
-                return Some(i + 1);
+                let header = t.trim_matches(|c| c == '[' || c == ']').trim();
+                if header == dotted || header.starts_with(&format!("{dotted}.")) {
+                    return Some(i + 1);
+                }
+                header.clone_into(&mut current);
+            } else if let Some((k, _)) = t.split_once('=') {
+                let k = k.trim();
+                let here = current == section && first(k) == key;
+                let top = current.is_empty()
+                    && k.replace(['"', '\'', ' '], "")
+                        .strip_prefix(&dotted)
+                        .is_some_and(|rest| rest.is_empty() || rest.starts_with('.'));
+                if here || top {
+                    return Some(i + 1);
+                }
             }
         }
         None
+    }
+
+    /// The best line for a problem with `key` of `section` (`key` empty: the section itself):
+    /// where it is set; else the section's header (a missing key belongs there); else the last
+    /// line (a missing section is added at the end). Every schema error gets a line.
+    pub(crate) fn locate(&self, section: &str, key: &str) -> usize {
+        (!key.is_empty())
+            .then(|| self.find_key(section, key))
+            .flatten()
+            .or_else(|| self.find_section(section))
+            .unwrap_or_else(|| self.src.lines().count().max(1))
     }
 }

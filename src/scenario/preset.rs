@@ -193,7 +193,7 @@ impl Problems<'_> {
             line: if overridden {
                 None
             } else {
-                self.map.find_key(section, key)
+                Some(self.map.locate(section, key))
             },
             key: Some(full),
             message,
@@ -203,7 +203,7 @@ impl Problems<'_> {
     fn at_section(&mut self, section: &str, message: String) {
         self.found.push(PresetError::Invalid {
             path: self.label.to_owned(),
-            line: self.map.find_section(section),
+            line: Some(self.map.locate(section, "")),
             key: Some(section.to_owned()),
             message,
         });
@@ -307,6 +307,9 @@ fn parse_override(kind: Kind, text: &str) -> Value {
             .ok()
             .filter(|t| t.len() == 1)
             .and_then(|mut t| t.remove("v"))
+            // A number too large for a float (`1e400`) is a number, not text: it fails as
+            // not finite.
+            .or_else(|| text.parse::<f64>().ok().map(Value::Float))
             .unwrap_or_else(|| Value::String(text.to_owned())),
     }
 }
@@ -393,10 +396,15 @@ fn collect(
             .and_then(Value::as_table)
             .is_some_and(|t| t.contains_key(spec.key));
         if !present {
+            let where_ = if table.contains_key(spec.section) {
+                String::new()
+            } else {
+                format!("; the file has no [{}] section", spec.section)
+            };
             problems.at_key(
                 spec.section,
                 spec.key,
-                format!("missing required value ({})", spec.kind.allowed()),
+                format!("missing required value ({}){where_}", spec.kind.allowed()),
             );
         }
     }

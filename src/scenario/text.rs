@@ -53,6 +53,13 @@ fn skip_sequence(chars: &mut std::iter::Peekable<std::str::Chars<'_>>) {
     }
 }
 
+/// The 1-based line of byte offset `at` in `bytes` (for errors found in raw bytes, such as
+/// invalid UTF-8).
+#[must_use]
+pub fn line_at(bytes: &[u8], at: usize) -> usize {
+    bytes[..at.min(bytes.len())].split(|&b| b == b'\n').count()
+}
+
 #[cfg(test)]
 mod tests {
     use super::clean;

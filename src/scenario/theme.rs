@@ -125,9 +125,7 @@ impl ThemeSpec {
         let mut problem = |section: &str, key: &str, message: String| {
             problems.push(PresetError::Invalid {
                 path: label.to_owned(),
-                line: map
-                    .find_key(section, key)
-                    .or_else(|| map.find_section(section)),
+                line: Some(map.locate(section, key)),
                 key: Some(if key.is_empty() {
                     section.to_owned()
                 } else {
@@ -173,11 +171,10 @@ impl ThemeSpec {
                             );
                             continue;
                         };
+                        // Present, even if invalid: reported once, as invalid, not also missing.
+                        seen[i] = true;
                         match v.as_str().map(str::parse::<Colour>) {
-                            Some(Ok(c)) => {
-                                colours[i] = c;
-                                seen[i] = true;
-                            }
+                            Some(Ok(c)) => colours[i] = c,
                             Some(Err(e)) => problem(section, k, e),
                             None => problem(
                                 section,
@@ -241,7 +238,7 @@ pub fn themes() -> (Vec<(String, ThemeSpec)>, Vec<PresetError>) {
                 .map(|s| s.to_string_lossy().into_owned())
                 .unwrap_or_default();
             let label = path.display().to_string();
-            match super::write::read_bounded(&path, super::write::MAX_CONFIG_BYTES) {
+            match PresetError::read(&path) {
                 Ok(src) => match ThemeSpec::parse(&src, &label, &stem) {
                     Ok(t) => {
                         out.retain(|(n, _)| *n != stem);
@@ -249,10 +246,7 @@ pub fn themes() -> (Vec<(String, ThemeSpec)>, Vec<PresetError>) {
                     }
                     Err(mut e) => problems.append(&mut e),
                 },
-                Err(source) => problems.push(PresetError::Unreadable {
-                    path: label,
-                    source,
-                }),
+                Err(e) => problems.push(e),
             }
         }
     }

@@ -17,6 +17,15 @@ pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
 /// # Errors
 /// `InvalidInput` for a file that is not regular or too large, else what the system says.
 pub fn read_bounded(path: &Path, limit: u64) -> io::Result<String> {
+    String::from_utf8(read_bounded_bytes(path, limit)?)
+        .map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e.utf8_error()))
+}
+
+/// [`read_bounded`] without the UTF-8 check (callers that locate an encoding error).
+///
+/// # Errors
+/// As [`read_bounded`].
+pub fn read_bounded_bytes(path: &Path, limit: u64) -> io::Result<Vec<u8>> {
     let meta = std::fs::metadata(path)?;
     if !meta.is_file() {
         return Err(io::Error::new(
@@ -30,15 +39,18 @@ pub fn read_bounded(path: &Path, limit: u64) -> io::Result<String> {
             format!("{} bytes, more than the {limit} allowed", meta.len()),
         ));
     }
-    let mut text = String::new();
-    io::Read::read_to_string(&mut io::Read::take(File::open(path)?, limit + 1), &mut text)?;
-    if text.len() as u64 > limit {
+    let mut bytes = Vec::new();
+    io::Read::read_to_end(
+        &mut io::Read::take(File::open(path)?, limit + 1),
+        &mut bytes,
+    )?;
+    if bytes.len() as u64 > limit {
         return Err(io::Error::new(
             io::ErrorKind::InvalidInput,
             format!("more than the {limit} bytes allowed"),
         ));
     }
-    Ok(text)
+    Ok(bytes)
 }
 
 /// Writes `bytes` to `path` atomically. With `replace = false` an existing `path` (file, link or
