@@ -184,6 +184,10 @@ pub struct SimulateArgs {
     /// machine); without it such a run is refused before it starts, with the prediction.
     #[arg(long)]
     pub force: bool,
+    /// Exit 1 when `auto` cannot meet the tolerance (its estimate is above it: `auto.met` is
+    /// false). Without it the output is written and a warning goes to stderr.
+    #[arg(long)]
+    pub strict: bool,
 }
 
 fn parse_method(s: &str) -> Result<Method, String> {

@@ -97,6 +97,16 @@ pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
         say_err!("rattleback: error: {}: {e}", svg.display());
         return ExitCode::from(1);
     }
+    say!(
+        "\nauto at every stiffness (T = 30, tolerance 1e-8; errors against tests/fixtures/reference/averaged.toml)"
+    );
+    let profile = bench::profile(config.quick, &mut |line| say_err!("{line}"));
+    say_raw!("{}", bench::profile_table(&profile));
+    let profile_csv = args.out.join("auto_profile.csv");
+    if let Err(e) = bench::write_profile_csv(&profile, &profile_csv) {
+        say_err!("rattleback: error: {}: {e}", profile_csv.display());
+        return ExitCode::from(1);
+    }
     let stability = bench::stability(config);
     say!("\nStability\n{}", bench::stability_table(&stability));
     let path = args.out.join("stability.csv");
@@ -105,9 +115,10 @@ pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
         return ExitCode::from(1);
     }
     say!(
-        "wrote {}, {}, {}",
+        "wrote {}, {}, {}, {}",
         csv.display(),
         svg.display(),
+        profile_csv.display(),
         path.display()
     );
     ExitCode::SUCCESS

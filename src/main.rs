@@ -238,7 +238,15 @@ fn run_simulate(args: &SimulateArgs) -> ExitCode {
     };
     progress.finish();
     match outcome {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(None) => ExitCode::SUCCESS,
+        Ok(Some(missed)) => {
+            say_err!("rattleback: warning: {missed}");
+            if args.strict {
+                ExitCode::from(1)
+            } else {
+                ExitCode::SUCCESS
+            }
+        }
         // A closed pipe (e.g. `| head`) ends the output early; not an error worth a message.
         Err(Failure::Output(e)) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
         Err(Failure::Output(e)) => {
@@ -262,9 +270,9 @@ fn simulate_to_text(
     preset: &rattleback::scenario::Preset,
     resolved: &rattleback::simulate::Resolved,
     progress: &mut rattleback::progress::Progress,
-) -> Result<(), Failure> {
+) -> Result<Option<rattleback::simulate::Missed>, Failure> {
     let mut text = Vec::new();
-    simulate_to(
+    let missed = simulate_to(
         preset,
         resolved,
         rattleback::simulate::Format::Table,
@@ -276,5 +284,5 @@ fn simulate_to_text(
     let mut out = std::io::stdout().lock();
     out.write_all(text.as_bytes())?;
     out.flush()?;
-    Ok(())
+    Ok(missed)
 }

@@ -7,7 +7,8 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::physics::auto::run_auto_cancellable;
+use crate::physics::auto::{Shortfall, run_auto_cancellable};
+use crate::physics::averaged::Averaged2;
 use crate::physics::budget::{self, BUDGET_SECONDS};
 use crate::physics::effective::{Effective, tapping_acceleration};
 use crate::physics::integrators::{Method, default_step};
@@ -110,7 +111,7 @@ pub fn predicted_seconds(preset: &Preset, resolved: &Resolved, format: Format) -
     let problem = &preset.problem;
     let main = plan::predicted_seconds(problem, spec.method, spec.tolerance, spec.step, spec.t_end);
     let extra = match format {
-        Format::Csv if spec.method == Method::Auto => main / plan::VERIFY_FACTOR,
+        Format::Csv if spec.method == Method::Auto => main / (1.0 + plan::VERIFY_FRACTION),
         Format::Csv => 0.0,
         Format::Json | Format::Table => {
             budget::cost_seconds(problem, Method::Effective, spec.tolerance, None, spec.t_end)
@@ -149,6 +150,8 @@ struct Report {
     reversals: Reversals,
     energy: EnergyOut,
     effective: EffectiveOut,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    averaged: Option<AveragedOut>,
     stats: StatsOut,
 }
 
@@ -159,8 +162,76 @@ struct AutoOut {
     tolerance: f64,
     step: Option<f64>,
     predicted_error: f64,
+    /// Bounds the error of `α(T)`, `α̇(T)` and the reversal times (model error included),
+    /// unless `met` is false.
     error_estimate: f64,
+    /// Whether `error_estimate` meets the requested tolerance.
+    met: bool,
+    /// Why not (`floor`, `clamped`, `refinements`, `time`), or null.
+    shortfall: Option<Shortfall>,
+    /// The averaged model's probed error included in the estimate (0 for a resolved run).
+    model_error: f64,
     refinements: u32,
+}
+
+/// The averaged model's own account of the start (method `averaged2`, or `auto` choosing it).
+#[derive(Serialize)]
+struct AveragedOut {
+    /// The averaged fast action `Ī`, an exact constant of the averaged motion.
+    ibar: f64,
+    /// `θ̄ = Ī √k`.
+    theta_bar: f64,
+    /// The averaged Hamiltonian `K̄` of the start.
+    kbar: f64,
+    regime: &'static str,
+    /// Averaged time between turning points (trapped starts).
+    half_period: Option<f64>,
+}
+
+impl AveragedOut {
+    fn of(problem: &crate::physics::Problem) -> Self {
+        let (m, y0) = Averaged2::new(problem);
+        Self {
+            ibar: m.ibar(),
+            theta_bar: m.theta_bar(),
+            kbar: m.kbar(y0[0], y0[1]),
+            regime: m.regime(&y0).name(),
+            half_period: m.half_period(&y0),
+        }
+    }
+}
+
+impl AutoOut {
+    fn missed(&self, tolerance: f64) -> Option<Missed> {
+        self.shortfall.map(|why| Missed {
+            estimate: self.error_estimate,
+            tolerance,
+            why,
+        })
+    }
+}
+
+/// `auto` fell short of the tolerance: what `simulate` warns about (and `--strict` fails on).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Missed {
+    /// The estimate reached.
+    pub estimate: f64,
+    /// The tolerance asked for.
+    pub tolerance: f64,
+    /// Why.
+    pub why: Shortfall,
+}
+
+impl std::fmt::Display for Missed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "auto could not meet the tolerance {:e}: its error estimate is {:.1e} ({})",
+            self.tolerance,
+            self.estimate,
+            self.why.describe()
+        )
+    }
 }
 
 #[derive(Serialize)]
@@ -241,6 +312,11 @@ pub fn simulate(preset: &Preset, resolved: &Resolved, format: Format) -> Result<
     Ok(String::from_utf8_lossy(&out).into_owned())
 }
 
+/// The limit's own run is integrated at this local tolerance whatever the user's: the
+/// one-degree-of-freedom ODE is cheap, and `effective.alpha`/`alpha_dot` are then good to about
+/// 1e-12 (`tests/auto_honest.rs` checks them against the quadrature of its reversal times).
+pub const LIMIT_TOLERANCE: f64 = 1e-14;
+
 /// Runs `preset` as `resolved` says and writes the report in `format` to `out`; the CSV is
 /// written sample by sample as the integration goes, so memory does not grow with
 /// `--samples`. `progress(t)` is called every few hundred steps with the time reached (it
@@ -248,6 +324,9 @@ pub fn simulate(preset: &Preset, resolved: &Resolved, format: Format) -> Result<
 ///
 /// Nothing starts when the work is predicted over `resolved.budget`
 /// ([`StepError::OverBudget`]); `auto` also checks each of its verification runs.
+///
+/// Returns `auto`'s shortfall when it could not meet the tolerance (the output is complete and
+/// says so too: `auto.met = false`); `None` when it met it or another method ran.
 ///
 /// # Errors
 /// The integration failed or was refused, a result is not a finite number (an error naming
@@ -261,18 +340,18 @@ pub fn simulate_to(
     format: Format,
     out: &mut dyn std::io::Write,
     progress: &mut dyn FnMut(f64) -> bool,
-) -> Result<(), Failure> {
+) -> Result<Option<Missed>, Failure> {
     let problem = &preset.problem;
     let spec = resolved.spec;
     within_budget(preset, resolved, format)?;
     let clock = Instant::now();
     if format == Format::Csv {
-        let result = csv(preset, resolved, out, progress)?;
+        let (result, shortfall) = csv(preset, resolved, out, progress)?;
         if let Some(what) = non_finite(&result) {
             return Err(StepError::NotFinite { what, t: result.t }.into());
         }
         out.flush()?;
-        return Ok(());
+        return Ok(shortfall);
     }
     let (result, auto) = requested_run(problem, resolved, progress)?;
     if let Some(what) = non_finite(&result) {
@@ -282,6 +361,7 @@ pub fn simulate_to(
     // The limit's own trajectory at t_end, for comparison (cheap: cost independent of k).
     let eff_spec = RunSpec {
         method: Method::Effective,
+        tolerance: LIMIT_TOLERANCE,
         samples: 0,
         monitor_energy: true,
         step: None,
@@ -296,6 +376,9 @@ pub fn simulate_to(
     let eff = Effective::new(problem);
     let p = problem.params();
     let y = result.final_state;
+    let ran = auto.as_ref().map_or(spec.method, |a| a.choice);
+    let averaged = (ran == Method::Averaged2).then(|| AveragedOut::of(problem));
+    let shortfall = auto.as_ref().and_then(|a| a.missed(spec.tolerance));
     let report = Report {
         preset: preset.name.clone(),
         params: ParamsOut {
@@ -341,6 +424,7 @@ pub fn simulate_to(
                 eff.reversal_count(spec.t_end),
             ),
         },
+        averaged,
         stats: StatsOut {
             steps: result.stats.steps,
             rejected: result.stats.rejected,
@@ -358,7 +442,7 @@ pub fn simulate_to(
     };
     out.write_all(text.as_bytes())?;
     out.flush()?;
-    Ok(())
+    Ok(shortfall)
 }
 
 /// Refuses, before anything runs, work predicted over the budget.
@@ -394,6 +478,9 @@ fn requested_run(
         step: v.plan.step,
         predicted_error: v.plan.predicted_error,
         error_estimate: v.error_estimate,
+        met: v.met,
+        shortfall: v.shortfall,
+        model_error: v.model_error,
         refinements: v.refinements,
     };
     Ok((v.result, Some(auto)))
@@ -406,11 +493,12 @@ fn csv(
     resolved: &Resolved,
     out: &mut dyn std::io::Write,
     progress: &mut dyn FnMut(f64) -> bool,
-) -> Result<RunResult, Failure> {
+) -> Result<(RunResult, Option<Missed>), Failure> {
     let problem = &preset.problem;
     let mut spec = resolved.spec;
+    let mut shortfall = None;
     if spec.method == Method::Auto {
-        let plan = plan::resolve(
+        let resolution = plan::resolve(
             problem,
             spec.method,
             spec.tolerance,
@@ -418,8 +506,15 @@ fn csv(
             plan::AutoPolicy::Verified,
             resolved.budget,
             progress,
-        )?
-        .plan;
+        )?;
+        shortfall = resolution.verified.and_then(|v| {
+            v.shortfall.map(|why| Missed {
+                estimate: v.error_estimate,
+                tolerance: spec.tolerance,
+                why,
+            })
+        });
+        let plan = resolution.plan;
         spec.method = plan.method;
         spec.tolerance = plan.tolerance;
         spec.step = plan.step;
@@ -450,7 +545,7 @@ fn csv(
     });
     match (result, failure) {
         (_, Some(f)) => Err(f),
-        (r, None) => Ok(r?),
+        (r, None) => Ok((r?, shortfall)),
     }
 }
 
@@ -502,8 +597,11 @@ fn table(r: &Report) -> String {
     if let Some(a) = &r.auto {
         let _ = writeln!(
             o,
-            "auto chose    {}: {} (estimated error {:.1e})",
-            a.choice, a.reason, a.error_estimate
+            "auto chose    {}: {} (estimated error {:.1e}{})",
+            a.choice,
+            a.reason,
+            a.error_estimate,
+            if a.met { "" } else { ", tolerance NOT met" }
         );
     }
     let _ = writeln!(o);

@@ -310,3 +310,22 @@ fn every_shipped_preset_draws_at_80x24() {
         }
     }
 }
+
+#[test]
+fn a_missed_tolerance_is_shown_in_the_status_bar_at_80x24() {
+    // just-below at 1e-10: auto cannot verify it (its JSON says met = false); the explorer
+    // must say so where it cannot be missed, not only in the help.
+    let preset = resolve("just-below", &["run.tolerance=1e-10".parse().unwrap()]).unwrap();
+    let mut h = Headless::of(&preset);
+    h.play_until(5.0, 4.0);
+    h.key(Key::Char(' '));
+    let PlanState::Running {
+        estimate: Some(e), ..
+    } = h.app.run.plan
+    else {
+        panic!("auto verified")
+    };
+    assert!(e > 1e-10);
+    let screen = text(&render(&h.app, 80, 24));
+    assert!(screen.contains("✗ tol missed"), "{screen}");
+}

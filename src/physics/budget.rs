@@ -69,7 +69,7 @@ pub fn cost_seconds(
         Method::Dop853 | Method::Auto => {
             dop853_evaluations(tolerance, periods(nu)) * NS_DOP853_EVAL
         }
-        Method::Effective | Method::EffectiveCorrected => {
+        Method::Effective | Method::EffectiveCorrected | Method::Averaged2 => {
             (dop853_evaluations(tolerance, periods(slow_rate(problem).max(1e-3)))
                 * NS_EFFECTIVE_EVAL)
                 .max(NS_EFFECTIVE_PER_TIME * t_end * 0.1)

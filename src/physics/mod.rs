@@ -8,6 +8,7 @@
 //! a test fails if a file below `src/physics/` mentions one.
 
 pub mod auto;
+pub mod averaged;
 pub mod budget;
 pub mod effective;
 pub mod integrators;

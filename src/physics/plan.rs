@@ -89,7 +89,7 @@ pub fn resolve(
     }
     match policy {
         AutoPolicy::Legacy => {
-            let p = auto::plan_cancellable(problem, tolerance, t_end, go_on)?;
+            let p = auto::legacy::plan_cancellable(problem, tolerance, t_end, go_on)?;
             Ok(Resolution {
                 plan: Resolved {
                     method: p.method,
@@ -126,9 +126,9 @@ pub fn resolve(
 }
 
 /// Predicted seconds of a whole run of `method` (for `auto`: its probes, when `k` calls for
-/// them, then the cheapest candidate predicted to meet the tolerance, run and verified; the
-/// corrected limit counted as admitted by the probes). Checked against the budget before
-/// anything starts; `auto` checks its actual plan and each refinement again as it goes.
+/// them, then its first plan, run and verified by its companion; the averaged model counted as
+/// admitted by the probes). Checked against the budget before anything starts; `auto` checks
+/// its actual plan again, and stops refining past the time it allows itself.
 #[must_use]
 pub fn predicted_seconds(
     problem: &Problem,
@@ -140,32 +140,18 @@ pub fn predicted_seconds(
     if method != Method::Auto {
         return budget::cost_seconds(problem, method, tolerance, step, t_end);
     }
-    let candidates = auto::resolved_candidates(problem, tolerance, t_end);
-    let cheapest_of = |meeting: bool| {
-        candidates
-            .iter()
-            .filter(|c| !meeting || c.predicted_error <= tolerance)
-            .map(|c| budget::cost_seconds(problem, c.method, c.tolerance, c.step, t_end))
-            .fold(f64::INFINITY, f64::min)
-    };
-    let mut cheapest = cheapest_of(true);
-    if cheapest.is_infinite() {
-        cheapest = cheapest_of(false);
+    let resolved = auto::best_resolved(problem, tolerance, t_end).predicted_seconds;
+    if auto::considers_averaged(problem, tolerance, t_end) {
+        let local =
+            (tolerance / (2.0 * auto::COMPANION_RATIO * auto::AVERAGED_GROWTH)).max(auto::TIGHTEST);
+        let averaged = budget::cost_seconds(problem, Method::Averaged2, local, None, t_end)
+            * (1.0 + VERIFY_FRACTION);
+        auto::probes_cost(problem, t_end) + resolved.min(averaged)
+    } else {
+        resolved
     }
-    let probes = auto::probes_cost(problem, t_end);
-    if probes > 0.0 {
-        let local = (tolerance / 100.0 * (20.0 / t_end).min(1.0)).max(1e-14);
-        cheapest = cheapest.min(budget::cost_seconds(
-            problem,
-            Method::EffectiveCorrected,
-            local,
-            None,
-            t_end,
-        ));
-    }
-    probes + VERIFY_FACTOR * cheapest
 }
 
-/// How much `auto`'s verification costs over its plan alone: the plan, then a finer companion
-/// (half the step, or a 16× tighter tolerance).
-pub const VERIFY_FACTOR: f64 = 3.0;
+/// What `auto`'s verification adds to a run: a companion at twice the step (half the cost) or
+/// at a 16× looser tolerance (about 0.7×).
+pub const VERIFY_FRACTION: f64 = 0.7;

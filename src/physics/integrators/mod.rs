@@ -5,6 +5,7 @@
 //! cost per step. Reversals (sign changes of `α̇`) are located inside a step by each method's
 //! own interpolant or closed-form sub-flow ([`Integrator::locate_alpha_dot_zero`]).
 
+mod averaged;
 pub mod dop853;
 mod dop853_tableau;
 mod effective;
@@ -45,13 +46,16 @@ pub enum Method {
     Locked,
     /// The effective model with its first-order correction (the fast ripple of `α̇`).
     EffectiveCorrected,
+    /// The second-order averaged model: error O(k⁻²), cost independent of `k`
+    /// (physics.md §4c, `physics::averaged`).
+    Averaged2,
     /// Chooses the cheapest method that meets the tolerance (see `physics::auto`).
     Auto,
 }
 
 impl Method {
     /// Every method, in the order tables list them.
-    pub const ALL: [Self; 11] = [
+    pub const ALL: [Self; 12] = [
         Self::Auto,
         Self::Rk4,
         Self::Dop853,
@@ -63,13 +67,14 @@ impl Method {
         Self::Locked,
         Self::Effective,
         Self::EffectiveCorrected,
+        Self::Averaged2,
     ];
 
     /// Every concrete method: [`Method::ALL`] without `auto`, which resolves to one of them.
-    pub const CONCRETE: [Self; 10] = {
-        let mut out = [Self::Rk4; 10];
+    pub const CONCRETE: [Self; 11] = {
+        let mut out = [Self::Rk4; 11];
         let mut i = 0;
-        while i < 10 {
+        while i < 11 {
             out[i] = Self::ALL[i + 1];
             i += 1;
         }
@@ -90,6 +95,7 @@ impl Method {
             Self::Effective => "effective",
             Self::Locked => "locked",
             Self::EffectiveCorrected => "effective-corrected",
+            Self::Averaged2 => "averaged2",
             Self::Auto => "auto",
         }
     }
@@ -114,7 +120,11 @@ impl Method {
             Self::Auto => 0,
             Self::Rk4 | Self::Yoshida4 | Self::BlanesMoan4 => 4,
             Self::Yoshida6 => 6,
-            Self::Dop853 | Self::Suzuki8 | Self::Effective | Self::EffectiveCorrected => 8,
+            Self::Dop853
+            | Self::Suzuki8
+            | Self::Effective
+            | Self::EffectiveCorrected
+            | Self::Averaged2 => 8,
         }
     }
 
@@ -123,14 +133,21 @@ impl Method {
     pub fn is_fixed_step(self) -> bool {
         !matches!(
             self,
-            Self::Dop853 | Self::Effective | Self::EffectiveCorrected | Self::Auto
+            Self::Dop853
+                | Self::Effective
+                | Self::EffectiveCorrected
+                | Self::Averaged2
+                | Self::Auto
         )
     }
 
     /// Whether the method integrates the effective model rather than the full one.
     #[must_use]
     pub fn is_effective(self) -> bool {
-        matches!(self, Self::Effective | Self::EffectiveCorrected)
+        matches!(
+            self,
+            Self::Effective | Self::EffectiveCorrected | Self::Averaged2
+        )
     }
 }
 
@@ -253,9 +270,11 @@ pub fn default_step(method: Method, problem: &Problem, tolerance: f64, t_end: f6
         Method::BlanesMoan4 => (1.2, 4.0),
         Method::Yoshida6 => (1.0, 6.0),
         Method::Suzuki8 => (1.5, 8.0),
-        Method::Dop853 | Method::Effective | Method::EffectiveCorrected | Method::Auto => {
-            (1.0, 8.0)
-        }
+        Method::Dop853
+        | Method::Effective
+        | Method::EffectiveCorrected
+        | Method::Averaged2
+        | Method::Auto => (1.0, 8.0),
     };
     (c * tolerance.powf(1.0 / order) / rate).max(t_end / DEFAULT_STEP_BUDGET)
 }
@@ -298,6 +317,7 @@ pub fn build(
             settings.tolerance,
             true,
         )),
+        Method::Averaged2 => Box::new(averaged::Averaged2Dop853::new(problem, settings.tolerance)),
         Method::Auto => return Err(StepError::Unplanned),
     })
 }

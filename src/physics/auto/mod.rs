@@ -1,0 +1,765 @@
+//! `auto`: the cheapest method that meets a tolerance on the slow observables (`α(T)`,
+//! `α̇(T)` and the reversal times), with an error estimate that never claims more than it
+//! knows.
+//!
+//! **Candidates** (costs predicted by [`super::budget`], calibrated on this machine):
+//! - `dop853`, resolving the fast motion, at a local tolerance `L` such that its companion at
+//!   `16 L` should still meet the tolerance: the global error is about `G L` with
+//!   `G = 2.5 · max(20, fast periods)` (measured, [`DOP853_GROWTH`]); a plan whose `L` would
+//!   fall below the 1e-14 clamp cannot be verified and counts as missing the tolerance;
+//! - `blanes-moan4`, resolving, at a step `h` such that its companion at `2h` should meet the
+//!   tolerance: error ≈ `(C_BM spin^2.5 c_max⁴ ν²/g_min + C_FAST ν⁴) h⁴ T` ([`C_BM`]);
+//!   `ν h ≤ 0.75`, so that the companion at `2h` stays where the error follows `h⁴`;
+//! - `averaged2`, the O(k⁻²) averaged model, once `k` is far enough above the stiffnesses at
+//!   which its model error can be *measured* cheaply. Two probes at `k_lo` and `k_hi = 4 k_lo`
+//!   (the smallest `k` where the averaging expansion is valid for this start: `|α̇|/ω ≤ 0.2`)
+//!   compare it with the resolved full model over `[0, T]` (33 samples of `α`, `α̇`, and the
+//!   reversal times); the model error at `k` is predicted as `2 · gap(k_hi) · (k_hi/k)^p`, with
+//!   `p` the measured slope between the probes clamped to `[0.5, 2]` (2 is the theory's; a
+//!   pre-asymptotic start decays slower and is extrapolated with its own, smaller slope). The
+//!   slow flow then runs at a local tolerance such that its companion at `16 L` meets the rest
+//!   of the tolerance.
+//!
+//! **Verification.** Every plan runs twice: the run that is returned, and a *coarser*
+//! companion (step `2h`, or tolerance `16 L`) that costs 0.5–0.7× as much and is never
+//! identical to it. The estimate is their difference in `α(T)`, `α̇(T)` and the reversal
+//! times (infinite when the reversal counts differ), plus the probed model error for
+//! `averaged2`, plus a round-off floor of `ε · steps · max(1, |α(T)|)`. The difference bounds
+//! the returned run's error whenever the companion's error is at least twice the run's, which
+//! holds with a wide margin where the method converges (the companion's is 16× for a 4th-order
+//! step, ~14× for a 16× looser tolerance) and fails only at the round-off floor, which the
+//! refinement rule detects.
+//!
+//! **Refinement** until the estimate meets the tolerance: the step or tolerance shrinks by the
+//! factor the estimate asks for; `averaged2` whose model error is too large gives way to the
+//! best resolving method. It stops, and says so with `met = false`, when the estimate stops
+//! falling (less than halved by a refinement: the round-off floor or an ill-conditioned start;
+//! the estimate reached is reported as the floor), when an adaptive tolerance reaches its
+//! 1e-14 clamp, after [`MAX_REFINEMENTS`], or before a refinement predicted to take the total
+//! past [`AUTO_SECONDS`] (or the caller's smaller budget).
+//!
+//! The first planner is kept, frozen, in [`legacy`] for the replay of old session files.
+//! Pure: no clock; a caller's `go_on` decides about cancellation.
+
+pub mod legacy;
+
+use std::fmt::Write as _;
+
+use serde::Serialize;
+
+use super::budget::{cost_seconds, dop853_evaluations, fastest_rate, slow_rate};
+use super::effective::Effective;
+use super::integrators::{Method, Settings, StepError};
+use super::params::Problem;
+use super::run::{RunResult, RunSpec, run_cancellable};
+
+/// Error of `blanes-moan4` per unit time: `C_BM · spin^2.5 · c_max⁴ · h⁴ ν² / g_min`, with
+/// `spin` the largest spin rate of the limit, `c_max = |iy − ix| / (4 min(ix, iy))`, fitted on
+/// the averaging note's starts A, B, D for k = 1e2 … 1e5 and `ν h` ≤ 1.5 (measured 6.9e-3 …
+/// 7.3e-3, doubled: docs/benchmarks.md).
+pub const C_BM: f64 = 1.5e-2;
+/// Error of `blanes-moan4` per unit time at `ν h = 1` that remains where `c_max` or the spin
+/// vanish (issue 3's calibration at k = 1e6).
+pub const C_FAST: f64 = 3e-12;
+/// Largest `ν h` of a `blanes-moan4` run: its companion at `2h` stays where the error still
+/// follows `h⁴` (measured up to `ν h = 1.5`; at 2 it jumps by 10²–10³ on trapped starts).
+pub const BLANES_MOAN_MAX_NU_H: f64 = 0.75;
+/// How much looser the companion of an adaptive run is (its error is then ≈ 14× the run's:
+/// DOP853's global error goes like `tol^0.95` here, docs/benchmarks.md).
+pub const COMPANION_LOOSER: f64 = 16.0;
+/// The companion's error over the run's, for an adaptive method (`16^0.95`).
+pub const COMPANION_RATIO: f64 = 14.0;
+/// DOP853's global error over its local tolerance per fast period of the horizon (measured
+/// 0.6–2.7 on trapped starts, 0.06–0.25 on rotating ones, k = 1e2 … 1e5, T = 30).
+pub const DOP853_GROWTH: f64 = 2.5;
+/// Tightest local tolerance of the adaptive methods.
+pub const TIGHTEST: f64 = 1e-14;
+/// Safety factor on the probed model error of `averaged2`.
+pub const PROBE_SAFETY: f64 = 2.0;
+/// Samples of `α`, `α̇` compared by a probe.
+pub const PROBE_SAMPLES: usize = 33;
+/// `ν h` of the full model in a probe (blanes-moan4, in its asymptotic range: its error is
+/// about 2 % of the gap it measures at `k_hi` on the note's rotating start, less elsewhere).
+pub const PROBE_NU_H: f64 = 0.8;
+/// Local tolerance of the averaged model in a probe (its global error ≈ 1e-8, against gaps of
+/// 1e-6 and more at the probe stiffnesses).
+pub const PROBE_TOLERANCE: f64 = 1e-10;
+/// Largest `|α̇| (1 + c_max) / ω_min` at the lower probe stiffness: where the averaging
+/// expansion already holds (the note's errors at k = 1e2, where this is 0.1–0.2 for its starts,
+/// follow the k⁻² law with a constant no smaller than the asymptotic one).
+pub const PROBE_VALIDITY: f64 = 0.2;
+/// `averaged2` is considered from `k ≥ AVERAGED_MIN_RATIO · k_hi` on.
+pub const AVERAGED_MIN_RATIO: f64 = 10.0;
+/// Most refinements before `auto` reports what it has.
+pub const MAX_REFINEMENTS: u32 = 6;
+/// Predicted seconds (calibration machine) after which `auto` stops refining and reports
+/// `met = false` instead of computing on: it answers within about this time, whatever the
+/// start and tolerance.
+pub const AUTO_SECONDS: f64 = 10.0;
+/// Gain of the round-off floor ([`round_off`]): blanes-moan4's reversal times at very small
+/// steps, against the long-double references, fit a gain of 1.2–1.5 (T = 30, k = 1e4, and
+/// T = 1000, k = 1e2, 10⁵–6·10⁵ steps); 5 keeps a margin for the scatter.
+pub const ROUND_OFF_GAIN: f64 = 5.0;
+/// Global-to-local error growth of the averaged slow flow over `T = 30` (measured 6–140 on the
+/// note's starts at local tolerance 1e-10; it grows linearly with `T` on rotating starts).
+pub const AVERAGED_GROWTH: f64 = 150.0;
+
+/// What `auto` decided, and why.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Plan {
+    /// The method chosen.
+    pub method: Method,
+    /// Tolerance handed to it (adaptive methods).
+    pub tolerance: f64,
+    /// Step handed to it (fixed-step methods).
+    pub step: Option<f64>,
+    /// The error the models predict for the returned run (model error included).
+    pub predicted_error: f64,
+    /// Predicted seconds of the run and its companion on the calibration machine.
+    pub predicted_seconds: f64,
+    /// One sentence on the choice.
+    pub reason: String,
+}
+
+impl Plan {
+    /// The integrator settings of the plan (the run that is returned).
+    #[must_use]
+    pub fn settings(&self) -> Settings {
+        Settings {
+            tolerance: self.tolerance,
+            step: self.step,
+        }
+    }
+
+    /// The coarser companion that verifies it: twice the step, or a 256× looser tolerance.
+    #[must_use]
+    pub fn companion(&self) -> Settings {
+        match self.step {
+            Some(h) => Settings {
+                tolerance: self.tolerance,
+                step: Some(2.0 * h),
+            },
+            None => Settings {
+                tolerance: (self.tolerance * COMPANION_LOOSER).min(1e-3),
+                step: None,
+            },
+        }
+    }
+}
+
+/// The averaged model's error as measured by the probes.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ModelProbe {
+    /// The two probe stiffnesses.
+    pub k: [f64; 2],
+    /// The largest difference, full model against averaged model, at each.
+    pub gap: [f64; 2],
+}
+
+impl ModelProbe {
+    /// The measured slope, clamped to `[0.5, 2]` (2 where the gaps are at the floor).
+    #[must_use]
+    pub fn slope(&self) -> f64 {
+        let [lo, hi] = self.gap;
+        if hi < 1e-12 {
+            return 2.0;
+        }
+        let s = (lo / hi).ln() / (self.k[1] / self.k[0]).ln();
+        if s.is_finite() {
+            s.clamp(0.5, 2.0)
+        } else {
+            0.5
+        }
+    }
+
+    /// The model error predicted at `k ≥ k_hi`, with the safety factor.
+    #[must_use]
+    pub fn predict(&self, k: f64) -> f64 {
+        if !self.gap[1].is_finite() {
+            return f64::INFINITY;
+        }
+        PROBE_SAFETY * self.gap[1] * (self.k[1] / k).min(1.0).powf(self.slope())
+    }
+}
+
+/// The stiffnesses `[k_lo, k_hi]` at which the averaged model's error is probed: the smallest
+/// where the expansion is valid for this start (`|α̇| (1 + |c|)/ω ≤ 0.2` at the slowest fast
+/// frequency, `θ √g / (iz k) ≤ 0.01`), at least 100, and four times that.
+#[must_use]
+pub fn probe_stiffnesses(problem: &Problem) -> [f64; 2] {
+    let p = problem.params();
+    let eff = Effective::new(problem);
+    let spin = spin_scale(problem);
+    let g_max = p.ix.max(p.iy);
+    let c_max = (p.iy - p.ix).abs() / (4.0 * p.ix.min(p.iy));
+    let from_spin = g_max * (spin * (1.0 + c_max) / PROBE_VALIDITY).powi(2);
+    let from_theta = 100.0 * eff.theta() * g_max.sqrt() / p.iz;
+    let k_lo = from_spin.max(from_theta).max(100.0);
+    [k_lo, 4.0 * k_lo]
+}
+
+/// Predicted seconds of the two probes (full and averaged model at each stiffness).
+///
+/// # Panics
+/// Never: the probe stiffnesses are positive and finite.
+#[must_use]
+pub fn probes_cost(problem: &Problem, t_end: f64) -> f64 {
+    probe_stiffnesses(problem)
+        .iter()
+        .map(|&k| {
+            let probe = problem.with_k(k).expect("probe k is valid");
+            let nu = fastest_rate(&probe);
+            cost_seconds(
+                &probe,
+                Method::BlanesMoan4,
+                PROBE_TOLERANCE,
+                Some(PROBE_NU_H / nu),
+                t_end,
+            ) + cost_seconds(&probe, Method::Averaged2, PROBE_TOLERANCE, None, t_end)
+        })
+        .sum()
+}
+
+/// Whether `auto` considers the averaged model for this problem at all: `k` well above the
+/// probes, and resolving predicted dearer than probing.
+#[must_use]
+pub fn considers_averaged(problem: &Problem, tolerance: f64, t_end: f64) -> bool {
+    let k_hi = probe_stiffnesses(problem)[1];
+    problem.params().k >= AVERAGED_MIN_RATIO * k_hi
+        && best_resolved(problem, tolerance, t_end).predicted_seconds > probes_cost(problem, t_end)
+}
+
+/// Measures the averaged model's error at the probe stiffnesses.
+///
+/// # Errors
+/// [`StepError::Cancelled`] when `go_on` says stop.
+pub fn probe_averaged(
+    problem: &Problem,
+    t_end: f64,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<ModelProbe, StepError> {
+    let k = probe_stiffnesses(problem);
+    let mut gap = [0.0; 2];
+    for (g, &kp) in gap.iter_mut().zip(&k) {
+        *g = probe_gap(problem, kp, t_end, go_on)?;
+    }
+    Ok(ModelProbe { k, gap })
+}
+
+fn probe_gap(
+    problem: &Problem,
+    k: f64,
+    t_end: f64,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<f64, StepError> {
+    let probe = problem.with_k(k).expect("probe k is valid");
+    let nu = fastest_rate(&probe);
+    let spec = |method, tolerance, step| RunSpec {
+        method,
+        tolerance,
+        step,
+        t_end,
+        samples: PROBE_SAMPLES,
+        monitor_energy: false,
+    };
+    let full = run_cancellable(
+        &probe,
+        &spec(Method::BlanesMoan4, PROBE_TOLERANCE, Some(PROBE_NU_H / nu)),
+        go_on,
+    );
+    let averaged = run_cancellable(
+        &probe,
+        &spec(Method::Averaged2, PROBE_TOLERANCE, None),
+        go_on,
+    );
+    Ok(match (full, averaged) {
+        (Err(e @ StepError::Cancelled { .. }), _) | (_, Err(e @ StepError::Cancelled { .. })) => {
+            return Err(e);
+        }
+        (Ok(a), Ok(b)) => {
+            let mut d = difference(&a, &b);
+            for (x, y) in a.samples.iter().zip(&b.samples) {
+                d = d
+                    .max((x.state[1] - y.state[1]).abs())
+                    .max((x.state[3] - y.state[3]).abs());
+            }
+            d
+        }
+        _ => f64::INFINITY,
+    })
+}
+
+/// The cheapest plan that resolves the fast motion (dop853 or blanes-moan4) among those whose
+/// coarser companion should still meet `tolerance` (or, when neither can, the more accurate).
+///
+/// # Panics
+/// Never: there are always two candidates.
+#[must_use]
+pub fn best_resolved(problem: &Problem, tolerance: f64, t_end: f64) -> Plan {
+    let plans = resolved_plans(problem, tolerance, t_end);
+    let meeting = plans.iter().filter(|p| p.predicted_error <= tolerance);
+    meeting
+        .min_by(|a, b| a.predicted_seconds.total_cmp(&b.predicted_seconds))
+        .or_else(|| {
+            plans
+                .iter()
+                .min_by(|a, b| a.predicted_error.total_cmp(&b.predicted_error))
+        })
+        .expect("two candidates")
+        .clone()
+}
+
+fn resolved_plans(problem: &Problem, tolerance: f64, t_end: f64) -> [Plan; 2] {
+    let nu = fastest_rate(problem);
+    let periods = nu * t_end / std::f64::consts::TAU;
+    let (local, dop_error) = dop853_local(tolerance, periods);
+    // Accepted steps: 12 evaluations each.
+    let dop_steps = dop853_evaluations(local, periods) / 12.0;
+    let dop_error = dop_error + round_off(problem, dop_steps, t_end);
+    let dop = Plan {
+        method: Method::Dop853,
+        tolerance: local,
+        step: None,
+        predicted_error: dop_error,
+        predicted_seconds: with_companion(problem, Method::Dop853, local, None, t_end),
+        reason: "resolved adaptive integration".to_owned(),
+    };
+    // The companion at 2h should meet the tolerance: error(2h) ≤ tolerance / 2.
+    let per_time = tolerance / (2.0 * t_end.max(1e-300));
+    let h_companion = (per_time / blanes_moan_rate(problem)).powf(0.25);
+    let h = (0.5 * h_companion).min(BLANES_MOAN_MAX_NU_H / nu);
+    let bm = Plan {
+        method: Method::BlanesMoan4,
+        tolerance,
+        step: Some(h),
+        predicted_error: blanes_moan_error(problem, 2.0 * h, t_end)
+            + round_off(problem, t_end / h, t_end),
+        predicted_seconds: with_companion(problem, Method::BlanesMoan4, tolerance, Some(h), t_end),
+        reason: format!("resolved exact-flow splitting at ν·h = {:.2}", nu * h),
+    };
+    [dop, bm]
+}
+
+fn blanes_moan_error(problem: &Problem, h: f64, t_end: f64) -> f64 {
+    blanes_moan_rate(problem) * h.powi(4) * t_end
+}
+
+/// `blanes-moan4`'s error per unit time and per `h⁴`.
+fn blanes_moan_rate(problem: &Problem) -> f64 {
+    let p = problem.params();
+    let nu = fastest_rate(problem);
+    let g_min = p.ix.min(p.iy);
+    let c_max = (p.iy - p.ix).abs() / (4.0 * g_min);
+    C_BM * spin_scale(problem).powf(2.5) * c_max.powi(4) * nu * nu / g_min + C_FAST * nu.powi(4)
+}
+
+/// The largest spin rate of the start's limit motion (at least `|α̇0|`).
+fn spin_scale(problem: &Problem) -> f64 {
+    let p = problem.params();
+    let eff = Effective::new(problem);
+    (2.0 * (eff.energy() - eff.potential_min()) / p.iz)
+        .max(0.0)
+        .sqrt()
+        .max(problem.start().alpha_dot.abs())
+}
+
+/// DOP853's local tolerance for `tolerance` over `periods` fast periods, so that its companion
+/// still meets it, and the error the companion is then predicted to have (above `tolerance`
+/// when the local tolerance would have to go below the clamp).
+fn dop853_local(tolerance: f64, periods: f64) -> (f64, f64) {
+    let growth = DOP853_GROWTH * periods.max(20.0);
+    let wanted = tolerance / (2.0 * COMPANION_RATIO * growth);
+    let local = wanted.max(TIGHTEST);
+    (local, 0.5 * tolerance * local / wanted)
+}
+
+/// The averaged model's local tolerance for the integration share `share` of the tolerance.
+fn averaged_local(share: f64, t_end: f64) -> f64 {
+    let growth = AVERAGED_GROWTH * (t_end / 30.0).max(1.0);
+    (share / (2.0 * COMPANION_RATIO * growth)).max(TIGHTEST)
+}
+
+fn with_companion(
+    problem: &Problem,
+    method: Method,
+    tolerance: f64,
+    step: Option<f64>,
+    t_end: f64,
+) -> f64 {
+    let plan = Plan {
+        method,
+        tolerance,
+        step,
+        predicted_error: 0.0,
+        predicted_seconds: 0.0,
+        reason: String::new(),
+    };
+    let c = plan.companion();
+    cost_seconds(problem, method, tolerance, step, t_end)
+        + cost_seconds(problem, method, c.tolerance, c.step, t_end)
+}
+
+/// What [`plan_cancellable`] decided: the plan, the probed model error it carries (0 for a
+/// resolved plan) and the probes, when they ran.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Decision {
+    /// The plan.
+    pub plan: Plan,
+    /// The averaged model's predicted error at this `k` (0 unless the plan is `averaged2`).
+    pub model_error: f64,
+    /// The probes, when `k` called for them.
+    pub probe: Option<ModelProbe>,
+}
+
+/// Chooses the method for `problem` over `[0, t_end]` at `tolerance` (no verification).
+///
+/// # Errors
+/// [`StepError::Cancelled`] when `go_on` says stop during a probe.
+pub fn plan_cancellable(
+    problem: &Problem,
+    tolerance: f64,
+    t_end: f64,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<Decision, StepError> {
+    let resolved = best_resolved(problem, tolerance, t_end);
+    if !considers_averaged(problem, tolerance, t_end) {
+        return Ok(Decision {
+            plan: resolved,
+            model_error: 0.0,
+            probe: None,
+        });
+    }
+    let probe = probe_averaged(problem, t_end, go_on)?;
+    let model_error = probe.predict(problem.params().k);
+    // The integration gets what the model error leaves of the tolerance, at least half of it.
+    let share = (tolerance - model_error).max(0.5 * tolerance);
+    let local = averaged_local(share, t_end);
+    let averaged = Plan {
+        method: Method::Averaged2,
+        tolerance: local,
+        step: None,
+        predicted_error: model_error + 0.5 * share,
+        predicted_seconds: with_companion(problem, Method::Averaged2, local, None, t_end),
+        reason: format!(
+            "k large enough: the averaged model's error, probed at k = {:.0} and {:.0} \
+             (slope {:.2}), scales to {model_error:.1e}",
+            probe.k[0],
+            probe.k[1],
+            probe.slope()
+        ),
+    };
+    let meets = |p: &Plan| p.predicted_error <= tolerance;
+    let take_averaged = match (meets(&averaged), meets(&resolved)) {
+        (true, true) => averaged.predicted_seconds < resolved.predicted_seconds,
+        (true, false) => true,
+        (false, true) => false,
+        // Neither can: the more accurate.
+        (false, false) => averaged.predicted_error < resolved.predicted_error,
+    };
+    if take_averaged {
+        return Ok(Decision {
+            plan: averaged,
+            model_error,
+            probe: Some(probe),
+        });
+    }
+    let mut plan = resolved;
+    let _ = write!(
+        plan.reason,
+        "; the averaged model's probed error here is {model_error:.1e}"
+    );
+    Ok(Decision {
+        plan,
+        model_error: 0.0,
+        probe: Some(probe),
+    })
+}
+
+/// Chooses the method for `problem` (see [`plan_cancellable`]), never cancelled.
+#[must_use]
+pub fn plan(problem: &Problem, tolerance: f64, t_end: f64) -> Plan {
+    plan_cancellable(problem, tolerance, t_end, &mut |_| true)
+        .map_or_else(|_| best_resolved(problem, tolerance, t_end), |d| d.plan)
+}
+
+/// Why `auto` stopped short of the tolerance.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Shortfall {
+    /// A refinement no longer halved the estimate: round-off, or an ill-conditioned start.
+    Floor,
+    /// The adaptive tolerance reached its clamp (1e-14).
+    Clamped,
+    /// [`MAX_REFINEMENTS`] refinements were not enough.
+    Refinements,
+    /// The next refinement would take the work past the time `auto` allows itself.
+    Time,
+    /// The averaged model's error at this `k` is above the tolerance, and resolving the fast
+    /// motion is predicted to do no better.
+    Model,
+}
+
+impl Shortfall {
+    /// Words for people.
+    #[must_use]
+    pub fn describe(self) -> &'static str {
+        match self {
+            Self::Floor => {
+                "the estimate stopped falling (round-off floor or an ill-conditioned start)"
+            }
+            Self::Clamped => "the tolerance cannot be tightened further (1e-14)",
+            Self::Refinements => "the refinements ran out",
+            Self::Time => "a further refinement would take too long",
+            Self::Model => {
+                "the averaged model's error at this k is above it, and resolving would do no better"
+            }
+        }
+    }
+}
+
+/// A run chosen by `auto`, with its error estimate.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Verified {
+    /// The plan finally run (after refinements).
+    pub plan: Plan,
+    /// Its result.
+    pub result: RunResult,
+    /// Estimated error of `α(T)`, `α̇(T)` and the reversal times (the largest), model error
+    /// and round-off floor included.
+    pub error_estimate: f64,
+    /// Whether `error_estimate` meets the tolerance.
+    pub met: bool,
+    /// Why not, when it does not.
+    pub shortfall: Option<Shortfall>,
+    /// The averaged model's probed error included in the estimate (0 for a resolved run).
+    pub model_error: f64,
+    /// How many times the first plan had to be refined.
+    pub refinements: u32,
+    /// The settings of the returned run: integrating `plan.method` with these gives `result`
+    /// bit for bit, which is how the explorer shows exactly what `simulate` reports.
+    pub run_settings: Settings,
+}
+
+/// Plans, runs and verifies (see the module documentation).
+///
+/// # Errors
+/// When an integration fails.
+pub fn run_auto(
+    problem: &Problem,
+    tolerance: f64,
+    t_end: f64,
+    samples: usize,
+    monitor_energy: bool,
+) -> Result<Verified, StepError> {
+    run_auto_cancellable(
+        problem,
+        &RunSpec {
+            method: Method::Auto,
+            tolerance,
+            step: None,
+            t_end,
+            samples,
+            monitor_energy,
+        },
+        f64::INFINITY,
+        &mut |_| true,
+    )
+}
+
+/// [`run_auto`] for `spec` (its `method` and `step` are ignored), within a work `budget` in
+/// predicted seconds (see [`super::budget`]), asking `go_on` every few hundred steps whether
+/// to continue.
+///
+/// # Errors
+/// When an integration fails, [`StepError::OverBudget`] when the probes or the first plan are
+/// predicted over `budget` (later refinements past it are not run: the result says
+/// `met = false`), or [`StepError::Cancelled`] when `go_on` says stop.
+///
+/// # Panics
+/// Never: a refinement exists whenever the loop goes on.
+pub fn run_auto_cancellable(
+    problem: &Problem,
+    spec: &RunSpec,
+    budget: f64,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<Verified, StepError> {
+    let (tolerance, t_end) = (spec.tolerance, spec.t_end);
+    let mut spent = 0.0;
+    if considers_averaged(problem, tolerance, t_end) {
+        spent += probes_cost(problem, t_end);
+        over_budget("auto's probing of the averaged model", spent, budget)?;
+    }
+    let Decision {
+        mut plan,
+        mut model_error,
+        ..
+    } = plan_cancellable(problem, tolerance, t_end, go_on)?;
+    spent += plan.predicted_seconds;
+    over_budget(
+        &format!("auto's run and verification with {}", plan.method),
+        spent,
+        budget,
+    )?;
+    let allowance = budget.min(AUTO_SECONDS).max(spent);
+    let mut refinements = 0;
+    // The estimate before the last refinement of the same method (none after a change).
+    let mut previous: Option<f64> = None;
+    loop {
+        let run_spec = RunSpec {
+            method: plan.method,
+            tolerance: plan.tolerance,
+            step: plan.step,
+            ..*spec
+        };
+        let result = run_cancellable(problem, &run_spec, go_on)?;
+        let companion = plan.companion();
+        let check = run_cancellable(
+            problem,
+            &RunSpec {
+                tolerance: companion.tolerance,
+                step: companion.step,
+                samples: 0,
+                monitor_energy: false,
+                ..run_spec
+            },
+            go_on,
+        )?;
+        let estimate = difference(&result, &check)
+            + model_error
+            + round_off(problem, result.stats.steps as f64, t_end);
+        let shortfall = if estimate <= tolerance {
+            None
+        } else if previous.is_some_and(|p| estimate >= 0.5 * p) {
+            // Not halved (or still infinite: the run and its companion still disagree on the
+            // number of reversals).
+            Some(Shortfall::Floor)
+        } else if refinements == MAX_REFINEMENTS {
+            Some(Shortfall::Refinements)
+        } else if plan.method == Method::Averaged2
+            && plan.tolerance <= TIGHTEST
+            && model_error < 0.5 * tolerance
+        {
+            Some(Shortfall::Clamped)
+        } else {
+            None
+        };
+        let next = (estimate > tolerance && shortfall.is_none())
+            .then(|| refine(problem, &plan, model_error, estimate, tolerance, t_end));
+        let shortfall = match &next {
+            Some(None) => Some(Shortfall::Model),
+            Some(Some(n)) if spent + n.predicted_seconds > allowance => Some(Shortfall::Time),
+            _ => shortfall,
+        };
+        if estimate <= tolerance || shortfall.is_some() {
+            return Ok(Verified {
+                run_settings: plan.settings(),
+                plan,
+                result,
+                error_estimate: estimate,
+                met: estimate <= tolerance,
+                shortfall,
+                model_error,
+                refinements,
+            });
+        }
+        let next = next
+            .flatten()
+            .expect("a refinement when the estimate misses");
+        // A change of method starts its own sequence: the floor rule compares like with like.
+        previous = if next.method == plan.method {
+            Some(estimate)
+        } else {
+            model_error = 0.0;
+            None
+        };
+        spent += next.predicted_seconds;
+        plan = next;
+        refinements += 1;
+    }
+}
+
+/// The round-off floor of a run of `steps` steps over `[0, t_end]`: a random walk of one
+/// rounding per step (`ε √N`) in the energy, which the slow phase integrates, so that reversal
+/// times (which feel it most: a crossing of `α̇` moves by `δα̇ / α̈`) drift like `(s T)^{3/2}`
+/// in slow time (`s` the slow rate), times [`ROUND_OFF_GAIN`].
+#[must_use]
+pub fn round_off(problem: &Problem, steps: f64, t_end: f64) -> f64 {
+    ROUND_OFF_GAIN
+        * f64::EPSILON
+        * steps.max(1.0).sqrt()
+        * (slow_rate(problem) * t_end).max(1.0).powf(1.5)
+}
+
+fn over_budget(what: &str, predicted: f64, budget: f64) -> Result<(), StepError> {
+    super::budget::check(predicted, budget).map_err(|over| StepError::OverBudget {
+        what: what.to_owned(),
+        over,
+    })
+}
+
+/// The largest difference in `α(T)`, `α̇(T)` and reversal times (infinite when the reversal
+/// counts differ).
+#[must_use]
+pub fn difference(a: &RunResult, b: &RunResult) -> f64 {
+    if a.reversal_count != b.reversal_count {
+        return f64::INFINITY;
+    }
+    let mut d = (a.final_state[1] - b.final_state[1])
+        .abs()
+        .max((a.final_state[3] - b.final_state[3]).abs());
+    for (x, y) in a.reversals.iter().zip(&b.reversals) {
+        d = d.max((x - y).abs());
+    }
+    d
+}
+
+/// The next plan after `plan` missed with `estimate`; `None` when the averaged model's own
+/// error is what misses and resolving is predicted to do no better.
+fn refine(
+    problem: &Problem,
+    plan: &Plan,
+    model_error: f64,
+    estimate: f64,
+    tolerance: f64,
+    t_end: f64,
+) -> Option<Plan> {
+    if plan.method == Method::Averaged2 && model_error > 0.5 * tolerance {
+        let mut resolved = best_resolved(problem, tolerance, t_end);
+        if resolved.predicted_error >= estimate {
+            return None;
+        }
+        let _ = write!(
+            resolved.reason,
+            "; the averaged model missed ({estimate:.1e}), resolved instead"
+        );
+        return Some(resolved);
+    }
+    let share = (tolerance - model_error).max(0.1 * tolerance);
+    let excess = if estimate.is_finite() {
+        ((estimate - model_error).max(0.0) / share).max(2.0)
+    } else {
+        16.0
+    };
+    if plan.method == Method::Dop853 && plan.tolerance / (2.0 * excess) < TIGHTEST {
+        // DOP853 cannot be tightened that far: the splitting, whose error does not stall at a
+        // tolerance clamp, at the step its model asks for this tolerance, then refined as needed.
+        let [_, mut bm] = resolved_plans(problem, tolerance, t_end);
+        let _ = write!(
+            bm.reason,
+            "; dop853 missed ({estimate:.1e}) at its tightest tolerance, resolved by the splitting instead"
+        );
+        return Some(bm);
+    }
+    let mut next = plan.clone();
+    match plan.step {
+        Some(h) => {
+            let p = f64::from(plan.method.order().max(1));
+            next.step = Some(h / (1.25 * excess.powf(1.0 / p)));
+        }
+        None => next.tolerance = (plan.tolerance / (2.0 * excess)).max(TIGHTEST),
+    }
+    next.predicted_seconds = with_companion(problem, next.method, next.tolerance, next.step, t_end);
+    next.predicted_error = plan.predicted_error / excess;
+    let _ = write!(next.reason, "; refined ×{excess:.1}");
+    Some(next)
+}
