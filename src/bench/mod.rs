@@ -136,7 +136,13 @@ fn configurations(quick: bool) -> Vec<(Method, f64, Option<f64>)> {
     }
     c.push((Method::Effective, 1e-10, None));
     c.push((Method::EffectiveCorrected, 1e-10, None));
-    c.push((Method::Averaged2, 1e-10, None));
+    for tol in if quick {
+        vec![1e-10]
+    } else {
+        vec![1e-8, 1e-10, 1e-12, 1e-14]
+    } {
+        c.push((Method::Averaged2, tol, None));
+    }
     for tol in if quick { vec![1e-6] } else { vec![1e-6, 1e-8] } {
         c.push((Method::Auto, tol, None));
     }

@@ -88,6 +88,8 @@ pub const PROBE_TOLERANCE: f64 = 1e-10;
 /// expansion already holds (the note's errors at k = 1e2, where this is 0.1–0.2 for its starts,
 /// follow the k⁻² law with a constant no smaller than the asymptotic one).
 pub const PROBE_VALIDITY: f64 = 0.2;
+/// Most rungs of probes ([`probe_averaged`]).
+pub const PROBE_RUNGS: u32 = 3;
 /// `averaged2` is considered from `k ≥ AVERAGED_MIN_RATIO · k_hi` on.
 pub const AVERAGED_MIN_RATIO: f64 = 10.0;
 /// Most refinements before `auto` reports what it has.
@@ -172,6 +174,12 @@ impl ModelProbe {
         }
     }
 
+    /// The measured slope, unclamped (NaN or infinite when a gap is not finite).
+    #[must_use]
+    pub fn raw_slope(&self) -> f64 {
+        (self.gap[0] / self.gap[1]).ln() / (self.k[1] / self.k[0]).ln()
+    }
+
     /// The model error predicted at `k ≥ k_hi`, with the safety factor.
     #[must_use]
     pub fn predict(&self, k: f64) -> f64 {
@@ -184,7 +192,7 @@ impl ModelProbe {
 
 /// The stiffnesses `[k_lo, k_hi]` at which the averaged model's error is probed: the smallest
 /// where the expansion is valid for this start (`|α̇| (1 + |c|)/ω ≤ 0.2` at the slowest fast
-/// frequency, `θ √g / (iz k) ≤ 0.01`), at least 100, and four times that.
+/// frequency, `θ √g / (iz k) ≤ 0.02`), at least 100, and four times that.
 #[must_use]
 pub fn probe_stiffnesses(problem: &Problem) -> [f64; 2] {
     let p = problem.params();
@@ -193,7 +201,7 @@ pub fn probe_stiffnesses(problem: &Problem) -> [f64; 2] {
     let g_max = p.ix.max(p.iy);
     let c_max = (p.iy - p.ix).abs() / (4.0 * p.ix.min(p.iy));
     let from_spin = g_max * (spin * (1.0 + c_max) / PROBE_VALIDITY).powi(2);
-    let from_theta = 100.0 * eff.theta() * g_max.sqrt() / p.iz;
+    let from_theta = 50.0 * eff.theta() * g_max.sqrt() / p.iz;
     let k_lo = from_spin.max(from_theta).max(100.0);
     [k_lo, 4.0 * k_lo]
 }
@@ -207,7 +215,7 @@ pub fn probes_cost(problem: &Problem, t_end: f64) -> f64 {
     probe_stiffnesses(problem)
         .iter()
         .map(|&k| {
-            let probe = problem.with_k(k).expect("probe k is valid");
+            let probe = probe_problem(problem, k);
             let nu = fastest_rate(&probe);
             cost_seconds(
                 &probe,
@@ -229,7 +237,10 @@ pub fn considers_averaged(problem: &Problem, tolerance: f64, t_end: f64) -> bool
         && best_resolved(problem, tolerance, t_end).predicted_seconds > probes_cost(problem, t_end)
 }
 
-/// Measures the averaged model's error at the probe stiffnesses.
+/// Measures the averaged model's error at the probe stiffnesses, climbing a rung (both ×4) while
+/// the measurement says the probes are not yet in the averaging's range (the full motion and the
+/// averaged one count different reversals, or the error decays slower than `1/k`) and `k` is far
+/// enough above the next rung (at most [`PROBE_RUNGS`] rungs).
 ///
 /// # Errors
 /// [`StepError::Cancelled`] when `go_on` says stop.
@@ -238,12 +249,42 @@ pub fn probe_averaged(
     t_end: f64,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<ModelProbe, StepError> {
-    let k = probe_stiffnesses(problem);
-    let mut gap = [0.0; 2];
-    for (g, &kp) in gap.iter_mut().zip(&k) {
-        *g = probe_gap(problem, kp, t_end, go_on)?;
+    let mut k = probe_stiffnesses(problem);
+    let mut rung = 0;
+    loop {
+        let mut gap = [0.0; 2];
+        for (g, &kp) in gap.iter_mut().zip(&k) {
+            *g = probe_gap(problem, kp, t_end, go_on)?;
+        }
+        let probe = ModelProbe { k, gap };
+        let settled = gap[1].is_finite() && (gap[1] < 1e-12 || probe.raw_slope() >= 1.0);
+        rung += 1;
+        if settled || rung == PROBE_RUNGS || problem.params().k < AVERAGED_MIN_RATIO * 16.0 * k[1] {
+            return Ok(probe);
+        }
+        k = [4.0 * k[0], 4.0 * k[1]];
     }
-    Ok(ModelProbe { k, gap })
+}
+
+/// The start at stiffness `k` that the averaging sees as the same: `γ0` scaled by
+/// `sqrt(k_problem / k)`, which keeps the fast action, its phase and `θ` (the family the note's
+/// error constants are measured on, its cases C and D). A tilt kept fixed instead would carry
+/// a fast energy `½ k γ0²` that changes with `k`: another motion.
+///
+/// # Panics
+/// When `k` is not finite and positive (callers pass the probe stiffnesses).
+#[must_use]
+pub fn probe_problem(problem: &Problem, k: f64) -> Problem {
+    let mut start = *problem.start();
+    start.gamma *= (problem.params().k / k).sqrt();
+    Problem::new(
+        super::params::Params {
+            k,
+            ..*problem.params()
+        },
+        start,
+    )
+    .expect("probe k is valid")
 }
 
 fn probe_gap(
@@ -252,7 +293,7 @@ fn probe_gap(
     t_end: f64,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<f64, StepError> {
-    let probe = problem.with_k(k).expect("probe k is valid");
+    let probe = probe_problem(problem, k);
     let nu = fastest_rate(&probe);
     let spec = |method, tolerance, step| RunSpec {
         method,
