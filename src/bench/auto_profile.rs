@@ -171,8 +171,12 @@ pub fn profile(quick: bool, log: &mut dyn FnMut(&str)) -> Vec<ProfileRow> {
             let (mut best_single, mut best_seconds) = ("none".to_owned(), f64::NAN);
             if !quick {
                 // The references' own floor: about 2e-12, 3e-11 at k = 1e8 (14 million long-double
-            // steps).
-            let target = achieved.max(if k >= 1e8 && k < 1e9 { 3e-11 } else { 2e-12 });
+                // steps).
+                let target = achieved.max(if (1e8..1e9).contains(&k) {
+                    3e-11
+                } else {
+                    2e-12
+                });
                 for (method, tol, step) in singles(p) {
                     let s = spec(method, tol, step, T_END);
                     if crate::physics::budget::cost_seconds(p, method, tol, step, T_END) > 2.0 {

@@ -529,7 +529,8 @@ pub fn plan(problem: &Problem, tolerance: f64, t_end: f64) -> Plan {
 pub enum Shortfall {
     /// A refinement no longer halved the estimate: round-off, or an ill-conditioned start.
     Floor,
-    /// The adaptive tolerance reached its clamp (1e-14).
+    /// The adaptive tolerance reached its clamp (1e-14) and no other method is predicted to do
+    /// better.
     Clamped,
     /// [`MAX_REFINEMENTS`] refinements were not enough.
     Refinements,
@@ -645,29 +646,9 @@ pub fn run_auto_cancellable(
     let mut refinements = 0;
     // The estimate before the last refinement of the same method (none after a change).
     let mut previous: Option<f64> = None;
+    let mut best_so_far: Option<Verified> = None;
     loop {
-        let run_spec = RunSpec {
-            method: plan.method,
-            tolerance: plan.tolerance,
-            step: plan.step,
-            ..*spec
-        };
-        let result = run_cancellable(problem, &run_spec, go_on)?;
-        let companion = plan.companion();
-        let check = run_cancellable(
-            problem,
-            &RunSpec {
-                tolerance: companion.tolerance,
-                step: companion.step,
-                samples: 0,
-                monitor_energy: false,
-                ..run_spec
-            },
-            go_on,
-        )?;
-        let estimate = difference(&result, &check)
-            + model_error
-            + round_off(problem, result.stats.steps as f64, t_end);
+        let (result, estimate) = run_and_check(problem, spec, &plan, model_error, go_on)?;
         let shortfall = if estimate <= tolerance {
             None
         } else if previous.is_some_and(|p| estimate >= 0.5 * p) {
@@ -687,22 +668,37 @@ pub fn run_auto_cancellable(
         let next = (estimate > tolerance && shortfall.is_none())
             .then(|| refine(problem, &plan, model_error, estimate, tolerance, t_end));
         let shortfall = match &next {
-            Some(None) => Some(Shortfall::Model),
+            Some(None) if plan.method == Method::Averaged2 => Some(Shortfall::Model),
+            Some(None) => Some(Shortfall::Clamped),
             Some(Some(n)) if spent + n.predicted_seconds > allowance => Some(Shortfall::Time),
             _ => shortfall,
         };
-        if estimate <= tolerance || shortfall.is_some() {
+        let verified = Verified {
+            run_settings: plan.settings(),
+            plan: plan.clone(),
+            result,
+            error_estimate: estimate,
+            met: estimate <= tolerance,
+            shortfall,
+            model_error,
+            refinements,
+        };
+        if estimate <= tolerance {
+            return Ok(verified);
+        }
+        // Keep the best run so far: past the round-off floor a refinement can be worse.
+        let best = match best_so_far.take() {
+            Some(b) if b.error_estimate <= verified.error_estimate => b,
+            _ => verified,
+        };
+        if let Some(why) = shortfall {
             return Ok(Verified {
-                run_settings: plan.settings(),
-                plan,
-                result,
-                error_estimate: estimate,
-                met: estimate <= tolerance,
-                shortfall,
-                model_error,
+                shortfall: Some(why),
                 refinements,
+                ..best
             });
         }
+        best_so_far = Some(best);
         let next = next
             .flatten()
             .expect("a refinement when the estimate misses");
@@ -717,6 +713,40 @@ pub fn run_auto_cancellable(
         plan = next;
         refinements += 1;
     }
+}
+
+/// Runs `plan` as `spec` asks (samples, energy) and its coarser companion; the run and its
+/// error estimate (their difference, the model error, the round-off floor).
+fn run_and_check(
+    problem: &Problem,
+    spec: &RunSpec,
+    plan: &Plan,
+    model_error: f64,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<(RunResult, f64), StepError> {
+    let run_spec = RunSpec {
+        method: plan.method,
+        tolerance: plan.tolerance,
+        step: plan.step,
+        ..*spec
+    };
+    let result = run_cancellable(problem, &run_spec, go_on)?;
+    let companion = plan.companion();
+    let check = run_cancellable(
+        problem,
+        &RunSpec {
+            tolerance: companion.tolerance,
+            step: companion.step,
+            samples: 0,
+            monitor_energy: false,
+            ..run_spec
+        },
+        go_on,
+    )?;
+    let estimate = difference(&result, &check)
+        + model_error
+        + round_off(problem, result.stats.steps as f64, spec.t_end);
+    Ok((result, estimate))
 }
 
 /// The round-off floor of a run of `steps` steps over `[0, t_end]`: a random walk of one
@@ -754,8 +784,9 @@ pub fn difference(a: &RunResult, b: &RunResult) -> f64 {
     d
 }
 
-/// The next plan after `plan` missed with `estimate`; `None` when the averaged model's own
-/// error is what misses and resolving is predicted to do no better.
+/// The next plan after `plan` missed with `estimate`; `None` when nothing is predicted to do
+/// better: the averaged model's own error misses and resolving would not beat it, or DOP853 is
+/// at its tightest tolerance and the splitting's round-off floor is no lower.
 fn refine(
     problem: &Problem,
     plan: &Plan,
@@ -785,6 +816,10 @@ fn refine(
         // DOP853 cannot be tightened that far: the splitting, whose error does not stall at a
         // tolerance clamp, at the step its model asks for this tolerance, then refined as needed.
         let [_, mut bm] = resolved_plans(problem, tolerance, t_end);
+        if bm.predicted_error >= estimate {
+            // Its round-off floor over this horizon is no better than what DOP853 reached.
+            return None;
+        }
         let _ = write!(
             bm.reason,
             "; dop853 missed ({estimate:.1e}) at its tightest tolerance, resolved by the splitting instead"
