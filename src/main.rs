@@ -259,6 +259,10 @@ fn run_simulate(args: &SimulateArgs) -> ExitCode {
             );
             ExitCode::from(2)
         }
+        Err(Failure::Run(e @ StepError::OutsideModel { .. })) => {
+            say_err!("rattleback: error: --method averaged2: {e}");
+            ExitCode::from(2)
+        }
         Err(Failure::Run(e)) => {
             say_err!("rattleback: integration failed: {e}");
             ExitCode::from(1)

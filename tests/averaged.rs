@@ -196,3 +196,31 @@ fn averaged2_conserves_its_averaged_hamiltonian_and_reports_it() {
         r.max_relative_energy_error
     );
 }
+
+#[test]
+fn averaged2_refuses_starts_its_expansion_does_not_cover() {
+    // A soft spring, a tiny spin inertia (the "slow" oscillation faster than the fast one), a
+    // violent tilt: each used to run for minutes into nonsense; now one line, exit 2, at once.
+    for set in [
+        "spring.k=1",
+        "body.iz=1e-9",
+        "initial.gamma=1",
+        "body.iy=1e6",
+    ] {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+            .args(["simulate", "--method", "averaged2", "--set", set])
+            .env(
+                "RATTLEBACK_CONFIG_DIR",
+                std::env::temp_dir().join("rattleback-averaged-test"),
+            )
+            .output()
+            .expect("runs");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{set}: {err}");
+        assert!(err.contains("does not apply here"), "{set}: {err}");
+        assert_eq!(err.lines().count(), 1, "{set}: {err}");
+    }
+    // Inside its range it runs: the shipped default at k = 1e2 (expansion parameter 0.09).
+    let case = common::problem(2.0, 1.0, 1.0, 1e2, [0.0, 0.0, 1.0, 0.5]);
+    assert!(rattleback::physics::averaged::expansion_parameter(&case) < 0.2);
+}

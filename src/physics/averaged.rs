@@ -303,6 +303,33 @@ impl Averaged2 {
     }
 }
 
+/// Largest [`expansion_parameter`] for which `averaged2` runs at all (its error at 0.2 is
+/// already 1e-3 … 1e-5 on the note's starts, k = 1e2; past 0.5 the slow motion is not slow).
+pub const VALIDITY_LIMIT: f64 = 0.5;
+
+/// The largest of the averaging's small parameters for a start (note §4.3, "Validity"):
+/// `v = |α̇|max (1 + c_max) / ω_min`, the spin against the slowest fast frequency, and
+/// `u (1 + c'_max + 2 c²_max)` with `u = θ √g_max / (iz k)`, whose square root is the slow
+/// oscillation's frequency against the fast one.
+#[must_use]
+pub fn expansion_parameter(problem: &Problem) -> f64 {
+    let p = problem.params();
+    let eff = super::effective::Effective::new(problem);
+    let spin = (2.0 * (eff.energy() - eff.potential_min()) / p.iz)
+        .max(0.0)
+        .sqrt()
+        .max(problem.start().alpha_dot.abs());
+    let (g_min, g_max) = (p.ix.min(p.iy), p.ix.max(p.iy));
+    let d = (p.iy - p.ix).abs();
+    let c_max = d / (4.0 * g_min);
+    // |c'| ≤ (|g''|/g + (g'/g)²)/4 ≤ (2d/g_min + (d/g_min)²)/4.
+    let c1_max = (2.0 * d / g_min + (d / g_min).powi(2)) / 4.0;
+    let omega_min = (p.k / g_max).sqrt();
+    let v = spin * (1.0 + c_max) / omega_min;
+    let u = eff.theta() * g_max.sqrt() / (p.iz * p.k);
+    v.max(u * (1.0 + c1_max + 2.0 * c_max * c_max))
+}
+
 /// The reconstructed fast action and phase.
 #[derive(Clone, Copy, Debug)]
 struct Fast {

@@ -192,6 +192,17 @@ pub enum StepError {
         /// Time reached.
         t: f64,
     },
+    /// The averaged model does not apply to this problem: its expansion parameters are not
+    /// small (the spin or the slow oscillation is not slow against the fast frequency).
+    #[error(
+        "the averaged model does not apply here: its expansion parameter is {parameter:.1e} (|α̇|/ω and θ√g/(iz k) must be small; allowed: at most {limit}); use auto or a method that resolves the fast motion"
+    )]
+    OutsideModel {
+        /// The largest expansion parameter of the start.
+        parameter: f64,
+        /// The largest accepted.
+        limit: f64,
+    },
     /// `auto` is a planner, not an integrator: resolve it first (`physics::plan`).
     #[error("method auto must be resolved to a concrete method before integrating")]
     Unplanned,
@@ -317,7 +328,14 @@ pub fn build(
             settings.tolerance,
             true,
         )),
-        Method::Averaged2 => Box::new(averaged::Averaged2Dop853::new(problem, settings.tolerance)),
+        Method::Averaged2 => {
+            let parameter = crate::physics::averaged::expansion_parameter(problem);
+            let limit = crate::physics::averaged::VALIDITY_LIMIT;
+            if !(parameter <= limit) {
+                return Err(StepError::OutsideModel { parameter, limit });
+            }
+            Box::new(averaged::Averaged2Dop853::new(problem, settings.tolerance))
+        }
         Method::Auto => return Err(StepError::Unplanned),
     })
 }
