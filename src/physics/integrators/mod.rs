@@ -331,7 +331,7 @@ pub fn build(
         Method::Averaged2 => {
             let parameter = crate::physics::averaged::expansion_parameter(problem);
             let limit = crate::physics::averaged::VALIDITY_LIMIT;
-            if !(parameter <= limit) {
+            if parameter.is_nan() || parameter > limit {
                 return Err(StepError::OutsideModel { parameter, limit });
             }
             Box::new(averaged::Averaged2Dop853::new(problem, settings.tolerance))
