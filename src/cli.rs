@@ -60,6 +60,94 @@ pub enum Command {
     Replay(ReplayArgs),
     /// Work–precision study of every method over k = 1e2 … 1e12, and a stability report.
     Bench(BenchArgs),
+    /// Studies of the limit k → ∞: a stiffness sweep, or the regime map of the theorems.
+    #[command(subcommand)]
+    Study(StudyCommand),
+}
+
+/// `study` subcommands.
+#[derive(Debug, Subcommand)]
+pub enum StudyCommand {
+    /// The full motion at a ladder of stiffnesses against the limit: the largest distance of
+    /// its α from the limit's over [0, T], against k, with the fitted log–log slope.
+    Sweep(SweepArgs),
+    /// Reversals in [0, T] over a grid of (α̇0²/γ̇0², iy/ix) with the critical curve, from the
+    /// limit (quadrature) or the full model at `--k`.
+    Map(MapArgs),
+}
+
+/// What both studies take.
+#[derive(Debug, Args)]
+pub struct StudyCommon {
+    /// Preset: a shipped name or a path to a TOML file.
+    #[arg(long, value_name = "NAME|PATH", default_value = DEFAULT_PRESET)]
+    pub preset: String,
+    /// Override a preset value, e.g. `--set body.iz=2` (repeatable).
+    #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
+    pub set: Vec<Override>,
+    /// Final time (overrides the preset's `run.t_end`).
+    #[arg(long = "t-end", value_parser = parse_positive)]
+    pub t_end: Option<f64>,
+    /// `auto`'s tolerance for the full-model runs (overrides the preset's).
+    #[arg(long, value_parser = parse_tolerance)]
+    pub tolerance: Option<f64>,
+    /// Also write CSV files and an SVG plot into this folder (created if missing; existing
+    /// files of the same names are refused unless `--force`).
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<std::path::PathBuf>,
+    /// Replace existing files in `--out`.
+    #[arg(long)]
+    pub force: bool,
+    /// Output format on stdout.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+}
+
+/// Arguments of `study sweep`.
+#[derive(Debug, Args)]
+pub struct SweepArgs {
+    #[command(flatten)]
+    pub common: StudyCommon,
+    /// The stiffnesses, comma-separated (default: one per decade from 1e1 to 1e8).
+    #[arg(long, value_delimiter = ',', value_parser = parse_positive)]
+    pub ladder: Vec<f64>,
+}
+
+/// Arguments of `study map`.
+#[derive(Debug, Args)]
+pub struct MapArgs {
+    #[command(flatten)]
+    pub common: StudyCommon,
+    /// Cells: columns (ratio axis) x rows (inertia-ratio axis).
+    #[arg(long, value_name = "COLSxROWS", default_value = "200x100", value_parser = parse_grid)]
+    pub grid: (usize, usize),
+    /// Largest α̇0²/γ̇0² (columns span (0, max]).
+    #[arg(long = "ratio-max", default_value_t = 2.0, value_parser = parse_positive)]
+    pub ratio_max: f64,
+    /// Smallest iy/ix (rows are log-spaced).
+    #[arg(long = "inertia-min", default_value_t = 0.1, value_parser = parse_positive)]
+    pub inertia_min: f64,
+    /// Largest iy/ix.
+    #[arg(long = "inertia-max", default_value_t = 10.0, value_parser = parse_positive)]
+    pub inertia_max: f64,
+    /// Compute every cell from the full model at this Hooke constant (through `auto`) instead
+    /// of the limit; refused when predicted over the work budget unless `--force`.
+    #[arg(long, value_parser = parse_positive)]
+    pub k: Option<f64>,
+}
+
+fn parse_grid(s: &str) -> Result<(usize, usize), String> {
+    let (c, r) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| "expected COLSxROWS, e.g. 200x100".to_owned())?;
+    let n = |v: &str| -> Result<usize, String> {
+        v.trim()
+            .parse::<usize>()
+            .ok()
+            .filter(|n| (1..=2000).contains(n))
+            .ok_or_else(|| format!("`{v}`: a whole number from 1 to 2000"))
+    };
+    Ok((n(c)?, n(r)?))
 }
 
 /// Arguments of `bench`.

@@ -147,3 +147,318 @@ pub fn check(args: &CheckArgs) -> ExitCode {
     }
     report(&problems)
 }
+
+/// `rattleback study sweep|map`.
+#[must_use]
+pub fn study(command: &crate::cli::StudyCommand) -> ExitCode {
+    use crate::cli::StudyCommand;
+    match command {
+        StudyCommand::Sweep(args) => study_sweep(args),
+        StudyCommand::Map(args) => study_map(args),
+    }
+}
+
+/// The preset, horizon and tolerance of a study, or the exit of a bad input.
+fn study_setup(
+    common: &crate::cli::StudyCommon,
+) -> Result<(crate::scenario::Preset, f64, f64), ExitCode> {
+    let preset = crate::scenario::shipped::resolve(&common.preset, &common.set).map_err(|e| {
+        say_err!("rattleback: error: {e}");
+        ExitCode::from(2)
+    })?;
+    let t_end = common.t_end.unwrap_or(preset.run.t_end);
+    let tolerance = common
+        .tolerance
+        .or(preset.run.tolerance)
+        .unwrap_or(crate::physics::DEFAULT_TOLERANCE);
+    if let Some(dir) = &common.out
+        && let Err(e) = std::fs::create_dir_all(dir)
+    {
+        say_err!("rattleback: error: --out {}: {e}", dir.display());
+        return Err(ExitCode::from(2));
+    }
+    Ok((preset, t_end, tolerance))
+}
+
+/// Writes `files` (name, contents) into `--out`, refusing to replace without `--force`.
+fn write_outputs(common: &crate::cli::StudyCommon, files: &[(&str, String)]) -> ExitCode {
+    let Some(dir) = &common.out else {
+        return ExitCode::SUCCESS;
+    };
+    for (name, text) in files {
+        let path = dir.join(name);
+        if let Err(e) = crate::scenario::write::write_atomic(&path, text.as_bytes(), common.force) {
+            if e.kind() == std::io::ErrorKind::AlreadyExists {
+                say_err!("rattleback: error: {e}; --force replaces it");
+                return ExitCode::from(2);
+            }
+            say_err!("rattleback: error: {}: {e}", path.display());
+            return ExitCode::from(1);
+        }
+    }
+    say_err!(
+        "wrote {}",
+        files
+            .iter()
+            .map(|(n, _)| dir.join(n).display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    ExitCode::SUCCESS
+}
+
+/// Writes `text` to stdout; a closed pipe (`| head`) ends the output quietly (exit 0, the
+/// `--out` files are still written), another failure is exit 1.
+fn emit(text: &str) -> Result<(), ExitCode> {
+    use std::io::Write as _;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        Err(e) => {
+            say_err!("rattleback: error: writing the output: {e}");
+            Err(ExitCode::from(1))
+        }
+    }
+}
+
+fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
+    use crate::study::sweep::{DEFAULT_LADDER, sweep};
+    let (preset, t_end, tolerance) = match study_setup(&args.common) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let ladder = if args.ladder.is_empty() {
+        DEFAULT_LADDER.to_vec()
+    } else {
+        args.ladder.clone()
+    };
+    let s = match sweep(&preset.problem, &ladder, t_end, tolerance, &|_| true) {
+        Ok(s) => s,
+        Err(e) => {
+            say_err!("rattleback: study sweep failed: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    let mut csv = String::from("stiffness,sup_error,method,estimate\n");
+    for r in &s.rungs {
+        let _ = writeln!(
+            csv,
+            "{:e},{:e},{},{:e}",
+            r.k, r.sup_error, r.method, r.estimate
+        );
+    }
+    let printed = match args.common.format {
+        crate::cli::Format::Json => {
+            let v = serde_json::json!({
+                "preset": preset.name,
+                "t_end": t_end,
+                "tolerance": tolerance,
+                "stiffness": s.stiffness(),
+                "sup_error": s.sup_error(),
+                "slope": s.slope,
+                "methods": s.rungs.iter().map(|r| r.method.name()).collect::<Vec<_>>(),
+                "estimates": s.rungs.iter().map(|r| r.estimate).collect::<Vec<_>>(),
+            });
+            emit(&format!(
+                "{}\n",
+                serde_json::to_string_pretty(&v).expect("serializes")
+            ))
+        }
+        crate::cli::Format::Csv => emit(&crate::scenario::text::clean(&csv)),
+        crate::cli::Format::Table => emit(&crate::scenario::text::clean(&sweep_table(
+            &preset.name,
+            t_end,
+            tolerance,
+            &s,
+        ))),
+    };
+    if let Err(code) = printed {
+        return code;
+    }
+    let curves = sweep_curves(&s);
+    let svg = match crate::study::svg::sweep_svg(&s) {
+        Ok(svg) => svg,
+        Err(e) => {
+            say_err!("rattleback: error: drawing the sweep: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    write_outputs(
+        &args.common,
+        &[
+            ("sweep.csv", csv),
+            ("sweep_curves.csv", curves),
+            ("sweep.svg", svg),
+        ],
+    )
+}
+
+fn sweep_table(name: &str, t_end: f64, tolerance: f64, s: &crate::study::sweep::Sweep) -> String {
+    let mut o = format!("preset        {name} (T = {t_end}, tolerance {tolerance:e})\n");
+    let _ = writeln!(
+        o,
+        "{:>10}  {:>14}  {:<13} {:>9}",
+        "k", "sup|α_k−α_eff|", "auto chose", "estimate"
+    );
+    for r in &s.rungs {
+        let _ = writeln!(
+            o,
+            "{:>10.0e}  {:>14.3e}  {:<13} {:>9.1e}",
+            r.k,
+            r.sup_error,
+            r.method.name(),
+            r.estimate
+        );
+    }
+    let _ = writeln!(
+        o,
+        "slope of log sup against log k: {}",
+        s.slope
+            .map_or_else(|| "n/a".to_owned(), |x| format!("{x:.3}"))
+    );
+    o
+}
+
+/// `sweep_curves.csv`: `t, limit, alpha_k<k>…`, one row per sample.
+fn sweep_curves(s: &crate::study::sweep::Sweep) -> String {
+    let mut curves = String::from("t,limit");
+    for r in &s.rungs {
+        let _ = write!(curves, ",alpha_k{:e}", r.k);
+    }
+    curves.push('\n');
+    for (i, t) in s.t.iter().enumerate() {
+        let _ = write!(curves, "{t},{}", s.limit[i]);
+        for r in &s.rungs {
+            let _ = write!(curves, ",{}", r.alpha[i]);
+        }
+        curves.push('\n');
+    }
+    curves
+}
+
+fn study_map(args: &crate::cli::MapArgs) -> ExitCode {
+    use crate::study::map::{Grid, Source, regime_map};
+    let (preset, t_end, tolerance) = match study_setup(&args.common) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    if args.inertia_min >= args.inertia_max {
+        say_err!(
+            "rattleback: error: --inertia-min ({}) must be below --inertia-max ({})",
+            args.inertia_min,
+            args.inertia_max
+        );
+        return ExitCode::from(2);
+    }
+    let p = preset.problem.params();
+    let s = preset.problem.start();
+    let grid = Grid {
+        cols: args.grid.0,
+        rows: args.grid.1,
+        ratio_max: args.ratio_max,
+        inertia: (args.inertia_min, args.inertia_max),
+        ix: p.ix,
+        iz: p.iz,
+        gamma_dot: if s.gamma_dot == 0.0 { 1.0 } else { s.gamma_dot },
+        t_end,
+    };
+    let source = match args.k {
+        None => Source::Limit,
+        Some(k) => {
+            // The full model: one verified auto run per cell, predicted before anything runs.
+            let probe = grid
+                .problem(args.ratio_max, args.inertia_min, k)
+                .expect("valid corner");
+            #[allow(clippy::cast_precision_loss)]
+            let cells = (grid.cols * grid.rows) as f64;
+            let predicted = cells
+                * crate::physics::plan::predicted_seconds(
+                    &probe,
+                    crate::physics::Method::Auto,
+                    tolerance,
+                    None,
+                    t_end,
+                )
+                / 2.0;
+            if let Err(over) = crate::physics::budget::check(
+                predicted,
+                if args.common.force {
+                    f64::INFINITY
+                } else {
+                    crate::physics::budget::BUDGET_SECONDS
+                },
+            ) {
+                say_err!(
+                    "rattleback: error: this map ({} cells of the full model at k = {k:e}) is {over}; use a smaller --grid, or pass --force",
+                    grid.cols * grid.rows
+                );
+                return ExitCode::from(2);
+            }
+            Source::Full { k, tolerance }
+        }
+    };
+    let map = match regime_map(&grid, source, &|_| true) {
+        Ok(m) => m,
+        Err(e) => {
+            say_err!("rattleback: study map failed: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    let mut csv = String::from("ratio,inertia_ratio,reversals\n");
+    for c in &map.cells {
+        let _ = writeln!(csv, "{},{},{}", c.ratio, c.inertia_ratio, c.reversals);
+    }
+    let printed = match args.common.format {
+        crate::cli::Format::Json => emit(&format!(
+            "{}\n",
+            serde_json::to_string(&map).expect("serializes")
+        )),
+        crate::cli::Format::Csv => emit(&csv),
+        crate::cli::Format::Table => emit(&map_table(&grid, &map)),
+    };
+    if let Err(code) = printed {
+        return code;
+    }
+    let svg = match crate::study::svg::map_svg(&map, grid.cols, grid.rows) {
+        Ok(svg) => svg,
+        Err(e) => {
+            say_err!("rattleback: error: drawing the map: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    write_outputs(&args.common, &[("map.csv", csv), ("map.svg", svg)])
+}
+
+/// The map in text: at most 60 columns and 20 rows of digits (reversals, `+` for 10 or more,
+/// `.` for none), largest inertia ratio on top, `*` where the critical curve crosses a row.
+fn map_table(grid: &crate::study::map::Grid, map: &crate::study::map::RegimeMap) -> String {
+    let (cols, rows) = (grid.cols.min(60), grid.rows.min(20));
+    let mut o = format!(
+        "reversals in (0, {}] over alpha_dot0²/gamma_dot0² (0 … {}) across, iy/ix ({} … {}) up\n",
+        grid.t_end, grid.ratio_max, grid.inertia.0, grid.inertia.1
+    );
+    for r in (0..rows).rev() {
+        let j = r * grid.rows / rows;
+        let critical = grid.critical(grid.inertia_ratio(j));
+        let _ = write!(o, "{:>8.3} ", grid.inertia_ratio(j));
+        for c in 0..cols {
+            let i = c * grid.cols / cols;
+            let cell = &map.cells[j * grid.cols + i];
+            #[allow(clippy::cast_precision_loss)]
+            let width = grid.ratio_max / cols as f64;
+            let ch = if critical.is_some_and(|x| (x - cell.ratio).abs() <= 0.5 * width) {
+                '*'
+            } else {
+                match cell.reversals {
+                    0 => '.',
+                    n @ 1..=9 => char::from_digit(n as u32, 10).unwrap_or('+'),
+                    _ => '+',
+                }
+            };
+            o.push(ch);
+        }
+        o.push('\n');
+    }
+    o
+}

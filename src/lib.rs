@@ -1,7 +1,8 @@
 //! The holonomic rattleback explorer: physics core, scenarios and the headless commands.
 //!
 //! Layers (each module's doc says what it may import):
-//! `physics` ← `scenario` ← `sim`, `app` ← `ui` ← `explorer`, `terminal` ← `main`.
+//! `physics` ← `scenario` ← `sim`, `app` ← `ui` ← `explorer`, `terminal` ← `main`; `study`
+//! (the limit's studies, threaded) sits beside `sim`, above `physics`.
 
 pub mod app;
 pub mod bench;
@@ -15,5 +16,6 @@ pub mod record;
 pub mod scenario;
 pub mod sim;
 pub mod simulate;
+pub mod study;
 pub mod terminal;
 pub mod ui;

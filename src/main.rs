@@ -31,6 +31,7 @@ fn main() -> ExitCode {
         Some(Command::Check(args)) => commands::check(&args),
         Some(Command::Replay(ref args)) => run_replay(&cli, args),
         Some(Command::Bench(ref args)) => commands::bench(args),
+        Some(Command::Study(ref command)) => commands::study(command),
         None => run_explorer(&cli),
     }
 }

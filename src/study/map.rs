@@ -1,0 +1,190 @@
+//! The regime map: the number of spin reversals in `(0, T]` over a grid of the paper's two
+//! numbers, the ratio `α̇0²/γ̇0²` (columns) and the inertia ratio `iy/ix` (rows, log-spaced),
+//! with the critical curve `α̇0²/γ̇0² = (ix/iz)(√(ix/iy) − 1)` of Theorems 1.1–1.2 (for
+//! `iy < ix`; for `iy ≥ ix` the start at α = 0 sits on the potential's maximum and never
+//! reverses).
+//!
+//! From the limit each cell is two quadratures (its first reversal time and half period); at a
+//! finite `k` each cell is a verified `auto` run, to show where finite `k` departs from the
+//! theorem. Cells are computed in parallel (rayon) and collected in grid order, so the result
+//! does not depend on the number of threads.
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::physics::auto::run_auto_cancellable;
+use crate::physics::effective::Effective;
+use crate::physics::{Method, Params, Problem, RunSpec, Start, StepError};
+
+/// What the map is computed from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Source {
+    /// The limit `k → ∞`, by quadrature.
+    Limit,
+    /// The full model at this `k`, through `auto` at this tolerance.
+    Full {
+        /// Hooke constant.
+        k: f64,
+        /// `auto`'s tolerance.
+        tolerance: f64,
+    },
+}
+
+/// The grid and the body it is drawn for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Grid {
+    /// Columns (ratio axis).
+    pub cols: usize,
+    /// Rows (inertia-ratio axis).
+    pub rows: usize,
+    /// Largest `α̇0²/γ̇0²` (the columns span `(0, ratio_max]`).
+    pub ratio_max: f64,
+    /// Smallest and largest `iy/ix` (log-spaced rows).
+    pub inertia: (f64, f64),
+    /// `ix` and `iz` of the body; `iy = ix · (iy/ix)`.
+    pub ix: f64,
+    /// `iz`.
+    pub iz: f64,
+    /// `γ̇0` of every start (`γ0 = α0 = 0`).
+    pub gamma_dot: f64,
+    /// Horizon.
+    pub t_end: f64,
+}
+
+impl Grid {
+    /// The ratio at the centre of column `i`.
+    #[must_use]
+    pub fn ratio(&self, i: usize) -> f64 {
+        #[allow(clippy::cast_precision_loss)]
+        let f = (i as f64 + 0.5) / self.cols as f64;
+        f * self.ratio_max
+    }
+
+    /// The inertia ratio at the centre of row `j`.
+    #[must_use]
+    pub fn inertia_ratio(&self, j: usize) -> f64 {
+        #[allow(clippy::cast_precision_loss)]
+        let f = (j as f64 + 0.5) / self.rows as f64;
+        let (lo, hi) = self.inertia;
+        (lo.ln() + f * (hi / lo).ln()).exp()
+    }
+
+    /// The start of a cell at stiffness `k`.
+    ///
+    /// # Errors
+    /// When the values are not a valid problem.
+    pub fn problem(&self, ratio: f64, inertia_ratio: f64, k: f64) -> Result<Problem, StepError> {
+        Problem::new(
+            Params {
+                ix: self.ix,
+                iy: self.ix * inertia_ratio,
+                iz: self.iz,
+                k,
+            },
+            Start {
+                gamma: 0.0,
+                alpha: 0.0,
+                gamma_dot: self.gamma_dot,
+                alpha_dot: ratio.sqrt() * self.gamma_dot,
+            },
+        )
+        .map_err(|_| StepError::NotFinite {
+            what: "a cell's parameters",
+            t: 0.0,
+        })
+    }
+
+    /// The paper's critical ratio at an inertia ratio, `(ix/iz)(√(ix/iy) − 1)` (`None` for
+    /// `iy ≥ ix`).
+    #[must_use]
+    pub fn critical(&self, inertia_ratio: f64) -> Option<f64> {
+        (inertia_ratio < 1.0).then(|| self.ix / self.iz * (1.0 / inertia_ratio.sqrt() - 1.0))
+    }
+}
+
+/// One cell.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Cell {
+    /// `α̇0²/γ̇0²`.
+    pub ratio: f64,
+    /// `iy/ix`.
+    pub inertia_ratio: f64,
+    /// Reversals in `(0, T]`.
+    pub reversals: usize,
+}
+
+/// A point of the critical curve.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct CriticalPoint {
+    /// `iy/ix`.
+    pub inertia_ratio: f64,
+    /// The critical `α̇0²/γ̇0²`.
+    pub ratio: f64,
+}
+
+/// A computed map, cells row by row (row 0 the smallest inertia ratio).
+#[derive(Clone, Debug, Serialize)]
+pub struct RegimeMap {
+    /// The cells.
+    pub cells: Vec<Cell>,
+    /// The critical curve at every row's inertia ratio below 1.
+    pub critical: Vec<CriticalPoint>,
+}
+
+/// Computes the map; `go_on` is asked between cells (and inside full runs) whether to go on.
+///
+/// # Errors
+/// The first cell whose run fails, or [`StepError::Cancelled`].
+pub fn regime_map(
+    grid: &Grid,
+    source: Source,
+    go_on: &(dyn Fn(f64) -> bool + Sync),
+) -> Result<RegimeMap, StepError> {
+    let indices: Vec<(usize, usize)> = (0..grid.rows)
+        .flat_map(|j| (0..grid.cols).map(move |i| (i, j)))
+        .collect();
+    let cells = indices
+        .par_iter()
+        .map(|&(i, j)| {
+            if !go_on(0.0) {
+                return Err(StepError::Cancelled { t: 0.0 });
+            }
+            let (ratio, inertia_ratio) = (grid.ratio(i), grid.inertia_ratio(j));
+            let reversals = match source {
+                Source::Limit => {
+                    let p = grid.problem(ratio, inertia_ratio, 1.0)?;
+                    Effective::new(&p).reversal_count(grid.t_end)
+                }
+                Source::Full { k, tolerance } => {
+                    let p = grid.problem(ratio, inertia_ratio, k)?;
+                    let spec = RunSpec {
+                        method: Method::Auto,
+                        tolerance,
+                        step: None,
+                        t_end: grid.t_end,
+                        samples: 0,
+                        monitor_energy: false,
+                    };
+                    run_auto_cancellable(&p, &spec, f64::INFINITY, &mut |t| go_on(t))?
+                        .result
+                        .reversal_count
+                }
+            };
+            Ok(Cell {
+                ratio,
+                inertia_ratio,
+                reversals,
+            })
+        })
+        .collect::<Result<Vec<Cell>, StepError>>()?;
+    let critical = (0..grid.rows)
+        .filter_map(|j| {
+            let inertia_ratio = grid.inertia_ratio(j);
+            grid.critical(inertia_ratio).map(|ratio| CriticalPoint {
+                inertia_ratio,
+                ratio,
+            })
+        })
+        .collect();
+    Ok(RegimeMap { cells, critical })
+}

@@ -1,0 +1,198 @@
+//! SVG files of the studies (plotters), the same plots the explorer's panes show.
+
+use plotters::prelude::*;
+
+use super::map::RegimeMap;
+use super::sweep::Sweep;
+
+type Fallible = Result<String, Box<dyn std::error::Error>>;
+
+/// `1e-5`, `0.3`, `30`: short tick labels, never `9.999999999999999e-5`.
+#[must_use]
+pub fn tick(x: f64) -> String {
+    if x == 0.0 {
+        "0".to_owned()
+    } else if (1e-3..1e4).contains(&x.abs()) {
+        let s = format!("{x:.3}");
+        s.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        let s = format!("{x:.1e}");
+        s.replace(".0e", "e")
+    }
+}
+
+/// The sweep: `α_k(t)` of every rung beside the limit, and `sup |α_k − α_eff|` against `k`
+/// (log–log) with the fitted slope.
+///
+/// # Errors
+/// When drawing fails.
+pub fn sweep_svg(sweep: &Sweep) -> Fallible {
+    let mut out = String::new();
+    {
+        let root = SVGBackend::with_string(&mut out, (1200, 500)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let (left, right) = root.split_horizontally(650);
+        let t_end = sweep.t.last().copied().unwrap_or(1.0);
+        let all = sweep
+            .rungs
+            .iter()
+            .flat_map(|r| r.alpha.iter())
+            .chain(&sweep.limit)
+            .copied()
+            .filter(|a| a.is_finite());
+        let (lo, hi) = all.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x), b.max(x))
+        });
+        let pad = 0.05 * (hi - lo).max(1e-9);
+        let mut chart = ChartBuilder::on(&left)
+            .caption("alpha_k(t) closing in on the limit", ("sans-serif", 18))
+            .margin(10)
+            .x_label_area_size(30)
+            .y_label_area_size(50)
+            .build_cartesian_2d(0.0..t_end, (lo - pad)..(hi + pad))?;
+        chart
+            .configure_mesh()
+            .x_desc("t")
+            .y_desc("alpha")
+            .x_label_formatter(&|x| tick(*x))
+            .y_label_formatter(&|y| tick(*y))
+            .draw()?;
+        let n = sweep.rungs.len().max(1);
+        for (i, r) in sweep.rungs.iter().enumerate() {
+            #[allow(clippy::cast_precision_loss)]
+            let shade = 0.15 + 0.7 * i as f64 / n as f64;
+            let colour = HSLColor(0.6, 0.7, 0.85 - 0.6 * shade);
+            chart
+                .draw_series(LineSeries::new(
+                    sweep.t.iter().copied().zip(r.alpha.iter().copied()),
+                    &colour,
+                ))?
+                .label(format!("k = {}", tick(r.k)))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], colour));
+        }
+        chart
+            .draw_series(LineSeries::new(
+                sweep.t.iter().copied().zip(sweep.limit.iter().copied()),
+                BLACK.stroke_width(2),
+            ))?
+            .label("limit")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(2)));
+        chart
+            .configure_series_labels()
+            .border_style(BLACK)
+            .background_style(WHITE.mix(0.8))
+            .draw()?;
+
+        let pts: Vec<(f64, f64)> = sweep
+            .rungs
+            .iter()
+            .map(|r| (r.k, r.sup_error))
+            .filter(|(k, e)| *k > 0.0 && *e > 0.0 && e.is_finite())
+            .collect();
+        if !pts.is_empty() {
+            let (k0, k1) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+                (a.min(p.0), b.max(p.0))
+            });
+            let (e0, e1) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+                (a.min(p.1), b.max(p.1))
+            });
+            let caption = sweep.slope.map_or_else(
+                || "sup |alpha_k - alpha_eff| against k".to_owned(),
+                |s| format!("sup |alpha_k - alpha_eff|: slope {s:.2}"),
+            );
+            let mut chart = ChartBuilder::on(&right)
+                .caption(caption, ("sans-serif", 18))
+                .margin(10)
+                .x_label_area_size(30)
+                .y_label_area_size(60)
+                .build_cartesian_2d(
+                    (k0 * 0.5..k1 * 2.0).log_scale(),
+                    (e0 * 0.3..e1 * 3.0).log_scale(),
+                )?;
+            chart
+                .configure_mesh()
+                .x_desc("k")
+                .x_label_formatter(&|x| tick(*x))
+                .y_label_formatter(&|y| tick(*y))
+                .draw()?;
+            chart.draw_series(LineSeries::new(pts.iter().copied(), &BLUE))?;
+            chart.draw_series(pts.iter().map(|&p| Circle::new(p, 4, BLUE.filled())))?;
+        }
+        root.present()?;
+    }
+    Ok(out)
+}
+
+/// The regime map: cells shaded by their number of reversals (white: none), the critical
+/// curve in red.
+///
+/// # Errors
+/// When drawing fails.
+pub fn map_svg(map: &RegimeMap, cols: usize, rows: usize) -> Fallible {
+    let mut out = String::new();
+    {
+        let root = SVGBackend::with_string(&mut out, (900, 600)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let ratio_max = map.cells.iter().map(|c| c.ratio).fold(0.0, f64::max);
+        let (i0, i1) = map.cells.iter().fold((f64::INFINITY, 0.0f64), |(a, b), c| {
+            (a.min(c.inertia_ratio), b.max(c.inertia_ratio))
+        });
+        #[allow(clippy::cast_precision_loss)]
+        let (dr, di) = (
+            ratio_max / (cols as f64 - 0.5).max(0.5),
+            (i1 / i0).max(1.0).ln() / (rows as f64 - 1.0).max(1.0),
+        );
+        let top = map
+            .cells
+            .iter()
+            .map(|c| c.reversals)
+            .max()
+            .unwrap_or(0)
+            .max(1);
+        let mut chart = ChartBuilder::on(&root)
+            .caption(
+                "spin reversals in [0, T]; red: the critical ratio",
+                ("sans-serif", 18),
+            )
+            .margin(10)
+            .x_label_area_size(35)
+            .y_label_area_size(55)
+            .build_cartesian_2d(
+                0.0..ratio_max + 0.5 * dr,
+                (i0 * (-0.5 * di).exp()..i1 * (0.5 * di).exp()).log_scale(),
+            )?;
+        chart
+            .configure_mesh()
+            .x_desc("alpha_dot0^2 / gamma_dot0^2")
+            .y_desc("iy / ix")
+            .x_label_formatter(&|x| tick(*x))
+            .y_label_formatter(&|y| tick(*y))
+            .draw()?;
+        chart.draw_series(map.cells.iter().map(|c| {
+            #[allow(clippy::cast_precision_loss)]
+            let f = c.reversals as f64 / top as f64;
+            let colour = if c.reversals == 0 {
+                WHITE
+            } else {
+                let v = (235.0 - 200.0 * f) as u8;
+                RGBColor(v, v, 255)
+            };
+            Rectangle::new(
+                [
+                    (c.ratio - 0.5 * dr, c.inertia_ratio * (-0.5 * di).exp()),
+                    (c.ratio + 0.5 * dr, c.inertia_ratio * (0.5 * di).exp()),
+                ],
+                colour.filled(),
+            )
+        }))?;
+        chart.draw_series(LineSeries::new(
+            map.critical
+                .iter()
+                .filter(|p| p.ratio <= ratio_max + 0.5 * dr)
+                .map(|p| (p.ratio, p.inertia_ratio)),
+            RED.stroke_width(2),
+        ))?;
+        root.present()?;
+    }
+    Ok(out)
+}

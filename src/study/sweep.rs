@@ -1,0 +1,120 @@
+//! The stiffness sweep: `α_k(t)` at a ladder of `k` beside the limit `α_eff(t)`, and
+//! `sup_{[0,T]} |α_k − α_eff|` against `k` with its fitted log–log slope.
+//!
+//! Each rung runs `auto` (so the whole ladder costs little more than its stiffest rung's
+//! averaged model) with samples on one grid; the limit is the effective model at 1e-14.
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::physics::auto::run_auto_cancellable;
+use crate::physics::run::run_cancellable;
+use crate::physics::{Method, Problem, RunSpec, StepError};
+
+/// The default ladder: one stiffness per decade from 1e1 to 1e8.
+pub const DEFAULT_LADDER: [f64; 8] = [1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8];
+
+/// Samples of each curve over `[0, T]`.
+pub const SAMPLES: usize = 601;
+
+/// One rung of the ladder.
+#[derive(Clone, Debug, Serialize)]
+pub struct Rung {
+    /// Hooke constant.
+    pub k: f64,
+    /// `sup |α_k − α_eff|` over the samples.
+    pub sup_error: f64,
+    /// `α_k` at the sample times.
+    pub alpha: Vec<f64>,
+    /// What `auto` ran and its error estimate.
+    pub method: Method,
+    /// `auto`'s error estimate of this rung.
+    pub estimate: f64,
+}
+
+/// A whole sweep.
+#[derive(Clone, Debug, Serialize)]
+pub struct Sweep {
+    /// Sample times.
+    pub t: Vec<f64>,
+    /// The limit's `α_eff` at the sample times.
+    pub limit: Vec<f64>,
+    /// The rungs, in the ladder's order.
+    pub rungs: Vec<Rung>,
+    /// Fitted slope of `log sup_error` against `log k` (O(1/k): −1).
+    pub slope: Option<f64>,
+}
+
+impl Sweep {
+    /// The stiffnesses, in order.
+    #[must_use]
+    pub fn stiffness(&self) -> Vec<f64> {
+        self.rungs.iter().map(|r| r.k).collect()
+    }
+
+    /// The sup errors, in order.
+    #[must_use]
+    pub fn sup_error(&self) -> Vec<f64> {
+        self.rungs.iter().map(|r| r.sup_error).collect()
+    }
+}
+
+/// Sweeps `problem`'s start over `ladder` (its own `k` is replaced) to `t_end` at `tolerance`;
+/// `go_on` is asked every few hundred steps of every run (from several threads) whether to go
+/// on.
+///
+/// # Errors
+/// The first integration that fails, or [`StepError::Cancelled`].
+pub fn sweep(
+    problem: &Problem,
+    ladder: &[f64],
+    t_end: f64,
+    tolerance: f64,
+    go_on: &(dyn Fn(f64) -> bool + Sync),
+) -> Result<Sweep, StepError> {
+    let spec = |method, tolerance| RunSpec {
+        method,
+        tolerance,
+        step: None,
+        t_end,
+        samples: SAMPLES,
+        monitor_energy: false,
+    };
+    let limit = run_cancellable(problem, &spec(Method::Effective, 1e-14), &mut |t| go_on(t))?;
+    let t: Vec<f64> = limit.samples.iter().map(|s| s.t).collect();
+    let limit: Vec<f64> = limit.samples.iter().map(|s| s.state[1]).collect();
+    let rungs = ladder
+        .par_iter()
+        .map(|&k| {
+            let p = problem
+                .with_k(k)
+                .map_err(|_| StepError::NotFinite { what: "k", t: 0.0 })?;
+            let v = run_auto_cancellable(
+                &p,
+                &spec(Method::Auto, tolerance),
+                crate::physics::budget::BUDGET_SECONDS,
+                &mut |t| go_on(t),
+            )?;
+            let alpha: Vec<f64> = v.result.samples.iter().map(|s| s.state[1]).collect();
+            let sup_error = alpha
+                .iter()
+                .zip(&limit)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            Ok(Rung {
+                k,
+                sup_error,
+                alpha,
+                method: v.plan.method,
+                estimate: v.error_estimate,
+            })
+        })
+        .collect::<Result<Vec<Rung>, StepError>>()?;
+    let points: Vec<(f64, f64)> = rungs.iter().map(|r| (r.k, r.sup_error)).collect();
+    Ok(Sweep {
+        t,
+        limit,
+        slope: super::log_log_slope(&points),
+        rungs,
+    })
+}

@@ -1,0 +1,168 @@
+//! The limit's studies (issue 12): the stiffness sweep's convergence rate, the regime map
+//! against the paper's theorems, and weak-* convergence.
+
+mod common;
+
+use rattleback::scenario::shipped::resolve;
+use rattleback::study::map::{Grid, Source, regime_map};
+use rattleback::study::sweep::{DEFAULT_LADDER, sweep};
+use rattleback::study::weak::weak_star;
+
+#[test]
+fn the_sweep_converges_like_one_over_k_on_the_default_preset() {
+    let preset = resolve("subcritical", &[]).unwrap();
+    let s = sweep(
+        &preset.problem,
+        &DEFAULT_LADDER,
+        preset.run.t_end,
+        1e-8,
+        &|_| true,
+    )
+    .unwrap();
+    eprintln!("{:?} slope {:?}", s.sup_error(), s.slope);
+    let slope = s.slope.expect("a slope");
+    assert!((slope + 1.0).abs() <= 0.2, "slope {slope}");
+    // Every rung is closer to the limit than the one before it, from k = 1e2 on.
+    for w in s.rungs.windows(2).skip(1) {
+        assert!(
+            w[1].sup_error < w[0].sup_error,
+            "{} then {}",
+            w[0].sup_error,
+            w[1].sup_error
+        );
+    }
+    assert_eq!(s.t.len(), s.limit.len());
+    assert!(s.rungs.iter().all(|r| r.alpha.len() == s.t.len()));
+}
+
+#[test]
+fn every_map_cell_away_from_the_critical_curve_obeys_the_theorems() {
+    let grid = Grid {
+        cols: 120,
+        rows: 60,
+        ratio_max: 2.0,
+        inertia: (0.1, 10.0),
+        ix: 2.0,
+        iz: 1.0,
+        gamma_dot: 1.0,
+        t_end: 30.0,
+    };
+    let map = regime_map(&grid, Source::Limit, &|_| true).unwrap();
+    assert_eq!(map.cells.len(), 120 * 60);
+    let dr = grid.ratio_max / 120.0;
+    let mut checked = 0;
+    for (n, c) in map.cells.iter().enumerate() {
+        let j = n / 120;
+        // One cell away in both directions: this row's neighbours' critical ratios too.
+        let neighbours: Vec<Option<f64>> = [j.saturating_sub(1), j, (j + 1).min(59)]
+            .iter()
+            .map(|&r| grid.critical(grid.inertia_ratio(r)))
+            .collect();
+        if neighbours.iter().all(Option::is_none) {
+            assert_eq!(
+                c.reversals, 0,
+                "iy/ix = {} ≥ 1 never reverses",
+                c.inertia_ratio
+            );
+            checked += 1;
+        } else if neighbours.iter().all(Option::is_some) {
+            let lo = neighbours
+                .iter()
+                .map(|x| x.unwrap())
+                .fold(f64::INFINITY, f64::min);
+            let hi = neighbours.iter().map(|x| x.unwrap()).fold(0.0, f64::max);
+            if c.ratio < lo - dr {
+                assert!(c.reversals > 0, "below the critical ratio: {c:?}");
+                checked += 1;
+            } else if c.ratio > hi + dr {
+                assert_eq!(c.reversals, 0, "above the critical ratio: {c:?}");
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 6000, "{checked} cells checked");
+    assert!(!map.critical.is_empty());
+}
+
+#[test]
+fn weak_star_averages_settle_while_pointwise_values_swing() {
+    let preset = resolve("subcritical", &["spring.k=1e6".parse().unwrap()]).unwrap();
+    for window in [1.0, 3.0] {
+        let w = weak_star(&preset.problem, 30.0, window, &mut |_| true).unwrap();
+        let (lo, hi) = w.pointwise_range();
+        let dev = w.worst_average_deviation();
+        eprintln!(
+            "w = {window}: θ {} pointwise [{lo}, {hi}], worst average {dev:e}",
+            w.theta
+        );
+        assert!(dev < 0.01, "w = {window}: the averages stray by {dev}");
+        assert!(
+            lo < 0.01 * w.theta && hi > 1.98 * w.theta,
+            "[{lo}, {hi}] vs θ {}",
+            w.theta
+        );
+    }
+    // A window shorter than the fast period does not settle: the test can tell.
+    let short = weak_star(&preset.problem, 30.0, 1e-3, &mut |_| true).unwrap();
+    assert!(short.worst_average_deviation() > 0.1);
+}
+
+fn bin(args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        .args(args)
+        .env(
+            "RATTLEBACK_CONFIG_DIR",
+            std::env::temp_dir().join("rattleback-studies-test"),
+        )
+        .output()
+        .expect("runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn study_commands_keep_their_json_contract_and_write_their_files() {
+    let dir = std::env::temp_dir().join(format!("rattleback-study-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.to_str().unwrap();
+    let (code, json, err) = bin(&["study", "sweep", "--format", "json", "--out", out]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["stiffness"].as_array().unwrap().len(), 8);
+    assert_eq!(v["sup_error"].as_array().unwrap().len(), 8);
+    let slope = v["slope"].as_f64().unwrap();
+    assert!((slope + 1.0).abs() < 0.2, "{slope}");
+    for f in ["sweep.csv", "sweep_curves.csv", "sweep.svg"] {
+        assert!(dir.join(f).is_file(), "{f}");
+    }
+    let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+    assert!(csv.starts_with("stiffness,sup_error,method,estimate\n"));
+    assert_eq!(csv.lines().count(), 9);
+
+    let (code, json, err) = bin(&[
+        "study", "map", "--grid", "20x10", "--format", "json", "--out", out,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let cells = v["cells"].as_array().unwrap();
+    assert_eq!(cells.len(), 200);
+    for key in ["ratio", "inertia_ratio", "reversals"] {
+        assert!(cells[0].get(key).is_some(), "{key}");
+    }
+    assert!(!v["critical"].as_array().unwrap().is_empty());
+    assert!(dir.join("map.svg").is_file() && dir.join("map.csv").is_file());
+    // Files are never replaced silently.
+    let (code, _, err) = bin(&["study", "map", "--grid", "20x10", "--out", out]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--force"), "{err}");
+    let (code, _, err) = bin(&["study", "map", "--grid", "20x10", "--out", out, "--force"]);
+    assert_eq!(code, 0, "{err}");
+    // Bad input: one line, exit 2.
+    let (code, _, err) = bin(&["study", "map", "--inertia-min", "3", "--inertia-max", "2"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--inertia-min"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
