@@ -2,6 +2,7 @@
 //! - `physics` is headless: no terminal crate, no threads, no clock;
 //! - `scenario` imports only `physics`; `sim` only `physics`; `app` no `ui`, no terminal crate,
 //!   no `record`; `record` never `ui` (the cast export, which draws, is `cast.rs`, above both);
+//! - `study` imports only `physics` (and rayon, plotters);
 //! - only `main.rs` and `commands.rs` (the binary shell) import `cli`.
 
 use std::path::{Path, PathBuf};
@@ -93,6 +94,20 @@ fn each_layer_imports_only_below_it() {
     forbid(
         "ui",
         &["crate::record", "crate::explorer", "crate::sim::Worker"],
+    );
+    // The studies compute from physics alone: no scenario, no terminal, no explorer state.
+    forbid(
+        "study",
+        &[
+            "crate::scenario",
+            "crate::sim",
+            "crate::app",
+            "crate::ui",
+            "crate::record",
+            "crate::cli",
+            "ratatui",
+            "crossterm",
+        ],
     );
 }
 
