@@ -159,22 +159,6 @@ fn the_companion_is_never_the_run() {
     assert!(v.error_estimate > 0.0);
 }
 
-fn bin(args: &[&str]) -> (i32, String, String) {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
-        .args(args)
-        .env(
-            "RATTLEBACK_CONFIG_DIR",
-            std::env::temp_dir().join("rattleback-auto-honest"),
-        )
-        .output()
-        .expect("runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
 #[test]
 fn a_miss_is_in_the_json_warned_on_stderr_and_fatal_with_strict() {
     // Near the separatrix over T = 60, 1e-10 cannot be verified (see the preset's comment).
@@ -187,7 +171,7 @@ fn a_miss_is_in_the_json_warned_on_stderr_and_fatal_with_strict() {
         "--format",
         "json",
     ];
-    let (code, out, err) = bin(&args);
+    let (code, out, err) = common::bin(&args);
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).expect("json");
     assert_eq!(v["auto"]["met"], false, "{out}");
@@ -198,14 +182,14 @@ fn a_miss_is_in_the_json_warned_on_stderr_and_fatal_with_strict() {
     );
     let mut strict = args.to_vec();
     strict.push("--strict");
-    let (code, out, err) = bin(&strict);
+    let (code, out, err) = common::bin(&strict);
     assert_eq!(code, 1, "{err}");
     assert!(
         out.contains("\"met\": false"),
         "the report is still written"
     );
     // Met: no warning, and --strict changes nothing.
-    let (code, out, err) = bin(&["simulate", "--format", "json", "--strict"]);
+    let (code, out, err) = common::bin(&["simulate", "--format", "json", "--strict"]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("\"met\": true"), "{out}");
     assert!(!err.contains("warning"), "{err}");
@@ -222,7 +206,7 @@ fn the_limits_values_are_accurate_whatever_the_tolerance() {
     let eff = Effective::new(&preset.problem);
     let t7 = eff.reversal_times(30.0)[6];
     for tolerance in [1e-4, 1e-8] {
-        let (code, out, err) = bin(&[
+        let (code, out, err) = common::bin(&[
             "simulate",
             "--format",
             "json",
@@ -245,7 +229,8 @@ fn the_limits_values_are_accurate_whatever_the_tolerance() {
 
 #[test]
 fn averaged_runs_report_the_averaged_model() {
-    let (code, out, err) = bin(&["simulate", "--preset", "stiff-spring", "--format", "json"]);
+    let (code, out, err) =
+        common::bin(&["simulate", "--preset", "stiff-spring", "--format", "json"]);
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert_eq!(v["auto"]["choice"], "averaged2", "{out}");

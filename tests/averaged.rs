@@ -207,16 +207,8 @@ fn averaged2_refuses_starts_its_expansion_does_not_cover() {
         "initial.gamma=1",
         "body.iy=1e6",
     ] {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
-            .args(["simulate", "--method", "averaged2", "--set", set])
-            .env(
-                "RATTLEBACK_CONFIG_DIR",
-                std::env::temp_dir().join("rattleback-averaged-test"),
-            )
-            .output()
-            .expect("runs");
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{set}: {err}");
+        let (code, _, err) = common::bin(&["simulate", "--method", "averaged2", "--set", set]);
+        assert_eq!(code, 2, "{set}: {err}");
         assert!(err.contains("does not apply here"), "{set}: {err}");
         assert_eq!(err.lines().count(), 1, "{set}: {err}");
     }

@@ -107,28 +107,12 @@ fn weak_star_averages_settle_while_pointwise_values_swing() {
     assert!(short.worst_average_deviation() > 0.1);
 }
 
-fn bin(args: &[&str]) -> (i32, String, String) {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
-        .args(args)
-        .env(
-            "RATTLEBACK_CONFIG_DIR",
-            std::env::temp_dir().join("rattleback-studies-test"),
-        )
-        .output()
-        .expect("runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
 #[test]
 fn study_commands_keep_their_json_contract_and_write_their_files() {
     let dir = std::env::temp_dir().join(format!("rattleback-study-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let out = dir.to_str().unwrap();
-    let (code, json, err) = bin(&["study", "sweep", "--format", "json", "--out", out]);
+    let (code, json, err) = common::bin(&["study", "sweep", "--format", "json", "--out", out]);
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
     assert_eq!(v["stiffness"].as_array().unwrap().len(), 8);
@@ -142,7 +126,7 @@ fn study_commands_keep_their_json_contract_and_write_their_files() {
     assert!(csv.starts_with("stiffness,sup_error,method,estimate\n"));
     assert_eq!(csv.lines().count(), 9);
 
-    let (code, json, err) = bin(&[
+    let (code, json, err) = common::bin(&[
         "study", "map", "--grid", "20x10", "--format", "json", "--out", out,
     ]);
     assert_eq!(code, 0, "{err}");
@@ -155,13 +139,13 @@ fn study_commands_keep_their_json_contract_and_write_their_files() {
     assert!(!v["critical"].as_array().unwrap().is_empty());
     assert!(dir.join("map.svg").is_file() && dir.join("map.csv").is_file());
     // Files are never replaced silently.
-    let (code, _, err) = bin(&["study", "map", "--grid", "20x10", "--out", out]);
+    let (code, _, err) = common::bin(&["study", "map", "--grid", "20x10", "--out", out]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("--force"), "{err}");
-    let (code, _, err) = bin(&["study", "map", "--grid", "20x10", "--out", out, "--force"]);
+    let (code, _, err) = common::bin(&["study", "map", "--grid", "20x10", "--out", out, "--force"]);
     assert_eq!(code, 0, "{err}");
     // Bad input: one line, exit 2.
-    let (code, _, err) = bin(&["study", "map", "--inertia-min", "3", "--inertia-max", "2"]);
+    let (code, _, err) = common::bin(&["study", "map", "--inertia-min", "3", "--inertia-max", "2"]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("--inertia-min"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);

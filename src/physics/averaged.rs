@@ -315,10 +315,7 @@ pub const VALIDITY_LIMIT: f64 = 0.5;
 pub fn expansion_parameter(problem: &Problem) -> f64 {
     let p = problem.params();
     let eff = super::effective::Effective::new(problem);
-    let spin = (2.0 * (eff.energy() - eff.potential_min()) / p.iz)
-        .max(0.0)
-        .sqrt()
-        .max(problem.start().alpha_dot.abs());
+    let spin = eff.spin_scale();
     let (g_min, g_max) = (p.ix.min(p.iy), p.ix.max(p.iy));
     let d = (p.iy - p.ix).abs();
     let c_max = d / (4.0 * g_min);

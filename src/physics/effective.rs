@@ -132,6 +132,16 @@ impl Effective {
         self.theta / self.params.ix.min(self.params.iy).sqrt()
     }
 
+    /// The largest spin rate of the limit motion, `sqrt(2 (E_eff − V_min) / iz)`, and at least
+    /// the start's `|α̇0|`: the scale of the slow motion.
+    #[must_use]
+    pub fn spin_scale(&self) -> f64 {
+        (2.0 * (self.energy - self.potential_min()) / self.params.iz)
+            .max(0.0)
+            .sqrt()
+            .max(self.alpha_dot0.abs())
+    }
+
     /// `V_min = θ / sqrt(max(ix, iy))`.
     #[must_use]
     pub fn potential_min(&self) -> f64 {

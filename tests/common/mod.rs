@@ -231,3 +231,20 @@ pub fn averaged_cases() -> Vec<AveragedCase> {
         })
         .collect()
 }
+
+/// Runs the binary with a private config folder; `(exit code, stdout, stderr)`.
+pub fn bin(args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        .args(args)
+        .env(
+            "RATTLEBACK_CONFIG_DIR",
+            std::env::temp_dir().join(format!("rattleback-test-{}", std::process::id())),
+        )
+        .output()
+        .expect("the binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}

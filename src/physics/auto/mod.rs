@@ -197,7 +197,7 @@ impl ModelProbe {
 pub fn probe_stiffnesses(problem: &Problem) -> [f64; 2] {
     let p = problem.params();
     let eff = Effective::new(problem);
-    let spin = spin_scale(problem);
+    let spin = eff.spin_scale();
     let g_max = p.ix.max(p.iy);
     let c_max = (p.iy - p.ix).abs() / (4.0 * p.ix.min(p.iy));
     let from_spin = g_max * (spin * (1.0 + c_max) / PROBE_VALIDITY).powi(2);
@@ -391,17 +391,8 @@ fn blanes_moan_rate(problem: &Problem) -> f64 {
     let nu = fastest_rate(problem);
     let g_min = p.ix.min(p.iy);
     let c_max = (p.iy - p.ix).abs() / (4.0 * g_min);
-    C_BM * spin_scale(problem).powf(2.5) * c_max.powi(4) * nu * nu / g_min + C_FAST * nu.powi(4)
-}
-
-/// The largest spin rate of the start's limit motion (at least `|α̇0|`).
-fn spin_scale(problem: &Problem) -> f64 {
-    let p = problem.params();
-    let eff = Effective::new(problem);
-    (2.0 * (eff.energy() - eff.potential_min()) / p.iz)
-        .max(0.0)
-        .sqrt()
-        .max(problem.start().alpha_dot.abs())
+    C_BM * Effective::new(problem).spin_scale().powf(2.5) * c_max.powi(4) * nu * nu / g_min
+        + C_FAST * nu.powi(4)
 }
 
 /// DOP853's local tolerance for `tolerance` over `periods` fast periods, so that its companion
