@@ -310,7 +310,8 @@ pub const VALIDITY_LIMIT: f64 = 0.5;
 /// The largest of the averaging's small parameters for a start (note §4.3, "Validity"):
 /// `v = |α̇|max (1 + c_max) / ω_min`, the spin against the slowest fast frequency, and
 /// `u (1 + c'_max + 2 c²_max)` with `u = θ √g_max / (iz k)`, whose square root is the slow
-/// oscillation's frequency against the fast one.
+/// oscillation's frequency against the fast one. Zero where the model is exact (`ix = iy`, or
+/// no fast action).
 #[must_use]
 pub fn expansion_parameter(problem: &Problem) -> f64 {
     let p = problem.params();
@@ -318,6 +319,11 @@ pub fn expansion_parameter(problem: &Problem) -> f64 {
     let spin = eff.spin_scale();
     let (g_min, g_max) = (p.ix.min(p.iy), p.ix.max(p.iy));
     let d = (p.iy - p.ix).abs();
+    if d == 0.0 || eff.theta() == 0.0 {
+        // c ≡ 0 or no fast action: every correction vanishes and the averaged model is the
+        // exact motion (uniform spin, harmonic tilt), whatever k.
+        return 0.0;
+    }
     let c_max = d / (4.0 * g_min);
     // |c'| ≤ (|g''|/g + (g'/g)²)/4 ≤ (2d/g_min + (d/g_min)²)/4.
     let c1_max = (2.0 * d / g_min + (d / g_min).powi(2)) / 4.0;
