@@ -635,3 +635,51 @@ fn reversal_history_is_bounded_and_counts_stay_exact() {
     assert_eq!(e.count_upto(999.995), 100_000);
     assert_eq!(e.count_upto(999.985), 99_999);
 }
+
+#[test]
+fn the_sweep_pane_shows_what_study_sweep_computes_and_follows_the_parameters() {
+    use rattleback::app::panes::Pane;
+    use rattleback::study::sweep::{DEFAULT_LADDER, sweep};
+    let mut h = Headless::new("subcritical");
+    h.key(Key::Char('K'));
+    assert!(h.app.view.panes.shows(Pane::Sweep));
+    let s = &h.app.sweep;
+    assert!(s.done && s.failed.is_none(), "{s:?}");
+    assert_eq!(s.points.len(), DEFAULT_LADDER.len());
+    // The same numbers as the headless study (one rung at a time here, in parallel there).
+    let settings = h.app.scenario.settings;
+    let headless = sweep(
+        &settings.problem(),
+        &DEFAULT_LADDER,
+        settings.t_end,
+        settings.tolerance,
+        &|_| true,
+    )
+    .unwrap();
+    for (shown, computed) in s.points.iter().zip(&headless.rungs) {
+        assert_eq!(shown.k, computed.k);
+        assert_eq!(shown.sup_error.to_bits(), computed.sup_error.to_bits());
+    }
+    let slope = s.slope().unwrap();
+    assert!((slope + 1.0).abs() < 0.2, "{slope}");
+    // A change of the start restarts the sweep for the new parameters.
+    let before = s.points[3].sup_error;
+    h.key(Key::Down);
+    h.key(Key::Down);
+    h.key(Key::Down);
+    h.key(Key::Down); // gamma
+    h.key(Key::Down); // alpha
+    h.key(Key::Down); // gamma_dot
+    h.key(Key::Down); // alpha_dot
+    h.key(Key::Right);
+    let s = &h.app.sweep;
+    assert_eq!(s.generation, h.app.run.generation);
+    assert!(s.done && s.points.len() == DEFAULT_LADDER.len());
+    assert_ne!(
+        s.points[3].sup_error, before,
+        "the sweep follows the parameters"
+    );
+    // Hidden, it stops and nothing more is computed.
+    h.key(Key::Char('K'));
+    assert!(!h.app.view.panes.shows(Pane::Sweep));
+}

@@ -329,3 +329,15 @@ fn a_missed_tolerance_is_shown_in_the_status_bar_at_80x24() {
     let screen = text(&render(&h.app, 80, 24));
     assert!(screen.contains("✗ tol missed"), "{screen}");
 }
+
+#[test]
+fn sweep_pane_at_80x24_and_160x48() {
+    let mut h = Headless::new("subcritical");
+    h.key(Key::Char('K'));
+    let small = text(&render(&h.app, 80, 24));
+    assert!(small.contains("k-sweep: slope -1.01"), "{small}");
+    assert!(small.contains('●'));
+    insta::assert_snapshot!("sweep_80x24", small);
+    h.key(Key::Char('t'));
+    insta::assert_snapshot!("sweep_160x48_with_series", text(&render(&h.app, 160, 48)));
+}

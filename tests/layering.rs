@@ -2,7 +2,7 @@
 //! - `physics` is headless: no terminal crate, no threads, no clock;
 //! - `scenario` imports only `physics`; `sim` only `physics`; `app` no `ui`, no terminal crate,
 //!   no `record`; `record` never `ui` (the cast export, which draws, is `cast.rs`, above both);
-//! - `study` imports only `physics` (and rayon, plotters);
+//! - `study` imports only `physics` (and rayon, plotters); `sim` may run its per-rung functions;
 //! - only `main.rs` and `commands.rs` (the binary shell) import `cli`.
 
 use std::path::{Path, PathBuf};

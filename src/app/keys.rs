@@ -67,6 +67,8 @@ pub enum Action {
     ToggleEffective,
     /// Show or hide the time-series pane.
     ToggleSeries,
+    /// Show or hide the stiffness-sweep pane.
+    ToggleSweep,
     /// Zoom in.
     ZoomIn,
     /// Zoom out.
@@ -219,6 +221,13 @@ pub const KEYMAP: &[Binding<Action>] = &[
         action: Action::ToggleSeries,
         help: "",
         footer: Some(("t", "series", 7)),
+    },
+    Binding {
+        keys: &[Key::Char('K')],
+        label: "K",
+        action: Action::ToggleSweep,
+        help: "stiffness sweep: α_k against the limit as k grows",
+        footer: Some(("K", "sweep", 10)),
     },
     Binding {
         keys: &[Key::Char('z')],

@@ -19,6 +19,7 @@ mod prompts;
 mod replayed;
 pub mod run;
 mod scenario;
+pub mod sweep;
 
 pub use effects::{Effect, Outcome};
 pub use keys::{Action, Key};
@@ -159,6 +160,8 @@ pub struct App {
     pub run: RunState,
     /// Zoom, panes, overlay, theme.
     pub view: ViewState,
+    /// The sweep pane's data.
+    pub sweep: sweep::SweepState,
     /// What has the keyboard.
     pub mode: Mode,
     /// The last message.
@@ -190,6 +193,7 @@ impl App {
                 overlay: true,
                 theme: 0,
             },
+            sweep: sweep::SweepState::default(),
             mode: Mode::Normal,
             status: None,
             caption: None,
@@ -275,11 +279,27 @@ impl App {
 
     fn restart(&mut self) -> Vec<Effect> {
         let spec = self.scenario.spec(self.view.overlay);
-        self.run
+        let mut effects: Vec<Effect> = self
+            .run
             .restart(spec)
             .into_iter()
             .map(Effect::Sim)
-            .collect()
+            .collect();
+        if self.view.panes.shows(Pane::Sweep) {
+            effects.push(Effect::Sim(self.start_sweep()));
+        }
+        effects
+    }
+
+    /// Asks the worker for the sweep of the current settings.
+    fn start_sweep(&mut self) -> crate::sim::Command {
+        let s = &self.scenario.settings;
+        let spec = crate::sim::SweepSpec {
+            problem: s.problem(),
+            t_end: s.t_end,
+            tolerance: s.tolerance,
+        };
+        self.sweep.start(self.run.generation, spec)
     }
 
     /// Handles a key: the open mode first, else the keymap.
@@ -430,6 +450,15 @@ impl App {
                 return vec![Effect::Sim(self.run.set_overlay(self.view.overlay))];
             }
             Action::ToggleSeries => self.view.panes.toggle(Pane::Series),
+            Action::ToggleSweep => {
+                self.view.panes.toggle(Pane::Sweep);
+                let command = if self.view.panes.shows(Pane::Sweep) {
+                    self.start_sweep()
+                } else {
+                    self.sweep.stop()
+                };
+                return vec![Effect::Sim(command)];
+            }
             Action::ZoomIn => v.zoom = (v.zoom * 1.5).min(1e6),
             Action::ZoomOut => v.zoom = (v.zoom / 1.5).max(0.1),
             Action::PanLeft => v.pan_x -= 0.1,
@@ -513,6 +542,20 @@ impl App {
                 self.status = Message::error(format!("integration failed: {message}"));
                 self.run.on_sim(event, self.view.overlay)
             }
+            SimEvent::SweepPoint {
+                generation,
+                k,
+                sup_error,
+                method,
+            } => self.sweep.on_point(
+                generation,
+                sweep::SweepPoint {
+                    k,
+                    sup_error,
+                    method,
+                },
+            ),
+            SimEvent::SweepDone { generation, failed } => self.sweep.on_done(generation, failed),
             other => self.run.on_sim(other, self.view.overlay),
         }
     }

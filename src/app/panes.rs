@@ -10,11 +10,13 @@ pub enum Pane {
     Portrait,
     /// The time series of `alpha_dot` and the energy error.
     Series,
+    /// The stiffness sweep: `sup |α_k − α_eff|` against `k` (issue 12).
+    Sweep,
 }
 
 impl Pane {
     /// Every pane, in layout order.
-    pub const ALL: [Self; 3] = [Self::Params, Self::Portrait, Self::Series];
+    pub const ALL: [Self; 4] = [Self::Params, Self::Portrait, Self::Series, Self::Sweep];
 
     /// Share of the right-hand column's height (the parameter panel has its own column).
     #[must_use]
@@ -22,14 +24,14 @@ impl Pane {
         match self {
             Self::Params => 0,
             Self::Portrait => 65,
-            Self::Series => 35,
+            Self::Series | Self::Sweep => 35,
         }
     }
 
     /// Whether the user may hide it.
     #[must_use]
     pub fn optional(self) -> bool {
-        self == Self::Series
+        matches!(self, Self::Series | Self::Sweep)
     }
 }
 

@@ -84,6 +84,16 @@ pub struct Engine {
     checkpoints: VecDeque<(u64, f64)>,
     /// Stamp of the overlay's current life.
     epoch: u64,
+    /// The stiffness sweep being computed (after the run's own work).
+    sweep: Option<SweepJob>,
+}
+
+/// A stiffness sweep in progress: the limit's curve once, then one rung per slice.
+struct SweepJob {
+    generation: u64,
+    spec: super::SweepSpec,
+    limit: Option<Vec<f64>>,
+    next: usize,
 }
 
 impl Engine {
@@ -97,6 +107,7 @@ impl Engine {
             pending: None,
             checkpoints: VecDeque::new(),
             epoch: 0,
+            sweep: None,
         }
     }
 
@@ -110,6 +121,11 @@ impl Engine {
     /// Whether `work` has anything to do.
     #[must_use]
     pub fn busy(&self) -> bool {
+        self.run_busy() || self.sweep.is_some()
+    }
+
+    /// Whether the run itself has work (it goes before the sweep).
+    fn run_busy(&self) -> bool {
         self.planning.is_some()
             || self.pending.is_some()
             || !self.checkpoints.is_empty()
@@ -120,7 +136,16 @@ impl Engine {
     pub fn handle(&mut self, command: &Command, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
         match *command {
             Command::Quit => return false,
+            Command::Sweep { generation, spec } => {
+                self.sweep = spec.map(|spec| SweepJob {
+                    generation,
+                    spec,
+                    limit: None,
+                    next: 0,
+                });
+            }
             Command::Restart { generation, spec } => {
+                self.sweep = None;
                 self.session = None;
                 self.pending = None;
                 self.checkpoints.clear();
@@ -221,6 +246,9 @@ impl Engine {
         if self.planning.is_some() {
             return self.plan(go_on, sink);
         }
+        if !self.run_busy() && self.sweep.is_some() {
+            return self.sweep_step(go_on, sink);
+        }
         let Some(s) = self.session.as_mut() else {
             self.pending = None;
             self.checkpoints.clear();
@@ -267,6 +295,74 @@ impl Engine {
         }
         if self.pending.is_some_and(|(_, p)| target >= p) {
             self.pending = None;
+        }
+        true
+    }
+}
+
+impl Engine {
+    /// One step of the sweep: the limit's curve, or the next rung. A cancelled step (a command
+    /// arrived) is redone from its start next time.
+    fn sweep_step(
+        &mut self,
+        go_on: &mut dyn FnMut(f64) -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+    ) -> bool {
+        use crate::study::sweep::{DEFAULT_LADDER, limit_curve, rung};
+        let Some(job) = self.sweep.as_mut() else {
+            return true;
+        };
+        let (generation, spec) = (job.generation, job.spec);
+        let outcome = match &job.limit {
+            None => limit_curve(&spec.problem, spec.t_end, go_on).map(|(_, limit)| {
+                job.limit = Some(limit);
+                None
+            }),
+            Some(limit) => rung(
+                &spec.problem,
+                DEFAULT_LADDER[job.next],
+                spec.t_end,
+                spec.tolerance,
+                limit,
+                go_on,
+            )
+            .map(Some),
+        };
+        let event = match outcome {
+            Err(StepError::Cancelled { .. }) => return true,
+            Err(e) => {
+                self.sweep = None;
+                Some(SimEvent::SweepDone {
+                    generation,
+                    failed: Some(e.to_string()),
+                })
+            }
+            Ok(None) => None,
+            Ok(Some(r)) => {
+                job.next += 1;
+                Some(SimEvent::SweepPoint {
+                    generation,
+                    k: r.k,
+                    sup_error: r.sup_error,
+                    method: r.method,
+                })
+            }
+        };
+        if let Some(e) = event
+            && !sink(e)
+        {
+            return false;
+        }
+        if self
+            .sweep
+            .as_ref()
+            .is_some_and(|j| j.next == DEFAULT_LADDER.len())
+        {
+            self.sweep = None;
+            return sink(SimEvent::SweepDone {
+                generation,
+                failed: None,
+            });
         }
         true
     }

@@ -49,8 +49,27 @@ pub enum Command {
         /// The time.
         t: f64,
     },
+    /// Compute the stiffness sweep of `problem`'s start (one rung per slice, after the run's own
+    /// work), or stop computing it (`spec: None`). A restart stops it too.
+    Sweep {
+        /// Run this belongs to; its events carry it.
+        generation: u64,
+        /// What to sweep.
+        spec: Option<SweepSpec>,
+    },
     /// Stop the worker.
     Quit,
+}
+
+/// A stiffness sweep for the explorer's sweep pane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SweepSpec {
+    /// The start (its `k` is replaced by each rung's).
+    pub problem: crate::physics::Problem,
+    /// Horizon.
+    pub t_end: f64,
+    /// `auto`'s tolerance.
+    pub tolerance: f64,
 }
 
 /// Worker to UI.
@@ -112,6 +131,24 @@ pub enum SimEvent {
     Finished {
         /// Run stamp.
         generation: u64,
+    },
+    /// A rung of the stiffness sweep.
+    SweepPoint {
+        /// Run stamp.
+        generation: u64,
+        /// Hooke constant.
+        k: f64,
+        /// `sup |α_k − α_eff|` over `[0, T]`.
+        sup_error: f64,
+        /// What `auto` ran.
+        method: Method,
+    },
+    /// The sweep is complete (or could not go on: `failed`).
+    SweepDone {
+        /// Run stamp.
+        generation: u64,
+        /// Why it stopped short, if it did.
+        failed: Option<String>,
     },
     /// The integration (or `auto`'s planning) failed.
     Failed {

@@ -59,9 +59,82 @@ impl Sweep {
     }
 }
 
-/// Sweeps `problem`'s start over `ladder` (its own `k` is replaced) to `t_end` at `tolerance`;
-/// `go_on` is asked every few hundred steps of every run (from several threads) whether to go
-/// on.
+/// The limit's `α_eff` at [`SAMPLES`] times over `[0, t_end]`: `(t, α_eff)`.
+///
+/// # Errors
+/// When the integration fails or `go_on` stops it.
+pub fn limit_curve(
+    problem: &Problem,
+    t_end: f64,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<(Vec<f64>, Vec<f64>), StepError> {
+    let r = run_cancellable(
+        problem,
+        &RunSpec {
+            method: Method::Effective,
+            tolerance: 1e-14,
+            step: None,
+            t_end,
+            samples: SAMPLES,
+            monitor_energy: false,
+        },
+        go_on,
+    )?;
+    Ok(r.samples.iter().map(|s| (s.t, s.state[1])).unzip())
+}
+
+/// One rung: `problem`'s start at stiffness `k` through `auto`, against the limit's curve.
+///
+/// # Errors
+/// When `k` is not a valid Hooke constant, the integration fails, or `go_on` stops it.
+pub fn rung(
+    problem: &Problem,
+    k: f64,
+    t_end: f64,
+    tolerance: f64,
+    limit: &[f64],
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<Rung, StepError> {
+    let p = problem
+        .with_k(k)
+        .map_err(|_| StepError::NotFinite { what: "k", t: 0.0 })?;
+    let v = run_auto_cancellable(
+        &p,
+        &RunSpec {
+            method: Method::Auto,
+            tolerance,
+            step: None,
+            t_end,
+            samples: SAMPLES,
+            monitor_energy: false,
+        },
+        crate::physics::budget::BUDGET_SECONDS,
+        go_on,
+    )?;
+    let alpha: Vec<f64> = v.result.samples.iter().map(|s| s.state[1]).collect();
+    let sup_error = alpha
+        .iter()
+        .zip(limit)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    Ok(Rung {
+        k,
+        sup_error,
+        alpha,
+        method: v.plan.method,
+        estimate: v.error_estimate,
+    })
+}
+
+/// The fitted slope of a set of rungs.
+#[must_use]
+pub fn slope(rungs: &[(f64, f64)]) -> Option<f64> {
+    super::log_log_slope(rungs)
+}
+
+/// Sweeps `problem`'s start over `ladder` (its own `k` is replaced) to `t_end` at `tolerance`,
+/// the rungs in parallel; `go_on` is asked every few hundred steps of every run (from several
+/// threads) whether to go on.
 ///
 /// # Errors
 /// The first integration that fails, or [`StepError::Cancelled`].
@@ -72,49 +145,16 @@ pub fn sweep(
     tolerance: f64,
     go_on: &(dyn Fn(f64) -> bool + Sync),
 ) -> Result<Sweep, StepError> {
-    let spec = |method, tolerance| RunSpec {
-        method,
-        tolerance,
-        step: None,
-        t_end,
-        samples: SAMPLES,
-        monitor_energy: false,
-    };
-    let limit = run_cancellable(problem, &spec(Method::Effective, 1e-14), &mut |t| go_on(t))?;
-    let t: Vec<f64> = limit.samples.iter().map(|s| s.t).collect();
-    let limit: Vec<f64> = limit.samples.iter().map(|s| s.state[1]).collect();
+    let (t, limit) = limit_curve(problem, t_end, &mut |t| go_on(t))?;
     let rungs = ladder
         .par_iter()
-        .map(|&k| {
-            let p = problem
-                .with_k(k)
-                .map_err(|_| StepError::NotFinite { what: "k", t: 0.0 })?;
-            let v = run_auto_cancellable(
-                &p,
-                &spec(Method::Auto, tolerance),
-                crate::physics::budget::BUDGET_SECONDS,
-                &mut |t| go_on(t),
-            )?;
-            let alpha: Vec<f64> = v.result.samples.iter().map(|s| s.state[1]).collect();
-            let sup_error = alpha
-                .iter()
-                .zip(&limit)
-                .map(|(a, b)| (a - b).abs())
-                .fold(0.0, f64::max);
-            Ok(Rung {
-                k,
-                sup_error,
-                alpha,
-                method: v.plan.method,
-                estimate: v.error_estimate,
-            })
-        })
+        .map(|&k| rung(problem, k, t_end, tolerance, &limit, &mut |t| go_on(t)))
         .collect::<Result<Vec<Rung>, StepError>>()?;
     let points: Vec<(f64, f64)> = rungs.iter().map(|r| (r.k, r.sup_error)).collect();
     Ok(Sweep {
         t,
         limit,
-        slope: super::log_log_slope(&points),
+        slope: slope(&points),
         rungs,
     })
 }

@@ -10,6 +10,8 @@
 //! │ derived values ││                                          │
 //! │ message        │├ time series (t) ─────────────────────────┤
 //! │                ││ alpha_dot, limit, reversals, energy error│
+//! │                │├ k-sweep (K) ──────────────────────────────┤
+//! │                ││ sup |α_k − α_eff| against k, log–log      │
 //! └────────────────┘└──────────────────────────────────────────┘
 //!  ▌ chapter / note (when there is one)
 //!  status: time, state, speed, reversals, energy error, method…   (fields dropped by priority)
@@ -22,6 +24,7 @@ mod params;
 mod portrait;
 mod series;
 mod status;
+mod sweep;
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -36,6 +39,43 @@ use crate::app::{App, Mode};
 use crate::scenario::theme::{Colour, ThemeSpec};
 
 pub use portrait::Cache;
+
+/// The right-hand column: the visible panes, stacked by weight.
+fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, cache: &mut Cache) {
+    let column = app.view.panes.column();
+    let areas = Layout::vertical(column.iter().map(|(_, w)| Constraint::Fill(*w))).split(right);
+    for ((pane, _), area) in column.iter().zip(areas.iter()) {
+        match pane {
+            Pane::Portrait => frame.render_stateful_widget(
+                portrait::PortraitPane {
+                    scenario: &app.scenario,
+                    run: &app.run,
+                    view: &app.view,
+                    bounds: app.bounds(),
+                    look,
+                },
+                *area,
+                cache,
+            ),
+            Pane::Series => frame.render_widget(
+                series::SeriesPane {
+                    run: &app.run,
+                    overlay: app.view.overlay,
+                    look,
+                },
+                *area,
+            ),
+            Pane::Sweep => frame.render_widget(
+                sweep::SweepPane {
+                    sweep: &app.sweep,
+                    look,
+                },
+                *area,
+            ),
+            Pane::Params => {}
+        }
+    }
+}
 
 /// Smallest terminal the explorer draws into.
 pub const MIN_SIZE: (u16, u16) = (80, 24);
@@ -259,32 +299,7 @@ pub fn draw(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mut C
         },
         left,
     );
-    let column = app.view.panes.column();
-    let areas = Layout::vertical(column.iter().map(|(_, w)| Constraint::Fill(*w))).split(right);
-    for ((pane, _), area) in column.iter().zip(areas.iter()) {
-        match pane {
-            Pane::Portrait => frame.render_stateful_widget(
-                portrait::PortraitPane {
-                    scenario: &app.scenario,
-                    run: &app.run,
-                    view: &app.view,
-                    bounds: app.bounds(),
-                    look: &look,
-                },
-                *area,
-                cache,
-            ),
-            Pane::Series => frame.render_widget(
-                series::SeriesPane {
-                    run: &app.run,
-                    overlay: app.view.overlay,
-                    look: &look,
-                },
-                *area,
-            ),
-            Pane::Params => {}
-        }
-    }
+    draw_column(frame, app, right, &look, cache);
     if let Some(c) = &app.caption {
         draw_caption(frame, caption_area, c, &look);
     }

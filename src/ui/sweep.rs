@@ -1,0 +1,102 @@
+//! The stiffness-sweep pane (toggle `K`): `sup_{[0,T]} |α_k − α_eff|` against `k`, log–log, one
+//! `●` per rung as the worker delivers it, joined by a line, with the fitted slope in the title
+//! (the paper's uniform convergence; O(1/k), slope −1, on trapped starts). Not computed while
+//! hidden.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::text::Line as TextLine;
+use ratatui::widgets::canvas::{Canvas, Line};
+use ratatui::widgets::{Block, Paragraph, Widget};
+
+use super::{Look, title};
+use crate::app::sweep::SweepState;
+use crate::study::sweep::DEFAULT_LADDER;
+
+/// The sweep pane: what it shows, borrowed.
+pub struct SweepPane<'a> {
+    /// The rungs so far.
+    pub sweep: &'a SweepState,
+    /// Marker and colours.
+    pub look: &'a Look<'a>,
+}
+
+impl Widget for SweepPane<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let (sweep, look) = (self.sweep, self.look);
+        let status = match (&sweep.failed, sweep.done, sweep.slope()) {
+            (Some(why), _, _) => format!("stopped: {why}"),
+            (None, true, Some(s)) => format!("slope {s:.2}"),
+            (None, false, _) => {
+                format!("computing {}/{}…", sweep.points.len(), DEFAULT_LADDER.len())
+            }
+            (None, true, None) => "no rung".to_owned(),
+        };
+        let block = Block::bordered().title(title(
+            &format!("k-sweep: {status} │ sup|alpha_k − alpha_eff| against k"),
+            area.width,
+        ));
+        let inner = block.inner(area);
+        block.render(area, buf);
+        let [y_axis, rest] =
+            Layout::horizontal([Constraint::Length(8), Constraint::Min(0)]).areas(inner);
+        let [plot, x_axis] =
+            Layout::vertical([Constraint::Min(1), Constraint::Length(1)]).areas(rest);
+        let x0 = DEFAULT_LADDER[0].log10() - 0.3;
+        let x1 = DEFAULT_LADDER[DEFAULT_LADDER.len() - 1].log10() + 0.3;
+        let pts: Vec<(f64, f64)> = sweep
+            .points
+            .iter()
+            .filter(|p| p.sup_error > 0.0 && p.sup_error.is_finite())
+            .map(|p| (p.k.log10(), p.sup_error.log10()))
+            .collect();
+        let (lo, hi) = pts
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(p.1), b.max(p.1))
+            });
+        // `+ 0.0` turns a ceiling of −0 into 0 for the label.
+        let (lo, hi) = if lo.is_finite() {
+            ((lo - 0.5).floor() + 0.0, (hi + 0.5).ceil() + 0.0)
+        } else {
+            (-10.0, 0.0)
+        };
+        let theme = look.theme;
+        Canvas::default()
+            .marker(look.marker)
+            .background_color(theme.background)
+            .x_bounds([x0, x1])
+            .y_bounds([lo, hi])
+            .paint(|ctx| {
+                for w in pts.windows(2) {
+                    ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, theme.trail));
+                }
+                ctx.layer();
+                for &(x, y) in &pts {
+                    ctx.print(
+                        x,
+                        y,
+                        TextLine::styled("●", ratatui::style::Style::default().fg(theme.current)),
+                    );
+                }
+            })
+            .render(plot, buf);
+        let rows = y_axis.height as usize;
+        let mut labels = vec![TextLine::raw(""); rows];
+        if rows >= 2 {
+            labels[0] = TextLine::styled(format!("{:>7} ", format!("1e{hi:.0}")), look.dim());
+            labels[rows - 2] =
+                TextLine::styled(format!("{:>7} ", format!("1e{lo:.0}")), look.dim());
+        }
+        Paragraph::new(labels).render(y_axis, buf);
+        let first = format!("k 1e{:.0}", DEFAULT_LADDER[0].log10());
+        let last = format!("1e{:.0}", DEFAULT_LADDER[DEFAULT_LADDER.len() - 1].log10());
+        let width = x_axis.width as usize;
+        let gap = width.saturating_sub(first.len() + last.len());
+        Paragraph::new(TextLine::styled(
+            format!("{first}{}{last}", " ".repeat(gap)),
+            look.dim(),
+        ))
+        .render(x_axis, buf);
+    }
+}
