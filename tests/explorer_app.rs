@@ -683,3 +683,32 @@ fn the_sweep_pane_shows_what_study_sweep_computes_and_follows_the_parameters() {
     h.key(Key::Char('K'));
     assert!(!h.app.view.panes.shows(Pane::Sweep));
 }
+
+#[test]
+fn the_weak_star_pane_settles_on_theta_as_the_window_widens() {
+    use rattleback::app::panes::Pane;
+    let preset = resolve("subcritical", &["spring.k=1e6".parse().unwrap()]).unwrap();
+    let mut h = Headless::of(&preset);
+    h.key(Key::Char('W'));
+    assert!(h.app.view.panes.shows(Pane::Weak));
+    let w = &h.app.weak;
+    assert!(w.done && w.failed.is_none(), "{:?}", w.failed);
+    let theta = w.theta;
+    let (lo, hi) = w
+        .pointwise
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &q| (a.min(q), b.max(q)));
+    assert!(
+        lo < 0.01 * theta && hi > 1.98 * theta,
+        "[{lo}, {hi}] θ {theta}"
+    );
+    assert!(w.worst_deviation() < 0.01, "{}", w.worst_deviation());
+    // A window shorter than the fast period does not settle.
+    for _ in 0..12 {
+        h.key(Key::Char('<'));
+    }
+    assert!(h.app.weak.window <= 2e-3);
+    assert!(h.app.weak.worst_deviation() > 0.1);
+    h.key(Key::Char('W'));
+    assert!(!h.app.view.panes.shows(Pane::Weak));
+}

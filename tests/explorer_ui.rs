@@ -341,3 +341,15 @@ fn sweep_pane_at_80x24_and_160x48() {
     h.key(Key::Char('t'));
     insta::assert_snapshot!("sweep_160x48_with_series", text(&render(&h.app, 160, 48)));
 }
+
+#[test]
+fn weak_star_pane_at_80x24() {
+    let mut h = Headless::new("subcritical");
+    h.key(Key::Char('W'));
+    let screen = text(&render(&h.app, 80, 24));
+    assert!(
+        screen.contains("weak-*: average over w = 1 within"),
+        "{screen}"
+    );
+    insta::assert_snapshot!("weak_80x24", screen);
+}

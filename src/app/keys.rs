@@ -69,6 +69,12 @@ pub enum Action {
     ToggleSeries,
     /// Show or hide the stiffness-sweep pane.
     ToggleSweep,
+    /// Show or hide the weak-* pane.
+    ToggleWeak,
+    /// Double the weak-* averaging window.
+    WiderWindow,
+    /// Halve it.
+    NarrowerWindow,
     /// Zoom in.
     ZoomIn,
     /// Zoom out.
@@ -224,10 +230,31 @@ pub const KEYMAP: &[Binding<Action>] = &[
     },
     Binding {
         keys: &[Key::Char('K')],
-        label: "K",
+        label: "K / W < >",
         action: Action::ToggleSweep,
-        help: "stiffness sweep: α_k against the limit as k grows",
+        help: "k-sweep pane / weak-* pane, its window ÷2 ×2",
         footer: Some(("K", "sweep", 10)),
+    },
+    Binding {
+        keys: &[Key::Char('W')],
+        label: "",
+        action: Action::ToggleWeak,
+        help: "",
+        footer: Some(("W", "weak-*", 10)),
+    },
+    Binding {
+        keys: &[Key::Char('<')],
+        label: "",
+        action: Action::NarrowerWindow,
+        help: "",
+        footer: None,
+    },
+    Binding {
+        keys: &[Key::Char('>')],
+        label: "",
+        action: Action::WiderWindow,
+        help: "",
+        footer: None,
     },
     Binding {
         keys: &[Key::Char('z')],

@@ -7,6 +7,7 @@
 //! and what is displayed), the view (zoom, panes, theme), one [`Mode`] for whatever has the
 //! keyboard, the status line, the caption (notes and chapters), and the journal of a recording.
 
+mod computed;
 pub mod effects;
 pub mod fields;
 pub mod journal;
@@ -20,6 +21,7 @@ mod replayed;
 pub mod run;
 mod scenario;
 pub mod sweep;
+pub mod weak;
 
 pub use effects::{Effect, Outcome};
 pub use keys::{Action, Key};
@@ -162,6 +164,8 @@ pub struct App {
     pub view: ViewState,
     /// The sweep pane's data.
     pub sweep: sweep::SweepState,
+    /// The weak-* pane's data.
+    pub weak: weak::WeakState,
     /// What has the keyboard.
     pub mode: Mode,
     /// The last message.
@@ -194,6 +198,7 @@ impl App {
                 theme: 0,
             },
             sweep: sweep::SweepState::default(),
+            weak: weak::WeakState::default(),
             mode: Mode::Normal,
             status: None,
             caption: None,
@@ -288,18 +293,10 @@ impl App {
         if self.view.panes.shows(Pane::Sweep) {
             effects.push(Effect::Sim(self.start_sweep()));
         }
+        if self.view.panes.shows(Pane::Weak) {
+            effects.push(Effect::Sim(self.start_weak()));
+        }
         effects
-    }
-
-    /// Asks the worker for the sweep of the current settings.
-    fn start_sweep(&mut self) -> crate::sim::Command {
-        let s = &self.scenario.settings;
-        let spec = crate::sim::SweepSpec {
-            problem: s.problem(),
-            t_end: s.t_end,
-            tolerance: s.tolerance,
-        };
-        self.sweep.start(self.run.generation, spec)
     }
 
     /// Handles a key: the open mode first, else the keymap.
@@ -450,15 +447,10 @@ impl App {
                 return vec![Effect::Sim(self.run.set_overlay(self.view.overlay))];
             }
             Action::ToggleSeries => self.view.panes.toggle(Pane::Series),
-            Action::ToggleSweep => {
-                self.view.panes.toggle(Pane::Sweep);
-                let command = if self.view.panes.shows(Pane::Sweep) {
-                    self.start_sweep()
-                } else {
-                    self.sweep.stop()
-                };
-                return vec![Effect::Sim(command)];
-            }
+            Action::ToggleWeak => return self.toggle_computed(Pane::Weak),
+            Action::WiderWindow => self.weak.scale_window(2.0),
+            Action::NarrowerWindow => self.weak.scale_window(0.5),
+            Action::ToggleSweep => return self.toggle_computed(Pane::Sweep),
             Action::ZoomIn => v.zoom = (v.zoom * 1.5).min(1e6),
             Action::ZoomOut => v.zoom = (v.zoom / 1.5).max(0.1),
             Action::PanLeft => v.pan_x -= 0.1,
@@ -556,6 +548,13 @@ impl App {
                 },
             ),
             SimEvent::SweepDone { generation, failed } => self.sweep.on_done(generation, failed),
+            SimEvent::Weak {
+                generation,
+                t,
+                pointwise,
+                theta,
+                failed,
+            } => self.weak.on_data(generation, t, pointwise, theta, failed),
             other => self.run.on_sim(other, self.view.overlay),
         }
     }

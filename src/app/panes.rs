@@ -12,11 +12,19 @@ pub enum Pane {
     Series,
     /// The stiffness sweep: `sup |α_k − α_eff|` against `k` (issue 12).
     Sweep,
+    /// Weak-* convergence: `γ̇² g^{3/2}` pointwise and averaged (issue 12).
+    Weak,
 }
 
 impl Pane {
     /// Every pane, in layout order.
-    pub const ALL: [Self; 4] = [Self::Params, Self::Portrait, Self::Series, Self::Sweep];
+    pub const ALL: [Self; 5] = [
+        Self::Params,
+        Self::Portrait,
+        Self::Series,
+        Self::Sweep,
+        Self::Weak,
+    ];
 
     /// Share of the right-hand column's height (the parameter panel has its own column).
     #[must_use]
@@ -24,14 +32,14 @@ impl Pane {
         match self {
             Self::Params => 0,
             Self::Portrait => 65,
-            Self::Series | Self::Sweep => 35,
+            Self::Series | Self::Sweep | Self::Weak => 35,
         }
     }
 
     /// Whether the user may hide it.
     #[must_use]
     pub fn optional(self) -> bool {
-        matches!(self, Self::Series | Self::Sweep)
+        matches!(self, Self::Series | Self::Sweep | Self::Weak)
     }
 }
 

@@ -86,6 +86,8 @@ pub struct Engine {
     epoch: u64,
     /// The stiffness sweep being computed (after the run's own work).
     sweep: Option<SweepJob>,
+    /// The weak-* view to compute (after the run's own work, before the sweep).
+    weak: Option<(u64, super::WeakSpec)>,
 }
 
 /// A stiffness sweep in progress: the limit's curve once, then one rung per slice.
@@ -108,6 +110,7 @@ impl Engine {
             checkpoints: VecDeque::new(),
             epoch: 0,
             sweep: None,
+            weak: None,
         }
     }
 
@@ -121,7 +124,7 @@ impl Engine {
     /// Whether `work` has anything to do.
     #[must_use]
     pub fn busy(&self) -> bool {
-        self.run_busy() || self.sweep.is_some()
+        self.run_busy() || self.sweep.is_some() || self.weak.is_some()
     }
 
     /// Whether the run itself has work (it goes before the sweep).
@@ -144,8 +147,12 @@ impl Engine {
                     next: 0,
                 });
             }
+            Command::Weak { generation, spec } => {
+                self.weak = spec.map(|spec| (generation, spec));
+            }
             Command::Restart { generation, spec } => {
                 self.sweep = None;
+                self.weak = None;
                 self.session = None;
                 self.pending = None;
                 self.checkpoints.clear();
@@ -246,6 +253,9 @@ impl Engine {
         if self.planning.is_some() {
             return self.plan(go_on, sink);
         }
+        if !self.run_busy() && self.weak.is_some() {
+            return self.weak_step(go_on, sink);
+        }
         if !self.run_busy() && self.sweep.is_some() {
             return self.sweep_step(go_on, sink);
         }
@@ -301,6 +311,38 @@ impl Engine {
 }
 
 impl Engine {
+    /// Computes the weak-* view (one bounded run: at most `VIEW_PERIODS` fast periods).
+    fn weak_step(
+        &mut self,
+        go_on: &mut dyn FnMut(f64) -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+    ) -> bool {
+        use crate::study::weak::{view_horizon, weak_star};
+        let Some((generation, spec)) = self.weak else {
+            return true;
+        };
+        let horizon = view_horizon(&spec.problem, spec.t_end);
+        let event = match weak_star(&spec.problem, horizon, 1.0, go_on) {
+            Err(StepError::Cancelled { .. }) => return true,
+            Err(e) => SimEvent::Weak {
+                generation,
+                t: Vec::new(),
+                pointwise: Vec::new(),
+                theta: 0.0,
+                failed: Some(e.to_string()),
+            },
+            Ok(w) => SimEvent::Weak {
+                generation,
+                t: w.t,
+                pointwise: w.pointwise,
+                theta: w.theta,
+                failed: None,
+            },
+        };
+        self.weak = None;
+        sink(event)
+    }
+
     /// One step of the sweep: the limit's curve, or the next rung. A cancelled step (a command
     /// arrived) is redone from its start next time.
     fn sweep_step(

@@ -57,8 +57,25 @@ pub enum Command {
         /// What to sweep.
         spec: Option<SweepSpec>,
     },
+    /// Compute the weak-* view of `problem`'s start (`γ̇² g^{3/2}` of the resolved full motion
+    /// over the view's horizon), or stop (`spec: None`). A restart stops it too.
+    Weak {
+        /// Run this belongs to.
+        generation: u64,
+        /// What to compute.
+        spec: Option<WeakSpec>,
+    },
     /// Stop the worker.
     Quit,
+}
+
+/// The weak-* view's computation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WeakSpec {
+    /// The start.
+    pub problem: crate::physics::Problem,
+    /// The run's horizon (the view covers at most `study::weak::VIEW_PERIODS` fast periods).
+    pub t_end: f64,
 }
 
 /// A stiffness sweep for the explorer's sweep pane.
@@ -148,6 +165,19 @@ pub enum SimEvent {
         /// Run stamp.
         generation: u64,
         /// Why it stopped short, if it did.
+        failed: Option<String>,
+    },
+    /// The weak-* view's data (or why it could not be computed).
+    Weak {
+        /// Run stamp.
+        generation: u64,
+        /// Sample times, evenly spaced.
+        t: Vec<f64>,
+        /// `γ̇² g^{3/2}` at those times.
+        pointwise: Vec<f64>,
+        /// The limit's `θ`.
+        theta: f64,
+        /// Why it failed, if it did.
         failed: Option<String>,
     },
     /// The integration (or `auto`'s planning) failed.

@@ -101,9 +101,20 @@ pub fn weak_star(
     })
 }
 
+/// The explorer's view covers at most this many fastest periods (from `t = 0`): enough for any
+/// window to settle, bounded in cost whatever `k`.
+pub const VIEW_PERIODS: f64 = 400.0;
+
+/// The horizon the explorer's weak-* view computes for `problem` over `[0, t_end]`.
+#[must_use]
+pub fn view_horizon(problem: &Problem, t_end: f64) -> f64 {
+    t_end.min(VIEW_PERIODS * std::f64::consts::TAU / problem.params().omega_max())
+}
+
 /// The trapezoidal average of `y` over `[t − w/2, t + w/2]` at each sample (evenly spaced `t`),
 /// NaN where the window leaves the samples.
-fn moving_average(t: &[f64], y: &[f64], window: f64) -> Vec<f64> {
+#[must_use]
+pub fn moving_average(t: &[f64], y: &[f64], window: f64) -> Vec<f64> {
     let n = y.len();
     if n < 2 {
         return vec![f64::NAN; n];

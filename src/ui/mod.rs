@@ -25,6 +25,7 @@ mod portrait;
 mod series;
 mod status;
 mod sweep;
+mod weak;
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -68,6 +69,13 @@ fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, c
             Pane::Sweep => frame.render_widget(
                 sweep::SweepPane {
                     sweep: &app.sweep,
+                    look,
+                },
+                *area,
+            ),
+            Pane::Weak => frame.render_widget(
+                weak::WeakPane {
+                    weak: &app.weak,
                     look,
                 },
                 *area,

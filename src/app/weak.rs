@@ -1,0 +1,110 @@
+//! The weak-* pane's state (issue 12): `γ̇² g^{3/2}` of the full motion, pointwise (computed
+//! by the worker once per run while the pane is shown) and its moving average over a window the
+//! user changes (`<`, `>`): pointwise it keeps swinging between 0 and `2θ`; averaged over a
+//! window much longer than the fast period it settles on `θ` as `k` grows.
+
+use crate::sim::{Command, WeakSpec};
+use crate::study::weak::moving_average;
+
+/// Smallest and largest window.
+pub const WINDOW_RANGE: (f64, f64) = (1e-3, 100.0);
+
+/// What the pane shows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WeakState {
+    /// The run the data belong to.
+    pub generation: u64,
+    /// Sample times.
+    pub t: Vec<f64>,
+    /// `γ̇² g^{3/2}`.
+    pub pointwise: Vec<f64>,
+    /// Its moving average over `window` (NaN where the window leaves the samples).
+    pub average: Vec<f64>,
+    /// The limit's `θ`.
+    pub theta: f64,
+    /// The averaging window.
+    pub window: f64,
+    /// The data are in.
+    pub done: bool,
+    /// Why they could not be computed.
+    pub failed: Option<String>,
+}
+
+impl Default for WeakState {
+    fn default() -> Self {
+        Self {
+            generation: 0,
+            t: Vec::new(),
+            pointwise: Vec::new(),
+            average: Vec::new(),
+            theta: 0.0,
+            window: 1.0,
+            done: false,
+            failed: None,
+        }
+    }
+}
+
+impl WeakState {
+    /// Forgets the data (keeps the window) and asks the worker for `spec` of run `generation`.
+    pub fn start(&mut self, generation: u64, spec: WeakSpec) -> Command {
+        *self = Self {
+            generation,
+            window: self.window,
+            ..Self::default()
+        };
+        Command::Weak {
+            generation,
+            spec: Some(spec),
+        }
+    }
+
+    /// Stops the worker's computation.
+    #[must_use]
+    pub fn stop(&self) -> Command {
+        Command::Weak {
+            generation: self.generation,
+            spec: None,
+        }
+    }
+
+    /// Takes the worker's data for run `generation`; whether they were this view's.
+    pub fn on_data(
+        &mut self,
+        generation: u64,
+        t: Vec<f64>,
+        pointwise: Vec<f64>,
+        theta: f64,
+        failed: Option<String>,
+    ) -> bool {
+        if generation != self.generation {
+            return false;
+        }
+        self.t = t;
+        self.pointwise = pointwise;
+        self.theta = theta;
+        self.failed = failed;
+        self.done = true;
+        self.average = moving_average(&self.t, &self.pointwise, self.window);
+        true
+    }
+
+    /// Multiplies the window by `factor` (within [`WINDOW_RANGE`]) and averages again.
+    pub fn scale_window(&mut self, factor: f64) {
+        self.window = (self.window * factor).clamp(WINDOW_RANGE.0, WINDOW_RANGE.1);
+        self.average = moving_average(&self.t, &self.pointwise, self.window);
+    }
+
+    /// The largest `|average/θ − 1|` where the window fits (NaN before the data).
+    #[must_use]
+    pub fn worst_deviation(&self) -> f64 {
+        if self.theta == 0.0 || self.average.is_empty() {
+            return f64::NAN;
+        }
+        self.average
+            .iter()
+            .filter(|a| a.is_finite())
+            .map(|a| (a / self.theta - 1.0).abs())
+            .fold(0.0, f64::max)
+    }
+}

@@ -1,0 +1,116 @@
+//! The weak-* pane (toggle `W`, window `<` `>`): `γ̇² g^{3/2}` of the full motion as dots, its
+//! moving average over the window as a line, `θ` dashed. Pointwise the quantity swings between
+//! 0 and `2θ` at every `k`; its average settles on `θ` once the window spans many fast periods
+//! (the paper's weak-* convergence). The view covers at most 400 fast periods from `t = 0`.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::text::Line as TextLine;
+use ratatui::widgets::canvas::{Canvas, Line, Points};
+use ratatui::widgets::{Block, Paragraph, Widget};
+
+use super::portrait::resolution;
+use super::{Look, title};
+use crate::app::weak::WeakState;
+
+/// The weak-* pane: what it shows, borrowed.
+pub struct WeakPane<'a> {
+    /// The data and the window.
+    pub weak: &'a WeakState,
+    /// Marker and colours.
+    pub look: &'a Look<'a>,
+}
+
+impl Widget for WeakPane<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let (weak, look) = (self.weak, self.look);
+        let status = match (&weak.failed, weak.done) {
+            (Some(why), _) => format!("failed: {why}"),
+            (None, false) => "computing…".to_owned(),
+            (None, true) => format!(
+                "average over w = {} within {:.2} % of θ",
+                crate::study::svg::tick(weak.window),
+                100.0 * weak.worst_deviation()
+            ),
+        };
+        let block = Block::bordered().title(title(
+            &format!(
+                "weak-*: {status} │ gamma_dot²·g^1.5 (dots), average (line), θ (dashed) │ < >"
+            ),
+            area.width,
+        ));
+        let inner = block.inner(area);
+        block.render(area, buf);
+        let [y_axis, rest] =
+            Layout::horizontal([Constraint::Length(8), Constraint::Min(0)]).areas(inner);
+        let [plot, x_axis] =
+            Layout::vertical([Constraint::Min(1), Constraint::Length(1)]).areas(rest);
+        if weak.t.len() < 2 || weak.theta <= 0.0 {
+            return;
+        }
+        let t1 = weak.t[weak.t.len() - 1];
+        let top = 2.2 * weak.theta;
+        let (rx, _) = resolution(look.marker);
+        let cols = (plot.width as usize * rx).max(1);
+        // Pointwise: every sample would be a solid band; a few per column show the swing.
+        let step = (weak.t.len() / (cols * 6)).max(1);
+        let dots: Vec<(f64, f64)> = weak
+            .t
+            .iter()
+            .zip(&weak.pointwise)
+            .step_by(step)
+            .map(|(&t, &q)| (t, q))
+            .collect();
+        let avg_step = (weak.t.len() / cols).max(1);
+        let average: Vec<(f64, f64)> = weak
+            .t
+            .iter()
+            .zip(&weak.average)
+            .step_by(avg_step)
+            .filter(|(_, a)| a.is_finite())
+            .map(|(&t, &a)| (t, a))
+            .collect();
+        let theta = weak.theta;
+        let theme = look.theme;
+        Canvas::default()
+            .marker(look.marker)
+            .background_color(theme.background)
+            .x_bounds([0.0, t1])
+            .y_bounds([0.0, top])
+            .paint(|ctx| {
+                ctx.draw(&Points {
+                    coords: &dots,
+                    color: theme.contour,
+                });
+                ctx.layer();
+                // θ, dashed.
+                let dash = t1 / 40.0;
+                for i in (0..40).step_by(2) {
+                    let a = f64::from(i) * dash;
+                    ctx.draw(&Line::new(a, theta, a + dash, theta, theme.effective));
+                }
+                ctx.layer();
+                for w in average.windows(2) {
+                    ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, theme.trail));
+                }
+            })
+            .render(plot, buf);
+        let rows = y_axis.height as usize;
+        let mut labels = vec![TextLine::raw(""); rows];
+        if rows >= 2 {
+            labels[0] = TextLine::styled(format!("{:>7} ", format!("{top:.3}")), look.dim());
+            labels[rows - 1] = TextLine::styled(format!("{:>7} ", "0"), look.dim());
+        }
+        Paragraph::new(labels).render(y_axis, buf);
+        let last = format!("t {}", crate::study::svg::tick(t1));
+        let width = x_axis.width as usize;
+        Paragraph::new(TextLine::styled(
+            format!(
+                "0{}{last}",
+                " ".repeat(width.saturating_sub(1 + last.len()))
+            ),
+            look.dim(),
+        ))
+        .render(x_axis, buf);
+    }
+}
