@@ -41,6 +41,14 @@ use crate::scenario::theme::{Colour, ThemeSpec};
 
 pub use portrait::Cache;
 
+/// A plot's areas inside a pane: the y labels (8 columns), the plot, the x labels (one row).
+fn plot_areas(inner: Rect) -> (Rect, Rect, Rect) {
+    let [y_axis, rest] =
+        Layout::horizontal([Constraint::Length(8), Constraint::Min(0)]).areas(inner);
+    let [plot, x_axis] = Layout::vertical([Constraint::Min(1), Constraint::Length(1)]).areas(rest);
+    (y_axis, plot, x_axis)
+}
+
 /// The right-hand column: the visible panes, stacked by weight.
 fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, cache: &mut Cache) {
     let column = app.view.panes.column();

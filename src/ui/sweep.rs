@@ -4,7 +4,7 @@
 //! hidden.
 
 use ratatui::buffer::Buffer;
-use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::layout::Rect;
 use ratatui::text::Line as TextLine;
 use ratatui::widgets::canvas::{Canvas, Line};
 use ratatui::widgets::{Block, Paragraph, Widget};
@@ -38,10 +38,7 @@ impl Widget for SweepPane<'_> {
         ));
         let inner = block.inner(area);
         block.render(area, buf);
-        let [y_axis, rest] =
-            Layout::horizontal([Constraint::Length(8), Constraint::Min(0)]).areas(inner);
-        let [plot, x_axis] =
-            Layout::vertical([Constraint::Min(1), Constraint::Length(1)]).areas(rest);
+        let (y_axis, plot, x_axis) = super::plot_areas(inner);
         let x0 = DEFAULT_LADDER[0].log10() - 0.3;
         let x1 = DEFAULT_LADDER[DEFAULT_LADDER.len() - 1].log10() + 0.3;
         let pts: Vec<(f64, f64)> = sweep

@@ -4,7 +4,7 @@
 //! (the paper's weak-* convergence). The view covers at most 400 fast periods from `t = 0`.
 
 use ratatui::buffer::Buffer;
-use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::layout::Rect;
 use ratatui::text::Line as TextLine;
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 use ratatui::widgets::{Block, Paragraph, Widget};
@@ -41,10 +41,7 @@ impl Widget for WeakPane<'_> {
         ));
         let inner = block.inner(area);
         block.render(area, buf);
-        let [y_axis, rest] =
-            Layout::horizontal([Constraint::Length(8), Constraint::Min(0)]).areas(inner);
-        let [plot, x_axis] =
-            Layout::vertical([Constraint::Min(1), Constraint::Length(1)]).areas(rest);
+        let (y_axis, plot, x_axis) = super::plot_areas(inner);
         if weak.t.len() < 2 || weak.theta <= 0.0 {
             return;
         }
