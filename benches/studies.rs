@@ -13,16 +13,7 @@ fn studies(c: &mut Criterion) {
     group.sample_size(10);
     group.warm_up_time(Duration::from_millis(300));
     group.measurement_time(Duration::from_secs(3));
-    let grid = Grid {
-        cols: 200,
-        rows: 100,
-        ratio_max: 2.0,
-        inertia: (0.1, 10.0),
-        ix: 2.0,
-        iz: 1.0,
-        gamma_dot: 1.0,
-        t_end: 30.0,
-    };
+    let grid = Grid::new(200, 100, 2.0, 1.0, 1.0, 30.0);
     group.bench_function("map 200x100 from the limit", |b| {
         b.iter(|| regime_map(black_box(&grid), Source::Limit, &|_| true).unwrap());
     });

@@ -122,13 +122,13 @@ pub struct MapArgs {
     #[arg(long, value_name = "COLSxROWS", default_value = "200x100", value_parser = parse_grid)]
     pub grid: (usize, usize),
     /// Largest α̇0²/γ̇0² (columns span (0, max]).
-    #[arg(long = "ratio-max", default_value_t = 2.0, value_parser = parse_positive)]
+    #[arg(long = "ratio-max", default_value_t = crate::study::map::DEFAULT_RATIO_MAX, value_parser = parse_positive)]
     pub ratio_max: f64,
     /// Smallest iy/ix (rows are log-spaced).
-    #[arg(long = "inertia-min", default_value_t = 0.1, value_parser = parse_positive)]
+    #[arg(long = "inertia-min", default_value_t = crate::study::map::DEFAULT_INERTIA.0, value_parser = parse_positive)]
     pub inertia_min: f64,
     /// Largest iy/ix.
-    #[arg(long = "inertia-max", default_value_t = 10.0, value_parser = parse_positive)]
+    #[arg(long = "inertia-max", default_value_t = crate::study::map::DEFAULT_INERTIA.1, value_parser = parse_positive)]
     pub inertia_max: f64,
     /// Compute every cell from the full model at this Hooke constant (through `auto`) instead
     /// of the limit; refused when predicted over the work budget unless `--force`.

@@ -37,16 +37,7 @@ fn the_sweep_converges_like_one_over_k_on_the_default_preset() {
 
 #[test]
 fn every_map_cell_away_from_the_critical_curve_obeys_the_theorems() {
-    let grid = Grid {
-        cols: 120,
-        rows: 60,
-        ratio_max: 2.0,
-        inertia: (0.1, 10.0),
-        ix: 2.0,
-        iz: 1.0,
-        gamma_dot: 1.0,
-        t_end: 30.0,
-    };
+    let grid = Grid::new(120, 60, 2.0, 1.0, 1.0, 30.0);
     let map = regime_map(&grid, Source::Limit, &|_| true).unwrap();
     assert_eq!(map.cells.len(), 120 * 60);
     let dr = grid.ratio_max / 120.0;

@@ -153,8 +153,9 @@ impl Averaged2 {
         let p = &self.params;
         let (g, cf) = CFun::at(p, alpha_bar);
         let omega = (p.k / g).sqrt();
-        let m = cf.c * cf.c * self.ibar / (p.iz * omega);
-        self.potential(alpha_bar) + p_bar * p_bar / (2.0 * p.iz) * (1.0 - m)
+        let cc_ibar = cf.c * cf.c * self.ibar;
+        let potential = self.ibar * omega + cc_ibar * self.ibar / (4.0 * p.iz);
+        potential + p_bar * p_bar / (2.0 * p.iz) * (1.0 - cc_ibar / (p.iz * omega))
     }
 
     /// The averaged potential `V̄(α) = Ī ω(α) + c² Ī² / (4 iz)` (`K̄` at `P̄ = 0`).
@@ -242,15 +243,7 @@ impl Averaged2 {
         if self.params.ix == self.params.iy || self.ibar == 0.0 {
             return Regime::Uniform;
         }
-        let vmax = self.potential_max();
-        let gap = self.kbar(y0[0], y0[1]) - vmax;
-        if gap.abs() <= super::effective::SEPARATRIX_RELATIVE_BAND * vmax {
-            Regime::Separatrix
-        } else if gap < 0.0 {
-            Regime::Trapped
-        } else {
-            Regime::Rotating
-        }
+        Regime::of_energy(self.kbar(y0[0], y0[1]), self.potential_max())
     }
 
     /// The averaged time between turning points of a trapped start,

@@ -32,6 +32,21 @@ pub enum Regime {
 }
 
 impl Regime {
+    /// The regime of a (non-uniform) motion of slow energy `energy` in a potential whose
+    /// maximum is `potential_max`: trapped below it, rotating above, the separatrix within
+    /// [`SEPARATRIX_RELATIVE_BAND`]. Shared by the limit and the averaged model.
+    #[must_use]
+    pub fn of_energy(energy: f64, potential_max: f64) -> Self {
+        let gap = energy - potential_max;
+        if gap.abs() <= SEPARATRIX_RELATIVE_BAND * potential_max {
+            Self::Separatrix
+        } else if gap < 0.0 {
+            Self::Trapped
+        } else {
+            Self::Rotating
+        }
+    }
+
     /// The name used in presets, JSON and the interface.
     #[must_use]
     pub fn name(self) -> &'static str {
@@ -163,15 +178,7 @@ impl Effective {
         if self.params.ix == self.params.iy || self.theta == 0.0 {
             return Regime::Uniform;
         }
-        let vmax = self.potential_max();
-        let gap = self.energy - vmax;
-        if gap.abs() <= SEPARATRIX_RELATIVE_BAND * vmax {
-            Regime::Separatrix
-        } else if gap < 0.0 {
-            Regime::Trapped
-        } else {
-            Regime::Rotating
-        }
+        Regime::of_energy(self.energy, self.potential_max())
     }
 
     /// The start's ratio `α̇0² / γ̇0²`, or `None` when `γ̇0 = 0`.

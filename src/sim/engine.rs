@@ -317,12 +317,12 @@ impl Engine {
         go_on: &mut dyn FnMut(f64) -> bool,
         sink: &mut dyn FnMut(SimEvent) -> bool,
     ) -> bool {
-        use crate::study::weak::{view_horizon, weak_star};
+        use crate::study::weak::{pointwise, view_horizon};
         let Some((generation, spec)) = self.weak else {
             return true;
         };
         let horizon = view_horizon(&spec.problem, spec.t_end);
-        let event = match weak_star(&spec.problem, horizon, 1.0, go_on) {
+        let event = match pointwise(&spec.problem, horizon, go_on) {
             Err(StepError::Cancelled { .. }) => return true,
             Err(e) => SimEvent::Weak {
                 generation,
@@ -331,11 +331,11 @@ impl Engine {
                 theta: 0.0,
                 failed: Some(e.to_string()),
             },
-            Ok(w) => SimEvent::Weak {
+            Ok((t, pointwise)) => SimEvent::Weak {
                 generation,
-                t: w.t,
-                pointwise: w.pointwise,
-                theta: w.theta,
+                t,
+                pointwise,
+                theta: crate::physics::effective::Effective::new(&spec.problem).theta(),
                 failed: None,
             },
         };

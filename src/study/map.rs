@@ -51,7 +51,28 @@ pub struct Grid {
     pub t_end: f64,
 }
 
+/// The ratio axis `study map` and the tests use by default: `(0, 2]`.
+pub const DEFAULT_RATIO_MAX: f64 = 2.0;
+/// The inertia-ratio axis by default: `[0.1, 10]`, log-spaced.
+pub const DEFAULT_INERTIA: (f64, f64) = (0.1, 10.0);
+
 impl Grid {
+    /// A `cols × rows` grid over the default axes for a body (`ix`, `iz`), starts with `γ̇0`,
+    /// to `t_end`.
+    #[must_use]
+    pub fn new(cols: usize, rows: usize, ix: f64, iz: f64, gamma_dot: f64, t_end: f64) -> Self {
+        Self {
+            cols,
+            rows,
+            ratio_max: DEFAULT_RATIO_MAX,
+            inertia: DEFAULT_INERTIA,
+            ix,
+            iz,
+            gamma_dot,
+            t_end,
+        }
+    }
+
     /// The ratio at the centre of column `i`.
     #[must_use]
     pub fn ratio(&self, i: usize) -> f64 {

@@ -126,12 +126,6 @@ pub fn rung(
     })
 }
 
-/// The fitted slope of a set of rungs.
-#[must_use]
-pub fn slope(rungs: &[(f64, f64)]) -> Option<f64> {
-    super::log_log_slope(rungs)
-}
-
 /// Sweeps `problem`'s start over `ladder` (its own `k` is replaced) to `t_end` at `tolerance`,
 /// the rungs in parallel; `go_on` is asked every few hundred steps of every run (from several
 /// threads) whether to go on.
@@ -154,7 +148,7 @@ pub fn sweep(
     Ok(Sweep {
         t,
         limit,
-        slope: slope(&points),
+        slope: super::log_log_slope(&points),
         rungs,
     })
 }

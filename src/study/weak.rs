@@ -65,6 +65,28 @@ pub fn weak_star(
     window: f64,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<WeakStar, StepError> {
+    let (t, pointwise) = pointwise(problem, t_end, go_on)?;
+    let average = moving_average(&t, &pointwise, window);
+    Ok(WeakStar {
+        k: problem.params().k,
+        theta: Effective::new(problem).theta(),
+        t,
+        pointwise,
+        average,
+        window,
+    })
+}
+
+/// `(t, γ̇² g^{3/2})` of the resolved full motion over `[0, t_end]`, [`PER_PERIOD`] samples per
+/// fastest period (the explorer averages it itself, for whatever window the user picks).
+///
+/// # Errors
+/// When the integration fails or `go_on` stops it.
+pub fn pointwise(
+    problem: &Problem,
+    t_end: f64,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<(Vec<f64>, Vec<f64>), StepError> {
     let p = problem.params();
     let omega = p.omega_max();
     let periods = omega * t_end / std::f64::consts::TAU;
@@ -81,24 +103,13 @@ pub fn weak_star(
         },
         go_on,
     )?;
-    let t: Vec<f64> = r.samples.iter().map(|s| s.t).collect();
-    let pointwise: Vec<f64> = r
-        .samples
+    Ok(r.samples
         .iter()
         .map(|s| {
             let g = p.g(s.state[1]);
-            s.state[2] * s.state[2] * g * g.sqrt()
+            (s.t, s.state[2] * s.state[2] * g * g.sqrt())
         })
-        .collect();
-    let average = moving_average(&t, &pointwise, window);
-    Ok(WeakStar {
-        k: p.k,
-        theta: Effective::new(problem).theta(),
-        t,
-        pointwise,
-        average,
-        window,
-    })
+        .unzip())
 }
 
 /// The explorer's view covers at most this many fastest periods (from `t = 0`): enough for any

@@ -136,16 +136,21 @@ impl Plan {
     /// The coarser companion that verifies it: twice the step, or a 256× looser tolerance.
     #[must_use]
     pub fn companion(&self) -> Settings {
-        match self.step {
-            Some(h) => Settings {
-                tolerance: self.tolerance,
-                step: Some(2.0 * h),
-            },
-            None => Settings {
-                tolerance: (self.tolerance * COMPANION_LOOSER).min(1e-3),
-                step: None,
-            },
-        }
+        companion_of(self.tolerance, self.step)
+    }
+}
+
+/// The coarser companion of a run with these settings.
+fn companion_of(tolerance: f64, step: Option<f64>) -> Settings {
+    match step {
+        Some(h) => Settings {
+            tolerance,
+            step: Some(2.0 * h),
+        },
+        None => Settings {
+            tolerance: (tolerance * COMPANION_LOOSER).min(1e-3),
+            step: None,
+        },
     }
 }
 
@@ -418,15 +423,7 @@ fn with_companion(
     step: Option<f64>,
     t_end: f64,
 ) -> f64 {
-    let plan = Plan {
-        method,
-        tolerance,
-        step,
-        predicted_error: 0.0,
-        predicted_seconds: 0.0,
-        reason: String::new(),
-    };
-    let c = plan.companion();
+    let c = companion_of(tolerance, step);
     cost_seconds(problem, method, tolerance, step, t_end)
         + cost_seconds(problem, method, c.tolerance, c.step, t_end)
 }
