@@ -1,4 +1,4 @@
-//! Prints the explorer's and the replay's key tables in Markdown, from the keymap tables
+//! Prints the explorer's, the regime map's and the replay's key tables in Markdown, from the keymap tables
 //! (the README's tables are this output; `tests/readme.rs` checks it): `cargo run --example key_tables`.
 
 fn main() {
@@ -6,6 +6,8 @@ fn main() {
         "{}",
         rattleback::app::keys::markdown(rattleback::app::keys::KEYMAP)
     );
+    println!();
+    print!("{}", rattleback::app::keys::map_markdown());
     println!();
     print!(
         "{}",

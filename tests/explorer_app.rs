@@ -712,3 +712,160 @@ fn the_weak_star_pane_settles_on_theta_as_the_window_widens() {
     h.key(Key::Char('W'));
     assert!(!h.app.view.panes.shows(Pane::Weak));
 }
+
+#[test]
+fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_cursor() {
+    use rattleback::app::Mode;
+    use rattleback::app::map::{FULL_GRID, FULL_TOLERANCE, LIMIT_GRID, MapSource, PANE_INERTIA};
+    use rattleback::app::panes::Pane;
+    use rattleback::study::map::{Grid, Source, regime_map};
+    let mut h = Headless::new("subcritical");
+    h.key(Key::Char('M'));
+    assert!(h.app.view.panes.shows(Pane::Map));
+    assert_eq!(h.app.mode, Mode::Map, "the map takes the arrows");
+    let s = h.app.scenario.settings;
+    let m = &h.app.map;
+    assert!(m.done && m.failed.is_none(), "{m:?}");
+    // The same counts as `study map` on the same grid (row by row here, all at once there).
+    let grid = Grid {
+        ratio_max: s.params.ix / s.params.iz,
+        inertia: PANE_INERTIA,
+        ..Grid::new(
+            LIMIT_GRID.0,
+            LIMIT_GRID.1,
+            s.params.ix,
+            s.params.iz,
+            s.start.gamma_dot,
+            s.t_end,
+        )
+    };
+    let study = regime_map(&grid, Source::Limit, &|_| true).unwrap();
+    let shown: Vec<usize> = m.cells.iter().map(|c| c.unwrap()).collect();
+    let expected: Vec<usize> = study.cells.iter().map(|c| c.reversals).collect();
+    assert_eq!(shown, expected);
+    assert!(
+        shown.iter().any(|&c| c > 0) && shown.contains(&0),
+        "both regimes show"
+    );
+
+    // Arrows move the cursor, not the parameters; Enter loads the cell.
+    let selected = h.app.scenario.selected;
+    let start = h.app.map.cursor;
+    h.key(Key::Right);
+    h.key(Key::Right);
+    h.key(Key::Up);
+    h.key(Key::ShiftRight);
+    assert_eq!(h.app.map.cursor, (start.0 + 6, start.1 + 1));
+    assert_eq!(h.app.scenario.selected, selected);
+    assert_eq!(
+        h.app.scenario.settings, s,
+        "moving the cursor changes nothing"
+    );
+    let cell = h.app.map.cursor;
+    let count = h.app.map.cell(cell.0, cell.1).unwrap();
+    let generation = h.app.run.generation;
+    h.key(Key::Enter);
+    let loaded = h.app.scenario.settings;
+    assert!(
+        h.app.run.generation > generation,
+        "loading restarts the run"
+    );
+    assert_eq!(loaded.params.iy, s.params.ix * grid.inertia_ratio(cell.1));
+    assert_eq!((loaded.start.gamma, loaded.start.alpha), (0.0, 0.0));
+    let ratio = h.app.scenario.derived.ratio.unwrap();
+    assert!((ratio - grid.ratio(cell.0)).abs() < 1e-12, "{ratio}");
+    assert_eq!(
+        h.app.mode,
+        Mode::Map,
+        "the map keeps the arrows after a load"
+    );
+    assert!(h.app.map.done, "the same body keeps its map");
+    // The loaded start's limit reverses as often as its cell said.
+    let limit = rattleback::physics::effective::Effective::new(&loaded.problem());
+    assert_eq!(limit.reversal_count(loaded.t_end), count);
+
+    // `f`: the full model at this k, on its own grid; Esc gives the arrows back.
+    h.key(Key::Char('f'));
+    let m = &h.app.map;
+    assert_eq!(m.source, MapSource::Full);
+    assert!(m.done && m.failed.is_none(), "{m:?}");
+    assert_eq!(m.cells.len(), FULL_GRID.0 * FULL_GRID.1);
+    let full = Grid {
+        cols: FULL_GRID.0,
+        rows: FULL_GRID.1,
+        ..grid
+    };
+    let source = Source::Full {
+        k: loaded.params.k,
+        tolerance: loaded.tolerance.max(FULL_TOLERANCE),
+    };
+    let study = regime_map(&full, source, &|_| true).unwrap();
+    let shown: Vec<usize> = m.cells.iter().map(|c| c.unwrap()).collect();
+    let expected: Vec<usize> = study.cells.iter().map(|c| c.reversals).collect();
+    assert_eq!(shown, expected);
+    h.key(Key::Esc);
+    assert_eq!(h.app.mode, Mode::Normal);
+    assert!(h.app.view.panes.shows(Pane::Map), "Esc keeps the map");
+    h.key(Key::Right);
+    assert_ne!(
+        h.app.scenario.settings, loaded,
+        "the arrows edit the parameters again"
+    );
+    h.key(Key::Char('M'));
+    assert!(!h.app.view.panes.shows(Pane::Map));
+}
+
+#[test]
+fn a_restart_cancels_the_maps_row_and_the_map_resumes_where_it_stopped() {
+    use rattleback::sim::{Command, Engine, MapSpec, PlanBook, SimEvent};
+    use rattleback::study::map::{Grid, Source};
+    let grid = Grid::new(8, 4, 2.0, 1.0, 1.0, 30.0);
+    let spec = MapSpec {
+        grid,
+        source: Source::Full {
+            k: 1e4,
+            tolerance: 1e-6,
+        },
+    };
+    let mut engine = Engine::new(PlanBook::default());
+    let events = std::cell::RefCell::new(Vec::new());
+    let mut sink = |e: SimEvent| {
+        events.borrow_mut().push(e);
+        true
+    };
+    engine.handle(
+        &Command::Map {
+            id: 7,
+            spec: Some(spec),
+            from: 30,
+        },
+        &mut sink,
+    );
+    // Cancelled from the start: nothing is sent, and the slice is redone next time.
+    assert!(engine.work(usize::MAX, &mut |_| false, &mut sink));
+    assert!(events.borrow().is_empty(), "{events:?}");
+    while engine.busy() {
+        engine.work(usize::MAX, &mut |_| true, &mut sink);
+    }
+    let events = events.into_inner();
+    let cells: Vec<(usize, usize)> = events
+        .iter()
+        .filter_map(|e| match e {
+            SimEvent::MapCells {
+                id: 7,
+                first,
+                reversals,
+            } => Some((*first, reversals.len())),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(cells.first().map(|c| c.0), Some(30), "resumes at `from`");
+    assert_eq!(cells.iter().map(|c| c.1).sum::<usize>(), 2);
+    assert!(matches!(
+        events.last(),
+        Some(SimEvent::MapDone {
+            id: 7,
+            failed: None
+        })
+    ));
+}

@@ -353,3 +353,60 @@ fn weak_star_pane_at_80x24() {
     );
     insta::assert_snapshot!("weak_80x24", screen);
 }
+
+#[test]
+fn regime_map_pane_at_80x24_and_160x48() {
+    let mut h = Headless::new("subcritical");
+    h.key(Key::Char('M'));
+    let buf = render(&h.app, 80, 24);
+    let small = text(&buf);
+    assert!(small.contains("map (limit) 1152 cells"), "{small}");
+    assert!(small.contains('┃'), "the critical curve is drawn: {small}");
+    assert!(
+        small.contains("←→↑↓ cell"),
+        "the footer lists the map's keys: {small}"
+    );
+    insta::assert_snapshot!("map_80x24", small);
+    // The cursor is in reverse video while the map has the arrows; the critical curve in the
+    // separatrix colour.
+    let cells: Vec<_> = buf.content().iter().collect();
+    let cursor = cells
+        .iter()
+        .find(|c| c.symbol() == "+" && c.modifier.contains(Modifier::REVERSED));
+    assert!(cursor.is_some(), "a reversed cursor: {small}");
+    let curve = cells.iter().find(|c| c.symbol() == "┃").unwrap();
+    assert_eq!(curve.fg, Color::Yellow);
+    // Larger, with the cursor moved and the arrows given back.
+    for _ in 0..6 {
+        h.key(Key::Right);
+    }
+    h.key(Key::Esc);
+    let large = text(&render(&h.app, 160, 48));
+    assert!(large.contains("│ M "), "{large}");
+    assert!(
+        large.contains("+ ratio 0.521 iy/ix 0.511: 6 rev"),
+        "{large}"
+    );
+    insta::assert_snapshot!("map_160x48", large);
+}
+
+#[test]
+fn the_map_reads_without_colour_the_counts_are_glyph_densities() {
+    let mut h = Headless::new("subcritical");
+    h.key(Key::Char('M'));
+    let spec = rattleback::scenario::theme::theme("default").unwrap();
+    let options = UiOptions::new(ratatui::symbols::Marker::Braille, &spec, &[], true);
+    let buffer = render_with(&h.app, 120, 40, &options);
+    assert!(buffer.content().iter().all(|c| c.fg == Color::Reset));
+    let screen = text(&buffer);
+    // Counts are told apart by density (blank none … █ eight or more), the curve and the
+    // cursor by their shapes.
+    let densities = ['░', '▒', '▓', '█']
+        .iter()
+        .filter(|g| screen.contains(**g))
+        .count();
+    assert!(densities >= 3, "{screen}");
+    for glyph in ['┃', '+'] {
+        assert!(screen.contains(glyph), "{glyph} missing:\n{screen}");
+    }
+}

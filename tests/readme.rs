@@ -1,6 +1,6 @@
 //! The README's key tables and screenshot are the program's own output: they cannot drift.
 
-use rattleback::app::keys::{KEYMAP, REPLAY_KEYMAP, markdown};
+use rattleback::app::keys::{KEYMAP, REPLAY_KEYMAP, map_markdown, markdown};
 
 fn readme() -> String {
     std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap()
@@ -12,6 +12,7 @@ fn key_tables_are_generated_from_the_keymaps() {
     for (what, table) in [
         ("explorer", markdown(KEYMAP)),
         ("replay", markdown(REPLAY_KEYMAP)),
+        ("regime map", map_markdown()),
     ] {
         assert!(
             text.contains(&table),

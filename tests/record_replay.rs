@@ -541,3 +541,64 @@ fn absurd_headers_and_times_are_refused() {
         }
     }
 }
+
+#[test]
+fn panes_and_a_map_cell_loaded_are_recorded_and_replayed() {
+    use rattleback::app::panes::Pane;
+    let mut h = Headless::new("subcritical");
+    let first = h.app.to_preset(&h.app.scenario.name);
+    h.app.on_key(Key::Char('R'));
+    h.app
+        .on_outcome(Outcome::Recording(Ok("panes.jsonl".to_owned())));
+    h.key(Key::Char('M'));
+    h.key(Key::Right);
+    h.key(Key::Up);
+    h.key(Key::Enter);
+    h.key(Key::Esc);
+    h.key(Key::Char('W'));
+    let journal = h.app.take_journal();
+    let panes: Vec<(bool, bool)> = journal
+        .iter()
+        .filter_map(|(_, _, e)| match e {
+            Event::Panes { weak, map, .. } => Some((*weak, *map)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(panes, [(false, true), (true, true)]);
+    assert!(
+        journal
+            .iter()
+            .any(|(_, _, e)| matches!(e, Event::Preset { .. })),
+        "the loaded cell is recorded as the preset it makes"
+    );
+    // Played back on a fresh explorer: the same panes, the same start.
+    let mut r = Headless::of(&first);
+    for (_, _, e) in &journal {
+        let effects = r.app.apply_event(e);
+        r.exec(effects);
+    }
+    assert_eq!(r.app.scenario.settings, h.app.scenario.settings);
+    for pane in [Pane::Map, Pane::Weak] {
+        assert!(r.app.view.panes.shows(pane), "{pane:?}");
+    }
+    assert!(!r.app.view.panes.shows(Pane::Sweep));
+    assert_eq!(r.app.map.cells, h.app.map.cells);
+    assert_eq!(
+        r.app.mode,
+        rattleback::app::Mode::Normal,
+        "replay keeps its keys"
+    );
+    // A file of the older format (no pane fields) still reads: the panes default to hidden.
+    let old: Event =
+        serde_json::from_str(r#"{"kind":"panes","effective":true,"series":false}"#).unwrap();
+    assert_eq!(
+        old,
+        Event::Panes {
+            effective: true,
+            series: false,
+            sweep: false,
+            weak: false,
+            map: false
+        }
+    );
+}

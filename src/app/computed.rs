@@ -1,22 +1,98 @@
-//! The panes the worker computes for (the stiffness sweep, the weak-* view): starting and
-//! stopping their computations with the pane and the run.
+//! The panes the worker computes for (the stiffness sweep, the weak-* view, the regime map):
+//! starting and stopping their computations with the pane and the run; the map's cursor keys.
 
+use super::keys::{self, Action, Key};
 use super::panes::Pane;
-use super::{App, Effect};
+use super::{App, Effect, Message, Mode};
 
 impl App {
-    /// Shows or hides a pane the worker computes for (sweep, weak-*): shown, its computation
-    /// starts; hidden, it stops.
+    /// Shows or hides a pane the worker computes for (sweep, weak-*, map): shown, its
+    /// computation starts; hidden, it stops. The map, shown, takes the arrows.
     pub(super) fn toggle_computed(&mut self, pane: Pane) -> Vec<Effect> {
         self.view.panes.toggle(pane);
         let on = self.view.panes.shows(pane);
         let command = match (pane, on) {
-            (Pane::Sweep, true) => self.start_sweep(),
-            (Pane::Sweep, false) => self.sweep.stop(),
-            (_, true) => self.start_weak(),
-            (_, false) => self.weak.stop(),
+            (Pane::Sweep, true) => Some(self.start_sweep()),
+            (Pane::Sweep, false) => Some(self.sweep.stop()),
+            (Pane::Map, true) => {
+                self.mode = Mode::Map;
+                self.status = Message::info("map: arrows move, Enter loads the cell, Esc");
+                self.map.start(&self.scenario.settings)
+            }
+            (Pane::Map, false) => Some(self.map.stop()),
+            (_, true) => Some(self.start_weak()),
+            (_, false) => Some(self.weak.stop()),
         };
-        vec![Effect::Sim(command)]
+        command.map(Effect::Sim).into_iter().collect()
+    }
+
+    /// A key while the map has the arrows: they move the cursor, Enter loads the cell, `f`
+    /// changes the source, Esc gives the arrows back; other keys go to the keymap.
+    pub(super) fn on_map_key(&mut self, key: Key) -> Vec<Effect> {
+        self.mode = Mode::Map;
+        let step = |k| match k {
+            Key::Left | Key::Char('h') => Some((-1, 0)),
+            Key::Right | Key::Char('l') => Some((1, 0)),
+            Key::Up | Key::Char('k') => Some((0, 1)),
+            Key::Down | Key::Char('j') => Some((0, -1)),
+            Key::ShiftLeft | Key::Char('H') => Some((-4, 0)),
+            Key::ShiftRight | Key::Char('L') => Some((4, 0)),
+            Key::ShiftUp | Key::Char('K') => Some((0, 4)),
+            Key::ShiftDown | Key::Char('J') => Some((0, -4)),
+            _ => None,
+        };
+        if let Some((di, dj)) = step(key) {
+            self.map.move_cursor(di, dj);
+            return Vec::new();
+        }
+        match key {
+            Key::Esc => {
+                self.mode = Mode::Normal;
+                self.status = Message::info("arrows back on the parameters (M hides the map)");
+                Vec::new()
+            }
+            Key::Enter => match self.map.load(&self.scenario.settings) {
+                Ok(s) => {
+                    let (ratio, inertia) = self.map.at_cursor().unwrap_or_default();
+                    let mut scenario = self.scenario.clone();
+                    scenario.set(s);
+                    let name = self.scenario.name.clone();
+                    let preset = scenario.to_preset(
+                        &name,
+                        &self.view.view,
+                        self.view.overlay,
+                        self.series(),
+                    );
+                    let effects = self.load(&preset);
+                    self.mode = Mode::Map;
+                    self.status = Message::info(format!(
+                        "loaded the cell α̇0²/γ̇0² {ratio:.3}, iy/ix {inertia:.3}"
+                    ));
+                    effects
+                }
+                Err(why) => {
+                    self.status = Message::error(why);
+                    Vec::new()
+                }
+            },
+            Key::Char('f') => self
+                .map
+                .toggle_source(&self.scenario.settings)
+                .map(Effect::Sim)
+                .into_iter()
+                .collect(),
+            key => {
+                let Some(action) = keys::action_for(key) else {
+                    return Vec::new();
+                };
+                let effects = self.update(action);
+                // `M` hid the map; an action that opened its own mode (help, picker…) keeps it.
+                if action == Action::ToggleMap && self.mode == Mode::Map {
+                    self.mode = Mode::Normal;
+                }
+                effects
+            }
+        }
     }
 
     /// Asks the worker for the weak-* view of the current settings.

@@ -45,6 +45,16 @@ pub enum Event {
         effective: bool,
         /// Time-series pane shown.
         series: bool,
+        /// Stiffness-sweep pane shown. Written only when true, so the lines of files made before
+        /// the pane (whose hash chain covers their exact bytes) serialize as they were.
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        sweep: bool,
+        /// Weak-* pane shown (written only when true).
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        weak: bool,
+        /// Regime-map pane shown (written only when true).
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        map: bool,
     },
     /// The trail was cleared.
     ClearTrail,

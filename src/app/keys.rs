@@ -71,6 +71,8 @@ pub enum Action {
     ToggleSweep,
     /// Show or hide the weak-* pane.
     ToggleWeak,
+    /// Show the regime map and give it the arrows, or hide it.
+    ToggleMap,
     /// Double the weak-* averaging window.
     WiderWindow,
     /// Halve it.
@@ -230,9 +232,9 @@ pub const KEYMAP: &[Binding<Action>] = &[
     },
     Binding {
         keys: &[Key::Char('K')],
-        label: "K / W < >",
+        label: "K W M / < >",
         action: Action::ToggleSweep,
-        help: "k-sweep pane / weak-* pane, its window ÷2 ×2",
+        help: "k-sweep / weak-* / regime map; < > weak-* window",
         footer: Some(("K", "sweep", 10)),
     },
     Binding {
@@ -241,6 +243,13 @@ pub const KEYMAP: &[Binding<Action>] = &[
         action: Action::ToggleWeak,
         help: "",
         footer: Some(("W", "weak-*", 10)),
+    },
+    Binding {
+        keys: &[Key::Char('M')],
+        label: "",
+        action: Action::ToggleMap,
+        help: "",
+        footer: Some(("M", "map", 10)),
     },
     Binding {
         keys: &[Key::Char('<')],
@@ -498,6 +507,43 @@ pub fn replay_action_for(key: Key) -> Option<ReplayAction> {
         .find(|b| b.keys.contains(&key))
         .map(|b| b.action)
 }
+
+/// The keys of the regime map while it has the arrows (`M`); every other key goes to the
+/// keymap.
+pub const MAP_KEYS: &[(&str, &str)] = &[
+    (
+        "←→↑↓ / hjkl",
+        "move the cursor over the cells (shift: 4 cells)",
+    ),
+    ("Enter", "load the cell as the start (iy, α̇0; γ0 = α0 = 0)"),
+    ("f", "count from the limit or the full model at this k"),
+    (
+        "Esc",
+        "give the arrows back to the parameters (the map stays)",
+    ),
+    ("M", "hide the map"),
+];
+
+/// The map's keys as a Markdown table (the README's, checked by a test).
+#[must_use]
+pub fn map_markdown() -> String {
+    use std::fmt::Write as _;
+    let mut out = String::from("| key (map has the arrows) | action |\n|---|---|\n");
+    for (k, what) in MAP_KEYS {
+        let _ = writeln!(out, "| `{k}` | {what} |");
+    }
+    out
+}
+
+/// The footer while the regime map has the arrows.
+pub const MAP_FOOTER: &[Hint] = &[
+    ("←→↑↓", "cell", 1),
+    ("Enter", "load", 1),
+    ("f", "limit/full", 2),
+    ("Esc", "keys back", 1),
+    ("?", "help", 0),
+    ("q", "quit", 0),
+];
 
 /// A keymap as a Markdown table (the README's key tables are this, checked by a test).
 #[must_use]

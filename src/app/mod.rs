@@ -12,6 +12,7 @@ pub mod effects;
 pub mod fields;
 pub mod journal;
 pub mod keys;
+pub mod map;
 pub mod mode;
 mod outcomes;
 pub mod panes;
@@ -166,6 +167,8 @@ pub struct App {
     pub sweep: sweep::SweepState,
     /// The weak-* pane's data.
     pub weak: weak::WeakState,
+    /// The regime map's data and cursor.
+    pub map: map::MapState,
     /// What has the keyboard.
     pub mode: Mode,
     /// The last message.
@@ -199,6 +202,7 @@ impl App {
             },
             sweep: sweep::SweepState::default(),
             weak: weak::WeakState::default(),
+            map: map::MapState::default(),
             mode: Mode::Normal,
             status: None,
             caption: None,
@@ -296,6 +300,9 @@ impl App {
         if self.view.panes.shows(Pane::Weak) {
             effects.push(Effect::Sim(self.start_weak()));
         }
+        if self.view.panes.shows(Pane::Map) {
+            effects.extend(self.map.start(&self.scenario.settings).map(Effect::Sim));
+        }
         effects
     }
 
@@ -320,6 +327,7 @@ impl App {
             Mode::Editing(text) => self.on_edit_key(text, key),
             Mode::Prompt(prompt) => self.on_prompt_key(prompt, key),
             Mode::Picker(picker) => self.on_picker_key(picker, key),
+            Mode::Map => self.on_map_key(key),
         }
     }
 
@@ -384,9 +392,16 @@ impl App {
                 pan_y: self.view.view.pan_y,
                 wrap: self.view.view.wrap,
             }),
-            Action::ToggleEffective | Action::ToggleSeries => Some(Event::Panes {
+            Action::ToggleEffective
+            | Action::ToggleSeries
+            | Action::ToggleSweep
+            | Action::ToggleWeak
+            | Action::ToggleMap => Some(Event::Panes {
                 effective: self.view.overlay,
                 series: self.series(),
+                sweep: self.view.panes.shows(Pane::Sweep),
+                weak: self.view.panes.shows(Pane::Weak),
+                map: self.view.panes.shows(Pane::Map),
             }),
             Action::ClearTrail => Some(Event::ClearTrail),
             _ => None,
@@ -451,6 +466,7 @@ impl App {
             Action::WiderWindow => self.weak.scale_window(2.0),
             Action::NarrowerWindow => self.weak.scale_window(0.5),
             Action::ToggleSweep => return self.toggle_computed(Pane::Sweep),
+            Action::ToggleMap => return self.toggle_computed(Pane::Map),
             Action::ZoomIn => v.zoom = (v.zoom * 1.5).min(1e6),
             Action::ZoomOut => v.zoom = (v.zoom / 1.5).max(0.1),
             Action::PanLeft => v.pan_x -= 0.1,
@@ -548,6 +564,12 @@ impl App {
                 },
             ),
             SimEvent::SweepDone { generation, failed } => self.sweep.on_done(generation, failed),
+            SimEvent::MapCells {
+                id,
+                first,
+                ref reversals,
+            } => self.map.on_cells(id, first, reversals),
+            SimEvent::MapDone { id, failed } => self.map.on_done(id, failed),
             SimEvent::Weak {
                 generation,
                 t,

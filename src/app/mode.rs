@@ -19,6 +19,8 @@ pub enum Mode {
     Dialog(String),
     /// The help: the keys, then the legend.
     Help(HelpPage),
+    /// The regime map has the arrows: they move its cursor, Enter loads the cell.
+    Map,
 }
 
 /// A page of the help.

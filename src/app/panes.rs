@@ -14,16 +14,19 @@ pub enum Pane {
     Sweep,
     /// Weak-* convergence: `γ̇² g^{3/2}` pointwise and averaged (issue 12).
     Weak,
+    /// The regime map: reversals over `(α̇0²/γ̇0², iy/ix)` with the critical curve (issue 12).
+    Map,
 }
 
 impl Pane {
     /// Every pane, in layout order.
-    pub const ALL: [Self; 5] = [
+    pub const ALL: [Self; 6] = [
         Self::Params,
         Self::Portrait,
         Self::Series,
         Self::Sweep,
         Self::Weak,
+        Self::Map,
     ];
 
     /// Share of the right-hand column's height (the parameter panel has its own column).
@@ -33,13 +36,14 @@ impl Pane {
             Self::Params => 0,
             Self::Portrait => 65,
             Self::Series | Self::Sweep | Self::Weak => 35,
+            Self::Map => 50,
         }
     }
 
     /// Whether the user may hide it.
     #[must_use]
     pub fn optional(self) -> bool {
-        matches!(self, Self::Series | Self::Sweep | Self::Weak)
+        matches!(self, Self::Series | Self::Sweep | Self::Weak | Self::Map)
     }
 }
 

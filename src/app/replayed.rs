@@ -43,13 +43,28 @@ impl App {
                 (v.zoom, v.pan_x, v.pan_y, v.wrap) = (*zoom, *pan_x, *pan_y, *wrap);
                 Vec::new()
             }
-            Event::Panes { effective, series } => {
+            Event::Panes {
+                effective,
+                series,
+                sweep,
+                weak,
+                map,
+            } => {
                 self.view.panes.set(Pane::Series, *series);
-                if *effective == self.view.overlay {
-                    Vec::new()
-                } else {
-                    self.carry_out(Action::ToggleEffective)
+                let mut effects = Vec::new();
+                for (pane, on) in [(Pane::Sweep, sweep), (Pane::Weak, weak), (Pane::Map, map)] {
+                    if self.view.panes.shows(pane) != *on {
+                        effects.extend(self.toggle_computed(pane));
+                    }
                 }
+                // The replay's keys are its own: the map never takes them.
+                if self.mode == Mode::Map {
+                    self.mode = Mode::Normal;
+                }
+                if *effective != self.view.overlay {
+                    effects.extend(self.carry_out(Action::ToggleEffective));
+                }
+                effects
             }
             Event::ClearTrail => self.carry_out(Action::ClearTrail),
             Event::Preset { toml } => match Preset::parse(toml, "recorded preset", "recorded", &[])

@@ -75,11 +75,20 @@ pub fn start(rec: &Recording, path: &str) -> Result<(App, Vec<Effect>), RecordEr
 }
 
 /// The commands that decide the trajectory: restarts, the overlay and checkpoints. Pacing
-/// (`AdvanceTo`) is dropped: trajectories do not depend on it.
+/// (`AdvanceTo`) and the computed panes (sweep, weak-*, map) are dropped: trajectories do not
+/// depend on them.
 fn trajectory(effects: Vec<Effect>) -> Vec<Command> {
     commands(effects)
         .into_iter()
-        .filter(|c| !matches!(c, Command::AdvanceTo { .. }))
+        .filter(|c| {
+            !matches!(
+                c,
+                Command::AdvanceTo { .. }
+                    | Command::Sweep { .. }
+                    | Command::Weak { .. }
+                    | Command::Map { .. }
+            )
+        })
         .collect()
 }
 

@@ -88,6 +88,8 @@ pub struct Engine {
     sweep: Option<SweepJob>,
     /// The weak-* view to compute (after the run's own work, before the sweep).
     weak: Option<(u64, super::WeakSpec)>,
+    /// The regime map being computed: its stamp, spec and next cell (after the sweep).
+    map: Option<(u64, super::MapSpec, usize)>,
 }
 
 /// A stiffness sweep in progress: the limit's curve once, then one rung per slice.
@@ -111,6 +113,7 @@ impl Engine {
             epoch: 0,
             sweep: None,
             weak: None,
+            map: None,
         }
     }
 
@@ -124,7 +127,7 @@ impl Engine {
     /// Whether `work` has anything to do.
     #[must_use]
     pub fn busy(&self) -> bool {
-        self.run_busy() || self.sweep.is_some() || self.weak.is_some()
+        self.run_busy() || self.sweep.is_some() || self.weak.is_some() || self.map.is_some()
     }
 
     /// Whether the run itself has work (it goes before the sweep).
@@ -150,9 +153,13 @@ impl Engine {
             Command::Weak { generation, spec } => {
                 self.weak = spec.map(|spec| (generation, spec));
             }
+            Command::Map { id, spec, from } => {
+                self.map = spec.map(|spec| (id, spec, from));
+            }
             Command::Restart { generation, spec } => {
                 self.sweep = None;
                 self.weak = None;
+                self.map = None;
                 self.session = None;
                 self.pending = None;
                 self.checkpoints.clear();
@@ -258,6 +265,9 @@ impl Engine {
         }
         if !self.run_busy() && self.sweep.is_some() {
             return self.sweep_step(go_on, sink);
+        }
+        if !self.run_busy() && self.map.is_some() {
+            return self.map_step(go_on, sink);
         }
         let Some(s) = self.session.as_mut() else {
             self.pending = None;
@@ -405,6 +415,53 @@ impl Engine {
                 generation,
                 failed: None,
             });
+        }
+        true
+    }
+}
+
+impl Engine {
+    /// One slice of the regime map: a row from the limit (cheap), or as many cells of the full
+    /// model as the pool has threads, in parallel. A cancelled slice is redone next time.
+    fn map_step(
+        &mut self,
+        go_on: &mut dyn FnMut(f64) -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+    ) -> bool {
+        use crate::study::map::{Source, cells_in_parallel};
+        let Some((id, spec, next)) = self.map else {
+            return true;
+        };
+        let total = spec.grid.cols * spec.grid.rows;
+        let chunk = match spec.source {
+            Source::Limit => spec.grid.cols,
+            Source::Full { .. } => rayon::current_num_threads().max(1),
+        };
+        let end = (next + chunk).min(total);
+        let event = match cells_in_parallel(&spec.grid, spec.source, next..end, go_on) {
+            Err(StepError::Cancelled { .. }) => return true,
+            Err(e) => {
+                self.map = None;
+                SimEvent::MapDone {
+                    id,
+                    failed: Some(e.to_string()),
+                }
+            }
+            Ok(reversals) => {
+                self.map = Some((id, spec, end));
+                SimEvent::MapCells {
+                    id,
+                    first: next,
+                    reversals,
+                }
+            }
+        };
+        if !sink(event) {
+            return false;
+        }
+        if self.map.is_some_and(|(_, _, n)| n >= total) {
+            self.map = None;
+            return sink(SimEvent::MapDone { id, failed: None });
         }
         true
     }

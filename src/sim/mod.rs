@@ -65,8 +65,28 @@ pub enum Command {
         /// What to compute.
         spec: Option<WeakSpec>,
     },
+    /// Compute the regime map of `spec` from cell `from` on (row by row, after the run's own
+    /// work), or stop (`spec: None`). A restart stops it too.
+    Map {
+        /// Stamp of this map, echoed in its events (the map does not depend on the run's start,
+        /// so it outlives restarts that keep its spec).
+        id: u64,
+        /// What to compute.
+        spec: Option<MapSpec>,
+        /// The first cell to compute (grid order): the cells before it are already known.
+        from: usize,
+    },
     /// Stop the worker.
     Quit,
+}
+
+/// The regime map's computation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MapSpec {
+    /// The grid, body and horizon.
+    pub grid: crate::study::map::Grid,
+    /// From the limit or the full model at a `k`.
+    pub source: crate::study::map::Source,
 }
 
 /// The weak-* view's computation.
@@ -178,6 +198,22 @@ pub enum SimEvent {
         /// The limit's `θ`.
         theta: f64,
         /// Why it failed, if it did.
+        failed: Option<String>,
+    },
+    /// Cells of the regime map, in grid order from `first`.
+    MapCells {
+        /// The map's stamp.
+        id: u64,
+        /// Index of the first cell.
+        first: usize,
+        /// Reversals in `(0, T]` of each cell.
+        reversals: Vec<usize>,
+    },
+    /// The regime map is complete (or could not go on: `failed`).
+    MapDone {
+        /// The map's stamp.
+        id: u64,
+        /// Why it stopped short, if it did.
         failed: Option<String>,
     },
     /// The integration (or `auto`'s planning) failed.

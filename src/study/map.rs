@@ -152,6 +152,79 @@ pub struct RegimeMap {
     pub critical: Vec<CriticalPoint>,
 }
 
+/// The reversals in `(0, T]` of cell `(i, j)`; `go_on` may cancel a full run.
+///
+/// # Errors
+/// When the cell's run fails, or [`StepError::Cancelled`].
+pub fn cell_reversals(
+    grid: &Grid,
+    source: Source,
+    i: usize,
+    j: usize,
+    go_on: &(dyn Fn(f64) -> bool + Sync),
+) -> Result<usize, StepError> {
+    let (ratio, inertia_ratio) = (grid.ratio(i), grid.inertia_ratio(j));
+    match source {
+        Source::Limit => {
+            let p = grid.problem(ratio, inertia_ratio, 1.0)?;
+            Ok(Effective::new(&p).reversal_count(grid.t_end))
+        }
+        Source::Full { k, tolerance } => {
+            let p = grid.problem(ratio, inertia_ratio, k)?;
+            let spec = RunSpec {
+                method: Method::Auto,
+                tolerance,
+                step: None,
+                t_end: grid.t_end,
+                samples: 0,
+                monitor_energy: false,
+            };
+            Ok(
+                run_auto_cancellable(&p, &spec, f64::INFINITY, &mut |t| go_on(t))?
+                    .result
+                    .reversal_count,
+            )
+        }
+    }
+}
+
+/// The reversals of the cells `range` (indices in grid order: row by row), in parallel
+/// (rayon), for a caller whose `go_on` cannot cross threads (the explorer's worker): the cells
+/// run on the pool while the calling thread asks `go_on` every half millisecond and cancels them
+/// when it says stop.
+///
+/// # Errors
+/// The first cell whose run fails, or [`StepError::Cancelled`].
+pub fn cells_in_parallel(
+    grid: &Grid,
+    source: Source,
+    range: std::ops::Range<usize>,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<Vec<usize>, StepError> {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    let stop = AtomicBool::new(false);
+    let keep_on = |_t: f64| !stop.load(Ordering::Relaxed);
+    std::thread::scope(|scope| {
+        let cells = scope.spawn(|| {
+            range
+                .into_par_iter()
+                .map(|n| cell_reversals(grid, source, n % grid.cols, n / grid.cols, &keep_on))
+                .collect::<Result<Vec<usize>, StepError>>()
+        });
+        while !cells.is_finished() {
+            if !stop.load(Ordering::Relaxed) && !go_on(0.0) {
+                stop.store(true, Ordering::Relaxed);
+            }
+            std::thread::sleep(std::time::Duration::from_micros(500));
+        }
+        let cells = cells.join().unwrap_or(Err(StepError::Cancelled { t: 0.0 }));
+        if stop.load(Ordering::Relaxed) {
+            return Err(StepError::Cancelled { t: 0.0 });
+        }
+        cells
+    })
+}
+
 /// Computes the map; `go_on` is asked between cells (and inside full runs) whether to go on.
 ///
 /// # Errors
@@ -170,31 +243,10 @@ pub fn regime_map(
             if !go_on(0.0) {
                 return Err(StepError::Cancelled { t: 0.0 });
             }
-            let (ratio, inertia_ratio) = (grid.ratio(i), grid.inertia_ratio(j));
-            let reversals = match source {
-                Source::Limit => {
-                    let p = grid.problem(ratio, inertia_ratio, 1.0)?;
-                    Effective::new(&p).reversal_count(grid.t_end)
-                }
-                Source::Full { k, tolerance } => {
-                    let p = grid.problem(ratio, inertia_ratio, k)?;
-                    let spec = RunSpec {
-                        method: Method::Auto,
-                        tolerance,
-                        step: None,
-                        t_end: grid.t_end,
-                        samples: 0,
-                        monitor_energy: false,
-                    };
-                    run_auto_cancellable(&p, &spec, f64::INFINITY, &mut |t| go_on(t))?
-                        .result
-                        .reversal_count
-                }
-            };
             Ok(Cell {
-                ratio,
-                inertia_ratio,
-                reversals,
+                ratio: grid.ratio(i),
+                inertia_ratio: grid.inertia_ratio(j),
+                reversals: cell_reversals(grid, source, i, j, go_on)?,
             })
         })
         .collect::<Result<Vec<Cell>, StepError>>()?;

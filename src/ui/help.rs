@@ -42,6 +42,16 @@ fn legend(look: &Look) -> Vec<Line<'static>> {
         swatch("- -", t.start_level, "the start's level of E_eff (dashed)"),
         swatch("· ·", t.contour, "other levels of E_eff (dotted)"),
         swatch("╷", t.reversal, "reversal ticks (time series)"),
+        swatch(
+            "░▒▓█",
+            t.trail,
+            "map: reversals 1, 2–3, 4–7, ≥ 8; blank none",
+        ),
+        swatch(
+            "┃ +",
+            t.separatrix,
+            "map: critical ratio (paper) · the cursor",
+        ),
         Line::raw(""),
         Line::styled(
             " status bar:",
@@ -53,6 +63,7 @@ fn legend(look: &Look) -> Vec<Line<'static>> {
         Line::raw(" method (auto→choice), est: auto's verified error"),
         Line::raw(" ✓ within the tolerance · steps/s · ● REC recording"),
         Line::raw(" panel: limit regime; vs critical = (ratio−crit)/crit"),
+        Line::raw(" map (M): ←→↑↓ cell · Enter load · f limit/full · Esc"),
     ]
 }
 

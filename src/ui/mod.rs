@@ -12,6 +12,7 @@
 //! │                ││ alpha_dot, limit, reversals, energy error│
 //! │                │├ k-sweep (K) ──────────────────────────────┤
 //! │                ││ sup |α_k − α_eff| against k, log–log      │
+//! │                │├ weak-* (W), regime map (M) ───────────────┤
 //! └────────────────┘└──────────────────────────────────────────┘
 //!  ▌ chapter / note (when there is one)
 //!  status: time, state, speed, reversals, energy error, method…   (fields dropped by priority)
@@ -20,6 +21,7 @@
 
 mod dialogs;
 mod help;
+mod map;
 mod params;
 mod portrait;
 mod series;
@@ -84,6 +86,14 @@ fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, c
             Pane::Weak => frame.render_widget(
                 weak::WeakPane {
                     weak: &app.weak,
+                    look,
+                },
+                *area,
+            ),
+            Pane::Map => frame.render_widget(
+                map::MapPane {
+                    map: &app.map,
+                    focused: app.mode == Mode::Map,
                     look,
                 },
                 *area,
@@ -331,6 +341,8 @@ pub fn draw(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mut C
     );
     let hints = if app.replay.is_some() {
         keys::footer(REPLAY_KEYMAP)
+    } else if app.mode == Mode::Map {
+        keys::MAP_FOOTER.to_vec()
     } else {
         keys::footer(KEYMAP)
     };
