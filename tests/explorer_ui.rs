@@ -343,7 +343,7 @@ fn sweep_pane_at_80x24_and_160x48() {
 }
 
 #[test]
-fn weak_star_pane_at_80x24() {
+fn weak_star_pane_at_80x24_and_160x48() {
     let mut h = Headless::new("subcritical");
     h.key(Key::Char('W'));
     let screen = text(&render(&h.app, 80, 24));
@@ -352,6 +352,10 @@ fn weak_star_pane_at_80x24() {
         "{screen}"
     );
     insta::assert_snapshot!("weak_80x24", screen);
+    h.key(Key::Char('>'));
+    let large = text(&render(&h.app, 160, 48));
+    assert!(large.contains("average over w = 2 within"), "{large}");
+    insta::assert_snapshot!("weak_160x48_window_2", large);
 }
 
 #[test]
