@@ -8,8 +8,11 @@ use crate::scenario::preset::{Override, TOLERANCE_RANGE};
 use crate::scenario::shipped::DEFAULT_PRESET;
 
 /// Explore the holonomic rattleback: spin reversals and the stiff-spring limit.
+///
+/// The explorer's flags go before nothing else: `rattleback --preset NAME simulate` is refused
+/// (each subcommand takes its own `--preset`).
 #[derive(Debug, Parser)]
-#[command(name = "rattleback", version, about, long_about = None)]
+#[command(name = "rattleback", version, about, long_about = None, args_conflicts_with_subcommands = true)]
 pub struct Cli {
     /// What to do; without a command, the explorer opens.
     #[command(subcommand)]
@@ -17,13 +20,9 @@ pub struct Cli {
     /// Preset to open: a shipped name or a path to a TOML file.
     #[arg(long, value_name = "NAME|PATH", default_value = DEFAULT_PRESET)]
     pub preset: String,
-    /// Frame-rate cap of the explorer.
-    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
-    pub fps: u32,
-    /// Colour theme: a shipped name (default, dark, light, high-contrast), a user theme or a
-    /// path. `NO_COLOR` turns colours off whatever the theme.
-    #[arg(long, value_name = "NAME|PATH", default_value = "default")]
-    pub theme: String,
+    /// How the explorer draws.
+    #[command(flatten)]
+    pub look: LookArgs,
     /// Record the session into this file (a key, R, also starts and stops recording). An
     /// existing file is refused (exit 2) unless `--force`.
     #[arg(long, value_name = "FILE")]
@@ -31,6 +30,18 @@ pub struct Cli {
     /// Replace an existing `--record` file.
     #[arg(long)]
     pub force: bool,
+}
+
+/// How the explorer (and a replay) draws: frame rate, theme, marker.
+#[derive(Debug, Args, Clone)]
+pub struct LookArgs {
+    /// Frame-rate cap of the explorer.
+    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
+    pub fps: u32,
+    /// Colour theme: a shipped name (default, dark, light, high-contrast), a user theme or a
+    /// path (`rattleback themes` lists them). `NO_COLOR` turns colours off whatever the theme.
+    #[arg(long, value_name = "NAME|PATH", default_value = "default")]
+    pub theme: String,
     /// Canvas marker, for fonts without Braille.
     #[arg(long, value_enum, default_value_t = MarkerChoice::Braille)]
     pub marker: MarkerChoice,
@@ -52,8 +63,11 @@ pub enum MarkerChoice {
 pub enum Command {
     /// Run one trajectory headless and print the result.
     Simulate(SimulateArgs),
-    /// List every preset (shipped and the user's) with its source, path and description.
+    /// List every preset (shipped and the user's) with its source, path and description, or
+    /// print one (`presets show NAME`).
     Presets(PresetsArgs),
+    /// List every colour theme (shipped and the user's), like `presets`.
+    Themes(ListArgs),
     /// Validate preset or theme files and report every problem (exit 2 if any).
     Check(CheckArgs),
     /// Replay a recorded session in the explorer, check it, or export it.
@@ -63,6 +77,18 @@ pub enum Command {
     /// Studies of the limit k → ∞: a stiffness sweep, or the regime map of the theorems.
     #[command(subcommand)]
     Study(StudyCommand),
+    /// Print a shell completion script (preset and theme names included) to stdout.
+    Completions(CompletionsArgs),
+    /// Print the manual page (roff) to stdout: `rattleback man > rattleback.1`.
+    Man,
+}
+
+/// Arguments of `completions`.
+#[derive(Debug, Args)]
+pub struct CompletionsArgs {
+    /// The shell.
+    #[arg(value_enum)]
+    pub shell: clap_complete::Shell,
 }
 
 /// `study` subcommands.
@@ -177,11 +203,36 @@ pub struct ReplayArgs {
     /// Replace an existing `--export-cast` file (never the session itself).
     #[arg(long)]
     pub force: bool,
+    /// How the replay (and the exported cast) draws.
+    #[command(flatten)]
+    pub look: LookArgs,
 }
 
 /// Arguments of `presets`.
 #[derive(Debug, Args)]
 pub struct PresetsArgs {
+    /// Print one preset instead of the list.
+    #[command(subcommand)]
+    pub action: Option<PresetsAction>,
+    /// Output format of the list.
+    #[arg(long, value_enum, default_value_t = ListFormat::Table)]
+    pub format: ListFormat,
+}
+
+/// `presets` subcommands.
+#[derive(Debug, Subcommand)]
+pub enum PresetsAction {
+    /// Print a preset's TOML (a shipped name, a user preset or a path), to copy and edit.
+    Show {
+        /// The preset.
+        #[arg(value_name = "NAME|PATH")]
+        name: String,
+    },
+}
+
+/// Arguments of a list (`themes`).
+#[derive(Debug, Args)]
+pub struct ListArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = ListFormat::Table)]
     pub format: ListFormat,
@@ -250,8 +301,8 @@ pub struct SimulateArgs {
     /// Override a preset value, e.g. `--set spring.k=1e6` (repeatable).
     #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
     pub set: Vec<Override>,
-    /// Integrator (overrides the preset's `run.method`).
-    #[arg(long, value_parser = parse_method)]
+    /// Integrator (overrides the preset's `run.method`); any case.
+    #[arg(long, value_parser = method_parser(), ignore_case = true)]
     pub method: Option<Method>,
     /// Tolerance: relative and absolute for adaptive methods; picks the step of fixed-step ones.
     #[arg(long, value_parser = parse_tolerance)]
@@ -278,8 +329,11 @@ pub struct SimulateArgs {
     pub strict: bool,
 }
 
-fn parse_method(s: &str) -> Result<Method, String> {
-    Method::from_name(s).ok_or_else(|| format!("unknown method; allowed: {}", Method::names()))
+/// `--method`: the names listed in `--help` and in the error, matched in any case.
+fn method_parser() -> impl clap::builder::TypedValueParser<Value = Method> {
+    use clap::builder::TypedValueParser as _;
+    clap::builder::PossibleValuesParser::new(Method::ALL.map(Method::name))
+        .map(|name: String| Method::from_name(&name).unwrap_or(Method::Auto))
 }
 
 fn parse_finite(s: &str) -> Result<f64, String> {

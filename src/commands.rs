@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 use std::process::ExitCode;
 
-use crate::cli::{CheckArgs, ListFormat, PresetsArgs};
+use crate::cli::{CheckArgs, ListArgs, ListFormat, PresetsAction, PresetsArgs};
 use crate::scenario::PresetError;
 use crate::scenario::preset;
 use crate::scenario::shipped::catalogue;
@@ -25,6 +25,18 @@ macro_rules! say_raw {
 /// `rattleback presets`.
 #[must_use]
 pub fn presets(args: &PresetsArgs) -> ExitCode {
+    if let Some(PresetsAction::Show { name }) = &args.action {
+        return match crate::scenario::shipped::source_text(name) {
+            Ok(text) => {
+                say_raw!("{text}");
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                say_err!("rattleback: error: {e}");
+                ExitCode::from(2)
+            }
+        };
+    }
     let (entries, problems) = catalogue();
     let out = match args.format {
         ListFormat::Json => {
@@ -50,6 +62,131 @@ pub fn presets(args: &PresetsArgs) -> ExitCode {
     };
     say_raw!("{out}");
     report(&problems)
+}
+
+/// One row of `rattleback themes`.
+#[derive(serde::Serialize)]
+struct ThemeEntry {
+    name: String,
+    title: String,
+    source: &'static str,
+    path: String,
+    description: String,
+}
+
+/// `rattleback themes`: every theme, like `presets`.
+#[must_use]
+pub fn themes(args: &ListArgs) -> ExitCode {
+    use crate::scenario::theme::{SHIPPED_THEMES, themes};
+    let (all, problems) = themes();
+    let user_dir = crate::scenario::shipped::config_dir().map(|d| d.join("themes"));
+    let entries: Vec<ThemeEntry> = all
+        .into_iter()
+        .map(|(name, spec)| {
+            let user = user_dir
+                .as_ref()
+                .map(|d| d.join(format!("{name}.toml")))
+                .filter(|p| p.is_file());
+            let (source, path) = match user {
+                Some(p) => ("user", p.display().to_string()),
+                None if SHIPPED_THEMES.iter().any(|(n, _)| *n == name) => {
+                    ("shipped", format!("themes/{name}.toml"))
+                }
+                None => ("user", String::new()),
+            };
+            ThemeEntry {
+                title: spec.name.clone(),
+                description: spec.description.clone(),
+                name,
+                source,
+                path,
+            }
+        })
+        .collect();
+    let out = match args.format {
+        ListFormat::Json => {
+            let mut s = serde_json::to_string_pretty(&entries).unwrap_or_else(|_| "[]".to_owned());
+            s.push('\n');
+            s
+        }
+        ListFormat::Table => {
+            let mut s = String::new();
+            for e in &entries {
+                let _ = writeln!(
+                    s,
+                    "{:<16} {:<8} {}\n                 {}\n                 {}\n",
+                    e.name, e.source, e.title, e.path, e.description
+                );
+            }
+            s
+        }
+    };
+    say_raw!("{out}");
+    report(&problems)
+}
+
+/// The command line as clap sees it, with the preset and theme names of this machine as the
+/// values `--preset` and `--theme` complete to (a path is still accepted when typed).
+fn command_for_docs() -> clap::Command {
+    let presets: Vec<String> = catalogue().0.into_iter().map(|e| e.name).collect();
+    let themes: Vec<String> = crate::scenario::theme::themes()
+        .0
+        .into_iter()
+        .map(|(n, _)| n)
+        .collect();
+    let hint = |names: &[String]| {
+        let values: Vec<clap::builder::PossibleValue> = names
+            .iter()
+            .map(|n| clap::builder::PossibleValue::new(clap::builder::Str::from(n.clone())))
+            .collect();
+        move |a: clap::Arg| a.value_parser(clap::builder::PossibleValuesParser::new(values.clone()))
+    };
+    let (p, t) = (hint(&presets), hint(&themes));
+    let mut cmd = <crate::cli::Cli as clap::CommandFactory>::command()
+        .mut_arg("preset", &p)
+        .mut_arg("theme", &t);
+    cmd = cmd
+        .mut_subcommand("simulate", |c| c.mut_arg("preset", &p))
+        .mut_subcommand("replay", |c| c.mut_arg("theme", &t))
+        .mut_subcommand("study", |c| {
+            c.mut_subcommand("sweep", |s| s.mut_arg("preset", &p))
+                .mut_subcommand("map", |s| s.mut_arg("preset", &p))
+        });
+    cmd
+}
+
+/// `rattleback completions SHELL`.
+#[must_use]
+pub fn completions(shell: clap_complete::Shell) -> ExitCode {
+    let mut cmd = command_for_docs();
+    let mut out = Vec::new();
+    clap_complete::generate(shell, &mut cmd, "rattleback", &mut out);
+    write_stdout(&out)
+}
+
+/// `rattleback man`.
+#[must_use]
+pub fn man() -> ExitCode {
+    let cmd = <crate::cli::Cli as clap::CommandFactory>::command();
+    let mut out = Vec::new();
+    if let Err(e) = clap_mangen::Man::new(cmd).render(&mut out) {
+        say_err!("rattleback: error: rendering the manual: {e}");
+        return ExitCode::from(1);
+    }
+    write_stdout(&out)
+}
+
+fn write_stdout(bytes: &[u8]) -> ExitCode {
+    use std::io::Write as _;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(bytes).and_then(|()| out.flush()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(e) => {
+            say_err!("rattleback: error: writing the output: {e}");
+            ExitCode::from(1)
+        }
+    }
 }
 
 fn report(problems: &[PresetError]) -> ExitCode {

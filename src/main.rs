@@ -5,7 +5,7 @@ use std::io::Write as _;
 use std::process::ExitCode;
 
 use clap::Parser;
-use rattleback::cli::{Cli, Command, MarkerChoice, ReplayArgs, SimulateArgs};
+use rattleback::cli::{Cli, Command, LookArgs, MarkerChoice, ReplayArgs, SimulateArgs};
 use rattleback::commands;
 use rattleback::explorer::{self, ExplorerOptions};
 use rattleback::physics::StepError;
@@ -29,7 +29,10 @@ fn main() -> ExitCode {
         Some(Command::Simulate(args)) => run_simulate(&args),
         Some(Command::Presets(args)) => commands::presets(&args),
         Some(Command::Check(args)) => commands::check(&args),
-        Some(Command::Replay(ref args)) => run_replay(&cli, args),
+        Some(Command::Replay(ref args)) => run_replay(args),
+        Some(Command::Themes(args)) => commands::themes(&args),
+        Some(Command::Completions(args)) => commands::completions(args.shell),
+        Some(Command::Man) => commands::man(),
         Some(Command::Bench(ref args)) => commands::bench(args),
         Some(Command::Study(ref command)) => commands::study(command),
         None => run_explorer(&cli),
@@ -61,8 +64,13 @@ fn check_output(
     Ok(())
 }
 
-fn run_replay(cli: &Cli, args: &ReplayArgs) -> ExitCode {
+fn run_replay(args: &ReplayArgs) -> ExitCode {
     let path = args.file.display().to_string();
+    // A bad `--theme` is an error whatever else is asked (it would be when drawing).
+    if let Err(e) = rattleback::scenario::theme::theme(&args.look.theme) {
+        say_err!("rattleback: error: --theme: {e}");
+        return ExitCode::from(2);
+    }
     if let Some(out) = &args.export_cast
         && let Err(e) = check_output(out, Some(&args.file), args.force, "--export-cast")
     {
@@ -99,7 +107,7 @@ fn run_replay(cli: &Cli, args: &ReplayArgs) -> ExitCode {
         }
     }
     if let Some(out) = &args.export_cast {
-        let (theme, all) = match rattleback::scenario::theme::theme(&cli.theme) {
+        let (theme, all) = match rattleback::scenario::theme::theme(&args.look.theme) {
             Ok(t) => (t, rattleback::scenario::theme::themes().0),
             Err(e) => {
                 say_err!("rattleback: error: {e}");
@@ -107,7 +115,7 @@ fn run_replay(cli: &Cli, args: &ReplayArgs) -> ExitCode {
             }
         };
         let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
-        let options = UiOptions::new(marker(cli.marker), &theme, &all, no_color());
+        let options = UiOptions::new(marker(args.look.marker), &theme, &all, no_color());
         return match rattleback::cast::export_cast(&rec, &path, out, &options, args.force) {
             Ok(frames) => {
                 say!("{}: {frames} frames", out.display());
@@ -134,7 +142,7 @@ fn run_replay(cli: &Cli, args: &ReplayArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    explore(cli, &preset, None, Some(rec))
+    explore(&args.look, &preset, None, Some(rec))
 }
 
 fn marker(choice: MarkerChoice) -> ratatui::symbols::Marker {
@@ -165,17 +173,17 @@ fn run_explorer(cli: &Cli) -> ExitCode {
         // Replacing was asked for: the recorder itself never replaces a file.
         let _ = std::fs::remove_file(out);
     }
-    explore(cli, &preset, cli.record.clone(), None)
+    explore(&cli.look, &preset, cli.record.clone(), None)
 }
 
 fn explore(
-    cli: &Cli,
+    look: &LookArgs,
     preset: &rattleback::scenario::Preset,
     record: Option<std::path::PathBuf>,
     replay: Option<record::Recording>,
 ) -> ExitCode {
-    let marker = marker(cli.marker);
-    let theme = match rattleback::scenario::theme::theme(&cli.theme) {
+    let marker = marker(look.marker);
+    let theme = match rattleback::scenario::theme::theme(&look.theme) {
         Ok(t) => t,
         Err(e) => {
             say_err!("rattleback: error: {e}");
@@ -185,7 +193,7 @@ fn explore(
     let (all, problems) = rattleback::scenario::theme::themes();
     let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
     let options = ExplorerOptions {
-        fps: f64::from(cli.fps),
+        fps: f64::from(look.fps),
         ui: UiOptions::new(marker, &theme, &all, no_color()),
         startup_problems: problems.iter().map(ToString::to_string).collect(),
         record,

@@ -168,7 +168,7 @@ proptest! {
             0 => { lines.remove(i); }
             1 => { let l = lines[i].clone(); lines.insert(j, l); }
             2 => lines.swap(i, j),
-            3 => { let l = &lines[i]; let c = cut.min(l.len()); let end = l.floor_char_boundary(c); lines[i].truncate(end); }
+            3 => { let l = &lines[i]; let c = cut.min(l.len()); let end = (0..=c).rev().find(|&e| l.is_char_boundary(e)).unwrap_or(0); lines[i].truncate(end); }
             _ => lines[i] = lines[i].replace("\"t\":", "\"t\":\"x\",\"u\":"),
         }
         let out = std::env::temp_dir().join(format!(

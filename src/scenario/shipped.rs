@@ -102,6 +102,29 @@ pub struct Entry {
     pub description: String,
 }
 
+/// The text of the preset `resolve` would load for `name_or_path` (checked first: an invalid or
+/// unknown preset is an error), to print and copy.
+///
+/// # Errors
+/// As [`resolve`].
+pub fn source_text(name_or_path: &str) -> Result<String, PresetError> {
+    resolve(name_or_path, &[])?;
+    let path = Path::new(name_or_path);
+    if path.is_file() {
+        return PresetError::read(path);
+    }
+    if let Some(user) = user_preset_dir().map(|d| d.join(format!("{name_or_path}.toml")))
+        && user.is_file()
+    {
+        return PresetError::read(&user);
+    }
+    Ok(SHIPPED
+        .iter()
+        .find(|(n, _)| *n == name_or_path)
+        .map(|(_, src)| (*src).to_owned())
+        .unwrap_or_default())
+}
+
 /// Every preset: shipped ones, then the user's (a user preset with a shipped name replaces
 /// it). Invalid user files and two presets sharing a `preset.name` are reported, not hidden.
 #[must_use]

@@ -103,7 +103,9 @@ impl Method {
     /// Parses a name from [`Method::name`].
     #[must_use]
     pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|m| m.name() == name)
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name().eq_ignore_ascii_case(name.trim()))
     }
 
     /// Comma-separated list of valid names, for error messages.

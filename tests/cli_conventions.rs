@@ -1,0 +1,118 @@
+//! Issue 15, item 1: the command line follows the conventions of the tools users know.
+
+mod common;
+
+use common::bin;
+
+#[test]
+fn an_explorer_flag_before_a_subcommand_is_refused_not_ignored() {
+    let (code, out, err) = bin(&["--preset", "supercritical", "simulate"]);
+    assert_eq!(code, 2, "{out}{err}");
+    assert!(out.is_empty());
+    assert!(
+        err.contains("'simulate' cannot be used with '--preset"),
+        "{err}"
+    );
+    // The subcommand's own flag is the way.
+    let (code, out, _) = bin(&["simulate", "--preset", "supercritical", "--format", "json"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("\"preset\": \"Supercritical start\""));
+}
+
+#[test]
+fn replay_takes_the_look_flags() {
+    let session = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/sessions/subcritical.jsonl"
+    );
+    let (code, out, err) = bin(&["replay", session, "--theme", "light", "--verify"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("reproduced bit for bit"), "{out}");
+    let (code, _, err) = bin(&["replay", session, "--theme", "nope", "--verify"]);
+    assert_eq!(code, 2, "a bad theme is still an error: {err}");
+}
+
+#[test]
+fn methods_are_listed_in_help_and_matched_in_any_case() {
+    let (code, out, _) = bin(&["simulate", "--help"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("[possible values: auto, rk4, dop853"), "{out}");
+    let (code, upper, err) = bin(&["simulate", "--method", "DOP853", "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    let (_, lower, _) = bin(&["simulate", "--method", "dop853", "--format", "json"]);
+    let run = |s: &str| s.split("\"stats\"").next().unwrap().to_owned();
+    assert_eq!(run(&upper), run(&lower), "the same run whatever the case");
+    assert!(upper.contains("\"method\": \"dop853\""), "{upper}");
+    let (code, _, err) = bin(&["simulate", "--method", "euler"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("possible values: auto"), "{err}");
+    // Presets too.
+    let (code, out, err) = bin(&["simulate", "--set", "run.method=DOP853", "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("\"method\": \"dop853\""), "{out}");
+}
+
+#[test]
+fn completions_for_every_shell_name_the_commands_and_the_presets() {
+    for shell in ["bash", "zsh", "fish", "elvish", "powershell"] {
+        let (code, out, err) = bin(&["completions", shell]);
+        assert_eq!(code, 0, "{shell}: {err}");
+        for word in ["simulate", "replay", "study", "completions"] {
+            assert!(out.contains(word), "{shell} completion lacks {word}");
+        }
+        // The shells whose scripts complete values get the preset names (elvish and
+        // PowerShell complete flags and subcommands only).
+        if ["bash", "zsh", "fish"].contains(&shell) {
+            for word in ["subcritical", "stiff-spring", "high-contrast"] {
+                assert!(out.contains(word), "{shell} completion lacks {word}");
+            }
+        }
+    }
+    let (code, _, err) = bin(&["completions", "tcsh"]);
+    assert_eq!(code, 2, "{err}");
+}
+
+#[test]
+fn the_manual_page_renders() {
+    let (code, out, err) = bin(&["man"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains(".TH rattleback 1"), "{out}");
+    for section in [".SH NAME", ".SH SYNOPSIS", ".SH OPTIONS", ".SH SUBCOMMANDS"] {
+        assert!(out.contains(section), "{section} missing");
+    }
+    assert!(out.contains("simulate"));
+}
+
+#[test]
+fn presets_show_prints_a_preset_to_copy_and_themes_lists_themes() {
+    let (code, out, err) = bin(&["presets", "show", "just-below"]);
+    assert_eq!(code, 0, "{err}");
+    let shown = rattleback::scenario::Preset::parse(&out, "shown", "just-below", &[]).unwrap();
+    let shipped = rattleback::scenario::shipped::resolve("just-below", &[]).unwrap();
+    assert_eq!(shown, shipped, "what is printed is the preset itself");
+    let (code, out, err) = bin(&["presets", "show", "nope"]);
+    assert_eq!(code, 2);
+    assert!(out.is_empty());
+    assert!(err.contains("no preset named or at 'nope'"), "{err}");
+    // The list still works as before.
+    let (code, out, _) = bin(&["presets", "--format", "json"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("\"name\": \"subcritical\""));
+
+    let (code, out, err) = bin(&["themes", "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    let list: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let names: Vec<&str> = list
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["default", "dark", "light", "high-contrast"]);
+    for key in ["title", "source", "path", "description"] {
+        assert!(list[0].get(key).is_some(), "{key}");
+    }
+    let (code, out, _) = bin(&["themes"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("high-contrast"));
+}
