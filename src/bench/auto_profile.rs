@@ -352,5 +352,5 @@ pub fn write_profile_csv(rows: &[ProfileRow], path: &std::path::Path) -> std::io
             peer_s
         );
     }
-    std::fs::write(path, o)
+    crate::scenario::write::write_atomic(path, o.as_bytes(), true)
 }

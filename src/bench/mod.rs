@@ -440,7 +440,7 @@ pub fn write_csv(rows: &[Row], path: &Path) -> std::io::Result<()> {
             r.reference
         );
     }
-    std::fs::write(path, o)
+    crate::scenario::write::write_atomic(path, o.as_bytes(), true)
 }
 
 pub use auto_profile::{ProfileRow, profile, profile_table, write_profile_csv};

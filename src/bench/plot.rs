@@ -49,65 +49,69 @@ pub fn write_svg(rows: &[Row], path: &Path) -> Result<(), Box<dyn std::error::Er
                 }
                 v
             });
-    let root = SVGBackend::new(path, (1200, 800)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let panels = root.split_evenly((2, 3));
-    for (panel, k) in panels.iter().zip(&ks) {
-        let pts: Vec<(f64, f64)> = rows
-            .iter()
-            .filter(|r| r.k == *k)
-            .filter_map(usable)
-            .collect();
-        let (t0, t1) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
-            (a.min(p.0), b.max(p.0))
-        });
-        let (e0, e1) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
-            (a.min(p.1), b.max(p.1))
-        });
-        if pts.is_empty() {
-            continue;
-        }
-        let mut chart = ChartBuilder::on(panel)
-            .caption(format!("k = {k:e}"), ("sans-serif", 18))
-            .margin(8)
-            .x_label_area_size(30)
-            .y_label_area_size(50)
-            .build_cartesian_2d(
-                (t0 * 0.5..t1 * 2.0).log_scale(),
-                (e0 * 0.3..e1 * 3.0).log_scale(),
-            )?;
-        chart
-            .configure_mesh()
-            .x_desc("seconds")
-            .y_desc("error of alpha(T)")
-            .draw()?;
-        for (i, m) in methods.iter().enumerate() {
-            let colour = PALETTE[i % PALETTE.len()];
-            let mut series: Vec<(f64, f64)> = rows
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (1200, 800)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let panels = root.split_evenly((2, 3));
+        for (panel, k) in panels.iter().zip(&ks) {
+            let pts: Vec<(f64, f64)> = rows
                 .iter()
-                .filter(|r| r.k == *k && &r.method == m)
+                .filter(|r| r.k == *k)
                 .filter_map(usable)
                 .collect();
-            series.sort_by(|a, b| a.0.total_cmp(&b.0));
-            if series.is_empty() {
+            let (t0, t1) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+                (a.min(p.0), b.max(p.0))
+            });
+            let (e0, e1) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+                (a.min(p.1), b.max(p.1))
+            });
+            if pts.is_empty() {
                 continue;
             }
+            let mut chart = ChartBuilder::on(panel)
+                .caption(format!("k = {k:e}"), ("sans-serif", 18))
+                .margin(8)
+                .x_label_area_size(30)
+                .y_label_area_size(50)
+                .build_cartesian_2d(
+                    (t0 * 0.5..t1 * 2.0).log_scale(),
+                    (e0 * 0.3..e1 * 3.0).log_scale(),
+                )?;
             chart
-                .draw_series(LineSeries::new(series.clone(), colour.stroke_width(2)))?
-                .label(m.clone())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 15, y)], colour.stroke_width(2))
-                });
-            chart.draw_series(series.iter().map(|p| Circle::new(*p, 3, colour.filled())))?;
+                .configure_mesh()
+                .x_desc("seconds")
+                .y_desc("error of alpha(T)")
+                .draw()?;
+            for (i, m) in methods.iter().enumerate() {
+                let colour = PALETTE[i % PALETTE.len()];
+                let mut series: Vec<(f64, f64)> = rows
+                    .iter()
+                    .filter(|r| r.k == *k && &r.method == m)
+                    .filter_map(usable)
+                    .collect();
+                series.sort_by(|a, b| a.0.total_cmp(&b.0));
+                if series.is_empty() {
+                    continue;
+                }
+                chart
+                    .draw_series(LineSeries::new(series.clone(), colour.stroke_width(2)))?
+                    .label(m.clone())
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 15, y)], colour.stroke_width(2))
+                    });
+                chart.draw_series(series.iter().map(|p| Circle::new(*p, 3, colour.filled())))?;
+            }
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.8))
+                .border_style(BLACK)
+                .label_font(("sans-serif", 10))
+                .draw()?;
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 10))
-            .draw()?;
+        root.present()?;
     }
-    root.present()?;
+    crate::scenario::write::write_atomic(path, svg.as_bytes(), true)?;
     Ok(())
 }
 

@@ -171,7 +171,7 @@ pub fn write_stability_csv(rows: &[StabilityRow], path: &std::path::Path) -> std
             r.seconds
         );
     }
-    std::fs::write(path, text)
+    crate::scenario::write::write_atomic(path, text.as_bytes(), true)
 }
 
 /// The report for people.

@@ -15,7 +15,7 @@ pub enum PresetError {
         source: std::io::Error,
     },
     /// No file at that path and no preset of that name.
-    #[error("no preset named or at '{name}'; available: {available}")]
+    #[error("no preset named or at '{name}'; available: {available}{}", crate::scenario::text::did_you_mean(name, available.split(", ")))]
     NotFound {
         /// What was asked for.
         name: String,
@@ -120,14 +120,22 @@ impl PresetError {
     }
 }
 
-/// Where things are in a TOML source: lines, section headers and keys.
+/// Where things are in a TOML source: lines, section headers and keys, from the spans the
+/// `toml` parser gives every key (so a comment after a header, an inline table, a dotted key or
+/// a quoted key all point at their own line).
 pub(crate) struct SourceMap<'a> {
     src: &'a str,
+    /// `(dotted path, byte offset of the key's first mention)`, e.g. `("body.ix", 42)`.
+    keys: Vec<(String, usize)>,
 }
 
 impl<'a> SourceMap<'a> {
     pub(crate) fn new(src: &'a str) -> Self {
-        Self { src }
+        let mut keys = Vec::new();
+        if let Ok(table) = toml::de::DeTable::parse(src) {
+            index(table.get_ref(), "", &mut keys);
+        }
+        Self { src, keys }
     }
 
     /// 1-based line of a byte offset.
@@ -148,51 +156,21 @@ impl<'a> SourceMap<'a> {
             })
     }
 
-    /// The line of the `[section]` header.
-    pub(crate) fn find_section(&self, section: &str) -> Option<usize> {
-        self.src
-            .lines()
-            .position(|l| {
-                let t = l.trim();
-                t.starts_with('[') && t.trim_matches(|c| c == '[' || c == ']').trim() == section
-            })
-            .map(|i| i + 1)
+    fn find(&self, path: &str) -> Option<usize> {
+        self.keys
+            .iter()
+            .find(|(p, _)| p == path)
+            .map(|(_, at)| self.line_of(*at))
     }
 
-    /// The line where `key` is set inside `[section]`: `key = …`, a dotted `key.sub = …`, a
-    /// `[section.key]` header, or `section.key = …` at the top.
+    /// The line where `[section]` (or the first key under it) is written.
+    pub(crate) fn find_section(&self, section: &str) -> Option<usize> {
+        self.find(section)
+    }
+
+    /// The line where `key` of `[section]` is set, however it is written.
     pub(crate) fn find_key(&self, section: &str, key: &str) -> Option<usize> {
-        let mut current = String::new();
-        let first = |k: &str| {
-            k.split('.')
-                .next()
-                .unwrap_or("")
-                .trim()
-                .trim_matches(|c| c == '"' || c == '\'')
-                .to_owned()
-        };
-        let dotted = format!("{section}.{key}");
-        for (i, l) in self.src.lines().enumerate() {
-            let t = l.trim();
-            if t.starts_with('[') && t.ends_with(']') {
-                let header = t.trim_matches(|c| c == '[' || c == ']').trim();
-                if header == dotted || header.starts_with(&format!("{dotted}.")) {
-                    return Some(i + 1);
-                }
-                header.clone_into(&mut current);
-            } else if let Some((k, _)) = t.split_once('=') {
-                let k = k.trim();
-                let here = current == section && first(k) == key;
-                let top = current.is_empty()
-                    && k.replace(['"', '\'', ' '], "")
-                        .strip_prefix(&dotted)
-                        .is_some_and(|rest| rest.is_empty() || rest.starts_with('.'));
-                if here || top {
-                    return Some(i + 1);
-                }
-            }
-        }
-        None
+        self.find(&format!("{section}.{key}"))
     }
 
     /// The best line for a problem with `key` of `section` (`key` empty: the section itself):
@@ -204,5 +182,20 @@ impl<'a> SourceMap<'a> {
             .flatten()
             .or_else(|| self.find_section(section))
             .unwrap_or_else(|| self.src.lines().count().max(1))
+    }
+}
+
+/// Every key of `table` under `prefix`, with where it is first written.
+fn index(table: &toml::de::DeTable<'_>, prefix: &str, out: &mut Vec<(String, usize)>) {
+    for (key, value) in table {
+        let path = if prefix.is_empty() {
+            key.get_ref().to_string()
+        } else {
+            format!("{prefix}.{}", key.get_ref())
+        };
+        out.push((path.clone(), key.span().start));
+        if let toml::de::DeValue::Table(inner) = value.get_ref() {
+            index(inner, &path, out);
+        }
     }
 }

@@ -247,9 +247,13 @@ fn check_value(kind: Kind, v: &Value) -> Result<(), String> {
         Kind::Bool => v.as_bool().map(|_| ()).ok_or_else(expected),
         Kind::Method => {
             let name = v.as_str().ok_or_else(expected)?;
-            Method::from_name(name)
-                .map(|_| ())
-                .ok_or_else(|| format!("unknown method '{name}'; allowed: {}", Method::names()))
+            Method::from_name(name).map(|_| ()).ok_or_else(|| {
+                format!(
+                    "unknown method '{name}'; allowed: {}{}",
+                    Method::names(),
+                    crate::scenario::text::did_you_mean(name, Method::ALL.map(Method::name))
+                )
+            })
         }
         Kind::Count => {
             let n = v.as_integer().ok_or_else(expected)?;
@@ -349,7 +353,12 @@ fn collect(
                 path: "--set".to_owned(),
                 line: None,
                 key: Some(o.key.clone()),
-                message: format!("unknown key '{}'; allowed: {}", o.key, keys.join(", ")),
+                message: format!(
+                    "unknown key '{}'; allowed: {}{}",
+                    o.key,
+                    keys.join(", "),
+                    crate::scenario::text::did_you_mean(&o.key, keys.iter().map(String::as_str))
+                ),
             }]);
         };
         let section = table
@@ -364,7 +373,10 @@ fn collect(
             let allowed = SECTIONS.map(|s| format!("`{s}`")).join(", ");
             problems.at_section(
                 name,
-                format!("unknown section `{name}`, expected one of {allowed}"),
+                format!(
+                    "unknown section `{name}`, expected one of {allowed}{}",
+                    crate::scenario::text::did_you_mean(name, SECTIONS)
+                ),
             );
             continue;
         }
@@ -378,8 +390,12 @@ fn collect(
                     name,
                     key,
                     format!(
-                        "unknown key `{key}`, expected one of {}",
-                        allowed_keys(name)
+                        "unknown key `{key}`, expected one of {}{}",
+                        allowed_keys(name),
+                        crate::scenario::text::did_you_mean(
+                            key,
+                            SCHEMA.iter().filter(|s| s.section == name).map(|s| s.key)
+                        )
                     ),
                 ),
                 Some(spec) => {

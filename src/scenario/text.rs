@@ -74,3 +74,41 @@ mod tests {
         assert_eq!(clean("spin α̇ ≥ 0 ✓"), "spin α̇ ≥ 0 ✓");
     }
 }
+
+/// The candidate closest to `word` when one is close enough to be a typo (Jaro–Winkler ≥ 0.8,
+/// case ignored), for "did you mean" hints.
+#[must_use]
+pub fn closest<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    let word = word.to_lowercase();
+    candidates
+        .into_iter()
+        .map(|c| (strsim::jaro_winkler(&word, &c.to_lowercase()), c))
+        .filter(|(score, _)| *score >= 0.8)
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, c)| c)
+}
+
+/// `"; did you mean `x`?"` when a candidate is close to `word`, else nothing.
+#[must_use]
+pub fn did_you_mean<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> String {
+    closest(word, candidates).map_or_else(String::new, |c| format!("; did you mean `{c}`?"))
+}
+
+#[cfg(test)]
+mod suggestion_tests {
+    use super::*;
+
+    #[test]
+    fn typos_get_the_closest_name_and_nonsense_gets_none() {
+        let keys = ["ix", "iy", "iz", "k", "t_end", "method", "tolerance"];
+        assert_eq!(closest("tolerence", keys), Some("tolerance"));
+        assert_eq!(closest("Methd", keys), Some("method"));
+        assert_eq!(closest("t-end", keys), Some("t_end"));
+        assert_eq!(closest("banana", keys), None);
+        assert_eq!(did_you_mean("banana", keys), "");
+        assert_eq!(
+            did_you_mean("subcritcal", ["subcritical", "supercritical"]),
+            "; did you mean `subcritical`?"
+        );
+    }
+}

@@ -155,7 +155,10 @@ impl ThemeSpec {
                             _ => problem(
                                 section,
                                 k,
-                                format!("unknown key `{k}`, expected one of `name`, `description`"),
+                                format!(
+                                    "unknown key `{k}`, expected one of `name`, `description`{}",
+                                    super::text::did_you_mean(k, ["name", "description"])
+                                ),
                             ),
                         }
                     }
@@ -167,7 +170,10 @@ impl ThemeSpec {
                             problem(
                                 section,
                                 k,
-                                format!("unknown key `{k}`, expected one of {allowed}"),
+                                format!(
+                                    "unknown key `{k}`, expected one of {allowed}{}",
+                                    super::text::did_you_mean(k, ROLES)
+                                ),
                             );
                             continue;
                         };
@@ -187,7 +193,10 @@ impl ThemeSpec {
                 other => problem(
                     other,
                     "",
-                    format!("unknown section `{other}`, expected `theme` or `colors`"),
+                    format!(
+                        "unknown section `{other}`, expected `theme` or `colors`{}",
+                        super::text::did_you_mean(other, ["theme", "colors"])
+                    ),
                 ),
             }
         }

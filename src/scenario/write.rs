@@ -1,11 +1,12 @@
 //! The one way this program writes a file: a temporary file created exclusively (never through
-//! a symlink, never an existing file) in the target's folder, synced, then moved into place —
-//! without replacing an existing target unless asked. A crash leaves the old file or the new
-//! one, never half of either, and no planted link can redirect the write.
+//! a symlink, never an existing file) in the target's folder by `tempfile`, synced, then moved
+//! into place with `persist` (replace) or `persist_noclobber` (never replace, even in a race). A
+//! crash leaves the old file or the new one, never half of either, and no planted link can
+//! redirect the write.
 
-use std::fs::{File, OpenOptions};
+use std::fs::File;
 use std::io;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Largest preset, theme or lesson file read (they are a few kilobytes).
 pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
@@ -85,53 +86,33 @@ pub fn write_atomic_with<T>(
             format!("{} exists", path.display()),
         ));
     }
-    let (tmp, file) = create_temporary(dir, &name.to_string_lossy())?;
-    let result = (|| {
-        let mut out = io::BufWriter::new(file);
+    // A randomly named file created with O_EXCL in the target's folder (tempfile): no planted
+    // link can redirect it, and it is removed on every error path when dropped.
+    let mut tmp = tempfile::Builder::new()
+        .prefix(&format!(".{}.", name.to_string_lossy()))
+        .suffix(".tmp")
+        .tempfile_in(dir)?;
+    let value = {
+        let mut out = io::BufWriter::new(tmp.as_file_mut());
         let value = fill(&mut out)?;
-        let file = out.into_inner().map_err(io::IntoInnerError::into_error)?;
-        file.sync_all()?;
-        drop(file);
-        if replace {
-            // rename replaces the target itself, never what a link there points to.
-            std::fs::rename(&tmp, path)?;
-        } else {
-            // A hard link fails if the target appeared meanwhile: no clobbering, even in a race.
-            std::fs::hard_link(&tmp, path)?;
-            std::fs::remove_file(&tmp)?;
-        }
-        Ok(value)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
+        io::Write::flush(&mut out)?;
+        value
+    };
+    tmp.as_file().sync_all()?;
+    if replace {
+        // rename replaces the target itself, never what a link there points to.
+        tmp.persist(path).map_err(|e| e.error)?;
+    } else {
+        // Fails if the target appeared meanwhile: no clobbering, even in a race.
+        tmp.persist_noclobber(path).map_err(|e| e.error)?;
     }
-    result
-}
-
-/// A new file `.NAME.tmp-PID-N` in `dir`, created with `O_CREAT | O_EXCL` (an existing file or
-/// a planted symlink at that name makes it try the next `N`).
-fn create_temporary(dir: &Path, name: &str) -> io::Result<(PathBuf, File)> {
-    let pid = std::process::id();
-    let seed = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.subsec_nanos());
-    for n in 0..64u32 {
-        let tmp = dir.join(format!(".{name}.tmp-{pid}-{}", seed.wrapping_add(n)));
-        match OpenOptions::new().write(true).create_new(true).open(&tmp) {
-            Ok(f) => return Ok((tmp, f)),
-            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => {}
-            Err(e) => return Err(e),
-        }
-    }
-    Err(io::Error::new(
-        io::ErrorKind::AlreadyExists,
-        format!("no free temporary name in {}", dir.display()),
-    ))
+    Ok(value)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::PathBuf;
 
     fn dir(name: &str) -> PathBuf {
         let d =
@@ -169,7 +150,7 @@ mod tests {
         let left: Vec<_> = std::fs::read_dir(&d)
             .unwrap()
             .filter_map(Result::ok)
-            .filter(|e| e.file_name().to_string_lossy().contains(".tmp-"))
+            .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
             .collect();
         assert!(left.is_empty());
         let _ = std::fs::remove_dir_all(&d);
@@ -188,6 +169,36 @@ mod tests {
         write_atomic(&d.join("c.toml"), b"new", false).unwrap();
         assert_eq!(std::fs::read(&outside).unwrap(), b"keep");
         assert_eq!(std::fs::read(d.join("c.toml")).unwrap(), b"new");
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[test]
+    fn no_clobber_holds_under_a_race() {
+        let d = dir("race");
+        for round in 0..20 {
+            let target = d.join(format!("r{round}.toml"));
+            let winners: Vec<usize> = std::thread::scope(|s| {
+                let handles: Vec<_> = (0..8)
+                    .map(|i| {
+                        let target = &target;
+                        s.spawn(move || {
+                            write_atomic(target, format!("writer {i}").as_bytes(), false)
+                                .ok()
+                                .map(|()| i)
+                        })
+                    })
+                    .collect();
+                handles
+                    .into_iter()
+                    .filter_map(|h| h.join().unwrap())
+                    .collect()
+            });
+            assert_eq!(winners.len(), 1, "round {round}: {winners:?}");
+            let text = std::fs::read_to_string(&target).unwrap();
+            assert_eq!(text, format!("writer {}", winners[0]));
+        }
+        let left = std::fs::read_dir(&d).unwrap().count();
+        assert_eq!(left, 20, "no temporary file is left behind");
         let _ = std::fs::remove_dir_all(&d);
     }
 }
