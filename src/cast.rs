@@ -1,7 +1,8 @@
 //! `replay --export-cast`: render a session into an asciicast v2 file (asciinema-player plays
-//! it), with chapters as markers. Rendered headless at the recorded terminal size, 10 frames
-//! per second of recorded time; written to a temporary file and renamed, so a failure leaves
-//! nothing half-written.
+//! it), with chapters and notes as markers. Rendered headless at the recorded terminal size (or
+//! `--cols`/`--rows`), 10 frames per second of recorded time (or `--fps`), timestamps rounded to
+//! the microsecond, `idle_time_limit` set; written to a temporary file and persisted, so a
+//! failure leaves nothing half-written.
 
 use std::cell::RefCell;
 use std::path::Path;
@@ -17,8 +18,34 @@ use crate::record::{RecordError, Recording, plan_book, start};
 use crate::sim::{Engine, drive};
 use crate::ui::{self, Cache, UiOptions};
 
-/// Frames per second of the exported cast.
-const CAST_FPS: f64 = 10.0;
+/// Longest pause the player shows (seconds): longer idle stretches are cut to it.
+pub const IDLE_TIME_LIMIT: f64 = 2.0;
+
+/// The cast's size and frame rate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CastSize {
+    /// Columns (`None`: the recorded terminal's).
+    pub cols: Option<u16>,
+    /// Rows (`None`: the recorded terminal's).
+    pub rows: Option<u16>,
+    /// Frames per second of recorded time.
+    pub fps: f64,
+}
+
+impl Default for CastSize {
+    fn default() -> Self {
+        Self {
+            cols: None,
+            rows: None,
+            fps: 10.0,
+        }
+    }
+}
+
+/// A time rounded to the microsecond (what asciinema writes).
+fn micro(t: f64) -> f64 {
+    (t * 1e6).round() / 1e6
+}
 
 /// A writer whose bytes can be taken out between frames.
 #[derive(Clone, Default)]
@@ -44,6 +71,7 @@ pub fn export_cast(
     path: &str,
     out: &Path,
     options: &UiOptions,
+    size: CastSize,
     replace: bool,
 ) -> Result<usize, RecordError> {
     let io = |source| RecordError::Io {
@@ -51,8 +79,13 @@ pub fn export_cast(
         source,
     };
     let (mut app, start_effects) = start(rec, path)?;
-    let size = rec.header.terminal;
-    let area = Rect::new(0, 0, size.width.max(1), size.height.max(1));
+    let recorded = rec.header.terminal;
+    let area = Rect::new(
+        0,
+        0,
+        size.cols.unwrap_or(recorded.width).max(1),
+        size.rows.unwrap_or(recorded.height).max(1),
+    );
     let screen = Shared::default();
     let mut terminal = Terminal::with_options(
         CrosstermBackend::new(screen.clone()),
@@ -73,6 +106,7 @@ pub fn export_cast(
             &mut terminal,
             &screen,
             options,
+            size.fps,
             cast,
         )
     })
@@ -88,6 +122,7 @@ fn frames_of(
     terminal: &mut Terminal<CrosstermBackend<Shared>>,
     screen: &Shared,
     options: &UiOptions,
+    fps: f64,
     cast: &mut dyn std::io::Write,
 ) -> std::io::Result<usize> {
     let mut cache = Cache::default();
@@ -102,18 +137,33 @@ fn frames_of(
         "width": area.width,
         "height": area.height,
         "title": format!("rattleback: {}", app.scenario.name),
+        "idle_time_limit": IDLE_TIME_LIMIT,
         "env": {"TERM": "xterm-256color"},
     });
     writeln!(cast, "{header}")?;
     let end = rec.lines.last().map_or(0.0, |(_, l)| l.wall) + 1.0;
     let mut next = 0;
     let mut frames = 0;
-    let mut clock = 0.0;
-    while clock <= end {
+    // The clock is a frame count: no drift from adding 1/fps again and again.
+    let mut frame: u64 = 0;
+    let at = |frame: u64| frame as f64 / fps;
+    while at(frame) <= end {
+        let clock = at(frame);
         while next < rec.lines.len() && rec.lines[next].1.wall <= clock {
             let line = &rec.lines[next].1;
-            if let Event::Chapter { title } = &line.event {
-                writeln!(cast, "{}", serde_json::json!([line.wall, "m", title]))?;
+            let marker = match &line.event {
+                Event::Chapter { title } => Some(crate::scenario::text::clean(title)),
+                Event::Note { text } => {
+                    Some(format!("note: {}", crate::scenario::text::clean(text)))
+                }
+                _ => None,
+            };
+            if let Some(label) = marker {
+                writeln!(
+                    cast,
+                    "{}",
+                    serde_json::json!([micro(line.wall), "m", label])
+                )?;
             }
             let c = app.seek(line.t);
             run(c, engine, app);
@@ -121,22 +171,22 @@ fn frames_of(
             run(c, engine, app);
             next += 1;
         }
-        let c = app.tick(1.0 / CAST_FPS);
+        let c = app.tick(1.0 / fps);
         run(c, engine, app);
         terminal.draw(|f| ui::draw(f, app, options, &mut cache))?;
         let bytes = std::mem::take(&mut *screen.0.borrow_mut());
         if !bytes.is_empty() {
             let text = String::from_utf8_lossy(&bytes);
-            writeln!(cast, "{}", serde_json::json!([clock, "o", text]))?;
+            writeln!(cast, "{}", serde_json::json!([micro(clock), "o", text]))?;
             frames += 1;
         }
-        clock += 1.0 / CAST_FPS;
+        frame += 1;
         // Nothing moves until the next event: jump there (on the frame grid).
         if !app.run.playing
             && let Some((_, l)) = rec.lines.get(next)
-            && l.wall > clock
+            && l.wall > at(frame)
         {
-            clock += ((l.wall - clock) * CAST_FPS).floor() / CAST_FPS;
+            frame = ((l.wall * fps).floor() as u64).max(frame);
         }
     }
     Ok(frames)

@@ -35,13 +35,16 @@ pub struct Cli {
 /// How the explorer (and a replay) draws: frame rate, theme, marker.
 #[derive(Debug, Args, Clone)]
 pub struct LookArgs {
-    /// Frame-rate cap of the explorer.
-    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
-    pub fps: u32,
+    /// Frame-rate cap of the explorer (default 30); with `--export-cast`, the cast's frames per
+    /// second (default 10).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=240))]
+    pub fps: Option<u32>,
     /// Colour theme: a shipped name (default, dark, light, high-contrast), a user theme or a
-    /// path (`rattleback themes` lists them). `NO_COLOR` turns colours off whatever the theme.
-    #[arg(long, value_name = "NAME|PATH", default_value = "default")]
-    pub theme: String,
+    /// path (`rattleback themes` lists them); by default `default`, and for a replay the theme
+    /// it was recorded with when this machine has it. `NO_COLOR` turns colours off whatever the
+    /// theme.
+    #[arg(long, value_name = "NAME|PATH")]
+    pub theme: Option<String>,
     /// Canvas marker, for fonts without Braille.
     #[arg(long, value_enum, default_value_t = MarkerChoice::Braille)]
     pub marker: MarkerChoice,
@@ -206,6 +209,12 @@ pub struct ReplayArgs {
     /// How the replay (and the exported cast) draws.
     #[command(flatten)]
     pub look: LookArgs,
+    /// Columns of the exported cast (default: the recorded terminal's).
+    #[arg(long, value_parser = clap::value_parser!(u16).range(80..=1000), requires = "export_cast")]
+    pub cols: Option<u16>,
+    /// Rows of the exported cast (default: the recorded terminal's).
+    #[arg(long, value_parser = clap::value_parser!(u16).range(24..=1000), requires = "export_cast")]
+    pub rows: Option<u16>,
 }
 
 /// Arguments of `presets`.

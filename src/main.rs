@@ -67,7 +67,9 @@ fn check_output(
 fn run_replay(args: &ReplayArgs) -> ExitCode {
     let path = args.file.display().to_string();
     // A bad `--theme` is an error whatever else is asked (it would be when drawing).
-    if let Err(e) = rattleback::scenario::theme::theme(&args.look.theme) {
+    if let Some(name) = &args.look.theme
+        && let Err(e) = rattleback::scenario::theme::theme(name)
+    {
         say_err!("rattleback: error: --theme: {e}");
         return ExitCode::from(2);
     }
@@ -87,6 +89,10 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
     for w in &rec.warnings {
         say_err!("rattleback: warning: {w}");
     }
+    let look = LookArgs {
+        theme: Some(replay_theme(args.look.theme.as_deref(), &rec.header.theme)),
+        ..args.look.clone()
+    };
     if args.verify {
         match record::verify(&rec, &path) {
             Ok(n) => say!("{path}: {n} checkpoint(s) reproduced bit for bit"),
@@ -107,16 +113,22 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
         }
     }
     if let Some(out) = &args.export_cast {
-        let (theme, all) = match rattleback::scenario::theme::theme(&args.look.theme) {
-            Ok(t) => (t, rattleback::scenario::theme::themes().0),
-            Err(e) => {
-                say_err!("rattleback: error: {e}");
-                return ExitCode::from(2);
-            }
-        };
+        let (theme, all) =
+            match rattleback::scenario::theme::theme(look.theme.as_deref().unwrap_or("default")) {
+                Ok(t) => (t, rattleback::scenario::theme::themes().0),
+                Err(e) => {
+                    say_err!("rattleback: error: {e}");
+                    return ExitCode::from(2);
+                }
+            };
         let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
-        let options = UiOptions::new(marker(args.look.marker), &theme, &all, no_color());
-        return match rattleback::cast::export_cast(&rec, &path, out, &options, args.force) {
+        let options = UiOptions::new(marker(look.marker), &theme, &all, no_color());
+        let size = rattleback::cast::CastSize {
+            cols: args.cols,
+            rows: args.rows,
+            fps: f64::from(look.fps.unwrap_or(10)),
+        };
+        return match rattleback::cast::export_cast(&rec, &path, out, &options, size, args.force) {
             Ok(frames) => {
                 say!("{}: {frames} frames", out.display());
                 ExitCode::SUCCESS
@@ -142,7 +154,29 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    explore(&args.look, &preset, None, Some(rec))
+    explore(&look, &preset, None, Some(rec))
+}
+
+/// The theme of a replay: `--theme` when given, else the recorded one when this machine has a
+/// theme of that name or title, else `default` (an older header has only an index).
+fn replay_theme(asked: Option<&str>, recorded: &record::ThemeRef) -> String {
+    if let Some(name) = asked {
+        return name.to_owned();
+    }
+    let Some(name) = recorded.name() else {
+        return "default".to_owned();
+    };
+    let (all, _) = rattleback::scenario::theme::themes();
+    if let Some((key, _)) = all
+        .iter()
+        .find(|(key, spec)| key == name || rattleback::scenario::text::clean(&spec.name) == name)
+    {
+        return key.clone();
+    }
+    say_err!(
+        "rattleback: warning: the recorded theme '{name}' is not on this machine; using default"
+    );
+    "default".to_owned()
 }
 
 fn marker(choice: MarkerChoice) -> ratatui::symbols::Marker {
@@ -183,7 +217,8 @@ fn explore(
     replay: Option<record::Recording>,
 ) -> ExitCode {
     let marker = marker(look.marker);
-    let theme = match rattleback::scenario::theme::theme(&look.theme) {
+    let theme = match rattleback::scenario::theme::theme(look.theme.as_deref().unwrap_or("default"))
+    {
         Ok(t) => t,
         Err(e) => {
             say_err!("rattleback: error: {e}");
@@ -193,7 +228,7 @@ fn explore(
     let (all, problems) = rattleback::scenario::theme::themes();
     let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
     let options = ExplorerOptions {
-        fps: f64::from(look.fps),
+        fps: f64::from(look.fps.unwrap_or(30)),
         ui: UiOptions::new(marker, &theme, &all, no_color()),
         startup_problems: problems.iter().map(ToString::to_string).collect(),
         record,

@@ -52,7 +52,7 @@ fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
             width: 80,
             height: 24,
         },
-        theme: 0,
+        theme: rattleback::record::ThemeRef::Name("Default (16 colours)".to_owned()),
         fps: 30.0,
     };
     assert_eq!(
@@ -302,6 +302,51 @@ fn exported_cast_is_asciicast_v2_with_chapters() {
         "time must not go back"
     );
     assert!(events.iter().filter(|e| e[1] == "o").count() > 50);
+    // Issue 15: timestamps to the microsecond, an idle limit, notes as markers too.
+    assert_eq!(header["idle_time_limit"].as_f64(), Some(2.0));
+    for t in &times {
+        let micros = t * 1e6;
+        assert!(
+            (micros - micros.round()).abs() < 1e-6,
+            "{t} has more than 6 decimals"
+        );
+    }
+    let text_of = |e: &serde_json::Value| e[2].as_str().unwrap_or("").to_owned();
+    assert!(
+        events
+            .iter()
+            .any(|e| e[1] == "m" && text_of(e).starts_with("note: ")),
+        "note marker"
+    );
+
+    // --cols/--rows/--fps set the cast's size and frame rate.
+    let small = temp("small.cast");
+    let (code, _, err) = bin(&[
+        "replay",
+        &example(),
+        "--export-cast",
+        small.to_str().unwrap(),
+        "--cols",
+        "80",
+        "--rows",
+        "24",
+        "--fps",
+        "5",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&small).unwrap();
+    let header: serde_json::Value = serde_json::from_str(text.lines().next().unwrap()).unwrap();
+    assert_eq!(
+        (header["width"].as_u64(), header["height"].as_u64()),
+        (Some(80), Some(24))
+    );
+    let frames = text.lines().filter(|l| l.contains("\"o\"")).count();
+    assert!(
+        frames * 3 < events.iter().filter(|e| e[1] == "o").count() * 2,
+        "fewer frames at 5 fps"
+    );
+    let (code, _, err) = bin(&["replay", &example(), "--cols", "80"]);
+    assert_eq!(code, 2, "--cols needs --export-cast: {err}");
 }
 
 /// Item 8: an existing output is refused before anything starts (unless `--force`), the

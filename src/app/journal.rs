@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 /// One semantic event.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Event {
     /// A parameter took a new value (the value as typed, parsed by the field).

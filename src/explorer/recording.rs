@@ -33,7 +33,13 @@ pub fn header(app: &App, size: (u16, u16), fps: f64) -> Header {
             width: size.0,
             height: size.1,
         },
-        theme: app.view.theme,
+        theme: crate::record::ThemeRef::Name(
+            app.options
+                .theme_names
+                .get(app.view.theme)
+                .cloned()
+                .unwrap_or_else(|| "default".to_owned()),
+        ),
         fps,
     }
 }

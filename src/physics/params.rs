@@ -7,7 +7,7 @@
 use serde::Serialize;
 
 /// Inertia moments and Hooke constant of the body (physics.md §1).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct Params {
     /// Inertia moment about the body's x axis.
     pub ix: f64,
@@ -20,7 +20,7 @@ pub struct Params {
 }
 
 /// Initial values of the coordinates and their rates.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct Start {
     /// Stiff tilt angle.
     pub gamma: f64,

@@ -19,7 +19,7 @@ use super::run::RunSpec;
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 
 /// The concrete integration of a run: what the integrator is built with.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Resolved {
     /// A concrete method (never `auto`).
     pub method: Method,

@@ -26,14 +26,14 @@ use crate::app::journal::Event;
 
 /// The `format` field of every session file.
 pub const FORMAT: &str = "rattleback-session";
-/// The format version this build writes and reads.
-pub const VERSION: u32 = 2;
+/// The format version this build writes (it reads 1 to this). 3: the header names its theme.
+pub const VERSION: u32 = 3;
 
 /// First line of a session file.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Header {
-    /// Always [`FORMAT`].
+    /// Always `rattleback-session`.
     pub format: String,
     /// Format version.
     pub version: u32,
@@ -47,14 +47,36 @@ pub struct Header {
     pub tolerance: f64,
     /// Terminal size when recording.
     pub terminal: Size,
-    /// Theme index.
-    pub theme: usize,
+    /// The theme shown when recording: its name (format 3 on) or, in older files, its index
+    /// in that machine's theme list.
+    pub theme: ThemeRef,
     /// Frame-rate cap.
     pub fps: f64,
 }
 
+/// How a header refers to its theme.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(untagged)]
+pub enum ThemeRef {
+    /// The theme's name (what `--theme` takes, or its title).
+    Name(String),
+    /// Formats 1 and 2: an index into the recording machine's list (not portable).
+    Index(usize),
+}
+
+impl ThemeRef {
+    /// The name, when the header has one.
+    #[must_use]
+    pub fn name(&self) -> Option<&str> {
+        match self {
+            Self::Name(n) => Some(n),
+            Self::Index(_) => None,
+        }
+    }
+}
+
 /// Terminal size.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Size {
     /// Columns.
@@ -64,7 +86,7 @@ pub struct Size {
 }
 
 /// One event line.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Line {
     /// Seconds since the recording started.
     pub wall: f64,
@@ -80,6 +102,27 @@ pub struct Line {
     /// What happened.
     #[serde(flatten)]
     pub event: Event,
+}
+
+/// Any line of a session file: the header (line 1) or an event line (the others). The JSON
+/// Schema of this type is `docs/session.schema.json` (`cargo run --example session_schema`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(untagged)]
+#[schemars(title = "rattleback session line")]
+pub enum SessionLine {
+    /// Line 1.
+    Header(Header),
+    /// Every other line.
+    Event(Line),
+}
+
+/// The JSON Schema of a session file's lines, as pretty JSON.
+#[must_use]
+pub fn session_schema() -> String {
+    let schema = schemars::schema_for!(SessionLine);
+    let mut s = serde_json::to_string_pretty(&schema).unwrap_or_default();
+    s.push('\n');
+    s
 }
 
 /// The chain value after `text` (see [`Line::chain`]).
@@ -144,4 +187,22 @@ pub enum RecordError {
         /// What is wrong.
         message: String,
     },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_header_names_its_theme_and_older_indices_still_read() {
+        let named: ThemeRef = serde_json::from_str(r#""Dark (truecolour)""#).unwrap();
+        assert_eq!(named.name(), Some("Dark (truecolour)"));
+        assert_eq!(
+            serde_json::to_string(&named).unwrap(),
+            r#""Dark (truecolour)""#
+        );
+        let old: ThemeRef = serde_json::from_str("0").unwrap();
+        assert_eq!(old, ThemeRef::Index(0));
+        assert_eq!(old.name(), None);
+    }
 }

@@ -13,7 +13,7 @@ use crate::physics::plan::{self, AutoPolicy, Resolved};
 use crate::physics::{Params, Start};
 
 /// What a plan was resolved for: `auto`'s choice depends on these only.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct PlanKey {
     /// Body and spring.
     pub params: Params,

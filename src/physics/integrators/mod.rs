@@ -23,7 +23,9 @@ use super::model::State;
 use super::params::Problem;
 
 /// The closed set of methods; names are the ones used in presets and on the command line.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum Method {
     /// Classical Runge–Kutta, fixed step, order 4.
