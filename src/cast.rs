@@ -103,10 +103,8 @@ pub fn export_cast(
             rec,
             &mut app,
             &mut engine,
-            &mut terminal,
-            &screen,
-            options,
-            size.fps,
+            (&mut terminal, &screen),
+            (options, size.fps),
             cast,
         )
     })
@@ -119,10 +117,8 @@ fn frames_of(
     rec: &Recording,
     app: &mut crate::app::App,
     engine: &mut Engine,
-    terminal: &mut Terminal<CrosstermBackend<Shared>>,
-    screen: &Shared,
-    options: &UiOptions,
-    fps: f64,
+    (terminal, screen): (&mut Terminal<CrosstermBackend<Shared>>, &Shared),
+    (options, fps): (&UiOptions, f64),
     cast: &mut dyn std::io::Write,
 ) -> std::io::Result<usize> {
     let mut cache = Cache::default();
