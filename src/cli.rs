@@ -17,12 +17,18 @@ pub struct Cli {
     /// What to do; without a command, the explorer opens.
     #[command(subcommand)]
     pub command: Option<Command>,
-    /// Preset to open: a shipped name or a path to a TOML file.
-    #[arg(long, value_name = "NAME|PATH", default_value = DEFAULT_PRESET)]
-    pub preset: String,
+    /// Preset to open: a shipped name or a path to a TOML file (default: `preset` in
+    /// config.toml, else `subcritical`).
+    #[arg(long, value_name = "NAME|PATH")]
+    pub preset: Option<String>,
     /// How the explorer draws.
     #[command(flatten)]
     pub look: LookArgs,
+    /// Mouse on: a click in the portrait sets the start (`alpha`, `alpha_dot`), the wheel zooms
+    /// (also `mouse = true` in config.toml). Off by default: the terminal keeps its own
+    /// selection and scrolling.
+    #[arg(long)]
+    pub mouse: bool,
     /// Record the session into this file (a key, R, also starts and stops recording). An
     /// existing file is refused (exit 2) unless `--force`.
     #[arg(long, value_name = "FILE")]
@@ -45,9 +51,10 @@ pub struct LookArgs {
     /// theme.
     #[arg(long, value_name = "NAME|PATH")]
     pub theme: Option<String>,
-    /// Canvas marker, for fonts without Braille.
-    #[arg(long, value_enum, default_value_t = MarkerChoice::Braille)]
-    pub marker: MarkerChoice,
+    /// Canvas marker, for fonts without Braille (default: `marker` in config.toml, else
+    /// braille).
+    #[arg(long, value_enum)]
+    pub marker: Option<MarkerChoice>,
 }
 
 /// `--marker`.
@@ -84,6 +91,18 @@ pub enum Command {
     Completions(CompletionsArgs),
     /// Print the manual page (roff) to stdout: `rattleback man > rattleback.1`.
     Man,
+    /// Where the configuration file is (`config path`) or what it sets (`config show`).
+    #[command(subcommand)]
+    Config(ConfigCommand),
+}
+
+/// `config` subcommands.
+#[derive(Debug, Subcommand)]
+pub enum ConfigCommand {
+    /// Print the path of config.toml (it need not exist).
+    Path,
+    /// Print the configuration in effect as TOML (defaults commented), to copy into config.toml.
+    Show,
 }
 
 /// Arguments of `completions`.

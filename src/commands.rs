@@ -599,3 +599,76 @@ fn map_table(grid: &crate::study::map::Grid, map: &crate::study::map::RegimeMap)
     }
     o
 }
+
+/// # Errors
+/// The file's first problem, located.
+///
+/// The configuration for the explorer and replay, with its key bindings checked: an invalid
+/// file is an error naming the file, the line and the key.
+pub fn load_config() -> Result<
+    (
+        crate::scenario::config::Config,
+        crate::app::user_keys::UserKeys,
+    ),
+    String,
+> {
+    let config = crate::scenario::config::Config::load().map_err(|e| e.to_string())?;
+    let entries: Vec<(String, Vec<String>)> = config
+        .keys
+        .iter()
+        .map(|k| (k.action.clone(), k.keys.clone()))
+        .collect();
+    let keys = crate::app::user_keys::UserKeys::parse(&entries).map_err(|(i, message)| {
+        let entry = &config.keys[i];
+        crate::scenario::PresetError::Invalid {
+            path: config
+                .path
+                .as_ref()
+                .map_or_else(String::new, |p| p.display().to_string()),
+            line: Some(entry.line),
+            key: Some(format!("keys.{}", entry.action)),
+            message,
+        }
+        .to_string()
+    })?;
+    Ok((config, keys))
+}
+
+/// `rattleback config path|show`.
+#[must_use]
+pub fn config(command: &crate::cli::ConfigCommand) -> ExitCode {
+    use crate::cli::ConfigCommand;
+    use crate::scenario::config;
+    match command {
+        ConfigCommand::Path => {
+            if let Some(p) = config::path() {
+                say!("{}", p.display());
+                ExitCode::SUCCESS
+            } else {
+                say_err!(
+                    "rattleback: error: no config folder (no home folder); set RATTLEBACK_CONFIG_DIR"
+                );
+                ExitCode::from(2)
+            }
+        }
+        ConfigCommand::Show => match load_config() {
+            Ok((c, _)) => {
+                let origin = c.path.as_ref().map_or_else(
+                    || {
+                        format!(
+                            "# no config file: the defaults ({} would be read)",
+                            config::path().map_or_else(String::new, |p| p.display().to_string())
+                        )
+                    },
+                    |p| format!("# from {}", p.display()),
+                );
+                say_raw!("{origin}\n{}", c.to_toml());
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                say_err!("rattleback: error: {e}");
+                ExitCode::from(2)
+            }
+        },
+    }
+}

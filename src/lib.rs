@@ -10,6 +10,7 @@ pub mod cast;
 pub mod cli;
 pub mod commands;
 pub mod explorer;
+pub mod export;
 pub mod physics;
 pub mod progress;
 pub mod record;

@@ -5,11 +5,13 @@ use std::io::Write as _;
 use std::process::ExitCode;
 
 use clap::Parser;
+use rattleback::app::user_keys::UserKeys;
 use rattleback::cli::{Cli, Command, LookArgs, MarkerChoice, ReplayArgs, SimulateArgs};
 use rattleback::commands;
 use rattleback::explorer::{self, ExplorerOptions};
 use rattleback::physics::StepError;
 use rattleback::record;
+use rattleback::scenario::config::Config;
 use rattleback::scenario::shipped::resolve;
 use rattleback::simulate::{Failure, resolve as resolve_run, simulate_to};
 use rattleback::ui::UiOptions;
@@ -33,6 +35,7 @@ fn main() -> ExitCode {
         Some(Command::Themes(args)) => commands::themes(&args),
         Some(Command::Completions(args)) => commands::completions(args.shell),
         Some(Command::Man) => commands::man(),
+        Some(Command::Config(ref c)) => commands::config(c),
         Some(Command::Bench(ref args)) => commands::bench(args),
         Some(Command::Study(ref command)) => commands::study(command),
         None => run_explorer(&cli),
@@ -64,6 +67,41 @@ fn check_output(
     Ok(())
 }
 
+/// `replay --export-cast`: the session drawn into an asciicast file.
+fn export_cast(
+    args: &ReplayArgs,
+    rec: &record::Recording,
+    path: &str,
+    out: &std::path::Path,
+    look: &LookArgs,
+) -> ExitCode {
+    let (theme, all) =
+        match rattleback::scenario::theme::theme(look.theme.as_deref().unwrap_or("default")) {
+            Ok(t) => (t, rattleback::scenario::theme::themes().0),
+            Err(e) => {
+                say_err!("rattleback: error: {e}");
+                return ExitCode::from(2);
+            }
+        };
+    let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
+    let options = UiOptions::new(marker(look.marker), &theme, &all, no_color());
+    let size = rattleback::cast::CastSize {
+        cols: args.cols,
+        rows: args.rows,
+        fps: f64::from(look.fps.unwrap_or(10)),
+    };
+    match rattleback::cast::export_cast(rec, path, out, &options, size, args.force) {
+        Ok(frames) => {
+            say!("{}: {frames} frames", out.display());
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            say_err!("rattleback: error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
 fn run_replay(args: &ReplayArgs) -> ExitCode {
     let path = args.file.display().to_string();
     // A bad `--theme` is an error whatever else is asked (it would be when drawing).
@@ -89,9 +127,18 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
     for w in &rec.warnings {
         say_err!("rattleback: warning: {w}");
     }
+    let (config, keys) = match commands::load_config() {
+        Ok(c) => c,
+        Err(e) => {
+            say_err!("rattleback: error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let asked = with_config(&args.look, &config);
     let look = LookArgs {
+        // The replay's own theme wins over the configuration's, not over `--theme`.
         theme: Some(replay_theme(args.look.theme.as_deref(), &rec.header.theme)),
-        ..args.look.clone()
+        ..asked
     };
     if args.verify {
         match record::verify(&rec, &path) {
@@ -113,31 +160,7 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
         }
     }
     if let Some(out) = &args.export_cast {
-        let (theme, all) =
-            match rattleback::scenario::theme::theme(look.theme.as_deref().unwrap_or("default")) {
-                Ok(t) => (t, rattleback::scenario::theme::themes().0),
-                Err(e) => {
-                    say_err!("rattleback: error: {e}");
-                    return ExitCode::from(2);
-                }
-            };
-        let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
-        let options = UiOptions::new(marker(look.marker), &theme, &all, no_color());
-        let size = rattleback::cast::CastSize {
-            cols: args.cols,
-            rows: args.rows,
-            fps: f64::from(look.fps.unwrap_or(10)),
-        };
-        return match rattleback::cast::export_cast(&rec, &path, out, &options, size, args.force) {
-            Ok(frames) => {
-                say!("{}: {frames} frames", out.display());
-                ExitCode::SUCCESS
-            }
-            Err(e) => {
-                say_err!("rattleback: error: {e}");
-                ExitCode::from(2)
-            }
-        };
+        return export_cast(args, &rec, &path, out, &look);
     }
     if args.verify {
         return ExitCode::SUCCESS;
@@ -154,7 +177,13 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    explore(&look, &preset, None, Some(rec))
+    let setup = Setup {
+        look,
+        sessions_dir: config.sessions_dir(),
+        mouse: false,
+        keys,
+    };
+    explore(&setup, &preset, None, Some(rec))
 }
 
 /// The theme of a replay: `--theme` when given, else the recorded one when this machine has a
@@ -179,8 +208,22 @@ fn replay_theme(asked: Option<&str>, recorded: &record::ThemeRef) -> String {
     "default".to_owned()
 }
 
-fn marker(choice: MarkerChoice) -> ratatui::symbols::Marker {
-    match choice {
+/// The look asked on the command line, completed by the configuration.
+fn with_config(look: &LookArgs, config: &Config) -> LookArgs {
+    let marker = config.marker.as_deref().map(|m| match m {
+        "halfblock" => MarkerChoice::Halfblock,
+        "dot" => MarkerChoice::Dot,
+        _ => MarkerChoice::Braille,
+    });
+    LookArgs {
+        fps: look.fps.or(config.fps),
+        theme: look.theme.clone().or_else(|| config.theme.clone()),
+        marker: look.marker.or(marker),
+    }
+}
+
+fn marker(choice: Option<MarkerChoice>) -> ratatui::symbols::Marker {
+    match choice.unwrap_or(MarkerChoice::Braille) {
         MarkerChoice::Braille => ratatui::symbols::Marker::Braille,
         MarkerChoice::Halfblock => ratatui::symbols::Marker::HalfBlock,
         MarkerChoice::Dot => ratatui::symbols::Marker::Dot,
@@ -188,7 +231,19 @@ fn marker(choice: MarkerChoice) -> ratatui::symbols::Marker {
 }
 
 fn run_explorer(cli: &Cli) -> ExitCode {
-    let preset = match resolve(&cli.preset, &[]) {
+    let (config, keys) = match commands::load_config() {
+        Ok(c) => c,
+        Err(e) => {
+            say_err!("rattleback: error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let name = cli
+        .preset
+        .clone()
+        .or_else(|| config.preset.clone())
+        .unwrap_or_else(|| rattleback::scenario::shipped::DEFAULT_PRESET.to_owned());
+    let preset = match resolve(&name, &[]) {
         Ok(p) => p,
         Err(e) => {
             say_err!("rattleback: error: {e}");
@@ -207,15 +262,30 @@ fn run_explorer(cli: &Cli) -> ExitCode {
         // Replacing was asked for: the recorder itself never replaces a file.
         let _ = std::fs::remove_file(out);
     }
-    explore(&cli.look, &preset, cli.record.clone(), None)
+    let setup = Setup {
+        look: with_config(&cli.look, &config),
+        sessions_dir: config.sessions_dir(),
+        mouse: cli.mouse || config.mouse,
+        keys,
+    };
+    explore(&setup, &preset, cli.record.clone(), None)
+}
+
+/// What the explorer needs from the command line and the configuration.
+struct Setup {
+    look: LookArgs,
+    sessions_dir: Option<std::path::PathBuf>,
+    mouse: bool,
+    keys: UserKeys,
 }
 
 fn explore(
-    look: &LookArgs,
+    setup: &Setup,
     preset: &rattleback::scenario::Preset,
     record: Option<std::path::PathBuf>,
     replay: Option<record::Recording>,
 ) -> ExitCode {
+    let look = &setup.look;
     let marker = marker(look.marker);
     let theme = match rattleback::scenario::theme::theme(look.theme.as_deref().unwrap_or("default"))
     {
@@ -233,6 +303,9 @@ fn explore(
         startup_problems: problems.iter().map(ToString::to_string).collect(),
         record,
         replay,
+        sessions_dir: setup.sessions_dir.clone(),
+        mouse: setup.mouse,
+        keys: setup.keys.clone(),
     };
     match explorer::run(preset, &options) {
         Ok(None) => ExitCode::SUCCESS,

@@ -486,6 +486,47 @@ fn requested_run(
     Ok((v.result, Some(auto)))
 }
 
+/// What a CSV of a run starts with: `# key = value` lines (the program, the preset's name, the
+/// method asked and the one that ran, the tolerance, the horizon, the body, the spring and the
+/// start, every number as text that parses back to the same bits), so the file says what made
+/// it. `simulate --format csv` and the explorer's export (`x`) write the same lines.
+#[must_use]
+pub fn csv_metadata(
+    preset: &str,
+    problem: &crate::physics::Problem,
+    method: Method,
+    ran: Option<Method>,
+    tolerance: f64,
+    t_end: f64,
+) -> String {
+    use std::fmt::Write as _;
+    let name = crate::scenario::text::clean(preset).replace(['\n', '\r', '\t'], " ");
+    let mut out = format!(
+        "# program = rattleback {}\n# preset = {name}\n# method = {}\n",
+        env!("CARGO_PKG_VERSION"),
+        method.name()
+    );
+    if let Some(m) = ran {
+        let _ = writeln!(out, "# integrated = {}", m.name());
+    }
+    let (p, s) = (problem.params(), problem.start());
+    for (key, value) in [
+        ("tolerance", tolerance),
+        ("t_end", t_end),
+        ("ix", p.ix),
+        ("iy", p.iy),
+        ("iz", p.iz),
+        ("k", p.k),
+        ("gamma", s.gamma),
+        ("alpha", s.alpha),
+        ("gamma_dot", s.gamma_dot),
+        ("alpha_dot", s.alpha_dot),
+    ] {
+        let _ = writeln!(out, "# {key} = {value:?}");
+    }
+    out
+}
+
 /// Streams the CSV: `auto` is planned and verified first (no samples), then its plan is run
 /// again with the samples, which gives the verified run bit for bit.
 fn csv(
@@ -520,6 +561,17 @@ fn csv(
         spec.step = plan.step;
     }
     let p = problem.params();
+    out.write_all(
+        csv_metadata(
+            &preset.name,
+            problem,
+            resolved.spec.method,
+            Some(spec.method),
+            resolved.spec.tolerance,
+            spec.t_end,
+        )
+        .as_bytes(),
+    )?;
     out.write_all(b"t,gamma,alpha,gamma_dot,alpha_dot,energy\n")?;
     let mut failure: Option<Failure> = None;
     let result = run_streaming(problem, &spec, progress, &mut |s| {

@@ -1,7 +1,8 @@
 //! The only place that touches the tty: raw mode, the alternate screen, synchronized output
 //! around each frame, a panic hook that restores the terminal before the message prints, and
-//! translation of crossterm's key events into the app's [`Key`]. Mouse capture is never
-//! enabled. Restoring is idempotent and also happens on drop.
+//! translation of crossterm's key and mouse events into the app's [`Input`]. Mouse capture is
+//! enabled only when asked (`--mouse` or `mouse = true`), and always disabled on restore.
+//! Restoring is idempotent and also happens on drop.
 
 use std::io::{self, Stdout, Write};
 use std::sync::Once;
@@ -9,7 +10,10 @@ use std::sync::Once;
 use ratatui::Frame;
 use ratatui::Terminal;
 use ratatui::backend::CrosstermBackend;
-use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use ratatui::crossterm::event::{
+    DisableMouseCapture, EnableMouseCapture, Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers,
+    MouseButton, MouseEventKind,
+};
 use ratatui::crossterm::terminal::{
     BeginSynchronizedUpdate, EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen,
     disable_raw_mode, enable_raw_mode,
@@ -21,6 +25,7 @@ use crate::app::Key;
 /// The terminal in explorer mode; restores it when dropped.
 pub struct Tty {
     terminal: Terminal<CrosstermBackend<Stdout>>,
+    mouse: bool,
 }
 
 static HOOK: Once = Once::new();
@@ -31,17 +36,19 @@ pub fn restore() {
     let _ = execute!(
         io::stdout(),
         EndSynchronizedUpdate,
+        DisableMouseCapture,
         LeaveAlternateScreen,
         cursor::Show
     );
 }
 
 impl Tty {
-    /// Enters raw mode and the alternate screen, and installs the panic hook.
+    /// Enters raw mode and the alternate screen (with mouse capture when `mouse`), and
+    /// installs the panic hook.
     ///
     /// # Errors
     /// When stdout is not a terminal or cannot be configured.
-    pub fn enter() -> io::Result<Self> {
+    pub fn enter(mouse: bool) -> io::Result<Self> {
         HOOK.call_once(|| {
             let previous = std::panic::take_hook();
             std::panic::set_hook(Box::new(move |info| {
@@ -54,9 +61,26 @@ impl Tty {
             restore();
             return Err(e);
         }
+        if mouse && let Err(e) = execute!(io::stdout(), EnableMouseCapture) {
+            restore();
+            return Err(e);
+        }
         let terminal =
             Terminal::new(CrosstermBackend::new(io::stdout())).inspect_err(|_| restore())?;
-        Ok(Self { terminal })
+        Ok(Self { terminal, mouse })
+    }
+
+    /// Puts `text` on the terminal's clipboard with OSC 52 (`ESC ] 52 ; c ; BASE64 BEL`), which
+    /// terminals honour over SSH, and tmux passes on (`set-clipboard` on or external, its
+    /// default).
+    ///
+    /// # Errors
+    /// When writing to the terminal fails.
+    pub fn copy(&mut self, text: &str) -> io::Result<()> {
+        let sequence = osc52(text);
+        let out = self.terminal.backend_mut();
+        out.write_all(sequence.as_bytes())?;
+        Write::flush(out)
     }
 
     /// Draws one frame wrapped in synchronized-output escapes, so the terminal shows it whole.
@@ -109,6 +133,9 @@ impl Tty {
         signal_hook::low_level::emulate_default_handler(signal_hook::consts::SIGTSTP)?;
         enable_raw_mode()?;
         execute!(io::stdout(), EnterAlternateScreen, cursor::Hide)?;
+        if self.mouse {
+            execute!(io::stdout(), EnableMouseCapture)?;
+        }
         self.invalidate()
     }
 
@@ -127,6 +154,16 @@ impl Drop for Tty {
     }
 }
 
+/// The OSC 52 sequence that puts `text` on the clipboard.
+#[must_use]
+pub fn osc52(text: &str) -> String {
+    use base64::Engine as _;
+    format!(
+        "\u{1b}]52;c;{}\u{7}",
+        base64::engine::general_purpose::STANDARD.encode(text)
+    )
+}
+
 /// What a terminal event means to the explorer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Input {
@@ -134,6 +171,10 @@ pub enum Input {
     Key(Key),
     /// The terminal changed size.
     Resize,
+    /// A left click at `(column, row)`.
+    Click(u16, u16),
+    /// The wheel turned (`true`: up).
+    Wheel(bool),
 }
 
 /// Translates a crossterm event; `None` for events the explorer ignores.
@@ -142,6 +183,12 @@ pub fn translate(event: &Event) -> Option<Input> {
     match event {
         Event::Resize(..) => Some(Input::Resize),
         Event::Key(k) => translate_key(k).map(Input::Key),
+        Event::Mouse(m) => match m.kind {
+            MouseEventKind::Down(MouseButton::Left) => Some(Input::Click(m.column, m.row)),
+            MouseEventKind::ScrollUp => Some(Input::Wheel(true)),
+            MouseEventKind::ScrollDown => Some(Input::Wheel(false)),
+            _ => None,
+        },
         _ => None,
     }
 }
@@ -180,6 +227,40 @@ mod tests {
 
     fn key(code: KeyCode, modifiers: KeyModifiers) -> Option<Key> {
         translate_key(&KeyEvent::new(code, modifiers))
+    }
+
+    #[test]
+    fn osc52_carries_the_text_in_base64() {
+        assert_eq!(
+            osc52("rattleback simulate"),
+            "\u{1b}]52;c;cmF0dGxlYmFjayBzaW11bGF0ZQ==\u{7}"
+        );
+    }
+
+    #[test]
+    fn clicks_and_the_wheel_translate() {
+        use ratatui::crossterm::event::MouseEvent;
+        let m = |kind| {
+            Event::Mouse(MouseEvent {
+                kind,
+                column: 12,
+                row: 5,
+                modifiers: KeyModifiers::NONE,
+            })
+        };
+        assert_eq!(
+            translate(&m(MouseEventKind::Down(MouseButton::Left))),
+            Some(Input::Click(12, 5))
+        );
+        assert_eq!(
+            translate(&m(MouseEventKind::ScrollUp)),
+            Some(Input::Wheel(true))
+        );
+        assert_eq!(
+            translate(&m(MouseEventKind::ScrollDown)),
+            Some(Input::Wheel(false))
+        );
+        assert_eq!(translate(&m(MouseEventKind::Moved)), None);
     }
 
     #[test]

@@ -198,10 +198,50 @@ fn good_run_prints_the_json_contract() {
 fn csv_has_the_requested_samples() {
     let (code, stdout, _) = simulate(&["--format", "csv", "--samples", "11", "--t-end", "1"]);
     assert_eq!(code, 0);
-    let lines: Vec<&str> = stdout.lines().collect();
+    let lines: Vec<&str> = stdout.lines().filter(|l| !l.starts_with('#')).collect();
     assert_eq!(lines[0], "t,gamma,alpha,gamma_dot,alpha_dot,energy");
     assert_eq!(lines.len(), 12);
     assert!(lines[11].starts_with("1,"), "{}", lines[11]);
+}
+
+/// Issue 15, item 2: the CSV says what made it, in `# key = value` lines that parse back.
+#[test]
+fn csv_metadata_parses_back_to_the_run() {
+    let (code, stdout, err) = simulate(&[
+        "--preset",
+        "supercritical",
+        "--set",
+        "spring.k=31622.776601683792",
+        "--format",
+        "csv",
+        "--samples",
+        "3",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let meta: std::collections::BTreeMap<&str, &str> = stdout
+        .lines()
+        .take_while(|l| l.starts_with("# "))
+        .filter_map(|l| l[2..].split_once(" = "))
+        .collect();
+    assert_eq!(meta["preset"], "Supercritical start");
+    assert_eq!(meta["method"], "auto");
+    assert!(rattleback::physics::Method::from_name(meta["integrated"]).is_some());
+    assert!(meta["program"].starts_with("rattleback "));
+    let preset = rattleback::scenario::shipped::resolve(
+        "supercritical",
+        &["spring.k=31622.776601683792".parse().unwrap()],
+    )
+    .unwrap();
+    let p = preset.problem.params();
+    let s = preset.problem.start();
+    let num = |k: &str| meta[k].parse::<f64>().unwrap();
+    assert_eq!(num("k").to_bits(), p.k.to_bits());
+    assert_eq!(num("ix").to_bits(), p.ix.to_bits());
+    assert_eq!(num("alpha_dot").to_bits(), s.alpha_dot.to_bits());
+    assert_eq!(num("t_end").to_bits(), preset.run.t_end.to_bits());
+    assert_eq!(num("tolerance").to_bits(), 1e-9f64.to_bits());
+    let data: Vec<&str> = stdout.lines().filter(|l| !l.starts_with('#')).collect();
+    assert_eq!(data.len(), 4, "header and three samples");
 }
 
 /// Issue 15, item 4: locations come from the TOML parser's spans, so the layouts a hand-written

@@ -209,7 +209,12 @@ fn the_streamed_csv_of_auto_is_the_verified_run_bit_for_bit() {
     let csv = simulate::simulate(&p, &resolved, Format::Csv).expect("runs");
     let verified = rattleback::physics::auto::run_auto(&p.problem, 1e-9, p.run.t_end, 50, true)
         .expect("auto runs");
-    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    // The `# key = value` lines, then the column names, then the rows.
+    let rows: Vec<&str> = csv
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .collect();
     assert_eq!(rows.len(), 50);
     for (row, s) in rows.iter().zip(&verified.result.samples) {
         let cols: Vec<f64> = row.split(',').map(|c| c.parse().expect("number")).collect();

@@ -236,8 +236,8 @@ fn themes_set_their_background_and_t_names_them() {
     let (app, _) = App::new(
         &resolve("subcritical", &[]).unwrap(),
         rattleback::app::Options {
-            fps: 30.0,
             theme_names: options.theme_names(),
+            ..rattleback::app::Options::at(30.0)
         },
     );
     h.app = app;

@@ -1,7 +1,7 @@
 //! The panes the worker computes for (the stiffness sweep, the weak-* view, the regime map):
 //! starting and stopping their computations with the pane and the run; the map's cursor keys.
 
-use super::keys::{self, Action, Key};
+use super::keys::{Action, Key};
 use super::panes::Pane;
 use super::{App, Effect, Message, Mode};
 
@@ -82,7 +82,7 @@ impl App {
                 .into_iter()
                 .collect(),
             key => {
-                let Some(action) = keys::action_for(key) else {
+                let Some(action) = self.options.action_for(key) else {
                     return Vec::new();
                 };
                 let effects = self.update(action);
@@ -113,5 +113,35 @@ impl App {
             tolerance: s.tolerance,
         };
         self.sweep.start(self.run.generation, spec)
+    }
+}
+
+impl App {
+    /// Sets the start's `(alpha, alpha_dot)` (a click in the portrait), keeping `gamma` and
+    /// `gamma_dot`, and restarts; journaled as two `set` events.
+    pub fn set_start_point(&mut self, alpha: f64, alpha_dot: f64) -> Vec<Effect> {
+        use super::fields::Field;
+        use super::journal::Event;
+        let mut s = self.scenario.settings;
+        s.start.alpha = alpha;
+        s.start.alpha_dot = alpha_dot;
+        if let Err(e) = crate::physics::Problem::new(s.params, s.start) {
+            self.status = Message::error(format!("{e}; start kept"));
+            return Vec::new();
+        }
+        self.scenario.set(s);
+        for f in [Field::Alpha, Field::AlphaDot] {
+            let value = f.exact(&self.scenario.settings);
+            self.log(Event::Set {
+                field: f.label().to_owned(),
+                value,
+            });
+        }
+        self.status = Message::info(format!(
+            "start alpha {}, alpha_dot {}",
+            super::fields::format_number(alpha),
+            super::fields::format_number(alpha_dot)
+        ));
+        self.restart()
     }
 }

@@ -29,6 +29,14 @@ pub enum Effect {
     ReadCatalogue,
     /// Load a preset by shipped name or path (answered by [`Outcome::Loaded`]).
     LoadPreset(String),
+    /// Write the portrait (SVG) and the trajectory (CSV) into the exports folder, named after
+    /// `stem` (answered by [`Outcome::Exported`]).
+    Export {
+        /// A readable file stem (the preset's name, slugged).
+        stem: String,
+    },
+    /// Put `text` on the clipboard of the terminal (OSC 52: works over SSH and in tmux).
+    Copy(String),
     /// Redraw the whole screen.
     Redraw,
     /// Suspend the process (terminal restored, then re-entered on resume).
@@ -50,6 +58,8 @@ pub enum Outcome {
     Catalogue(Vec<Entry>, Vec<(String, String)>),
     /// A preset to load, or why it did not load.
     Loaded(Box<Result<Preset, String>>),
+    /// The files written by an export, or why not.
+    Exported(Result<Vec<PathBuf>, String>),
 }
 
 /// The worker commands among `effects` (what headless drivers execute).

@@ -21,6 +21,24 @@ pub struct Settings {
 }
 
 impl Settings {
+    /// These settings as a `rattleback simulate` command line that runs exactly them (every
+    /// value as text that parses back to the same bits, whatever preset is the default).
+    #[must_use]
+    pub fn simulate_command(&self) -> String {
+        use std::fmt::Write as _;
+        let mut cmd = String::from("rattleback simulate");
+        for f in Field::ALL {
+            let value = f.exact(self);
+            let _ = match f {
+                Field::Method => write!(cmd, " --method {value}"),
+                Field::Tolerance => write!(cmd, " --tolerance {value}"),
+                Field::TEnd => write!(cmd, " --t-end {value}"),
+                _ => write!(cmd, " --set {}.{}={value}", f.section(), f.label()),
+            };
+        }
+        cmd
+    }
+
     /// The validated problem (settings are kept valid, so this only fails on a bug).
     ///
     /// # Panics
@@ -98,6 +116,17 @@ impl Field {
         match self {
             Self::Method => s.method.name().to_owned(),
             _ => format!("{:?}", self.value(s)),
+        }
+    }
+
+    /// The preset section the field belongs to (`body`, `spring`, `initial`, `run`).
+    #[must_use]
+    pub fn section(self) -> &'static str {
+        match self {
+            Self::Ix | Self::Iy | Self::Iz => "body",
+            Self::K => "spring",
+            Self::Gamma | Self::Alpha | Self::GammaDot | Self::AlphaDot => "initial",
+            Self::TEnd | Self::Method | Self::Tolerance => "run",
         }
     }
 

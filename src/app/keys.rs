@@ -99,6 +99,10 @@ pub enum Action {
     OpenPicker,
     /// Save the current parameters as a user preset.
     Save,
+    /// Write the portrait as SVG and the trajectory as CSV.
+    Export,
+    /// Copy the current parameters as a `simulate` command line (OSC 52).
+    CopyCommand,
     /// Next colour theme.
     CycleTheme,
     /// Type a note into the recording.
@@ -337,10 +341,24 @@ pub const KEYMAP: &[Binding<Action>] = &[
     },
     Binding {
         keys: &[Key::Char('s')],
-        label: "s",
+        label: "s / x / y",
         action: Action::Save,
-        help: "save as a user preset",
+        help: "save preset / export SVG+CSV / copy command line",
         footer: Some(("s", "save", 9)),
+    },
+    Binding {
+        keys: &[Key::Char('x')],
+        label: "",
+        action: Action::Export,
+        help: "",
+        footer: Some(("x", "export", 11)),
+    },
+    Binding {
+        keys: &[Key::Char('y')],
+        label: "",
+        action: Action::CopyCommand,
+        help: "",
+        footer: Some(("y", "copy", 11)),
     },
     Binding {
         keys: &[Key::Char('T')],
@@ -587,7 +605,8 @@ mod tests {
         assert_eq!(action_for(Key::Ctrl('l')), Some(Action::Redraw));
         assert_eq!(action_for(Key::Ctrl('p')), None, "Ctrl-P is not p");
         assert_eq!(action_for(Key::Alt('q')), None, "Alt-q is not q");
-        assert_eq!(action_for(Key::Char('x')), None);
+        assert_eq!(action_for(Key::Char('x')), Some(Action::Export));
+        assert_eq!(action_for(Key::Char('g')), None);
         assert_eq!(
             replay_action_for(Key::Char('?')),
             Some(ReplayAction::ToggleHelp)

@@ -22,6 +22,7 @@ mod replayed;
 pub mod run;
 mod scenario;
 pub mod sweep;
+pub mod user_keys;
 pub mod weak;
 
 pub use effects::{Effect, Outcome};
@@ -49,6 +50,8 @@ pub struct Options {
     pub fps: f64,
     /// Names of the colour themes `T` cycles through.
     pub theme_names: Vec<String>,
+    /// The user's extra keys (`[keys]` in `config.toml`).
+    pub keys: user_keys::UserKeys,
 }
 
 impl Options {
@@ -58,7 +61,14 @@ impl Options {
         Self {
             fps,
             theme_names: vec!["default".to_owned()],
+            keys: user_keys::UserKeys::default(),
         }
+    }
+
+    /// The action of `key`: the user's binding, else the keymap's.
+    #[must_use]
+    pub fn action_for(&self, key: Key) -> Option<Action> {
+        self.keys.action_for(key).or_else(|| keys::action_for(key))
     }
 }
 
@@ -313,9 +323,12 @@ impl App {
             return Vec::new();
         }
         match std::mem::take(&mut self.mode) {
-            Mode::Normal => keys::action_for(key).map_or_else(Vec::new, |a| self.update(a)),
+            Mode::Normal => self
+                .options
+                .action_for(key)
+                .map_or_else(Vec::new, |a| self.update(a)),
             Mode::Dialog(_) => Vec::new(),
-            Mode::Help(page) => match keys::action_for(key) {
+            Mode::Help(page) => match self.options.action_for(key) {
                 Some(Action::ToggleHelp) if page == HelpPage::Keys => {
                     self.mode = Mode::Help(HelpPage::Legend);
                     Vec::new()
@@ -498,6 +511,17 @@ impl App {
                     names.len().max(1)
                 ));
             }
+            Action::Export => {
+                self.status = Message::info("exporting…");
+                return vec![Effect::Export {
+                    stem: slug(&self.scenario.name),
+                }];
+            }
+            Action::CopyCommand => {
+                let text = self.scenario.settings.simulate_command();
+                self.status = Message::info(format!("copied: {text}"));
+                return vec![Effect::Copy(text)];
+            }
             Action::Redraw => return vec![Effect::Redraw],
             Action::Suspend => return vec![Effect::Suspend],
         }
@@ -593,6 +617,29 @@ impl App {
             self.view.view.wrap,
         );
         portrait::apply_view(auto, &self.view.view)
+    }
+}
+
+/// A file-name-safe form of `name`: lower-case letters, digits and single dashes.
+#[must_use]
+pub fn slug(name: &str) -> String {
+    let mut out = String::new();
+    for c in name.chars().flat_map(char::to_lowercase) {
+        if c.is_ascii_alphanumeric() {
+            out.push(c);
+        } else if !out.ends_with('-') && !out.is_empty() {
+            out.push('-');
+        }
+    }
+    let out = out
+        .trim_end_matches('-')
+        .chars()
+        .take(48)
+        .collect::<String>();
+    if out.is_empty() {
+        "rattleback".to_owned()
+    } else {
+        out
     }
 }
 

@@ -56,6 +56,13 @@ impl App {
                 ));
             }
             Outcome::Saved(Err(e)) => self.mode = Mode::Dialog(clean(&e.to_string())),
+            Outcome::Exported(Ok(paths)) => {
+                let names: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
+                self.status = Message::info(format!("wrote {}", names.join(" and ")));
+            }
+            Outcome::Exported(Err(e)) => {
+                self.status = Message::error(format!("export failed: {e}"));
+            }
             Outcome::Catalogue(entries, broken) => {
                 let selected = entries
                     .iter()

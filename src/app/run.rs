@@ -378,7 +378,9 @@ impl RunState {
     }
 }
 
-fn upto(trail: &[Point], t: f64) -> &[Point] {
+/// The samples of `trail` up to time `t` (what is displayed).
+#[must_use]
+pub fn upto(trail: &[Point], t: f64) -> &[Point] {
     &trail[..trail.partition_point(|p| p.t <= t)]
 }
 

@@ -31,6 +31,10 @@ pub enum AppEvent {
     Input(Key),
     /// The terminal was resized.
     Resize,
+    /// A left click at `(column, row)`.
+    Click(u16, u16),
+    /// The wheel turned (`true`: up, zoom in).
+    Wheel(bool),
     /// The worker reports.
     Sim(SimEvent),
 }
@@ -55,6 +59,13 @@ pub struct ExplorerOptions {
     pub record: Option<std::path::PathBuf>,
     /// Replay this session instead of exploring (`rattleback replay FILE`).
     pub replay: Option<crate::record::Recording>,
+    /// Where `R` records and `x` exports (created when first used).
+    pub sessions_dir: Option<std::path::PathBuf>,
+    /// Mouse on (`--mouse` or `mouse = true`): a click in the portrait sets the start, the
+    /// wheel zooms.
+    pub mouse: bool,
+    /// The user's extra keys.
+    pub keys: crate::app::user_keys::UserKeys,
 }
 
 fn input_thread(tx: SyncSender<AppEvent>, stop: Arc<AtomicBool>) -> std::thread::JoinHandle<()> {
@@ -66,6 +77,8 @@ fn input_thread(tx: SyncSender<AppEvent>, stop: Arc<AtomicBool>) -> std::thread:
                     let sent = match translate(&ev) {
                         Some(Input::Key(k)) => tx.send(AppEvent::Input(k)),
                         Some(Input::Resize) => tx.send(AppEvent::Resize),
+                        Some(Input::Click(c, r)) => tx.send(AppEvent::Click(c, r)),
+                        Some(Input::Wheel(up)) => tx.send(AppEvent::Wheel(up)),
                         None => Ok(()),
                     };
                     if sent.is_err() {
@@ -135,6 +148,14 @@ impl Shell<'_> {
                 e @ (Effect::SavePreset { .. } | Effect::ReadCatalogue | Effect::LoadPreset(_)) => {
                     file_outcome(&e, self.user_dir.as_deref())
                 }
+                Effect::Export { stem } => Some(Outcome::Exported(match &self.options.sessions_dir {
+                    Some(dir) => crate::export::export(app, dir, &stem),
+                    None => Err("no folder to export into (no home folder); set `sessions` in config.toml".to_owned()),
+                })),
+                Effect::Copy(text) => {
+                    self.tty.copy(&text)?;
+                    None
+                }
                 Effect::Redraw => {
                     self.tty.clear()?;
                     None
@@ -152,12 +173,24 @@ impl Shell<'_> {
     }
 
     fn start_recording(&mut self, app: &App) -> Outcome {
-        let path = self.options.record.clone().unwrap_or_else(|| {
-            let unix = std::time::SystemTime::now()
-                .duration_since(std::time::UNIX_EPOCH)
-                .map_or(0, |d| d.as_secs());
-            format!("session-{unix}.jsonl").into()
-        });
+        let path = match (&self.options.record, &self.options.sessions_dir) {
+            (Some(p), _) => p.clone(),
+            (None, Some(dir)) => {
+                if let Err(e) = std::fs::create_dir_all(dir) {
+                    return Outcome::Recording(Err(format!("{}: {e}", dir.display())));
+                }
+                crate::scenario::write::fresh_name(
+                    dir,
+                    &crate::app::slug(&app.scenario.name),
+                    "jsonl",
+                )
+            }
+            (None, None) => crate::scenario::write::fresh_name(
+                std::path::Path::new("."),
+                &crate::app::slug(&app.scenario.name),
+                "jsonl",
+            ),
+        };
         let size = ratatui::crossterm::terminal::size().unwrap_or((80, 24));
         match ActiveRecording::start(app, &path, size, self.options.fps) {
             Ok(r) => {
@@ -248,7 +281,7 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
         signal_hook::flag::register_usize(n, Arc::clone(&signal), n as usize)?;
     }
     let hangup = &*signal;
-    let tty = Tty::enter()?;
+    let tty = Tty::enter(options.mouse)?;
     let (tx, rx) = sync_channel::<AppEvent>(INBOX);
     let book = options
         .replay
@@ -264,6 +297,7 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
     let app_options = Options {
         fps: options.fps,
         theme_names: options.ui.theme_names(),
+        keys: options.keys.clone(),
     };
     let (mut app, effects) = App::new(preset, app_options.clone());
     let mut shell = Shell {
@@ -376,8 +410,28 @@ fn event_loop(
                 shell.tty.autoresize()?;
                 dirty = true;
             }
+            // The mouse drives the explorer, never a replay (the recording does).
+            Ok(AppEvent::Click(column, row))
+                if replay.is_none() && app.mode == crate::app::Mode::Normal =>
+            {
+                if let Some((alpha, alpha_dot)) = ui::portrait_point(&cache, column, row) {
+                    let effects = app.set_start_point(alpha, alpha_dot);
+                    shell.execute(app, effects)?;
+                    dirty = true;
+                }
+            }
+            Ok(AppEvent::Wheel(up)) if replay.is_none() && app.mode == crate::app::Mode::Normal => {
+                let action = if up {
+                    crate::app::Action::ZoomIn
+                } else {
+                    crate::app::Action::ZoomOut
+                };
+                let effects = app.update(action);
+                shell.execute(app, effects)?;
+                dirty = true;
+            }
             Ok(AppEvent::Sim(e)) => dirty |= app.on_sim(e),
-            Err(RecvTimeoutError::Timeout) => {}
+            Ok(AppEvent::Click(..) | AppEvent::Wheel(_)) | Err(RecvTimeoutError::Timeout) => {}
             Err(RecvTimeoutError::Disconnected) => return Ok(None),
         }
         // The clocks move once a frame has passed.

@@ -156,6 +156,11 @@ impl<'a> SourceMap<'a> {
             })
     }
 
+    /// The line where the dotted `path` (`fps`, `keys.zoom_in`) is written.
+    pub(crate) fn find_path(&self, path: &str) -> Option<usize> {
+        self.find(path)
+    }
+
     fn find(&self, path: &str) -> Option<usize> {
         self.keys
             .iter()

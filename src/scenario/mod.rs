@@ -3,6 +3,7 @@
 //! Depends on `physics` only; never on the terminal, threads or the clock. Every error names
 //! the file, the line where it can be found, the key, and what is allowed.
 
+pub mod config;
 pub mod error;
 pub mod preset;
 pub mod shipped;

@@ -75,17 +75,22 @@ mod tests {
     }
 }
 
-/// The candidate closest to `word` when one is close enough to be a typo (Jaro–Winkler ≥ 0.8,
-/// case ignored), for "did you mean" hints.
+/// The candidate closest to `word` when one is close enough to be a typo, for "did you mean"
+/// hints: one edit away (Damerau–Levenshtein, so `fsp` finds `fps`) or similar by Jaro–Winkler
+/// (≥ 0.8, so `tolerence` finds `tolerance`); case ignored.
 #[must_use]
 pub fn closest<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
     let word = word.to_lowercase();
     candidates
         .into_iter()
-        .map(|c| (strsim::jaro_winkler(&word, &c.to_lowercase()), c))
-        .filter(|(score, _)| *score >= 0.8)
-        .max_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(_, c)| c)
+        .map(|c| {
+            let c_low = c.to_lowercase();
+            let edits = strsim::damerau_levenshtein(&word, &c_low);
+            (edits, strsim::jaro_winkler(&word, &c_low), c)
+        })
+        .filter(|(edits, jw, _)| (*edits <= 1 && word.len() >= 2) || *jw >= 0.8)
+        .min_by(|a, b| a.0.cmp(&b.0).then(b.1.total_cmp(&a.1)))
+        .map(|(_, _, c)| c)
 }
 
 /// `"; did you mean `x`?"` when a candidate is close to `word`, else nothing.
@@ -105,6 +110,12 @@ mod suggestion_tests {
         assert_eq!(closest("Methd", keys), Some("method"));
         assert_eq!(closest("t-end", keys), Some("t_end"));
         assert_eq!(closest("banana", keys), None);
+        assert_eq!(closest("fsp", ["fps", "preset", "theme"]), Some("fps"));
+        assert_eq!(
+            closest("x", ["ix", "iy"]),
+            None,
+            "one letter suggests nothing"
+        );
         assert_eq!(did_you_mean("banana", keys), "");
         assert_eq!(
             did_you_mean("subcritcal", ["subcritical", "supercritical"]),

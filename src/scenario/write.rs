@@ -202,3 +202,54 @@ mod tests {
         let _ = std::fs::remove_dir_all(&d);
     }
 }
+
+/// `YYYY-MM-DD-HHMMSS` (UTC) of `unix` seconds: file names that sort by time and read as dates.
+#[must_use]
+pub fn timestamp(unix: u64) -> String {
+    // Days to civil date (H. Hinnant's algorithm), proleptic Gregorian.
+    let days = i64::try_from(unix / 86_400).unwrap_or(0);
+    let secs = unix % 86_400;
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z.rem_euclid(146_097);
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!(
+        "{y:04}-{m:02}-{d:02}-{:02}{:02}{:02}",
+        secs / 3600,
+        secs / 60 % 60,
+        secs % 60
+    )
+}
+
+/// A new file name in `dir`: `STEM-YYYY-MM-DD-HHMMSS.EXT`, with `-2`, `-3`… when taken.
+#[must_use]
+pub fn fresh_name(dir: &Path, stem: &str, ext: &str) -> std::path::PathBuf {
+    let unix = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let base = format!("{stem}-{}", timestamp(unix));
+    let mut path = dir.join(format!("{base}.{ext}"));
+    let mut n = 2;
+    while std::fs::symlink_metadata(&path).is_ok() {
+        path = dir.join(format!("{base}-{n}.{ext}"));
+        n += 1;
+    }
+    path
+}
+
+#[cfg(test)]
+mod name_tests {
+    use super::*;
+
+    #[test]
+    fn timestamps_are_civil_dates() {
+        assert_eq!(timestamp(0), "1970-01-01-000000");
+        assert_eq!(timestamp(951_782_400), "2000-02-29-000000");
+        assert_eq!(timestamp(1_795_425_135), "2026-11-23-091215");
+    }
+}

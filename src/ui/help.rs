@@ -10,17 +10,37 @@ use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
 use super::Look;
 use crate::app::keys::{Binding, KEYMAP, REPLAY_KEYMAP};
 use crate::app::mode::HelpPage;
+use crate::app::user_keys::UserKeys;
 
-fn key_rows<A>(map: &[Binding<A>]) -> Vec<Line<'static>> {
-    map.iter()
-        .filter(|b| !b.label.is_empty())
-        .map(|b| {
+/// The rows of a keymap; `extra` gives the user's keys of a row's bindings (a labelled binding
+/// and the unlabelled ones after it), added to its label.
+fn key_rows<A: Copy>(map: &[Binding<A>], extra: &dyn Fn(A) -> Vec<String>) -> Vec<Line<'static>> {
+    let mut rows: Vec<(String, &'static str)> = Vec::new();
+    for b in map {
+        let added = extra(b.action);
+        if !b.label.is_empty() {
+            rows.push((b.label.to_owned(), b.help));
+        }
+        if let Some(last) = rows.last_mut()
+            && !added.is_empty()
+        {
+            last.0 = format!("{} +{}", last.0, added.join(","));
+        }
+    }
+    let width = rows
+        .iter()
+        .map(|(l, _)| l.chars().count() + 1)
+        .max()
+        .unwrap_or(0)
+        .max(13);
+    rows.into_iter()
+        .map(|(label, help)| {
             Line::from(vec![
                 Span::styled(
-                    format!(" {:<13}", b.label),
+                    format!(" {label:<width$}"),
                     Style::default().add_modifier(Modifier::BOLD),
                 ),
-                Span::raw(b.help),
+                Span::raw(help),
             ])
         })
         .collect()
@@ -67,13 +87,22 @@ fn legend(look: &Look) -> Vec<Line<'static>> {
     ]
 }
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, page: HelpPage, replay: bool, look: &Look) {
+pub fn draw(
+    frame: &mut Frame<'_>,
+    area: Rect,
+    (page, replay): (HelpPage, bool),
+    keys: &UserKeys,
+    look: &Look,
+) {
     let (rows, heading) = match page {
         HelpPage::Keys if replay => (
-            key_rows(REPLAY_KEYMAP),
+            key_rows(REPLAY_KEYMAP, &|_| Vec::new()),
             " replay keys: ? legend · Esc closes ",
         ),
-        HelpPage::Keys => (key_rows(KEYMAP), " keys: ? legend · Esc closes "),
+        HelpPage::Keys => (
+            key_rows(KEYMAP, &|a| keys.labels(a)),
+            " keys: ? legend · Esc closes ",
+        ),
         HelpPage::Legend => (legend(look), " legend: ? or Esc closes "),
     };
     let height = (rows.len() as u16 + 2).min(area.height);

@@ -280,6 +280,24 @@ impl Theme {
     }
 }
 
+/// The portrait point `(alpha, alpha_dot)` under the terminal cell `(column, row)`, if the last
+/// frame drew the portrait there.
+#[must_use]
+pub fn portrait_point(cache: &Cache, column: u16, row: u16) -> Option<(f64, f64)> {
+    let (plot, b) = cache.plot?;
+    let inside = (plot.x..plot.x + plot.width).contains(&column)
+        && (plot.y..plot.y + plot.height).contains(&row);
+    if !inside {
+        return None;
+    }
+    let fx = (f64::from(column - plot.x) + 0.5) / f64::from(plot.width);
+    let fy = (f64::from(row - plot.y) + 0.5) / f64::from(plot.height);
+    Some((
+        b.x[0] + fx * (b.x[1] - b.x[0]),
+        b.y[1] - fy * (b.y[1] - b.y[0]),
+    ))
+}
+
 /// Draws the whole screen from `app`; `cache` keeps the level sets between frames.
 pub fn draw(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mut Cache) {
     let look = options.look(app.view.theme);
@@ -348,7 +366,13 @@ pub fn draw(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mut C
     };
     draw_footer(frame, footer, &hints, &look);
     match &app.mode {
-        Mode::Help(page) => help::draw(frame, area, *page, app.replay.is_some(), &look),
+        Mode::Help(page) => help::draw(
+            frame,
+            area,
+            (*page, app.replay.is_some()),
+            &app.options.keys,
+            &look,
+        ),
         Mode::Picker(p) => dialogs::picker(frame, area, p, &look),
         Mode::Dialog(text) => dialogs::error(frame, area, text, &look),
         _ => {}

@@ -47,6 +47,9 @@ struct Key {
 #[derive(Debug, Default)]
 pub struct Cache {
     contours: Option<(Key, Vec<Level>)>,
+    /// Where the last frame drew the portrait's plot, and the bounds it drew (the mouse maps
+    /// a click through them).
+    pub plot: Option<(Rect, Bounds)>,
 }
 
 impl Cache {
@@ -114,6 +117,7 @@ fn pane(p: &PortraitPane<'_>, area: Rect, buf: &mut Buffer, cache: &mut Cache) {
     let [body, x_axis] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)]).areas(inner);
     let [y_axis, plot] =
         Layout::horizontal([Constraint::Length(Y_LABELS), Constraint::Min(0)]).areas(body);
+    cache.plot = Some((plot, p.bounds));
     let bounds = p.bounds;
     let (rx, ry) = resolution(look.marker);
     let (cols, rows) = (plot.width as usize * rx, plot.height as usize * ry);

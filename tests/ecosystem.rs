@@ -1,0 +1,248 @@
+//! Issue 15, items 2 and 3: exports from the explorer, the copied command line, the
+//! configuration file, the user's keys and the mouse.
+
+mod common;
+
+use common::Headless;
+use rattleback::app::user_keys::UserKeys;
+use rattleback::app::{Action, Effect, Key, Options};
+
+fn temp(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("rattleback-eco-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn bin_in(config_dir: &std::path::Path, args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        .args(args)
+        .env("RATTLEBACK_CONFIG_DIR", config_dir)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn the_export_writes_a_portrait_and_a_csv_that_says_what_made_it() {
+    let mut h = Headless::new("subcritical");
+    h.play_until(10.0, 4.0);
+    let effects = h.app.on_key(Key::Char('x'));
+    assert_eq!(
+        effects,
+        vec![Effect::Export {
+            stem: "subcritical-start".to_owned()
+        }]
+    );
+    let dir = temp("export");
+    let paths = rattleback::export::export(&h.app, &dir, "subcritical-start").unwrap();
+    assert_eq!(paths.len(), 2);
+    let name = paths[0].file_name().unwrap().to_string_lossy().into_owned();
+    assert!(
+        name.starts_with("subcritical-start-20") && name.ends_with(".svg"),
+        "{name}"
+    );
+    let svg = std::fs::read_to_string(&paths[0]).unwrap();
+    assert!(svg.starts_with("<svg"), "{}", &svg[..80]);
+    assert!(svg.contains("alpha_dot") && svg.contains("separatrix of the limit"));
+    // Axis labels are short: no `9.999999999999999e-5`.
+    let labels: Vec<&str> = svg
+        .split("<text")
+        .skip(1)
+        .filter_map(|t| {
+            t.split_once('>')
+                .and_then(|(_, rest)| rest.split_once("</text>"))
+        })
+        .map(|(label, _)| label)
+        .collect();
+    assert!(labels.len() > 8, "{labels:?}");
+    for l in &labels {
+        assert!(
+            l.split(|c: char| !(c.is_ascii_digit() || c == '.'))
+                .all(|w| w.len() <= 6),
+            "a long number in a label: {l}"
+        );
+    }
+    let csv = std::fs::read_to_string(&paths[1]).unwrap();
+    let meta: std::collections::BTreeMap<&str, &str> = csv
+        .lines()
+        .take_while(|l| l.starts_with("# "))
+        .filter_map(|l| l[2..].split_once(" = "))
+        .collect();
+    assert_eq!(meta["preset"], "Subcritical start");
+    assert_eq!(meta["method"], "auto");
+    assert_eq!(meta["tolerance"].parse::<f64>().unwrap(), 1e-9);
+    assert!(meta["program"].starts_with("rattleback "));
+    let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
+    assert_eq!(
+        rows[0],
+        "t,alpha,alpha_dot,energy_error,limit_alpha,limit_alpha_dot"
+    );
+    assert_eq!(rows.len() - 1, h.app.run.trail_shown().len());
+    let last: Vec<f64> = rows[rows.len() - 1]
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let shown = h.app.run.trail_shown().last().unwrap();
+    assert_eq!(last[1].to_bits(), shown.alpha.to_bits());
+    assert!(last[4].is_finite(), "the limit's columns are filled");
+    // A second export never replaces the first.
+    let again = rattleback::export::export(&h.app, &dir, "subcritical-start").unwrap();
+    assert_ne!(again[0], paths[0]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_copied_command_line_runs_exactly_the_explorers_settings() {
+    let mut h = Headless::new("just-below");
+    for k in [Key::Down, Key::Right, Key::Right] {
+        h.key(k); // iy nudged twice
+    }
+    let effects = h.app.on_key(Key::Char('y'));
+    let [Effect::Copy(text)] = effects.as_slice() else {
+        panic!("{effects:?}")
+    };
+    assert!(h.app.status.as_ref().unwrap().text.contains(text.as_str()));
+    let args: Vec<&str> = text.split_whitespace().collect();
+    let cli = <rattleback::cli::Cli as clap::Parser>::try_parse_from(&args).unwrap();
+    let Some(rattleback::cli::Command::Simulate(sim)) = cli.command else {
+        panic!("not simulate: {text}")
+    };
+    let preset = rattleback::scenario::shipped::resolve(&sim.preset, &sim.set).unwrap();
+    let s = h.app.scenario.settings;
+    assert_eq!(preset.problem.params(), &s.params);
+    assert_eq!(preset.problem.start(), &s.start);
+    assert_eq!(sim.method, Some(s.method));
+    assert_eq!(sim.tolerance, Some(s.tolerance));
+    assert_eq!(sim.t_end, Some(s.t_end));
+}
+
+#[test]
+fn user_keys_work_and_help_shows_them() {
+    let keys = UserKeys::parse(&[
+        ("zoom_in".to_owned(), vec!["i".to_owned()]),
+        ("toggle_map".to_owned(), vec!["ctrl-g".to_owned()]),
+    ])
+    .unwrap();
+    let options = Options {
+        keys,
+        ..Options::at(30.0)
+    };
+    assert_eq!(options.action_for(Key::Char('i')), Some(Action::ZoomIn));
+    assert_eq!(options.action_for(Key::Char('z')), Some(Action::ZoomIn));
+    let preset = rattleback::scenario::shipped::resolve("subcritical", &[]).unwrap();
+    let (mut app, _) = rattleback::app::App::new(&preset, options);
+    let zoom = app.view.view.zoom;
+    app.on_key(Key::Char('i'));
+    assert!(app.view.view.zoom > zoom, "the user's key zooms");
+    app.on_key(Key::Char('?'));
+    let backend = ratatui::backend::TestBackend::new(100, 40);
+    let mut terminal = ratatui::Terminal::new(backend).unwrap();
+    let mut cache = rattleback::ui::Cache::default();
+    terminal
+        .draw(|f| rattleback::ui::draw(f, &app, &rattleback::ui::UiOptions::default(), &mut cache))
+        .unwrap();
+    let screen: String = terminal
+        .backend()
+        .buffer()
+        .content()
+        .iter()
+        .map(ratatui::buffer::Cell::symbol)
+        .collect();
+    assert!(screen.contains("z/Z +i"), "help shows the user's key");
+    assert!(screen.contains("+Ctrl-G"), "help shows the user's key");
+}
+
+#[test]
+fn a_click_in_the_portrait_sets_the_start_there() {
+    let mut h = Headless::new("subcritical");
+    let backend = ratatui::backend::TestBackend::new(120, 40);
+    let mut terminal = ratatui::Terminal::new(backend).unwrap();
+    let mut cache = rattleback::ui::Cache::default();
+    terminal
+        .draw(|f| {
+            rattleback::ui::draw(f, &h.app, &rattleback::ui::UiOptions::default(), &mut cache)
+        })
+        .unwrap();
+    let (plot, b) = cache.plot.expect("the portrait was drawn");
+    assert_eq!(
+        rattleback::ui::portrait_point(&cache, 0, 0),
+        None,
+        "outside"
+    );
+    let (col, row) = (plot.x + plot.width / 4, plot.y + plot.height / 4);
+    let (alpha, alpha_dot) = rattleback::ui::portrait_point(&cache, col, row).unwrap();
+    assert!(b.x[0] < alpha && alpha < (b.x[0] + b.x[1]) / 2.0);
+    assert!((b.y[0] + b.y[1]) / 2.0 < alpha_dot && alpha_dot < b.y[1]);
+    h.app.on_key(Key::Char('R'));
+    h.app.on_outcome(rattleback::app::Outcome::Recording(
+        Ok("click.jsonl".into()),
+    ));
+    let generation = h.app.run.generation;
+    let effects = h.app.set_start_point(alpha, alpha_dot);
+    h.exec(effects);
+    assert!(h.app.run.generation > generation, "restarted");
+    let s = h.app.scenario.settings.start;
+    assert_eq!((s.alpha, s.alpha_dot), (alpha, alpha_dot));
+    assert_eq!(s.gamma_dot, 1.0, "the tilt rate stays");
+    let sets: Vec<String> = h
+        .app
+        .take_journal()
+        .into_iter()
+        .filter_map(|(_, _, e)| match e {
+            rattleback::app::journal::Event::Set { field, .. } => Some(field),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(sets, ["alpha", "alpha_dot"]);
+}
+
+#[test]
+fn config_path_show_and_a_bad_config_file() {
+    let dir = temp("config");
+    let (code, out, _) = bin_in(&dir, &["config", "path"]);
+    assert_eq!(code, 0);
+    assert_eq!(out.trim(), dir.join("config.toml").display().to_string());
+    let (code, out, _) = bin_in(&dir, &["config", "show"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("# no config file"), "{out}");
+    assert!(out.contains("# fps = 30"), "{out}");
+    std::fs::write(
+        dir.join("config.toml"),
+        "preset = \"supercritical\"\nfps = 20\nmouse = true\n\n[keys]\nzoom_in = \"i\"\n",
+    )
+    .unwrap();
+    let (code, out, err) = bin_in(&dir, &["config", "show"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("preset = \"supercritical\"") && out.contains("fps = 20"));
+    assert!(out.contains("zoom_in = \"i\""));
+    // A key taken by the explorer: the file, the line, the key, what holds it; exit 2 before
+    // any terminal is touched.
+    std::fs::write(
+        dir.join("config.toml"),
+        "fps = 20\n\n[keys]\nzoom_in = \"i\"\nzoom_out = \"q\"\n",
+    )
+    .unwrap();
+    let (code, _, err) = bin_in(&dir, &[]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("config.toml:5: keys.zoom_out: 'q' is already bound to quit"),
+        "{err}"
+    );
+    std::fs::write(dir.join("config.toml"), "fsp = 20\n").unwrap();
+    let (code, _, err) = bin_in(&dir, &["config", "show"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("config.toml:1: fsp: unknown key `fsp`"),
+        "{err}"
+    );
+    assert!(err.contains("did you mean `fps`?"), "{err}");
+    // Commands that do not use it are not stopped by it.
+    let (code, _, err) = bin_in(&dir, &["simulate", "--t-end", "1"]);
+    assert_eq!(code, 0, "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
