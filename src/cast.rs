@@ -170,7 +170,8 @@ fn frames_of(
         let c = app.tick(1.0 / fps);
         run(c, engine, app);
         terminal.draw(|f| ui::draw(f, app, options, &mut cache))?;
-        let bytes = std::mem::take(&mut *screen.0.borrow_mut());
+        let bytes =
+            crate::terminal::FrameWriter::strip(&std::mem::take(&mut *screen.0.borrow_mut()));
         if !bytes.is_empty() {
             let text = String::from_utf8_lossy(&bytes);
             writeln!(cast, "{}", serde_json::json!([micro(clock), "o", text]))?;

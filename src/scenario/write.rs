@@ -88,10 +88,16 @@ pub fn write_atomic_with<T>(
     }
     // A randomly named file created with O_EXCL in the target's folder (tempfile): no planted
     // link can redirect it, and it is removed on every error path when dropped.
-    let mut tmp = tempfile::Builder::new()
-        .prefix(&format!(".{}.", name.to_string_lossy()))
-        .suffix(".tmp")
-        .tempfile_in(dir)?;
+    let prefix = format!(".{}.", name.to_string_lossy());
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".tmp");
+    // Readable like any file the user makes (0666 less the umask), not tempfile's private 0600.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt as _;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let mut tmp = builder.tempfile_in(dir)?;
     let value = {
         let mut out = io::BufWriter::new(tmp.as_file_mut());
         let value = fill(&mut out)?;
@@ -170,6 +176,35 @@ mod tests {
         assert_eq!(std::fs::read(&outside).unwrap(), b"keep");
         assert_eq!(std::fs::read(d.join("c.toml")).unwrap(), b"new");
         let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn files_get_the_usual_permissions_not_private_ones() {
+        use std::os::unix::fs::PermissionsExt as _;
+        let d = dir("mode");
+        let target = d.join("m.csv");
+        write_atomic(&target, b"x", false).unwrap();
+        let mode = std::fs::metadata(&target).unwrap().permissions().mode() & 0o777;
+        assert_eq!(
+            mode & 0o044,
+            0o044 & !umask(),
+            "readable by others unless the umask says no: {mode:o}"
+        );
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
+    /// The process's umask (read by setting and restoring it is racy; read it from /proc).
+    #[cfg(unix)]
+    fn umask() -> u32 {
+        std::fs::read_to_string("/proc/self/status")
+            .ok()
+            .and_then(|s| {
+                s.lines()
+                    .find_map(|l| l.strip_prefix("Umask:"))
+                    .and_then(|v| u32::from_str_radix(v.trim(), 8).ok())
+            })
+            .unwrap_or(0o022)
     }
 
     #[test]
