@@ -78,6 +78,14 @@ pub enum Command {
     Presets(PresetsArgs),
     /// List every colour theme (shipped and the user's), like `presets`.
     Themes(ListArgs),
+    /// Open a lesson in the explorer: its steps, questions and conditions (`lessons` lists
+    /// them).
+    Lesson(LessonArgs),
+    /// List every lesson (shipped and the user's): name, title, steps, source, path.
+    Lessons(ListArgs),
+    /// Follow, read-only, a session that is still being recorded: show what the lecturer sees,
+    /// paced to the lecturer's clock; `f` forks and explores on its own from there.
+    Follow(FollowArgs),
     /// Validate preset or theme files and report every problem (exit 2 if any).
     Check(CheckArgs),
     /// Replay a recorded session in the explorer, check it, or export it.
@@ -103,6 +111,34 @@ pub enum ConfigCommand {
     Path,
     /// Print the configuration in effect as TOML (defaults commented), to copy into config.toml.
     Show,
+}
+
+/// Arguments of `lesson`.
+#[derive(Debug, Args)]
+pub struct LessonArgs {
+    /// A lesson: a shipped name (first-reversal, stiff-limit, tapping), a user lesson or a path.
+    #[arg(value_name = "NAME|PATH")]
+    pub lesson: String,
+    /// How the explorer draws.
+    #[command(flatten)]
+    pub look: LookArgs,
+    /// Record the session (steps and answers included) into this file; an existing file is
+    /// refused unless `--force`.
+    #[arg(long, value_name = "FILE")]
+    pub record: Option<std::path::PathBuf>,
+    /// Replace an existing `--record` file.
+    #[arg(long)]
+    pub force: bool,
+}
+
+/// Arguments of `follow`.
+#[derive(Debug, Args)]
+pub struct FollowArgs {
+    /// The session file being written by `rattleback --record` (or `R`).
+    pub file: std::path::PathBuf,
+    /// How the follower draws.
+    #[command(flatten)]
+    pub look: LookArgs,
 }
 
 /// Arguments of `completions`.
@@ -217,6 +253,10 @@ pub struct ReplayArgs {
     /// Re-run it headless and check every checkpoint bit for bit (exit 1 on a divergence).
     #[arg(long)]
     pub verify: bool,
+    /// Print the chapters with their times (wall clock of the recording and simulated time),
+    /// then exit.
+    #[arg(long)]
+    pub chapters: bool,
     /// Write an asciicast v2 file (asciinema-player plays it), chapters as markers. With
     /// `--verify`, the session is checked first and exported only if it verifies. An existing
     /// file is refused (exit 2) unless `--force`.
@@ -278,7 +318,8 @@ pub enum ListFormat {
 /// Arguments of `check`.
 #[derive(Debug, Args)]
 pub struct CheckArgs {
-    /// Files to check: presets, or themes (files with a `[theme]` or `[colors]` table).
+    /// Files to check: presets, themes (files with a `[theme]` or `[colors]` table) or lessons
+    /// (files with a `[lesson]` table).
     #[arg(required = true, value_name = "FILE")]
     pub files: Vec<std::path::PathBuf>,
 }

@@ -125,6 +125,36 @@ pub fn themes(args: &ListArgs) -> ExitCode {
     report(&problems)
 }
 
+/// `rattleback lessons`: every lesson, like `presets`.
+#[must_use]
+pub fn lessons(args: &ListArgs) -> ExitCode {
+    let (entries, problems) = crate::scenario::lesson::catalogue();
+    let out = match args.format {
+        ListFormat::Json => {
+            let mut s = serde_json::to_string_pretty(&entries).unwrap_or_else(|_| "[]".to_owned());
+            s.push('\n');
+            s
+        }
+        ListFormat::Table => {
+            let mut s = String::new();
+            for e in &entries {
+                let _ = writeln!(
+                    s,
+                    "{:<16} {:<8} {} ({} steps)\n                 {}\n",
+                    e.name,
+                    format!("{:?}", e.source).to_lowercase(),
+                    e.title,
+                    e.steps,
+                    e.path
+                );
+            }
+            s
+        }
+    };
+    say_raw!("{out}");
+    report(&problems)
+}
+
 /// The command line as clap sees it, with the preset and theme names of this machine as the
 /// values `--preset` and `--theme` complete to (a path is still accepted when typed).
 fn command_for_docs() -> clap::Command {
@@ -271,6 +301,11 @@ pub fn check(args: &CheckArgs) -> ExitCode {
         // encoding error names its line.
         match PresetError::read(path) {
             Err(e) => problems.push(e),
+            Ok(src) if crate::scenario::lesson::is_lesson(&src) => {
+                if let Err(mut e) = crate::scenario::lesson::Lesson::parse(&src, &label, &label) {
+                    problems.append(&mut e);
+                }
+            }
             Ok(src) if is_theme(&src) => {
                 if let Err(mut e) = ThemeSpec::parse(&src, &label, &label) {
                     problems.append(&mut e);

@@ -33,6 +33,9 @@ fn main() -> ExitCode {
         Some(Command::Check(args)) => commands::check(&args),
         Some(Command::Replay(ref args)) => run_replay(args),
         Some(Command::Themes(args)) => commands::themes(&args),
+        Some(Command::Lessons(args)) => commands::lessons(&args),
+        Some(Command::Lesson(ref args)) => run_lesson(args),
+        Some(Command::Follow(ref args)) => run_follow(args),
         Some(Command::Completions(args)) => commands::completions(args.shell),
         Some(Command::Man) => commands::man(),
         Some(Command::Config(ref c)) => commands::config(c),
@@ -127,6 +130,12 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
     for w in &rec.warnings {
         say_err!("rattleback: warning: {w}");
     }
+    if args.chapters {
+        say!("{}", record::chapters(&rec));
+        if !args.verify && args.export_cast.is_none() {
+            return ExitCode::SUCCESS;
+        }
+    }
     let (config, keys) = match commands::load_config() {
         Ok(c) => c,
         Err(e) => {
@@ -182,6 +191,8 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
         sessions_dir: config.sessions_dir(),
         mouse: false,
         keys,
+        lesson: None,
+        follow: None,
     };
     explore(&setup, &preset, None, Some(rec))
 }
@@ -230,6 +241,97 @@ fn marker(choice: Option<MarkerChoice>) -> ratatui::symbols::Marker {
     }
 }
 
+fn run_follow(args: &rattleback::cli::FollowArgs) -> ExitCode {
+    // Read once here: a file that is not a session is refused before the terminal is touched.
+    let rec = match rattleback::record::tail::Tail::open(&args.file) {
+        Ok((_, rec)) => rec,
+        Err(e) => {
+            say_err!("rattleback: error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let (config, keys) = match commands::load_config() {
+        Ok(c) => c,
+        Err(e) => {
+            say_err!("rattleback: error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let preset = match rattleback::scenario::Preset::parse(
+        &rec.header.preset,
+        &format!("{} (header)", args.file.display()),
+        "recorded",
+        &[],
+    ) {
+        Ok(p) => p,
+        Err(e) => {
+            say_err!("rattleback: error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let asked = with_config(&args.look, &config);
+    let setup = Setup {
+        look: LookArgs {
+            theme: Some(replay_theme(args.look.theme.as_deref(), &rec.header.theme)),
+            ..asked
+        },
+        sessions_dir: config.sessions_dir(),
+        mouse: false,
+        keys,
+        lesson: None,
+        follow: Some(args.file.clone()),
+    };
+    explore(&setup, &preset, None, Some(rec))
+}
+
+fn run_lesson(args: &rattleback::cli::LessonArgs) -> ExitCode {
+    let lesson = match rattleback::scenario::lesson::resolve(&args.lesson) {
+        Ok(l) => l,
+        Err(e) => {
+            say_err!("rattleback: error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let (config, keys) = match commands::load_config() {
+        Ok(c) => c,
+        Err(e) => {
+            say_err!("rattleback: error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    if let Some(out) = &args.record
+        && let Err(e) = check_output(out, None, args.force, "--record")
+    {
+        say_err!("rattleback: error: {e}");
+        return ExitCode::from(2);
+    }
+    if args.force
+        && let Some(out) = &args.record
+    {
+        let _ = std::fs::remove_file(out);
+    }
+    // The first step's preset, else the default, opens the explorer; the lesson takes over.
+    let preset = match lesson.steps[0].preset.clone() {
+        Some(p) => p,
+        None => match resolve(rattleback::scenario::shipped::DEFAULT_PRESET, &[]) {
+            Ok(p) => p,
+            Err(e) => {
+                say_err!("rattleback: error: {e}");
+                return ExitCode::from(2);
+            }
+        },
+    };
+    let setup = Setup {
+        look: with_config(&args.look, &config),
+        sessions_dir: config.sessions_dir(),
+        mouse: config.mouse,
+        keys,
+        lesson: Some(lesson),
+        follow: None,
+    };
+    explore(&setup, &preset, args.record.clone(), None)
+}
+
 fn run_explorer(cli: &Cli) -> ExitCode {
     let (config, keys) = match commands::load_config() {
         Ok(c) => c,
@@ -267,6 +369,8 @@ fn run_explorer(cli: &Cli) -> ExitCode {
         sessions_dir: config.sessions_dir(),
         mouse: cli.mouse || config.mouse,
         keys,
+        lesson: None,
+        follow: None,
     };
     explore(&setup, &preset, cli.record.clone(), None)
 }
@@ -277,6 +381,8 @@ struct Setup {
     sessions_dir: Option<std::path::PathBuf>,
     mouse: bool,
     keys: UserKeys,
+    lesson: Option<rattleback::scenario::lesson::Lesson>,
+    follow: Option<std::path::PathBuf>,
 }
 
 fn explore(
@@ -306,6 +412,8 @@ fn explore(
         sessions_dir: setup.sessions_dir.clone(),
         mouse: setup.mouse,
         keys: setup.keys.clone(),
+        lesson: setup.lesson.clone(),
+        follow: setup.follow.clone(),
     };
     match explorer::run(preset, &options) {
         Ok(None) => ExitCode::SUCCESS,

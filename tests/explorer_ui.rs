@@ -414,3 +414,57 @@ fn the_map_reads_without_colour_the_counts_are_glyph_densities() {
         assert!(screen.contains(glyph), "{glyph} missing:\n{screen}");
     }
 }
+
+/// Issue 14, item 1: the body from above, at two sizes, in Braille, half blocks and without
+/// colour.
+#[test]
+fn body_pane_at_80x24_and_160x48() {
+    let mut h = Headless::new("subcritical");
+    h.key(Key::Char('B'));
+    h.play_until(11.5, 4.0);
+    h.key(Key::Char(' '));
+    let small = text(&render(&h.app, 80, 24));
+    assert!(small.contains("body from above (B): spin"), "{small}");
+    // A reversal happened in the trace's window: both senses are on the ring.
+    assert!(small.contains('+') && small.contains('-'), "{small}");
+    assert!(small.contains('●'));
+    insta::assert_snapshot!("body_80x24", small);
+    insta::assert_snapshot!("body_160x48", text(&render(&h.app, 160, 48)));
+    // Half blocks and no colour: the same shapes and signs.
+    let spec = rattleback::scenario::theme::theme("default").unwrap();
+    let options = UiOptions::new(ratatui::symbols::Marker::HalfBlock, &spec, &[], true);
+    let buffer = render_with(&h.app, 80, 24, &options);
+    assert!(buffer.content().iter().all(|c| c.fg == Color::Reset));
+    let plain = text(&buffer);
+    assert!(
+        plain.contains('+') && plain.contains('-') && plain.contains('●'),
+        "{plain}"
+    );
+    assert!(
+        plain.contains('▀') || plain.contains('▄') || plain.contains('█'),
+        "{plain}"
+    );
+}
+
+#[test]
+fn the_body_turns_with_alpha_and_the_bar_shows_the_rocking() {
+    use rattleback::ui::body_envelope;
+    let mut h = Headless::new("subcritical");
+    h.key(Key::Char('B'));
+    h.play_until(2.0, 4.0);
+    let rock = body_envelope(&h.app.run);
+    let peak = h
+        .app
+        .run
+        .trail_shown()
+        .iter()
+        .map(|p| p.gamma.abs())
+        .fold(0.0, f64::max);
+    assert!(rock > 0.0 && rock <= peak, "{rock} {peak}");
+    // The rocking of this start is small: the tilt of a stiff spring (k = 1e4).
+    assert!(peak < 0.05, "{peak}");
+    let before = text(&render(&h.app, 80, 24));
+    h.play_until(3.0, 4.0);
+    let after = text(&render(&h.app, 80, 24));
+    assert_ne!(before, after, "the body turns as alpha changes");
+}

@@ -643,7 +643,33 @@ fn panes_and_a_map_cell_loaded_are_recorded_and_replayed() {
             series: false,
             sweep: false,
             weak: false,
-            map: false
+            map: false,
+            body: false
         }
     );
+}
+
+/// Issue 14, item 4: a lecturer's view of the session file.
+#[test]
+fn replay_chapters_lists_the_chapters_with_their_times() {
+    let lesson = format!(
+        "{}/tests/fixtures/sessions/lesson.jsonl",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let (code, out, err) = bin(&["replay", &lesson, "--chapters"]);
+    assert_eq!(code, 0, "{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 2, "{out}");
+    assert!(
+        lines[0].contains("0:01.2") && lines[0].ends_with("Start"),
+        "{out}"
+    );
+    assert!(
+        lines[1].contains("t      9.02") && lines[1].ends_with("Higher k"),
+        "{out}"
+    );
+    // With --verify it lists, then verifies.
+    let (code, out, _) = bin(&["replay", &lesson, "--chapters", "--verify"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("Higher k") && out.contains("reproduced bit for bit"));
 }

@@ -55,6 +55,9 @@ pub enum Event {
         /// Regime-map pane shown (written only when true).
         #[serde(default, skip_serializing_if = "std::ops::Not::not")]
         map: bool,
+        /// Body pane shown (written only when true).
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        body: bool,
     },
     /// The trail was cleared.
     ClearTrail,
@@ -73,6 +76,30 @@ pub enum Event {
         /// Its title.
         title: String,
     },
+    /// A lesson's step began (what it says, so the file stands alone).
+    LessonStep {
+        /// The lesson's title.
+        lesson: String,
+        /// The step's index (0 is the first).
+        step: usize,
+        /// How many steps the lesson has.
+        steps: usize,
+        /// The step's title.
+        title: String,
+        /// Its text.
+        text: String,
+    },
+    /// The answer to a step's question, revealed after the run.
+    Answer {
+        /// The step's index.
+        step: usize,
+        /// What the student answered.
+        given: String,
+        /// Whether it was right.
+        correct: bool,
+    },
+    /// The recording was stopped: the last line of a finished session.
+    End,
     /// The concrete plan a run integrates (what `auto` resolved to), so replay uses it and no
     /// later change of `auto` can change an old session (format 2 on).
     Plan {

@@ -73,6 +73,8 @@ pub enum Action {
     ToggleWeak,
     /// Show the regime map and give it the arrows, or hide it.
     ToggleMap,
+    /// Show or hide the body pane.
+    ToggleBody,
     /// Double the weak-* averaging window.
     WiderWindow,
     /// Halve it.
@@ -236,9 +238,9 @@ pub const KEYMAP: &[Binding<Action>] = &[
     },
     Binding {
         keys: &[Key::Char('K')],
-        label: "K W M / < >",
+        label: "K W M B / < >",
         action: Action::ToggleSweep,
-        help: "k-sweep / weak-* / regime map; < > weak-* window",
+        help: "k-sweep / weak-* / map / body panes; < > window",
         footer: Some(("K", "sweep", 10)),
     },
     Binding {
@@ -247,6 +249,13 @@ pub const KEYMAP: &[Binding<Action>] = &[
         action: Action::ToggleWeak,
         help: "",
         footer: Some(("W", "weak-*", 10)),
+    },
+    Binding {
+        keys: &[Key::Char('B')],
+        label: "",
+        action: Action::ToggleBody,
+        help: "",
+        footer: Some(("B", "body", 10)),
     },
     Binding {
         keys: &[Key::Char('M')],

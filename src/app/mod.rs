@@ -12,6 +12,7 @@ pub mod effects;
 pub mod fields;
 pub mod journal;
 pub mod keys;
+pub mod lesson;
 pub mod map;
 pub mod mode;
 mod outcomes;
@@ -143,6 +144,8 @@ pub struct ReplayInfo {
     pub at: f64,
     /// Wall seconds the recording lasts.
     pub length: f64,
+    /// Following a recording as it is written (`rattleback follow`): `Some(ended)`.
+    pub live: Option<bool>,
 }
 
 /// Whether a recording is on.
@@ -179,6 +182,8 @@ pub struct App {
     pub weak: weak::WeakState,
     /// The regime map's data and cursor.
     pub map: map::MapState,
+    /// The lesson, when one is open.
+    pub lesson: Option<lesson::LessonState>,
     /// What has the keyboard.
     pub mode: Mode,
     /// The last message.
@@ -213,6 +218,7 @@ impl App {
             sweep: sweep::SweepState::default(),
             weak: weak::WeakState::default(),
             map: map::MapState::default(),
+            lesson: None,
             mode: Mode::Normal,
             status: None,
             caption: None,
@@ -246,6 +252,22 @@ impl App {
     /// The replay's state, for the status bar.
     pub fn set_replay(&mut self, info: ReplayInfo) {
         self.replay = Some(info);
+    }
+
+    /// A message from the loop (the followed file's news).
+    pub fn notice(&mut self, text: &str) {
+        self.status = Message::info(text);
+    }
+
+    /// A follower forks: the replay's hold ends, the state and parameters stay, and the
+    /// explorer is the user's own from here.
+    pub fn fork(&mut self) {
+        self.replay = None;
+        self.caption = None;
+        self.status = Message::info(format!(
+            "forked at t {:.2}: exploring on your own (the lecturer's file is not touched)",
+            self.run.shown
+        ));
     }
 
     fn apply_view(&mut self, preset: &Preset) {
@@ -323,10 +345,13 @@ impl App {
             return Vec::new();
         }
         match std::mem::take(&mut self.mode) {
-            Mode::Normal => self
-                .options
-                .action_for(key)
-                .map_or_else(Vec::new, |a| self.update(a)),
+            Mode::Normal => match self.on_lesson_key(key) {
+                Some(effects) => effects,
+                None => self
+                    .options
+                    .action_for(key)
+                    .map_or_else(Vec::new, |a| self.update(a)),
+            },
             Mode::Dialog(_) => Vec::new(),
             Mode::Help(page) => match self.options.action_for(key) {
                 Some(Action::ToggleHelp) if page == HelpPage::Keys => {
@@ -409,12 +434,14 @@ impl App {
             | Action::ToggleSeries
             | Action::ToggleSweep
             | Action::ToggleWeak
-            | Action::ToggleMap => Some(Event::Panes {
+            | Action::ToggleMap
+            | Action::ToggleBody => Some(Event::Panes {
                 effective: self.view.overlay,
                 series: self.series(),
                 sweep: self.view.panes.shows(Pane::Sweep),
                 weak: self.view.panes.shows(Pane::Weak),
                 map: self.view.panes.shows(Pane::Map),
+                body: self.view.panes.shows(Pane::Body),
             }),
             Action::ClearTrail => Some(Event::ClearTrail),
             _ => None,
@@ -480,6 +507,7 @@ impl App {
             Action::NarrowerWindow => self.weak.scale_window(0.5),
             Action::ToggleSweep => return self.toggle_computed(Pane::Sweep),
             Action::ToggleMap => return self.toggle_computed(Pane::Map),
+            Action::ToggleBody => self.view.panes.toggle(Pane::Body),
             Action::ZoomIn => v.zoom = (v.zoom * 1.5).min(1e6),
             Action::ZoomOut => v.zoom = (v.zoom / 1.5).max(0.1),
             Action::PanLeft => v.pan_x -= 0.1,
@@ -511,30 +539,36 @@ impl App {
                     names.len().max(1)
                 ));
             }
-            Action::Export => {
-                self.status = Message::info("exporting…");
-                return vec![Effect::Export {
-                    stem: slug(&self.scenario.name),
-                }];
-            }
-            Action::CopyCommand => {
-                let text = self.scenario.settings.simulate_command();
-                self.status = Message::info(format!("copied: {text}"));
-                return vec![Effect::Copy(text)];
-            }
+            Action::Export | Action::CopyCommand => return self.export(action),
             Action::Redraw => return vec![Effect::Redraw],
             Action::Suspend => return vec![Effect::Suspend],
         }
         Vec::new()
     }
 
+    /// `x` (files) or `y` (the command line to the clipboard).
+    fn export(&mut self, action: Action) -> Vec<Effect> {
+        if action == Action::Export {
+            self.status = Message::info("exporting…");
+            return vec![Effect::Export {
+                stem: slug(&self.scenario.name),
+            }];
+        }
+        let text = self.scenario.settings.simulate_command();
+        self.status = Message::info(format!("copied: {text}"));
+        vec![Effect::Copy(text)]
+    }
+
     /// Advances the displayed clock by `wall_seconds × speed` while playing.
     pub fn tick(&mut self, wall_seconds: f64) -> Vec<Effect> {
-        self.run
+        let effects = self
+            .run
             .tick(wall_seconds)
             .into_iter()
             .map(Effect::Sim)
-            .collect()
+            .collect();
+        self.check_lesson();
+        effects
     }
 
     /// Takes an event from the worker (stale runs are ignored); whether anything visible

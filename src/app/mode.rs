@@ -46,6 +46,8 @@ pub enum PromptFor {
     Note,
     /// A chapter marker in the recording (`m`).
     Chapter,
+    /// The numeric answer to a lesson's question (`a`).
+    Answer,
 }
 
 impl PromptFor {
@@ -57,6 +59,7 @@ impl PromptFor {
             Self::SaveDescription { .. } => "description",
             Self::Note => "note",
             Self::Chapter => "chapter",
+            Self::Answer => "answer",
         }
     }
 }

@@ -32,6 +32,7 @@ impl App {
                 if let PlanState::Running { plan, .. } = self.run.plan {
                     self.log_plan(plan);
                 }
+                self.log_lesson_step();
             }
             Outcome::Recording(Err(e)) => self.mode = Mode::Dialog(clean(&e)),
             Outcome::RecordingSaved(path) => {

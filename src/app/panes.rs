@@ -16,12 +16,18 @@ pub enum Pane {
     Weak,
     /// The regime map: reversals over `(α̇0²/γ̇0², iy/ix)` with the critical curve (issue 12).
     Map,
+    /// The current step of a lesson.
+    Lesson,
+    /// The body seen from above (issue 14).
+    Body,
 }
 
 impl Pane {
     /// Every pane, in layout order.
-    pub const ALL: [Self; 6] = [
+    pub const ALL: [Self; 8] = [
         Self::Params,
+        Self::Lesson,
+        Self::Body,
         Self::Portrait,
         Self::Series,
         Self::Sweep,
@@ -37,13 +43,18 @@ impl Pane {
             Self::Portrait => 65,
             Self::Series | Self::Sweep | Self::Weak => 35,
             Self::Map => 50,
+            Self::Lesson => 30,
+            Self::Body => 45,
         }
     }
 
     /// Whether the user may hide it.
     #[must_use]
     pub fn optional(self) -> bool {
-        matches!(self, Self::Series | Self::Sweep | Self::Weak | Self::Map)
+        matches!(
+            self,
+            Self::Series | Self::Sweep | Self::Weak | Self::Map | Self::Lesson | Self::Body
+        )
     }
 }
 

@@ -67,6 +67,18 @@ impl App {
                 });
                 Vec::new()
             }
+            PromptFor::Answer => {
+                match text.parse::<f64>() {
+                    Ok(x) if x.is_finite() => self.answer(super::lesson::Given::Number(x)),
+                    _ => {
+                        self.status = Message::error(format!(
+                            "'{text}' is not a number; type one, Esc cancels"
+                        ));
+                        self.mode = Mode::Prompt(prompt);
+                    }
+                }
+                Vec::new()
+            }
             PromptFor::SaveName => {
                 if !crate::scenario::store::valid_name(&text) {
                     self.status = Message::error(format!(

@@ -49,8 +49,10 @@ impl App {
                 sweep,
                 weak,
                 map,
+                body,
             } => {
                 self.view.panes.set(Pane::Series, *series);
+                self.view.panes.set(Pane::Body, *body);
                 let mut effects = Vec::new();
                 for (pane, on) in [(Pane::Sweep, sweep), (Pane::Weak, weak), (Pane::Map, map)] {
                     if self.view.panes.shows(pane) != *on {
@@ -83,7 +85,11 @@ impl App {
                 });
                 Vec::new()
             }
-            Event::Checkpoint { .. } | Event::Plan { .. } => Vec::new(),
+            Event::LessonStep { .. } | Event::Answer { .. } => {
+                self.caption = lesson_caption(event, self.run.goal);
+                Vec::new()
+            }
+            Event::Checkpoint { .. } | Event::Plan { .. } | Event::End => Vec::new(),
         }
     }
 
@@ -99,5 +105,38 @@ impl App {
             generation: self.run.generation,
             t: self.run.target(),
         })
+    }
+}
+
+/// The caption of a recorded lesson step (a chapter) or answer (a note).
+fn lesson_caption(event: &Event, t: f64) -> Option<Caption> {
+    match event {
+        Event::LessonStep {
+            lesson,
+            step,
+            steps,
+            title,
+            text,
+        } => Some(Caption {
+            chapter: true,
+            text: clean(&format!(
+                "{lesson}, step {}/{steps}: {title}. {text}",
+                step + 1
+            )),
+            t,
+        }),
+        Event::Answer {
+            step,
+            given,
+            correct,
+        } => {
+            let verdict = if *correct { "right" } else { "not right" };
+            Some(Caption {
+                chapter: false,
+                text: clean(&format!("step {}: answered {given} ({verdict})", step + 1)),
+                t,
+            })
+        }
+        _ => None,
     }
 }

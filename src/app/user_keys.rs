@@ -25,6 +25,7 @@ pub const ACTION_NAMES: &[(Action, &str)] = &[
     (Action::ToggleSweep, "toggle_sweep"),
     (Action::ToggleWeak, "toggle_weak"),
     (Action::ToggleMap, "toggle_map"),
+    (Action::ToggleBody, "toggle_body"),
     (Action::WiderWindow, "wider_window"),
     (Action::NarrowerWindow, "narrower_window"),
     (Action::ZoomIn, "zoom_in"),

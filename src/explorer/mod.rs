@@ -37,6 +37,8 @@ pub enum AppEvent {
     Wheel(bool),
     /// The worker reports.
     Sim(SimEvent),
+    /// The followed file changed.
+    Follow(crate::record::tail::TailEvent),
 }
 
 /// Longest wall time one tick of the clock may cover.
@@ -66,6 +68,11 @@ pub struct ExplorerOptions {
     pub mouse: bool,
     /// The user's extra keys.
     pub keys: crate::app::user_keys::UserKeys,
+    /// A lesson to open (`rattleback lesson`).
+    pub lesson: Option<crate::scenario::lesson::Lesson>,
+    /// Follow this session file as it is written (`rattleback follow FILE`; `replay` holds
+    /// what it had when opened).
+    pub follow: Option<std::path::PathBuf>,
 }
 
 fn input_thread(tx: SyncSender<AppEvent>, stop: Arc<AtomicBool>) -> std::thread::JoinHandle<()> {
@@ -90,6 +97,108 @@ fn input_thread(tx: SyncSender<AppEvent>, stop: Arc<AtomicBool>) -> std::thread:
             }
         }
     })
+}
+
+/// A click (`at`) sets the start under it in the portrait; the wheel (`at` is `None`) zooms.
+/// Only in the keymap's mode (not while typing, a dialog or the help is open).
+fn mouse(app: &mut App, cache: &Cache, at: Option<(u16, u16)>, up: bool) -> Vec<Effect> {
+    if app.mode != crate::app::Mode::Normal {
+        return Vec::new();
+    }
+    match at {
+        Some((column, row)) => ui::portrait_point(cache, column, row)
+            .map(|(alpha, alpha_dot)| app.set_start_point(alpha, alpha_dot))
+            .unwrap_or_default(),
+        None if up => app.update(crate::app::Action::ZoomIn),
+        None => app.update(crate::app::Action::ZoomOut),
+    }
+}
+
+/// The lecturer's clock now: the last line's wall plus the time since the file was written.
+fn lecturer_now(rec: &crate::record::Recording, path: &std::path::Path) -> f64 {
+    let last = rec.lines.last().map_or(0.0, |(_, l)| l.wall);
+    let since = std::fs::metadata(path)
+        .and_then(|m| m.modified())
+        .ok()
+        .and_then(|m| m.elapsed().ok())
+        .map_or(0.0, |d| d.as_secs_f64());
+    last + since
+}
+
+/// How often the followed file is looked at (new lines appear within this, well under 0.5 s).
+const FOLLOW_POLL: Duration = Duration::from_millis(150);
+
+/// Looks at the followed file a few times a second and reports what changed.
+fn follow_thread(
+    path: &std::path::Path,
+    tx: SyncSender<AppEvent>,
+    stop: Arc<AtomicBool>,
+) -> Option<std::thread::JoinHandle<()>> {
+    let (mut tail, _) = crate::record::tail::Tail::open(path).ok()?;
+    Some(std::thread::spawn(move || {
+        while !stop.load(Ordering::Relaxed) {
+            std::thread::sleep(FOLLOW_POLL);
+            if let Some(event) = tail.poll()
+                && tx.send(AppEvent::Follow(event)).is_err()
+            {
+                return;
+            }
+        }
+    }))
+}
+
+/// Applies what the followed file did: new lines, a restart from its beginning (truncated or
+/// replaced: a fresh explorer on its header), or its absence.
+fn follow_event(
+    event: crate::record::tail::TailEvent,
+    app: &mut App,
+    replay: &mut Option<Replayer>,
+    options: &ExplorerOptions,
+) -> Vec<Effect> {
+    use crate::record::tail::TailEvent;
+    let Some(r) = replay.as_mut() else {
+        return Vec::new(); // forked: the lecturer's file no longer matters
+    };
+    match event {
+        TailEvent::Lines(lines) => {
+            let ended = lines
+                .iter()
+                .any(|l| matches!(l.event, crate::app::journal::Event::End));
+            let effects = r.push(lines, app);
+            if ended {
+                app.notice("the lecturer's recording ended; f forks, q quits");
+            }
+            effects
+        }
+        TailEvent::Restarted { why, recording } => {
+            let preset = match Preset::parse(
+                &recording.header.preset,
+                "followed file (header)",
+                "recorded",
+                &[],
+            ) {
+                Ok(p) => p,
+                Err(e) => {
+                    app.notice(&format!("{why}, and its header is not valid: {e}"));
+                    return Vec::new();
+                }
+            };
+            let app_options = app.options.clone();
+            let (fresh, mut effects) = App::new_after(&preset, app_options, app);
+            *app = fresh;
+            let path = options.follow.clone().unwrap_or_default();
+            let lines = recording.lines.iter().map(|(_, l)| l.clone()).collect();
+            let mut fresh_replay = Replayer::live(lines, lecturer_now(&recording, &path));
+            effects.extend(fresh_replay.catch_up(app));
+            *replay = Some(fresh_replay);
+            app.notice(&format!("{why}: following it from its start"));
+            effects
+        }
+        TailEvent::Missing(why) => {
+            app.notice(&why);
+            Vec::new()
+        }
+    }
 }
 
 /// Carries out an effect on the preset files (saving, the catalogue, loading); `None` for
@@ -252,6 +361,7 @@ fn finish_recording(
             Err(RecvTimeoutError::Disconnected) => break,
         }
     }
+    rec.stopping = true;
     let _ = rec.flush(app);
 }
 
@@ -293,6 +403,10 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
         Worker::spawn_with(book, move |e| tx.send(AppEvent::Sim(e)).is_ok())
     };
     let stop = Arc::new(AtomicBool::new(false));
+    let tail = options
+        .follow
+        .as_ref()
+        .map(|path| follow_thread(path, tx.clone(), Arc::clone(&stop)));
     let input = input_thread(tx, Arc::clone(&stop));
     let app_options = Options {
         fps: options.fps,
@@ -309,11 +423,18 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
     };
     let mut effects = effects;
     let mut replay = options.replay.as_ref().map(|r| {
-        let mut replayer = Replayer::new(r.lines.iter().map(|(_, l)| l.clone()).collect());
+        let lines = r.lines.iter().map(|(_, l)| l.clone()).collect();
+        let mut replayer = match &options.follow {
+            Some(path) => Replayer::live(lines, lecturer_now(r, path)),
+            None => Replayer::new(lines),
+        };
         effects.extend(replayer.catch_up(&mut app));
         replayer
     });
     let rebuild = |old: &App| App::new_after(preset, app_options.clone(), old);
+    if let Some(lesson) = &options.lesson {
+        effects.extend(app.start_lesson(lesson.clone()));
+    }
     if !options.startup_problems.is_empty() {
         app.show_dialog(&options.startup_problems.join("\n"));
     }
@@ -323,13 +444,14 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
     let result = event_loop(
         &mut app,
         &mut shell,
-        replay.as_mut(),
+        &mut replay,
         &rebuild,
         effects,
         &rx,
         hangup,
     );
     stop.store(true, Ordering::Relaxed);
+    drop(tail);
     // The terminal is restored before waiting for anything: the final checkpoint, the worker.
     let Shell {
         worker,
@@ -353,7 +475,7 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
 fn event_loop(
     app: &mut App,
     shell: &mut Shell<'_>,
-    mut replay: Option<&mut Replayer>,
+    replay: &mut Option<Replayer>,
     rebuild: &dyn Fn(&App) -> (App, Vec<Effect>),
     start: Vec<Effect>,
     rx: &Receiver<AppEvent>,
@@ -380,7 +502,7 @@ fn event_loop(
         if app.quit {
             return Ok(None);
         }
-        let animating = app.run.playing || replay.as_ref().is_some_and(|r| r.running());
+        let animating = app.run.playing || replay.as_ref().is_some_and(Replayer::running);
         let until_frame = frame.saturating_sub(last_frame.elapsed());
         let timeout = if animating || dirty {
             until_frame
@@ -396,8 +518,22 @@ fn event_loop(
             return Ok(Some(signal_hook::consts::SIGHUP));
         }
         match event {
+            // `f` forks a follower: it keeps the state and explores on its own.
+            Ok(AppEvent::Input(Key::Char('f')))
+                if replay.as_ref().is_some_and(Replayer::following)
+                    && app.mode == crate::app::Mode::Normal =>
+            {
+                *replay = None;
+                app.fork();
+                dirty = true;
+            }
+            Ok(AppEvent::Follow(event)) => {
+                let effects = follow_event(event, app, replay, options);
+                shell.execute(app, effects)?;
+                dirty = true;
+            }
             Ok(AppEvent::Input(key)) => {
-                let effects = match replay.as_deref_mut() {
+                let effects = match replay.as_mut() {
                     Some(r) if app.mode == crate::app::Mode::Normal || key == Key::Ctrl('c') => {
                         r.key(key, app, rebuild)
                     }
@@ -411,24 +547,15 @@ fn event_loop(
                 dirty = true;
             }
             // The mouse drives the explorer, never a replay (the recording does).
-            Ok(AppEvent::Click(column, row))
-                if replay.is_none() && app.mode == crate::app::Mode::Normal =>
-            {
-                if let Some((alpha, alpha_dot)) = ui::portrait_point(&cache, column, row) {
-                    let effects = app.set_start_point(alpha, alpha_dot);
-                    shell.execute(app, effects)?;
-                    dirty = true;
-                }
-            }
-            Ok(AppEvent::Wheel(up)) if replay.is_none() && app.mode == crate::app::Mode::Normal => {
-                let action = if up {
-                    crate::app::Action::ZoomIn
-                } else {
-                    crate::app::Action::ZoomOut
-                };
-                let effects = app.update(action);
+            Ok(AppEvent::Click(column, row)) if replay.is_none() => {
+                let effects = mouse(app, &cache, Some((column, row)), false);
+                dirty |= !effects.is_empty();
                 shell.execute(app, effects)?;
+            }
+            Ok(AppEvent::Wheel(up)) if replay.is_none() => {
+                let effects = mouse(app, &cache, None, up);
                 dirty = true;
+                shell.execute(app, effects)?;
             }
             Ok(AppEvent::Sim(e)) => dirty |= app.on_sim(e),
             Ok(AppEvent::Click(..) | AppEvent::Wheel(_)) | Err(RecvTimeoutError::Timeout) => {}
@@ -440,7 +567,7 @@ fn event_loop(
             last_tick = Instant::now();
             // A long gap (suspended with Ctrl-Z, a stalled terminal) is not played through.
             let wall = dt.as_secs_f64().min(MAX_TICK);
-            let effects = match replay.as_deref_mut() {
+            let effects = match replay.as_mut() {
                 Some(r) => r.advance(wall, app),
                 None => app.tick(wall),
             };

@@ -85,18 +85,29 @@ impl ActiveRecording {
     pub fn flush(&mut self, app: &mut App) -> Result<Option<Outcome>, Outcome> {
         let wall = self.started.elapsed().as_secs_f64();
         let mut checkpoint = false;
+        let mut last = (app.run.shown, app.run.generation);
         for (t, generation, event) in app.take_journal() {
             checkpoint |= matches!(event, Event::Checkpoint { .. });
-            self.recorder
-                .write(&Line {
-                    wall,
-                    t,
-                    generation,
-                    chain: None,
-                    event,
-                })
-                .map_err(|e| Outcome::RecordingFailed(e.to_string()))?;
+            last = (t, generation);
+            self.write(wall, t, generation, event)?;
         }
-        Ok((checkpoint && self.stopping).then(|| Outcome::RecordingSaved(self.path())))
+        if checkpoint && self.stopping {
+            // The last line says the recording is over (a follower shows it).
+            self.write(wall, last.0, last.1, Event::End)?;
+            return Ok(Some(Outcome::RecordingSaved(self.path())));
+        }
+        Ok(None)
+    }
+
+    fn write(&mut self, wall: f64, t: f64, generation: u64, event: Event) -> Result<(), Outcome> {
+        self.recorder
+            .write(&Line {
+                wall,
+                t,
+                generation,
+                chain: None,
+                event,
+            })
+            .map_err(|e| Outcome::RecordingFailed(e.to_string()))
     }
 }

@@ -13,6 +13,9 @@ pub struct Replayer {
     clock: f64,
     pace: f64,
     paused: bool,
+    /// Following a file being written: the clock runs past the last line (the lecturer's own
+    /// clock), and `Some(true)` once its `end` line arrived.
+    live: Option<bool>,
 }
 
 /// Pace limits (×).
@@ -32,7 +35,45 @@ impl Replayer {
             clock: 0.0,
             pace: 1.0,
             paused: false,
+            live: None,
         }
+    }
+
+    /// A replay that follows a recording being written, its clock at `now` (the lecturer's
+    /// clock: the last line's wall plus the time since it was written).
+    #[must_use]
+    pub fn live(lines: Vec<Line>, now: f64) -> Self {
+        let ended = lines
+            .last()
+            .is_some_and(|l| matches!(l.event, crate::app::journal::Event::End));
+        let mut me = Self::new(lines);
+        me.live = Some(ended);
+        me.clock = now;
+        me
+    }
+
+    /// New lines of the followed file. A line stamped well ahead of the clock means the
+    /// follower fell behind the lecturer: the clock jumps to it (paced to the lecturer's clock).
+    pub fn push(&mut self, lines: Vec<Line>, app: &mut App) -> Vec<Effect> {
+        for line in lines {
+            if matches!(line.event, crate::app::journal::Event::Chapter { .. }) {
+                self.chapters.push(self.lines.len());
+            }
+            if matches!(line.event, crate::app::journal::Event::End) {
+                self.live = Some(true);
+            }
+            if !self.paused && line.wall > self.clock + 0.5 {
+                self.clock = line.wall;
+            }
+            self.lines.push(line);
+        }
+        self.catch_up(app)
+    }
+
+    /// Whether this follows a file being written.
+    #[must_use]
+    pub fn following(&self) -> bool {
+        self.live.is_some()
     }
 
     /// Chapters already passed.
@@ -50,15 +91,20 @@ impl Replayer {
             chapter: self.passed(),
             chapters: self.chapters.len(),
             ended: self.next >= self.lines.len(),
-            at: self.clock.min(length),
+            at: if self.live.is_some() {
+                self.clock
+            } else {
+                self.clock.min(length)
+            },
             length,
+            live: self.live,
         }
     }
 
     /// Whether the clock runs.
     #[must_use]
     pub fn running(&self) -> bool {
-        !self.paused && self.next < self.lines.len()
+        !self.paused && (self.live == Some(false) || self.next < self.lines.len())
     }
 
     /// Applies every line up to the clock.

@@ -15,6 +15,7 @@
 //! Nothing here draws: the cast export, which renders, lives above both (`crate::cast`).
 
 mod file;
+pub mod tail;
 mod verify;
 
 pub use file::{Recorder, Recording, read};
@@ -123,6 +124,42 @@ pub fn session_schema() -> String {
     let mut s = serde_json::to_string_pretty(&schema).unwrap_or_default();
     s.push('\n');
     s
+}
+
+/// The chapter list of a recording, one line each: its number, the wall clock of the recording
+/// (`m:ss.s`), the simulated time and the title (cleaned of control characters); lesson steps
+/// count as chapters too.
+#[must_use]
+pub fn chapters(rec: &Recording) -> String {
+    use std::fmt::Write as _;
+    let mut out = String::new();
+    let mut n = 0;
+    for (_, line) in &rec.lines {
+        let title = match &line.event {
+            Event::Chapter { title } => title.clone(),
+            Event::LessonStep {
+                lesson,
+                step,
+                steps,
+                title,
+                ..
+            } => format!("{lesson}, step {}/{steps}: {title}", step + 1),
+            _ => continue,
+        };
+        n += 1;
+        let minutes = (line.wall / 60.0).floor();
+        let seconds = line.wall - 60.0 * minutes;
+        let _ = writeln!(
+            out,
+            "{n:>3}  {minutes:.0}:{seconds:04.1}  t {:>9.2}  {}",
+            line.t,
+            crate::scenario::text::clean(&title).replace(['\n', '\t'], " ")
+        );
+    }
+    if n == 0 {
+        out.push_str("no chapters\n");
+    }
+    out.trim_end().to_owned()
 }
 
 /// The chain value after `text` (see [`Line::chain`]).

@@ -199,8 +199,18 @@ fn index(table: &toml::de::DeTable<'_>, prefix: &str, out: &mut Vec<(String, usi
             format!("{prefix}.{}", key.get_ref())
         };
         out.push((path.clone(), key.span().start));
-        if let toml::de::DeValue::Table(inner) = value.get_ref() {
-            index(inner, &path, out);
+        match value.get_ref() {
+            toml::de::DeValue::Table(inner) => index(inner, &path, out),
+            // `[[step]]`: each table is `step.0`, `step.1`… from its own header.
+            toml::de::DeValue::Array(items) => {
+                for (i, item) in items.iter().enumerate() {
+                    if let toml::de::DeValue::Table(inner) = item.get_ref() {
+                        out.push((format!("{path}.{i}"), item.span().start));
+                        index(inner, &format!("{path}.{i}"), out);
+                    }
+                }
+            }
+            _ => {}
         }
     }
 }

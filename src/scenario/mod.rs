@@ -5,6 +5,7 @@
 
 pub mod config;
 pub mod error;
+pub mod lesson;
 pub mod preset;
 pub mod shipped;
 pub mod store;

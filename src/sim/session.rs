@@ -40,6 +40,8 @@ pub struct Point {
     pub alpha_dot: f64,
     /// Relative error of the conserved quantity at the last step end.
     pub energy_error: f64,
+    /// The tilt `gamma` (the fast rocking; the body pane draws its envelope).
+    pub gamma: f64,
 }
 
 struct Track {
@@ -86,6 +88,7 @@ impl Track {
             alpha: y[1],
             alpha_dot: y[3],
             energy_error: (self.integrator.energy() - self.e0) / self.scale,
+            gamma: y[0],
         }
     }
 

@@ -19,8 +19,10 @@
 //!  footer: key hints from the keymap table (? help and q quit always kept)
 //! ```
 
+mod body;
 mod dialogs;
 mod help;
+mod lesson;
 mod map;
 mod params;
 mod portrait;
@@ -41,6 +43,7 @@ use crate::app::panes::Pane;
 use crate::app::{App, Mode};
 use crate::scenario::theme::{Colour, ThemeSpec};
 
+pub use body::envelope as body_envelope;
 pub use portrait::Cache;
 
 /// A plot's areas inside a pane: the y labels (8 columns), the plot, the x labels (one row).
@@ -53,7 +56,11 @@ fn plot_areas(inner: Rect) -> (Rect, Rect, Rect) {
 
 /// The right-hand column: the visible panes, stacked by weight.
 fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, cache: &mut Cache) {
-    let column = app.view.panes.column();
+    let mut column = app.view.panes.column();
+    // On a short terminal the body takes the portrait's place (B brings the portrait back).
+    if right.height < 30 && app.view.panes.shows(Pane::Body) {
+        column.retain(|(p, _)| *p != Pane::Portrait);
+    }
     let areas = Layout::vertical(column.iter().map(|(_, w)| Constraint::Fill(*w))).split(right);
     for ((pane, _), area) in column.iter().zip(areas.iter()) {
         match pane {
@@ -94,6 +101,26 @@ fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, c
                 map::MapPane {
                     map: &app.map,
                     focused: app.mode == Mode::Map,
+                    look,
+                },
+                *area,
+            ),
+            Pane::Lesson => {
+                if let Some(state) = &app.lesson {
+                    frame.render_widget(
+                        lesson::LessonPane {
+                            lesson: state,
+                            missing: app.lesson_missing(),
+                            look,
+                        },
+                        *area,
+                    );
+                }
+            }
+            Pane::Body => frame.render_widget(
+                body::BodyPane {
+                    run: &app.run,
+                    aspect: app.scenario.settings.params.iy / app.scenario.settings.params.ix,
                     look,
                 },
                 *area,

@@ -56,6 +56,18 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
     };
     out.push(field(state.to_owned(), 0));
     match bar.replay {
+        Some(r) if r.live.is_some() => {
+            let state = if r.live == Some(true) {
+                "lecturer's recording ended".to_owned()
+            } else if r.paused {
+                "following, paused".to_owned()
+            } else {
+                "● following live".to_owned()
+            };
+            out.push(field(state, 0));
+            out.push(field(format!("{:.0} s", r.at), 2));
+            out.push(field("f forks".to_owned(), 1));
+        }
         Some(r) => {
             let state = if r.ended {
                 "replay ended".to_owned()

@@ -1,0 +1,283 @@
+//! A lesson in the explorer (`rattleback lesson NAME`): the current step in its pane, its preset
+//! and changes applied when it begins, a prediction asked before the run (keys `1`…`9` for a
+//! choice, `a` to type a number) and revealed after it, and `n` moving on once the step's
+//! condition holds. Every other key works as usual (`n` is the next step, not a note, while a
+//! lesson is open). Steps and answers are journaled when recording.
+
+use super::fields::Field;
+use super::journal::Event;
+use super::mode::{Prompt, PromptFor};
+use super::{App, Effect, Key, Message, Mode};
+use crate::scenario::lesson::{Lesson, Question, Until};
+
+/// An answer given.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Given {
+    /// The index of a choice.
+    Choice(usize),
+    /// A number.
+    Number(f64),
+}
+
+/// Where a lesson stands.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LessonState {
+    /// The lesson.
+    pub lesson: Lesson,
+    /// The current step.
+    pub step: usize,
+    /// The answer given at this step, if any.
+    pub given: Option<Given>,
+    /// The answer is revealed (after the run).
+    pub revealed: bool,
+    /// The last step's condition held and `n` was pressed.
+    pub finished: bool,
+}
+
+impl LessonState {
+    /// The current step.
+    #[must_use]
+    pub fn current(&self) -> &crate::scenario::lesson::Step {
+        &self.lesson.steps[self.step]
+    }
+
+    /// Whether the answer given is right.
+    #[must_use]
+    pub fn correct(&self) -> Option<bool> {
+        let given = self.given?;
+        Some(match (&self.current().question, given) {
+            (Some(Question::Choice { answer, .. }), Given::Choice(i)) => *answer == i,
+            (
+                Some(Question::Number {
+                    answer, tolerance, ..
+                }),
+                Given::Number(x),
+            ) => (x - answer).abs() <= *tolerance + 1e-12 * answer.abs(),
+            _ => false,
+        })
+    }
+
+    /// The answer given, as shown.
+    #[must_use]
+    pub fn given_text(&self) -> Option<String> {
+        Some(match (self.given?, &self.current().question) {
+            (Given::Choice(i), Some(Question::Choice { choices, .. })) => choices[i].clone(),
+            (Given::Number(x), _) => format!("{x}"),
+            (Given::Choice(i), _) => format!("{}", i + 1),
+        })
+    }
+
+    /// Whether the step waits for an answer before the run.
+    #[must_use]
+    pub fn awaiting_answer(&self) -> bool {
+        self.current().question.is_some() && self.given.is_none()
+    }
+}
+
+impl App {
+    /// Opens `lesson` at its first step; returns the effects that start it.
+    pub fn start_lesson(&mut self, lesson: Lesson) -> Vec<Effect> {
+        self.lesson = Some(LessonState {
+            lesson,
+            step: 0,
+            given: None,
+            revealed: false,
+            finished: false,
+        });
+        self.view.panes.set(super::panes::Pane::Lesson, true);
+        self.enter_step(0)
+    }
+
+    /// Begins step `index`: its preset, its changes, a paused run.
+    fn enter_step(&mut self, index: usize) -> Vec<Effect> {
+        let Some(state) = self.lesson.as_mut() else {
+            return Vec::new();
+        };
+        state.step = index;
+        state.given = None;
+        state.revealed = false;
+        let step = state.current().clone();
+        let count = state.lesson.steps.len();
+        self.log_lesson_step();
+        let mut effects = Vec::new();
+        if let Some(preset) = &step.preset {
+            effects.extend(self.load(preset));
+        }
+        if !step.set.is_empty() {
+            let mut s = self.scenario.settings;
+            for o in &step.set {
+                let field = o.key.rsplit('.').next().and_then(Field::named);
+                match field.map(|f| f.with_text(&s, &o.value)) {
+                    Some(Ok(next)) => {
+                        s = next;
+                        self.log(Event::Set {
+                            field: o.key.rsplit('.').next().unwrap_or_default().to_owned(),
+                            value: o.value.clone(),
+                        });
+                    }
+                    Some(Err(e)) => self.status = Message::error(format!("{}: {e}", o.key)),
+                    None => {
+                        self.status = Message::error(format!("{}: not a parameter here", o.key));
+                    }
+                }
+            }
+            self.scenario.set(s);
+            effects.extend(self.restart());
+        }
+        if self.run.playing {
+            effects.push(Effect::Sim(self.run.pause()));
+        }
+        let hint = if step.question.is_some() {
+            "answer first, then space plays"
+        } else {
+            "space plays; n moves on"
+        };
+        self.status = Message::info(format!("step {}/{count}: {hint}", index + 1));
+        effects
+    }
+
+    /// Journals the current step (when it begins, and when a recording starts mid-lesson).
+    pub(super) fn log_lesson_step(&mut self) {
+        let Some(state) = self.lesson.as_ref() else {
+            return;
+        };
+        let step = state.current();
+        let event = Event::LessonStep {
+            lesson: state.lesson.title.clone(),
+            step: state.step,
+            steps: state.lesson.steps.len(),
+            title: step.title.clone(),
+            text: step.text.clone(),
+        };
+        self.log(event);
+    }
+
+    /// What the step still waits for, as shown (`None`: the condition holds).
+    #[must_use]
+    pub fn lesson_missing(&self) -> Option<String> {
+        let state = self.lesson.as_ref()?;
+        let Until {
+            time,
+            reversals,
+            parameter,
+        } = &state.current().until;
+        let mut missing = Vec::new();
+        if let Some(t) = time
+            && self.run.shown < *t
+        {
+            missing.push(format!("t ≥ {t} (now {:.2})", self.run.shown));
+        }
+        if let Some(n) = reversals {
+            let now = self.run.reversals_shown();
+            if now < *n {
+                missing.push(format!("{n} reversals (now {now})"));
+            }
+        }
+        if let Some(p) = parameter {
+            let label = p.key.rsplit('.').next().unwrap_or_default();
+            if let Some(f) = Field::named(label) {
+                let v: f64 = f.exact(&self.scenario.settings).parse().unwrap_or(f64::NAN);
+                let low = p.at_least.is_some_and(|lo| v.is_nan() || v < lo);
+                let high = p.at_most.is_some_and(|hi| v.is_nan() || v > hi);
+                if low || high {
+                    let want = match (p.at_least, p.at_most) {
+                        (Some(lo), Some(hi)) => format!("{label} in [{lo}, {hi}]"),
+                        (Some(lo), None) => format!("{label} ≥ {lo}"),
+                        (None, Some(hi)) => format!("{label} ≤ {hi}"),
+                        (None, None) => String::new(),
+                    };
+                    missing.push(format!("{want} (now {})", f.show(&self.scenario.settings)));
+                }
+            }
+        }
+        if state.awaiting_answer() {
+            missing.insert(0, "an answer".to_owned());
+        }
+        (!missing.is_empty()).then(|| missing.join(", "))
+    }
+
+    /// Reveals the answer once the run is over or the step's condition holds; journals it.
+    pub(super) fn check_lesson(&mut self) {
+        let ready = self.run.done() || self.lesson_missing().is_none();
+        let Some(state) = self.lesson.as_mut() else {
+            return;
+        };
+        if state.given.is_none() || state.revealed || !ready {
+            return;
+        }
+        state.revealed = true;
+        let correct = state.correct().unwrap_or(false);
+        let given = state.given_text().unwrap_or_default();
+        let step = state.step;
+        self.log(Event::Answer {
+            step,
+            given,
+            correct,
+        });
+    }
+
+    /// A key while a lesson is open: `n`, the answer keys and a guard on play; `None` lets the
+    /// keymap have it.
+    pub(super) fn on_lesson_key(&mut self, key: Key) -> Option<Vec<Effect>> {
+        let state = self.lesson.as_ref()?;
+        let question = state.current().question.clone();
+        match key {
+            Key::Char('n') => Some(self.next_step()),
+            Key::Char(c @ '1'..='9') => {
+                let Some(Question::Choice { choices, .. }) = &question else {
+                    return None;
+                };
+                let i = c as usize - '1' as usize;
+                if i >= choices.len() || state.given.is_some() {
+                    return Some(Vec::new());
+                }
+                self.answer(Given::Choice(i));
+                Some(Vec::new())
+            }
+            Key::Char('a') if matches!(question, Some(Question::Number { .. })) => {
+                if state.given.is_none() {
+                    self.mode = Mode::Prompt(Prompt::new(PromptFor::Answer));
+                    self.status = Message::info("type a number and press Enter (Esc cancels)");
+                }
+                Some(Vec::new())
+            }
+            Key::Char(' ') if state.awaiting_answer() => {
+                self.status = Message::error(match question {
+                    Some(Question::Choice { .. }) => "answer first: a key from 1 on",
+                    _ => "answer first: a, then type a number",
+                });
+                Some(Vec::new())
+            }
+            _ => None,
+        }
+    }
+
+    /// Records an answer (typed numbers arrive through the prompt).
+    pub(super) fn answer(&mut self, given: Given) {
+        if let Some(state) = self.lesson.as_mut() {
+            state.given = Some(given);
+            let text = state.given_text().unwrap_or_default();
+            self.status = Message::info(format!(
+                "your answer: {text}; space plays, the answer shows after the run"
+            ));
+        }
+    }
+
+    fn next_step(&mut self) -> Vec<Effect> {
+        if let Some(missing) = self.lesson_missing() {
+            self.status = Message::error(format!("not yet: {missing}"));
+            return Vec::new();
+        }
+        let Some(state) = self.lesson.as_mut() else {
+            return Vec::new();
+        };
+        if state.step + 1 < state.lesson.steps.len() {
+            let next = state.step + 1;
+            self.enter_step(next)
+        } else {
+            state.finished = true;
+            self.status = Message::info(format!("lesson complete: {}", state.lesson.title));
+            Vec::new()
+        }
+    }
+}

@@ -1,0 +1,663 @@
+//! Lessons: a TOML file of steps the explorer walks a student through (`rattleback lesson NAME`).
+//!
+//! ```toml
+//! [lesson]
+//! title = "The first reversal"
+//! description = "What the spin does below the critical ratio"   # optional
+//!
+//! [[step]]
+//! title = "A body that turns back"
+//! text = "Press space and watch the spin angle."
+//! preset = "subcritical"             # optional: loaded when the step begins
+//! set = ["spring.k=1e6"]             # optional: then these changes, as `--set`
+//!
+//! [step.question]                    # optional: asked before the run
+//! prompt = "Will the spin reverse before t = 30?"
+//! choices = ["yes", "no"]            # a choice (keys 1, 2…) …
+//! answer = "yes"
+//! # … or a number (key a, then type it): answer = 7, tolerance = 0.5
+//!
+//! [step.until]                       # optional: what `n` waits for (all that are given)
+//! time = 10.0                        # the displayed time reached
+//! reversals = 2                      # reversals of the full motion counted
+//! parameter = "spring.k"             # a parameter …
+//! at_least = 1e6                     # … at or above (and/or `at_most`)
+//! ```
+//!
+//! Every problem is reported with the file, the line and the key, like presets (`rattleback
+//! check FILE` validates lessons too).
+
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+use toml::Value;
+
+use super::error::{PresetError, SourceMap};
+use super::preset::{Override, Preset};
+
+/// The environment-independent folder of the shipped lessons, and their text.
+pub const SHIPPED_LESSONS: &[(&str, &str)] = &[
+    (
+        "first-reversal",
+        include_str!("../../lessons/first-reversal.toml"),
+    ),
+    (
+        "stiff-limit",
+        include_str!("../../lessons/stiff-limit.toml"),
+    ),
+    ("tapping", include_str!("../../lessons/tapping.toml")),
+];
+
+/// A prediction asked before a step's run; the answer is revealed after it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Question {
+    /// One of a few choices.
+    Choice {
+        /// The question.
+        prompt: String,
+        /// The choices, in key order (1, 2, …).
+        choices: Vec<String>,
+        /// Index of the right one.
+        answer: usize,
+    },
+    /// A number, right within a tolerance.
+    Number {
+        /// The question.
+        prompt: String,
+        /// The right value.
+        answer: f64,
+        /// How far from it still counts as right.
+        tolerance: f64,
+    },
+}
+
+impl Question {
+    /// The question's text.
+    #[must_use]
+    pub fn prompt(&self) -> &str {
+        match self {
+            Self::Choice { prompt, .. } | Self::Number { prompt, .. } => prompt,
+        }
+    }
+
+    /// The right answer, as shown.
+    #[must_use]
+    pub fn answer_text(&self) -> String {
+        match self {
+            Self::Choice {
+                choices, answer, ..
+            } => choices[*answer].clone(),
+            Self::Number {
+                answer, tolerance, ..
+            } if *tolerance > 0.0 => format!("{answer} (± {tolerance})"),
+            Self::Number { answer, .. } => format!("{answer}"),
+        }
+    }
+}
+
+/// What `n` waits for before moving on (every condition given must hold).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Until {
+    /// The displayed time at least this.
+    pub time: Option<f64>,
+    /// At least this many reversals of the full motion shown.
+    pub reversals: Option<usize>,
+    /// A parameter (`section.key`) within bounds.
+    pub parameter: Option<ParameterBound>,
+}
+
+/// A parameter's bounds in a condition.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParameterBound {
+    /// `section.key`, as in presets.
+    pub key: String,
+    /// At or above.
+    pub at_least: Option<f64>,
+    /// At or below.
+    pub at_most: Option<f64>,
+}
+
+/// One step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Step {
+    /// Its title.
+    pub title: String,
+    /// What the student reads.
+    pub text: String,
+    /// A preset loaded when the step begins.
+    pub preset: Option<Preset>,
+    /// Then these changes.
+    pub set: Vec<Override>,
+    /// A prediction asked first.
+    pub question: Option<Question>,
+    /// What `n` waits for.
+    pub until: Until,
+}
+
+/// A lesson.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Lesson {
+    /// What `rattleback lesson` takes (the file stem).
+    pub name: String,
+    /// Its title.
+    pub title: String,
+    /// What it is about.
+    pub description: String,
+    /// The steps, in order (at least one).
+    pub steps: Vec<Step>,
+}
+
+/// Shipped or the user's.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Source {
+    /// Inside the binary.
+    Shipped,
+    /// In the user's lessons folder.
+    User,
+}
+
+/// One row of `rattleback lessons`.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Entry {
+    /// What `rattleback lesson` takes.
+    pub name: String,
+    /// The lesson's title.
+    pub title: String,
+    /// Its number of steps.
+    pub steps: usize,
+    /// Shipped or user.
+    pub source: Source,
+    /// The file.
+    pub path: String,
+}
+
+/// The user's lessons folder (`<config>/lessons`).
+#[must_use]
+pub fn user_dir() -> Option<PathBuf> {
+    super::shipped::config_dir().map(|d| d.join("lessons"))
+}
+
+/// Whether a TOML text is a lesson (it has a `[lesson]` table).
+#[must_use]
+pub fn is_lesson(src: &str) -> bool {
+    src.parse::<toml::Table>()
+        .is_ok_and(|t| t.contains_key("lesson"))
+}
+
+/// Every lesson, shipped then the user's (same name replaces), with the problems of broken
+/// user files.
+#[must_use]
+pub fn catalogue() -> (Vec<Entry>, Vec<PresetError>) {
+    let mut entries = Vec::new();
+    let mut problems = Vec::new();
+    for (name, src) in SHIPPED_LESSONS {
+        match Lesson::parse(src, &format!("lessons/{name}.toml (shipped)"), name) {
+            Ok(l) => entries.push(Entry {
+                name: (*name).to_owned(),
+                title: l.title,
+                steps: l.steps.len(),
+                source: Source::Shipped,
+                path: format!("lessons/{name}.toml"),
+            }),
+            Err(mut e) => problems.append(&mut e),
+        }
+    }
+    if let Some(dir) = user_dir() {
+        for path in super::shipped::toml_files(&dir) {
+            let name = path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            match Lesson::load(&path) {
+                Ok(l) => {
+                    entries.retain(|e| e.name != name);
+                    entries.push(Entry {
+                        name,
+                        title: l.title,
+                        steps: l.steps.len(),
+                        source: Source::User,
+                        path: path.display().to_string(),
+                    });
+                }
+                Err(mut e) => problems.append(&mut e),
+            }
+        }
+    }
+    (entries, problems)
+}
+
+/// The lesson `name_or_path`: a file, else a user lesson, else a shipped one.
+///
+/// # Errors
+/// Not found, or the file's first problem.
+pub fn resolve(name_or_path: &str) -> Result<Lesson, PresetError> {
+    let path = Path::new(name_or_path);
+    if path.is_file() {
+        return Lesson::load(path).map_err(|mut e| e.swap_remove(0));
+    }
+    if let Some(user) = user_dir().map(|d| d.join(format!("{name_or_path}.toml")))
+        && user.is_file()
+    {
+        return Lesson::load(&user).map_err(|mut e| e.swap_remove(0));
+    }
+    if let Some((name, src)) = SHIPPED_LESSONS.iter().find(|(n, _)| *n == name_or_path) {
+        return Lesson::parse(src, &format!("lessons/{name}.toml (shipped)"), name)
+            .map_err(|mut e| e.swap_remove(0));
+    }
+    let available: Vec<String> = catalogue().0.into_iter().map(|e| e.name).collect();
+    Err(PresetError::NotFound {
+        name: name_or_path.to_owned(),
+        available: available.join(", "),
+    })
+}
+
+impl Lesson {
+    /// Reads a lesson file.
+    ///
+    /// # Errors
+    /// Every problem, located.
+    pub fn load(path: &Path) -> Result<Self, Vec<PresetError>> {
+        let src = PresetError::read(path).map_err(|e| vec![e])?;
+        let stem = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        Self::parse(&src, &path.display().to_string(), &stem)
+    }
+
+    /// Parses a lesson; `label` names the file in errors, `name` is what `lesson` takes.
+    ///
+    /// # Errors
+    /// Every problem, each with the line and the key.
+    pub fn parse(src: &str, label: &str, name: &str) -> Result<Self, Vec<PresetError>> {
+        let map = SourceMap::new(src);
+        let table = map.parse_table(label).map_err(|e| vec![e])?;
+        let mut problems: Vec<PresetError> = Vec::new();
+        let mut at = |path: &str, message: String| {
+            let line = map.find_path(path).or_else(|| {
+                // A missing key belongs to its table.
+                path.rsplit_once('.')
+                    .and_then(|(parent, _)| map.find_path(parent))
+            });
+            problems.push(PresetError::Invalid {
+                path: label.to_owned(),
+                line: Some(line.unwrap_or(1)),
+                key: Some(path.to_owned()),
+                message,
+            });
+        };
+        for key in table.keys() {
+            if key != "lesson" && key != "step" {
+                at(
+                    key,
+                    format!(
+                        "unknown section `{key}`, expected `lesson` or `step`{}",
+                        super::text::did_you_mean(key, ["lesson", "step"])
+                    ),
+                );
+            }
+        }
+        let (mut title, mut description) = (String::new(), String::new());
+        match table.get("lesson") {
+            Some(Value::Table(t)) => {
+                for (k, v) in t {
+                    match (k.as_str(), v) {
+                        ("title", Value::String(s)) => title.clone_from(s),
+                        ("description", Value::String(s)) => description.clone_from(s),
+                        ("title" | "description", _) => {
+                            at(&format!("lesson.{k}"), "expected text in quotes".to_owned());
+                        }
+                        _ => at(
+                            &format!("lesson.{k}"),
+                            format!(
+                                "unknown key `{k}`, expected one of `title`, `description`{}",
+                                super::text::did_you_mean(k, ["title", "description"])
+                            ),
+                        ),
+                    }
+                }
+                if title.trim().is_empty() {
+                    at(
+                        "lesson.title",
+                        "missing required value (text in quotes)".to_owned(),
+                    );
+                }
+            }
+            Some(_) => at("lesson", "expected a [lesson] table".to_owned()),
+            None => at(
+                "lesson",
+                "missing the [lesson] table (title = \"…\")".to_owned(),
+            ),
+        }
+        let steps = match table.get("step") {
+            Some(Value::Array(items)) if !items.is_empty() => items
+                .iter()
+                .enumerate()
+                .filter_map(|(i, item)| step(item, &format!("step.{i}"), &mut at))
+                .collect(),
+            Some(_) => {
+                at("step", "expected [[step]] tables, at least one".to_owned());
+                Vec::new()
+            }
+            None => {
+                at("step", "a lesson needs at least one [[step]]".to_owned());
+                Vec::new()
+            }
+        };
+        if problems.is_empty() {
+            Ok(Self {
+                name: name.to_owned(),
+                title,
+                description,
+                steps,
+            })
+        } else {
+            Err(problems)
+        }
+    }
+}
+
+/// The keys a step takes.
+const STEP_KEYS: [&str; 6] = ["title", "text", "preset", "set", "question", "until"];
+
+fn number(v: &Value) -> Option<f64> {
+    match v {
+        Value::Float(f) if f.is_finite() => Some(*f),
+        #[allow(clippy::cast_precision_loss)]
+        Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    }
+}
+
+/// The parameters a condition may watch.
+pub const WATCHABLE: [&str; 10] = [
+    "body.ix",
+    "body.iy",
+    "body.iz",
+    "spring.k",
+    "initial.gamma",
+    "initial.alpha",
+    "initial.gamma_dot",
+    "initial.alpha_dot",
+    "run.t_end",
+    "run.tolerance",
+];
+
+fn step(item: &Value, path: &str, at: &mut dyn FnMut(&str, String)) -> Option<Step> {
+    let Value::Table(t) = item else {
+        at(path, "expected a [[step]] table".to_owned());
+        return None;
+    };
+    let text_of = |k: &str, at: &mut dyn FnMut(&str, String)| match t.get(k) {
+        Some(Value::String(s)) => Some(s.clone()),
+        Some(_) => {
+            at(&format!("{path}.{k}"), "expected text in quotes".to_owned());
+            None
+        }
+        None => None,
+    };
+    for k in t.keys() {
+        if !STEP_KEYS.contains(&k.as_str()) {
+            at(
+                &format!("{path}.{k}"),
+                format!(
+                    "unknown key `{k}`, expected one of {}{}",
+                    STEP_KEYS.map(|s| format!("`{s}`")).join(", "),
+                    super::text::did_you_mean(k, STEP_KEYS)
+                ),
+            );
+        }
+    }
+    let title = text_of("title", at);
+    if title.is_none() && !t.contains_key("title") {
+        at(
+            &format!("{path}.title"),
+            "missing required value (text in quotes)".to_owned(),
+        );
+    }
+    let text = text_of("text", at).unwrap_or_default();
+    let preset = match text_of("preset", at) {
+        Some(name) => match super::shipped::resolve(&name, &[]) {
+            Ok(p) => Some(p),
+            Err(e) => {
+                at(&format!("{path}.preset"), e.to_string());
+                None
+            }
+        },
+        None => None,
+    };
+    let mut set = Vec::new();
+    match t.get("set") {
+        None => {}
+        Some(Value::Array(items)) => {
+            for v in items {
+                match v.as_str().map(str::parse::<Override>) {
+                    Some(Ok(o)) => set.push(o),
+                    Some(Err(e)) => at(&format!("{path}.set"), e),
+                    None => at(
+                        &format!("{path}.set"),
+                        "expected \"section.key=value\" texts".to_owned(),
+                    ),
+                }
+            }
+            // Names and values checked like `--set` (on the step's preset, else the default).
+            let checked = match &preset {
+                Some(p) => Preset::parse(&p.to_toml(), "the step's preset", "step", &set),
+                None => super::shipped::resolve(super::shipped::DEFAULT_PRESET, &set),
+            };
+            if let Err(e) = checked {
+                at(&format!("{path}.set"), e.to_string());
+            }
+        }
+        Some(_) => at(
+            &format!("{path}.set"),
+            "expected a list of \"section.key=value\" texts".to_owned(),
+        ),
+    }
+    let question = match t.get("question") {
+        None => None,
+        Some(Value::Table(q)) => question(q, &format!("{path}.question"), at),
+        Some(_) => {
+            at(
+                &format!("{path}.question"),
+                "expected a [step.question] table".to_owned(),
+            );
+            None
+        }
+    };
+    let until = match t.get("until") {
+        None => Until::default(),
+        Some(Value::Table(u)) => until(u, &format!("{path}.until"), at),
+        Some(_) => {
+            at(
+                &format!("{path}.until"),
+                "expected a [step.until] table".to_owned(),
+            );
+            Until::default()
+        }
+    };
+    Some(Step {
+        title: title.unwrap_or_default(),
+        text,
+        preset,
+        set,
+        question,
+        until,
+    })
+}
+
+fn question(q: &toml::Table, path: &str, at: &mut dyn FnMut(&str, String)) -> Option<Question> {
+    const KEYS: [&str; 4] = ["prompt", "choices", "answer", "tolerance"];
+    for k in q.keys() {
+        if !KEYS.contains(&k.as_str()) {
+            at(
+                &format!("{path}.{k}"),
+                format!(
+                    "unknown key `{k}`, expected one of `prompt`, `choices`, `answer`, `tolerance`{}",
+                    super::text::did_you_mean(k, KEYS)
+                ),
+            );
+        }
+    }
+    let Some(Value::String(prompt)) = q.get("prompt") else {
+        at(
+            &format!("{path}.prompt"),
+            "missing required value (text in quotes)".to_owned(),
+        );
+        return None;
+    };
+    let answer = q.get("answer");
+    match q.get("choices") {
+        Some(Value::Array(items)) => {
+            let choices: Option<Vec<String>> = items
+                .iter()
+                .map(|v| v.as_str().map(str::to_owned))
+                .collect();
+            let Some(choices) = choices.filter(|c| (2..=9).contains(&c.len())) else {
+                at(
+                    &format!("{path}.choices"),
+                    "expected 2 to 9 texts in quotes".to_owned(),
+                );
+                return None;
+            };
+            let Some(index) = answer
+                .and_then(Value::as_str)
+                .and_then(|a| choices.iter().position(|c| c == a))
+            else {
+                at(
+                    &format!("{path}.answer"),
+                    format!(
+                        "expected one of the choices in quotes: {}",
+                        choices
+                            .iter()
+                            .map(|c| format!("\"{c}\""))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                );
+                return None;
+            };
+            if q.contains_key("tolerance") {
+                at(
+                    &format!("{path}.tolerance"),
+                    "only for a number answer".to_owned(),
+                );
+            }
+            Some(Question::Choice {
+                prompt: prompt.clone(),
+                choices,
+                answer: index,
+            })
+        }
+        Some(_) => {
+            at(
+                &format!("{path}.choices"),
+                "expected 2 to 9 texts in quotes".to_owned(),
+            );
+            None
+        }
+        None => {
+            let Some(value) = answer.and_then(number) else {
+                at(
+                    &format!("{path}.answer"),
+                    "expected a finite number (or give `choices` and a choice)".to_owned(),
+                );
+                return None;
+            };
+            let tolerance = match q.get("tolerance") {
+                None => 0.0,
+                Some(v) => {
+                    let Some(x) = number(v).filter(|x| *x >= 0.0) else {
+                        at(
+                            &format!("{path}.tolerance"),
+                            "expected a finite number ≥ 0".to_owned(),
+                        );
+                        return None;
+                    };
+                    x
+                }
+            };
+            Some(Question::Number {
+                prompt: prompt.clone(),
+                answer: value,
+                tolerance,
+            })
+        }
+    }
+}
+
+fn until(u: &toml::Table, path: &str, at: &mut dyn FnMut(&str, String)) -> Until {
+    const KEYS: [&str; 5] = ["time", "reversals", "parameter", "at_least", "at_most"];
+    let mut out = Until::default();
+    for (k, v) in u {
+        let here = format!("{path}.{k}");
+        match k.as_str() {
+            "time" => match number(v).filter(|x| *x >= 0.0) {
+                Some(x) => out.time = Some(x),
+                None => at(&here, "expected a finite number ≥ 0".to_owned()),
+            },
+            "reversals" => match v.as_integer().and_then(|n| usize::try_from(n).ok()) {
+                Some(n) => out.reversals = Some(n),
+                None => at(&here, "expected a whole number ≥ 0".to_owned()),
+            },
+            "parameter" | "at_least" | "at_most" => {}
+            _ => at(
+                &here,
+                format!(
+                    "unknown key `{k}`, expected one of `time`, `reversals`, `parameter`, `at_least`, `at_most`{}",
+                    super::text::did_you_mean(k, KEYS)
+                ),
+            ),
+        }
+    }
+    let bound = |k: &str, at: &mut dyn FnMut(&str, String)| match u.get(k) {
+        None => None,
+        Some(v) => {
+            let n = number(v);
+            if n.is_none() {
+                at(
+                    &format!("{path}.{k}"),
+                    "expected a finite number".to_owned(),
+                );
+            }
+            n
+        }
+    };
+    let (lo, hi) = (bound("at_least", at), bound("at_most", at));
+    match u.get("parameter") {
+        Some(Value::String(key)) => {
+            if !WATCHABLE.contains(&key.as_str()) {
+                at(
+                    &format!("{path}.parameter"),
+                    format!(
+                        "'{key}' is not a parameter; allowed: {}{}",
+                        WATCHABLE.join(", "),
+                        super::text::did_you_mean(key, WATCHABLE)
+                    ),
+                );
+            } else if lo.is_none() && hi.is_none() {
+                at(
+                    &format!("{path}.parameter"),
+                    "give `at_least` or `at_most` (or both)".to_owned(),
+                );
+            } else {
+                out.parameter = Some(ParameterBound {
+                    key: key.clone(),
+                    at_least: lo,
+                    at_most: hi,
+                });
+            }
+        }
+        Some(_) => at(
+            &format!("{path}.parameter"),
+            "expected \"section.key\" in quotes".to_owned(),
+        ),
+        None if lo.is_some() || hi.is_some() => at(
+            &format!("{path}.parameter"),
+            "`at_least`/`at_most` need a `parameter`".to_owned(),
+        ),
+        None => {}
+    }
+    out
+}

@@ -1,0 +1,90 @@
+//! The lesson pane: the current step's title and text, its question (the choices numbered, the
+//! answer given, then the right one after the run), what `n` waits for, and the keys.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Paragraph, Widget, Wrap};
+
+use super::{Look, title};
+use crate::app::lesson::LessonState;
+use crate::scenario::lesson::Question;
+
+/// The lesson pane: what it shows, borrowed.
+pub struct LessonPane<'a> {
+    /// The lesson and where it stands.
+    pub lesson: &'a LessonState,
+    /// What the step still waits for (`None`: `n` moves on).
+    pub missing: Option<String>,
+    /// Marker and colours.
+    pub look: &'a Look<'a>,
+}
+
+impl Widget for LessonPane<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let (state, look) = (self.lesson, self.look);
+        let step = state.current();
+        let count = state.lesson.steps.len();
+        let block = Block::bordered().title(title(
+            &format!(
+                "lesson: {} │ step {}/{count}: {}",
+                state.lesson.title,
+                state.step + 1,
+                step.title
+            ),
+            area.width,
+        ));
+        let bold = Style::default().add_modifier(Modifier::BOLD);
+        let mut lines = vec![Line::raw(step.text.clone())];
+        if let Some(q) = &step.question {
+            lines.push(Line::styled(format!("? {}", q.prompt()), bold));
+            match q {
+                Question::Choice { choices, .. } => {
+                    let row: Vec<Span> = choices
+                        .iter()
+                        .enumerate()
+                        .flat_map(|(i, c)| {
+                            let chosen = state.given == Some(crate::app::lesson::Given::Choice(i));
+                            let style = if chosen {
+                                bold.add_modifier(Modifier::REVERSED)
+                            } else {
+                                Style::default()
+                            };
+                            [
+                                Span::styled(format!(" {} {c} ", i + 1), style),
+                                Span::raw("  "),
+                            ]
+                        })
+                        .collect();
+                    lines.push(Line::from(row));
+                }
+                Question::Number { .. } => {
+                    if state.given.is_none() {
+                        lines.push(Line::raw(" a: type a number"));
+                    }
+                }
+            }
+            let verdict = match (state.given_text(), state.revealed, state.correct()) {
+                (None, _, _) => "answer before you play".to_owned(),
+                (Some(g), false, _) => format!("your answer: {g} (revealed after the run)"),
+                (Some(g), true, Some(true)) => {
+                    format!("your answer: {g}, right ({})", q.answer_text())
+                }
+                (Some(g), true, _) => format!("your answer: {g}; the answer: {}", q.answer_text()),
+            };
+            lines.push(Line::styled(verdict, look.dim()));
+        }
+        let next = match (&self.missing, state.finished) {
+            (_, true) => "lesson complete".to_owned(),
+            (None, _) if state.step + 1 == count => "n: finish the lesson".to_owned(),
+            (None, _) => "n: next step".to_owned(),
+            (Some(m), _) => format!("n waits for {m}"),
+        };
+        lines.push(Line::styled(next, bold));
+        Paragraph::new(lines)
+            .wrap(Wrap { trim: true })
+            .block(block)
+            .render(area, buf);
+    }
+}

@@ -1,0 +1,265 @@
+//! Issue 14, item 3: following a session while a recorder thread writes it: new lines arrive
+//! within 0.5 s, truncation, replacement, removal and the end are noticed and said, and the
+//! follower never writes.
+#![allow(clippy::float_cmp)] // values copied, compared exactly
+
+mod common;
+
+use std::time::{Duration, Instant};
+
+use common::Headless;
+use rattleback::app::journal::Event;
+use rattleback::explorer::replay::Replayer;
+use rattleback::record::tail::{Tail, TailEvent};
+use rattleback::record::{FORMAT, Header, Line, Recorder, Size, ThemeRef, VERSION};
+
+fn dir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("rattleback-follow-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn header() -> Header {
+    let preset = rattleback::scenario::shipped::resolve("subcritical", &[]).unwrap();
+    Header {
+        format: FORMAT.to_owned(),
+        version: VERSION,
+        program: "test".to_owned(),
+        preset: preset.to_toml(),
+        method: "auto".to_owned(),
+        tolerance: 1e-9,
+        terminal: Size {
+            width: 80,
+            height: 24,
+        },
+        theme: ThemeRef::Name("Default (16 colours)".to_owned()),
+        fps: 30.0,
+    }
+}
+
+fn line(wall: f64, event: Event) -> Line {
+    Line {
+        wall,
+        t: 0.0,
+        generation: 1,
+        chain: None,
+        event,
+    }
+}
+
+/// Polls until `pred` holds or 3 s pass; returns the events seen.
+fn poll_until(tail: &mut Tail, pred: &dyn Fn(&[TailEvent]) -> bool) -> Vec<TailEvent> {
+    let mut seen = Vec::new();
+    let end = Instant::now() + Duration::from_secs(3);
+    while Instant::now() < end && !pred(&seen) {
+        if let Some(e) = tail.poll() {
+            seen.push(e);
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    seen
+}
+
+fn lines_of(events: &[TailEvent]) -> Vec<Line> {
+    events
+        .iter()
+        .flat_map(|e| match e {
+            TailEvent::Lines(l) => l.clone(),
+            _ => Vec::new(),
+        })
+        .collect()
+}
+
+#[test]
+fn lines_written_by_a_recorder_thread_arrive_within_half_a_second() {
+    let d = dir("live");
+    let path = d.join("lecture.jsonl");
+    let mut rec = Recorder::create(&path, &header()).unwrap();
+    rec.write(&line(0.0, Event::Play)).unwrap();
+    let (mut tail, first) = Tail::open(&path).unwrap();
+    assert_eq!(first.lines.len(), 1);
+    let before: Vec<u8> = std::fs::read(&path).unwrap();
+    let writer = std::thread::spawn(move || {
+        let mut written = Vec::new();
+        for i in 1..=30 {
+            std::thread::sleep(Duration::from_millis(15));
+            let value = f64::from(i);
+            rec.write(&line(value * 0.1, Event::Speed { value }))
+                .unwrap();
+            written.push(Instant::now());
+        }
+        rec.write(&line(3.5, Event::End)).unwrap();
+        written
+    });
+    // The follower looks every 100 ms (the explorer: every 150 ms).
+    let mut arrived: Vec<(f64, Instant)> = Vec::new();
+    let end = Instant::now() + Duration::from_secs(5);
+    while Instant::now() < end && !arrived.iter().any(|(v, _)| v.is_nan()) {
+        if let Some(TailEvent::Lines(lines)) = tail.poll() {
+            for l in lines {
+                let v = match l.event {
+                    Event::Speed { value } => value,
+                    Event::End => f64::NAN,
+                    _ => continue,
+                };
+                arrived.push((v, Instant::now()));
+            }
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    let written = writer.join().unwrap();
+    let speeds: Vec<f64> = arrived
+        .iter()
+        .map(|a| a.0)
+        .filter(|v| !v.is_nan())
+        .collect();
+    assert_eq!(
+        speeds,
+        (1..=30).map(f64::from).collect::<Vec<_>>(),
+        "all, in order"
+    );
+    for (i, w) in written.iter().enumerate() {
+        let lag = arrived[i].1.duration_since(*w);
+        assert!(
+            lag < Duration::from_millis(500),
+            "line {i} arrived after {lag:?}"
+        );
+    }
+    assert!(tail.ended(), "the end line was seen");
+    // Read-only: the bytes the follower saw are untouched and nothing else is in the folder.
+    let after = std::fs::read(&path).unwrap();
+    assert_eq!(&after[..before.len()], &before[..]);
+    assert_eq!(std::fs::read_dir(&d).unwrap().count(), 1);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn a_partial_line_waits_for_its_newline() {
+    use std::io::Write as _;
+    let d = dir("partial");
+    let path = d.join("s.jsonl");
+    drop(Recorder::create(&path, &header()).unwrap());
+    let (mut tail, _) = Tail::open(&path).unwrap();
+    let text = serde_json::to_string(&line(0.5, Event::Pause)).unwrap();
+    let (a, b) = text.split_at(text.len() / 2);
+    let mut f = std::fs::OpenOptions::new()
+        .append(true)
+        .open(&path)
+        .unwrap();
+    f.write_all(a.as_bytes()).unwrap();
+    f.flush().unwrap();
+    assert!(tail.poll().is_none(), "half a line is not a line");
+    f.write_all(b.as_bytes()).unwrap();
+    f.write_all(b"\n").unwrap();
+    f.flush().unwrap();
+    match tail.poll() {
+        Some(TailEvent::Lines(l)) => assert_eq!(l[0].event, Event::Pause),
+        other => panic!("{other:?}"),
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn truncation_replacement_and_removal_are_survived_and_said() {
+    let d = dir("survive");
+    let path = d.join("s.jsonl");
+    let mut rec = Recorder::create(&path, &header()).unwrap();
+    for i in 0..5 {
+        rec.write(&line(f64::from(i), Event::Play)).unwrap();
+    }
+    drop(rec);
+    let (mut tail, _) = Tail::open(&path).unwrap();
+
+    // Truncated, then written again from the start (a new recording into the same file).
+    std::fs::OpenOptions::new()
+        .write(true)
+        .open(&path)
+        .unwrap()
+        .set_len(0)
+        .unwrap();
+    let seen = poll_until(&mut tail, &|s| !s.is_empty());
+    match seen.first() {
+        Some(TailEvent::Missing(_) | TailEvent::Restarted { .. }) => {}
+        other => panic!("{other:?}"),
+    }
+    std::fs::remove_file(&path).unwrap();
+    let mut rec = Recorder::create(&path, &header()).unwrap();
+    rec.write(&line(0.0, Event::Reset)).unwrap();
+    let seen = poll_until(&mut tail, &|s| {
+        s.iter().any(|e| matches!(e, TailEvent::Restarted { .. }))
+    });
+    let Some(TailEvent::Restarted { recording, .. }) = seen
+        .iter()
+        .find(|e| matches!(e, TailEvent::Restarted { .. }))
+    else {
+        panic!("{seen:?}")
+    };
+    assert_eq!(recording.lines.len(), 1, "read again from its start");
+    rec.write(&line(1.0, Event::Play)).unwrap();
+    let seen = poll_until(&mut tail, &|s| !lines_of(s).is_empty());
+    assert_eq!(lines_of(&seen)[0].event, Event::Play, "and followed on");
+
+    // Replaced: another file renamed over the path.
+    let other = d.join("other.jsonl");
+    let mut rec2 = Recorder::create(&other, &header()).unwrap();
+    rec2.write(&line(0.0, Event::Step)).unwrap();
+    std::fs::rename(&other, &path).unwrap();
+    let seen = poll_until(&mut tail, &|s| !s.is_empty());
+    match &seen[0] {
+        TailEvent::Restarted { why, recording } => {
+            assert!(why.contains("replaced"), "{why}");
+            assert_eq!(recording.lines[0].1.event, Event::Step);
+        }
+        other => panic!("{other:?}"),
+    }
+
+    // Removed: said once, then back.
+    std::fs::remove_file(&path).unwrap();
+    let seen = poll_until(&mut tail, &|s| !s.is_empty());
+    assert!(matches!(seen[0], TailEvent::Missing(_)), "{seen:?}");
+    assert!(tail.poll().is_none(), "said once");
+    let mut rec3 = Recorder::create(&path, &header()).unwrap();
+    rec3.write(&line(0.0, Event::Play)).unwrap();
+    let seen = poll_until(&mut tail, &|s| !s.is_empty());
+    match &seen[0] {
+        TailEvent::Restarted { why, .. } => assert!(why.contains("back"), "{why}"),
+        other => panic!("{other:?}"),
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn a_live_replay_applies_new_lines_and_keeps_the_lecturers_clock() {
+    let mut h = Headless::new("subcritical");
+    let mut r = Replayer::live(vec![line(0.0, Event::Play)], 0.0);
+    let effects = r.catch_up(&mut h.app);
+    h.exec(effects);
+    assert!(r.following() && r.running());
+    // The lecturer changes k; the line arrives stamped at 2 s while the follower's clock is at
+    // 0: the clock jumps to it (the follower had fallen behind) and the change applies.
+    let set = Line {
+        t: 0.5,
+        ..line(
+            2.0,
+            Event::Set {
+                field: "k".to_owned(),
+                value: "100000.0".to_owned(),
+            },
+        )
+    };
+    let effects = r.push(vec![set], &mut h.app);
+    h.exec(effects);
+    assert_eq!(h.app.scenario.settings.params.k, 1e5);
+    assert!(h.app.replay.unwrap().at >= 2.0);
+    // The end: said in the status bar's state, the clock stops.
+    let effects = r.push(vec![line(2.5, Event::End)], &mut h.app);
+    h.exec(effects);
+    assert_eq!(h.app.replay.unwrap().live, Some(true));
+    // Fork: the state stays, the replay's hold ends.
+    let k = h.app.scenario.settings.params.k;
+    h.app.fork();
+    assert!(h.app.replay.is_none());
+    assert_eq!(h.app.scenario.settings.params.k, k);
+    h.key(rattleback::app::Key::Char('z'));
+}

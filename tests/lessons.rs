@@ -1,0 +1,248 @@
+//! Issue 14, item 2: lessons. The schema (the shipped lessons parse; each bad file is refused
+//! with its line and key), the listing, and the step logic through the app headless.
+#![allow(clippy::float_cmp, clippy::too_many_lines)] // values copied, compared exactly; one walk
+
+mod common;
+
+use common::{Headless, bin};
+use rattleback::app::Key;
+use rattleback::app::journal::Event;
+use rattleback::scenario::lesson::{Lesson, SHIPPED_LESSONS, resolve};
+
+fn fixture(name: &str) -> String {
+    format!(
+        "{}/tests/fixtures/lessons/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+#[test]
+fn the_shipped_lessons_parse_and_are_listed() {
+    assert!(SHIPPED_LESSONS.len() >= 3);
+    for (name, _) in SHIPPED_LESSONS {
+        let l = resolve(name).unwrap();
+        assert!(l.steps.len() >= 3, "{name}");
+        assert!(l.steps.iter().all(|s| !s.title.is_empty()));
+    }
+    let (code, out, err) = bin(&["lessons", "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    let list: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let first = &list[0];
+    assert_eq!(first["name"], "first-reversal");
+    assert_eq!(first["source"], "shipped");
+    assert_eq!(first["steps"], 4);
+    for key in ["title", "path"] {
+        assert!(first[key].is_string(), "{key}");
+    }
+    let files: Vec<String> = SHIPPED_LESSONS
+        .iter()
+        .map(|(n, _)| format!("{}/lessons/{n}.toml", env!("CARGO_MANIFEST_DIR")))
+        .collect();
+    let mut args = vec!["check"];
+    args.extend(files.iter().map(String::as_str));
+    let (code, out, err) = bin(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("3 file(s) ok"), "{out}");
+}
+
+#[test]
+fn bad_lessons_are_refused_with_the_line_and_the_key() {
+    for (file, line, needles) in [
+        (
+            "missing-title.toml",
+            1,
+            vec!["lesson.title", "missing required value"],
+        ),
+        (
+            "typo-step-key.toml",
+            10,
+            vec!["step.1.txet", "unknown key `txet`", "did you mean `text`?"],
+        ),
+        (
+            "bad-choice.toml",
+            11,
+            vec!["step.0.question.answer", "\"yes\", \"no\""],
+        ),
+        (
+            "unknown-preset.toml",
+            6,
+            vec!["step.0.preset", "did you mean `subcritical`?"],
+        ),
+        ("bad-set.toml", 6, vec!["step.0.set", "spring.kk"]),
+        (
+            "bad-until.toml",
+            8,
+            vec!["step.0.until.parameter", "did you mean `spring.k`?"],
+        ),
+        ("no-steps.toml", 1, vec!["step", "at least one [[step]]"]),
+    ] {
+        let path = fixture(file);
+        let (code, out, err) = bin(&["check", &path]);
+        assert_eq!(code, 2, "{file}: {out}{err}");
+        assert!(
+            err.contains(&format!("{file}:{line}:")),
+            "{file}: not at line {line}: {err}"
+        );
+        for n in needles {
+            assert!(err.contains(n), "{file}: lacks {n}: {err}");
+        }
+        let (code, _, err) = bin(&["lesson", &path]);
+        assert_eq!(code, 2, "`lesson` refuses it before the terminal: {err}");
+    }
+    let (code, _, err) = bin(&["lesson", "first-reversl"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("did you mean `first-reversal`?"), "{err}");
+}
+
+fn lesson_app(name: &str) -> Headless {
+    let lesson: Lesson = resolve(name).unwrap();
+    let mut h = Headless::new("supercritical");
+    h.app.on_key(Key::Char('R'));
+    h.app.on_outcome(rattleback::app::Outcome::Recording(Ok(
+        "lesson.jsonl".into()
+    )));
+    let effects = h.app.start_lesson(lesson);
+    h.exec(effects);
+    h
+}
+
+#[test]
+fn steps_ask_first_reveal_after_and_wait_for_their_condition() {
+    let mut h = lesson_app("first-reversal");
+    let state = h.app.lesson.as_ref().unwrap();
+    assert_eq!(state.step, 0);
+    assert_eq!(
+        h.app.scenario.name, "Subcritical start",
+        "the step's preset"
+    );
+    assert!(!h.app.run.playing);
+    // Play is held until the question is answered.
+    h.key(Key::Char(' '));
+    assert!(!h.app.run.playing, "no play before the answer");
+    assert!(h.app.status.as_ref().unwrap().error);
+    // `n` says what is missing.
+    h.key(Key::Char('n'));
+    let status = &h.app.status.as_ref().unwrap().text;
+    assert!(status.contains("not yet: an answer"), "{status}");
+    h.key(Key::Char('1')); // yes
+    assert!(
+        !h.app.lesson.as_ref().unwrap().revealed,
+        "not before the run"
+    );
+    h.play_until(10.0, 8.0);
+    let state = h.app.lesson.as_ref().unwrap();
+    assert!(state.revealed, "revealed once the condition holds");
+    assert_eq!(state.correct(), Some(true));
+    assert!(h.app.lesson_missing().is_none());
+    h.key(Key::Char('n'));
+    let state = h.app.lesson.as_ref().unwrap();
+    assert_eq!(state.step, 1);
+    assert!(!h.app.run.playing, "a new step starts paused");
+
+    // A number: `a`, typed, Enter; a wrong one is revealed as wrong.
+    h.key(Key::Char('a'));
+    for c in "5".chars() {
+        h.key(Key::Char(c));
+    }
+    h.key(Key::Enter);
+    h.play_until(30.0, 64.0);
+    let state = h.app.lesson.as_ref().unwrap();
+    assert!(state.revealed);
+    assert_eq!(state.correct(), Some(false), "7 reversals, not 5");
+    assert_eq!(
+        h.app.run.reversals_shown(),
+        7,
+        "the lesson's answer is the physics'"
+    );
+    h.key(Key::Char('n'));
+    h.key(Key::Char('2')); // "no, never"
+    h.play_until(30.0, 64.0);
+    assert_eq!(h.app.lesson.as_ref().unwrap().correct(), Some(true));
+    assert_eq!(h.app.run.reversals_shown(), 0);
+    h.key(Key::Char('n'));
+
+    // A parameter condition: alpha_dot ≥ 0.92, reached by editing it.
+    assert_eq!(h.app.lesson.as_ref().unwrap().step, 3);
+    h.key(Key::Char('n'));
+    assert!(
+        h.app
+            .status
+            .as_ref()
+            .unwrap()
+            .text
+            .contains("alpha_dot ≥ 0.92")
+    );
+    for _ in 0..7 {
+        h.key(Key::Down); // to alpha_dot
+    }
+    h.key(Key::Enter);
+    for c in "0.95".chars() {
+        h.key(Key::Char(c));
+    }
+    h.key(Key::Enter);
+    assert!(
+        h.app.lesson_missing().is_none(),
+        "{:?}",
+        h.app.lesson_missing()
+    );
+    h.key(Key::Char('n'));
+    assert!(h.app.lesson.as_ref().unwrap().finished);
+
+    // Recorded: the steps and the answers.
+    let journal = h.app.take_journal();
+    let steps: Vec<usize> = journal
+        .iter()
+        .filter_map(|(_, _, e)| match e {
+            Event::LessonStep { step, .. } => Some(*step),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(steps, [0, 1, 2, 3]);
+    let answers: Vec<(usize, String, bool)> = journal
+        .iter()
+        .filter_map(|(_, _, e)| match e {
+            Event::Answer {
+                step,
+                given,
+                correct,
+            } => Some((*step, given.clone(), *correct)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        answers,
+        [
+            (0, "yes".to_owned(), true),
+            (1, "5".to_owned(), false),
+            (2, "no, never".to_owned(), true)
+        ]
+    );
+}
+
+#[test]
+fn step_changes_are_applied_and_the_keys_still_work() {
+    let mut h = lesson_app("tapping");
+    // Step 1 (index 0) then 2 need their conditions; jump by meeting them.
+    h.key(Key::Char('1'));
+    h.play_until(5.0, 8.0);
+    h.key(Key::Char('n'));
+    for _ in 0..5 {
+        h.key(Key::Down); // to alpha
+    }
+    h.key(Key::Enter);
+    for c in "-0.785".chars() {
+        h.key(Key::Char(c));
+    }
+    h.key(Key::Enter);
+    h.key(Key::Char('n'));
+    let state = h.app.lesson.as_ref().unwrap();
+    assert_eq!(state.step, 2);
+    assert_eq!(
+        h.app.scenario.settings.params.iy, 3.0,
+        "set = [\"body.iy=3\"]"
+    );
+    // The explorer's keys keep working inside a lesson.
+    let zoom = h.app.view.view.zoom;
+    h.key(Key::Char('z'));
+    assert!(h.app.view.view.zoom > zoom);
+}
