@@ -468,3 +468,20 @@ fn the_body_turns_with_alpha_and_the_bar_shows_the_rocking() {
     let after = text(&render(&h.app, 80, 24));
     assert_ne!(before, after, "the body turns as alpha changes");
 }
+
+#[test]
+fn lesson_pane_at_80x24() {
+    let lesson = rattleback::scenario::lesson::resolve("first-reversal").unwrap();
+    let mut h = Headless::new("supercritical");
+    let effects = h.app.start_lesson(lesson);
+    h.exec(effects);
+    h.key(Key::Char('1'));
+    let screen = text(&render(&h.app, 80, 24));
+    assert!(screen.contains("lesson: The first reversal"), "{screen}");
+    assert!(screen.contains("1 yes"), "{screen}");
+    assert!(
+        screen.contains("your answer: yes (revealed after the run)"),
+        "{screen}"
+    );
+    insta::assert_snapshot!("lesson_80x24", screen);
+}

@@ -503,9 +503,12 @@ fn event_loop(
             return Ok(None);
         }
         let animating = app.run.playing || replay.as_ref().is_some_and(Replayer::running);
-        let until_frame = frame.saturating_sub(last_frame.elapsed());
-        let timeout = if animating || dirty {
-            until_frame
+        let timeout = if dirty {
+            frame.saturating_sub(last_frame.elapsed())
+        } else if animating {
+            // The clocks move once a frame: sleep until the next tick, not until a frame that
+            // nothing will draw (a follower whose lecturer is paused would spin).
+            frame.saturating_sub(last_tick.elapsed())
         } else {
             // Idle: wake now and then to notice a signal or a vanished terminal within 100 ms.
             Duration::from_millis(100)

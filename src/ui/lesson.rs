@@ -21,20 +21,23 @@ pub struct LessonPane<'a> {
     pub look: &'a Look<'a>,
 }
 
-impl Widget for LessonPane<'_> {
-    fn render(self, area: Rect, buf: &mut Buffer) {
+impl LessonPane<'_> {
+    /// Rows the pane needs at `width` columns (its text wrapped, borders included).
+    #[must_use]
+    pub fn height(&self, width: u16) -> u16 {
+        let inner = usize::from(width.saturating_sub(2)).max(1);
+        let rows: usize = self
+            .lines()
+            .iter()
+            .map(|l| l.width().div_ceil(inner).max(1))
+            .sum();
+        u16::try_from(rows + 2).unwrap_or(u16::MAX)
+    }
+
+    fn lines(&self) -> Vec<Line<'static>> {
         let (state, look) = (self.lesson, self.look);
         let step = state.current();
         let count = state.lesson.steps.len();
-        let block = Block::bordered().title(title(
-            &format!(
-                "lesson: {} │ step {}/{count}: {}",
-                state.lesson.title,
-                state.step + 1,
-                step.title
-            ),
-            area.width,
-        ));
         let bold = Style::default().add_modifier(Modifier::BOLD);
         let mut lines = vec![Line::raw(step.text.clone())];
         if let Some(q) = &step.question {
@@ -82,7 +85,24 @@ impl Widget for LessonPane<'_> {
             (Some(m), _) => format!("n waits for {m}"),
         };
         lines.push(Line::styled(next, bold));
-        Paragraph::new(lines)
+        lines
+    }
+}
+
+impl Widget for LessonPane<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let state = self.lesson;
+        let block = Block::bordered().title(title(
+            &format!(
+                "lesson: {} │ step {}/{}: {}",
+                state.lesson.title,
+                state.step + 1,
+                state.lesson.steps.len(),
+                state.current().title
+            ),
+            area.width,
+        ));
+        Paragraph::new(self.lines())
             .wrap(Wrap { trim: true })
             .block(block)
             .render(area, buf);

@@ -61,7 +61,20 @@ fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, c
     if right.height < 30 && app.view.panes.shows(Pane::Body) {
         column.retain(|(p, _)| *p != Pane::Portrait);
     }
-    let areas = Layout::vertical(column.iter().map(|(_, w)| Constraint::Fill(*w))).split(right);
+    let look_ref = look;
+    let lesson_pane = app.lesson.as_ref().map(|state| lesson::LessonPane {
+        lesson: state,
+        missing: app.lesson_missing(),
+        look: look_ref,
+    });
+    // The lesson's step gets the rows its text needs (up to 60 % of the column); the rest share.
+    let areas = Layout::vertical(column.iter().map(|(p, w)| match (p, &lesson_pane) {
+        (Pane::Lesson, Some(pane)) => {
+            Constraint::Length(pane.height(right.width).min(right.height * 3 / 5))
+        }
+        _ => Constraint::Fill(*w),
+    }))
+    .split(right);
     for ((pane, _), area) in column.iter().zip(areas.iter()) {
         match pane {
             Pane::Portrait => frame.render_stateful_widget(
