@@ -38,30 +38,21 @@ pub fn presets(args: &PresetsArgs) -> ExitCode {
         };
     }
     let (entries, problems) = catalogue();
-    let out = match args.format {
-        ListFormat::Json => {
-            let mut s = serde_json::to_string_pretty(&entries).unwrap_or_else(|_| "[]".to_owned());
-            s.push('\n');
-            s
-        }
-        ListFormat::Table => {
-            let mut s = String::new();
-            for e in &entries {
-                let _ = writeln!(
-                    s,
-                    "{:<16} {:<8} {}\n                 {}\n                 {}\n",
-                    e.name,
-                    format!("{:?}", e.source).to_lowercase(),
-                    e.title,
-                    e.path,
-                    e.description
-                );
-            }
-            s
-        }
-    };
-    say_raw!("{out}");
-    report(&problems)
+    print_list(
+        &entries,
+        args.format,
+        &|e| {
+            format!(
+                "{:<16} {:<8} {}\n                 {}\n                 {}\n\n",
+                e.name,
+                format!("{:?}", e.source).to_lowercase(),
+                e.title,
+                e.path,
+                e.description
+            )
+        },
+        &problems,
+    )
 }
 
 /// One row of `rattleback themes`.
@@ -103,56 +94,38 @@ pub fn themes(args: &ListArgs) -> ExitCode {
             }
         })
         .collect();
-    let out = match args.format {
-        ListFormat::Json => {
-            let mut s = serde_json::to_string_pretty(&entries).unwrap_or_else(|_| "[]".to_owned());
-            s.push('\n');
-            s
-        }
-        ListFormat::Table => {
-            let mut s = String::new();
-            for e in &entries {
-                let _ = writeln!(
-                    s,
-                    "{:<16} {:<8} {}\n                 {}\n                 {}\n",
-                    e.name, e.source, e.title, e.path, e.description
-                );
-            }
-            s
-        }
-    };
-    say_raw!("{out}");
-    report(&problems)
+    print_list(
+        &entries,
+        args.format,
+        &|e| {
+            format!(
+                "{:<16} {:<8} {}\n                 {}\n                 {}\n\n",
+                e.name, e.source, e.title, e.path, e.description
+            )
+        },
+        &problems,
+    )
 }
 
 /// `rattleback lessons`: every lesson, like `presets`.
 #[must_use]
 pub fn lessons(args: &ListArgs) -> ExitCode {
     let (entries, problems) = crate::scenario::lesson::catalogue();
-    let out = match args.format {
-        ListFormat::Json => {
-            let mut s = serde_json::to_string_pretty(&entries).unwrap_or_else(|_| "[]".to_owned());
-            s.push('\n');
-            s
-        }
-        ListFormat::Table => {
-            let mut s = String::new();
-            for e in &entries {
-                let _ = writeln!(
-                    s,
-                    "{:<16} {:<8} {} ({} steps)\n                 {}\n",
-                    e.name,
-                    format!("{:?}", e.source).to_lowercase(),
-                    e.title,
-                    e.steps,
-                    e.path
-                );
-            }
-            s
-        }
-    };
-    say_raw!("{out}");
-    report(&problems)
+    print_list(
+        &entries,
+        args.format,
+        &|e| {
+            format!(
+                "{:<16} {:<8} {} ({} steps)\n                 {}\n\n",
+                e.name,
+                format!("{:?}", e.source).to_lowercase(),
+                e.title,
+                e.steps,
+                e.path
+            )
+        },
+        &problems,
+    )
 }
 
 /// The command line as clap sees it, with the preset and theme names of this machine as the
@@ -217,6 +190,26 @@ fn write_stdout(bytes: &[u8]) -> ExitCode {
             ExitCode::from(1)
         }
     }
+}
+
+/// Prints a list as JSON (an array of objects) or as a table (`row` per entry), then the
+/// problems found; exit 2 if any (`presets`, `themes`, `lessons`).
+fn print_list<T: serde::Serialize>(
+    entries: &[T],
+    format: ListFormat,
+    row: &dyn Fn(&T) -> String,
+    problems: &[PresetError],
+) -> ExitCode {
+    let out = match format {
+        ListFormat::Json => {
+            let mut s = serde_json::to_string_pretty(entries).unwrap_or_else(|_| "[]".to_owned());
+            s.push('\n');
+            s
+        }
+        ListFormat::Table => entries.iter().map(row).collect(),
+    };
+    say_raw!("{out}");
+    report(problems)
 }
 
 fn report(problems: &[PresetError]) -> ExitCode {

@@ -136,12 +136,9 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
             return ExitCode::SUCCESS;
         }
     }
-    let (config, keys) = match commands::load_config() {
+    let (config, keys) = match config_or_exit() {
         Ok(c) => c,
-        Err(e) => {
-            say_err!("rattleback: error: {e}");
-            return ExitCode::from(2);
-        }
+        Err(code) => return code,
     };
     let asked = with_config(&args.look, &config);
     let look = LookArgs {
@@ -219,6 +216,15 @@ fn replay_theme(asked: Option<&str>, recorded: &record::ThemeRef) -> String {
     "default".to_owned()
 }
 
+/// The configuration and the user's keys, or the exit of an invalid `config.toml` (its error
+/// said on stderr).
+fn config_or_exit() -> Result<(Config, UserKeys), ExitCode> {
+    commands::load_config().map_err(|e| {
+        say_err!("rattleback: error: {e}");
+        ExitCode::from(2)
+    })
+}
+
 /// The look asked on the command line, completed by the configuration.
 fn with_config(look: &LookArgs, config: &Config) -> LookArgs {
     let marker = config.marker.as_deref().map(|m| match m {
@@ -250,12 +256,9 @@ fn run_follow(args: &rattleback::cli::FollowArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let (config, keys) = match commands::load_config() {
+    let (config, keys) = match config_or_exit() {
         Ok(c) => c,
-        Err(e) => {
-            say_err!("rattleback: error: {e}");
-            return ExitCode::from(2);
-        }
+        Err(code) => return code,
     };
     let preset = match rattleback::scenario::Preset::parse(
         &rec.header.preset,
@@ -292,12 +295,9 @@ fn run_lesson(args: &rattleback::cli::LessonArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let (config, keys) = match commands::load_config() {
+    let (config, keys) = match config_or_exit() {
         Ok(c) => c,
-        Err(e) => {
-            say_err!("rattleback: error: {e}");
-            return ExitCode::from(2);
-        }
+        Err(code) => return code,
     };
     if let Some(out) = &args.record
         && let Err(e) = check_output(out, None, args.force, "--record")
@@ -333,12 +333,9 @@ fn run_lesson(args: &rattleback::cli::LessonArgs) -> ExitCode {
 }
 
 fn run_explorer(cli: &Cli) -> ExitCode {
-    let (config, keys) = match commands::load_config() {
+    let (config, keys) = match config_or_exit() {
         Ok(c) => c,
-        Err(e) => {
-            say_err!("rattleback: error: {e}");
-            return ExitCode::from(2);
-        }
+        Err(code) => return code,
     };
     let name = cli
         .preset

@@ -22,6 +22,7 @@ mod prompts;
 mod replayed;
 pub mod run;
 mod scenario;
+mod state;
 pub mod sweep;
 pub mod user_keys;
 pub mod weak;
@@ -31,6 +32,9 @@ pub use keys::{Action, Key};
 pub use mode::Mode;
 pub use run::{Events, PlanState, RunState, TRAIL_CAP};
 pub use scenario::{Derived, Scenario};
+pub use state::{
+    Caption, Journal, Message, Options, RecState, ReplayInfo, ViewState, ellipsis, slug,
+};
 
 use crate::scenario::Preset;
 use crate::scenario::text::clean;
@@ -43,130 +47,6 @@ use portrait::{Bounds, View};
 
 /// Speed limits (simulated seconds per wall second).
 pub const SPEED_RANGE: (f64, f64) = (1.0 / 64.0, 1024.0);
-
-/// Options fixed at start-up.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Options {
-    /// Frame-rate cap.
-    pub fps: f64,
-    /// Names of the colour themes `T` cycles through.
-    pub theme_names: Vec<String>,
-    /// The user's extra keys (`[keys]` in `config.toml`).
-    pub keys: user_keys::UserKeys,
-}
-
-impl Options {
-    /// Options at `fps` with the default theme only.
-    #[must_use]
-    pub fn at(fps: f64) -> Self {
-        Self {
-            fps,
-            theme_names: vec!["default".to_owned()],
-            keys: user_keys::UserKeys::default(),
-        }
-    }
-
-    /// The action of `key`: the user's binding, else the keymap's.
-    #[must_use]
-    pub fn action_for(&self, key: Key) -> Option<Action> {
-        self.keys.action_for(key).or_else(|| keys::action_for(key))
-    }
-}
-
-/// Zoom, pan, panes, overlay and theme.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ViewState {
-    /// Zoom, pan, wrap, fixed ranges.
-    pub view: View,
-    /// The preset's view, which `0` returns to.
-    pub home: View,
-    /// Visible panes.
-    pub panes: Panes,
-    /// Effective overlay shown (and so integrated).
-    pub overlay: bool,
-    /// Index of the colour theme.
-    pub theme: usize,
-}
-
-/// A line for the user: information or an error.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Message {
-    /// The text (control characters stripped).
-    pub text: String,
-    /// Whether it reports an error.
-    pub error: bool,
-}
-
-impl Message {
-    // Always `Some`: they fill `App::status`, an `Option`, at every call site.
-    #[allow(clippy::unnecessary_wraps)]
-    fn info(text: impl Into<String>) -> Option<Self> {
-        Some(Self {
-            text: clean(&text.into()),
-            error: false,
-        })
-    }
-
-    #[allow(clippy::unnecessary_wraps)]
-    fn error(text: impl Into<String>) -> Option<Self> {
-        Some(Self {
-            text: clean(&text.into()),
-            error: true,
-        })
-    }
-}
-
-/// A note or chapter title on screen: it stays until the next one.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Caption {
-    /// A chapter (else a note).
-    pub chapter: bool,
-    /// The text.
-    pub text: String,
-    /// Simulated time it belongs to.
-    pub t: f64,
-}
-
-/// The replay's state, as shown.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ReplayInfo {
-    /// Replay pace (×).
-    pub pace: f64,
-    /// Paused.
-    pub paused: bool,
-    /// Chapters passed.
-    pub chapter: usize,
-    /// Chapters in the file.
-    pub chapters: usize,
-    /// The recording's end was reached.
-    pub ended: bool,
-    /// Wall seconds of the recording replayed.
-    pub at: f64,
-    /// Wall seconds the recording lasts.
-    pub length: f64,
-    /// Following a recording as it is written (`rattleback follow`): `Some(ended)`.
-    pub live: Option<bool>,
-}
-
-/// Whether a recording is on.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum RecState {
-    /// No recording.
-    #[default]
-    Off,
-    /// Journaling.
-    On,
-    /// Waiting for the final checkpoint before closing.
-    Stopping,
-}
-
-/// The journal of a recording: semantic events `(simulated time, generation, event)`.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Journal {
-    /// Whether one is on.
-    pub state: RecState,
-    entries: Vec<(f64, u64, Event)>,
-}
 
 /// The whole explorer state.
 pub struct App {
@@ -652,38 +532,4 @@ impl App {
         );
         portrait::apply_view(auto, &self.view.view)
     }
-}
-
-/// A file-name-safe form of `name`: lower-case letters, digits and single dashes.
-#[must_use]
-pub fn slug(name: &str) -> String {
-    let mut out = String::new();
-    for c in name.chars().flat_map(char::to_lowercase) {
-        if c.is_ascii_alphanumeric() {
-            out.push(c);
-        } else if !out.ends_with('-') && !out.is_empty() {
-            out.push('-');
-        }
-    }
-    let out = out
-        .trim_end_matches('-')
-        .chars()
-        .take(48)
-        .collect::<String>();
-    if out.is_empty() {
-        "rattleback".to_owned()
-    } else {
-        out
-    }
-}
-
-/// `text` cut to `width` characters, ending in `…` when cut.
-#[must_use]
-pub fn ellipsis(text: &str, width: usize) -> String {
-    if text.chars().count() <= width {
-        return text.to_owned();
-    }
-    let mut s: String = text.chars().take(width.saturating_sub(1)).collect();
-    s.push('…');
-    s
 }

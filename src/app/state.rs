@@ -1,0 +1,167 @@
+//! The small types of the app's state: start-up options, the view, messages and captions, the
+//! replay's and the recording's state; and the text helpers the app and the UI share.
+
+use super::journal::Event;
+use super::keys::{self, Action, Key};
+use super::panes::Panes;
+use super::portrait::View;
+use super::user_keys;
+use crate::scenario::text::clean;
+
+/// Options fixed at start-up.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Options {
+    /// Frame-rate cap.
+    pub fps: f64,
+    /// Names of the colour themes `T` cycles through.
+    pub theme_names: Vec<String>,
+    /// The user's extra keys (`[keys]` in `config.toml`).
+    pub keys: user_keys::UserKeys,
+}
+
+impl Options {
+    /// Options at `fps` with the default theme only.
+    #[must_use]
+    pub fn at(fps: f64) -> Self {
+        Self {
+            fps,
+            theme_names: vec!["default".to_owned()],
+            keys: user_keys::UserKeys::default(),
+        }
+    }
+
+    /// The action of `key`: the user's binding, else the keymap's.
+    #[must_use]
+    pub fn action_for(&self, key: Key) -> Option<Action> {
+        self.keys.action_for(key).or_else(|| keys::action_for(key))
+    }
+}
+
+/// Zoom, pan, panes, overlay and theme.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewState {
+    /// Zoom, pan, wrap, fixed ranges.
+    pub view: View,
+    /// The preset's view, which `0` returns to.
+    pub home: View,
+    /// Visible panes.
+    pub panes: Panes,
+    /// Effective overlay shown (and so integrated).
+    pub overlay: bool,
+    /// Index of the colour theme.
+    pub theme: usize,
+}
+
+/// A line for the user: information or an error.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Message {
+    /// The text (control characters stripped).
+    pub text: String,
+    /// Whether it reports an error.
+    pub error: bool,
+}
+
+impl Message {
+    // Always `Some`: they fill `App::status`, an `Option`, at every call site.
+    #[allow(clippy::unnecessary_wraps)]
+    pub(super) fn info(text: impl Into<String>) -> Option<Self> {
+        Some(Self {
+            text: clean(&text.into()),
+            error: false,
+        })
+    }
+
+    #[allow(clippy::unnecessary_wraps)]
+    pub(super) fn error(text: impl Into<String>) -> Option<Self> {
+        Some(Self {
+            text: clean(&text.into()),
+            error: true,
+        })
+    }
+}
+
+/// A note or chapter title on screen: it stays until the next one.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Caption {
+    /// A chapter (else a note).
+    pub chapter: bool,
+    /// The text.
+    pub text: String,
+    /// Simulated time it belongs to.
+    pub t: f64,
+}
+
+/// The replay's state, as shown.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReplayInfo {
+    /// Replay pace (×).
+    pub pace: f64,
+    /// Paused.
+    pub paused: bool,
+    /// Chapters passed.
+    pub chapter: usize,
+    /// Chapters in the file.
+    pub chapters: usize,
+    /// The recording's end was reached.
+    pub ended: bool,
+    /// Wall seconds of the recording replayed.
+    pub at: f64,
+    /// Wall seconds the recording lasts.
+    pub length: f64,
+    /// Following a recording as it is written (`rattleback follow`): `Some(ended)`.
+    pub live: Option<bool>,
+}
+
+/// Whether a recording is on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum RecState {
+    /// No recording.
+    #[default]
+    Off,
+    /// Journaling.
+    On,
+    /// Waiting for the final checkpoint before closing.
+    Stopping,
+}
+
+/// The journal of a recording: semantic events `(simulated time, generation, event)`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Journal {
+    /// Whether one is on.
+    pub state: RecState,
+    pub(super) entries: Vec<(f64, u64, Event)>,
+}
+
+/// A file-name-safe form of `name`: lower-case letters, digits and single dashes.
+#[must_use]
+pub fn slug(name: &str) -> String {
+    let mut out = String::new();
+    for c in name.chars().flat_map(char::to_lowercase) {
+        if c.is_ascii_alphanumeric() {
+            out.push(c);
+        } else if !out.ends_with('-') && !out.is_empty() {
+            out.push('-');
+        }
+    }
+    let out = out
+        .trim_end_matches('-')
+        .chars()
+        .take(48)
+        .collect::<String>();
+    if out.is_empty() {
+        "rattleback".to_owned()
+    } else {
+        out
+    }
+}
+
+/// `text` cut to `width` characters, ending in `…` when cut.
+#[must_use]
+pub fn ellipsis(text: &str, width: usize) -> String {
+    if text.chars().count() <= width {
+        return text.to_owned();
+    }
+    let mut s: String = text.chars().take(width.saturating_sub(1)).collect();
+    s.push('…');
+    s
+}
