@@ -247,6 +247,20 @@ fn marker(choice: Option<MarkerChoice>) -> ratatui::symbols::Marker {
     }
 }
 
+/// Checks a `--record` file before the terminal is touched: new, or `force` (then the old one
+/// is removed, since the recorder itself never replaces a file).
+fn prepare_record(out: Option<&std::path::Path>, force: bool) -> Result<(), ExitCode> {
+    let Some(out) = out else { return Ok(()) };
+    if let Err(e) = check_output(out, None, force, "--record") {
+        say_err!("rattleback: error: {e}");
+        return Err(ExitCode::from(2));
+    }
+    if force {
+        let _ = std::fs::remove_file(out);
+    }
+    Ok(())
+}
+
 fn run_follow(args: &rattleback::cli::FollowArgs) -> ExitCode {
     // Read once here: a file that is not a session is refused before the terminal is touched.
     let rec = match rattleback::record::tail::Tail::open(&args.file) {
@@ -299,16 +313,8 @@ fn run_lesson(args: &rattleback::cli::LessonArgs) -> ExitCode {
         Ok(c) => c,
         Err(code) => return code,
     };
-    if let Some(out) = &args.record
-        && let Err(e) = check_output(out, None, args.force, "--record")
-    {
-        say_err!("rattleback: error: {e}");
-        return ExitCode::from(2);
-    }
-    if args.force
-        && let Some(out) = &args.record
-    {
-        let _ = std::fs::remove_file(out);
+    if let Err(code) = prepare_record(args.record.as_deref(), args.force) {
+        return code;
     }
     // The first step's preset, else the default, opens the explorer; the lesson takes over.
     let preset = match lesson.steps[0].preset.clone() {
@@ -349,17 +355,8 @@ fn run_explorer(cli: &Cli) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    if let Some(out) = &cli.record
-        && let Err(e) = check_output(out, None, cli.force, "--record")
-    {
-        say_err!("rattleback: error: {e}");
-        return ExitCode::from(2);
-    }
-    if cli.force
-        && let Some(out) = &cli.record
-    {
-        // Replacing was asked for: the recorder itself never replaces a file.
-        let _ = std::fs::remove_file(out);
+    if let Err(code) = prepare_record(cli.record.as_deref(), cli.force) {
+        return code;
     }
     let setup = Setup {
         look: with_config(&cli.look, &config),

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::Headless;
+use common::{Headless, bin_in};
 use rattleback::app::user_keys::UserKeys;
 use rattleback::app::{Action, Effect, Key, Options};
 
@@ -13,19 +13,6 @@ fn temp(name: &str) -> std::path::PathBuf {
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d
-}
-
-fn bin_in(config_dir: &std::path::Path, args: &[&str]) -> (i32, String, String) {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
-        .args(args)
-        .env("RATTLEBACK_CONFIG_DIR", config_dir)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
 }
 
 #[test]

@@ -234,12 +234,17 @@ pub fn averaged_cases() -> Vec<AveragedCase> {
 
 /// Runs the binary with a private config folder; `(exit code, stdout, stderr)`.
 pub fn bin(args: &[&str]) -> (i32, String, String) {
+    bin_in(
+        &std::env::temp_dir().join(format!("rattleback-test-{}", std::process::id())),
+        args,
+    )
+}
+
+/// Runs the binary with `config_dir` as its config folder; `(exit code, stdout, stderr)`.
+pub fn bin_in(config_dir: &std::path::Path, args: &[&str]) -> (i32, String, String) {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
         .args(args)
-        .env(
-            "RATTLEBACK_CONFIG_DIR",
-            std::env::temp_dir().join(format!("rattleback-test-{}", std::process::id())),
-        )
+        .env("RATTLEBACK_CONFIG_DIR", config_dir)
         .output()
         .expect("the binary runs");
     (
