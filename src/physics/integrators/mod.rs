@@ -12,7 +12,7 @@ mod effective;
 mod full_dop853;
 pub mod reversals;
 mod rk4;
-pub(crate) mod roots;
+pub mod roots;
 pub mod splitting;
 
 use serde::Serialize;
@@ -210,6 +210,14 @@ pub enum StepError {
     /// `auto` is a planner, not an integrator: resolve it first (`physics::plan`).
     #[error("method auto must be resolved to a concrete method before integrating")]
     Unplanned,
+    /// The method belongs to another model.
+    #[error("method {method} is not offered for the {model} model")]
+    NotOffered {
+        /// The method's name.
+        method: &'static str,
+        /// The model's name.
+        model: &'static str,
+    },
     /// A run (or `auto`'s next probe, verification or refinement) is predicted to exceed the
     /// work budget it was given; nothing of it was started.
     #[error("{what} is {over}")]

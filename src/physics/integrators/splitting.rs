@@ -140,6 +140,14 @@ impl Composition {
         self.method
     }
 
+    /// The coefficients `(a_0 … a_m, b_1 … b_m)` of the drifts (the flow of the first part)
+    /// and the kicks (the exact flow of the second), as fractions of the step: any model with
+    /// two exactly solvable parts composes them the same way.
+    #[must_use]
+    pub fn coefficients(&self) -> (&[f64], &[f64]) {
+        (&self.drifts, &self.kicks)
+    }
+
     /// Exact fast flows per step.
     #[must_use]
     pub fn stages(&self) -> usize {

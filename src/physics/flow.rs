@@ -1,0 +1,110 @@
+//! The model-generic face of an integration: what the explorer's worker, the runners and the
+//! benchmarks need from any model's integrator, in terms of a slow coordinate, an event
+//! function and a state vector (never of a particular model's variables).
+//!
+//! Each model (`rattleback`, `kapitza`) implements [`Flow`] in its own folder; the worker holds
+//! a `Box<dyn Flow>` built through [`super::Model`]. Events are sign changes of the event
+//! function at `t > 0` ([`EventTracker`]), located inside a step by the method's own
+//! interpolant.
+
+pub use super::integrators::{Method, Stats, StepError};
+
+/// What is drawn of a state: the slow coordinate, its rate, and the fast coordinate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// The slow coordinate (the rattleback's spin angle `α`, the pendulum's `θ`).
+    pub q: f64,
+    /// Its rate as integrated (with the fast ripple where the model has one).
+    pub q_dot: f64,
+    /// The fast coordinate (the rattleback's tilt `γ`; the pendulum's ripple of `θ`, `θ − Θ`).
+    pub fast: f64,
+}
+
+/// A running integration of one model's problem.
+pub trait Flow: Send {
+    /// Which method this is.
+    fn method(&self) -> Method;
+    /// Current time.
+    fn time(&self) -> f64;
+    /// Start of the last step (equal to [`Flow::time`] before the first).
+    fn time_prev(&self) -> f64;
+    /// Takes one step, never past `t_limit`, which must exceed the current time.
+    ///
+    /// # Errors
+    /// When the step cannot be completed with a finite result.
+    fn step(&mut self, t_limit: f64) -> Result<(), StepError>;
+    /// The drawn sample at `t`: the current state when `t >= time()`, else from the method's
+    /// own interpolant inside the last step.
+    fn sample(&mut self, t: f64) -> Sample;
+    /// The state vector at `t` (same rule), in the model's own order.
+    fn state_at(&mut self, t: f64) -> Vec<f64>;
+    /// The event function at the current time (the slow rate: the rattleback's `α̇`, the
+    /// pendulum's averaged `Θ̇`).
+    fn event_value(&self) -> f64;
+    /// Where the event function vanishes inside the last step, given that it changed sign.
+    fn locate_event(&mut self) -> f64;
+    /// Smallest size the event function must reach between two events for the second to
+    /// count: the size of whatever ripple the event function keeps (0 when it has none).
+    fn event_hysteresis(&self) -> f64 {
+        0.0
+    }
+    /// The quantity the method conserves (or whose drift it reports) at the current state.
+    fn energy(&self) -> f64;
+    /// Work counters.
+    fn stats(&self) -> Stats;
+}
+
+/// Follows the sign of a flow's event function from step to step.
+///
+/// It remembers the last nonzero sign, so a start on zero is not an event and a step ending
+/// exactly on zero is neither missed nor counted twice. With a hysteresis `h > 0`, a sign
+/// change counts only if the function reached `|f| > h` since the last one (a ripple of size
+/// below `h` cannot make events chatter).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct EventTracker {
+    last_sign: f64,
+    armed: bool,
+}
+
+impl EventTracker {
+    /// Starts from the initial value of the event function.
+    #[must_use]
+    pub fn new(value0: f64) -> Self {
+        Self {
+            last_sign: sign(value0),
+            armed: true,
+        }
+    }
+
+    /// Checks the step just taken; returns the event time inside it, if any.
+    pub fn after_step(&mut self, flow: &mut dyn Flow) -> Option<f64> {
+        let v = flow.event_value();
+        let now = sign(v);
+        let h = flow.event_hysteresis();
+        if now == 0.0 {
+            return None;
+        }
+        // Signs are exactly -1, 0 or 1.
+        #[allow(clippy::float_cmp)]
+        let changed = self.last_sign != 0.0 && now != self.last_sign;
+        self.last_sign = now;
+        let counted = changed && self.armed;
+        if counted && h > 0.0 {
+            self.armed = false;
+        }
+        if v.abs() > h {
+            self.armed = true;
+        }
+        counted.then(|| flow.locate_event())
+    }
+}
+
+fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}

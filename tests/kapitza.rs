@@ -1,0 +1,139 @@
+//! Kapitza's pendulum against independent references (tests/fixtures/reference/kapitza.toml:
+//! a Taylor-series integrator of order 28 in long double, scripts/kapitza_taylor.c), for
+//! ε from 1e-1 to 1e-6: the resolved methods to their tolerance, the limit to its model error
+//! (O(ε) from the raw start, O(ε²) with the ripple), and `auto` to the tolerance it was given.
+
+use rattleback::physics::Method;
+use rattleback::physics::kapitza::run::{RunSpec, run};
+use rattleback::physics::kapitza::{Params, Problem, Start, plan};
+
+struct Case {
+    name: String,
+    problem: Problem,
+    t_end: f64,
+    theta: Vec<f64>,
+    theta_dot: Vec<f64>,
+}
+
+fn cases() -> Vec<Case> {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/reference/kapitza.toml");
+    let table: toml::Table = std::fs::read_to_string(path).unwrap().parse().unwrap();
+    let num = |t: &toml::Table, k: &str| t[k].as_float().unwrap();
+    let list = |t: &toml::Table, k: &str| -> Vec<f64> {
+        t[k].as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_float().unwrap())
+            .collect()
+    };
+    table["case"]
+        .as_table()
+        .unwrap()
+        .iter()
+        .map(|(name, c)| {
+            let c = c.as_table().unwrap();
+            let params = Params {
+                a: num(c, "a"),
+                b: num(c, "b"),
+                epsilon: num(c, "epsilon"),
+            };
+            let start = Start {
+                theta: num(c, "theta0"),
+                theta_dot: num(c, "theta_dot0"),
+            };
+            assert!(num(c, "accuracy") < 1e-11, "{name}: reference not accurate");
+            Case {
+                name: name.clone(),
+                problem: Problem::new(params, start).unwrap(),
+                t_end: num(c, "t_end"),
+                theta: list(c, "theta"),
+                theta_dot: list(c, "theta_dot"),
+            }
+        })
+        .collect()
+}
+
+/// Largest error in θ and in θ̇ over the reference's samples.
+fn errors(case: &Case, method: Method, tolerance: f64) -> (f64, f64) {
+    let spec = RunSpec {
+        method,
+        tolerance,
+        step: None,
+        t_end: case.t_end,
+        samples: case.theta.len(),
+    };
+    let r = run(&case.problem, &spec, &mut |_| true).unwrap();
+    let mut e = (0.0f64, 0.0f64);
+    for (i, s) in r.samples.iter().enumerate() {
+        e.0 = e.0.max((s.theta - case.theta[i]).abs());
+        e.1 = e.1.max((s.theta_dot - case.theta_dot[i]).abs());
+    }
+    e
+}
+
+#[test]
+fn the_references_cover_every_decade_of_epsilon() {
+    let cases = cases();
+    for eps in [1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6] {
+        assert_eq!(
+            cases.iter().filter(|c| c.problem.params().epsilon == eps).count(),
+            3,
+            "{eps}"
+        );
+    }
+}
+
+#[test]
+fn resolved_methods_match_the_references() {
+    for case in cases().iter().filter(|c| c.problem.params().epsilon >= 1e-4) {
+        // DOP853's tolerance is per step: its global error grows with the fast periods.
+        let (et, ev) = errors(case, Method::Dop853, 1e-12);
+        assert!(et < 1e-8 && ev < 1e-8, "{}: dop853 {et:e} {ev:e}", case.name);
+        if case.problem.params().epsilon >= 1e-2 {
+            for m in [Method::Suzuki8, Method::Yoshida6, Method::Rk4, Method::BlanesMoan4] {
+                let (et, ev) = errors(case, m, 1e-10);
+                assert!(et < 1e-7 && ev < 1e-6, "{}: {m} {et:e} {ev:e}", case.name);
+            }
+        }
+    }
+}
+
+#[test]
+fn the_limit_converges_at_first_order_and_with_its_ripple_at_second() {
+    for case in cases().iter().filter(|c| c.problem.params().epsilon <= 1e-2) {
+        let eps = case.problem.params().epsilon;
+        let (raw, _) = errors(case, Method::Effective, 1e-13);
+        let (corr_t, corr_v) = errors(case, Method::EffectiveCorrected, 1e-13);
+        let predicted = plan::model_error(&case.problem, case.t_end);
+        println!(
+            "{:>18} eps {eps:.0e}: raw {raw:.2e}  corrected θ {corr_t:.2e} θ̇ {corr_v:.2e}  predicted {predicted:.2e}",
+            case.name
+        );
+        // O(ε) without the ripple (the start alone is off by ε b sin θ0).
+        assert!(raw < 20.0 * eps && raw > 0.01 * eps, "{}: raw {raw:e}", case.name);
+        // O(ε²) with it, in θ and in θ̇, and within what auto predicts.
+        let floor = 1e-12;
+        assert!(corr_t < 0.3 * predicted + floor, "{}: {corr_t:e} vs {predicted:e}", case.name);
+        assert!(corr_v < 0.3 * predicted + floor, "{}: {corr_v:e} vs {predicted:e}", case.name);
+    }
+}
+
+#[test]
+fn auto_meets_its_tolerance_at_every_epsilon() {
+    for case in cases() {
+        for tol in [1e-6, 1e-9] {
+            let choice = plan::resolve(&case.problem, tol, case.t_end);
+            if choice.method == Method::Dop853 && case.problem.params().epsilon < 1e-4 {
+                // A resolved run at ε = 1e-5 takes seconds: the benchmark covers it.
+                continue;
+            }
+            let (et, ev) = errors(&case, choice.method, choice.settings.tolerance);
+            assert!(
+                et < 10.0 * tol && ev < 10.0 * tol,
+                "{} at {tol:e}: {} gives {et:e} {ev:e}",
+                case.name,
+                choice.method
+            );
+        }
+    }
+}
