@@ -47,7 +47,7 @@ fn main() {
             Method::Yoshida6,
             Method::Effective,
         ] {
-            let predicted = predicted_seconds(&p.problem, method, tol, None, t_end);
+            let predicted = predicted_seconds(p.problem().unwrap(), method, tol, None, t_end);
             if predicted > 20.0 {
                 println!(
                     "{label:<34} {method:<20} {predicted:>10.3e} {:>10} {:>7}",
@@ -58,7 +58,7 @@ fn main() {
             let clock = Instant::now();
             let ok = if method == Method::Auto {
                 resolve(
-                    &p.problem,
+                    p.problem().unwrap(),
                     method,
                     tol,
                     t_end,
@@ -69,7 +69,7 @@ fn main() {
                 .is_ok()
             } else {
                 run(
-                    &p.problem,
+                    p.problem().unwrap(),
                     &RunSpec {
                         method,
                         tolerance: tol,

@@ -326,11 +326,19 @@ pub fn study(command: &crate::cli::StudyCommand) -> ExitCode {
 /// The preset, horizon and tolerance of a study, or the exit of a bad input.
 fn study_setup(
     common: &crate::cli::StudyCommon,
-) -> Result<(crate::scenario::Preset, f64, f64), ExitCode> {
+) -> Result<(crate::scenario::Preset, crate::physics::Problem, f64, f64), ExitCode> {
     let preset = crate::scenario::shipped::resolve(&common.preset, &common.set).map_err(|e| {
         say_err!("rattleback: error: {e}");
         ExitCode::from(2)
     })?;
+    let Some(problem) = preset.problem().copied() else {
+        say_err!(
+            "rattleback: error: {}: the studies (sweep over k, weak-*, regime map) are of the rattleback; this is a {} preset",
+            common.preset,
+            preset.model.kind().name()
+        );
+        return Err(ExitCode::from(2));
+    };
     let t_end = common.t_end.unwrap_or(preset.run.t_end);
     let tolerance = common
         .tolerance
@@ -342,7 +350,7 @@ fn study_setup(
         say_err!("rattleback: error: --out {}: {e}", dir.display());
         return Err(ExitCode::from(2));
     }
-    Ok((preset, t_end, tolerance))
+    Ok((preset, problem, t_end, tolerance))
 }
 
 /// Writes `files` (name, contents) into `--out`, refusing to replace without `--force`.
@@ -389,7 +397,7 @@ fn emit(text: &str) -> Result<(), ExitCode> {
 
 fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
     use crate::study::sweep::{DEFAULT_LADDER, sweep};
-    let (preset, t_end, tolerance) = match study_setup(&args.common) {
+    let (preset, problem, t_end, tolerance) = match study_setup(&args.common) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -398,7 +406,7 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
     } else {
         args.ladder.clone()
     };
-    let s = match sweep(&preset.problem, &ladder, t_end, tolerance, &|_| true) {
+    let s = match sweep(&problem, &ladder, t_end, tolerance, &|_| true) {
         Ok(s) => s,
         Err(e) => {
             say_err!("rattleback: study sweep failed: {e}");
@@ -504,7 +512,7 @@ fn sweep_curves(s: &crate::study::sweep::Sweep) -> String {
 
 fn study_map(args: &crate::cli::MapArgs) -> ExitCode {
     use crate::study::map::{Grid, Source, regime_map};
-    let (preset, t_end, tolerance) = match study_setup(&args.common) {
+    let (_, problem, t_end, tolerance) = match study_setup(&args.common) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -516,8 +524,8 @@ fn study_map(args: &crate::cli::MapArgs) -> ExitCode {
         );
         return ExitCode::from(2);
     }
-    let p = preset.problem.params();
-    let s = preset.problem.start();
+    let p = problem.params();
+    let s = problem.start();
     let grid = Grid {
         cols: args.grid.0,
         rows: args.grid.1,

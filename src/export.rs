@@ -11,22 +11,53 @@ use plotters::prelude::*;
 use crate::app::App;
 use crate::study::svg::tick;
 
-/// The separatrix of the limit, `E_eff(α, α̇) = V_max`, as two branches over `[x0, x1]`.
+/// The separatrices of the limit, `E_eff(q, q̇) = V` at each unstable equilibrium, as two
+/// branches each over `[x0, x1]`.
 fn separatrix(app: &App, x0: f64, x1: f64) -> Vec<Vec<(f64, f64)>> {
-    let eff = &app.scenario.derived.effective;
-    let top = eff.potential_max();
-    let mut upper = Vec::new();
-    let n = 400;
-    for i in 0..=n {
-        let a = x0 + (x1 - x0) * f64::from(i) / f64::from(n);
-        let base = eff.energy_of(a, 0.0);
-        let c = eff.energy_of(a, 1.0) - base;
-        if c > 0.0 && top >= base {
-            upper.push((a, ((top - base) / c).sqrt()));
+    let eff = &app.scenario.derived.limit;
+    let mut out = Vec::new();
+    for top in eff.separatrices() {
+        let mut upper = Vec::new();
+        let n = 400;
+        for i in 0..=n {
+            let a = x0 + (x1 - x0) * f64::from(i) / f64::from(n);
+            let base = eff.energy_of(a, 0.0);
+            let c = eff.energy_of(a, 1.0) - base;
+            if c > 0.0 && top >= base {
+                upper.push((a, ((top - base) / c).sqrt()));
+            }
+        }
+        let lower = upper.iter().map(|&(a, v)| (a, -v)).collect();
+        out.push(upper);
+        out.push(lower);
+    }
+    out
+}
+
+/// The model's parameters for a caption, and how its limit is named.
+fn describe(model: &crate::physics::Model) -> (String, &'static str) {
+    match model {
+        crate::physics::Model::Rattleback(problem) => {
+            let p = problem.params();
+            (
+                format!(
+                    "ix {} iy {} iz {} k {}",
+                    tick(p.ix),
+                    tick(p.iy),
+                    tick(p.iz),
+                    tick(p.k)
+                ),
+                "k",
+            )
+        }
+        crate::physics::Model::Kapitza(problem) => {
+            let p = problem.params();
+            (
+                format!("a {} b {} ε {}", tick(p.a), tick(p.b), tick(p.epsilon)),
+                "ε",
+            )
         }
     }
-    let lower = upper.iter().map(|&(a, v)| (a, -v)).collect();
-    vec![upper, lower]
 }
 
 /// The portrait as an SVG: the full trajectory shown so far, the limit's (when shown), the
@@ -50,7 +81,9 @@ pub fn portrait_svg(app: &App) -> Result<String, Box<dyn std::error::Error>> {
         Vec::new()
     };
     let s = &app.scenario.settings;
-    let start = (s.start.alpha, s.start.alpha_dot);
+    let start = s.model.slow_start();
+    let words = s.model.kind().words();
+    let (params, small) = describe(&s.model);
     let (mut x0, mut x1, mut y0, mut y1) = (start.0, start.0, start.1, start.1);
     for &(x, y) in trail.iter().chain(&limit) {
         (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
@@ -61,14 +94,9 @@ pub fn portrait_svg(app: &App) -> Result<String, Box<dyn std::error::Error>> {
     {
         let root = SVGBackend::with_string(&mut out, (900, 640)).into_drawing_area();
         root.fill(&WHITE)?;
-        let p = s.params;
         let caption = format!(
-            "{}: ix {} iy {} iz {} k {}, t {} of {}",
+            "{}: {params}, t {} of {}",
             crate::scenario::text::clean(&app.scenario.name),
-            tick(p.ix),
-            tick(p.iy),
-            tick(p.iz),
-            tick(p.k),
             tick(app.run.shown),
             tick(s.t_end)
         );
@@ -80,8 +108,8 @@ pub fn portrait_svg(app: &App) -> Result<String, Box<dyn std::error::Error>> {
             .build_cartesian_2d(x0..x1, y0..y1)?;
         chart
             .configure_mesh()
-            .x_desc("alpha")
-            .y_desc("alpha_dot")
+            .x_desc(words.q_name)
+            .y_desc(words.q_dot_name)
             .x_label_formatter(&|x| tick(*x))
             .y_label_formatter(&|y| tick(*y))
             .draw()?;
@@ -100,7 +128,7 @@ pub fn portrait_svg(app: &App) -> Result<String, Box<dyn std::error::Error>> {
                 trail.iter().copied(),
                 green.stroke_width(1),
             ))?
-            .label(format!("full motion, k = {}", tick(p.k)))
+            .label("full motion")
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], green));
         if !limit.is_empty() {
             let magenta = RGBColor(170, 40, 170);
@@ -109,7 +137,7 @@ pub fn portrait_svg(app: &App) -> Result<String, Box<dyn std::error::Error>> {
                     limit.iter().copied(),
                     magenta.stroke_width(2),
                 ))?
-                .label("limit k → ∞")
+                .label(if small == "k" { "limit k → ∞" } else { "limit ε → 0" })
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], magenta));
         }
         chart
@@ -142,15 +170,22 @@ pub fn trajectory_csv(app: &App) -> String {
         crate::app::PlanState::Running { plan, .. } => Some(plan.method),
         _ => None,
     };
-    let mut out = crate::simulate::csv_metadata(
+    let mut out = crate::simulate::csv_metadata_of(
         &app.scenario.name,
-        &s.problem(),
+        &s.model,
         s.method,
         ran,
         s.tolerance,
         s.t_end,
     );
-    out.push_str("t,alpha,alpha_dot,energy_error,limit_alpha,limit_alpha_dot\n");
+    out.push_str(match s.model.kind() {
+        crate::physics::ModelKind::Rattleback => {
+            "t,alpha,alpha_dot,energy_error,limit_alpha,limit_alpha_dot\n"
+        }
+        crate::physics::ModelKind::Kapitza => {
+            "t,theta,theta_dot,energy_drift,limit_theta,limit_theta_dot\n"
+        }
+    });
     let limit = if app.view.overlay {
         crate::app::run::upto(&app.run.effective_trail, app.run.shown)
     } else {

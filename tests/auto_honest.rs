@@ -203,7 +203,7 @@ fn the_limits_values_are_accurate_whatever_the_tolerance() {
     // its α̇ must vanish.
     use rattleback::physics::effective::Effective;
     let preset = rattleback::scenario::shipped::resolve("subcritical", &[]).unwrap();
-    let eff = Effective::new(&preset.problem);
+    let eff = Effective::new(preset.problem().unwrap());
     let t7 = eff.reversal_times(30.0)[6];
     for tolerance in [1e-4, 1e-8] {
         let (code, out, err) = common::bin(&[

@@ -232,8 +232,8 @@ fn csv_metadata_parses_back_to_the_run() {
         &["spring.k=31622.776601683792".parse().unwrap()],
     )
     .unwrap();
-    let p = preset.problem.params();
-    let s = preset.problem.start();
+    let p = preset.problem().unwrap().params();
+    let s = preset.problem().unwrap().start();
     let num = |k: &str| meta[k].parse::<f64>().unwrap();
     assert_eq!(num("k").to_bits(), p.k.to_bits());
     assert_eq!(num("ix").to_bits(), p.ix.to_bits());

@@ -81,7 +81,7 @@ fn every_shipped_preset_runs_within_the_budget_with_every_method() {
             .tolerance
             .unwrap_or(rattleback::physics::DEFAULT_TOLERANCE);
         for method in Method::ALL {
-            let s = predicted_seconds(&p.problem, method, tol, None, p.run.t_end);
+            let s = predicted_seconds(p.problem().unwrap(), method, tol, None, p.run.t_end);
             assert!(
                 s.is_finite() && s > 0.0 && s < BUDGET_SECONDS / 10.0,
                 "{name} {method}: {s}"
@@ -120,7 +120,7 @@ fn auto_stops_refining_at_its_budget_and_says_so() {
     )
     .expect("ok");
     let r = resolve(
-        &p.problem,
+        p.problem().unwrap(),
         Method::Auto,
         1e-12,
         1000.0,
@@ -207,7 +207,7 @@ fn the_streamed_csv_of_auto_is_the_verified_run_bit_for_bit() {
     req.samples = 50;
     let resolved = simulate::resolve(&p, &req);
     let csv = simulate::simulate(&p, &resolved, Format::Csv).expect("runs");
-    let verified = rattleback::physics::auto::run_auto(&p.problem, 1e-9, p.run.t_end, 50, true)
+    let verified = rattleback::physics::auto::run_auto(p.problem().unwrap(), 1e-9, p.run.t_end, 50, true)
         .expect("auto runs");
     // The `# key = value` lines, then the column names, then the rows.
     let rows: Vec<&str> = csv
@@ -228,7 +228,7 @@ fn the_streamed_csv_of_auto_is_the_verified_run_bit_for_bit() {
 #[test]
 fn reversal_lists_are_capped_and_counts_exact_for_any_horizon() {
     let p = preset("subcritical", &[]).expect("shipped");
-    let eff = Effective::new(&p.problem);
+    let eff = Effective::new(p.problem().unwrap());
     let half = eff.half_period().expect("reverses");
     // 1e300 / half reversals: counted in closed form, not by stepping (which never ended
     // where `half` is below the spacing of floats near t).
@@ -245,7 +245,7 @@ fn reversal_lists_are_capped_and_counts_exact_for_any_horizon() {
     assert!(times.iter().all(|&t| t > 0.0 && t <= t_end));
     // And a run's own count matches its list.
     let r = rattleback::physics::run(
-        &p.problem,
+        p.problem().unwrap(),
         &RunSpec {
             method: Method::Dop853,
             tolerance: 1e-9,

@@ -105,8 +105,7 @@ fn the_copied_command_line_runs_exactly_the_explorers_settings() {
     };
     let preset = rattleback::scenario::shipped::resolve(&sim.preset, &sim.set).unwrap();
     let s = h.app.scenario.settings;
-    assert_eq!(preset.problem.params(), &s.params);
-    assert_eq!(preset.problem.start(), &s.start);
+    assert_eq!(preset.model, s.model);
     assert_eq!(sim.method, Some(s.method));
     assert_eq!(sim.tolerance, Some(s.tolerance));
     assert_eq!(sim.t_end, Some(s.t_end));
@@ -177,7 +176,7 @@ fn a_click_in_the_portrait_sets_the_start_there() {
     let effects = h.app.set_start_point(alpha, alpha_dot);
     h.exec(effects);
     assert!(h.app.run.generation > generation, "restarted");
-    let s = h.app.scenario.settings.start;
+    let s = *h.app.scenario.settings.rattleback().unwrap().start();
     assert_eq!((s.alpha, s.alpha_dot), (alpha, alpha_dot));
     assert_eq!(s.gamma_dot, 1.0, "the tilt rate stays");
     let sets: Vec<String> = h

@@ -54,7 +54,7 @@ fn typing_a_value_restarts_and_a_bad_one_is_refused_in_place() {
         app.on_key(Key::Char(c));
     }
     let effects = app.on_key(Key::Enter);
-    assert_eq!(app.scenario.settings.params.iy, 1.5);
+    assert_eq!(app.scenario.settings.rattleback().unwrap().params().iy, 1.5);
     assert_eq!(restarts(&effects), 1);
     let generation = app.run.generation;
 
@@ -64,7 +64,7 @@ fn typing_a_value_restarts_and_a_bad_one_is_refused_in_place() {
     }
     let effects = app.on_key(Key::Enter);
     assert!(effects.is_empty(), "a refused value must not restart");
-    assert_eq!(app.scenario.settings.params.iy, 1.5, "old value kept");
+    assert_eq!(app.scenario.settings.rattleback().unwrap().params().iy, 1.5, "old value kept");
     assert_eq!(app.run.generation, generation);
     let m = app.status.clone().expect("reason shown");
     assert!(m.error && m.text.contains("> 0"), "{}", m.text);
@@ -82,19 +82,19 @@ fn nudging_k_uses_a_log_scale_and_restarts() {
     }
     assert_eq!(app.field().label(), "k");
     let effects = app.on_key(Key::Char('L'));
-    assert_eq!(app.scenario.settings.params.k, 1e5);
+    assert_eq!(app.scenario.settings.rattleback().unwrap().params().k, 1e5);
     assert_eq!(restarts(&effects), 1);
     app.on_key(Key::Char('h'));
-    assert!((app.scenario.settings.params.k - 1e5 / 10f64.powf(0.1)).abs() < 1e-6);
+    assert!((app.scenario.settings.rattleback().unwrap().params().k - 1e5 / 10f64.powf(0.1)).abs() < 1e-6);
 }
 
 #[test]
 fn modifiers_are_not_dropped() {
     let (mut app, _) = app();
-    let k = app.scenario.settings.params.ix;
+    let k = app.scenario.settings.rattleback().unwrap().params().ix;
     // Ctrl-L redraws; it does not raise the selected parameter (l) nor restart.
     assert_eq!(app.on_key(Key::Ctrl('l')), vec![Effect::Redraw]);
-    assert_eq!(app.scenario.settings.params.ix, k);
+    assert_eq!(app.scenario.settings.rattleback().unwrap().params().ix, k);
     // Ctrl-P and Alt-q are not p and q.
     assert!(app.on_key(Key::Ctrl('p')).is_empty());
     assert_eq!(app.mode, Mode::Normal);
@@ -183,7 +183,7 @@ fn every_shipped_preset_ends_where_simulate_and_a_tight_reference_end() {
         }
         // simulate: the same resolution of the same request.
         let resolution = resolve_plan(
-            &resolve(name, &[]).unwrap().problem,
+            resolve(name, &[]).unwrap().problem().unwrap(),
             s.method,
             s.tolerance,
             s.t_end,
@@ -193,7 +193,7 @@ fn every_shipped_preset_ends_where_simulate_and_a_tight_reference_end() {
         )
         .unwrap();
         assert_eq!(resolution.plan, plan, "{name}: the explorer's plan");
-        let problem = s.problem();
+        let problem = *s.rattleback().unwrap();
         let simulated = match resolution.verified {
             Some(v) => v.result,
             None => run(
@@ -298,7 +298,9 @@ fn the_limit_hidden_then_shown_catches_up() {
         .app
         .scenario
         .derived
-        .effective
+        .limit
+        .effective()
+        .unwrap()
         .reversal_times(run.shown)
         .len();
     assert_eq!(run.effective_reversals_shown(), expected);
@@ -366,7 +368,7 @@ fn the_view_holds_the_start_and_follows_long_runs() {
     for name in ["iy-greater", "subcritical", "supercritical"] {
         let h = Headless::new(name);
         let b = h.app.bounds();
-        let a0 = h.app.scenario.settings.start.alpha;
+        let a0 = h.app.scenario.settings.rattleback().unwrap().start().alpha;
         let margin = 0.05 * (b.x[1] - b.x[0]);
         assert!(
             a0 > b.x[0] + margin && a0 < b.x[1] - margin,
@@ -493,7 +495,7 @@ fn wait_for(
 
 fn spec(problem: rattleback::physics::Problem, method: Method, tolerance: f64) -> SessionSpec {
     SessionSpec {
-        problem,
+        model: problem.into(),
         method,
         tolerance,
         t_end: 30.0,
@@ -507,7 +509,7 @@ fn worker_runs_on_command_and_a_restart_cancels_in_flight_work() {
     let (tx, rx) = mpsc::sync_channel(8);
     let worker = Worker::spawn(move |e| tx.send(e).is_ok());
     let preset = resolve("subcritical", &[]).unwrap();
-    let quick = spec(preset.problem, Method::Dop853, 1e-9);
+    let quick = spec(*preset.problem().unwrap(), Method::Dop853, 1e-9);
     worker.send(Command::Restart {
         generation: 1,
         spec: quick,
@@ -530,7 +532,7 @@ fn worker_runs_on_command_and_a_restart_cancels_in_flight_work() {
     );
 
     // A very stiff run with a resolving method would take minutes; a restart must cut it.
-    let slow = spec(preset.problem.with_k(1e12).unwrap(), Method::Dop853, 1e-12);
+    let slow = spec(preset.problem().unwrap().with_k(1e12).unwrap(), Method::Dop853, 1e-12);
     worker.send(Command::Restart {
         generation: 2,
         spec: slow,
@@ -559,7 +561,7 @@ fn worker_runs_on_command_and_a_restart_cancels_in_flight_work() {
     // auto's verification over a long horizon is cancelled by a restart too.
     let long = SessionSpec {
         t_end: 1e6,
-        ..spec(preset.problem.with_k(1e8).unwrap(), Method::Auto, 1e-10)
+        ..spec(preset.problem().unwrap().with_k(1e8).unwrap(), Method::Auto, 1e-10)
     };
     worker.send(Command::Restart {
         generation: 4,
@@ -598,14 +600,14 @@ fn the_trail_has_no_gap_wider_than_two_cells() {
         let app = &h.app;
         let b = app.bounds();
         let (dx, dy) = ((b.x[1] - b.x[0]) / 120.0, (b.y[1] - b.y[0]) / 43.0);
-        let centre = wrap_centre(&app.scenario.derived.effective);
+        let centre = wrap_centre(&app.scenario.derived.limit);
         let wrap = app.view.view.wrap;
         let inside = |x: f64, y: f64| x >= b.x[0] && x <= b.x[1] && y >= b.y[0] && y <= b.y[1];
         let mut worst: f64 = 0.0;
         for w in app.run.trail_shown().windows(2) {
             let (x0, x1) = (
-                display_alpha(w[0].alpha, centre, wrap),
-                display_alpha(w[1].alpha, centre, wrap),
+                display_alpha(w[0].alpha, centre, wrap, std::f64::consts::PI),
+                display_alpha(w[1].alpha, centre, wrap, std::f64::consts::PI),
             );
             if !inside(x0, w[0].alpha_dot) || !inside(x1, w[1].alpha_dot) {
                 continue;
@@ -649,7 +651,7 @@ fn the_sweep_pane_shows_what_study_sweep_computes_and_follows_the_parameters() {
     // The same numbers as the headless study (one rung at a time here, in parallel there).
     let settings = h.app.scenario.settings;
     let headless = sweep(
-        &settings.problem(),
+        settings.rattleback().unwrap(),
         &DEFAULT_LADDER,
         settings.t_end,
         settings.tolerance,
@@ -728,14 +730,14 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
     assert!(m.done && m.failed.is_none(), "{m:?}");
     // The same counts as `study map` on the same grid (row by row here, all at once there).
     let grid = Grid {
-        ratio_max: s.params.ix / s.params.iz,
+        ratio_max: s.rattleback().unwrap().params().ix / s.rattleback().unwrap().params().iz,
         inertia: PANE_INERTIA,
         ..Grid::new(
             LIMIT_GRID.0,
             LIMIT_GRID.1,
-            s.params.ix,
-            s.params.iz,
-            s.start.gamma_dot,
+            s.rattleback().unwrap().params().ix,
+            s.rattleback().unwrap().params().iz,
+            s.rattleback().unwrap().start().gamma_dot,
             s.t_end,
         )
     };
@@ -770,8 +772,8 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
         h.app.run.generation > generation,
         "loading restarts the run"
     );
-    assert_eq!(loaded.params.iy, s.params.ix * grid.inertia_ratio(cell.1));
-    assert_eq!((loaded.start.gamma, loaded.start.alpha), (0.0, 0.0));
+    assert_eq!(loaded.rattleback().unwrap().params().iy, s.rattleback().unwrap().params().ix * grid.inertia_ratio(cell.1));
+    assert_eq!((loaded.rattleback().unwrap().start().gamma, loaded.rattleback().unwrap().start().alpha), (0.0, 0.0));
     let ratio = h.app.scenario.derived.ratio.unwrap();
     assert!((ratio - grid.ratio(cell.0)).abs() < 1e-12, "{ratio}");
     assert_eq!(
@@ -781,7 +783,7 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
     );
     assert!(h.app.map.done, "the same body keeps its map");
     // The loaded start's limit reverses as often as its cell said.
-    let limit = rattleback::physics::effective::Effective::new(&loaded.problem());
+    let limit = rattleback::physics::effective::Effective::new(loaded.rattleback().unwrap());
     assert_eq!(limit.reversal_count(loaded.t_end), count);
 
     // `f`: the full model at this k, on its own grid; Esc gives the arrows back.
@@ -796,7 +798,7 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
         ..grid
     };
     let source = Source::Full {
-        k: loaded.params.k,
+        k: loaded.rattleback().unwrap().params().k,
         tolerance: loaded.tolerance.max(FULL_TOLERANCE),
     };
     let study = regime_map(&full, source, &|_| true).unwrap();

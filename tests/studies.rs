@@ -12,7 +12,7 @@ use rattleback::study::weak::weak_star;
 fn the_sweep_converges_like_one_over_k_on_the_default_preset() {
     let preset = resolve("subcritical", &[]).unwrap();
     let s = sweep(
-        &preset.problem,
+        preset.problem().unwrap(),
         &DEFAULT_LADDER,
         preset.run.t_end,
         1e-8,
@@ -79,7 +79,7 @@ fn every_map_cell_away_from_the_critical_curve_obeys_the_theorems() {
 fn weak_star_averages_settle_while_pointwise_values_swing() {
     let preset = resolve("subcritical", &["spring.k=1e6".parse().unwrap()]).unwrap();
     for window in [1.0, 3.0] {
-        let w = weak_star(&preset.problem, 30.0, window, &mut |_| true).unwrap();
+        let w = weak_star(preset.problem().unwrap(), 30.0, window, &mut |_| true).unwrap();
         let (lo, hi) = w.pointwise_range();
         let dev = w.worst_average_deviation();
         eprintln!(
@@ -94,7 +94,7 @@ fn weak_star_averages_settle_while_pointwise_values_swing() {
         );
     }
     // A window shorter than the fast period does not settle: the test can tell.
-    let short = weak_star(&preset.problem, 30.0, 1e-3, &mut |_| true).unwrap();
+    let short = weak_star(preset.problem().unwrap(), 30.0, 1e-3, &mut |_| true).unwrap();
     assert!(short.worst_average_deviation() > 0.1);
 }
 

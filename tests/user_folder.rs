@@ -124,7 +124,7 @@ fn user_folder_end_to_end() {
     select(&mut app, &mut press);
     press(&mut app, Key::Enter);
     assert_eq!(app.scenario.name, "My lecture");
-    assert!((app.scenario.settings.params.ix - 3.0).abs() < 1e-15);
+    assert!((app.scenario.settings.rattleback().unwrap().params().ix - 3.0).abs() < 1e-15);
 
     // Broken between listing and loading: a dialog, and the current scenario stays.
     select(&mut app, &mut press);

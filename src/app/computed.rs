@@ -9,10 +9,13 @@ impl App {
     /// Shows or hides a pane the worker computes for (sweep, weak-*, map): shown, its
     /// computation starts; hidden, it stops. The map, shown, takes the arrows.
     pub(super) fn toggle_computed(&mut self, pane: Pane) -> Vec<Effect> {
+        if !self.view.panes.shows(pane) && !self.scene_has(pane) {
+            return Vec::new();
+        }
         self.view.panes.toggle(pane);
         let on = self.view.panes.shows(pane);
         let command = match (pane, on) {
-            (Pane::Sweep, true) => Some(self.start_sweep()),
+            (Pane::Sweep, true) => self.start_sweep(),
             (Pane::Sweep, false) => Some(self.sweep.stop()),
             (Pane::Map, true) => {
                 self.mode = Mode::Map;
@@ -20,7 +23,7 @@ impl App {
                 self.map.start(&self.scenario.settings)
             }
             (Pane::Map, false) => Some(self.map.stop()),
-            (_, true) => Some(self.start_weak()),
+            (_, true) => self.start_weak(),
             (_, false) => Some(self.weak.stop()),
         };
         command.map(Effect::Sim).into_iter().collect()
@@ -95,24 +98,39 @@ impl App {
         }
     }
 
-    /// Asks the worker for the weak-* view of the current settings.
-    pub(super) fn start_weak(&mut self) -> crate::sim::Command {
+    /// Whether the scene has `pane` (the sweep over k, weak-*, regime map and body panes are
+    /// of the rattleback); says so in the status line when not.
+    pub(super) fn scene_has(&mut self, pane: Pane) -> bool {
+        let kind = self.scenario.settings.model.kind();
+        if pane.rattleback_only() && kind != crate::physics::ModelKind::Rattleback {
+            self.status = Message::error(format!(
+                "the {} pane is of the rattleback; this scene is {}",
+                pane.name(),
+                kind.title()
+            ));
+            return false;
+        }
+        true
+    }
+
+    /// Asks the worker for the weak-* view of the current settings (the rattleback's).
+    pub(super) fn start_weak(&mut self) -> Option<crate::sim::Command> {
         let s = &self.scenario.settings;
         let spec = crate::sim::WeakSpec {
-            problem: s.problem(),
+            problem: *s.rattleback()?,
             t_end: s.t_end,
         };
-        self.weak.start(self.run.generation, spec)
+        Some(self.weak.start(self.run.generation, spec))
     }
-    /// Asks the worker for the sweep of the current settings.
-    pub(super) fn start_sweep(&mut self) -> crate::sim::Command {
+    /// Asks the worker for the sweep of the current settings (the rattleback's).
+    pub(super) fn start_sweep(&mut self) -> Option<crate::sim::Command> {
         let s = &self.scenario.settings;
         let spec = crate::sim::SweepSpec {
-            problem: s.problem(),
+            problem: *s.rattleback()?,
             t_end: s.t_end,
             tolerance: s.tolerance,
         };
-        self.sweep.start(self.run.generation, spec)
+        Some(self.sweep.start(self.run.generation, spec))
     }
 }
 
@@ -122,15 +140,23 @@ impl App {
     pub fn set_start_point(&mut self, alpha: f64, alpha_dot: f64) -> Vec<Effect> {
         use super::fields::Field;
         use super::journal::Event;
-        let mut s = self.scenario.settings;
-        s.start.alpha = alpha;
-        s.start.alpha_dot = alpha_dot;
-        if let Err(e) = crate::physics::Problem::new(s.params, s.start) {
-            self.status = Message::error(format!("{e}; start kept"));
-            return Vec::new();
-        }
+        let s = self.scenario.settings;
+        let fields = match s.model.kind() {
+            crate::physics::ModelKind::Rattleback => [Field::Alpha, Field::AlphaDot],
+            crate::physics::ModelKind::Kapitza => [Field::Theta, Field::ThetaDot],
+        };
+        let set = fields[0]
+            .with_value(&s, alpha)
+            .and_then(|s| fields[1].with_value(&s, alpha_dot));
+        let s = match set {
+            Ok(s) => s,
+            Err(e) => {
+                self.status = Message::error(format!("{e}; start kept"));
+                return Vec::new();
+            }
+        };
         self.scenario.set(s);
-        for f in [Field::Alpha, Field::AlphaDot] {
+        for f in fields {
             let value = f.exact(&self.scenario.settings);
             self.log(Event::Set {
                 field: f.label().to_owned(),

@@ -1,17 +1,17 @@
 //! The editable parameters of the explorer: how each is shown, nudged and typed, validated by
-//! the same domain types as presets.
+//! the same domain types as presets. Each model has its rows ([`Field::rows`]); the run's rows
+//! (`t_end`, `method`, `tolerance`) are shared.
 
 use crate::physics::integrators::Method;
-use crate::physics::{Params, Problem, Start};
+use crate::physics::kapitza;
+use crate::physics::{Model, ModelKind, Problem};
 use crate::scenario::preset::TOLERANCE_RANGE;
 
 /// Everything the parameter panel edits.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
-    /// Body and spring.
-    pub params: Params,
-    /// Start.
-    pub start: Start,
+    /// The model and its validated problem.
+    pub model: Model,
     /// End of the run.
     pub t_end: f64,
     /// Integrator.
@@ -27,7 +27,10 @@ impl Settings {
     pub fn simulate_command(&self) -> String {
         use std::fmt::Write as _;
         let mut cmd = String::from("rattleback simulate");
-        for f in Field::ALL {
+        if self.model.kind() != ModelKind::Rattleback {
+            let _ = write!(cmd, " --set preset.model={}", self.model.kind().name());
+        }
+        for f in Field::rows(self.model.kind()) {
             let value = f.exact(self);
             let _ = match f {
                 Field::Method => write!(cmd, " --method {value}"),
@@ -39,13 +42,10 @@ impl Settings {
         cmd
     }
 
-    /// The validated problem (settings are kept valid, so this only fails on a bug).
-    ///
-    /// # Panics
-    /// If the settings were made invalid, which every edit path prevents.
+    /// The rattleback's problem, when the model is the rattleback.
     #[must_use]
-    pub fn problem(&self) -> Problem {
-        Problem::new(self.params, self.start).expect("settings are kept valid")
+    pub fn rattleback(&self) -> Option<&Problem> {
+        self.model.rattleback()
     }
 }
 
@@ -68,6 +68,16 @@ pub enum Field {
     GammaDot,
     /// Initial spin rate.
     AlphaDot,
+    /// The pendulum's gravity `a`.
+    A,
+    /// The pendulum's shaking `b`.
+    B,
+    /// The pendulum's fast time scale `ε`.
+    Epsilon,
+    /// The pendulum's initial angle from the upright.
+    Theta,
+    /// Its initial rate.
+    ThetaDot,
     /// End time.
     TEnd,
     /// Method.
@@ -76,9 +86,34 @@ pub enum Field {
     Tolerance,
 }
 
+const RATTLEBACK_ROWS: [Field; 11] = [
+    Field::Ix,
+    Field::Iy,
+    Field::Iz,
+    Field::K,
+    Field::Gamma,
+    Field::Alpha,
+    Field::GammaDot,
+    Field::AlphaDot,
+    Field::TEnd,
+    Field::Method,
+    Field::Tolerance,
+];
+
+const KAPITZA_ROWS: [Field; 8] = [
+    Field::A,
+    Field::B,
+    Field::Epsilon,
+    Field::Theta,
+    Field::ThetaDot,
+    Field::TEnd,
+    Field::Method,
+    Field::Tolerance,
+];
+
 impl Field {
-    /// Panel order.
-    pub const ALL: [Self; 11] = [
+    /// Every field of every model.
+    pub const ALL: [Self; 16] = [
         Self::Ix,
         Self::Iy,
         Self::Iz,
@@ -87,10 +122,24 @@ impl Field {
         Self::Alpha,
         Self::GammaDot,
         Self::AlphaDot,
+        Self::A,
+        Self::B,
+        Self::Epsilon,
+        Self::Theta,
+        Self::ThetaDot,
         Self::TEnd,
         Self::Method,
         Self::Tolerance,
     ];
+
+    /// The panel's rows for `model`, in order.
+    #[must_use]
+    pub fn rows(model: ModelKind) -> &'static [Self] {
+        match model {
+            ModelKind::Rattleback => &RATTLEBACK_ROWS,
+            ModelKind::Kapitza => &KAPITZA_ROWS,
+        }
+    }
 
     /// The name, as in presets.
     #[must_use]
@@ -104,6 +153,11 @@ impl Field {
             Self::Alpha => "alpha",
             Self::GammaDot => "gamma_dot",
             Self::AlphaDot => "alpha_dot",
+            Self::A => "a",
+            Self::B => "b",
+            Self::Epsilon => "epsilon",
+            Self::Theta => "theta",
+            Self::ThetaDot => "theta_dot",
             Self::TEnd => "t_end",
             Self::Method => "method",
             Self::Tolerance => "tolerance",
@@ -119,13 +173,19 @@ impl Field {
         }
     }
 
-    /// The preset section the field belongs to (`body`, `spring`, `initial`, `run`).
+    /// The preset section the field belongs to (`body`, `spring`, `pendulum`, `initial`, `run`).
     #[must_use]
     pub fn section(self) -> &'static str {
         match self {
             Self::Ix | Self::Iy | Self::Iz => "body",
             Self::K => "spring",
-            Self::Gamma | Self::Alpha | Self::GammaDot | Self::AlphaDot => "initial",
+            Self::A | Self::B | Self::Epsilon => "pendulum",
+            Self::Gamma
+            | Self::Alpha
+            | Self::GammaDot
+            | Self::AlphaDot
+            | Self::Theta
+            | Self::ThetaDot => "initial",
             Self::TEnd | Self::Method | Self::Tolerance => "run",
         }
     }
@@ -141,25 +201,36 @@ impl Field {
     pub fn show(self, s: &Settings) -> String {
         match self {
             Self::Method => s.method.name().to_owned(),
-            Self::K | Self::Tolerance => format!("{:.3e}", self.value(s)),
+            Self::K | Self::Tolerance | Self::Epsilon => format!("{:.3e}", self.value(s)),
             _ => format_number(self.value(s)),
         }
     }
 
     fn value(self, s: &Settings) -> f64 {
-        match self {
-            Self::Ix => s.params.ix,
-            Self::Iy => s.params.iy,
-            Self::Iz => s.params.iz,
-            Self::K => s.params.k,
-            Self::Gamma => s.start.gamma,
-            Self::Alpha => s.start.alpha,
-            Self::GammaDot => s.start.gamma_dot,
-            Self::AlphaDot => s.start.alpha_dot,
-            Self::TEnd => s.t_end,
-            Self::Tolerance => s.tolerance,
-            Self::Method => 0.0,
+        match (self, &s.model) {
+            (Self::TEnd, _) => s.t_end,
+            (Self::Tolerance, _) => s.tolerance,
+            (Self::Ix, Model::Rattleback(p)) => p.params().ix,
+            (Self::Iy, Model::Rattleback(p)) => p.params().iy,
+            (Self::Iz, Model::Rattleback(p)) => p.params().iz,
+            (Self::K, Model::Rattleback(p)) => p.params().k,
+            (Self::Gamma, Model::Rattleback(p)) => p.start().gamma,
+            (Self::Alpha, Model::Rattleback(p)) => p.start().alpha,
+            (Self::GammaDot, Model::Rattleback(p)) => p.start().gamma_dot,
+            (Self::AlphaDot, Model::Rattleback(p)) => p.start().alpha_dot,
+            (Self::A, Model::Kapitza(p)) => p.params().a,
+            (Self::B, Model::Kapitza(p)) => p.params().b,
+            (Self::Epsilon, Model::Kapitza(p)) => p.params().epsilon,
+            (Self::Theta, Model::Kapitza(p)) => p.start().theta,
+            (Self::ThetaDot, Model::Kapitza(p)) => p.start().theta_dot,
+            _ => f64::NAN,
         }
+    }
+
+    /// Whether the field is a row of `model`'s panel.
+    #[must_use]
+    pub fn belongs_to(self, model: ModelKind) -> bool {
+        Self::rows(model).contains(&self)
     }
 
     /// Validates `value` for this field and returns the new settings.
@@ -168,16 +239,16 @@ impl Field {
     /// What is wrong and what is allowed, for display in place.
     pub fn with_value(self, s: &Settings, value: f64) -> Result<Settings, String> {
         let mut n = *s;
-        match self {
-            Self::Ix => n.params.ix = value,
-            Self::Iy => n.params.iy = value,
-            Self::Iz => n.params.iz = value,
-            Self::K => n.params.k = value,
-            Self::Gamma => n.start.gamma = value,
-            Self::Alpha => n.start.alpha = value,
-            Self::GammaDot => n.start.gamma_dot = value,
-            Self::AlphaDot => n.start.alpha_dot = value,
-            Self::TEnd => {
+        let kept = |e: crate::physics::ParamError| format!("{e}; old value kept");
+        if !self.belongs_to(s.model.kind()) {
+            return Err(format!(
+                "`{}` is not a parameter of the {} model",
+                self.label(),
+                s.model.kind().name()
+            ));
+        }
+        match (self, &s.model) {
+            (Self::TEnd, _) => {
                 if !(value.is_finite() && value > 0.0) {
                     return Err(format!(
                         "t_end = {value} refused; allowed: a finite number > 0"
@@ -185,7 +256,7 @@ impl Field {
                 }
                 n.t_end = value;
             }
-            Self::Tolerance => {
+            (Self::Tolerance, _) => {
                 let (lo, hi) = TOLERANCE_RANGE;
                 if !(value.is_finite() && (lo..=hi).contains(&value)) {
                     return Err(format!(
@@ -194,9 +265,35 @@ impl Field {
                 }
                 n.tolerance = value;
             }
-            Self::Method => return Err("choose a method with ←/→ or type its name".to_owned()),
+            (Self::Method, _) => {
+                return Err("choose a method with ←/→ or type its name".to_owned());
+            }
+            (_, Model::Rattleback(p)) => {
+                let (mut params, mut start) = (*p.params(), *p.start());
+                match self {
+                    Self::Ix => params.ix = value,
+                    Self::Iy => params.iy = value,
+                    Self::Iz => params.iz = value,
+                    Self::K => params.k = value,
+                    Self::Gamma => start.gamma = value,
+                    Self::Alpha => start.alpha = value,
+                    Self::GammaDot => start.gamma_dot = value,
+                    _ => start.alpha_dot = value,
+                }
+                n.model = Model::Rattleback(Problem::new(params, start).map_err(kept)?);
+            }
+            (_, Model::Kapitza(p)) => {
+                let (mut params, mut start) = (*p.params(), *p.start());
+                match self {
+                    Self::A => params.a = value,
+                    Self::B => params.b = value,
+                    Self::Epsilon => params.epsilon = value,
+                    Self::Theta => start.theta = value,
+                    _ => start.theta_dot = value,
+                }
+                n.model = Model::Kapitza(kapitza::Problem::new(params, start).map_err(kept)?);
+            }
         }
-        Problem::new(n.params, n.start).map_err(|e| format!("{e}; old value kept"))?;
         Ok(n)
     }
 
@@ -208,7 +305,7 @@ impl Field {
         let v = self.value(s);
         let next = match self {
             Self::Method => {
-                let all = Method::ALL;
+                let all = s.model.kind().methods();
                 let i = all.iter().position(|m| *m == s.method).unwrap_or(0);
                 let n = all.len();
                 let j = if dir > 0.0 {
@@ -222,7 +319,9 @@ impl Field {
                 });
             }
             // Log scales.
-            Self::K | Self::Tolerance => v * 10f64.powf(dir * if coarse { 1.0 } else { 0.1 }),
+            Self::K | Self::Tolerance | Self::Epsilon => {
+                v * 10f64.powf(dir * if coarse { 1.0 } else { 0.1 })
+            }
             Self::TEnd => {
                 v * if coarse {
                     2f64.powf(dir)
@@ -231,8 +330,9 @@ impl Field {
                 }
             }
             Self::Ix | Self::Iy | Self::Iz => v + dir * if coarse { 0.5 } else { 0.05 },
+            Self::A | Self::B => v + dir * if coarse { 0.5 } else { 0.05 },
             Self::Gamma => v + dir * if coarse { 1e-2 } else { 1e-3 },
-            Self::Alpha => {
+            Self::Alpha | Self::Theta => {
                 v + dir
                     * if coarse {
                         std::f64::consts::FRAC_PI_8
@@ -240,10 +340,12 @@ impl Field {
                         0.05
                     }
             }
-            Self::GammaDot | Self::AlphaDot => v + dir * if coarse { 0.1 } else { 0.01 },
+            Self::GammaDot | Self::AlphaDot | Self::ThetaDot => {
+                v + dir * if coarse { 0.1 } else { 0.01 }
+            }
         };
         // Round away float dust from repeated nudges on linear fields.
-        let next = if matches!(self, Self::K | Self::Tolerance | Self::TEnd) {
+        let next = if matches!(self, Self::K | Self::Tolerance | Self::TEnd | Self::Epsilon) {
             next
         } else {
             (next * 1e9).round() / 1e9
@@ -258,9 +360,19 @@ impl Field {
     pub fn with_text(self, s: &Settings, text: &str) -> Result<Settings, String> {
         let text = text.trim();
         if self == Self::Method {
-            return Method::from_name(text)
-                .map(|method| Settings { method, ..*s })
-                .ok_or_else(|| format!("unknown method '{text}'; allowed: {}", Method::names()));
+            let kind = s.model.kind();
+            return match Method::from_name(text) {
+                Some(method) if kind.offers(method) => Ok(Settings { method, ..*s }),
+                Some(method) => Err(format!(
+                    "method {method} is not offered for the {} model; allowed: {}",
+                    kind.name(),
+                    kind.method_names()
+                )),
+                None => Err(format!(
+                    "unknown method '{text}'; allowed: {}",
+                    kind.method_names()
+                )),
+            };
         }
         let value: f64 = text
             .parse()
@@ -287,24 +399,42 @@ pub fn format_number(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::{Params, Start};
 
     fn settings() -> Settings {
+        let params = Params {
+            ix: 2.0,
+            iy: 1.0,
+            iz: 1.0,
+            k: 1e4,
+        };
+        let start = Start {
+            gamma: 0.0,
+            alpha: 0.0,
+            gamma_dot: 1.0,
+            alpha_dot: 0.5,
+        };
         Settings {
-            params: Params {
-                ix: 2.0,
-                iy: 1.0,
-                iz: 1.0,
-                k: 1e4,
-            },
-            start: Start {
-                gamma: 0.0,
-                alpha: 0.0,
-                gamma_dot: 1.0,
-                alpha_dot: 0.5,
-            },
+            model: Model::Rattleback(Problem::new(params, start).unwrap()),
             t_end: 30.0,
             method: Method::Auto,
             tolerance: 1e-8,
+        }
+    }
+
+    fn pendulum() -> Settings {
+        let params = kapitza::Params {
+            a: 1.0,
+            b: 2.0,
+            epsilon: 1e-3,
+        };
+        let start = kapitza::Start {
+            theta: 0.3,
+            theta_dot: 0.0,
+        };
+        Settings {
+            model: Model::Kapitza(kapitza::Problem::new(params, start).unwrap()),
+            ..settings()
         }
     }
 
@@ -318,27 +448,37 @@ mod tests {
         );
         let err = Field::K.with_text(&s, "abc").unwrap_err();
         assert!(err.contains("not a number"), "{err}");
-        assert!(
-            Field::Iz
-                .nudge(
-                    &Settings {
-                        params: Params {
-                            iz: 0.05,
-                            ..s.params
-                        },
-                        ..s
-                    },
-                    -1.0,
-                    false
-                )
-                .is_err()
-        );
-        assert!((Field::K.nudge(&s, 1.0, true).unwrap().params.k - 1e5).abs() < 1e-9);
+        let small = Field::Iz.with_value(&s, 0.05).unwrap();
+        assert!(Field::Iz.nudge(&small, -1.0, false).is_err());
+        let k = Field::K.nudge(&s, 1.0, true).unwrap();
+        assert!((k.rattleback().unwrap().params().k - 1e5).abs() < 1e-9);
         assert_eq!(
             Field::Method.with_text(&s, "locked").unwrap().method,
             Method::Locked
         );
         assert_eq!(format_number(0.5), "0.5");
         assert_eq!(format_number(-0.0), "0");
+    }
+
+    #[test]
+    fn the_pendulum_has_its_own_rows_and_methods() {
+        let s = pendulum();
+        assert_eq!(Field::rows(ModelKind::Kapitza)[0], Field::A);
+        let e = Field::Epsilon.nudge(&s, -1.0, true).unwrap();
+        assert!((e.model.kapitza().unwrap().params().epsilon - 1e-4).abs() < 1e-15);
+        let err = Field::Epsilon.with_text(&s, "0").unwrap_err();
+        assert!(err.contains("epsilon") && err.contains("old value kept"), "{err}");
+        let err = Field::Method.with_text(&s, "locked").unwrap_err();
+        assert!(err.contains("not offered for the kapitza model"), "{err}");
+        let err = Field::K.with_text(&s, "3").unwrap_err();
+        assert!(err.contains("not a parameter of the kapitza model"), "{err}");
+        // Nudging the method cycles through the pendulum's methods only.
+        let mut m = s;
+        for _ in 0..20 {
+            m = Field::Method.nudge(&m, 1.0, false).unwrap();
+            assert!(ModelKind::Kapitza.offers(m.method), "{}", m.method);
+        }
+        let cmd = s.simulate_command();
+        assert!(cmd.contains("--set preset.model=kapitza --set pendulum.a=1.0"), "{cmd}");
     }
 }

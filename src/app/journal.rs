@@ -110,8 +110,9 @@ pub enum Event {
     },
     /// The exact state of the run at simulated time `t`.
     Checkpoint {
-        /// `(gamma, alpha, gamma_dot, alpha_dot)`.
-        state: [f64; 4],
+        /// The model's state vector: the rattleback's `(gamma, alpha, gamma_dot, alpha_dot)`,
+        /// the pendulum's `(theta, theta_dot)`.
+        state: Vec<f64>,
         /// Reversals of the full motion up to `t`.
         reversals: usize,
         /// FNV-1a of the bits of `t`, the state and the count, in hex.
@@ -121,7 +122,7 @@ pub enum Event {
 
 /// FNV-1a (64-bit) of the bits of a checkpoint: stable across platforms and Rust versions.
 #[must_use]
-pub fn state_hash(t: f64, state: &[f64; 4], reversals: usize) -> String {
+pub fn state_hash(t: f64, state: &[f64], reversals: usize) -> String {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     let mut eat = |x: u64| {
         for b in x.to_le_bytes() {

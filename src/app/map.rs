@@ -52,18 +52,16 @@ pub struct MapState {
 
 impl MapState {
     /// The spec of the map for `settings` from the chosen source.
+    /// `None` when the settings are not the rattleback's (the map is of the rattleback).
     #[must_use]
-    pub fn spec_for(&self, settings: &Settings) -> MapSpec {
+    pub fn spec_for(&self, settings: &Settings) -> Option<MapSpec> {
         let (cols, rows) = match self.source {
             MapSource::Limit => LIMIT_GRID,
             MapSource::Full => FULL_GRID,
         };
-        let p = settings.params;
-        let gamma_dot = if settings.start.gamma_dot == 0.0 {
-            1.0
-        } else {
-            settings.start.gamma_dot
-        };
+        let problem = settings.rattleback()?;
+        let (p, s) = (problem.params(), problem.start());
+        let gamma_dot = if s.gamma_dot == 0.0 { 1.0 } else { s.gamma_dot };
         // The ratio axis spans `(0, ix/iz]`: the critical curve crosses the plot from
         // `iy/ix = 1/4` (where it equals `ix/iz`) to `iy/ix = 1` (where it is 0). It depends on
         // `ix` and `iz` only, so loading a cell (which sets `iy`) keeps the axes.
@@ -79,13 +77,13 @@ impl MapState {
                 tolerance: settings.tolerance.max(FULL_TOLERANCE),
             },
         };
-        MapSpec { grid, source }
+        Some(MapSpec { grid, source })
     }
 
     /// Asks the worker for the map of `settings`: nothing when the map of the same spec is
     /// complete, the missing cells when it is partial, everything otherwise.
     pub fn start(&mut self, settings: &Settings) -> Option<Command> {
-        let spec = self.spec_for(settings);
+        let spec = self.spec_for(settings)?;
         if self.spec == Some(spec) && self.done && self.failed.is_none() {
             return None;
         }
@@ -95,9 +93,10 @@ impl MapState {
             self.cursor = match self.spec {
                 // A first map: the cursor on the current start.
                 None => {
-                    let s = settings.start;
+                    let problem = settings.rattleback()?;
+                    let (p, s) = (problem.params(), problem.start());
                     let ratio = (s.alpha_dot / g.gamma_dot).powi(2);
-                    nearest_cell(&g, ratio, settings.params.iy / settings.params.ix)
+                    nearest_cell(&g, ratio, p.iy / p.ix)
                 }
                 Some(_) => (self.cursor.0.min(g.cols - 1), self.cursor.1.min(g.rows - 1)),
             };
@@ -135,8 +134,8 @@ impl MapState {
             MapSource::Full => MapSource::Limit,
         };
         // The grids differ: keep the cursor on the same point of the plane.
-        if let Some(old) = self.spec {
-            let new = self.spec_for(settings).grid;
+        if let (Some(old), Some(new)) = (self.spec, self.spec_for(settings)) {
+            let new = new.grid;
             let (ratio, inertia) = (
                 old.grid.ratio(self.cursor.0),
                 old.grid.inertia_ratio(self.cursor.1),
@@ -209,9 +208,10 @@ impl MapState {
         let spec = self.spec.ok_or("no map yet")?;
         let (ratio, inertia) = self.at_cursor().ok_or("no map yet")?;
         let g = spec.grid;
+        let problem = settings.rattleback().ok_or("the map is of the rattleback")?;
         let params = Params {
             iy: g.ix * inertia,
-            ..settings.params
+            ..*problem.params()
         };
         let start = Start {
             gamma: 0.0,
@@ -219,10 +219,9 @@ impl MapState {
             gamma_dot: g.gamma_dot,
             alpha_dot: ratio.sqrt() * g.gamma_dot,
         };
-        Problem::new(params, start).map_err(|e| format!("this cell: {e}"))?;
+        let problem = Problem::new(params, start).map_err(|e| format!("this cell: {e}"))?;
         Ok(Settings {
-            params,
-            start,
+            model: problem.into(),
             ..*settings
         })
     }
@@ -251,19 +250,20 @@ mod tests {
     use crate::physics::integrators::Method;
 
     fn settings() -> Settings {
+        let params = Params {
+            ix: 1.0,
+            iy: 0.5,
+            iz: 2.0,
+            k: 1e4,
+        };
+        let start = Start {
+            gamma: 0.1,
+            alpha: 0.2,
+            gamma_dot: 0.5,
+            alpha_dot: 0.3,
+        };
         Settings {
-            params: Params {
-                ix: 1.0,
-                iy: 0.5,
-                iz: 2.0,
-                k: 1e4,
-            },
-            start: Start {
-                gamma: 0.1,
-                alpha: 0.2,
-                gamma_dot: 0.5,
-                alpha_dot: 0.3,
-            },
+            model: Problem::new(params, start).unwrap().into(),
             t_end: 30.0,
             method: Method::Auto,
             tolerance: 1e-8,
@@ -285,8 +285,7 @@ mod tests {
         };
         assert!(m.on_done(m.id, None));
         assert_eq!(m.start(&s), None);
-        let mut t = s;
-        t.params.iz = 3.0;
+        let t = crate::app::fields::Field::Iz.with_value(&s, 3.0).unwrap();
         assert!(matches!(m.start(&t), Some(Command::Map { from: 0, .. })));
         assert_eq!(m.computed(), 0, "a new body forgets the old counts");
     }
@@ -299,13 +298,17 @@ mod tests {
         m.cursor = (11, 3);
         let g = m.spec.unwrap().grid;
         let loaded = m.load(&s).unwrap();
-        assert_eq!(loaded.params.iy, g.ix * g.inertia_ratio(3));
-        assert_eq!(loaded.start.gamma, 0.0);
-        assert_eq!(loaded.start.alpha, 0.0);
-        assert_eq!(loaded.start.gamma_dot, 0.5);
-        let ratio = (loaded.start.alpha_dot / loaded.start.gamma_dot).powi(2);
+        let (lp, ls) = (
+            loaded.rattleback().unwrap().params(),
+            loaded.rattleback().unwrap().start(),
+        );
+        assert_eq!(lp.iy, g.ix * g.inertia_ratio(3));
+        assert_eq!(ls.gamma, 0.0);
+        assert_eq!(ls.alpha, 0.0);
+        assert_eq!(ls.gamma_dot, 0.5);
+        let ratio = (ls.alpha_dot / ls.gamma_dot).powi(2);
         assert!((ratio - g.ratio(11)).abs() < 1e-12);
-        assert_eq!(loaded.params.k, 1e4, "k, t_end and the method stay");
+        assert_eq!(lp.k, 1e4, "k, t_end and the method stay");
     }
 
     #[test]

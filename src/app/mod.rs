@@ -175,6 +175,18 @@ impl App {
         self.status = Message::info(format!("loaded {}", self.scenario.name));
         let overlay = self.run.set_overlay(self.view.overlay);
         let mut effects = vec![Effect::Sim(overlay)];
+        if self.scenario.settings.model.kind() != crate::physics::ModelKind::Rattleback {
+            // The rattleback's own panes close with it (their computations stop).
+            for pane in [Pane::Sweep, Pane::Weak, Pane::Map] {
+                if self.view.panes.shows(pane) {
+                    effects.extend(self.toggle_computed(pane));
+                }
+            }
+            self.view.panes.set(Pane::Body, false);
+            if self.mode == Mode::Map {
+                self.mode = Mode::Normal;
+            }
+        }
         effects.extend(self.restart());
         effects
     }
@@ -195,7 +207,8 @@ impl App {
     /// The selected field.
     #[must_use]
     pub fn field(&self) -> Field {
-        Field::ALL[self.scenario.selected]
+        let rows = Field::rows(self.scenario.settings.model.kind());
+        rows[self.scenario.selected.min(rows.len() - 1)]
     }
 
     fn restart(&mut self) -> Vec<Effect> {
@@ -207,10 +220,10 @@ impl App {
             .map(Effect::Sim)
             .collect();
         if self.view.panes.shows(Pane::Sweep) {
-            effects.push(Effect::Sim(self.start_sweep()));
+            effects.extend(self.start_sweep().map(Effect::Sim));
         }
         if self.view.panes.shows(Pane::Weak) {
-            effects.push(Effect::Sim(self.start_weak()));
+            effects.extend(self.start_weak().map(Effect::Sim));
         }
         if self.view.panes.shows(Pane::Map) {
             effects.extend(self.map.start(&self.scenario.settings).map(Effect::Sim));
@@ -334,7 +347,7 @@ impl App {
 
     fn carry_out(&mut self, action: Action) -> Vec<Effect> {
         let field = self.field();
-        let n = Field::ALL.len();
+        let n = Field::rows(self.scenario.settings.model.kind()).len();
         let settings = self.scenario.settings;
         let v = &mut self.view.view;
         match action {
@@ -387,7 +400,11 @@ impl App {
             Action::NarrowerWindow => self.weak.scale_window(0.5),
             Action::ToggleSweep => return self.toggle_computed(Pane::Sweep),
             Action::ToggleMap => return self.toggle_computed(Pane::Map),
-            Action::ToggleBody => self.view.panes.toggle(Pane::Body),
+            Action::ToggleBody => {
+                if self.view.panes.shows(Pane::Body) || self.scene_has(Pane::Body) {
+                    self.view.panes.toggle(Pane::Body);
+                }
+            }
             Action::ZoomIn => v.zoom = (v.zoom * 1.5).min(1e6),
             Action::ZoomOut => v.zoom = (v.zoom / 1.5).max(0.1),
             Action::PanLeft => v.pan_x -= 0.1,
@@ -523,10 +540,11 @@ impl App {
     #[must_use]
     pub fn bounds(&self) -> Bounds {
         let s = &self.scenario.settings;
+        let (q0, q_dot0) = s.model.slow_start();
         let auto = portrait::auto_bounds(
-            &self.scenario.derived.effective,
-            s.start.alpha,
-            s.start.alpha_dot,
+            &self.scenario.derived.limit,
+            q0,
+            q_dot0,
             self.run.trail_shown(),
             self.view.view.wrap,
         );

@@ -48,6 +48,27 @@ impl Pane {
         }
     }
 
+    /// Whether only the rattleback has it (the studies of `k` and the body).
+    #[must_use]
+    pub fn rattleback_only(self) -> bool {
+        matches!(self, Self::Sweep | Self::Weak | Self::Map | Self::Body)
+    }
+
+    /// The pane's name in messages.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Params => "parameter",
+            Self::Portrait => "portrait",
+            Self::Series => "time-series",
+            Self::Sweep => "sweep",
+            Self::Weak => "weak-*",
+            Self::Map => "regime-map",
+            Self::Lesson => "lesson",
+            Self::Body => "body",
+        }
+    }
+
     /// Whether the user may hide it.
     #[must_use]
     pub fn optional(self) -> bool {

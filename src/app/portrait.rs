@@ -2,9 +2,7 @@
 //! level sets of the effective energy, and trail decimation to the canvas resolution. Pure
 //! data, no drawing.
 
-use std::f64::consts::PI;
-
-use crate::physics::effective::Effective;
+use crate::physics::LimitView;
 use crate::sim::Point;
 
 /// Zoom, pan and wrap chosen by the user.
@@ -16,7 +14,8 @@ pub struct View {
     pub pan_x: f64,
     /// Pan as a fraction of the visible height.
     pub pan_y: f64,
-    /// Show `alpha` modulo one period of `V` (π).
+    /// Show the slow coordinate modulo one period of `V` (π for the rattleback, 2π for the
+    /// pendulum).
     pub wrap: bool,
     /// Fixed `alpha` range from the preset (else automatic).
     pub alpha_range: Option<[f64; 2]>,
@@ -74,18 +73,18 @@ pub enum LevelKind {
 /// Number of background levels drawn.
 pub const LEVELS: usize = 6;
 
-/// Centre of the period shown when wrapped: the potential's minimum.
+/// Centre of the period shown when wrapped: the rattleback's potential minimum, the
+/// pendulum's upright.
 #[must_use]
-pub fn wrap_centre(eff: &Effective) -> f64 {
-    let p = eff.params();
-    if p.ix >= p.iy { 0.0 } else { PI / 2.0 }
+pub fn wrap_centre(limit: &LimitView) -> f64 {
+    limit.wrap_centre()
 }
 
-/// `alpha` as displayed: unchanged, or folded into one period around the minimum.
+/// The slow coordinate as displayed: unchanged, or folded into one `period` around `centre`.
 #[must_use]
-pub fn display_alpha(alpha: f64, centre: f64, wrap: bool) -> f64 {
+pub fn display_alpha(alpha: f64, centre: f64, wrap: bool, period: f64) -> f64 {
     if wrap {
-        centre + (alpha - centre + PI / 2.0).rem_euclid(PI) - PI / 2.0
+        centre + (alpha - centre + period / 2.0).rem_euclid(period) - period / 2.0
     } else {
         alpha
     }
@@ -100,26 +99,26 @@ pub const FOLLOW_PERIODS: f64 = 3.0;
 /// [`FOLLOW_PERIODS`] periods is followed by a window of that width ending at its last point.
 #[must_use]
 pub fn auto_bounds(
-    eff: &Effective,
+    limit: &LimitView,
     alpha0: f64,
     alpha_dot0: f64,
     trail: &[Point],
     wrap: bool,
 ) -> Bounds {
-    let iz = eff.params().iz;
-    let centre = wrap_centre(eff);
-    let sep = (2.0 * (eff.potential_max() - eff.potential_min()) / iz)
+    let period = limit.period();
+    let centre = limit.wrap_centre();
+    let sep = (2.0 * (limit.potential_max() - limit.potential_min()) / limit.mass())
         .max(0.0)
         .sqrt();
     let mut y_max = sep.max(alpha_dot0.abs()).max(1e-3);
-    let margin = 0.08 * PI;
+    let margin = 0.08 * period;
     let (mut x_lo, mut x_hi) = if wrap {
-        (centre - PI / 2.0 - margin, centre + PI / 2.0 + margin)
+        (centre - period / 2.0 - margin, centre + period / 2.0 + margin)
     } else {
-        let c = centre + PI * ((alpha0 - centre) / PI).round();
+        let c = centre + period * ((alpha0 - centre) / period).round();
         (
-            (c - PI / 2.0).min(alpha0 - PI / 4.0),
-            (c + PI / 2.0).max(alpha0 + PI / 4.0),
+            (c - period / 2.0).min(alpha0 - period / 4.0),
+            (c + period / 2.0).max(alpha0 + period / 4.0),
         )
     };
     for p in trail {
@@ -130,10 +129,10 @@ pub fn auto_bounds(
         }
     }
     if !wrap
-        && x_hi - x_lo > FOLLOW_PERIODS * PI
+        && x_hi - x_lo > FOLLOW_PERIODS * period
         && let Some(last) = trail.last()
     {
-        let width = FOLLOW_PERIODS * PI;
+        let width = FOLLOW_PERIODS * period;
         // The window trails the motion: the current point sits a sixth from its leading edge.
         let ahead = width / 6.0;
         (x_lo, x_hi) = if last.alpha_dot >= 0.0 {
@@ -150,7 +149,7 @@ pub fn auto_bounds(
 
 /// Whether the unwrapped view is following a long run (see [`auto_bounds`]).
 #[must_use]
-pub fn following(trail: &[Point], wrap: bool) -> bool {
+pub fn following(trail: &[Point], wrap: bool, period: f64) -> bool {
     if wrap {
         return false;
     }
@@ -159,23 +158,26 @@ pub fn following(trail: &[Point], wrap: bool) -> bool {
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
             (lo.min(p.alpha), hi.max(p.alpha))
         });
-    hi - lo > FOLLOW_PERIODS * PI
+    hi - lo > FOLLOW_PERIODS * period
 }
 
 /// Spacing of the sample grid: fine enough that consecutive samples of the limit's motion are
 /// less than a cell apart on a large screen (about 64 samples per unit of the fastest slow
-/// rate), whatever the playback speed.
+/// rate), whatever the playback speed. A model with a fast period it does not resolve at that
+/// spacing (the pendulum at small ε) gets either a spacing resolving it (24 samples per fast
+/// period when that costs at most the slow spacing's count ×24), or, when the fast period is
+/// shorter than the slow spacing, a spacing of whole fast periods plus a golden-ratio fraction
+/// of one: successive samples then visit every phase of the ripple, so the trail fills the
+/// ripple band instead of tracing one phase of it (a stroboscope would).
 #[must_use]
-pub fn sample_spacing(eff: &Effective, alpha_dot0: f64) -> f64 {
-    let iz = eff.params().iz;
-    let sep = (2.0 * (eff.potential_max() - eff.potential_min()) / iz)
-        .max(0.0)
-        .sqrt();
-    let top = (2.0 * (eff.energy() - eff.potential_min()) / iz)
-        .max(0.0)
-        .sqrt();
-    let rate = sep.max(top).max(alpha_dot0.abs()).max(1e-3);
-    (1.0 / (64.0 * rate)).min(0.05)
+pub fn sample_spacing(limit: &LimitView) -> f64 {
+    let rate = limit.rate_scale().max(1e-3);
+    let dt = (1.0 / (64.0 * rate)).min(0.05);
+    match limit.fast_period() {
+        Some(p) if dt > p / 24.0 && dt < p => p / 24.0,
+        Some(p) if dt >= p => p * ((dt / p).floor() + 0.381_966_011_250_105),
+        _ => dt,
+    }
 }
 
 /// Applies fixed ranges, zoom and pan to automatic bounds.
@@ -200,13 +202,13 @@ pub fn apply_view(b: Bounds, view: &View) -> Bounds {
 /// background levels, the separatrix and the start's level.
 #[must_use]
 pub fn levels(
-    eff: &Effective,
+    eff: &LimitView,
     bounds: &Bounds,
     start_energy: f64,
     count: usize,
     samples: usize,
 ) -> Vec<Level> {
-    let iz = eff.params().iz;
+    let iz = eff.mass();
     let (vmin, vmax) = (eff.potential_min(), eff.potential_max());
     let top = vmax.max(vmin + 0.5 * iz * bounds.y[1].max(-bounds.y[0]).powi(2));
     let mut out = Vec::new();
@@ -214,15 +216,15 @@ pub fn levels(
         let e = vmin + (top - vmin) * i as f64 / (count + 1) as f64;
         out.push(level(eff, bounds, e, LevelKind::Plain, samples));
     }
-    if vmax > vmin {
-        out.push(level(eff, bounds, vmax, LevelKind::Separatrix, samples));
+    for sep in eff.separatrices() {
+        out.push(level(eff, bounds, sep, LevelKind::Separatrix, samples));
     }
     out.push(level(eff, bounds, start_energy, LevelKind::Start, samples));
     out
 }
 
-fn level(eff: &Effective, bounds: &Bounds, energy: f64, kind: LevelKind, samples: usize) -> Level {
-    let iz = eff.params().iz;
+fn level(eff: &LimitView, bounds: &Bounds, energy: f64, kind: LevelKind, samples: usize) -> Level {
+    let iz = eff.mass();
     let n = samples.max(8);
     let [x0, x1] = bounds.x;
     let speed = |a: f64| {
@@ -308,10 +310,11 @@ pub fn decimate(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::PI;
     use crate::physics::{Params, Problem, Start};
 
-    fn eff() -> Effective {
-        Effective::new(
+    fn eff() -> LimitView {
+        LimitView::Rattleback(crate::physics::effective::Effective::new(
             &Problem::new(
                 Params {
                     ix: 2.0,
@@ -327,7 +330,7 @@ mod tests {
                 },
             )
             .unwrap(),
-        )
+        ))
     }
 
     #[test]
@@ -375,8 +378,10 @@ mod tests {
 
     #[test]
     fn wrapping_folds_into_one_period() {
-        let a = display_alpha(3.0 * PI + 0.1, 0.0, true);
+        let a = display_alpha(3.0 * PI + 0.1, 0.0, true, PI);
         assert!((a - 0.1).abs() < 1e-12);
-        assert!((display_alpha(5.0, 0.0, false) - 5.0).abs() < 1e-15);
+        assert!((display_alpha(5.0, 0.0, false, PI) - 5.0).abs() < 1e-15);
+        let a = display_alpha(3.0 * PI + 0.1, 0.0, true, 2.0 * PI);
+        assert!((a - (0.1 - PI)).abs() < 1e-12);
     }
 }

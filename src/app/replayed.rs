@@ -20,7 +20,10 @@ impl App {
                         Message::error(format!("unknown field '{field}' in the recording"));
                     return Vec::new();
                 };
-                self.scenario.selected = Field::ALL.iter().position(|x| *x == f).unwrap_or(0);
+                self.scenario.selected = Field::rows(self.scenario.settings.model.kind())
+                    .iter()
+                    .position(|x| *x == f)
+                    .unwrap_or(0);
                 self.apply(f.with_text(&self.scenario.settings, value))
             }
             Event::Play if self.run.playing => Vec::new(),

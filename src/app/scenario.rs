@@ -3,9 +3,8 @@
 
 use super::fields::Settings;
 use super::portrait::{self, View};
-use crate::physics::DEFAULT_TOLERANCE;
-use crate::physics::effective::Effective;
 use crate::physics::integrators::Method;
+use crate::physics::{DEFAULT_TOLERANCE, LimitView, Model};
 use crate::scenario::Preset;
 use crate::scenario::preset::{RunConfig, ViewConfig};
 use crate::scenario::text::clean;
@@ -14,11 +13,11 @@ use crate::sim::SessionSpec;
 /// Derived values shown read-only under the parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Derived {
-    /// The effective model of the start.
-    pub effective: Effective,
-    /// `alpha_dot² / gamma_dot²`.
+    /// The limit of the start, as the portrait draws it.
+    pub limit: LimitView,
+    /// The rattleback's `alpha_dot² / gamma_dot²` (none for other models).
     pub ratio: Option<f64>,
-    /// The critical ratio.
+    /// The rattleback's critical ratio (none for other models).
     pub critical: Option<f64>,
     /// Spacing of the sample grid, from the limit's dynamics (never from the playback speed).
     pub sample_dt: f64,
@@ -26,13 +25,18 @@ pub struct Derived {
 
 impl Derived {
     fn of(s: &Settings) -> Self {
-        let problem = s.problem();
-        let effective = Effective::new(&problem);
+        let limit = s.model.limit_view();
+        let (ratio, critical) = match (&s.model, limit.effective()) {
+            (Model::Rattleback(problem), Some(e)) => {
+                (e.start_ratio(problem), e.critical_ratio(problem))
+            }
+            _ => (None, None),
+        };
         Self {
-            ratio: effective.start_ratio(&problem),
-            critical: effective.critical_ratio(&problem),
-            sample_dt: portrait::sample_spacing(&effective, s.start.alpha_dot),
-            effective,
+            ratio,
+            critical,
+            sample_dt: portrait::sample_spacing(&limit),
+            limit,
         }
     }
 
@@ -67,8 +71,7 @@ impl Scenario {
     #[must_use]
     pub fn of(preset: &Preset) -> Self {
         let settings = Settings {
-            params: *preset.problem.params(),
-            start: *preset.problem.start(),
+            model: preset.model,
             t_end: preset.run.t_end,
             method: preset.run.method.unwrap_or(Method::Auto),
             tolerance: preset.run.tolerance.unwrap_or(DEFAULT_TOLERANCE),
@@ -93,7 +96,7 @@ impl Scenario {
     pub fn spec(&self, overlay: bool) -> SessionSpec {
         let s = &self.settings;
         SessionSpec {
-            problem: s.problem(),
+            model: s.model,
             method: s.method,
             tolerance: s.tolerance,
             t_end: s.t_end,
@@ -108,7 +111,7 @@ impl Scenario {
         Preset {
             name: name.to_owned(),
             description: self.description.clone(),
-            problem: self.settings.problem(),
+            model: self.settings.model,
             run: RunConfig {
                 t_end: self.settings.t_end,
                 method: Some(self.settings.method),

@@ -15,6 +15,7 @@ pub mod flow;
 pub mod integrators;
 pub mod kapitza;
 pub mod model;
+pub mod models;
 pub mod params;
 pub mod plan;
 pub mod quadrature;
@@ -22,6 +23,7 @@ pub mod run;
 
 pub use integrators::{Integrator, Method, StepError};
 pub use model::State;
+pub use models::{LimitView, Model, ModelKind};
 pub use params::{ParamError, Params, Problem, Start};
 pub use plan::{DEFAULT_TOLERANCE, Resolved};
 pub use run::{RunResult, RunSpec, run};

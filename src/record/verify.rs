@@ -158,10 +158,12 @@ pub fn verify(rec: &Recording, path: &str) -> Result<usize, VerifyError> {
                     }
                 },
             );
-            let (got_t, got_state, got_rev) = got.unwrap_or((line.t, [f64::NAN; 4], usize::MAX));
+            let (got_t, got_state, got_rev) =
+                got.unwrap_or_else(|| (line.t, vec![f64::NAN; state.len()], usize::MAX));
             let got_hash = state_hash(got_t, &got_state, got_rev);
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             if got_hash != *hash
-                || got_state.map(f64::to_bits) != state.map(f64::to_bits)
+                || bits(&got_state) != bits(state)
                 || got_rev != *reversals
             {
                 return Err(VerifyError::Diverged(Divergence {

@@ -1,5 +1,7 @@
-//! Preset files: a scenario in TOML (`[preset]`, `[body]`, `[spring]`, `[initial]`, `[run]`,
-//! `[view]`).
+//! Preset files: a scenario in TOML. `[preset] model` names the model (`rattleback` when
+//! absent, so every older file keeps its meaning); the rattleback's sections are `[preset]`,
+//! `[body]`, `[spring]`, `[initial]`, `[run]`, `[view]`, Kapitza's pendulum's `[preset]`,
+//! `[pendulum]`, `[initial]`, `[run]`, `[view]` ([`schema`]).
 //!
 //! Parse raw, then validate against one schema ([`SCHEMA`]): the text is parsed into a TOML
 //! table (syntax errors stop there), command-line overrides (`--set section.key=value`) are
@@ -11,7 +13,8 @@ use serde::Serialize;
 use toml::{Table, Value};
 
 use super::error::{PresetError, SourceMap};
-use crate::physics::{Method, Params, Problem, Start};
+use crate::physics::kapitza;
+use crate::physics::{Method, Model, ModelKind, Params, Problem, Start};
 
 /// Smallest and largest tolerance accepted.
 pub const TOLERANCE_RANGE: (f64, f64) = (1e-14, 1e-1);
@@ -37,6 +40,12 @@ pub enum Kind {
     Range,
     /// A whole number of energy levels, 0 to [`MAX_CONTOURS`].
     Count,
+    /// A model name.
+    Model,
+    /// A finite number >= 0.
+    NonNegative,
+    /// `ε`, in `[kapitza::EPSILON_MIN, kapitza::EPSILON_MAX]`.
+    Epsilon,
 }
 
 impl Kind {
@@ -53,6 +62,13 @@ impl Kind {
             Self::Bool => "true or false".to_owned(),
             Self::Range => "[low, high] with finite low < high".to_owned(),
             Self::Count => format!("a whole number from 0 to {MAX_CONTOURS}"),
+            Self::Model => format!("one of {}", ModelKind::names()),
+            Self::NonNegative => "a finite number >= 0".to_owned(),
+            Self::Epsilon => format!(
+                "a number in [{:e}, {}]",
+                kapitza::EPSILON_MIN,
+                kapitza::EPSILON_MAX
+            ),
         }
     }
 }
@@ -79,10 +95,11 @@ const fn spec(section: &'static str, key: &'static str, kind: Kind, required: bo
     }
 }
 
-/// Every key a preset may hold. Names are a contract: add, never rename.
+/// Every key a rattleback preset may hold. Names are a contract: add, never rename.
 pub const SCHEMA: &[KeySpec] = &[
     spec("preset", "name", Kind::Text, false),
     spec("preset", "description", Kind::Text, false),
+    spec("preset", "model", Kind::Model, false),
     spec("body", "ix", Kind::Positive, true),
     spec("body", "iy", Kind::Positive, true),
     spec("body", "iz", Kind::Positive, true),
@@ -103,7 +120,47 @@ pub const SCHEMA: &[KeySpec] = &[
     spec("view", "wrap", Kind::Bool, false),
 ];
 
-const SECTIONS: [&str; 6] = ["preset", "body", "spring", "initial", "run", "view"];
+const SECTIONS: &[&str] = &["preset", "body", "spring", "initial", "run", "view"];
+
+/// Every key a Kapitza preset may hold. Names are a contract: add, never rename.
+pub const KAPITZA_SCHEMA: &[KeySpec] = &[
+    spec("preset", "name", Kind::Text, false),
+    spec("preset", "description", Kind::Text, false),
+    spec("preset", "model", Kind::Model, true),
+    spec("pendulum", "a", Kind::Number, true),
+    spec("pendulum", "b", Kind::NonNegative, true),
+    spec("pendulum", "epsilon", Kind::Epsilon, true),
+    spec("initial", "theta", Kind::Number, true),
+    spec("initial", "theta_dot", Kind::Number, false),
+    spec("run", "t_end", Kind::Positive, true),
+    spec("run", "method", Kind::Method, false),
+    spec("run", "tolerance", Kind::Tolerance, false),
+    spec("run", "step", Kind::Positive, false),
+    spec("view", "theta_range", Kind::Range, false),
+    spec("view", "theta_dot_range", Kind::Range, false),
+    spec("view", "contours", Kind::Count, false),
+    spec("view", "effective_overlay", Kind::Bool, false),
+    spec("view", "series", Kind::Bool, false),
+    spec("view", "wrap", Kind::Bool, false),
+];
+
+const KAPITZA_SECTIONS: &[&str] = &["preset", "pendulum", "initial", "run", "view"];
+
+/// The keys of `model`'s presets.
+#[must_use]
+pub fn schema(model: ModelKind) -> &'static [KeySpec] {
+    match model {
+        ModelKind::Rattleback => SCHEMA,
+        ModelKind::Kapitza => KAPITZA_SCHEMA,
+    }
+}
+
+fn sections(model: ModelKind) -> &'static [&'static str] {
+    match model {
+        ModelKind::Rattleback => SECTIONS,
+        ModelKind::Kapitza => KAPITZA_SECTIONS,
+    }
+}
 
 /// How a preset asks to be run; absent values fall back to the command line or defaults.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -121,9 +178,9 @@ pub struct RunConfig {
 /// How a preset asks to be shown; absent values keep the explorer's defaults.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct ViewConfig {
-    /// Fixed `alpha` range (else automatic).
+    /// Fixed range of the slow coordinate (`alpha_range`, `theta_range`; else automatic).
     pub alpha_range: Option<[f64; 2]>,
-    /// Fixed `alpha_dot` range (else automatic).
+    /// Fixed range of its rate (`alpha_dot_range`, `theta_dot_range`; else automatic).
     pub alpha_dot_range: Option<[f64; 2]>,
     /// Number of background energy levels.
     pub contours: Option<usize>,
@@ -142,8 +199,8 @@ pub struct Preset {
     pub name: String,
     /// What to look for.
     pub description: String,
-    /// Body, spring and start.
-    pub problem: Problem,
+    /// The model and its validated problem.
+    pub model: Model,
     /// Run settings.
     pub run: RunConfig,
     /// View settings.
@@ -210,8 +267,8 @@ impl Problems<'_> {
     }
 }
 
-fn allowed_keys(section: &str) -> String {
-    SCHEMA
+fn allowed_keys(schema: &[KeySpec], section: &str) -> String {
+    schema
         .iter()
         .filter(|s| s.section == section)
         .map(|s| format!("`{}`", s.key))
@@ -239,21 +296,38 @@ fn type_name(v: &Value) -> &'static str {
     }
 }
 
-/// Checks one value against its kind; `Err` is the message.
-fn check_value(kind: Kind, v: &Value) -> Result<(), String> {
+/// Checks one value against its kind for `model`; `Err` is the message.
+fn check_value(model: ModelKind, kind: Kind, v: &Value) -> Result<(), String> {
     let expected = || format!("expected {}, found {}", kind.allowed(), type_name(v));
     match kind {
         Kind::Text => v.as_str().map(|_| ()).ok_or_else(expected),
         Kind::Bool => v.as_bool().map(|_| ()).ok_or_else(expected),
-        Kind::Method => {
+        Kind::Model => {
             let name = v.as_str().ok_or_else(expected)?;
-            Method::from_name(name).map(|_| ()).ok_or_else(|| {
+            ModelKind::from_name(name).map(|_| ()).ok_or_else(|| {
                 format!(
-                    "unknown method '{name}'; allowed: {}{}",
-                    Method::names(),
-                    crate::scenario::text::did_you_mean(name, Method::ALL.map(Method::name))
+                    "unknown model '{name}'; allowed: {}{}",
+                    ModelKind::names(),
+                    crate::scenario::text::did_you_mean(name, ModelKind::ALL.map(ModelKind::name))
                 )
             })
+        }
+        Kind::Method => {
+            let name = v.as_str().ok_or_else(expected)?;
+            let offered = model.methods().iter().map(|m| m.name());
+            match Method::from_name(name) {
+                Some(m) if model.offers(m) => Ok(()),
+                Some(m) => Err(format!(
+                    "method '{m}' is not offered for the {} model; allowed: {}",
+                    model.name(),
+                    model.method_names()
+                )),
+                None => Err(format!(
+                    "unknown method '{name}'; allowed: {}{}",
+                    model.method_names(),
+                    crate::scenario::text::did_you_mean(name, offered)
+                )),
+            }
         }
         Kind::Count => {
             let n = v.as_integer().ok_or_else(expected)?;
@@ -276,7 +350,7 @@ fn check_value(kind: Kind, v: &Value) -> Result<(), String> {
                 Err(format!("not allowed; allowed: {}", kind.allowed()))
             }
         }
-        Kind::Number | Kind::Positive | Kind::Tolerance => {
+        Kind::Number | Kind::Positive | Kind::Tolerance | Kind::NonNegative | Kind::Epsilon => {
             let x = number(v).ok_or_else(expected)?;
             if !x.is_finite() {
                 return Err(format!(
@@ -287,6 +361,8 @@ fn check_value(kind: Kind, v: &Value) -> Result<(), String> {
             let ok = match kind {
                 Kind::Positive => x > 0.0,
                 Kind::Tolerance => (TOLERANCE_RANGE.0..=TOLERANCE_RANGE.1).contains(&x),
+                Kind::NonNegative => x >= 0.0,
+                Kind::Epsilon => (kapitza::EPSILON_MIN..=kapitza::EPSILON_MAX).contains(&x),
                 _ => true,
             };
             if ok {
@@ -302,7 +378,9 @@ fn check_value(kind: Kind, v: &Value) -> Result<(), String> {
 fn parse_override(kind: Kind, text: &str) -> Value {
     let text = text.trim();
     match kind {
-        Kind::Text | Kind::Method => Value::String(text.trim_matches('"').to_owned()),
+        Kind::Text | Kind::Method | Kind::Model => {
+            Value::String(text.trim_matches('"').to_owned())
+        }
         // One TOML value on one line: anything else (a newline smuggling in more keys, a
         // control character) stays text and fails the type check with its reason.
         _ if text.chars().any(char::is_control) => Value::String(text.to_owned()),
@@ -327,11 +405,20 @@ pub fn check(src: &str, label: &str) -> Vec<PresetError> {
     }
 }
 
+/// The model a preset table names (`[preset] model`, the rattleback when absent); `Err` when
+/// it names none (the schema check reports it with its location).
+fn model_of(table: &Table) -> Result<ModelKind, ()> {
+    match table.get("preset").and_then(Value::as_table).and_then(|t| t.get("model")) {
+        None => Ok(ModelKind::Rattleback),
+        Some(v) => v.as_str().and_then(ModelKind::from_name).ok_or(()),
+    }
+}
+
 fn collect(
     src: &str,
     label: &str,
     overrides: &[Override],
-) -> Result<(Table, Vec<PresetError>), Vec<PresetError>> {
+) -> Result<(Table, ModelKind), Vec<PresetError>> {
     let map = SourceMap::new(src);
     let mut table = map.parse_table(label).map_err(|e| vec![e])?;
     let mut problems = Problems {
@@ -340,12 +427,34 @@ fn collect(
         overridden: overrides.iter().map(|o| o.key.clone()).collect(),
         found: Vec::new(),
     };
+    // The model first (a `--set preset.model=...` included): it decides the schema.
+    for o in overrides.iter().filter(|o| o.key == "preset.model") {
+        let section = table
+            .entry("preset")
+            .or_insert_with(|| Value::Table(Table::new()));
+        if let Value::Table(t) = section {
+            t.insert("model".to_owned(), parse_override(Kind::Model, &o.value));
+        }
+    }
+    let model = match model_of(&table) {
+        Ok(m) => m,
+        Err(()) => {
+            let v = &table["preset"]["model"];
+            let message = check_value(ModelKind::Rattleback, Kind::Model, v)
+                .err()
+                .unwrap_or_default();
+            problems.at_key("preset", "model", message);
+            return Err(problems.found);
+        }
+    };
+    let schema = schema(model);
+    let section_names = sections(model);
     for o in overrides {
-        let Some(spec) = SCHEMA
+        let Some(spec) = schema
             .iter()
             .find(|s| format!("{}.{}", s.section, s.key) == o.key)
         else {
-            let keys: Vec<String> = SCHEMA
+            let keys: Vec<String> = schema
                 .iter()
                 .map(|s| format!("{}.{}", s.section, s.key))
                 .collect();
@@ -369,13 +478,33 @@ fn collect(
         }
     }
     for (name, value) in &table {
-        if !SECTIONS.contains(&name.as_str()) {
-            let allowed = SECTIONS.map(|s| format!("`{s}`")).join(", ");
+        if !section_names.contains(&name.as_str()) {
+            let allowed = section_names
+                .iter()
+                .map(|s| format!("`{s}`"))
+                .collect::<Vec<_>>()
+                .join(", ");
+            let other = ModelKind::ALL
+                .into_iter()
+                .find(|m| *m != model && sections(*m).contains(&name.as_str()))
+                .map(|m| {
+                    format!(
+                        " ([{name}] belongs to the {} model{})",
+                        m.name(),
+                        if m == ModelKind::Rattleback {
+                            ", which is the default".to_owned()
+                        } else {
+                            format!("; set model = \"{}\" in [preset]", m.name())
+                        }
+                    )
+                })
+                .unwrap_or_default();
             problems.at_section(
                 name,
                 format!(
-                    "unknown section `{name}`, expected one of {allowed}{}",
-                    crate::scenario::text::did_you_mean(name, SECTIONS)
+                    "unknown section `{name}` for the {} model, expected one of {allowed}{}{other}",
+                    model.name(),
+                    crate::scenario::text::did_you_mean(name, section_names.iter().copied())
                 ),
             );
             continue;
@@ -385,28 +514,28 @@ fn collect(
             continue;
         };
         for (key, v) in section {
-            match SCHEMA.iter().find(|s| s.section == name && s.key == key) {
+            match schema.iter().find(|s| s.section == name && s.key == key) {
                 None => problems.at_key(
                     name,
                     key,
                     format!(
                         "unknown key `{key}`, expected one of {}{}",
-                        allowed_keys(name),
+                        allowed_keys(schema, name),
                         crate::scenario::text::did_you_mean(
                             key,
-                            SCHEMA.iter().filter(|s| s.section == name).map(|s| s.key)
+                            schema.iter().filter(|s| s.section == name).map(|s| s.key)
                         )
                     ),
                 ),
                 Some(spec) => {
-                    if let Err(message) = check_value(spec.kind, v) {
+                    if let Err(message) = check_value(model, spec.kind, v) {
                         problems.at_key(name, key, message);
                     }
                 }
             }
         }
     }
-    for spec in SCHEMA.iter().filter(|s| s.required) {
+    for spec in schema.iter().filter(|s| s.required) {
         let present = table
             .get(spec.section)
             .and_then(Value::as_table)
@@ -425,7 +554,7 @@ fn collect(
         }
     }
     if problems.found.is_empty() {
-        Ok((table, Vec::new()))
+        Ok((table, model))
     } else {
         Err(problems.found)
     }
@@ -480,27 +609,48 @@ impl Preset {
         fallback_name: &str,
         overrides: &[Override],
     ) -> Result<Self, PresetError> {
-        let (table, _) = collect(src, label, overrides).map_err(|mut p| p.swap_remove(0))?;
+        let (table, kind) = collect(src, label, overrides).map_err(|mut p| p.swap_remove(0))?;
         let r = Reader(&table);
         let n = |s: &str, k: &str| r.num(s, k).unwrap_or(0.0);
-        let params = Params {
-            ix: n("body", "ix"),
-            iy: n("body", "iy"),
-            iz: n("body", "iz"),
-            k: n("spring", "k"),
-        };
-        let start = Start {
-            gamma: n("initial", "gamma"),
-            alpha: n("initial", "alpha"),
-            gamma_dot: n("initial", "gamma_dot"),
-            alpha_dot: n("initial", "alpha_dot"),
-        };
-        let problem = Problem::new(params, start).map_err(|e| PresetError::Invalid {
+        let invalid = |e: crate::physics::ParamError| PresetError::Invalid {
             path: label.to_owned(),
             line: None,
             key: Some(e.field().to_owned()),
             message: e.to_string(),
-        })?;
+        };
+        let model = match kind {
+            ModelKind::Rattleback => {
+                let params = Params {
+                    ix: n("body", "ix"),
+                    iy: n("body", "iy"),
+                    iz: n("body", "iz"),
+                    k: n("spring", "k"),
+                };
+                let start = Start {
+                    gamma: n("initial", "gamma"),
+                    alpha: n("initial", "alpha"),
+                    gamma_dot: n("initial", "gamma_dot"),
+                    alpha_dot: n("initial", "alpha_dot"),
+                };
+                Model::Rattleback(Problem::new(params, start).map_err(invalid)?)
+            }
+            ModelKind::Kapitza => {
+                let params = kapitza::Params {
+                    a: n("pendulum", "a"),
+                    b: n("pendulum", "b"),
+                    epsilon: n("pendulum", "epsilon"),
+                };
+                let start = kapitza::Start {
+                    theta: n("initial", "theta"),
+                    theta_dot: n("initial", "theta_dot"),
+                };
+                Model::Kapitza(kapitza::Problem::new(params, start).map_err(invalid)?)
+            }
+        };
+        let (x_range, y_range) = match kind {
+            ModelKind::Rattleback => ("alpha_range", "alpha_dot_range"),
+            ModelKind::Kapitza => ("theta_range", "theta_dot_range"),
+        };
         let (t_end, step) = (n("run", "t_end"), r.num("run", "step"));
         if let Some(h) = step {
             crate::physics::run::check_step(h, t_end).map_err(|message| PresetError::Invalid {
@@ -515,7 +665,7 @@ impl Preset {
                 .text("preset", "name")
                 .unwrap_or_else(|| fallback_name.to_owned()),
             description: r.text("preset", "description").unwrap_or_default(),
-            problem,
+            model,
             run: RunConfig {
                 t_end: n("run", "t_end"),
                 method: r.text("run", "method").and_then(|m| Method::from_name(&m)),
@@ -523,8 +673,8 @@ impl Preset {
                 step: r.num("run", "step"),
             },
             view: ViewConfig {
-                alpha_range: r.range("view", "alpha_range"),
-                alpha_dot_range: r.range("view", "alpha_dot_range"),
+                alpha_range: r.range("view", x_range),
+                alpha_dot_range: r.range("view", y_range),
                 contours: r
                     .get("view", "contours")
                     .and_then(Value::as_integer)
@@ -536,31 +686,54 @@ impl Preset {
         })
     }
 
+    /// The rattleback's problem, when this is a rattleback preset.
+    #[must_use]
+    pub fn problem(&self) -> Option<&Problem> {
+        self.model.rattleback()
+    }
+
     /// The preset as TOML, in the schema's order; parsing it gives the same preset back.
     #[must_use]
     pub fn to_toml(&self) -> String {
         use std::fmt::Write as _;
-        let p = self.problem.params();
-        let s = self.problem.start();
         let q = |t: &str| Value::String(t.to_owned()).to_string();
         let mut o = String::new();
         let _ = writeln!(
             o,
-            "[preset]\nname = {}\ndescription = {}\n",
+            "[preset]\nname = {}\ndescription = {}",
             q(&self.name),
             q(&self.description)
         );
-        let _ = writeln!(
-            o,
-            "[body]\nix = {:?}\niy = {:?}\niz = {:?}\n",
-            p.ix, p.iy, p.iz
-        );
-        let _ = writeln!(o, "[spring]\nk = {:?}\n", p.k);
-        let _ = writeln!(
-            o,
-            "[initial]\ngamma = {:?}\nalpha = {:?}\ngamma_dot = {:?}\nalpha_dot = {:?}\n",
-            s.gamma, s.alpha, s.gamma_dot, s.alpha_dot
-        );
+        match &self.model {
+            Model::Rattleback(problem) => {
+                let (p, s) = (problem.params(), problem.start());
+                let _ = writeln!(
+                    o,
+                    "\n[body]\nix = {:?}\niy = {:?}\niz = {:?}\n",
+                    p.ix, p.iy, p.iz
+                );
+                let _ = writeln!(o, "[spring]\nk = {:?}\n", p.k);
+                let _ = writeln!(
+                    o,
+                    "[initial]\ngamma = {:?}\nalpha = {:?}\ngamma_dot = {:?}\nalpha_dot = {:?}\n",
+                    s.gamma, s.alpha, s.gamma_dot, s.alpha_dot
+                );
+            }
+            Model::Kapitza(problem) => {
+                let (p, s) = (problem.params(), problem.start());
+                let _ = writeln!(o, "model = \"kapitza\"\n");
+                let _ = writeln!(
+                    o,
+                    "[pendulum]\na = {:?}\nb = {:?}\nepsilon = {:?}\n",
+                    p.a, p.b, p.epsilon
+                );
+                let _ = writeln!(
+                    o,
+                    "[initial]\ntheta = {:?}\ntheta_dot = {:?}\n",
+                    s.theta, s.theta_dot
+                );
+            }
+        }
         let _ = writeln!(o, "[run]\nt_end = {:?}", self.run.t_end);
         if let Some(m) = self.run.method {
             let _ = writeln!(o, "method = {}", q(m.name()));
@@ -573,11 +746,15 @@ impl Preset {
         }
         let v = &self.view;
         let mut view = String::new();
+        let (x_range, y_range) = match self.model.kind() {
+            ModelKind::Rattleback => ("alpha_range", "alpha_dot_range"),
+            ModelKind::Kapitza => ("theta_range", "theta_dot_range"),
+        };
         if let Some([a, b]) = v.alpha_range {
-            let _ = writeln!(view, "alpha_range = [{a:?}, {b:?}]");
+            let _ = writeln!(view, "{x_range} = [{a:?}, {b:?}]");
         }
         if let Some([a, b]) = v.alpha_dot_range {
-            let _ = writeln!(view, "alpha_dot_range = [{a:?}, {b:?}]");
+            let _ = writeln!(view, "{y_range} = [{a:?}, {b:?}]");
         }
         if let Some(c) = v.contours {
             let _ = writeln!(view, "contours = {c}");

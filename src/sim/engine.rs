@@ -9,31 +9,57 @@ use serde::{Deserialize, Serialize};
 
 use super::{Command, Session, SessionSpec, SimEvent};
 use crate::physics::integrators::{Method, StepError};
-use crate::physics::plan::{self, AutoPolicy, Resolved};
-use crate::physics::{Params, Start};
+use crate::physics::kapitza;
+use crate::physics::plan::{AutoPolicy, Resolved};
+use crate::physics::{Model, Params, Start};
 
-/// What a plan was resolved for: `auto`'s choice depends on these only.
+/// What a plan was resolved for: `auto`'s choice depends on these only. One shape per model
+/// (told apart by their fields, so files written before the pendulum existed read as before).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
-pub struct PlanKey {
-    /// Body and spring.
-    pub params: Params,
-    /// Start.
-    pub start: Start,
-    /// Tolerance asked.
-    pub tolerance: f64,
-    /// Horizon.
-    pub t_end: f64,
+#[serde(untagged)]
+pub enum PlanKey {
+    /// The rattleback's.
+    Rattleback {
+        /// Body and spring.
+        params: Params,
+        /// Start.
+        start: Start,
+        /// Tolerance asked.
+        tolerance: f64,
+        /// Horizon.
+        t_end: f64,
+    },
+    /// The pendulum's.
+    Kapitza {
+        /// `a`, `b`, `epsilon`.
+        pendulum: kapitza::Params,
+        /// `theta`, `theta_dot`.
+        initial: kapitza::Start,
+        /// Tolerance asked.
+        tolerance: f64,
+        /// Horizon.
+        t_end: f64,
+    },
 }
 
 impl PlanKey {
     /// The key of a session spec.
     #[must_use]
     pub fn of(spec: &SessionSpec) -> Self {
-        Self {
-            params: *spec.problem.params(),
-            start: *spec.problem.start(),
-            tolerance: spec.tolerance,
-            t_end: spec.t_end,
+        let (tolerance, t_end) = (spec.tolerance, spec.t_end);
+        match &spec.model {
+            Model::Rattleback(p) => Self::Rattleback {
+                params: *p.params(),
+                start: *p.start(),
+                tolerance,
+                t_end,
+            },
+            Model::Kapitza(p) => Self::Kapitza {
+                pendulum: *p.params(),
+                initial: *p.start(),
+                tolerance,
+                t_end,
+            },
         }
     }
 }
@@ -201,8 +227,7 @@ impl Engine {
         };
         let resolved = match self.book.lookup(&spec) {
             Some(plan) => Ok((plan, None)),
-            None => plan::resolve(
-                &spec.problem,
+            None => spec.model.resolve(
                 spec.method,
                 spec.tolerance,
                 spec.t_end,

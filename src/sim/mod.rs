@@ -160,7 +160,7 @@ pub enum SimEvent {
         /// Its time.
         t: f64,
         /// `(gamma, alpha, gamma_dot, alpha_dot)` at `t`.
-        state: [f64; 4],
+        state: Vec<f64>,
         /// Reversals of the full motion up to `t`.
         reversals: usize,
     },

@@ -7,16 +7,16 @@
 use serde::{Deserialize, Serialize};
 
 use super::SimEvent;
-use crate::physics::Problem;
-use crate::physics::integrators::reversals::ReversalTracker;
-use crate::physics::integrators::{self, Integrator, Method, Settings, StepError};
+use crate::physics::Model;
+use crate::physics::flow::{EventTracker, Flow};
+use crate::physics::integrators::{Method, Settings, StepError};
 use crate::physics::plan::Resolved;
 
 /// What a session runs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SessionSpec {
-    /// Body, spring and start.
-    pub problem: Problem,
+    /// The model and its problem.
+    pub model: Model,
     /// Method as asked (`auto` is resolved by the engine before the session starts).
     pub method: Method,
     /// Tolerance as asked.
@@ -29,24 +29,27 @@ pub struct SessionSpec {
     pub sample_dt: f64,
 }
 
-/// A sample of the motion for drawing.
+/// A sample of the motion for drawing, in the model's slow coordinate (the rattleback's `α`,
+/// the pendulum's `θ`; the field names are the rattleback's, the first model).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Point {
     /// Time.
     pub t: f64,
-    /// Spin angle.
+    /// The slow coordinate.
     pub alpha: f64,
-    /// Spin rate.
+    /// Its rate.
     pub alpha_dot: f64,
-    /// Relative error of the conserved quantity at the last step end.
+    /// Relative error of the conserved quantity at the last step end (for the driven
+    /// pendulum: the drift of the limit's energy, relative to its scale).
     pub energy_error: f64,
-    /// The tilt `gamma` (the fast rocking; the body pane draws its envelope).
+    /// The fast coordinate (the rattleback's tilt `γ`, whose envelope the body pane draws;
+    /// the pendulum's ripple `θ − Θ`).
     pub gamma: f64,
 }
 
 struct Track {
-    integrator: Box<dyn Integrator>,
-    tracker: ReversalTracker,
+    integrator: Box<dyn Flow>,
+    tracker: EventTracker,
     e0: f64,
     scale: f64,
     /// Index of the next grid sample this track emits.
@@ -58,17 +61,12 @@ struct Track {
 }
 
 impl Track {
-    fn new(
-        problem: &Problem,
-        method: Method,
-        settings: Settings,
-        t_end: f64,
-    ) -> Result<Self, StepError> {
-        let integrator = integrators::build(method, problem, settings, t_end)?;
+    fn new(model: &Model, method: Method, settings: Settings, t_end: f64) -> Result<Self, StepError> {
+        let integrator = model.build(method, settings, t_end)?;
         let e0 = integrator.energy();
         Ok(Self {
+            tracker: EventTracker::new(integrator.event_value()),
             integrator,
-            tracker: ReversalTracker::new(problem.start().alpha_dot),
             e0,
             scale: if e0 == 0.0 { 1.0 } else { e0.abs() },
             next: 0,
@@ -78,17 +76,13 @@ impl Track {
     }
 
     fn point(&mut self, t: f64) -> Point {
-        let y = if t >= self.integrator.time() {
-            self.integrator.state()
-        } else {
-            self.integrator.interpolate(t)
-        };
+        let y = self.integrator.sample(t);
         Point {
             t,
-            alpha: y[1],
-            alpha_dot: y[3],
+            alpha: y.q,
+            alpha_dot: y.q_dot,
             energy_error: (self.integrator.energy() - self.e0) / self.scale,
-            gamma: y[0],
+            gamma: y.fast,
         }
     }
 
@@ -134,7 +128,7 @@ impl Session {
     /// # Errors
     /// [`StepError::Unplanned`] when `plan` is still `auto`.
     pub fn new(generation: u64, spec: SessionSpec, plan: Resolved) -> Result<Self, StepError> {
-        let full = Track::new(&spec.problem, plan.method, plan.settings(), spec.t_end)?;
+        let full = Track::new(&spec.model, plan.method, plan.settings(), spec.t_end)?;
         Ok(Self {
             spec,
             plan,
@@ -167,22 +161,20 @@ impl Session {
 
     /// The exact state at `t` and the reversals up to it, once the run has reached `t` with
     /// `t` inside its last step (as `advance(t, ..)` leaves it); `None` otherwise.
-    pub fn checkpoint(&mut self, t: f64) -> Option<([f64; 4], usize)> {
+    pub fn checkpoint(&mut self, t: f64) -> Option<(Vec<f64>, usize)> {
         let i = &mut self.full.integrator;
         // Exactly the end of the last step: its state, not an interpolation.
         #[allow(clippy::float_cmp)]
         let at_end = t == i.time();
-        let y = if at_end {
-            i.state()
-        } else if t >= i.time_prev() && t < i.time() {
-            i.interpolate(t)
+        let y = if at_end || (t >= i.time_prev() && t < i.time()) {
+            i.state_at(t)
         } else {
             return None;
         };
         // `t` lies in the last step, which holds at most the last reversal.
         let reversals =
             self.full.reversals - usize::from(self.full.last_reversal.is_some_and(|r| r > t));
-        Some(([y[0], y[1], y[2], y[3]], reversals))
+        Some((y, reversals))
     }
 
     /// The run's stamp.
@@ -204,7 +196,7 @@ impl Session {
         self.epoch = epoch;
         self.effective = if on {
             Track::new(
-                &self.spec.problem,
+                &self.spec.model,
                 Method::Effective,
                 Settings {
                     tolerance: self.spec.tolerance,

@@ -133,7 +133,11 @@ fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, c
             Pane::Body => frame.render_widget(
                 body::BodyPane {
                     run: &app.run,
-                    aspect: app.scenario.settings.params.iy / app.scenario.settings.params.ix,
+                    aspect: app
+                        .scenario
+                        .settings
+                        .rattleback()
+                        .map_or(1.0, |p| p.params().iy / p.params().ix),
                     look,
                 },
                 *area,

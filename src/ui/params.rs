@@ -51,7 +51,10 @@ fn panel(p: &ParamsPanel<'_>, area: Rect, buf: &mut Buffer) {
     let look = p.look;
     let width = area.width.saturating_sub(2) as usize;
     let mut lines = Vec::new();
-    for (i, field) in Field::ALL.iter().enumerate() {
+    for (i, field) in Field::rows(p.scenario.settings.model.kind())
+        .iter()
+        .enumerate()
+    {
         let selected = i == p.scenario.selected;
         let value = match (p.editing, selected) {
             (Some(buffer), true) => format!("{buffer}▏"),
@@ -72,35 +75,63 @@ fn panel(p: &ParamsPanel<'_>, area: Rect, buf: &mut Buffer) {
     }
     let d = &p.scenario.derived;
     let dim = look.dim();
-    lines.push(Line::styled(
-        row(
-            "  ",
-            "limit theta",
-            &format_number(d.effective.theta()),
-            width,
-        ),
-        dim,
-    ));
-    lines.push(Line::styled(row("  ", "ratio", &opt(d.ratio), width), dim));
-    lines.push(Line::styled(
-        row("  ", "critical", &opt(d.critical), width),
-        dim,
-    ));
-    let side = d
-        .threshold_distance()
-        .map_or_else(|| "-".to_owned(), |x| format!("{:+.3}%", 100.0 * x));
-    lines.push(Line::styled(row("  ", "vs critical", &side, width), dim));
-    lines.push(Line::from(vec![
-        Span::styled("  limit regime", dim),
-        Span::styled(
-            format!(
-                "{:>w$}",
-                d.effective.regime().name(),
-                w = width.saturating_sub(14)
+    let bold = Style::default().add_modifier(Modifier::BOLD);
+    let verdict = |label: &str, value: &str| {
+        Line::from(vec![
+            Span::styled(format!("  {label}"), dim),
+            Span::styled(
+                format!("{:>w$}", value, w = width.saturating_sub(label.chars().count() + 2)),
+                bold,
             ),
-            Style::default().add_modifier(Modifier::BOLD),
-        ),
-    ]));
+        ])
+    };
+    match (&p.scenario.settings.model, d.limit.effective()) {
+        (crate::physics::Model::Rattleback(_), Some(eff)) => {
+            lines.push(Line::styled(
+                row("  ", "limit theta", &format_number(eff.theta()), width),
+                dim,
+            ));
+            lines.push(Line::styled(row("  ", "ratio", &opt(d.ratio), width), dim));
+            lines.push(Line::styled(
+                row("  ", "critical", &opt(d.critical), width),
+                dim,
+            ));
+            let side = d
+                .threshold_distance()
+                .map_or_else(|| "-".to_owned(), |x| format!("{:+.3}%", 100.0 * x));
+            lines.push(Line::styled(row("  ", "vs critical", &side, width), dim));
+            lines.push(verdict("limit regime", eff.regime().name()));
+        }
+        (crate::physics::Model::Kapitza(problem), _) => {
+            let params = problem.params();
+            lines.push(Line::styled(
+                row("  ", "b²−2a", &format_number(params.threshold()), width),
+                dim,
+            ));
+            lines.push(Line::styled(
+                row("  ", "limit E", &format_number(d.limit.energy()), width),
+                dim,
+            ));
+            lines.push(Line::styled(
+                row(
+                    "  ",
+                    "separatrix E",
+                    &format_number(d.limit.potential_max()),
+                    width,
+                ),
+                dim,
+            ));
+            lines.push(verdict(
+                "upright",
+                if params.stable_upright() {
+                    "stable"
+                } else {
+                    "unstable"
+                },
+            ));
+        }
+        _ => {}
+    }
     if let Some(prompt) = p.prompt {
         lines.push(Line::styled(
             format!("{}: {}▏", prompt.purpose.label(), prompt.text),

@@ -67,7 +67,7 @@ impl Cache {
             samples,
         };
         if self.contours.as_ref().is_none_or(|(k, _)| *k != key) {
-            let eff = &scenario.derived.effective;
+            let eff = &scenario.derived.limit;
             let l = level_sets(eff, &bounds, eff.energy(), key.levels, samples);
             self.contours = Some((key, l));
         }
@@ -101,15 +101,21 @@ fn pane(p: &PortraitPane<'_>, area: Rect, buf: &mut Buffer, cache: &mut Cache) {
     let look = p.look;
     let trail_shown = p.run.trail_shown();
     let wrap = p.view.view.wrap;
+    let limit = &p.scenario.derived.limit;
+    let period = limit.period();
     let mode = if wrap {
         "wrapped"
-    } else if following(trail_shown, wrap) {
+    } else if following(trail_shown, wrap, period) {
         "following"
     } else {
         "unwrapped"
     };
+    let words = p.scenario.settings.model.kind().words();
     let block = Block::bordered().title(title(
-        &format!("phase portrait: alpha ({mode}) vs alpha_dot"),
+        &format!(
+            "phase portrait: {} ({mode}) vs {}",
+            words.q_name, words.q_dot_name
+        ),
         area.width,
     ));
     let inner = block.inner(area);
@@ -123,8 +129,9 @@ fn pane(p: &PortraitPane<'_>, area: Rect, buf: &mut Buffer, cache: &mut Cache) {
     let (cols, rows) = (plot.width as usize * rx, plot.height as usize * ry);
     let theme = look.theme;
     let levels = cache.levels(p.scenario, p.view.view.levels, bounds, cols.max(16));
-    let centre = wrap_centre(&p.scenario.derived.effective);
-    let to_xy = |p: &crate::sim::Point| (display_alpha(p.alpha, centre, wrap), p.alpha_dot);
+    let centre = wrap_centre(limit);
+    let to_xy =
+        |p: &crate::sim::Point| (display_alpha(p.alpha, centre, wrap, period), p.alpha_dot);
     let trail = decimate(trail_shown.iter().map(to_xy), &bounds, cols, rows);
     let overlay = if p.view.overlay {
         decimate(

@@ -1,6 +1,10 @@
 //! `rattleback simulate`: one headless trajectory, reported as JSON, CSV or a table.
 //!
 //! The report's field names are a contract (scripts read them): add freely, rename nothing.
+//! The rattleback's report is here; each other model's is in its own file (`kapitza`), reached
+//! through the preset's [`crate::physics::Model`].
+
+mod kapitza;
 
 use std::fmt::Write as _;
 use std::time::Instant;
@@ -11,7 +15,7 @@ use crate::physics::auto::{Shortfall, run_auto_cancellable};
 use crate::physics::averaged::Averaged2;
 use crate::physics::budget::{self, BUDGET_SECONDS};
 use crate::physics::effective::{Effective, tapping_acceleration};
-use crate::physics::integrators::{Method, default_step};
+use crate::physics::integrators::Method;
 use crate::physics::model::energy;
 use crate::physics::plan;
 use crate::physics::run::{RunResult, run_cancellable, run_streaming};
@@ -75,7 +79,7 @@ pub fn resolve(preset: &Preset, args: &Request) -> Resolved {
         Some(
             args.step
                 .or(preset.run.step)
-                .unwrap_or_else(|| default_step(method, &preset.problem, tolerance, t_end)),
+                .unwrap_or_else(|| preset.model.default_step(method, tolerance, t_end)),
         )
     } else {
         None
@@ -108,7 +112,10 @@ pub fn resolve(preset: &Preset, args: &Request) -> Resolved {
 #[must_use]
 pub fn predicted_seconds(preset: &Preset, resolved: &Resolved, format: Format) -> f64 {
     let spec = resolved.spec;
-    let problem = &preset.problem;
+    let problem = match &preset.model {
+        crate::physics::Model::Rattleback(p) => p,
+        crate::physics::Model::Kapitza(p) => return kapitza::predicted_seconds(p, &spec),
+    };
     let main = plan::predicted_seconds(problem, spec.method, spec.tolerance, spec.step, spec.t_end);
     let extra = match format {
         Format::Csv if spec.method == Method::Auto => main / (1.0 + plan::VERIFY_FRACTION),
@@ -341,12 +348,17 @@ pub fn simulate_to(
     out: &mut dyn std::io::Write,
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Option<Missed>, Failure> {
-    let problem = &preset.problem;
-    let spec = resolved.spec;
     within_budget(preset, resolved, format)?;
+    let problem = match &preset.model {
+        crate::physics::Model::Rattleback(p) => p,
+        crate::physics::Model::Kapitza(p) => {
+            return kapitza::simulate_to(preset, p, resolved, format, out, progress);
+        }
+    };
+    let spec = resolved.spec;
     let clock = Instant::now();
     if format == Format::Csv {
-        let (result, shortfall) = csv(preset, resolved, out, progress)?;
+        let (result, shortfall) = csv(preset, problem, resolved, out, progress)?;
         if let Some(what) = non_finite(&result) {
             return Err(StepError::NotFinite { what, t: result.t }.into());
         }
@@ -446,7 +458,7 @@ pub fn simulate_to(
 }
 
 /// Refuses, before anything runs, work predicted over the budget.
-fn within_budget(preset: &Preset, resolved: &Resolved, format: Format) -> Result<(), StepError> {
+pub(crate) fn within_budget(preset: &Preset, resolved: &Resolved, format: Format) -> Result<(), StepError> {
     let spec = resolved.spec;
     budget::check(predicted_seconds(preset, resolved, format), resolved.budget).map_err(|over| {
         StepError::OverBudget {
@@ -484,6 +496,26 @@ fn requested_run(
         refinements: v.refinements,
     };
     Ok((v.result, Some(auto)))
+}
+
+/// [`csv_metadata`] of any model (the pendulum's names its model and its own keys).
+#[must_use]
+pub fn csv_metadata_of(
+    preset: &str,
+    model: &crate::physics::Model,
+    method: Method,
+    ran: Option<Method>,
+    tolerance: f64,
+    t_end: f64,
+) -> String {
+    match model {
+        crate::physics::Model::Rattleback(p) => {
+            csv_metadata(preset, p, method, ran, tolerance, t_end)
+        }
+        crate::physics::Model::Kapitza(p) => {
+            kapitza::csv_metadata(preset, p, method, ran, tolerance, t_end)
+        }
+    }
 }
 
 /// What a CSV of a run starts with: `# key = value` lines (the program, the preset's name, the
@@ -531,11 +563,11 @@ pub fn csv_metadata(
 /// again with the samples, which gives the verified run bit for bit.
 fn csv(
     preset: &Preset,
+    problem: &crate::physics::Problem,
     resolved: &Resolved,
     out: &mut dyn std::io::Write,
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<(RunResult, Option<Missed>), Failure> {
-    let problem = &preset.problem;
     let mut spec = resolved.spec;
     let mut shortfall = None;
     if spec.method == Method::Auto {
@@ -602,7 +634,7 @@ fn csv(
 }
 
 /// `30`, `1000`, `1e9`, `1e100`: plain below a million, scientific above.
-fn compact(x: f64) -> String {
+pub(crate) fn compact(x: f64) -> String {
     if x.abs() < 1e6 {
         format!("{x}")
     } else {
@@ -614,7 +646,7 @@ fn opt(v: Option<f64>) -> String {
     v.map_or_else(|| "-".to_owned(), |x| format!("{x:.9}"))
 }
 
-fn times(t: &[f64]) -> String {
+pub(crate) fn times(t: &[f64]) -> String {
     const SHOWN: usize = 8;
     let mut s: Vec<String> = t.iter().take(SHOWN).map(|x| format!("{x:.6}")).collect();
     if t.len() > SHOWN {

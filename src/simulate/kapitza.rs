@@ -1,0 +1,472 @@
+//! `simulate` for Kapitza's pendulum: JSON with `params` {`a`, `b`, `epsilon`}, `final`
+//! {`t`, `theta`, `theta_dot`}, `effective` {`stable_upright`, `threshold`, `energy`, `theta`,
+//! `theta_dot`, …}, `events` {`swings`, `falls`}, `energy` (the full model is driven: the
+//! limit's energy `E_eff` of the averaged state, and its drift), `stats`; CSV and a table too.
+
+use std::fmt::Write as _;
+use std::time::Instant;
+
+use serde::Serialize;
+
+use super::{Failure, Format, Missed, Resolved, compact, times};
+use crate::physics::StepError;
+use crate::physics::integrators::Method;
+use crate::physics::kapitza::limit::Limit;
+use crate::physics::kapitza::run::{self, RunResult, RunSpec};
+use crate::physics::kapitza::{self, Problem, plan};
+use crate::scenario::Preset;
+
+/// Seconds one right-hand-side evaluation takes, about (this machine, release build).
+const SECONDS_PER_EVALUATION: f64 = 4e-8;
+
+/// Predicted seconds of the run `spec` asks for, from the work each method does: the full
+/// model's steps follow the fast period, the limit's the slow motion.
+#[must_use]
+pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::RunSpec) -> f64 {
+    let p = problem.params();
+    let (method, tolerance) = if spec.method == Method::Auto {
+        let c = plan::resolve(problem, spec.tolerance, spec.t_end);
+        (c.method, c.settings.tolerance)
+    } else {
+        (spec.method, spec.tolerance)
+    };
+    let fast = spec.t_end / p.epsilon;
+    let evaluations = match method {
+        Method::Effective | Method::EffectiveCorrected => {
+            12.0 * spec.t_end * (1.0 + p.b * p.b + p.a.abs()).sqrt() * tolerance.powf(-0.125)
+        }
+        Method::Dop853 => 12.0 * fast * 0.6 * tolerance.powf(-0.125),
+        m => {
+            let h = spec.step.unwrap_or_else(|| {
+                kapitza::flows::default_step(m, problem, tolerance, spec.t_end)
+            });
+            let stages = match m {
+                Method::Rk4 | Method::Strang => 4.0,
+                Method::Yoshida4 => 3.0,
+                Method::BlanesMoan4 => 6.0,
+                Method::Yoshida6 => 7.0,
+                _ => 15.0,
+            };
+            stages * spec.t_end / h
+        }
+    };
+    // The limit's comparison run is cheap whatever ε.
+    evaluations * SECONDS_PER_EVALUATION
+}
+
+#[derive(Serialize)]
+struct Report {
+    preset: String,
+    model: &'static str,
+    params: kapitza::Params,
+    initial: kapitza::Start,
+    method: Method,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    auto_choice: Option<Method>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    auto: Option<AutoOut>,
+    tolerance: f64,
+    step: Option<f64>,
+    t_end: f64,
+    #[serde(rename = "final")]
+    final_: FinalOut,
+    events: EventsOut,
+    energy: EnergyOut,
+    effective: EffectiveOut,
+    stats: StatsOut,
+}
+
+#[derive(Serialize)]
+struct AutoOut {
+    choice: Method,
+    reason: String,
+    /// The tolerance the chosen method was run at.
+    tolerance: f64,
+    /// The limit's predicted model error over the run.
+    predicted_model_error: f64,
+}
+
+#[derive(Serialize)]
+struct FinalOut {
+    t: f64,
+    theta: f64,
+    theta_dot: f64,
+}
+
+#[derive(Serialize)]
+struct Times {
+    count: usize,
+    times: Vec<f64>,
+}
+
+#[derive(Serialize)]
+struct EventsOut {
+    /// Turning points of the slow motion (sign changes of the averaged rate `Θ̇`).
+    swings: Times,
+    /// The slow angle passing the horizontal going down (`cos Θ` turning negative).
+    falls: Times,
+}
+
+#[derive(Serialize)]
+struct EnergyOut {
+    /// `E_eff` of the averaged start.
+    initial: f64,
+    #[serde(rename = "final")]
+    final_: f64,
+    /// Largest `|E_eff − E_eff(0)|` over the run: the limit's energy drift along the full
+    /// motion (O(ε²) for a resolved run; the tolerance for the limit itself).
+    max_drift: f64,
+}
+
+#[derive(Serialize)]
+struct EffectiveOut {
+    /// `b² > 2a`.
+    stable_upright: bool,
+    /// `b² − 2a`.
+    threshold: f64,
+    /// `E_eff` of the start `(θ0, θ̇0)`.
+    energy: f64,
+    /// The limit's own `θ(T)` from `(θ0, θ̇0)`; null only when its run failed.
+    theta: Option<f64>,
+    /// The limit's own `θ̇(T)`.
+    theta_dot: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    comparison_error: Option<String>,
+    /// Angular frequency of small oscillations about the upright, when stable.
+    upright_frequency: Option<f64>,
+    /// Equilibria in `[0, π]` with their stability.
+    equilibria: Vec<EquilibriumOut>,
+    /// `E_eff` levels of the separatrices.
+    separatrices: Vec<f64>,
+    swings: Times,
+    falls: Times,
+}
+
+#[derive(Serialize)]
+struct EquilibriumOut {
+    theta: f64,
+    stable: bool,
+}
+
+#[derive(Serialize)]
+struct StatsOut {
+    steps: u64,
+    rejected: u64,
+    rhs_evaluations: u64,
+    wall_seconds: f64,
+}
+
+fn times_of(list: &[f64], count: usize) -> Times {
+    Times {
+        count,
+        times: list.to_vec(),
+    }
+}
+
+/// The limit's own run is integrated at this tolerance whatever the user's (it is cheap).
+const LIMIT_TOLERANCE: f64 = 1e-13;
+
+fn non_finite(r: &RunResult) -> Option<&'static str> {
+    if !r.theta.is_finite() {
+        Some("theta")
+    } else if !r.theta_dot.is_finite() {
+        Some("theta_dot")
+    } else if !r.energy_final.is_finite() || !r.max_energy_drift.is_finite() {
+        Some("the energy")
+    } else {
+        None
+    }
+}
+
+/// The concrete method and tolerance of `resolved`, with `auto`'s account.
+fn plan_of(problem: &Problem, resolved: &Resolved) -> (RunSpec, Option<AutoOut>) {
+    let spec = resolved.spec;
+    let mut run = RunSpec {
+        method: spec.method,
+        tolerance: spec.tolerance,
+        step: spec.step,
+        t_end: spec.t_end,
+        samples: spec.samples,
+    };
+    if spec.method != Method::Auto {
+        return (run, None);
+    }
+    let c = plan::resolve(problem, spec.tolerance, spec.t_end);
+    run.method = c.method;
+    run.tolerance = c.settings.tolerance;
+    run.step = None;
+    let reason = if c.method == Method::EffectiveCorrected {
+        format!(
+            "the limit with its ripple: its predicted model error {:.1e} is within the tolerance; cost independent of epsilon",
+            c.predicted_model_error
+        )
+    } else {
+        format!(
+            "the full model resolved: the limit's predicted model error {:.1e} exceeds the tolerance",
+            c.predicted_model_error
+        )
+    };
+    (
+        run,
+        Some(AutoOut {
+            choice: c.method,
+            reason,
+            tolerance: c.settings.tolerance,
+            predicted_model_error: c.predicted_model_error,
+        }),
+    )
+}
+
+/// CSV metadata lines (as the rattleback's: every number parses back to the same bits).
+#[must_use]
+pub fn csv_metadata(
+    preset: &str,
+    problem: &Problem,
+    method: Method,
+    ran: Option<Method>,
+    tolerance: f64,
+    t_end: f64,
+) -> String {
+    let name = crate::scenario::text::clean(preset).replace(['\n', '\r', '\t'], " ");
+    let mut out = format!(
+        "# program = rattleback {}\n# model = kapitza\n# preset = {name}\n# method = {}\n",
+        env!("CARGO_PKG_VERSION"),
+        method.name()
+    );
+    if let Some(m) = ran {
+        let _ = writeln!(out, "# integrated = {}", m.name());
+    }
+    let (p, s) = (problem.params(), problem.start());
+    for (key, value) in [
+        ("tolerance", tolerance),
+        ("t_end", t_end),
+        ("a", p.a),
+        ("b", p.b),
+        ("epsilon", p.epsilon),
+        ("theta", s.theta),
+        ("theta_dot", s.theta_dot),
+    ] {
+        let _ = writeln!(out, "# {key} = {value:?}");
+    }
+    out
+}
+
+/// Runs the pendulum's preset and writes the report.
+///
+/// # Errors
+/// As [`super::simulate_to`].
+pub fn simulate_to(
+    preset: &Preset,
+    problem: &Problem,
+    resolved: &Resolved,
+    format: Format,
+    out: &mut dyn std::io::Write,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<Option<Missed>, Failure> {
+    let (spec, auto) = plan_of(problem, resolved);
+    let clock = Instant::now();
+    let result = run::run(problem, &spec, progress)?;
+    if let Some(what) = non_finite(&result) {
+        return Err(StepError::NotFinite { what, t: result.t }.into());
+    }
+    let wall_seconds = clock.elapsed().as_secs_f64();
+    if format == Format::Csv {
+        out.write_all(
+            csv_metadata(
+                &preset.name,
+                problem,
+                resolved.spec.method,
+                Some(spec.method),
+                resolved.spec.tolerance,
+                spec.t_end,
+            )
+            .as_bytes(),
+        )?;
+        out.write_all(b"t,theta,theta_dot,energy\n")?;
+        let limit = Limit::new(problem.params());
+        for s in &result.samples {
+            let (th, thd) = crate::physics::kapitza::limit::to_slow(
+                problem.params(),
+                s.t,
+                (s.theta, s.theta_dot),
+            );
+            writeln!(
+                out,
+                "{},{},{},{}",
+                s.t,
+                s.theta,
+                s.theta_dot,
+                limit.energy_of(th, thd)
+            )?;
+        }
+        out.flush()?;
+        return Ok(None);
+    }
+    let limit_spec = RunSpec {
+        method: Method::Effective,
+        tolerance: LIMIT_TOLERANCE,
+        step: None,
+        t_end: spec.t_end,
+        samples: 0,
+    };
+    let limit_run = run::run(problem, &limit_spec, progress).and_then(|r| match non_finite(&r) {
+        Some(what) => Err(StepError::NotFinite { what, t: r.t }),
+        None => Ok(r),
+    });
+    let p = problem.params();
+    let s = problem.start();
+    let limit = Limit::new(p);
+    let empty = |_: ()| Times {
+        count: 0,
+        times: Vec::new(),
+    };
+    let report = Report {
+        preset: preset.name.clone(),
+        model: "kapitza",
+        params: *p,
+        initial: *s,
+        method: resolved.spec.method,
+        auto_choice: auto.as_ref().map(|a| a.choice),
+        step: if spec.method.is_fixed_step() {
+            Some(
+                spec.step
+                    .unwrap_or_else(|| kapitza::flows::default_step(spec.method, problem, spec.tolerance, spec.t_end)),
+            )
+        } else {
+            None
+        },
+        auto,
+        tolerance: resolved.spec.tolerance,
+        t_end: spec.t_end,
+        final_: FinalOut {
+            t: result.t,
+            theta: result.theta,
+            theta_dot: result.theta_dot,
+        },
+        events: EventsOut {
+            swings: times_of(&result.events.swings, result.events.swing_count),
+            falls: times_of(&result.events.falls, result.events.fall_count),
+        },
+        energy: EnergyOut {
+            initial: result.energy_initial,
+            final_: result.energy_final,
+            max_drift: result.max_energy_drift,
+        },
+        effective: EffectiveOut {
+            stable_upright: p.stable_upright(),
+            threshold: p.threshold(),
+            energy: limit.energy_of(s.theta, s.theta_dot),
+            theta: limit_run.as_ref().ok().map(|r| r.theta),
+            theta_dot: limit_run.as_ref().ok().map(|r| r.theta_dot),
+            comparison_error: limit_run.as_ref().err().map(ToString::to_string),
+            upright_frequency: limit.upright_frequency(),
+            equilibria: limit
+                .equilibria()
+                .iter()
+                .map(|e| EquilibriumOut {
+                    theta: e.theta,
+                    stable: e.stable,
+                })
+                .collect(),
+            separatrices: limit.separatrices(),
+            swings: limit_run.as_ref().map_or_else(
+                |_| empty(()),
+                |r| times_of(&r.events.swings, r.events.swing_count),
+            ),
+            falls: limit_run.as_ref().map_or_else(
+                |_| empty(()),
+                |r| times_of(&r.events.falls, r.events.fall_count),
+            ),
+        },
+        stats: StatsOut {
+            steps: result.stats.steps,
+            rejected: result.stats.rejected,
+            rhs_evaluations: result.stats.rhs_evaluations,
+            wall_seconds,
+        },
+    };
+    let text = match format {
+        Format::Json => {
+            let mut s = serde_json::to_string_pretty(&report).expect("report serializes");
+            s.push('\n');
+            s
+        }
+        Format::Table | Format::Csv => table(&report),
+    };
+    out.write_all(text.as_bytes())?;
+    out.flush()?;
+    Ok(None)
+}
+
+fn table(r: &Report) -> String {
+    let mut o = String::new();
+    let e = &r.effective;
+    let _ = writeln!(o, "preset        {} (Kapitza's pendulum)", r.preset);
+    let _ = writeln!(
+        o,
+        "pendulum      a = {}, b = {}, epsilon = {:e}",
+        r.params.a, r.params.b, r.params.epsilon
+    );
+    let _ = writeln!(
+        o,
+        "start         theta = {}, theta_dot = {}",
+        r.initial.theta, r.initial.theta_dot
+    );
+    let step = r
+        .step
+        .map(|h| format!(", step {h:.3e}"))
+        .unwrap_or_default();
+    let _ = writeln!(
+        o,
+        "method        {} (tolerance {:e}{step}), t_end = {}",
+        r.method,
+        r.tolerance,
+        compact(r.t_end)
+    );
+    if let Some(a) = &r.auto {
+        let _ = writeln!(o, "auto chose    {}: {}", a.choice, a.reason);
+    }
+    let _ = writeln!(o);
+    let _ = writeln!(o, "                   full model          limit (ε → 0)");
+    let limit = |v: Option<f64>| v.map_or_else(|| "n/a".to_owned(), |x| format!("{x:.9}"));
+    let _ = writeln!(o, "theta(T)      {:>16.9}    {:>16}", r.final_.theta, limit(e.theta));
+    let _ = writeln!(
+        o,
+        "theta_dot(T)  {:>16.9}    {:>16}",
+        r.final_.theta_dot,
+        limit(e.theta_dot)
+    );
+    if let Some(why) = &e.comparison_error {
+        let _ = writeln!(o, "  (no comparison with the limit: {why})");
+    }
+    let _ = writeln!(
+        o,
+        "swings        {:>16}    {:>16}",
+        r.events.swings.count, e.swings.count
+    );
+    let _ = writeln!(o, "  full at      {}", times(&r.events.swings.times));
+    let _ = writeln!(
+        o,
+        "falls         {:>16}    {:>16}",
+        r.events.falls.count, e.falls.count
+    );
+    let _ = writeln!(o, "  full at      {}", times(&r.events.falls.times));
+    let _ = writeln!(o);
+    let _ = writeln!(
+        o,
+        "upright       {} (b^2 - 2a = {:.6})",
+        if e.stable_upright { "stable" } else { "unstable" },
+        e.threshold
+    );
+    let _ = writeln!(
+        o,
+        "E_eff         {:.12} (drift along the run {:.2e})",
+        r.energy.initial, r.energy.max_drift
+    );
+    let _ = writeln!(
+        o,
+        "work          {} steps ({} rejected), {} rhs evaluations, {:.4} s",
+        r.stats.steps, r.stats.rejected, r.stats.rhs_evaluations, r.stats.wall_seconds
+    );
+    o
+}
