@@ -43,8 +43,9 @@ pub fn presets(args: &PresetsArgs) -> ExitCode {
         args.format,
         &|e| {
             format!(
-                "{:<16} {:<8} {}\n                 {}\n                 {}\n\n",
+                "{:<18} {:<10} {:<8} {}\n                   {}\n                   {}\n\n",
                 e.name,
+                e.model.name(),
                 format!("{:?}", e.source).to_lowercase(),
                 e.title,
                 e.path,

@@ -281,13 +281,14 @@ fn the_picker_keeps_the_selection_on_screen() {
         })
         .collect();
     let last = many.last().unwrap().name.clone();
+    let n = many.len();
     app.on_outcome(rattleback::app::Outcome::Catalogue(many, Vec::new()));
-    for _ in 0..29 {
+    for _ in 1..n {
         app.on_key(Key::Down);
     }
     let screen = text(&render(&app, 80, 24));
     assert!(screen.contains(&last), "{screen}");
-    assert!(screen.contains("30/30"), "{screen}");
+    assert!(screen.contains(&format!("{n}/{n}")), "{screen}");
 }
 
 /// Every shipped preset draws at 80×24 at ×1 and at top speed with its numbers whole.
@@ -303,10 +304,18 @@ fn every_shipped_preset_draws_at_80x24() {
                 status.contains(&format!("t {:.2}", h.app.run.shown)),
                 "{name}: {status}"
             );
+            let kind = h.app.scenario.settings.model.kind();
             assert!(
-                status.contains(&format!("reversals {}", h.app.run.reversals_shown())),
+                status.contains(&format!(
+                    "{} {}",
+                    kind.words().events,
+                    h.app.run.reversals_shown()
+                )),
                 "{name}: {status}"
             );
+            if let Some(falls) = h.app.run.falls_shown() {
+                assert!(status.contains(&format!("falls {falls}")), "{name}: {status}");
+            }
         }
     }
 }

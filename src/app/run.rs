@@ -108,6 +108,9 @@ pub struct RunState {
     pub effective_trail: Vec<Point>,
     /// Reversal times of the full motion (possibly ahead of `shown`).
     pub reversals: Events,
+    /// The pendulum's falls past the horizontal (the slow angle `Θ = θ − ripple` leaving the
+    /// upper half), found between consecutive samples; `None` for models without them.
+    pub falls: Option<Events>,
     /// Reversal times of the effective motion.
     pub effective_reversals: Events,
     /// The worker reached `t_end`.
@@ -139,6 +142,7 @@ impl RunState {
             trail: Vec::new(),
             effective_trail: Vec::new(),
             reversals: Events::default(),
+            falls: None,
             effective_reversals: Events::default(),
             finished: false,
             failed: None,
@@ -166,6 +170,9 @@ impl RunState {
             rate,
             ..Self::new(spec.t_end)
         };
+        if spec.model.kind().has_falls() {
+            self.falls = Some(Events::default());
+        }
         vec![
             Command::Restart { generation, spec },
             self.advance_command(),
@@ -281,6 +288,20 @@ impl RunState {
                 if let Some(t) = t {
                     self.reached = self.reached.max(t);
                 }
+                if let Some(falls) = self.falls.as_mut() {
+                    // `Θ = θ − ripple`; a fall is `cos Θ` going from positive to negative.
+                    let up = |p: &Point| (p.alpha - p.gamma).cos();
+                    let mut prev = self.trail.last().copied();
+                    for p in &full {
+                        if let Some(q) = prev {
+                            let (a, b) = (up(&q), up(p));
+                            if a > 0.0 && b <= 0.0 {
+                                falls.push(q.t + (p.t - q.t) * a / (a - b), self.shown);
+                            }
+                        }
+                        prev = Some(*p);
+                    }
+                }
                 push_capped(&mut self.trail, full);
                 if overlay && epoch == self.epoch {
                     push_capped(&mut self.effective_trail, effective);
@@ -347,6 +368,12 @@ impl RunState {
     #[must_use]
     pub fn reversals_shown(&self) -> usize {
         self.reversals.count_upto(self.shown)
+    }
+
+    /// The pendulum's falls up to the displayed time (`None` for models without them).
+    #[must_use]
+    pub fn falls_shown(&self) -> Option<usize> {
+        self.falls.as_ref().map(|f| f.count_upto(self.shown))
     }
 
     /// Number of reversals of the limit up to the displayed time.

@@ -88,6 +88,12 @@ impl ModelKind {
             .join(", ")
     }
 
+    /// Whether the model counts falls past the horizontal (the pendulum's second event).
+    #[must_use]
+    pub fn has_falls(self) -> bool {
+        self == Self::Kapitza
+    }
+
     /// What the model calls its slow coordinate and its events, for labels.
     #[must_use]
     pub fn words(self) -> Words {

@@ -37,6 +37,30 @@ pub const SHIPPED: &[(&str, &str)] = &[
         "tilted-start",
         include_str!("../../presets/tilted-start.toml"),
     ),
+    (
+        "kapitza-upright",
+        include_str!("../../presets/kapitza-upright.toml"),
+    ),
+    (
+        "kapitza-falls",
+        include_str!("../../presets/kapitza-falls.toml"),
+    ),
+    (
+        "kapitza-just-above",
+        include_str!("../../presets/kapitza-just-above.toml"),
+    ),
+    (
+        "kapitza-just-below",
+        include_str!("../../presets/kapitza-just-below.toml"),
+    ),
+    (
+        "kapitza-coarse",
+        include_str!("../../presets/kapitza-coarse.toml"),
+    ),
+    (
+        "kapitza-stiff",
+        include_str!("../../presets/kapitza-stiff.toml"),
+    ),
 ];
 
 /// The preset `cargo run --release` opens.
@@ -94,6 +118,8 @@ pub struct Entry {
     pub name: String,
     /// The preset's own `preset.name`.
     pub title: String,
+    /// Which scene (model) it loads.
+    pub model: crate::physics::ModelKind,
     /// Shipped or user.
     pub source: Source,
     /// The file (`presets/NAME.toml` inside the binary for shipped ones).
@@ -142,6 +168,7 @@ pub fn catalogue_in(user_dir: Option<&Path>) -> (Vec<Entry>, Vec<PresetError>) {
             Ok(p) => entries.push(Entry {
                 name: (*name).to_owned(),
                 title: p.name,
+                model: p.model.kind(),
                 source: Source::Shipped,
                 path: format!("presets/{name}.toml"),
                 description: p.description,
@@ -158,6 +185,7 @@ pub fn catalogue_in(user_dir: Option<&Path>) -> (Vec<Entry>, Vec<PresetError>) {
                     entries.push(Entry {
                         name,
                         title: p.name,
+                        model: p.model.kind(),
                         source: Source::User,
                         path: path.display().to_string(),
                         description: p.description,

@@ -54,7 +54,13 @@ pub fn picker(frame: &mut Frame<'_>, area: Rect, p: &Picker, look: &Look) {
                 } else {
                     ""
                 };
-                format!(" {:<16} {:<4} {}", e.name, source, e.title)
+                format!(
+                    " {:<18} {:<10} {:<4} {}",
+                    e.name,
+                    e.model.name(),
+                    source,
+                    e.title
+                )
             }
             PickerRow::Broken { name, .. } => format!(" {name:<16} ✗    cannot be loaded"),
         };

@@ -92,6 +92,7 @@ fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, c
                 series::SeriesPane {
                     run: &app.run,
                     overlay: app.view.overlay,
+                    model: app.scenario.settings.model.kind(),
                     look,
                 },
                 *area,

@@ -18,6 +18,8 @@ pub struct SeriesPane<'a> {
     pub run: &'a RunState,
     /// The limit is shown.
     pub overlay: bool,
+    /// The model (its labels).
+    pub model: crate::physics::ModelKind,
     /// Marker and colours.
     pub look: &'a Look<'a>,
 }
@@ -48,8 +50,12 @@ impl Widget for SeriesPane<'_> {
 
 fn pane(pane: &SeriesPane<'_>, area: Rect, buf: &mut Buffer) {
     let (run, look) = (pane.run, pane.look);
+    let words = pane.model.words();
     let block = Block::bordered().title(title(
-        "alpha_dot(t): full · limit ∘, reversals │ log10|ΔE/E|",
+        &format!(
+            "{}(t): full · limit ∘, {} │ log10|ΔE/E|",
+            words.q_dot_name, words.events
+        ),
         area.width,
     ));
     let inner = block.inner(area);

@@ -87,12 +87,17 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
     } else {
         String::new()
     };
+    let kind = s.model.kind();
     out.push(field(
-        format!("reversals {}{limit}", run.reversals_shown()),
+        format!("{} {}{limit}", kind.words().events, run.reversals_shown()),
         0,
     ));
+    if let Some(falls) = run.falls_shown() {
+        out.push(field(format!("falls {falls}"), 1));
+    }
     if let Some(p) = run.current() {
-        out.push(field(format!("ΔE/E {:.1e}", p.energy_error), 2));
+        let label = if kind.has_falls() { "ΔE_eff" } else { "ΔE/E" };
+        out.push(field(format!("{label} {:.1e}", p.energy_error), 2));
     }
     let method = match run.plan {
         PlanState::Running { plan, .. } if plan.method != s.method => {

@@ -111,9 +111,11 @@ pub fn build(
 }
 
 /// The size the averaged rate's leftover ripple can reach in a full flow: `Θ̇` is exact to
-/// O(ε) only (the second-order ripple is not removed).
+/// O(ε²) (the ripple is removed to that order, `limit`), capped so that a coarse `ε`, where the
+/// split into slow and fast motion means little, does not swallow real turning points.
 fn hysteresis(p: &Params) -> f64 {
-    4.0 * p.epsilon * (p.b * p.b + p.b + p.a.abs())
+    let scale = p.b * p.b + p.b + p.a.abs();
+    (4.0 * (p.epsilon * scale).powi(2)).min(0.02)
 }
 
 fn slow_sample(p: &Params, t: f64, theta: f64, theta_dot: f64) -> Sample {
