@@ -137,7 +137,11 @@ pub fn portrait_svg(app: &App) -> Result<String, Box<dyn std::error::Error>> {
                     limit.iter().copied(),
                     magenta.stroke_width(2),
                 ))?
-                .label(if small == "k" { "limit k → ∞" } else { "limit ε → 0" })
+                .label(if small == "k" {
+                    "limit k → ∞"
+                } else {
+                    "limit ε → 0"
+                })
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], magenta));
         }
         chart

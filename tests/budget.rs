@@ -223,8 +223,9 @@ fn the_streamed_csv_of_auto_is_the_verified_run_bit_for_bit() {
     req.samples = 50;
     let resolved = simulate::resolve(&p, &req);
     let csv = simulate::simulate(&p, &resolved, Format::Csv).expect("runs");
-    let verified = rattleback::physics::auto::run_auto(p.problem().unwrap(), 1e-9, p.run.t_end, 50, true)
-        .expect("auto runs");
+    let verified =
+        rattleback::physics::auto::run_auto(p.problem().unwrap(), 1e-9, p.run.t_end, 50, true)
+            .expect("auto runs");
     // The `# key = value` lines, then the column names, then the rows.
     let rows: Vec<&str> = csv
         .lines()

@@ -64,7 +64,11 @@ fn typing_a_value_restarts_and_a_bad_one_is_refused_in_place() {
     }
     let effects = app.on_key(Key::Enter);
     assert!(effects.is_empty(), "a refused value must not restart");
-    assert_eq!(app.scenario.settings.rattleback().unwrap().params().iy, 1.5, "old value kept");
+    assert_eq!(
+        app.scenario.settings.rattleback().unwrap().params().iy,
+        1.5,
+        "old value kept"
+    );
     assert_eq!(app.run.generation, generation);
     let m = app.status.clone().expect("reason shown");
     assert!(m.error && m.text.contains("> 0"), "{}", m.text);
@@ -85,7 +89,10 @@ fn nudging_k_uses_a_log_scale_and_restarts() {
     assert_eq!(app.scenario.settings.rattleback().unwrap().params().k, 1e5);
     assert_eq!(restarts(&effects), 1);
     app.on_key(Key::Char('h'));
-    assert!((app.scenario.settings.rattleback().unwrap().params().k - 1e5 / 10f64.powf(0.1)).abs() < 1e-6);
+    assert!(
+        (app.scenario.settings.rattleback().unwrap().params().k - 1e5 / 10f64.powf(0.1)).abs()
+            < 1e-6
+    );
 }
 
 #[test]
@@ -535,7 +542,11 @@ fn worker_runs_on_command_and_a_restart_cancels_in_flight_work() {
     );
 
     // A very stiff run with a resolving method would take minutes; a restart must cut it.
-    let slow = spec(preset.problem().unwrap().with_k(1e12).unwrap(), Method::Dop853, 1e-12);
+    let slow = spec(
+        preset.problem().unwrap().with_k(1e12).unwrap(),
+        Method::Dop853,
+        1e-12,
+    );
     worker.send(Command::Restart {
         generation: 2,
         spec: slow,
@@ -564,7 +575,11 @@ fn worker_runs_on_command_and_a_restart_cancels_in_flight_work() {
     // auto's verification over a long horizon is cancelled by a restart too.
     let long = SessionSpec {
         t_end: 1e6,
-        ..spec(preset.problem().unwrap().with_k(1e8).unwrap(), Method::Auto, 1e-10)
+        ..spec(
+            preset.problem().unwrap().with_k(1e8).unwrap(),
+            Method::Auto,
+            1e-10,
+        )
     };
     worker.send(Command::Restart {
         generation: 4,
@@ -778,8 +793,17 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
         h.app.run.generation > generation,
         "loading restarts the run"
     );
-    assert_eq!(loaded.rattleback().unwrap().params().iy, s.rattleback().unwrap().params().ix * grid.inertia_ratio(cell.1));
-    assert_eq!((loaded.rattleback().unwrap().start().gamma, loaded.rattleback().unwrap().start().alpha), (0.0, 0.0));
+    assert_eq!(
+        loaded.rattleback().unwrap().params().iy,
+        s.rattleback().unwrap().params().ix * grid.inertia_ratio(cell.1)
+    );
+    assert_eq!(
+        (
+            loaded.rattleback().unwrap().start().gamma,
+            loaded.rattleback().unwrap().start().alpha
+        ),
+        (0.0, 0.0)
+    );
     let ratio = h.app.scenario.derived.ratio.unwrap();
     assert!((ratio - grid.ratio(cell.0)).abs() < 1e-12, "{ratio}");
     assert_eq!(

@@ -314,7 +314,10 @@ fn every_shipped_preset_draws_at_80x24() {
                 "{name}: {status}"
             );
             if let Some(falls) = h.app.run.falls_shown() {
-                assert!(status.contains(&format!("falls {falls}")), "{name}: {status}");
+                assert!(
+                    status.contains(&format!("falls {falls}")),
+                    "{name}: {status}"
+                );
             }
         }
     }

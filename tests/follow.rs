@@ -250,7 +250,10 @@ fn a_live_replay_applies_new_lines_and_keeps_the_lecturers_clock() {
     };
     let effects = r.push(vec![set], &mut h.app);
     h.exec(effects);
-    assert_eq!(h.app.scenario.settings.rattleback().unwrap().params().k, 1e5);
+    assert_eq!(
+        h.app.scenario.settings.rattleback().unwrap().params().k,
+        1e5
+    );
     assert!(h.app.replay.unwrap().at >= 2.0);
     // The end: said in the status bar's state, the clock stops.
     let effects = r.push(vec![line(2.5, Event::End)], &mut h.app);

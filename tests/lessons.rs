@@ -238,7 +238,8 @@ fn step_changes_are_applied_and_the_keys_still_work() {
     let state = h.app.lesson.as_ref().unwrap();
     assert_eq!(state.step, 2);
     assert_eq!(
-        h.app.scenario.settings.rattleback().unwrap().params().iy, 3.0,
+        h.app.scenario.settings.rattleback().unwrap().params().iy,
+        3.0,
         "set = [\"body.iy=3\"]"
     );
     // The explorer's keys keep working inside a lesson.

@@ -329,8 +329,9 @@ impl Field {
                     1.0 + 0.1 * dir
                 }
             }
-            Self::Ix | Self::Iy | Self::Iz => v + dir * if coarse { 0.5 } else { 0.05 },
-            Self::A | Self::B => v + dir * if coarse { 0.5 } else { 0.05 },
+            Self::Ix | Self::Iy | Self::Iz | Self::A | Self::B => {
+                v + dir * if coarse { 0.5 } else { 0.05 }
+            }
             Self::Gamma => v + dir * if coarse { 1e-2 } else { 1e-3 },
             Self::Alpha | Self::Theta => {
                 v + dir
@@ -467,11 +468,17 @@ mod tests {
         let e = Field::Epsilon.nudge(&s, -1.0, true).unwrap();
         assert!((e.model.kapitza().unwrap().params().epsilon - 1e-4).abs() < 1e-15);
         let err = Field::Epsilon.with_text(&s, "0").unwrap_err();
-        assert!(err.contains("epsilon") && err.contains("old value kept"), "{err}");
+        assert!(
+            err.contains("epsilon") && err.contains("old value kept"),
+            "{err}"
+        );
         let err = Field::Method.with_text(&s, "locked").unwrap_err();
         assert!(err.contains("not offered for the kapitza model"), "{err}");
         let err = Field::K.with_text(&s, "3").unwrap_err();
-        assert!(err.contains("not a parameter of the kapitza model"), "{err}");
+        assert!(
+            err.contains("not a parameter of the kapitza model"),
+            "{err}"
+        );
         // Nudging the method cycles through the pendulum's methods only.
         let mut m = s;
         for _ in 0..20 {
@@ -479,6 +486,9 @@ mod tests {
             assert!(ModelKind::Kapitza.offers(m.method), "{}", m.method);
         }
         let cmd = s.simulate_command();
-        assert!(cmd.contains("--set preset.model=kapitza --set pendulum.a=1.0"), "{cmd}");
+        assert!(
+            cmd.contains("--set preset.model=kapitza --set pendulum.a=1.0"),
+            "{cmd}"
+        );
     }
 }

@@ -208,7 +208,9 @@ impl MapState {
         let spec = self.spec.ok_or("no map yet")?;
         let (ratio, inertia) = self.at_cursor().ok_or("no map yet")?;
         let g = spec.grid;
-        let problem = settings.rattleback().ok_or("the map is of the rattleback")?;
+        let problem = settings
+            .rattleback()
+            .ok_or("the map is of the rattleback")?;
         let params = Params {
             iy: g.ix * inertia,
             ..*problem.params()

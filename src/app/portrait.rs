@@ -113,7 +113,10 @@ pub fn auto_bounds(
     let mut y_max = sep.max(alpha_dot0.abs()).max(1e-3);
     let margin = 0.08 * period;
     let (mut x_lo, mut x_hi) = if wrap {
-        (centre - period / 2.0 - margin, centre + period / 2.0 + margin)
+        (
+            centre - period / 2.0 - margin,
+            centre + period / 2.0 + margin,
+        )
     } else {
         let c = centre + period * ((alpha0 - centre) / period).round();
         (
@@ -310,8 +313,8 @@ pub fn decimate(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::f64::consts::PI;
     use crate::physics::{Params, Problem, Start};
+    use std::f64::consts::PI;
 
     fn eff() -> LimitView {
         LimitView::Rattleback(crate::physics::effective::Effective::new(

@@ -162,10 +162,7 @@ pub fn verify(rec: &Recording, path: &str) -> Result<usize, VerifyError> {
                 got.unwrap_or_else(|| (line.t, vec![f64::NAN; state.len()], usize::MAX));
             let got_hash = state_hash(got_t, &got_state, got_rev);
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-            if got_hash != *hash
-                || bits(&got_state) != bits(state)
-                || got_rev != *reversals
-            {
+            if got_hash != *hash || bits(&got_state) != bits(state) || got_rev != *reversals {
                 return Err(VerifyError::Diverged(Divergence {
                     line: *number,
                     t: line.t,

@@ -378,9 +378,7 @@ fn check_value(model: ModelKind, kind: Kind, v: &Value) -> Result<(), String> {
 fn parse_override(kind: Kind, text: &str) -> Value {
     let text = text.trim();
     match kind {
-        Kind::Text | Kind::Method | Kind::Model => {
-            Value::String(text.trim_matches('"').to_owned())
-        }
+        Kind::Text | Kind::Method | Kind::Model => Value::String(text.trim_matches('"').to_owned()),
         // One TOML value on one line: anything else (a newline smuggling in more keys, a
         // control character) stays text and fails the type check with its reason.
         _ if text.chars().any(char::is_control) => Value::String(text.to_owned()),
@@ -408,10 +406,40 @@ pub fn check(src: &str, label: &str) -> Vec<PresetError> {
 /// The model a preset table names (`[preset] model`, the rattleback when absent); `Err` when
 /// it names none (the schema check reports it with its location).
 fn model_of(table: &Table) -> Result<ModelKind, ()> {
-    match table.get("preset").and_then(Value::as_table).and_then(|t| t.get("model")) {
+    match table
+        .get("preset")
+        .and_then(Value::as_table)
+        .and_then(|t| t.get("model"))
+    {
         None => Ok(ModelKind::Rattleback),
         Some(v) => v.as_str().and_then(ModelKind::from_name).ok_or(()),
     }
+}
+
+/// The model first (a `--set preset.model=...` included): it decides the schema. `None` (with
+/// the problem recorded) when the file names no known model.
+fn decide_model(
+    table: &mut Table,
+    overrides: &[Override],
+    problems: &mut Problems<'_>,
+) -> Option<ModelKind> {
+    for o in overrides.iter().filter(|o| o.key == "preset.model") {
+        let section = table
+            .entry("preset")
+            .or_insert_with(|| Value::Table(Table::new()));
+        if let Value::Table(t) = section {
+            t.insert("model".to_owned(), parse_override(Kind::Model, &o.value));
+        }
+    }
+    if let Ok(m) = model_of(table) {
+        return Some(m);
+    }
+    let v = &table["preset"]["model"];
+    let message = check_value(ModelKind::Rattleback, Kind::Model, v)
+        .err()
+        .unwrap_or_default();
+    problems.at_key("preset", "model", message);
+    None
 }
 
 fn collect(
@@ -427,28 +455,10 @@ fn collect(
         overridden: overrides.iter().map(|o| o.key.clone()).collect(),
         found: Vec::new(),
     };
-    // The model first (a `--set preset.model=...` included): it decides the schema.
-    for o in overrides.iter().filter(|o| o.key == "preset.model") {
-        let section = table
-            .entry("preset")
-            .or_insert_with(|| Value::Table(Table::new()));
-        if let Value::Table(t) = section {
-            t.insert("model".to_owned(), parse_override(Kind::Model, &o.value));
-        }
-    }
-    let model = match model_of(&table) {
-        Ok(m) => m,
-        Err(()) => {
-            let v = &table["preset"]["model"];
-            let message = check_value(ModelKind::Rattleback, Kind::Model, v)
-                .err()
-                .unwrap_or_default();
-            problems.at_key("preset", "model", message);
-            return Err(problems.found);
-        }
+    let Some(model) = decide_model(&mut table, overrides, &mut problems) else {
+        return Err(problems.found);
     };
     let schema = schema(model);
-    let section_names = sections(model);
     for o in overrides {
         let Some(spec) = schema
             .iter()
@@ -477,7 +487,37 @@ fn collect(
             t.insert(spec.key.to_owned(), parse_override(spec.kind, &o.value));
         }
     }
-    for (name, value) in &table {
+    check_sections(&table, model, &mut problems);
+    for spec in schema.iter().filter(|s| s.required) {
+        let present = table
+            .get(spec.section)
+            .and_then(Value::as_table)
+            .is_some_and(|t| t.contains_key(spec.key));
+        if !present {
+            let where_ = if table.contains_key(spec.section) {
+                String::new()
+            } else {
+                format!("; the file has no [{}] section", spec.section)
+            };
+            problems.at_key(
+                spec.section,
+                spec.key,
+                format!("missing required value ({}){where_}", spec.kind.allowed()),
+            );
+        }
+    }
+    if problems.found.is_empty() {
+        Ok((table, model))
+    } else {
+        Err(problems.found)
+    }
+}
+
+/// Checks every section and key of `table` against `model`'s schema.
+fn check_sections(table: &Table, model: ModelKind, problems: &mut Problems<'_>) {
+    let schema = schema(model);
+    let section_names = sections(model);
+    for (name, value) in table {
         if !section_names.contains(&name.as_str()) {
             let allowed = section_names
                 .iter()
@@ -534,29 +574,6 @@ fn collect(
                 }
             }
         }
-    }
-    for spec in schema.iter().filter(|s| s.required) {
-        let present = table
-            .get(spec.section)
-            .and_then(Value::as_table)
-            .is_some_and(|t| t.contains_key(spec.key));
-        if !present {
-            let where_ = if table.contains_key(spec.section) {
-                String::new()
-            } else {
-                format!("; the file has no [{}] section", spec.section)
-            };
-            problems.at_key(
-                spec.section,
-                spec.key,
-                format!("missing required value ({}){where_}", spec.kind.allowed()),
-            );
-        }
-    }
-    if problems.found.is_empty() {
-        Ok((table, model))
-    } else {
-        Err(problems.found)
     }
 }
 

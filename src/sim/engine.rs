@@ -227,15 +227,17 @@ impl Engine {
         };
         let resolved = match self.book.lookup(&spec) {
             Some(plan) => Ok((plan, None)),
-            None => spec.model.resolve(
-                spec.method,
-                spec.tolerance,
-                spec.t_end,
-                self.book.policy,
-                self.book.budget,
-                go_on,
-            )
-            .map(|r| (r.plan, r.verified.map(|v| v.error_estimate))),
+            None => spec
+                .model
+                .resolve(
+                    spec.method,
+                    spec.tolerance,
+                    spec.t_end,
+                    self.book.policy,
+                    self.book.budget,
+                    go_on,
+                )
+                .map(|r| (r.plan, r.verified.map(|v| v.error_estimate))),
         };
         let started = match resolved {
             Err(StepError::Cancelled { .. }) => return true,

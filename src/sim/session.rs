@@ -61,7 +61,12 @@ struct Track {
 }
 
 impl Track {
-    fn new(model: &Model, method: Method, settings: Settings, t_end: f64) -> Result<Self, StepError> {
+    fn new(
+        model: &Model,
+        method: Method,
+        settings: Settings,
+        t_end: f64,
+    ) -> Result<Self, StepError> {
         let integrator = model.build(method, settings, t_end)?;
         let e0 = integrator.energy();
         Ok(Self {

@@ -37,9 +37,9 @@ pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::RunSpec) -> f
         }
         Method::Dop853 => 12.0 * fast * 0.6 * tolerance.powf(-0.125),
         m => {
-            let h = spec.step.unwrap_or_else(|| {
-                kapitza::flows::default_step(m, problem, tolerance, spec.t_end)
-            });
+            let h = spec
+                .step
+                .unwrap_or_else(|| kapitza::flows::default_step(m, problem, tolerance, spec.t_end));
             let stages = match m {
                 Method::Rk4 | Method::Strang => 4.0,
                 Method::Yoshida4 => 3.0,
@@ -271,36 +271,15 @@ pub fn simulate_to(
     }
     let wall_seconds = clock.elapsed().as_secs_f64();
     if format == Format::Csv {
-        out.write_all(
-            csv_metadata(
-                &preset.name,
-                problem,
-                resolved.spec.method,
-                Some(spec.method),
-                resolved.spec.tolerance,
-                spec.t_end,
-            )
-            .as_bytes(),
-        )?;
-        out.write_all(b"t,theta,theta_dot,energy\n")?;
-        let limit = Limit::new(problem.params());
-        for s in &result.samples {
-            let (th, thd) = crate::physics::kapitza::limit::to_slow(
-                problem.params(),
-                s.t,
-                (s.theta, s.theta_dot),
-            );
-            writeln!(
-                out,
-                "{},{},{},{}",
-                s.t,
-                s.theta,
-                s.theta_dot,
-                limit.energy_of(th, thd)
-            )?;
-        }
-        out.flush()?;
-        return Ok(None);
+        let head = csv_metadata(
+            &preset.name,
+            problem,
+            resolved.spec.method,
+            Some(spec.method),
+            resolved.spec.tolerance,
+            spec.t_end,
+        );
+        return write_csv(problem, &head, &result, out);
     }
     let limit_spec = RunSpec {
         method: Method::Effective,
@@ -315,11 +294,6 @@ pub fn simulate_to(
     });
     let p = problem.params();
     let s = problem.start();
-    let limit = Limit::new(p);
-    let empty = |_: ()| Times {
-        count: 0,
-        times: Vec::new(),
-    };
     let report = Report {
         preset: preset.name.clone(),
         model: "kapitza",
@@ -328,10 +302,9 @@ pub fn simulate_to(
         method: resolved.spec.method,
         auto_choice: auto.as_ref().map(|a| a.choice),
         step: if spec.method.is_fixed_step() {
-            Some(
-                spec.step
-                    .unwrap_or_else(|| kapitza::flows::default_step(spec.method, problem, spec.tolerance, spec.t_end)),
-            )
+            Some(spec.step.unwrap_or_else(|| {
+                kapitza::flows::default_step(spec.method, problem, spec.tolerance, spec.t_end)
+            }))
         } else {
             None
         },
@@ -352,32 +325,7 @@ pub fn simulate_to(
             final_: result.energy_final,
             max_drift: result.max_energy_drift,
         },
-        effective: EffectiveOut {
-            stable_upright: p.stable_upright(),
-            threshold: p.threshold(),
-            energy: limit.energy_of(s.theta, s.theta_dot),
-            theta: limit_run.as_ref().ok().map(|r| r.theta),
-            theta_dot: limit_run.as_ref().ok().map(|r| r.theta_dot),
-            comparison_error: limit_run.as_ref().err().map(ToString::to_string),
-            upright_frequency: limit.upright_frequency(),
-            equilibria: limit
-                .equilibria()
-                .iter()
-                .map(|e| EquilibriumOut {
-                    theta: e.theta,
-                    stable: e.stable,
-                })
-                .collect(),
-            separatrices: limit.separatrices(),
-            swings: limit_run.as_ref().map_or_else(
-                |_| empty(()),
-                |r| times_of(&r.events.swings, r.events.swing_count),
-            ),
-            falls: limit_run.as_ref().map_or_else(
-                |_| empty(()),
-                |r| times_of(&r.events.falls, r.events.fall_count),
-            ),
-        },
+        effective: effective_out(problem, &limit_run),
         stats: StatsOut {
             steps: result.stats.steps,
             rejected: result.stats.rejected,
@@ -394,6 +342,70 @@ pub fn simulate_to(
         Format::Table | Format::Csv => table(&report),
     };
     out.write_all(text.as_bytes())?;
+    out.flush()?;
+    Ok(None)
+}
+
+/// The limit's account of the start, and its own run (`limit_run`) to `t_end`.
+fn effective_out(problem: &Problem, limit_run: &Result<RunResult, StepError>) -> EffectiveOut {
+    let p = problem.params();
+    let s = problem.start();
+    let limit = Limit::new(p);
+    let empty = |()| Times {
+        count: 0,
+        times: Vec::new(),
+    };
+    EffectiveOut {
+        stable_upright: p.stable_upright(),
+        threshold: p.threshold(),
+        energy: limit.energy_of(s.theta, s.theta_dot),
+        theta: limit_run.as_ref().ok().map(|r| r.theta),
+        theta_dot: limit_run.as_ref().ok().map(|r| r.theta_dot),
+        comparison_error: limit_run.as_ref().err().map(ToString::to_string),
+        upright_frequency: limit.upright_frequency(),
+        equilibria: limit
+            .equilibria()
+            .iter()
+            .map(|e| EquilibriumOut {
+                theta: e.theta,
+                stable: e.stable,
+            })
+            .collect(),
+        separatrices: limit.separatrices(),
+        swings: limit_run.as_ref().map_or_else(
+            |_| empty(()),
+            |r| times_of(&r.events.swings, r.events.swing_count),
+        ),
+        falls: limit_run.as_ref().map_or_else(
+            |_| empty(()),
+            |r| times_of(&r.events.falls, r.events.fall_count),
+        ),
+    }
+}
+
+/// The samples as CSV after `head`: `t,theta,theta_dot,energy` (the limit's `E_eff` of the
+/// averaged state).
+fn write_csv(
+    problem: &Problem,
+    head: &str,
+    result: &RunResult,
+    out: &mut dyn std::io::Write,
+) -> Result<Option<Missed>, Failure> {
+    out.write_all(head.as_bytes())?;
+    out.write_all(b"t,theta,theta_dot,energy\n")?;
+    let limit = Limit::new(problem.params());
+    for s in &result.samples {
+        let (th, thd) =
+            crate::physics::kapitza::limit::to_slow(problem.params(), s.t, (s.theta, s.theta_dot));
+        writeln!(
+            out,
+            "{},{},{},{}",
+            s.t,
+            s.theta,
+            s.theta_dot,
+            limit.energy_of(th, thd)
+        )?;
+    }
     out.flush()?;
     Ok(None)
 }
@@ -429,7 +441,12 @@ fn table(r: &Report) -> String {
     let _ = writeln!(o);
     let _ = writeln!(o, "                   full model          limit (ε → 0)");
     let limit = |v: Option<f64>| v.map_or_else(|| "n/a".to_owned(), |x| format!("{x:.9}"));
-    let _ = writeln!(o, "theta(T)      {:>16.9}    {:>16}", r.final_.theta, limit(e.theta));
+    let _ = writeln!(
+        o,
+        "theta(T)      {:>16.9}    {:>16}",
+        r.final_.theta,
+        limit(e.theta)
+    );
     let _ = writeln!(
         o,
         "theta_dot(T)  {:>16.9}    {:>16}",
@@ -455,7 +472,11 @@ fn table(r: &Report) -> String {
     let _ = writeln!(
         o,
         "upright       {} (b^2 - 2a = {:.6})",
-        if e.stable_upright { "stable" } else { "unstable" },
+        if e.stable_upright {
+            "stable"
+        } else {
+            "unstable"
+        },
         e.threshold
     );
     let _ = writeln!(

@@ -349,12 +349,25 @@ pub fn simulate_to(
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Option<Missed>, Failure> {
     within_budget(preset, resolved, format)?;
-    let problem = match &preset.model {
-        crate::physics::Model::Rattleback(p) => p,
-        crate::physics::Model::Kapitza(p) => {
-            return kapitza::simulate_to(preset, p, resolved, format, out, progress);
+    match &preset.model {
+        crate::physics::Model::Rattleback(p) => {
+            rattleback_to(preset, p, resolved, format, out, progress)
         }
-    };
+        crate::physics::Model::Kapitza(p) => {
+            kapitza::simulate_to(preset, p, resolved, format, out, progress)
+        }
+    }
+}
+
+/// The rattleback's report (see [`simulate_to`]).
+fn rattleback_to(
+    preset: &Preset,
+    problem: &crate::physics::Problem,
+    resolved: &Resolved,
+    format: Format,
+    out: &mut dyn std::io::Write,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<Option<Missed>, Failure> {
     let spec = resolved.spec;
     let clock = Instant::now();
     if format == Format::Csv {
@@ -458,7 +471,11 @@ pub fn simulate_to(
 }
 
 /// Refuses, before anything runs, work predicted over the budget.
-pub(crate) fn within_budget(preset: &Preset, resolved: &Resolved, format: Format) -> Result<(), StepError> {
+pub(crate) fn within_budget(
+    preset: &Preset,
+    resolved: &Resolved,
+    format: Format,
+) -> Result<(), StepError> {
     let spec = resolved.spec;
     budget::check(predicted_seconds(preset, resolved, format), resolved.budget).map_err(|over| {
         StepError::OverBudget {

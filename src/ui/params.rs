@@ -47,32 +47,10 @@ impl Widget for ParamsPanel<'_> {
     }
 }
 
-fn panel(p: &ParamsPanel<'_>, area: Rect, buf: &mut Buffer) {
+/// The read-only lines under the parameters: what the model derives from them.
+fn derived_lines(p: &ParamsPanel<'_>, width: usize) -> Vec<Line<'static>> {
     let look = p.look;
-    let width = area.width.saturating_sub(2) as usize;
     let mut lines = Vec::new();
-    for (i, field) in Field::rows(p.scenario.settings.model.kind())
-        .iter()
-        .enumerate()
-    {
-        let selected = i == p.scenario.selected;
-        let value = match (p.editing, selected) {
-            (Some(buffer), true) => format!("{buffer}▏"),
-            _ => field.show(&p.scenario.settings),
-        };
-        let text = row(
-            if selected { "› " } else { "  " },
-            field.label(),
-            &value,
-            width,
-        );
-        let style = if selected {
-            Style::default().add_modifier(Modifier::REVERSED | Modifier::BOLD)
-        } else {
-            Style::default()
-        };
-        lines.push(Line::styled(text, style));
-    }
     let d = &p.scenario.derived;
     let dim = look.dim();
     let bold = Style::default().add_modifier(Modifier::BOLD);
@@ -80,7 +58,11 @@ fn panel(p: &ParamsPanel<'_>, area: Rect, buf: &mut Buffer) {
         Line::from(vec![
             Span::styled(format!("  {label}"), dim),
             Span::styled(
-                format!("{:>w$}", value, w = width.saturating_sub(label.chars().count() + 2)),
+                format!(
+                    "{:>w$}",
+                    value,
+                    w = width.saturating_sub(label.chars().count() + 2)
+                ),
                 bold,
             ),
         ])
@@ -132,6 +114,36 @@ fn panel(p: &ParamsPanel<'_>, area: Rect, buf: &mut Buffer) {
         }
         _ => {}
     }
+    lines
+}
+
+fn panel(p: &ParamsPanel<'_>, area: Rect, buf: &mut Buffer) {
+    let look = p.look;
+    let width = area.width.saturating_sub(2) as usize;
+    let mut lines = Vec::new();
+    for (i, field) in Field::rows(p.scenario.settings.model.kind())
+        .iter()
+        .enumerate()
+    {
+        let selected = i == p.scenario.selected;
+        let value = match (p.editing, selected) {
+            (Some(buffer), true) => format!("{buffer}▏"),
+            _ => field.show(&p.scenario.settings),
+        };
+        let text = row(
+            if selected { "› " } else { "  " },
+            field.label(),
+            &value,
+            width,
+        );
+        let style = if selected {
+            Style::default().add_modifier(Modifier::REVERSED | Modifier::BOLD)
+        } else {
+            Style::default()
+        };
+        lines.push(Line::styled(text, style));
+    }
+    lines.extend(derived_lines(p, width));
     if let Some(prompt) = p.prompt {
         lines.push(Line::styled(
             format!("{}: {}▏", prompt.purpose.label(), prompt.text),

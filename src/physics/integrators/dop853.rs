@@ -18,6 +18,21 @@ use nalgebra::SVector;
 use super::StepError;
 use super::dop853_tableau::{A, B, D, E3, E5, STAGES, STAGES_DENSE};
 
+/// The stage times `c_s` (row sums of `A`), for non-autonomous fields.
+const C: [f64; STAGES_DENSE] = {
+    let mut c = [0.0; STAGES_DENSE];
+    let mut s = 0;
+    while s < STAGES_DENSE {
+        let mut j = 0;
+        while j < STAGES_DENSE {
+            c[s] += A[s][j];
+            j += 1;
+        }
+        s += 1;
+    }
+    c
+};
+
 /// Counters of the work done by an integrator.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct Stats {
@@ -29,10 +44,20 @@ pub struct Stats {
     pub rhs_evaluations: u64,
 }
 
-/// The right-hand side of an autonomous system `y' = f(y)`.
+/// The right-hand side of a system `y' = f(t, y)` (autonomous unless [`Field::eval_at`] is
+/// given: the default ignores `t`).
 pub trait Field<const N: usize> {
     /// Evaluates `f(y)`.
     fn eval(&self, y: &SVector<f64, N>) -> SVector<f64, N>;
+
+    /// Evaluates `f(t, y)`; the core calls this one, at each stage's own time `t + c_s h`, so
+    /// a forced system needs no time component in its state (whose rounding would drift from
+    /// the step's time over many steps).
+    #[inline]
+    fn eval_at(&self, t: f64, y: &SVector<f64, N>) -> SVector<f64, N> {
+        let _ = t;
+        self.eval(y)
+    }
 
     /// The error scale of component `i` is `tol · (unit(i) + max(|y_i|, |y_new_i|))`; the unit
     /// is the component's natural size (1 by default).
@@ -77,7 +102,7 @@ pub struct Dop853<const N: usize, F> {
 impl<const N: usize, F: Field<N>> Dop853<N, F> {
     /// Starts at `(t0, y0)` with relative and absolute tolerance `tol`.
     pub fn new(f: F, t0: f64, y0: SVector<f64, N>, tol: f64) -> Self {
-        let f_now = f.eval(&y0);
+        let f_now = f.eval_at(t0, &y0);
         let mut me = Self {
             f,
             tol,
@@ -127,7 +152,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
             0.01 * d0 / d1
         };
         let y1 = self.y + self.f_now * h0;
-        let f1 = self.f.eval(&y1);
+        let f1 = self.f.eval_at(self.t + h0, &y1);
         self.stats.rhs_evaluations += 1;
         let d2 = self.rms(&(f1 - self.f_now)) / h0;
         let h1 = if d1.max(d2) <= 1e-15 {
@@ -186,7 +211,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
                         acc += self.k[j] * A[s][j];
                     }
                 }
-                self.k[s] = self.f.eval(&(self.y + acc * h));
+                self.k[s] = self.f.eval_at(self.t + C[s] * h, &(self.y + acc * h));
             }
             self.stats.rhs_evaluations += (STAGES - 1) as u64;
             let mut incr = SVector::<f64, N>::zeros();
@@ -221,12 +246,13 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
                 continue;
             }
             if err <= 1.0 {
-                let f_new = self.f.eval(&y_new);
+                let t_new = if last { t_limit } else { self.t + h };
+                let f_new = self.f.eval_at(t_new, &y_new);
                 self.stats.rhs_evaluations += 1;
                 self.k[STAGES] = f_new;
                 self.t_prev = self.t;
                 self.y_prev = self.y;
-                self.t = if last { t_limit } else { self.t + h };
+                self.t = t_new;
                 self.y = y_new;
                 self.f_now = f_new;
                 self.h_last = h;
@@ -267,7 +293,9 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
                     acc += self.k[j] * A[s][j];
                 }
             }
-            self.k[s] = self.f.eval(&(self.y_prev + acc * h));
+            self.k[s] = self
+                .f
+                .eval_at(self.t_prev + C[s] * h, &(self.y_prev + acc * h));
         }
         self.stats.rhs_evaluations += 3;
         let dy = self.y - self.y_prev;

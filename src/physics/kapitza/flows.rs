@@ -1,6 +1,7 @@
 //! The pendulum's integrators behind [`Flow`]:
 //!
-//! - `dop853`: the full model on `(θ, θ̇, t)` by the adaptive DOP853 core; resolves the fast
+//! - `dop853`: the full model on `(θ, θ̇)` by the adaptive DOP853 core (forced at each stage's
+//!   time); resolves the fast
 //!   period, so its cost grows like `1/ε`.
 //! - `rk4` and the compositions (`strang`, `yoshida4`, `blanes-moan4`, `yoshida6`, `suzuki8`):
 //!   fixed steps of a fraction of the fast period. The compositions split
@@ -17,7 +18,7 @@
 //! ([`limit::to_slow`]); the full flows keep an O(ε) ripple in it, which the event hysteresis
 //! covers.
 
-use nalgebra::{Vector2, Vector3};
+use nalgebra::Vector2;
 
 use super::limit::{self, Limit};
 use super::{Params, Problem};
@@ -98,9 +99,7 @@ pub fn build(
             step,
         )),
         Method::Effective => Box::new(LimitDop853::new(problem, settings.tolerance, false)),
-        Method::EffectiveCorrected => {
-            Box::new(LimitDop853::new(problem, settings.tolerance, true))
-        }
+        Method::EffectiveCorrected => Box::new(LimitDop853::new(problem, settings.tolerance, true)),
         other => {
             return Err(StepError::NotOffered {
                 method: other.name(),
@@ -127,13 +126,16 @@ fn slow_sample(p: &Params, t: f64, theta: f64, theta_dot: f64) -> Sample {
     }
 }
 
-/// The full field on `(θ, θ̇, t)`.
+/// The full field on `(θ, θ̇)`, forced at the stage's time.
 struct FullField(Params);
 
-impl Field<3> for FullField {
+impl Field<2> for FullField {
+    fn eval(&self, y: &Vector2<f64>) -> Vector2<f64> {
+        self.eval_at(0.0, y)
+    }
     #[inline]
-    fn eval(&self, y: &Vector3<f64>) -> Vector3<f64> {
-        Vector3::new(y[1], self.0.forcing(y[2]) * y[0].sin(), 1.0)
+    fn eval_at(&self, t: f64, y: &Vector2<f64>) -> Vector2<f64> {
+        Vector2::new(y[1], self.0.forcing(t) * y[0].sin())
     }
     fn is_angle(&self, i: usize) -> bool {
         i == 0
@@ -144,7 +146,7 @@ impl Field<3> for FullField {
 pub struct FullDop853 {
     params: Params,
     limit: Limit,
-    core: Dop853<3, FullField>,
+    core: Dop853<2, FullField>,
 }
 
 impl FullDop853 {
@@ -156,16 +158,11 @@ impl FullDop853 {
         Self {
             params: p,
             limit: Limit::new(&p),
-            core: Dop853::new(
-                FullField(p),
-                0.0,
-                Vector3::new(s.theta, s.theta_dot, 0.0),
-                tol,
-            ),
+            core: Dop853::new(FullField(p), 0.0, Vector2::new(s.theta, s.theta_dot), tol),
         }
     }
 
-    fn at(&mut self, t: f64) -> Vector3<f64> {
+    fn at(&mut self, t: f64) -> Vector2<f64> {
         if t >= self.core.time() {
             self.core.state()
         } else {
@@ -276,7 +273,12 @@ impl Fixed {
         let (t0, t1) = (self.t_prev, self.t);
         let (h, (y0, v0), (y1, v1)) = (t1 - t0, self.y_prev, self.y);
         let (a0, a1) = (self.accel(t0, y0), self.accel(t1, y1));
-        hermite5(h, (y0, v0 * h, a0 * h * h), (y1, v1 * h, a1 * h * h), (t - t0) / h)
+        hermite5(
+            h,
+            (y0, v0 * h, a0 * h * h),
+            (y1, v1 * h, a1 * h * h),
+            (t - t0) / h,
+        )
     }
 }
 
@@ -376,11 +378,7 @@ impl Flow for Fixed {
     }
     fn locate_event(&mut self) -> f64 {
         let p = self.params;
-        find_root(
-            |t| limit::to_slow(&p, t, self.at(t)).1,
-            self.t_prev,
-            self.t,
-        )
+        find_root(|t| limit::to_slow(&p, t, self.at(t)).1, self.t_prev, self.t)
     }
     fn event_hysteresis(&self) -> f64 {
         hysteresis(&self.params)
@@ -513,7 +511,8 @@ mod tests {
 
     #[test]
     fn hermite5_reproduces_a_quintic() {
-        let f = |x: f64| 1.0 + 2.0 * x - x * x + 0.5 * x.powi(3) - 0.3 * x.powi(4) + 0.1 * x.powi(5);
+        let f =
+            |x: f64| 1.0 + 2.0 * x - x * x + 0.5 * x.powi(3) - 0.3 * x.powi(4) + 0.1 * x.powi(5);
         let df = |x: f64| 2.0 - 2.0 * x + 1.5 * x * x - 1.2 * x.powi(3) + 0.5 * x.powi(4);
         let ddf = |x: f64| -2.0 + 3.0 * x - 3.6 * x * x + 2.0 * x.powi(3);
         let (t0, h) = (0.4, 0.7);

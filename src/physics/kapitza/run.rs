@@ -136,7 +136,7 @@ pub fn run(
         }
         flow.step(spec.t_end)?;
         steps += 1;
-        if steps % CHECK_EVERY == 0 && !go_on(flow.time()) {
+        if steps.is_multiple_of(CHECK_EVERY) && !go_on(flow.time()) {
             return Err(StepError::Cancelled { t: flow.time() });
         }
         if let Some(t) = swings.after_step(flow.as_mut()) {

@@ -1,0 +1,353 @@
+//! Issue 11 in the explorer: Kapitza's pendulum through the worker's interpreter and the
+//! `TestBackend`, on every shipped pendulum preset, at ×1 and at top speed; the rattleback's
+//! own panes refused; a recorded session replayed and verified.
+
+mod common;
+
+use common::Headless;
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::buffer::Buffer;
+use rattleback::app::journal::Event;
+use rattleback::app::panes::Pane;
+use rattleback::app::{App, Key, Outcome, PlanState};
+use rattleback::physics::kapitza::run::{RunSpec, run};
+use rattleback::physics::{Method, Model, ModelKind};
+use rattleback::record::{self, FORMAT, Header, Line, Recorder, Size, VERSION};
+use rattleback::scenario::shipped::{SHIPPED, resolve};
+use rattleback::ui::{self, Cache, UiOptions};
+
+fn pendulum_presets() -> Vec<&'static str> {
+    let names: Vec<&str> = SHIPPED
+        .iter()
+        .map(|(n, _)| *n)
+        .filter(|n| resolve(n, &[]).unwrap().model.kind() == ModelKind::Kapitza)
+        .collect();
+    assert!(names.len() >= 5, "{names:?}");
+    names
+}
+
+fn render(app: &App, width: u16, height: u16) -> Buffer {
+    let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
+    terminal
+        .draw(|f| ui::draw(f, app, &UiOptions::default(), &mut Cache::default()))
+        .unwrap();
+    terminal.backend().buffer().clone()
+}
+
+fn text(buffer: &Buffer) -> String {
+    let area = buffer.area;
+    let mut out = String::new();
+    for y in 0..area.height {
+        for x in 0..area.width {
+            out.push_str(buffer[(x, y)].symbol());
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// What the explorer shows at `t_end` at ×1024 is `simulate`'s run bit for bit (the same plan),
+/// with the same swings and falls, and within 100× the tolerance of DOP853 at 1e-12.
+#[test]
+fn every_pendulum_preset_ends_where_simulate_and_a_tight_reference_end() {
+    for name in pendulum_presets() {
+        let mut h = Headless::new(name);
+        h.play_until(f64::INFINITY, 1024.0);
+        let app = &h.app;
+        let s = app.scenario.settings;
+        let Model::Kapitza(problem) = s.model else {
+            panic!("{name}: not the pendulum")
+        };
+        assert!(app.run.done(), "{name}: not done");
+        let shown = *app.run.current().expect("a point at t_end");
+        assert_eq!(
+            shown.t.to_bits(),
+            s.t_end.to_bits(),
+            "{name}: the last sample is at t_end"
+        );
+        let PlanState::Running { plan, .. } = app.run.plan else {
+            panic!("{name}: no plan")
+        };
+        let spec = RunSpec {
+            method: plan.method,
+            tolerance: plan.tolerance,
+            step: plan.step,
+            t_end: s.t_end,
+            samples: 0,
+        };
+        let simulated = run(&problem, &spec, &mut |_| true).unwrap();
+        assert_eq!(
+            [shown.alpha.to_bits(), shown.alpha_dot.to_bits()],
+            [simulated.theta.to_bits(), simulated.theta_dot.to_bits()],
+            "{name}: the screen and simulate differ"
+        );
+        assert_eq!(
+            app.run.reversals_shown(),
+            simulated.events.swing_count,
+            "{name}: swings"
+        );
+        assert_eq!(
+            app.run.falls_shown(),
+            Some(simulated.events.fall_count),
+            "{name}: falls"
+        );
+        let reference = run(
+            &problem,
+            &RunSpec {
+                method: Method::Dop853,
+                tolerance: 1e-12,
+                step: None,
+                t_end: s.t_end,
+                samples: 0,
+            },
+            &mut |_| true,
+        )
+        .unwrap();
+        let err = (shown.alpha - reference.theta)
+            .abs()
+            .max((shown.alpha_dot - reference.theta_dot).abs());
+        assert!(
+            err <= 100.0 * s.tolerance,
+            "{name}: {err:e} from dop853 at 1e-12 (tolerance {:e}, {})",
+            s.tolerance,
+            plan.method
+        );
+    }
+}
+
+/// The full motion is a ripple band around the limit: `θ` within `2 ε b` of the limit and `θ̇`
+/// spread over the band `± b |sin θ|` on both sides (the samples visit every phase of the
+/// ripple), while the limit drawn beside it is a curve.
+#[test]
+fn the_full_trail_is_a_ripple_band_around_the_limit() {
+    let mut h = Headless::new("kapitza-upright");
+    h.play_until(10.0, 64.0);
+    let app = &h.app;
+    let Model::Kapitza(problem) = app.scenario.settings.model else {
+        panic!("not the pendulum")
+    };
+    let p = *problem.params();
+    let full = app.run.trail_shown();
+    let limit = app.run.effective_shown();
+    assert!(full.len() > 500 && limit.len() > 500);
+    let (mut above, mut below, mut widest) = (0, 0, 0.0f64);
+    for (f, l) in full.iter().zip(limit) {
+        assert_eq!(f.t.to_bits(), l.t.to_bits(), "one sample grid");
+        // The limit from (θ0, θ̇0) drifts from the full motion by O(ε) over the run.
+        assert!(
+            (f.alpha - l.alpha).abs() < 4.0 * p.epsilon * p.b + 0.02,
+            "t {}",
+            f.t
+        );
+        let band = p.b * l.alpha.sin().abs() + 0.05;
+        let d = f.alpha_dot - l.alpha_dot;
+        assert!(d.abs() <= band, "t {}: {d} outside ±{band}", f.t);
+        if d > 0.0 {
+            above += 1;
+        } else {
+            below += 1;
+        }
+        widest = widest.max(d.abs() / band);
+    }
+    assert!(above > 100 && below > 100, "{above} above, {below} below");
+    assert!(widest > 0.7, "the band is filled: {widest}");
+}
+
+#[test]
+fn the_rattlebacks_own_panes_are_refused_and_close_with_it() {
+    let mut h = Headless::new("kapitza-upright");
+    for (key, pane) in [
+        ('K', Pane::Sweep),
+        ('W', Pane::Weak),
+        ('M', Pane::Map),
+        ('B', Pane::Body),
+    ] {
+        h.key(Key::Char(key));
+        assert!(!h.app.view.panes.shows(pane), "{key}");
+        let status = h.app.status.as_ref().expect("a message").text.clone();
+        assert!(
+            status.contains("is of the rattleback") && status.contains("Kapitza"),
+            "{key}: {status}"
+        );
+    }
+    // Open on the rattleback, then the pendulum is loaded: they close, the map's arrows too.
+    let mut h = Headless::new("subcritical");
+    h.key(Key::Char('M'));
+    h.key(Key::Char('B'));
+    assert!(h.app.view.panes.shows(Pane::Map) && h.app.view.panes.shows(Pane::Body));
+    let effects = h.app.load(&resolve("kapitza-falls", &[]).unwrap());
+    h.exec(effects);
+    assert!(!h.app.view.panes.shows(Pane::Map) && !h.app.view.panes.shows(Pane::Body));
+    assert_eq!(h.app.mode, rattleback::app::Mode::Normal);
+    h.play_until(2.0, 8.0);
+    assert!(h.app.run.current().is_some());
+}
+
+#[test]
+fn the_pendulum_draws_at_80x24_and_160x48_at_x1_and_top_speed() {
+    for name in pendulum_presets() {
+        for speed in [1.0, 1024.0] {
+            let mut h = Headless::new(name);
+            h.play_until(2.0, speed);
+            for (w, hgt) in [(80, 24), (160, 48)] {
+                let screen = text(&render(&h.app, w, hgt));
+                let status = screen.lines().nth(usize::from(hgt) - 2).unwrap();
+                assert!(
+                    status.contains(&format!("t {:.2}", h.app.run.shown)),
+                    "{name}: {status}"
+                );
+                assert!(
+                    status.contains(&format!("swings {}", h.app.run.reversals_shown())),
+                    "{name}: {status}"
+                );
+                assert!(screen.contains("theta_dot"), "{name} {w}x{hgt}");
+                assert!(screen.contains("b²−2a"), "{name} {w}x{hgt}: the verdict");
+                assert!(
+                    screen.contains("stable") || screen.contains("unstable"),
+                    "{name}"
+                );
+            }
+        }
+    }
+    let mut h = Headless::new("kapitza-upright");
+    h.play_until(5.0, 4.0);
+    h.key(Key::Char(' '));
+    insta::assert_snapshot!("kapitza_80x24", text(&render(&h.app, 80, 24)));
+    h.key(Key::Char('t'));
+    insta::assert_snapshot!("kapitza_160x48_series", text(&render(&h.app, 160, 48)));
+}
+
+#[test]
+fn the_picker_lists_both_scenes() {
+    let (entries, problems) = rattleback::scenario::shipped::catalogue();
+    assert!(problems.is_empty());
+    for kind in ModelKind::ALL {
+        assert!(entries.iter().any(|e| e.model == kind), "{kind:?}");
+    }
+    let mut h = Headless::new("subcritical");
+    h.key(Key::Char('p'));
+    let effects = vec![];
+    h.exec(effects);
+    let (entries, _) = rattleback::scenario::shipped::catalogue();
+    h.app.on_outcome(Outcome::Catalogue(entries, Vec::new()));
+    let screen = text(&render(&h.app, 100, 40));
+    assert!(
+        screen.contains("rattleback") && screen.contains("kapitza"),
+        "{screen}"
+    );
+}
+
+fn temp(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("rattleback-kap-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    let _ = std::fs::remove_file(&p);
+    p
+}
+
+/// A pendulum session recorded through the app's update function replays bit for bit: its
+/// checkpoints (the state `(θ, θ̇)`) verify, after a change of ε that restarts the run.
+#[test]
+fn a_recorded_pendulum_session_verifies() {
+    let mut h = Headless::new("kapitza-upright");
+    let app = &h.app;
+    let header = Header {
+        format: FORMAT.to_owned(),
+        version: VERSION,
+        program: "test".to_owned(),
+        preset: app.to_preset(&app.scenario.name).to_toml(),
+        method: app.scenario.settings.method.name().to_owned(),
+        tolerance: app.scenario.settings.tolerance,
+        terminal: Size {
+            width: 80,
+            height: 24,
+        },
+        theme: rattleback::record::ThemeRef::Name("Default (16 colours)".to_owned()),
+        fps: 30.0,
+    };
+    h.app.on_key(Key::Char('R'));
+    h.app
+        .on_outcome(Outcome::Recording(Ok("recorded.jsonl".to_owned())));
+    h.key(Key::Char(' '));
+    h.tick(1.7);
+    let c = vec![h.app.checkpoint()];
+    h.exec(c);
+    // ε one decade coarser (row 3, coarse nudge): restarts.
+    for k in [Key::Char('j'), Key::Char('j'), Key::Char('L')] {
+        h.key(k);
+    }
+    assert!(
+        (h.app
+            .scenario
+            .settings
+            .model
+            .kapitza()
+            .unwrap()
+            .params()
+            .epsilon
+            - 1e-2)
+            .abs()
+            < 1e-15
+    );
+    for _ in 0..3 {
+        h.tick(0.9);
+    }
+    h.key(Key::Char(' '));
+    let c = vec![h.app.checkpoint()];
+    h.exec(c);
+    let journal = h.app.take_journal();
+    let checkpoints: Vec<usize> = journal
+        .iter()
+        .filter_map(|(_, _, e)| match e {
+            Event::Checkpoint { state, .. } => Some(state.len()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(checkpoints, vec![2, 2], "(θ, θ̇) twice");
+    assert!(
+        journal
+            .iter()
+            .any(|(_, _, e)| matches!(e, Event::Set { field, .. } if field == "epsilon"))
+    );
+    let path = temp("pendulum.jsonl");
+    let mut rec = Recorder::create(&path, &header).unwrap();
+    for (i, (t, generation, event)) in journal.into_iter().enumerate() {
+        rec.write(&Line {
+            wall: i as f64 * 0.5,
+            t,
+            generation,
+            chain: None,
+            event,
+        })
+        .unwrap();
+    }
+    drop(rec);
+    let back = record::read(&path).unwrap();
+    assert!(back.header.preset.contains("model = \"kapitza\""));
+    assert_eq!(record::verify(&back, "pendulum").unwrap(), 2);
+    // Tampering with the state is caught.
+    let text = std::fs::read_to_string(&path).unwrap();
+    let tampered = temp("tampered.jsonl");
+    let line = text
+        .lines()
+        .position(|l| l.contains("\"checkpoint\""))
+        .unwrap();
+    let changed: Vec<String> = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            if i == line {
+                l.replacen("\"reversals\":", "\"reversals\":1", 1)
+            } else {
+                l.to_owned()
+            }
+        })
+        .collect();
+    std::fs::write(&tampered, changed.join("\n") + "\n").unwrap();
+    let back = record::read(&tampered);
+    assert!(
+        back.map_or(true, |b| record::verify(&b, "tampered").is_err()),
+        "a changed checkpoint is reported"
+    );
+}
