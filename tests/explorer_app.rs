@@ -774,10 +774,9 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
     // Arrows move the cursor, not the parameters; Enter loads the cell.
     let selected = h.app.scenario.selected;
     let start = h.app.map.cursor;
-    h.key(Key::Right);
-    h.key(Key::Right);
-    h.key(Key::Up);
-    h.key(Key::ShiftRight);
+    for k in [Key::Right, Key::Right, Key::Up, Key::ShiftRight] {
+        h.key(k);
+    }
     assert_eq!(h.app.map.cursor, (start.0 + 6, start.1 + 1));
     assert_eq!(h.app.scenario.selected, selected);
     assert_eq!(
