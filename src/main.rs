@@ -437,6 +437,17 @@ fn run_simulate(args: &SimulateArgs) -> ExitCode {
     };
     let request = args.request();
     let resolved = resolve_run(&preset, &request);
+    let kind = preset.model.kind();
+    if !kind.offers(resolved.spec.method) {
+        say_err!(
+            "rattleback: error: --method {}: not offered for the {} model ({}); allowed: {}",
+            resolved.spec.method,
+            kind.name(),
+            args.preset,
+            kind.method_names()
+        );
+        return ExitCode::from(2);
+    }
     if let Some(h) = resolved.spec.step
         && let Err(e) = rattleback::physics::run::check_step(h, resolved.spec.t_end)
     {

@@ -513,6 +513,26 @@ fn collect(
     }
 }
 
+/// ` (… belongs to the X model; set model = "X" in [preset])` when another model has the key.
+fn other_model_hint(model: ModelKind, section: &str, key: &str) -> String {
+    ModelKind::ALL
+        .into_iter()
+        .find(|m| {
+            *m != model
+                && schema(*m)
+                    .iter()
+                    .any(|s| s.section == section && s.key == key)
+        })
+        .map(|m| {
+            format!(
+                " (`{section}.{key}` belongs to the {} model; set model = \"{}\" in [preset])",
+                m.name(),
+                m.name()
+            )
+        })
+        .unwrap_or_default()
+}
+
 /// Checks every section and key of `table` against `model`'s schema.
 fn check_sections(table: &Table, model: ModelKind, problems: &mut Problems<'_>) {
     let schema = schema(model);
@@ -559,12 +579,14 @@ fn check_sections(table: &Table, model: ModelKind, problems: &mut Problems<'_>) 
                     name,
                     key,
                     format!(
-                        "unknown key `{key}`, expected one of {}{}",
+                        "unknown key `{key}` for the {} model, expected one of {}{}{}",
+                        model.name(),
                         allowed_keys(schema, name),
                         crate::scenario::text::did_you_mean(
                             key,
                             schema.iter().filter(|s| s.section == name).map(|s| s.key)
-                        )
+                        ),
+                        other_model_hint(model, name, key)
                     ),
                 ),
                 Some(spec) => {
