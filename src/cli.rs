@@ -240,9 +240,26 @@ pub struct BenchArgs {
     /// The short version (under a minute here): fewer settings, T = 5, no repeats.
     #[arg(long)]
     pub quick: bool,
-    /// Folder for `work_precision.csv`, `work_precision.svg` and `stability.csv`.
+    /// Folder for `work_precision.csv`, `work_precision.svg`, `auto_profile.csv`,
+    /// `kapitza.csv` and `stability.csv`.
     #[arg(long, value_name = "DIR", default_value = "bench-results")]
     pub out: std::path::PathBuf,
+    /// Run one part only.
+    #[arg(long, value_enum, value_name = "PART")]
+    pub only: Option<BenchPart>,
+}
+
+/// A part of `rattleback bench`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum BenchPart {
+    /// Every method over k = 1e2 … 1e12 (`work_precision.csv`, `.svg`).
+    WorkPrecision,
+    /// `auto` at every stiffness (`auto_profile.csv`).
+    Auto,
+    /// Kapitza's pendulum: cost against ε (`kapitza.csv`).
+    Kapitza,
+    /// The stability report (`stability.csv`).
+    Stability,
 }
 
 /// Arguments of `replay`.

@@ -239,48 +239,73 @@ pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
         say_err!("rattleback: error: {}: {e}", args.out.display());
         return ExitCode::from(2);
     }
-    let rows = bench::work_precision(config, &mut |line| say_err!("{line}"));
-    say_raw!("{}", bench::table(&rows));
-    say!("");
-    if rows.iter().any(|r| r.method.starts_with("peer-")) {
-        say!("{}", bench::peer_summary(&rows, 1e-8));
-    }
-    for k in [1e4, 1e8] {
-        say_raw!("{}", bench::terminal_diagram(&rows, k, 72, 16));
-    }
-    let csv = args.out.join("work_precision.csv");
-    let svg = args.out.join("work_precision.svg");
-    if let Err(e) = bench::write_csv(&rows, &csv) {
-        say_err!("rattleback: error: {}: {e}", csv.display());
-        return ExitCode::from(1);
-    }
-    if let Err(e) = bench::write_svg(&rows, &svg) {
-        say_err!("rattleback: error: {}: {e}", svg.display());
-        return ExitCode::from(1);
-    }
-    say!(
-        "\nauto at every stiffness (T = 30, tolerance 1e-8; errors against tests/fixtures/reference/averaged.toml)"
-    );
-    let profile = bench::profile(config.quick, &mut |line| say_err!("{line}"));
-    say_raw!("{}", bench::profile_table(&profile));
-    let profile_csv = args.out.join("auto_profile.csv");
-    if let Err(e) = bench::write_profile_csv(&profile, &profile_csv) {
-        say_err!("rattleback: error: {}: {e}", profile_csv.display());
-        return ExitCode::from(1);
-    }
-    let stability = bench::stability(config);
-    say!("\nStability\n{}", bench::stability_table(&stability));
-    let path = args.out.join("stability.csv");
-    if let Err(e) = bench::write_stability_csv(&stability, &path) {
+    let part = |p: crate::cli::BenchPart| args.only.is_none_or(|o| o == p);
+    let mut wrote = Vec::new();
+    let fail = |path: &std::path::Path, e: std::io::Error| {
         say_err!("rattleback: error: {}: {e}", path.display());
-        return ExitCode::from(1);
+        ExitCode::from(1)
+    };
+    if part(crate::cli::BenchPart::WorkPrecision) {
+        let rows = bench::work_precision(config, &mut |line| say_err!("{line}"));
+        say_raw!("{}", bench::table(&rows));
+        say!("");
+        if rows.iter().any(|r| r.method.starts_with("peer-")) {
+            say!("{}", bench::peer_summary(&rows, 1e-8));
+        }
+        for k in [1e4, 1e8] {
+            say_raw!("{}", bench::terminal_diagram(&rows, k, 72, 16));
+        }
+        let csv = args.out.join("work_precision.csv");
+        let svg = args.out.join("work_precision.svg");
+        if let Err(e) = bench::write_csv(&rows, &csv) {
+            return fail(&csv, e);
+        }
+        if let Err(e) = bench::write_svg(&rows, &svg) {
+            say_err!("rattleback: error: {}: {e}", svg.display());
+            return ExitCode::from(1);
+        }
+        wrote.extend([csv, svg]);
+    }
+    if part(crate::cli::BenchPart::Auto) {
+        say!(
+            "\nauto at every stiffness (T = 30, tolerance 1e-8; errors against tests/fixtures/reference/averaged.toml)"
+        );
+        let profile = bench::profile(config.quick, &mut |line| say_err!("{line}"));
+        say_raw!("{}", bench::profile_table(&profile));
+        let profile_csv = args.out.join("auto_profile.csv");
+        if let Err(e) = bench::write_profile_csv(&profile, &profile_csv) {
+            return fail(&profile_csv, e);
+        }
+        wrote.push(profile_csv);
+    }
+    if part(crate::cli::BenchPart::Kapitza) {
+        say!(
+            "\nKapitza's pendulum: cost against epsilon (T = 5; errors against tests/fixtures/reference/kapitza.toml)"
+        );
+        let pendulum = bench::kapitza::study(config.quick, &mut |line| say_err!("{line}"));
+        say_raw!("{}", bench::kapitza::table(&pendulum));
+        let pendulum_csv = args.out.join("kapitza.csv");
+        if let Err(e) = bench::kapitza::write_csv(&pendulum, &pendulum_csv) {
+            return fail(&pendulum_csv, e);
+        }
+        wrote.push(pendulum_csv);
+    }
+    if part(crate::cli::BenchPart::Stability) {
+        let stability = bench::stability(config);
+        say!("\nStability\n{}", bench::stability_table(&stability));
+        let path = args.out.join("stability.csv");
+        if let Err(e) = bench::write_stability_csv(&stability, &path) {
+            return fail(&path, e);
+        }
+        wrote.push(path);
     }
     say!(
-        "wrote {}, {}, {}, {}",
-        csv.display(),
-        svg.display(),
-        profile_csv.display(),
-        path.display()
+        "wrote {}",
+        wrote
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     ExitCode::SUCCESS
 }

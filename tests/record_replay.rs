@@ -153,6 +153,22 @@ fn checked_in_example_verifies() {
     );
 }
 
+/// A pendulum session recorded in the explorer over a real terminal (a change of ε, a note,
+/// the speed): its checkpoints are `(θ, θ̇)` and verify bit for bit.
+#[test]
+fn checked_in_pendulum_session_verifies() {
+    let path = format!(
+        "{}/tests/fixtures/sessions/kapitza.jsonl",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let (code, out, err) = bin(&["replay", &path, "--verify"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("7 checkpoint(s) reproduced bit for bit"),
+        "{out}"
+    );
+}
+
 /// A format-2 recording made in the explorer (chapters, a note, a change of k, the series pane):
 /// it records the plans `auto` resolved to, and verifies with them.
 #[test]

@@ -37,7 +37,7 @@ fn the_checked_in_schema_is_generated_from_the_types() {
 #[test]
 fn the_checked_in_sessions_validate_line_by_line() {
     let v = validator();
-    for name in ["subcritical.jsonl", "lesson.jsonl"] {
+    for name in ["subcritical.jsonl", "lesson.jsonl", "kapitza.jsonl"] {
         let path = format!(
             "{}/tests/fixtures/sessions/{name}",
             env!("CARGO_MANIFEST_DIR")

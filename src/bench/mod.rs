@@ -5,6 +5,7 @@
 
 mod auto_profile;
 pub mod implicit;
+pub mod kapitza;
 mod plot;
 mod stability;
 

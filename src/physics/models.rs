@@ -252,23 +252,26 @@ impl Model {
                 super::plan::resolve(p, method, tolerance, t_end, policy, budget, go_on)
             }
             Self::Kapitza(p) => {
-                let plan = if method == Method::Auto {
+                let (plan, estimate) = if method == Method::Auto {
                     let c = kapitza::plan::resolve(p, tolerance, t_end);
-                    super::plan::Resolved {
+                    let plan = super::plan::Resolved {
                         method: c.method,
                         tolerance: c.settings.tolerance,
                         step: None,
-                    }
+                    };
+                    (plan, Some(c.estimate))
                 } else {
-                    super::plan::Resolved {
+                    let plan = super::plan::Resolved {
                         method,
                         tolerance,
                         step: None,
-                    }
+                    };
+                    (plan, None)
                 };
                 Ok(super::plan::Resolution {
                     plan,
                     verified: None,
+                    estimate,
                 })
             }
         }

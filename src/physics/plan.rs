@@ -60,6 +60,9 @@ pub struct Resolution {
     pub plan: Resolved,
     /// `auto`'s verified run (absent for a concrete method or the legacy policy).
     pub verified: Option<Verified>,
+    /// `auto`'s error estimate (the verified run's; the pendulum's predicted one), absent for
+    /// a concrete method.
+    pub estimate: Option<f64>,
 }
 
 /// Resolves `method` for `problem` over `[0, t_end]` at `tolerance`; `go_on(t)` is asked every
@@ -85,6 +88,7 @@ pub fn resolve(
                 step: None,
             },
             verified: None,
+            estimate: None,
         });
     }
     match policy {
@@ -97,6 +101,7 @@ pub fn resolve(
                     step: p.step,
                 },
                 verified: None,
+                estimate: None,
             })
         }
         AutoPolicy::Verified => {
@@ -119,6 +124,7 @@ pub fn resolve(
                     tolerance: v.run_settings.tolerance,
                     step: v.run_settings.step,
                 },
+                estimate: Some(v.error_estimate),
                 verified: Some(v),
             })
         }

@@ -237,7 +237,7 @@ impl Engine {
                     self.book.budget,
                     go_on,
                 )
-                .map(|r| (r.plan, r.verified.map(|v| v.error_estimate))),
+                .map(|r| (r.plan, r.estimate)),
         };
         let started = match resolved {
             Err(StepError::Cancelled { .. }) => return true,

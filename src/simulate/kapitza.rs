@@ -84,6 +84,10 @@ struct AutoOut {
     tolerance: f64,
     /// The limit's predicted model error over the run.
     predicted_model_error: f64,
+    /// The error the chosen run is expected to stay within.
+    error_estimate: f64,
+    /// Whether `error_estimate` meets the requested tolerance.
+    met: bool,
 }
 
 #[derive(Serialize)]
@@ -195,16 +199,23 @@ fn plan_of(problem: &Problem, resolved: &Resolved) -> (RunSpec, Option<AutoOut>)
     run.method = c.method;
     run.tolerance = c.settings.tolerance;
     run.step = None;
-    let reason = if c.method == Method::EffectiveCorrected {
-        format!(
+    let reason = match (c.method, c.met) {
+        (Method::EffectiveCorrected, true) => format!(
             "the limit with its ripple: its predicted model error {:.1e} is within the tolerance; cost independent of epsilon",
             c.predicted_model_error
-        )
-    } else {
-        format!(
+        ),
+        (Method::EffectiveCorrected, false) => format!(
+            "the limit with its ripple: its predicted model error {:.1e} is above the tolerance, but a resolved run's rounding ({:.1e}) would be worse",
+            c.predicted_model_error, c.estimate
+        ),
+        (_, true) => format!(
             "the full model resolved: the limit's predicted model error {:.1e} exceeds the tolerance",
             c.predicted_model_error
-        )
+        ),
+        (_, false) => format!(
+            "the full model resolved, but over this many fast periods its rounding ({:.1e}) exceeds the tolerance; the limit's model error {:.1e} is larger still",
+            c.estimate, c.predicted_model_error
+        ),
     };
     (
         run,
@@ -213,6 +224,8 @@ fn plan_of(problem: &Problem, resolved: &Resolved) -> (RunSpec, Option<AutoOut>)
             reason,
             tolerance: c.settings.tolerance,
             predicted_model_error: c.predicted_model_error,
+            error_estimate: c.estimate,
+            met: c.met,
         }),
     )
 }
@@ -264,6 +277,11 @@ pub fn simulate_to(
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Option<Missed>, Failure> {
     let (spec, auto) = plan_of(problem, resolved);
+    let missed = auto.as_ref().filter(|a| !a.met).map(|a| Missed {
+        estimate: a.error_estimate,
+        tolerance: resolved.spec.tolerance,
+        why: crate::physics::auto::Shortfall::Model,
+    });
     let clock = Instant::now();
     let result = run::run(problem, &spec, progress)?;
     if let Some(what) = non_finite(&result) {
@@ -279,7 +297,7 @@ pub fn simulate_to(
             resolved.spec.tolerance,
             spec.t_end,
         );
-        return write_csv(problem, &head, &result, out);
+        return write_csv(problem, &head, &result, out).map(|()| missed);
     }
     let limit_spec = RunSpec {
         method: Method::Effective,
@@ -343,7 +361,7 @@ pub fn simulate_to(
     };
     out.write_all(text.as_bytes())?;
     out.flush()?;
-    Ok(None)
+    Ok(missed)
 }
 
 /// The limit's account of the start, and its own run (`limit_run`) to `t_end`.
@@ -390,7 +408,7 @@ fn write_csv(
     head: &str,
     result: &RunResult,
     out: &mut dyn std::io::Write,
-) -> Result<Option<Missed>, Failure> {
+) -> Result<(), Failure> {
     out.write_all(head.as_bytes())?;
     out.write_all(b"t,theta,theta_dot,energy\n")?;
     let limit = Limit::new(problem.params());
@@ -407,7 +425,7 @@ fn write_csv(
         )?;
     }
     out.flush()?;
-    Ok(None)
+    Ok(())
 }
 
 fn table(r: &Report) -> String {
@@ -436,7 +454,14 @@ fn table(r: &Report) -> String {
         compact(r.t_end)
     );
     if let Some(a) = &r.auto {
-        let _ = writeln!(o, "auto chose    {}: {}", a.choice, a.reason);
+        let _ = writeln!(
+            o,
+            "auto chose    {}: {} (estimated error {:.1e}{})",
+            a.choice,
+            a.reason,
+            a.error_estimate,
+            if a.met { "" } else { ", tolerance NOT met" }
+        );
     }
     let _ = writeln!(o);
     let _ = writeln!(o, "                   full model          limit (ε → 0)");

@@ -1,0 +1,245 @@
+//! Kapitza's pendulum (issue 11): cost against accuracy as ε shrinks. For ε = 1e-1 … 1e-6 on
+//! the reference start `upright` (a = 1, b = 2, θ0 = 0.3, T = 5), each configuration's error
+//! against the Taylor-series references (`tests/fixtures/reference/kapitza.toml`, long double,
+//! independent of this crate) and its best wall time. The headline is `auto` at one tolerance:
+//! it resolves the full motion while the limit's model error is above the tolerance and
+//! switches to the limit with its ripple below, so its cost stops growing like `1/ε`.
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::physics::Method;
+use crate::physics::kapitza::run::{RunSpec, run};
+use crate::physics::kapitza::{Params, Problem, Start, plan};
+
+const REFERENCES: &str = include_str!("../../tests/fixtures/reference/kapitza.toml");
+
+/// The ε studied.
+pub const EPSILONS: [f64; 6] = [1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6];
+
+/// One measured run.
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    /// The fast time scale.
+    pub epsilon: f64,
+    /// Method asked (`auto` included).
+    pub method: String,
+    /// What ran.
+    pub ran: String,
+    /// Tolerance asked.
+    pub tolerance: f64,
+    /// `auto`'s estimate (empty for the other methods).
+    pub estimate: Option<f64>,
+    /// Largest error of `θ` and `θ̇` over the reference's 21 samples.
+    pub error: f64,
+    /// Best wall time, seconds.
+    pub seconds: f64,
+    /// Right-hand-side evaluations (kicks for the compositions).
+    pub rhs_evaluations: u64,
+}
+
+struct Reference {
+    problem: Problem,
+    t_end: f64,
+    theta: Vec<f64>,
+    theta_dot: Vec<f64>,
+}
+
+fn reference(epsilon: f64) -> Option<Reference> {
+    let table: toml::Table = REFERENCES.parse().ok()?;
+    let cases = table.get("case")?.as_table()?;
+    let c = cases.values().filter_map(toml::Value::as_table).find(|c| {
+        c.get("start").and_then(toml::Value::as_str) == Some("upright")
+            && c.get("epsilon")
+                .and_then(toml::Value::as_float)
+                .is_some_and(|e| (e - epsilon).abs() < 1e-3 * epsilon)
+    })?;
+    let num = |k: &str| c.get(k).and_then(toml::Value::as_float);
+    let list = |k: &str| -> Option<Vec<f64>> {
+        c.get(k)?
+            .as_array()?
+            .iter()
+            .map(toml::Value::as_float)
+            .collect()
+    };
+    let problem = Problem::new(
+        Params {
+            a: num("a")?,
+            b: num("b")?,
+            epsilon: num("epsilon")?,
+        },
+        Start {
+            theta: num("theta0")?,
+            theta_dot: num("theta_dot0")?,
+        },
+    )
+    .ok()?;
+    Some(Reference {
+        problem,
+        t_end: num("t_end")?,
+        theta: list("theta")?,
+        theta_dot: list("theta_dot")?,
+    })
+}
+
+fn best_of(repeats: usize, mut f: impl FnMut()) -> f64 {
+    f();
+    (0..repeats)
+        .map(|_| {
+            let clock = Instant::now();
+            f();
+            clock.elapsed().as_secs_f64()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Most right-hand-side evaluations one configuration may cost (larger ones are skipped).
+fn budget(quick: bool) -> f64 {
+    if quick { 2e6 } else { 4e8 }
+}
+
+/// The study: every ε, `auto` at 1e-6 and 1e-9, the resolved `dop853` and `suzuki8`, and the
+/// limit with its ripple.
+pub fn study(quick: bool, log: &mut dyn FnMut(&str)) -> Vec<Row> {
+    let repeats = if quick { 1 } else { 5 };
+    let mut rows = Vec::new();
+    for epsilon in EPSILONS {
+        let Some(r) = reference(epsilon) else {
+            log(&format!("kapitza: no reference at epsilon = {epsilon:e}"));
+            continue;
+        };
+        for (method, tolerance) in [
+            (Method::Auto, 1e-6),
+            (Method::Auto, 1e-9),
+            (Method::Dop853, 1e-9),
+            (Method::Suzuki8, 1e-9),
+            (Method::EffectiveCorrected, 1e-10),
+        ] {
+            let (ran, tol, estimate) = if method == Method::Auto {
+                let c = plan::resolve(&r.problem, tolerance, r.t_end);
+                (c.method, c.settings.tolerance, Some(c.estimate))
+            } else {
+                (method, tolerance, None)
+            };
+            // The resolved methods follow the fast period: about 100 evaluations a period.
+            let resolved = matches!(ran, Method::Dop853 | Method::Suzuki8);
+            let predicted = if resolved {
+                100.0 * r.t_end / (2.0 * std::f64::consts::PI * epsilon)
+            } else {
+                1e4
+            };
+            if predicted > budget(quick) {
+                log(&format!(
+                    "kapitza: {method} at epsilon = {epsilon:e} skipped (about {predicted:.0e} evaluations)"
+                ));
+                continue;
+            }
+            let spec = RunSpec {
+                method: ran,
+                tolerance: tol,
+                step: None,
+                t_end: r.t_end,
+                samples: r.theta.len(),
+            };
+            let Ok(result) = run(&r.problem, &spec, &mut |_| true) else {
+                log(&format!(
+                    "kapitza: {method} at epsilon = {epsilon:e} failed"
+                ));
+                continue;
+            };
+            let error = result
+                .samples
+                .iter()
+                .enumerate()
+                .map(|(i, s)| {
+                    (s.theta - r.theta[i])
+                        .abs()
+                        .max((s.theta_dot - r.theta_dot[i]).abs())
+                })
+                .fold(0.0, f64::max);
+            let timed = RunSpec { samples: 0, ..spec };
+            let seconds = best_of(repeats, || {
+                let _ = std::hint::black_box(run(&r.problem, &timed, &mut |_| true));
+            });
+            rows.push(Row {
+                epsilon,
+                method: method.name().to_owned(),
+                ran: ran.name().to_owned(),
+                tolerance,
+                estimate,
+                error,
+                seconds,
+                rhs_evaluations: result.stats.rhs_evaluations,
+            });
+        }
+    }
+    rows
+}
+
+/// The rows as a table, and the headline ratio: `auto` at ε = 1e-6 against ε = 1e-2 at the same
+/// tolerance.
+#[must_use]
+pub fn table(rows: &[Row]) -> String {
+    use std::fmt::Write as _;
+    let mut o = String::from(
+        "epsilon   method               ran                  tol      estimate  error      seconds     rhs evals\n",
+    );
+    for r in rows {
+        let estimate = r
+            .estimate
+            .map_or_else(|| "-".to_owned(), |e| format!("{e:.1e}"));
+        let _ = writeln!(
+            o,
+            "{:<9.0e} {:<20} {:<20} {:<8.0e} {:<9} {:<10.2e} {:<11.3e} {}",
+            r.epsilon,
+            r.method,
+            r.ran,
+            r.tolerance,
+            estimate,
+            r.error,
+            r.seconds,
+            r.rhs_evaluations
+        );
+    }
+    for tol in [1e-6, 1e-9] {
+        let at = |eps: f64| {
+            rows.iter().find(|r| {
+                r.method == "auto"
+                    && r.tolerance.to_bits() == f64::to_bits(tol)
+                    && (r.epsilon - eps).abs() < 1e-3 * eps
+            })
+        };
+        if let (Some(coarse), Some(fine)) = (at(1e-2), at(1e-6)) {
+            let _ = writeln!(
+                o,
+                "auto at tolerance {tol:.0e}: epsilon = 1e-6 costs {:.3}x epsilon = 1e-2 ({:.3e} s vs {:.3e} s; errors {:.1e} and {:.1e})",
+                fine.seconds / coarse.seconds,
+                fine.seconds,
+                coarse.seconds,
+                fine.error,
+                coarse.error
+            );
+        }
+    }
+    o
+}
+
+/// Writes the rows as CSV.
+///
+/// # Errors
+/// When the file cannot be written.
+pub fn write_csv(rows: &[Row], path: &std::path::Path) -> std::io::Result<()> {
+    use std::fmt::Write as _;
+    let mut s =
+        String::from("epsilon,method,ran,tolerance,estimate,error,seconds,rhs_evaluations\n");
+    for r in rows {
+        let estimate = r.estimate.map(|e| format!("{e:e}")).unwrap_or_default();
+        let _ = writeln!(
+            s,
+            "{:e},{},{},{:e},{estimate},{:e},{:e},{}",
+            r.epsilon, r.method, r.ran, r.tolerance, r.error, r.seconds, r.rhs_evaluations
+        );
+    }
+    crate::scenario::write::write_atomic(path, s.as_bytes(), true)
+}
