@@ -132,14 +132,61 @@ fn only_the_binary_shell_sees_the_command_line() {
 #[test]
 fn physics_has_no_import_cycle_through_auto() {
     // `auto` is resolved in plan.rs, above the integrators: nothing below calls the planner.
-    for (file, text) in layer("physics/integrators") {
+    for (file, text) in layer("physics/rattleback/integrators")
+        .into_iter()
+        .chain(layer("physics/kapitza/flows"))
+        .chain(layer("physics/numerics"))
+    {
         assert!(
             !text.contains("auto::") && !text.contains("plan::"),
             "{} calls up into the planner",
             file.display()
         );
     }
-    for (file, text) in layer("physics/run") {
+    for (file, text) in layer("physics/rattleback/run")
+        .into_iter()
+        .chain(layer("physics/kapitza/run"))
+    {
         assert!(!text.contains("auto::"), "{}", file.display());
+    }
+}
+
+/// Issue 11: each model in its own folder, the generic numerics apart from both, and one door.
+#[test]
+fn models_live_in_their_folders_and_numerics_belong_to_none() {
+    // The numerics never name a model.
+    for (file, text) in layer("physics/numerics") {
+        for b in [
+            "rattleback",
+            "kapitza",
+            "physics::model",
+            "physics::params",
+            "effective",
+        ] {
+            assert!(!text.contains(b), "{} mentions {b}", file.display());
+        }
+    }
+    // The models never reach into each other.
+    for (file, text) in layer("physics/kapitza") {
+        for b in [
+            "rattleback",
+            "physics::model::",
+            "physics::effective",
+            "physics::params::Params",
+        ] {
+            assert!(!text.contains(b), "{} mentions {b}", file.display());
+        }
+    }
+    for (file, text) in layer("physics/rattleback") {
+        assert!(
+            !text.contains("kapitza"),
+            "{} mentions kapitza",
+            file.display()
+        );
+    }
+    // The worker reaches a model only through `Model` (and the rattleback-only studies).
+    for (file, text) in layer("sim") {
+        assert!(!text.contains("kapitza::flows"), "{}", file.display());
+        assert!(!text.contains("integrators::build"), "{}", file.display());
     }
 }

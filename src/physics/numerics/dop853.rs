@@ -7,16 +7,17 @@
 //! `0.9 err^{−1/8}` clamped to `[1/3, 6]`. The scale of component `i` is
 //! `tol (u_i + max(|y_i|, |y_new_i|))` (relative and absolute tolerance both `tol`, in the
 //! component's natural unit `u_i`), except for angles ([`Field::is_angle`]), whose scale is
-//! `tol u_i`. The full model measures `γ` in units of `1/ω_max` so that the fast oscillation's
-//! two halves, `γ` and `γ̇`, are held to the same energy-relative accuracy.
+//! `tol u_i`. A field may give a component a natural unit (a fast coordinate measured
+//! in units of its frequency, say) so that both halves of an oscillation are held to the same
+//! energy-relative accuracy.
 //!
-//! The core is generic over the dimension so the full model (4) and the effective model (3)
-//! share it.
+//! The core is generic over the dimension, so every model's full and limit systems (2 to 4
+//! components) share it, and over time (a forced field gets each stage's own time).
 
 use nalgebra::SVector;
 
-use super::StepError;
 use super::dop853_tableau::{A, B, D, E3, E5, STAGES, STAGES_DENSE};
+use crate::physics::method::StepError;
 
 /// The stage times `c_s` (row sums of `A`), for non-autonomous fields.
 const C: [f64; STAGES_DENSE] = {

@@ -23,7 +23,7 @@ use nalgebra::Vector3;
 use super::effective::Regime;
 use super::model::{State, initial_state, transverse_energy};
 use super::params::{Params, Problem};
-use super::quadrature::integrate_adaptive;
+use crate::physics::numerics::quadrature::integrate_adaptive;
 
 /// `c = g'/(4g)` and its first two derivatives in `α` (note §1).
 #[derive(Clone, Copy, Debug)]

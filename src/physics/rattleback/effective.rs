@@ -9,7 +9,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 use super::model::{State, initial_state, transverse_energy};
 use super::params::{Params, Problem};
-use super::quadrature::integrate_adaptive;
+use crate::physics::numerics::quadrature::integrate_adaptive;
 
 /// Relative closeness of `E_eff` to `V_max` under which a start counts as on the separatrix.
 pub const SEPARATRIX_RELATIVE_BAND: f64 = 1e-13;

@@ -27,145 +27,42 @@
 use super::dop853::Stats;
 use super::roots::find_root;
 use super::{Integrator, Method, StepError};
+pub use crate::physics::numerics::compositions::Composition;
+use crate::physics::numerics::compositions::Split;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use crate::physics::model::{State, initial_state};
 use crate::physics::params::{Params, Problem};
 
-// Published digits are kept as published.
-#[allow(clippy::excessive_precision)]
-/// Yoshida's 4th-order triple jump, `w1 = 1/(2 − 2^{1/3})`, `w0 = 1 − 2 w1`.
-const YOSHIDA4: [f64; 3] = [
-    1.351_207_191_959_657_8,
-    -1.702_414_383_919_315_5,
-    1.351_207_191_959_657_8,
-];
-
-#[allow(clippy::excessive_precision)]
-/// Yoshida's (1990) 6th-order solution A, 7 stages.
-const YOSHIDA6: [f64; 7] = [
-    0.784_513_610_477_557_3,
-    0.235_573_213_359_358_1,
-    -1.177_679_984_178_871,
-    1.315_186_320_683_911_2,
-    -1.177_679_984_178_871,
-    0.235_573_213_359_358_1,
-    0.784_513_610_477_557_3,
-];
-
-#[allow(clippy::excessive_precision)]
-/// The 15-stage 8th-order symmetric composition (Suzuki and Umeno 1993, `McLachlan` 1995).
-const SUZUKI8: [f64; 15] = [
-    0.741_670_364_350_612_9,
-    -0.409_100_825_800_031_6,
-    0.190_754_710_296_238_4,
-    -0.573_862_471_116_082_3,
-    0.299_064_181_303_655_9,
-    0.334_624_918_245_298_2,
-    0.315_293_092_396_766_6,
-    -0.796_887_939_352_916_4,
-    0.315_293_092_396_766_6,
-    0.334_624_918_245_298_2,
-    0.299_064_181_303_655_9,
-    -0.573_862_471_116_082_3,
-    0.190_754_710_296_238_4,
-    -0.409_100_825_800_031_6,
-    0.741_670_364_350_612_9,
-];
-
-/// Blanes & Moan (2002) `S6`, order 4: drift coefficients `a_1..a_3` (the middle `a_4` and
-/// the symmetric half follow) and kick coefficients `b_1, b_2` (`b_3 = ½ − b_1 − b_2`).
-const BLANES_MOAN4_A: [f64; 3] = [
-    0.079_203_696_431_195_7,
-    0.353_172_906_049_774,
-    -0.042_065_080_357_719_5,
-];
-const BLANES_MOAN4_B: [f64; 2] = [0.209_515_106_613_362, -0.143_851_773_179_818];
-
-/// A symmetric splitting `H1(a_0 h) H2(b_1 h) H1(a_1 h) … H2(b_m h) H1(a_m h)`.
-#[derive(Clone, Debug)]
-pub struct Composition {
-    method: Method,
-    /// Drift coefficients, one more than the kicks.
-    drifts: Vec<f64>,
-    /// Kick (exact fast flow) coefficients.
-    kicks: Vec<f64>,
+/// The rattleback as a [`Split`]: the drift of `α` by `pα/iz`, the exact fast flow.
+struct RattlebackSplit<'a> {
+    p: &'a Params,
+    y: Canonical,
+    /// `h / iz`.
+    drift: f64,
 }
 
-impl Composition {
-    /// The composition of a splitting method.
-    ///
-    /// # Panics
-    /// When `method` is not a splitting method (a programming error).
-    #[must_use]
-    pub fn of(method: Method) -> Self {
-        let weights: &'static [f64] = match method {
-            Method::Strang => &[1.0],
-            Method::Yoshida4 => &YOSHIDA4,
-            Method::Yoshida6 => &YOSHIDA6,
-            Method::Suzuki8 => &SUZUKI8,
-            Method::BlanesMoan4 => {
-                let [a1, a2, a3] = BLANES_MOAN4_A;
-                let [b1, b2] = BLANES_MOAN4_B;
-                let (a4, b3) = (1.0 - 2.0 * (a1 + a2 + a3), 0.5 - b1 - b2);
-                return Self {
-                    method,
-                    drifts: vec![a1, a2, a3, a4, a3, a2, a1],
-                    kicks: vec![b1, b2, b3, b3, b2, b1],
-                };
-            }
-            other => panic!("{other} is not a splitting method"),
-        };
-        Self::of_strang_steps(method, weights)
+impl Split for RattlebackSplit<'_> {
+    #[inline]
+    fn drift(&mut self, c: f64, _h: f64) {
+        self.y.alpha += c * self.drift * self.y.p_alpha;
     }
+    #[inline]
+    fn kick(&mut self, c: f64, h: f64) {
+        self.y = fast_flow(self.p, &self.y, c * h);
+    }
+}
 
-    /// Strang steps of sizes `w_i h`, adjacent half drifts merged.
-    #[must_use]
-    pub fn of_strang_steps(method: Method, weights: &[f64]) -> Self {
-        let mut drifts = vec![0.5 * weights[0]];
-        for pair in weights.windows(2) {
-            drifts.push(0.5 * (pair[0] + pair[1]));
-        }
-        drifts.push(0.5 * weights[weights.len() - 1]);
-        Self {
-            method,
-            drifts,
-            kicks: weights.to_vec(),
-        }
-    }
-
-    /// Which method this is.
-    #[must_use]
-    pub fn method(&self) -> Method {
-        self.method
-    }
-
-    /// The coefficients `(a_0 … a_m, b_1 … b_m)` of the drifts (the flow of the first part)
-    /// and the kicks (the exact flow of the second), as fractions of the step: any model with
-    /// two exactly solvable parts composes them the same way.
-    #[must_use]
-    pub fn coefficients(&self) -> (&[f64], &[f64]) {
-        (&self.drifts, &self.kicks)
-    }
-
-    /// Exact fast flows per step.
-    #[must_use]
-    pub fn stages(&self) -> usize {
-        self.kicks.len()
-    }
-
-    /// One step of size `h` from `y`.
-    #[must_use]
-    pub fn step(&self, p: &Params, y: &Canonical, h: f64) -> Canonical {
-        let mut y = *y;
-        let drift = h / p.iz;
-        y.alpha += self.drifts[0] * drift * y.p_alpha;
-        for (b, a) in self.kicks.iter().zip(&self.drifts[1..]) {
-            y = fast_flow(p, &y, b * h);
-            y.alpha += a * drift * y.p_alpha;
-        }
-        y
-    }
+/// One step of `composition` of size `h` from `y`.
+#[must_use]
+pub fn composition_step(composition: &Composition, p: &Params, y: &Canonical, h: f64) -> Canonical {
+    let mut s = RattlebackSplit {
+        p,
+        y: *y,
+        drift: h / p.iz,
+    };
+    composition.apply(&mut s, h);
+    s.y
 }
 
 /// Canonical state `(γ, α, pγ, pα)`.
@@ -256,7 +153,12 @@ impl FastFlow {
 /// One step of Strang steps of sizes `w_i h` from `y` (a composition given by its weights).
 #[must_use]
 pub fn composed_step(p: &Params, weights: &[f64], y: &Canonical, h: f64) -> Canonical {
-    Composition::of_strang_steps(Method::Strang, weights).step(p, y, h)
+    composition_step(
+        &Composition::of_strang_steps(Method::Strang, weights),
+        p,
+        y,
+        h,
+    )
 }
 
 /// How the step size is chosen.
@@ -317,7 +219,7 @@ impl Splitting {
     #[must_use]
     pub fn phase_locked(problem: &Problem, h: f64) -> Self {
         let mut me = Self::new(problem, Composition::of(Method::Strang), h);
-        me.composition.method = Method::Locked;
+        me.composition = me.composition.named(Method::Locked);
         me.rule = StepRule::PhaseLocked {
             aligned: false,
             omega_mid: 0.0,
@@ -415,7 +317,7 @@ impl Integrator for Splitting {
         let remaining = t_limit - self.t;
         let h = self.next_step(remaining);
         let last = h >= remaining;
-        let y_new = self.composition.step(&self.params, &self.y, h);
+        let y_new = composition_step(&self.composition, &self.params, &self.y, h);
         if ![y_new.gamma, y_new.alpha, y_new.p_gamma, y_new.p_alpha]
             .iter()
             .all(|v| v.is_finite())
@@ -433,9 +335,12 @@ impl Integrator for Splitting {
     /// The method's own step of size `t − t_prev` from the step's start: the same order as a
     /// full step, and exact in the fast oscillation.
     fn interpolate(&mut self, t: f64) -> State {
-        let y = self
-            .composition
-            .step(&self.params, &self.y_prev, t - self.t_prev);
+        let y = composition_step(
+            &self.composition,
+            &self.params,
+            &self.y_prev,
+            t - self.t_prev,
+        );
         y.to_state(&self.params)
     }
     fn locate_alpha_dot_zero(&mut self) -> f64 {
@@ -445,11 +350,12 @@ impl Integrator for Splitting {
         let target = self.y.p_alpha > 0.0;
         let mut y = self.y_prev;
         let c = &self.composition;
-        y.alpha += c.drifts[0] * h * y.p_alpha / p.iz;
+        let (drifts, kicks) = c.coefficients();
+        y.alpha += drifts[0] * h * y.p_alpha / p.iz;
         // Each fast sub-flow advances the fast clock by `b_i h`: its crossing is dated there.
         let mut offset = 0.0;
         let mut fallback = None;
-        for (&b, &a) in c.kicks.iter().zip(&c.drifts[1..]) {
+        for (&b, &a) in kicks.iter().zip(&drifts[1..]) {
             let tau = b * h;
             let after = fast_flow(&p, &y, tau);
             let on_target = |v: f64| v != 0.0 && (v > 0.0) == target;
@@ -488,6 +394,7 @@ impl Integrator for Splitting {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::numerics::compositions::{SUZUKI8, YOSHIDA4, YOSHIDA6};
 
     #[test]
     fn composition_weights_are_consistent_and_symmetric() {
@@ -504,15 +411,13 @@ mod tests {
             Method::BlanesMoan4,
         ] {
             let c = Composition::of(m);
-            let (a, b): (f64, f64) = (c.drifts.iter().sum(), c.kicks.iter().sum());
+            let (drifts, kicks) = c.coefficients();
+            let (a, b): (f64, f64) = (drifts.iter().sum(), kicks.iter().sum());
             assert!(
                 (a - 1.0).abs() < 1e-15 && (b - 1.0).abs() < 1e-15,
                 "{m}: {a} {b}"
             );
-            assert!(
-                c.drifts.iter().eq(c.drifts.iter().rev())
-                    && c.kicks.iter().eq(c.kicks.iter().rev())
-            );
+            assert!(drifts.iter().eq(drifts.iter().rev()) && kicks.iter().eq(kicks.iter().rev()));
         }
     }
 }

@@ -1,0 +1,131 @@
+//! Integrators of the full and effective models behind one interface.
+//!
+//! Every method is deterministic: the same problem, settings and build give bit-identical
+//! results. Each file holds one method and states its order, whether it is symplectic and its
+//! cost per step. Reversals (sign changes of `α̇`) are located inside a step by each method's
+//! own interpolant or closed-form sub-flow ([`Integrator::locate_alpha_dot_zero`]).
+
+mod averaged;
+mod effective;
+mod full_dop853;
+pub mod reversals;
+mod rk4;
+pub mod splitting;
+
+pub use crate::physics::method::{DEFAULT_STEP_BUDGET, Method, Settings, StepError};
+pub use crate::physics::numerics::dop853::{self, Stats};
+pub use crate::physics::numerics::roots;
+
+use super::model::State;
+use super::params::Problem;
+
+/// A running integration of one problem.
+pub trait Integrator: Send {
+    /// Which method this is.
+    fn method(&self) -> Method;
+    /// Current time.
+    fn time(&self) -> f64;
+    /// Start of the last step (equal to [`Integrator::time`] before the first).
+    fn time_prev(&self) -> f64;
+    /// Current state `(γ, α, γ̇, α̇)`; the effective model reconstructs `γ, γ̇` from its
+    /// adiabatic invariant and fast phase.
+    fn state(&self) -> State;
+    /// Current `α̇`, cheaper than a whole [`Integrator::state`] (no `γ̇` reconstruction).
+    fn alpha_dot(&self) -> f64 {
+        self.state()[3]
+    }
+    /// Takes one step, never past `t_limit`, which must exceed the current time.
+    ///
+    /// # Errors
+    /// When the step cannot be completed with a finite result.
+    fn step(&mut self, t_limit: f64) -> Result<(), StepError>;
+    /// The state at `t` within the last step, from the method's own interpolant.
+    fn interpolate(&mut self, t: f64) -> State;
+    /// Where `α̇` vanishes within the last step, given that it changes sign over the step.
+    fn locate_alpha_dot_zero(&mut self) -> f64;
+    /// The quantity the method conserves, at the current state: the energy, or `E_eff` of the
+    /// averaged motion for the effective models.
+    fn energy(&self) -> f64;
+    /// Work counters.
+    fn stats(&self) -> Stats;
+}
+
+/// Default fixed step for `method` at `tolerance` over `[0, t_end]`: `c · tol^{1/p} / ν` with
+/// `ν` the fastest rate of the problem (the fast frequency, or the slow rate at small `k`), but
+/// never more than [`DEFAULT_STEP_BUDGET`] steps: a low-order method at a tight tolerance would
+/// otherwise ask for billions.
+#[must_use]
+pub fn default_step(method: Method, problem: &Problem, tolerance: f64, t_end: f64) -> f64 {
+    let p = problem.params();
+    let s = problem.start();
+    let y0 = super::model::initial_state(s);
+    let e = super::model::energy(p, &y0);
+    let slow = (2.0 * e / p.ix.min(p.iy).min(p.iz)).sqrt();
+    let rate = p.omega_max().max(slow).max(1e-3);
+    let (c, order) = match method {
+        Method::Rk4 => (0.5, 4.0),
+        Method::Strang => (0.3, 2.0),
+        // Phase-locked steps: error ≈ 0.05 h² whatever k (physics.md §4), so h = sqrt(tol/0.05).
+        Method::Locked => return (tolerance / 0.05).sqrt().max(t_end / DEFAULT_STEP_BUDGET),
+        Method::Yoshida4 => (0.6, 4.0),
+        Method::BlanesMoan4 => (1.2, 4.0),
+        Method::Yoshida6 => (1.0, 6.0),
+        Method::Suzuki8 => (1.5, 8.0),
+        Method::Dop853
+        | Method::Effective
+        | Method::EffectiveCorrected
+        | Method::Averaged2
+        | Method::Auto => (1.0, 8.0),
+    };
+    (c * tolerance.powf(1.0 / order) / rate).max(t_end / DEFAULT_STEP_BUDGET)
+}
+
+/// Builds a ready-to-step integrator at `t = 0`; `t_end` is the horizon a default step is
+/// budgeted for.
+///
+/// # Errors
+/// [`StepError::Unplanned`] for `auto`, which is resolved above the integrators
+/// (`physics::plan`), so this layer never calls back up into the planner.
+pub fn build(
+    method: Method,
+    problem: &Problem,
+    settings: Settings,
+    t_end: f64,
+) -> Result<Box<dyn Integrator>, StepError> {
+    let step = settings
+        .step
+        .unwrap_or_else(|| default_step(method, problem, settings.tolerance, t_end));
+    Ok(match method {
+        Method::Rk4 => Box::new(rk4::Rk4::new(problem, step)),
+        Method::Dop853 => Box::new(full_dop853::FullDop853::new(problem, settings.tolerance)),
+        Method::Strang
+        | Method::Yoshida4
+        | Method::BlanesMoan4
+        | Method::Yoshida6
+        | Method::Suzuki8 => Box::new(splitting::Splitting::new(
+            problem,
+            splitting::Composition::of(method),
+            step,
+        )),
+        Method::Locked => Box::new(splitting::Splitting::phase_locked(problem, step)),
+        Method::Effective => Box::new(effective::EffectiveDop853::new(
+            problem,
+            settings.tolerance,
+            false,
+        )),
+        Method::EffectiveCorrected => Box::new(effective::EffectiveDop853::new(
+            problem,
+            settings.tolerance,
+            true,
+        )),
+        Method::Averaged2 => {
+            let parameter = crate::physics::averaged::expansion_parameter(problem);
+            let limit = crate::physics::averaged::VALIDITY_LIMIT;
+            if parameter.is_nan() || parameter > limit {
+                return Err(StepError::OutsideModel { parameter, limit });
+            }
+            Box::new(averaged::Averaged2Dop853::new(problem, settings.tolerance))
+        }
+        Method::Auto => return Err(StepError::Unplanned),
+    })
+}

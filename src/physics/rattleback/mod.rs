@@ -1,0 +1,15 @@
+//! The holonomic rattleback (physics.md §1–4): a rigid body on a stiff spring of Hooke constant
+//! `k`, its effective limit `k → ∞`, the second-order averaged model, their integrators,
+//! spin-reversal location, `auto` and the cost model. The state vector is
+//! `(γ, α, γ̇, α̇)` ([`model::State`], named indices [`model::ALPHA`] …); the slow coordinate is
+//! `α`, the event function `α̇`. Reached from outside through [`super::Model::Rattleback`].
+
+pub mod auto;
+pub mod averaged;
+pub mod budget;
+pub mod effective;
+pub mod integrators;
+pub mod model;
+pub mod params;
+pub mod plan;
+pub mod run;
