@@ -7,7 +7,7 @@
 //!   fixed steps of a fraction of the fast period. The compositions split
 //!   `H = p²/2 + (a + (b/ε) cos(t/ε)) cos θ` into the drift `θ += τ p` and the kick with `θ`
 //!   frozen, integrated exactly over any `τ`: `p += (aτ + b[sin((t+τ)/ε) − sin(t/ε)]) sin θ`,
-//!   `t += τ`. Symplectic; the same coefficients as the rattleback's splittings.
+//!   `t += τ`. Symplectic; the coefficients are `numerics::compositions`'.
 //! - `effective`: the limit `θ̈ = a sin θ − (b²/4) sin 2θ` from `(θ0, θ̇0)` by DOP853;
 //!   `effective-corrected`: the limit from the averaged start, with the first-order ripple
 //!   added back (`limit`). Their cost does not depend on `ε`; their error is the model's,
