@@ -157,8 +157,8 @@ fn models_live_in_their_folders_and_numerics_belong_to_none() {
     // The numerics never name a model.
     for (file, text) in layer("physics/numerics") {
         for b in [
-            "rattleback",
-            "kapitza",
+            "physics::rattleback",
+            "physics::kapitza",
             "physics::model",
             "physics::params",
             "effective",

@@ -7,7 +7,8 @@
 //! function at `t > 0` ([`EventTracker`]), located inside a step by the method's own
 //! interpolant.
 
-pub use super::integrators::{Method, Stats, StepError};
+pub use super::method::{Method, StepError};
+pub use super::numerics::dop853::Stats;
 
 /// What is drawn of a state: the slow coordinate, its rate, and the fast coordinate.
 #[derive(Clone, Copy, Debug, PartialEq)]

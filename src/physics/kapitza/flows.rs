@@ -23,8 +23,9 @@ use nalgebra::Vector2;
 use super::limit::{self, Limit};
 use super::{Params, Problem};
 use crate::physics::flow::{Flow, Sample};
-use crate::physics::integrators::{DEFAULT_STEP_BUDGET, Method, Settings, Stats, StepError};
+use crate::physics::method::{DEFAULT_STEP_BUDGET, Method, Settings, StepError};
 use crate::physics::numerics::compositions::{Composition, Split};
+use crate::physics::numerics::dop853::Stats;
 use crate::physics::numerics::dop853::{Dop853, Field};
 use crate::physics::numerics::roots::find_root;
 

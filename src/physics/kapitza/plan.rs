@@ -20,7 +20,7 @@
 //! switches to the limit and its cost stops growing.
 
 use super::Problem;
-use crate::physics::integrators::{Method, Settings};
+use crate::physics::method::{Method, Settings};
 
 /// What `auto` chose, and why.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -13,8 +13,9 @@ use super::Problem;
 use super::flows::build;
 use super::limit;
 use crate::physics::flow::{EventTracker, Flow};
-use crate::physics::integrators::roots::find_root;
-use crate::physics::integrators::{Method, Settings, Stats, StepError};
+use crate::physics::method::{Method, Settings, StepError};
+use crate::physics::numerics::dop853::Stats;
+use crate::physics::numerics::roots::find_root;
 use crate::physics::run::CHECK_EVERY;
 
 /// Most event times kept of each kind; later ones are counted only.
