@@ -10,6 +10,7 @@
 //! implementation of the averaged model at 1e10 and 1e12, model error below 1e-18), embedded
 //! in the binary at build time.
 
+use crate::physics::model::{ALPHA, ALPHA_DOT};
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -111,9 +112,9 @@ fn error(r: &RunResult, reference: &Reference) -> f64 {
     if r.reversal_count != reference.reversals.len() {
         return f64::INFINITY;
     }
-    let mut e = (r.final_state[1] - reference.alpha)
+    let mut e = (r.final_state[ALPHA] - reference.alpha)
         .abs()
-        .max((r.final_state[3] - reference.alpha_dot).abs());
+        .max((r.final_state[ALPHA_DOT] - reference.alpha_dot).abs());
     for (a, b) in r.reversals.iter().zip(&reference.reversals) {
         e = e.max((a - b).abs());
     }
@@ -241,9 +242,9 @@ fn peer_within(p: &Problem, reference: &Reference, repeats: usize) -> Option<(St
         let Ok((y, _)) = peer::run(p, Peer::Dop853, tol, T_END) else {
             continue;
         };
-        let e = (y[1] - reference.alpha)
+        let e = (y[ALPHA] - reference.alpha)
             .abs()
-            .max((y[3] - reference.alpha_dot).abs());
+            .max((y[ALPHA_DOT] - reference.alpha_dot).abs());
         if e <= TOLERANCE {
             let t = best_of(repeats.min(2), || {
                 let _ = std::hint::black_box(peer::run(p, Peer::Dop853, tol, T_END));

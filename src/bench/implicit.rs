@@ -4,6 +4,7 @@
 //! reversing. Order 1; each step solves `y' = y + h f(y')` by Newton's method with a
 //! finite-difference Jacobian.
 
+use crate::physics::model::ALPHA_DOT;
 use nalgebra::Matrix4;
 
 use crate::physics::model::{initial_state, rhs, transverse_energy};
@@ -26,7 +27,7 @@ pub fn backward_euler(problem: &Problem, h: f64, t_end: f64) -> Outcome {
     let p = problem.params();
     let mut y = initial_state(problem.start());
     let e0 = transverse_energy(p, &y);
-    let mut last_sign = y[3].signum();
+    let mut last_sign = y[ALPHA_DOT].signum();
     let mut reversals = 0;
     let steps = (t_end / h).round() as usize;
     for _ in 0..steps {
@@ -51,13 +52,13 @@ pub fn backward_euler(problem: &Problem, h: f64, t_end: f64) -> Outcome {
             }
         }
         y = z;
-        let s = y[3].signum();
+        let s = y[ALPHA_DOT].signum();
         // Signs are exactly -1 or 1.
         #[allow(clippy::float_cmp)]
-        if y[3] != 0.0 && s != last_sign && last_sign != 0.0 {
+        if y[ALPHA_DOT] != 0.0 && s != last_sign && last_sign != 0.0 {
             reversals += 1;
         }
-        if y[3] != 0.0 {
+        if y[ALPHA_DOT] != 0.0 {
             last_sign = s;
         }
     }

@@ -9,6 +9,7 @@ pub mod kapitza;
 mod plot;
 mod stability;
 
+use crate::physics::model::{ALPHA, ALPHA_DOT};
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
@@ -202,9 +203,9 @@ fn reference(k: f64, t_end: f64) -> (RunResult, String) {
     };
     let r = run(&p, &main).expect("reference integrates");
     let c = run(&p, &check).expect("cross-check integrates");
-    let d = (r.final_state[1] - c.final_state[1])
+    let d = (r.final_state[ALPHA] - c.final_state[ALPHA])
         .abs()
-        .max((r.final_state[3] - c.final_state[3]).abs());
+        .max((r.final_state[ALPHA_DOT] - c.final_state[ALPHA_DOT]).abs());
     (r, format!("{what}: differ by {d:.1e}"))
 }
 
@@ -260,8 +261,9 @@ pub fn work_precision(config: Config, log: &mut dyn FnMut(&str)) -> Vec<Row> {
                 k,
                 tolerance: (tol > 0.0).then_some(tol),
                 omega_h: step.filter(|_| method.is_fixed_step()).map(|h| h * omega),
-                error_alpha: (result.final_state[1] - reference.final_state[1]).abs(),
-                error_alpha_dot: (result.final_state[3] - reference.final_state[3]).abs(),
+                error_alpha: (result.final_state[ALPHA] - reference.final_state[ALPHA]).abs(),
+                error_alpha_dot: (result.final_state[ALPHA_DOT] - reference.final_state[ALPHA_DOT])
+                    .abs(),
                 error_reversals: reversal_error(&result, &reference),
                 seconds: best,
                 rhs_evaluations: result.stats.rhs_evaluations,
@@ -321,8 +323,8 @@ fn peer_rows(
                 k,
                 tolerance: Some(tol),
                 omega_h: None,
-                error_alpha: (y[1] - reference.final_state[1]).abs(),
-                error_alpha_dot: (y[3] - reference.final_state[3]).abs(),
+                error_alpha: (y[ALPHA] - reference.final_state[ALPHA]).abs(),
+                error_alpha_dot: (y[ALPHA_DOT] - reference.final_state[ALPHA_DOT]).abs(),
                 error_reversals: f64::NAN,
                 seconds: best,
                 rhs_evaluations: evals,

@@ -6,6 +6,7 @@
 
 mod kapitza;
 
+use crate::physics::model::{ALPHA, ALPHA_DOT, GAMMA, GAMMA_DOT};
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -421,10 +422,10 @@ fn rattleback_to(
         t_end: spec.t_end,
         final_: FinalOut {
             t: result.t,
-            gamma: y[0],
-            alpha: y[1],
-            gamma_dot: y[2],
-            alpha_dot: y[3],
+            gamma: y[GAMMA],
+            alpha: y[ALPHA],
+            gamma_dot: y[GAMMA_DOT],
+            alpha_dot: y[ALPHA_DOT],
         },
         reversals: Reversals::of(result.reversals.clone(), result.reversal_count),
         energy: EnergyOut {
@@ -438,8 +439,8 @@ fn rattleback_to(
             critical_ratio: eff.critical_ratio(problem),
             start_ratio: eff.start_ratio(problem),
             energy: eff.energy(),
-            alpha: eff_run.as_ref().ok().map(|r| r.final_state[1]),
-            alpha_dot: eff_run.as_ref().ok().map(|r| r.final_state[3]),
+            alpha: eff_run.as_ref().ok().map(|r| r.final_state[ALPHA]),
+            alpha_dot: eff_run.as_ref().ok().map(|r| r.final_state[ALPHA_DOT]),
             comparison_error: eff_run.as_ref().err().map(ToString::to_string),
             half_period: eff.half_period(),
             turning_points: eff.turning_points(),
@@ -636,7 +637,11 @@ fn csv(
             );
             return false;
         }
-        match writeln!(out, "{},{},{},{},{},{}", s.t, y[0], y[1], y[2], y[3], e) {
+        match writeln!(
+            out,
+            "{},{},{},{},{},{}",
+            s.t, y[GAMMA], y[ALPHA], y[GAMMA_DOT], y[ALPHA_DOT], e
+        ) {
             Ok(()) => true,
             Err(err) => {
                 failure = Some(err.into());

@@ -4,6 +4,7 @@
 //! Each rung runs `auto` (so the whole ladder costs little more than its stiffest rung's
 //! averaged model) with samples on one grid; the limit is the effective model at 1e-14.
 
+use crate::physics::model::ALPHA;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -80,7 +81,7 @@ pub fn limit_curve(
         },
         go_on,
     )?;
-    Ok(r.samples.iter().map(|s| (s.t, s.state[1])).unzip())
+    Ok(r.samples.iter().map(|s| (s.t, s.state[ALPHA])).unzip())
 }
 
 /// One rung: `problem`'s start at stiffness `k` through `auto`, against the limit's curve.
@@ -111,7 +112,7 @@ pub fn rung(
         crate::physics::budget::BUDGET_SECONDS,
         go_on,
     )?;
-    let alpha: Vec<f64> = v.result.samples.iter().map(|s| s.state[1]).collect();
+    let alpha: Vec<f64> = v.result.samples.iter().map(|s| s.state[ALPHA]).collect();
     let sup_error = alpha
         .iter()
         .zip(limit)

@@ -7,6 +7,7 @@
 //! The full model is resolved (blanes-moan4 at `ω_max h = 0.5`) and sampled 24 times per
 //! fastest period, so the pointwise curve is the motion's own, not a reconstruction.
 
+use crate::physics::model::{ALPHA, GAMMA_DOT};
 use serde::Serialize;
 
 use crate::physics::effective::Effective;
@@ -106,8 +107,8 @@ pub fn pointwise(
     Ok(r.samples
         .iter()
         .map(|s| {
-            let g = p.g(s.state[1]);
-            (s.t, s.state[2] * s.state[2] * g * g.sqrt())
+            let g = p.g(s.state[ALPHA]);
+            (s.t, s.state[GAMMA_DOT] * s.state[GAMMA_DOT] * g * g.sqrt())
         })
         .unzip())
 }
