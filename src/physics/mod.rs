@@ -27,7 +27,6 @@ pub mod rattleback;
 pub use numerics::quadrature;
 pub use rattleback::{auto, averaged, budget, effective, integrators, model, params, plan, run};
 
-pub use integrators::Integrator;
 pub use method::{Method, StepError};
 pub use model::State;
 pub use models::{LimitView, Model, ModelKind};
