@@ -21,7 +21,7 @@ fn studies(c: &mut Criterion) {
     group.bench_function("sweep 1e1..1e8, T = 30, tol 1e-8", |b| {
         b.iter(|| {
             sweep(
-                black_box(preset.problem().unwrap()),
+                black_box(&preset.model),
                 &DEFAULT_LADDER,
                 30.0,
                 1e-8,

@@ -352,19 +352,12 @@ pub fn study(command: &crate::cli::StudyCommand) -> ExitCode {
 /// The preset, horizon and tolerance of a study, or the exit of a bad input.
 fn study_setup(
     common: &crate::cli::StudyCommon,
-) -> Result<(crate::scenario::Preset, crate::physics::Problem, f64, f64), ExitCode> {
+) -> Result<(crate::scenario::Preset, crate::physics::Model, f64, f64), ExitCode> {
     let preset = crate::scenario::shipped::resolve(&common.preset, &common.set).map_err(|e| {
         say_err!("rattleback: error: {e}");
         ExitCode::from(2)
     })?;
-    let Some(problem) = preset.problem().copied() else {
-        say_err!(
-            "rattleback: error: {}: the studies (sweep over k, weak-*, regime map) are of the rattleback; this is a {} preset",
-            common.preset,
-            preset.model.kind().name()
-        );
-        return Err(ExitCode::from(2));
-    };
+    let model = preset.model;
     let t_end = common.t_end.unwrap_or(preset.run.t_end);
     let tolerance = common
         .tolerance
@@ -376,7 +369,7 @@ fn study_setup(
         say_err!("rattleback: error: --out {}: {e}", dir.display());
         return Err(ExitCode::from(2));
     }
-    Ok((preset, problem, t_end, tolerance))
+    Ok((preset, model, t_end, tolerance))
 }
 
 /// Writes `files` (name, contents) into `--out`, refusing to replace without `--force`.
@@ -422,38 +415,54 @@ fn emit(text: &str) -> Result<(), ExitCode> {
 }
 
 fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
-    use crate::study::sweep::{DEFAULT_LADDER, sweep};
-    let (preset, problem, t_end, tolerance) = match study_setup(&args.common) {
+    use crate::study::sweep::{ladder, sweep};
+    let (preset, model, t_end, tolerance) = match study_setup(&args.common) {
         Ok(s) => s,
         Err(code) => return code,
     };
     let ladder = if args.ladder.is_empty() {
-        DEFAULT_LADDER.to_vec()
+        ladder(model.kind()).to_vec()
     } else {
         args.ladder.clone()
     };
-    let s = match sweep(&problem, &ladder, t_end, tolerance, &|_| true) {
+    if let Some(bad) = ladder.iter().find(|&&x| {
+        model.kind() == crate::physics::ModelKind::Kapitza
+            && !(crate::physics::kapitza::EPSILON_MIN..=crate::physics::kapitza::EPSILON_MAX)
+                .contains(&x)
+    }) {
+        say_err!(
+            "rattleback: error: --ladder: epsilon = {bad} is out of range for the kapitza model; allowed: numbers in [1e-9, 1]"
+        );
+        return ExitCode::from(2);
+    }
+    let s = match sweep(&model, &ladder, t_end, tolerance, &|_| true) {
         Ok(s) => s,
         Err(e) => {
             say_err!("rattleback: study sweep failed: {e}");
             return ExitCode::from(1);
         }
     };
-    let mut csv = String::from("stiffness,sup_error,method,estimate\n");
+    // The rattleback's column and field are `stiffness` (a contract); the pendulum's `epsilon`.
+    let column = match model.kind() {
+        crate::physics::ModelKind::Rattleback => "stiffness",
+        crate::physics::ModelKind::Kapitza => "epsilon",
+    };
+    let mut csv = format!("{column},sup_error,method,estimate\n");
     for r in &s.rungs {
         let _ = writeln!(
             csv,
             "{:e},{:e},{},{:e}",
-            r.k, r.sup_error, r.method, r.estimate
+            r.parameter, r.sup_error, r.method, r.estimate
         );
     }
     let printed = match args.common.format {
         crate::cli::Format::Json => {
             let v = serde_json::json!({
                 "preset": preset.name,
+                "model": model.kind().name(),
                 "t_end": t_end,
                 "tolerance": tolerance,
-                "stiffness": s.stiffness(),
+                column: s.stiffness(),
                 "sup_error": s.sup_error(),
                 "slope": s.slope,
                 "methods": s.rungs.iter().map(|r| r.method.name()).collect::<Vec<_>>(),
@@ -495,16 +504,20 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
 
 fn sweep_table(name: &str, t_end: f64, tolerance: f64, s: &crate::study::sweep::Sweep) -> String {
     let mut o = format!("preset        {name} (T = {t_end}, tolerance {tolerance:e})\n");
+    let (parameter, sup) = match s.model {
+        crate::physics::ModelKind::Rattleback => ("k", "sup|α_k−α_eff|"),
+        crate::physics::ModelKind::Kapitza => ("epsilon", "sup|θ_ε−θ|"),
+    };
     let _ = writeln!(
         o,
-        "{:>10}  {:>14}  {:<13} {:>9}",
-        "k", "sup|α_k−α_eff|", "auto chose", "estimate"
+        "{:>10}  {:>14}  {:<19} {:>9}",
+        parameter, sup, "auto chose", "estimate"
     );
     for r in &s.rungs {
         let _ = writeln!(
             o,
-            "{:>10.0e}  {:>14.3e}  {:<13} {:>9.1e}",
-            r.k,
+            "{:>10.0e}  {:>14.3e}  {:<19} {:>9.1e}",
+            r.parameter,
             r.sup_error,
             r.method.name(),
             r.estimate
@@ -512,7 +525,7 @@ fn sweep_table(name: &str, t_end: f64, tolerance: f64, s: &crate::study::sweep::
     }
     let _ = writeln!(
         o,
-        "slope of log sup against log k: {}",
+        "slope of log sup against log {parameter}: {}",
         s.slope
             .map_or_else(|| "n/a".to_owned(), |x| format!("{x:.3}"))
     );
@@ -523,7 +536,11 @@ fn sweep_table(name: &str, t_end: f64, tolerance: f64, s: &crate::study::sweep::
 fn sweep_curves(s: &crate::study::sweep::Sweep) -> String {
     let mut curves = String::from("t,limit");
     for r in &s.rungs {
-        let _ = write!(curves, ",alpha_k{:e}", r.k);
+        let (q, p) = match s.model {
+            crate::physics::ModelKind::Rattleback => ("alpha", "k"),
+            crate::physics::ModelKind::Kapitza => ("theta", "eps"),
+        };
+        let _ = write!(curves, ",{q}_{p}{:e}", r.parameter);
     }
     curves.push('\n');
     for (i, t) in s.t.iter().enumerate() {
@@ -538,9 +555,17 @@ fn sweep_curves(s: &crate::study::sweep::Sweep) -> String {
 
 fn study_map(args: &crate::cli::MapArgs) -> ExitCode {
     use crate::study::map::{Grid, Source, regime_map};
-    let (_, problem, t_end, tolerance) = match study_setup(&args.common) {
+    let (_, model, t_end, tolerance) = match study_setup(&args.common) {
         Ok(s) => s,
         Err(code) => return code,
+    };
+    let Some(problem) = model.rattleback().copied() else {
+        say_err!(
+            "rattleback: error: {}: the regime map is of the rattleback (reversals over its inertia and start); this is a {} preset",
+            args.common.preset,
+            model.kind().name()
+        );
+        return ExitCode::from(2);
     };
     if args.inertia_min >= args.inertia_max {
         say_err!(

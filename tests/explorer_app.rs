@@ -672,7 +672,7 @@ fn the_sweep_pane_shows_what_study_sweep_computes_and_follows_the_parameters() {
     // The same numbers as the headless study (one rung at a time here, in parallel there).
     let settings = h.app.scenario.settings;
     let headless = sweep(
-        settings.rattleback().unwrap(),
+        &settings.model,
         &DEFAULT_LADDER,
         settings.t_end,
         settings.tolerance,
@@ -680,7 +680,7 @@ fn the_sweep_pane_shows_what_study_sweep_computes_and_follows_the_parameters() {
     )
     .unwrap();
     for (shown, computed) in s.points.iter().zip(&headless.rungs) {
-        assert_eq!(shown.k, computed.k);
+        assert_eq!(shown.parameter, computed.parameter);
         assert_eq!(shown.sup_error.to_bits(), computed.sup_error.to_bits());
     }
     let slope = s.slope().unwrap();

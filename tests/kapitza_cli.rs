@@ -107,8 +107,19 @@ fn bad_pendulum_presets_are_refused_with_file_line_key_and_what_is_allowed() {
         &["--set", "unknown key 'spring.k'", "pendulum.epsilon"],
     );
     rejects(
-        &["study", "sweep", "--preset", "kapitza-upright"],
-        &["are of the rattleback", "kapitza preset"],
+        &["study", "map", "--preset", "kapitza-upright"],
+        &["regime map is of the rattleback", "kapitza preset"],
+    );
+    rejects(
+        &[
+            "study",
+            "sweep",
+            "--preset",
+            "kapitza-upright",
+            "--ladder",
+            "1e-2,2",
+        ],
+        &["--ladder", "epsilon = 2 is out of range"],
     );
 }
 
@@ -176,6 +187,28 @@ fn simulate_reports_the_pendulum_with_its_named_fields() {
             .unwrap()
             .contains("independent of epsilon")
     );
+}
+
+#[test]
+fn study_sweep_sweeps_epsilon_at_first_order() {
+    let (code, out, err) = bin(&[
+        "study",
+        "sweep",
+        "--preset",
+        "kapitza-upright",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["model"], "kapitza");
+    assert_eq!(v["epsilon"].as_array().unwrap().len(), 6);
+    let slope = v["slope"].as_f64().unwrap();
+    assert!(
+        (slope - 1.0).abs() < 0.1,
+        "positions converge at first order: {slope}"
+    );
+    assert!(v["stiffness"].is_null(), "the pendulum has no stiffness");
 }
 
 #[test]

@@ -12,7 +12,7 @@ use rattleback::study::weak::weak_star;
 fn the_sweep_converges_like_one_over_k_on_the_default_preset() {
     let preset = resolve("subcritical", &[]).unwrap();
     let s = sweep(
-        preset.problem().unwrap(),
+        &preset.model,
         &DEFAULT_LADDER,
         preset.run.t_end,
         1e-8,

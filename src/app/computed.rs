@@ -15,7 +15,7 @@ impl App {
         self.view.panes.toggle(pane);
         let on = self.view.panes.shows(pane);
         let command = match (pane, on) {
-            (Pane::Sweep, true) => self.start_sweep(),
+            (Pane::Sweep, true) => Some(self.start_sweep()),
             (Pane::Sweep, false) => Some(self.sweep.stop()),
             (Pane::Map, true) => {
                 self.mode = Mode::Map;
@@ -122,15 +122,15 @@ impl App {
         };
         Some(self.weak.start(self.run.generation, spec))
     }
-    /// Asks the worker for the sweep of the current settings (the rattleback's).
-    pub(super) fn start_sweep(&mut self) -> Option<crate::sim::Command> {
+    /// Asks the worker for the sweep of the current settings (`k`, or the pendulum's `ε`).
+    pub(super) fn start_sweep(&mut self) -> crate::sim::Command {
         let s = &self.scenario.settings;
         let spec = crate::sim::SweepSpec {
-            problem: *s.rattleback()?,
+            model: s.model,
             t_end: s.t_end,
             tolerance: s.tolerance,
         };
-        Some(self.sweep.start(self.run.generation, spec))
+        self.sweep.start(self.run.generation, spec)
     }
 }
 

@@ -177,7 +177,7 @@ impl App {
         let mut effects = vec![Effect::Sim(overlay)];
         if self.scenario.settings.model.kind() != crate::physics::ModelKind::Rattleback {
             // The rattleback's own panes close with it (their computations stop).
-            for pane in [Pane::Sweep, Pane::Weak, Pane::Map] {
+            for pane in [Pane::Weak, Pane::Map] {
                 if self.view.panes.shows(pane) {
                     effects.extend(self.toggle_computed(pane));
                 }
@@ -220,7 +220,7 @@ impl App {
             .map(Effect::Sim)
             .collect();
         if self.view.panes.shows(Pane::Sweep) {
-            effects.extend(self.start_sweep().map(Effect::Sim));
+            effects.push(Effect::Sim(self.start_sweep()));
         }
         if self.view.panes.shows(Pane::Weak) {
             effects.extend(self.start_weak().map(Effect::Sim));
@@ -507,13 +507,13 @@ impl App {
             }
             SimEvent::SweepPoint {
                 generation,
-                k,
+                parameter,
                 sup_error,
                 method,
             } => self.sweep.on_point(
                 generation,
                 sweep::SweepPoint {
-                    k,
+                    parameter,
                     sup_error,
                     method,
                 },

@@ -48,10 +48,11 @@ impl Pane {
         }
     }
 
-    /// Whether only the rattleback has it (the studies of `k` and the body).
+    /// Whether only the rattleback has it (weak-*, the regime map and the body; the sweep
+    /// covers every model's small parameter).
     #[must_use]
     pub fn rattleback_only(self) -> bool {
-        matches!(self, Self::Sweep | Self::Weak | Self::Map | Self::Body)
+        matches!(self, Self::Weak | Self::Map | Self::Body)
     }
 
     /// The pane's name in messages.

@@ -1,4 +1,5 @@
-//! The sweep pane's state: the stiffness sweep of the current start (issue 12), computed by the
+//! The sweep pane's state: the sweep of the current start's small parameter (issue 12: the
+//! rattleback's `k`; the pendulum's `ε`), computed by the
 //! worker one rung at a time after the run's own work, restarted with every restart of the run
 //! while the pane is shown, stopped when it is hidden.
 
@@ -8,9 +9,9 @@ use crate::sim::{Command, SweepSpec};
 /// One rung received.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SweepPoint {
-    /// Hooke constant.
-    pub k: f64,
-    /// `sup |α_k − α_eff|` over `[0, T]`.
+    /// The rung's parameter (`k`, or `ε`).
+    pub parameter: f64,
+    /// `sup |α_k − α_eff|` (`sup |θ_ε − θ|`) over `[0, T]`.
     pub sup_error: f64,
     /// What `auto` ran.
     pub method: Method,
@@ -54,7 +55,11 @@ impl SweepState {
     /// The fitted log–log slope of the points so far (two at least).
     #[must_use]
     pub fn slope(&self) -> Option<f64> {
-        let pts: Vec<(f64, f64)> = self.points.iter().map(|p| (p.k, p.sup_error)).collect();
+        let pts: Vec<(f64, f64)> = self
+            .points
+            .iter()
+            .map(|p| (p.parameter, p.sup_error))
+            .collect();
         crate::study::log_log_slope(&pts)
     }
 

@@ -99,6 +99,8 @@ impl ModelKind {
     pub fn words(self) -> Words {
         match self {
             Self::Rattleback => Words {
+                parameter: "k",
+                sup: "sup|alpha_k − alpha_eff|",
                 q_name: "alpha",
                 q_dot_name: "alpha_dot",
                 q: "α",
@@ -108,6 +110,8 @@ impl ModelKind {
                 events: "reversals",
             },
             Self::Kapitza => Words {
+                parameter: "epsilon",
+                sup: "sup|theta_eps − theta_lim|",
                 q_name: "theta",
                 q_dot_name: "theta_dot",
                 q: "θ",
@@ -123,6 +127,10 @@ impl ModelKind {
 /// Labels of a model's variables and events.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Words {
+    /// The small parameter the limit is about (`k → ∞`, `ε → 0`), as in presets.
+    pub parameter: &'static str,
+    /// What the sweep measures, in words.
+    pub sup: &'static str,
     /// The slow coordinate's name in presets (ASCII).
     pub q_name: &'static str,
     /// Its rate's.

@@ -387,19 +387,19 @@ impl Engine {
         go_on: &mut dyn FnMut(f64) -> bool,
         sink: &mut dyn FnMut(SimEvent) -> bool,
     ) -> bool {
-        use crate::study::sweep::{DEFAULT_LADDER, limit_curve, rung};
+        use crate::study::sweep::{ladder, limit_curve, rung};
         let Some(job) = self.sweep.as_mut() else {
             return true;
         };
         let (generation, spec) = (job.generation, job.spec);
         let outcome = match &job.limit {
-            None => limit_curve(&spec.problem, spec.t_end, go_on).map(|(_, limit)| {
+            None => limit_curve(&spec.model, spec.t_end, go_on).map(|(_, limit)| {
                 job.limit = Some(limit);
                 None
             }),
             Some(limit) => rung(
-                &spec.problem,
-                DEFAULT_LADDER[job.next],
+                &spec.model,
+                ladder(spec.model.kind())[job.next],
                 spec.t_end,
                 spec.tolerance,
                 limit,
@@ -421,7 +421,7 @@ impl Engine {
                 job.next += 1;
                 Some(SimEvent::SweepPoint {
                     generation,
-                    k: r.k,
+                    parameter: r.parameter,
                     sup_error: r.sup_error,
                     method: r.method,
                 })
@@ -435,7 +435,7 @@ impl Engine {
         if self
             .sweep
             .as_ref()
-            .is_some_and(|j| j.next == DEFAULT_LADDER.len())
+            .is_some_and(|j| j.next == ladder(j.spec.model.kind()).len())
         {
             self.sweep = None;
             return sink(SimEvent::SweepDone {

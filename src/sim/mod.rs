@@ -98,11 +98,11 @@ pub struct WeakSpec {
     pub t_end: f64,
 }
 
-/// A stiffness sweep for the explorer's sweep pane.
+/// A sweep of the small parameter (`k`, or the pendulum's `ε`) for the explorer's sweep pane.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SweepSpec {
-    /// The start (its `k` is replaced by each rung's).
-    pub problem: crate::physics::Problem,
+    /// The start (its `k` or `ε` is replaced by each rung's).
+    pub model: crate::physics::Model,
     /// Horizon.
     pub t_end: f64,
     /// `auto`'s tolerance.
@@ -173,9 +173,9 @@ pub enum SimEvent {
     SweepPoint {
         /// Run stamp.
         generation: u64,
-        /// Hooke constant.
-        k: f64,
-        /// `sup |α_k − α_eff|` over `[0, T]`.
+        /// The rung's parameter (`k`, or `ε`).
+        parameter: f64,
+        /// `sup |α_k − α_eff|` (`sup |θ_ε − θ|`) over `[0, T]`.
         sup_error: f64,
         /// What `auto` ran.
         method: Method,

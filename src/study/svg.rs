@@ -44,8 +44,13 @@ pub fn sweep_svg(sweep: &Sweep) -> Fallible {
             (a.min(x), b.max(x))
         });
         let pad = 0.05 * (hi - lo).max(1e-9);
+        let words = sweep.model.words();
+        let (q, parameter) = (words.q_name, words.parameter);
         let mut chart = ChartBuilder::on(&left)
-            .caption("alpha_k(t) closing in on the limit", ("sans-serif", 18))
+            .caption(
+                format!("{q}(t) closing in on the limit as {parameter} varies"),
+                ("sans-serif", 18),
+            )
             .margin(10)
             .x_label_area_size(30)
             .y_label_area_size(50)
@@ -53,7 +58,7 @@ pub fn sweep_svg(sweep: &Sweep) -> Fallible {
         chart
             .configure_mesh()
             .x_desc("t")
-            .y_desc("alpha")
+            .y_desc(q)
             .x_label_formatter(&|x| tick(*x))
             .y_label_formatter(&|y| tick(*y))
             .draw()?;
@@ -67,7 +72,7 @@ pub fn sweep_svg(sweep: &Sweep) -> Fallible {
                     sweep.t.iter().copied().zip(r.alpha.iter().copied()),
                     &colour,
                 ))?
-                .label(format!("k = {}", tick(r.k)))
+                .label(format!("{parameter} = {}", tick(r.parameter)))
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], colour));
         }
         chart
@@ -86,7 +91,7 @@ pub fn sweep_svg(sweep: &Sweep) -> Fallible {
         let pts: Vec<(f64, f64)> = sweep
             .rungs
             .iter()
-            .map(|r| (r.k, r.sup_error))
+            .map(|r| (r.parameter, r.sup_error))
             .filter(|(k, e)| *k > 0.0 && *e > 0.0 && e.is_finite())
             .collect();
         if !pts.is_empty() {
@@ -97,8 +102,8 @@ pub fn sweep_svg(sweep: &Sweep) -> Fallible {
                 (a.min(p.1), b.max(p.1))
             });
             let caption = sweep.slope.map_or_else(
-                || "sup |alpha_k - alpha_eff| against k".to_owned(),
-                |s| format!("sup |alpha_k - alpha_eff|: slope {s:.2}"),
+                || format!("{} against {parameter}", words.sup),
+                |s| format!("{}: slope {s:.2}", words.sup),
             );
             let mut chart = ChartBuilder::on(&right)
                 .caption(caption, ("sans-serif", 18))
@@ -111,7 +116,7 @@ pub fn sweep_svg(sweep: &Sweep) -> Fallible {
                 )?;
             chart
                 .configure_mesh()
-                .x_desc("k")
+                .x_desc(parameter)
                 .x_label_formatter(&|x| tick(*x))
                 .y_label_formatter(&|y| tick(*y))
                 .draw()?;

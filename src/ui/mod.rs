@@ -99,6 +99,7 @@ fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, c
             ),
             Pane::Sweep => frame.render_widget(
                 sweep::SweepPane {
+                    model: app.scenario.settings.model.kind(),
                     sweep: &app.sweep,
                     look,
                 },

@@ -1,7 +1,7 @@
-//! The stiffness-sweep pane (toggle `K`): `sup_{[0,T]} |α_k − α_eff|` against `k`, log–log, one
-//! `●` per rung as the worker delivers it, joined by a line, with the fitted slope in the title
-//! (the paper's uniform convergence; O(1/k), slope −1, on trapped starts). Not computed while
-//! hidden.
+//! The sweep pane (toggle `K`): `sup_{[0,T]} |α_k − α_eff|` against `k` (the pendulum:
+//! `sup |θ_ε − θ|` against `ε`), log–log, one `●` per rung as the worker delivers it, joined by
+//! a line, with the fitted slope in the title (the paper's uniform convergence: O(1/k), slope
+//! −1, on trapped starts; the pendulum's positions: O(ε), slope 1). Not computed while hidden.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -11,12 +11,15 @@ use ratatui::widgets::{Block, Paragraph, Widget};
 
 use super::{Look, title};
 use crate::app::sweep::SweepState;
-use crate::study::sweep::DEFAULT_LADDER;
+use crate::physics::ModelKind;
+use crate::study::sweep::ladder;
 
 /// The sweep pane: what it shows, borrowed.
 pub struct SweepPane<'a> {
     /// The rungs so far.
     pub sweep: &'a SweepState,
+    /// Whose parameter is swept.
+    pub model: ModelKind,
     /// Marker and colours.
     pub look: &'a Look<'a>,
 }
@@ -24,28 +27,39 @@ pub struct SweepPane<'a> {
 impl Widget for SweepPane<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let (sweep, look) = (self.sweep, self.look);
+        let ladder = ladder(self.model);
+        let words = self.model.words();
+        let symbol = if self.model == ModelKind::Rattleback {
+            "k"
+        } else {
+            "ε"
+        };
         let status = match (&sweep.failed, sweep.done, sweep.slope()) {
             (Some(why), _, _) => format!("stopped: {why}"),
             (None, true, Some(s)) => format!("slope {s:.2}"),
             (None, false, _) => {
-                format!("computing {}/{}…", sweep.points.len(), DEFAULT_LADDER.len())
+                format!("computing {}/{}…", sweep.points.len(), ladder.len())
             }
             (None, true, None) => "no rung".to_owned(),
         };
         let block = Block::bordered().title(title(
-            &format!("k-sweep: {status} │ sup|alpha_k − alpha_eff| against k"),
+            &format!("{symbol}-sweep: {status} │ {} against {symbol}", words.sup),
             area.width,
         ));
         let inner = block.inner(area);
         block.render(area, buf);
         let (y_axis, plot, x_axis) = super::plot_areas(inner);
-        let x0 = DEFAULT_LADDER[0].log10() - 0.3;
-        let x1 = DEFAULT_LADDER[DEFAULT_LADDER.len() - 1].log10() + 0.3;
+        let (lo_x, hi_x) = ladder
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x.log10()), b.max(x.log10()))
+            });
+        let (x0, x1) = (lo_x - 0.3, hi_x + 0.3);
         let pts: Vec<(f64, f64)> = sweep
             .points
             .iter()
             .filter(|p| p.sup_error > 0.0 && p.sup_error.is_finite())
-            .map(|p| (p.k.log10(), p.sup_error.log10()))
+            .map(|p| (p.parameter.log10(), p.sup_error.log10()))
             .collect();
         let (lo, hi) = pts
             .iter()
@@ -86,8 +100,8 @@ impl Widget for SweepPane<'_> {
                 TextLine::styled(format!("{:>7} ", format!("1e{lo:.0}")), look.dim());
         }
         Paragraph::new(labels).render(y_axis, buf);
-        let first = format!("k 1e{:.0}", DEFAULT_LADDER[0].log10());
-        let last = format!("1e{:.0}", DEFAULT_LADDER[DEFAULT_LADDER.len() - 1].log10());
+        let first = format!("{symbol} 1e{lo_x:.0}");
+        let last = format!("1e{hi_x:.0}");
         let width = x_axis.width as usize;
         let gap = width.saturating_sub(first.len() + last.len());
         Paragraph::new(TextLine::styled(
