@@ -23,7 +23,7 @@ impl App {
                 self.map.start(&self.scenario.settings)
             }
             (Pane::Map, false) => Some(self.map.stop()),
-            (_, true) => self.start_weak(),
+            (_, true) => Some(self.start_weak()),
             (_, false) => Some(self.weak.stop()),
         };
         command.map(Effect::Sim).into_iter().collect()
@@ -113,14 +113,14 @@ impl App {
         true
     }
 
-    /// Asks the worker for the weak-* view of the current settings (the rattleback's).
-    pub(super) fn start_weak(&mut self) -> Option<crate::sim::Command> {
+    /// Asks the worker for the weak-* view of the current settings.
+    pub(super) fn start_weak(&mut self) -> crate::sim::Command {
         let s = &self.scenario.settings;
         let spec = crate::sim::WeakSpec {
-            problem: *s.rattleback()?,
+            model: s.model,
             t_end: s.t_end,
         };
-        Some(self.weak.start(self.run.generation, spec))
+        self.weak.start(self.run.generation, spec)
     }
     /// Asks the worker for the sweep of the current settings (`k`, or the pendulum's `ε`).
     pub(super) fn start_sweep(&mut self) -> crate::sim::Command {

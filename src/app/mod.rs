@@ -176,11 +176,9 @@ impl App {
         let overlay = self.run.set_overlay(self.view.overlay);
         let mut effects = vec![Effect::Sim(overlay)];
         if self.scenario.settings.model.kind() != crate::physics::ModelKind::Rattleback {
-            // The rattleback's own panes close with it (their computations stop).
-            for pane in [Pane::Weak, Pane::Map] {
-                if self.view.panes.shows(pane) {
-                    effects.extend(self.toggle_computed(pane));
-                }
+            // The rattleback's own panes close with it (the map's computation stops).
+            if self.view.panes.shows(Pane::Map) {
+                effects.extend(self.toggle_computed(Pane::Map));
             }
             self.view.panes.set(Pane::Body, false);
             if self.mode == Mode::Map {
@@ -223,7 +221,7 @@ impl App {
             effects.push(Effect::Sim(self.start_sweep()));
         }
         if self.view.panes.shows(Pane::Weak) {
-            effects.extend(self.start_weak().map(Effect::Sim));
+            effects.push(Effect::Sim(self.start_weak()));
         }
         if self.view.panes.shows(Pane::Map) {
             effects.extend(self.map.start(&self.scenario.settings).map(Effect::Sim));
@@ -530,8 +528,11 @@ impl App {
                 t,
                 pointwise,
                 theta,
+                reference,
                 failed,
-            } => self.weak.on_data(generation, t, pointwise, theta, failed),
+            } => self
+                .weak
+                .on_data(generation, t, pointwise, theta, reference, failed),
             other => self.run.on_sim(other, self.view.overlay),
         }
     }

@@ -48,11 +48,11 @@ impl Pane {
         }
     }
 
-    /// Whether only the rattleback has it (weak-*, the regime map and the body; the sweep
-    /// covers every model's small parameter).
+    /// Whether only the rattleback has it (the regime map and the body; the sweep and weak-*
+    /// cover every model).
     #[must_use]
     pub fn rattleback_only(self) -> bool {
-        matches!(self, Self::Weak | Self::Map | Self::Body)
+        matches!(self, Self::Map | Self::Body)
     }
 
     /// The pane's name in messages.

@@ -22,6 +22,11 @@ pub struct WeakState {
     pub average: Vec<f64>,
     /// The limit's `θ`.
     pub theta: f64,
+    /// The limit's value at the sample times when it is not a constant (the pendulum's `θ̇`);
+    /// empty for the rattleback.
+    pub reference: Vec<f64>,
+    /// The reference averaged over the same window.
+    pub reference_average: Vec<f64>,
     /// The averaging window.
     pub window: f64,
     /// The data are in.
@@ -38,6 +43,8 @@ impl Default for WeakState {
             pointwise: Vec::new(),
             average: Vec::new(),
             theta: 0.0,
+            reference: Vec::new(),
+            reference_average: Vec::new(),
             window: 1.0,
             done: false,
             failed: None,
@@ -75,6 +82,7 @@ impl WeakState {
         t: Vec<f64>,
         pointwise: Vec<f64>,
         theta: f64,
+        reference: Vec<f64>,
         failed: Option<String>,
     ) -> bool {
         if generation != self.generation {
@@ -83,21 +91,48 @@ impl WeakState {
         self.t = t;
         self.pointwise = pointwise;
         self.theta = theta;
+        self.reference = reference;
         self.failed = failed;
         self.done = true;
-        self.average = moving_average(&self.t, &self.pointwise, self.window);
+        self.average_again();
         true
+    }
+
+    fn average_again(&mut self) {
+        self.average = moving_average(&self.t, &self.pointwise, self.window);
+        self.reference_average = if self.reference.is_empty() {
+            Vec::new()
+        } else {
+            moving_average(&self.t, &self.reference, self.window)
+        };
     }
 
     /// Multiplies the window by `factor` (within [`WINDOW_RANGE`]) and averages again.
     pub fn scale_window(&mut self, factor: f64) {
         self.window = (self.window * factor).clamp(WINDOW_RANGE.0, WINDOW_RANGE.1);
-        self.average = moving_average(&self.t, &self.pointwise, self.window);
+        self.average_again();
     }
 
-    /// The largest `|average/θ − 1|` where the window fits (NaN before the data).
+    /// The largest `|average/θ − 1|` where the window fits (NaN before the data); for the
+    /// pendulum, the largest distance between the two averages over the largest limit velocity.
     #[must_use]
     pub fn worst_deviation(&self) -> f64 {
+        if !self.reference.is_empty() {
+            // The pendulum: the averages of θ̇_ε and of the limit's θ̇, relative to the largest
+            // limit velocity.
+            let scale = self
+                .reference
+                .iter()
+                .fold(0.0f64, |m, r| m.max(r.abs()))
+                .max(1e-12);
+            return self
+                .average
+                .iter()
+                .zip(&self.reference_average)
+                .filter(|(a, r)| a.is_finite() && r.is_finite())
+                .map(|(a, r)| (a - r).abs() / scale)
+                .fold(0.0, f64::max);
+        }
         if self.theta == 0.0 || self.average.is_empty() {
             return f64::NAN;
         }

@@ -354,25 +354,41 @@ impl Engine {
         go_on: &mut dyn FnMut(f64) -> bool,
         sink: &mut dyn FnMut(SimEvent) -> bool,
     ) -> bool {
-        use crate::study::weak::{pointwise, view_horizon};
+        use crate::study::weak::{
+            pendulum_pointwise, pendulum_view_horizon, pointwise, view_horizon,
+        };
         let Some((generation, spec)) = self.weak else {
             return true;
         };
-        let horizon = view_horizon(&spec.problem, spec.t_end);
-        let event = match pointwise(&spec.problem, horizon, go_on) {
+        let data = match &spec.model {
+            Model::Rattleback(problem) => {
+                let horizon = view_horizon(problem, spec.t_end);
+                pointwise(problem, horizon, go_on).map(|(t, q)| {
+                    let theta = crate::physics::effective::Effective::new(problem).theta();
+                    (t, q, theta, Vec::new())
+                })
+            }
+            Model::Kapitza(problem) => {
+                let horizon = pendulum_view_horizon(problem, spec.t_end);
+                pendulum_pointwise(problem, horizon, go_on).map(|(t, q, r)| (t, q, 0.0, r))
+            }
+        };
+        let event = match data {
             Err(StepError::Cancelled { .. }) => return true,
             Err(e) => SimEvent::Weak {
                 generation,
                 t: Vec::new(),
                 pointwise: Vec::new(),
                 theta: 0.0,
+                reference: Vec::new(),
                 failed: Some(e.to_string()),
             },
-            Ok((t, pointwise)) => SimEvent::Weak {
+            Ok((t, pointwise, theta, reference)) => SimEvent::Weak {
                 generation,
                 t,
                 pointwise,
-                theta: crate::physics::effective::Effective::new(&spec.problem).theta(),
+                theta,
+                reference,
                 failed: None,
             },
         };

@@ -92,8 +92,8 @@ pub struct MapSpec {
 /// The weak-* view's computation.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WeakSpec {
-    /// The start.
-    pub problem: crate::physics::Problem,
+    /// The start (the rattleback's `γ̇² g^{3/2}`, or the pendulum's `θ̇`).
+    pub model: crate::physics::Model,
     /// The run's horizon (the view covers at most `study::weak::VIEW_PERIODS` fast periods).
     pub t_end: f64,
 }
@@ -193,10 +193,12 @@ pub enum SimEvent {
         generation: u64,
         /// Sample times, evenly spaced.
         t: Vec<f64>,
-        /// `γ̇² g^{3/2}` at those times.
+        /// `γ̇² g^{3/2}` (the pendulum: `θ̇_ε`) at those times.
         pointwise: Vec<f64>,
-        /// The limit's `θ`.
+        /// The limit's `θ` (the rattleback's constant; 0 for the pendulum).
         theta: f64,
+        /// The limit's value at those times, when it is not a constant (the pendulum's `θ̇`).
+        reference: Vec<f64>,
         /// Why it failed, if it did.
         failed: Option<String>,
     },

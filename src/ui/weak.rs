@@ -2,6 +2,8 @@
 //! moving average over the window as a line, `θ` dashed. Pointwise the quantity swings between
 //! 0 and `2θ` at every `k`; its average settles on `θ` once the window spans many fast periods
 //! (the paper's weak-* convergence). The view covers at most 400 fast periods from `t = 0`.
+//! For the pendulum: `θ̇_ε` as dots (its O(1) ripple), its average as a line, the limit's `θ̇`
+//! dashed; the title gives the distance between the two averages (over 4000 fast periods).
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -24,29 +26,16 @@ pub struct WeakPane<'a> {
 impl Widget for WeakPane<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let (weak, look) = (self.weak, self.look);
-        let status = match (&weak.failed, weak.done) {
-            (Some(why), _) => format!("failed: {why}"),
-            (None, false) => "computing…".to_owned(),
-            (None, true) => format!(
-                "average over w = {} within {:.2} % of θ",
-                crate::study::svg::tick(weak.window),
-                100.0 * weak.worst_deviation()
-            ),
-        };
-        let block = Block::bordered().title(title(
-            &format!(
-                "weak-*: {status} │ gamma_dot²·g^1.5 (dots), average (line), θ (dashed) │ < >"
-            ),
-            area.width,
-        ));
+        let pendulum = !weak.reference.is_empty();
+        let block = Block::bordered().title(title(&heading(weak, pendulum), area.width));
         let inner = block.inner(area);
         block.render(area, buf);
         let (y_axis, plot, x_axis) = super::plot_areas(inner);
-        if weak.t.len() < 2 || weak.theta <= 0.0 {
+        if weak.t.len() < 2 || (!pendulum && weak.theta <= 0.0) {
             return;
         }
         let t1 = weak.t[weak.t.len() - 1];
-        let top = 2.2 * weak.theta;
+        let (bottom, top) = y_bounds(weak, pendulum);
         let (rx, _) = resolution(look.marker);
         let cols = (plot.width as usize * rx).max(1);
         // Pointwise: every sample would be a solid band; a few per column show the swing.
@@ -68,23 +57,37 @@ impl Widget for WeakPane<'_> {
             .map(|(&t, &a)| (t, a))
             .collect();
         let theta = weak.theta;
+        // The pendulum's reference curve, every other segment (dashed).
+        let reference: Vec<(f64, f64)> = weak
+            .t
+            .iter()
+            .zip(&weak.reference)
+            .step_by(avg_step)
+            .map(|(&t, &r)| (t, r))
+            .collect();
         let theme = look.theme;
         Canvas::default()
             .marker(look.marker)
             .background_color(theme.background)
             .x_bounds([0.0, t1])
-            .y_bounds([0.0, top])
+            .y_bounds([bottom, top])
             .paint(|ctx| {
                 ctx.draw(&Points {
                     coords: &dots,
                     color: theme.contour,
                 });
                 ctx.layer();
-                // θ, dashed.
-                let dash = t1 / 40.0;
-                for i in (0..40).step_by(2) {
-                    let a = f64::from(i) * dash;
-                    ctx.draw(&Line::new(a, theta, a + dash, theta, theme.effective));
+                if pendulum {
+                    for w in reference.windows(2).step_by(2) {
+                        ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, theme.effective));
+                    }
+                } else {
+                    // θ, dashed.
+                    let dash = t1 / 40.0;
+                    for i in (0..40).step_by(2) {
+                        let a = f64::from(i) * dash;
+                        ctx.draw(&Line::new(a, theta, a + dash, theta, theme.effective));
+                    }
                 }
                 ctx.layer();
                 for w in average.windows(2) {
@@ -92,13 +95,12 @@ impl Widget for WeakPane<'_> {
                 }
             })
             .render(plot, buf);
-        let rows = y_axis.height as usize;
-        let mut labels = vec![TextLine::raw(""); rows];
-        if rows >= 2 {
-            labels[0] = TextLine::styled(format!("{:>7} ", format!("{top:.3}")), look.dim());
-            labels[rows - 1] = TextLine::styled(format!("{:>7} ", "0"), look.dim());
-        }
-        Paragraph::new(labels).render(y_axis, buf);
+        let low = if pendulum {
+            format!("{bottom:.3}")
+        } else {
+            "0".to_owned()
+        };
+        Paragraph::new(y_labels(y_axis.height as usize, top, &low, look)).render(y_axis, buf);
         let last = format!("t {}", crate::study::svg::tick(t1));
         let width = x_axis.width as usize;
         Paragraph::new(TextLine::styled(
@@ -110,4 +112,50 @@ impl Widget for WeakPane<'_> {
         ))
         .render(x_axis, buf);
     }
+}
+
+/// The plot's vertical range: `[0, 2.2 θ]` for the rattleback, the data's range for the pendulum.
+fn y_bounds(weak: &WeakState, pendulum: bool) -> (f64, f64) {
+    if !pendulum {
+        return (0.0, 2.2 * weak.theta);
+    }
+    let (lo, hi) = weak
+        .pointwise
+        .iter()
+        .chain(&weak.reference)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &q| {
+            (a.min(q), b.max(q))
+        });
+    let pad = 0.05 * (hi - lo).max(1e-9);
+    (lo - pad, hi + pad)
+}
+
+/// The top and bottom labels of the y axis.
+fn y_labels(rows: usize, top: f64, low: &str, look: &Look<'_>) -> Vec<TextLine<'static>> {
+    let mut labels = vec![TextLine::raw(""); rows];
+    if rows >= 2 {
+        labels[0] = TextLine::styled(format!("{:>7} ", format!("{top:.3}")), look.dim());
+        labels[rows - 1] = TextLine::styled(format!("{low:>7} "), look.dim());
+    }
+    labels
+}
+
+/// The pane's title: how far the averages are, and what is drawn.
+fn heading(weak: &WeakState, pendulum: bool) -> String {
+    let status = match (&weak.failed, weak.done) {
+        (Some(why), _) => format!("failed: {why}"),
+        (None, false) => "computing…".to_owned(),
+        (None, true) => format!(
+            "average over w = {} within {:.2} % of {}",
+            crate::study::svg::tick(weak.window),
+            100.0 * weak.worst_deviation(),
+            if pendulum { "the limit's" } else { "θ" }
+        ),
+    };
+    let what = if pendulum {
+        "theta_dot (dots), average (line), limit's theta_dot (dashed)"
+    } else {
+        "gamma_dot²·g^1.5 (dots), average (line), θ (dashed)"
+    };
+    format!("weak-*: {status} │ {what} │ < >")
 }
