@@ -289,9 +289,6 @@ fn the_picker_lists_both_scenes() {
     }
     let mut h = Headless::new("subcritical");
     h.key(Key::Char('p'));
-    let effects = vec![];
-    h.exec(effects);
-    let (entries, _) = rattleback::scenario::shipped::catalogue();
     h.app.on_outcome(Outcome::Catalogue(entries, Vec::new()));
     let screen = text(&render(&h.app, 100, 40));
     assert!(

@@ -100,7 +100,9 @@ impl EventTracker {
     }
 }
 
-fn sign(x: f64) -> f64 {
+/// `-1`, `0` or `1`: the sign the event trackers follow.
+#[must_use]
+pub(crate) fn sign(x: f64) -> f64 {
     if x > 0.0 {
         1.0
     } else if x < 0.0 {

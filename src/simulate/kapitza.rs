@@ -240,28 +240,22 @@ pub fn csv_metadata(
     tolerance: f64,
     t_end: f64,
 ) -> String {
-    let name = crate::scenario::text::clean(preset).replace(['\n', '\r', '\t'], " ");
-    let mut out = format!(
-        "# program = rattleback {}\n# model = kapitza\n# preset = {name}\n# method = {}\n",
-        env!("CARGO_PKG_VERSION"),
-        method.name()
-    );
-    if let Some(m) = ran {
-        let _ = writeln!(out, "# integrated = {}", m.name());
-    }
     let (p, s) = (problem.params(), problem.start());
-    for (key, value) in [
-        ("tolerance", tolerance),
-        ("t_end", t_end),
-        ("a", p.a),
-        ("b", p.b),
-        ("epsilon", p.epsilon),
-        ("theta", s.theta),
-        ("theta_dot", s.theta_dot),
-    ] {
-        let _ = writeln!(out, "# {key} = {value:?}");
-    }
-    out
+    super::metadata_lines(
+        preset,
+        Some("kapitza"),
+        method,
+        ran,
+        &[
+            ("tolerance", tolerance),
+            ("t_end", t_end),
+            ("a", p.a),
+            ("b", p.b),
+            ("epsilon", p.epsilon),
+            ("theta", s.theta),
+            ("theta_dot", s.theta_dot),
+        ],
+    )
 }
 
 /// Runs the pendulum's preset and writes the report.

@@ -549,29 +549,48 @@ pub fn csv_metadata(
     tolerance: f64,
     t_end: f64,
 ) -> String {
+    let (p, s) = (problem.params(), problem.start());
+    metadata_lines(
+        preset,
+        None,
+        method,
+        ran,
+        &[
+            ("tolerance", tolerance),
+            ("t_end", t_end),
+            ("ix", p.ix),
+            ("iy", p.iy),
+            ("iz", p.iz),
+            ("k", p.k),
+            ("gamma", s.gamma),
+            ("alpha", s.alpha),
+            ("gamma_dot", s.gamma_dot),
+            ("alpha_dot", s.alpha_dot),
+        ],
+    )
+}
+
+/// The `# key = value` lines every model's CSV starts with: the program, the model (absent for
+/// the rattleback, the first), the preset's name cleaned to one line, the method asked and the
+/// one that ran, then `numbers` as text that parses back to the same bits.
+pub(crate) fn metadata_lines(
+    preset: &str,
+    model: Option<&str>,
+    method: Method,
+    ran: Option<Method>,
+    numbers: &[(&str, f64)],
+) -> String {
     use std::fmt::Write as _;
     let name = crate::scenario::text::clean(preset).replace(['\n', '\r', '\t'], " ");
-    let mut out = format!(
-        "# program = rattleback {}\n# preset = {name}\n# method = {}\n",
-        env!("CARGO_PKG_VERSION"),
-        method.name()
-    );
+    let mut out = format!("# program = rattleback {}\n", env!("CARGO_PKG_VERSION"));
+    if let Some(m) = model {
+        let _ = writeln!(out, "# model = {m}");
+    }
+    let _ = writeln!(out, "# preset = {name}\n# method = {}", method.name());
     if let Some(m) = ran {
         let _ = writeln!(out, "# integrated = {}", m.name());
     }
-    let (p, s) = (problem.params(), problem.start());
-    for (key, value) in [
-        ("tolerance", tolerance),
-        ("t_end", t_end),
-        ("ix", p.ix),
-        ("iy", p.iy),
-        ("iz", p.iz),
-        ("k", p.k),
-        ("gamma", s.gamma),
-        ("alpha", s.alpha),
-        ("gamma_dot", s.gamma_dot),
-        ("alpha_dot", s.alpha_dot),
-    ] {
+    for (key, value) in numbers {
         let _ = writeln!(out, "# {key} = {value:?}");
     }
     out

@@ -11,7 +11,6 @@ use serde::Serialize;
 
 use super::Problem;
 use super::flows::build;
-use super::limit;
 use crate::physics::flow::{EventTracker, Flow};
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::numerics::dop853::Stats;
@@ -100,14 +99,14 @@ pub fn run(
         step: spec.step,
     };
     let mut flow = build(spec.method, problem, settings, spec.t_end)?;
-    let p = *problem.params();
     let mut swings = EventTracker::new(flow.event_value());
     let e0 = flow.energy();
     let mut max_drift: f64 = 0.0;
     let mut events = Events::default();
+    // `cos Θ` with `Θ = θ − ripple`, as the explorer counts falls from its samples.
     let slow_up = |flow: &mut dyn Flow, t: f64| {
-        let y = flow.state_at(t);
-        limit::to_slow(&p, t, (y[0], y[1])).0.cos()
+        let y = flow.sample(t);
+        (y.q - y.fast).cos()
     };
     let mut up = slow_up(flow.as_mut(), 0.0);
     let mut samples = Vec::with_capacity(spec.samples.min(1 << 20));
@@ -174,20 +173,4 @@ pub fn run(
         stats: flow.stats(),
         samples,
     })
-}
-
-/// The limit's own prediction at `t_end` from `problem`'s start (the `effective` section of
-/// `simulate`): the limit integrated at `tolerance` from `(θ0, θ̇0)`.
-///
-/// # Errors
-/// When the limit cannot be integrated (it always can for a validated problem).
-pub fn effective(problem: &Problem, tolerance: f64, t_end: f64) -> Result<RunResult, StepError> {
-    let spec = RunSpec {
-        method: Method::Effective,
-        tolerance,
-        step: None,
-        t_end,
-        samples: 0,
-    };
-    run(problem, &spec, &mut |_| true)
 }

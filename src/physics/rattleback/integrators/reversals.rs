@@ -5,6 +5,7 @@
 //! reversal is reported per step; its time comes from the method's own locator.
 
 use super::Integrator;
+use crate::physics::flow::sign;
 
 /// Follows the sign of `α̇` from step to step.
 #[derive(Clone, Copy, Debug, Default)]
@@ -32,15 +33,5 @@ impl ReversalTracker {
         let reversed = self.last_sign != 0.0 && now != self.last_sign;
         self.last_sign = now;
         reversed.then(|| integrator.locate_alpha_dot_zero())
-    }
-}
-
-fn sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
     }
 }
