@@ -36,6 +36,10 @@ pub struct Cli {
     /// Replace an existing `--record` file.
     #[arg(long)]
     pub force: bool,
+    /// Sign recordings with this private key (`rattleback keygen NAME` makes one): the end
+    /// line carries an ed25519 signature that `replay --verify --key NAME.pub` checks.
+    #[arg(long, value_name = "KEYFILE")]
+    pub sign: Option<std::path::PathBuf>,
 }
 
 /// How the explorer (and a replay) draws: frame rate, theme, marker.
@@ -99,9 +103,20 @@ pub enum Command {
     Completions(CompletionsArgs),
     /// Print the manual page (roff) to stdout: `rattleback man > rattleback.1`.
     Man,
+    /// Make a signing key for recordings: writes `NAME.key` (private, mode 0600) and
+    /// `NAME.pub` (give it to whoever verifies); never replaces a file.
+    Keygen(KeygenArgs),
     /// Where the configuration file is (`config path`) or what it sets (`config show`).
     #[command(subcommand)]
     Config(ConfigCommand),
+}
+
+/// Arguments of `keygen`.
+#[derive(Debug, Args)]
+pub struct KeygenArgs {
+    /// The key's name and file stem (a path may go before it): `NAME.key` and `NAME.pub`.
+    #[arg(value_name = "NAME")]
+    pub name: std::path::PathBuf,
 }
 
 /// `config` subcommands.
@@ -129,6 +144,9 @@ pub struct LessonArgs {
     /// Replace an existing `--record` file.
     #[arg(long)]
     pub force: bool,
+    /// Sign recordings with this private key (see the explorer's `--sign`).
+    #[arg(long, value_name = "KEYFILE")]
+    pub sign: Option<std::path::PathBuf>,
 }
 
 /// Arguments of `follow`.
@@ -267,9 +285,15 @@ pub enum BenchPart {
 pub struct ReplayArgs {
     /// The session file.
     pub file: std::path::PathBuf,
-    /// Re-run it headless and check every checkpoint bit for bit (exit 1 on a divergence).
+    /// Check the file's integrity by its format's rules, then re-run it headless and check
+    /// every checkpoint bit for bit and every recorded screen (exit 1 on a divergence, a
+    /// tampered line or a file cut short).
     #[arg(long)]
     pub verify: bool,
+    /// With `--verify`: the lecturer's public key (`NAME.pub`); the session must be signed
+    /// with its private half.
+    #[arg(long, value_name = "PUBFILE", requires = "verify")]
+    pub key: Option<std::path::PathBuf>,
     /// Print the chapters with their times (wall clock of the recording and simulated time),
     /// then exit.
     #[arg(long)]

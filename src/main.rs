@@ -38,6 +38,7 @@ fn main() -> ExitCode {
         Some(Command::Follow(ref args)) => run_follow(args),
         Some(Command::Completions(args)) => commands::completions(args.shell),
         Some(Command::Man) => commands::man(),
+        Some(Command::Keygen(ref args)) => keygen(args),
         Some(Command::Config(ref c)) => commands::config(c),
         Some(Command::Bench(ref args)) => commands::bench(args),
         Some(Command::Study(ref command)) => commands::study(command),
@@ -147,8 +148,19 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
         ..asked
     };
     if args.verify {
-        match record::verify(&rec, &path) {
-            Ok(n) => say!("{path}: {n} checkpoint(s) reproduced bit for bit"),
+        let key = match args.key.as_deref().map(record::sign::PublicKey::read).transpose() {
+            Ok(k) => k,
+            Err(e) => {
+                say_err!("rattleback: error: --key: {e}");
+                return ExitCode::from(2);
+            }
+        };
+        match record::verify(&rec, &path, key.as_ref()) {
+            Ok(r) => print_report(&path, &r, None),
+            Err(record::VerifyError::Incomplete { through, report }) => {
+                print_report(&path, &report, Some(through));
+                return ExitCode::from(1);
+            }
             Err(record::VerifyError::Diverged(d)) => {
                 say_err!(
                     "rattleback: {path}:{}: divergence at t = {}: expected {}, got {}",
@@ -190,8 +202,43 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
         keys,
         lesson: None,
         follow: None,
+        sign: None,
     };
     explore(&setup, &preset, None, Some(rec))
+}
+
+/// What `replay --verify` checked; `cut` is the last intact line of a file cut short.
+fn print_report(path: &str, r: &record::Report, cut: Option<usize>) {
+    say!(
+        "{path}: {} checkpoint(s) reproduced bit for bit, {} screen(s) as recorded",
+        r.checkpoints,
+        r.screens
+    );
+    say!("{path}: {}", r.integrity);
+    match &r.signature {
+        Some(s) => say!("{path}: {s}"),
+        None if r.format >= 4 => say!("{path}: not signed (anyone can write a valid chain: only a signature says who made the file)"),
+        None => {}
+    }
+    if let Some(n) = cut {
+        say_err!(
+            "rattleback: {path}: incomplete: intact up to line {n}, but there is no end line (the recording was cut short, or its tail deleted)"
+        );
+    }
+}
+
+fn keygen(args: &rattleback::cli::KeygenArgs) -> ExitCode {
+    match record::sign::keygen(&args.name) {
+        Ok((secret, public)) => {
+            say!("{}: private key (mode 0600): record with --sign {}", secret.display(), secret.display());
+            say!("{}: public key: verify with replay FILE --verify --key {}", public.display(), public.display());
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            say_err!("rattleback: error: keygen: {e}");
+            ExitCode::from(2)
+        }
+    }
 }
 
 /// The theme of a replay: `--theme` when given, else the recorded one when this machine has a
@@ -297,6 +344,7 @@ fn run_follow(args: &rattleback::cli::FollowArgs) -> ExitCode {
         keys,
         lesson: None,
         follow: Some(args.file.clone()),
+        sign: None,
     };
     explore(&setup, &preset, None, Some(rec))
 }
@@ -334,6 +382,7 @@ fn run_lesson(args: &rattleback::cli::LessonArgs) -> ExitCode {
         keys,
         lesson: Some(lesson),
         follow: None,
+        sign: args.sign.clone(),
     };
     explore(&setup, &preset, args.record.clone(), None)
 }
@@ -365,6 +414,7 @@ fn run_explorer(cli: &Cli) -> ExitCode {
         keys,
         lesson: None,
         follow: None,
+        sign: cli.sign.clone(),
     };
     explore(&setup, &preset, cli.record.clone(), None)
 }
@@ -377,6 +427,7 @@ struct Setup {
     keys: UserKeys,
     lesson: Option<rattleback::scenario::lesson::Lesson>,
     follow: Option<std::path::PathBuf>,
+    sign: Option<std::path::PathBuf>,
 }
 
 fn explore(
@@ -385,6 +436,12 @@ fn explore(
     record: Option<std::path::PathBuf>,
     replay: Option<record::Recording>,
 ) -> ExitCode {
+    if let Some(key) = &setup.sign
+        && let Err(e) = record::sign::Signer::read(key)
+    {
+        say_err!("rattleback: error: --sign: {e}");
+        return ExitCode::from(2);
+    }
     let look = &setup.look;
     let marker = marker(look.marker);
     let theme = match rattleback::scenario::theme::theme(look.theme.as_deref().unwrap_or("default"))
@@ -408,6 +465,7 @@ fn explore(
         keys: setup.keys.clone(),
         lesson: setup.lesson.clone(),
         follow: setup.follow.clone(),
+        sign: setup.sign.clone(),
     };
     match explorer::run(preset, &options) {
         Ok(None) => ExitCode::SUCCESS,

@@ -75,7 +75,7 @@ fn lines_of(events: &[TailEvent]) -> Vec<Line> {
 fn lines_written_by_a_recorder_thread_arrive_within_half_a_second() {
     let d = dir("live");
     let path = d.join("lecture.jsonl");
-    let mut rec = Recorder::create(&path, &header()).unwrap();
+    let mut rec = Recorder::create(&path, &header(), None).unwrap();
     rec.write(&line(0.0, Event::Play)).unwrap();
     let (mut tail, first) = Tail::open(&path).unwrap();
     assert_eq!(first.lines.len(), 1);
@@ -89,7 +89,7 @@ fn lines_written_by_a_recorder_thread_arrive_within_half_a_second() {
                 .unwrap();
             written.push(Instant::now());
         }
-        rec.write(&line(3.5, Event::End)).unwrap();
+        rec.write(&line(3.5, Event::end())).unwrap();
         written
     });
     // The follower looks every 100 ms (the explorer: every 150 ms).
@@ -100,7 +100,7 @@ fn lines_written_by_a_recorder_thread_arrive_within_half_a_second() {
             for l in lines {
                 let v = match l.event {
                     Event::Speed { value } => value,
-                    Event::End => f64::NAN,
+                    Event::End { .. } => f64::NAN,
                     _ => continue,
                 };
                 arrived.push((v, Instant::now()));
@@ -139,7 +139,7 @@ fn a_partial_line_waits_for_its_newline() {
     use std::io::Write as _;
     let d = dir("partial");
     let path = d.join("s.jsonl");
-    drop(Recorder::create(&path, &header()).unwrap());
+    drop(Recorder::create(&path, &header(), None).unwrap());
     let (mut tail, _) = Tail::open(&path).unwrap();
     let text = serde_json::to_string(&line(0.5, Event::Pause)).unwrap();
     let (a, b) = text.split_at(text.len() / 2);
@@ -164,7 +164,7 @@ fn a_partial_line_waits_for_its_newline() {
 fn truncation_replacement_and_removal_are_survived_and_said() {
     let d = dir("survive");
     let path = d.join("s.jsonl");
-    let mut rec = Recorder::create(&path, &header()).unwrap();
+    let mut rec = Recorder::create(&path, &header(), None).unwrap();
     for i in 0..5 {
         rec.write(&line(f64::from(i), Event::Play)).unwrap();
     }
@@ -184,7 +184,7 @@ fn truncation_replacement_and_removal_are_survived_and_said() {
         other => panic!("{other:?}"),
     }
     std::fs::remove_file(&path).unwrap();
-    let mut rec = Recorder::create(&path, &header()).unwrap();
+    let mut rec = Recorder::create(&path, &header(), None).unwrap();
     rec.write(&line(0.0, Event::Reset)).unwrap();
     let seen = poll_until(&mut tail, &|s| {
         s.iter().any(|e| matches!(e, TailEvent::Restarted { .. }))
@@ -202,7 +202,7 @@ fn truncation_replacement_and_removal_are_survived_and_said() {
 
     // Replaced: another file renamed over the path.
     let other = d.join("other.jsonl");
-    let mut rec2 = Recorder::create(&other, &header()).unwrap();
+    let mut rec2 = Recorder::create(&other, &header(), None).unwrap();
     rec2.write(&line(0.0, Event::Step)).unwrap();
     std::fs::rename(&other, &path).unwrap();
     let seen = poll_until(&mut tail, &|s| !s.is_empty());
@@ -219,7 +219,7 @@ fn truncation_replacement_and_removal_are_survived_and_said() {
     let seen = poll_until(&mut tail, &|s| !s.is_empty());
     assert!(matches!(seen[0], TailEvent::Missing(_)), "{seen:?}");
     assert!(tail.poll().is_none(), "said once");
-    let mut rec3 = Recorder::create(&path, &header()).unwrap();
+    let mut rec3 = Recorder::create(&path, &header(), None).unwrap();
     rec3.write(&line(0.0, Event::Play)).unwrap();
     let seen = poll_until(&mut tail, &|s| !s.is_empty());
     match &seen[0] {
@@ -256,7 +256,7 @@ fn a_live_replay_applies_new_lines_and_keeps_the_lecturers_clock() {
     );
     assert!(h.app.replay.unwrap().at >= 2.0);
     // The end: said in the status bar's state, the clock stops.
-    let effects = r.push(vec![line(2.5, Event::End)], &mut h.app);
+    let effects = r.push(vec![line(2.5, Event::end())], &mut h.app);
     h.exec(effects);
     assert_eq!(h.app.replay.unwrap().live, Some(true));
     // Fork: the state stays, the replay's hold ends.

@@ -179,7 +179,7 @@ proptest! {
         let unchanged = mutated == text;
         std::fs::write(&out, &mutated).unwrap();
         let outcome = std::panic::catch_unwind(|| {
-            record::read(&out).map(|rec| record::verify(&rec, "mutated").map(|_| ()))
+            record::read(&out).map(|rec| record::verify(&rec, "mutated", None).map(|_| ()))
         });
         let _ = std::fs::remove_file(&out);
         prop_assert!(outcome.is_ok(), "panic");

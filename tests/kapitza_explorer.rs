@@ -370,7 +370,7 @@ fn a_recorded_pendulum_session_verifies() {
             .any(|(_, _, e)| matches!(e, Event::Set { field, .. } if field == "epsilon"))
     );
     let path = temp("pendulum.jsonl");
-    let mut rec = Recorder::create(&path, &header).unwrap();
+    let mut rec = Recorder::create(&path, &header, None).unwrap();
     for (i, (t, generation, event)) in journal.into_iter().enumerate() {
         rec.write(&Line {
             wall: i as f64 * 0.5,
@@ -381,10 +381,18 @@ fn a_recorded_pendulum_session_verifies() {
         })
         .unwrap();
     }
+    rec.write(&Line {
+        wall: 60.0,
+        t: 0.0,
+        generation: 0,
+        chain: None,
+        event: Event::end(),
+    })
+    .unwrap();
     drop(rec);
     let back = record::read(&path).unwrap();
     assert!(back.header.preset.contains("model = \"kapitza\""));
-    assert_eq!(record::verify(&back, "pendulum").unwrap(), 2);
+    assert_eq!(record::verify(&back, "pendulum", None).unwrap().checkpoints, 2);
     // Tampering with the state is caught.
     let text = std::fs::read_to_string(&path).unwrap();
     let tampered = temp("tampered.jsonl");
@@ -406,7 +414,7 @@ fn a_recorded_pendulum_session_verifies() {
     std::fs::write(&tampered, changed.join("\n") + "\n").unwrap();
     let back = record::read(&tampered);
     assert!(
-        back.map_or(true, |b| record::verify(&b, "tampered").is_err()),
+        back.map_or(true, |b| record::verify(&b, "tampered", None).is_err()),
         "a changed checkpoint is reported"
     );
 }

@@ -96,7 +96,7 @@ fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
     );
 
     let path = temp("recorded.jsonl");
-    let mut rec = Recorder::create(&path, &header).unwrap();
+    let mut rec = Recorder::create(&path, &header, None).unwrap();
     let lines: Vec<Line> = journal
         .into_iter()
         .enumerate()
@@ -111,12 +111,24 @@ fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
     for l in &lines {
         rec.write(l).unwrap();
     }
+    rec.write(&Line {
+        wall: 60.0,
+        t: 0.0,
+        generation: 0,
+        chain: None,
+        event: Event::end(),
+    })
+    .unwrap();
     drop(rec);
     let back = record::read(&path).unwrap();
     assert!(back.warnings.is_empty());
     assert_eq!(back.header, header);
+    assert!(
+        matches!(back.lines.last().unwrap().1.event, Event::End { lines: Some(n), .. } if n == lines.len() + 1),
+        "the end line counts the lines before it"
+    );
     assert_eq!(
-        back.lines
+        back.lines[..lines.len()]
             .iter()
             .map(|(_, l)| Line {
                 chain: None,
@@ -131,7 +143,7 @@ fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
     );
     // Bytes: writing what was read gives the same file.
     let again = temp("again.jsonl");
-    let mut rec = Recorder::create(&again, &back.header).unwrap();
+    let mut rec = Recorder::create(&again, &back.header, None).unwrap();
     for (_, l) in &back.lines {
         rec.write(l).unwrap();
     }
@@ -140,7 +152,7 @@ fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
         std::fs::read(&path).unwrap(),
         std::fs::read(&again).unwrap()
     );
-    assert_eq!(record::verify(&back, "recorded").unwrap(), 2);
+    assert_eq!(record::verify(&back, "recorded", None).unwrap().checkpoints, 2);
 }
 
 #[test]
@@ -181,11 +193,11 @@ fn checked_in_lesson_of_format_2_verifies_with_its_recorded_plans() {
     assert_eq!(rec.header.version, 2);
     let book = record::plan_book(&rec);
     assert_eq!(book.recorded.len(), 2, "one plan per run");
-    assert_eq!(record::verify(&rec, &path).unwrap(), 6);
+    assert_eq!(record::verify(&rec, &path, None).unwrap().checkpoints, 6);
     // A recorded plan wins over what auto would choose today: record another plan (with a
     // valid chain) and the trajectory, hence the first checkpoint after it, changes.
     let tmp = temp("lesson-changed-plan.jsonl");
-    let mut out = Recorder::create(&tmp, &rec.header).unwrap();
+    let mut out = Recorder::create(&tmp, &rec.header, None).unwrap();
     let mut changed = false;
     for (_, line) in &rec.lines {
         let mut line = line.clone();
@@ -199,7 +211,7 @@ fn checked_in_lesson_of_format_2_verifies_with_its_recorded_plans() {
     }
     drop(out);
     let back = record::read(&tmp).unwrap();
-    match record::verify(&back, "changed") {
+    match record::verify(&back, "changed", None) {
         Err(record::VerifyError::Diverged(d)) => {
             assert!(d.expected.contains("state"), "{d:?}");
         }
@@ -279,7 +291,7 @@ fn nothing_is_overwritten() {
         .unwrap()
         .header;
     assert!(matches!(
-        Recorder::create(&path, &header),
+        Recorder::create(&path, &header, None),
         Err(RecordError::Exists(_))
     ));
     assert_eq!(std::fs::read_to_string(&path).unwrap(), "keep me");
@@ -443,7 +455,11 @@ fn replay_teaches_notes_chapters_and_its_end() {
         h.play_until(3.0 * (i as f64 + 1.0), 1.0);
         h.key(Key::Char(' '));
     }
+    // One line a wall second (the clock lines, ten a second while playing, are left out here).
     for (t, generation, event) in h.app.take_journal() {
+        if event == Event::Clock {
+            continue;
+        }
         wall += 1.0;
         lines.push(Line {
             wall,

@@ -98,8 +98,30 @@ pub enum Event {
         /// Whether it was right.
         correct: bool,
     },
-    /// The recording was stopped: the last line of a finished session.
-    End,
+    /// The recording was stopped: the last line of a finished session. Format 4 on it counts
+    /// the lines before it (the header included), so a file cut short is found, and may carry
+    /// the lecturer's signature over the chain.
+    End {
+        /// Lines of the file before this one (format 4 on).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        lines: Option<usize>,
+        /// The signer's name (a signed format-4 session).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        signer: Option<String>,
+        /// The signer's ed25519 public key, hex.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        public_key: Option<String>,
+        /// The ed25519 signature of the chain value before this line, hex.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        signature: Option<String>,
+    },
+    /// The displayed time while playing (format 4 on): a follower never shows a time the
+    /// lecturer has not shown, and a replay moves between these exactly.
+    Clock,
+    /// What the lecturer's screen showed (format 4 on), at each pause, step, chapter, note,
+    /// lesson step and at the end: the status bar's values at the line's `t`. `replay --verify`
+    /// rebuilds the screen and compares them.
+    Screen(Shown),
     /// The concrete plan a run integrates (what `auto` resolved to), so replay uses it and no
     /// later change of `auto` can change an old session (format 2 on).
     Plan {
@@ -118,6 +140,74 @@ pub enum Event {
         /// FNV-1a of the bits of `t`, the state and the count, in hex.
         hash: String,
     },
+}
+
+impl Event {
+    /// An unsigned end line with no count (formats 1 to 3, and the app's own request).
+    #[must_use]
+    pub fn end() -> Self {
+        Self::End {
+            lines: None,
+            signer: None,
+            public_key: None,
+            signature: None,
+        }
+    }
+}
+
+/// The values of the status bar at a displayed time (the numbers a student reads).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Shown {
+    /// Playing (else paused or done).
+    pub playing: bool,
+    /// Events of the full motion shown (reversals, or the pendulum's swings).
+    pub events: usize,
+    /// Events of the limit shown, when the limit is drawn.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub limit_events: Option<usize>,
+    /// The pendulum's falls shown.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub falls: Option<usize>,
+    /// The displayed point: the slow coordinate, its rate and the energy error (none before the
+    /// first sample).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub point: Option<[f64; 3]>,
+    /// The method integrating, as the status bar names it.
+    pub method: String,
+    /// `auto`'s error estimate shown.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub estimate: Option<f64>,
+}
+
+impl Shown {
+    /// The first field whose value differs from `other`'s, with both values (bits compared).
+    #[must_use]
+    pub fn difference(&self, other: &Self) -> Option<String> {
+        let bits = |p: &Option<[f64; 3]>| p.map(|a| a.map(f64::to_bits));
+        let name = if self.playing != other.playing {
+            "playing"
+        } else if self.events != other.events {
+            "event count"
+        } else if self.limit_events != other.limit_events {
+            "limit's event count"
+        } else if self.falls != other.falls {
+            "falls"
+        } else if bits(&self.point) != bits(&other.point) {
+            "displayed point"
+        } else if self.method != other.method {
+            "method"
+        } else if self.estimate.map(f64::to_bits) != other.estimate.map(f64::to_bits) {
+            "estimate"
+        } else {
+            return None;
+        };
+        Some(format!(
+            "{name}: recorded {}, replayed {}",
+            serde_json::to_string(self).unwrap_or_default(),
+            serde_json::to_string(other).unwrap_or_default()
+        ))
+    }
 }
 
 /// FNV-1a (64-bit) of the bits of a checkpoint: stable across platforms and Rust versions.

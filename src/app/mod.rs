@@ -262,6 +262,15 @@ impl App {
 
     fn log(&mut self, event: Event) {
         if self.journal.state != RecState::Off {
+            self.journal.screen_due |= matches!(
+                event,
+                Event::Pause
+                    | Event::Step
+                    | Event::Chapter { .. }
+                    | Event::Note { .. }
+                    | Event::LessonStep { .. }
+                    | Event::Answer { .. }
+            );
             self.journal
                 .entries
                 .push((self.run.shown, self.run.generation, event));
@@ -456,13 +465,14 @@ impl App {
 
     /// Advances the displayed clock by `wall_seconds × speed` while playing.
     pub fn tick(&mut self, wall_seconds: f64) -> Vec<Effect> {
-        let effects = self
+        let mut effects: Vec<Effect> = self
             .run
             .tick(wall_seconds)
             .into_iter()
             .map(Effect::Sim)
             .collect();
         self.check_lesson();
+        effects.extend(self.journal_tick(wall_seconds));
         effects
     }
 

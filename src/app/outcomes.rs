@@ -14,6 +14,7 @@ impl App {
             }
             RecState::Off => vec![Effect::StartRecording],
             RecState::On => {
+                self.log_screen();
                 self.journal.state = RecState::Stopping;
                 self.status = Message::info("closing the recording…");
                 vec![self.checkpoint(), Effect::StopRecording]

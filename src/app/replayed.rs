@@ -4,8 +4,12 @@
 use super::fields::Field;
 use super::keys::Action;
 use super::panes::Pane;
-use super::{App, Caption, Effect, Message, Mode, SPEED_RANGE};
-use crate::app::journal::Event;
+use super::{App, Caption, Effect, Message, Mode, PlanState, RecState, SPEED_RANGE};
+use crate::app::journal::{Event, Shown};
+
+/// Wall seconds between two clock lines of a recording while the display moves: a follower
+/// lags the lecturer by about this much, and never leads.
+pub const CLOCK_EVERY: f64 = 0.1;
 use crate::scenario::Preset;
 use crate::scenario::text::clean;
 use crate::sim::Command;
@@ -92,8 +96,69 @@ impl App {
                 self.caption = lesson_caption(event, self.run.goal);
                 Vec::new()
             }
-            Event::Checkpoint { .. } | Event::Plan { .. } | Event::End => Vec::new(),
+            Event::Checkpoint { .. } | Event::Plan { .. } | Event::End { .. }
+            | Event::Clock
+            | Event::Screen(_) => Vec::new(),
         }
+    }
+
+    /// What the status bar shows now, as recorded values.
+    #[must_use]
+    pub fn shown(&self) -> Shown {
+        let run = &self.run;
+        let s = &self.scenario.settings;
+        let (method, estimate) = match run.plan {
+            PlanState::Running { plan, estimate } if plan.method != s.method => {
+                (format!("{}→{}", s.method, plan.method), estimate)
+            }
+            PlanState::Running { estimate, .. } => (s.method.to_string(), estimate),
+            _ => (s.method.to_string(), None),
+        };
+        Shown {
+            playing: run.playing,
+            events: run.reversals_shown(),
+            limit_events: self
+                .view
+                .overlay
+                .then(|| run.effective_reversals_shown()),
+            falls: run.falls_shown(),
+            point: run
+                .current()
+                .map(|p| [p.alpha, p.alpha_dot, p.energy_error]),
+            method,
+            estimate,
+        }
+    }
+
+    /// While recording: the screen a pause, step, chapter or note led to, once the display has
+    /// got there (with a checkpoint at the same time), and the displayed time every
+    /// [`CLOCK_EVERY`] wall seconds while it moves.
+    pub(super) fn journal_tick(&mut self, wall_seconds: f64) -> Vec<Effect> {
+        if self.journal.state != RecState::On {
+            return Vec::new();
+        }
+        let mut effects = Vec::new();
+        let settled = self.run.playing || self.run.done() || self.run.shown >= self.run.goal;
+        if self.journal.screen_due && settled {
+            self.journal.screen_due = false;
+            self.log_screen();
+            effects.push(self.checkpoint());
+        }
+        self.journal.since_clock += wall_seconds;
+        #[allow(clippy::float_cmp)]
+        let moved = self.run.shown != self.journal.clock_t;
+        if self.run.playing && moved && self.journal.since_clock >= CLOCK_EVERY {
+            self.journal.since_clock = 0.0;
+            self.journal.clock_t = self.run.shown;
+            self.log(Event::Clock);
+        }
+        effects
+    }
+
+    /// Journals the screen now.
+    pub(super) fn log_screen(&mut self) {
+        let shown = self.shown();
+        self.log(Event::Screen(shown));
     }
 
     /// Moves the displayed clock to a recorded time (replay).
@@ -101,12 +166,13 @@ impl App {
         vec![Effect::Sim(self.run.seek(t))]
     }
 
-    /// Asks the worker for the exact state at the time asked of it (journaled on arrival).
+    /// Asks the worker for the exact state at the displayed time (journaled on arrival): what
+    /// is recorded is what the screen shows, never the worker's look-ahead.
     #[must_use]
     pub fn checkpoint(&self) -> Effect {
         Effect::Sim(Command::Checkpoint {
             generation: self.run.generation,
-            t: self.run.target(),
+            t: self.run.shown,
         })
     }
 }

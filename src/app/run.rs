@@ -123,6 +123,9 @@ pub struct RunState {
     pub plan: PlanState,
     /// Steps per wall second, smoothed.
     pub rate: f64,
+    /// The latest time the display may show (a replay: the next recorded displayed time, so it
+    /// never shows a time the lecturer did not).
+    pub ceiling: Option<f64>,
     steps_at_tick: u64,
 }
 
@@ -149,6 +152,7 @@ impl RunState {
             steps: 0,
             plan: PlanState::Pending,
             rate: 0.0,
+            ceiling: None,
             steps_at_tick: 0,
         }
     }
@@ -219,6 +223,9 @@ impl RunState {
     pub fn step(&mut self, dt: f64) -> Command {
         self.playing = false;
         self.goal = (self.shown + dt).min(self.t_end);
+        // The worker may already be past the new goal (it computed ahead while playing): no
+        // sample will arrive to move the display, so move it now.
+        self.show();
         self.advance_command()
     }
 
@@ -230,7 +237,10 @@ impl RunState {
     }
 
     fn show(&mut self) {
-        self.shown = self.goal.min(self.reached);
+        self.shown = self
+            .goal
+            .min(self.reached)
+            .min(self.ceiling.unwrap_or(f64::INFINITY));
         if self.playing && self.finished && self.shown >= self.reached {
             self.playing = false;
         }

@@ -130,6 +130,11 @@ pub struct Journal {
     /// Whether one is on.
     pub state: RecState,
     pub(super) entries: Vec<(f64, u64, Event)>,
+    /// A pause, step, chapter, note or lesson event waits for the screen it leads to.
+    pub(super) screen_due: bool,
+    /// Wall seconds since the last clock line, and the displayed time it stamped.
+    pub(super) since_clock: f64,
+    pub(super) clock_t: f64,
 }
 
 /// A file-name-safe form of `name`: lower-case letters, digits and single dashes.

@@ -73,6 +73,8 @@ pub struct ExplorerOptions {
     /// Follow this session file as it is written (`rattleback follow FILE`; `replay` holds
     /// what it had when opened).
     pub follow: Option<std::path::PathBuf>,
+    /// Sign recordings with this private key (`--sign KEYFILE`; checked at start-up).
+    pub sign: Option<std::path::PathBuf>,
 }
 
 fn input_thread(tx: SyncSender<AppEvent>, stop: Arc<AtomicBool>) -> std::thread::JoinHandle<()> {
@@ -163,7 +165,7 @@ fn follow_event(
         TailEvent::Lines(lines) => {
             let ended = lines
                 .iter()
-                .any(|l| matches!(l.event, crate::app::journal::Event::End));
+                .any(|l| matches!(l.event, crate::app::journal::Event::End { .. }));
             let effects = r.push(lines, app);
             if ended {
                 app.notice("the lecturer's recording ended; f forks, q quits");
@@ -301,7 +303,7 @@ impl Shell<'_> {
             ),
         };
         let size = ratatui::crossterm::terminal::size().unwrap_or((80, 24));
-        match ActiveRecording::start(app, &path, size, self.options.fps) {
+        match ActiveRecording::start(app, &path, size, self.options.fps, self.options.sign.as_deref()) {
             Ok(r) => {
                 let p = r.path();
                 self.recording = Some(r);

@@ -54,9 +54,14 @@ impl ActiveRecording {
         path: &std::path::Path,
         size: (u16, u16),
         fps: f64,
+        sign: Option<&std::path::Path>,
     ) -> Result<Self, String> {
-        let recorder =
-            Recorder::create(path, &header(app, size, fps)).map_err(|e| e.to_string())?;
+        let signer = sign
+            .map(crate::record::sign::Signer::read)
+            .transpose()
+            .map_err(|e| e.to_string())?;
+        let recorder = Recorder::create(path, &header(app, size, fps), signer)
+            .map_err(|e| e.to_string())?;
         let now = Instant::now();
         Ok(Self {
             recorder,
@@ -93,7 +98,7 @@ impl ActiveRecording {
         }
         if checkpoint && self.stopping {
             // The last line says the recording is over (a follower shows it).
-            self.write(wall, last.0, last.1, Event::End)?;
+            self.write(wall, last.0, last.1, Event::end())?;
             return Ok(Some(Outcome::RecordingSaved(self.path())));
         }
         Ok(None)

@@ -45,7 +45,7 @@ impl Replayer {
     pub fn live(lines: Vec<Line>, now: f64) -> Self {
         let ended = lines
             .last()
-            .is_some_and(|l| matches!(l.event, crate::app::journal::Event::End));
+            .is_some_and(|l| matches!(l.event, crate::app::journal::Event::End { .. }));
         let mut me = Self::new(lines);
         me.live = Some(ended);
         me.clock = now;
@@ -59,7 +59,7 @@ impl Replayer {
             if matches!(line.event, crate::app::journal::Event::Chapter { .. }) {
                 self.chapters.push(self.lines.len());
             }
-            if matches!(line.event, crate::app::journal::Event::End) {
+            if matches!(line.event, crate::app::journal::Event::End { .. }) {
                 self.live = Some(true);
             }
             if !self.paused && line.wall > self.clock + 0.5 {
@@ -116,6 +116,13 @@ impl Replayer {
             effects.extend(app.apply_event(&line.event));
             self.next += 1;
         }
+        // The display moves between recorded displayed times, never past the next one (while
+        // following, past the last one received).
+        app.run.ceiling = match self.lines.get(self.next) {
+            Some(next) => Some(next.t),
+            None if self.live == Some(false) => self.next.checked_sub(1).map(|i| self.lines[i].t),
+            None => None,
+        };
         app.set_replay(self.info());
         effects
     }

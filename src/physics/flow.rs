@@ -53,6 +53,9 @@ pub trait Flow: Send {
     fn energy(&self) -> f64;
     /// Work counters.
     fn stats(&self) -> Stats;
+    /// A copy of this integration in its current state: stepping the copy gives the same bits
+    /// as stepping the original (the explorer rewinds to a displayed time with it).
+    fn boxed(&self) -> Box<dyn Flow>;
 }
 
 /// Follows the sign of a flow's event function from step to step.

@@ -320,6 +320,9 @@ impl RattlebackFlow {
 }
 
 impl Flow for RattlebackFlow {
+    fn boxed(&self) -> Box<dyn Flow> {
+        Box::new(Self(self.0.boxed()))
+    }
     fn method(&self) -> Method {
         self.0.method()
     }

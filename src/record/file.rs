@@ -5,6 +5,7 @@ use std::io::{BufWriter, Write};
 use std::path::Path;
 
 use super::{FORMAT, Header, Line, RecordError, VERSION};
+use crate::app::journal::Event;
 
 /// Writes a session as it goes, one flushed line per event.
 pub struct Recorder {
@@ -12,6 +13,13 @@ pub struct Recorder {
     path: String,
     /// The chain value of the last line written.
     chain: String,
+    /// Lines written, the header included.
+    lines: usize,
+    /// Signs the end line, when the lecturer asked.
+    signer: Option<super::sign::Signer>,
+    /// The header's format version: lines are written by its rules (older versions only to
+    /// write an old file again, in the tests).
+    version: u32,
 }
 
 impl Recorder {
@@ -19,7 +27,11 @@ impl Recorder {
     ///
     /// # Errors
     /// The file exists or cannot be written.
-    pub fn create(path: &Path, header: &Header) -> Result<Self, RecordError> {
+    pub fn create(
+        path: &Path,
+        header: &Header,
+        signer: Option<super::sign::Signer>,
+    ) -> Result<Self, RecordError> {
         let label = path.display().to_string();
         let file = File::options()
             .write(true)
@@ -39,47 +51,88 @@ impl Recorder {
             out: BufWriter::new(file),
             path: label,
             chain: String::new(),
+            lines: 0,
+            signer,
+            version: header.version,
         };
-        me.chain = me.write_json(header)?;
+        let text = me.to_json(header)?;
+        me.write_text(&text)?;
+        me.chain = text;
         Ok(me)
     }
 
-    /// Writes one JSON line; returns its text.
-    fn write_json<T: serde::Serialize>(&mut self, value: &T) -> Result<String, RecordError> {
+    fn to_json<T: serde::Serialize>(&self, value: &T) -> Result<String, RecordError> {
+        serde_json::to_string(value).map_err(|e| RecordError::Io {
+            path: self.path.clone(),
+            source: std::io::Error::other(e),
+        })
+    }
+
+    /// Writes one line and flushes it.
+    fn write_text(&mut self, text: &str) -> Result<(), RecordError> {
         let io = |source| RecordError::Io {
             path: self.path.clone(),
             source,
         };
-        let text = serde_json::to_string(value).map_err(|e| RecordError::Io {
-            path: self.path.clone(),
-            source: std::io::Error::other(e),
-        })?;
         self.out.write_all(text.as_bytes()).map_err(io)?;
         self.out.write_all(b"\n").map_err(io)?;
         self.out.flush().map_err(io)?;
-        Ok(text)
+        self.lines += 1;
+        Ok(())
     }
 
-    /// Appends one event and flushes it.
+    /// Appends one event and flushes it: its exact bytes, then its chain value (SHA-256 of the
+    /// previous value and those bytes) as the last field. An end line gets the count of the
+    /// lines before it and, with a key, the signature.
     ///
     /// # Errors
     /// When the file cannot be written.
     pub fn write(&mut self, line: &Line) -> Result<(), RecordError> {
-        let bare = Line {
+        let mut bare = Line {
             chain: None,
             ..line.clone()
         };
-        let text = serde_json::to_string(&bare).map_err(|e| RecordError::Io {
-            path: self.path.clone(),
-            source: std::io::Error::other(e),
-        })?;
-        let chain = super::chain_after(&self.chain, &text);
-        self.write_json(&Line {
-            chain: Some(chain.clone()),
-            ..bare
-        })?;
+        if self.version < 4 {
+            let text = self.to_json(&bare)?;
+            let chain = super::chain_after(&self.chain, &text);
+            let text = self.to_json(&Line {
+                chain: Some(chain.clone()),
+                ..bare
+            })?;
+            self.write_text(&text)?;
+            self.chain = chain;
+            return Ok(());
+        }
+        if let Event::End { .. } = bare.event {
+            bare.event = self.end_event();
+        }
+        let text = self.to_json(&bare)?;
+        let chain = super::chain_sha256(&self.chain, &text);
+        let body = text.strip_suffix('}').unwrap_or(&text);
+        self.write_text(&format!("{body},\"chain\":\"{chain}\"}}"))?;
         self.chain = chain;
         Ok(())
+    }
+
+    /// The end line of this file: the count, and the signature when there is a signer.
+    fn end_event(&self) -> Event {
+        let lines = self.lines;
+        let Some(signer) = &self.signer else {
+            return Event::End {
+                lines: Some(lines),
+                signer: None,
+                public_key: None,
+                signature: None,
+            };
+        };
+        let public = signer.public().hex();
+        let message = super::sign::message(&self.chain, lines, &signer.name, &public);
+        Event::End {
+            lines: Some(lines),
+            signer: Some(signer.name.clone()),
+            signature: Some(signer.sign(&message)),
+            public_key: Some(public),
+        }
     }
 
     /// The file being written.
@@ -98,6 +151,8 @@ pub struct Recording {
     pub header_text: String,
     /// `(1-based line number, event)`.
     pub lines: Vec<(usize, Line)>,
+    /// The exact text of each of `lines` (what format 4's chain covers).
+    pub raw: Vec<String>,
     /// Things tolerated, such as a truncated last line.
     pub warnings: Vec<String>,
 }
@@ -160,6 +215,7 @@ pub fn read(path: &Path) -> Result<Recording, RecordError> {
         serde_json::from_value(probe).map_err(|e| corrupt(1, format!("bad header: {e}")))?;
     super::check_header(&header).map_err(|e| corrupt(1, e))?;
     let mut lines = Vec::new();
+    let mut raw = Vec::new();
     let mut warnings = Vec::new();
     for (i, row) in rows {
         let number = i + 1;
@@ -181,7 +237,10 @@ pub fn read(path: &Path) -> Result<Recording, RecordError> {
                     format!("t = {}: not a finite time", line.t),
                 ));
             }
-            Ok(line) => lines.push((number, line)),
+            Ok(line) => {
+                lines.push((number, line));
+                raw.push(row.trim_end_matches(['\n', '\r']).to_owned());
+            }
             Err(e) if !row.ends_with('\n') => {
                 warnings.push(format!(
                     "{label}:{number}: truncated last line ignored ({e})"
@@ -194,6 +253,7 @@ pub fn read(path: &Path) -> Result<Recording, RecordError> {
         header,
         header_text: first.trim_end_matches(['\n', '\r']).to_owned(),
         lines,
+        raw,
         warnings,
     })
 }

@@ -15,11 +15,12 @@
 //! Nothing here draws: the cast export, which renders, lives above both (`crate::cast`).
 
 mod file;
+pub mod sign;
 pub mod tail;
 mod verify;
 
 pub use file::{Recorder, Recording, read};
-pub use verify::{Divergence, VerifyError, plan_book, start, verify};
+pub use verify::{Divergence, Report, VerifyError, plan_book, start, verify};
 
 use serde::{Deserialize, Serialize};
 
@@ -28,7 +29,9 @@ use crate::app::journal::Event;
 /// The `format` field of every session file.
 pub const FORMAT: &str = "rattleback-session";
 /// The format version this build writes (it reads 1 to this). 3: the header names its theme.
-pub const VERSION: u32 = 3;
+/// 4: a SHA-256 chain over every byte of every line, an end line with the count (and an optional
+/// signature), checkpoints and events at the displayed time, `clock` and `screen` lines.
+pub const VERSION: u32 = 4;
 
 /// First line of a session file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
@@ -171,6 +174,18 @@ pub fn chain_after(previous: &str, text: &str) -> String {
         h = h.wrapping_mul(0x0000_0100_0000_01b3);
     }
     format!("{h:016x}")
+}
+
+/// The format-4 chain value after the line whose exact bytes are `text` (before its chain
+/// field): SHA-256 of the previous value, a newline and the text, in hex.
+#[must_use]
+pub fn chain_sha256(previous: &str, text: &str) -> String {
+    use sha2::Digest as _;
+    let mut h = sha2::Sha256::new();
+    h.update(previous.as_bytes());
+    h.update(b"\n");
+    h.update(text.as_bytes());
+    hex::encode(h.finalize())
 }
 
 /// Sane bounds on a header, checked before anything is built from it.

@@ -70,7 +70,7 @@ impl Tail {
         let ended = recording
             .lines
             .last()
-            .is_some_and(|(_, l)| matches!(l.event, Event::End));
+            .is_some_and(|(_, l)| matches!(l.event, Event::End { .. }));
         let tail = Self {
             path: path.to_path_buf(),
             offset: complete,
@@ -151,7 +151,7 @@ impl Tail {
             // A corrupt line is skipped (a follower shows what it can); the lecturer's
             // `replay --verify` is what judges the file.
             if let Ok(line) = serde_json::from_str::<Line>(&text) {
-                self.ended |= matches!(line.event, Event::End);
+                self.ended |= matches!(line.event, Event::End { .. });
                 lines.push(line);
             }
         }

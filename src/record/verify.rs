@@ -8,6 +8,7 @@ use crate::app::{App, Effect, Options};
 use crate::physics::plan::AutoPolicy;
 use crate::scenario::Preset;
 use crate::sim::{Command, Engine, PlanBook, SimEvent, drive};
+use super::sign::PublicKey;
 
 /// The first checkpoint that did not reproduce.
 #[derive(Clone, Debug, PartialEq)]
@@ -25,12 +26,36 @@ pub struct Divergence {
 /// Why a session did not verify.
 #[derive(Debug, thiserror::Error)]
 pub enum VerifyError {
-    /// A checkpoint did not reproduce.
+    /// A checkpoint or a screen did not reproduce, or a line fails the file's integrity check.
     #[error("{}: divergence at t = {}: expected {}, got {}", .0.line, .0.t, .0.expected, .0.got)]
     Diverged(Divergence),
+    /// Everything there is checks, but the file has no end line: it was cut short (a crash, a
+    /// lost connection, or a deleted tail).
+    #[error("incomplete: intact up to line {through}, but it has no end line (cut short)")]
+    Incomplete {
+        /// The last line checked.
+        through: usize,
+        /// What was checked.
+        report: Report,
+    },
     /// The file itself is bad.
     #[error(transparent)]
     Record(#[from] RecordError),
+}
+
+/// What `replay --verify` checked.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Report {
+    /// The format version the header claims (and the rules it was checked by).
+    pub format: u32,
+    /// Checkpoints reproduced bit for bit.
+    pub checkpoints: usize,
+    /// Screens (status-bar values) reproduced.
+    pub screens: usize,
+    /// What the file's integrity check covers, in words.
+    pub integrity: String,
+    /// "signed by NAME (key FINGERPRINT)", with whether it was checked against a given key.
+    pub signature: Option<String>,
 }
 
 /// How `auto` resolves in a replay of `rec`: the plans it recorded, and for format 1 files
@@ -74,30 +99,89 @@ pub fn start(rec: &Recording, path: &str) -> Result<(App, Vec<Effect>), RecordEr
     Ok(App::new(&preset, Options::at(rec.header.fps)))
 }
 
-/// The commands that decide the trajectory: restarts, the overlay and checkpoints. Pacing
-/// (`AdvanceTo`) and the computed panes (sweep, weak-*, map) are dropped: trajectories do not
-/// depend on them.
-fn trajectory(effects: Vec<Effect>) -> Vec<Command> {
-    commands(effects)
-        .into_iter()
-        .filter(|c| {
-            !matches!(
-                c,
-                Command::AdvanceTo { .. }
-                    | Command::Sweep { .. }
-                    | Command::Weak { .. }
-                    | Command::Map { .. }
-            )
-        })
-        .collect()
+fn tampered(line: usize, t: f64, expected: impl Into<String>, got: impl Into<String>) -> VerifyError {
+    VerifyError::Diverged(Divergence {
+        line,
+        t,
+        expected: expected.into(),
+        got: got.into(),
+    })
 }
 
-/// Checks the hash chain of a format-2 file: the first line whose chain differs is named (an
-/// edited, deleted or inserted line there or just before).
-fn check_chain(rec: &Recording) -> Result<(), VerifyError> {
-    if rec.header.version < 2 {
-        return Ok(());
+/// A field a file of format `version` cannot have: the line's kind, if it is one.
+fn newer_than(version: u32, line: &super::Line) -> Option<&'static str> {
+    let fnv = |c: &str| c.len() == 16;
+    match &line.event {
+        Event::Clock | Event::Screen(_) if version < 4 => Some("a clock or screen line (format 4)"),
+        Event::End {
+            lines,
+            signer,
+            public_key,
+            signature,
+        } if version < 4
+            && (lines.is_some() || signer.is_some() || public_key.is_some() || signature.is_some()) =>
+        {
+            Some("a counted or signed end line (format 4)")
+        }
+        Event::Plan { .. } if version < 2 => Some("a plan line (format 2)"),
+        _ => match line.chain.as_deref() {
+            Some(_) if version < 2 => Some("a hash chain (format 2)"),
+            Some(c) if version < 4 && !fnv(c) => Some("a SHA-256 chain (format 4)"),
+            _ => None,
+        },
     }
+}
+
+/// Checks the file by the rules of the format its header claims: no field of a newer format
+/// (a downgraded header fails), the chain (FNV-1a in formats 2 and 3, SHA-256 over every byte
+/// in format 4), the end line's count and signature. Returns what was checked and the signer;
+/// `Err(Incomplete)` is decided by the caller once the rest has verified.
+fn check_integrity(
+    rec: &Recording,
+    key: Option<&PublicKey>,
+) -> Result<(String, Option<String>, bool), VerifyError> {
+    let version = rec.header.version;
+    for (number, line) in &rec.lines {
+        if let Some(what) = newer_than(version, line) {
+            return Err(tampered(
+                *number,
+                line.t,
+                format!("a format-{version} file, as its header says"),
+                format!("{what}: the header's version was changed, or the line was added"),
+            ));
+        }
+    }
+    if version < 2 {
+        if key.is_some() {
+            return Err(tampered(1, 0.0, "a signed session", "format 1 has no signatures"));
+        }
+        return Ok((
+            "format 1: no hash chain; only the checkpoints are checked (an edit elsewhere is not detected)".to_owned(),
+            None,
+            true,
+        ));
+    }
+    if version < 4 {
+        check_fnv(rec)?;
+        if key.is_some() {
+            return Err(tampered(1, 0.0, "a signed session", format!("format {version} has no signatures")));
+        }
+        return Ok((
+            format!("format {version}: FNV-1a chain over each line as read (finds accidental edits, not deliberate ones; a cut tail is not detected)"),
+            None,
+            true,
+        ));
+    }
+    let (signature, ended) = check_sha256(rec, key)?;
+    Ok((
+        "format 4: SHA-256 chain over every byte of every line, end line with the line count".to_owned(),
+        signature,
+        ended,
+    ))
+}
+
+/// Formats 2 and 3: the FNV-1a chain over each line as serialized again.
+fn check_fnv(rec: &Recording) -> Result<(), VerifyError> {
     let mut previous = rec.header_text.clone();
     for (number, line) in &rec.lines {
         let bare = serde_json::to_string(&super::Line {
@@ -107,74 +191,236 @@ fn check_chain(rec: &Recording) -> Result<(), VerifyError> {
         .unwrap_or_default();
         let expected = super::chain_after(&previous, &bare);
         if line.chain.as_deref() != Some(expected.as_str()) {
-            return Err(VerifyError::Diverged(Divergence {
-                line: *number,
-                t: line.t,
-                expected: format!("hash chain {expected}"),
-                got: format!(
+            return Err(tampered(
+                *number,
+                line.t,
+                format!("hash chain {expected}"),
+                format!(
                     "{} (this line, or the one before it, was edited, deleted or inserted)",
                     line.chain.as_deref().unwrap_or("no chain")
                 ),
-            }));
+            ));
         }
         previous = expected;
     }
     Ok(())
 }
 
-/// Re-runs `rec` and compares every checkpoint. `Ok(n)`: all `n` checkpoints reproduced.
-///
-/// # Errors
-/// A bad header preset, or the first divergence.
-pub fn verify(rec: &Recording, path: &str) -> Result<usize, VerifyError> {
-    check_chain(rec)?;
-    let (mut app, effects) = start(rec, path)?;
-    let mut engine = Engine::new(plan_book(rec));
-    drive(&mut engine, trajectory(effects), &mut |_| {});
-    let mut checked = 0;
-    for (number, line) in &rec.lines {
-        if let Event::Checkpoint {
-            state,
-            reversals,
-            hash,
+/// Format 4: every line is its exact bytes and then its chain (`,"chain":"<64 hex>"}`), the
+/// bytes are the canonical form of what they say (no unknown, repeated or reordered field),
+/// the end line is last, counts the lines before it and, when signed, its signature holds.
+/// Returns the signature's description and whether the file has its end line.
+fn check_sha256(
+    rec: &Recording,
+    key: Option<&PublicKey>,
+) -> Result<(Option<String>, bool), VerifyError> {
+    const TAIL: usize = r#","chain":""#.len() + 64 + r#""}"#.len();
+    let mut previous = rec.header_text.clone();
+    let mut signature = None;
+    let mut ended = false;
+    for ((number, line), raw) in rec.lines.iter().zip(&rec.raw) {
+        let (number, t) = (*number, line.t);
+        if ended {
+            return Err(tampered(number, t, "nothing after the end line", "another line"));
+        }
+        let split = raw.len().checked_sub(TAIL).filter(|&i| raw.is_char_boundary(i));
+        let Some((body, tail)) = split.map(|i| raw.split_at(i)) else {
+            return Err(tampered(number, t, "a line ending in its chain", "a line without one"));
+        };
+        let chain = tail
+            .strip_prefix(r#","chain":""#)
+            .and_then(|c| c.strip_suffix(r#""}"#))
+            .filter(|c| c.bytes().all(|b| b.is_ascii_hexdigit()));
+        let Some(chain) = chain else {
+            return Err(tampered(number, t, "a line ending in its chain", "a line without one"));
+        };
+        let bare = format!("{body}}}");
+        let canonical = serde_json::to_string(&super::Line {
+            chain: None,
+            ..line.clone()
+        })
+        .unwrap_or_default();
+        if bare != canonical {
+            return Err(tampered(
+                number,
+                t,
+                "the line as this format writes it",
+                "an unknown, repeated or reordered field (the line was edited)",
+            ));
+        }
+        let expected = super::chain_sha256(&previous, &bare);
+        if chain != expected {
+            return Err(tampered(
+                number,
+                t,
+                format!("chain {expected}"),
+                format!("{chain} (this line, or one before it, was edited, deleted or inserted)"),
+            ));
+        }
+        if let Event::End {
+            lines,
+            signer,
+            public_key,
+            signature: sig,
         } = &line.event
         {
-            let mut got = None;
-            drive(
-                &mut engine,
-                vec![Command::Checkpoint {
+            ended = true;
+            if *lines != Some(number - 1) {
+                return Err(tampered(
+                    number,
+                    t,
+                    format!("an end line counting {} lines before it", number - 1),
+                    format!("{lines:?}"),
+                ));
+            }
+            signature = check_signature(number, t, &previous, (signer, public_key, sig), key)?;
+        }
+        previous = expected;
+    }
+    if key.is_some() && signature.is_none() && ended {
+        let last = rec.lines.last().map_or(1, |(n, _)| *n);
+        return Err(tampered(last, 0.0, "a session signed with the given key", "an unsigned session"));
+    }
+    Ok((signature, ended))
+}
+
+type SignatureFields<'a> = (&'a Option<String>, &'a Option<String>, &'a Option<String>);
+
+/// The end line's signature: none, or valid (and made by `key` when one is given).
+fn check_signature(
+    number: usize,
+    t: f64,
+    chain: &str,
+    (signer, public_key, signature): SignatureFields<'_>,
+    key: Option<&PublicKey>,
+) -> Result<Option<String>, VerifyError> {
+    let (Some(signer), Some(public), Some(signature)) = (signer, public_key, signature) else {
+        if signer.is_some() || public_key.is_some() || signature.is_some() {
+            return Err(tampered(number, t, "a whole signature (signer, key, signature)", "part of one"));
+        }
+        return Ok(None);
+    };
+    let message = super::sign::message(chain, number - 1, signer, public);
+    if !super::sign::check(public, &message, signature) {
+        return Err(tampered(number, t, "a valid signature", "a signature that does not match the file"));
+    }
+    let fingerprint = super::sign::fingerprint(public);
+    let signer = crate::scenario::text::clean(signer);
+    match key {
+        Some(k) if k.hex() != *public => Err(tampered(
+            number,
+            t,
+            format!("signed by {} (key {})", k.name, k.fingerprint()),
+            format!("signed by another key: '{signer}' (key {fingerprint})"),
+        )),
+        Some(k) => Ok(Some(format!("signed by {} (key {fingerprint}, checked against {})", k.name, k.name))),
+        None => Ok(Some(format!(
+            "signed by '{signer}' (key {fingerprint}; not checked against a key you trust: pass --key FILE.pub)"
+        ))),
+    }
+}
+
+/// Runs `effects` on the engine, the app taking every event (as the explorer's loop does);
+/// the computed panes are dropped (they change nothing recorded). A checkpoint's state is kept.
+fn run(
+    engine: &mut Engine,
+    app: &mut App,
+    effects: Vec<Effect>,
+    got: &mut Option<(f64, Vec<f64>, usize)>,
+) {
+    let commands = commands(effects)
+        .into_iter()
+        .filter(|c| {
+            !matches!(
+                c,
+                Command::Sweep { .. } | Command::Weak { .. } | Command::Map { .. }
+            )
+        })
+        .collect();
+    drive(engine, commands, &mut |e| {
+        if let SimEvent::Checkpoint {
+            t,
+            ref state,
+            reversals,
+            ..
+        } = e
+        {
+            *got = Some((t, state.clone(), reversals));
+        }
+        app.on_sim(e);
+    });
+}
+
+/// Re-runs `rec` as a replay does (each line at its recorded displayed time) and compares every
+/// checkpoint bit for bit and every screen's values; checks the file's integrity first by the
+/// rules of its format (and the signature against `key` when given).
+///
+/// # Errors
+/// A bad header preset, the first line that fails, or a file cut short.
+pub fn verify(rec: &Recording, path: &str, key: Option<&PublicKey>) -> Result<Report, VerifyError> {
+    let (integrity, signature, ended) = check_integrity(rec, key)?;
+    let (mut app, effects) = start(rec, path)?;
+    let mut engine = Engine::new(plan_book(rec));
+    let mut got = None;
+    run(&mut engine, &mut app, effects, &mut got);
+    let mut report = Report {
+        format: rec.header.version,
+        checkpoints: 0,
+        screens: 0,
+        integrity,
+        signature,
+    };
+    for (number, line) in &rec.lines {
+        let mut effects = app.seek(line.t);
+        // Samples a little past the time, so the display reaches it exactly (a worker that
+        // computes ahead has them; the trajectory does not depend on how far it computes).
+        effects.push(Effect::Sim(Command::AdvanceTo {
+            generation: app.run.generation,
+            t: app.run.goal + 2.0 * app.scenario.derived.sample_dt,
+        }));
+        match &line.event {
+            Event::Checkpoint {
+                state,
+                reversals,
+                hash,
+            } => {
+                effects.push(Effect::Sim(Command::Checkpoint {
                     generation: app.run.generation,
                     t: line.t,
-                }],
-                &mut |e| {
-                    if let SimEvent::Checkpoint {
-                        t,
-                        state,
-                        reversals,
-                        ..
-                    } = e
-                    {
-                        got = Some((t, state, reversals));
-                    }
-                },
-            );
-            let (got_t, got_state, got_rev) =
-                got.unwrap_or_else(|| (line.t, vec![f64::NAN; state.len()], usize::MAX));
-            let got_hash = state_hash(got_t, &got_state, got_rev);
-            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-            if got_hash != *hash || bits(&got_state) != bits(state) || got_rev != *reversals {
-                return Err(VerifyError::Diverged(Divergence {
-                    line: *number,
-                    t: line.t,
-                    expected: format!("state {state:?}, {reversals} reversals, hash {hash}"),
-                    got: format!("state {got_state:?}, {got_rev} reversals, hash {got_hash}"),
                 }));
+                got = None;
+                run(&mut engine, &mut app, effects, &mut got);
+                let (got_t, got_state, got_rev) =
+                    got.take().unwrap_or_else(|| (line.t, vec![f64::NAN; state.len()], usize::MAX));
+                let got_hash = state_hash(got_t, &got_state, got_rev);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                if got_hash != *hash || bits(&got_state) != bits(state) || got_rev != *reversals {
+                    return Err(tampered(
+                        *number,
+                        line.t,
+                        format!("state {state:?}, {reversals} reversals, hash {hash}"),
+                        format!("state {got_state:?}, {got_rev} reversals, hash {got_hash}"),
+                    ));
+                }
+                report.checkpoints += 1;
             }
-            checked += 1;
-        } else {
-            let effects = app.apply_event(&line.event);
-            drive(&mut engine, trajectory(effects), &mut |_| {});
+            Event::Screen(recorded) => {
+                run(&mut engine, &mut app, effects, &mut got);
+                let replayed = app.shown();
+                if let Some(d) = recorded.difference(&replayed) {
+                    return Err(tampered(*number, line.t, "the lecturer's screen", format!("a different screen: {d}")));
+                }
+                report.screens += 1;
+            }
+            event => {
+                effects.extend(app.apply_event(event));
+                run(&mut engine, &mut app, effects, &mut got);
+            }
         }
     }
-    Ok(checked)
+    if !ended {
+        let through = rec.lines.last().map_or(1, |(n, _)| *n);
+        return Err(VerifyError::Incomplete { through, report });
+    }
+    Ok(report)
 }

@@ -325,14 +325,12 @@ impl Engine {
         }
         if let Some(c) = due.filter(|c| *c <= target) {
             self.checkpoints.pop_front();
-            // A time the run has already passed (it ran ahead of a pause) is served by the end
-            // of its current step instead: the event says which time it is, and a replay
-            // reaches exactly that step end.
-            let at = if c < s.time_prev_step() { s.time() } else { c };
-            if let Some((state, reversals)) = s.checkpoint(at)
+            // Exactly at the time asked, even when the run has passed it (it computes ahead
+            // of the display): the session integrates again from a snapshot.
+            if let Some((state, reversals)) = s.checkpoint(c)
                 && !sink(SimEvent::Checkpoint {
                     generation,
-                    t: at,
+                    t: c,
                     state,
                     reversals,
                 })

@@ -4,6 +4,8 @@
 //! The grid (`i · sample_dt`, and `t_end` exactly) depends on the dynamics only, never on the
 //! playback speed or the frame rate, so the trail at ×1024 is the same curve as at ×1.
 
+use std::collections::VecDeque;
+
 use serde::{Deserialize, Serialize};
 
 use super::SimEvent;
@@ -47,6 +49,100 @@ pub struct Point {
     pub gamma: f64,
 }
 
+/// Steps between two snapshots of the full motion, at first (the spacing doubles whenever
+/// [`MAX_SNAPSHOTS`] are kept).
+const SNAPSHOT_EVERY: u64 = 32;
+/// Most snapshots kept: memory stays bounded however far the worker runs ahead.
+const MAX_SNAPSHOTS: usize = 256;
+
+/// The full motion at a step boundary: enough to integrate again from there, bit for bit.
+struct Snapshot {
+    integrator: Box<dyn Flow>,
+    tracker: EventTracker,
+    reversals: usize,
+    last_reversal: Option<f64>,
+}
+
+impl Snapshot {
+    fn of(track: &Track) -> Self {
+        Self {
+            integrator: track.integrator.boxed(),
+            tracker: track.tracker,
+            reversals: track.reversals,
+            last_reversal: track.last_reversal,
+        }
+    }
+
+    fn time(&self) -> f64 {
+        self.integrator.time()
+    }
+}
+
+/// Snapshots of the full motion behind the worker's look-ahead, so the exact state at a time the
+/// screen shows (a pause, a checkpoint) can be had after the worker has integrated past it.
+struct Rewind {
+    snapshots: VecDeque<Snapshot>,
+    every: u64,
+    since: u64,
+}
+
+impl Rewind {
+    fn new(track: &Track) -> Self {
+        Self {
+            snapshots: VecDeque::from([Snapshot::of(track)]),
+            every: SNAPSHOT_EVERY,
+            since: 0,
+        }
+    }
+
+    /// Called before each step of the full motion.
+    fn before_step(&mut self, track: &Track) {
+        self.since += 1;
+        if self.since < self.every {
+            return;
+        }
+        self.since = 0;
+        self.snapshots.push_back(Snapshot::of(track));
+        if self.snapshots.len() > MAX_SNAPSHOTS {
+            // Keep every other one (the first and the newest stay): the spacing doubles.
+            let kept: VecDeque<Snapshot> = std::mem::take(&mut self.snapshots)
+                .into_iter()
+                .enumerate()
+                .filter(|(i, _)| i % 2 == 0)
+                .map(|(_, s)| s)
+                .collect();
+            self.snapshots = kept;
+            self.every *= 2;
+        }
+    }
+
+    /// Forgets the snapshots no time at or after `t` needs.
+    fn forget_before(&mut self, t: f64) {
+        while self.snapshots.len() > 1 && self.snapshots[1].time() <= t {
+            self.snapshots.pop_front();
+        }
+    }
+
+    /// The exact state at `t` and the reversals up to it, integrating again from the newest
+    /// snapshot at or before `t` (the same steps, so the same bits as the run itself).
+    fn state_at(&self, t: f64, t_end: f64) -> Option<(Vec<f64>, usize)> {
+        let from = self.snapshots.iter().rev().find(|s| s.time() <= t)?;
+        let mut track = Track {
+            integrator: from.integrator.boxed(),
+            tracker: from.tracker,
+            e0: 0.0,
+            scale: 1.0,
+            next: 0,
+            reversals: from.reversals,
+            last_reversal: from.last_reversal,
+        };
+        while track.integrator.time() < t {
+            track.step(t_end, 0, 0, false).ok()?;
+        }
+        Some(track.state_in_last_step(t))
+    }
+}
+
 struct Track {
     integrator: Box<dyn Flow>,
     tracker: EventTracker,
@@ -78,6 +174,14 @@ impl Track {
             reversals: 0,
             last_reversal: None,
         })
+    }
+
+    /// The state at `t` inside the last step (or at its end) and the reversals up to `t`.
+    fn state_in_last_step(&mut self, t: f64) -> (Vec<f64>, usize) {
+        let y = self.integrator.state_at(t);
+        // `t` lies in the last step, which holds at most the last reversal.
+        let reversals = self.reversals - usize::from(self.last_reversal.is_some_and(|r| r > t));
+        (y, reversals)
     }
 
     fn point(&mut self, t: f64) -> Point {
@@ -120,6 +224,7 @@ pub struct Session {
     plan: Resolved,
     generation: u64,
     full: Track,
+    rewind: Rewind,
     effective: Option<Track>,
     /// Stamp of the overlay's current life: samples of an older one are ignored by the app.
     epoch: u64,
@@ -138,6 +243,7 @@ impl Session {
             spec,
             plan,
             generation,
+            rewind: Rewind::new(&full),
             full,
             effective: None,
             epoch: 0,
@@ -152,34 +258,31 @@ impl Session {
         self.full.integrator.time()
     }
 
-    /// Start of the full integrator's last step.
-    #[must_use]
-    pub fn time_prev_step(&self) -> f64 {
-        self.full.integrator.time_prev()
-    }
-
     /// The resolved plan this run integrates.
     #[must_use]
     pub fn plan(&self) -> Resolved {
         self.plan
     }
 
-    /// The exact state at `t` and the reversals up to it, once the run has reached `t` with
-    /// `t` inside its last step (as `advance(t, ..)` leaves it); `None` otherwise.
+    /// The exact state at `t` and the reversals up to it, for any `t` the run has reached:
+    /// inside the last step from the method's interpolant, behind it by integrating again from
+    /// a snapshot (the worker computes ahead of the display; what is recorded is the state at
+    /// the displayed time, the same bits a run stopped there gives). `None` beyond the run.
+    /// Times before `t` are forgotten: checkpoints come in order.
     pub fn checkpoint(&mut self, t: f64) -> Option<(Vec<f64>, usize)> {
-        let i = &mut self.full.integrator;
+        let i = &self.full.integrator;
         // Exactly the end of the last step: its state, not an interpolation.
         #[allow(clippy::float_cmp)]
         let at_end = t == i.time();
-        let y = if at_end || (t >= i.time_prev() && t < i.time()) {
-            i.state_at(t)
+        let out = if at_end || (t >= i.time_prev() && t < i.time()) {
+            Some(self.full.state_in_last_step(t))
+        } else if t < i.time_prev() {
+            self.rewind.state_at(t, self.spec.t_end)
         } else {
-            return None;
+            None
         };
-        // `t` lies in the last step, which holds at most the last reversal.
-        let reversals =
-            self.full.reversals - usize::from(self.full.last_reversal.is_some_and(|r| r > t));
-        Some((y, reversals))
+        self.rewind.forget_before(t);
+        out
     }
 
     /// The run's stamp.
@@ -252,6 +355,7 @@ impl Session {
             if steps >= max_steps {
                 break false;
             }
+            self.rewind.before_step(&self.full);
             match self
                 .full
                 .step(self.spec.t_end, generation, self.epoch, false)

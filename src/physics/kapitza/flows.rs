@@ -128,6 +128,7 @@ fn slow_sample(p: &Params, t: f64, theta: f64, theta_dot: f64) -> Sample {
 }
 
 /// The full field on `(θ, θ̇)`, forced at the stage's time.
+#[derive(Clone)]
 struct FullField(Params);
 
 impl Field<2> for FullField {
@@ -144,6 +145,7 @@ impl Field<2> for FullField {
 }
 
 /// `dop853` on the full model.
+#[derive(Clone)]
 pub struct FullDop853 {
     params: Params,
     limit: Limit,
@@ -173,6 +175,9 @@ impl FullDop853 {
 }
 
 impl Flow for FullDop853 {
+    fn boxed(&self) -> Box<dyn Flow> {
+        Box::new(self.clone())
+    }
     fn method(&self) -> Method {
         Method::Dop853
     }
@@ -244,12 +249,14 @@ impl Split for PendulumSplit<'_> {
 }
 
 /// A fixed-step scheme on the full model.
+#[derive(Clone)]
 enum Scheme {
     Rk4,
     Split(Composition),
 }
 
 /// A fixed-step method: `rk4` or a composition with exact kicks.
+#[derive(Clone)]
 pub struct Fixed {
     params: Params,
     limit: Limit,
@@ -329,6 +336,9 @@ fn hermite5(h: f64, start: (f64, f64, f64), end: (f64, f64, f64), s: f64) -> (f6
 }
 
 impl Flow for Fixed {
+    fn boxed(&self) -> Box<dyn Flow> {
+        Box::new(self.clone())
+    }
     fn method(&self) -> Method {
         match &self.scheme {
             Scheme::Rk4 => Method::Rk4,
@@ -415,6 +425,7 @@ impl Flow for Fixed {
 }
 
 /// The limit's field on `(Θ, Θ̇)`.
+#[derive(Clone)]
 struct LimitField(Limit);
 
 impl Field<2> for LimitField {
@@ -428,6 +439,7 @@ impl Field<2> for LimitField {
 }
 
 /// `effective` and `effective-corrected`: DOP853 on the limit.
+#[derive(Clone)]
 pub struct LimitDop853 {
     params: Params,
     limit: Limit,
@@ -481,6 +493,9 @@ impl LimitDop853 {
 }
 
 impl Flow for LimitDop853 {
+    fn boxed(&self) -> Box<dyn Flow> {
+        Box::new(self.clone())
+    }
     fn method(&self) -> Method {
         if self.corrected {
             Method::EffectiveCorrected

@@ -83,6 +83,7 @@ impl<const N: usize, F: Fn(&SVector<f64, N>) -> SVector<f64, N>> Field<N> for F 
 }
 
 /// Adaptive DOP853 on an autonomous system `y' = f(y)` of dimension `N`.
+#[derive(Clone)]
 pub struct Dop853<const N: usize, F> {
     f: F,
     tol: f64,

@@ -16,6 +16,7 @@ use crate::physics::model::State;
 use crate::physics::params::Problem;
 
 /// The slow field of `K̄`.
+#[derive(Clone)]
 pub struct AveragedField {
     model: Averaged2,
     /// Natural size of `P̄`, the momentum scale of the start.
@@ -36,6 +37,7 @@ impl Field<3> for AveragedField {
 }
 
 /// DOP853 on the averaged slow flow.
+#[derive(Clone)]
 pub struct Averaged2Dop853 {
     model: Averaged2,
     core: Dop853<3, AveragedField>,
@@ -63,6 +65,9 @@ impl Averaged2Dop853 {
 }
 
 impl Integrator for Averaged2Dop853 {
+    fn boxed(&self) -> Box<dyn Integrator> {
+        Box::new(self.clone())
+    }
     fn method(&self) -> Method {
         Method::Averaged2
     }

@@ -20,6 +20,7 @@ use crate::physics::model::State;
 use crate::physics::params::Problem;
 
 /// The effective field on `(α, α̇, φ)`.
+#[derive(Clone)]
 pub struct EffectiveField(Effective);
 
 impl Field<3> for EffectiveField {
@@ -33,6 +34,7 @@ impl Field<3> for EffectiveField {
 }
 
 /// DOP853 on `(α, α̇_eff, φ)`.
+#[derive(Clone)]
 pub struct EffectiveDop853 {
     model: Effective,
     core: Dop853<3, EffectiveField>,
@@ -84,6 +86,9 @@ fn ripple(model: &Effective, action: f64, alpha: f64, phase: f64) -> f64 {
 }
 
 impl Integrator for EffectiveDop853 {
+    fn boxed(&self) -> Box<dyn Integrator> {
+        Box::new(self.clone())
+    }
     fn method(&self) -> Method {
         if self.ripple_action == 0.0 {
             Method::Effective

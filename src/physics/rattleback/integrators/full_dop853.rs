@@ -8,6 +8,7 @@ use crate::physics::model::{ALPHA_DOT, State, energy, initial_state, rhs};
 use crate::physics::params::{Params, Problem};
 
 /// The Euler–Lagrange field of one parameter set, with `1/ω_max`, the natural unit of `γ`.
+#[derive(Clone)]
 pub struct FullField(Params, f64);
 
 impl Field<4> for FullField {
@@ -28,6 +29,7 @@ impl Field<4> for FullField {
 }
 
 /// DOP853 on `(γ, α, γ̇, α̇)`.
+#[derive(Clone)]
 pub struct FullDop853 {
     params: Params,
     core: Dop853<4, FullField>,
@@ -50,6 +52,9 @@ impl FullDop853 {
 }
 
 impl Integrator for FullDop853 {
+    fn boxed(&self) -> Box<dyn Integrator> {
+        Box::new(self.clone())
+    }
     fn method(&self) -> Method {
         Method::Dop853
     }

@@ -48,6 +48,9 @@ pub trait Integrator: Send {
     fn energy(&self) -> f64;
     /// Work counters.
     fn stats(&self) -> Stats;
+    /// A copy of this integration in its current state (stepping the copy gives the same bits
+    /// as stepping the original: the explorer rewinds to a displayed time with it).
+    fn boxed(&self) -> Box<dyn Integrator>;
 }
 
 /// Default fixed step for `method` at `tolerance` over `[0, t_end]`: `c · tol^{1/p} / ν` with

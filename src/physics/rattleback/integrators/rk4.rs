@@ -12,6 +12,7 @@ use crate::physics::model::{ALPHA_DOT, State, energy, initial_state, rhs};
 use crate::physics::params::{Params, Problem};
 
 /// Fixed-step RK4 on `(γ, α, γ̇, α̇)`.
+#[derive(Clone)]
 pub struct Rk4 {
     params: Params,
     h: f64,
@@ -48,6 +49,9 @@ impl Rk4 {
 }
 
 impl Integrator for Rk4 {
+    fn boxed(&self) -> Box<dyn Integrator> {
+        Box::new(self.clone())
+    }
     fn method(&self) -> Method {
         Method::Rk4
     }

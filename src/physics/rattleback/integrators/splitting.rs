@@ -177,6 +177,7 @@ enum StepRule {
 }
 
 /// A splitting integrator with a fixed or phase-locked step.
+#[derive(Clone)]
 pub struct Splitting {
     params: Params,
     composition: Composition,
@@ -298,6 +299,9 @@ impl Splitting {
 }
 
 impl Integrator for Splitting {
+    fn boxed(&self) -> Box<dyn Integrator> {
+        Box::new(self.clone())
+    }
     fn method(&self) -> Method {
         self.composition.method()
     }
