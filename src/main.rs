@@ -147,35 +147,10 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
         theme: Some(replay_theme(args.look.theme.as_deref(), &rec.header.theme)),
         ..asked
     };
-    if args.verify {
-        let key = match args.key.as_deref().map(record::sign::PublicKey::read).transpose() {
-            Ok(k) => k,
-            Err(e) => {
-                say_err!("rattleback: error: --key: {e}");
-                return ExitCode::from(2);
-            }
-        };
-        match record::verify(&rec, &path, key.as_ref()) {
-            Ok(r) => print_report(&path, &r, None),
-            Err(record::VerifyError::Incomplete { through, report }) => {
-                print_report(&path, &report, Some(through));
-                return ExitCode::from(1);
-            }
-            Err(record::VerifyError::Diverged(d)) => {
-                say_err!(
-                    "rattleback: {path}:{}: divergence at t = {}: expected {}, got {}",
-                    d.line,
-                    d.t,
-                    d.expected,
-                    d.got
-                );
-                return ExitCode::from(1);
-            }
-            Err(record::VerifyError::Record(e)) => {
-                say_err!("rattleback: error: {e}");
-                return ExitCode::from(2);
-            }
-        }
+    if args.verify
+        && let Err(code) = run_verify(args, &rec, &path)
+    {
+        return code;
     }
     if let Some(out) = &args.export_cast {
         return export_cast(args, &rec, &path, out, &look);
@@ -207,6 +182,44 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
     explore(&setup, &preset, None, Some(rec))
 }
 
+/// `replay --verify`: the report on stdout; `Err` with the exit code when it did not verify.
+fn run_verify(args: &ReplayArgs, rec: &record::Recording, path: &str) -> Result<(), ExitCode> {
+    let key = match args
+        .key
+        .as_deref()
+        .map(record::sign::PublicKey::read)
+        .transpose()
+    {
+        Ok(k) => k,
+        Err(e) => {
+            say_err!("rattleback: error: --key: {e}");
+            return Err(ExitCode::from(2));
+        }
+    };
+    match record::verify(rec, path, key.as_ref()) {
+        Ok(r) => print_report(path, &r, None),
+        Err(record::VerifyError::Incomplete { through, report }) => {
+            print_report(path, &report, Some(through));
+            return Err(ExitCode::from(1));
+        }
+        Err(record::VerifyError::Diverged(d)) => {
+            say_err!(
+                "rattleback: {path}:{}: divergence at t = {}: expected {}, got {}",
+                d.line,
+                d.t,
+                d.expected,
+                d.got
+            );
+            return Err(ExitCode::from(1));
+        }
+        Err(record::VerifyError::Record(e)) => {
+            say_err!("rattleback: error: {e}");
+            return Err(ExitCode::from(2));
+        }
+    }
+    Ok(())
+}
+
 /// What `replay --verify` checked; `cut` is the last intact line of a file cut short.
 fn print_report(path: &str, r: &record::Report, cut: Option<usize>) {
     say!(
@@ -217,7 +230,9 @@ fn print_report(path: &str, r: &record::Report, cut: Option<usize>) {
     say!("{path}: {}", r.integrity);
     match &r.signature {
         Some(s) => say!("{path}: {s}"),
-        None if r.format >= 4 => say!("{path}: not signed (anyone can write a valid chain: only a signature says who made the file)"),
+        None if r.format >= 4 => say!(
+            "{path}: not signed (anyone can write a valid chain: only a signature says who made the file)"
+        ),
         None => {}
     }
     if let Some(n) = cut {
@@ -230,8 +245,16 @@ fn print_report(path: &str, r: &record::Report, cut: Option<usize>) {
 fn keygen(args: &rattleback::cli::KeygenArgs) -> ExitCode {
     match record::sign::keygen(&args.name) {
         Ok((secret, public)) => {
-            say!("{}: private key (mode 0600): record with --sign {}", secret.display(), secret.display());
-            say!("{}: public key: verify with replay FILE --verify --key {}", public.display(), public.display());
+            say!(
+                "{}: private key (mode 0600): record with --sign {}",
+                secret.display(),
+                secret.display()
+            );
+            say!(
+                "{}: public key: verify with replay FILE --verify --key {}",
+                public.display(),
+                public.display()
+            );
             ExitCode::SUCCESS
         }
         Err(e) => {
@@ -309,9 +332,33 @@ fn prepare_record(out: Option<&std::path::Path>, force: bool) -> Result<(), Exit
 }
 
 fn run_follow(args: &rattleback::cli::FollowArgs) -> ExitCode {
+    // Students often start first: wait for the file (and its header) to appear, saying so.
+    let mut said = false;
+    while !args
+        .file
+        .metadata()
+        .is_ok_and(|m| m.is_file() && m.len() > 0)
+    {
+        if !said {
+            say_err!(
+                "rattleback: waiting for {} to appear (the lecturer has not started recording yet; Ctrl-C stops)",
+                args.file.display()
+            );
+            said = true;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(200));
+    }
     // Read once here: a file that is not a session is refused before the terminal is touched.
     let rec = match rattleback::record::tail::Tail::open(&args.file) {
         Ok((_, rec)) => rec,
+        Err(record::RecordError::Io { path, source })
+            if source.kind() == std::io::ErrorKind::PermissionDenied =>
+        {
+            say_err!(
+                "rattleback: error: {path}: permission denied: the lecturer's file is not readable by you (recorded under umask 077?); the lecturer can run `chmod a+r {path}`, or record with `umask 022`"
+            );
+            return ExitCode::from(2);
+        }
         Err(e) => {
             say_err!("rattleback: error: {e}");
             return ExitCode::from(2);

@@ -368,7 +368,9 @@ fn a_slow_worker_does_not_pile_up_a_backlog() {
     let asked = app.run.target();
     assert!(asked <= 1.0 + 0.25 + 1e-12, "asked for {asked}");
     app.on_key(Key::Char(' '));
-    assert_eq!(app.run.target(), app.run.shown);
+    // Paused: one sample past the displayed time, no more (so the display sits on its time).
+    assert_eq!(app.run.target(), app.run.shown + app.run.sample_dt);
+    assert!(app.run.sample_dt > 0.0);
 }
 
 /// Item 9: the start is inside the view for any inertia order, and long rotating runs are
@@ -511,6 +513,7 @@ fn spec(problem: rattleback::physics::Problem, method: Method, tolerance: f64) -
         t_end: 30.0,
         effective: false,
         sample_dt: 0.1,
+        step: None,
     }
 }
 

@@ -308,6 +308,7 @@ fn temp(name: &str) -> std::path::PathBuf {
 /// A pendulum session recorded through the app's update function replays bit for bit: its
 /// checkpoints (the state `(θ, θ̇)`) verify, after a change of ε that restarts the run.
 #[test]
+#[allow(clippy::too_many_lines)] // one recording, written, read back, verified and tampered with
 fn a_recorded_pendulum_session_verifies() {
     let mut h = Headless::new("kapitza-upright");
     let app = &h.app;
@@ -381,18 +382,21 @@ fn a_recorded_pendulum_session_verifies() {
         })
         .unwrap();
     }
-    rec.write(&Line {
+    let end = Line {
         wall: 60.0,
         t: 0.0,
         generation: 0,
         chain: None,
         event: Event::end(),
-    })
-    .unwrap();
+    };
+    rec.write(&end).unwrap();
     drop(rec);
     let back = record::read(&path).unwrap();
     assert!(back.header.preset.contains("model = \"kapitza\""));
-    assert_eq!(record::verify(&back, "pendulum", None).unwrap().checkpoints, 2);
+    assert_eq!(
+        record::verify(&back, "pendulum", None).unwrap().checkpoints,
+        2
+    );
     // Tampering with the state is caught.
     let text = std::fs::read_to_string(&path).unwrap();
     let tampered = temp("tampered.jsonl");

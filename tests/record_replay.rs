@@ -37,7 +37,19 @@ fn temp(name: &str) -> std::path::PathBuf {
     p
 }
 
+/// The end line of a recording written by hand (the recorder counts the lines).
+fn end_line() -> Line {
+    Line {
+        wall: 60.0,
+        t: 0.0,
+        generation: 0,
+        chain: None,
+        event: Event::end(),
+    }
+}
+
 #[test]
+#[allow(clippy::too_many_lines)] // one recording, written, read back and verified
 fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
     let mut h = Headless::new("subcritical");
     let app = &h.app;
@@ -111,22 +123,13 @@ fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
     for l in &lines {
         rec.write(l).unwrap();
     }
-    rec.write(&Line {
-        wall: 60.0,
-        t: 0.0,
-        generation: 0,
-        chain: None,
-        event: Event::end(),
-    })
-    .unwrap();
+    rec.write(&end_line()).unwrap();
     drop(rec);
     let back = record::read(&path).unwrap();
     assert!(back.warnings.is_empty());
     assert_eq!(back.header, header);
-    assert!(
-        matches!(back.lines.last().unwrap().1.event, Event::End { lines: Some(n), .. } if n == lines.len() + 1),
-        "the end line counts the lines before it"
-    );
+    let counted = matches!(back.lines.last().unwrap().1.event, Event::End { lines: Some(n), .. } if n == lines.len() + 1);
+    assert!(counted, "the end line counts the lines before it");
     assert_eq!(
         back.lines[..lines.len()]
             .iter()
@@ -152,7 +155,10 @@ fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
         std::fs::read(&path).unwrap(),
         std::fs::read(&again).unwrap()
     );
-    assert_eq!(record::verify(&back, "recorded", None).unwrap().checkpoints, 2);
+    assert_eq!(
+        record::verify(&back, "recorded", None).unwrap().checkpoints,
+        2
+    );
 }
 
 #[test]

@@ -18,6 +18,8 @@ pub struct Settings {
     pub method: Method,
     /// Tolerance.
     pub tolerance: f64,
+    /// The preset's fixed step (`run.step`), used by a fixed-step method asked by name.
+    pub step: Option<f64>,
 }
 
 impl Settings {
@@ -38,6 +40,9 @@ impl Settings {
                 Field::TEnd => write!(cmd, " --t-end {value}"),
                 _ => write!(cmd, " --set {}.{}={value}", f.section(), f.label()),
             };
+        }
+        if let Some(h) = self.step {
+            let _ = write!(cmd, " --step {h:?}");
         }
         cmd
     }
@@ -420,6 +425,7 @@ mod tests {
             t_end: 30.0,
             method: Method::Auto,
             tolerance: 1e-8,
+            step: None,
         }
     }
 

@@ -15,6 +15,11 @@ pub enum Event {
         /// The value, as text that round-trips exactly.
         value: String,
     },
+    /// The panel's selected row moved (format 4 on: the highlight is part of the screen).
+    Select {
+        /// Field name, as in presets.
+        field: String,
+    },
     /// Started playing.
     Play,
     /// Paused.
@@ -129,6 +134,9 @@ pub enum Event {
         key: crate::sim::PlanKey,
         /// The plan.
         plan: crate::physics::Resolved,
+        /// `auto`'s error estimate the status bar showed (format 4 on), so a replay shows it too.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        estimate: Option<f64>,
     },
     /// The exact state of the run at simulated time `t`.
     Checkpoint {

@@ -419,8 +419,8 @@ pub const KEYMAP: &[Binding<Action>] = &[
         footer: None,
     },
     Binding {
-        keys: &[Key::Char('q'), Key::Esc, Key::Ctrl('c')],
-        label: "q/Esc/Ctrl-C",
+        keys: &[Key::Char('q'), Key::Ctrl('c')],
+        label: "q/Ctrl-C",
         action: Action::Quit,
         help: "quit",
         footer: Some(("q", "quit", 0)),
@@ -518,8 +518,8 @@ pub const REPLAY_KEYMAP: &[Binding<ReplayAction>] = &[
         footer: None,
     },
     Binding {
-        keys: &[Key::Char('q'), Key::Esc, Key::Ctrl('c')],
-        label: "q/Esc/Ctrl-C",
+        keys: &[Key::Char('q'), Key::Ctrl('c')],
+        label: "q/Ctrl-C",
         action: ReplayAction::Quit,
         help: "quit",
         footer: Some(("q", "quit", 0)),

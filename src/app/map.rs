@@ -269,6 +269,7 @@ mod tests {
             t_end: 30.0,
             method: Method::Auto,
             tolerance: 1e-8,
+            step: None,
         }
     }
 

@@ -236,6 +236,15 @@ impl App {
             return Vec::new();
         }
         match std::mem::take(&mut self.mode) {
+            // Esc closes the innermost thing open and never quits (q and Ctrl-C do).
+            Mode::Normal if key == Key::Esc && self.options.action_for(key).is_none() => {
+                self.status = if self.status.is_some() {
+                    None
+                } else {
+                    Message::info("nothing to close (q quits)")
+                };
+                Vec::new()
+            }
             Mode::Normal => match self.on_lesson_key(key) {
                 Some(effects) => effects,
                 None => self
@@ -344,6 +353,9 @@ impl App {
                 body: self.view.panes.shows(Pane::Body),
             }),
             Action::ClearTrail => Some(Event::ClearTrail),
+            Action::SelectPrev | Action::SelectNext => Some(Event::Select {
+                field: self.field().label().to_owned(),
+            }),
             _ => None,
         };
         if let Some(e) = event {
@@ -501,9 +513,11 @@ impl App {
                 false
             }
             SimEvent::Started {
-                generation, plan, ..
+                generation,
+                plan,
+                error_estimate,
             } if generation == self.run.generation => {
-                self.log_plan(plan);
+                self.log_plan(plan, error_estimate);
                 self.run.on_sim(event, self.view.overlay)
             }
             SimEvent::Failed {

@@ -30,8 +30,8 @@ impl App {
                 self.journal.state = RecState::On;
                 self.status = Message::info(format!("recording to {path}"));
                 // The plan of the run in progress belongs in the file too.
-                if let PlanState::Running { plan, .. } = self.run.plan {
-                    self.log_plan(plan);
+                if let PlanState::Running { plan, estimate } = self.run.plan {
+                    self.log_plan(plan, estimate);
                 }
                 self.log_lesson_step();
             }
@@ -89,11 +89,12 @@ impl App {
         Vec::new()
     }
 
-    pub(super) fn log_plan(&mut self, plan: crate::physics::Resolved) {
+    pub(super) fn log_plan(&mut self, plan: crate::physics::Resolved, estimate: Option<f64>) {
         let spec = self.scenario.spec(self.view.overlay);
         self.log(Event::Plan {
             key: crate::sim::PlanKey::of(&spec),
             plan,
+            estimate,
         });
     }
 }

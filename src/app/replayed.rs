@@ -30,6 +30,16 @@ impl App {
                     .unwrap_or(0);
                 self.apply(f.with_text(&self.scenario.settings, value))
             }
+            Event::Select { field } => {
+                if let Some(i) = Field::named(field).and_then(|f| {
+                    Field::rows(self.scenario.settings.model.kind())
+                        .iter()
+                        .position(|x| *x == f)
+                }) {
+                    self.scenario.selected = i;
+                }
+                Vec::new()
+            }
             Event::Play if self.run.playing => Vec::new(),
             Event::Play => self.carry_out(Action::TogglePlay),
             // At the recorded time (the replay sought it), not where the display has got to.
@@ -96,7 +106,9 @@ impl App {
                 self.caption = lesson_caption(event, self.run.goal);
                 Vec::new()
             }
-            Event::Checkpoint { .. } | Event::Plan { .. } | Event::End { .. }
+            Event::Checkpoint { .. }
+            | Event::Plan { .. }
+            | Event::End { .. }
             | Event::Clock
             | Event::Screen(_) => Vec::new(),
         }
@@ -117,10 +129,7 @@ impl App {
         Shown {
             playing: run.playing,
             events: run.reversals_shown(),
-            limit_events: self
-                .view
-                .overlay
-                .then(|| run.effective_reversals_shown()),
+            limit_events: self.view.overlay.then(|| run.effective_reversals_shown()),
             falls: run.falls_shown(),
             point: run
                 .current()

@@ -102,6 +102,9 @@ pub struct RunState {
     pub reached: f64,
     /// End of the run.
     pub t_end: f64,
+    /// Spacing of the run's sample grid: the worker is always asked for one sample past the
+    /// goal, so a paused display sits exactly on its time (as it does after playing).
+    pub sample_dt: f64,
     /// Samples of the full motion (possibly ahead of `shown`).
     pub trail: Vec<Point>,
     /// Samples of the effective motion.
@@ -142,6 +145,7 @@ impl RunState {
             shown: 0.0,
             reached: 0.0,
             t_end,
+            sample_dt: 0.0,
             trail: Vec::new(),
             effective_trail: Vec::new(),
             reversals: Events::default(),
@@ -172,6 +176,7 @@ impl RunState {
             playing,
             speed,
             rate,
+            sample_dt: spec.sample_dt,
             ..Self::new(spec.t_end)
         };
         if spec.model.kind().has_falls() {
@@ -187,7 +192,7 @@ impl RunState {
     #[must_use]
     pub fn target(&self) -> f64 {
         let lead = if self.playing { LEAD * self.speed } else { 0.0 };
-        (self.goal + lead).min(self.t_end)
+        (self.goal + lead.max(self.sample_dt)).min(self.t_end)
     }
 
     /// The worker command for the current target.

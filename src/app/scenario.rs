@@ -75,6 +75,7 @@ impl Scenario {
             t_end: preset.run.t_end,
             method: preset.run.method.unwrap_or(Method::Auto),
             tolerance: preset.run.tolerance.unwrap_or(DEFAULT_TOLERANCE),
+            step: preset.run.step,
         };
         Self {
             name: clean(&preset.name),
@@ -102,6 +103,7 @@ impl Scenario {
             t_end: s.t_end,
             effective: overlay,
             sample_dt: self.derived.sample_dt,
+            step: s.step,
         }
     }
 
@@ -116,7 +118,7 @@ impl Scenario {
                 t_end: self.settings.t_end,
                 method: Some(self.settings.method),
                 tolerance: Some(self.settings.tolerance),
-                step: None,
+                step: self.settings.step,
             },
             view: ViewConfig {
                 alpha_range: view.alpha_range,

@@ -303,7 +303,13 @@ impl Shell<'_> {
             ),
         };
         let size = ratatui::crossterm::terminal::size().unwrap_or((80, 24));
-        match ActiveRecording::start(app, &path, size, self.options.fps, self.options.sign.as_deref()) {
+        match ActiveRecording::start(
+            app,
+            &path,
+            size,
+            self.options.fps,
+            self.options.sign.as_deref(),
+        ) {
             Ok(r) => {
                 let p = r.path();
                 self.recording = Some(r);

@@ -60,8 +60,8 @@ impl ActiveRecording {
             .map(crate::record::sign::Signer::read)
             .transpose()
             .map_err(|e| e.to_string())?;
-        let recorder = Recorder::create(path, &header(app, size, fps), signer)
-            .map_err(|e| e.to_string())?;
+        let recorder =
+            Recorder::create(path, &header(app, size, fps), signer).map_err(|e| e.to_string())?;
         let now = Instant::now();
         Ok(Self {
             recorder,

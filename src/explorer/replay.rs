@@ -70,6 +70,12 @@ impl Replayer {
         self.catch_up(app)
     }
 
+    /// How many lines have been applied.
+    #[must_use]
+    pub fn position(&self) -> usize {
+        self.next
+    }
+
     /// Whether this follows a file being written.
     #[must_use]
     pub fn following(&self) -> bool {

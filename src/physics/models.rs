@@ -31,6 +31,17 @@ impl ModelKind {
     /// Every model, in the order lists show them.
     pub const ALL: [Self; 2] = [Self::Rattleback, Self::Kapitza];
 
+    /// The tolerance of the limit's own run, whatever the user's (the one-degree-of-freedom ODE
+    /// is cheap): `simulate` reports it and the explorer draws, counts and exports the same
+    /// run. The rattleback's is then good to about 1e-12 (`tests/auto_honest.rs`).
+    #[must_use]
+    pub fn limit_tolerance(self) -> f64 {
+        match self {
+            Self::Rattleback => 1e-14,
+            Self::Kapitza => 1e-13,
+        }
+    }
+
     /// The name used in presets and JSON.
     #[must_use]
     pub fn name(self) -> &'static str {

@@ -1,6 +1,7 @@
 //! `replay --verify`: re-run a session headless through the worker's own interpreter and check
 //! every checkpoint bit for bit.
 
+use super::sign::PublicKey;
 use super::{RecordError, Recording};
 use crate::app::effects::commands;
 use crate::app::journal::{Event, state_hash};
@@ -8,7 +9,6 @@ use crate::app::{App, Effect, Options};
 use crate::physics::plan::AutoPolicy;
 use crate::scenario::Preset;
 use crate::sim::{Command, Engine, PlanBook, SimEvent, drive};
-use super::sign::PublicKey;
 
 /// The first checkpoint that did not reproduce.
 #[derive(Clone, Debug, PartialEq)]
@@ -72,7 +72,19 @@ pub fn plan_book(rec: &Recording) -> PlanBook {
             .lines
             .iter()
             .filter_map(|(_, l)| match &l.event {
-                Event::Plan { key, plan } => Some((*key, *plan)),
+                Event::Plan { key, plan, .. } => Some((*key, *plan)),
+                _ => None,
+            })
+            .collect(),
+        estimates: rec
+            .lines
+            .iter()
+            .filter_map(|(_, l)| match &l.event {
+                Event::Plan {
+                    key,
+                    estimate: Some(e),
+                    ..
+                } => Some((*key, *e)),
                 _ => None,
             })
             .collect(),
@@ -99,7 +111,12 @@ pub fn start(rec: &Recording, path: &str) -> Result<(App, Vec<Effect>), RecordEr
     Ok(App::new(&preset, Options::at(rec.header.fps)))
 }
 
-fn tampered(line: usize, t: f64, expected: impl Into<String>, got: impl Into<String>) -> VerifyError {
+fn tampered(
+    line: usize,
+    t: f64,
+    expected: impl Into<String>,
+    got: impl Into<String>,
+) -> VerifyError {
     VerifyError::Diverged(Divergence {
         line,
         t,
@@ -112,18 +129,26 @@ fn tampered(line: usize, t: f64, expected: impl Into<String>, got: impl Into<Str
 fn newer_than(version: u32, line: &super::Line) -> Option<&'static str> {
     let fnv = |c: &str| c.len() == 16;
     match &line.event {
-        Event::Clock | Event::Screen(_) if version < 4 => Some("a clock or screen line (format 4)"),
+        Event::Clock | Event::Screen(_) | Event::Select { .. } if version < 4 => {
+            Some("a clock, screen or select line (format 4)")
+        }
         Event::End {
             lines,
             signer,
             public_key,
             signature,
         } if version < 4
-            && (lines.is_some() || signer.is_some() || public_key.is_some() || signature.is_some()) =>
+            && (lines.is_some()
+                || signer.is_some()
+                || public_key.is_some()
+                || signature.is_some()) =>
         {
             Some("a counted or signed end line (format 4)")
         }
         Event::Plan { .. } if version < 2 => Some("a plan line (format 2)"),
+        Event::Plan {
+            estimate: Some(_), ..
+        } if version < 4 => Some("a plan line with an estimate (format 4)"),
         _ => match line.chain.as_deref() {
             Some(_) if version < 2 => Some("a hash chain (format 2)"),
             Some(c) if version < 4 && !fnv(c) => Some("a SHA-256 chain (format 4)"),
@@ -153,7 +178,12 @@ fn check_integrity(
     }
     if version < 2 {
         if key.is_some() {
-            return Err(tampered(1, 0.0, "a signed session", "format 1 has no signatures"));
+            return Err(tampered(
+                1,
+                0.0,
+                "a signed session",
+                "format 1 has no signatures",
+            ));
         }
         return Ok((
             "format 1: no hash chain; only the checkpoints are checked (an edit elsewhere is not detected)".to_owned(),
@@ -164,17 +194,25 @@ fn check_integrity(
     if version < 4 {
         check_fnv(rec)?;
         if key.is_some() {
-            return Err(tampered(1, 0.0, "a signed session", format!("format {version} has no signatures")));
+            return Err(tampered(
+                1,
+                0.0,
+                "a signed session",
+                format!("format {version} has no signatures"),
+            ));
         }
         return Ok((
-            format!("format {version}: FNV-1a chain over each line as read (finds accidental edits, not deliberate ones; a cut tail is not detected)"),
+            format!(
+                "format {version}: FNV-1a chain over each line as read (finds accidental edits, not deliberate ones; a cut tail is not detected)"
+            ),
             None,
             true,
         ));
     }
     let (signature, ended) = check_sha256(rec, key)?;
     Ok((
-        "format 4: SHA-256 chain over every byte of every line, end line with the line count".to_owned(),
+        "format 4: SHA-256 chain over every byte of every line, end line with the line count"
+            .to_owned(),
         signature,
         ended,
     ))
@@ -221,18 +259,36 @@ fn check_sha256(
     for ((number, line), raw) in rec.lines.iter().zip(&rec.raw) {
         let (number, t) = (*number, line.t);
         if ended {
-            return Err(tampered(number, t, "nothing after the end line", "another line"));
+            return Err(tampered(
+                number,
+                t,
+                "nothing after the end line",
+                "another line",
+            ));
         }
-        let split = raw.len().checked_sub(TAIL).filter(|&i| raw.is_char_boundary(i));
+        let split = raw
+            .len()
+            .checked_sub(TAIL)
+            .filter(|&i| raw.is_char_boundary(i));
         let Some((body, tail)) = split.map(|i| raw.split_at(i)) else {
-            return Err(tampered(number, t, "a line ending in its chain", "a line without one"));
+            return Err(tampered(
+                number,
+                t,
+                "a line ending in its chain",
+                "a line without one",
+            ));
         };
         let chain = tail
             .strip_prefix(r#","chain":""#)
             .and_then(|c| c.strip_suffix(r#""}"#))
             .filter(|c| c.bytes().all(|b| b.is_ascii_hexdigit()));
         let Some(chain) = chain else {
-            return Err(tampered(number, t, "a line ending in its chain", "a line without one"));
+            return Err(tampered(
+                number,
+                t,
+                "a line ending in its chain",
+                "a line without one",
+            ));
         };
         let bare = format!("{body}}}");
         let canonical = serde_json::to_string(&super::Line {
@@ -279,7 +335,12 @@ fn check_sha256(
     }
     if key.is_some() && signature.is_none() && ended {
         let last = rec.lines.last().map_or(1, |(n, _)| *n);
-        return Err(tampered(last, 0.0, "a session signed with the given key", "an unsigned session"));
+        return Err(tampered(
+            last,
+            0.0,
+            "a session signed with the given key",
+            "an unsigned session",
+        ));
     }
     Ok((signature, ended))
 }
@@ -296,13 +357,23 @@ fn check_signature(
 ) -> Result<Option<String>, VerifyError> {
     let (Some(signer), Some(public), Some(signature)) = (signer, public_key, signature) else {
         if signer.is_some() || public_key.is_some() || signature.is_some() {
-            return Err(tampered(number, t, "a whole signature (signer, key, signature)", "part of one"));
+            return Err(tampered(
+                number,
+                t,
+                "a whole signature (signer, key, signature)",
+                "part of one",
+            ));
         }
         return Ok(None);
     };
     let message = super::sign::message(chain, number - 1, signer, public);
     if !super::sign::check(public, &message, signature) {
-        return Err(tampered(number, t, "a valid signature", "a signature that does not match the file"));
+        return Err(tampered(
+            number,
+            t,
+            "a valid signature",
+            "a signature that does not match the file",
+        ));
     }
     let fingerprint = super::sign::fingerprint(public);
     let signer = crate::scenario::text::clean(signer);
@@ -313,7 +384,10 @@ fn check_signature(
             format!("signed by {} (key {})", k.name, k.fingerprint()),
             format!("signed by another key: '{signer}' (key {fingerprint})"),
         )),
-        Some(k) => Ok(Some(format!("signed by {} (key {fingerprint}, checked against {})", k.name, k.name))),
+        Some(k) => Ok(Some(format!(
+            "signed by {} (key {fingerprint}, checked against {})",
+            k.name, k.name
+        ))),
         None => Ok(Some(format!(
             "signed by '{signer}' (key {fingerprint}; not checked against a key you trust: pass --key FILE.pub)"
         ))),
@@ -372,12 +446,6 @@ pub fn verify(rec: &Recording, path: &str, key: Option<&PublicKey>) -> Result<Re
     };
     for (number, line) in &rec.lines {
         let mut effects = app.seek(line.t);
-        // Samples a little past the time, so the display reaches it exactly (a worker that
-        // computes ahead has them; the trajectory does not depend on how far it computes).
-        effects.push(Effect::Sim(Command::AdvanceTo {
-            generation: app.run.generation,
-            t: app.run.goal + 2.0 * app.scenario.derived.sample_dt,
-        }));
         match &line.event {
             Event::Checkpoint {
                 state,
@@ -390,8 +458,9 @@ pub fn verify(rec: &Recording, path: &str, key: Option<&PublicKey>) -> Result<Re
                 }));
                 got = None;
                 run(&mut engine, &mut app, effects, &mut got);
-                let (got_t, got_state, got_rev) =
-                    got.take().unwrap_or_else(|| (line.t, vec![f64::NAN; state.len()], usize::MAX));
+                let (got_t, got_state, got_rev) = got
+                    .take()
+                    .unwrap_or_else(|| (line.t, vec![f64::NAN; state.len()], usize::MAX));
                 let got_hash = state_hash(got_t, &got_state, got_rev);
                 let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
                 if got_hash != *hash || bits(&got_state) != bits(state) || got_rev != *reversals {
@@ -408,7 +477,12 @@ pub fn verify(rec: &Recording, path: &str, key: Option<&PublicKey>) -> Result<Re
                 run(&mut engine, &mut app, effects, &mut got);
                 let replayed = app.shown();
                 if let Some(d) = recorded.difference(&replayed) {
-                    return Err(tampered(*number, line.t, "the lecturer's screen", format!("a different screen: {d}")));
+                    return Err(tampered(
+                        *number,
+                        line.t,
+                        "the lecturer's screen",
+                        format!("a different screen: {d}"),
+                    ));
                 }
                 report.screens += 1;
             }

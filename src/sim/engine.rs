@@ -72,6 +72,8 @@ pub struct PlanBook {
     pub policy: AutoPolicy,
     /// Recorded plans.
     pub recorded: Vec<(PlanKey, Resolved)>,
+    /// The error estimates recorded with them (format 4 on), shown again by a replay.
+    pub estimates: Vec<(PlanKey, f64)>,
     /// Work budget of `auto`'s verification, in predicted seconds: over it, planning fails
     /// with a message instead of computing for hours before the first frame.
     pub budget: f64,
@@ -82,12 +84,21 @@ impl Default for PlanBook {
         Self {
             policy: AutoPolicy::default(),
             recorded: Vec::new(),
+            estimates: Vec::new(),
             budget: crate::physics::budget::BUDGET_SECONDS,
         }
     }
 }
 
 impl PlanBook {
+    fn estimate(&self, spec: &SessionSpec) -> Option<f64> {
+        let key = PlanKey::of(spec);
+        self.estimates
+            .iter()
+            .find(|(k, _)| *k == key)
+            .map(|(_, e)| *e)
+    }
+
     fn lookup(&self, spec: &SessionSpec) -> Option<Resolved> {
         let key = PlanKey::of(spec);
         self.recorded
@@ -226,7 +237,7 @@ impl Engine {
             return true;
         };
         let resolved = match self.book.lookup(&spec) {
-            Some(plan) => Ok((plan, None)),
+            Some(plan) => Ok((plan, self.book.estimate(&spec))),
             None => spec
                 .model
                 .resolve(
@@ -242,7 +253,13 @@ impl Engine {
         let started = match resolved {
             Err(StepError::Cancelled { .. }) => return true,
             Err(e) => Err(e),
-            Ok((plan, estimate)) => Session::new(generation, spec, plan).map(|s| (s, estimate)),
+            Ok((mut plan, estimate)) => {
+                // A method asked by name integrates with the preset's step, as `simulate` does.
+                if spec.method != Method::Auto && spec.step.is_some() {
+                    plan.step = spec.step;
+                }
+                Session::new(generation, spec, plan).map(|s| (s, estimate))
+            }
         };
         self.planning = None;
         match started {

@@ -29,6 +29,8 @@ pub struct SessionSpec {
     pub effective: bool,
     /// Spacing of the sample grid (simulated time), set by the dynamics.
     pub sample_dt: f64,
+    /// The preset's fixed step (`run.step`) for a fixed-step method, as `simulate` takes it.
+    pub step: Option<f64>,
 }
 
 /// A sample of the motion for drawing, in the model's slow coordinate (the rattleback's `α`,
@@ -306,8 +308,9 @@ impl Session {
             Track::new(
                 &self.spec.model,
                 Method::Effective,
+                // The limit `simulate` reports: the same run, drawn, counted and exported.
                 Settings {
-                    tolerance: self.spec.tolerance,
+                    tolerance: self.spec.model.kind().limit_tolerance(),
                     step: None,
                 },
                 self.spec.t_end,

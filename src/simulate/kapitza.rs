@@ -167,9 +167,6 @@ fn times_of(list: &[f64], count: usize) -> Times {
     }
 }
 
-/// The limit's own run is integrated at this tolerance whatever the user's (it is cheap).
-const LIMIT_TOLERANCE: f64 = 1e-13;
-
 fn non_finite(r: &RunResult) -> Option<&'static str> {
     if !r.theta.is_finite() {
         Some("theta")
@@ -295,7 +292,7 @@ pub fn simulate_to(
     }
     let limit_spec = RunSpec {
         method: Method::Effective,
-        tolerance: LIMIT_TOLERANCE,
+        tolerance: crate::physics::ModelKind::Kapitza.limit_tolerance(),
         step: None,
         t_end: spec.t_end,
         samples: 0,

@@ -320,11 +320,6 @@ pub fn simulate(preset: &Preset, resolved: &Resolved, format: Format) -> Result<
     Ok(String::from_utf8_lossy(&out).into_owned())
 }
 
-/// The limit's own run is integrated at this local tolerance whatever the user's: the
-/// one-degree-of-freedom ODE is cheap, and `effective.alpha`/`alpha_dot` are then good to about
-/// 1e-12 (`tests/auto_honest.rs` checks them against the quadrature of its reversal times).
-pub const LIMIT_TOLERANCE: f64 = 1e-14;
-
 /// Runs `preset` as `resolved` says and writes the report in `format` to `out`; the CSV is
 /// written sample by sample as the integration goes, so memory does not grow with
 /// `--samples`. `progress(t)` is called every few hundred steps with the time reached (it
@@ -387,7 +382,7 @@ fn rattleback_to(
     // The limit's own trajectory at t_end, for comparison (cheap: cost independent of k).
     let eff_spec = RunSpec {
         method: Method::Effective,
-        tolerance: LIMIT_TOLERANCE,
+        tolerance: crate::physics::ModelKind::Rattleback.limit_tolerance(),
         samples: 0,
         monitor_energy: true,
         step: None,

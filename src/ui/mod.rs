@@ -365,9 +365,21 @@ pub fn draw(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mut C
         return;
     }
     let caption = u16::from(app.caption.is_some());
-    let [main, caption_area, status_area, footer] = Layout::vertical([
+    let message = app.status.as_ref().map(|m| {
+        (
+            wrap_words(
+                &m.text,
+                area.width.saturating_sub(2) as usize,
+                MESSAGE_LINES,
+            ),
+            m.error,
+        )
+    });
+    let message_height = message.as_ref().map_or(0, |(lines, _)| lines.len() as u16);
+    let [main, caption_area, message_area, status_area, footer] = Layout::vertical([
         Constraint::Min(0),
         Constraint::Length(caption),
+        Constraint::Length(message_height),
         Constraint::Length(1),
         Constraint::Length(1),
     ])
@@ -384,7 +396,6 @@ pub fn draw(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mut C
             scenario: &app.scenario,
             editing,
             prompt,
-            status: app.status.as_ref(),
             look: &look,
         },
         left,
@@ -392,6 +403,9 @@ pub fn draw(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mut C
     draw_column(frame, app, right, &look, cache);
     if let Some(c) = &app.caption {
         draw_caption(frame, caption_area, c, &look);
+    }
+    if let Some((lines, error)) = message {
+        draw_message(frame, message_area, lines, error, &look);
     }
     frame.render_widget(
         status::StatusBar {
@@ -440,6 +454,68 @@ fn draw_caption(frame: &mut Frame<'_>, area: Rect, c: &crate::app::Caption, look
         ])),
         area,
     );
+}
+
+/// The message line(s) above the status bar, in the error colour for an error.
+fn draw_message(frame: &mut Frame<'_>, area: Rect, lines: Vec<String>, error: bool, look: &Look) {
+    let style = if error {
+        Style::default()
+            .fg(look.theme.error)
+            .add_modifier(Modifier::BOLD)
+    } else {
+        Style::default()
+    };
+    let text: Vec<Line> = lines
+        .into_iter()
+        .map(|l| Line::styled(format!(" {l}"), style))
+        .collect();
+    frame.render_widget(Paragraph::new(text), area);
+}
+
+/// Most rows a message takes above the status bar.
+const MESSAGE_LINES: usize = 3;
+
+/// `text` wrapped at spaces into at most `most` lines of `width` characters: a word is cut only
+/// when it is longer than a whole line (a long path), and the last line ends in `…` when the text
+/// does not fit.
+#[must_use]
+pub fn wrap_words(text: &str, width: usize, most: usize) -> Vec<String> {
+    let width = width.max(8);
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        let mut word: Vec<char> = word.chars().collect();
+        loop {
+            let used = line.chars().count();
+            let room = if used == 0 {
+                width
+            } else {
+                width.saturating_sub(used + 1)
+            };
+            if word.len() <= room {
+                if used > 0 {
+                    line.push(' ');
+                }
+                line.extend(word.iter());
+                break;
+            }
+            if used == 0 {
+                // Longer than a line: cut it.
+                line.extend(word.drain(..width));
+            }
+            lines.push(std::mem::take(&mut line));
+        }
+    }
+    if !line.is_empty() {
+        lines.push(line);
+    }
+    if lines.len() > most {
+        lines.truncate(most);
+        let last = &mut lines[most - 1];
+        let keep: String = last.chars().take(width.saturating_sub(1)).collect();
+        *last = format!("{keep}…");
+    }
+    lines
 }
 
 /// The hints that fit in `width`, dropping the highest ranks first; rank 0 always stays.

@@ -9,9 +9,9 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Widget, Wrap};
 
 use super::{Look, title};
+use crate::app::Scenario;
 use crate::app::fields::{Field, format_number};
 use crate::app::mode::Prompt;
-use crate::app::{Message, Scenario};
 
 /// The parameter panel: what it shows, borrowed.
 pub struct ParamsPanel<'a> {
@@ -21,8 +21,6 @@ pub struct ParamsPanel<'a> {
     pub editing: Option<&'a str>,
     /// The open prompt, if any.
     pub prompt: Option<&'a Prompt>,
-    /// The last message.
-    pub status: Option<&'a Message>,
     /// Marker and colours.
     pub look: &'a Look<'a>,
 }
@@ -118,7 +116,6 @@ fn derived_lines(p: &ParamsPanel<'_>, width: usize) -> Vec<Line<'static>> {
 }
 
 fn panel(p: &ParamsPanel<'_>, area: Rect, buf: &mut Buffer) {
-    let look = p.look;
     let width = area.width.saturating_sub(2) as usize;
     let mut lines = Vec::new();
     for (i, field) in Field::rows(p.scenario.settings.model.kind())
@@ -149,16 +146,6 @@ fn panel(p: &ParamsPanel<'_>, area: Rect, buf: &mut Buffer) {
             format!("{}: {}▏", prompt.purpose.label(), prompt.text),
             Style::default().add_modifier(Modifier::REVERSED),
         ));
-    }
-    if let Some(m) = p.status {
-        let style = if m.error {
-            Style::default()
-                .fg(look.theme.error)
-                .add_modifier(Modifier::BOLD)
-        } else {
-            Style::default()
-        };
-        lines.push(Line::styled(m.text.clone(), style));
     }
     let block = Block::bordered().title(title(&p.scenario.name, area.width));
     Paragraph::new(lines)

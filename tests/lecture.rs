@@ -1,0 +1,533 @@
+//! A recorded session is the lecture, frame for frame. A lecturer's explorer is driven headless
+//! through a scripted key sequence (play; pause just before a reversal; three steps; a change of
+//! `k` or `b`; a chapter; a note; play to the end) at ×1, ×16 and ×1024 in both scenes, and
+//! recorded. The file is then fed to the replay, to a follower (line by line as it grows) and to
+//! `replay --verify`: at every recorded screen, the frame above the status bar (rendered through
+//! ratatui's `TestBackend` at 80×24) and the status bar's values equal the lecturer's, and the
+//! follower never shows a time the lecturer has not shown. Tampered, downgraded, cut and signed
+//! files are checked too.
+
+mod common;
+
+use common::Headless;
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use rattleback::app::journal::{Event, Shown};
+use rattleback::app::{App, Key, Outcome};
+use rattleback::explorer::replay::Replayer;
+use rattleback::record::{self, Line, Recorder};
+use rattleback::ui::{self, Cache, UiOptions};
+
+const FRAME: f64 = 1.0 / 30.0;
+/// The replay's frames are finer than the lecturer's, so each recorded line is shown alone.
+const REPLAY_FRAME: f64 = 0.0005;
+
+fn temp(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("rattleback-lecture-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    let _ = std::fs::remove_file(&p);
+    p
+}
+
+/// The screen at 80×24 above the status bar (the status bar and the key footer say "replay" or
+/// "following" in a replay; their numbers are compared through [`Shown`]); messages are left out
+/// (the lecturer's "recording to …" is not the student's).
+fn frame(app: &mut App) -> String {
+    let status = app.status.take();
+    let mut terminal = Terminal::new(TestBackend::new(80, 24)).unwrap();
+    terminal
+        .draw(|f| ui::draw(f, app, &UiOptions::default(), &mut Cache::default()))
+        .unwrap();
+    app.status = status;
+    let b = terminal.backend().buffer();
+    let mut out = String::new();
+    for y in 0..22 {
+        for x in 0..80 {
+            out.push_str(b[(x, y)].symbol());
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// What the lecturer recorded: the lines, and at each `screen` line the frame drawn then.
+struct Lecture {
+    header: record::Header,
+    lines: Vec<Line>,
+    frames: Vec<(usize, String, Shown)>,
+}
+
+struct Lecturer {
+    h: Headless,
+    wall: f64,
+    lines: Vec<Line>,
+    frames: Vec<(usize, String, Shown)>,
+}
+
+impl Lecturer {
+    fn collect(&mut self) {
+        for (t, generation, event) in self.h.app.take_journal() {
+            if let Event::Screen(shown) = &event {
+                let f = frame(&mut self.h.app);
+                assert!(
+                    shown.difference(&self.h.app.shown()).is_none(),
+                    "a screen line that is not the screen"
+                );
+                self.frames.push((self.lines.len(), f, shown.clone()));
+            }
+            self.lines.push(Line {
+                wall: self.wall,
+                t,
+                generation,
+                chain: None,
+                event,
+            });
+        }
+    }
+    fn tick(&mut self) {
+        self.wall += FRAME;
+        self.h.tick(FRAME);
+        self.collect();
+    }
+    fn key(&mut self, key: Key) {
+        // A key comes after the frame before it (the recorder stamps it later).
+        self.wall += 0.002;
+        self.h.key(key);
+        self.collect();
+    }
+    fn text(&mut self, key: char, text: &str) {
+        self.key(Key::Char(key));
+        for c in text.chars() {
+            self.key(Key::Char(c));
+        }
+        self.key(Key::Enter);
+    }
+}
+
+/// The time of the first reversal (or swing) of `preset`'s run.
+fn first_event(preset: &str) -> f64 {
+    let mut h = Headless::new(preset);
+    h.play_until(f64::INFINITY, 1024.0);
+    h.app
+        .run
+        .reversals
+        .kept()
+        .first()
+        .copied()
+        .unwrap_or(0.5 * h.app.run.t_end)
+}
+
+fn lecture(preset: &str, speed: f64, field: &str) -> Lecture {
+    let before = first_event(preset);
+    let mut l = Lecturer {
+        h: Headless::new(preset),
+        wall: 0.0,
+        lines: Vec::new(),
+        frames: Vec::new(),
+    };
+    let header = rattleback::explorer::recording::header(&l.h.app, (80, 24), 30.0);
+    let effects =
+        l.h.app
+            .on_outcome(Outcome::Recording(Ok("lecture.jsonl".into())));
+    l.h.exec(effects);
+    l.collect();
+    while l.h.app.run.speed < speed {
+        l.key(Key::Char('+'));
+    }
+    l.key(Key::Char(' '));
+    // Pause just before the first event: the frame after would pass it.
+    while l.h.app.run.shown + speed * FRAME < before && !l.h.app.run.done() {
+        l.tick();
+    }
+    l.key(Key::Char(' '));
+    l.tick();
+    for _ in 0..3 {
+        l.key(Key::Char('.'));
+        l.tick();
+    }
+    // Select the field (recorded) and change it.
+    while l.h.app.field().label() != field {
+        l.key(Key::Down);
+    }
+    l.key(Key::Char('+'));
+    l.tick();
+    l.text('m', "after the change");
+    l.tick();
+    l.text('n', "watch the next reversal");
+    l.tick();
+    l.key(Key::Char(' '));
+    let mut frames = 0;
+    while !l.h.app.run.done() {
+        l.tick();
+        frames += 1;
+        assert!(frames < 200_000, "never reached the end");
+    }
+    l.tick();
+    // Stop: the final screen and checkpoint, then the end line.
+    l.key(Key::Char('R'));
+    while !l
+        .lines
+        .iter()
+        .rev()
+        .take(3)
+        .any(|x| matches!(x.event, Event::Checkpoint { .. }))
+    {
+        l.tick();
+    }
+    Lecture {
+        header,
+        lines: l.lines,
+        frames: l.frames,
+    }
+}
+
+/// Plays `lines` through a replayer (`live`: pushed as they were written, as `follow` reads
+/// them); at every screen line applied, compares the frame with the lecturer's.
+fn replay_and_compare(preset: &str, lecture: &Lecture, live: bool) -> usize {
+    let preset = rattleback::scenario::shipped::resolve(preset, &[]).unwrap();
+    let mut h = Headless::of(&preset);
+    let mut r = if live {
+        Replayer::live(Vec::new(), 0.0)
+    } else {
+        Replayer::new(lecture.lines.clone())
+    };
+    let effects = r.catch_up(&mut h.app);
+    h.exec(effects);
+    let screens: std::collections::HashMap<usize, (&String, &Shown)> = lecture
+        .frames
+        .iter()
+        .map(|(i, f, s)| (*i, (f, s)))
+        .collect();
+    let (mut wall, mut pushed, mut compared, mut done) = (0.0, 0, 0, 0);
+    let mut guard = 0;
+    while done < lecture.lines.len() {
+        wall += REPLAY_FRAME;
+        if live {
+            let upto = lecture.lines.partition_point(|l| l.wall <= wall + 1e-9);
+            let new = lecture.lines[pushed..upto].to_vec();
+            pushed = upto;
+            let e = r.push(new, &mut h.app);
+            h.exec(e);
+        }
+        let e = r.advance(REPLAY_FRAME, &mut h.app);
+        h.exec(e);
+        let now = r.position();
+        for i in done..now {
+            if let Some((f, s)) = screens.get(&i) {
+                let got = h.app.shown();
+                if s.difference(&got).is_some() {
+                    for (j, l) in lecture
+                        .lines
+                        .iter()
+                        .enumerate()
+                        .take(i + 2)
+                        .skip(i.saturating_sub(12))
+                    {
+                        eprintln!(
+                            "{j}: wall {:.4} t {} g {} {:?}",
+                            l.wall, l.t, l.generation, l.event
+                        );
+                    }
+                    eprintln!(
+                        "replay shown {} goal {} ceiling {:?}",
+                        h.app.run.shown, h.app.run.goal, h.app.run.ceiling
+                    );
+                }
+                assert!(
+                    s.difference(&got).is_none(),
+                    "line {i}: {:?}",
+                    s.difference(&got)
+                );
+                let mine = frame(&mut h.app);
+                assert_eq!(
+                    &mine,
+                    *f,
+                    "line {}: the frame differs from the lecturer's",
+                    i + 2
+                );
+                compared += 1;
+            }
+        }
+        if live && pushed > 0 && r.position() == pushed {
+            // Never a time the lecturer has not shown: at most the last line's.
+            let last = &lecture.lines[pushed - 1];
+            assert!(
+                h.app.run.shown <= last.t + 1e-12,
+                "the follower shows t = {} past the lecturer's {}",
+                h.app.run.shown,
+                last.t
+            );
+        }
+        done = now;
+        guard += 1;
+        assert!(guard < 20_000_000, "the replay never ended");
+    }
+    compared
+}
+
+fn write(
+    lecture: &Lecture,
+    name: &str,
+    signer: Option<record::sign::Signer>,
+) -> std::path::PathBuf {
+    let path = temp(name);
+    let mut rec = Recorder::create(&path, &lecture.header, signer).unwrap();
+    for l in &lecture.lines {
+        rec.write(l).unwrap();
+    }
+    rec.write(&Line {
+        wall: lecture.lines.last().map_or(0.0, |l| l.wall),
+        t: lecture.lines.last().map_or(0.0, |l| l.t),
+        generation: 0,
+        chain: None,
+        event: Event::end(),
+    })
+    .unwrap();
+    path
+}
+
+fn check(preset: &str, field: &str) {
+    for speed in [1.0, 16.0, 1024.0] {
+        let lecture = lecture(preset, speed, field);
+        let screens = lecture.frames.len();
+        assert!(
+            screens >= 7,
+            "{preset} ×{speed}: only {screens} screens recorded"
+        );
+        let pauses = lecture
+            .lines
+            .iter()
+            .filter(|l| l.event == Event::Pause)
+            .count();
+        assert!(pauses >= 1);
+        assert_eq!(
+            replay_and_compare(preset, &lecture, false),
+            screens,
+            "{preset} ×{speed}: replay"
+        );
+        assert_eq!(
+            replay_and_compare(preset, &lecture, true),
+            screens,
+            "{preset} ×{speed}: follow"
+        );
+        let path = write(&lecture, &format!("{preset}-{speed}.jsonl"), None);
+        let rec = record::read(&path).unwrap();
+        let report = record::verify(&rec, "lecture", None).unwrap();
+        assert_eq!(report.screens, screens);
+        assert!(
+            report.checkpoints >= screens,
+            "a checkpoint with every screen"
+        );
+        // Checkpoints are at displayed times: each has a screen line at the same t.
+        for l in &lecture.lines {
+            if matches!(l.event, Event::Checkpoint { .. }) {
+                assert!(
+                    lecture
+                        .lines
+                        .iter()
+                        .any(|s| matches!(s.event, Event::Screen(_))
+                            && s.t.to_bits() == l.t.to_bits()),
+                    "{preset} ×{speed}: a checkpoint at t = {} that no screen showed",
+                    l.t
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn a_rattleback_lecture_replays_and_follows_frame_for_frame() {
+    check("subcritical", "k");
+}
+
+#[test]
+fn a_pendulum_lecture_replays_and_follows_frame_for_frame() {
+    check("kapitza-upright", "b");
+}
+
+fn one_lecture() -> Lecture {
+    lecture("subcritical", 16.0, "k")
+}
+
+fn line_of(path: &std::path::Path, kind: &str) -> usize {
+    let text = std::fs::read_to_string(path).unwrap();
+    text.lines()
+        .position(|l| l.contains(&format!("\"kind\":\"{kind}\"")))
+        .unwrap()
+}
+
+fn edit(
+    path: &std::path::Path,
+    name: &str,
+    f: impl Fn(usize, &str) -> Option<String>,
+) -> std::path::PathBuf {
+    let text = std::fs::read_to_string(path).unwrap();
+    let out: Vec<String> = text
+        .lines()
+        .enumerate()
+        .filter_map(|(i, l)| f(i, l))
+        .collect();
+    let p = temp(name);
+    std::fs::write(&p, out.join("\n") + "\n").unwrap();
+    p
+}
+
+fn diverged_at(path: &std::path::Path, key: Option<&record::sign::PublicKey>) -> usize {
+    let rec = record::read(path).unwrap();
+    match record::verify(&rec, "edited", key) {
+        Err(record::VerifyError::Diverged(d)) => d.line,
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn edits_downgrades_cuts_and_extra_fields_fail_naming_the_line() {
+    let lecture = one_lecture();
+    let path = write(&lecture, "intact.jsonl", None);
+    assert!(record::verify(&record::read(&path).unwrap(), "intact", None).is_ok());
+    // A note's text changed (a forged line, its chain left as it was).
+    let note = line_of(&path, "note");
+    let forged = edit(&path, "forged.jsonl", |i, l| {
+        Some(if i == note {
+            l.replace("watch", "skip")
+        } else {
+            l.to_owned()
+        })
+    });
+    assert_eq!(diverged_at(&forged, None), note + 1);
+    // The header says version 3: its rules refuse format-4 lines.
+    let downgraded = edit(&path, "downgraded.jsonl", |i, l| {
+        Some(if i == 0 {
+            l.replace("\"version\":4", "\"version\":3")
+        } else {
+            l.to_owned()
+        })
+    });
+    let first = std::fs::read_to_string(&downgraded).unwrap();
+    assert!(first.starts_with("{\"format\":\"rattleback-session\",\"version\":3"));
+    diverged_at(&downgraded, None);
+    // An extra field: covered by the chain and refused by the format.
+    let extra = edit(&path, "extra.jsonl", |i, l| {
+        Some(if i == note {
+            l.replacen('{', "{\"x\":1,", 1)
+        } else {
+            l.to_owned()
+        })
+    });
+    assert_eq!(diverged_at(&extra, None), note + 1);
+    // The tail deleted (the end line and a few before it): intact but incomplete.
+    let total = std::fs::read_to_string(&path).unwrap().lines().count();
+    let cut = edit(&path, "cut.jsonl", |i, l| {
+        (i + 4 < total).then(|| l.to_owned())
+    });
+    match record::verify(&record::read(&cut).unwrap(), "cut", None) {
+        Err(record::VerifyError::Incomplete { through, .. }) => assert_eq!(through, total - 4),
+        other => panic!("{other:?}"),
+    }
+    // Everything but the header: incomplete too.
+    let bare = edit(&path, "bare.jsonl", |i, l| (i == 0).then(|| l.to_owned()));
+    assert!(matches!(
+        record::verify(&record::read(&bare).unwrap(), "bare", None),
+        Err(record::VerifyError::Incomplete { .. })
+    ));
+    // And the command says so, with a non-zero exit.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        .args(["replay", cut.to_str().unwrap(), "--verify"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains(&format!("intact up to line {}", total - 4)),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_signed_session_verifies_with_its_key_and_fails_with_another() {
+    let dir = temp("keys");
+    std::fs::create_dir_all(&dir).unwrap();
+    let (secret, public) = record::sign::keygen(&dir.join("lecturer")).unwrap();
+    let (_, other) = record::sign::keygen(&dir.join("someone-else")).unwrap();
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt as _;
+        let mode = std::fs::metadata(&secret).unwrap().permissions().mode();
+        assert_eq!(mode & 0o777, 0o600, "the private key is private");
+    }
+    assert!(
+        record::sign::keygen(&dir.join("lecturer")).is_err(),
+        "never overwritten"
+    );
+    let lecture = one_lecture();
+    let signer = record::sign::Signer::read(&secret).unwrap();
+    let path = write(&lecture, "signed.jsonl", Some(signer));
+    let key = record::sign::PublicKey::read(&public).unwrap();
+    let report = record::verify(&record::read(&path).unwrap(), "signed", Some(&key)).unwrap();
+    assert!(report.signature.unwrap().starts_with("signed by lecturer"));
+    let other = record::sign::PublicKey::read(&other).unwrap();
+    let end = std::fs::read_to_string(&path).unwrap().lines().count();
+    assert_eq!(diverged_at(&path, Some(&other)), end);
+    // An unsigned session does not pass for a signed one.
+    let unsigned = write(&lecture, "unsigned.jsonl", None);
+    diverged_at(&unsigned, Some(&key));
+    // A line edited and the whole chain written again by someone without the key: the chain
+    // holds, the signature does not.
+    let rec = record::read(&path).unwrap();
+    let forged = temp("reforged.jsonl");
+    let mut out = Recorder::create(&forged, &rec.header, None).unwrap();
+    for (_, l) in &rec.lines {
+        let mut l = l.clone();
+        if let Event::Note { text } = &mut l.event {
+            *text = "forged".to_owned();
+        }
+        out.write(&l).unwrap();
+    }
+    drop(out);
+    // Re-chained without a key: the end line is unsigned now, so a key check fails.
+    diverged_at(&forged, Some(&key));
+}
+
+/// `follow` of a file that does not exist yet waits for it, saying so (students usually start
+/// first), then reads it once it appears: here a file that is not a session, refused with exit 2
+/// before the terminal is touched.
+#[test]
+fn follow_waits_for_a_file_that_does_not_exist_yet() {
+    use std::io::Read as _;
+    let path = temp("not-yet.jsonl");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        .args(["follow", path.to_str().unwrap()])
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(700));
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "it must wait, not exit"
+    );
+    std::fs::write(&path, "not a session\n").unwrap();
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(10);
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        assert!(
+            std::time::Instant::now() < deadline,
+            "still waiting after the file appeared"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    };
+    let mut err = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut err)
+        .unwrap();
+    assert_eq!(status.code(), Some(2), "{err}");
+    assert!(err.contains("waiting for"), "{err}");
+    assert!(err.contains("not a session header"), "{err}");
+}
