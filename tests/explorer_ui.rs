@@ -496,4 +496,62 @@ fn lesson_pane_at_80x24() {
         "{screen}"
     );
     insta::assert_snapshot!("lesson_80x24", screen);
+    // The step is about the time series: it is open, with at least 8 rows beside the lesson.
+    assert!(rows_of(&screen, "(t): full") >= 8, "{screen}");
+}
+
+/// Rows of the bordered pane whose title holds `title`: from its top border to its bottom one.
+fn rows_of(screen: &str, title: &str) -> usize {
+    let lines: Vec<Vec<char>> = screen.lines().map(|l| l.chars().collect()).collect();
+    let needle: Vec<char> = title.chars().collect();
+    let (top, at) = lines
+        .iter()
+        .enumerate()
+        .find_map(|(y, l)| {
+            l.windows(needle.len())
+                .position(|w| w == needle.as_slice())
+                .map(|x| (y, x))
+        })
+        .unwrap_or_else(|| panic!("no pane titled {title}"));
+    let corner = lines[top][..at]
+        .iter()
+        .rposition(|c| *c == '┌')
+        .expect("a bordered pane");
+    let bottom = (top + 1..lines.len())
+        .find(|&y| lines[y].get(corner) == Some(&'└'))
+        .expect("its bottom border");
+    bottom - top + 1
+}
+
+/// Every shipped lesson step that names a pane gets it, with at least 8 rows, at 80×24, in both
+/// scenes.
+#[test]
+fn a_lesson_steps_pane_gets_room_at_80x24() {
+    for (name, _) in rattleback::scenario::lesson::SHIPPED_LESSONS {
+        let lesson = rattleback::scenario::lesson::resolve(name).unwrap();
+        for (i, step) in lesson.steps.iter().enumerate() {
+            let Some(pane) = step.pane.as_deref() else {
+                continue;
+            };
+            // The step alone, as a lesson: it begins as it would in its place.
+            let alone = rattleback::scenario::lesson::Lesson {
+                steps: vec![step.clone()],
+                ..lesson.clone()
+            };
+            let mut h = Headless::new("subcritical");
+            let effects = h.app.start_lesson(alone);
+            h.exec(effects);
+            let screen = text(&render(&h.app, 80, 24));
+            let title = match pane {
+                "series" => "(t): full",
+                "sweep" => "-sweep:",
+                other => panic!("a shipped step asks for {other}: add its title here"),
+            };
+            assert!(
+                rows_of(&screen, title) >= 8,
+                "{name} step {}: the {pane} pane is too small\n{screen}",
+                i + 1
+            );
+        }
+    }
 }

@@ -266,3 +266,55 @@ fn a_live_replay_applies_new_lines_and_keeps_the_lecturers_clock() {
     assert_eq!(h.app.scenario.settings.rattleback().unwrap().params().k, k);
     h.key(rattleback::app::Key::Char('z'));
 }
+
+/// Whatever the writer does, the follower reads with bounded memory: a file grown by 64 MiB of
+/// zeros (`truncate -s`) and a 16 MiB line with no newline are skipped a bounded chunk per look,
+/// with one message, and the next good line still arrives.
+#[test]
+fn huge_or_endless_lines_are_skipped_at_bounded_memory() {
+    use std::io::Write as _;
+    let d = dir("huge");
+    let path = d.join("s.jsonl");
+    let mut rec = Recorder::create(&path, &header(), None).unwrap();
+    rec.write(&line(0.1, Event::Play)).unwrap();
+    drop(rec);
+    let (mut tail, _) = Tail::open(&path).unwrap();
+    let mut f = std::fs::OpenOptions::new()
+        .append(true)
+        .open(&path)
+        .unwrap();
+    // An endless line, then zeros as `truncate -s` leaves them, then a newline and a good line.
+    f.write_all(&vec![b'x'; 16 << 20]).unwrap();
+    f.set_len(f.metadata().unwrap().len() + (64 << 20)).unwrap();
+    let mut f = std::fs::OpenOptions::new()
+        .append(true)
+        .open(&path)
+        .unwrap();
+    f.write_all(b"\n").unwrap();
+    let good = serde_json::to_string(&line(9.0, Event::Pause)).unwrap();
+    f.write_all(good.as_bytes()).unwrap();
+    f.write_all(b"\n").unwrap();
+    drop(f);
+    let mut said = 0;
+    let mut got = Vec::new();
+    for _ in 0..100 {
+        match tail.poll() {
+            Some(TailEvent::Lines(l)) => got.extend(l),
+            Some(TailEvent::Missing(why)) => {
+                assert!(why.contains("skipped"), "{why}");
+                said += 1;
+            }
+            Some(TailEvent::Restarted { why, .. }) => panic!("restarted: {why}"),
+            None => {}
+        }
+        let bound = rattleback::record::tail::MAX_LINE
+            + usize::try_from(rattleback::record::tail::READ_PER_POLL).unwrap();
+        assert!(tail.held() <= bound, "{} bytes held", tail.held());
+        if !got.is_empty() {
+            break;
+        }
+    }
+    assert_eq!(said, 1, "one message for the skipped bytes");
+    assert_eq!(got.len(), 1);
+    assert_eq!(got[0].event, Event::Pause);
+}

@@ -42,7 +42,10 @@ fn the_shipped_lessons_parse_and_are_listed() {
     args.extend(files.iter().map(String::as_str));
     let (code, out, err) = bin(&args);
     assert_eq!(code, 0, "{err}");
-    assert!(out.contains("3 file(s) ok"), "{out}");
+    assert!(
+        out.contains(&format!("{} file(s) ok", SHIPPED_LESSONS.len())),
+        "{out}"
+    );
 }
 
 #[test]
@@ -75,6 +78,19 @@ fn bad_lessons_are_refused_with_the_line_and_the_key() {
             vec!["step.0.until.parameter", "did you mean `spring.k`?"],
         ),
         ("no-steps.toml", 1, vec!["step", "at least one [[step]]"]),
+        (
+            "impossible-until.toml",
+            9,
+            vec!["step.0.until.time", "after the step's t_end = 30"],
+        ),
+        (
+            "other-scene-until.toml",
+            9,
+            vec![
+                "step.0.until.parameter",
+                "not a parameter of the step's scene (kapitza)",
+            ],
+        ),
     ] {
         let path = fixture(file);
         let (code, out, err) = bin(&["check", &path]);
@@ -92,6 +108,86 @@ fn bad_lessons_are_refused_with_the_line_and_the_key() {
     let (code, _, err) = bin(&["lesson", "first-reversl"]);
     assert_eq!(code, 2);
     assert!(err.contains("did you mean `first-reversal`?"), "{err}");
+}
+
+/// A step that tells the student to watch or play waits for the run, not only for a key.
+#[test]
+fn steps_that_say_watch_or_play_wait_for_the_run() {
+    for (name, _) in SHIPPED_LESSONS {
+        let l = resolve(name).unwrap();
+        for (i, s) in l.steps.iter().enumerate() {
+            let says = s.text.to_lowercase();
+            if says.contains("watch") || says.contains("play") {
+                assert!(
+                    s.until.time.is_some() || s.until.reversals.is_some(),
+                    "{name} step {}: says watch/play but waits for no run",
+                    i + 1
+                );
+            }
+        }
+    }
+}
+
+/// Every step of every shipped lesson can complete: played headless to its time, with its
+/// parameter set to the bound, the condition holds and `n` moves on; the lesson ends.
+#[test]
+fn every_shipped_lesson_can_be_walked_to_its_end() {
+    for (name, _) in SHIPPED_LESSONS {
+        let mut h = lesson_app(name);
+        let steps = h.app.lesson.as_ref().unwrap().lesson.steps.len();
+        for i in 0..steps {
+            let step = h.app.lesson.as_ref().unwrap().current().clone();
+            if let Some(p) = &step.until.parameter {
+                let label = p.key.rsplit('.').next().unwrap();
+                let value = p.at_least.or(p.at_most).unwrap();
+                while h.app.field().label() != label {
+                    h.key(Key::Down);
+                }
+                h.key(Key::Enter);
+                for c in format!("{value:e}").chars() {
+                    h.key(Key::Char(c));
+                }
+                h.key(Key::Enter);
+            }
+            // Answer whatever is asked (the answer's correctness is another test's).
+            if let Some(q) = &step.question {
+                match q {
+                    rattleback::scenario::lesson::Question::Choice { .. } => h.key(Key::Char('1')),
+                    rattleback::scenario::lesson::Question::Number { .. } => {
+                        h.key(Key::Char('a'));
+                        h.key(Key::Char('1'));
+                        h.key(Key::Enter);
+                    }
+                }
+            }
+            if let Some(t) = step.until.time {
+                h.play_until(t, 64.0);
+                if h.app.run.playing {
+                    h.key(Key::Char(' '));
+                }
+            }
+            for _ in 0..3 {
+                h.tick(1.0 / 30.0);
+            }
+            assert_eq!(
+                h.app.lesson_missing(),
+                None,
+                "{name} step {}: the condition does not hold after doing what it says",
+                i + 1
+            );
+            h.key(Key::Char('n'));
+            let state = h.app.lesson.as_ref().unwrap();
+            assert!(
+                state.step == i + 1 || state.finished,
+                "{name} step {}: n did not move on",
+                i + 1
+            );
+        }
+        assert!(
+            h.app.lesson.as_ref().unwrap().finished,
+            "{name}: not finished"
+        );
+    }
 }
 
 fn lesson_app(name: &str) -> Headless {
@@ -161,7 +257,8 @@ fn steps_ask_first_reveal_after_and_wait_for_their_condition() {
     assert_eq!(h.app.run.reversals_shown(), 0);
     h.key(Key::Char('n'));
 
-    // A parameter condition: alpha_dot ≥ 0.92, reached by editing it.
+    // A parameter condition and the run: alpha_dot ≥ 0.911 (just above the threshold 0.910,
+    // where 'vs critical' turns positive), reached by editing it, then t = 30.
     assert_eq!(h.app.lesson.as_ref().unwrap().step, 3);
     h.key(Key::Char('n'));
     assert!(
@@ -170,7 +267,7 @@ fn steps_ask_first_reveal_after_and_wait_for_their_condition() {
             .as_ref()
             .unwrap()
             .text
-            .contains("alpha_dot ≥ 0.92")
+            .contains("alpha_dot ≥ 0.911")
     );
     for _ in 0..7 {
         h.key(Key::Down); // to alpha_dot
@@ -180,6 +277,12 @@ fn steps_ask_first_reveal_after_and_wait_for_their_condition() {
         h.key(Key::Char(c));
     }
     h.key(Key::Enter);
+    assert!(
+        h.app.lesson_missing().is_some_and(|m| m.contains("t ≥ 30")),
+        "the edit alone does not complete it: {:?}",
+        h.app.lesson_missing()
+    );
+    h.play_until(30.0, 64.0);
     assert!(
         h.app.lesson_missing().is_none(),
         "{:?}",

@@ -127,6 +127,13 @@ impl App {
         if self.run.playing {
             effects.push(Effect::Sim(self.run.pause()));
         }
+        if let Some(pane) = step.pane.as_deref().and_then(super::panes::Pane::named)
+            && !self.view.panes.shows(pane)
+            && self.scene_has(pane)
+            && let Some(action) = pane.toggle_action()
+        {
+            effects.extend(self.update(action));
+        }
         let hint = if step.question.is_some() {
             "answer first, then space plays"
         } else {

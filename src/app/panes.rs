@@ -50,6 +50,33 @@ impl Pane {
 
     /// Whether only the rattleback has it (the regime map and the body; the sweep and weak-*
     /// cover every model).
+    /// The pane a lesson step names (`series`, `sweep`, `weak`, `map`, `body`).
+    #[must_use]
+    pub fn named(name: &str) -> Option<Self> {
+        match name {
+            "series" => Some(Self::Series),
+            "sweep" => Some(Self::Sweep),
+            "weak" => Some(Self::Weak),
+            "map" => Some(Self::Map),
+            "body" => Some(Self::Body),
+            _ => None,
+        }
+    }
+
+    /// The action that shows or hides this pane.
+    #[must_use]
+    pub fn toggle_action(self) -> Option<super::Action> {
+        use super::Action;
+        match self {
+            Self::Series => Some(Action::ToggleSeries),
+            Self::Sweep => Some(Action::ToggleSweep),
+            Self::Weak => Some(Action::ToggleWeak),
+            Self::Map => Some(Action::ToggleMap),
+            Self::Body => Some(Action::ToggleBody),
+            Self::Params | Self::Portrait | Self::Lesson => None,
+        }
+    }
+
     #[must_use]
     pub fn rattleback_only(self) -> bool {
         matches!(self, Self::Map | Self::Body)

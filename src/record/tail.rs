@@ -53,7 +53,16 @@ pub struct Tail {
     line: usize,
     missing: bool,
     ended: bool,
+    /// Dropping an over-long line until its newline.
+    skipping: bool,
 }
+
+/// Longest line kept (a session's lines are small: the largest holds a preset): a longer one,
+/// or bytes with no newline, is skipped, so memory stays bounded whatever the writer does.
+pub const MAX_LINE: usize = 1 << 20;
+/// Most bytes read in one look (a file that grew by a gigabyte is read over many looks, at
+/// bounded memory and CPU).
+pub const READ_PER_POLL: u64 = 4 << 20;
 
 impl Tail {
     /// Opens `path` and reads it whole; the tail then continues from its end.
@@ -79,8 +88,16 @@ impl Tail {
             line: recording.lines.last().map_or(2, |(n, _)| n + 1),
             missing: false,
             ended,
+            skipping: false,
         };
         Ok((tail, recording))
+    }
+
+    /// Bytes held of a line whose newline has not arrived (at most [`MAX_LINE`] plus one look's
+    /// [`READ_PER_POLL`]).
+    #[must_use]
+    pub fn held(&self) -> usize {
+        self.partial.len()
     }
 
     /// Whether the recording has ended.
@@ -135,15 +152,20 @@ impl Tail {
         file.seek(SeekFrom::Start(self.offset + self.partial.len() as u64))
             .ok()?;
         let mut fresh = Vec::new();
-        // At most what the metadata said: a writer racing ahead is read next time.
-        let want = meta.len() - self.offset - self.partial.len() as u64;
+        // At most what the metadata said (a writer racing ahead is read next time), and at most
+        // a bounded amount per look.
+        let want = (meta.len() - self.offset - self.partial.len() as u64).min(READ_PER_POLL);
         file.take(want).read_to_end(&mut fresh).ok()?;
         self.partial.extend_from_slice(&fresh);
         let mut lines = Vec::new();
+        let mut skipped = false;
         while let Some(end) = self.partial.iter().position(|&b| b == b'\n') {
             let row: Vec<u8> = self.partial.drain(..=end).collect();
             self.offset += row.len() as u64;
             self.line += 1;
+            if std::mem::take(&mut self.skipping) {
+                continue;
+            }
             let text = String::from_utf8_lossy(&row);
             if text.trim().is_empty() {
                 continue;
@@ -155,20 +177,47 @@ impl Tail {
                 lines.push(line);
             }
         }
+        if self.partial.len() > MAX_LINE {
+            // No newline in sight: drop what is held and skip to the next newline.
+            self.offset += self.partial.len() as u64;
+            self.partial.clear();
+            skipped = !self.skipping;
+            self.skipping = true;
+        }
+        if skipped && lines.is_empty() {
+            return Some(TailEvent::Missing(format!(
+                "{}: a line longer than {} MiB was skipped (not a session line)",
+                self.path.display(),
+                MAX_LINE >> 20
+            )));
+        }
         (!lines.is_empty()).then_some(TailEvent::Lines(lines))
     }
 }
 
-/// The length of the file's part made of complete lines (up to its last newline).
+/// The length of the file's part made of complete lines (up to its last newline), read
+/// backwards a bounded chunk at a time.
 fn complete_prefix(path: &Path, len: u64) -> u64 {
-    let Ok(bytes) = std::fs::read(path) else {
+    const CHUNK: u64 = 64 << 10;
+    let Ok(mut file) = File::open(path) else {
         return len;
     };
-    let bytes = &bytes[..usize::try_from(len).unwrap_or(bytes.len()).min(bytes.len())];
-    bytes
-        .iter()
-        .rposition(|&b| b == b'\n')
-        .map_or(0, |i| i as u64 + 1)
+    let mut end = len;
+    let mut buf = Vec::new();
+    while end > 0 {
+        let start = end.saturating_sub(CHUNK);
+        buf.clear();
+        if file.seek(SeekFrom::Start(start)).is_err()
+            || (&mut file).take(end - start).read_to_end(&mut buf).is_err()
+        {
+            return len;
+        }
+        if let Some(i) = buf.iter().rposition(|&b| b == b'\n') {
+            return start + i as u64 + 1;
+        }
+        end = start;
+    }
+    0
 }
 
 #[cfg(test)]

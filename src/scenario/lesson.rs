@@ -10,6 +10,8 @@
 //! text = "Press space and watch the spin angle."
 //! preset = "subcritical"             # optional: loaded when the step begins
 //! set = ["spring.k=1e6"]             # optional: then these changes, as `--set`
+//! pane = "series"                    # optional: the pane the step is about (series, sweep,
+//!                                    # weak, map, body): opened, and given room on screen
 //!
 //! [step.question]                    # optional: asked before the run
 //! prompt = "Will the spin reverse before t = 30?"
@@ -46,6 +48,14 @@ pub const SHIPPED_LESSONS: &[(&str, &str)] = &[
         include_str!("../../lessons/stiff-limit.toml"),
     ),
     ("tapping", include_str!("../../lessons/tapping.toml")),
+    (
+        "kapitza-threshold",
+        include_str!("../../lessons/kapitza-threshold.toml"),
+    ),
+    (
+        "kapitza-ripple",
+        include_str!("../../lessons/kapitza-ripple.toml"),
+    ),
 ];
 
 /// A prediction asked before a step's run; the answer is revealed after it.
@@ -132,7 +142,13 @@ pub struct Step {
     pub question: Option<Question>,
     /// What `n` waits for.
     pub until: Until,
+    /// The pane the step is about (`series`, `sweep`, `weak`, `map`, `body`): opened when the
+    /// step begins and given room beside the lesson.
+    pub pane: Option<String>,
 }
+
+/// The panes a step may ask for.
+pub const STEP_PANES: [&str; 5] = ["series", "sweep", "weak", "map", "body"];
 
 /// A lesson.
 #[derive(Clone, Debug, PartialEq)]
@@ -359,7 +375,9 @@ impl Lesson {
 }
 
 /// The keys a step takes.
-const STEP_KEYS: [&str; 6] = ["title", "text", "preset", "set", "question", "until"];
+const STEP_KEYS: [&str; 7] = [
+    "title", "text", "preset", "set", "question", "until", "pane",
+];
 
 fn number(v: &Value) -> Option<f64> {
     match v {
@@ -371,7 +389,12 @@ fn number(v: &Value) -> Option<f64> {
 }
 
 /// The parameters a condition may watch.
-pub const WATCHABLE: [&str; 10] = [
+pub const WATCHABLE: [&str; 15] = [
+    "pendulum.a",
+    "pendulum.b",
+    "pendulum.epsilon",
+    "initial.theta",
+    "initial.theta_dot",
     "body.ix",
     "body.iy",
     "body.iz",
@@ -477,6 +500,27 @@ fn step(item: &Value, path: &str, at: &mut dyn FnMut(&str, String)) -> Option<St
             Until::default()
         }
     };
+    let pane = match t.get("pane") {
+        None => None,
+        Some(Value::String(p)) if STEP_PANES.contains(&p.as_str()) => Some(p.clone()),
+        Some(v) => {
+            at(
+                &format!("{path}.pane"),
+                format!(
+                    "{v}: allowed {}{}",
+                    STEP_PANES.join(", "),
+                    super::text::did_you_mean(v.as_str().unwrap_or_default(), STEP_PANES)
+                ),
+            );
+            None
+        }
+    };
+    if let Some(p) = preset
+        .as_ref()
+        .and_then(|p| Preset::parse(&p.to_toml(), "the step's preset", "step", &set).ok())
+    {
+        impossible(&until, &p, &format!("{path}.until"), at);
+    }
     Some(Step {
         title: title.unwrap_or_default(),
         text,
@@ -484,6 +528,7 @@ fn step(item: &Value, path: &str, at: &mut dyn FnMut(&str, String)) -> Option<St
         set,
         question,
         until,
+        pane,
     })
 }
 
@@ -583,6 +628,47 @@ fn question(q: &toml::Table, path: &str, at: &mut dyn FnMut(&str, String)) -> Op
                 answer: value,
                 tolerance,
             })
+        }
+    }
+}
+
+/// A condition the step's own scenario can never meet: a time after its `t_end`, a parameter of
+/// the other model.
+fn impossible(until: &Until, preset: &Preset, path: &str, at: &mut dyn FnMut(&str, String)) {
+    if let Some(t) = until.time
+        && t > preset.run.t_end
+    {
+        at(
+            &format!("{path}.time"),
+            format!(
+                "{t} is after the step's t_end = {}: the step could never complete",
+                preset.run.t_end
+            ),
+        );
+    }
+    if let Some(p) = &until.parameter {
+        let section = p.key.split('.').next().unwrap_or_default();
+        let kind = preset.model.kind();
+        let theirs = match kind {
+            crate::physics::ModelKind::Rattleback => {
+                ["pendulum"].contains(&section)
+                    || ["initial.theta", "initial.theta_dot"].contains(&p.key.as_str())
+            }
+            crate::physics::ModelKind::Kapitza => {
+                ["body", "spring"].contains(&section)
+                    || p.key.starts_with("initial.gamma")
+                    || p.key.starts_with("initial.alpha")
+            }
+        };
+        if theirs {
+            at(
+                &format!("{path}.parameter"),
+                format!(
+                    "'{}' is not a parameter of the step's scene ({}): the step could never complete",
+                    p.key,
+                    kind.name()
+                ),
+            );
         }
     }
 }
