@@ -28,10 +28,10 @@ impl Settings {
     #[must_use]
     pub fn simulate_command(&self) -> String {
         use std::fmt::Write as _;
-        let mut cmd = String::from("rattleback simulate");
-        if self.model.kind() != ModelKind::Rattleback {
-            let _ = write!(cmd, " --set preset.model={}", self.model.kind().name());
-        }
+        let mut cmd = format!(
+            "rattleback simulate --preset {}",
+            crate::scenario::shipped::base_preset(self.model.kind())
+        );
         for f in Field::rows(self.model.kind()) {
             let value = f.exact(self);
             let _ = match f {

@@ -450,34 +450,7 @@ fn step(item: &Value, path: &str, at: &mut dyn FnMut(&str, String)) -> Option<St
         },
         None => None,
     };
-    let mut set = Vec::new();
-    match t.get("set") {
-        None => {}
-        Some(Value::Array(items)) => {
-            for v in items {
-                match v.as_str().map(str::parse::<Override>) {
-                    Some(Ok(o)) => set.push(o),
-                    Some(Err(e)) => at(&format!("{path}.set"), e),
-                    None => at(
-                        &format!("{path}.set"),
-                        "expected \"section.key=value\" texts".to_owned(),
-                    ),
-                }
-            }
-            // Names and values checked like `--set` (on the step's preset, else the default).
-            let checked = match &preset {
-                Some(p) => Preset::parse(&p.to_toml(), "the step's preset", "step", &set),
-                None => super::shipped::resolve(super::shipped::DEFAULT_PRESET, &set),
-            };
-            if let Err(e) = checked {
-                at(&format!("{path}.set"), e.to_string());
-            }
-        }
-        Some(_) => at(
-            &format!("{path}.set"),
-            "expected a list of \"section.key=value\" texts".to_owned(),
-        ),
-    }
+    let set = step_set(t.get("set"), preset.as_ref(), path, at);
     let question = match t.get("question") {
         None => None,
         Some(Value::Table(q)) => question(q, &format!("{path}.question"), at),
@@ -500,21 +473,7 @@ fn step(item: &Value, path: &str, at: &mut dyn FnMut(&str, String)) -> Option<St
             Until::default()
         }
     };
-    let pane = match t.get("pane") {
-        None => None,
-        Some(Value::String(p)) if STEP_PANES.contains(&p.as_str()) => Some(p.clone()),
-        Some(v) => {
-            at(
-                &format!("{path}.pane"),
-                format!(
-                    "{v}: allowed {}{}",
-                    STEP_PANES.join(", "),
-                    super::text::did_you_mean(v.as_str().unwrap_or_default(), STEP_PANES)
-                ),
-            );
-            None
-        }
-    };
+    let pane = step_pane(t.get("pane"), path, at);
     if let Some(p) = preset
         .as_ref()
         .and_then(|p| Preset::parse(&p.to_toml(), "the step's preset", "step", &set).ok())
@@ -628,6 +587,63 @@ fn question(q: &toml::Table, path: &str, at: &mut dyn FnMut(&str, String)) -> Op
                 answer: value,
                 tolerance,
             })
+        }
+    }
+}
+
+/// A step's `set`: each change checked like `--set` on the step's preset (else the default).
+fn step_set(
+    v: Option<&Value>,
+    preset: Option<&Preset>,
+    path: &str,
+    at: &mut dyn FnMut(&str, String),
+) -> Vec<Override> {
+    let mut set = Vec::new();
+    match v {
+        None => {}
+        Some(Value::Array(items)) => {
+            for v in items {
+                match v.as_str().map(str::parse::<Override>) {
+                    Some(Ok(o)) => set.push(o),
+                    Some(Err(e)) => at(&format!("{path}.set"), e),
+                    None => at(
+                        &format!("{path}.set"),
+                        "expected \"section.key=value\" texts".to_owned(),
+                    ),
+                }
+            }
+            // Names and values checked like `--set` (on the step's preset, else the default).
+            let checked = match preset {
+                Some(p) => Preset::parse(&p.to_toml(), "the step's preset", "step", &set),
+                None => super::shipped::resolve(super::shipped::DEFAULT_PRESET, &set),
+            };
+            if let Err(e) = checked {
+                at(&format!("{path}.set"), e.to_string());
+            }
+        }
+        Some(_) => at(
+            &format!("{path}.set"),
+            "expected a list of \"section.key=value\" texts".to_owned(),
+        ),
+    }
+    set
+}
+
+/// A step's `pane`, checked against [`STEP_PANES`].
+fn step_pane(v: Option<&Value>, path: &str, at: &mut dyn FnMut(&str, String)) -> Option<String> {
+    match v {
+        None => None,
+        Some(Value::String(p)) if STEP_PANES.contains(&p.as_str()) => Some(p.clone()),
+        Some(v) => {
+            at(
+                &format!("{path}.pane"),
+                format!(
+                    "{v}: allowed {}{}",
+                    STEP_PANES.join(", "),
+                    super::text::did_you_mean(v.as_str().unwrap_or_default(), STEP_PANES)
+                ),
+            );
+            None
         }
     }
 }

@@ -66,6 +66,16 @@ pub const SHIPPED: &[(&str, &str)] = &[
 /// The preset `cargo run --release` opens.
 pub const DEFAULT_PRESET: &str = "subcritical";
 
+/// The shipped preset a command line of `kind` starts from (every value is then set explicitly,
+/// so the command runs the same on any machine).
+#[must_use]
+pub fn base_preset(kind: crate::physics::ModelKind) -> &'static str {
+    match kind {
+        crate::physics::ModelKind::Rattleback => DEFAULT_PRESET,
+        crate::physics::ModelKind::Kapitza => "kapitza-upright",
+    }
+}
+
 /// The environment variable that replaces the config folder.
 pub const CONFIG_ENV: &str = "RATTLEBACK_CONFIG_DIR";
 

@@ -57,6 +57,32 @@ fn plot_areas(inner: Rect) -> (Rect, Rect, Rect) {
 /// Rows a lesson step's own pane gets at least.
 pub const ASKED_ROWS: u16 = 8;
 
+/// The lesson's rows: what its text needs, up to 60 % of the column. The pane the step is about
+/// gets at least [`ASKED_ROWS`]: on a short column the other panes give way (they leave
+/// `column`), then the lesson's text (it keeps its title and a few rows).
+fn lesson_rows(app: &App, column: &mut Vec<(Pane, u16)>, need: u16, height: u16) -> u16 {
+    let rows = need.min(height * 3 / 5);
+    let asked = app
+        .lesson
+        .as_ref()
+        .and_then(|s| s.current().pane.as_deref())
+        .and_then(Pane::named)
+        .filter(|p| column.iter().any(|(q, _)| q == p));
+    let Some(a) = asked else {
+        return rows;
+    };
+    let others: u32 = column
+        .iter()
+        .filter(|(p, _)| *p != Pane::Lesson)
+        .map(|(_, w)| u32::from(*w))
+        .sum();
+    let room = u32::from(height.saturating_sub(rows));
+    if room * u32::from(a.weight()) < u32::from(ASKED_ROWS) * others.max(1) {
+        column.retain(|(p, _)| *p == Pane::Lesson || *p == a);
+    }
+    rows.min(height.saturating_sub(ASKED_ROWS).max(3))
+}
+
 /// The right-hand column: the visible panes, stacked by weight.
 fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, cache: &mut Cache) {
     let mut column = app.view.panes.column();
@@ -70,33 +96,9 @@ fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, c
         missing: app.lesson_missing(),
         look: look_ref,
     });
-    // The lesson's step gets the rows its text needs (up to 60 % of the column); the rest share.
-    let mut lesson_rows = lesson_pane
-        .as_ref()
-        .map_or(0, |p| p.height(right.width).min(right.height * 3 / 5));
-    // The pane the step is about gets at least `ASKED_ROWS`: on a short column the other panes
-    // give way, then the lesson's text (it keeps its title and a few rows).
-    let asked = app
-        .lesson
-        .as_ref()
-        .and_then(|s| s.current().pane.as_deref())
-        .and_then(Pane::named)
-        .filter(|p| column.iter().any(|(q, _)| q == p));
-    if let Some(a) = asked {
-        let weight = |keep: &dyn Fn(Pane) -> bool| -> u32 {
-            column
-                .iter()
-                .filter(|(p, _)| *p != Pane::Lesson && keep(*p))
-                .map(|(_, w)| u32::from(*w))
-                .sum()
-        };
-        let room = u32::from(right.height.saturating_sub(lesson_rows));
-        let mine = u32::from(a.weight());
-        if room * mine < u32::from(ASKED_ROWS) * weight(&|_| true).max(1) {
-            column.retain(|(p, _)| *p == Pane::Lesson || *p == a);
-        }
-        lesson_rows = lesson_rows.min(right.height.saturating_sub(ASKED_ROWS).max(3));
-    }
+    let lesson_rows = lesson_pane.as_ref().map_or(0, |p| {
+        lesson_rows(app, &mut column, p.height(right.width), right.height)
+    });
     let areas = Layout::vertical(column.iter().map(|(p, w)| match p {
         Pane::Lesson if lesson_pane.is_some() => Constraint::Length(lesson_rows),
         _ => Constraint::Fill(*w),

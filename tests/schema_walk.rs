@@ -1,0 +1,156 @@
+//! The explorer honours every key of the preset schema that `simulate` honours: a table walks
+//! each model's schema, and for each key that decides the computation, a preset that sets it to a
+//! value other than the base preset's ends on screen (through the worker's interpreter at ×1024)
+//! exactly where `simulate --format json` ends, bit for bit; the limit drawn and counted is
+//! `simulate`'s limit, bit for bit too. A key added to a schema fails here until it is walked.
+
+mod common;
+
+use common::Headless;
+use rattleback::scenario::preset::{KAPITZA_SCHEMA, SCHEMA};
+
+/// `(base preset, section.key = value, more settings it needs)` for every computing key.
+const RATTLEBACK: &[(&str, &[&str])] = &[
+    ("body.ix=2.5", &[]),
+    ("body.iy=1.2", &[]),
+    ("body.iz=1.5", &[]),
+    ("spring.k=3000", &[]),
+    ("initial.gamma=0.05", &[]),
+    ("initial.alpha=0.1", &[]),
+    ("initial.gamma_dot=1.1", &[]),
+    ("initial.alpha_dot=0.4", &[]),
+    ("run.t_end=12", &[]),
+    ("run.method=\"dop853\"", &[]),
+    ("run.tolerance=1e-7", &[]),
+    ("run.step=0.005", &["run.method=\"rk4\"", "run.t_end=6"]),
+];
+
+const KAPITZA: &[(&str, &[&str])] = &[
+    ("pendulum.a=0.8", &[]),
+    ("pendulum.b=1.8", &[]),
+    ("pendulum.epsilon=0.01", &[]),
+    ("initial.theta=0.2", &[]),
+    ("initial.theta_dot=0.1", &[]),
+    ("run.t_end=8", &[]),
+    ("run.method=\"dop853\"", &[]),
+    ("run.tolerance=1e-7", &[]),
+    ("run.step=0.0005", &["run.method=\"rk4\"", "run.t_end=3"]),
+];
+
+/// The keys that only say how things look (or name the preset): the walk leaves them out.
+fn computes(section: &str) -> bool {
+    !matches!(section, "preset" | "view")
+}
+
+fn simulate(preset: &str, sets: &[&str]) -> serde_json::Value {
+    let mut args = vec!["simulate", "--preset", preset, "--format", "json"];
+    for s in sets {
+        args.push("--set");
+        args.push(s);
+    }
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        .args(&args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+fn bits(v: &serde_json::Value) -> u64 {
+    v.as_f64()
+        .unwrap_or_else(|| panic!("not a number: {v}"))
+        .to_bits()
+}
+
+fn walk(base: &str, table: &[(&str, &[&str])], schema: &[rattleback::scenario::preset::KeySpec]) {
+    // The table covers the schema: every computing key is walked.
+    for k in schema.iter().filter(|k| computes(k.section)) {
+        let key = format!("{}.{}=", k.section, k.key);
+        assert!(
+            table.iter().any(|(set, _)| set.starts_with(&key)),
+            "{base}: the key {}.{} is not walked",
+            k.section,
+            k.key
+        );
+    }
+    let (q, q_dot) = if base.starts_with("kapitza") {
+        ("theta", "theta_dot")
+    } else {
+        ("alpha", "alpha_dot")
+    };
+    for (set, more) in table {
+        let mut sets: Vec<&str> = more.to_vec();
+        sets.push(set);
+        let preset = rattleback::scenario::shipped::resolve(
+            base,
+            &sets.iter().map(|s| s.parse().unwrap()).collect::<Vec<_>>(),
+        )
+        .unwrap();
+        let mut h = Headless::of(&preset);
+        h.play_until(f64::INFINITY, 1024.0);
+        assert!(h.app.run.done(), "{base} {set}: not done");
+        let shown = *h.app.run.current().unwrap();
+        let json = simulate(base, &sets);
+        assert_eq!(
+            shown.t.to_bits(),
+            bits(&json["final"]["t"]),
+            "{base} {set}: t"
+        );
+        assert_eq!(
+            [shown.alpha.to_bits(), shown.alpha_dot.to_bits()],
+            [bits(&json["final"][q]), bits(&json["final"][q_dot])],
+            "{base} {set}: the screen at t_end is not simulate's ({} {}) vs ({} {})",
+            shown.alpha,
+            shown.alpha_dot,
+            json["final"][q],
+            json["final"][q_dot]
+        );
+        // The command `y` copies runs the screen again: same final state, bit for bit.
+        let copied = h.app.scenario.settings.simulate_command();
+        let words: Vec<&str> = copied.split_whitespace().skip(2).collect();
+        let mut args = vec!["simulate", "--format", "json"];
+        args.extend(words.iter().copied());
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+            .args(&args)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{copied}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let again: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(
+            [bits(&again["final"][q]), bits(&again["final"][q_dot])],
+            [shown.alpha.to_bits(), shown.alpha_dot.to_bits()],
+            "{base} {set}: the copied command `{copied}` does not reproduce the screen"
+        );
+        // The limit: the overlay's last sample is simulate's `effective`.
+        let limit = *h
+            .app
+            .run
+            .effective_trail
+            .last()
+            .expect("the limit is drawn");
+        assert_eq!(limit.t.to_bits(), shown.t.to_bits());
+        assert_eq!(
+            [limit.alpha.to_bits(), limit.alpha_dot.to_bits()],
+            [bits(&json["effective"][q]), bits(&json["effective"][q_dot])],
+            "{base} {set}: the limit drawn is not simulate's"
+        );
+    }
+}
+
+#[test]
+fn every_rattleback_key_ends_where_simulate_ends() {
+    walk("subcritical", RATTLEBACK, SCHEMA);
+}
+
+#[test]
+fn every_pendulum_key_ends_where_simulate_ends() {
+    walk("kapitza-upright", KAPITZA, KAPITZA_SCHEMA);
+}
