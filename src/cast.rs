@@ -14,6 +14,7 @@ use ratatui::{Terminal, TerminalOptions, Viewport};
 
 use crate::app::effects::commands;
 use crate::app::journal::Event;
+use crate::explorer::replay::Replayer;
 use crate::record::{RecordError, Recording, plan_book, start};
 use crate::sim::{Engine, drive};
 use crate::ui::{self, Cache, UiOptions};
@@ -138,15 +139,23 @@ fn frames_of(
     });
     writeln!(cast, "{header}")?;
     let end = rec.lines.last().map_or(0.0, |(_, l)| l.wall) + 1.0;
-    let mut next = 0;
+    // The replay's own clock and line application (so the cast shows what the lecturer showed,
+    // never a time past the next recorded one), drawn without the replay's status.
+    let mut replay = Replayer::new(rec.lines.iter().map(|(_, l)| l.clone()).collect());
+    let c = replay.catch_up(app);
+    run(c, engine, app);
     let mut frames = 0;
     // The clock is a frame count: no drift from adding 1/fps again and again.
     let mut frame: u64 = 0;
+    let mut shown_until = 0.0;
     let at = |frame: u64| frame as f64 / fps;
     while at(frame) <= end {
         let clock = at(frame);
-        while next < rec.lines.len() && rec.lines[next].1.wall <= clock {
-            let line = &rec.lines[next].1;
+        let before = replay.position();
+        let c = replay.advance(clock - shown_until, app);
+        shown_until = clock;
+        run(c, engine, app);
+        for (_, line) in &rec.lines[before..replay.position()] {
             let marker = match &line.event {
                 Event::Chapter { title } => Some(crate::scenario::text::clean(title)),
                 Event::Note { text } => {
@@ -161,14 +170,8 @@ fn frames_of(
                     serde_json::json!([micro(line.wall), "m", label])
                 )?;
             }
-            let c = app.seek(line.t);
-            run(c, engine, app);
-            let c = app.apply_event(&line.event);
-            run(c, engine, app);
-            next += 1;
         }
-        let c = app.tick(1.0 / fps);
-        run(c, engine, app);
+        app.replay = None;
         terminal.draw(|f| ui::draw(f, app, options, &mut cache))?;
         let bytes =
             crate::terminal::FrameWriter::strip(&std::mem::take(&mut *screen.0.borrow_mut()));
@@ -180,7 +183,7 @@ fn frames_of(
         frame += 1;
         // Nothing moves until the next event: jump there (on the frame grid).
         if !app.run.playing
-            && let Some((_, l)) = rec.lines.get(next)
+            && let Some((_, l)) = rec.lines.get(replay.position())
             && l.wall > at(frame)
         {
             frame = ((l.wall * fps).floor() as u64).max(frame);

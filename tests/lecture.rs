@@ -313,6 +313,52 @@ fn check(preset: &str, field: &str) {
         );
         let path = write(&lecture, &format!("{preset}-{speed}.jsonl"), None);
         let rec = record::read(&path).unwrap();
+        // `]` lands on the chapter at the time it was marked.
+        let base = rattleback::scenario::shipped::resolve(preset, &[]).unwrap();
+        let mut h = Headless::of(&base);
+        let mut r = Replayer::new(lecture.lines.clone());
+        let e = r.catch_up(&mut h.app);
+        h.exec(e);
+        let rebuild = |old: &App| App::new_after(&base, rattleback::app::Options::at(30.0), old);
+        let e = r.key(Key::Char(']'), &mut h.app, &rebuild);
+        h.exec(e);
+        let chapter_t = lecture
+            .lines
+            .iter()
+            .find(|l| matches!(l.event, Event::Chapter { .. }))
+            .unwrap()
+            .t;
+        assert_eq!(
+            h.app.run.shown.to_bits(),
+            chapter_t.to_bits(),
+            "{preset} ×{speed}: ]"
+        );
+        // The cast export goes through the same replay: it writes the chapter and the note as
+        // markers at the lecturer's wall times.
+        let cast = temp(&format!("{preset}-{speed}.cast"));
+        let frames = rattleback::cast::export_cast(
+            &rec,
+            "lecture",
+            &cast,
+            &UiOptions::default(),
+            rattleback::cast::CastSize::default(),
+            true,
+        )
+        .unwrap();
+        assert!(frames > 10, "{preset} ×{speed}: {frames} frames");
+        let text = std::fs::read_to_string(&cast).unwrap();
+        let chapter = lecture
+            .lines
+            .iter()
+            .find(|l| matches!(l.event, Event::Chapter { .. }))
+            .unwrap();
+        assert!(
+            text.contains(&format!(
+                "[{},\"m\",\"after the change\"]",
+                (chapter.wall * 1e6).round() / 1e6
+            )),
+            "{preset} ×{speed}: the chapter's marker"
+        );
         let report = record::verify(&rec, "lecture", None).unwrap();
         assert_eq!(report.screens, screens);
         assert!(
