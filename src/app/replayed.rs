@@ -9,7 +9,7 @@ use crate::app::journal::{Event, Shown};
 
 /// Wall seconds between two clock lines of a recording while the display moves: a follower
 /// lags the lecturer by about this much, and never leads.
-pub const CLOCK_EVERY: f64 = 0.1;
+pub const CLOCK_EVERY: f64 = 0.05;
 use crate::scenario::Preset;
 use crate::scenario::text::clean;
 use crate::sim::Command;

@@ -128,7 +128,7 @@ fn lecturer_now(rec: &crate::record::Recording, path: &std::path::Path) -> f64 {
 }
 
 /// How often the followed file is looked at (new lines appear within this, well under 0.5 s).
-const FOLLOW_POLL: Duration = Duration::from_millis(150);
+const FOLLOW_POLL: Duration = Duration::from_millis(40);
 
 /// Looks at the followed file a few times a second and reports what changed.
 fn follow_thread(
