@@ -577,3 +577,39 @@ fn follow_waits_for_a_file_that_does_not_exist_yet() {
     assert!(err.contains("waiting for"), "{err}");
     assert!(err.contains("not a session header"), "{err}");
 }
+
+/// Two format-4 sessions recorded in the explorer over a real terminal (tmux at 80×24): a
+/// rattleback lecture at ×16 (pause, three steps, Esc twice, a chapter, play to the end) and a
+/// pendulum lecture signed with `--sign` (its public key checked in beside it). Both verify, the
+/// signed one with its key and not with another.
+#[test]
+fn checked_in_format_4_sessions_verify_and_the_signed_one_with_its_key() {
+    let dir = format!("{}/tests/fixtures/sessions", env!("CARGO_MANIFEST_DIR"));
+    let bin = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+            .args(args)
+            .output()
+            .unwrap();
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    let lecture = format!("{dir}/lecture.jsonl");
+    let (code, out, err) = bin(&["replay", &lecture, "--verify"]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(out.contains("6 screen(s) as recorded"), "{out}");
+    assert!(out.contains("format 4: SHA-256"), "{out}");
+    let signed = format!("{dir}/kapitza-signed.jsonl");
+    let key = format!("{dir}/lecturer.pub");
+    let (code, out, err) = bin(&["replay", &signed, "--verify", "--key", &key]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(out.contains("signed by lecturer"), "{out}");
+    let other = temp("other");
+    record::sign::keygen(&other).unwrap();
+    let other_pub = format!("{}.pub", other.display());
+    let (code, _, err) = bin(&["replay", &signed, "--verify", "--key", &other_pub]);
+    assert_eq!(code, Some(1));
+    assert!(err.contains("signed by another key"), "{err}");
+}
