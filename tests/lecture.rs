@@ -92,7 +92,7 @@ impl Lecturer {
     }
     fn key(&mut self, key: Key) {
         // A key comes after the frame before it (the recorder stamps it later).
-        self.wall += 0.002;
+        self.wall += 0.01;
         self.h.key(key);
         self.collect();
     }
@@ -266,6 +266,52 @@ fn replay_and_compare(preset: &str, lecture: &Lecture, live: bool) -> usize {
     compared
 }
 
+/// Frames per second of the cast checked against the lecturer: fine enough that each recorded
+/// line (ticks 1/30 s apart, keys 10 ms after them) lands in a frame of its own.
+const CAST_FPS: f64 = 240.0;
+
+/// Plays the cast's output through a terminal emulator (`vt100`) and, at each screen line's
+/// frame, compares the screen above the status bar with the lecturer's frame; returns how many.
+fn cast_screens(cast: &str, lecture: &Lecture) -> usize {
+    let events: Vec<(f64, String)> = cast
+        .lines()
+        .skip(1)
+        .filter_map(|l| {
+            let v: serde_json::Value = serde_json::from_str(l).ok()?;
+            (v[1] == "o").then(|| (v[0].as_f64().unwrap(), v[2].as_str().unwrap().to_owned()))
+        })
+        .collect();
+    let n = |x: u16| std::num::NonZeroU16::new(x).unwrap();
+    let mut parser = vt100::Parser::new(n(24), n(80), 0);
+    let mut next = 0;
+    let mut compared = 0;
+    for (i, f, _) in &lecture.frames {
+        // The first frame at or after the line: the line is applied there.
+        let at = (lecture.lines[*i].wall * CAST_FPS).ceil() / CAST_FPS + 1e-9;
+        while next < events.len() && events[next].0 <= at {
+            parser.process(events[next].1.as_bytes());
+            next += 1;
+        }
+        let screen = parser.screen();
+        let mut mine = String::new();
+        for row in 0..22 {
+            for col in 0..80 {
+                let c = screen
+                    .cell(row, col)
+                    .map(|c| c.contents().to_owned())
+                    .unwrap_or_default();
+                mine.push_str(if c.is_empty() { " " } else { &c });
+            }
+            mine.push('\n');
+        }
+        // The cast shows the lecturer's messages: compare the rows above any message line.
+        let strip = |s: &str| s.lines().take(18).collect::<Vec<_>>().join("\n");
+        assert_eq!(strip(&mine), strip(f), "line {}: the cast's frame", i + 2);
+        compared += 1;
+    }
+    compared
+}
+
 fn write(
     lecture: &Lecture,
     name: &str,
@@ -341,12 +387,20 @@ fn check(preset: &str, field: &str) {
             "lecture",
             &cast,
             &UiOptions::default(),
-            rattleback::cast::CastSize::default(),
+            rattleback::cast::CastSize {
+                fps: CAST_FPS,
+                ..rattleback::cast::CastSize::default()
+            },
             true,
         )
         .unwrap();
         assert!(frames > 10, "{preset} ×{speed}: {frames} frames");
         let text = std::fs::read_to_string(&cast).unwrap();
+        assert_eq!(
+            cast_screens(&text, &lecture),
+            screens,
+            "{preset} ×{speed}: cast"
+        );
         let chapter = lecture
             .lines
             .iter()
