@@ -414,6 +414,32 @@ fn emit(text: &str) -> Result<(), ExitCode> {
     }
 }
 
+/// The sweep's cost, asked before it runs: every rung validated, the total within the budget
+/// (`--force` lifts the budget).
+fn sweep_budget(
+    model: &crate::physics::Model,
+    ladder: &[f64],
+    t_end: f64,
+    tolerance: f64,
+    force: bool,
+) -> Result<(), ExitCode> {
+    match crate::study::sweep::predicted_seconds(model, ladder, t_end, tolerance) {
+        Err(e) => {
+            say_err!("rattleback: error: --ladder: {e}");
+            Err(ExitCode::from(2))
+        }
+        Ok(predicted) if predicted > crate::physics::budget::BUDGET_SECONDS && !force => {
+            say_err!(
+                "rattleback: error: this sweep is predicted to take about {} (budget {}); use fewer rungs, a shorter --t-end or a looser --tolerance, or pass --force",
+                crate::physics::budget::duration(predicted),
+                crate::physics::budget::duration(crate::physics::budget::BUDGET_SECONDS)
+            );
+            Err(ExitCode::from(2))
+        }
+        Ok(_) => Ok(()),
+    }
+}
+
 fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
     use crate::study::sweep::{ladder, sweep};
     let (preset, model, t_end, tolerance) = match study_setup(&args.common) {
@@ -434,6 +460,9 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
             "rattleback: error: --ladder: epsilon = {bad} is out of range for the kapitza model; allowed: numbers in [1e-9, 1]"
         );
         return ExitCode::from(2);
+    }
+    if let Err(code) = sweep_budget(&model, &ladder, t_end, tolerance, args.common.force) {
+        return code;
     }
     let s = match sweep(&model, &ladder, t_end, tolerance, &|_| true) {
         Ok(s) => s,
@@ -483,6 +512,10 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
     };
     if let Err(code) = printed {
         return code;
+    }
+    // The files only when asked for (a scene never computes what it does not need).
+    if args.common.out.is_none() {
+        return ExitCode::SUCCESS;
     }
     let curves = sweep_curves(&s);
     let svg = match crate::study::svg::sweep_svg(&s) {

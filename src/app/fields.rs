@@ -493,7 +493,7 @@ mod tests {
         }
         let cmd = s.simulate_command();
         assert!(
-            cmd.contains("--set preset.model=kapitza --set pendulum.a=1.0"),
+            cmd.contains("--preset kapitza-upright --set pendulum.a=1.0"),
             "{cmd}"
         );
     }

@@ -524,7 +524,8 @@ impl App {
                 generation,
                 ref message,
             } if generation == self.run.generation => {
-                self.status = Message::error(format!("integration failed: {message}"));
+                // Says what failed: an integration, or a run refused before it started.
+                self.status = Message::error(message.clone());
                 self.run.on_sim(event, self.view.overlay)
             }
             SimEvent::SweepPoint {

@@ -102,7 +102,7 @@ impl Scenario {
             tolerance: s.tolerance,
             t_end: s.t_end,
             effective: overlay,
-            sample_dt: self.derived.sample_dt,
+            sample_dt: crate::sim::grid_spacing(self.derived.sample_dt, s.t_end),
             step: s.step,
         }
     }

@@ -374,14 +374,24 @@ fn finish_recording(
 }
 
 /// Signals that end the explorer: the terminal is restored, then the process exits with
-/// `128 + n`.
-pub const ENDING_SIGNALS: [i32; 6] = [
+/// `128 + n`. Every signal whose default action ends the process and that can be caught safely
+/// (not the faults SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGTRAP, SIGSYS, which re-run the faulting
+/// instruction; the panic hook restores the terminal on a fault Rust catches).
+pub const ENDING_SIGNALS: [i32; 14] = [
     signal_hook::consts::SIGTERM,
     signal_hook::consts::SIGHUP,
     signal_hook::consts::SIGINT,
     signal_hook::consts::SIGQUIT,
     signal_hook::consts::SIGUSR1,
+    signal_hook::consts::SIGUSR2,
     signal_hook::consts::SIGALRM,
+    signal_hook::consts::SIGVTALRM,
+    signal_hook::consts::SIGPROF,
+    signal_hook::consts::SIGXCPU,
+    signal_hook::consts::SIGXFSZ,
+    signal_hook::consts::SIGIO,
+    signal_hook::consts::SIGPIPE,
+    signal_hook::consts::SIGABRT,
 ];
 
 /// Runs the explorer on `preset` until the user quits (`Ok(None)`) or a signal of
@@ -472,12 +482,69 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
         finish_recording(rec, &worker, &mut app, &rx);
     }
     drop(rx);
-    worker.join();
+    // Never wait on a worker stuck in a long step: the process ends with it.
+    worker.join_within(Duration::from_millis(100));
     // The input thread is not joined: on a hung-up terminal crossterm's blocking read can spin
     // without returning, and the thread ends with the process anyway. A live terminal's thread
     // sees `stop` within 100 ms.
     drop(input);
     result
+}
+
+/// One event from the terminal, the worker or the followed file; whether the screen changed.
+fn handle_event(
+    event: AppEvent,
+    app: &mut App,
+    shell: &mut Shell<'_>,
+    replay: &mut Option<Replayer>,
+    rebuild: &dyn Fn(&App) -> (App, Vec<Effect>),
+    cache: &Cache,
+) -> std::io::Result<bool> {
+    let options = shell.options;
+    match event {
+        // `f` forks a follower: it keeps the state and explores on its own.
+        AppEvent::Input(Key::Char('f'))
+            if replay.as_ref().is_some_and(Replayer::following)
+                && app.mode == crate::app::Mode::Normal =>
+        {
+            *replay = None;
+            app.fork();
+            Ok(true)
+        }
+        AppEvent::Follow(event) => {
+            let effects = follow_event(event, app, replay, options);
+            shell.execute(app, effects)?;
+            Ok(true)
+        }
+        AppEvent::Input(key) => {
+            let effects = match replay.as_mut() {
+                Some(r) if app.mode == crate::app::Mode::Normal || key == Key::Ctrl('c') => {
+                    r.key(key, app, rebuild)
+                }
+                _ => app.on_key(key),
+            };
+            shell.execute(app, effects)?;
+            Ok(true)
+        }
+        AppEvent::Resize => {
+            shell.tty.autoresize()?;
+            Ok(true)
+        }
+        // The mouse drives the explorer, never a replay (the recording does).
+        AppEvent::Click(column, row) if replay.is_none() => {
+            let effects = mouse(app, cache, Some((column, row)), false);
+            let changed = !effects.is_empty();
+            shell.execute(app, effects)?;
+            Ok(changed)
+        }
+        AppEvent::Wheel(up) if replay.is_none() => {
+            let effects = mouse(app, cache, None, up);
+            shell.execute(app, effects)?;
+            Ok(true)
+        }
+        AppEvent::Sim(e) => Ok(app.on_sim(e)),
+        AppEvent::Click(..) | AppEvent::Wheel(_) => Ok(false),
+    }
 }
 
 fn event_loop(
@@ -528,49 +595,24 @@ fn event_loop(
             // The terminal went away without a signal: leave as on SIGHUP.
             return Ok(Some(signal_hook::consts::SIGHUP));
         }
-        match event {
-            // `f` forks a follower: it keeps the state and explores on its own.
-            Ok(AppEvent::Input(Key::Char('f')))
-                if replay.as_ref().is_some_and(Replayer::following)
-                    && app.mode == crate::app::Mode::Normal =>
-            {
-                *replay = None;
-                app.fork();
-                dirty = true;
-            }
-            Ok(AppEvent::Follow(event)) => {
-                let effects = follow_event(event, app, replay, options);
-                shell.execute(app, effects)?;
-                dirty = true;
-            }
-            Ok(AppEvent::Input(key)) => {
-                let effects = match replay.as_mut() {
-                    Some(r) if app.mode == crate::app::Mode::Normal || key == Key::Ctrl('c') => {
-                        r.key(key, app, rebuild)
-                    }
-                    _ => app.on_key(key),
-                };
-                shell.execute(app, effects)?;
-                dirty = true;
-            }
-            Ok(AppEvent::Resize) => {
-                shell.tty.autoresize()?;
-                dirty = true;
-            }
-            // The mouse drives the explorer, never a replay (the recording does).
-            Ok(AppEvent::Click(column, row)) if replay.is_none() => {
-                let effects = mouse(app, &cache, Some((column, row)), false);
-                dirty |= !effects.is_empty();
-                shell.execute(app, effects)?;
-            }
-            Ok(AppEvent::Wheel(up)) if replay.is_none() => {
-                let effects = mouse(app, &cache, None, up);
-                dirty = true;
-                shell.execute(app, effects)?;
-            }
-            Ok(AppEvent::Sim(e)) => dirty |= app.on_sim(e),
-            Ok(AppEvent::Click(..) | AppEvent::Wheel(_)) | Err(RecvTimeoutError::Timeout) => {}
+        let mut batch = match event {
+            Ok(e) => vec![e],
+            Err(RecvTimeoutError::Timeout) => Vec::new(),
             Err(RecvTimeoutError::Disconnected) => return Ok(None),
+        };
+        // Everything already waiting, keys first: a key is never queued behind the worker's
+        // events (q quits at once however busy the worker is).
+        while batch.len() < 4 * INBOX
+            && let Ok(e) = rx.try_recv()
+        {
+            batch.push(e);
+        }
+        batch.sort_by_key(|e| !matches!(e, AppEvent::Input(_) | AppEvent::Resize));
+        for event in batch {
+            dirty |= handle_event(event, app, shell, replay, rebuild, &cache)?;
+            if app.quit {
+                return Ok(None);
+            }
         }
         // The clocks move once a frame has passed.
         let dt = last_tick.elapsed();

@@ -33,3 +33,14 @@ pub use models::{LimitView, Model, ModelKind};
 pub use params::{ParamError, Params, Problem, Start};
 pub use plan::{DEFAULT_TOLERANCE, Resolved};
 pub use run::{RunResult, RunSpec, run};
+
+/// The input farthest from 1 in size (what most likely overflowed a derived quantity).
+#[must_use]
+pub fn extreme(inputs: &[(&'static str, f64)]) -> (&'static str, f64) {
+    inputs
+        .iter()
+        .copied()
+        .filter(|(_, v)| *v != 0.0)
+        .max_by(|a, b| a.1.abs().log10().abs().total_cmp(&b.1.abs().log10().abs()))
+        .unwrap_or(inputs[0])
+}

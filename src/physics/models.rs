@@ -296,6 +296,24 @@ impl Model {
         }
     }
 
+    /// Predicted seconds of a run of `method` (`auto` as it would plan) over `[0, t_end]`: the
+    /// scene's own cost model, asked by every entry point before a run starts.
+    #[must_use]
+    pub fn predicted_seconds(
+        &self,
+        method: Method,
+        tolerance: f64,
+        step: Option<f64>,
+        t_end: f64,
+    ) -> f64 {
+        match self {
+            Self::Rattleback(p) => {
+                super::plan::predicted_seconds(p, method, tolerance, step, t_end)
+            }
+            Self::Kapitza(p) => kapitza::budget::cost_seconds(p, method, tolerance, step, t_end),
+        }
+    }
+
     /// What the portrait draws of the limit.
     #[must_use]
     pub fn limit_view(&self) -> LimitView {

@@ -651,11 +651,26 @@ impl Preset {
         let (table, kind) = collect(src, label, overrides).map_err(|mut p| p.swap_remove(0))?;
         let r = Reader(&table);
         let n = |s: &str, k: &str| r.num(s, k).unwrap_or(0.0);
-        let invalid = |e: crate::physics::ParamError| PresetError::Invalid {
-            path: label.to_owned(),
-            line: None,
-            key: Some(e.field().to_owned()),
-            message: e.to_string(),
+        // A value whose combination with the others is out of range (a derived quantity that
+        // overflows) is found only here: it is named at its line too.
+        let map = SourceMap::new(src);
+        let invalid = |e: crate::physics::ParamError| {
+            let field = e.field();
+            let section = SCHEMA
+                .iter()
+                .chain(KAPITZA_SCHEMA)
+                .find(|k| k.key == field && !matches!(k.section, "preset" | "run" | "view"))
+                .map_or("", |k| k.section);
+            PresetError::Invalid {
+                path: label.to_owned(),
+                line: (!section.is_empty()).then(|| map.locate(section, field)),
+                key: Some(if section.is_empty() {
+                    field.to_owned()
+                } else {
+                    format!("{section}.{field}")
+                }),
+                message: e.to_string(),
+            }
         };
         let model = match kind {
             ModelKind::Rattleback => {

@@ -258,7 +258,26 @@ impl Engine {
                 if spec.method != Method::Auto && spec.step.is_some() {
                     plan.step = spec.step;
                 }
-                Session::new(generation, spec, plan).map(|s| (s, estimate))
+                // The scene's cost model, asked before the run starts (a plan read from a file
+                // included): a run over the budget is refused, never left to grow.
+                // The limit's overlay is counted too (it may be turned on at any time), as
+                // `simulate` counts its comparison run.
+                let model = &spec.model;
+                let predicted =
+                    model.predicted_seconds(plan.method, plan.tolerance, plan.step, spec.t_end)
+                        + model.predicted_seconds(
+                            Method::Effective,
+                            model.kind().limit_tolerance(),
+                            None,
+                            spec.t_end,
+                        );
+                match crate::physics::budget::check(predicted, self.book.budget) {
+                    Ok(()) => Session::new(generation, spec, plan).map(|s| (s, estimate)),
+                    Err(over) => Err(StepError::OverBudget {
+                        what: plan.method.name().to_owned(),
+                        over,
+                    }),
+                }
             }
         };
         self.planning = None;
@@ -278,12 +297,17 @@ impl Engine {
                 self.checkpoints.clear();
                 // Short enough for the parameter panel at 80×24.
                 let message = match &e {
-                    StepError::OverBudget { over, .. } => format!(
+                    StepError::OverBudget { over, .. } if spec.method == Method::Auto => format!(
                         "auto needs about {} to verify (budget {}): pick a method in the panel or a shorter t_end",
                         crate::physics::budget::duration(over.predicted),
                         crate::physics::budget::duration(over.budget)
                     ),
-                    e => format!("planning {}: {e}", spec.method),
+                    StepError::OverBudget { what, over } => format!(
+                        "{what} would take about {} (budget {}): shorten t_end, loosen the tolerance or pick another method",
+                        crate::physics::budget::duration(over.predicted),
+                        crate::physics::budget::duration(over.budget)
+                    ),
+                    e => format!("planning {} failed: {e}", spec.method),
                 };
                 sink(SimEvent::Failed {
                     generation,

@@ -12,7 +12,7 @@ mod session;
 mod worker;
 
 pub use engine::{Engine, PlanBook, PlanKey, drive};
-pub use session::{Point, Session, SessionSpec};
+pub use session::{MAX_GRID_SAMPLES, Point, Session, SessionSpec, grid_spacing};
 pub use worker::Worker;
 
 use crate::physics::integrators::Method;

@@ -239,7 +239,8 @@ impl Session {
     ///
     /// # Errors
     /// [`StepError::Unplanned`] when `plan` is still `auto`.
-    pub fn new(generation: u64, spec: SessionSpec, plan: Resolved) -> Result<Self, StepError> {
+    pub fn new(generation: u64, mut spec: SessionSpec, plan: Resolved) -> Result<Self, StepError> {
+        spec.sample_dt = grid_spacing(spec.sample_dt, spec.t_end);
         let full = Track::new(&spec.model, plan.method, plan.settings(), spec.t_end)?;
         Ok(Self {
             spec,
@@ -367,7 +368,7 @@ impl Session {
                 Err(e) => {
                     events.push(SimEvent::Failed {
                         generation,
-                        message: e.to_string(),
+                        message: format!("integration failed: {e}"),
                     });
                     self.failed = true;
                     break false;
@@ -419,7 +420,7 @@ impl Session {
                     Err(e) => {
                         events.push(SimEvent::Failed {
                             generation,
-                            message: format!("effective model: {e}"),
+                            message: format!("integration failed: effective model: {e}"),
                         });
                         self.effective = None;
                         return out;
@@ -439,6 +440,22 @@ impl Session {
         self.effective
             .as_ref()
             .is_some_and(|e| e.next < self.full.next)
+    }
+}
+
+/// Most samples of a run's grid: memory and the work of drawing stay bounded whatever the
+/// dynamics ask (a spacing of 0, or not a number, from a degenerate body).
+pub const MAX_GRID_SAMPLES: f64 = 1e6;
+
+/// The grid's spacing: the one asked, but at least `t_end / MAX_GRID_SAMPLES` (a spacing that is
+/// not a positive number becomes that).
+#[must_use]
+pub fn grid_spacing(asked: f64, t_end: f64) -> f64 {
+    let least = t_end / MAX_GRID_SAMPLES;
+    if asked.is_finite() && asked > least {
+        asked
+    } else {
+        least
     }
 }
 

@@ -55,6 +55,22 @@ impl Worker {
         let _ = self.commands.send(command);
     }
 
+    /// Asks the worker to stop and waits at most `limit` for it; a worker still busy then is
+    /// left to end with the process (quitting never waits on a long step).
+    pub fn join_within(mut self, limit: Duration) {
+        let _ = self.commands.send(Command::Quit);
+        let Some(h) = self.handle.take() else {
+            return;
+        };
+        let end = Instant::now() + limit;
+        while !h.is_finished() && Instant::now() < end {
+            std::thread::sleep(Duration::from_millis(2));
+        }
+        if h.is_finished() {
+            let _ = h.join();
+        }
+    }
+
     /// Asks the worker to stop and waits for it (at most one slice: planning is cancelled by
     /// the quit).
     pub fn join(mut self) {

@@ -16,42 +16,11 @@ use crate::physics::kapitza::run::{self, RunResult, RunSpec};
 use crate::physics::kapitza::{self, Problem, plan};
 use crate::scenario::Preset;
 
-/// Seconds one right-hand-side evaluation takes, about (this machine, release build).
-const SECONDS_PER_EVALUATION: f64 = 4e-8;
-
-/// Predicted seconds of the run `spec` asks for, from the work each method does: the full
-/// model's steps follow the fast period, the limit's the slow motion.
+/// Predicted seconds of the run `spec` asks for (the pendulum's cost model,
+/// [`kapitza::budget`]).
 #[must_use]
 pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::RunSpec) -> f64 {
-    let p = problem.params();
-    let (method, tolerance) = if spec.method == Method::Auto {
-        let c = plan::resolve(problem, spec.tolerance, spec.t_end);
-        (c.method, c.settings.tolerance)
-    } else {
-        (spec.method, spec.tolerance)
-    };
-    let fast = spec.t_end / p.epsilon;
-    let evaluations = match method {
-        Method::Effective | Method::EffectiveCorrected => {
-            12.0 * spec.t_end * (1.0 + p.b * p.b + p.a.abs()).sqrt() * tolerance.powf(-0.125)
-        }
-        Method::Dop853 => 12.0 * fast * 0.6 * tolerance.powf(-0.125),
-        m => {
-            let h = spec
-                .step
-                .unwrap_or_else(|| kapitza::flows::default_step(m, problem, tolerance, spec.t_end));
-            let stages = match m {
-                Method::Rk4 | Method::Strang => 4.0,
-                Method::Yoshida4 => 3.0,
-                Method::BlanesMoan4 => 6.0,
-                Method::Yoshida6 => 7.0,
-                _ => 15.0,
-            };
-            stages * spec.t_end / h
-        }
-    };
-    // The limit's comparison run is cheap whatever ε.
-    evaluations * SECONDS_PER_EVALUATION
+    kapitza::budget::cost_seconds(problem, spec.method, spec.tolerance, spec.step, spec.t_end)
 }
 
 #[derive(Serialize)]

@@ -26,6 +26,27 @@ pub fn tick(x: f64) -> String {
 ///
 /// # Errors
 /// When drawing fails.
+/// A range a log axis can draw: within `[1e-150, 1e150]`, at most 40 decades and at least one (an
+/// infinite or zero end would make the axis loop without end).
+fn log_range(lo: f64, hi: f64) -> std::ops::Range<f64> {
+    let clamp = |x: f64| {
+        if x.is_finite() {
+            x.clamp(1e-150, 1e150)
+        } else {
+            1e150
+        }
+    };
+    let (lo, hi) = (clamp(lo.max(0.0)), clamp(hi));
+    let (lo, hi) = if lo < hi { (lo, hi) } else { (hi, lo) };
+    // At most 40 decades (the axis's ticks are computed decade by decade).
+    let lo = lo.max(hi * 1e-40);
+    if hi / lo < 10.0 {
+        (hi / 10.0)..hi
+    } else {
+        lo..hi
+    }
+}
+
 pub fn sweep_svg(sweep: &Sweep) -> Fallible {
     let mut out = String::new();
     {
@@ -111,8 +132,8 @@ pub fn sweep_svg(sweep: &Sweep) -> Fallible {
                 .x_label_area_size(30)
                 .y_label_area_size(60)
                 .build_cartesian_2d(
-                    (k0 * 0.5..k1 * 2.0).log_scale(),
-                    (e0 * 0.3..e1 * 3.0).log_scale(),
+                    log_range(k0 * 0.5, k1 * 2.0).log_scale(),
+                    log_range(e0 * 0.3, e1 * 3.0).log_scale(),
                 )?;
             chart
                 .configure_mesh()

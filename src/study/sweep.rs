@@ -193,6 +193,50 @@ pub fn rung(
     })
 }
 
+/// Most rungs a sweep takes.
+pub const MAX_RUNGS: usize = 64;
+
+/// The model of `model`'s start at one rung (`k`, or the pendulum's `ε`, replaced), validated
+/// like a preset.
+///
+/// # Errors
+/// The rung's value, or a quantity derived from it, is out of range.
+pub fn at_rung(model: &Model, parameter: f64) -> Result<Model, crate::physics::ParamError> {
+    Ok(match model {
+        Model::Rattleback(p) => Model::Rattleback(p.with_k(parameter)?),
+        Model::Kapitza(p) => Model::Kapitza(crate::physics::kapitza::Problem::new(
+            crate::physics::kapitza::Params {
+                epsilon: parameter,
+                ..*p.params()
+            },
+            *p.start(),
+        )?),
+    })
+}
+
+/// Predicted seconds of the whole sweep (the limit's curve and every rung, as `auto` plans
+/// them), checked before anything runs.
+///
+/// # Errors
+/// Too many rungs, or a rung out of range (named).
+pub fn predicted_seconds(
+    model: &Model,
+    ladder: &[f64],
+    t_end: f64,
+    tolerance: f64,
+) -> Result<f64, String> {
+    if ladder.len() > MAX_RUNGS {
+        return Err(format!("{} rungs: at most {MAX_RUNGS}", ladder.len()));
+    }
+    let limit_tol = model.kind().limit_tolerance();
+    let mut total = model.predicted_seconds(Method::Effective, limit_tol, None, t_end);
+    for &x in ladder {
+        let m = at_rung(model, x).map_err(|e| format!("the rung {x:e}: {e}"))?;
+        total += m.predicted_seconds(Method::Auto, tolerance, None, t_end);
+    }
+    Ok(total)
+}
+
 /// Sweeps `problem`'s start over `ladder` (its own `k` is replaced) to `t_end` at `tolerance`,
 /// the rungs in parallel; `go_on` is asked every few hundred steps of every run (from several
 /// threads) whether to go on.

@@ -15,6 +15,7 @@
 //! (`run`) and `auto` (`plan`). The state vector of the full model is `(θ, θ̇)` at time `t`;
 //! no code outside this folder indexes it.
 
+pub mod budget;
 pub mod flows;
 pub mod limit;
 pub mod plan;
@@ -139,6 +140,29 @@ impl Problem {
         params.validate()?;
         finite("theta", start.theta)?;
         finite("theta_dot", start.theta_dot)?;
+        let p = &params;
+        let derived = [
+            ("the threshold b²−2a", p.b * p.b - 2.0 * p.a),
+            ("the forcing b/ε", p.b / p.epsilon),
+            (
+                "the limit's energy",
+                0.5 * start.theta_dot.powi(2) + p.a + p.b * p.b,
+            ),
+        ];
+        if let Some((what, value)) = derived.into_iter().find(|(_, v)| !v.is_finite()) {
+            let (field, v) = crate::physics::extreme(&[
+                ("a", p.a),
+                ("b", p.b),
+                ("epsilon", p.epsilon),
+                ("theta_dot", start.theta_dot),
+            ]);
+            return Err(ParamError::Derived {
+                field,
+                value: v,
+                what,
+                derived: value,
+            });
+        }
         Ok(Self { params, start })
     }
 

@@ -56,6 +56,21 @@ pub enum ParamError {
         /// What the field accepts.
         allowed: &'static str,
     },
+    /// Every value is finite, but a quantity the model derives from them is not (an overflow):
+    /// the combination is out of what double precision can compute.
+    #[error(
+        "{field} = {value:e} makes {what} not a finite number ({derived}); choose values within about 1e-100 to 1e100"
+    )]
+    Derived {
+        /// The value that drives it (the largest in size).
+        field: &'static str,
+        /// Its value.
+        value: f64,
+        /// What overflowed.
+        what: &'static str,
+        /// Its value.
+        derived: f64,
+    },
 }
 
 impl ParamError {
@@ -63,7 +78,9 @@ impl ParamError {
     #[must_use]
     pub fn field(&self) -> &'static str {
         match self {
-            Self::NotFinite { field, .. } | Self::OutOfRange { field, .. } => field,
+            Self::NotFinite { field, .. }
+            | Self::OutOfRange { field, .. }
+            | Self::Derived { field, .. } => field,
         }
     }
 }
@@ -159,6 +176,35 @@ impl Problem {
     pub fn new(params: Params, start: Start) -> Result<Self, ParamError> {
         params.validate()?;
         start.validate()?;
+        let p = &params;
+        let y0 = super::model::initial_state(&start);
+        let derived = [
+            ("the energy", super::model::energy(p, &y0)),
+            (
+                "the critical ratio",
+                (p.ix / p.iz) * ((p.ix / p.iy).sqrt() - 1.0),
+            ),
+            ("the fast frequency", p.omega_max()),
+        ];
+        if let Some((what, value)) = derived.into_iter().find(|(_, v)| !v.is_finite()) {
+            let inputs = [
+                ("ix", p.ix),
+                ("iy", p.iy),
+                ("iz", p.iz),
+                ("k", p.k),
+                ("gamma", start.gamma),
+                ("alpha", start.alpha),
+                ("gamma_dot", start.gamma_dot),
+                ("alpha_dot", start.alpha_dot),
+            ];
+            let (field, v) = crate::physics::extreme(&inputs);
+            return Err(ParamError::Derived {
+                field,
+                value: v,
+                what,
+                derived: value,
+            });
+        }
         Ok(Self { params, start })
     }
 
