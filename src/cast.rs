@@ -150,6 +150,10 @@ fn frames_of(
     let mut shown_until = 0.0;
     let at = |frame: u64| frame as f64 / fps;
     while at(frame) <= end {
+        if crate::interrupt::requested().is_some() {
+            // The temporary file is removed when the error drops it.
+            return Err(crate::interrupt::error());
+        }
         let clock = at(frame);
         let before = replay.position();
         let c = replay.advance(clock - shown_until, app);

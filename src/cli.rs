@@ -265,6 +265,9 @@ pub struct BenchArgs {
     /// Run one part only.
     #[arg(long, value_enum, value_name = "PART")]
     pub only: Option<BenchPart>,
+    /// Replace the files of an earlier run in `--out` (refused otherwise, before anything runs).
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// A part of `rattleback bench`.

@@ -203,7 +203,9 @@ fn print_list<T: serde::Serialize>(
 ) -> ExitCode {
     let out = match format {
         ListFormat::Json => {
-            let mut s = serde_json::to_string_pretty(entries).unwrap_or_else(|_| "[]".to_owned());
+            let mut s = crate::scenario::text::json_safe(
+                &serde_json::to_string_pretty(entries).unwrap_or_else(|_| "[]".to_owned()),
+            );
             s.push('\n');
             s
         }
@@ -240,6 +242,29 @@ pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
         return ExitCode::from(2);
     }
     let part = |p: crate::cli::BenchPart| args.only.is_none_or(|o| o == p);
+    // Refused before minutes of work: files of an earlier run are replaced only with --force.
+    let files: &[(crate::cli::BenchPart, &[&str])] = &[
+        (
+            crate::cli::BenchPart::WorkPrecision,
+            &["work_precision.csv", "work_precision.svg"],
+        ),
+        (crate::cli::BenchPart::Auto, &["auto_profile.csv"]),
+        (crate::cli::BenchPart::Kapitza, &["kapitza.csv"]),
+        (crate::cli::BenchPart::Stability, &["stability.csv"]),
+    ];
+    if !args.force
+        && let Some(existing) = files
+            .iter()
+            .filter(|(p, _)| part(*p))
+            .flat_map(|(_, names)| names.iter().map(|n| args.out.join(n)))
+            .find(|p| std::fs::symlink_metadata(p).is_ok())
+    {
+        say_err!(
+            "rattleback: error: {}: exists (from an earlier run); choose another --out or add --force to replace it",
+            existing.display()
+        );
+        return ExitCode::from(2);
+    }
     let mut wrote = Vec::new();
     let fail = |path: &std::path::Path, e: std::io::Error| {
         say_err!("rattleback: error: {}: {e}", path.display());
@@ -499,7 +524,9 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
             });
             emit(&format!(
                 "{}\n",
-                serde_json::to_string_pretty(&v).expect("serializes")
+                crate::scenario::text::json_safe(
+                    &serde_json::to_string_pretty(&v).expect("serializes")
+                )
             ))
         }
         crate::cli::Format::Csv => emit(&crate::scenario::text::clean(&csv)),
@@ -669,7 +696,7 @@ fn study_map(args: &crate::cli::MapArgs) -> ExitCode {
     let printed = match args.common.format {
         crate::cli::Format::Json => emit(&format!(
             "{}\n",
-            serde_json::to_string(&map).expect("serializes")
+            crate::scenario::text::json_safe(&serde_json::to_string(&map).expect("serializes"))
         )),
         crate::cli::Format::Csv => emit(&csv),
         crate::cli::Format::Table => emit(&map_table(&grid, &map)),

@@ -11,6 +11,7 @@ pub mod cli;
 pub mod commands;
 pub mod explorer;
 pub mod export;
+pub mod interrupt;
 pub mod physics;
 pub mod progress;
 pub mod record;

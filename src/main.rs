@@ -94,7 +94,15 @@ fn export_cast(
         rows: args.rows,
         fps: f64::from(look.fps.unwrap_or(10)),
     };
+    if let Err(e) = rattleback::interrupt::install() {
+        say_err!("rattleback: error: {e}");
+        return ExitCode::from(1);
+    }
     match rattleback::cast::export_cast(rec, path, out, &options, size, args.force) {
+        Err(_) if let Some(n) = rattleback::interrupt::requested() => {
+            say_err!("rattleback: interrupted: {} was not written", out.display());
+            ExitCode::from(u8::try_from(128 + n).unwrap_or(1))
+        }
         Ok(frames) => {
             say!("{}: {frames} frames", out.display());
             ExitCode::SUCCESS

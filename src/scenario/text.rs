@@ -20,6 +20,33 @@ pub fn clean(text: &str) -> String {
     out
 }
 
+/// Serialized JSON made safe for a terminal: the characters JSON leaves raw inside strings but
+/// a terminal acts on (C1 controls such as the 8-bit CSI U+009B and OSC U+009D, DEL, bidirectional
+/// overrides and isolates, line and paragraph separators) are written as `\uXXXX` escapes, so
+/// a parser reads the same strings and a terminal shows no control. Only valid on JSON text
+/// (these characters can stand only inside strings there).
+#[must_use]
+pub fn json_safe(json: &str) -> String {
+    use std::fmt::Write as _;
+    let mut out = String::with_capacity(json.len());
+    for c in json.chars() {
+        match c {
+            '\u{7f}'..='\u{9f}'
+            | '\u{200e}'
+            | '\u{200f}'
+            | '\u{061c}'
+            | '\u{2028}'
+            | '\u{2029}'
+            | '\u{202a}'..='\u{202e}'
+            | '\u{2066}'..='\u{2069}' => {
+                let _ = write!(out, "\\u{:04x}", u32::from(c));
+            }
+            c => out.push(c),
+        }
+    }
+    out
+}
+
 fn skip_sequence(chars: &mut std::iter::Peekable<std::str::Chars<'_>>) {
     match chars.peek() {
         Some('[') => {

@@ -313,7 +313,9 @@ pub fn simulate_to(
     };
     let text = match format {
         Format::Json => {
-            let mut s = serde_json::to_string_pretty(&report).expect("report serializes");
+            let mut s = crate::scenario::text::json_safe(
+                &serde_json::to_string_pretty(&report).expect("report serializes"),
+            );
             s.push('\n');
             s
         }

@@ -279,6 +279,18 @@ struct EnergyOut {
     #[serde(rename = "final")]
     final_: f64,
     max_relative_error: f64,
+    /// Whether the energy drifted past what the method's tolerance promises (see
+    /// [`energy_bound`]): the run is not to be trusted, and stderr says so.
+    exceeds_bound: bool,
+}
+
+/// The largest relative energy error a run at `tolerance` may show and still be trusted: ten
+/// thousand times the tolerance (the energy's error stays within a few hundred times it on
+/// every shipped preset and on long runs of every method at its default step), between 1e-8 and
+/// 1e-3 (beyond that the trajectory means nothing, whatever was asked).
+#[must_use]
+pub fn energy_bound(tolerance: f64) -> f64 {
+    (1e4 * tolerance).clamp(1e-8, 1e-3)
 }
 
 #[derive(Serialize)]
@@ -427,6 +439,7 @@ fn rattleback_to(
             initial: result.energy_initial,
             final_: result.energy_final,
             max_relative_error: result.max_relative_energy_error,
+            exceeds_bound: result.max_relative_energy_error > energy_bound(spec.tolerance),
         },
         effective: EffectiveOut {
             theta: eff.theta(),
@@ -453,9 +466,19 @@ fn rattleback_to(
             wall_seconds,
         },
     };
+    if report.energy.exceeds_bound {
+        eprintln!(
+            "rattleback: warning: the energy drifted by {:.1e} (relative), more than the {:.0e} a run at tolerance {:e} can be trusted with: the result is not accurate (a smaller --step, a tighter --tolerance, or --method auto)",
+            report.energy.max_relative_error,
+            energy_bound(spec.tolerance),
+            spec.tolerance
+        );
+    }
     let text = match format {
         Format::Json => {
-            let mut s = serde_json::to_string_pretty(&report).expect("report serializes");
+            let mut s = crate::scenario::text::json_safe(
+                &serde_json::to_string_pretty(&report).expect("report serializes"),
+            );
             s.push('\n');
             s
         }
