@@ -284,6 +284,17 @@ struct EnergyOut {
     exceeds_bound: bool,
 }
 
+/// Says on stderr that a run's energy drifted past [`energy_bound`].
+fn warn_energy(energy: &EnergyOut, tolerance: f64) {
+    if energy.exceeds_bound {
+        eprintln!(
+            "rattleback: warning: the energy drifted by {:.1e} (relative), more than the {:.0e} a run at tolerance {tolerance:e} can be trusted with: the result is not accurate (a smaller --step, a tighter --tolerance, or --method auto)",
+            energy.max_relative_error,
+            energy_bound(tolerance),
+        );
+    }
+}
+
 /// The largest relative energy error a run at `tolerance` may show and still be trusted: ten
 /// thousand times the tolerance (the energy's error stays within a few hundred times it on
 /// every shipped preset and on long runs of every method at its default step), between 1e-8 and
@@ -466,14 +477,7 @@ fn rattleback_to(
             wall_seconds,
         },
     };
-    if report.energy.exceeds_bound {
-        eprintln!(
-            "rattleback: warning: the energy drifted by {:.1e} (relative), more than the {:.0e} a run at tolerance {:e} can be trusted with: the result is not accurate (a smaller --step, a tighter --tolerance, or --method auto)",
-            report.energy.max_relative_error,
-            energy_bound(spec.tolerance),
-            spec.tolerance
-        );
-    }
+    warn_energy(&report.energy, spec.tolerance);
     let text = match format {
         Format::Json => {
             let mut s = crate::scenario::text::json_safe(
