@@ -284,6 +284,17 @@ struct EnergyOut {
     exceeds_bound: bool,
 }
 
+impl EnergyOut {
+    fn of(result: &crate::physics::RunResult, tolerance: f64) -> Self {
+        Self {
+            initial: result.energy_initial,
+            final_: result.energy_final,
+            max_relative_error: result.max_relative_energy_error,
+            exceeds_bound: result.max_relative_energy_error > energy_bound(tolerance),
+        }
+    }
+}
+
 /// Says on stderr that a run's energy drifted past [`energy_bound`].
 fn warn_energy(energy: &EnergyOut, tolerance: f64) {
     if energy.exceeds_bound {
@@ -446,12 +457,7 @@ fn rattleback_to(
             alpha_dot: y[ALPHA_DOT],
         },
         reversals: Reversals::of(result.reversals.clone(), result.reversal_count),
-        energy: EnergyOut {
-            initial: result.energy_initial,
-            final_: result.energy_final,
-            max_relative_error: result.max_relative_energy_error,
-            exceeds_bound: result.max_relative_energy_error > energy_bound(spec.tolerance),
-        },
+        energy: EnergyOut::of(&result, spec.tolerance),
         effective: EffectiveOut {
             theta: eff.theta(),
             regime: eff.regime().name(),
