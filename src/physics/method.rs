@@ -209,6 +209,35 @@ pub enum StepError {
         /// The prediction and the budget.
         over: super::budget::OverBudget,
     },
+    /// The run took far more steps than its cost model predicted (the problem does not behave
+    /// as the model expects, such as a correction expanded in `1/k` at a vanishing `k`): it was
+    /// stopped instead of being left to run for hours.
+    #[error(
+        "stopped at t = {t} after {steps} steps, ten times the work predicted for the whole run; shorten t_end or pick another method"
+    )]
+    Exceeded {
+        /// Time reached.
+        t: f64,
+        /// Steps taken.
+        steps: u64,
+    },
+}
+
+/// Least time one step of any method takes (a splitting's step is several exact fast flows of
+/// 70 ns; DOP853's twelve evaluations take 0.4 µs).
+pub const LEAST_SECONDS_PER_STEP: f64 = 5e-8;
+
+/// Steps a run predicted to take `predicted_seconds` may take before it is stopped: ten times
+/// the predicted work counted in the cheapest steps, and never fewer than 10^5. Counted in steps,
+/// not in wall time, so a run stops at the same step on every machine (replays rely on it).
+#[must_use]
+pub fn step_cap(predicted_seconds: f64) -> u64 {
+    let steps = 10.0 * predicted_seconds / LEAST_SECONDS_PER_STEP;
+    if steps.is_finite() {
+        steps.clamp(1e5, 9e18) as u64
+    } else {
+        u64::MAX
+    }
 }
 
 /// How a method is to be run.

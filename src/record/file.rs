@@ -186,6 +186,8 @@ pub fn read(path: &Path) -> Result<Recording, RecordError> {
         line,
         message,
     };
+    // A byte-order mark (some editors write one) is not part of the header, as for presets.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
     let mut rows = text.split_inclusive('\n').enumerate();
     let Some((_, first)) = rows.next() else {
         return Err(corrupt(

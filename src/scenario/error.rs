@@ -14,9 +14,11 @@ pub enum PresetError {
         /// What the system said.
         source: std::io::Error,
     },
-    /// No file at that path and no preset of that name.
-    #[error("no preset named or at '{name}'; available: {available}{}", crate::scenario::text::did_you_mean(name, available.split(", ")))]
+    /// No file at that path and no preset (theme, lesson) of that name.
+    #[error("no {noun} named or at '{name}'; available: {available}{}", crate::scenario::text::did_you_mean(name, available.split(", ")))]
     NotFound {
+        /// What was looked for: `preset`, `theme` or `lesson`.
+        noun: &'static str,
         /// What was asked for.
         name: String,
         /// Names that exist.

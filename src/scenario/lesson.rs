@@ -263,6 +263,7 @@ pub fn resolve(name_or_path: &str) -> Result<Lesson, PresetError> {
     }
     let available: Vec<String> = catalogue().0.into_iter().map(|e| e.name).collect();
     Err(PresetError::NotFound {
+        noun: "lesson",
         name: name_or_path.to_owned(),
         available: available.join(", "),
     })

@@ -222,6 +222,15 @@ impl std::str::FromStr for Override {
         let (key, value) = s
             .split_once('=')
             .ok_or_else(|| format!("'{s}' is not of the form section.key=value"))?;
+        let v = value.trim();
+        // A quoted value must be one whole TOML string (an unbalanced quote is a typo, not text).
+        if (v.starts_with('"') || v.starts_with('\''))
+            && toml::from_str::<toml::Table>(&format!("v = {v}")).is_err()
+        {
+            return Err(format!(
+                "'{s}': the value {v} is not one quoted TOML string (a quote is unbalanced?)"
+            ));
+        }
         Ok(Self {
             key: key.trim().to_owned(),
             value: value.trim().to_owned(),
@@ -709,7 +718,7 @@ impl Preset {
         if let Some(h) = step {
             crate::physics::run::check_step(h, t_end).map_err(|message| PresetError::Invalid {
                 path: label.to_owned(),
-                line: None,
+                line: Some(map.locate("run", "step")),
                 key: Some("run.step".to_owned()),
                 message,
             })?;

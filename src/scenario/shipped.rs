@@ -270,6 +270,7 @@ pub fn resolve(name_or_path: &str, overrides: &[Override]) -> Result<Preset, Pre
         available.extend(toml_files(&dir).iter().map(|p| stem(p)));
     }
     Err(PresetError::NotFound {
+        noun: "preset",
         name: name_or_path.to_owned(),
         available: available.join(", "),
     })

@@ -281,6 +281,7 @@ pub fn theme(name: &str) -> Result<ThemeSpec, PresetError> {
         return Err(problems.swap_remove(0));
     }
     Err(PresetError::NotFound {
+        noun: "theme",
         name: name.to_owned(),
         available: SHIPPED_THEMES
             .iter()

@@ -236,8 +236,34 @@ impl Engine {
         let Some((generation, spec)) = self.planning else {
             return true;
         };
+        // `auto` as planned is priced before any probe runs (as `simulate` does): a plan that
+        // would verify for minutes is refused at once.
+        let limit_cost = || {
+            spec.model.predicted_seconds(
+                Method::Effective,
+                spec.model.kind().limit_tolerance(),
+                None,
+                spec.t_end,
+            )
+        };
+        let auto_cost = || {
+            spec.model
+                .predicted_seconds(Method::Auto, spec.tolerance, None, spec.t_end)
+                + limit_cost()
+        };
         let resolved = match self.book.lookup(&spec) {
             Some(plan) => Ok((plan, self.book.estimate(&spec))),
+            None if spec.method == Method::Auto
+                && crate::physics::budget::check(auto_cost(), self.book.budget).is_err() =>
+            {
+                Err(StepError::OverBudget {
+                    what: "auto".to_owned(),
+                    over: crate::physics::budget::OverBudget {
+                        predicted: auto_cost(),
+                        budget: self.book.budget,
+                    },
+                })
+            }
             None => spec
                 .model
                 .resolve(
@@ -265,12 +291,7 @@ impl Engine {
                 let model = &spec.model;
                 let predicted =
                     model.predicted_seconds(plan.method, plan.tolerance, plan.step, spec.t_end)
-                        + model.predicted_seconds(
-                            Method::Effective,
-                            model.kind().limit_tolerance(),
-                            None,
-                            spec.t_end,
-                        );
+                        + limit_cost();
                 match crate::physics::budget::check(predicted, self.book.budget) {
                     Ok(()) => Session::new(generation, spec, plan).map(|s| (s, estimate)),
                     Err(over) => Err(StepError::OverBudget {

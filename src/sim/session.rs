@@ -131,6 +131,7 @@ impl Rewind {
         let from = self.snapshots.iter().rev().find(|s| s.time() <= t)?;
         let mut track = Track {
             integrator: from.integrator.boxed(),
+            cap: u64::MAX,
             tracker: from.tracker,
             e0: 0.0,
             scale: 1.0,
@@ -152,6 +153,9 @@ struct Track {
     scale: f64,
     /// Index of the next grid sample this track emits.
     next: u64,
+    /// Steps this track may take (ten times its predicted work): a run that exceeds it is
+    /// stopped, the same step on every machine.
+    cap: u64,
     /// Reversals found so far, and the time of the last (a step holds at most one, so this is
     /// all a checkpoint inside the last step needs; memory stays bounded).
     reversals: usize,
@@ -167,7 +171,14 @@ impl Track {
     ) -> Result<Self, StepError> {
         let integrator = model.build(method, settings, t_end)?;
         let e0 = integrator.energy();
+        let cap = crate::physics::method::step_cap(model.predicted_seconds(
+            method,
+            settings.tolerance,
+            settings.step,
+            t_end,
+        ));
         Ok(Self {
+            cap,
             tracker: EventTracker::new(integrator.event_value()),
             integrator,
             e0,
@@ -205,6 +216,13 @@ impl Track {
         epoch: u64,
         effective: bool,
     ) -> Result<Option<SimEvent>, StepError> {
+        let steps = self.integrator.stats().steps;
+        if steps > self.cap {
+            return Err(StepError::Exceeded {
+                t: self.integrator.time(),
+                steps,
+            });
+        }
         self.integrator.step(t_end)?;
         let r = self.tracker.after_step(self.integrator.as_mut());
         if let Some(t) = r {

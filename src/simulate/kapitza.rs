@@ -20,7 +20,16 @@ use crate::scenario::Preset;
 /// [`kapitza::budget`]).
 #[must_use]
 pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::RunSpec) -> f64 {
+    // The requested run, and the limit's own run the report compares it with (cheap, except
+    // when `b` makes the slow motion fast too).
     kapitza::budget::cost_seconds(problem, spec.method, spec.tolerance, spec.step, spec.t_end)
+        + kapitza::budget::cost_seconds(
+            problem,
+            Method::Effective,
+            crate::physics::ModelKind::Kapitza.limit_tolerance(),
+            None,
+            spec.t_end,
+        )
 }
 
 #[derive(Serialize)]

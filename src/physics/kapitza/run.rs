@@ -120,6 +120,13 @@ pub fn run(
         }
     };
     let mut steps = 0u64;
+    let cap = crate::physics::method::step_cap(super::budget::cost_seconds(
+        problem,
+        spec.method,
+        spec.tolerance,
+        spec.step,
+        spec.t_end,
+    ));
     loop {
         while next_sample < spec.samples && sample_time(next_sample) <= flow.time() {
             let t = sample_time(next_sample);
@@ -138,6 +145,12 @@ pub fn run(
         steps += 1;
         if steps.is_multiple_of(CHECK_EVERY) && !go_on(flow.time()) {
             return Err(StepError::Cancelled { t: flow.time() });
+        }
+        if steps > cap {
+            return Err(StepError::Exceeded {
+                t: flow.time(),
+                steps,
+            });
         }
         if let Some(t) = swings.after_step(flow.as_mut()) {
             events.swing_count += 1;

@@ -202,6 +202,11 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
             let remaining = t_limit - self.t;
             let last = self.h_next >= remaining;
             let h = if last { remaining } else { self.h_next };
+            // A step size that is not a positive number (a start whose derivative is not
+            // finite makes the first one NaN) would loop here for ever.
+            if h.is_nan() || h <= 0.0 || h.is_infinite() {
+                return Err(StepError::NonFinite { t: self.t });
+            }
             if h <= 16.0 * f64::EPSILON * self.t.abs() && !last {
                 return Err(StepError::StepTooSmall { t: self.t, h });
             }
@@ -241,7 +246,12 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
             if !err.is_finite() || !y_new.iter().all(|v| v.is_finite()) {
                 self.stats.rejected += 1;
                 self.h_next = h * 0.1;
-                if self.h_next <= f64::EPSILON * self.t.abs().max(1.0) {
+                // Not greater (NaN included): the step cannot shrink any further.
+                if self
+                    .h_next
+                    .partial_cmp(&(f64::EPSILON * self.t.abs().max(1.0)))
+                    != Some(std::cmp::Ordering::Greater)
+                {
                     return Err(StepError::NonFinite { t: self.t });
                 }
                 rejected_once = true;

@@ -155,11 +155,24 @@ pub fn run_streaming(
         next_sample = 1;
     }
     let mut steps: u64 = 0;
+    let cap = crate::physics::method::step_cap(super::budget::cost_seconds(
+        problem,
+        spec.method,
+        spec.tolerance,
+        spec.step,
+        spec.t_end,
+    ));
     while integrator.time() < spec.t_end {
         steps += 1;
         if steps.is_multiple_of(CHECK_EVERY) && !go_on(integrator.time()) {
             return Err(StepError::Cancelled {
                 t: integrator.time(),
+            });
+        }
+        if steps > cap {
+            return Err(StepError::Exceeded {
+                t: integrator.time(),
+                steps,
             });
         }
         integrator.step(spec.t_end)?;
