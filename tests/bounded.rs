@@ -563,3 +563,47 @@ fn following_a_hostile_session_stays_bounded() {
         assert!(pty.restored());
     }
 }
+
+/// The runs of a replay are bounded as a whole too: each within the budget, but past the
+/// session's total (priced before they start) the next is refused, with nothing computed.
+#[test]
+fn a_replays_runs_are_bounded_as_a_whole() {
+    use rattleback::sim::{Command as C, Engine, PlanBook, SessionSpec, SimEvent, drive};
+    let preset = rattleback::scenario::shipped::resolve("subcritical", &[]).unwrap();
+    let model = preset.model;
+    let spec = SessionSpec {
+        model,
+        method: rattleback::physics::Method::Dop853,
+        tolerance: 1e-9,
+        t_end: 3e4,
+        effective: false,
+        sample_dt: 0.05,
+        step: None,
+    };
+    let one = model.predicted_seconds(spec.method, spec.tolerance, None, spec.t_end);
+    assert!(one > 1.0 && one < 60.0, "{one}");
+    let mut engine = Engine::new(PlanBook {
+        total: 2.5 * one + 1.0,
+        ..PlanBook::default()
+    });
+    let mut outcomes = Vec::new();
+    for generation in 1..=4 {
+        drive(
+            &mut engine,
+            vec![C::Restart { generation, spec }],
+            &mut |e| match e {
+                SimEvent::Started { .. } => outcomes.push(Ok(())),
+                SimEvent::Failed { message, .. } => outcomes.push(Err(message)),
+                _ => {}
+            },
+        );
+    }
+    assert_eq!(outcomes.len(), 4);
+    assert!(outcomes[0].is_ok() && outcomes[1].is_ok(), "{outcomes:?}");
+    assert!(
+        outcomes[2..]
+            .iter()
+            .all(|o| o.as_ref().is_err_and(|m| m.contains("budget"))),
+        "{outcomes:?}"
+    );
+}

@@ -411,11 +411,15 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
     let hangup = &*signal;
     let tty = Tty::enter(options.mouse)?;
     let (tx, rx) = sync_channel::<AppEvent>(INBOX);
-    let book = options
+    let mut book = options
         .replay
         .as_ref()
         .map(crate::record::plan_book)
         .unwrap_or_default();
+    if options.follow.is_some() {
+        // A lecture being followed grows: its runs are bounded one by one, not by its length.
+        book.total = f64::INFINITY;
+    }
     let worker = {
         let tx = tx.clone();
         Worker::spawn_with(book, move |e| tx.send(AppEvent::Sim(e)).is_ok())

@@ -88,6 +88,10 @@ pub fn plan_book(rec: &Recording) -> PlanBook {
                 _ => None,
             })
             .collect(),
+        // All the runs of a replay together (each priced whole, though a replay computes only
+        // what was shown): a budget, and ten times the recording's own length.
+        total: crate::physics::budget::BUDGET_SECONDS
+            + 10.0 * rec.lines.last().map_or(0.0, |(_, l)| l.wall),
         ..PlanBook::default()
     }
 }

@@ -77,6 +77,9 @@ pub struct PlanBook {
     /// Work budget of `auto`'s verification, in predicted seconds: over it, planning fails
     /// with a message instead of computing for hours before the first frame.
     pub budget: f64,
+    /// Budget of all the runs together, in predicted seconds (a replayed session: its own
+    /// length and a margin; unbounded in the explorer, whose user restarts at will).
+    pub total: f64,
 }
 
 impl Default for PlanBook {
@@ -86,6 +89,7 @@ impl Default for PlanBook {
             recorded: Vec::new(),
             estimates: Vec::new(),
             budget: crate::physics::budget::BUDGET_SECONDS,
+            total: f64::INFINITY,
         }
     }
 }
@@ -127,6 +131,8 @@ pub struct Engine {
     weak: Option<(u64, super::WeakSpec)>,
     /// The regime map being computed: its stamp, spec and next cell (after the sweep).
     map: Option<(u64, super::MapSpec, usize)>,
+    /// Predicted seconds of the runs started so far (against [`PlanBook::total`]).
+    spent: f64,
 }
 
 /// A stiffness sweep in progress: the limit's curve once, then one rung per slice.
@@ -151,6 +157,7 @@ impl Engine {
             sweep: None,
             weak: None,
             map: None,
+            spent: 0.0,
         }
     }
 
@@ -292,8 +299,12 @@ impl Engine {
                 let predicted =
                     model.predicted_seconds(plan.method, plan.tolerance, plan.step, spec.t_end)
                         + limit_cost();
-                match crate::physics::budget::check(predicted, self.book.budget) {
-                    Ok(()) => Session::new(generation, spec, plan).map(|s| (s, estimate)),
+                let left = self.book.total - self.spent;
+                match crate::physics::budget::check(predicted, self.book.budget.min(left)) {
+                    Ok(()) => {
+                        self.spent += predicted;
+                        Session::new(generation, spec, plan).map(|s| (s, estimate))
+                    }
                     Err(over) => Err(StepError::OverBudget {
                         what: plan.method.name().to_owned(),
                         over,
