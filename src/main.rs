@@ -98,11 +98,12 @@ fn export_cast(
         say_err!("rattleback: error: {e}");
         return ExitCode::from(1);
     }
-    match rattleback::cast::export_cast(rec, path, out, &options, size, args.force) {
-        Err(_) if let Some(n) = rattleback::interrupt::requested() => {
-            say_err!("rattleback: interrupted: {} was not written", out.display());
-            ExitCode::from(u8::try_from(128 + n).unwrap_or(1))
-        }
+    let written = rattleback::cast::export_cast(rec, path, out, &options, size, args.force);
+    if let (Err(_), Some(n)) = (&written, rattleback::interrupt::requested()) {
+        say_err!("rattleback: interrupted: {} was not written", out.display());
+        return ExitCode::from(u8::try_from(128 + n).unwrap_or(1));
+    }
+    match written {
         Ok(frames) => {
             say!("{}: {frames} frames", out.display());
             ExitCode::SUCCESS
