@@ -42,14 +42,11 @@ fn computes(section: &str) -> bool {
     !matches!(section, "preset" | "view")
 }
 
-fn simulate(preset: &str, sets: &[&str]) -> serde_json::Value {
-    let mut args = vec!["simulate", "--preset", preset, "--format", "json"];
-    for s in sets {
-        args.push("--set");
-        args.push(s);
-    }
+/// `rattleback simulate --format json` with these arguments: its report.
+fn simulate_json(args: &[&str]) -> serde_json::Value {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
-        .args(&args)
+        .args(["simulate", "--format", "json"])
+        .args(args)
         .output()
         .unwrap();
     assert!(
@@ -58,6 +55,15 @@ fn simulate(preset: &str, sets: &[&str]) -> serde_json::Value {
         String::from_utf8_lossy(&out.stderr)
     );
     serde_json::from_slice(&out.stdout).unwrap()
+}
+
+fn simulate(preset: &str, sets: &[&str]) -> serde_json::Value {
+    let mut args = vec!["--preset", preset];
+    for s in sets {
+        args.push("--set");
+        args.push(s);
+    }
+    simulate_json(&args)
 }
 
 fn bits(v: &serde_json::Value) -> u64 {
@@ -112,18 +118,7 @@ fn walk(base: &str, table: &[(&str, &[&str])], schema: &[rattleback::scenario::p
         // The command `y` copies runs the screen again: same final state, bit for bit.
         let copied = h.app.scenario.settings.simulate_command();
         let words: Vec<&str> = copied.split_whitespace().skip(2).collect();
-        let mut args = vec!["simulate", "--format", "json"];
-        args.extend(words.iter().copied());
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
-            .args(&args)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{copied}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let again: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let again = simulate_json(&words);
         assert_eq!(
             [bits(&again["final"][q]), bits(&again["final"][q_dot])],
             [shown.alpha.to_bits(), shown.alpha_dot.to_bits()],

@@ -95,20 +95,18 @@ impl Default for PlanBook {
 }
 
 impl PlanBook {
-    fn estimate(&self, spec: &SessionSpec) -> Option<f64> {
+    /// What was recorded for `spec`'s key, in `list`.
+    fn find<T: Copy>(list: &[(PlanKey, T)], spec: &SessionSpec) -> Option<T> {
         let key = PlanKey::of(spec);
-        self.estimates
-            .iter()
-            .find(|(k, _)| *k == key)
-            .map(|(_, e)| *e)
+        list.iter().find(|(k, _)| *k == key).map(|(_, v)| *v)
+    }
+
+    fn estimate(&self, spec: &SessionSpec) -> Option<f64> {
+        Self::find(&self.estimates, spec)
     }
 
     fn lookup(&self, spec: &SessionSpec) -> Option<Resolved> {
-        let key = PlanKey::of(spec);
-        self.recorded
-            .iter()
-            .find(|(k, _)| *k == key)
-            .map(|(_, plan)| *plan)
+        Self::find(&self.recorded, spec)
     }
 }
 
