@@ -227,16 +227,37 @@ pub enum StepError {
 /// 70 ns; DOP853's twelve evaluations take 0.4 µs).
 pub const LEAST_SECONDS_PER_STEP: f64 = 5e-8;
 
-/// Steps a run predicted to take `predicted_seconds` may take before it is stopped: ten times
-/// the predicted work counted in the cheapest steps, and never fewer than 10^5. Counted in steps,
-/// not in wall time, so a run stops at the same step on every machine (replays rely on it).
-#[must_use]
-pub fn step_cap(predicted_seconds: f64) -> u64 {
-    let steps = 10.0 * predicted_seconds / LEAST_SECONDS_PER_STEP;
-    if steps.is_finite() {
-        steps.clamp(1e5, 9e18) as u64
-    } else {
-        u64::MAX
+/// How many steps a run may take before it is stopped: ten times the predicted work counted in
+/// the cheapest steps, and never fewer than 10^5. Counted in steps, not in wall time, so a run
+/// stops at the same step on every machine (replays rely on it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StepCap(u64);
+
+impl StepCap {
+    /// The cap of a run predicted to take `predicted_seconds`.
+    #[must_use]
+    pub fn of(predicted_seconds: f64) -> Self {
+        let steps = 10.0 * predicted_seconds / LEAST_SECONDS_PER_STEP;
+        Self(if steps.is_finite() {
+            steps.clamp(1e5, 9e18) as u64
+        } else {
+            u64::MAX
+        })
+    }
+
+    /// No cap (integrating again a stretch that already ran).
+    pub const NONE: Self = Self(u64::MAX);
+
+    /// `Err` once `steps` (taken so far, at time `t`) is past the cap.
+    ///
+    /// # Errors
+    /// [`StepError::Exceeded`].
+    pub fn check(self, steps: u64, t: f64) -> Result<(), StepError> {
+        if steps > self.0 {
+            Err(StepError::Exceeded { t, steps })
+        } else {
+            Ok(())
+        }
     }
 }
 
@@ -251,3 +272,28 @@ pub struct Settings {
 
 /// Most steps a default step may lead to over the horizon; an explicit step is not capped.
 pub const DEFAULT_STEP_BUDGET: f64 = 2e6;
+
+#[cfg(test)]
+mod step_cap_tests {
+    use super::*;
+
+    #[test]
+    fn a_run_is_stopped_past_ten_times_its_predicted_work_and_never_before() {
+        // Predicted 1 s: 10 s of the cheapest steps.
+        let cap = StepCap::of(1.0);
+        let limit = (10.0 / LEAST_SECONDS_PER_STEP) as u64;
+        assert!(cap.check(limit, 3.0).is_ok());
+        assert_eq!(
+            cap.check(limit + 1, 3.0),
+            Err(StepError::Exceeded {
+                t: 3.0,
+                steps: limit + 1
+            })
+        );
+        // A cheap run still gets 10^5 steps; an unpriced one is never stopped.
+        assert!(StepCap::of(0.0).check(100_000, 0.0).is_ok());
+        assert!(StepCap::of(0.0).check(100_001, 0.0).is_err());
+        assert!(StepCap::of(f64::INFINITY).check(u64::MAX, 0.0).is_ok());
+        assert!(StepCap::NONE.check(u64::MAX, 0.0).is_ok());
+    }
+}

@@ -131,7 +131,7 @@ impl Rewind {
         let from = self.snapshots.iter().rev().find(|s| s.time() <= t)?;
         let mut track = Track {
             integrator: from.integrator.boxed(),
-            cap: u64::MAX,
+            cap: crate::physics::method::StepCap::NONE,
             tracker: from.tracker,
             e0: 0.0,
             scale: 1.0,
@@ -155,7 +155,7 @@ struct Track {
     next: u64,
     /// Steps this track may take (ten times its predicted work): a run that exceeds it is
     /// stopped, the same step on every machine.
-    cap: u64,
+    cap: crate::physics::method::StepCap,
     /// Reversals found so far, and the time of the last (a step holds at most one, so this is
     /// all a checkpoint inside the last step needs; memory stays bounded).
     reversals: usize,
@@ -171,7 +171,7 @@ impl Track {
     ) -> Result<Self, StepError> {
         let integrator = model.build(method, settings, t_end)?;
         let e0 = integrator.energy();
-        let cap = crate::physics::method::step_cap(model.predicted_seconds(
+        let cap = crate::physics::method::StepCap::of(model.predicted_seconds(
             method,
             settings.tolerance,
             settings.step,
@@ -216,13 +216,8 @@ impl Track {
         epoch: u64,
         effective: bool,
     ) -> Result<Option<SimEvent>, StepError> {
-        let steps = self.integrator.stats().steps;
-        if steps > self.cap {
-            return Err(StepError::Exceeded {
-                t: self.integrator.time(),
-                steps,
-            });
-        }
+        self.cap
+            .check(self.integrator.stats().steps, self.integrator.time())?;
         self.integrator.step(t_end)?;
         let r = self.tracker.after_step(self.integrator.as_mut());
         if let Some(t) = r {

@@ -120,7 +120,7 @@ pub fn run(
         }
     };
     let mut steps = 0u64;
-    let cap = crate::physics::method::step_cap(super::budget::cost_seconds(
+    let cap = crate::physics::method::StepCap::of(super::budget::cost_seconds(
         problem,
         spec.method,
         spec.tolerance,
@@ -146,12 +146,7 @@ pub fn run(
         if steps.is_multiple_of(CHECK_EVERY) && !go_on(flow.time()) {
             return Err(StepError::Cancelled { t: flow.time() });
         }
-        if steps > cap {
-            return Err(StepError::Exceeded {
-                t: flow.time(),
-                steps,
-            });
-        }
+        cap.check(steps, flow.time())?;
         if let Some(t) = swings.after_step(flow.as_mut()) {
             events.swing_count += 1;
             if events.swings.len() < MAX_EVENT_TIMES {

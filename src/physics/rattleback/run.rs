@@ -155,7 +155,7 @@ pub fn run_streaming(
         next_sample = 1;
     }
     let mut steps: u64 = 0;
-    let cap = crate::physics::method::step_cap(super::budget::cost_seconds(
+    let cap = crate::physics::method::StepCap::of(super::budget::cost_seconds(
         problem,
         spec.method,
         spec.tolerance,
@@ -169,12 +169,7 @@ pub fn run_streaming(
                 t: integrator.time(),
             });
         }
-        if steps > cap {
-            return Err(StepError::Exceeded {
-                t: integrator.time(),
-                steps,
-            });
-        }
+        cap.check(steps, integrator.time())?;
         integrator.step(spec.t_end)?;
         if let Some(t) = tracker.after_step(integrator.as_mut()) {
             reversal_count += 1;
