@@ -161,6 +161,42 @@ fn simulate_refuses_what_would_run_away_in_both_scenes() {
     assert!(o.out.contains("\"exceeds_bound\": true"), "{}", o.out);
 }
 
+/// Issue 29: a small trapped swing at a huge k made the averaged half period's quadrature
+/// bisect rounding noise for hours (`--format csv`, which skips the report, returned at once).
+/// Every format now returns well within the budget; the half period is a number or `null`.
+#[test]
+fn every_report_of_a_tiny_swing_at_huge_k_returns() {
+    let starts: [&[&str]; 2] = [
+        &["--set", "spring.k=1e8", "--set", "initial.alpha_dot=0.05"],
+        &[
+            "--set",
+            "body.ix=80",
+            "--set",
+            "body.iy=20",
+            "--set",
+            "body.iz=40",
+            "--set",
+            "spring.k=1e10",
+            "--set",
+            "initial.alpha_dot=0.05",
+            "--t-end",
+            "300",
+        ],
+    ];
+    for start in starts {
+        for format in ["json", "table", "csv"] {
+            let mut args = vec!["simulate", "--format", format];
+            args.extend_from_slice(start);
+            let o = limited(&args);
+            assert!(matches!(o.code, Some(0 | 1)), "{args:?}: {}", o.err);
+            assert!(o.took < Duration::from_secs(10), "{args:?}: {:?}", o.took);
+            if format == "json" {
+                assert!(o.out.contains("\"half_period\""), "{}", o.out);
+            }
+        }
+    }
+}
+
 /// N6: `study sweep` validates and budgets its ladder; extreme rungs finish at bounded memory.
 #[test]
 fn study_sweep_is_bounded() {

@@ -34,6 +34,8 @@ pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::RunSpec) -> f
 
 #[derive(Serialize)]
 struct Report {
+    /// [`super::SCHEMA_VERSION`]: `docs/schemas/simulate-kapitza.schema.json`.
+    schema_version: u32,
     preset: String,
     model: &'static str,
     params: kapitza::Params,
@@ -282,6 +284,7 @@ pub fn simulate_to(
     let p = problem.params();
     let s = problem.start();
     let report = Report {
+        schema_version: super::SCHEMA_VERSION,
         preset: preset.name.clone(),
         model: "kapitza",
         params: *p,

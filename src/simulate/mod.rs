@@ -139,9 +139,18 @@ pub enum Failure {
     Output(#[from] std::io::Error),
 }
 
+/// The version of `simulate --format json`'s reports (both scenes), whose JSON Schemas live in
+/// `docs/schemas/` and are checked against real reports by `tests/schemas.rs`. Raised when a
+/// field is renamed, removed or changes meaning; adding a field does not raise it.
+pub const SCHEMA_VERSION: u32 = 1;
+
 #[derive(Serialize)]
 struct Report {
+    /// [`SCHEMA_VERSION`]: `docs/schemas/simulate-rattleback.schema.json` describes this report.
+    schema_version: u32,
     preset: String,
+    /// Which scene: `rattleback` here (`kapitza` for the pendulum's report).
+    model: &'static str,
     params: ParamsOut,
     initial: crate::physics::Start,
     method: Method,
@@ -435,7 +444,9 @@ fn rattleback_to(
     let averaged = (ran == Method::Averaged2).then(|| AveragedOut::of(problem));
     let shortfall = auto.as_ref().and_then(|a| a.missed(spec.tolerance));
     let report = Report {
+        schema_version: SCHEMA_VERSION,
         preset: preset.name.clone(),
+        model: "rattleback",
         params: ParamsOut {
             ix: p.ix,
             iy: p.iy,

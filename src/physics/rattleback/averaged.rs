@@ -23,7 +23,7 @@ use nalgebra::Vector3;
 use super::effective::Regime;
 use super::model::{State, initial_state, transverse_energy};
 use super::params::{Params, Problem};
-use crate::physics::numerics::quadrature::integrate_adaptive;
+use crate::physics::numerics::quadrature::integrate_bounded;
 
 /// `c = g'/(4g)` and its first two derivatives in `α` (note §1).
 #[derive(Clone, Copy, Debug)]
@@ -248,7 +248,9 @@ impl Averaged2 {
 
     /// The averaged time between turning points of a trapped start,
     /// `∫ dα [ (2/iz)(K̄ − V̄)(1 − c² Ī/(iz ω)) ]^{−1/2}` between `V̄(α±) = K̄` (note §4.3),
-    /// by adaptive Gauss–Legendre after `α = centre + α* sin φ`. `None` unless trapped.
+    /// by adaptive Gauss–Legendre after `α = centre + α* sin φ`. `None` unless trapped, and
+    /// `None` when the bounded quadrature cannot reach [`HALF_PERIOD_ACCURACY`] (a swing so small
+    /// at so large a k that `K̄ − V̄` is rounding noise).
     #[must_use]
     pub fn half_period(&self, y0: &SlowState) -> Option<f64> {
         if self.regime(y0) != Regime::Trapped {
@@ -287,14 +289,15 @@ impl Averaged2 {
                 0.0
             }
         };
-        Some(integrate_adaptive(
-            -FRAC_PI_2,
-            FRAC_PI_2,
-            1e-12,
-            &mut integrand,
-        ))
+        // Bounded work (issue 29): where K̄ − V̄ is rounding noise (a small swing at very large k)
+        // bisection cannot converge; the cap stops it and an inaccurate value is not reported.
+        integrate_bounded(-FRAC_PI_2, FRAC_PI_2, 1e-12, &mut integrand).within(HALF_PERIOD_ACCURACY)
     }
 }
+
+/// Relative accuracy below which the averaged half period is reported as `null` (not trapped
+/// is the other reason): the quadrature met its 1e-12 almost everywhere else.
+pub const HALF_PERIOD_ACCURACY: f64 = 1e-6;
 
 /// Largest [`expansion_parameter`] for which `averaged2` runs at all (its error at 0.2 is
 /// already 1e-3 … 1e-5 on the note's starts, k = 1e2; past 0.5 the slow motion is not slow).

@@ -1,0 +1,121 @@
+//! The JSON Schemas of `simulate --format json` (`docs/schemas/`) against real reports: every
+//! shipped preset of both scenes, and the starts whose reports hold the `null`s the schemas
+//! allow (issue 24: "the JSON schema says which fields may be null and why"). A schema that
+//! misses a field, allows one that is not there, or forbids a `null` that occurs fails here;
+//! and a report bent out of shape is shown to fail the schema, so the check can fail.
+
+use serde_json::Value;
+
+fn schema(name: &str) -> jsonschema::Validator {
+    let path = format!(
+        "{}/docs/schemas/simulate-{name}.schema.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).unwrap();
+    let value: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(
+        value["properties"]["schema_version"]["const"],
+        u64::from(rattleback::simulate::SCHEMA_VERSION),
+        "{path}: schema_version"
+    );
+    jsonschema::draft202012::new(&value).unwrap()
+}
+
+fn report(args: &[&str]) -> Value {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        .args(["simulate", "--format", "json"])
+        .args(args)
+        .env(
+            "RATTLEBACK_CONFIG_DIR",
+            std::env::temp_dir().join("rattleback-schemas-none"),
+        )
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+fn check(validator: &jsonschema::Validator, what: &str, value: &Value) {
+    let errors: Vec<String> = validator
+        .iter_errors(value)
+        .map(|e| format!("{} at {}", e, e.instance_path()))
+        .collect();
+    assert!(errors.is_empty(), "{what}: {errors:#?}");
+}
+
+fn scene(value: &Value) -> &str {
+    value["model"]
+        .as_str()
+        .expect("every report names its model")
+}
+
+#[test]
+fn every_shipped_preset_matches_its_schema() {
+    let (rattleback, kapitza) = (schema("rattleback"), schema("kapitza"));
+    for (name, _) in rattleback::scenario::shipped::SHIPPED {
+        let r = report(&["--preset", name]);
+        let v = if scene(&r) == "kapitza" {
+            &kapitza
+        } else {
+            &rattleback
+        };
+        check(v, name, &r);
+    }
+}
+
+#[test]
+fn the_nulls_the_schemas_allow_occur_and_validate() {
+    let (rattleback, kapitza) = (schema("rattleback"), schema("kapitza"));
+    // No spin: no critical ratio, no start ratio; uniform regime, no turning points.
+    let r = report(&["--set", "initial.gamma_dot=0"]);
+    assert!(r["effective"]["critical_ratio"].is_null());
+    assert!(r["effective"]["turning_points"].is_null());
+    check(&rattleback, "gamma_dot = 0", &r);
+    // A fixed-step method: `step` is a number, `auto` absent.
+    let r = report(&["--method", "strang", "--step", "1e-3"]);
+    assert!(r["step"].is_number() && r.get("auto").is_none());
+    check(&rattleback, "strang", &r);
+    // Rotating start: no half period, the averaged block of a direct averaged2 run.
+    let r = report(&[
+        "--preset",
+        "supercritical",
+        "--method",
+        "averaged2",
+        "--set",
+        "spring.k=1e6",
+    ]);
+    assert!(r["effective"]["half_period"].is_null() && r["averaged"].is_object());
+    check(&rattleback, "rotating averaged2", &r);
+    // The pendulum below its threshold: no upright frequency.
+    let r = report(&["--preset", "kapitza-falls"]);
+    assert!(r["effective"]["upright_frequency"].is_null());
+    check(&kapitza, "kapitza-falls", &r);
+    let r = report(&["--preset", "kapitza-upright", "--method", "rk4"]);
+    check(&kapitza, "kapitza rk4", &r);
+}
+
+#[test]
+fn a_report_bent_out_of_shape_fails_its_schema() {
+    let v = schema("rattleback");
+    let good = report(&[]);
+    check(&v, "default", &good);
+    let bend = |f: &dyn Fn(&mut Value)| {
+        let mut r = good.clone();
+        f(&mut r);
+        assert!(!v.is_valid(&r), "accepted: {r}");
+    };
+    bend(&|r| {
+        r.as_object_mut().unwrap().remove("energy");
+    });
+    bend(&|r| r["surprise"] = Value::from(1));
+    bend(&|r| r["final"]["alpha"] = Value::Null);
+    bend(&|r| r["model"] = Value::from("kapitza"));
+    bend(&|r| r["schema_version"] = Value::from(2));
+    bend(&|r| r["reversals"]["count"] = Value::from(-1));
+    // The pendulum's schema does not accept the rattleback's report.
+    assert!(!schema("kapitza").is_valid(&good));
+}
