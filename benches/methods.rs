@@ -9,7 +9,8 @@ mod common;
 
 use common::problem;
 use criterion::{Criterion, criterion_group, criterion_main};
-use rattleback::physics::{Method, run};
+use rattleback::physics::Method;
+use rattleback::physics::rattleback::run;
 use std::hint::black_box;
 use std::time::Duration;
 

@@ -9,8 +9,9 @@ mod common;
 
 use common::problem;
 use criterion::{Criterion, criterion_group, criterion_main};
-use rattleback::physics::auto::run_auto;
-use rattleback::physics::{Method, run};
+use rattleback::physics::Method;
+use rattleback::physics::rattleback::auto::run_auto;
+use rattleback::physics::rattleback::run;
 use std::hint::black_box;
 use std::time::Duration;
 

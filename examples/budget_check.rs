@@ -7,8 +7,10 @@
 
 use std::time::Instant;
 
-use rattleback::physics::plan::{AutoPolicy, predicted_seconds, resolve};
-use rattleback::physics::{Method, RunSpec, run};
+use rattleback::physics::Method;
+use rattleback::physics::plan::AutoPolicy;
+use rattleback::physics::rattleback::plan::{predicted_seconds, resolve};
+use rattleback::physics::rattleback::{RunSpec, run};
 use rattleback::scenario::preset::Override;
 use rattleback::scenario::shipped::{SHIPPED, resolve as preset};
 

@@ -657,7 +657,7 @@ fn study_map(args: &crate::cli::MapArgs) -> ExitCode {
             #[allow(clippy::cast_precision_loss)]
             let cells = (grid.cols * grid.rows) as f64;
             let predicted = cells
-                * crate::physics::plan::predicted_seconds(
+                * crate::physics::rattleback::plan::predicted_seconds(
                     &probe,
                     crate::physics::Method::Auto,
                     tolerance,

@@ -563,7 +563,7 @@ fn run_simulate(args: &SimulateArgs) -> ExitCode {
         return ExitCode::from(2);
     }
     if let Some(h) = resolved.spec.step
-        && let Err(e) = rattleback::physics::run::check_step(h, resolved.spec.t_end)
+        && let Err(e) = rattleback::physics::rattleback::run::check_step(h, resolved.spec.t_end)
     {
         say_err!("rattleback: error: --step: {e}");
         return ExitCode::from(2);

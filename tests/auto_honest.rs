@@ -10,7 +10,7 @@ mod common;
 
 use common::{AveragedCase, averaged_cases};
 use rattleback::physics::Method;
-use rattleback::physics::auto::{Shortfall, Verified, run_auto};
+use rattleback::physics::rattleback::auto::{Shortfall, Verified, run_auto};
 
 /// The true error of a verified run against a reference case.
 fn true_error(v: &Verified, case: &AveragedCase) -> f64 {
@@ -201,7 +201,7 @@ fn the_limits_values_are_accurate_whatever_the_tolerance() {
     // tolerance (errors 2e-6 at 1e-8). Now they are good to about 1e-12 at any tolerance:
     // at the limit's 7th reversal time (from its quadrature, an independent computation),
     // its α̇ must vanish.
-    use rattleback::physics::effective::Effective;
+    use rattleback::physics::rattleback::effective::Effective;
     let preset = rattleback::scenario::shipped::resolve("subcritical", &[]).unwrap();
     let eff = Effective::new(preset.problem().unwrap());
     let t7 = eff.reversal_times(30.0)[6];

@@ -9,10 +9,12 @@ mod common;
 use std::process::Command;
 
 use rattleback::physics::budget::BUDGET_SECONDS;
-use rattleback::physics::effective::Effective;
-use rattleback::physics::plan::{AutoPolicy, predicted_seconds, resolve};
-use rattleback::physics::run::MAX_REVERSAL_TIMES;
-use rattleback::physics::{Method, RunSpec, StepError};
+use rattleback::physics::plan::AutoPolicy;
+use rattleback::physics::rattleback::RunSpec;
+use rattleback::physics::rattleback::effective::Effective;
+use rattleback::physics::rattleback::plan::{predicted_seconds, resolve};
+use rattleback::physics::rattleback::run::MAX_REVERSAL_TIMES;
+use rattleback::physics::{Method, StepError};
 use rattleback::scenario::shipped::{SHIPPED, resolve as preset};
 use rattleback::simulate::{self, Failure, Format, Request};
 
@@ -223,9 +225,14 @@ fn the_streamed_csv_of_auto_is_the_verified_run_bit_for_bit() {
     req.samples = 50;
     let resolved = simulate::resolve(&p, &req);
     let csv = simulate::simulate(&p, &resolved, Format::Csv).expect("runs");
-    let verified =
-        rattleback::physics::auto::run_auto(p.problem().unwrap(), 1e-9, p.run.t_end, 50, true)
-            .expect("auto runs");
+    let verified = rattleback::physics::rattleback::auto::run_auto(
+        p.problem().unwrap(),
+        1e-9,
+        p.run.t_end,
+        50,
+        true,
+    )
+    .expect("auto runs");
     // The `# key = value` lines, then the column names, then the rows.
     let rows: Vec<&str> = csv
         .lines()
@@ -261,7 +268,7 @@ fn reversal_lists_are_capped_and_counts_exact_for_any_horizon() {
     assert!(times.len() as f64 >= t_end / half - 2.0);
     assert!(times.iter().all(|&t| t > 0.0 && t <= t_end));
     // And a run's own count matches its list.
-    let r = rattleback::physics::run(
+    let r = rattleback::physics::rattleback::run(
         p.problem().unwrap(),
         &RunSpec {
             method: Method::Dop853,

@@ -3,7 +3,8 @@
 
 mod common;
 
-use rattleback::physics::{Method, RunSpec, run};
+use rattleback::physics::Method;
+use rattleback::physics::rattleback::{RunSpec, run};
 
 fn alpha_at(method: Method, h: f64) -> (f64, f64) {
     // k = 3: fast and slow time scales comparable, every quantity smooth.

@@ -4,10 +4,15 @@ mod common;
 
 use std::f64::consts::FRAC_PI_2;
 
-use rattleback::physics::effective::{Effective, Regime};
-use rattleback::physics::{Method, Problem, RunSpec, run};
+use rattleback::physics::Method;
+use rattleback::physics::rattleback::effective::{Effective, Regime};
+use rattleback::physics::rattleback::{Problem, RunSpec, run};
 
-fn full(problem: &Problem, t_end: f64, samples: usize) -> rattleback::physics::RunResult {
+fn full(
+    problem: &Problem,
+    t_end: f64,
+    samples: usize,
+) -> rattleback::physics::rattleback::RunResult {
     let spec = RunSpec {
         method: Method::Dop853,
         tolerance: 1e-11,
@@ -19,7 +24,7 @@ fn full(problem: &Problem, t_end: f64, samples: usize) -> rattleback::physics::R
     run(problem, &spec).expect("integrates")
 }
 
-fn effective(problem: &Problem, t_end: f64) -> rattleback::physics::RunResult {
+fn effective(problem: &Problem, t_end: f64) -> rattleback::physics::rattleback::RunResult {
     let spec = RunSpec {
         method: Method::Effective,
         tolerance: 1e-12,
@@ -145,7 +150,7 @@ fn windowed_average_of_gamma_dot_squared_g_three_halves_tends_to_theta() {
         let problem = base.with_k(k).unwrap();
         let r = full(&problem, 10.0, 200_001);
         let p = problem.params();
-        let value = |y: &rattleback::physics::State| y[2] * y[2] * p.g(y[1]).powf(1.5);
+        let value = |y: &rattleback::physics::rattleback::State| y[2] * y[2] * p.g(y[1]).powf(1.5);
         // Its value at t = 0 is 2θ: the weak-* limit is not a pointwise one.
         assert!((value(&r.samples[0].state) - 2.0 * theta).abs() < 1e-12);
         let window: Vec<f64> = r
@@ -206,7 +211,7 @@ fn same_inputs_give_bit_identical_trajectories() {
         };
         let a = run(&problem, &spec).unwrap();
         let b = run(&problem, &spec).unwrap();
-        let bits = |r: &rattleback::physics::RunResult| {
+        let bits = |r: &rattleback::physics::rattleback::RunResult| {
             let mut v: Vec<u64> = r.final_state.iter().map(|x| x.to_bits()).collect();
             v.extend(r.reversals.iter().map(|x| x.to_bits()));
             v.extend(

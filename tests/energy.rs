@@ -5,10 +5,11 @@
 mod common;
 
 use proptest::prelude::*;
-use rattleback::physics::integrators::splitting::{Canonical, composed_step};
-use rattleback::physics::integrators::{Settings, build};
-use rattleback::physics::model::{energy, initial_state};
-use rattleback::physics::{Method, Problem, RunSpec, run};
+use rattleback::physics::Method;
+use rattleback::physics::rattleback::integrators::splitting::{Canonical, composed_step};
+use rattleback::physics::rattleback::integrators::{Settings, build};
+use rattleback::physics::rattleback::model::{energy, initial_state};
+use rattleback::physics::rattleback::{Problem, RunSpec, run};
 
 /// Max relative energy error over the first and the last tenth of `[0, t_end]`.
 fn energy_error_early_and_late(

@@ -12,8 +12,10 @@ use common::Headless;
 use rattleback::app::mode::{Confirm, PromptFor};
 use rattleback::app::{App, Effect, Key, Mode, Options, PlanState};
 use rattleback::physics::Method;
-use rattleback::physics::plan::{AutoPolicy, resolve as resolve_plan};
-use rattleback::physics::{RunSpec, run};
+use rattleback::physics::plan::AutoPolicy;
+use rattleback::physics::rattleback::effective::Effective;
+use rattleback::physics::rattleback::plan::resolve as resolve_plan;
+use rattleback::physics::rattleback::{RunSpec, run};
 use rattleback::scenario::shipped::{SHIPPED, resolve};
 use rattleback::sim::{Command, SessionSpec, SimEvent, Worker};
 
@@ -505,7 +507,11 @@ fn wait_for(
     panic!("timed out after {limit:?}; saw {} events", seen.len());
 }
 
-fn spec(problem: rattleback::physics::Problem, method: Method, tolerance: f64) -> SessionSpec {
+fn spec(
+    problem: rattleback::physics::rattleback::Problem,
+    method: Method,
+    tolerance: f64,
+) -> SessionSpec {
     SessionSpec {
         model: problem.into(),
         method,
@@ -815,7 +821,7 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
     );
     assert!(h.app.map.done, "the same body keeps its map");
     // The loaded start's limit reverses as often as its cell said.
-    let limit = rattleback::physics::effective::Effective::new(loaded.rattleback().unwrap());
+    let limit = Effective::new(loaded.rattleback().unwrap());
     assert_eq!(limit.reversal_count(loaded.t_end), count);
 
     // `f`: the full model at this k, on its own grid; Esc gives the arrows back.

@@ -159,7 +159,7 @@ fn models_live_in_their_folders_and_numerics_belong_to_none() {
         for b in [
             "physics::rattleback",
             "physics::kapitza",
-            "physics::model",
+            "physics::rattleback::model",
             "physics::params",
             "effective",
         ] {
@@ -170,10 +170,10 @@ fn models_live_in_their_folders_and_numerics_belong_to_none() {
     for (file, text) in layer("physics/kapitza") {
         for b in [
             "physics::rattleback",
-            "physics::model::",
-            "physics::effective",
-            "physics::integrators",
-            "physics::params::Params",
+            "physics::rattleback::model::",
+            "physics::rattleback::effective",
+            "physics::rattleback::integrators",
+            "physics::rattleback::params::Params",
         ] {
             assert!(!text.contains(b), "{} mentions {b}", file.display());
         }
@@ -189,5 +189,63 @@ fn models_live_in_their_folders_and_numerics_belong_to_none() {
     for (file, text) in layer("sim") {
         assert!(!text.contains("kapitza::flows"), "{}", file.display());
         assert!(!text.contains("integrators::build"), "{}", file.display());
+    }
+}
+
+/// Issue 25: the rattleback's modules and items are reached through its folder
+/// (`physics::rattleback::…`), never at the old paths the first model had before the second
+/// arrived; `physics/mod.rs` re-exports no model's module or item; the shared vocabulary
+/// (`ParamError`, `Resolved`, the budget, `CHECK_EVERY`) lives in `physics/`, so neither model
+/// reaches into the other for it.
+#[test]
+fn no_old_paths_and_no_model_reexports() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    for dir in ["src", "tests", "benches", "examples"] {
+        rust_files(&root.join(dir), &mut files);
+    }
+    let old_modules = [
+        "auto",
+        "averaged",
+        "effective",
+        "integrators",
+        "model",
+        "run",
+        "quadrature",
+    ];
+    let old_items = ["State", "Params", "Problem", "Start", "RunResult", "RunSpec"];
+    let mut found = Vec::new();
+    // This file names the old paths to forbid them.
+    for file in files.iter().filter(|f| !f.ends_with("tests/layering.rs")) {
+        let text = std::fs::read_to_string(file).unwrap();
+        for (n, line) in text.lines().enumerate() {
+            let mut rest = line;
+            while let Some(i) = rest.find("physics::") {
+                let after = &rest[i + "physics::".len()..];
+                let word: String = after
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_')
+                    .collect();
+                let is_old = old_modules.contains(&word.as_str())
+                    || old_items.contains(&word.as_str())
+                    || (word == "params" && !after.starts_with("params::ParamError"))
+                    || (word == "run" && after.starts_with("run("));
+                if is_old {
+                    found.push(format!("{}:{}: {}", file.display(), n + 1, line.trim()));
+                }
+                rest = after;
+            }
+        }
+    }
+    assert!(found.is_empty(), "old paths:\n{}", found.join("\n"));
+    let face = std::fs::read_to_string(src().join("physics/mod.rs")).unwrap();
+    for banned in ["pub use rattleback", "pub use kapitza", "pub use numerics"] {
+        assert!(!face.contains(banned), "physics/mod.rs: {banned}");
+    }
+    for (file, text) in layer("physics/kapitza") {
+        assert!(!text.contains("super::rattleback"), "{}", file.display());
+    }
+    for (file, text) in layer("physics/rattleback") {
+        assert!(!text.contains("super::kapitza"), "{}", file.display());
     }
 }

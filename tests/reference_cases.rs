@@ -6,8 +6,9 @@
 mod common;
 
 use common::{case_problem, num, reference_cases, reference_path, shared_reference_path};
-use rattleback::physics::effective::Effective;
-use rattleback::physics::{Method, RunSpec, run};
+use rattleback::physics::Method;
+use rattleback::physics::rattleback::effective::Effective;
+use rattleback::physics::rattleback::{RunSpec, run};
 
 fn times(t: &toml::Table) -> Vec<f64> {
     t.get("reversal_times")

@@ -144,8 +144,15 @@ fn every_shipped_preset_reports_the_pinned_bytes() {
             .output()
             .unwrap();
         let got = wall(&String::from_utf8(out.stdout).unwrap());
-        let path = format!("{}/tests/fixtures/golden/{name}.json", env!("CARGO_MANIFEST_DIR"));
+        let path = format!(
+            "{}/tests/fixtures/golden/{name}.json",
+            env!("CARGO_MANIFEST_DIR")
+        );
         let want = std::fs::read_to_string(&path).unwrap();
-        assert_eq!(got.trim_end(), want.trim_end(), "{name}: differs from {path}");
+        assert_eq!(
+            got.trim_end(),
+            want.trim_end(),
+            "{name}: differs from {path}"
+        );
     }
 }

@@ -7,8 +7,9 @@ fn rounding(steps: u64, value: f64) -> f64 {
     4.0 * (steps.max(1) as f64) * f64::EPSILON * (1.0 + value.abs())
 }
 
-use rattleback::physics::effective::tapping_acceleration;
-use rattleback::physics::{Method, RunSpec, run};
+use rattleback::physics::Method;
+use rattleback::physics::rattleback::effective::tapping_acceleration;
+use rattleback::physics::rattleback::{RunSpec, run};
 
 fn spec(method: Method, t_end: f64) -> RunSpec {
     RunSpec {

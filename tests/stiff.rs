@@ -4,8 +4,9 @@
 
 mod common;
 
-use rattleback::physics::auto::{plan, run_auto};
-use rattleback::physics::{Method, Problem, RunSpec, run};
+use rattleback::physics::Method;
+use rattleback::physics::rattleback::auto::{plan, run_auto};
+use rattleback::physics::rattleback::{Problem, RunSpec, run};
 
 fn run_with(
     problem: &Problem,
@@ -137,7 +138,7 @@ fn auto_meets_its_tolerance_and_changes_method_with_k() {
 #[test]
 fn an_implicit_stiff_method_converges_to_the_wrong_motion() {
     let problem = common::problem(2.0, 1.0, 1.0, 1e8, [0.0, 0.0, 1.0, 0.5]);
-    let predicted = rattleback::physics::effective::Effective::new(&problem)
+    let predicted = rattleback::physics::rattleback::effective::Effective::new(&problem)
         .reversal_times(10.0)
         .len();
     assert!(predicted >= 2);

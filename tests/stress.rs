@@ -5,9 +5,10 @@
 
 mod common;
 
-use rattleback::physics::auto::run_auto;
-use rattleback::physics::effective::{Effective, Regime};
-use rattleback::physics::{Method, Problem, RunResult, RunSpec, run};
+use rattleback::physics::Method;
+use rattleback::physics::rattleback::auto::run_auto;
+use rattleback::physics::rattleback::effective::{Effective, Regime};
+use rattleback::physics::rattleback::{Problem, RunResult, RunSpec, run};
 
 #[track_caller]
 fn sane(label: &str, r: &RunResult, energy_bound: f64) {

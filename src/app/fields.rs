@@ -2,9 +2,10 @@
 //! the same domain types as presets. Each model has its rows ([`Field::rows`]); the run's rows
 //! (`t_end`, `method`, `tolerance`) are shared.
 
-use crate::physics::integrators::Method;
 use crate::physics::kapitza;
-use crate::physics::{Model, ModelKind, Problem};
+use crate::physics::rattleback::Problem;
+use crate::physics::rattleback::integrators::Method;
+use crate::physics::{Model, ModelKind};
 use crate::scenario::preset::TOLERANCE_RANGE;
 
 /// Everything the parameter panel edits.
@@ -405,7 +406,7 @@ pub fn format_number(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::{Params, Start};
+    use crate::physics::rattleback::{Params, Start};
 
     fn settings() -> Settings {
         let params = Params {

@@ -5,7 +5,7 @@
 //! cell under it as the current start (`iy = ix · iy/ix`, `γ0 = α0 = 0`, `α̇0 = √ratio · γ̇0`).
 
 use super::fields::Settings;
-use crate::physics::{Params, Problem, Start};
+use crate::physics::rattleback::{Params, Problem, Start};
 use crate::sim::{Command, MapSpec};
 use crate::study::map::{Grid, Source};
 
@@ -249,7 +249,7 @@ pub fn nearest_cell(grid: &Grid, ratio: f64, inertia: f64) -> (usize, usize) {
 #[allow(clippy::float_cmp)] // exact values are copied, not computed
 mod tests {
     use super::*;
-    use crate::physics::integrators::Method;
+    use crate::physics::rattleback::integrators::Method;
 
     fn settings() -> Settings {
         let params = Params {

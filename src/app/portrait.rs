@@ -313,11 +313,11 @@ pub fn decimate(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::{Params, Problem, Start};
+    use crate::physics::rattleback::{Params, Problem, Start};
     use std::f64::consts::PI;
 
     fn eff() -> LimitView {
-        LimitView::Rattleback(crate::physics::effective::Effective::new(
+        LimitView::Rattleback(crate::physics::rattleback::effective::Effective::new(
             &Problem::new(
                 Params {
                     ix: 2.0,

@@ -3,7 +3,7 @@
 
 use super::fields::Settings;
 use super::portrait::{self, View};
-use crate::physics::integrators::Method;
+use crate::physics::rattleback::integrators::Method;
 use crate::physics::{DEFAULT_TOLERANCE, LimitView, Model};
 use crate::scenario::Preset;
 use crate::scenario::preset::{RunConfig, ViewConfig};

@@ -10,16 +10,16 @@
 //! implementation of the averaged model at 1e10 and 1e12, model error below 1e-18), embedded
 //! in the binary at build time.
 
-use crate::physics::model::{ALPHA, ALPHA_DOT};
+use crate::physics::rattleback::model::{ALPHA, ALPHA_DOT};
 use std::fmt::Write as _;
 use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::physics::auto::run_auto;
-use crate::physics::integrators::Method;
-use crate::physics::run::RunResult;
-use crate::physics::{Params, Problem, Start, run};
+use crate::physics::rattleback::auto::run_auto;
+use crate::physics::rattleback::integrators::Method;
+use crate::physics::rattleback::run::RunResult;
+use crate::physics::rattleback::{Params, Problem, Start, run};
 
 use super::spec;
 
@@ -134,7 +134,7 @@ fn best_of(repeats: usize, mut f: impl FnMut()) -> f64 {
 
 /// Single configurations searched for the fastest at `auto`'s accuracy.
 fn singles(problem: &Problem) -> Vec<(Method, f64, Option<f64>)> {
-    let nu = crate::physics::budget::fastest_rate(problem);
+    let nu = crate::physics::rattleback::budget::fastest_rate(problem);
     let mut c = Vec::new();
     for i in 0..13 {
         let tol = 1e-8 * 10f64.powf(-0.5 * f64::from(i));
@@ -180,7 +180,9 @@ pub fn profile(quick: bool, log: &mut dyn FnMut(&str)) -> Vec<ProfileRow> {
                 });
                 for (method, tol, step) in singles(p) {
                     let s = spec(method, tol, step, T_END);
-                    if crate::physics::budget::cost_seconds(p, method, tol, step, T_END) > 2.0 {
+                    if crate::physics::rattleback::budget::cost_seconds(p, method, tol, step, T_END)
+                        > 2.0
+                    {
                         continue;
                     }
                     let Ok(r) = run(p, &s) else { continue };

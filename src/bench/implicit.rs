@@ -4,11 +4,11 @@
 //! reversing. Order 1; each step solves `y' = y + h f(y')` by Newton's method with a
 //! finite-difference Jacobian.
 
-use crate::physics::model::ALPHA_DOT;
+use crate::physics::rattleback::model::ALPHA_DOT;
 use nalgebra::Matrix4;
 
-use crate::physics::model::{initial_state, rhs, transverse_energy};
-use crate::physics::{Problem, State};
+use crate::physics::rattleback::model::{initial_state, rhs, transverse_energy};
+use crate::physics::rattleback::{Problem, State};
 
 /// What backward Euler did.
 #[derive(Clone, Copy, Debug)]

@@ -9,17 +9,17 @@ pub mod kapitza;
 mod plot;
 mod stability;
 
-use crate::physics::model::{ALPHA, ALPHA_DOT};
+use crate::physics::rattleback::model::{ALPHA, ALPHA_DOT};
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::physics::auto::run_auto;
-use crate::physics::integrators::Method;
-use crate::physics::run::RunResult;
-use crate::physics::{Params, Problem, RunSpec, Start, run};
+use crate::physics::rattleback::auto::run_auto;
+use crate::physics::rattleback::integrators::Method;
+use crate::physics::rattleback::run::RunResult;
+use crate::physics::rattleback::{Params, Problem, RunSpec, Start, run};
 
 /// How much to measure.
 #[derive(Clone, Copy, Debug)]

@@ -5,8 +5,8 @@
 use differential_equations::prelude::*;
 use nalgebra::SVector;
 
-use crate::physics::model::{initial_state, rhs};
-use crate::physics::{Params, Problem};
+use crate::physics::rattleback::model::{initial_state, rhs};
+use crate::physics::rattleback::{Params, Problem};
 
 struct Full(Params);
 

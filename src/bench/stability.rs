@@ -7,12 +7,12 @@ use std::time::Instant;
 use serde::Serialize;
 
 use super::{Config, case};
-use crate::physics::auto::run_auto;
-use crate::physics::effective::Effective;
-use crate::physics::integrators::Method;
-use crate::physics::model::{initial_state, transverse_energy};
-use crate::physics::run::RunResult;
-use crate::physics::{Params, Problem, RunSpec, State, run};
+use crate::physics::rattleback::auto::run_auto;
+use crate::physics::rattleback::effective::Effective;
+use crate::physics::rattleback::integrators::Method;
+use crate::physics::rattleback::model::{initial_state, transverse_energy};
+use crate::physics::rattleback::run::RunResult;
+use crate::physics::rattleback::{Params, Problem, RunSpec, State, run};
 
 /// One line of the report.
 #[derive(Clone, Debug, Serialize)]

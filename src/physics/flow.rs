@@ -114,3 +114,6 @@ pub(crate) fn sign(x: f64) -> f64 {
         0.0
     }
 }
+
+/// Steps between two calls of a run's cancellation check.
+pub const CHECK_EVERY: u64 = 256;

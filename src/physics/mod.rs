@@ -9,30 +9,30 @@
 //! - [`kapitza`]: Kapitza's inverted pendulum (full model, limit, ripple, integrators, `auto`);
 //! - [`numerics`]: DOP853, compositions, roots, quadrature; [`method`]: the methods' names.
 //!
-//! The rattleback came first: its modules are also reachable at their old paths
-//! (`physics::effective`, `physics::integrators`, …), which the rest of the crate uses.
+//! Shared vocabulary lives here, not in a model's folder: [`params::ParamError`],
+//! [`plan::Resolved`], [`budget`] (the work budget and its refusal), [`flow::CHECK_EVERY`]. A
+//! model's own items are reached through its folder (`physics::rattleback::…`,
+//! `physics::kapitza::…`); there are no old paths (`tests/layering.rs` forbids them).
 //!
 //! Invariants: everything here is a pure function of its inputs (no clock, no threads, no
 //! randomness), so the same inputs and build give bit-identical results; replays depend on it.
 //! This layer depends on std, nalgebra and serde only. It must never import a terminal crate:
 //! a test fails if a file below `src/physics/` mentions one.
 
+pub mod budget;
 pub mod flow;
 pub mod kapitza;
 pub mod method;
 pub mod models;
 pub mod numerics;
+pub mod params;
+pub mod plan;
 pub mod rattleback;
 
-pub use numerics::quadrature;
-pub use rattleback::{auto, averaged, budget, effective, integrators, model, params, plan, run};
-
 pub use method::{Method, StepError};
-pub use model::State;
 pub use models::{LimitView, Model, ModelKind};
-pub use params::{ParamError, Params, Problem, Start};
+pub use params::ParamError;
 pub use plan::{DEFAULT_TOLERANCE, Resolved};
-pub use run::{RunResult, RunSpec, run};
 
 /// The input farthest from 1 in size (what most likely overflowed a derived quantity).
 #[must_use]

@@ -11,11 +11,11 @@
 
 use serde::Serialize;
 
-use super::effective::Effective;
 use super::flow::{Flow, Sample};
-use super::integrators::{self, Integrator, Method, Settings, Stats, StepError};
 use super::kapitza;
-use super::params::Problem;
+use super::rattleback::Problem;
+use super::rattleback::effective::Effective;
+use super::rattleback::integrators::{self, Integrator, Method, Settings, Stats, StepError};
 
 /// Which model: names as in presets (`[preset] model = "kapitza"`; absent means the rattleback).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, schemars::JsonSchema)]
@@ -245,12 +245,12 @@ impl Model {
         }
     }
 
-    /// Resolves `method` for this problem (see [`super::plan::resolve`] for the rattleback's
+    /// Resolves `method` for this problem (see [`super::rattleback::plan::resolve`] for the rattleback's
     /// verified `auto`; the pendulum's `auto` is [`kapitza::plan::resolve`], chosen from the
     /// limit's predicted model error).
     ///
     /// # Errors
-    /// As [`super::plan::resolve`]; a method the model does not offer.
+    /// As [`super::rattleback::plan::resolve`]; a method the model does not offer.
     pub fn resolve(
         &self,
         method: Method,
@@ -259,7 +259,7 @@ impl Model {
         policy: super::plan::AutoPolicy,
         budget: f64,
         go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<super::plan::Resolution, StepError> {
+    ) -> Result<super::rattleback::plan::Resolution, StepError> {
         if !self.kind().offers(method) {
             return Err(StepError::NotOffered {
                 method: method.name(),
@@ -268,7 +268,7 @@ impl Model {
         }
         match self {
             Self::Rattleback(p) => {
-                super::plan::resolve(p, method, tolerance, t_end, policy, budget, go_on)
+                super::rattleback::plan::resolve(p, method, tolerance, t_end, policy, budget, go_on)
             }
             Self::Kapitza(p) => {
                 let (plan, estimate) = if method == Method::Auto {
@@ -287,7 +287,7 @@ impl Model {
                     };
                     (plan, None)
                 };
-                Ok(super::plan::Resolution {
+                Ok(super::rattleback::plan::Resolution {
                     plan,
                     verified: None,
                     estimate,
@@ -308,7 +308,7 @@ impl Model {
     ) -> f64 {
         match self {
             Self::Rattleback(p) => {
-                super::plan::predicted_seconds(p, method, tolerance, step, t_end)
+                super::rattleback::plan::predicted_seconds(p, method, tolerance, step, t_end)
             }
             Self::Kapitza(p) => kapitza::budget::cost_seconds(p, method, tolerance, step, t_end),
         }
@@ -339,7 +339,7 @@ impl Model {
 pub struct RattlebackFlow(pub Box<dyn Integrator>);
 
 impl RattlebackFlow {
-    fn at(&mut self, t: f64) -> super::State {
+    fn at(&mut self, t: f64) -> super::rattleback::State {
         if t >= self.0.time() {
             self.0.state()
         } else {
@@ -367,9 +367,9 @@ impl Flow for RattlebackFlow {
     fn sample(&mut self, t: f64) -> Sample {
         let y = self.at(t);
         Sample {
-            q: y[super::model::ALPHA],
-            q_dot: y[super::model::ALPHA_DOT],
-            fast: y[super::model::GAMMA],
+            q: y[super::rattleback::model::ALPHA],
+            q_dot: y[super::rattleback::model::ALPHA_DOT],
+            fast: y[super::rattleback::model::GAMMA],
         }
     }
     fn state_at(&mut self, t: f64) -> Vec<f64> {

@@ -14,7 +14,8 @@ use toml::{Table, Value};
 
 use super::error::{PresetError, SourceMap};
 use crate::physics::kapitza;
-use crate::physics::{Method, Model, ModelKind, Params, Problem, Start};
+use crate::physics::rattleback::{Params, Problem, Start};
+use crate::physics::{Method, Model, ModelKind};
 
 /// Smallest and largest tolerance accepted.
 pub const TOLERANCE_RANGE: (f64, f64) = (1e-14, 1e-1);
@@ -716,11 +717,13 @@ impl Preset {
         };
         let (t_end, step) = (n("run", "t_end"), r.num("run", "step"));
         if let Some(h) = step {
-            crate::physics::run::check_step(h, t_end).map_err(|message| PresetError::Invalid {
-                path: label.to_owned(),
-                line: Some(map.locate("run", "step")),
-                key: Some("run.step".to_owned()),
-                message,
+            crate::physics::rattleback::run::check_step(h, t_end).map_err(|message| {
+                PresetError::Invalid {
+                    path: label.to_owned(),
+                    line: Some(map.locate("run", "step")),
+                    key: Some("run.step".to_owned()),
+                    message,
+                }
             })?;
         }
         Ok(Self {

@@ -8,10 +8,11 @@ use std::collections::VecDeque;
 use serde::{Deserialize, Serialize};
 
 use super::{Command, Session, SessionSpec, SimEvent};
-use crate::physics::integrators::{Method, StepError};
+use crate::physics::Model;
 use crate::physics::kapitza;
 use crate::physics::plan::{AutoPolicy, Resolved};
-use crate::physics::{Model, Params, Start};
+use crate::physics::rattleback::integrators::{Method, StepError};
+use crate::physics::rattleback::{Params, Start};
 
 /// What a plan was resolved for: `auto`'s choice depends on these only. One shape per model
 /// (told apart by their fields, so files written before the pendulum existed read as before).
@@ -433,7 +434,8 @@ impl Engine {
             Model::Rattleback(problem) => {
                 let horizon = view_horizon(problem, spec.t_end);
                 pointwise(problem, horizon, go_on).map(|(t, q)| {
-                    let theta = crate::physics::effective::Effective::new(problem).theta();
+                    let theta =
+                        crate::physics::rattleback::effective::Effective::new(problem).theta();
                     (t, q, theta, Vec::new())
                 })
             }

@@ -15,8 +15,8 @@ pub use engine::{Engine, PlanBook, PlanKey, drive};
 pub use session::{MAX_GRID_SAMPLES, Point, Session, SessionSpec, grid_spacing};
 pub use worker::Worker;
 
-use crate::physics::integrators::Method;
 use crate::physics::plan::Resolved;
+use crate::physics::rattleback::integrators::Method;
 
 /// UI to worker.
 #[derive(Clone, Debug, PartialEq)]

@@ -11,8 +11,8 @@ use serde::{Deserialize, Serialize};
 use super::SimEvent;
 use crate::physics::Model;
 use crate::physics::flow::{EventTracker, Flow};
-use crate::physics::integrators::{Method, Settings, StepError};
 use crate::physics::plan::Resolved;
+use crate::physics::rattleback::integrators::{Method, Settings, StepError};
 
 /// What a session runs.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -10,16 +10,16 @@ use serde::Serialize;
 
 use super::{Failure, Format, Missed, Resolved, compact, times};
 use crate::physics::StepError;
-use crate::physics::integrators::Method;
 use crate::physics::kapitza::limit::Limit;
 use crate::physics::kapitza::run::{self, RunResult, RunSpec};
 use crate::physics::kapitza::{self, Problem, plan};
+use crate::physics::rattleback::integrators::Method;
 use crate::scenario::Preset;
 
 /// Predicted seconds of the run `spec` asks for (the pendulum's cost model,
 /// [`kapitza::budget`]).
 #[must_use]
-pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::RunSpec) -> f64 {
+pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::rattleback::RunSpec) -> f64 {
     // The requested run, and the limit's own run the report compares it with (cheap, except
     // when `b` makes the slow motion fast too).
     kapitza::budget::cost_seconds(problem, spec.method, spec.tolerance, spec.step, spec.t_end)
@@ -251,7 +251,7 @@ pub fn simulate_to(
     let missed = auto.as_ref().filter(|a| !a.met).map(|a| Missed {
         estimate: a.error_estimate,
         tolerance: resolved.spec.tolerance,
-        why: crate::physics::auto::Shortfall::Model,
+        why: crate::physics::rattleback::auto::Shortfall::Model,
     });
     let clock = Instant::now();
     let result = run::run(problem, &spec, progress)?;

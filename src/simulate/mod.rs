@@ -6,21 +6,23 @@
 
 mod kapitza;
 
-use crate::physics::model::{ALPHA, ALPHA_DOT, GAMMA, GAMMA_DOT};
+use crate::physics::rattleback::model::{ALPHA, ALPHA_DOT, GAMMA, GAMMA_DOT};
 use std::fmt::Write as _;
 use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::physics::auto::{Shortfall, run_auto_cancellable};
-use crate::physics::averaged::Averaged2;
+use crate::physics::StepError;
 use crate::physics::budget::{self, BUDGET_SECONDS};
-use crate::physics::effective::{Effective, tapping_acceleration};
-use crate::physics::integrators::Method;
-use crate::physics::model::energy;
-use crate::physics::plan;
-use crate::physics::run::{RunResult, run_cancellable, run_streaming};
-use crate::physics::{RunSpec, StepError};
+use crate::physics::rattleback::RunSpec;
+use crate::physics::rattleback::auto::{Shortfall, run_auto_cancellable};
+use crate::physics::rattleback::averaged::Averaged2;
+use crate::physics::rattleback::budget::cost_seconds;
+use crate::physics::rattleback::effective::{Effective, tapping_acceleration};
+use crate::physics::rattleback::integrators::Method;
+use crate::physics::rattleback::model::energy;
+use crate::physics::rattleback::plan;
+use crate::physics::rattleback::run::{RunResult, run_cancellable, run_streaming};
 use crate::scenario::Preset;
 
 /// Tolerance when neither the command line nor the preset gives one.
@@ -122,7 +124,7 @@ pub fn predicted_seconds(preset: &Preset, resolved: &Resolved, format: Format) -
         Format::Csv if spec.method == Method::Auto => main / (1.0 + plan::VERIFY_FRACTION),
         Format::Csv => 0.0,
         Format::Json | Format::Table => {
-            budget::cost_seconds(problem, Method::Effective, spec.tolerance, None, spec.t_end)
+            cost_seconds(problem, Method::Effective, spec.tolerance, None, spec.t_end)
         }
     };
     main + extra
@@ -152,7 +154,7 @@ struct Report {
     /// Which scene: `rattleback` here (`kapitza` for the pendulum's report).
     model: &'static str,
     params: ParamsOut,
-    initial: crate::physics::Start,
+    initial: crate::physics::rattleback::Start,
     method: Method,
     /// With `method = auto`: the method it chose (also in `auto.choice`).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -206,7 +208,7 @@ struct AveragedOut {
 }
 
 impl AveragedOut {
-    fn of(problem: &crate::physics::Problem) -> Self {
+    fn of(problem: &crate::physics::rattleback::Problem) -> Self {
         let (m, y0) = Averaged2::new(problem);
         Self {
             ibar: m.ibar(),
@@ -275,7 +277,7 @@ struct Reversals {
 }
 
 impl Reversals {
-    /// `times` holds the first reversals (at most `physics::run::MAX_REVERSAL_TIMES`), `count`
+    /// `times` holds the first reversals (at most `physics::rattleback::run::MAX_REVERSAL_TIMES`), `count`
     /// all of them.
     fn of(times: Vec<f64>, count: usize) -> Self {
         Self { count, times }
@@ -294,7 +296,7 @@ struct EnergyOut {
 }
 
 impl EnergyOut {
-    fn of(result: &crate::physics::RunResult, tolerance: f64) -> Self {
+    fn of(result: &crate::physics::rattleback::RunResult, tolerance: f64) -> Self {
         Self {
             initial: result.energy_initial,
             final_: result.energy_final,
@@ -401,7 +403,7 @@ pub fn simulate_to(
 /// The rattleback's report (see [`simulate_to`]).
 fn rattleback_to(
     preset: &Preset,
-    problem: &crate::physics::Problem,
+    problem: &crate::physics::rattleback::Problem,
     resolved: &Resolved,
     format: Format,
     out: &mut dyn std::io::Write,
@@ -531,7 +533,7 @@ pub(crate) fn within_budget(
 
 /// The requested run, and `auto`'s account of it.
 fn requested_run(
-    problem: &crate::physics::Problem,
+    problem: &crate::physics::rattleback::Problem,
     resolved: &Resolved,
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<(RunResult, Option<AutoOut>), StepError> {
@@ -582,7 +584,7 @@ pub fn csv_metadata_of(
 #[must_use]
 pub fn csv_metadata(
     preset: &str,
-    problem: &crate::physics::Problem,
+    problem: &crate::physics::rattleback::Problem,
     method: Method,
     ran: Option<Method>,
     tolerance: f64,
@@ -639,7 +641,7 @@ pub(crate) fn metadata_lines(
 /// again with the samples, which gives the verified run bit for bit.
 fn csv(
     preset: &Preset,
-    problem: &crate::physics::Problem,
+    problem: &crate::physics::rattleback::Problem,
     resolved: &Resolved,
     out: &mut dyn std::io::Write,
     progress: &mut dyn FnMut(f64) -> bool,
@@ -652,7 +654,7 @@ fn csv(
             spec.method,
             spec.tolerance,
             spec.t_end,
-            plan::AutoPolicy::Verified,
+            crate::physics::plan::AutoPolicy::Verified,
             resolved.budget,
             progress,
         )?;

@@ -6,13 +6,14 @@
 //! Each rung runs `auto` (so the whole ladder costs little more than its hardest rung) with
 //! samples on one grid; the limit is integrated at 1e-14 (1e-13 for the pendulum).
 
-use crate::physics::model::ALPHA;
+use crate::physics::rattleback::model::ALPHA;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::physics::auto::run_auto_cancellable;
-use crate::physics::run::run_cancellable;
-use crate::physics::{Method, Model, ModelKind, RunSpec, StepError};
+use crate::physics::rattleback::RunSpec;
+use crate::physics::rattleback::auto::run_auto_cancellable;
+use crate::physics::rattleback::run::run_cancellable;
+use crate::physics::{Method, Model, ModelKind, StepError};
 
 /// The default ladder: one stiffness per decade from 1e1 to 1e8.
 pub const DEFAULT_LADDER: [f64; 8] = [1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8];

@@ -7,12 +7,13 @@
 //! The full model is resolved (blanes-moan4 at `ω_max h = 0.5`) and sampled 24 times per
 //! fastest period, so the pointwise curve is the motion's own, not a reconstruction.
 
-use crate::physics::model::{ALPHA, GAMMA_DOT};
+use crate::physics::rattleback::model::{ALPHA, GAMMA_DOT};
 use serde::Serialize;
 
-use crate::physics::effective::Effective;
-use crate::physics::run::run_cancellable;
-use crate::physics::{Method, Problem, RunSpec, StepError};
+use crate::physics::rattleback::effective::Effective;
+use crate::physics::rattleback::run::run_cancellable;
+use crate::physics::rattleback::{Problem, RunSpec};
+use crate::physics::{Method, StepError};
 
 /// Samples per fastest fast period.
 pub const PER_PERIOD: f64 = 24.0;

@@ -1,7 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
-use rattleback::physics::{Params, Problem, Start};
+use rattleback::physics::rattleback::{Params, Problem, Start};
 
 /// Path of the reference cases: the copy carried in `tests/fixtures/reference/cases.toml`
 /// (from `../shared/reference/cases.toml`), overridable with `RATTLEBACK_REFERENCE`.

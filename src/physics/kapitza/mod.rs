@@ -218,9 +218,10 @@ mod tests {
             epsilon: 0.01,
         };
         let (t, tau) = (0.37, 0.004);
-        let exact = crate::physics::quadrature::integrate_adaptive(t, t + tau, 1e-14, &mut |s| {
-            p.forcing(s)
-        });
+        let exact =
+            crate::physics::numerics::quadrature::integrate_adaptive(t, t + tau, 1e-14, &mut |s| {
+                p.forcing(s)
+            });
         assert!((p.forcing_integral(t, tau) - exact).abs() < 1e-12);
     }
 }

@@ -11,11 +11,11 @@ use serde::Serialize;
 
 use super::Problem;
 use super::flows::build;
+use crate::physics::flow::CHECK_EVERY;
 use crate::physics::flow::{EventTracker, Flow};
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::numerics::dop853::Stats;
 use crate::physics::numerics::roots::find_root;
-use crate::physics::run::CHECK_EVERY;
 
 /// Most event times kept of each kind; later ones are counted only.
 pub const MAX_EVENT_TIMES: usize = 100_000;

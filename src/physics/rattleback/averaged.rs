@@ -339,7 +339,7 @@ struct Fast {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::params::Start;
+    use crate::physics::rattleback::params::Start;
 
     fn problem(k: f64, gamma: f64, alpha: f64, gamma_dot: f64, alpha_dot: f64) -> Problem {
         Problem::new(
@@ -401,7 +401,9 @@ mod tests {
     fn regime_follows_the_papers_threshold_at_large_k() {
         let (m, y0) = Averaged2::new(&problem(1e8, 0.0, 0.0, 1.0, 0.5));
         assert_eq!(m.regime(&y0), Regime::Trapped);
-        let eff = crate::physics::effective::Effective::new(&problem(1e8, 0.0, 0.0, 1.0, 0.5));
+        let eff = crate::physics::rattleback::effective::Effective::new(&problem(
+            1e8, 0.0, 0.0, 1.0, 0.5,
+        ));
         let (a, b) = (m.half_period(&y0).unwrap(), eff.half_period().unwrap());
         assert!((a - b).abs() < 1e-5 * b, "{a} vs {b}");
         let (m, y0) = Averaged2::new(&problem(1e8, 0.0, 0.0, 1.0, 1.2));

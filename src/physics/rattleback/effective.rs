@@ -374,7 +374,7 @@ pub fn tapping_acceleration(problem: &Problem) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::params::Start;
+    use crate::physics::rattleback::params::Start;
 
     fn problem(alpha_dot: f64) -> Problem {
         Problem::new(

@@ -13,3 +13,7 @@ pub mod model;
 pub mod params;
 pub mod plan;
 pub mod run;
+
+pub use model::State;
+pub use params::{Params, Problem, Start};
+pub use run::{RunResult, RunSpec, run};

@@ -7,6 +7,7 @@ use super::integrators::reversals::ReversalTracker;
 use super::integrators::{self, Method, Settings, Stats, StepError};
 use super::model::State;
 use super::params::Problem;
+use crate::physics::flow::CHECK_EVERY;
 
 /// What to run.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -79,9 +80,6 @@ pub fn check_step(step: f64, t_end: f64) -> Result<(), String> {
 
 /// Most reversal times a run keeps (8 MB); later ones are counted only.
 pub const MAX_REVERSAL_TIMES: usize = 1_000_000;
-
-/// Steps between two calls of a run's cancellation check.
-pub const CHECK_EVERY: u64 = 256;
 
 /// Integrates `problem` as `spec` says.
 ///

@@ -11,13 +11,13 @@
 
 use serde::Serialize;
 
-use crate::physics::budget::{
+use crate::physics::rattleback::budget::{
     NS_DOP853_EVAL, NS_EFFECTIVE_PER_TIME, NS_FAST_FLOW, dop853_evaluations, fastest_rate,
 };
-use crate::physics::effective::Effective;
-use crate::physics::integrators::{Method, StepError};
-use crate::physics::params::Problem;
-use crate::physics::run::{RunSpec, run_cancellable};
+use crate::physics::rattleback::effective::Effective;
+use crate::physics::rattleback::integrators::{Method, StepError};
+use crate::physics::rattleback::params::Problem;
+use crate::physics::rattleback::run::{RunSpec, run_cancellable};
 
 /// Error of `blanes-moan4` per unit time at `ν h = 1`.
 const C_BLANES_MOAN: f64 = 3e-12;

@@ -750,7 +750,7 @@ pub fn round_off(problem: &Problem, steps: f64, t_end: f64) -> f64 {
 }
 
 fn over_budget(what: &str, predicted: f64, budget: f64) -> Result<(), StepError> {
-    super::budget::check(predicted, budget).map_err(|over| StepError::OverBudget {
+    crate::physics::budget::check(predicted, budget).map_err(|over| StepError::OverBudget {
         what: what.to_owned(),
         over,
     })

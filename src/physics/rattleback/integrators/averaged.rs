@@ -1,4 +1,4 @@
-//! `averaged2`: the second-order averaged model (`physics::averaged`, physics.md §4c), its slow
+//! `averaged2`: the second-order averaged model (`physics::rattleback::averaged`, physics.md §4c), its slow
 //! flow on `(ᾱ, P̄, ψ̄)` integrated by the DOP853 core.
 //!
 //! Order 8 in the step, not symplectic; 12 evaluations per step, each a `sin_cos` and a
@@ -11,9 +11,9 @@
 use super::dop853::{Dop853, Field, Stats};
 use super::roots::find_root;
 use super::{Integrator, Method, StepError};
-use crate::physics::averaged::{Averaged2, SlowState};
-use crate::physics::model::State;
-use crate::physics::params::Problem;
+use crate::physics::rattleback::averaged::{Averaged2, SlowState};
+use crate::physics::rattleback::model::State;
+use crate::physics::rattleback::params::Problem;
 
 /// The slow field of `K̄`.
 #[derive(Clone)]

@@ -15,9 +15,9 @@ use nalgebra::Vector3;
 use super::dop853::{Dop853, Field, Stats};
 use super::roots::find_root;
 use super::{Integrator, Method, StepError};
-use crate::physics::effective::Effective;
-use crate::physics::model::State;
-use crate::physics::params::Problem;
+use crate::physics::rattleback::effective::Effective;
+use crate::physics::rattleback::model::State;
+use crate::physics::rattleback::params::Problem;
 
 /// The effective field on `(α, α̇, φ)`.
 #[derive(Clone)]

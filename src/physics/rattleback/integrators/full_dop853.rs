@@ -4,8 +4,8 @@
 use super::dop853::{Dop853, Field, Stats};
 use super::roots::find_root;
 use super::{Integrator, Method, StepError};
-use crate::physics::model::{ALPHA_DOT, State, energy, initial_state, rhs};
-use crate::physics::params::{Params, Problem};
+use crate::physics::rattleback::model::{ALPHA_DOT, State, energy, initial_state, rhs};
+use crate::physics::rattleback::params::{Params, Problem};
 
 /// The Euler–Lagrange field of one parameter set, with `1/ω_max`, the natural unit of `γ`.
 #[derive(Clone)]
@@ -17,14 +17,14 @@ impl Field<4> for FullField {
         rhs(&self.0, y)
     }
     fn unit(&self, i: usize) -> f64 {
-        if i == crate::physics::model::GAMMA {
+        if i == crate::physics::rattleback::model::GAMMA {
             self.1
         } else {
             1.0
         }
     }
     fn is_angle(&self, i: usize) -> bool {
-        i == crate::physics::model::ALPHA
+        i == crate::physics::rattleback::model::ALPHA
     }
 }
 

@@ -122,8 +122,8 @@ pub fn build(
             true,
         )),
         Method::Averaged2 => {
-            let parameter = crate::physics::averaged::expansion_parameter(problem);
-            let limit = crate::physics::averaged::VALIDITY_LIMIT;
+            let parameter = crate::physics::rattleback::averaged::expansion_parameter(problem);
+            let limit = crate::physics::rattleback::averaged::VALIDITY_LIMIT;
             if parameter.is_nan() || parameter > limit {
                 return Err(StepError::OutsideModel { parameter, limit });
             }

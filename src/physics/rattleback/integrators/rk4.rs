@@ -8,8 +8,8 @@
 use super::dop853::Stats;
 use super::roots::find_root;
 use super::{Integrator, Method, StepError};
-use crate::physics::model::{ALPHA_DOT, State, energy, initial_state, rhs};
-use crate::physics::params::{Params, Problem};
+use crate::physics::rattleback::model::{ALPHA_DOT, State, energy, initial_state, rhs};
+use crate::physics::rattleback::params::{Params, Problem};
 
 /// Fixed-step RK4 on `(γ, α, γ̇, α̇)`.
 #[derive(Clone)]

@@ -31,8 +31,8 @@ pub use crate::physics::numerics::compositions::Composition;
 use crate::physics::numerics::compositions::Split;
 use std::f64::consts::{FRAC_PI_2, PI};
 
-use crate::physics::model::{State, initial_state};
-use crate::physics::params::{Params, Problem};
+use crate::physics::rattleback::model::{State, initial_state};
+use crate::physics::rattleback::params::{Params, Problem};
 
 /// The rattleback as a [`Split`]: the drift of `α` by `pα/iz`, the exact fast flow.
 struct RattlebackSplit<'a> {
