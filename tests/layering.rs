@@ -1,4 +1,4 @@
-//! The layering rules the README states, checked on the sources:
+//! The layering rules docs/architecture.md states, checked on the sources:
 //! - `physics` is headless: no terminal crate, no threads, no clock;
 //! - `scenario` imports only `physics`; `sim` only `physics`; `app` no `ui`, no terminal crate,
 //!   no `record`; `record` never `ui` (the cast export, which draws, is `cast.rs`, above both);
@@ -213,7 +213,14 @@ fn no_old_paths_and_no_model_reexports() {
         "run",
         "quadrature",
     ];
-    let old_items = ["State", "Params", "Problem", "Start", "RunResult", "RunSpec"];
+    let old_items = [
+        "State",
+        "Params",
+        "Problem",
+        "Start",
+        "RunResult",
+        "RunSpec",
+    ];
     let mut found = Vec::new();
     // This file names the old paths to forbid them.
     for file in files.iter().filter(|f| !f.ends_with("tests/layering.rs")) {

@@ -551,7 +551,7 @@ pub const MAP_KEYS: &[(&str, &str)] = &[
     ("M", "hide the map"),
 ];
 
-/// The map's keys as a Markdown table (the README's, checked by a test).
+/// The map's keys as a Markdown table (docs/guide.md's, checked by a test).
 #[must_use]
 pub fn map_markdown() -> String {
     use std::fmt::Write as _;
@@ -572,7 +572,7 @@ pub const MAP_FOOTER: &[Hint] = &[
     ("q", "quit", 0),
 ];
 
-/// A keymap as a Markdown table (the README's key tables are this, checked by a test).
+/// A keymap as a Markdown table (docs/guide.md's key tables are this, checked by a test).
 #[must_use]
 pub fn markdown<A>(map: &[Binding<A>]) -> String {
     use std::fmt::Write as _;

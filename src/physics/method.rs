@@ -31,7 +31,7 @@ pub enum Method {
     /// The effective model with its first-order correction (the fast ripple of `α̇`).
     EffectiveCorrected,
     /// The second-order averaged model: error O(k⁻²), cost independent of `k`
-    /// (physics.md §4c, `physics::rattleback::averaged`).
+    /// (docs/physics.md §4c, `physics::rattleback::averaged`).
     Averaged2,
     /// Chooses the cheapest method that meets the tolerance (see `physics::rattleback::auto`).
     Auto,

@@ -7,7 +7,7 @@
 //! [`LimitView`] the portrait draws (the slow coordinate's effective potential). Adding a third
 //! model touches its folder and the arms of the matches in this file; the preset schema
 //! (`scenario/preset.rs`), the parameter panel's rows (`app/fields.rs`) and `simulate`'s report
-//! (`simulate/`) each add the model's own table, listed in the README's architecture section.
+//! (`simulate/`) each add the model's own table, listed in docs/architecture.md.
 
 use serde::Serialize;
 

@@ -1,4 +1,4 @@
-//! Kapitza's inverted pendulum (physics.md §5; the paper's introduction): a pendulum whose
+//! Kapitza's inverted pendulum (docs/physics.md §5; the paper's introduction): a pendulum whose
 //! pivot is shaken vertically at a high frequency `1/ε`, with `θ` measured from the upright.
 //!
 //! ```text

@@ -1,4 +1,4 @@
-//! Symmetric compositions of two exactly solvable parts (physics.md §4), for any model that
+//! Symmetric compositions of two exactly solvable parts (docs/physics.md §4), for any model that
 //! implements [`Split`]: `A(a_0 h) B(b_1 h) A(a_1 h) … B(b_m h) A(a_m h)`. Strang is
 //! `a = (½, ½)`, `b = (1)`; a composition of Strang steps of sizes `w_i h` merges adjacent
 //! drifts (`yoshida4`, `yoshida6`, `suzuki8`); `blanes-moan4` is Blanes & Moan's 6-stage

@@ -1,6 +1,6 @@
 //! Gauss–Legendre quadrature, fixed and adaptive.
 //!
-//! Used for the limit motion's half period and first reversal time (physics.md §3), whose
+//! Used for the limit motion's half period and first reversal time (docs/physics.md §3), whose
 //! integrands are made smooth by a change of variable; near the separatrix they develop a
 //! logarithmic peak, which the adaptive rule resolves by bisection.
 

@@ -1,5 +1,5 @@
-//! The second-order averaged model (`averaged2`, physics.md §4c; the derivation and its
-//! measurements are `../shared/docs/averaging/second-order.md`): an O(k⁻²) slow model, against
+//! The second-order averaged model (`averaged2`, docs/physics.md §4c; the derivation and its
+//! measurements are `docs/averaging/second-order.md`): an O(k⁻²) slow model, against
 //! O(1/k) for the first-order corrected limit, at the same k-independent cost.
 //!
 //! Canonical variables of a full state (exact): `I = (½ g γ̇² + ½ k γ²)/ω`,

@@ -1,4 +1,4 @@
-//! The effective model (`k → ∞`, physics.md §2–3): the adiabatic constant `theta`, the
+//! The effective model (`k → ∞`, docs/physics.md §2–3): the adiabatic constant `theta`, the
 //! effective potential and energy, the regime of a start, turning points, the half period and
 //! the limit's spin-reversal times by quadrature, and the tapping acceleration.
 //!
@@ -17,7 +17,7 @@ pub const SEPARATRIX_RELATIVE_BAND: f64 = 1e-13;
 /// Relative accuracy requested from the quadratures.
 const QUADRATURE_TOLERANCE: f64 = 1e-13;
 
-/// The kind of effective motion a start leads to (physics.md §3).
+/// The kind of effective motion a start leads to (docs/physics.md §3).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Regime {
@@ -78,7 +78,7 @@ impl Effective {
         let s = problem.start();
         let y0 = initial_state(s);
         let g0 = p.g(s.alpha);
-        // θ = E⊥(0) · g(α0)^{1/2} (physics.md §2), covers γ0 ≠ 0.
+        // θ = E⊥(0) · g(α0)^{1/2} (docs/physics.md §2), covers γ0 ≠ 0.
         let theta = transverse_energy(&p, &y0) * g0.sqrt();
         let energy = 0.5 * p.iz * s.alpha_dot * s.alpha_dot + theta / g0.sqrt();
         // Phase of the fast oscillation: γ = a sin φ, γ̇ = a ω cos φ.

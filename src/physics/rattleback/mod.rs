@@ -1,4 +1,4 @@
-//! The holonomic rattleback (physics.md §1–4): a rigid body on a stiff spring of Hooke constant
+//! The holonomic rattleback (docs/physics.md §1–4): a rigid body on a stiff spring of Hooke constant
 //! `k`, its effective limit `k → ∞`, the second-order averaged model, their integrators,
 //! spin-reversal location, `auto` and the cost model. The state vector is
 //! `(γ, α, γ̇, α̇)` ([`model::State`], named indices [`model::ALPHA`] …); the slow coordinate is

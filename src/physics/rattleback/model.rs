@@ -1,4 +1,4 @@
-//! The full model at finite `k` (physics.md §1): Euler–Lagrange right-hand side and energy.
+//! The full model at finite `k` (docs/physics.md §1): Euler–Lagrange right-hand side and energy.
 //!
 //! The state is `(γ, α, γ̇, α̇)` as a `nalgebra` vector; the Hamiltonian form with
 //! `pγ = g(α) γ̇`, `pα = iz α̇` is used by the splitting integrators.

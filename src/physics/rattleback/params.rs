@@ -8,7 +8,7 @@ use serde::Serialize;
 
 use crate::physics::params::ParamError;
 
-/// Inertia moments and Hooke constant of the body (physics.md §1).
+/// Inertia moments and Hooke constant of the body (docs/physics.md §1).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct Params {
     /// Inertia moment about the body's x axis.
@@ -68,7 +68,7 @@ impl Params {
         check("k", self.k, true)
     }
 
-    /// `g(α) = ix cos²α + iy sin²α`, the tilt's inertia at spin angle `α` (physics.md §1).
+    /// `g(α) = ix cos²α + iy sin²α`, the tilt's inertia at spin angle `α` (docs/physics.md §1).
     #[must_use]
     #[inline]
     pub fn g(&self, alpha: f64) -> f64 {

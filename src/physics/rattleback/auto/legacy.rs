@@ -21,7 +21,7 @@ use crate::physics::rattleback::run::{RunSpec, run_cancellable};
 
 /// Error of `blanes-moan4` per unit time at `ν h = 1`.
 const C_BLANES_MOAN: f64 = 3e-12;
-/// Error of `locked` per unit time at `h = 1` for spin rates up to 0.5 (physics.md: ≈ 0.05 h²
+/// Error of `locked` per unit time at `h = 1` for spin rates up to 0.5 (docs/physics.md: ≈ 0.05 h²
 /// over T = 20; measured 1.7e-3 per unit time, doubled for safety).
 const C_LOCKED: f64 = 3.4e-3;
 /// Growth of the locked error with the largest spin rate: `(α̇_max / 0.5)^4.7`, fitted to

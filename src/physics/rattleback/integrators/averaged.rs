@@ -1,4 +1,4 @@
-//! `averaged2`: the second-order averaged model (`physics::rattleback::averaged`, physics.md §4c), its slow
+//! `averaged2`: the second-order averaged model (`physics::rattleback::averaged`, docs/physics.md §4c), its slow
 //! flow on `(ᾱ, P̄, ψ̄)` integrated by the DOP853 core.
 //!
 //! Order 8 in the step, not symplectic; 12 evaluations per step, each a `sin_cos` and a

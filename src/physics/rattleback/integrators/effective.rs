@@ -4,7 +4,7 @@
 //! Order 8 in the step, not symplectic; 12 evaluations per step. The cost does not depend on
 //! `k` (`φ` is measured relative to its size). The error against the full model is the model
 //! error: O(1/k) in `α`; in `α̇`, O(1/sqrt(k)) for `effective`, which lacks the fast ripple,
-//! and O(1/k) for `effective-corrected`, which adds it back (physics.md §4b):
+//! and O(1/k) for `effective-corrected`, which adds it back (docs/physics.md §4b):
 //! `α̇ ≈ α̇_eff + c(α) I sin 2φ / iz`, `c = g'/(4g)`, `I = θ/sqrt(k)`, with the averaged motion
 //! started from `α̇0` minus the same term at `φ0`. The action itself oscillates: each drift of
 //! `α` changes it by `δI/I = −(g'/2g) cos 2φ δα`, so `I(t) = Ī − I c α̇ sin 2φ / ω`, and the

@@ -68,7 +68,7 @@ pub fn default_step(method: Method, problem: &Problem, tolerance: f64, t_end: f6
     let (c, order) = match method {
         Method::Rk4 => (0.5, 4.0),
         Method::Strang => (0.3, 2.0),
-        // Phase-locked steps: error ≈ 0.05 h² whatever k (physics.md §4), so h = sqrt(tol/0.05).
+        // Phase-locked steps: error ≈ 0.05 h² whatever k (docs/physics.md §4), so h = sqrt(tol/0.05).
         Method::Locked => return (tolerance / 0.05).sqrt().max(t_end / DEFAULT_STEP_BUDGET),
         Method::Yoshida4 => (0.6, 4.0),
         Method::BlanesMoan4 => (1.2, 4.0),

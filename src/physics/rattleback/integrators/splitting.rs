@@ -1,5 +1,5 @@
 //! `strang`, `yoshida4`, `yoshida6`, `suzuki8`, `blanes-moan4`: splitting with exactly solved
-//! sub-flows (physics.md §4), its symmetric compositions and an optimised splitting.
+//! sub-flows (docs/physics.md §4), its symmetric compositions and an optimised splitting.
 //!
 //! `H = H1 + H2`, `H1 = pα²/(2 iz)` (a drift of `α`), `H2 = pγ²/(2 g(α)) + ½ k γ²` (with `α`
 //! frozen: a rotation of `(γ, pγ)` at `ω = sqrt(k/g)` and a kick of `pα` by the closed-form
@@ -18,7 +18,7 @@
 //! | blanes-moan4 | 4 | 6 | yes |
 //!
 //! There is no stability limit in `k`: the fast flow is exact for any `ω h`. Its weakness is
-//! step-size resonance (`ω h` near a multiple of π), see physics.md §4.
+//! step-size resonance (`ω h` near a multiple of π), see docs/physics.md §4.
 //!
 //! Reversals: only `H2` changes `pα`, and inside one `H2` sub-flow `pα(s)` is monotone (its
 //! derivative is `g' pγ²/(2g²)`, of fixed sign), so the crossing inside a sub-flow is unique and
@@ -211,7 +211,7 @@ impl Splitting {
 }
 
 impl Splitting {
-    /// `locked`: Strang with phase-locked steps near `h` (physics.md §4). Each drift of `α`
+    /// `locked`: Strang with phase-locked steps near `h` (docs/physics.md §4). Each drift of `α`
     /// kicks the fast action by `δI/I = −(g'/2g) cos 2φ δα`; with the phase advancing by
     /// `(m + ½)π` per step, `cos 2φ` alternates in sign at successive drifts and the kicks
     /// cancel instead of adding up at a step-size resonance. Order 2 while `ω h < π/2`
