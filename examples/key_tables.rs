@@ -1,5 +1,5 @@
 //! Prints the explorer's, the regime map's and the replay's key tables in Markdown, from the keymap tables
-//! (docs/guide.md's tables are this output; `tests/readme.rs` checks it): `cargo run --example key_tables`.
+//! (docs/guide.md's tables are this output; `tests/it/readme.rs` checks it): `cargo run --example key_tables`.
 
 fn main() {
     print!(

@@ -12,7 +12,7 @@
 //! Shared vocabulary lives here, not in a model's folder: [`params::ParamError`],
 //! [`plan::Resolved`], [`budget`] (the work budget and its refusal), [`flow::CHECK_EVERY`]. A
 //! model's own items are reached through its folder (`physics::rattleback::…`,
-//! `physics::kapitza::…`); there are no old paths (`tests/layering.rs` forbids them).
+//! `physics::kapitza::…`); there are no old paths (`tests/it/layering.rs` forbids them).
 //!
 //! Invariants: everything here is a pure function of its inputs (no clock, no threads, no
 //! randomness), so the same inputs and build give bit-identical results; replays depend on it.

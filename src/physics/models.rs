@@ -33,7 +33,7 @@ impl ModelKind {
 
     /// The tolerance of the limit's own run, whatever the user's (the one-degree-of-freedom ODE
     /// is cheap): `simulate` reports it and the explorer draws, counts and exports the same
-    /// run. The rattleback's is then good to about 1e-12 (`tests/auto_honest.rs`).
+    /// run. The rattleback's is then good to about 1e-12 (`tests/it/auto_honest.rs`).
     #[must_use]
     pub fn limit_tolerance(self) -> f64 {
         match self {

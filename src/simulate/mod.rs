@@ -142,7 +142,7 @@ pub enum Failure {
 }
 
 /// The version of `simulate --format json`'s reports (both scenes), whose JSON Schemas live in
-/// `docs/schemas/` and are checked against real reports by `tests/schemas.rs`. Raised when a
+/// `docs/schemas/` and are checked against real reports by `tests/it/schemas.rs`. Raised when a
 /// field is renamed, removed or changes meaning; adding a field does not raise it.
 pub const SCHEMA_VERSION: u32 = 1;
 

@@ -16,7 +16,7 @@
 //! the O(ε) terms of `θ̇`, the velocity would be only O(ε)-accurate). The averaged equation has no
 //! O(ε) term (the forcing is even in `τ`), so the limit started from the averaged start (the
 //! inverse map at `τ = 0`) is within O(ε²) of the full motion in `θ` and `θ̇` once the ripple is
-//! added back; started from `θ0` itself it is within O(ε). `tests/kapitza.rs` measures both
+//! added back; started from `θ0` itself it is within O(ε). `tests/it/kapitza.rs` measures both
 //! orders against the Taylor-series references.
 
 use std::f64::consts::PI;

@@ -5,7 +5,7 @@
 //!
 //! - **The limit's model error** after the ripple is added back is O(ε²) and grows with the
 //!   horizon like a phase error: predicted `ε² (b² + |a| + 1)² (1 + t_end)`, which bounds what
-//!   `tests/kapitza.rs` measures against the Taylor-series references (measured/predicted 0.03 to
+//!   `tests/it/kapitza.rs` measures against the Taylor-series references (measured/predicted 0.03 to
 //!   0.24 there). It is integrated at 1e-4 of the tolerance (DOP853's tolerance is per step;
 //!   the global error of the slow limit reaches 100 times it on a growing motion), and that
 //!   integration error is added to the estimate.

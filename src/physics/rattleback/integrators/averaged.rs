@@ -4,7 +4,7 @@
 //! Order 8 in the step, not symplectic; 12 evaluations per step, each a `sin_cos` and a
 //! `sqrt`; the cost does not depend on `k`. The error against the full model is the model
 //! error, O(k⁻²) in `α`, `α̇` and the reversal times (measured exponents 1.9–2.1,
-//! `tests/averaged.rs`), plus the integration error of the slow flow, which the tolerance
+//! `tests/it/averaged.rs`), plus the integration error of the slow flow, which the tolerance
 //! controls. The reported state is reconstructed (the fast ripple included); reversals are
 //! zeros of the reconstructed `α̇`, located on the dense output.
 

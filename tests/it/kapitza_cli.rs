@@ -2,7 +2,7 @@
 //! `simulate`'s JSON fields (a contract), CSV and table; the studies say they are the
 //! rattleback's.
 
-mod common;
+use crate::common;
 
 use common::bin;
 

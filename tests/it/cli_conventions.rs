@@ -1,6 +1,6 @@
 //! Issue 15, item 1: the command line follows the conventions of the tools users know.
 
-mod common;
+use crate::common;
 
 use common::bin;
 

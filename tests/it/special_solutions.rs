@@ -1,6 +1,6 @@
 //! The exact special solutions of physics.md §1 and the tapping effect, for every method.
 
-mod common;
+use crate::common;
 
 /// Rounding accumulated over a run: each step may add a few ulps of the value.
 fn rounding(steps: u64, value: f64) -> f64 {

@@ -2,7 +2,7 @@
 //! `TestBackend`, on every shipped pendulum preset, at ×1 and at top speed; the rattleback's
 //! own panes refused; a recorded session replayed and verified.
 
-mod common;
+use crate::common;
 
 use common::Headless;
 use ratatui::Terminal;

@@ -2,7 +2,7 @@
 //! resonance, the corrected effective model matches the full motion to O(1/k) in `α̇` too, and
 //! `auto` meets its tolerance against independent references.
 
-mod common;
+use crate::common;
 
 use rattleback::physics::Method;
 use rattleback::physics::rattleback::auto::{plan, run_auto};

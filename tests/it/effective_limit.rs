@@ -1,6 +1,6 @@
 //! The paper's theorems and the `k → ∞` limit (physics.md §2, §3, §6).
 
-mod common;
+use crate::common;
 
 use std::f64::consts::FRAC_PI_2;
 

@@ -2,7 +2,7 @@
 //! types, is checked in; the checked-in sessions and a fresh recording validate against it (an
 //! independent validator, `jsonschema`), and broken lines do not.
 
-mod common;
+use crate::common;
 
 use common::Headless;
 use rattleback::app::{Key, Outcome};

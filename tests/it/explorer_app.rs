@@ -3,7 +3,7 @@
 //! The explorer's decisions, driven through keys, the worker's interpreter and the clock's
 //! ticks, without rendering; and the worker thread driven by commands with timeouts.
 
-mod common;
+use crate::common;
 
 use std::sync::mpsc;
 use std::time::{Duration, Instant};

@@ -7,7 +7,7 @@
 //! follower never shows a time the lecturer has not shown. Tampered, downgraded, cut and signed
 //! files are checked too.
 
-mod common;
+use crate::common;
 
 use common::Headless;
 use ratatui::Terminal;

@@ -1,7 +1,7 @@
 //! Convergence orders measured by step halving on a smooth, low-k case (physics.md §6):
 //! the error against a much finer run of the same method falls by `2^p` per halving.
 
-mod common;
+use crate::common;
 
 use rattleback::physics::Method;
 use rattleback::physics::rattleback::{RunSpec, run};

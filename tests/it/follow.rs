@@ -3,7 +3,7 @@
 //! follower never writes.
 #![allow(clippy::float_cmp)] // values copied, compared exactly
 
-mod common;
+use crate::common;
 
 use std::time::{Duration, Instant};
 

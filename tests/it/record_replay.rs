@@ -3,7 +3,7 @@
 
 use std::process::Command as Process;
 
-mod common;
+use crate::common;
 
 use common::Headless;
 use rattleback::app::journal::Event;

@@ -2,7 +2,7 @@
 //! tens of fast periods; the symplectic splittings keep a bounded error with no secular growth
 //! over 10^6 fast periods; random bounded inputs stay finite and reversible.
 
-mod common;
+use crate::common;
 
 use proptest::prelude::*;
 use rattleback::physics::Method;

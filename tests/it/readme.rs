@@ -54,11 +54,11 @@ fn key_tables_are_generated_from_the_keymaps() {
 
 #[test]
 fn the_screenshot_is_the_snapshot_of_the_80x24_screen() {
-    let snap = read("tests/snapshots/explorer_ui__screen_80x24.snap");
+    let snap = read("tests/it/snapshots/it__explorer_ui__screen_80x24.snap");
     let screen = snap.splitn(3, "---\n").nth(2).expect("insta header");
     assert!(
         readme().contains(&format!("```text\n{screen}```")),
-        "copy tests/snapshots/explorer_ui__screen_80x24.snap into the README"
+        "copy tests/it/snapshots/it__explorer_ui__screen_80x24.snap into the README"
     );
 }
 
@@ -234,7 +234,7 @@ fn every_citation_resolves_in_the_clone() {
 #[test]
 fn the_architecture_page_is_true() {
     let page = read("docs/architecture.md");
-    let layering = read("tests/layering.rs");
+    let layering = read("tests/it/layering.rs");
     let mut names = layering.split("#[test]\nfn ").skip(1);
     let mut count = 0;
     for piece in names.by_ref() {

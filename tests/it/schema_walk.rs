@@ -4,7 +4,7 @@
 //! exactly where `simulate --format json` ends, bit for bit; the limit drawn and counted is
 //! `simulate`'s limit, bit for bit too. A key added to a schema fails here until it is walked.
 
-mod common;
+use crate::common;
 
 use common::Headless;
 use rattleback::scenario::preset::{KAPITZA_SCHEMA, SCHEMA};

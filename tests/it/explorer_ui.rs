@@ -1,7 +1,7 @@
 //! Whole screens rendered through ratatui's `TestBackend`, snapshotted with insta at 80×24 and
 //! 160×48, with the colours and styles of key cells asserted separately.
 
-mod common;
+use crate::common;
 
 use common::Headless;
 use ratatui::Terminal;

@@ -4,7 +4,7 @@
 //! the explorer refuses to verify `auto` for hours; the CSV is streamed; reversal lists are
 //! capped while their counts stay exact.
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 

@@ -7,7 +7,7 @@
 // Horizons and stiffnesses are compared with the fixture's exact values.
 #![allow(clippy::float_cmp)]
 
-mod common;
+use crate::common;
 
 use common::{AveragedCase, averaged_cases};
 use rattleback::physics::Method;

@@ -2,7 +2,7 @@
 //! configuration file, the user's keys and the mouse.
 #![allow(clippy::float_cmp)] // values copied, not computed, are compared exactly
 
-mod common;
+use crate::common;
 
 use common::{Headless, bin_in};
 use rattleback::app::user_keys::UserKeys;

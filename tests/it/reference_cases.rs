@@ -3,7 +3,7 @@
 //! relative tolerance 1e-13: final `alpha` and `alpha_dot` to 1e-7, reversal counts exact,
 //! reversal times to 1e-6, for the full model (several methods) and the effective limit.
 
-mod common;
+use crate::common;
 
 use common::{case_problem, num, reference_cases, reference_path, shared_reference_path};
 use rattleback::physics::Method;

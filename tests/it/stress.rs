@@ -3,7 +3,7 @@
 //! energy error, and reversal counts that agree with the effective model where theory says
 //! they must.
 
-mod common;
+use crate::common;
 
 use rattleback::physics::Method;
 use rattleback::physics::rattleback::auto::run_auto;

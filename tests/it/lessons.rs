@@ -2,7 +2,7 @@
 //! with its line and key), the listing, and the step logic through the app headless.
 #![allow(clippy::float_cmp, clippy::too_many_lines)] // values copied, compared exactly; one walk
 
-mod common;
+use crate::common;
 
 use common::{Headless, bin};
 use rattleback::app::Key;

@@ -206,7 +206,7 @@ fn tstp_suspends_and_cont_resumes_in_raw_mode() {
 /// 1e9 at k = 1e8): the verification is cancelled, the terminal restored, nothing waits.
 #[test]
 fn quit_and_signals_are_immediate_while_auto_verifies_a_huge_run() {
-    // Within the work budget (a bigger one is refused at once, tests/budget.rs) but minutes
+    // Within the work budget (a bigger one is refused at once, tests/it/budget.rs) but minutes
     // of verification before the first frame.
     let preset = std::env::temp_dir().join(format!("rattleback-heavy-{}.toml", std::process::id()));
     std::fs::write(

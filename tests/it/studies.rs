@@ -1,7 +1,7 @@
 //! The limit's studies (issue 12): the stiffness sweep's convergence rate, the regime map
 //! against the paper's theorems, and weak-* convergence.
 
-mod common;
+use crate::common;
 
 use rattleback::scenario::shipped::resolve;
 use rattleback::study::map::{Grid, Source, regime_map};

@@ -1,0 +1,41 @@
+//! The integration tests, as modules of one test binary: the library is linked once, not once
+//! per file (issue 25; the first `cargo test` before and after is in docs/benchmarks.md). Run one
+//! group with `cargo test --test it GROUP::` (for example `cargo test --test it bounded::`).
+
+mod common;
+
+mod auto_honest;
+mod averaged;
+mod bad_presets;
+mod bench_study;
+mod bounded;
+mod budget;
+mod cli_conventions;
+mod convergence_order;
+mod ecosystem;
+mod effective_limit;
+mod energy;
+mod explorer_app;
+mod explorer_ui;
+mod follow;
+mod hostile;
+mod hostile_props;
+mod kapitza;
+mod kapitza_cli;
+mod kapitza_explorer;
+mod layering;
+mod lecture;
+mod lessons;
+mod presets_themes;
+mod readme;
+mod record_replay;
+mod reference_cases;
+mod schema_walk;
+mod schemas;
+mod session_format;
+mod signals;
+mod special_solutions;
+mod stiff;
+mod stress;
+mod studies;
+mod user_folder;
