@@ -23,8 +23,11 @@ impl App {
                 self.map.start(&self.scenario.settings)
             }
             (Pane::Map, false) => Some(self.map.stop()),
-            (_, true) => Some(self.start_weak()),
-            (_, false) => Some(self.weak.stop()),
+            (Pane::Weak, true) => Some(self.start_weak()),
+            (Pane::Weak, false) => Some(self.weak.stop()),
+            // Drawn from what the run already has: no job to start or stop. Listed, so that
+            // a new computed pane cannot fall silently into another pane's job.
+            (Pane::Params | Pane::Portrait | Pane::Series | Pane::Lesson | Pane::Body, _) => None,
         };
         command.map(Effect::Sim).into_iter().collect()
     }

@@ -356,7 +356,28 @@ impl App {
             Action::SelectPrev | Action::SelectNext => Some(Event::Select {
                 field: self.field().label().to_owned(),
             }),
-            _ => None,
+            // Journaled where they take effect (a set, a preset, a note), or invisible to a
+            // replay: listed so that a new action must say which. Not recorded yet: the weak-*
+            // window (a new event, so a new session format).
+            Action::Quit
+            | Action::Decrease
+            | Action::Increase
+            | Action::DecreaseCoarse
+            | Action::IncreaseCoarse
+            | Action::Edit
+            | Action::ToggleHelp
+            | Action::OpenPicker
+            | Action::Save
+            | Action::Export
+            | Action::CopyCommand
+            | Action::CycleTheme
+            | Action::Note
+            | Action::Chapter
+            | Action::ToggleRecording
+            | Action::Redraw
+            | Action::Suspend
+            | Action::WiderWindow
+            | Action::NarrowerWindow => None,
         };
         if let Some(e) = event {
             self.log(e);

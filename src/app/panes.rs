@@ -107,9 +107,15 @@ impl Pane {
     }
 }
 
-/// The visible panes.
+/// The visible panes: one bit per [`Pane`], in a word wide enough for every pane (a new pane
+/// past the width fails to compile, not at run time).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Panes(u8);
+pub struct Panes(u32);
+
+const _: () = assert!(
+    Pane::ALL.len() <= u32::BITS as usize,
+    "Panes holds one bit per pane: widen it"
+);
 
 impl Default for Panes {
     fn default() -> Self {
@@ -118,24 +124,28 @@ impl Default for Panes {
 }
 
 impl Panes {
+    fn bit(pane: Pane) -> u32 {
+        1 << pane as u32
+    }
+
     /// A set of panes.
     #[must_use]
     pub fn of(panes: &[Pane]) -> Self {
-        Self(panes.iter().fold(0, |m, p| m | (1 << *p as u8)))
+        Self(panes.iter().fold(0, |m, p| m | Self::bit(*p)))
     }
 
     /// Whether `pane` is shown.
     #[must_use]
     pub fn shows(self, pane: Pane) -> bool {
-        self.0 & (1 << pane as u8) != 0
+        self.0 & Self::bit(pane) != 0
     }
 
     /// Shows or hides `pane` (only optional panes can be hidden).
     pub fn set(&mut self, pane: Pane, on: bool) {
         if on {
-            self.0 |= 1 << pane as u8;
+            self.0 |= Self::bit(pane);
         } else if pane.optional() {
-            self.0 &= !(1 << pane as u8);
+            self.0 &= !Self::bit(pane);
         }
     }
 
@@ -167,5 +177,16 @@ mod tests {
         assert_eq!(p.column(), vec![(Pane::Portrait, 65), (Pane::Series, 35)]);
         p.set(Pane::Portrait, false);
         assert!(p.shows(Pane::Portrait), "the portrait cannot be hidden");
+    }
+
+    #[test]
+    fn every_pane_has_its_own_bit() {
+        for a in Pane::ALL {
+            let mut p = Panes::of(&[]);
+            p.set(a, true);
+            for b in Pane::ALL {
+                assert_eq!(p.shows(b), a == b, "{a:?} set, {b:?} read");
+            }
+        }
     }
 }

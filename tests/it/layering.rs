@@ -223,7 +223,10 @@ fn no_old_paths_and_no_model_reexports() {
     ];
     let mut found = Vec::new();
     // This file names the old paths to forbid them.
-    for file in files.iter().filter(|f| !f.ends_with("tests/it/layering.rs")) {
+    for file in files
+        .iter()
+        .filter(|f| !f.ends_with("tests/it/layering.rs"))
+    {
         let text = std::fs::read_to_string(file).unwrap();
         for (n, line) in text.lines().enumerate() {
             let mut rest = line;

@@ -42,20 +42,7 @@ fn computes(section: &str) -> bool {
     !matches!(section, "preset" | "view")
 }
 
-/// `rattleback simulate --format json` with these arguments: its report.
-fn simulate_json(args: &[&str]) -> serde_json::Value {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
-        .args(["simulate", "--format", "json"])
-        .args(args)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
+use crate::common::simulate_json;
 
 fn simulate(preset: &str, sets: &[&str]) -> serde_json::Value {
     let mut args = vec!["--preset", preset];

@@ -22,21 +22,7 @@ fn schema(name: &str) -> jsonschema::Validator {
 }
 
 fn report(args: &[&str]) -> Value {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
-        .args(["simulate", "--format", "json"])
-        .args(args)
-        .env(
-            "RATTLEBACK_CONFIG_DIR",
-            std::env::temp_dir().join("rattleback-schemas-none"),
-        )
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
+    crate::common::simulate_json(args)
 }
 
 fn check(validator: &jsonschema::Validator, what: &str, value: &Value) {

@@ -253,3 +253,23 @@ pub fn bin_in(config_dir: &std::path::Path, args: &[&str]) -> (i32, String, Stri
         String::from_utf8_lossy(&out.stderr).into_owned(),
     )
 }
+
+/// `rattleback simulate --format json` with these arguments (no user folder): its report.
+/// Panics with stderr when the command fails.
+pub fn simulate_json(args: &[&str]) -> serde_json::Value {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        .args(["simulate", "--format", "json"])
+        .args(args)
+        .env(
+            "RATTLEBACK_CONFIG_DIR",
+            std::env::temp_dir().join("rattleback-no-user-folder"),
+        )
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
