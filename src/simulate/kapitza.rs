@@ -286,7 +286,7 @@ pub fn simulate_to(
     let report = Report {
         schema_version: super::SCHEMA_VERSION,
         preset: preset.name.clone(),
-        model: "kapitza",
+        model: crate::physics::ModelKind::Kapitza.name(),
         params: *p,
         initial: *s,
         method: resolved.spec.method,

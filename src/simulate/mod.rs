@@ -448,7 +448,7 @@ fn rattleback_to(
     let report = Report {
         schema_version: SCHEMA_VERSION,
         preset: preset.name.clone(),
-        model: "rattleback",
+        model: crate::physics::ModelKind::Rattleback.name(),
         params: ParamsOut {
             ix: p.ix,
             iy: p.iy,

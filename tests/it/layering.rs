@@ -238,8 +238,7 @@ fn no_old_paths_and_no_model_reexports() {
                     .collect();
                 let is_old = old_modules.contains(&word.as_str())
                     || old_items.contains(&word.as_str())
-                    || (word == "params" && !after.starts_with("params::ParamError"))
-                    || (word == "run" && after.starts_with("run("));
+                    || (word == "params" && !after.starts_with("params::ParamError"));
                 if is_old {
                     found.push(format!("{}:{}: {}", file.display(), n + 1, line.trim()));
                 }

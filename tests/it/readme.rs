@@ -72,18 +72,13 @@ fn the_readme_is_short() {
 }
 
 fn markdown_files() -> Vec<PathBuf> {
-    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
-        for e in std::fs::read_dir(dir).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                walk(&p, out);
-            } else if p.extension().is_some_and(|x| x == "md") {
-                out.push(p);
-            }
-        }
-    }
     let mut out = vec![root().join("README.md"), root().join("CHANGELOG.md")];
-    walk(&root().join("docs"), &mut out);
+    let mut docs = Vec::new();
+    walk_all(&root().join("docs"), &mut docs);
+    out.extend(
+        docs.into_iter()
+            .filter(|p| p.extension().is_some_and(|x| x == "md")),
+    );
     out
 }
 
