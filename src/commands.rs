@@ -13,13 +13,33 @@ use crate::scenario::theme::ThemeSpec;
 /// Untrusted text (names, descriptions, echoed values) never reaches a terminal raw: every line
 /// printed goes through `clean`.
 macro_rules! say {
-    ($($t:tt)*) => { println!("{}", crate::scenario::text::clean(&format!($($t)*))) };
+    ($($t:tt)*) => { $crate::commands::say(&format!($($t)*)) };
+}
+
+/// Prints one cleaned line on stdout (see [`say_raw`]).
+pub fn say(text: &str) {
+    say_raw(&format!("{text}\n"));
+}
+
+/// Prints cleaned text on stdout. A reader that went away (`| head`) ends the command quietly
+/// with success, as `simulate`'s streamed output already did (`print!` panicked); any other
+/// write error ends it with one line and exit 1.
+pub fn say_raw(text: &str) {
+    use std::io::Write as _;
+    let text = crate::scenario::text::clean(text);
+    if let Err(e) = std::io::stdout().lock().write_all(text.as_bytes()) {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(0);
+        }
+        eprintln!("rattleback: error: writing to standard output: {e}");
+        std::process::exit(1);
+    }
 }
 macro_rules! say_err {
     ($($t:tt)*) => { eprintln!("{}", crate::scenario::text::clean(&format!($($t)*))) };
 }
 macro_rules! say_raw {
-    ($($t:tt)*) => { print!("{}", crate::scenario::text::clean(&format!($($t)*))) };
+    ($($t:tt)*) => { $crate::commands::say_raw(&format!($($t)*)) };
 }
 
 /// `rattleback presets`.

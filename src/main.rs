@@ -19,7 +19,7 @@ use rattleback::ui::UiOptions;
 /// Untrusted text (names, descriptions, echoed values) never reaches a terminal raw: every line
 /// printed goes through `clean`.
 macro_rules! say {
-    ($($t:tt)*) => { println!("{}", rattleback::scenario::text::clean(&format!($($t)*))) };
+    ($($t:tt)*) => { rattleback::commands::say(&format!($($t)*)) };
 }
 macro_rules! say_err {
     ($($t:tt)*) => { eprintln!("{}", rattleback::scenario::text::clean(&format!($($t)*))) };

@@ -116,3 +116,31 @@ fn presets_show_prints_a_preset_to_copy_and_themes_lists_themes() {
     assert_eq!(code, 0);
     assert!(out.contains("high-contrast"));
 }
+
+/// A reader that goes away (`| head -1`) ends a printing command quietly, with success: every
+/// line goes through one `say`, which used to be `println!` and panicked on the broken pipe.
+/// The read end is closed right after the start, long before the first line is written.
+#[test]
+fn a_closed_pipe_ends_printing_commands_quietly() {
+    let session = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/sessions/lecture.jsonl"
+    );
+    for args in [
+        vec!["replay", session, "--verify"],
+        vec!["presets"],
+        vec!["lessons"],
+    ] {
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+            .args(&args)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {err}");
+    }
+}
