@@ -138,21 +138,24 @@ impl App {
 }
 
 impl App {
-    /// Sets the start's `(alpha, alpha_dot)` (a click in the portrait), keeping `gamma` and
-    /// `gamma_dot`, and restarts; journaled as two `set` events.
+    /// Sets the start's slow coordinate and rate (a click in the portrait: the rattleback's
+    /// `(alpha, alpha_dot)`, keeping `gamma` and `gamma_dot`; the pendulum's `(theta,
+    /// theta_dot)`), and restarts; journaled as two `set` events.
     pub fn set_start_point(&mut self, alpha: f64, alpha_dot: f64) -> Vec<Effect> {
         use super::fields::Field;
         use super::journal::Event;
         let s = self.scenario.settings;
-        let fields = match s.model.kind() {
-            crate::physics::ModelKind::Rattleback => [Field::Alpha, Field::AlphaDot],
-            crate::physics::ModelKind::Kapitza => [Field::Theta, Field::ThetaDot],
+        let (kind, words) = (s.model.kind(), s.model.kind().words());
+        let named = |name| {
+            Field::named(kind, name).ok_or_else(|| format!("the {} has no `{name}`", kind.title()))
         };
-        let set = fields[0]
-            .with_value(&s, alpha)
-            .and_then(|s| fields[1].with_value(&s, alpha_dot));
-        let s = match set {
-            Ok(s) => s,
+        let set = named(words.q_name).and_then(|q| {
+            let q_dot = named(words.q_dot_name)?;
+            let s = q.with_value(&s, alpha)?;
+            Ok(([q, q_dot], q_dot.with_value(&s, alpha_dot)?))
+        });
+        let (fields, s) = match set {
+            Ok(set) => set,
             Err(e) => {
                 self.status = Message::error(format!("{e}; start kept"));
                 return Vec::new();
@@ -167,8 +170,10 @@ impl App {
             });
         }
         self.status = Message::info(format!(
-            "start alpha {}, alpha_dot {}",
+            "start {} {}, {} {}",
+            words.q_name,
             super::fields::format_number(alpha),
+            words.q_dot_name,
             super::fields::format_number(alpha_dot)
         ));
         self.restart()

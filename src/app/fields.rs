@@ -2,10 +2,9 @@
 //! the same domain types as presets. Each model has its rows ([`Field::rows`]); the run's rows
 //! (`t_end`, `method`, `tolerance`) are shared.
 
-use crate::physics::kapitza;
+use crate::physics::params::{ParamSpec, Scale};
 use crate::physics::rattleback::Problem;
-use crate::physics::rattleback::integrators::Method;
-use crate::physics::{Model, ModelKind};
+use crate::physics::{Method, Model, ModelKind};
 use crate::scenario::preset::TOLERANCE_RANGE;
 
 /// Everything the parameter panel edits.
@@ -39,7 +38,7 @@ impl Settings {
                 Field::Method => write!(cmd, " --method {value}"),
                 Field::Tolerance => write!(cmd, " --tolerance {value}"),
                 Field::TEnd => write!(cmd, " --t-end {value}"),
-                _ => write!(cmd, " --set {}.{}={value}", f.section(), f.label()),
+                Field::Param(_) => write!(cmd, " --set {}.{}={value}", f.section(), f.label()),
             };
         }
         if let Some(h) = self.step {
@@ -55,35 +54,12 @@ impl Settings {
     }
 }
 
-/// One row of the parameter panel.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// One row of the parameter panel: one of the model's parameters (from its scene's table), or
+/// one of the run's rows shared by every model.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Field {
-    /// `ix`.
-    Ix,
-    /// `iy`.
-    Iy,
-    /// `iz`.
-    Iz,
-    /// Hooke constant.
-    K,
-    /// Initial tilt.
-    Gamma,
-    /// Initial spin angle.
-    Alpha,
-    /// Initial tilt rate.
-    GammaDot,
-    /// Initial spin rate.
-    AlphaDot,
-    /// The pendulum's gravity `a`.
-    A,
-    /// The pendulum's shaking `b`.
-    B,
-    /// The pendulum's fast time scale `ε`.
-    Epsilon,
-    /// The pendulum's initial angle from the upright.
-    Theta,
-    /// Its initial rate.
-    ThetaDot,
+    /// A parameter of the model, as its scene describes it.
+    Param(&'static ParamSpec),
     /// End time.
     TEnd,
     /// Method.
@@ -92,78 +68,26 @@ pub enum Field {
     Tolerance,
 }
 
-const RATTLEBACK_ROWS: [Field; 11] = [
-    Field::Ix,
-    Field::Iy,
-    Field::Iz,
-    Field::K,
-    Field::Gamma,
-    Field::Alpha,
-    Field::GammaDot,
-    Field::AlphaDot,
-    Field::TEnd,
-    Field::Method,
-    Field::Tolerance,
-];
-
-const KAPITZA_ROWS: [Field; 8] = [
-    Field::A,
-    Field::B,
-    Field::Epsilon,
-    Field::Theta,
-    Field::ThetaDot,
-    Field::TEnd,
-    Field::Method,
-    Field::Tolerance,
-];
+/// The rows every model shares, after its own.
+const RUN_ROWS: [Field; 3] = [Field::TEnd, Field::Method, Field::Tolerance];
 
 impl Field {
-    /// Every field of every model.
-    pub const ALL: [Self; 16] = [
-        Self::Ix,
-        Self::Iy,
-        Self::Iz,
-        Self::K,
-        Self::Gamma,
-        Self::Alpha,
-        Self::GammaDot,
-        Self::AlphaDot,
-        Self::A,
-        Self::B,
-        Self::Epsilon,
-        Self::Theta,
-        Self::ThetaDot,
-        Self::TEnd,
-        Self::Method,
-        Self::Tolerance,
-    ];
-
-    /// The panel's rows for `model`, in order.
+    /// The panel's rows for `model`, in order: its parameters, then the run's.
     #[must_use]
-    pub fn rows(model: ModelKind) -> &'static [Self] {
-        match model {
-            ModelKind::Rattleback => &RATTLEBACK_ROWS,
-            ModelKind::Kapitza => &KAPITZA_ROWS,
-        }
+    pub fn rows(model: ModelKind) -> Vec<Self> {
+        model
+            .params()
+            .iter()
+            .map(Self::Param)
+            .chain(RUN_ROWS)
+            .collect()
     }
 
     /// The name, as in presets.
     #[must_use]
     pub fn label(self) -> &'static str {
         match self {
-            Self::Ix => "ix",
-            Self::Iy => "iy",
-            Self::Iz => "iz",
-            Self::K => "k",
-            Self::Gamma => "gamma",
-            Self::Alpha => "alpha",
-            Self::GammaDot => "gamma_dot",
-            Self::AlphaDot => "alpha_dot",
-            Self::A => "a",
-            Self::B => "b",
-            Self::Epsilon => "epsilon",
-            Self::Theta => "theta",
-            Self::ThetaDot => "theta_dot",
+            Self::Param(spec) => spec.key,
             Self::TEnd => "t_end",
             Self::Method => "method",
             Self::Tolerance => "tolerance",
@@ -183,23 +107,23 @@ impl Field {
     #[must_use]
     pub fn section(self) -> &'static str {
         match self {
-            Self::Ix | Self::Iy | Self::Iz => "body",
-            Self::K => "spring",
-            Self::A | Self::B | Self::Epsilon => "pendulum",
-            Self::Gamma
-            | Self::Alpha
-            | Self::GammaDot
-            | Self::AlphaDot
-            | Self::Theta
-            | Self::ThetaDot => "initial",
+            Self::Param(spec) => spec.section,
             Self::TEnd | Self::Method | Self::Tolerance => "run",
         }
     }
 
-    /// The field called `name`.
+    /// The field called `name`: a row of `model`'s panel, else a parameter of another model
+    /// (which `with_value` then refuses with the reason).
     #[must_use]
-    pub fn named(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|f| f.label() == name)
+    pub fn named(model: ModelKind, name: &str) -> Option<Self> {
+        Self::rows(model)
+            .into_iter()
+            .chain(
+                ModelKind::ALL
+                    .iter()
+                    .flat_map(|m| m.params().iter().map(Self::Param)),
+            )
+            .find(|f| f.label() == name)
     }
 
     /// The current value as shown.
@@ -207,29 +131,21 @@ impl Field {
     pub fn show(self, s: &Settings) -> String {
         match self {
             Self::Method => s.method.name().to_owned(),
-            Self::K | Self::Tolerance | Self::Epsilon => format!("{:.3e}", self.value(s)),
+            Self::Tolerance
+            | Self::Param(ParamSpec {
+                scale: Scale::Log, ..
+            }) => format!("{:.3e}", self.value(s)),
             _ => format_number(self.value(s)),
         }
     }
 
+    /// The value (NaN for a parameter of another model, a row no panel shows).
     fn value(self, s: &Settings) -> f64 {
-        match (self, &s.model) {
-            (Self::TEnd, _) => s.t_end,
-            (Self::Tolerance, _) => s.tolerance,
-            (Self::Ix, Model::Rattleback(p)) => p.params().ix,
-            (Self::Iy, Model::Rattleback(p)) => p.params().iy,
-            (Self::Iz, Model::Rattleback(p)) => p.params().iz,
-            (Self::K, Model::Rattleback(p)) => p.params().k,
-            (Self::Gamma, Model::Rattleback(p)) => p.start().gamma,
-            (Self::Alpha, Model::Rattleback(p)) => p.start().alpha,
-            (Self::GammaDot, Model::Rattleback(p)) => p.start().gamma_dot,
-            (Self::AlphaDot, Model::Rattleback(p)) => p.start().alpha_dot,
-            (Self::A, Model::Kapitza(p)) => p.params().a,
-            (Self::B, Model::Kapitza(p)) => p.params().b,
-            (Self::Epsilon, Model::Kapitza(p)) => p.params().epsilon,
-            (Self::Theta, Model::Kapitza(p)) => p.start().theta,
-            (Self::ThetaDot, Model::Kapitza(p)) => p.start().theta_dot,
-            _ => f64::NAN,
+        match self {
+            Self::TEnd => s.t_end,
+            Self::Tolerance => s.tolerance,
+            Self::Method => f64::NAN,
+            Self::Param(spec) => s.model.value(spec.key).unwrap_or(f64::NAN),
         }
     }
 
@@ -244,8 +160,6 @@ impl Field {
     /// # Errors
     /// What is wrong and what is allowed, for display in place.
     pub fn with_value(self, s: &Settings, value: f64) -> Result<Settings, String> {
-        let mut n = *s;
-        let kept = |e: crate::physics::ParamError| format!("{e}; old value kept");
         if !self.belongs_to(s.model.kind()) {
             return Err(format!(
                 "`{}` is not a parameter of the {} model",
@@ -253,8 +167,9 @@ impl Field {
                 s.model.kind().name()
             ));
         }
-        match (self, &s.model) {
-            (Self::TEnd, _) => {
+        let mut n = *s;
+        match self {
+            Self::TEnd => {
                 if !(value.is_finite() && value > 0.0) {
                     return Err(format!(
                         "t_end = {value} refused; allowed: a finite number > 0"
@@ -262,7 +177,7 @@ impl Field {
                 }
                 n.t_end = value;
             }
-            (Self::Tolerance, _) => {
+            Self::Tolerance => {
                 let (lo, hi) = TOLERANCE_RANGE;
                 if !(value.is_finite() && (lo..=hi).contains(&value)) {
                     return Err(format!(
@@ -271,33 +186,14 @@ impl Field {
                 }
                 n.tolerance = value;
             }
-            (Self::Method, _) => {
+            Self::Method => {
                 return Err("choose a method with ←/→ or type its name".to_owned());
             }
-            (_, Model::Rattleback(p)) => {
-                let (mut params, mut start) = (*p.params(), *p.start());
-                match self {
-                    Self::Ix => params.ix = value,
-                    Self::Iy => params.iy = value,
-                    Self::Iz => params.iz = value,
-                    Self::K => params.k = value,
-                    Self::Gamma => start.gamma = value,
-                    Self::Alpha => start.alpha = value,
-                    Self::GammaDot => start.gamma_dot = value,
-                    _ => start.alpha_dot = value,
-                }
-                n.model = Model::Rattleback(Problem::new(params, start).map_err(kept)?);
-            }
-            (_, Model::Kapitza(p)) => {
-                let (mut params, mut start) = (*p.params(), *p.start());
-                match self {
-                    Self::A => params.a = value,
-                    Self::B => params.b = value,
-                    Self::Epsilon => params.epsilon = value,
-                    Self::Theta => start.theta = value,
-                    _ => start.theta_dot = value,
-                }
-                n.model = Model::Kapitza(kapitza::Problem::new(params, start).map_err(kept)?);
+            Self::Param(spec) => {
+                n.model = s
+                    .model
+                    .with_value(spec.key, value)
+                    .map_err(|e| format!("{e}; old value kept"))?;
             }
         }
         Ok(n)
@@ -309,6 +205,7 @@ impl Field {
     /// When the nudge would leave the allowed range.
     pub fn nudge(self, s: &Settings, dir: f64, coarse: bool) -> Result<Settings, String> {
         let v = self.value(s);
+        let decades = || 10f64.powf(dir * if coarse { 1.0 } else { 0.1 });
         let next = match self {
             Self::Method => {
                 let all = s.model.kind().methods();
@@ -324,10 +221,10 @@ impl Field {
                     ..*s
                 });
             }
-            // Log scales.
-            Self::K | Self::Tolerance | Self::Epsilon => {
-                v * 10f64.powf(dir * if coarse { 1.0 } else { 0.1 })
-            }
+            Self::Tolerance
+            | Self::Param(ParamSpec {
+                scale: Scale::Log, ..
+            }) => v * decades(),
             Self::TEnd => {
                 v * if coarse {
                     2f64.powf(dir)
@@ -335,27 +232,14 @@ impl Field {
                     1.0 + 0.1 * dir
                 }
             }
-            Self::Ix | Self::Iy | Self::Iz | Self::A | Self::B => {
-                v + dir * if coarse { 0.5 } else { 0.05 }
+            Self::Param(ParamSpec {
+                scale: Scale::Linear { fine, coarse: big },
+                ..
+            }) => {
+                let next = v + dir * if coarse { *big } else { *fine };
+                // Round away float dust from repeated nudges.
+                (next * 1e9).round() / 1e9
             }
-            Self::Gamma => v + dir * if coarse { 1e-2 } else { 1e-3 },
-            Self::Alpha | Self::Theta => {
-                v + dir
-                    * if coarse {
-                        std::f64::consts::FRAC_PI_8
-                    } else {
-                        0.05
-                    }
-            }
-            Self::GammaDot | Self::AlphaDot | Self::ThetaDot => {
-                v + dir * if coarse { 0.1 } else { 0.01 }
-            }
-        };
-        // Round away float dust from repeated nudges on linear fields.
-        let next = if matches!(self, Self::K | Self::Tolerance | Self::TEnd | Self::Epsilon) {
-            next
-        } else {
-            (next * 1e9).round() / 1e9
         };
         self.with_value(s, next)
     }
@@ -406,6 +290,7 @@ pub fn format_number(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::kapitza;
     use crate::physics::rattleback::{Params, Start};
 
     fn settings() -> Settings {
@@ -449,16 +334,17 @@ mod tests {
     #[test]
     fn invalid_values_are_refused_with_the_reason() {
         let s = settings();
-        let err = Field::Iy.with_text(&s, "-1").unwrap_err();
+        let f = |name| Field::named(ModelKind::Rattleback, name).unwrap();
+        let err = f("iy").with_text(&s, "-1").unwrap_err();
         assert!(
             err.contains("> 0") && err.contains("old value kept"),
             "{err}"
         );
-        let err = Field::K.with_text(&s, "abc").unwrap_err();
+        let err = f("k").with_text(&s, "abc").unwrap_err();
         assert!(err.contains("not a number"), "{err}");
-        let small = Field::Iz.with_value(&s, 0.05).unwrap();
-        assert!(Field::Iz.nudge(&small, -1.0, false).is_err());
-        let k = Field::K.nudge(&s, 1.0, true).unwrap();
+        let small = f("iz").with_value(&s, 0.05).unwrap();
+        assert!(f("iz").nudge(&small, -1.0, false).is_err());
+        let k = f("k").nudge(&s, 1.0, true).unwrap();
         assert!((k.rattleback().unwrap().params().k - 1e5).abs() < 1e-9);
         assert_eq!(
             Field::Method.with_text(&s, "locked").unwrap().method,
@@ -471,17 +357,18 @@ mod tests {
     #[test]
     fn the_pendulum_has_its_own_rows_and_methods() {
         let s = pendulum();
-        assert_eq!(Field::rows(ModelKind::Kapitza)[0], Field::A);
-        let e = Field::Epsilon.nudge(&s, -1.0, true).unwrap();
+        let f = |name| Field::named(ModelKind::Kapitza, name).unwrap();
+        assert_eq!(Field::rows(ModelKind::Kapitza)[0].label(), "a");
+        let e = f("epsilon").nudge(&s, -1.0, true).unwrap();
         assert!((e.model.kapitza().unwrap().params().epsilon - 1e-4).abs() < 1e-15);
-        let err = Field::Epsilon.with_text(&s, "0").unwrap_err();
+        let err = f("epsilon").with_text(&s, "0").unwrap_err();
         assert!(
             err.contains("epsilon") && err.contains("old value kept"),
             "{err}"
         );
         let err = Field::Method.with_text(&s, "locked").unwrap_err();
         assert!(err.contains("not offered for the kapitza model"), "{err}");
-        let err = Field::K.with_text(&s, "3").unwrap_err();
+        let err = f("k").with_text(&s, "3").unwrap_err();
         assert!(
             err.contains("not a parameter of the kapitza model"),
             "{err}"

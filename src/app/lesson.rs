@@ -106,7 +106,11 @@ impl App {
         if !step.set.is_empty() {
             let mut s = self.scenario.settings;
             for o in &step.set {
-                let field = o.key.rsplit('.').next().and_then(Field::named);
+                let field = o
+                    .key
+                    .rsplit('.')
+                    .next()
+                    .and_then(|name| Field::named(s.model.kind(), name));
                 match field.map(|f| f.with_text(&s, &o.value)) {
                     Some(Ok(next)) => {
                         s = next;
@@ -182,7 +186,7 @@ impl App {
         }
         if let Some(p) = parameter {
             let label = p.key.rsplit('.').next().unwrap_or_default();
-            if let Some(f) = Field::named(label) {
+            if let Some(f) = Field::named(self.scenario.settings.model.kind(), label) {
                 let v: f64 = f.exact(&self.scenario.settings).parse().unwrap_or(f64::NAN);
                 let low = p.at_least.is_some_and(|lo| v.is_nan() || v < lo);
                 let high = p.at_most.is_some_and(|hi| v.is_nan() || v > hi);

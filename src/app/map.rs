@@ -288,7 +288,10 @@ mod tests {
         };
         assert!(m.on_done(m.id, None));
         assert_eq!(m.start(&s), None);
-        let t = crate::app::fields::Field::Iz.with_value(&s, 3.0).unwrap();
+        let t = crate::app::fields::Field::named(crate::physics::ModelKind::Rattleback, "iz")
+            .unwrap()
+            .with_value(&s, 3.0)
+            .unwrap();
         assert!(matches!(m.start(&t), Some(Command::Map { from: 0, .. })));
         assert_eq!(m.computed(), 0, "a new body forgets the old counts");
     }

@@ -19,7 +19,8 @@ impl App {
     pub fn apply_event(&mut self, event: &Event) -> Vec<Effect> {
         match event {
             Event::Set { field, value } => {
-                let Some(f) = Field::named(field) else {
+                let kind = self.scenario.settings.model.kind();
+                let Some(f) = Field::named(kind, field) else {
                     self.status =
                         Message::error(format!("unknown field '{field}' in the recording"));
                     return Vec::new();
@@ -31,7 +32,8 @@ impl App {
                 self.apply(f.with_text(&self.scenario.settings, value))
             }
             Event::Select { field } => {
-                if let Some(i) = Field::named(field).and_then(|f| {
+                let kind = self.scenario.settings.model.kind();
+                if let Some(i) = Field::named(kind, field).and_then(|f| {
                     Field::rows(self.scenario.settings.model.kind())
                         .iter()
                         .position(|x| *x == f)

@@ -179,7 +179,7 @@ impl RunState {
             sample_dt: spec.sample_dt,
             ..Self::new(spec.t_end)
         };
-        if spec.model.kind().has_falls() {
+        if spec.model.kind().words().second_events.is_some() {
             self.falls = Some(Events::default());
         }
         vec![

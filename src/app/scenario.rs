@@ -3,22 +3,22 @@
 
 use super::fields::Settings;
 use super::portrait::{self, View};
-use crate::physics::rattleback::integrators::Method;
-use crate::physics::{DEFAULT_TOLERANCE, LimitView, Model};
+use crate::physics::Method;
+use crate::physics::scene::SummaryLine;
+use crate::physics::{DEFAULT_TOLERANCE, LimitView};
 use crate::scenario::Preset;
 use crate::scenario::preset::{RunConfig, ViewConfig};
 use crate::scenario::text::clean;
 use crate::sim::SessionSpec;
 
 /// Derived values shown read-only under the parameters.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Derived {
     /// The limit of the start, as the portrait draws it.
     pub limit: LimitView,
-    /// The rattleback's `alpha_dot² / gamma_dot²` (none for other models).
-    pub ratio: Option<f64>,
-    /// The rattleback's critical ratio (none for other models).
-    pub critical: Option<f64>,
+    /// What the model derives from its parameters, as the panel shows it (the rattleback's
+    /// ratio against the critical one, the pendulum's threshold…).
+    pub summary: Vec<SummaryLine>,
     /// Spacing of the sample grid, from the limit's dynamics (never from the playback speed).
     pub sample_dt: f64,
 }
@@ -26,27 +26,10 @@ pub struct Derived {
 impl Derived {
     fn of(s: &Settings) -> Self {
         let limit = s.model.limit_view();
-        let (ratio, critical) = match (&s.model, limit.effective()) {
-            (Model::Rattleback(problem), Some(e)) => {
-                (e.start_ratio(problem), e.critical_ratio(problem))
-            }
-            _ => (None, None),
-        };
         Self {
-            ratio,
-            critical,
+            summary: s.model.summary(),
             sample_dt: portrait::sample_spacing(&limit),
             limit,
-        }
-    }
-
-    /// The start's side of the reversal threshold, as `(ratio − critical) / critical`:
-    /// negative below (reversals), positive above.
-    #[must_use]
-    pub fn threshold_distance(&self) -> Option<f64> {
-        match (self.ratio, self.critical) {
-            (Some(r), Some(c)) if c != 0.0 => Some((r - c) / c),
-            _ => None,
         }
     }
 }

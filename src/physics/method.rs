@@ -192,6 +192,14 @@ pub enum StepError {
     /// `auto` is a planner, not an integrator: resolve it first (`physics::plan`).
     #[error("method auto must be resolved to a concrete method before integrating")]
     Unplanned,
+    /// A study the model does not offer (the sweep of a model without a limit).
+    #[error("the {model} model has no {what}")]
+    NoStudy {
+        /// What is missing (`small parameter to sweep`).
+        what: &'static str,
+        /// The model's name.
+        model: &'static str,
+    },
     /// The method belongs to another model.
     #[error("method {method} is not offered for the {model} model")]
     NotOffered {

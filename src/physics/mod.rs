@@ -28,11 +28,13 @@ pub mod numerics;
 pub mod params;
 pub mod plan;
 pub mod rattleback;
+pub mod scene;
 
 pub use method::{Method, StepError};
 pub use models::{LimitView, Model, ModelKind};
 pub use params::ParamError;
 pub use plan::{DEFAULT_TOLERANCE, Resolved};
+pub use scene::{Posed, Scene, Words};
 
 /// The input farthest from 1 in size (what most likely overflowed a derived quantity).
 #[must_use]

@@ -1,21 +1,22 @@
 //! The closed set of models: [`Model`] is the only door through which the worker (`sim`), the
 //! explorer (`app`, `ui`), presets (`scenario`) and `simulate` reach a model.
 //!
-//! Each model lives in its own folder (`rattleback`: the files named in `physics/mod.rs`;
-//! `kapitza/`) and is registered here once: its [`ModelKind`] (name, title, methods), its
-//! [`Model`] variant (a validated problem), how it builds a [`Flow`], resolves `auto`, and the
-//! [`LimitView`] the portrait draws (the slow coordinate's effective potential). Adding a third
-//! model touches its folder and the arms of the matches in this file; the preset schema
-//! (`scenario/preset.rs`), the parameter panel's rows (`app/fields.rs`) and `simulate`'s report
-//! (`simulate/`) each add the model's own table, listed in docs/architecture.md.
+//! Each model lives in its own folder and describes itself once there (`scene.rs`: a
+//! [`Scene`] of fixed facts, [`Posed`] for a validated problem). It is registered here: its
+//! [`ModelKind`] and [`Model`] variants, the two dispatch lines ([`ModelKind::scene`],
+//! [`Model::posed`]), [`ModelKind::problem`] and the [`LimitView`] the portrait draws (the slow
+//! coordinate's effective potential). The recipe is in docs/architecture.md.
 
 use serde::Serialize;
 
-use super::flow::{Flow, Sample};
+use super::flow::Flow;
 use super::kapitza;
+use super::method::{Method, Settings, StepError};
+use super::params::{ParamError, ParamSpec};
+use super::plan::{AutoPolicy, Resolution};
 use super::rattleback::Problem;
 use super::rattleback::effective::Effective;
-use super::rattleback::integrators::{self, Integrator, Method, Settings, Stats, StepError};
+use super::scene::{Posed, Scene, SlowCurve, SmallParameter, Studies, SummaryLine, Words};
 
 /// Which model: names as in presets (`[preset] model = "kapitza"`; absent means the rattleback).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, schemars::JsonSchema)]
@@ -25,137 +26,6 @@ pub enum ModelKind {
     Rattleback,
     /// Kapitza's inverted pendulum (a pendulum on a fast-shaken pivot).
     Kapitza,
-}
-
-impl ModelKind {
-    /// Every model, in the order lists show them.
-    pub const ALL: [Self; 2] = [Self::Rattleback, Self::Kapitza];
-
-    /// The tolerance of the limit's own run, whatever the user's (the one-degree-of-freedom ODE
-    /// is cheap): `simulate` reports it and the explorer draws, counts and exports the same
-    /// run. The rattleback's is then good to about 1e-12 (`tests/it/auto_honest.rs`).
-    #[must_use]
-    pub fn limit_tolerance(self) -> f64 {
-        match self {
-            Self::Rattleback => 1e-14,
-            Self::Kapitza => 1e-13,
-        }
-    }
-
-    /// The name used in presets and JSON.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Rattleback => "rattleback",
-            Self::Kapitza => "kapitza",
-        }
-    }
-
-    /// The name for people.
-    #[must_use]
-    pub fn title(self) -> &'static str {
-        match self {
-            Self::Rattleback => "holonomic rattleback",
-            Self::Kapitza => "Kapitza's pendulum",
-        }
-    }
-
-    /// Parses a name from [`ModelKind::name`] (any case).
-    #[must_use]
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL
-            .into_iter()
-            .find(|m| m.name().eq_ignore_ascii_case(name.trim()))
-    }
-
-    /// Comma-separated names, for error messages.
-    #[must_use]
-    pub fn names() -> String {
-        Self::ALL.map(Self::name).join(", ")
-    }
-
-    /// The methods this model offers, `auto` first.
-    #[must_use]
-    pub fn methods(self) -> &'static [Method] {
-        match self {
-            Self::Rattleback => &Method::ALL,
-            Self::Kapitza => &kapitza::flows::METHODS,
-        }
-    }
-
-    /// Whether this model offers `method`.
-    #[must_use]
-    pub fn offers(self, method: Method) -> bool {
-        self.methods().contains(&method)
-    }
-
-    /// Comma-separated names of [`ModelKind::methods`].
-    #[must_use]
-    pub fn method_names(self) -> String {
-        self.methods()
-            .iter()
-            .map(|m| m.name())
-            .collect::<Vec<_>>()
-            .join(", ")
-    }
-
-    /// Whether the model counts falls past the horizontal (the pendulum's second event).
-    #[must_use]
-    pub fn has_falls(self) -> bool {
-        self == Self::Kapitza
-    }
-
-    /// What the model calls its slow coordinate and its events, for labels.
-    #[must_use]
-    pub fn words(self) -> Words {
-        match self {
-            Self::Rattleback => Words {
-                parameter: "k",
-                sup: "sup|alpha_k − alpha_eff|",
-                q_name: "alpha",
-                q_dot_name: "alpha_dot",
-                q: "α",
-                q_dot: "α̇",
-                fast: "γ",
-                event: "reversal",
-                events: "reversals",
-            },
-            Self::Kapitza => Words {
-                parameter: "epsilon",
-                sup: "sup|theta_eps − theta_lim|",
-                q_name: "theta",
-                q_dot_name: "theta_dot",
-                q: "θ",
-                q_dot: "θ̇",
-                fast: "θ−Θ",
-                event: "swing",
-                events: "swings",
-            },
-        }
-    }
-}
-
-/// Labels of a model's variables and events.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Words {
-    /// The small parameter the limit is about (`k → ∞`, `ε → 0`), as in presets.
-    pub parameter: &'static str,
-    /// What the sweep measures, in words.
-    pub sup: &'static str,
-    /// The slow coordinate's name in presets (ASCII).
-    pub q_name: &'static str,
-    /// Its rate's.
-    pub q_dot_name: &'static str,
-    /// The slow coordinate.
-    pub q: &'static str,
-    /// Its rate.
-    pub q_dot: &'static str,
-    /// The fast coordinate.
-    pub fast: &'static str,
-    /// One event.
-    pub event: &'static str,
-    /// Events.
-    pub events: &'static str,
 }
 
 /// A validated problem of one model.
@@ -180,7 +50,122 @@ impl From<kapitza::Problem> for Model {
     }
 }
 
+impl ModelKind {
+    /// Every model, in the order lists show them.
+    pub const ALL: [Self; 2] = [Self::Rattleback, Self::Kapitza];
+
+    /// The model's own description (the one dispatch on the kind).
+    #[must_use]
+    pub fn scene(self) -> &'static dyn Scene {
+        match self {
+            Self::Rattleback => &super::rattleback::scene::SCENE,
+            Self::Kapitza => &kapitza::scene::SCENE,
+        }
+    }
+
+    /// A validated problem of this model from its parameter values, in the order of
+    /// [`Scene::params`].
+    ///
+    /// # Errors
+    /// The first value outside its range, or a derived quantity that overflows.
+    pub fn problem(self, values: &[f64]) -> Result<Model, ParamError> {
+        Ok(match self {
+            Self::Rattleback => Model::Rattleback(Problem::from_values(values)?),
+            Self::Kapitza => Model::Kapitza(kapitza::Problem::from_values(values)?),
+        })
+    }
+
+    /// The tolerance of the limit's own run, whatever the user's (the one-degree-of-freedom ODE
+    /// is cheap): `simulate` reports it and the explorer draws, counts and exports the same
+    /// run.
+    #[must_use]
+    pub fn limit_tolerance(self) -> f64 {
+        self.scene().limit_tolerance()
+    }
+
+    /// The name used in presets and JSON.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        self.scene().name()
+    }
+
+    /// The name for people.
+    #[must_use]
+    pub fn title(self) -> &'static str {
+        self.scene().title()
+    }
+
+    /// Parses a name from [`ModelKind::name`] (any case).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name().eq_ignore_ascii_case(name.trim()))
+    }
+
+    /// Comma-separated names, for error messages.
+    #[must_use]
+    pub fn names() -> String {
+        Self::ALL.map(Self::name).join(", ")
+    }
+
+    /// The methods this model offers, `auto` first.
+    #[must_use]
+    pub fn methods(self) -> &'static [Method] {
+        self.scene().methods()
+    }
+
+    /// Whether this model offers `method`.
+    #[must_use]
+    pub fn offers(self, method: Method) -> bool {
+        self.methods().contains(&method)
+    }
+
+    /// Comma-separated names of [`ModelKind::methods`].
+    #[must_use]
+    pub fn method_names(self) -> String {
+        self.methods()
+            .iter()
+            .map(|m| m.name())
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
+    /// What the model calls its slow coordinate and its events, for labels.
+    #[must_use]
+    pub fn words(self) -> Words {
+        self.scene().words()
+    }
+
+    /// Its parameters, in the panel's order.
+    #[must_use]
+    pub fn params(self) -> &'static [ParamSpec] {
+        self.scene().params()
+    }
+
+    /// Its small parameter, if it has a limit.
+    #[must_use]
+    pub fn small(self) -> Option<SmallParameter> {
+        self.scene().small()
+    }
+
+    /// The studies it offers.
+    #[must_use]
+    pub fn studies(self) -> Studies {
+        self.scene().studies()
+    }
+}
+
 impl Model {
+    /// The facts of this problem (the one dispatch on the problem).
+    #[must_use]
+    pub fn posed(&self) -> &dyn Posed {
+        match self {
+            Self::Rattleback(p) => p,
+            Self::Kapitza(p) => p,
+        }
+    }
+
     /// Which model.
     #[must_use]
     pub fn kind(&self) -> ModelKind {
@@ -208,22 +193,54 @@ impl Model {
         }
     }
 
+    /// Its parameter values, in the order of [`Scene::params`].
+    #[must_use]
+    pub fn values(&self) -> Vec<f64> {
+        self.posed().values()
+    }
+
+    /// The value of the parameter `key`, if the model has one.
+    #[must_use]
+    pub fn value(&self, key: &str) -> Option<f64> {
+        let i = self.kind().params().iter().position(|p| p.key == key)?;
+        self.values().get(i).copied()
+    }
+
+    /// The same problem with the parameter `key` set to `value`, validated.
+    ///
+    /// # Errors
+    /// The value, or a quantity derived from it, is out of range; a key the model does not
+    /// have.
+    pub fn with_value(&self, key: &'static str, value: f64) -> Result<Self, ParamError> {
+        let kind = self.kind();
+        let Some(i) = kind.params().iter().position(|p| p.key == key) else {
+            return Err(ParamError::OutOfRange {
+                field: key,
+                value,
+                allowed: "a parameter of the model",
+            });
+        };
+        let mut values = self.values();
+        values[i] = value;
+        kind.problem(&values)
+    }
+
+    /// The panel's derived lines.
+    #[must_use]
+    pub fn summary(&self) -> Vec<SummaryLine> {
+        self.posed().summary()
+    }
+
     /// The slow start `(q0, q̇0)`.
     #[must_use]
     pub fn slow_start(&self) -> (f64, f64) {
-        match self {
-            Self::Rattleback(p) => (p.start().alpha, p.start().alpha_dot),
-            Self::Kapitza(p) => (p.start().theta, p.start().theta_dot),
-        }
+        self.posed().slow_start()
     }
 
     /// Default fixed step of `method` at `tolerance` over `[0, t_end]`.
     #[must_use]
     pub fn default_step(&self, method: Method, tolerance: f64, t_end: f64) -> f64 {
-        match self {
-            Self::Rattleback(p) => integrators::default_step(method, p, tolerance, t_end),
-            Self::Kapitza(p) => kapitza::flows::default_step(method, p, tolerance, t_end),
-        }
+        self.posed().default_step(method, tolerance, t_end)
     }
 
     /// Builds a concrete method's integration at `t = 0`.
@@ -237,63 +254,31 @@ impl Model {
         settings: Settings,
         t_end: f64,
     ) -> Result<Box<dyn Flow>, StepError> {
-        match self {
-            Self::Rattleback(p) => Ok(Box::new(RattlebackFlow(integrators::build(
-                method, p, settings, t_end,
-            )?))),
-            Self::Kapitza(p) => kapitza::flows::build(method, p, settings, t_end),
-        }
+        self.posed().build(method, settings, t_end)
     }
 
-    /// Resolves `method` for this problem (see [`super::rattleback::plan::resolve`] for the rattleback's
-    /// verified `auto`; the pendulum's `auto` is [`kapitza::plan::resolve`], chosen from the
-    /// limit's predicted model error).
+    /// Resolves `method` for this problem: the model's own `auto` (the rattleback's verified
+    /// one; the pendulum's chosen from the limit's predicted model error).
     ///
     /// # Errors
-    /// As [`super::rattleback::plan::resolve`]; a method the model does not offer.
+    /// The model's; a method the model does not offer.
     pub fn resolve(
         &self,
         method: Method,
         tolerance: f64,
         t_end: f64,
-        policy: super::plan::AutoPolicy,
+        policy: AutoPolicy,
         budget: f64,
         go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<super::rattleback::plan::Resolution, StepError> {
+    ) -> Result<Resolution, StepError> {
         if !self.kind().offers(method) {
             return Err(StepError::NotOffered {
                 method: method.name(),
                 model: self.kind().name(),
             });
         }
-        match self {
-            Self::Rattleback(p) => {
-                super::rattleback::plan::resolve(p, method, tolerance, t_end, policy, budget, go_on)
-            }
-            Self::Kapitza(p) => {
-                let (plan, estimate) = if method == Method::Auto {
-                    let c = kapitza::plan::resolve(p, tolerance, t_end);
-                    let plan = super::plan::Resolved {
-                        method: c.method,
-                        tolerance: c.settings.tolerance,
-                        step: None,
-                    };
-                    (plan, Some(c.estimate))
-                } else {
-                    let plan = super::plan::Resolved {
-                        method,
-                        tolerance,
-                        step: None,
-                    };
-                    (plan, None)
-                };
-                Ok(super::rattleback::plan::Resolution {
-                    plan,
-                    verified: None,
-                    estimate,
-                })
-            }
-        }
+        self.posed()
+            .resolve(method, tolerance, t_end, policy, budget, go_on)
     }
 
     /// Predicted seconds of a run of `method` (`auto` as it would plan) over `[0, t_end]`: the
@@ -306,12 +291,24 @@ impl Model {
         step: Option<f64>,
         t_end: f64,
     ) -> f64 {
-        match self {
-            Self::Rattleback(p) => {
-                super::rattleback::plan::predicted_seconds(p, method, tolerance, step, t_end)
-            }
-            Self::Kapitza(p) => kapitza::budget::cost_seconds(p, method, tolerance, step, t_end),
-        }
+        self.posed()
+            .predicted_seconds(method, tolerance, step, t_end)
+    }
+
+    /// The slow coordinate on `samples` points of `[0, t_end]` (see [`Posed::slow_curve`]).
+    ///
+    /// # Errors
+    /// A failed, refused or stopped integration.
+    pub fn slow_curve(
+        &self,
+        method: Method,
+        tolerance: f64,
+        t_end: f64,
+        samples: usize,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<SlowCurve, StepError> {
+        self.posed()
+            .slow_curve(method, tolerance, t_end, samples, go_on)
     }
 
     /// What the portrait draws of the limit.
@@ -331,61 +328,6 @@ impl Model {
                 }
             }
         }
-    }
-}
-
-/// The rattleback's integrators seen through [`Flow`]: `q = α`, the event is `α̇`, the fast
-/// coordinate `γ`; the state vector is `(γ, α, γ̇, α̇)`.
-pub struct RattlebackFlow(pub Box<dyn Integrator>);
-
-impl RattlebackFlow {
-    fn at(&mut self, t: f64) -> super::rattleback::State {
-        if t >= self.0.time() {
-            self.0.state()
-        } else {
-            self.0.interpolate(t)
-        }
-    }
-}
-
-impl Flow for RattlebackFlow {
-    fn boxed(&self) -> Box<dyn Flow> {
-        Box::new(Self(self.0.boxed()))
-    }
-    fn method(&self) -> Method {
-        self.0.method()
-    }
-    fn time(&self) -> f64 {
-        self.0.time()
-    }
-    fn time_prev(&self) -> f64 {
-        self.0.time_prev()
-    }
-    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
-        self.0.step(t_limit)
-    }
-    fn sample(&mut self, t: f64) -> Sample {
-        let y = self.at(t);
-        Sample {
-            q: y[super::rattleback::model::ALPHA],
-            q_dot: y[super::rattleback::model::ALPHA_DOT],
-            fast: y[super::rattleback::model::GAMMA],
-        }
-    }
-    fn state_at(&mut self, t: f64) -> Vec<f64> {
-        self.at(t).iter().copied().collect()
-    }
-    fn event_value(&self) -> f64 {
-        self.0.alpha_dot()
-    }
-    fn locate_event(&mut self) -> f64 {
-        self.0.locate_alpha_dot_zero()
-    }
-    fn energy(&self) -> f64 {
-        self.0.energy()
-    }
-    fn stats(&self) -> Stats {
-        self.0.stats()
     }
 }
 

@@ -53,3 +53,140 @@ impl ParamError {
         }
     }
 }
+
+/// What values a model parameter allows: one description shared by validation, presets, the
+/// panel and the error messages.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Allowed {
+    /// Any finite number.
+    Finite,
+    /// A finite number `> 0`.
+    Positive,
+    /// A finite number `>= 0`.
+    NonNegative,
+    /// A number in `[lo, hi]`, described by `text`.
+    Between {
+        /// Smallest value.
+        lo: f64,
+        /// Largest value.
+        hi: f64,
+        /// How the range reads in messages.
+        text: &'static str,
+    },
+}
+
+impl Allowed {
+    /// How the range reads in messages.
+    #[must_use]
+    pub fn text(self) -> &'static str {
+        match self {
+            Self::Finite => "any finite number",
+            Self::Positive => "a finite number > 0",
+            Self::NonNegative => "a finite number >= 0",
+            Self::Between { text, .. } => text,
+        }
+    }
+
+    /// Whether `value` is allowed.
+    #[must_use]
+    pub fn contains(self, value: f64) -> bool {
+        value.is_finite()
+            && match self {
+                Self::Finite => true,
+                Self::Positive => value > 0.0,
+                Self::NonNegative => value >= 0.0,
+                Self::Between { lo, hi, .. } => (lo..=hi).contains(&value),
+            }
+    }
+
+    /// Checks `value` of `field`.
+    ///
+    /// # Errors
+    /// Not finite, or out of range.
+    pub fn check(self, field: &'static str, value: f64) -> Result<(), ParamError> {
+        let allowed = self.text();
+        if !value.is_finite() {
+            Err(ParamError::NotFinite {
+                field,
+                value,
+                allowed,
+            })
+        } else if self.contains(value) {
+            Ok(())
+        } else {
+            Err(ParamError::OutOfRange {
+                field,
+                value,
+                allowed,
+            })
+        }
+    }
+}
+
+/// How the panel steps a parameter and shows it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Scale {
+    /// A tenth of a decade (fine) or a decade (coarse); shown in scientific notation.
+    Log,
+    /// Fixed increments; shown compactly, nudges rounded to 1e-9 against float dust.
+    Linear {
+        /// A fine step.
+        fine: f64,
+        /// A coarse step.
+        coarse: f64,
+    },
+}
+
+/// One parameter of a model, as presets, `--set`, the panel and the reports know it. Names are
+/// a contract: add, never rename.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParamSpec {
+    /// The preset section (`body`, `spring`, `pendulum`, `initial`, …).
+    pub section: &'static str,
+    /// The key, also the panel's label and the field name in errors.
+    pub key: &'static str,
+    /// What values it allows.
+    pub allowed: Allowed,
+    /// Whether a preset must give it; an absent optional value is 0.
+    pub required: bool,
+    /// How the panel steps and shows it.
+    pub scale: Scale,
+    /// What it is, for the generated preset reference.
+    pub doc: &'static str,
+}
+
+impl ParamSpec {
+    /// Checks every value of `values` (in the order of `specs`).
+    ///
+    /// # Errors
+    /// The first value outside its range.
+    pub fn check_all(specs: &[Self], values: &[f64]) -> Result<(), ParamError> {
+        for (spec, v) in specs.iter().zip(values) {
+            spec.allowed.check(spec.key, *v)?;
+        }
+        Ok(())
+    }
+}
+
+/// Refuses a problem whose inputs are finite but whose derived quantities (`derived`, each
+/// with what it is) are not, naming the input farthest from 1 in size among `inputs`.
+///
+/// # Errors
+/// [`ParamError::Derived`] for the first derived quantity that is not finite.
+pub fn check_derived(
+    derived: &[(&'static str, f64)],
+    inputs: &[(&'static str, f64)],
+) -> Result<(), ParamError> {
+    match derived.iter().find(|(_, v)| !v.is_finite()) {
+        None => Ok(()),
+        Some(&(what, value)) => {
+            let (field, v) = super::extreme(inputs);
+            Err(ParamError::Derived {
+                field,
+                value: v,
+                what,
+                derived: value,
+            })
+        }
+    }
+}

@@ -44,3 +44,51 @@ pub enum AutoPolicy {
     /// such files uses it.
     Legacy,
 }
+
+/// Why `auto` stopped short of the tolerance.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Shortfall {
+    /// A refinement no longer halved the estimate: round-off, or an ill-conditioned start.
+    Floor,
+    /// The adaptive tolerance reached its clamp (1e-14) and no other method is predicted to do
+    /// better.
+    Clamped,
+    /// The most refinements `auto` allows were not enough.
+    Refinements,
+    /// The next refinement would take the work past the time `auto` allows itself.
+    Time,
+    /// The averaged model's error at this `k` is above the tolerance, and resolving the fast
+    /// motion is predicted to do no better.
+    Model,
+}
+
+impl Shortfall {
+    /// Words for people.
+    #[must_use]
+    pub fn describe(self) -> &'static str {
+        match self {
+            Self::Floor => {
+                "the estimate stopped falling (round-off floor or an ill-conditioned start)"
+            }
+            Self::Clamped => "the tolerance cannot be tightened further (1e-14)",
+            Self::Refinements => "the refinements ran out",
+            Self::Time => "a further refinement would take too long",
+            Self::Model => {
+                "the averaged model's error at this k is above it, and resolving would do no better"
+            }
+        }
+    }
+}
+
+/// What resolving a method found, with `auto`'s reasoning when it was asked.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Resolution {
+    /// What to integrate.
+    pub plan: Resolved,
+    /// `auto`'s error estimate (the verified run's; the pendulum's predicted one), absent for
+    /// a concrete method.
+    pub estimate: Option<f64>,
+    /// Why `auto`'s estimate misses the tolerance, when it does.
+    pub shortfall: Option<Shortfall>,
+}

@@ -658,12 +658,10 @@ fn csv(
             resolved.budget,
             progress,
         )?;
-        shortfall = resolution.verified.and_then(|v| {
-            v.shortfall.map(|why| Missed {
-                estimate: v.error_estimate,
-                tolerance: spec.tolerance,
-                why,
-            })
+        shortfall = resolution.shortfall.map(|why| Missed {
+            estimate: resolution.estimate.unwrap_or(f64::NAN),
+            tolerance: spec.tolerance,
+            why,
         });
         let plan = resolution.plan;
         spec.method = plan.method;

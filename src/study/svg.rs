@@ -66,7 +66,8 @@ pub fn sweep_svg(sweep: &Sweep) -> Fallible {
         });
         let pad = 0.05 * (hi - lo).max(1e-9);
         let words = sweep.model.words();
-        let (q, parameter) = (words.q_name, words.parameter);
+        let small = sweep.small();
+        let (q, parameter) = (words.q_name, small.key);
         let mut chart = ChartBuilder::on(&left)
             .caption(
                 format!("{q}(t) closing in on the limit as {parameter} varies"),
@@ -123,8 +124,8 @@ pub fn sweep_svg(sweep: &Sweep) -> Fallible {
                 (a.min(p.1), b.max(p.1))
             });
             let caption = sweep.slope.map_or_else(
-                || format!("{} against {parameter}", words.sup),
-                |s| format!("{}: slope {s:.2}", words.sup),
+                || format!("{} against {parameter}", small.sup),
+                |s| format!("{}: slope {s:.2}", small.sup),
             );
             let mut chart = ChartBuilder::on(&right)
                 .caption(caption, ("sans-serif", 18))

@@ -6,28 +6,22 @@
 //! Each rung runs `auto` (so the whole ladder costs little more than its hardest rung) with
 //! samples on one grid; the limit is integrated at 1e-14 (1e-13 for the pendulum).
 
-use crate::physics::rattleback::model::ALPHA;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::physics::rattleback::RunSpec;
-use crate::physics::rattleback::auto::run_auto_cancellable;
-use crate::physics::rattleback::run::run_cancellable;
+use crate::physics::scene::SmallParameter;
 use crate::physics::{Method, Model, ModelKind, StepError};
 
-/// The default ladder: one stiffness per decade from 1e1 to 1e8.
+/// The rattleback's default ladder: one stiffness per decade from 1e1 to 1e8.
 pub const DEFAULT_LADDER: [f64; 8] = [1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8];
 
 /// The pendulum's default ladder of `ε`, one per decade.
 pub const EPSILON_LADDER: [f64; 6] = [1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6];
 
-/// The default ladder of `model`'s small parameter.
+/// The default ladder of `model`'s small parameter (empty for a model without a limit).
 #[must_use]
 pub fn ladder(model: ModelKind) -> &'static [f64] {
-    match model {
-        ModelKind::Rattleback => &DEFAULT_LADDER,
-        ModelKind::Kapitza => &EPSILON_LADDER,
-    }
+    model.small().map_or(&[], |s| s.ladder)
 }
 
 /// Samples of each curve over `[0, T]`.
@@ -53,6 +47,9 @@ pub struct Rung {
 pub struct Sweep {
     /// Which model's parameter was swept.
     pub model: ModelKind,
+    /// The parameter.
+    #[serde(skip)]
+    pub small: SmallParameter,
     /// Sample times.
     pub t: Vec<f64>,
     /// The limit's slow coordinate at the sample times.
@@ -65,6 +62,12 @@ pub struct Sweep {
 }
 
 impl Sweep {
+    /// The small parameter swept.
+    #[must_use]
+    pub fn small(&self) -> SmallParameter {
+        self.small
+    }
+
     /// The stiffnesses, in order.
     #[must_use]
     pub fn stiffness(&self) -> Vec<f64> {
@@ -78,7 +81,8 @@ impl Sweep {
     }
 }
 
-/// The limit's `α_eff` at [`SAMPLES`] times over `[0, t_end]`: `(t, α_eff)`.
+/// The limit's slow coordinate at [`SAMPLES`] times over `[0, t_end]`: `(t, q)`, integrated
+/// at the model's limit tolerance.
 ///
 /// # Errors
 /// When the integration fails or `go_on` stops it.
@@ -87,36 +91,15 @@ pub fn limit_curve(
     t_end: f64,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<(Vec<f64>, Vec<f64>), StepError> {
-    let problem = match model {
-        Model::Rattleback(p) => p,
-        Model::Kapitza(p) => {
-            use crate::physics::kapitza::run::{RunSpec, run};
-            let spec = RunSpec {
-                method: Method::Effective,
-                tolerance: 1e-13,
-                step: None,
-                t_end,
-                samples: SAMPLES,
-            };
-            let r = run(p, &spec, go_on)?;
-            return Ok(r.samples.iter().map(|s| (s.t, s.theta)).unzip());
-        }
-    };
-    let r = run_cancellable(
-        problem,
-        &RunSpec {
-            method: Method::Effective,
-            tolerance: 1e-14,
-            step: None,
-            t_end,
-            samples: SAMPLES,
-            monitor_energy: false,
-        },
-        go_on,
-    )?;
-    Ok(r.samples.iter().map(|s| (s.t, s.state[ALPHA])).unzip())
+    let tolerance = model.kind().limit_tolerance();
+    let c = model.slow_curve(Method::Effective, tolerance, t_end, SAMPLES, go_on)?;
+    Ok((c.t, c.q))
 }
 
+/// One rung: the model's start at `parameter`, run by `auto`, against the limit's curve.
+///
+/// # Errors
+/// A rung out of range (as not finite), a failed integration, or `go_on` stopping it.
 pub fn rung(
     model: &Model,
     parameter: f64,
@@ -125,72 +108,22 @@ pub fn rung(
     limit: &[f64],
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Rung, StepError> {
-    let sup = |q: &[f64]| {
-        q.iter()
+    let at = at_rung(model, parameter).map_err(|e| StepError::NotFinite {
+        what: e.field(),
+        t: 0.0,
+    })?;
+    let c = at.slow_curve(Method::Auto, tolerance, t_end, SAMPLES, go_on)?;
+    let sup_error =
+        c.q.iter()
             .zip(limit)
             .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max)
-    };
-    let problem = match model {
-        Model::Rattleback(p) => p,
-        Model::Kapitza(p) => {
-            use crate::physics::kapitza::run::{RunSpec, run};
-            use crate::physics::kapitza::{Params, Problem, plan};
-            let pendulum = Problem::new(
-                Params {
-                    epsilon: parameter,
-                    ..*p.params()
-                },
-                *p.start(),
-            )
-            .map_err(|_| StepError::NotFinite {
-                what: "epsilon",
-                t: 0.0,
-            })?;
-            let c = plan::resolve(&pendulum, tolerance, t_end);
-            let spec = RunSpec {
-                method: c.method,
-                tolerance: c.settings.tolerance,
-                step: None,
-                t_end,
-                samples: SAMPLES,
-            };
-            let r = run(&pendulum, &spec, go_on)?;
-            let theta: Vec<f64> = r.samples.iter().map(|s| s.theta).collect();
-            return Ok(Rung {
-                parameter,
-                sup_error: sup(&theta),
-                alpha: theta,
-                method: c.method,
-                estimate: c.estimate,
-            });
-        }
-    };
-    let k = parameter;
-    let p = problem
-        .with_k(k)
-        .map_err(|_| StepError::NotFinite { what: "k", t: 0.0 })?;
-    let v = run_auto_cancellable(
-        &p,
-        &RunSpec {
-            method: Method::Auto,
-            tolerance,
-            step: None,
-            t_end,
-            samples: SAMPLES,
-            monitor_energy: false,
-        },
-        crate::physics::budget::BUDGET_SECONDS,
-        go_on,
-    )?;
-    let alpha: Vec<f64> = v.result.samples.iter().map(|s| s.state[ALPHA]).collect();
-    let sup_error = sup(&alpha);
+            .fold(0.0, f64::max);
     Ok(Rung {
-        parameter: k,
+        parameter,
         sup_error,
-        alpha,
-        method: v.plan.method,
-        estimate: v.error_estimate,
+        alpha: c.q,
+        method: c.method,
+        estimate: c.estimate,
     })
 }
 
@@ -203,15 +136,18 @@ pub const MAX_RUNGS: usize = 64;
 /// # Errors
 /// The rung's value, or a quantity derived from it, is out of range.
 pub fn at_rung(model: &Model, parameter: f64) -> Result<Model, crate::physics::ParamError> {
-    Ok(match model {
-        Model::Rattleback(p) => Model::Rattleback(p.with_k(parameter)?),
-        Model::Kapitza(p) => Model::Kapitza(crate::physics::kapitza::Problem::new(
-            crate::physics::kapitza::Params {
-                epsilon: parameter,
-                ..*p.params()
-            },
-            *p.start(),
-        )?),
+    let key = model.kind().small().map_or("", |s| s.key);
+    model.with_value(key, parameter)
+}
+
+/// `model`'s small parameter, or why it has none to sweep.
+///
+/// # Errors
+/// [`StepError::NoStudy`] for a model without a limit.
+pub fn small_of(model: &Model) -> Result<SmallParameter, StepError> {
+    model.kind().small().ok_or(StepError::NoStudy {
+        what: "small parameter to sweep",
+        model: model.kind().name(),
     })
 }
 
@@ -251,6 +187,7 @@ pub fn sweep(
     tolerance: f64,
     go_on: &(dyn Fn(f64) -> bool + Sync),
 ) -> Result<Sweep, StepError> {
+    let small = small_of(model)?;
     let (t, limit) = limit_curve(model, t_end, &mut |t| go_on(t))?;
     let rungs = ladder
         .par_iter()
@@ -259,6 +196,7 @@ pub fn sweep(
     let points: Vec<(f64, f64)> = rungs.iter().map(|r| (r.parameter, r.sup_error)).collect();
     Ok(Sweep {
         model: model.kind(),
+        small,
         t,
         limit,
         slope: super::log_log_slope(&points),

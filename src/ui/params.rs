@@ -12,6 +12,7 @@ use super::{Look, title};
 use crate::app::Scenario;
 use crate::app::fields::{Field, format_number};
 use crate::app::mode::Prompt;
+use crate::physics::scene::Shown;
 
 /// The parameter panel: what it shows, borrowed.
 pub struct ParamsPanel<'a> {
@@ -65,52 +66,15 @@ fn derived_lines(p: &ParamsPanel<'_>, width: usize) -> Vec<Line<'static>> {
             ),
         ])
     };
-    match (&p.scenario.settings.model, d.limit.effective()) {
-        (crate::physics::Model::Rattleback(_), Some(eff)) => {
-            lines.push(Line::styled(
-                row("  ", "limit theta", &format_number(eff.theta()), width),
-                dim,
-            ));
-            lines.push(Line::styled(row("  ", "ratio", &opt(d.ratio), width), dim));
-            lines.push(Line::styled(
-                row("  ", "critical", &opt(d.critical), width),
-                dim,
-            ));
-            let side = d
-                .threshold_distance()
-                .map_or_else(|| "-".to_owned(), |x| format!("{:+.3}%", 100.0 * x));
-            lines.push(Line::styled(row("  ", "vs critical", &side, width), dim));
-            lines.push(verdict("limit regime", eff.regime().name()));
-        }
-        (crate::physics::Model::Kapitza(problem), _) => {
-            let params = problem.params();
-            lines.push(Line::styled(
-                row("  ", "b²−2a", &format_number(params.threshold()), width),
-                dim,
-            ));
-            lines.push(Line::styled(
-                row("  ", "limit E", &format_number(d.limit.energy()), width),
-                dim,
-            ));
-            lines.push(Line::styled(
-                row(
-                    "  ",
-                    "separatrix E",
-                    &format_number(d.limit.potential_max()),
-                    width,
-                ),
-                dim,
-            ));
-            lines.push(verdict(
-                "upright",
-                if params.stable_upright() {
-                    "stable"
-                } else {
-                    "unstable"
-                },
-            ));
-        }
-        _ => {}
+    for line in &d.summary {
+        lines.push(match line.value {
+            Shown::Number(v) => Line::styled(row("  ", line.label, &opt(v), width), dim),
+            Shown::Percent(v) => {
+                let side = v.map_or_else(|| "-".to_owned(), |x| format!("{:+.3}%", 100.0 * x));
+                Line::styled(row("  ", line.label, &side, width), dim)
+            }
+            Shown::Verdict(v) => verdict(line.label, v),
+        });
     }
     lines
 }

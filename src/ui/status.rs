@@ -96,7 +96,7 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
         out.push(field(format!("falls {falls}"), 1));
     }
     if let Some(p) = run.current() {
-        let label = if kind.has_falls() { "ΔE_eff" } else { "ΔE/E" };
+        let label = kind.words().monitor;
         out.push(field(format!("{label} {:.1e}", p.energy_error), 2));
     }
     let method = match run.plan {

@@ -28,12 +28,10 @@ impl Widget for SweepPane<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let (sweep, look) = (self.sweep, self.look);
         let ladder = ladder(self.model);
-        let words = self.model.words();
-        let symbol = if self.model == ModelKind::Rattleback {
-            "k"
-        } else {
-            "ε"
+        let Some(small) = self.model.small() else {
+            return;
         };
+        let symbol = small.symbol;
         let status = match (&sweep.failed, sweep.done, sweep.slope()) {
             (Some(why), _, _) => format!("stopped: {why}"),
             (None, true, Some(s)) => format!("slope {s:.2}"),
@@ -43,7 +41,7 @@ impl Widget for SweepPane<'_> {
             (None, true, None) => "no rung".to_owned(),
         };
         let block = Block::bordered().title(title(
-            &format!("{symbol}-sweep: {status} │ {} against {symbol}", words.sup),
+            &format!("{symbol}-sweep: {status} │ {} against {symbol}", small.sup),
             area.width,
         ));
         let inner = block.inner(area);

@@ -147,10 +147,8 @@ fn auto_stops_refining_at_its_budget_and_says_so() {
         &mut |_| true,
     )
     .expect("answers");
-    let v = r.verified.expect("auto verified");
-    assert!(!v.met, "{v:?}");
-    assert!(v.shortfall.is_some());
-    assert!(v.error_estimate > 1e-12);
+    assert!(r.shortfall.is_some(), "{r:?}");
+    assert!(r.estimate.expect("auto's estimate") > 1e-12, "{r:?}");
 }
 
 #[test]

@@ -20,10 +20,11 @@ pub mod flows;
 pub mod limit;
 pub mod plan;
 pub mod run;
+pub mod scene;
 
 use serde::Serialize;
 
-use super::params::ParamError;
+use super::params::{ParamError, ParamSpec, check_derived};
 
 /// The pendulum: gravity `a`, shaking amplitude `b`, fast period `2π ε`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
@@ -51,52 +52,7 @@ pub const EPSILON_MAX: f64 = 1.0;
 /// a few hundred time units).
 pub const EPSILON_MIN: f64 = 1e-9;
 
-const FINITE: &str = "any finite number";
-
-fn finite(field: &'static str, value: f64) -> Result<(), ParamError> {
-    if value.is_finite() {
-        Ok(())
-    } else {
-        Err(ParamError::NotFinite {
-            field,
-            value,
-            allowed: FINITE,
-        })
-    }
-}
-
 impl Params {
-    /// Checks every value.
-    ///
-    /// # Errors
-    /// The first value outside what the model allows.
-    pub fn validate(&self) -> Result<(), ParamError> {
-        finite("a", self.a)?;
-        finite("b", self.b)?;
-        if self.b < 0.0 {
-            return Err(ParamError::OutOfRange {
-                field: "b",
-                value: self.b,
-                allowed: "a finite number >= 0",
-            });
-        }
-        if !self.epsilon.is_finite() {
-            return Err(ParamError::NotFinite {
-                field: "epsilon",
-                value: self.epsilon,
-                allowed: "a number in [1e-9, 1]",
-            });
-        }
-        if !(EPSILON_MIN..=EPSILON_MAX).contains(&self.epsilon) {
-            return Err(ParamError::OutOfRange {
-                field: "epsilon",
-                value: self.epsilon,
-                allowed: "a number in [1e-9, 1]",
-            });
-        }
-        Ok(())
-    }
-
     /// `b² − 2a`: the upright is stable in the limit when it is positive.
     #[must_use]
     pub fn threshold(&self) -> f64 {
@@ -137,33 +93,27 @@ impl Problem {
     /// # Errors
     /// The first value outside what the model allows.
     pub fn new(params: Params, start: Start) -> Result<Self, ParamError> {
-        params.validate()?;
-        finite("theta", start.theta)?;
-        finite("theta_dot", start.theta_dot)?;
+        let problem = Self { params, start };
+        let values = crate::physics::scene::Posed::values(&problem);
+        ParamSpec::check_all(&scene::PARAMS, &values)?;
         let p = &params;
-        let derived = [
-            ("the threshold b²−2a", p.b * p.b - 2.0 * p.a),
-            ("the forcing b/ε", p.b / p.epsilon),
-            (
-                "the limit's energy",
-                0.5 * start.theta_dot.powi(2) + p.a + p.b * p.b,
-            ),
-        ];
-        if let Some((what, value)) = derived.into_iter().find(|(_, v)| !v.is_finite()) {
-            let (field, v) = crate::physics::extreme(&[
+        check_derived(
+            &[
+                ("the threshold b²−2a", p.b * p.b - 2.0 * p.a),
+                ("the forcing b/ε", p.b / p.epsilon),
+                (
+                    "the limit's energy",
+                    0.5 * start.theta_dot.powi(2) + p.a + p.b * p.b,
+                ),
+            ],
+            &[
                 ("a", p.a),
                 ("b", p.b),
                 ("epsilon", p.epsilon),
                 ("theta_dot", start.theta_dot),
-            ]);
-            return Err(ParamError::Derived {
-                field,
-                value: v,
-                what,
-                derived: value,
-            });
-        }
-        Ok(Self { params, start })
+            ],
+        )?;
+        Ok(problem)
     }
 
     /// The pendulum.

@@ -13,6 +13,7 @@ pub mod model;
 pub mod params;
 pub mod plan;
 pub mod run;
+pub mod scene;
 
 pub use model::State;
 pub use params::{Params, Problem, Start};

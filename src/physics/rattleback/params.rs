@@ -6,7 +6,7 @@
 
 use serde::Serialize;
 
-use crate::physics::params::ParamError;
+use crate::physics::params::{ParamError, ParamSpec, check_derived};
 
 /// Inertia moments and Hooke constant of the body (docs/physics.md §1).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
@@ -34,40 +34,7 @@ pub struct Start {
     pub alpha_dot: f64,
 }
 
-const POSITIVE: &str = "a finite number > 0";
-const FINITE: &str = "any finite number";
-
-fn check(field: &'static str, value: f64, positive: bool) -> Result<(), ParamError> {
-    let allowed = if positive { POSITIVE } else { FINITE };
-    if !value.is_finite() {
-        return Err(ParamError::NotFinite {
-            field,
-            value,
-            allowed,
-        });
-    }
-    if positive && value <= 0.0 {
-        return Err(ParamError::OutOfRange {
-            field,
-            value,
-            allowed,
-        });
-    }
-    Ok(())
-}
-
 impl Params {
-    /// Checks that all values are finite and strictly positive.
-    ///
-    /// # Errors
-    /// The first field that violates its range.
-    pub fn validate(&self) -> Result<(), ParamError> {
-        check("ix", self.ix, true)?;
-        check("iy", self.iy, true)?;
-        check("iz", self.iz, true)?;
-        check("k", self.k, true)
-    }
-
     /// `g(α) = ix cos²α + iy sin²α`, the tilt's inertia at spin angle `α` (docs/physics.md §1).
     #[must_use]
     #[inline]
@@ -97,19 +64,6 @@ impl Params {
     }
 }
 
-impl Start {
-    /// Checks that all values are finite.
-    ///
-    /// # Errors
-    /// The first field that is NaN or infinite.
-    pub fn validate(&self) -> Result<(), ParamError> {
-        check("gamma", self.gamma, false)?;
-        check("alpha", self.alpha, false)?;
-        check("gamma_dot", self.gamma_dot, false)?;
-        check("alpha_dot", self.alpha_dot, false)
-    }
-}
-
 /// A validated pair of parameters and initial values: the input of every integrator.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Problem {
@@ -123,38 +77,28 @@ impl Problem {
     /// # Errors
     /// The first field out of its allowed range.
     pub fn new(params: Params, start: Start) -> Result<Self, ParamError> {
-        params.validate()?;
-        start.validate()?;
+        let problem = Self { params, start };
+        let values = crate::physics::scene::Posed::values(&problem);
+        ParamSpec::check_all(&super::scene::PARAMS, &values)?;
         let p = &params;
         let y0 = super::model::initial_state(&start);
-        let derived = [
-            ("the energy", super::model::energy(p, &y0)),
-            (
-                "the critical ratio",
-                (p.ix / p.iz) * ((p.ix / p.iy).sqrt() - 1.0),
-            ),
-            ("the fast frequency", p.omega_max()),
-        ];
-        if let Some((what, value)) = derived.into_iter().find(|(_, v)| !v.is_finite()) {
-            let inputs = [
-                ("ix", p.ix),
-                ("iy", p.iy),
-                ("iz", p.iz),
-                ("k", p.k),
-                ("gamma", start.gamma),
-                ("alpha", start.alpha),
-                ("gamma_dot", start.gamma_dot),
-                ("alpha_dot", start.alpha_dot),
-            ];
-            let (field, v) = crate::physics::extreme(&inputs);
-            return Err(ParamError::Derived {
-                field,
-                value: v,
-                what,
-                derived: value,
-            });
-        }
-        Ok(Self { params, start })
+        let inputs: Vec<(&'static str, f64)> = super::scene::PARAMS
+            .iter()
+            .map(|s| s.key)
+            .zip(values)
+            .collect();
+        check_derived(
+            &[
+                ("the energy", super::model::energy(p, &y0)),
+                (
+                    "the critical ratio",
+                    (p.ix / p.iz) * ((p.ix / p.iy).sqrt() - 1.0),
+                ),
+                ("the fast frequency", p.omega_max()),
+            ],
+            &inputs,
+        )?;
+        Ok(problem)
     }
 
     /// The body and spring.

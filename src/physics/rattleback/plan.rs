@@ -6,24 +6,12 @@
 //! A [`Resolved`] plan is plain data (method, tolerance, step): recordings store it, and replay
 //! integrates the recorded plan, so a later change of `auto` never breaks an old session.
 
-use super::auto::{self, Verified};
+use super::auto;
 use super::budget;
 use super::integrators::{Method, StepError};
 use super::params::Problem;
 use super::run::RunSpec;
-use crate::physics::plan::{AutoPolicy, Resolved};
-
-/// What [`resolve`] found, with `auto`'s reasoning when it was asked.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Resolution {
-    /// What to integrate.
-    pub plan: Resolved,
-    /// `auto`'s verified run (absent for a concrete method or the legacy policy).
-    pub verified: Option<Verified>,
-    /// `auto`'s error estimate (the verified run's; the pendulum's predicted one), absent for
-    /// a concrete method.
-    pub estimate: Option<f64>,
-}
+use crate::physics::plan::{AutoPolicy, Resolution, Resolved};
 
 /// Resolves `method` for `problem` over `[0, t_end]` at `tolerance`; `go_on(t)` is asked every
 /// few hundred steps of `auto`'s probes and verification runs whether to continue, and none of
@@ -47,8 +35,8 @@ pub fn resolve(
                 tolerance,
                 step: None,
             },
-            verified: None,
             estimate: None,
+            shortfall: None,
         });
     }
     match policy {
@@ -60,8 +48,8 @@ pub fn resolve(
                     tolerance: p.tolerance,
                     step: p.step,
                 },
-                verified: None,
                 estimate: None,
+                shortfall: None,
             })
         }
         AutoPolicy::Verified => {
@@ -85,7 +73,7 @@ pub fn resolve(
                     step: v.run_settings.step,
                 },
                 estimate: Some(v.error_estimate),
-                verified: Some(v),
+                shortfall: v.shortfall,
             })
         }
     }

@@ -47,6 +47,8 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
+pub use crate::physics::plan::Shortfall;
+
 use super::budget::{cost_seconds, dop853_evaluations, fastest_rate, slow_rate};
 use super::effective::Effective;
 use super::integrators::{Method, Settings, StepError};
@@ -509,42 +511,6 @@ pub fn plan_cancellable(
 pub fn plan(problem: &Problem, tolerance: f64, t_end: f64) -> Plan {
     plan_cancellable(problem, tolerance, t_end, &mut |_| true)
         .map_or_else(|_| best_resolved(problem, tolerance, t_end), |d| d.plan)
-}
-
-/// Why `auto` stopped short of the tolerance.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Shortfall {
-    /// A refinement no longer halved the estimate: round-off, or an ill-conditioned start.
-    Floor,
-    /// The adaptive tolerance reached its clamp (1e-14) and no other method is predicted to do
-    /// better.
-    Clamped,
-    /// [`MAX_REFINEMENTS`] refinements were not enough.
-    Refinements,
-    /// The next refinement would take the work past the time `auto` allows itself.
-    Time,
-    /// The averaged model's error at this `k` is above the tolerance, and resolving the fast
-    /// motion is predicted to do no better.
-    Model,
-}
-
-impl Shortfall {
-    /// Words for people.
-    #[must_use]
-    pub fn describe(self) -> &'static str {
-        match self {
-            Self::Floor => {
-                "the estimate stopped falling (round-off floor or an ill-conditioned start)"
-            }
-            Self::Clamped => "the tolerance cannot be tightened further (1e-14)",
-            Self::Refinements => "the refinements ran out",
-            Self::Time => "a further refinement would take too long",
-            Self::Model => {
-                "the averaged model's error at this k is above it, and resolving would do no better"
-            }
-        }
-    }
 }
 
 /// A run chosen by `auto`, with its error estimate.

@@ -1,0 +1,270 @@
+//! Kapitza's pendulum as every layer above `physics/` sees it: its parameter table, words,
+//! small parameter, studies and the facts of a posed problem ([`Scene`], [`Posed`]). Nothing
+//! outside this folder names a pendulum parameter.
+
+use super::limit::Limit;
+use super::run::RunSpec;
+use super::{EPSILON_MAX, EPSILON_MIN, Params, Problem, Start};
+use crate::physics::flow::Flow;
+use crate::physics::method::{Method, Settings, StepError};
+use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
+use crate::physics::plan::{AutoPolicy, Resolution, Resolved};
+use crate::physics::scene::{
+    Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine, Words,
+};
+
+const STRENGTH: Scale = Scale::Linear {
+    fine: 0.05,
+    coarse: 0.5,
+};
+
+/// The pendulum's parameters, in the panel's order. Names are a contract: add, never rename.
+pub const PARAMS: [ParamSpec; 5] = [
+    ParamSpec {
+        section: "pendulum",
+        key: "a",
+        allowed: Allowed::Finite,
+        required: true,
+        scale: STRENGTH,
+        doc: "gravity over length; the upright is unstable without shaking when a > 0",
+    },
+    ParamSpec {
+        section: "pendulum",
+        key: "b",
+        allowed: Allowed::NonNegative,
+        required: true,
+        scale: STRENGTH,
+        doc: "shaking strength: the pivot's acceleration is (b/ε) cos(t/ε)",
+    },
+    ParamSpec {
+        section: "pendulum",
+        key: "epsilon",
+        allowed: Allowed::Between {
+            lo: EPSILON_MIN,
+            hi: EPSILON_MAX,
+            text: "a number in [1e-9, 1]",
+        },
+        required: true,
+        scale: Scale::Log,
+        doc: "fast time scale: the pivot oscillates with angular frequency 1/ε",
+    },
+    ParamSpec {
+        section: "initial",
+        key: "theta",
+        allowed: Allowed::Finite,
+        required: true,
+        scale: Scale::Linear {
+            fine: 0.05,
+            coarse: std::f64::consts::FRAC_PI_8,
+        },
+        doc: "initial angle from the upright",
+    },
+    ParamSpec {
+        section: "initial",
+        key: "theta_dot",
+        allowed: Allowed::Finite,
+        required: false,
+        scale: Scale::Linear {
+            fine: 0.01,
+            coarse: 0.1,
+        },
+        doc: "initial rate",
+    },
+];
+
+/// The pendulum's scene.
+pub struct KapitzaScene;
+
+/// The one instance.
+pub static SCENE: KapitzaScene = KapitzaScene;
+
+impl Scene for KapitzaScene {
+    fn name(&self) -> &'static str {
+        "kapitza"
+    }
+    fn title(&self) -> &'static str {
+        "Kapitza's pendulum"
+    }
+    fn words(&self) -> Words {
+        Words {
+            q_name: "theta",
+            q_dot_name: "theta_dot",
+            q: "θ",
+            q_dot: "θ̇",
+            fast: "θ−Θ",
+            event: "swing",
+            events: "swings",
+            second_events: Some("falls"),
+            monitor: "ΔE_eff",
+        }
+    }
+    fn params(&self) -> &'static [ParamSpec] {
+        &PARAMS
+    }
+    fn model_required(&self) -> bool {
+        true
+    }
+    fn methods(&self) -> &'static [Method] {
+        &super::flows::METHODS
+    }
+    fn limit_tolerance(&self) -> f64 {
+        1e-13
+    }
+    fn small(&self) -> Option<SmallParameter> {
+        Some(SmallParameter {
+            key: "epsilon",
+            symbol: "ε",
+            column: "epsilon",
+            tag: "eps",
+            sup: "sup|theta_eps − theta_lim|",
+            sup_short: "sup|θ_ε−θ|",
+            ladder: &[1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6],
+        })
+    }
+    fn studies(&self) -> Studies {
+        Studies {
+            weak: true,
+            map: false,
+            body: false,
+            limit: true,
+        }
+    }
+}
+
+impl Problem {
+    /// The problem of `values`, in the order of [`PARAMS`].
+    ///
+    /// # Errors
+    /// The first value outside its range, or a derived quantity that overflows.
+    pub fn from_values(values: &[f64]) -> Result<Self, ParamError> {
+        let v = |i: usize| values.get(i).copied().unwrap_or(f64::NAN);
+        Self::new(
+            Params {
+                a: v(0),
+                b: v(1),
+                epsilon: v(2),
+            },
+            Start {
+                theta: v(3),
+                theta_dot: v(4),
+            },
+        )
+    }
+}
+
+impl Posed for Problem {
+    fn scene(&self) -> &'static dyn Scene {
+        &SCENE
+    }
+    fn values(&self) -> Vec<f64> {
+        let (p, s) = (self.params(), self.start());
+        vec![p.a, p.b, p.epsilon, s.theta, s.theta_dot]
+    }
+    fn summary(&self) -> Vec<SummaryLine> {
+        let p = self.params();
+        let limit = Limit::new(p);
+        let s = self.start();
+        let line = |label, value| SummaryLine { label, value };
+        vec![
+            line("b²−2a", Shown::Number(Some(p.threshold()))),
+            line(
+                "limit E",
+                Shown::Number(Some(limit.energy_of(s.theta, s.theta_dot))),
+            ),
+            line("separatrix E", Shown::Number(Some(limit.potential_max()))),
+            line(
+                "upright",
+                Shown::Verdict(if p.stable_upright() {
+                    "stable"
+                } else {
+                    "unstable"
+                }),
+            ),
+        ]
+    }
+    fn slow_start(&self) -> (f64, f64) {
+        (self.start().theta, self.start().theta_dot)
+    }
+    fn default_step(&self, method: Method, tolerance: f64, t_end: f64) -> f64 {
+        super::flows::default_step(method, self, tolerance, t_end)
+    }
+    fn build(
+        &self,
+        method: Method,
+        settings: Settings,
+        t_end: f64,
+    ) -> Result<Box<dyn Flow>, StepError> {
+        super::flows::build(method, self, settings, t_end)
+    }
+    fn resolve(
+        &self,
+        method: Method,
+        tolerance: f64,
+        t_end: f64,
+        _policy: AutoPolicy,
+        _budget: f64,
+        _go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<Resolution, StepError> {
+        // The pendulum's `auto` is chosen from the limit's predicted model error: no probe.
+        let (plan, estimate) = if method == Method::Auto {
+            let c = super::plan::resolve(self, tolerance, t_end);
+            let plan = Resolved {
+                method: c.method,
+                tolerance: c.settings.tolerance,
+                step: None,
+            };
+            (plan, Some(c.estimate))
+        } else {
+            let plan = Resolved {
+                method,
+                tolerance,
+                step: None,
+            };
+            (plan, None)
+        };
+        Ok(Resolution {
+            plan,
+            estimate,
+            shortfall: None,
+        })
+    }
+    fn predicted_seconds(
+        &self,
+        method: Method,
+        tolerance: f64,
+        step: Option<f64>,
+        t_end: f64,
+    ) -> f64 {
+        super::budget::cost_seconds(self, method, tolerance, step, t_end)
+    }
+    fn slow_curve(
+        &self,
+        method: Method,
+        tolerance: f64,
+        t_end: f64,
+        samples: usize,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<SlowCurve, StepError> {
+        let (method, tolerance, estimate) = if method == Method::Auto {
+            let c = super::plan::resolve(self, tolerance, t_end);
+            (c.method, c.settings.tolerance, c.estimate)
+        } else {
+            (method, tolerance, 0.0)
+        };
+        let spec = RunSpec {
+            method,
+            tolerance,
+            step: None,
+            t_end,
+            samples,
+        };
+        let r = super::run::run(self, &spec, go_on)?;
+        let (t, q) = r.samples.iter().map(|s| (s.t, s.theta)).unzip();
+        Ok(SlowCurve {
+            t,
+            q,
+            method,
+            estimate,
+        })
+    }
+}

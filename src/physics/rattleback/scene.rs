@@ -1,0 +1,350 @@
+//! The holonomic rattleback as every layer above `physics/` sees it: its parameter table, words,
+//! small parameter, studies and the facts of a posed problem ([`Scene`], [`Posed`]). Nothing
+//! outside this folder names a rattleback parameter.
+
+use super::effective::Effective;
+use super::integrators::{self, Integrator};
+use super::model::{ALPHA, ALPHA_DOT, GAMMA};
+use super::params::{Params, Problem, Start};
+use super::run::RunSpec;
+use crate::physics::flow::{Flow, Sample};
+use crate::physics::method::{Method, Settings, StepError};
+use crate::physics::numerics::dop853::Stats;
+use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
+use crate::physics::plan::{AutoPolicy, Resolution};
+use crate::physics::scene::{
+    Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine, Words,
+};
+
+const INERTIA: Scale = Scale::Linear {
+    fine: 0.05,
+    coarse: 0.5,
+};
+const RATE: Scale = Scale::Linear {
+    fine: 0.01,
+    coarse: 0.1,
+};
+
+/// The rattleback's parameters, in the panel's order. Names are a contract: add, never rename.
+pub const PARAMS: [ParamSpec; 8] = [
+    ParamSpec {
+        section: "body",
+        key: "ix",
+        allowed: Allowed::Positive,
+        required: true,
+        scale: INERTIA,
+        doc: "inertia moment about the body's x axis",
+    },
+    ParamSpec {
+        section: "body",
+        key: "iy",
+        allowed: Allowed::Positive,
+        required: true,
+        scale: INERTIA,
+        doc: "inertia moment about the body's y axis",
+    },
+    ParamSpec {
+        section: "body",
+        key: "iz",
+        allowed: Allowed::Positive,
+        required: true,
+        scale: INERTIA,
+        doc: "inertia moment about the vertical (spin) axis",
+    },
+    ParamSpec {
+        section: "spring",
+        key: "k",
+        allowed: Allowed::Positive,
+        required: true,
+        scale: Scale::Log,
+        doc: "Hooke constant of the spring holding the tilt",
+    },
+    ParamSpec {
+        section: "initial",
+        key: "gamma",
+        allowed: Allowed::Finite,
+        required: false,
+        scale: Scale::Linear {
+            fine: 1e-3,
+            coarse: 1e-2,
+        },
+        doc: "initial tilt",
+    },
+    ParamSpec {
+        section: "initial",
+        key: "alpha",
+        allowed: Allowed::Finite,
+        required: false,
+        scale: Scale::Linear {
+            fine: 0.05,
+            coarse: std::f64::consts::FRAC_PI_8,
+        },
+        doc: "initial spin angle",
+    },
+    ParamSpec {
+        section: "initial",
+        key: "gamma_dot",
+        allowed: Allowed::Finite,
+        required: true,
+        scale: RATE,
+        doc: "initial tilt rate",
+    },
+    ParamSpec {
+        section: "initial",
+        key: "alpha_dot",
+        allowed: Allowed::Finite,
+        required: true,
+        scale: RATE,
+        doc: "initial spin rate",
+    },
+];
+
+/// The rattleback's scene.
+pub struct RattlebackScene;
+
+/// The one instance.
+pub static SCENE: RattlebackScene = RattlebackScene;
+
+impl Scene for RattlebackScene {
+    fn name(&self) -> &'static str {
+        "rattleback"
+    }
+    fn title(&self) -> &'static str {
+        "holonomic rattleback"
+    }
+    fn words(&self) -> Words {
+        Words {
+            q_name: "alpha",
+            q_dot_name: "alpha_dot",
+            q: "α",
+            q_dot: "α̇",
+            fast: "γ",
+            event: "reversal",
+            events: "reversals",
+            second_events: None,
+            monitor: "ΔE/E",
+        }
+    }
+    fn params(&self) -> &'static [ParamSpec] {
+        &PARAMS
+    }
+    fn model_required(&self) -> bool {
+        false
+    }
+    fn methods(&self) -> &'static [Method] {
+        &Method::ALL
+    }
+    fn limit_tolerance(&self) -> f64 {
+        // The one-degree-of-freedom ODE is cheap: then good to about 1e-12
+        // (`tests/it/auto_honest.rs`).
+        1e-14
+    }
+    fn small(&self) -> Option<SmallParameter> {
+        Some(SmallParameter {
+            key: "k",
+            symbol: "k",
+            column: "stiffness",
+            tag: "k",
+            sup: "sup|alpha_k − alpha_eff|",
+            sup_short: "sup|α_k−α_eff|",
+            ladder: &[1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8],
+        })
+    }
+    fn studies(&self) -> Studies {
+        Studies {
+            weak: true,
+            map: true,
+            body: true,
+            limit: true,
+        }
+    }
+}
+
+impl Problem {
+    /// The problem of `values`, in the order of [`PARAMS`].
+    ///
+    /// # Errors
+    /// The first value outside its range, or a derived quantity that overflows.
+    pub fn from_values(values: &[f64]) -> Result<Self, ParamError> {
+        let v = |i: usize| values.get(i).copied().unwrap_or(f64::NAN);
+        Self::new(
+            Params {
+                ix: v(0),
+                iy: v(1),
+                iz: v(2),
+                k: v(3),
+            },
+            Start {
+                gamma: v(4),
+                alpha: v(5),
+                gamma_dot: v(6),
+                alpha_dot: v(7),
+            },
+        )
+    }
+}
+
+impl Posed for Problem {
+    fn scene(&self) -> &'static dyn Scene {
+        &SCENE
+    }
+    fn values(&self) -> Vec<f64> {
+        let (p, s) = (self.params(), self.start());
+        vec![
+            p.ix,
+            p.iy,
+            p.iz,
+            p.k,
+            s.gamma,
+            s.alpha,
+            s.gamma_dot,
+            s.alpha_dot,
+        ]
+    }
+    fn summary(&self) -> Vec<SummaryLine> {
+        let e = Effective::new(self);
+        let (ratio, critical) = (e.start_ratio(self), e.critical_ratio(self));
+        let side = match (ratio, critical) {
+            (Some(r), Some(c)) if c != 0.0 => Some((r - c) / c),
+            _ => None,
+        };
+        let line = |label, value| SummaryLine { label, value };
+        vec![
+            line("limit theta", Shown::Number(Some(e.theta()))),
+            line("ratio", Shown::Number(ratio)),
+            line("critical", Shown::Number(critical)),
+            line("vs critical", Shown::Percent(side)),
+            line("limit regime", Shown::Verdict(e.regime().name())),
+        ]
+    }
+    fn slow_start(&self) -> (f64, f64) {
+        (self.start().alpha, self.start().alpha_dot)
+    }
+    fn default_step(&self, method: Method, tolerance: f64, t_end: f64) -> f64 {
+        integrators::default_step(method, self, tolerance, t_end)
+    }
+    fn build(
+        &self,
+        method: Method,
+        settings: Settings,
+        t_end: f64,
+    ) -> Result<Box<dyn Flow>, StepError> {
+        Ok(Box::new(RattlebackFlow(integrators::build(
+            method, self, settings, t_end,
+        )?)))
+    }
+    fn resolve(
+        &self,
+        method: Method,
+        tolerance: f64,
+        t_end: f64,
+        policy: AutoPolicy,
+        budget: f64,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<Resolution, StepError> {
+        super::plan::resolve(self, method, tolerance, t_end, policy, budget, go_on)
+    }
+    fn predicted_seconds(
+        &self,
+        method: Method,
+        tolerance: f64,
+        step: Option<f64>,
+        t_end: f64,
+    ) -> f64 {
+        super::plan::predicted_seconds(self, method, tolerance, step, t_end)
+    }
+    fn slow_curve(
+        &self,
+        method: Method,
+        tolerance: f64,
+        t_end: f64,
+        samples: usize,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<SlowCurve, StepError> {
+        let spec = RunSpec {
+            method,
+            tolerance,
+            step: None,
+            t_end,
+            samples,
+            monitor_energy: false,
+        };
+        let (result, method, estimate) = if method == Method::Auto {
+            let v = super::auto::run_auto_cancellable(
+                self,
+                &spec,
+                crate::physics::budget::BUDGET_SECONDS,
+                go_on,
+            )?;
+            (v.result, v.plan.method, v.error_estimate)
+        } else {
+            (
+                super::run::run_cancellable(self, &spec, go_on)?,
+                method,
+                0.0,
+            )
+        };
+        let (t, q) = result.samples.iter().map(|s| (s.t, s.state[ALPHA])).unzip();
+        Ok(SlowCurve {
+            t,
+            q,
+            method,
+            estimate,
+        })
+    }
+}
+
+/// The rattleback's integrators seen through [`Flow`]: `q = α`, the event is `α̇`, the fast
+/// coordinate `γ`; the state vector is `(γ, α, γ̇, α̇)`.
+pub struct RattlebackFlow(pub Box<dyn Integrator>);
+
+impl RattlebackFlow {
+    fn at(&mut self, t: f64) -> super::State {
+        if t >= self.0.time() {
+            self.0.state()
+        } else {
+            self.0.interpolate(t)
+        }
+    }
+}
+
+impl Flow for RattlebackFlow {
+    fn boxed(&self) -> Box<dyn Flow> {
+        Box::new(Self(self.0.boxed()))
+    }
+    fn method(&self) -> Method {
+        self.0.method()
+    }
+    fn time(&self) -> f64 {
+        self.0.time()
+    }
+    fn time_prev(&self) -> f64 {
+        self.0.time_prev()
+    }
+    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
+        self.0.step(t_limit)
+    }
+    fn sample(&mut self, t: f64) -> Sample {
+        let y = self.at(t);
+        Sample {
+            q: y[ALPHA],
+            q_dot: y[ALPHA_DOT],
+            fast: y[GAMMA],
+        }
+    }
+    fn state_at(&mut self, t: f64) -> Vec<f64> {
+        self.at(t).iter().copied().collect()
+    }
+    fn event_value(&self) -> f64 {
+        self.0.alpha_dot()
+    }
+    fn locate_event(&mut self) -> f64 {
+        self.0.locate_alpha_dot_zero()
+    }
+    fn energy(&self) -> f64 {
+        self.0.energy()
+    }
+    fn stats(&self) -> Stats {
+        self.0.stats()
+    }
+}

@@ -1,0 +1,185 @@
+//! What every layer above `physics/` needs to know about a model, said once by the model in its
+//! own folder (`rattleback/scene.rs`, `kapitza/scene.rs`):
+//!
+//! - [`Scene`], the model's fixed facts: its names and words, its parameters as a table
+//!   ([`ParamSpec`]), its methods, its small parameter and ladder (or none), which studies apply;
+//! - [`Posed`], the facts of one validated problem: its parameter values, the panel's derived
+//!   lines, its slow start, how to build, plan, price and run it.
+//!
+//! Neither trait has a default method for a model fact, so a model that forgets one does not
+//! compile. `Model` and `ModelKind` (in `models.rs`) are the one dispatch to them.
+
+use super::flow::Flow;
+use super::method::{Method, Settings, StepError};
+use super::params::ParamSpec;
+use super::plan::{AutoPolicy, Resolution};
+
+/// Labels of a model's variables, events and monitors.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Words {
+    /// The slow coordinate's name in presets, CSV columns and JSON (ASCII).
+    pub q_name: &'static str,
+    /// Its rate's.
+    pub q_dot_name: &'static str,
+    /// The slow coordinate, for people.
+    pub q: &'static str,
+    /// Its rate.
+    pub q_dot: &'static str,
+    /// The fast coordinate.
+    pub fast: &'static str,
+    /// One event of the slow coordinate.
+    pub event: &'static str,
+    /// Events.
+    pub events: &'static str,
+    /// The second kind of event the explorer counts (the pendulum's falls), if any.
+    pub second_events: Option<&'static str>,
+    /// What the status bar's energy monitor shows (`ΔE/E` of a conserved energy, or `ΔE_eff`
+    /// of the limit's energy for a forced model).
+    pub monitor: &'static str,
+}
+
+/// The small parameter a model's limit is about, and how the sweep steps it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SmallParameter {
+    /// Its key among the model's parameters ([`Scene::params`]).
+    pub key: &'static str,
+    /// Its symbol for people (`k`, `ε`).
+    pub symbol: &'static str,
+    /// The sweep's CSV and JSON column (a contract: `stiffness`, `epsilon`).
+    pub column: &'static str,
+    /// Its tag in the sweep's curve columns (`alpha_k1e4`, `theta_eps1e-3`).
+    pub tag: &'static str,
+    /// What the sweep measures, in ASCII words.
+    pub sup: &'static str,
+    /// The same, short, for tables.
+    pub sup_short: &'static str,
+    /// The default ladder, one value per decade.
+    pub ladder: &'static [f64],
+}
+
+/// The studies a model offers (what the panes and `study` commands may ask of it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[allow(clippy::struct_excessive_bools)]
+pub struct Studies {
+    /// The weak-* convergence of the fast coordinate's square.
+    pub weak: bool,
+    /// The regime map over the start's ratio and the inertia ratio.
+    pub map: bool,
+    /// The body seen from above.
+    pub body: bool,
+    /// The limit drawn beside the full motion (overlay, series, sweep).
+    pub limit: bool,
+}
+
+/// One read-only line the panel shows under a model's parameters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SummaryLine {
+    /// The label.
+    pub label: &'static str,
+    /// The value.
+    pub value: Shown,
+}
+
+/// A derived value, as the panel shows it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shown {
+    /// A number (`-` when there is none).
+    Number(Option<f64>),
+    /// A signed fraction, shown as a percentage (`-` when there is none).
+    Percent(Option<f64>),
+    /// A verdict in words, shown in bold.
+    Verdict(&'static str),
+}
+
+/// A model's fixed facts.
+pub trait Scene: Sync {
+    /// The name used in presets and JSON.
+    fn name(&self) -> &'static str;
+    /// The name for people.
+    fn title(&self) -> &'static str;
+    /// Labels of its variables and events.
+    fn words(&self) -> Words;
+    /// Its parameters, in the panel's order (the physical ones, then the start).
+    fn params(&self) -> &'static [ParamSpec];
+    /// Whether presets must name the model (`[preset] model`); the first model is the default.
+    fn model_required(&self) -> bool;
+    /// The methods it offers, `auto` first.
+    fn methods(&self) -> &'static [Method];
+    /// The tolerance of the limit's own run, whatever the user's.
+    fn limit_tolerance(&self) -> f64;
+    /// Its small parameter, or `None` for a model without a limit.
+    fn small(&self) -> Option<SmallParameter>;
+    /// The studies it offers.
+    fn studies(&self) -> Studies;
+}
+
+/// The slow coordinate of one run, sampled on a grid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SlowCurve {
+    /// Sample times.
+    pub t: Vec<f64>,
+    /// The slow coordinate at those times.
+    pub q: Vec<f64>,
+    /// What ran.
+    pub method: Method,
+    /// `auto`'s error estimate (0 for a concrete method).
+    pub estimate: f64,
+}
+
+/// The facts of one validated problem of a model.
+pub trait Posed {
+    /// Its scene.
+    fn scene(&self) -> &'static dyn Scene;
+    /// Its parameter values, in the order of [`Scene::params`].
+    fn values(&self) -> Vec<f64>;
+    /// The panel's derived lines.
+    fn summary(&self) -> Vec<SummaryLine>;
+    /// The slow start `(q0, q̇0)`.
+    fn slow_start(&self) -> (f64, f64);
+    /// Default fixed step of `method` at `tolerance` over `[0, t_end]`.
+    fn default_step(&self, method: Method, tolerance: f64, t_end: f64) -> f64;
+    /// Builds a concrete method's integration at `t = 0`.
+    ///
+    /// # Errors
+    /// `auto`, or a problem the method cannot represent.
+    fn build(
+        &self,
+        method: Method,
+        settings: Settings,
+        t_end: f64,
+    ) -> Result<Box<dyn Flow>, StepError>;
+    /// Resolves `method` (the model's own `auto`).
+    ///
+    /// # Errors
+    /// A failed or refused probe.
+    fn resolve(
+        &self,
+        method: Method,
+        tolerance: f64,
+        t_end: f64,
+        policy: AutoPolicy,
+        budget: f64,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<Resolution, StepError>;
+    /// Predicted seconds of a run (the model's cost model).
+    fn predicted_seconds(
+        &self,
+        method: Method,
+        tolerance: f64,
+        step: Option<f64>,
+        t_end: f64,
+    ) -> f64;
+    /// The slow coordinate on `samples` points of `[0, t_end]`: `auto` as the model plans it,
+    /// `Method::Effective` the limit at [`Scene::limit_tolerance`].
+    ///
+    /// # Errors
+    /// A failed, refused or stopped integration.
+    fn slow_curve(
+        &self,
+        method: Method,
+        tolerance: f64,
+        t_end: f64,
+        samples: usize,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<SlowCurve, StepError>;
+}
