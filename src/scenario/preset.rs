@@ -1,9 +1,10 @@
 //! Preset files: a scenario in TOML. `[preset] model` names the model (`rattleback` when
-//! absent, so every older file keeps its meaning); the rattleback's sections are `[preset]`,
-//! `[body]`, `[spring]`, `[initial]`, `[run]`, `[view]`, Kapitza's pendulum's `[preset]`,
-//! `[pendulum]`, `[initial]`, `[run]`, `[view]` ([`schema`]).
+//! absent, so every older file keeps its meaning). The keys are `[preset]`, the model's own
+//! parameters from its scene's table (`physics::scene`: the rattleback's `[body]`, `[spring]`,
+//! `[initial]`; the pendulum's `[pendulum]`, `[initial]`), then `[run]` and `[view]`
+//! ([`schema`]); docs/reference/presets.md is generated from the same tables.
 //!
-//! Parse raw, then validate against one schema ([`SCHEMA`]): the text is parsed into a TOML
+//! Parse raw, then validate against the model's schema: the text is parsed into a TOML
 //! table (syntax errors stop there), command-line overrides (`--set section.key=value`) are
 //! applied to the table, then every section and key is checked: unknown names, wrong types,
 //! missing required values, non-finite or out-of-range numbers. All problems are collected
@@ -13,8 +14,8 @@ use serde::Serialize;
 use toml::{Table, Value};
 
 use super::error::{PresetError, SourceMap};
-use crate::physics::kapitza;
-use crate::physics::rattleback::{Params, Problem, Start};
+use crate::physics::params::Allowed;
+use crate::physics::rattleback::Problem;
 use crate::physics::{Method, Model, ModelKind};
 
 /// Smallest and largest tolerance accepted.
@@ -23,12 +24,12 @@ pub const TOLERANCE_RANGE: (f64, f64) = (1e-14, 1e-1);
 pub const MAX_CONTOURS: i64 = 40;
 
 /// What a key holds.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Kind {
     /// Free text.
     Text,
-    /// Any finite number.
-    Number,
+    /// A model parameter: a number its scene allows.
+    Param(Allowed),
     /// A finite number > 0.
     Positive,
     /// A method name.
@@ -43,17 +44,13 @@ pub enum Kind {
     Count,
     /// A model name.
     Model,
-    /// A finite number >= 0.
-    NonNegative,
-    /// `ε`, in `[kapitza::EPSILON_MIN, kapitza::EPSILON_MAX]`.
-    Epsilon,
 }
 
 impl Kind {
     fn allowed(self) -> String {
         match self {
             Self::Text => "text in quotes".to_owned(),
-            Self::Number => "any finite number".to_owned(),
+            Self::Param(allowed) => allowed.text().to_owned(),
             Self::Positive => "a finite number > 0".to_owned(),
             Self::Method => format!("one of {}", Method::names()),
             Self::Tolerance => format!(
@@ -64,12 +61,6 @@ impl Kind {
             Self::Range => "[low, high] with finite low < high".to_owned(),
             Self::Count => format!("a whole number from 0 to {MAX_CONTOURS}"),
             Self::Model => format!("one of {}", ModelKind::names()),
-            Self::NonNegative => "a finite number >= 0".to_owned(),
-            Self::Epsilon => format!(
-                "a number in [{:e}, {}]",
-                kapitza::EPSILON_MIN,
-                kapitza::EPSILON_MAX
-            ),
         }
     }
 }
@@ -96,71 +87,81 @@ const fn spec(section: &'static str, key: &'static str, kind: Kind, required: bo
     }
 }
 
-/// Every key a rattleback preset may hold. Names are a contract: add, never rename.
-pub const SCHEMA: &[KeySpec] = &[
-    spec("preset", "name", Kind::Text, false),
-    spec("preset", "description", Kind::Text, false),
-    spec("preset", "model", Kind::Model, false),
-    spec("body", "ix", Kind::Positive, true),
-    spec("body", "iy", Kind::Positive, true),
-    spec("body", "iz", Kind::Positive, true),
-    spec("spring", "k", Kind::Positive, true),
-    spec("initial", "gamma", Kind::Number, false),
-    spec("initial", "alpha", Kind::Number, false),
-    spec("initial", "gamma_dot", Kind::Number, true),
-    spec("initial", "alpha_dot", Kind::Number, true),
+/// The run's keys, shared by every model. Names are a contract: add, never rename.
+const RUN: [KeySpec; 4] = [
     spec("run", "t_end", Kind::Positive, true),
     spec("run", "method", Kind::Method, false),
     spec("run", "tolerance", Kind::Tolerance, false),
     spec("run", "step", Kind::Positive, false),
-    spec("view", "alpha_range", Kind::Range, false),
-    spec("view", "alpha_dot_range", Kind::Range, false),
+];
+
+/// The view's keys after the two ranges (named after the model's slow coordinate).
+const VIEW: [KeySpec; 4] = [
     spec("view", "contours", Kind::Count, false),
     spec("view", "effective_overlay", Kind::Bool, false),
     spec("view", "series", Kind::Bool, false),
     spec("view", "wrap", Kind::Bool, false),
 ];
 
-const SECTIONS: &[&str] = &["preset", "body", "spring", "initial", "run", "view"];
-
-/// Every key a Kapitza preset may hold. Names are a contract: add, never rename.
-pub const KAPITZA_SCHEMA: &[KeySpec] = &[
-    spec("preset", "name", Kind::Text, false),
-    spec("preset", "description", Kind::Text, false),
-    spec("preset", "model", Kind::Model, true),
-    spec("pendulum", "a", Kind::Number, true),
-    spec("pendulum", "b", Kind::NonNegative, true),
-    spec("pendulum", "epsilon", Kind::Epsilon, true),
-    spec("initial", "theta", Kind::Number, true),
-    spec("initial", "theta_dot", Kind::Number, false),
-    spec("run", "t_end", Kind::Positive, true),
-    spec("run", "method", Kind::Method, false),
-    spec("run", "tolerance", Kind::Tolerance, false),
-    spec("run", "step", Kind::Positive, false),
-    spec("view", "theta_range", Kind::Range, false),
-    spec("view", "theta_dot_range", Kind::Range, false),
-    spec("view", "contours", Kind::Count, false),
-    spec("view", "effective_overlay", Kind::Bool, false),
-    spec("view", "series", Kind::Bool, false),
-    spec("view", "wrap", Kind::Bool, false),
-];
-
-const KAPITZA_SECTIONS: &[&str] = &["preset", "pendulum", "initial", "run", "view"];
-
-/// The keys of `model`'s presets.
-#[must_use]
-pub fn schema(model: ModelKind) -> &'static [KeySpec] {
-    match model {
-        ModelKind::Rattleback => SCHEMA,
-        ModelKind::Kapitza => KAPITZA_SCHEMA,
-    }
+/// The names of the view's two ranges for `model`, after its slow coordinate
+/// (`alpha_range`, `alpha_dot_range`; `theta_range`, `theta_dot_range`): made once per model.
+fn range_keys(model: ModelKind) -> (&'static str, &'static str) {
+    type Keys = Vec<(ModelKind, &'static str, &'static str)>;
+    static KEYS: std::sync::OnceLock<Keys> = std::sync::OnceLock::new();
+    let leak = |s: String| -> &'static str { Box::leak(s.into_boxed_str()) };
+    KEYS.get_or_init(|| {
+        ModelKind::ALL
+            .iter()
+            .map(|m| {
+                let w = m.words();
+                let q = leak(format!("{}_range", w.q_name));
+                (*m, q, leak(format!("{}_range", w.q_dot_name)))
+            })
+            .collect()
+    })
+    .iter()
+    .find(|(m, _, _)| *m == model)
+    .map_or(("", ""), |(_, q, q_dot)| (*q, *q_dot))
 }
 
-fn sections(model: ModelKind) -> &'static [&'static str] {
-    match model {
-        ModelKind::Rattleback => SECTIONS,
-        ModelKind::Kapitza => KAPITZA_SECTIONS,
+/// Every key a preset of `model` may hold, in the order presets print them: `[preset]`, the
+/// model's parameters (its scene's table), `[run]`, `[view]`. Names are a contract: add, never
+/// rename.
+#[must_use]
+pub fn schema(model: ModelKind) -> Vec<KeySpec> {
+    let (q_range, q_dot_range) = range_keys(model);
+    let mut keys = vec![
+        spec("preset", "name", Kind::Text, false),
+        spec("preset", "description", Kind::Text, false),
+        spec(
+            "preset",
+            "model",
+            Kind::Model,
+            model.scene().model_required(),
+        ),
+    ];
+    keys.extend(
+        model
+            .params()
+            .iter()
+            .map(|p| spec(p.section, p.key, Kind::Param(p.allowed), p.required)),
+    );
+    keys.extend(RUN);
+    keys.push(spec("view", q_range, Kind::Range, false));
+    keys.push(spec("view", q_dot_range, Kind::Range, false));
+    keys.extend(VIEW);
+    keys
+}
+
+/// The sections of `model`'s presets, in order.
+fn sections(model: ModelKind) -> Vec<&'static str> {
+    let mut out: Vec<&'static str> = Vec::new();
+    for k in schema(model) {
+        if !out.contains(&k.section) {
+            out.push(k.section);
+        }
     }
+    out
 }
 
 /// How a preset asks to be run; absent values fall back to the command line or defaults.
@@ -360,7 +361,7 @@ fn check_value(model: ModelKind, kind: Kind, v: &Value) -> Result<(), String> {
                 Err(format!("not allowed; allowed: {}", kind.allowed()))
             }
         }
-        Kind::Number | Kind::Positive | Kind::Tolerance | Kind::NonNegative | Kind::Epsilon => {
+        Kind::Param(_) | Kind::Positive | Kind::Tolerance => {
             let x = number(v).ok_or_else(expected)?;
             if !x.is_finite() {
                 return Err(format!(
@@ -371,8 +372,7 @@ fn check_value(model: ModelKind, kind: Kind, v: &Value) -> Result<(), String> {
             let ok = match kind {
                 Kind::Positive => x > 0.0,
                 Kind::Tolerance => (TOLERANCE_RANGE.0..=TOLERANCE_RANGE.1).contains(&x),
-                Kind::NonNegative => x >= 0.0,
-                Kind::Epsilon => (kapitza::EPSILON_MIN..=kapitza::EPSILON_MAX).contains(&x),
+                Kind::Param(allowed) => allowed.contains(x),
                 _ => true,
             };
             if ok {
@@ -591,7 +591,7 @@ fn check_sections(table: &Table, model: ModelKind, problems: &mut Problems<'_>) 
                     format!(
                         "unknown key `{key}` for the {} model, expected one of {}{}{}",
                         model.name(),
-                        allowed_keys(schema, name),
+                        allowed_keys(&schema, name),
                         crate::scenario::text::did_you_mean(
                             key,
                             schema.iter().filter(|s| s.section == name).map(|s| s.key)
@@ -666,10 +666,10 @@ impl Preset {
         let map = SourceMap::new(src);
         let invalid = |e: crate::physics::ParamError| {
             let field = e.field();
-            let section = SCHEMA
+            let section = kind
+                .params()
                 .iter()
-                .chain(KAPITZA_SCHEMA)
-                .find(|k| k.key == field && !matches!(k.section, "preset" | "run" | "view"))
+                .find(|k| k.key == field)
                 .map_or("", |k| k.section);
             PresetError::Invalid {
                 path: label.to_owned(),
@@ -682,39 +682,9 @@ impl Preset {
                 message: e.to_string(),
             }
         };
-        let model = match kind {
-            ModelKind::Rattleback => {
-                let params = Params {
-                    ix: n("body", "ix"),
-                    iy: n("body", "iy"),
-                    iz: n("body", "iz"),
-                    k: n("spring", "k"),
-                };
-                let start = Start {
-                    gamma: n("initial", "gamma"),
-                    alpha: n("initial", "alpha"),
-                    gamma_dot: n("initial", "gamma_dot"),
-                    alpha_dot: n("initial", "alpha_dot"),
-                };
-                Model::Rattleback(Problem::new(params, start).map_err(invalid)?)
-            }
-            ModelKind::Kapitza => {
-                let params = kapitza::Params {
-                    a: n("pendulum", "a"),
-                    b: n("pendulum", "b"),
-                    epsilon: n("pendulum", "epsilon"),
-                };
-                let start = kapitza::Start {
-                    theta: n("initial", "theta"),
-                    theta_dot: n("initial", "theta_dot"),
-                };
-                Model::Kapitza(kapitza::Problem::new(params, start).map_err(invalid)?)
-            }
-        };
-        let (x_range, y_range) = match kind {
-            ModelKind::Rattleback => ("alpha_range", "alpha_dot_range"),
-            ModelKind::Kapitza => ("theta_range", "theta_dot_range"),
-        };
+        let values: Vec<f64> = kind.params().iter().map(|p| n(p.section, p.key)).collect();
+        let model = kind.problem(&values).map_err(invalid)?;
+        let (x_range, y_range) = range_keys(kind);
         let (t_end, step) = (n("run", "t_end"), r.num("run", "step"));
         if let Some(h) = step {
             crate::physics::rattleback::run::check_step(h, t_end).map_err(|message| {
@@ -770,36 +740,19 @@ impl Preset {
             q(&self.name),
             q(&self.description)
         );
-        match &self.model {
-            Model::Rattleback(problem) => {
-                let (p, s) = (problem.params(), problem.start());
-                let _ = writeln!(
-                    o,
-                    "\n[body]\nix = {:?}\niy = {:?}\niz = {:?}\n",
-                    p.ix, p.iy, p.iz
-                );
-                let _ = writeln!(o, "[spring]\nk = {:?}\n", p.k);
-                let _ = writeln!(
-                    o,
-                    "[initial]\ngamma = {:?}\nalpha = {:?}\ngamma_dot = {:?}\nalpha_dot = {:?}\n",
-                    s.gamma, s.alpha, s.gamma_dot, s.alpha_dot
-                );
-            }
-            Model::Kapitza(problem) => {
-                let (p, s) = (problem.params(), problem.start());
-                let _ = writeln!(o, "model = \"kapitza\"\n");
-                let _ = writeln!(
-                    o,
-                    "[pendulum]\na = {:?}\nb = {:?}\nepsilon = {:?}\n",
-                    p.a, p.b, p.epsilon
-                );
-                let _ = writeln!(
-                    o,
-                    "[initial]\ntheta = {:?}\ntheta_dot = {:?}\n",
-                    s.theta, s.theta_dot
-                );
-            }
+        let kind = self.model.kind();
+        if kind.scene().model_required() {
+            let _ = writeln!(o, "model = {}", q(kind.name()));
         }
+        let mut section = "";
+        for (spec, value) in kind.params().iter().zip(self.model.values()) {
+            if spec.section != section {
+                section = spec.section;
+                let _ = write!(o, "\n[{section}]\n");
+            }
+            let _ = writeln!(o, "{} = {value:?}", spec.key);
+        }
+        o.push('\n');
         let _ = writeln!(o, "[run]\nt_end = {:?}", self.run.t_end);
         if let Some(m) = self.run.method {
             let _ = writeln!(o, "method = {}", q(m.name()));
@@ -812,10 +765,7 @@ impl Preset {
         }
         let v = &self.view;
         let mut view = String::new();
-        let (x_range, y_range) = match self.model.kind() {
-            ModelKind::Rattleback => ("alpha_range", "alpha_dot_range"),
-            ModelKind::Kapitza => ("theta_range", "theta_dot_range"),
-        };
+        let (x_range, y_range) = range_keys(kind);
         if let Some([a, b]) = v.alpha_range {
             let _ = writeln!(view, "{x_range} = [{a:?}, {b:?}]");
         }
@@ -838,5 +788,76 @@ impl Preset {
             let _ = write!(o, "\n[view]\n{view}");
         }
         o
+    }
+}
+
+/// docs/reference/presets.md: every key of every model's presets, generated from the same
+/// tables the parser reads (a test pins the file to this text).
+#[must_use]
+pub fn reference() -> String {
+    use std::fmt::Write as _;
+    let mut o = String::from(
+        "# Preset keys\n\nGenerated from the parameter tables the parser reads \
+         (`src/physics/*/scene.rs`, `src/scenario/preset.rs`); \
+         `tests/it/schemas.rs` fails when this file and the code disagree. Regenerate with \
+         `UPDATE_GOLDEN=1 cargo test --test it schemas::the_preset_reference_is_generated_from_the_tables`.\n\n\
+         Names are a contract: keys are added, never renamed. An optional model parameter \
+         left out is 0; an optional `[run]` or `[view]` key left out keeps the default.\n",
+    );
+    for model in ModelKind::ALL {
+        let required = if model.scene().model_required() {
+            format!("`model = \"{}\"` in `[preset]` is required", model.name())
+        } else {
+            "`[preset] model` may be left out: this is the default model".to_owned()
+        };
+        let _ = write!(
+            o,
+            "\n## {} (`{}`)\n\n{required}.\n\n| key | required | allowed | what |\n|---|---|---|---|\n",
+            model.title(),
+            model.name()
+        );
+        let docs: std::collections::HashMap<&str, &str> =
+            model.params().iter().map(|p| (p.key, p.doc)).collect();
+        for k in schema(model) {
+            let what = docs
+                .get(k.key)
+                .copied()
+                .unwrap_or_else(|| common_doc(k.key));
+            let allowed = if k.kind == Kind::Method {
+                format!("one of {}", model.method_names())
+            } else {
+                k.kind.allowed()
+            };
+            let _ = writeln!(
+                o,
+                "| `{}.{}` | {} | {allowed} | {what} |",
+                k.section,
+                k.key,
+                if k.required { "yes" } else { "no" },
+            );
+        }
+    }
+    o
+}
+
+/// What a key shared by every model holds, for [`reference`].
+fn common_doc(key: &str) -> &'static str {
+    match key {
+        "name" => "display name (default: the file's stem)",
+        "description" => "what to look for, shown in the explorer",
+        "model" => "the scene",
+        "t_end" => "end of the run",
+        "method" => "integrator (default auto)",
+        "tolerance" => "tolerance (default 1e-9)",
+        "step" => "fixed step, for fixed-step methods only",
+        "contours" => "background energy levels",
+        "effective_overlay" => "the limit drawn over the full motion",
+        "series" => "the time-series pane",
+        "wrap" => "the slow coordinate wrapped to one period",
+        k if k.ends_with("_dot_range") => "fixed axis of the rate instead of the automatic range",
+        k if k.ends_with("_range") => {
+            "fixed axis of the slow coordinate instead of the automatic range"
+        }
+        _ => "",
     }
 }

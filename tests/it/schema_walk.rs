@@ -7,7 +7,8 @@
 use crate::common;
 
 use common::Headless;
-use rattleback::scenario::preset::{KAPITZA_SCHEMA, SCHEMA};
+use rattleback::physics::ModelKind;
+use rattleback::scenario::preset::schema;
 
 /// `(base preset, section.key = value, more settings it needs)` for every computing key.
 const RATTLEBACK: &[(&str, &[&str])] = &[
@@ -129,10 +130,10 @@ fn walk(base: &str, table: &[(&str, &[&str])], schema: &[rattleback::scenario::p
 
 #[test]
 fn every_rattleback_key_ends_where_simulate_ends() {
-    walk("subcritical", RATTLEBACK, SCHEMA);
+    walk("subcritical", RATTLEBACK, &schema(ModelKind::Rattleback));
 }
 
 #[test]
 fn every_pendulum_key_ends_where_simulate_ends() {
-    walk("kapitza-upright", KAPITZA, KAPITZA_SCHEMA);
+    walk("kapitza-upright", KAPITZA, &schema(ModelKind::Kapitza));
 }

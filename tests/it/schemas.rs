@@ -142,3 +142,50 @@ fn every_shipped_preset_reports_the_pinned_bytes() {
         );
     }
 }
+
+/// Issue 25: presets are read and written from each model's parameter table; every shipped
+/// preset, parsed and written again, gives the pinned bytes (`tests/fixtures/golden/NAME.toml`)
+/// and parses back to the same preset. Regenerate only for a deliberate change of the format:
+/// `UPDATE_GOLDEN=1 cargo test --test it schemas::every_shipped_preset_writes_the_pinned_toml`.
+#[test]
+fn every_shipped_preset_writes_the_pinned_toml() {
+    use rattleback::scenario::Preset;
+    for (name, text) in rattleback::scenario::shipped::SHIPPED {
+        let preset = Preset::parse(text, name, name, &[]).unwrap();
+        let toml = preset.to_toml();
+        let path = format!(
+            "{}/tests/fixtures/golden/{name}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        if std::env::var_os("UPDATE_GOLDEN").is_some() {
+            std::fs::write(&path, &toml).unwrap();
+        }
+        let want = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(toml, want, "{name}: differs from {path}");
+        let again = Preset::parse(&toml, name, name, &[]).unwrap();
+        assert_eq!(again, preset, "{name}: does not read back");
+    }
+}
+
+/// Issue 25: docs/reference/presets.md is generated from the parameter tables and kept true.
+#[test]
+fn the_preset_reference_is_generated_from_the_tables() {
+    let text = rattleback::scenario::preset::reference();
+    let path = format!("{}/docs/reference/presets.md", env!("CARGO_MANIFEST_DIR"));
+    if std::env::var_os("UPDATE_GOLDEN").is_some() {
+        std::fs::write(&path, &text).unwrap();
+    }
+    let want = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(
+        text, want,
+        "{path} is stale: regenerate it (see the file's first lines)"
+    );
+    for key in [
+        "body.ix",
+        "spring.k",
+        "pendulum.epsilon",
+        "view.theta_range",
+    ] {
+        assert!(want.contains(&format!("`{key}`")), "{key}");
+    }
+}
