@@ -491,18 +491,28 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
+    let kind = model.kind();
+    let Some(small) = kind.small() else {
+        say_err!(
+            "rattleback: error: the {} has no small parameter to sweep",
+            kind.title()
+        );
+        return ExitCode::from(2);
+    };
     let ladder = if args.ladder.is_empty() {
-        ladder(model.kind()).to_vec()
+        ladder(kind).to_vec()
     } else {
         args.ladder.clone()
     };
-    if let Some(bad) = ladder.iter().find(|&&x| {
-        model.kind() == crate::physics::ModelKind::Kapitza
-            && !(crate::physics::kapitza::EPSILON_MIN..=crate::physics::kapitza::EPSILON_MAX)
-                .contains(&x)
-    }) {
+    // Every rung is the model's own parameter: its range is the preset's.
+    if let Some(spec) = kind.params().iter().find(|p| p.key == small.key)
+        && let Some(bad) = ladder.iter().find(|x| !spec.allowed.contains(**x))
+    {
         say_err!(
-            "rattleback: error: --ladder: epsilon = {bad} is out of range for the kapitza model; allowed: numbers in [1e-9, 1]"
+            "rattleback: error: --ladder: {} = {bad} is out of range for the {} model; allowed: {}",
+            small.key,
+            kind.name(),
+            spec.allowed.text()
         );
         return ExitCode::from(2);
     }
@@ -517,10 +527,7 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
         }
     };
     // The rattleback's column and field are `stiffness` (a contract); the pendulum's `epsilon`.
-    let column = match model.kind() {
-        crate::physics::ModelKind::Rattleback => "stiffness",
-        crate::physics::ModelKind::Kapitza => "epsilon",
-    };
+    let column = small.column;
     let mut csv = format!("{column},sup_error,method,estimate\n");
     for r in &s.rungs {
         let _ = writeln!(
@@ -584,10 +591,8 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
 
 fn sweep_table(name: &str, t_end: f64, tolerance: f64, s: &crate::study::sweep::Sweep) -> String {
     let mut o = format!("preset        {name} (T = {t_end}, tolerance {tolerance:e})\n");
-    let (parameter, sup) = match s.model {
-        crate::physics::ModelKind::Rattleback => ("k", "sup|α_k−α_eff|"),
-        crate::physics::ModelKind::Kapitza => ("epsilon", "sup|θ_ε−θ|"),
-    };
+    let small = s.small();
+    let (parameter, sup) = (small.key, small.sup_short);
     let _ = writeln!(
         o,
         "{:>10}  {:>14}  {:<19} {:>9}",
@@ -615,12 +620,9 @@ fn sweep_table(name: &str, t_end: f64, tolerance: f64, s: &crate::study::sweep::
 /// `sweep_curves.csv`: `t, limit, alpha_k<k>…`, one row per sample.
 fn sweep_curves(s: &crate::study::sweep::Sweep) -> String {
     let mut curves = String::from("t,limit");
+    let (q, tag) = (s.model.words().q_name, s.small().tag);
     for r in &s.rungs {
-        let (q, p) = match s.model {
-            crate::physics::ModelKind::Rattleback => ("alpha", "k"),
-            crate::physics::ModelKind::Kapitza => ("theta", "eps"),
-        };
-        let _ = write!(curves, ",{q}_{p}{:e}", r.parameter);
+        let _ = write!(curves, ",{q}_{tag}{:e}", r.parameter);
     }
     curves.push('\n');
     for (i, t) in s.t.iter().enumerate() {

@@ -34,30 +34,21 @@ fn separatrix(app: &App, x0: f64, x1: f64) -> Vec<Vec<(f64, f64)>> {
     out
 }
 
-/// The model's parameters for a caption, and how its limit is named.
-fn describe(model: &crate::physics::Model) -> (String, &'static str) {
-    match model {
-        crate::physics::Model::Rattleback(problem) => {
-            let p = problem.params();
-            (
-                format!(
-                    "ix {} iy {} iz {} k {}",
-                    tick(p.ix),
-                    tick(p.iy),
-                    tick(p.iz),
-                    tick(p.k)
-                ),
-                "k",
-            )
-        }
-        crate::physics::Model::Kapitza(problem) => {
-            let p = problem.params();
-            (
-                format!("a {} b {} ε {}", tick(p.a), tick(p.b), tick(p.epsilon)),
-                "ε",
-            )
-        }
-    }
+/// The model's physical parameters for a caption (the start left out; the small parameter by
+/// its symbol).
+fn describe(model: &crate::physics::Model) -> String {
+    let kind = model.kind();
+    let small = kind.small();
+    kind.params()
+        .iter()
+        .zip(model.values())
+        .filter(|(p, _)| p.section != "initial")
+        .map(|(p, v)| {
+            let name = small.filter(|s| s.key == p.key).map_or(p.key, |s| s.symbol);
+            format!("{name} {}", tick(v))
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// The portrait as an SVG: the full trajectory shown so far, the limit's (when shown), the
@@ -83,7 +74,8 @@ pub fn portrait_svg(app: &App) -> Result<String, Box<dyn std::error::Error>> {
     let s = &app.scenario.settings;
     let start = s.model.slow_start();
     let words = s.model.kind().words();
-    let (params, small) = describe(&s.model);
+    let params = describe(&s.model);
+    let small = s.model.kind().small();
     let (mut x0, mut x1, mut y0, mut y1) = (start.0, start.0, start.1, start.1);
     for &(x, y) in trail.iter().chain(&limit) {
         (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
@@ -137,11 +129,7 @@ pub fn portrait_svg(app: &App) -> Result<String, Box<dyn std::error::Error>> {
                     limit.iter().copied(),
                     magenta.stroke_width(2),
                 ))?
-                .label(if small == "k" {
-                    "limit k → ∞"
-                } else {
-                    "limit ε → 0"
-                })
+                .label(small.map_or_else(|| "limit".to_owned(), |s| format!("limit {}", s.limit)))
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], magenta));
         }
         chart
@@ -182,14 +170,13 @@ pub fn trajectory_csv(app: &App) -> String {
         s.tolerance,
         s.t_end,
     );
-    out.push_str(match s.model.kind() {
-        crate::physics::ModelKind::Rattleback => {
-            "t,alpha,alpha_dot,energy_error,limit_alpha,limit_alpha_dot\n"
-        }
-        crate::physics::ModelKind::Kapitza => {
-            "t,theta,theta_dot,energy_drift,limit_theta,limit_theta_dot\n"
-        }
-    });
+    let w = s.model.kind().words();
+    let (q, q_dot) = (w.q_name, w.q_dot_name);
+    let _ = writeln!(
+        out,
+        "t,{q},{q_dot},{},limit_{q},limit_{q_dot}",
+        w.monitor_column
+    );
     let limit = if app.view.overlay {
         crate::app::run::upto(&app.run.effective_trail, app.run.shown)
     } else {

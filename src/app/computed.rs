@@ -101,19 +101,47 @@ impl App {
         }
     }
 
-    /// Whether the scene has `pane` (the sweep over k, weak-*, regime map and body panes are
-    /// of the rattleback); says so in the status line when not.
+    /// Whether the scene offers `pane` (its scene's studies); says so in the status line when
+    /// not.
     pub(super) fn scene_has(&mut self, pane: Pane) -> bool {
         let kind = self.scenario.settings.model.kind();
-        if pane.rattleback_only() && kind != crate::physics::ModelKind::Rattleback {
+        if !pane.offered_by(kind) {
+            let owners: Vec<&str> = crate::physics::ModelKind::ALL
+                .into_iter()
+                .filter(|m| pane.offered_by(*m))
+                .map(crate::physics::ModelKind::name)
+                .collect();
             self.status = Message::error(format!(
-                "the {} pane is of the rattleback; this scene is {}",
+                "the {} pane is of the {}; this scene is {}",
                 pane.name(),
+                owners.join(" and the "),
                 kind.title()
             ));
             return false;
         }
         true
+    }
+
+    /// Closes the panes a newly loaded scene does not offer (their computations stop).
+    pub(super) fn close_foreign_panes(&mut self) -> Vec<Effect> {
+        let kind = self.scenario.settings.model.kind();
+        let mut effects = Vec::new();
+        for pane in Pane::ALL {
+            if self.view.panes.shows(pane) && !pane.offered_by(kind) {
+                match pane {
+                    Pane::Sweep | Pane::Weak | Pane::Map => {
+                        effects.extend(self.toggle_computed(pane));
+                    }
+                    Pane::Params | Pane::Portrait | Pane::Series | Pane::Lesson | Pane::Body => {
+                        self.view.panes.set(pane, false);
+                    }
+                }
+            }
+        }
+        if self.mode == Mode::Map && !Pane::Map.offered_by(kind) {
+            self.mode = Mode::Normal;
+        }
+        effects
     }
 
     /// Asks the worker for the weak-* view of the current settings.

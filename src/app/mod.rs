@@ -175,16 +175,8 @@ impl App {
         self.status = Message::info(format!("loaded {}", self.scenario.name));
         let overlay = self.run.set_overlay(self.view.overlay);
         let mut effects = vec![Effect::Sim(overlay)];
-        if self.scenario.settings.model.kind() != crate::physics::ModelKind::Rattleback {
-            // The rattleback's own panes close with it (the map's computation stops).
-            if self.view.panes.shows(Pane::Map) {
-                effects.extend(self.toggle_computed(Pane::Map));
-            }
-            self.view.panes.set(Pane::Body, false);
-            if self.mode == Mode::Map {
-                self.mode = Mode::Normal;
-            }
-        }
+        // The panes the new scene does not offer close (their computations stop).
+        effects.extend(self.close_foreign_panes());
         effects.extend(self.restart());
         effects
     }

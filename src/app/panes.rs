@@ -48,8 +48,6 @@ impl Pane {
         }
     }
 
-    /// Whether only the rattleback has it (the regime map and the body; the sweep and weak-*
-    /// cover every model).
     /// The pane a lesson step names (`series`, `sweep`, `weak`, `map`, `body`).
     #[must_use]
     pub fn named(name: &str) -> Option<Self> {
@@ -77,9 +75,18 @@ impl Pane {
         }
     }
 
+    /// Whether `model`'s scene offers what the pane shows (its studies; the sweep needs a
+    /// small parameter).
     #[must_use]
-    pub fn rattleback_only(self) -> bool {
-        matches!(self, Self::Map | Self::Body)
+    pub fn offered_by(self, model: crate::physics::ModelKind) -> bool {
+        let studies = model.studies();
+        match self {
+            Self::Params | Self::Portrait | Self::Series | Self::Lesson => true,
+            Self::Sweep => model.small().is_some(),
+            Self::Weak => studies.weak,
+            Self::Map => studies.map,
+            Self::Body => studies.body,
+        }
     }
 
     /// The pane's name in messages.

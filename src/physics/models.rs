@@ -16,7 +16,9 @@ use super::params::{ParamError, ParamSpec};
 use super::plan::{AutoPolicy, Resolution};
 use super::rattleback::Problem;
 use super::rattleback::effective::Effective;
-use super::scene::{Posed, Scene, SlowCurve, SmallParameter, Studies, SummaryLine, Words};
+use super::scene::{
+    Posed, Scene, SlowCurve, SmallParameter, Studies, SummaryLine, WeakView, Words,
+};
 
 /// Which model: names as in presets (`[preset] model = "kapitza"`; absent means the rattleback).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, schemars::JsonSchema)]
@@ -309,6 +311,18 @@ impl Model {
     ) -> Result<SlowCurve, StepError> {
         self.posed()
             .slow_curve(method, tolerance, t_end, samples, go_on)
+    }
+
+    /// The weak-* view (see [`Posed::weak_view`]).
+    ///
+    /// # Errors
+    /// A failed or stopped integration.
+    pub fn weak_view(
+        &self,
+        t_end: f64,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Option<Result<WeakView, StepError>> {
+        self.posed().weak_view(t_end, go_on)
     }
 
     /// What the portrait draws of the limit.

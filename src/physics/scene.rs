@@ -33,6 +33,8 @@ pub struct Words {
     pub events: &'static str,
     /// The second kind of event the explorer counts (the pendulum's falls), if any.
     pub second_events: Option<&'static str>,
+    /// The energy monitor's CSV column (`energy_error`, `energy_drift`).
+    pub monitor_column: &'static str,
     /// What the status bar's energy monitor shows (`ΔE/E` of a conserved energy, or `ΔE_eff`
     /// of the limit's energy for a forced model).
     pub monitor: &'static str,
@@ -45,6 +47,8 @@ pub struct SmallParameter {
     pub key: &'static str,
     /// Its symbol for people (`k`, `ε`).
     pub symbol: &'static str,
+    /// The limit, for people (`k → ∞`, `ε → 0`).
+    pub limit: &'static str,
     /// The sweep's CSV and JSON column (a contract: `stiffness`, `epsilon`).
     pub column: &'static str,
     /// Its tag in the sweep's curve columns (`alpha_k1e4`, `theta_eps1e-3`).
@@ -126,6 +130,21 @@ pub struct SlowCurve {
     pub estimate: f64,
 }
 
+/// The weak-* view of one run: an observable that converges only weakly-* as the small
+/// parameter goes to its limit, pointwise at evenly spaced times (the explorer averages it over
+/// the window the user picks).
+#[derive(Clone, Debug, PartialEq)]
+pub struct WeakView {
+    /// Sample times (evenly spaced).
+    pub t: Vec<f64>,
+    /// The observable at those times.
+    pub pointwise: Vec<f64>,
+    /// A constant its averages approach (the rattleback's `θ`), or 0 when `reference` is given.
+    pub level: f64,
+    /// The limit's own curve, averaged the same way (the pendulum's `θ̇`), or empty.
+    pub reference: Vec<f64>,
+}
+
 /// The facts of one validated problem of a model.
 pub trait Posed {
     /// Its scene.
@@ -169,6 +188,17 @@ pub trait Posed {
         step: Option<f64>,
         t_end: f64,
     ) -> f64;
+    /// The weak-* view over a bounded horizon within `[0, t_end]` (at most a few thousand fast
+    /// periods, whatever the small parameter), or `None` for a model without one
+    /// ([`Studies::weak`] false).
+    ///
+    /// # Errors
+    /// A failed or stopped integration.
+    fn weak_view(
+        &self,
+        t_end: f64,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Option<Result<WeakView, StepError>>;
     /// The slow coordinate on `samples` points of `[0, t_end]`: `auto` as the model plans it,
     /// `Method::Effective` the limit at [`Scene::limit_tolerance`].
     ///

@@ -664,19 +664,14 @@ fn impossible(until: &Until, preset: &Preset, path: &str, at: &mut dyn FnMut(&st
         );
     }
     if let Some(p) = &until.parameter {
-        let section = p.key.split('.').next().unwrap_or_default();
         let kind = preset.model.kind();
-        let theirs = match kind {
-            crate::physics::ModelKind::Rattleback => {
-                ["pendulum"].contains(&section)
-                    || ["initial.theta", "initial.theta_dot"].contains(&p.key.as_str())
-            }
-            crate::physics::ModelKind::Kapitza => {
-                ["body", "spring"].contains(&section)
-                    || p.key.starts_with("initial.gamma")
-                    || p.key.starts_with("initial.alpha")
-            }
+        let has = |m: crate::physics::ModelKind| {
+            m.params()
+                .iter()
+                .any(|s| format!("{}.{}", s.section, s.key) == p.key)
         };
+        // Another scene's parameter: this step's scene never has it.
+        let theirs = !has(kind) && crate::physics::ModelKind::ALL.into_iter().any(has);
         if theirs {
             at(
                 &format!("{path}.parameter"),

@@ -66,14 +66,17 @@ pub const SHIPPED: &[(&str, &str)] = &[
 /// The preset `cargo run --release` opens.
 pub const DEFAULT_PRESET: &str = "subcritical";
 
-/// The shipped preset a command line of `kind` starts from (every value is then set explicitly,
-/// so the command runs the same on any machine).
+/// The shipped preset a command line of `kind` starts from: the first of its scene in
+/// [`SHIPPED`] (every value is then set explicitly, so the command runs the same on any
+/// machine).
 #[must_use]
 pub fn base_preset(kind: crate::physics::ModelKind) -> &'static str {
-    match kind {
-        crate::physics::ModelKind::Rattleback => DEFAULT_PRESET,
-        crate::physics::ModelKind::Kapitza => "kapitza-upright",
-    }
+    SHIPPED
+        .iter()
+        .find(|(name, text)| {
+            Preset::parse(text, name, name, &[]).is_ok_and(|p| p.model.kind() == kind)
+        })
+        .map_or(DEFAULT_PRESET, |(name, _)| name)
 }
 
 /// The environment variable that replaces the config folder.

@@ -424,26 +424,16 @@ impl Engine {
         go_on: &mut dyn FnMut(f64) -> bool,
         sink: &mut dyn FnMut(SimEvent) -> bool,
     ) -> bool {
-        use crate::study::weak::{
-            pendulum_pointwise, pendulum_view_horizon, pointwise, view_horizon,
-        };
         let Some((generation, spec)) = self.weak else {
             return true;
         };
-        let data = match &spec.model {
-            Model::Rattleback(problem) => {
-                let horizon = view_horizon(problem, spec.t_end);
-                pointwise(problem, horizon, go_on).map(|(t, q)| {
-                    let theta =
-                        crate::physics::rattleback::effective::Effective::new(problem).theta();
-                    (t, q, theta, Vec::new())
-                })
-            }
-            Model::Kapitza(problem) => {
-                let horizon = pendulum_view_horizon(problem, spec.t_end);
-                pendulum_pointwise(problem, horizon, go_on).map(|(t, q, r)| (t, q, 0.0, r))
-            }
-        };
+        let data = spec
+            .model
+            .weak_view(spec.t_end, go_on)
+            .unwrap_or(Err(StepError::NoStudy {
+                what: "weak-* view",
+                model: spec.model.kind().name(),
+            }));
         let event = match data {
             Err(StepError::Cancelled { .. }) => return true,
             Err(e) => SimEvent::Weak {
@@ -454,12 +444,12 @@ impl Engine {
                 reference: Vec::new(),
                 failed: Some(e.to_string()),
             },
-            Ok((t, pointwise, theta, reference)) => SimEvent::Weak {
+            Ok(v) => SimEvent::Weak {
                 generation,
-                t,
-                pointwise,
-                theta,
-                reference,
+                t: v.t,
+                pointwise: v.pointwise,
+                theta: v.level,
+                reference: v.reference,
                 failed: None,
             },
         };

@@ -94,7 +94,7 @@ pub struct MapSpec {
 pub struct WeakSpec {
     /// The start (the rattleback's `γ̇² g^{3/2}`, or the pendulum's `θ̇`).
     pub model: crate::physics::Model,
-    /// The run's horizon (the view covers at most `study::weak::VIEW_PERIODS` fast periods).
+    /// The run's horizon (the view covers a bounded number of fast periods: `Posed::weak_view`).
     pub t_end: f64,
 }
 

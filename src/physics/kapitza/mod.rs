@@ -21,6 +21,7 @@ pub mod limit;
 pub mod plan;
 pub mod run;
 pub mod scene;
+pub mod weak;
 
 use serde::Serialize;
 

@@ -10,7 +10,7 @@ use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, Resolution, Resolved};
 use crate::physics::scene::{
-    Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine, Words,
+    Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine, WeakView, Words,
 };
 
 const STRENGTH: Scale = Scale::Linear {
@@ -96,6 +96,7 @@ impl Scene for KapitzaScene {
             events: "swings",
             second_events: Some("falls"),
             monitor: "ΔE_eff",
+            monitor_column: "energy_drift",
         }
     }
     fn params(&self) -> &'static [ParamSpec] {
@@ -114,6 +115,7 @@ impl Scene for KapitzaScene {
         Some(SmallParameter {
             key: "epsilon",
             symbol: "ε",
+            limit: "ε → 0",
             column: "epsilon",
             tag: "eps",
             sup: "sup|theta_eps − theta_lim|",
@@ -236,6 +238,21 @@ impl Posed for Problem {
         t_end: f64,
     ) -> f64 {
         super::budget::cost_seconds(self, method, tolerance, step, t_end)
+    }
+    fn weak_view(
+        &self,
+        t_end: f64,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Option<Result<WeakView, StepError>> {
+        let horizon = super::weak::pendulum_view_horizon(self, t_end);
+        Some(super::weak::pendulum_pointwise(self, horizon, go_on).map(
+            |(t, pointwise, reference)| WeakView {
+                t,
+                pointwise,
+                level: 0.0,
+                reference,
+            },
+        ))
     }
     fn slow_curve(
         &self,

@@ -14,6 +14,7 @@ pub mod params;
 pub mod plan;
 pub mod run;
 pub mod scene;
+pub mod weak;
 
 pub use model::State;
 pub use params::{Params, Problem, Start};

@@ -13,7 +13,7 @@ use crate::physics::numerics::dop853::Stats;
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, Resolution};
 use crate::physics::scene::{
-    Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine, Words,
+    Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine, WeakView, Words,
 };
 
 const INERTIA: Scale = Scale::Linear {
@@ -123,6 +123,7 @@ impl Scene for RattlebackScene {
             events: "reversals",
             second_events: None,
             monitor: "ΔE/E",
+            monitor_column: "energy_error",
         }
     }
     fn params(&self) -> &'static [ParamSpec] {
@@ -143,6 +144,7 @@ impl Scene for RattlebackScene {
         Some(SmallParameter {
             key: "k",
             symbol: "k",
+            limit: "k → ∞",
             column: "stiffness",
             tag: "k",
             sup: "sup|alpha_k − alpha_eff|",
@@ -252,6 +254,21 @@ impl Posed for Problem {
         t_end: f64,
     ) -> f64 {
         super::plan::predicted_seconds(self, method, tolerance, step, t_end)
+    }
+    fn weak_view(
+        &self,
+        t_end: f64,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Option<Result<WeakView, StepError>> {
+        let horizon = super::weak::view_horizon(self, t_end);
+        Some(
+            super::weak::pointwise(self, horizon, go_on).map(|(t, pointwise)| WeakView {
+                t,
+                pointwise,
+                level: Effective::new(self).theta(),
+                reference: Vec::new(),
+            }),
+        )
     }
     fn slow_curve(
         &self,
