@@ -8,12 +8,13 @@ use std::time::Instant;
 
 use serde::Serialize;
 
+use super::render::StatsOut;
 use super::{Failure, Format, Missed, Resolved, compact, times};
+use crate::physics::Method;
 use crate::physics::StepError;
 use crate::physics::kapitza::limit::Limit;
 use crate::physics::kapitza::run::{self, RunResult, RunSpec};
 use crate::physics::kapitza::{self, Problem, plan};
-use crate::physics::rattleback::integrators::Method;
 use crate::scenario::Preset;
 
 /// Predicted seconds of the run `spec` asks for (the pendulum's cost model,
@@ -132,14 +133,6 @@ struct EquilibriumOut {
     stable: bool,
 }
 
-#[derive(Serialize)]
-struct StatsOut {
-    steps: u64,
-    rejected: u64,
-    rhs_evaluations: u64,
-    wall_seconds: f64,
-}
-
 fn times_of(list: &[f64], count: usize) -> Times {
     Times {
         count,
@@ -207,34 +200,6 @@ fn plan_of(problem: &Problem, resolved: &Resolved) -> (RunSpec, Option<AutoOut>)
     )
 }
 
-/// CSV metadata lines (as the rattleback's: every number parses back to the same bits).
-#[must_use]
-pub fn csv_metadata(
-    preset: &str,
-    problem: &Problem,
-    method: Method,
-    ran: Option<Method>,
-    tolerance: f64,
-    t_end: f64,
-) -> String {
-    let (p, s) = (problem.params(), problem.start());
-    super::metadata_lines(
-        preset,
-        Some("kapitza"),
-        method,
-        ran,
-        &[
-            ("tolerance", tolerance),
-            ("t_end", t_end),
-            ("a", p.a),
-            ("b", p.b),
-            ("epsilon", p.epsilon),
-            ("theta", s.theta),
-            ("theta_dot", s.theta_dot),
-        ],
-    )
-}
-
 /// Runs the pendulum's preset and writes the report.
 ///
 /// # Errors
@@ -251,7 +216,7 @@ pub fn simulate_to(
     let missed = auto.as_ref().filter(|a| !a.met).map(|a| Missed {
         estimate: a.error_estimate,
         tolerance: resolved.spec.tolerance,
-        why: crate::physics::rattleback::auto::Shortfall::Model,
+        why: crate::physics::plan::Shortfall::Model,
     });
     let clock = Instant::now();
     let result = run::run(problem, &spec, progress)?;
@@ -260,9 +225,9 @@ pub fn simulate_to(
     }
     let wall_seconds = clock.elapsed().as_secs_f64();
     if format == Format::Csv {
-        let head = csv_metadata(
+        let head = super::csv_metadata_of(
             &preset.name,
-            problem,
+            &preset.model,
             resolved.spec.method,
             Some(spec.method),
             resolved.spec.tolerance,
@@ -316,23 +281,9 @@ pub fn simulate_to(
             max_drift: result.max_energy_drift,
         },
         effective: effective_out(problem, &limit_run),
-        stats: StatsOut {
-            steps: result.stats.steps,
-            rejected: result.stats.rejected,
-            rhs_evaluations: result.stats.rhs_evaluations,
-            wall_seconds,
-        },
+        stats: StatsOut::of(&result.stats, wall_seconds),
     };
-    let text = match format {
-        Format::Json => {
-            let mut s = crate::scenario::text::json_safe(
-                &serde_json::to_string_pretty(&report).expect("report serializes"),
-            );
-            s.push('\n');
-            s
-        }
-        Format::Table | Format::Csv => table(&report),
-    };
+    let text = super::render::text(format, &report, || table(&report));
     out.write_all(text.as_bytes())?;
     out.flush()?;
     Ok(missed)
@@ -416,45 +367,25 @@ fn table(r: &Report) -> String {
         "start         theta = {}, theta_dot = {}",
         r.initial.theta, r.initial.theta_dot
     );
-    let step = r
-        .step
-        .map(|h| format!(", step {h:.3e}"))
-        .unwrap_or_default();
-    let _ = writeln!(
-        o,
-        "method        {} (tolerance {:e}{step}), t_end = {}",
-        r.method,
-        r.tolerance,
-        compact(r.t_end)
+    super::render::method_lines(
+        &mut o,
+        (r.method, r.tolerance, r.step),
+        &compact(r.t_end),
+        r.auto.as_ref().map(|a| super::render::Choice {
+            method: a.choice,
+            reason: &a.reason,
+            error_estimate: a.error_estimate,
+            met: a.met,
+        }),
     );
-    if let Some(a) = &r.auto {
-        let _ = writeln!(
-            o,
-            "auto chose    {}: {} (estimated error {:.1e}{})",
-            a.choice,
-            a.reason,
-            a.error_estimate,
-            if a.met { "" } else { ", tolerance NOT met" }
-        );
-    }
-    let _ = writeln!(o);
-    let _ = writeln!(o, "                   full model          limit (ε → 0)");
-    let limit = |v: Option<f64>| v.map_or_else(|| "n/a".to_owned(), |x| format!("{x:.9}"));
-    let _ = writeln!(
-        o,
-        "theta(T)      {:>16.9}    {:>16}",
-        r.final_.theta,
-        limit(e.theta)
+    super::render::compare_rows(
+        &mut o,
+        "limit (ε → 0)",
+        crate::physics::ModelKind::Kapitza.words(),
+        (r.final_.theta, r.final_.theta_dot),
+        (e.theta, e.theta_dot),
+        e.comparison_error.as_deref(),
     );
-    let _ = writeln!(
-        o,
-        "theta_dot(T)  {:>16.9}    {:>16}",
-        r.final_.theta_dot,
-        limit(e.theta_dot)
-    );
-    if let Some(why) = &e.comparison_error {
-        let _ = writeln!(o, "  (no comparison with the limit: {why})");
-    }
     let _ = writeln!(
         o,
         "swings        {:>16}    {:>16}",
@@ -483,10 +414,6 @@ fn table(r: &Report) -> String {
         "E_eff         {:.12} (drift along the run {:.2e})",
         r.energy.initial, r.energy.max_drift
     );
-    let _ = writeln!(
-        o,
-        "work          {} steps ({} rejected), {} rhs evaluations, {:.4} s",
-        r.stats.steps, r.stats.rejected, r.stats.rhs_evaluations, r.stats.wall_seconds
-    );
+    super::render::work_line(&mut o, &r.stats);
     o
 }

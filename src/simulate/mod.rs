@@ -5,6 +5,9 @@
 //! through the preset's [`crate::physics::Model`].
 
 mod kapitza;
+mod render;
+
+use render::StatsOut;
 
 use crate::physics::rattleback::model::{ALPHA, ALPHA_DOT, GAMMA, GAMMA_DOT};
 use std::fmt::Write as _;
@@ -346,14 +349,6 @@ struct EffectiveOut {
     reversals: Reversals,
 }
 
-#[derive(Serialize)]
-struct StatsOut {
-    steps: u64,
-    rejected: u64,
-    rhs_evaluations: u64,
-    wall_seconds: f64,
-}
-
 /// Runs `preset` as `resolved` says and renders the report in `format` (CSV included: this
 /// holds it all in memory; the command streams it with [`simulate_to`]).
 ///
@@ -489,24 +484,10 @@ fn rattleback_to(
             ),
         },
         averaged,
-        stats: StatsOut {
-            steps: result.stats.steps,
-            rejected: result.stats.rejected,
-            rhs_evaluations: result.stats.rhs_evaluations,
-            wall_seconds,
-        },
+        stats: StatsOut::of(&result.stats, wall_seconds),
     };
     warn_energy(&report.energy, spec.tolerance);
-    let text = match format {
-        Format::Json => {
-            let mut s = crate::scenario::text::json_safe(
-                &serde_json::to_string_pretty(&report).expect("report serializes"),
-            );
-            s.push('\n');
-            s
-        }
-        Format::Table | Format::Csv => table(&report),
-    };
+    let text = render::text(format, &report, || table(&report));
     out.write_all(text.as_bytes())?;
     out.flush()?;
     Ok(shortfall)
@@ -557,7 +538,11 @@ fn requested_run(
     Ok((v.result, Some(auto)))
 }
 
-/// [`csv_metadata`] of any model (the pendulum's names its model and its own keys).
+/// What a CSV of a run starts with: `# key = value` lines (the program, the model unless it is
+/// the default, the preset's name, the method asked and the one that ran, the tolerance, the
+/// horizon, then every parameter of the model's table, every number as text that parses back
+/// to the same bits), so the file says what made it. `simulate --format csv` and the
+/// explorer's export (`x`) write the same lines.
 #[must_use]
 pub fn csv_metadata_of(
     preset: &str,
@@ -567,47 +552,15 @@ pub fn csv_metadata_of(
     tolerance: f64,
     t_end: f64,
 ) -> String {
-    match model {
-        crate::physics::Model::Rattleback(p) => {
-            csv_metadata(preset, p, method, ran, tolerance, t_end)
-        }
-        crate::physics::Model::Kapitza(p) => {
-            kapitza::csv_metadata(preset, p, method, ran, tolerance, t_end)
-        }
-    }
-}
-
-/// What a CSV of a run starts with: `# key = value` lines (the program, the preset's name, the
-/// method asked and the one that ran, the tolerance, the horizon, the body, the spring and the
-/// start, every number as text that parses back to the same bits), so the file says what made
-/// it. `simulate --format csv` and the explorer's export (`x`) write the same lines.
-#[must_use]
-pub fn csv_metadata(
-    preset: &str,
-    problem: &crate::physics::rattleback::Problem,
-    method: Method,
-    ran: Option<Method>,
-    tolerance: f64,
-    t_end: f64,
-) -> String {
-    let (p, s) = (problem.params(), problem.start());
+    let kind = model.kind();
+    let mut numbers = vec![("tolerance", tolerance), ("t_end", t_end)];
+    numbers.extend(kind.params().iter().map(|p| p.key).zip(model.values()));
     metadata_lines(
         preset,
-        None,
+        kind.scene().model_required().then(|| kind.name()),
         method,
         ran,
-        &[
-            ("tolerance", tolerance),
-            ("t_end", t_end),
-            ("ix", p.ix),
-            ("iy", p.iy),
-            ("iz", p.iz),
-            ("k", p.k),
-            ("gamma", s.gamma),
-            ("alpha", s.alpha),
-            ("gamma_dot", s.gamma_dot),
-            ("alpha_dot", s.alpha_dot),
-        ],
+        &numbers,
     )
 }
 
@@ -670,9 +623,9 @@ fn csv(
     }
     let p = problem.params();
     out.write_all(
-        csv_metadata(
+        csv_metadata_of(
             &preset.name,
-            problem,
+            &preset.model,
             resolved.spec.method,
             Some(spec.method),
             resolved.spec.tolerance,
@@ -749,46 +702,25 @@ fn table(r: &Report) -> String {
         "start         gamma = {}, alpha = {}, gamma_dot = {}, alpha_dot = {}",
         r.initial.gamma, r.initial.alpha, r.initial.gamma_dot, r.initial.alpha_dot
     );
-    let step = r
-        .step
-        .map(|h| format!(", step {h:.3e}"))
-        .unwrap_or_default();
-    let _ = writeln!(
-        o,
-        "method        {} (tolerance {:e}{step}), t_end = {}",
-        r.method, r.tolerance, r.t_end
+    render::method_lines(
+        &mut o,
+        (r.method, r.tolerance, r.step),
+        &r.t_end.to_string(),
+        r.auto.as_ref().map(|a| render::Choice {
+            method: a.choice,
+            reason: &a.reason,
+            error_estimate: a.error_estimate,
+            met: a.met,
+        }),
     );
-    if let Some(a) = &r.auto {
-        let _ = writeln!(
-            o,
-            "auto chose    {}: {} (estimated error {:.1e}{})",
-            a.choice,
-            a.reason,
-            a.error_estimate,
-            if a.met { "" } else { ", tolerance NOT met" }
-        );
-    }
-    let _ = writeln!(o);
-    let _ = writeln!(
-        o,
-        "                   full model          effective (k → ∞)"
+    render::compare_rows(
+        &mut o,
+        "effective (k → ∞)",
+        crate::physics::ModelKind::Rattleback.words(),
+        (r.final_.alpha, r.final_.alpha_dot),
+        (e.alpha, e.alpha_dot),
+        e.comparison_error.as_deref(),
     );
-    let limit = |v: Option<f64>| v.map_or_else(|| "n/a".to_owned(), |x| format!("{x:.9}"));
-    let _ = writeln!(
-        o,
-        "alpha(T)      {:>16.9}    {:>16}",
-        r.final_.alpha,
-        limit(e.alpha)
-    );
-    let _ = writeln!(
-        o,
-        "alpha_dot(T)  {:>16.9}    {:>16}",
-        r.final_.alpha_dot,
-        limit(e.alpha_dot)
-    );
-    if let Some(why) = &e.comparison_error {
-        let _ = writeln!(o, "  (no comparison with the limit: {why})");
-    }
     let _ = writeln!(
         o,
         "reversals     {:>16}    {:>16}",
@@ -813,11 +745,7 @@ fn table(r: &Report) -> String {
         "energy        {:.12} (max relative error {:.2e})",
         r.energy.initial, r.energy.max_relative_error
     );
-    let _ = writeln!(
-        o,
-        "work          {} steps ({} rejected), {} rhs evaluations, {:.4} s",
-        r.stats.steps, r.stats.rejected, r.stats.rhs_evaluations, r.stats.wall_seconds
-    );
+    render::work_line(&mut o, &r.stats);
     o
 }
 

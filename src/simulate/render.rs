@@ -1,0 +1,116 @@
+//! What every model's report shares: the work counters, the JSON rendering, and the table's
+//! method, comparison and work lines (each model's report keeps only its own sections, whose
+//! names are a contract).
+
+use std::fmt::Write as _;
+
+use serde::Serialize;
+
+use super::Format;
+use crate::physics::Method;
+use crate::physics::numerics::dop853::Stats;
+use crate::physics::scene::Words;
+
+/// The work a run did.
+#[derive(Serialize)]
+pub(crate) struct StatsOut {
+    pub steps: u64,
+    pub rejected: u64,
+    pub rhs_evaluations: u64,
+    pub wall_seconds: f64,
+}
+
+impl StatsOut {
+    /// The counters of `stats`, with the run's wall time.
+    pub fn of(stats: &Stats, wall_seconds: f64) -> Self {
+        Self {
+            steps: stats.steps,
+            rejected: stats.rejected,
+            rhs_evaluations: stats.rhs_evaluations,
+            wall_seconds,
+        }
+    }
+}
+
+/// `report` as `format` says: pretty JSON (control characters escaped), else `table()`.
+pub(crate) fn text(
+    format: Format,
+    report: &impl Serialize,
+    table: impl FnOnce() -> String,
+) -> String {
+    match format {
+        Format::Json => {
+            let mut s = crate::scenario::text::json_safe(
+                &serde_json::to_string_pretty(report).expect("report serializes"),
+            );
+            s.push('\n');
+            s
+        }
+        Format::Table | Format::Csv => table(),
+    }
+}
+
+/// What `auto` chose, for the table.
+pub(crate) struct Choice<'a> {
+    pub method: Method,
+    pub reason: &'a str,
+    pub error_estimate: f64,
+    pub met: bool,
+}
+
+/// The method line and, for `auto`, the line saying what it chose.
+pub(crate) fn method_lines(
+    o: &mut String,
+    (method, tolerance, step): (Method, f64, Option<f64>),
+    t_end: &str,
+    auto: Option<Choice<'_>>,
+) {
+    let step = step.map(|h| format!(", step {h:.3e}")).unwrap_or_default();
+    let _ = writeln!(
+        o,
+        "method        {method} (tolerance {tolerance:e}{step}), t_end = {t_end}"
+    );
+    if let Some(a) = auto {
+        let _ = writeln!(
+            o,
+            "auto chose    {}: {} (estimated error {:.1e}{})",
+            a.method,
+            a.reason,
+            a.error_estimate,
+            if a.met { "" } else { ", tolerance NOT met" }
+        );
+    }
+}
+
+/// The slow state at `T` of the full model beside the limit's (`n/a` where it has none).
+pub(crate) fn compare_rows(
+    o: &mut String,
+    limit_title: &str,
+    words: Words,
+    full: (f64, f64),
+    limit: (Option<f64>, Option<f64>),
+    comparison_error: Option<&str>,
+) {
+    let _ = writeln!(o);
+    let _ = writeln!(o, "                   full model          {limit_title}");
+    let shown = |v: Option<f64>| v.map_or_else(|| "n/a".to_owned(), |x| format!("{x:.9}"));
+    for (name, f, l) in [
+        (words.q_name, full.0, limit.0),
+        (words.q_dot_name, full.1, limit.1),
+    ] {
+        let label = format!("{name}(T)");
+        let _ = writeln!(o, "{label:<14}{f:>16.9}    {:>16}", shown(l));
+    }
+    if let Some(why) = comparison_error {
+        let _ = writeln!(o, "  (no comparison with the limit: {why})");
+    }
+}
+
+/// The work line.
+pub(crate) fn work_line(o: &mut String, s: &StatsOut) {
+    let _ = writeln!(
+        o,
+        "work          {} steps ({} rejected), {} rhs evaluations, {:.4} s",
+        s.steps, s.rejected, s.rhs_evaluations, s.wall_seconds
+    );
+}
