@@ -77,6 +77,16 @@ impl ModelKind {
         })
     }
 
+    /// The model a preset without `[preset] model` is of: the one whose scene does not require
+    /// the key (the first model, so that every older file keeps its meaning).
+    #[must_use]
+    pub fn default_kind() -> Self {
+        Self::ALL
+            .into_iter()
+            .find(|m| !m.scene().model_required())
+            .unwrap_or(Self::ALL[0])
+    }
+
     /// The tolerance of the limit's own run, whatever the user's (the one-degree-of-freedom ODE
     /// is cheap): `simulate` reports it and the explorer draws, counts and exports the same
     /// run.

@@ -421,7 +421,7 @@ fn model_of(table: &Table) -> Result<ModelKind, ()> {
         .and_then(Value::as_table)
         .and_then(|t| t.get("model"))
     {
-        None => Ok(ModelKind::Rattleback),
+        None => Ok(ModelKind::default_kind()),
         Some(v) => v.as_str().and_then(ModelKind::from_name).ok_or(()),
     }
 }
@@ -445,7 +445,7 @@ fn decide_model(
         return Some(m);
     }
     let v = &table["preset"]["model"];
-    let message = check_value(ModelKind::Rattleback, Kind::Model, v)
+    let message = check_value(ModelKind::default_kind(), Kind::Model, v)
         .err()
         .unwrap_or_default();
     problems.at_key("preset", "model", message);
@@ -561,7 +561,7 @@ fn check_sections(table: &Table, model: ModelKind, problems: &mut Problems<'_>) 
                     format!(
                         " ([{name}] belongs to the {} model{})",
                         m.name(),
-                        if m == ModelKind::Rattleback {
+                        if m == ModelKind::default_kind() {
                             ", which is the default".to_owned()
                         } else {
                             format!("; set model = \"{}\" in [preset]", m.name())

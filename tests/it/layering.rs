@@ -268,3 +268,57 @@ fn no_old_paths_and_no_model_reexports() {
         assert!(!text.contains("super::kapitza"), "{}", file.display());
     }
 }
+
+/// Issue 25: each model describes itself once (its folder's `scene.rs`); outside `physics/`
+/// only the files the recipe in docs/architecture.md lists name a model's variant: the report
+/// (`simulate/`, whose JSON sections are a contract) and the recorded plan key
+/// (`sim/engine.rs`). The benchmarks measure one model each and may name it. Tests inside a
+/// file (`#[cfg(test)]`) are left out.
+#[test]
+fn a_model_is_dispatched_in_few_places() {
+    let allowed = ["simulate/mod.rs", "simulate/kapitza.rs", "sim/engine.rs"];
+    let variants = [
+        "Model::Rattleback",
+        "Model::Kapitza",
+        "ModelKind::Rattleback",
+        "ModelKind::Kapitza",
+        "LimitView::",
+    ];
+    let mut found = Vec::new();
+    for layer_name in [
+        "app", "ui", "sim", "scenario", "study", "record", "explorer", "simulate",
+    ] {
+        for (file, text) in layer(layer_name) {
+            let code = text.split("#[cfg(test)]").next().unwrap_or_default();
+            let rel = file
+                .strip_prefix(src())
+                .unwrap()
+                .to_string_lossy()
+                .replace('\\', "/");
+            if variants.iter().any(|v| code.contains(v)) && !allowed.contains(&rel.as_str()) {
+                found.push(rel);
+            }
+        }
+    }
+    for top in ["commands.rs", "main.rs", "export.rs", "cast.rs"] {
+        let text = std::fs::read_to_string(src().join(top)).unwrap();
+        let code = text.split("#[cfg(test)]").next().unwrap_or_default();
+        if variants.iter().any(|v| code.contains(v)) {
+            found.push(top.to_owned());
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "these files dispatch on a model outside the recipe's list: {found:?}"
+    );
+    // No silent place: the panel, the panes and the words have no catch-all over the model.
+    for (path, banned) in [
+        ("app/fields.rs", "_ => f64::NAN"),
+        ("ui/params.rs", "_ => {}"),
+        ("ui/status.rs", "has_falls"),
+        ("app/panes.rs", "rattleback_only"),
+    ] {
+        let text = std::fs::read_to_string(src().join(path)).unwrap();
+        assert!(!text.contains(banned), "{path} has `{banned}`");
+    }
+}

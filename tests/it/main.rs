@@ -30,6 +30,7 @@ mod presets_themes;
 mod readme;
 mod record_replay;
 mod reference_cases;
+mod scenes;
 mod schema_walk;
 mod schemas;
 mod session_format;

@@ -1,0 +1,96 @@
+//! Issue 25: each model's scene is complete and agrees with itself: its parameter table, its
+//! values, its small parameter, its studies and its shipped presets.
+
+use rattleback::physics::{Method, ModelKind};
+use rattleback::scenario::Preset;
+use rattleback::scenario::shipped::{SHIPPED, base_preset};
+
+fn shipped_of(kind: ModelKind) -> Vec<Preset> {
+    SHIPPED
+        .iter()
+        .map(|(name, text)| Preset::parse(text, name, name, &[]).unwrap())
+        .filter(|p| p.model.kind() == kind)
+        .collect()
+}
+
+#[test]
+fn every_scene_is_complete_and_agrees_with_itself() {
+    for kind in ModelKind::ALL {
+        let scene = kind.scene();
+        let params = scene.params();
+        assert_eq!(scene.name(), kind.name());
+        // Keys are unique: a panel row, a preset key and a `--set` name each.
+        for (i, p) in params.iter().enumerate() {
+            assert!(
+                params[i + 1..].iter().all(|q| q.key != p.key),
+                "{}: {} twice",
+                kind.name(),
+                p.key
+            );
+            assert!(!p.doc.is_empty(), "{}: {} undocumented", kind.name(), p.key);
+        }
+        let presets = shipped_of(kind);
+        assert!(!presets.is_empty(), "{} ships no preset", kind.name());
+        let base = base_preset(kind);
+        let (_, text) = SHIPPED.iter().find(|(n, _)| *n == base).unwrap();
+        assert_eq!(
+            Preset::parse(text, base, base, &[]).unwrap().model.kind(),
+            kind,
+            "{}: base preset {base} is of another scene",
+            kind.name()
+        );
+        for preset in &presets {
+            let values = preset.model.values();
+            assert_eq!(values.len(), params.len(), "{}", preset.name);
+            // The table's values build the same problem back.
+            assert_eq!(
+                kind.problem(&values).unwrap(),
+                preset.model,
+                "{}",
+                preset.name
+            );
+            assert!(!preset.model.summary().is_empty(), "{}", preset.name);
+            let (q, q_dot) = preset.model.slow_start();
+            let words = scene.words();
+            assert_eq!(preset.model.value(words.q_name), Some(q), "{}", preset.name);
+            assert_eq!(
+                preset.model.value(words.q_dot_name),
+                Some(q_dot),
+                "{}",
+                preset.name
+            );
+            // The weak-* view is there exactly when the scene says so (a stopped run answers
+            // at once).
+            let view = preset.model.weak_view(1.0, &mut |_| false);
+            assert_eq!(view.is_some(), scene.studies().weak, "{}", preset.name);
+        }
+        if let Some(small) = scene.small() {
+            let spec = params
+                .iter()
+                .find(|p| p.key == small.key)
+                .expect("the small parameter is a parameter");
+            assert!(
+                small.ladder.iter().all(|x| spec.allowed.contains(*x)),
+                "{}: a rung out of range",
+                kind.name()
+            );
+            let model = presets[0].model;
+            let rung = model.with_value(small.key, small.ladder[0]).unwrap();
+            assert_eq!(rung.value(small.key), Some(small.ladder[0]));
+        }
+        assert_eq!(scene.methods()[0], Method::Auto, "{}", kind.name());
+    }
+}
+
+#[test]
+fn a_value_outside_the_table_is_refused_with_its_key_and_range() {
+    for kind in ModelKind::ALL {
+        let model = shipped_of(kind)[0].model;
+        for p in kind.params() {
+            let err = model.with_value(p.key, f64::NAN).unwrap_err();
+            assert_eq!(err.field(), p.key);
+            assert!(err.to_string().contains(p.allowed.text()), "{err}");
+        }
+        assert!(model.with_value("no-such-key", 1.0).is_err());
+    }
+}
