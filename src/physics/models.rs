@@ -9,16 +9,13 @@
 
 use serde::Serialize;
 
-use super::flow::Flow;
 use super::kapitza;
-use super::method::{Method, Settings, StepError};
+use super::method::{Method, StepError};
 use super::params::{ParamError, ParamSpec};
-use super::plan::{AutoPolicy, Resolution};
+use super::plan::PlanRequest;
 use super::rattleback::Problem;
 use super::rattleback::effective::Effective;
-use super::scene::{
-    Posed, Scene, SlowCurve, SmallParameter, Studies, SummaryLine, WeakView, Words,
-};
+use super::scene::{Planned, Posed, Scene, SmallParameter, Studies, Words};
 
 /// Which model: names as in presets (`[preset] model = "kapitza"`; absent means the rattleback).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, schemars::JsonSchema)]
@@ -168,10 +165,19 @@ impl ModelKind {
     }
 }
 
+/// A model is its posed problem: `model.values()`, `model.build(…)`, `model.slow_curve(…)` and
+/// every other fact of [`Posed`] are the model's own.
+impl std::ops::Deref for Model {
+    type Target = dyn Posed;
+    fn deref(&self) -> &Self::Target {
+        self.posed()
+    }
+}
+
 impl Model {
     /// The facts of this problem (the one dispatch on the problem).
     #[must_use]
-    pub fn posed(&self) -> &dyn Posed {
+    pub fn posed(&self) -> &(dyn Posed + 'static) {
         match self {
             Self::Rattleback(p) => p,
             Self::Kapitza(p) => p,
@@ -205,12 +211,6 @@ impl Model {
         }
     }
 
-    /// Its parameter values, in the order of [`Scene::params`].
-    #[must_use]
-    pub fn values(&self) -> Vec<f64> {
-        self.posed().values()
-    }
-
     /// The value of the parameter `key`, if the model has one.
     #[must_use]
     pub fn value(&self, key: &str) -> Option<f64> {
@@ -237,102 +237,19 @@ impl Model {
         kind.problem(&values)
     }
 
-    /// The panel's derived lines.
-    #[must_use]
-    pub fn summary(&self) -> Vec<SummaryLine> {
-        self.posed().summary()
-    }
-
-    /// The slow start `(q0, q̇0)`.
-    #[must_use]
-    pub fn slow_start(&self) -> (f64, f64) {
-        self.posed().slow_start()
-    }
-
-    /// Default fixed step of `method` at `tolerance` over `[0, t_end]`.
-    #[must_use]
-    pub fn default_step(&self, method: Method, tolerance: f64, t_end: f64) -> f64 {
-        self.posed().default_step(method, tolerance, t_end)
-    }
-
-    /// Builds a concrete method's integration at `t = 0`.
-    ///
-    /// # Errors
-    /// `auto` ([`StepError::Unplanned`]), a method the model does not offer, or a problem the
-    /// method cannot represent.
-    pub fn build(
-        &self,
-        method: Method,
-        settings: Settings,
-        t_end: f64,
-    ) -> Result<Box<dyn Flow>, StepError> {
-        self.posed().build(method, settings, t_end)
-    }
-
     /// Resolves `method` for this problem: the model's own `auto` (the rattleback's verified
     /// one; the pendulum's chosen from the limit's predicted model error).
     ///
     /// # Errors
     /// The model's; a method the model does not offer.
-    pub fn resolve(
-        &self,
-        method: Method,
-        tolerance: f64,
-        t_end: f64,
-        policy: AutoPolicy,
-        budget: f64,
-        go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<Resolution, StepError> {
-        if !self.kind().offers(method) {
+    pub fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
+        if !self.kind().offers(ask.method) {
             return Err(StepError::NotOffered {
-                method: method.name(),
+                method: ask.method.name(),
                 model: self.kind().name(),
             });
         }
-        self.posed()
-            .resolve(method, tolerance, t_end, policy, budget, go_on)
-    }
-
-    /// Predicted seconds of a run of `method` (`auto` as it would plan) over `[0, t_end]`: the
-    /// scene's own cost model, asked by every entry point before a run starts.
-    #[must_use]
-    pub fn predicted_seconds(
-        &self,
-        method: Method,
-        tolerance: f64,
-        step: Option<f64>,
-        t_end: f64,
-    ) -> f64 {
-        self.posed()
-            .predicted_seconds(method, tolerance, step, t_end)
-    }
-
-    /// The slow coordinate on `samples` points of `[0, t_end]` (see [`Posed::slow_curve`]).
-    ///
-    /// # Errors
-    /// A failed, refused or stopped integration.
-    pub fn slow_curve(
-        &self,
-        method: Method,
-        tolerance: f64,
-        t_end: f64,
-        samples: usize,
-        go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<SlowCurve, StepError> {
-        self.posed()
-            .slow_curve(method, tolerance, t_end, samples, go_on)
-    }
-
-    /// The weak-* view (see [`Posed::weak_view`]).
-    ///
-    /// # Errors
-    /// A failed or stopped integration.
-    pub fn weak_view(
-        &self,
-        t_end: f64,
-        go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Option<Result<WeakView, StepError>> {
-        self.posed().weak_view(t_end, go_on)
+        self.posed().resolve(ask, go_on)
     }
 
     /// What the portrait draws of the limit.

@@ -33,6 +33,22 @@ impl Resolved {
     }
 }
 
+/// What a model is asked to plan: the method (perhaps `auto`), its tolerance and horizon, how
+/// `auto` is resolved and the work budget its probes must stay within (predicted seconds).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlanRequest {
+    /// The method asked.
+    pub method: Method,
+    /// The tolerance asked.
+    pub tolerance: f64,
+    /// The horizon.
+    pub t_end: f64,
+    /// How `auto` is resolved.
+    pub policy: AutoPolicy,
+    /// The work budget of `auto`'s probes and verification.
+    pub budget: f64,
+}
+
 /// How `auto` is resolved.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum AutoPolicy {

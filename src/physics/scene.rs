@@ -12,7 +12,10 @@
 use super::flow::Flow;
 use super::method::{Method, Settings, StepError};
 use super::params::ParamSpec;
-use super::plan::{AutoPolicy, Resolution};
+use super::plan::{PlanRequest, Resolution};
+
+/// What resolving a plan gives.
+pub type Planned = Result<Resolution, StepError>;
 
 /// Labels of a model's variables, events and monitors.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -171,15 +174,7 @@ pub trait Posed {
     ///
     /// # Errors
     /// A failed or refused probe.
-    fn resolve(
-        &self,
-        method: Method,
-        tolerance: f64,
-        t_end: f64,
-        policy: AutoPolicy,
-        budget: f64,
-        go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<Resolution, StepError>;
+    fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned;
     /// Predicted seconds of a run (the model's cost model).
     fn predicted_seconds(
         &self,

@@ -96,6 +96,18 @@ impl Default for PlanBook {
 }
 
 impl PlanBook {
+    /// What the model is asked to plan for `spec`, under this book's policy and budget.
+    #[must_use]
+    pub fn request(&self, spec: &SessionSpec) -> crate::physics::plan::PlanRequest {
+        crate::physics::plan::PlanRequest {
+            method: spec.method,
+            tolerance: spec.tolerance,
+            t_end: spec.t_end,
+            policy: self.policy,
+            budget: self.budget,
+        }
+    }
+
     /// What was recorded for `spec`'s key, in `list`.
     fn find<T: Copy>(list: &[(PlanKey, T)], spec: &SessionSpec) -> Option<T> {
         let key = PlanKey::of(spec);
@@ -272,14 +284,7 @@ impl Engine {
             }
             None => spec
                 .model
-                .resolve(
-                    spec.method,
-                    spec.tolerance,
-                    spec.t_end,
-                    self.book.policy,
-                    self.book.budget,
-                    go_on,
-                )
+                .resolve(&self.book.request(&spec), go_on)
                 .map(|r| (r.plan, r.estimate)),
         };
         let started = match resolved {

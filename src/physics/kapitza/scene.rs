@@ -8,9 +8,9 @@ use super::{EPSILON_MAX, EPSILON_MIN, Params, Problem, Start};
 use crate::physics::flow::Flow;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
-use crate::physics::plan::{AutoPolicy, Resolution, Resolved};
+use crate::physics::plan::{PlanRequest, Resolution, Resolved};
 use crate::physics::scene::{
-    Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine, WeakView, Words,
+    Planned, Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine, WeakView, Words,
 };
 
 const STRENGTH: Scale = Scale::Linear {
@@ -198,16 +198,9 @@ impl Posed for Problem {
     ) -> Result<Box<dyn Flow>, StepError> {
         super::flows::build(method, self, settings, t_end)
     }
-    fn resolve(
-        &self,
-        method: Method,
-        tolerance: f64,
-        t_end: f64,
-        _policy: AutoPolicy,
-        _budget: f64,
-        _go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<Resolution, StepError> {
+    fn resolve(&self, ask: &PlanRequest, _go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
         // The pendulum's `auto` is chosen from the limit's predicted model error: no probe.
+        let (method, tolerance, t_end) = (ask.method, ask.tolerance, ask.t_end);
         let (plan, estimate) = if method == Method::Auto {
             let c = super::plan::resolve(self, tolerance, t_end);
             let plan = Resolved {

@@ -11,9 +11,9 @@ use crate::physics::flow::{Flow, Sample};
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::numerics::dop853::Stats;
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
-use crate::physics::plan::{AutoPolicy, Resolution};
+use crate::physics::plan::PlanRequest;
 use crate::physics::scene::{
-    Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine, WeakView, Words,
+    Planned, Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine, WeakView, Words,
 };
 
 const INERTIA: Scale = Scale::Linear {
@@ -235,15 +235,14 @@ impl Posed for Problem {
             method, self, settings, t_end,
         )?)))
     }
-    fn resolve(
-        &self,
-        method: Method,
-        tolerance: f64,
-        t_end: f64,
-        policy: AutoPolicy,
-        budget: f64,
-        go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<Resolution, StepError> {
+    fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
+        let PlanRequest {
+            method,
+            tolerance,
+            t_end,
+            policy,
+            budget,
+        } = *ask;
         super::plan::resolve(self, method, tolerance, t_end, policy, budget, go_on)
     }
     fn predicted_seconds(
