@@ -4,7 +4,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use rattleback::scenario::shipped::resolve;
 use rattleback::study::map::{Grid, Source, regime_map};
-use rattleback::study::sweep::{DEFAULT_LADDER, sweep};
+use rattleback::study::sweep::{ladder, sweep};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -22,7 +22,7 @@ fn studies(c: &mut Criterion) {
         b.iter(|| {
             sweep(
                 black_box(&preset.model),
-                &DEFAULT_LADDER,
+                ladder(rattleback::physics::ModelKind::Rattleback),
                 30.0,
                 1e-8,
                 &|_| true,

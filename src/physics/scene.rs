@@ -74,8 +74,6 @@ pub struct Studies {
     pub map: bool,
     /// The body seen from above.
     pub body: bool,
-    /// The limit drawn beside the full motion (overlay, series, sweep).
-    pub limit: bool,
 }
 
 /// One read-only line the panel shows under a model's parameters.

@@ -12,13 +12,9 @@ use serde::Serialize;
 use crate::physics::scene::SmallParameter;
 use crate::physics::{Method, Model, ModelKind, StepError};
 
-/// The rattleback's default ladder: one stiffness per decade from 1e1 to 1e8.
-pub const DEFAULT_LADDER: [f64; 8] = [1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8];
-
-/// The pendulum's default ladder of `ε`, one per decade.
-pub const EPSILON_LADDER: [f64; 6] = [1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6];
-
-/// The default ladder of `model`'s small parameter (empty for a model without a limit).
+/// The default ladder of `model`'s small parameter, as its scene gives it (the rattleback's one
+/// stiffness per decade from 1e1 to 1e8, the pendulum's `ε` from 1e-1 to 1e-6; empty for a
+/// model without a limit).
 #[must_use]
 pub fn ladder(model: ModelKind) -> &'static [f64] {
     model.small().map_or(&[], |s| s.ladder)

@@ -669,18 +669,21 @@ fn reversal_history_is_bounded_and_counts_stay_exact() {
 #[test]
 fn the_sweep_pane_shows_what_study_sweep_computes_and_follows_the_parameters() {
     use rattleback::app::panes::Pane;
-    use rattleback::study::sweep::{DEFAULT_LADDER, sweep};
+    use rattleback::study::sweep::{ladder, sweep};
     let mut h = Headless::new("subcritical");
     h.key(Key::Char('K'));
     assert!(h.app.view.panes.shows(Pane::Sweep));
     let s = &h.app.sweep;
     assert!(s.done && s.failed.is_none(), "{s:?}");
-    assert_eq!(s.points.len(), DEFAULT_LADDER.len());
+    assert_eq!(
+        s.points.len(),
+        ladder(rattleback::physics::ModelKind::Rattleback).len()
+    );
     // The same numbers as the headless study (one rung at a time here, in parallel there).
     let settings = h.app.scenario.settings;
     let headless = sweep(
         &settings.model,
-        &DEFAULT_LADDER,
+        ladder(rattleback::physics::ModelKind::Rattleback),
         settings.t_end,
         settings.tolerance,
         &|_| true,
@@ -704,7 +707,7 @@ fn the_sweep_pane_shows_what_study_sweep_computes_and_follows_the_parameters() {
     h.key(Key::Right);
     let s = &h.app.sweep;
     assert_eq!(s.generation, h.app.run.generation);
-    assert!(s.done && s.points.len() == DEFAULT_LADDER.len());
+    assert!(s.done && s.points.len() == ladder(rattleback::physics::ModelKind::Rattleback).len());
     assert_ne!(
         s.points[3].sup_error, before,
         "the sweep follows the parameters"

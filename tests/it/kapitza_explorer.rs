@@ -120,17 +120,20 @@ fn every_pendulum_preset_ends_where_simulate_and_a_tight_reference_end() {
 /// at first order (positions: O(ε)), drawn against ε.
 #[test]
 fn the_sweep_pane_sweeps_epsilon() {
-    use rattleback::study::sweep::{EPSILON_LADDER, sweep};
+    use rattleback::study::sweep::{ladder, sweep};
     let mut h = Headless::new("kapitza-upright");
     h.key(Key::Char('K'));
     assert!(h.app.view.panes.shows(Pane::Sweep));
     let s = &h.app.sweep;
     assert!(s.done && s.failed.is_none(), "{s:?}");
-    assert_eq!(s.points.len(), EPSILON_LADDER.len());
+    assert_eq!(
+        s.points.len(),
+        ladder(rattleback::physics::ModelKind::Kapitza).len()
+    );
     let settings = h.app.scenario.settings;
     let headless = sweep(
         &settings.model,
-        &EPSILON_LADDER,
+        ladder(rattleback::physics::ModelKind::Kapitza),
         settings.t_end,
         settings.tolerance,
         &|_| true,

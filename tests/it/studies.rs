@@ -5,7 +5,7 @@ use crate::common;
 
 use rattleback::scenario::shipped::resolve;
 use rattleback::study::map::{Grid, Source, regime_map};
-use rattleback::study::sweep::{DEFAULT_LADDER, sweep};
+use rattleback::study::sweep::{ladder, sweep};
 use rattleback::study::weak::weak_star;
 
 #[test]
@@ -13,7 +13,7 @@ fn the_sweep_converges_like_one_over_k_on_the_default_preset() {
     let preset = resolve("subcritical", &[]).unwrap();
     let s = sweep(
         &preset.model,
-        &DEFAULT_LADDER,
+        ladder(rattleback::physics::ModelKind::Rattleback),
         preset.run.t_end,
         1e-8,
         &|_| true,

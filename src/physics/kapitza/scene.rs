@@ -8,7 +8,7 @@ use super::{EPSILON_MAX, EPSILON_MIN, Params, Problem, Start};
 use crate::physics::flow::Flow;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
-use crate::physics::plan::{PlanRequest, Resolution, Resolved};
+use crate::physics::plan::{AutoPolicy, PlanRequest, Resolution, Resolved};
 use crate::physics::scene::{
     Planned, Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine, WeakView, Words,
 };
@@ -128,7 +128,6 @@ impl Scene for KapitzaScene {
             weak: true,
             map: false,
             body: false,
-            limit: true,
         }
     }
 }
@@ -255,12 +254,16 @@ impl Posed for Problem {
         samples: usize,
         go_on: &mut dyn FnMut(f64) -> bool,
     ) -> Result<SlowCurve, StepError> {
-        let (method, tolerance, estimate) = if method == Method::Auto {
-            let c = super::plan::resolve(self, tolerance, t_end);
-            (c.method, c.settings.tolerance, c.estimate)
-        } else {
-            (method, tolerance, 0.0)
+        let ask = PlanRequest {
+            method,
+            tolerance,
+            t_end,
+            policy: AutoPolicy::Verified,
+            budget: crate::physics::budget::BUDGET_SECONDS,
         };
+        let r = self.resolve(&ask, go_on)?;
+        let (method, tolerance) = (r.plan.method, r.plan.tolerance);
+        let estimate = r.estimate.unwrap_or(0.0);
         let spec = RunSpec {
             method,
             tolerance,

@@ -157,7 +157,6 @@ impl Scene for RattlebackScene {
             weak: true,
             map: true,
             body: true,
-            limit: true,
         }
     }
 }
