@@ -49,6 +49,12 @@ pub trait Flow: Send {
     fn event_hysteresis(&self) -> f64 {
         0.0
     }
+    /// Times of the model's second kind of event found inside the last step, in order (the
+    /// celt's raw spin crossings); empty for a model whose second events are found elsewhere or
+    /// that has none.
+    fn marks(&self) -> &[f64] {
+        &[]
+    }
     /// The quantity the method conserves (or whose drift it reports) at the current state.
     fn energy(&self) -> f64;
     /// Work counters.

@@ -33,16 +33,20 @@ pub enum Method {
     /// The second-order averaged model: error O(k⁻²), cost independent of `k`
     /// (docs/physics.md §4c, `physics::rattleback::averaged`).
     Averaged2,
+    /// DOP853 with the state projected back onto its constraints after every step (the celt's
+    /// unit quaternion, with the up vector taken from it).
+    Dop853Projected,
     /// Chooses the cheapest method that meets the tolerance (see `physics::rattleback::auto`).
     Auto,
 }
 
 impl Method {
     /// Every method, in the order tables list them.
-    pub const ALL: [Self; 12] = [
+    pub const ALL: [Self; 13] = [
         Self::Auto,
         Self::Rk4,
         Self::Dop853,
+        Self::Dop853Projected,
         Self::Strang,
         Self::Yoshida4,
         Self::BlanesMoan4,
@@ -55,10 +59,10 @@ impl Method {
     ];
 
     /// Every concrete method: [`Method::ALL`] without `auto`, which resolves to one of them.
-    pub const CONCRETE: [Self; 11] = {
-        let mut out = [Self::Rk4; 11];
+    pub const CONCRETE: [Self; 12] = {
+        let mut out = [Self::Rk4; 12];
         let mut i = 0;
-        while i < 11 {
+        while i < 12 {
             out[i] = Self::ALL[i + 1];
             i += 1;
         }
@@ -80,6 +84,7 @@ impl Method {
             Self::Locked => "locked",
             Self::EffectiveCorrected => "effective-corrected",
             Self::Averaged2 => "averaged2",
+            Self::Dop853Projected => "dop853-projected",
             Self::Auto => "auto",
         }
     }
@@ -107,6 +112,7 @@ impl Method {
             Self::Rk4 | Self::Yoshida4 | Self::BlanesMoan4 => 4,
             Self::Yoshida6 => 6,
             Self::Dop853
+            | Self::Dop853Projected
             | Self::Suzuki8
             | Self::Effective
             | Self::EffectiveCorrected
@@ -120,6 +126,7 @@ impl Method {
         !matches!(
             self,
             Self::Dop853
+                | Self::Dop853Projected
                 | Self::Effective
                 | Self::EffectiveCorrected
                 | Self::Averaged2

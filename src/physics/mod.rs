@@ -7,6 +7,7 @@
 //! - [`rattleback`]: the holonomic rattleback (full model at finite `k`, its effective limit, the
 //!   averaged model, integrators, `auto`, the cost model);
 //! - [`kapitza`]: Kapitza's inverted pendulum (full model, limit, ripple, integrators, `auto`);
+//! - [`celt`]: the classical rolling rattleback (Kane & Levinson), which has no limit;
 //! - [`numerics`]: DOP853, compositions, roots, quadrature; [`method`]: the methods' names.
 //!
 //! Shared vocabulary lives here, not in a model's folder: [`params::ParamError`],
@@ -20,6 +21,7 @@
 //! a test fails if a file below `src/physics/` mentions one.
 
 pub mod budget;
+pub mod celt;
 pub mod flow;
 pub mod kapitza;
 pub mod method;

@@ -9,6 +9,7 @@
 
 use serde::Serialize;
 
+use super::celt;
 use super::kapitza;
 use super::method::{Method, StepError};
 use super::params::{ParamError, ParamSpec};
@@ -25,6 +26,8 @@ pub enum ModelKind {
     Rattleback,
     /// Kapitza's inverted pendulum (a pendulum on a fast-shaken pivot).
     Kapitza,
+    /// The classical rattleback (an ellipsoidal bottom rolling without slipping).
+    Celt,
 }
 
 /// A validated problem of one model.
@@ -35,6 +38,14 @@ pub enum Model {
     Rattleback(Problem),
     /// The pendulum: `a`, `b`, `ε` and start.
     Kapitza(kapitza::Problem),
+    /// The celt: body, start and reversal band.
+    Celt(celt::Problem),
+}
+
+impl From<celt::Problem> for Model {
+    fn from(p: celt::Problem) -> Self {
+        Self::Celt(p)
+    }
 }
 
 impl From<Problem> for Model {
@@ -51,7 +62,7 @@ impl From<kapitza::Problem> for Model {
 
 impl ModelKind {
     /// Every model, in the order lists show them.
-    pub const ALL: [Self; 2] = [Self::Rattleback, Self::Kapitza];
+    pub const ALL: [Self; 3] = [Self::Rattleback, Self::Kapitza, Self::Celt];
 
     /// The model's own description (the one dispatch on the kind).
     #[must_use]
@@ -59,6 +70,7 @@ impl ModelKind {
         match self {
             Self::Rattleback => &super::rattleback::scene::SCENE,
             Self::Kapitza => &kapitza::scene::SCENE,
+            Self::Celt => &celt::scene::SCENE,
         }
     }
 
@@ -71,6 +83,7 @@ impl ModelKind {
         Ok(match self {
             Self::Rattleback => Model::Rattleback(Problem::from_values(values)?),
             Self::Kapitza => Model::Kapitza(kapitza::Problem::from_values(values)?),
+            Self::Celt => Model::Celt(celt::Problem::from_values(values)?),
         })
     }
 
@@ -181,6 +194,7 @@ impl Model {
         match self {
             Self::Rattleback(p) => p,
             Self::Kapitza(p) => p,
+            Self::Celt(p) => p,
         }
     }
 
@@ -190,6 +204,7 @@ impl Model {
         match self {
             Self::Rattleback(_) => ModelKind::Rattleback,
             Self::Kapitza(_) => ModelKind::Kapitza,
+            Self::Celt(_) => ModelKind::Celt,
         }
     }
 
@@ -198,7 +213,7 @@ impl Model {
     pub fn rattleback(&self) -> Option<&Problem> {
         match self {
             Self::Rattleback(p) => Some(p),
-            Self::Kapitza(_) => None,
+            Self::Kapitza(_) | Self::Celt(_) => None,
         }
     }
 
@@ -207,7 +222,7 @@ impl Model {
     pub fn kapitza(&self) -> Option<&kapitza::Problem> {
         match self {
             Self::Kapitza(p) => Some(p),
-            Self::Rattleback(_) => None,
+            Self::Rattleback(_) | Self::Celt(_) => None,
         }
     }
 
@@ -268,11 +283,22 @@ impl Model {
                     epsilon: p.params().epsilon,
                 }
             }
+            Self::Celt(p) => {
+                let params = p.params();
+                let y0 = p.initial_state();
+                LimitView::Free {
+                    mass: params.iz,
+                    energy: params.energy(&y0) - params.gravity * params.rest_height(),
+                    q_dot0: celt::spin(&y0),
+                }
+            }
         }
     }
 }
 
-/// The limit of a model as the portrait sees it: `E = ½ m q̇² + V(q)` with a periodic `V`.
+/// The limit of a model as the portrait sees it: `E = ½ m q̇² + V(q)` with a periodic `V`; for
+/// a model without a limit, the free rotor `V = 0` whose levels are the spins the energy
+/// would allow if none of it were in rocking.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LimitView {
     /// The rattleback's effective motion (`m = iz`, period π).
@@ -288,6 +314,16 @@ pub enum LimitView {
         /// The fast time scale.
         epsilon: f64,
     },
+    /// No limit: the free rotor about the vertical (the celt's `m = C`, period π), whose level
+    /// `½ C q̇² = E − E_rest` is the largest spin the energy allows, about.
+    Free {
+        /// The moment of inertia about the vertical at rest.
+        mass: f64,
+        /// The energy above rest.
+        energy: f64,
+        /// The start's spin.
+        q_dot0: f64,
+    },
 }
 
 impl LimitView {
@@ -296,7 +332,7 @@ impl LimitView {
     pub fn effective(&self) -> Option<&Effective> {
         match self {
             Self::Rattleback(e) => Some(e),
-            Self::Kapitza { .. } => None,
+            Self::Kapitza { .. } | Self::Free { .. } => None,
         }
     }
 
@@ -305,7 +341,7 @@ impl LimitView {
     #[must_use]
     pub fn fast_period(&self) -> Option<f64> {
         match self {
-            Self::Rattleback(_) => None,
+            Self::Rattleback(_) | Self::Free { .. } => None,
             Self::Kapitza { epsilon, .. } => Some(2.0 * std::f64::consts::PI * epsilon),
         }
     }
@@ -316,6 +352,7 @@ impl LimitView {
         match self {
             Self::Rattleback(e) => e.params().iz,
             Self::Kapitza { .. } => 1.0,
+            Self::Free { mass, .. } => *mass,
         }
     }
 
@@ -323,7 +360,7 @@ impl LimitView {
     #[must_use]
     pub fn period(&self) -> f64 {
         match self {
-            Self::Rattleback(_) => std::f64::consts::PI,
+            Self::Rattleback(_) | Self::Free { .. } => std::f64::consts::PI,
             Self::Kapitza { .. } => 2.0 * std::f64::consts::PI,
         }
     }
@@ -341,7 +378,7 @@ impl LimitView {
                     std::f64::consts::FRAC_PI_2
                 }
             }
-            Self::Kapitza { .. } => 0.0,
+            Self::Kapitza { .. } | Self::Free { .. } => 0.0,
         }
     }
 
@@ -351,6 +388,7 @@ impl LimitView {
         match self {
             Self::Rattleback(e) => e.potential(q),
             Self::Kapitza { limit, .. } => limit.potential(q),
+            Self::Free { .. } => 0.0,
         }
     }
 
@@ -360,6 +398,7 @@ impl LimitView {
         match self {
             Self::Rattleback(e) => e.potential_max(),
             Self::Kapitza { limit, .. } => limit.potential_max(),
+            Self::Free { .. } => 0.0,
         }
     }
 
@@ -369,6 +408,7 @@ impl LimitView {
         match self {
             Self::Rattleback(e) => e.potential_min(),
             Self::Kapitza { limit, .. } => limit.potential_min(),
+            Self::Free { .. } => 0.0,
         }
     }
 
@@ -385,6 +425,7 @@ impl LimitView {
                 }
             }
             Self::Kapitza { limit, .. } => limit.separatrices(),
+            Self::Free { .. } => Vec::new(),
         }
     }
 
@@ -393,7 +434,7 @@ impl LimitView {
     pub fn energy(&self) -> f64 {
         match self {
             Self::Rattleback(e) => e.energy(),
-            Self::Kapitza { energy, .. } => *energy,
+            Self::Kapitza { energy, .. } | Self::Free { energy, .. } => *energy,
         }
     }
 
@@ -412,7 +453,7 @@ impl LimitView {
         let top = (2.0 * (self.energy() - lo) / m).max(0.0).sqrt();
         let q_dot0 = match self {
             Self::Rattleback(e) => e.spin_scale(),
-            Self::Kapitza { q_dot0, .. } => q_dot0.abs(),
+            Self::Kapitza { q_dot0, .. } | Self::Free { q_dot0, .. } => q_dot0.abs(),
         };
         sep.max(top).max(q_dot0)
     }

@@ -147,8 +147,10 @@ pub struct ParamSpec {
     pub key: &'static str,
     /// What values it allows.
     pub allowed: Allowed,
-    /// Whether a preset must give it; an absent optional value is 0.
+    /// Whether a preset must give it.
     pub required: bool,
+    /// The value of an optional parameter a preset leaves out.
+    pub default: f64,
     /// How the panel steps and shows it.
     pub scale: Scale,
     /// What it is, for the generated preset reference.

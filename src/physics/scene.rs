@@ -34,13 +34,34 @@ pub struct Words {
     pub event: &'static str,
     /// Events.
     pub events: &'static str,
-    /// The second kind of event the explorer counts (the pendulum's falls), if any.
-    pub second_events: Option<&'static str>,
+    /// The second kind of event the explorer counts (the pendulum's falls, the celt's
+    /// crossings), if any.
+    pub second_events: Option<SecondEvents>,
     /// The energy monitor's CSV column (`energy_error`, `energy_drift`).
     pub monitor_column: &'static str,
     /// What the status bar's energy monitor shows (`ΔE/E` of a conserved energy, or `ΔE_eff`
     /// of the limit's energy for a forced model).
     pub monitor: &'static str,
+}
+
+/// A model's second kind of event: its name and where it is found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SecondEvents {
+    /// The name, plural (`falls`, `crossings`).
+    pub name: &'static str,
+    /// Where they are found.
+    pub found: Found,
+}
+
+/// Where a model's second events are found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Found {
+    /// Between consecutive samples, where the slow angle `q − fast` passes the horizontal going
+    /// down (`cos` from positive to non-positive): the pendulum's falls.
+    SlowAngleFalls,
+    /// By the flow inside its steps ([`crate::physics::flow::Flow::marks`]): the celt's spin
+    /// crossings.
+    Flow,
 }
 
 /// The small parameter a model's limit is about, and how the sweep steps it.

@@ -682,7 +682,11 @@ impl Preset {
                 message: e.to_string(),
             }
         };
-        let values: Vec<f64> = kind.params().iter().map(|p| n(p.section, p.key)).collect();
+        let values: Vec<f64> = kind
+            .params()
+            .iter()
+            .map(|p| r.num(p.section, p.key).unwrap_or(p.default))
+            .collect();
         let model = kind.problem(&values).map_err(invalid)?;
         let (x_range, y_range) = range_keys(kind);
         let (t_end, step) = (n("run", "t_end"), r.num("run", "step"));
@@ -745,7 +749,9 @@ impl Preset {
             let _ = writeln!(o, "model = {}", q(kind.name()));
         }
         let mut section = "";
-        for (spec, value) in kind.params().iter().zip(self.model.values()) {
+        // A model's `[run]` rows (the celt's `spin_band`) go into the one `[run]` table below.
+        let rows: Vec<_> = kind.params().iter().zip(self.model.values()).collect();
+        for (spec, value) in rows.iter().filter(|(s, _)| s.section != "run") {
             if spec.section != section {
                 section = spec.section;
                 let _ = write!(o, "\n[{section}]\n");
@@ -754,6 +760,9 @@ impl Preset {
         }
         o.push('\n');
         let _ = writeln!(o, "[run]\nt_end = {:?}", self.run.t_end);
+        for (spec, value) in rows.iter().filter(|(s, _)| s.section == "run") {
+            let _ = writeln!(o, "{} = {value:?}", spec.key);
+        }
         if let Some(m) = self.run.method {
             let _ = writeln!(o, "method = {}", q(m.name()));
         }

@@ -61,6 +61,34 @@ pub const SHIPPED: &[(&str, &str)] = &[
         "kapitza-stiff",
         include_str!("../../presets/kapitza-stiff.toml"),
     ),
+    (
+        "celt-clockwise",
+        include_str!("../../presets/celt-clockwise.toml"),
+    ),
+    (
+        "celt-anticlockwise",
+        include_str!("../../presets/celt-anticlockwise.toml"),
+    ),
+    (
+        "celt-pitching",
+        include_str!("../../presets/celt-pitching.toml"),
+    ),
+    (
+        "celt-rolling",
+        include_str!("../../presets/celt-rolling.toml"),
+    ),
+    (
+        "celt-fast-spin",
+        include_str!("../../presets/celt-fast-spin.toml"),
+    ),
+    (
+        "celt-mirrored",
+        include_str!("../../presets/celt-mirrored.toml"),
+    ),
+    (
+        "celt-stubby",
+        include_str!("../../presets/celt-stubby.toml"),
+    ),
 ];
 
 /// The preset `cargo run --release` opens.

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{Command, Session, SessionSpec, SimEvent};
 use crate::physics::Model;
-use crate::physics::kapitza;
+use crate::physics::{celt, kapitza};
 use crate::physics::plan::{AutoPolicy, Resolved};
 use crate::physics::rattleback::integrators::{Method, StepError};
 use crate::physics::rattleback::{Params, Start};
@@ -41,6 +41,19 @@ pub enum PlanKey {
         /// Horizon.
         t_end: f64,
     },
+    /// The celt's (field names differ from the others': the untagged form stays unambiguous).
+    Celt {
+        /// The body.
+        celt: celt::Params,
+        /// Attitude and angular velocity.
+        celt_start: celt::Start,
+        /// The reversal band.
+        spin_band: f64,
+        /// Tolerance asked.
+        tolerance: f64,
+        /// Horizon.
+        t_end: f64,
+    },
 }
 
 impl PlanKey {
@@ -58,6 +71,13 @@ impl PlanKey {
             Model::Kapitza(p) => Self::Kapitza {
                 pendulum: *p.params(),
                 initial: *p.start(),
+                tolerance,
+                t_end,
+            },
+            Model::Celt(p) => Self::Celt {
+                celt: *p.params(),
+                celt_start: *p.start(),
+                spin_band: p.band(),
                 tolerance,
                 t_end,
             },

@@ -4,6 +4,7 @@
 //! The rattleback's report is here; each other model's is in its own file (`kapitza`), reached
 //! through the preset's [`crate::physics::Model`].
 
+mod celt;
 mod kapitza;
 mod render;
 
@@ -121,6 +122,7 @@ pub fn predicted_seconds(preset: &Preset, resolved: &Resolved, format: Format) -
     let problem = match &preset.model {
         crate::physics::Model::Rattleback(p) => p,
         crate::physics::Model::Kapitza(p) => return kapitza::predicted_seconds(p, &spec),
+        crate::physics::Model::Celt(p) => return celt::predicted_seconds(p, &spec),
     };
     let main = plan::predicted_seconds(problem, spec.method, spec.tolerance, spec.step, spec.t_end);
     let extra = match format {
@@ -391,6 +393,9 @@ pub fn simulate_to(
         }
         crate::physics::Model::Kapitza(p) => {
             kapitza::simulate_to(preset, p, resolved, format, out, progress)
+        }
+        crate::physics::Model::Celt(p) => {
+            celt::simulate_to(preset, p, resolved, format, out, progress)
         }
     }
 }

@@ -11,7 +11,7 @@ fn quick_study_covers_every_method_and_writes_its_files() {
     let mut log = Vec::new();
     let rows = bench::work_precision(Config { quick: true }, &mut |l| log.push(l.to_owned()));
     assert!(log.iter().filter(|l| l.contains("reference")).count() == bench::KS.len());
-    for m in Method::ALL {
+    for &m in rattleback::physics::ModelKind::Rattleback.methods() {
         let at_1e4: Vec<_> = rows
             .iter()
             .filter(|r| r.k == 1e4 && r.method == m.name())

@@ -98,7 +98,7 @@ fn every_shipped_preset_runs_within_the_budget_with_every_method() {
             }
             continue;
         };
-        for method in Method::ALL {
+        for &method in rattleback::physics::ModelKind::Rattleback.methods() {
             let s = predicted_seconds(problem, method, tol, None, p.run.t_end);
             assert!(
                 s.is_finite() && s > 0.0 && s < BUDGET_SECONDS / 10.0,

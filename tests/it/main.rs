@@ -9,6 +9,7 @@ mod averaged;
 mod bad_presets;
 mod bench_study;
 mod bounded;
+mod celt;
 mod budget;
 mod cli_conventions;
 mod convergence_order;

@@ -10,7 +10,7 @@ use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, PlanRequest, Resolution, Resolved};
 use crate::physics::scene::{
-    Planned, Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine, WeakView, Words,
+    Found, Planned, Posed, Scene, SecondEvents, Shown, SlowCurve, SmallParameter, Studies, SummaryLine, WeakView, Words,
 };
 
 const STRENGTH: Scale = Scale::Linear {
@@ -25,6 +25,7 @@ pub const PARAMS: [ParamSpec; 5] = [
         key: "a",
         allowed: Allowed::Finite,
         required: true,
+        default: 0.0,
         scale: STRENGTH,
         doc: "gravity over length; the upright is unstable without shaking when a > 0",
     },
@@ -33,6 +34,7 @@ pub const PARAMS: [ParamSpec; 5] = [
         key: "b",
         allowed: Allowed::NonNegative,
         required: true,
+        default: 0.0,
         scale: STRENGTH,
         doc: "shaking strength: the pivot's acceleration is (b/ε) cos(t/ε)",
     },
@@ -45,6 +47,7 @@ pub const PARAMS: [ParamSpec; 5] = [
             text: "a number in [1e-9, 1]",
         },
         required: true,
+        default: 0.0,
         scale: Scale::Log,
         doc: "fast time scale: the pivot oscillates with angular frequency 1/ε",
     },
@@ -53,6 +56,7 @@ pub const PARAMS: [ParamSpec; 5] = [
         key: "theta",
         allowed: Allowed::Finite,
         required: true,
+        default: 0.0,
         scale: Scale::Linear {
             fine: 0.05,
             coarse: std::f64::consts::FRAC_PI_8,
@@ -64,6 +68,7 @@ pub const PARAMS: [ParamSpec; 5] = [
         key: "theta_dot",
         allowed: Allowed::Finite,
         required: false,
+        default: 0.0,
         scale: Scale::Linear {
             fine: 0.01,
             coarse: 0.1,
@@ -94,7 +99,10 @@ impl Scene for KapitzaScene {
             fast: "θ−Θ",
             event: "swing",
             events: "swings",
-            second_events: Some("falls"),
+            second_events: Some(SecondEvents {
+                name: "falls",
+                found: Found::SlowAngleFalls,
+            }),
             monitor: "ΔE_eff",
             monitor_column: "energy_drift",
         }

@@ -190,6 +190,15 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         self.stats
     }
 
+    /// Replaces the current state by its projection `p` onto the system's constraints (after an
+    /// accepted step) and evaluates the field there, so the next step starts from the projected
+    /// point. The last step's interpolant then ends at the projected state.
+    pub fn project(&mut self, p: impl FnOnce(&mut SVector<f64, N>)) {
+        p(&mut self.y);
+        self.f_now = self.f.eval_at(self.t, &self.y);
+        self.stats.rhs_evaluations += 1;
+    }
+
     // Butcher-tableau loops index several arrays by stage; iterators would obscure them.
     #[allow(clippy::needless_range_loop)]
     /// Takes one accepted step, never past `t_limit` (which must exceed the current time).

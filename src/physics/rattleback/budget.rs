@@ -63,7 +63,8 @@ pub fn cost_seconds(
     let h = || step.unwrap_or_else(|| default_step(method, problem, tolerance, t_end));
     let periods = |rate: f64| rate * t_end / std::f64::consts::TAU;
     let ns = match method {
-        Method::Dop853 | Method::Auto => {
+        // Not offered here (refused by `Model::resolve`); priced as DOP853.
+        Method::Dop853 | Method::Dop853Projected | Method::Auto => {
             dop853_evaluations(tolerance, periods(nu)) * NS_DOP853_EVAL
         }
         Method::Effective | Method::EffectiveCorrected | Method::Averaged2 => {

@@ -75,6 +75,7 @@ pub fn default_step(method: Method, problem: &Problem, tolerance: f64, t_end: f6
         Method::Yoshida6 => (1.0, 6.0),
         Method::Suzuki8 => (1.5, 8.0),
         Method::Dop853
+        | Method::Dop853Projected
         | Method::Effective
         | Method::EffectiveCorrected
         | Method::Averaged2
@@ -130,5 +131,11 @@ pub fn build(
             Box::new(averaged::Averaged2Dop853::new(problem, settings.tolerance))
         }
         Method::Auto => return Err(StepError::Unplanned),
+        Method::Dop853Projected => {
+            return Err(StepError::NotOffered {
+                method: method.name(),
+                model: "rattleback",
+            });
+        }
     })
 }

@@ -1,0 +1,228 @@
+//! The celt's integrators behind [`Flow`], and its events.
+//!
+//! - `dop853`: the 13 components of the state (`mod.rs`) by the adaptive DOP853 core, as the
+//!   reference script does. `|γ|`, `|q|` and `γ = R(q)ᵀ Z` hold only to the tolerance.
+//! - `dop853-projected`: the same, with the state put back on its constraints after every
+//!   accepted step: `q` normalised and `γ` taken as the third row of `R(q)`, so `|γ| = 1`, the
+//!   attitude and the up vector agree, and the contact (whose height follows from `γ`) stays on
+//!   the plane by construction. The projection does not change the order.
+//!
+//! **Events** (model.md §8). The spin `σ = ω·γ` is modulated by the pitching, so a step can hold
+//! two sign changes with equal signs at its ends. Where a step's ends straddle zero or come near
+//! it, the interpolant is sampled at 33 points and every sign change is located by root
+//! finding: these are the **crossings** ([`Flow::marks`]). A **reversal** is counted at a step's
+//! end where `σ` has the sign opposite to the current sense and `|σ| ≥ band`; its time is the
+//! last crossing before. The flow's event function is the current sense (±1), so the generic
+//! [`crate::physics::flow::EventTracker`] counts reversals and asks [`Flow::locate_event`] for
+//! that crossing.
+
+use super::{DIM, Params, Problem, State, spin, tilt};
+use crate::physics::flow::{Flow, Sample};
+use crate::physics::method::{Method, Settings, StepError};
+use crate::physics::numerics::dop853::{Dop853, Field, Stats};
+use crate::physics::numerics::roots::find_root;
+
+/// The methods this model offers (`auto` first).
+pub const METHODS: [Method; 3] = [Method::Auto, Method::Dop853, Method::Dop853Projected];
+
+/// Points per step at which the interpolant is searched for crossings.
+const SEARCH: usize = 32;
+
+#[derive(Clone)]
+struct CeltField(Params);
+
+impl Field<DIM> for CeltField {
+    #[inline]
+    fn eval(&self, y: &State) -> State {
+        self.0.field(y)
+    }
+    fn unit(&self, i: usize) -> f64 {
+        let _ = i;
+        1.0
+    }
+    fn is_angle(&self, i: usize) -> bool {
+        i == DIM - 1
+    }
+}
+
+/// Builds a ready-to-step integrator at `t = 0`.
+///
+/// # Errors
+/// [`StepError::Unplanned`] for `auto`; [`StepError::NotOffered`] for another model's method.
+pub fn build(problem: &Problem, method: Method, settings: Settings) -> Result<CeltFlow, StepError> {
+    match method {
+        Method::Dop853 => Ok(CeltFlow::new(problem, settings.tolerance, false)),
+        Method::Dop853Projected => Ok(CeltFlow::new(problem, settings.tolerance, true)),
+        Method::Auto => Err(StepError::Unplanned),
+        other => Err(StepError::NotOffered {
+            method: other.name(),
+            model: "celt",
+        }),
+    }
+}
+
+/// A running integration of the celt.
+#[derive(Clone)]
+pub struct CeltFlow {
+    params: Params,
+    core: Dop853<DIM, CeltField>,
+    project: bool,
+    band: f64,
+    /// The current sense of the spin (±1).
+    sense: f64,
+    /// The spin at the end of the last step.
+    spin_now: f64,
+    /// Crossings inside the last step.
+    marks: Vec<f64>,
+    /// The last crossing found so far.
+    last_crossing: Option<f64>,
+    /// The time of the last reversal (its crossing).
+    reversal: f64,
+}
+
+/// Puts a state back on its constraints: unit quaternion, `γ` its third row.
+pub fn project(y: &mut State) {
+    let n = (y[6] * y[6] + y[7] * y[7] + y[8] * y[8] + y[9] * y[9]).sqrt();
+    for i in 6..10 {
+        y[i] /= n;
+    }
+    let (w, x, yy, z) = (y[6], y[7], y[8], y[9]);
+    y[3] = 2.0 * (x * z - w * yy);
+    y[4] = 2.0 * (yy * z + w * x);
+    y[5] = 1.0 - 2.0 * (x * x + yy * yy);
+}
+
+impl CeltFlow {
+    /// Starts at the problem's initial state.
+    #[must_use]
+    pub fn new(problem: &Problem, tol: f64, project: bool) -> Self {
+        let y0 = problem.initial_state();
+        let s0 = spin(&y0);
+        Self {
+            params: *problem.params(),
+            core: Dop853::new(CeltField(*problem.params()), 0.0, y0, tol),
+            project,
+            band: problem.band(),
+            sense: if s0 >= 0.0 { 1.0 } else { -1.0 },
+            spin_now: s0,
+            marks: Vec::new(),
+            last_crossing: None,
+            reversal: 0.0,
+        }
+    }
+
+    /// The state now.
+    #[must_use]
+    pub fn state(&self) -> State {
+        self.core.state()
+    }
+
+    /// The state at `t` inside the last step (or now).
+    pub fn at(&mut self, t: f64) -> State {
+        if t >= self.core.time() {
+            self.core.state()
+        } else {
+            self.core.interpolate(t)
+        }
+    }
+
+    /// The crossings inside the step just taken.
+    fn find_crossings(&mut self, s_prev: f64) {
+        self.marks.clear();
+        let (t0, t1) = (self.core.time_prev(), self.core.time());
+        let s_new = spin(&self.core.state());
+        let near = s_prev.abs().min(s_new.abs()) < 4.0 * (s_new - s_prev).abs() + 1e-3;
+        let straddles = s_prev == 0.0 || s_new == 0.0 || (s_prev > 0.0) != (s_new > 0.0);
+        if !(near || straddles) {
+            return;
+        }
+        let mut ts = [0.0; SEARCH + 1];
+        let mut ss = [0.0; SEARCH + 1];
+        for k in 0..=SEARCH {
+            ts[k] = t0 + (t1 - t0) * k as f64 / SEARCH as f64;
+            ss[k] = if k == 0 {
+                s_prev
+            } else if k == SEARCH {
+                s_new
+            } else {
+                spin(&self.core.interpolate(ts[k]))
+            };
+        }
+        for k in 0..SEARCH {
+            let (a, b) = (ss[k], ss[k + 1]);
+            // A start exactly on zero is not a crossing.
+            if (a > 0.0) != (b > 0.0) && a != b && !(ts[k] == 0.0 && a == 0.0) {
+                let t = if a == 0.0 {
+                    ts[k]
+                } else {
+                    let core = &mut self.core;
+                    find_root(|t| spin(&core.interpolate(t)), ts[k], ts[k + 1])
+                };
+                self.marks.push(t);
+                self.last_crossing = Some(t);
+            }
+        }
+    }
+}
+
+impl Flow for CeltFlow {
+    fn boxed(&self) -> Box<dyn Flow> {
+        Box::new(self.clone())
+    }
+    fn method(&self) -> Method {
+        if self.project {
+            Method::Dop853Projected
+        } else {
+            Method::Dop853
+        }
+    }
+    fn time(&self) -> f64 {
+        self.core.time()
+    }
+    fn time_prev(&self) -> f64 {
+        self.core.time_prev()
+    }
+    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
+        let s_prev = self.spin_now;
+        self.core.step(t_limit)?;
+        if self.project {
+            self.core.project(project);
+        }
+        self.find_crossings(s_prev);
+        let s = spin(&self.core.state());
+        self.spin_now = s;
+        if s * self.sense < 0.0 && s.abs() >= self.band {
+            if let Some(t) = self.last_crossing {
+                self.sense = -self.sense;
+                self.reversal = t;
+            }
+        }
+        Ok(())
+    }
+    fn sample(&mut self, t: f64) -> Sample {
+        let y = self.at(t);
+        Sample {
+            q: y[DIM - 1],
+            q_dot: spin(&y),
+            fast: tilt(&y),
+        }
+    }
+    fn state_at(&mut self, t: f64) -> Vec<f64> {
+        self.at(t).iter().copied().collect()
+    }
+    fn event_value(&self) -> f64 {
+        self.sense
+    }
+    fn locate_event(&mut self) -> f64 {
+        self.reversal
+    }
+    fn marks(&self) -> &[f64] {
+        &self.marks
+    }
+    fn energy(&self) -> f64 {
+        self.params.energy(&self.core.state())
+    }
+    fn stats(&self) -> Stats {
+        self.core.stats()
+    }
+}

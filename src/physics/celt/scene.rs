@@ -1,0 +1,295 @@
+//! The classical rattleback as every layer above `physics/` sees it: its parameter table,
+//! words, studies and the facts of a posed problem ([`Scene`], [`Posed`]). Nothing outside
+//! this folder names a celt parameter.
+//!
+//! What the explorer draws of a state ([`crate::physics::flow::Sample`]): the angle turned
+//! about the vertical `φ = ∫ ω·γ dt` as the slow coordinate, the spin `ω·γ` as its rate, the
+//! tilt from upright as the fast coordinate. Events are spin reversals (with the band) and
+//! raw crossings.
+
+use super::run::RunSpec;
+use super::{Params, Problem, Start, TILT_MAX};
+use crate::physics::flow::Flow;
+use crate::physics::method::{Method, Settings, StepError};
+use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
+use crate::physics::plan::{AutoPolicy, PlanRequest};
+use crate::physics::scene::{
+    Found, Planned, Posed, Scene, SecondEvents, Shown, SlowCurve, SmallParameter, Studies,
+    SummaryLine, WeakView, Words,
+};
+
+const LENGTH: Scale = Scale::Linear {
+    fine: 0.1,
+    coarse: 1.0,
+};
+const INERTIA: Scale = Scale::Linear {
+    fine: 0.1,
+    coarse: 1.0,
+};
+const ANGLE: Scale = Scale::Linear {
+    fine: 0.001,
+    coarse: 0.01,
+};
+const RATE: Scale = Scale::Linear {
+    fine: 0.1,
+    coarse: 1.0,
+};
+
+/// A required row, or (`Some(default)`) an optional one.
+const fn row(
+    section: &'static str,
+    key: &'static str,
+    allowed: Allowed,
+    default: Option<f64>,
+    scale: Scale,
+    doc: &'static str,
+) -> ParamSpec {
+    ParamSpec {
+        section,
+        key,
+        allowed,
+        required: default.is_none(),
+        default: match default {
+            Some(d) => d,
+            None => 0.0,
+        },
+        scale,
+        doc,
+    }
+}
+
+const TILT: Allowed = Allowed::Between {
+    lo: -TILT_MAX,
+    hi: TILT_MAX,
+    text: "a number in [-1.5, 1.5] (rad)",
+};
+
+/// The celt's parameters, in the panel's order. Names are a contract: add, never rename.
+pub const PARAMS: [ParamSpec; 16] = [
+    row("celt", "a", Allowed::Positive, None, LENGTH, "semi-axis of the ellipsoidal bottom along body x, the long axis (cm)"),
+    row("celt", "b", Allowed::Positive, None, LENGTH, "semi-axis along body y (cm)"),
+    row("celt", "c", Allowed::Positive, None, LENGTH, "semi-axis along body z, the vertical at rest (cm)"),
+    row("celt", "offset", Allowed::Finite, None, LENGTH, "h: the mass centre lies h below the ellipsoid's centre on the c-axis; must be below c (cm)"),
+    row("celt", "ix", Allowed::Positive, None, INERTIA, "A: moment of inertia about body x through the mass centre, per unit mass (cm^2)"),
+    row("celt", "iy", Allowed::Positive, None, INERTIA, "B: about body y (cm^2)"),
+    row("celt", "iz", Allowed::Positive, None, INERTIA, "C: about body z (cm^2)"),
+    row("celt", "product", Allowed::Finite, None, Scale::Linear { fine: 0.01, coarse: 0.1 }, "D: the inertia tensor's entry I_xy (Kane's convention), per unit mass; its sign sets the preferred sense of spin, 0 has none (cm^2)"),
+    row("celt", "gravity", Allowed::NonNegative, Some(DEFAULT_GRAVITY), Scale::Linear { fine: 1.0, coarse: 100.0 }, "gravity (cm/s^2)"),
+    row("initial", "roll", TILT, Some(0.0), ANGLE, "roll about body x at t = 0 (rad)"),
+    row("initial", "pitch", TILT, Some(0.0), ANGLE, "pitch about body y at t = 0 (rad)"),
+    row("initial", "yaw", Allowed::Finite, Some(0.0), ANGLE, "heading at t = 0 (rad)"),
+    row("initial", "omega_x", Allowed::Finite, Some(0.0), RATE, "body-frame angular velocity about x at t = 0 (rad/s)"),
+    row("initial", "omega_y", Allowed::Finite, Some(0.0), RATE, "about y (rad/s)"),
+    row("initial", "omega_z", Allowed::Finite, Some(0.0), RATE, "about z; negative is clockwise seen from above (rad/s)"),
+    row("run", "spin_band", Allowed::NonNegative, Some(DEFAULT_BAND), Scale::Linear { fine: 0.05, coarse: 0.5 }, "hysteresis band of a reversal: the spin must reach this size with the new sign (rad/s)"),
+];
+
+/// The gravity of a preset that gives none.
+pub const DEFAULT_GRAVITY: f64 = 981.0;
+/// The band of a preset that gives none.
+pub const DEFAULT_BAND: f64 = 0.5;
+
+/// The values of a problem, in the order of [`PARAMS`].
+#[must_use]
+pub fn values_of(p: &Params, s: &Start, band: f64) -> Vec<f64> {
+    vec![
+        p.a, p.b, p.c, p.offset, p.ix, p.iy, p.iz, p.product, p.gravity, s.roll, s.pitch, s.yaw,
+        s.omega[0], s.omega[1], s.omega[2], band,
+    ]
+}
+
+/// The celt's scene.
+pub struct CeltScene;
+
+/// The one instance.
+pub static SCENE: CeltScene = CeltScene;
+
+impl Scene for CeltScene {
+    fn name(&self) -> &'static str {
+        "celt"
+    }
+    fn title(&self) -> &'static str {
+        "classical rattleback (celt)"
+    }
+    fn words(&self) -> Words {
+        Words {
+            q_name: "turn",
+            q_dot_name: "spin",
+            q: "φ",
+            q_dot: "ω·γ",
+            fast: "tilt",
+            event: "reversal",
+            events: "reversals",
+            second_events: Some(SecondEvents {
+                name: "crossings",
+                found: Found::Flow,
+            }),
+            monitor: "ΔE/E",
+            monitor_column: "energy_error",
+        }
+    }
+    fn params(&self) -> &'static [ParamSpec] {
+        &PARAMS
+    }
+    fn model_required(&self) -> bool {
+        true
+    }
+    fn methods(&self) -> &'static [Method] {
+        &super::flows::METHODS
+    }
+    fn limit_tolerance(&self) -> f64 {
+        // No limit: nothing runs at it.
+        1e-10
+    }
+    fn small(&self) -> Option<SmallParameter> {
+        None
+    }
+    fn studies(&self) -> Studies {
+        Studies {
+            weak: false,
+            map: false,
+            body: false,
+        }
+    }
+}
+
+impl Problem {
+    /// The problem of `values`, in the order of [`PARAMS`].
+    ///
+    /// # Errors
+    /// The first value outside its range, or a body that cannot be.
+    pub fn from_values(values: &[f64]) -> Result<Self, ParamError> {
+        let v = |i: usize| values.get(i).copied().unwrap_or(f64::NAN);
+        Self::new(
+            Params {
+                a: v(0),
+                b: v(1),
+                c: v(2),
+                offset: v(3),
+                ix: v(4),
+                iy: v(5),
+                iz: v(6),
+                product: v(7),
+                gravity: v(8),
+            },
+            Start {
+                roll: v(9),
+                pitch: v(10),
+                yaw: v(11),
+                omega: [v(12), v(13), v(14)],
+            },
+            v(15),
+        )
+    }
+
+    /// Whether the upright rest is stable: both radii of curvature of the bottom exceed the
+    /// height of the mass centre.
+    #[must_use]
+    pub fn stable_upright(&self) -> bool {
+        let p = self.params();
+        let h = p.rest_height();
+        p.a * p.a / p.c > h && p.b * p.b / p.c > h
+    }
+}
+
+impl Posed for Problem {
+    fn scene(&self) -> &'static dyn Scene {
+        &SCENE
+    }
+    fn values(&self) -> Vec<f64> {
+        values_of(self.params(), self.start(), self.band())
+    }
+    fn summary(&self) -> Vec<SummaryLine> {
+        let p = self.params();
+        let y0 = self.initial_state();
+        let line = |label, value| SummaryLine { label, value };
+        vec![
+            line("skew δ°", Shown::Number(Some(p.skew().to_degrees()))),
+            line("spin ω·γ", Shown::Number(Some(super::spin(&y0)))),
+            line("energy E", Shown::Number(Some(p.energy(&y0)))),
+            line(
+                "rest E",
+                Shown::Number(Some(p.gravity * p.rest_height())),
+            ),
+            line(
+                "upright",
+                Shown::Verdict(if self.stable_upright() {
+                    "stable at rest"
+                } else {
+                    "unstable at rest"
+                }),
+            ),
+        ]
+    }
+    fn slow_start(&self) -> (f64, f64) {
+        (0.0, super::spin(&self.initial_state()))
+    }
+    fn default_step(&self, _method: Method, tolerance: f64, _t_end: f64) -> f64 {
+        // Adaptive methods only; the size of the first step DOP853 would take, about.
+        tolerance.clamp(1e-16, 1.0).powf(0.125) / super::budget::fastest_rate(self)
+    }
+    fn build(
+        &self,
+        method: Method,
+        settings: Settings,
+        _t_end: f64,
+    ) -> Result<Box<dyn Flow>, StepError> {
+        Ok(Box::new(super::flows::build(self, method, settings)?))
+    }
+    fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
+        super::plan::resolve(self, ask, go_on)
+    }
+    fn predicted_seconds(
+        &self,
+        method: Method,
+        tolerance: f64,
+        _step: Option<f64>,
+        t_end: f64,
+    ) -> f64 {
+        super::budget::cost_seconds(self, method, tolerance, t_end)
+    }
+    fn weak_view(
+        &self,
+        _t_end: f64,
+        _go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Option<Result<WeakView, StepError>> {
+        None
+    }
+    fn slow_curve(
+        &self,
+        method: Method,
+        tolerance: f64,
+        t_end: f64,
+        samples: usize,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<SlowCurve, StepError> {
+        if method == Method::Effective {
+            return Err(StepError::NoStudy {
+                what: "limit",
+                model: "celt",
+            });
+        }
+        let ask = PlanRequest {
+            method,
+            tolerance,
+            t_end,
+            policy: AutoPolicy::Verified,
+            budget: crate::physics::budget::BUDGET_SECONDS,
+        };
+        let r = self.resolve(&ask, go_on)?;
+        let spec = RunSpec {
+            method: r.plan.method,
+            tolerance: r.plan.tolerance,
+            t_end,
+            samples,
+        };
+        let run = super::run::run(self, &spec, go_on)?;
+        let (t, q) = run.samples.iter().map(|s| (s.t, s.turn)).unzip();
+        Ok(SlowCurve {
+            t,
+            q,
+            method: run.method,
+            estimate: r.estimate.unwrap_or(0.0),
+        })
+    }
+}

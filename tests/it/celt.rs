@@ -1,0 +1,233 @@
+//! The celt scene against the repository's own references (tests/fixtures/celt/references.json,
+//! made by scripts/celt_references.py with scipy's DOP853 on an independent implementation that
+//! shares no code with the crate), and its symmetries as property tests.
+
+use proptest::prelude::*;
+use serde_json::Value;
+
+use rattleback::physics::Method;
+use rattleback::physics::celt::run::{RunSpec, run};
+use rattleback::physics::celt::{Params, Problem, Start};
+use rattleback::scenario::shipped::{SHIPPED, resolve as preset};
+use rattleback::simulate::{self, Format, Request};
+
+fn references() -> Value {
+    serde_json::from_str(include_str!("../fixtures/celt/references.json")).expect("fixture")
+}
+
+fn report(name: &str, method: Option<Method>, tolerance: f64) -> Value {
+    let p = preset(name, &[]).expect("shipped");
+    let req = Request {
+        method,
+        tolerance: Some(tolerance),
+        step: None,
+        t_end: None,
+        format: Format::Json,
+        samples: 0,
+        force: false,
+    };
+    let resolved = simulate::resolve(&p, &req);
+    serde_json::from_str(&simulate::simulate(&p, &resolved, Format::Json).expect("runs"))
+        .expect("json")
+}
+
+fn floats(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect()
+}
+
+fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+}
+
+#[test]
+fn every_shipped_celt_preset_is_in_the_references() {
+    let refs = references();
+    let names: Vec<&str> = refs["cases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["preset"].as_str().unwrap())
+        .collect();
+    let shipped: Vec<&str> = SHIPPED
+        .iter()
+        .map(|(n, _)| *n)
+        .filter(|n| n.starts_with("celt-"))
+        .collect();
+    assert!(shipped.len() >= 5, "{shipped:?}");
+    for n in &shipped {
+        assert!(names.contains(n), "{n} has no reference: run scripts/celt_references.py");
+    }
+}
+
+/// The bar: at tolerance 1e-10 (`auto`, the default), the final ω within 1e-6 rad/s,
+/// the crossing and reversal counts exact, the energy within 1e-8 relative, crossing times
+/// within 1e-6 s.
+#[test]
+fn simulate_matches_the_references_on_every_shipped_preset() {
+    for case in references()["cases"].as_array().unwrap() {
+        let name = case["preset"].as_str().unwrap();
+        let r = report(name, None, 1e-10);
+        let want = &case["reference"];
+        let err = max_diff(&floats(&r["final"]["omega"]), &floats(&want["omega"]));
+        assert!(err <= 1e-6, "{name}: final omega off by {err:e}");
+        assert!(
+            max_diff(&floats(&r["final"]["gamma"]), &floats(&want["gamma"])) <= 1e-7,
+            "{name}: gamma"
+        );
+        assert_eq!(
+            r["events"]["crossings"]["count"], want["crossings"],
+            "{name}: crossings"
+        );
+        assert_eq!(
+            r["events"]["reversals"]["count"], want["reversals"],
+            "{name}: reversals"
+        );
+        let dt = max_diff(
+            &floats(&r["events"]["crossings"]["times"]),
+            &floats(&want["crossing_times"]),
+        );
+        assert!(dt <= 1e-6, "{name}: crossing times off by {dt:e}");
+        let e_ref = want["energy_initial"].as_f64().unwrap();
+        for key in ["initial", "final"] {
+            let e = r["energy"][key].as_f64().unwrap();
+            assert!(
+                ((e - e_ref) / e_ref).abs() <= 1e-8,
+                "{name}: energy {key} {e} against {e_ref}"
+            );
+        }
+        assert!(r["constraint"]["contact_height_max"].as_f64().unwrap() < 1e-8);
+        // `auto`'s claim holds: a met estimate bounds the error it claims.
+        let auto = &r["auto"];
+        assert!(
+            auto["error_estimate"].as_f64().unwrap() >= err,
+            "{name}: estimate below the error {err:e}"
+        );
+    }
+}
+
+/// DOP853 and its projected variant converge to the reference as the tolerance shrinks, with
+/// errors of the size the reference's own DOP853 (scipy) makes at the same tolerance.
+#[test]
+fn both_methods_converge_like_the_references_own_dop853() {
+    for case in references()["cases"].as_array().unwrap() {
+        let name = case["preset"].as_str().unwrap();
+        let want = floats(&case["reference"]["omega"]);
+        let spread = case["omega_uncertainty"].as_f64().unwrap();
+        for method in [Method::Dop853, Method::Dop853Projected] {
+            let mut last = f64::INFINITY;
+            for (tol, key) in [(1e-8, "1e-08"), (1e-10, "1e-10")] {
+                let r = report(name, Some(method), tol);
+                let err = max_diff(&floats(&r["final"]["omega"]), &want);
+                let scipy = case["at_tolerance"][key]["omega_error"].as_f64().unwrap();
+                assert!(
+                    err <= 10.0 * scipy.max(spread),
+                    "{name} {method} at {tol:e}: {err:e} against scipy's {scipy:e}"
+                );
+                assert!(err < last, "{name} {method}: no convergence at {tol:e}");
+                last = err;
+            }
+        }
+    }
+}
+
+#[test]
+fn the_projected_method_keeps_the_constraints_to_rounding() {
+    for name in ["celt-clockwise", "celt-fast-spin"] {
+        let plain = report(name, Some(Method::Dop853), 1e-8);
+        let projected = report(name, Some(Method::Dop853Projected), 1e-8);
+        let c = |r: &Value, k: &str| r["constraint"][k].as_f64().unwrap();
+        assert!(c(&projected, "gamma_norm_error") < 1e-14, "{name}");
+        assert!(c(&projected, "contact_height_max") < 1e-13, "{name}");
+        assert!(
+            c(&plain, "gamma_norm_error") > 100.0 * c(&projected, "gamma_norm_error"),
+            "{name}: the plain method drifts off |γ| = 1 at 1e-8"
+        );
+    }
+}
+
+fn kl(product: f64, roll: f64, pitch: f64, omega: [f64; 3]) -> Problem {
+    Problem::new(
+        Params {
+            product,
+            ..Params::KANE_LEVINSON
+        },
+        Start {
+            roll,
+            pitch,
+            yaw: 0.0,
+            omega,
+        },
+        0.5,
+    )
+    .expect("valid")
+}
+
+fn final_state(p: &Problem, t_end: f64) -> Vec<f64> {
+    let spec = RunSpec {
+        method: Method::Dop853,
+        tolerance: 1e-12,
+        t_end,
+        samples: 0,
+    };
+    run(p, &spec, &mut |_| true)
+        .expect("runs")
+        .state
+        .iter()
+        .copied()
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
+
+    /// Reflection y → −y (model.md §6): the body with −D, started with −roll and
+    /// ω0 → (−ωx, ωy, −ωz), gives ω → (−ωx, ωy, −ωz) and γ → (γx, −γy, γz).
+    #[test]
+    fn the_mirror_body_moves_as_the_mirror_image(
+        d in -0.5f64..0.5,
+        roll in -0.05f64..0.05,
+        pitch in -0.05f64..0.05,
+        w in prop::array::uniform3(-6.0f64..6.0),
+    ) {
+        let a = final_state(&kl(d, roll, pitch, w), 1.5);
+        let b = final_state(&kl(-d, -roll, pitch, [-w[0], w[1], -w[2]]), 1.5);
+        let mirrored = [-a[0], a[1], -a[2], a[3], -a[4], a[5]];
+        for i in 0..6 {
+            prop_assert!((b[i] - mirrored[i]).abs() < 1e-8, "component {i}: {} vs {}", b[i], mirrored[i]);
+        }
+    }
+
+    /// Time reversal (model.md §6): from (ω, γ) at T, flip ω and integrate T again; the body
+    /// comes back to (−ω0, γ0).
+    #[test]
+    fn flipping_omega_runs_the_motion_backwards(
+        roll in -0.05f64..0.05,
+        pitch in -0.05f64..0.05,
+        w in prop::array::uniform3(-6.0f64..6.0),
+    ) {
+        let p = kl(-0.2, roll, pitch, w);
+        let y = final_state(&p, 1.0);
+        // The state at T as a new start: its attitude in angles (yaw, roll, pitch) from γ and q.
+        let g = [y[3], y[4], y[5]];
+        let roll_t = g[1].asin();
+        let pitch_t = (-g[0]).atan2(g[2]);
+        let back = Problem::new(
+            Params::KANE_LEVINSON,
+            Start { roll: roll_t, pitch: pitch_t, yaw: 0.0, omega: [-y[0], -y[1], -y[2]] },
+            0.5,
+        ).expect("valid");
+        let z = final_state(&back, 1.0);
+        for i in 0..3 {
+            prop_assert!((z[i] + w[i]).abs() < 1e-7, "omega {i}: {} vs {}", z[i], -w[i]);
+        }
+        let g0 = [-pitch.sin() * roll.cos(), roll.sin(), pitch.cos() * roll.cos()];
+        for i in 0..3 {
+            prop_assert!((z[3 + i] - g0[i]).abs() < 1e-8, "gamma {i}");
+        }
+    }
+}
