@@ -177,6 +177,9 @@ pub struct Shown {
     /// The pendulum's falls shown.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub falls: Option<usize>,
+    /// The celt's spin crossings shown.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crossings: Option<usize>,
     /// The displayed point: the slow coordinate, its rate and the energy error (none before the
     /// first sample).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -201,6 +204,8 @@ impl Shown {
             "limit's event count"
         } else if self.falls != other.falls {
             "falls"
+        } else if self.crossings != other.crossings {
+            "crossings"
         } else if bits(&self.point) != bits(&other.point) {
             "displayed point"
         } else if self.method != other.method {

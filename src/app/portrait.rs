@@ -215,6 +215,9 @@ pub fn levels(
     let (vmin, vmax) = (eff.potential_min(), eff.potential_max());
     let top = vmax.max(vmin + 0.5 * iz * bounds.y[1].max(-bounds.y[0]).powi(2));
     let mut out = Vec::new();
+    // A flat potential (a scene without a limit: the free rotor) has horizontal levels that say
+    // nothing the start's own level does not.
+    let count = if vmax > vmin { count } else { 0 };
     for i in 1..=count {
         let e = vmin + (top - vmin) * i as f64 / (count + 1) as f64;
         out.push(level(eff, bounds, e, LevelKind::Plain, samples));

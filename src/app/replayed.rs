@@ -131,8 +131,10 @@ impl App {
         Shown {
             playing: run.playing,
             events: run.reversals_shown(),
-            limit_events: self.view.overlay.then(|| run.effective_reversals_shown()),
+            limit_events: (self.view.overlay && s.model.kind().small().is_some())
+                .then(|| run.effective_reversals_shown()),
             falls: run.falls_shown(),
+            crossings: run.crossings_shown(),
             point: run
                 .current()
                 .map(|p| [p.alpha, p.alpha_dot, p.energy_error]),

@@ -8,6 +8,7 @@
 //! pause or a change takes effect at once, however slow the integration.
 
 use crate::physics::plan::Resolved;
+use crate::physics::scene::Found;
 use crate::sim::{Command, Point, SessionSpec, SimEvent};
 
 /// Most trail points kept per trail (the oldest half is dropped beyond).
@@ -111,9 +112,10 @@ pub struct RunState {
     pub effective_trail: Vec<Point>,
     /// Reversal times of the full motion (possibly ahead of `shown`).
     pub reversals: Events,
-    /// The pendulum's falls past the horizontal (the slow angle `Θ = θ − ripple` leaving the
-    /// upper half), found between consecutive samples; `None` for models without them.
-    pub falls: Option<Events>,
+    /// The model's second kind of event (the pendulum's falls, found here between consecutive
+    /// samples; the celt's crossings, sent by the worker), with where they are found; `None` for
+    /// models without them.
+    pub second: Option<(Found, Events)>,
     /// Reversal times of the effective motion.
     pub effective_reversals: Events,
     /// The worker reached `t_end`.
@@ -149,7 +151,7 @@ impl RunState {
             trail: Vec::new(),
             effective_trail: Vec::new(),
             reversals: Events::default(),
-            falls: None,
+            second: None,
             effective_reversals: Events::default(),
             finished: false,
             failed: None,
@@ -179,8 +181,8 @@ impl RunState {
             sample_dt: spec.sample_dt,
             ..Self::new(spec.t_end)
         };
-        if spec.model.kind().words().second_events.is_some() {
-            self.falls = Some(Events::default());
+        if let Some(second) = spec.model.kind().words().second_events {
+            self.second = Some((second.found, Events::default()));
         }
         vec![
             Command::Restart { generation, spec },
@@ -303,7 +305,7 @@ impl RunState {
                 if let Some(t) = t {
                     self.reached = self.reached.max(t);
                 }
-                if let Some(falls) = self.falls.as_mut() {
+                if let Some((Found::SlowAngleFalls, falls)) = self.second.as_mut() {
                     // `Θ = θ − ripple`; a fall is `cos Θ` going from positive to negative.
                     let up = |p: &Point| (p.alpha - p.gamma).cos();
                     let mut prev = self.trail.last().copied();
@@ -336,6 +338,12 @@ impl RunState {
                     self.reversals.push(t, self.shown);
                 } else if overlay && epoch == self.epoch {
                     self.effective_reversals.push(t, self.shown);
+                }
+                t <= self.shown
+            }
+            SimEvent::Mark { generation, t } if generation == self.generation => {
+                if let Some((Found::Flow, marks)) = self.second.as_mut() {
+                    marks.push(t, self.shown);
                 }
                 t <= self.shown
             }
@@ -385,10 +393,36 @@ impl RunState {
         self.reversals.count_upto(self.shown)
     }
 
+    /// The model's second events up to the displayed time (`None` for models without them).
+    #[must_use]
+    pub fn second_shown(&self) -> Option<usize> {
+        self.second.as_ref().map(|(_, e)| e.count_upto(self.shown))
+    }
+
     /// The pendulum's falls up to the displayed time (`None` for models without them).
     #[must_use]
     pub fn falls_shown(&self) -> Option<usize> {
-        self.falls.as_ref().map(|f| f.count_upto(self.shown))
+        match &self.second {
+            Some((Found::SlowAngleFalls, e)) => Some(e.count_upto(self.shown)),
+            _ => None,
+        }
+    }
+
+    /// The celt's crossings up to the displayed time (`None` for models without them).
+    #[must_use]
+    pub fn crossings_shown(&self) -> Option<usize> {
+        match &self.second {
+            Some((Found::Flow, e)) => Some(e.count_upto(self.shown)),
+            _ => None,
+        }
+    }
+
+    /// The recent second events up to the displayed time (for ticks).
+    #[must_use]
+    pub fn recent_second(&self) -> &[f64] {
+        self.second
+            .as_ref()
+            .map_or(&[], |(_, e)| e.recent_upto(self.shown))
     }
 
     /// Number of reversals of the limit up to the displayed time.

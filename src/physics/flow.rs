@@ -44,6 +44,13 @@ pub trait Flow: Send {
     fn event_value(&self) -> f64;
     /// Where the event function vanishes inside the last step, given that it changed sign.
     fn locate_event(&mut self) -> f64;
+    /// When the event just located at `located` became certain, for a display that counts
+    /// events as its time passes them: `located` itself for an event found inside the step
+    /// that holds it; later for one confirmed only afterwards (the celt's reversal, dated at
+    /// its last crossing but certain only once the spin reaches the band).
+    fn event_known_at(&mut self, located: f64) -> f64 {
+        located
+    }
     /// Smallest size the event function must reach between two events for the second to
     /// count: the size of whatever ripple the event function keeps (0 when it has none).
     fn event_hysteresis(&self) -> f64 {

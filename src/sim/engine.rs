@@ -9,10 +9,10 @@ use serde::{Deserialize, Serialize};
 
 use super::{Command, Session, SessionSpec, SimEvent};
 use crate::physics::Model;
-use crate::physics::{celt, kapitza};
 use crate::physics::plan::{AutoPolicy, Resolved};
 use crate::physics::rattleback::integrators::{Method, StepError};
 use crate::physics::rattleback::{Params, Start};
+use crate::physics::{celt, kapitza};
 
 /// What a plan was resolved for: `auto`'s choice depends on these only. One shape per model
 /// (told apart by their fields, so files written before the pendulum existed read as before).

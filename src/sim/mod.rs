@@ -153,6 +153,14 @@ pub enum SimEvent {
         /// Of the effective motion (else the full one).
         effective: bool,
     },
+    /// A second event of the full motion found by the flow inside a step (the celt's spin
+    /// crossings; possibly ahead of the samples sent).
+    Mark {
+        /// Run stamp.
+        generation: u64,
+        /// Its time.
+        t: f64,
+    },
     /// The exact state asked by [`Command::Checkpoint`].
     Checkpoint {
         /// Run stamp.

@@ -208,28 +208,43 @@ impl Track {
         }
     }
 
-    /// One step; the reversal inside it, if any, as the event that reports it.
+    /// One step; the second events (the flow's marks) and the reversal inside it, as the events
+    /// that report them.
     fn step(
         &mut self,
         t_end: f64,
         generation: u64,
         epoch: u64,
         effective: bool,
-    ) -> Result<Option<SimEvent>, StepError> {
+    ) -> Result<Vec<SimEvent>, StepError> {
         self.cap
             .check(self.integrator.stats().steps, self.integrator.time())?;
         self.integrator.step(t_end)?;
-        let r = self.tracker.after_step(self.integrator.as_mut());
+        // The display counts an event once its time passes when it became certain.
+        let r = self
+            .tracker
+            .after_step(self.integrator.as_mut())
+            .map(|t| self.integrator.event_known_at(t));
         if let Some(t) = r {
             self.reversals += 1;
             self.last_reversal = Some(t);
         }
-        Ok(r.map(|t| SimEvent::Reversal {
+        let mut out: Vec<SimEvent> = if effective {
+            Vec::new()
+        } else {
+            self.integrator
+                .marks()
+                .iter()
+                .map(|&t| SimEvent::Mark { generation, t })
+                .collect()
+        };
+        out.extend(r.map(|t| SimEvent::Reversal {
             generation,
             epoch,
             t,
             effective,
-        }))
+        }));
+        Ok(out)
     }
 }
 

@@ -313,7 +313,11 @@ fn table(r: &Report) -> String {
     );
     let f = &r.final_;
     let _ = writeln!(o);
-    let _ = writeln!(o, "spin(T)       {:.9} rad/s (from {:.9})", f.spin, r.events.spin_initial);
+    let _ = writeln!(
+        o,
+        "spin(T)       {:.9} rad/s (from {:.9})",
+        f.spin, r.events.spin_initial
+    );
     let _ = writeln!(o, "omega(T)      {}", triple(&f.omega));
     let _ = writeln!(o, "gamma(T)      {}", triple(&f.gamma));
     let _ = writeln!(

@@ -82,18 +82,19 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
         }
         None => out.push(field(format!("×{}", run.speed), 1)),
     }
-    let limit = if bar.overlay {
+    let kind = s.model.kind();
+    // A scene without a limit (the celt) has no limit's events to count.
+    let limit = if bar.overlay && kind.small().is_some() {
         format!(" limit {}", run.effective_reversals_shown())
     } else {
         String::new()
     };
-    let kind = s.model.kind();
     out.push(field(
         format!("{} {}{limit}", kind.words().events, run.reversals_shown()),
         0,
     ));
-    if let Some(falls) = run.falls_shown() {
-        out.push(field(format!("falls {falls}"), 1));
+    if let (Some(n), Some(second)) = (run.second_shown(), kind.words().second_events) {
+        out.push(field(format!("{} {n}", second.name), 1));
     }
     if let Some(p) = run.current() {
         let label = kind.words().monitor;

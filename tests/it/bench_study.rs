@@ -4,7 +4,6 @@
 //! writes the CSV with its contract columns and an SVG, and auto meets its tolerance.
 
 use rattleback::bench::{self, Config};
-use rattleback::physics::Method;
 
 #[test]
 fn quick_study_covers_every_method_and_writes_its_files() {

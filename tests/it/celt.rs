@@ -1,5 +1,5 @@
 //! The celt scene against the repository's own references (tests/fixtures/celt/references.json,
-//! made by scripts/celt_references.py with scipy's DOP853 on an independent implementation that
+//! made by `scripts/celt_references.py` with scipy's DOP853 on an independent implementation that
 //! shares no code with the crate), and its symmetries as property tests.
 
 use proptest::prelude::*;
@@ -41,7 +41,10 @@ fn floats(v: &Value) -> Vec<f64> {
 
 fn max_diff(a: &[f64], b: &[f64]) -> f64 {
     assert_eq!(a.len(), b.len());
-    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
 }
 
 #[test]
@@ -60,7 +63,10 @@ fn every_shipped_celt_preset_is_in_the_references() {
         .collect();
     assert!(shipped.len() >= 5, "{shipped:?}");
     for n in &shipped {
-        assert!(names.contains(n), "{n} has no reference: run scripts/celt_references.py");
+        assert!(
+            names.contains(n),
+            "{n} has no reference: run scripts/celt_references.py"
+        );
     }
 }
 
@@ -230,4 +236,181 @@ proptest! {
             prop_assert!((z[3 + i] - g0[i]).abs() < 1e-8, "gamma {i}");
         }
     }
+}
+
+fn celt_presets() -> Vec<&'static str> {
+    SHIPPED
+        .iter()
+        .map(|(n, _)| *n)
+        .filter(|n| preset(n, &[]).unwrap().model.kind() == rattleback::physics::ModelKind::Celt)
+        .collect()
+}
+
+/// What the explorer shows at `t_end`, through the worker's interpreter at ×1 and ×1024, is
+/// `simulate`'s run bit for bit (the same verified plan), with the same reversals and
+/// crossings; the status bar at 80×24 says both counts.
+#[test]
+fn every_celt_preset_ends_in_the_explorer_where_simulate_ends() {
+    use rattleback::app::PlanState;
+    use rattleback::physics::Model;
+    for name in celt_presets() {
+        for speed in [1024.0, 1.0] {
+            let mut h = crate::common::Headless::new(name);
+            // At ×1 the first two seconds (the clockwise reversal is near 3 s: enough to check
+            // the counts shown before it), at ×1024 the whole run.
+            let until = if speed > 1.0 { f64::INFINITY } else { 2.0 };
+            h.play_until(until, speed);
+            let app = &h.app;
+            let s = app.scenario.settings;
+            let Model::Celt(problem) = s.model else {
+                panic!("{name}: not the celt")
+            };
+            let shown = *app.run.current().expect("a point");
+            let PlanState::Running { plan, estimate } = app.run.plan else {
+                panic!("{name}: no plan")
+            };
+            if s.method == Method::Auto {
+                assert!(estimate.is_some(), "{name}: auto is verified");
+            }
+            let simulated = run(
+                &problem,
+                &RunSpec {
+                    method: plan.method,
+                    tolerance: plan.tolerance,
+                    t_end: shown.t,
+                    samples: 0,
+                },
+                &mut |_| true,
+            )
+            .unwrap();
+            if speed > 1.0 {
+                assert!(app.run.done(), "{name}: not done");
+                assert_eq!(shown.t.to_bits(), s.t_end.to_bits(), "{name}");
+                let y = simulated.state;
+                assert_eq!(
+                    [shown.alpha.to_bits(), shown.alpha_dot.to_bits()],
+                    [
+                        y[12].to_bits(),
+                        rattleback::physics::celt::spin(&y).to_bits()
+                    ],
+                    "{name}: the screen and simulate differ"
+                );
+            }
+            assert_eq!(
+                app.run.reversals_shown(),
+                simulated.reversal_count,
+                "{name} ×{speed}: reversals"
+            );
+            assert_eq!(
+                app.run.crossings_shown(),
+                Some(simulated.crossing_count),
+                "{name} ×{speed}: crossings"
+            );
+            let screen = crate::explorer_ui::screen_text(&h.app, 80, 24);
+            let status = screen.lines().nth(22).unwrap();
+            assert!(
+                status.contains(&format!("reversals {}", simulated.reversal_count))
+                    && status.contains(&format!("crossings {}", simulated.crossing_count)),
+                "{name} ×{speed}: {status}"
+            );
+            assert!(
+                !status.contains("limit"),
+                "{name}: no limit to count: {status}"
+            );
+        }
+    }
+}
+
+/// A celt session recorded through the app's update function replays bit for bit: paused
+/// before the reversal, played past it at ×1024, then with a changed spin that restarts the
+/// run; the status values recorded at each pause (reversals and crossings) replay the same.
+#[test]
+fn a_recorded_celt_session_verifies() {
+    use rattleback::app::journal::Event;
+    use rattleback::app::{Key, Outcome};
+    use rattleback::record::{self, FORMAT, Header, Line, Recorder, Size, VERSION};
+    let mut h = crate::common::Headless::new("celt-clockwise");
+    let app = &h.app;
+    let header = Header {
+        format: FORMAT.to_owned(),
+        version: VERSION,
+        program: "test".to_owned(),
+        preset: app.to_preset(&app.scenario.name).to_toml(),
+        method: app.scenario.settings.method.name().to_owned(),
+        tolerance: app.scenario.settings.tolerance,
+        terminal: Size {
+            width: 80,
+            height: 24,
+        },
+        theme: rattleback::record::ThemeRef::Name("Default (16 colours)".to_owned()),
+        fps: 30.0,
+    };
+    h.app.on_key(Key::Char('R'));
+    h.app
+        .on_outcome(Outcome::Recording(Ok("recorded.jsonl".to_owned())));
+    h.key(Key::Char(' '));
+    h.tick(1.7);
+    h.key(Key::Char(' '));
+    let c = vec![h.app.checkpoint()];
+    h.exec(c);
+    for _ in 0..10 {
+        h.key(Key::Char('+'));
+    }
+    h.key(Key::Char(' '));
+    h.tick(0.002);
+    h.key(Key::Char(' '));
+    assert!(
+        h.app.run.shown > 3.1,
+        "past the reversal: {}",
+        h.app.run.shown
+    );
+    assert_eq!(h.app.run.reversals_shown(), 1);
+    assert_eq!(h.app.run.crossings_shown(), Some(3));
+    let c = vec![h.app.checkpoint()];
+    h.exec(c);
+    // omega_z, the 15th row, one coarse step up: restarts.
+    for _ in 0..14 {
+        h.key(Key::Char('j'));
+    }
+    h.key(Key::Char('L'));
+    assert_eq!(h.app.scenario.settings.model.value("omega_z"), Some(-4.0));
+    h.key(Key::Char(' '));
+    h.tick(0.005);
+    h.key(Key::Char(' '));
+    let c = vec![h.app.checkpoint()];
+    h.exec(c);
+    let journal = h.app.take_journal();
+    let pauses: Vec<Option<usize>> = journal
+        .iter()
+        .filter_map(|(_, _, e)| match e {
+            Event::Screen(shown) => Some(shown.crossings),
+            _ => None,
+        })
+        .collect();
+    assert!(pauses.contains(&Some(3)), "{pauses:?}");
+    let path = std::env::temp_dir().join(format!("celt-{}.jsonl", std::process::id()));
+    let mut rec = Recorder::create(&path, &header, None).unwrap();
+    for (i, (t, generation, event)) in journal.into_iter().enumerate() {
+        rec.write(&Line {
+            wall: i as f64 * 0.5,
+            t,
+            generation,
+            chain: None,
+            event,
+        })
+        .unwrap();
+    }
+    rec.write(&Line {
+        wall: 60.0,
+        t: 0.0,
+        generation: 0,
+        chain: None,
+        event: Event::end(),
+    })
+    .unwrap();
+    drop(rec);
+    let back = record::read(&path).unwrap();
+    assert!(back.header.preset.contains("model = \"celt\""));
+    assert!(record::verify(&back, "celt", None).unwrap().checkpoints >= 3);
+    let _ = std::fs::remove_file(&path);
 }

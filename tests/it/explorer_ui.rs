@@ -40,6 +40,11 @@ fn render(app: &App, width: u16, height: u16) -> Buffer {
     render_with(app, width, height, &UiOptions::default())
 }
 
+/// The screen of `app` at `width × height`, as text.
+pub fn screen_text(app: &App, width: u16, height: u16) -> String {
+    text(&render(app, width, height))
+}
+
 fn text(buffer: &Buffer) -> String {
     let area = buffer.area;
     let mut out = String::new();
@@ -313,9 +318,10 @@ fn every_shipped_preset_draws_at_80x24() {
                 )),
                 "{name}: {status}"
             );
-            if let Some(falls) = h.app.run.falls_shown() {
+            if let (Some(n), Some(second)) = (h.app.run.second_shown(), kind.words().second_events)
+            {
                 assert!(
-                    status.contains(&format!("falls {falls}")),
+                    status.contains(&format!("{} {n}", second.name)),
                     "{name}: {status}"
                 );
             }

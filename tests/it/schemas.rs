@@ -60,7 +60,10 @@ fn every_shipped_preset_matches_its_schema() {
     bent["auto"]["error_estimate"] = Value::Null;
     check(celt, "celt with no bound", &bent);
     bent["final"]["omega"] = serde_json::json!([1.0, 2.0]);
-    assert!(!celt.is_valid(&bent), "a bent celt report passes its schema");
+    assert!(
+        !celt.is_valid(&bent),
+        "a bent celt report passes its schema"
+    );
 }
 
 #[test]

@@ -42,7 +42,10 @@ pub fn fastest_rate(problem: &Problem) -> f64 {
 pub fn cost_seconds(problem: &Problem, method: Method, tolerance: f64, t_end: f64) -> f64 {
     let one = |tol: f64| {
         let per_tol = tol.clamp(1e-16, 1.0).powf(-0.125);
-        EVALUATIONS_PER_RADIAN * fastest_rate(problem) * t_end.max(0.0) * per_tol
+        EVALUATIONS_PER_RADIAN
+            * fastest_rate(problem)
+            * t_end.max(0.0)
+            * per_tol
             * SECONDS_PER_EVALUATION
     };
     match method {
@@ -83,8 +86,8 @@ mod tests {
             };
             let r = run(&p, &spec, &mut |_| true).unwrap();
             #[allow(clippy::cast_precision_loss)]
-            let per_radian = r.stats.rhs_evaluations as f64
-                / (fastest_rate(&p) * 10.0 * tol.powf(-0.125));
+            let per_radian =
+                r.stats.rhs_evaluations as f64 / (fastest_rate(&p) * 10.0 * tol.powf(-0.125));
             println!(
                 "w={w} tol={tol:e}: {} evaluations, {per_radian:.2} per radian",
                 r.stats.rhs_evaluations

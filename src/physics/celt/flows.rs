@@ -78,6 +78,8 @@ pub struct CeltFlow {
     last_crossing: Option<f64>,
     /// The time of the last reversal (its crossing).
     reversal: f64,
+    /// When the last reversal became certain: the spin reached the band.
+    confirmed: f64,
 }
 
 /// Puts a state back on its constraints: unit quaternion, `γ` its third row.
@@ -108,6 +110,7 @@ impl CeltFlow {
             marks: Vec::new(),
             last_crossing: None,
             reversal: 0.0,
+            confirmed: 0.0,
         }
     }
 
@@ -148,6 +151,8 @@ impl CeltFlow {
                 spin(&self.core.interpolate(ts[k]))
             };
         }
+        // Exact comparisons: a sign change, and a start exactly on zero.
+        #[allow(clippy::float_cmp)]
         for k in 0..SEARCH {
             let (a, b) = (ss[k], ss[k + 1]);
             // A start exactly on zero is not a crossing.
@@ -191,9 +196,21 @@ impl Flow for CeltFlow {
         self.find_crossings(s_prev);
         let s = spin(&self.core.state());
         self.spin_now = s;
-        if s * self.sense < 0.0 && s.abs() >= self.band {
-            if let Some(t) = self.last_crossing {
-                self.sense = -self.sense;
+        if s * self.sense < 0.0
+            && s.abs() >= self.band
+            && let Some(t) = self.last_crossing
+        {
+            {
+                let (t0, t1) = (self.core.time_prev(), self.core.time());
+                let (band, new) = (self.band, -self.sense);
+                let core = &mut self.core;
+                let mut beyond = |t: f64| spin(&core.interpolate(t)) * new - band;
+                self.confirmed = if beyond(t0) >= 0.0 {
+                    t0
+                } else {
+                    find_root(beyond, t0, t1)
+                };
+                self.sense = new;
                 self.reversal = t;
             }
         }
@@ -215,6 +232,9 @@ impl Flow for CeltFlow {
     }
     fn locate_event(&mut self) -> f64 {
         self.reversal
+    }
+    fn event_known_at(&mut self, _located: f64) -> f64 {
+        self.confirmed
     }
     fn marks(&self) -> &[f64] {
         &self.marks

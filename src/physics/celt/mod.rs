@@ -122,7 +122,10 @@ impl Params {
         }
         check_derived(
             &[
-                ("the rest height g·(c − h)", self.gravity * (self.c - self.offset)),
+                (
+                    "the rest height g·(c − h)",
+                    self.gravity * (self.c - self.offset),
+                ),
                 ("a²", self.a * self.a),
                 ("ix·iy", self.ix * self.iy),
             ],
@@ -161,7 +164,7 @@ impl Params {
     /// chirality.
     #[must_use]
     pub fn skew(&self) -> f64 {
-        if self.ix == self.iy {
+        if (self.ix - self.iy).abs() <= f64::EPSILON * self.ix.max(self.iy) {
             std::f64::consts::FRAC_PI_4 * self.product.signum()
         } else {
             0.5 * (2.0 * self.product / (self.ix - self.iy)).atan()

@@ -10,7 +10,8 @@ use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, PlanRequest, Resolution, Resolved};
 use crate::physics::scene::{
-    Found, Planned, Posed, Scene, SecondEvents, Shown, SlowCurve, SmallParameter, Studies, SummaryLine, WeakView, Words,
+    Found, Planned, Posed, Scene, SecondEvents, Shown, SlowCurve, SmallParameter, Studies,
+    SummaryLine, WeakView, Words,
 };
 
 const STRENGTH: Scale = Scale::Linear {
