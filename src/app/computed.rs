@@ -101,6 +101,17 @@ impl App {
         }
     }
 
+    /// Turns the limit's overlay on or off; a scene without a limit (the celt) says so instead.
+    pub(super) fn toggle_overlay(&mut self) -> Vec<Effect> {
+        let kind = self.scenario.settings.model.kind();
+        if kind.small().is_none() {
+            self.status = Message::error(format!("the {} has no limit to draw", kind.title()));
+            return Vec::new();
+        }
+        self.view.overlay = !self.view.overlay;
+        vec![Effect::Sim(self.run.set_overlay(self.view.overlay))]
+    }
+
     /// Whether the scene offers `pane` (its scene's studies); says so in the status line when
     /// not.
     pub(super) fn scene_has(&mut self, pane: Pane) -> bool {

@@ -422,10 +422,7 @@ impl App {
             Action::Reset => return self.restart(),
             Action::Faster => self.run.speed = (self.run.speed * 2.0).min(SPEED_RANGE.1),
             Action::Slower => self.run.speed = (self.run.speed / 2.0).max(SPEED_RANGE.0),
-            Action::ToggleEffective => {
-                self.view.overlay = !self.view.overlay;
-                return vec![Effect::Sim(self.run.set_overlay(self.view.overlay))];
-            }
+            Action::ToggleEffective => return self.toggle_overlay(),
             Action::ToggleSeries => self.view.panes.toggle(Pane::Series),
             Action::ToggleWeak => return self.toggle_computed(Pane::Weak),
             Action::WiderWindow => self.weak.scale_window(2.0),

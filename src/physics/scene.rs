@@ -30,6 +30,8 @@ pub struct Words {
     pub q_dot: &'static str,
     /// The fast coordinate.
     pub fast: &'static str,
+    /// Its name in ASCII (`gamma`, `ripple`, `tilt`).
+    pub fast_name: &'static str,
     /// One event of the slow coordinate.
     pub event: &'static str,
     /// Events.
@@ -179,6 +181,9 @@ pub trait Posed {
     fn slow_start(&self) -> (f64, f64);
     /// Default fixed step of `method` at `tolerance` over `[0, t_end]`.
     fn default_step(&self, method: Method, tolerance: f64, t_end: f64) -> f64;
+    /// The body's half-extents seen from above, along its own x and y axes (any unit: the body
+    /// pane draws their ratio), or `None` for a model without a body to draw.
+    fn plan_view(&self) -> Option<[f64; 2]>;
     /// Builds a concrete method's integration at `t = 0`.
     ///
     /// # Errors

@@ -25,8 +25,11 @@ pub const ENVELOPE_SAMPLES: usize = 96;
 pub struct BodyPane<'a> {
     /// The run (its displayed samples).
     pub run: &'a RunState,
-    /// `iy/ix`: which axis is long (the body is drawn longer along x when `ix > iy`).
+    /// The body's extent along y over x seen from above: which axis is long (the body is drawn
+    /// longer along x when it is at most 1).
     pub aspect: f64,
+    /// The fast coordinate's name (`gamma`, `tilt`).
+    pub fast: &'a str,
     /// Marker and colours.
     pub look: &'a Look<'a>,
 }
@@ -42,14 +45,14 @@ pub fn envelope(run: &RunState) -> f64 {
 }
 
 /// The pane's title: the sense of the spin, the reversals, the rocking envelope.
-fn heading(run: &RunState, alpha_dot: f64, rock: f64) -> String {
+fn heading(run: &RunState, alpha_dot: f64, rock: f64, fast: &str) -> String {
     let turning = match alpha_dot.partial_cmp(&0.0) {
         Some(std::cmp::Ordering::Greater) => "↺ counter-clockwise",
         Some(std::cmp::Ordering::Less) => "↻ clockwise",
         _ => "at rest",
     };
     format!(
-        "body from above (B): spin {turning}, reversals {} │ rocking |gamma| {rock:.1e}",
+        "body from above (B): spin {turning}, reversals {} │ rocking |{fast}| {rock:.1e}",
         run.reversals_shown()
     )
 }
@@ -77,7 +80,8 @@ impl Widget for BodyPane<'_> {
         let now = run.current().copied();
         let (alpha, alpha_dot) = now.map_or((0.0, 0.0), |p| (p.alpha, p.alpha_dot));
         let rock = envelope(run);
-        let block = Block::bordered().title(title(&heading(run, alpha_dot, rock), area.width));
+        let block =
+            Block::bordered().title(title(&heading(run, alpha_dot, rock, self.fast), area.width));
         let inner = block.inner(area);
         block.render(area, buf);
         if inner.width < 4 || inner.height < 3 {

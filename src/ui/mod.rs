@@ -167,8 +167,10 @@ fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, c
                     aspect: app
                         .scenario
                         .settings
-                        .rattleback()
-                        .map_or(1.0, |p| p.params().iy / p.params().ix),
+                        .model
+                        .plan_view()
+                        .map_or(1.0, |[x, y]| y / x),
+                    fast: app.scenario.settings.model.kind().words().fast_name,
                     look,
                 },
                 *area,

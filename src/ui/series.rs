@@ -51,9 +51,14 @@ impl Widget for SeriesPane<'_> {
 fn pane(pane: &SeriesPane<'_>, area: Rect, buf: &mut Buffer) {
     let (run, look) = (pane.run, pane.look);
     let words = pane.model.words();
+    let limit = if pane.model.small().is_some() {
+        "full · limit ∘"
+    } else {
+        "full"
+    };
     let block = Block::bordered().title(title(
         &format!(
-            "{}(t): full · limit ∘, {} │ log10|ΔE/E|",
+            "{}(t): {limit}, {} │ log10|ΔE/E|",
             words.q_dot_name, words.events
         ),
         area.width,

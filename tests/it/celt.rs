@@ -414,3 +414,30 @@ fn a_recorded_celt_session_verifies() {
     assert!(record::verify(&back, "celt", None).unwrap().checkpoints >= 3);
     let _ = std::fs::remove_file(&path);
 }
+
+/// The celt from above: its long axis (semi-axis a) turns with the angle turned, the bar
+/// shows its tilt, and the ring changes sign where the spin reversed; at 80×24 and 160×48.
+#[test]
+fn the_celt_body_pane_at_80x24_and_160x48() {
+    use rattleback::app::Key;
+    let mut h = crate::common::Headless::new("celt-clockwise");
+    h.key(Key::Char('B'));
+    h.play_until(5.0, 4.0);
+    h.key(Key::Char(' '));
+    let small = crate::explorer_ui::screen_text(&h.app, 80, 24);
+    assert!(small.contains("body from above (B): spin"), "{small}");
+    // The reversal near 3 s is inside the trace's window: both senses are on the ring.
+    assert!(small.contains('+') && small.contains('-'), "{small}");
+    insta::assert_snapshot!("celt_body_80x24", small);
+    let large = crate::explorer_ui::screen_text(&h.app, 160, 48);
+    assert!(large.contains("rocking |tilt|"), "{large}");
+    insta::assert_snapshot!("celt_body_160x48", large);
+    // The pendulum has no body: the key says so.
+    let mut k = crate::common::Headless::new("kapitza-upright");
+    k.key(Key::Char('B'));
+    let screen = crate::explorer_ui::screen_text(&k.app, 80, 24);
+    assert!(
+        screen.contains("the body pane is of the rattleback and the celt"),
+        "{screen}"
+    );
+}

@@ -239,6 +239,7 @@ impl Scene for CeltScene {
             q: "φ",
             q_dot: "ω·γ",
             fast: "tilt",
+            fast_name: "tilt",
             event: "reversal",
             events: "reversals",
             second_events: Some(SecondEvents {
@@ -269,7 +270,7 @@ impl Scene for CeltScene {
         Studies {
             weak: false,
             map: false,
-            body: false,
+            body: true,
         }
     }
 }
@@ -345,6 +346,9 @@ impl Posed for Problem {
     fn default_step(&self, _method: Method, tolerance: f64, _t_end: f64) -> f64 {
         // Adaptive methods only; the size of the first step DOP853 would take, about.
         tolerance.clamp(1e-16, 1.0).powf(0.125) / super::budget::fastest_rate(self)
+    }
+    fn plan_view(&self) -> Option<[f64; 2]> {
+        Some([self.params().a, self.params().b])
     }
     fn build(
         &self,

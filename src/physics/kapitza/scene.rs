@@ -98,6 +98,7 @@ impl Scene for KapitzaScene {
             q: "θ",
             q_dot: "θ̇",
             fast: "θ−Θ",
+            fast_name: "ripple",
             event: "swing",
             events: "swings",
             second_events: Some(SecondEvents {
@@ -197,6 +198,9 @@ impl Posed for Problem {
     }
     fn default_step(&self, method: Method, tolerance: f64, t_end: f64) -> f64 {
         super::flows::default_step(method, self, tolerance, t_end)
+    }
+    fn plan_view(&self) -> Option<[f64; 2]> {
+        None
     }
     fn build(
         &self,

@@ -143,6 +143,7 @@ impl Scene for RattlebackScene {
             q: "α",
             q_dot: "α̇",
             fast: "γ",
+            fast_name: "gamma",
             event: "reversal",
             events: "reversals",
             second_events: None,
@@ -247,6 +248,10 @@ impl Posed for Problem {
     }
     fn default_step(&self, method: Method, tolerance: f64, t_end: f64) -> f64 {
         integrators::default_step(method, self, tolerance, t_end)
+    }
+    fn plan_view(&self) -> Option<[f64; 2]> {
+        // The long axis is the body's x axis when ix > iy (the keel).
+        Some([self.params().ix, self.params().iy])
     }
     fn build(
         &self,
