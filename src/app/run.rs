@@ -417,14 +417,6 @@ impl RunState {
         }
     }
 
-    /// The recent second events up to the displayed time (for ticks).
-    #[must_use]
-    pub fn recent_second(&self) -> &[f64] {
-        self.second
-            .as_ref()
-            .map_or(&[], |(_, e)| e.recent_upto(self.shown))
-    }
-
     /// Number of reversals of the limit up to the displayed time.
     #[must_use]
     pub fn effective_reversals_shown(&self) -> usize {

@@ -328,23 +328,10 @@ fn every_celt_preset_ends_in_the_explorer_where_simulate_ends() {
 fn a_recorded_celt_session_verifies() {
     use rattleback::app::journal::Event;
     use rattleback::app::{Key, Outcome};
-    use rattleback::record::{self, FORMAT, Header, Line, Recorder, Size, VERSION};
+    use rattleback::record::{self, Line, Recorder};
     let mut h = crate::common::Headless::new("celt-clockwise");
     let app = &h.app;
-    let header = Header {
-        format: FORMAT.to_owned(),
-        version: VERSION,
-        program: "test".to_owned(),
-        preset: app.to_preset(&app.scenario.name).to_toml(),
-        method: app.scenario.settings.method.name().to_owned(),
-        tolerance: app.scenario.settings.tolerance,
-        terminal: Size {
-            width: 80,
-            height: 24,
-        },
-        theme: rattleback::record::ThemeRef::Name("Default (16 colours)".to_owned()),
-        fps: 30.0,
-    };
+    let header = crate::common::header_of(app);
     h.app.on_key(Key::Char('R'));
     h.app
         .on_outcome(Outcome::Recording(Ok("recorded.jsonl".to_owned())));

@@ -13,7 +13,7 @@ use rattleback::app::panes::Pane;
 use rattleback::app::{App, Key, Outcome, PlanState};
 use rattleback::physics::kapitza::run::{RunSpec, run};
 use rattleback::physics::{Method, Model, ModelKind};
-use rattleback::record::{self, FORMAT, Header, Line, Recorder, Size, VERSION};
+use rattleback::record::{self, Line, Recorder};
 use rattleback::scenario::shipped::{SHIPPED, resolve};
 use rattleback::ui::{self, Cache, UiOptions};
 
@@ -315,20 +315,7 @@ fn temp(name: &str) -> std::path::PathBuf {
 fn a_recorded_pendulum_session_verifies() {
     let mut h = Headless::new("kapitza-upright");
     let app = &h.app;
-    let header = Header {
-        format: FORMAT.to_owned(),
-        version: VERSION,
-        program: "test".to_owned(),
-        preset: app.to_preset(&app.scenario.name).to_toml(),
-        method: app.scenario.settings.method.name().to_owned(),
-        tolerance: app.scenario.settings.tolerance,
-        terminal: Size {
-            width: 80,
-            height: 24,
-        },
-        theme: rattleback::record::ThemeRef::Name("Default (16 colours)".to_owned()),
-        fps: 30.0,
-    };
+    let header = crate::common::header_of(app);
     h.app.on_key(Key::Char('R'));
     h.app
         .on_outcome(Outcome::Recording(Ok("recorded.jsonl".to_owned())));

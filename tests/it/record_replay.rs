@@ -8,7 +8,7 @@ use crate::common;
 use common::Headless;
 use rattleback::app::journal::Event;
 use rattleback::app::{Key, Outcome};
-use rattleback::record::{self, FORMAT, Header, Line, RecordError, Recorder, Size, VERSION};
+use rattleback::record::{self, Line, RecordError, Recorder};
 
 fn bin(args: &[&str]) -> (i32, String, String) {
     let out = Process::new(env!("CARGO_BIN_EXE_rattleback"))
@@ -53,20 +53,7 @@ fn end_line() -> Line {
 fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
     let mut h = Headless::new("subcritical");
     let app = &h.app;
-    let header = Header {
-        format: FORMAT.to_owned(),
-        version: VERSION,
-        program: "test".to_owned(),
-        preset: app.to_preset(&app.scenario.name).to_toml(),
-        method: app.scenario.settings.method.name().to_owned(),
-        tolerance: app.scenario.settings.tolerance,
-        terminal: Size {
-            width: 80,
-            height: 24,
-        },
-        theme: rattleback::record::ThemeRef::Name("Default (16 colours)".to_owned()),
-        fps: 30.0,
-    };
+    let header = crate::common::header_of(app);
     assert_eq!(
         h.app.on_key(Key::Char('R')),
         vec![rattleback::app::Effect::StartRecording]

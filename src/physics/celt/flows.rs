@@ -36,10 +36,6 @@ impl Field<DIM> for CeltField {
     fn eval(&self, y: &State) -> State {
         self.0.field(y)
     }
-    fn unit(&self, i: usize) -> f64 {
-        let _ = i;
-        1.0
-    }
     fn is_angle(&self, i: usize) -> bool {
         i == DIM - 1
     }
@@ -129,11 +125,10 @@ impl CeltFlow {
         }
     }
 
-    /// The crossings inside the step just taken.
-    fn find_crossings(&mut self, s_prev: f64) {
+    /// The crossings inside the step just taken, from the spin at its ends.
+    fn find_crossings(&mut self, s_prev: f64, s_new: f64) {
         self.marks.clear();
         let (t0, t1) = (self.core.time_prev(), self.core.time());
-        let s_new = spin(&self.core.state());
         let near = s_prev.abs().min(s_new.abs()) < 4.0 * (s_new - s_prev).abs() + 1e-3;
         let straddles = s_prev == 0.0 || s_new == 0.0 || (s_prev > 0.0) != (s_new > 0.0);
         if !(near || straddles) {
@@ -193,8 +188,8 @@ impl Flow for CeltFlow {
         if self.project {
             self.core.project(project);
         }
-        self.find_crossings(s_prev);
         let s = spin(&self.core.state());
+        self.find_crossings(s_prev, s);
         self.spin_now = s;
         if s * self.sense < 0.0
             && s.abs() >= self.band

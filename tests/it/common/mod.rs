@@ -273,3 +273,22 @@ pub fn simulate_json(args: &[&str]) -> serde_json::Value {
     );
     serde_json::from_slice(&out.stdout).unwrap()
 }
+
+/// The header a test recording of `app` starts with (80×24, the default theme, 30 fps).
+pub fn header_of(app: &rattleback::app::App) -> rattleback::record::Header {
+    use rattleback::record::{FORMAT, Header, Size, VERSION};
+    Header {
+        format: FORMAT.to_owned(),
+        version: VERSION,
+        program: "test".to_owned(),
+        preset: app.to_preset(&app.scenario.name).to_toml(),
+        method: app.scenario.settings.method.name().to_owned(),
+        tolerance: app.scenario.settings.tolerance,
+        terminal: Size {
+            width: 80,
+            height: 24,
+        },
+        theme: rattleback::record::ThemeRef::Name("Default (16 colours)".to_owned()),
+        fps: 30.0,
+    }
+}
