@@ -87,6 +87,10 @@ pub enum Command {
     Lesson(LessonArgs),
     /// List every lesson (shipped and the user's): name, title, steps, source, path.
     Lessons(ListArgs),
+    /// Open the explorer on preset A with preset B beside it on one time axis (the compare
+    /// pane, key C): e.g. `compare subcritical celt-clockwise`, the holonomic rattleback
+    /// beside the rolling celt. B runs over A's window.
+    Compare(CompareArgs),
     /// Follow, read-only, a session that is still being recorded: show what the lecturer sees,
     /// paced to the lecturer's clock; `f` forks and explores on its own from there.
     Follow(FollowArgs),
@@ -138,6 +142,30 @@ pub struct LessonArgs {
     #[command(flatten)]
     pub look: LookArgs,
     /// Record the session (steps and answers included) into this file; an existing file is
+    /// refused unless `--force`.
+    #[arg(long, value_name = "FILE")]
+    pub record: Option<std::path::PathBuf>,
+    /// Replace an existing `--record` file.
+    #[arg(long)]
+    pub force: bool,
+    /// Sign recordings with this private key (see the explorer's `--sign`).
+    #[arg(long, value_name = "KEYFILE")]
+    pub sign: Option<std::path::PathBuf>,
+}
+
+/// Arguments of `compare`.
+#[derive(Debug, Args)]
+pub struct CompareArgs {
+    /// The preset the explorer opens (a shipped name or a path).
+    #[arg(value_name = "A")]
+    pub a: String,
+    /// The partner drawn beside it (a shipped name or a path).
+    #[arg(value_name = "B")]
+    pub b: String,
+    /// How the explorer draws.
+    #[command(flatten)]
+    pub look: LookArgs,
+    /// Record the session (the comparison included) into this file; an existing file is
     /// refused unless `--force`.
     #[arg(long, value_name = "FILE")]
     pub record: Option<std::path::PathBuf>,

@@ -35,6 +35,7 @@ fn main() -> ExitCode {
         Some(Command::Themes(args)) => commands::themes(&args),
         Some(Command::Lessons(args)) => commands::lessons(&args),
         Some(Command::Lesson(ref args)) => run_lesson(args),
+        Some(Command::Compare(ref args)) => run_compare(args),
         Some(Command::Follow(ref args)) => run_follow(args),
         Some(Command::Completions(args)) => commands::completions(args.shell),
         Some(Command::Man) => commands::man(),
@@ -185,6 +186,7 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
         mouse: false,
         keys,
         lesson: None,
+        partner: None,
         follow: None,
         sign: None,
     };
@@ -399,6 +401,7 @@ fn run_follow(args: &rattleback::cli::FollowArgs) -> ExitCode {
         mouse: false,
         keys,
         lesson: None,
+        partner: None,
         follow: Some(args.file.clone()),
         sign: None,
     };
@@ -437,6 +440,36 @@ fn run_lesson(args: &rattleback::cli::LessonArgs) -> ExitCode {
         mouse: config.mouse,
         keys,
         lesson: Some(lesson),
+        partner: None,
+        follow: None,
+        sign: args.sign.clone(),
+    };
+    explore(&setup, &preset, args.record.clone(), None)
+}
+
+/// `compare A B`: the explorer on `A` with `B` beside it on one time axis.
+fn run_compare(args: &rattleback::cli::CompareArgs) -> ExitCode {
+    let (config, keys) = match config_or_exit() {
+        Ok(c) => c,
+        Err(code) => return code,
+    };
+    let (preset, partner) = match (resolve(&args.a, &[]), resolve(&args.b, &[])) {
+        (Ok(a), Ok(b)) => (a, b),
+        (Err(e), _) | (_, Err(e)) => {
+            say_err!("rattleback: error: compare: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    if let Err(code) = prepare_record(args.record.as_deref(), args.force) {
+        return code;
+    }
+    let setup = Setup {
+        look: with_config(&args.look, &config),
+        sessions_dir: config.sessions_dir(),
+        mouse: config.mouse,
+        keys,
+        lesson: None,
+        partner: Some(partner),
         follow: None,
         sign: args.sign.clone(),
     };
@@ -469,6 +502,7 @@ fn run_explorer(cli: &Cli) -> ExitCode {
         mouse: cli.mouse || config.mouse,
         keys,
         lesson: None,
+        partner: None,
         follow: None,
         sign: cli.sign.clone(),
     };
@@ -482,6 +516,7 @@ struct Setup {
     mouse: bool,
     keys: UserKeys,
     lesson: Option<rattleback::scenario::lesson::Lesson>,
+    partner: Option<rattleback::scenario::Preset>,
     follow: Option<std::path::PathBuf>,
     sign: Option<std::path::PathBuf>,
 }
@@ -520,6 +555,7 @@ fn explore(
         mouse: setup.mouse,
         keys: setup.keys.clone(),
         lesson: setup.lesson.clone(),
+        partner: setup.partner.clone(),
         follow: setup.follow.clone(),
         sign: setup.sign.clone(),
     };

@@ -25,6 +25,8 @@ impl App {
             (Pane::Map, false) => Some(self.map.stop()),
             (Pane::Weak, true) => Some(self.start_weak()),
             (Pane::Weak, false) => Some(self.weak.stop()),
+            (Pane::Compare, true) => self.start_compare(),
+            (Pane::Compare, false) => Some(self.stop_compare()),
             // Drawn from what the run already has: no job to start or stop. Listed, so that
             // a new computed pane cannot fall silently into another pane's job.
             (Pane::Params | Pane::Portrait | Pane::Series | Pane::Lesson | Pane::Body, _) => None,
@@ -140,7 +142,7 @@ impl App {
         for pane in Pane::ALL {
             if self.view.panes.shows(pane) && !pane.offered_by(kind) {
                 match pane {
-                    Pane::Sweep | Pane::Weak | Pane::Map => {
+                    Pane::Sweep | Pane::Weak | Pane::Map | Pane::Compare => {
                         effects.extend(self.toggle_computed(pane));
                     }
                     Pane::Params | Pane::Portrait | Pane::Series | Pane::Lesson | Pane::Body => {

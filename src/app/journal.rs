@@ -44,7 +44,20 @@ pub enum Event {
         /// Wrapped `alpha`.
         wrap: bool,
     },
-    /// Overlay or pane toggled.
+    /// Overlay or pane toggled: the overlay and the panes a key shows, as a list (written
+    /// from the comparison on; a new pane is a new name, never a new field).
+    Layout {
+        /// Effective overlay shown.
+        effective: bool,
+        /// The panes shown, by name, in layout order.
+        panes: Vec<super::panes::Pane>,
+    },
+    /// The comparison's partner was chosen (inline, so the file stands alone).
+    Partner {
+        /// Its preset as TOML.
+        toml: String,
+    },
+    /// Overlay or pane toggled, as files before the comparison wrote it (still read).
     Panes {
         /// Effective overlay shown.
         effective: bool,
@@ -151,6 +164,34 @@ pub enum Event {
 }
 
 impl Event {
+    /// The overlay and the panes shown, of a layout line or of an older `panes` line.
+    #[must_use]
+    pub fn layout(&self) -> Option<(bool, Vec<super::panes::Pane>)> {
+        use super::panes::Pane;
+        match self {
+            Self::Layout { effective, panes } => Some((*effective, panes.clone())),
+            Self::Panes {
+                effective,
+                series,
+                sweep,
+                weak,
+                map,
+                body,
+            } => {
+                let shown = [
+                    (Pane::Series, *series),
+                    (Pane::Sweep, *sweep),
+                    (Pane::Weak, *weak),
+                    (Pane::Map, *map),
+                    (Pane::Body, *body),
+                ];
+                let panes = shown.iter().filter(|(_, on)| *on).map(|(p, _)| *p);
+                Some((*effective, panes.collect()))
+            }
+            _ => None,
+        }
+    }
+
     /// An unsigned end line with no count (formats 1 to 3, and the app's own request).
     #[must_use]
     pub fn end() -> Self {
@@ -180,6 +221,9 @@ pub struct Shown {
     /// The celt's spin crossings shown.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub crossings: Option<usize>,
+    /// What the compare pane showed of its partner, when it was open.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub compare: Option<super::compare::Compared>,
     /// The displayed point: the slow coordinate, its rate and the energy error (none before the
     /// first sample).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -206,6 +250,22 @@ impl Shown {
             "falls"
         } else if self.crossings != other.crossings {
             "crossings"
+        } else if self
+            .compare
+            .as_ref()
+            .map(|c| (&c.partner, c.events, c.crossings))
+            != other
+                .compare
+                .as_ref()
+                .map(|c| (&c.partner, c.events, c.crossings))
+            || self.compare.as_ref().and_then(|c| c.spin).map(f64::to_bits)
+                != other
+                    .compare
+                    .as_ref()
+                    .and_then(|c| c.spin)
+                    .map(f64::to_bits)
+        {
+            "compared partner"
         } else if bits(&self.point) != bits(&other.point) {
             "displayed point"
         } else if self.method != other.method {

@@ -75,6 +75,8 @@ pub enum Action {
     ToggleMap,
     /// Show or hide the body pane.
     ToggleBody,
+    /// Show or hide the comparison (the run beside a partner preset on one time axis).
+    ToggleCompare,
     /// Double the weak-* averaging window.
     WiderWindow,
     /// Halve it.
@@ -256,6 +258,13 @@ pub const KEYMAP: &[Binding<Action>] = &[
         action: Action::ToggleBody,
         help: "",
         footer: Some(("B", "body", 10)),
+    },
+    Binding {
+        keys: &[Key::Char('C')],
+        label: "C",
+        action: Action::ToggleCompare,
+        help: "compare with a partner on one time axis",
+        footer: Some(("C", "compare", 9)),
     },
     Binding {
         keys: &[Key::Char('M')],

@@ -131,6 +131,10 @@ impl App {
         if self.run.playing {
             effects.push(Effect::Sim(self.run.pause()));
         }
+        // The comparison's partner first: a step about the compare pane opens it with it.
+        if let Some(partner) = &step.partner {
+            effects.extend(self.set_partner(partner));
+        }
         if let Some(pane) = step.pane.as_deref().and_then(super::panes::Pane::named)
             && !self.view.panes.shows(pane)
             && self.scene_has(pane)

@@ -7,6 +7,7 @@
 //! and what is displayed), the view (zoom, panes, theme), one [`Mode`] for whatever has the
 //! keyboard, the status line, the caption (notes and chapters), and the journal of a recording.
 
+pub mod compare;
 mod computed;
 pub mod effects;
 pub mod fields;
@@ -62,6 +63,8 @@ pub struct App {
     pub weak: weak::WeakState,
     /// The regime map's data and cursor.
     pub map: map::MapState,
+    /// The comparison's partner and its run.
+    pub compare: compare::CompareState,
     /// The lesson, when one is open.
     pub lesson: Option<lesson::LessonState>,
     /// What has the keyboard.
@@ -98,6 +101,7 @@ impl App {
             sweep: sweep::SweepState::default(),
             weak: weak::WeakState::default(),
             map: map::MapState::default(),
+            compare: compare::CompareState::default(),
             lesson: None,
             mode: Mode::Normal,
             status: None,
@@ -218,6 +222,9 @@ impl App {
         if self.view.panes.shows(Pane::Map) {
             effects.extend(self.map.start(&self.scenario.settings).map(Effect::Sim));
         }
+        if self.view.panes.shows(Pane::Compare) {
+            effects.extend(self.start_compare().map(Effect::Sim));
+        }
         effects
     }
 
@@ -336,14 +343,8 @@ impl App {
             | Action::ToggleSweep
             | Action::ToggleWeak
             | Action::ToggleMap
-            | Action::ToggleBody => Some(Event::Panes {
-                effective: self.view.overlay,
-                series: self.series(),
-                sweep: self.view.panes.shows(Pane::Sweep),
-                weak: self.view.panes.shows(Pane::Weak),
-                map: self.view.panes.shows(Pane::Map),
-                body: self.view.panes.shows(Pane::Body),
-            }),
+            | Action::ToggleBody
+            | Action::ToggleCompare => Some(self.layout()),
             Action::ClearTrail => Some(Event::ClearTrail),
             Action::SelectPrev | Action::SelectNext => Some(Event::Select {
                 field: self.field().label().to_owned(),
@@ -429,6 +430,7 @@ impl App {
             Action::NarrowerWindow => self.weak.scale_window(0.5),
             Action::ToggleSweep => return self.toggle_computed(Pane::Sweep),
             Action::ToggleMap => return self.toggle_computed(Pane::Map),
+            Action::ToggleCompare => return self.toggle_computed(Pane::Compare),
             Action::ToggleBody => {
                 if self.view.panes.shows(Pane::Body) || self.scene_has(Pane::Body) {
                     self.view.panes.toggle(Pane::Body);
@@ -558,6 +560,7 @@ impl App {
                 ref reversals,
             } => self.map.on_cells(id, first, reversals),
             SimEvent::MapDone { id, failed } => self.map.on_done(id, failed),
+            SimEvent::Partner { id, outcome } => self.on_partner(id, outcome),
             SimEvent::Weak {
                 generation,
                 t,

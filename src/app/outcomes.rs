@@ -33,6 +33,33 @@ impl App {
                 if let PlanState::Running { plan, estimate } = self.run.plan {
                     self.log_plan(plan, estimate);
                 }
+                // The panes open when the recording starts belong in it too (the header holds
+                // the preset, which says only whether the time series is shown), and the
+                // comparison's partner with its plan.
+                if self.view.panes.shows(super::panes::Pane::Compare)
+                    && let Some(p) = self.compare.partner.as_ref().map(|p| p.preset.to_toml())
+                {
+                    self.log(Event::Partner { toml: p });
+                }
+                if self
+                    .view
+                    .panes
+                    .toggled()
+                    .iter()
+                    .any(|p| *p != super::panes::Pane::Series)
+                {
+                    self.log_layout();
+                    if let Some((spec, Ok(run))) =
+                        self.compare.asked().zip(self.compare.outcome.as_ref())
+                    {
+                        let plan = Event::Plan {
+                            key: crate::sim::PlanKey::of(spec),
+                            plan: run.plan,
+                            estimate: run.estimate,
+                        };
+                        self.log(plan);
+                    }
+                }
                 self.log_lesson_step();
             }
             Outcome::Recording(Err(e)) => self.mode = Mode::Dialog(clean(&e)),

@@ -1,8 +1,22 @@
 //! The panes of the explorer as a closed set with a visible set: the layout is computed from
 //! the set, so a new pane is one variant, not a new branch per combination.
 
-/// A pane of the main area.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+/// A pane of the main area. Its name in a recorded layout (and a lesson's `pane`) is the
+/// variant's in snake case: a file format, so never rename one.
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    PartialOrd,
+    Ord,
+    Hash,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
+#[serde(rename_all = "snake_case")]
 pub enum Pane {
     /// The parameter panel (left column).
     Params,
@@ -20,15 +34,18 @@ pub enum Pane {
     Lesson,
     /// The body seen from above (issue 14).
     Body,
+    /// The comparison: the run and a partner preset on one time axis (issue 26).
+    Compare,
 }
 
 impl Pane {
     /// Every pane, in layout order.
-    pub const ALL: [Self; 8] = [
+    pub const ALL: [Self; 9] = [
         Self::Params,
         Self::Lesson,
         Self::Body,
         Self::Portrait,
+        Self::Compare,
         Self::Series,
         Self::Sweep,
         Self::Weak,
@@ -45,20 +62,26 @@ impl Pane {
             Self::Map => 50,
             Self::Lesson => 30,
             Self::Body => 45,
+            Self::Compare => 55,
         }
     }
 
-    /// The pane a lesson step names (`series`, `sweep`, `weak`, `map`, `body`).
+    /// The pane a lesson step names (`series`, `sweep`, `weak`, `map`, `body`, `compare`):
+    /// a pane a key shows, by its recorded name.
     #[must_use]
     pub fn named(name: &str) -> Option<Self> {
-        match name {
-            "series" => Some(Self::Series),
-            "sweep" => Some(Self::Sweep),
-            "weak" => Some(Self::Weak),
-            "map" => Some(Self::Map),
-            "body" => Some(Self::Body),
-            _ => None,
-        }
+        Self::ALL
+            .into_iter()
+            .find(|p| p.toggle_action().is_some() && p.key() == name)
+    }
+
+    /// Its name in files (a recorded layout, a lesson's `pane`).
+    #[must_use]
+    pub fn key(self) -> String {
+        serde_json::to_value(self)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_owned))
+            .unwrap_or_default()
     }
 
     /// The action that shows or hides this pane.
@@ -71,6 +94,7 @@ impl Pane {
             Self::Weak => Some(Action::ToggleWeak),
             Self::Map => Some(Action::ToggleMap),
             Self::Body => Some(Action::ToggleBody),
+            Self::Compare => Some(Action::ToggleCompare),
             Self::Params | Self::Portrait | Self::Lesson => None,
         }
     }
@@ -81,7 +105,7 @@ impl Pane {
     pub fn offered_by(self, model: crate::physics::ModelKind) -> bool {
         let studies = model.studies();
         match self {
-            Self::Params | Self::Portrait | Self::Series | Self::Lesson => true,
+            Self::Params | Self::Portrait | Self::Series | Self::Lesson | Self::Compare => true,
             Self::Sweep => model.small().is_some(),
             Self::Weak => studies.weak,
             Self::Map => studies.map,
@@ -101,6 +125,7 @@ impl Pane {
             Self::Map => "regime-map",
             Self::Lesson => "lesson",
             Self::Body => "body",
+            Self::Compare => "compare",
         }
     }
 
@@ -109,7 +134,13 @@ impl Pane {
     pub fn optional(self) -> bool {
         matches!(
             self,
-            Self::Series | Self::Sweep | Self::Weak | Self::Map | Self::Lesson | Self::Body
+            Self::Series
+                | Self::Sweep
+                | Self::Weak
+                | Self::Map
+                | Self::Lesson
+                | Self::Body
+                | Self::Compare
         )
     }
 }
@@ -161,6 +192,15 @@ impl Panes {
         self.set(pane, !self.shows(pane));
     }
 
+    /// The shown panes a key toggles, in layout order (what a recorded layout lists).
+    #[must_use]
+    pub fn toggled(self) -> Vec<Pane> {
+        Pane::ALL
+            .into_iter()
+            .filter(|p| p.toggle_action().is_some() && self.shows(*p))
+            .collect()
+    }
+
     /// The visible panes of the right-hand column, with their weights.
     #[must_use]
     pub fn column(self) -> Vec<(Pane, u16)> {
@@ -184,6 +224,20 @@ mod tests {
         assert_eq!(p.column(), vec![(Pane::Portrait, 65), (Pane::Series, 35)]);
         p.set(Pane::Portrait, false);
         assert!(p.shows(Pane::Portrait), "the portrait cannot be hidden");
+    }
+
+    #[test]
+    fn a_pane_a_key_shows_is_named_by_its_key() {
+        for p in Pane::ALL {
+            assert_eq!(
+                Pane::named(&p.key()),
+                p.toggle_action().map(|_| p),
+                "{p:?} as {}",
+                p.key()
+            );
+        }
+        assert_eq!(Pane::Compare.key(), "compare");
+        assert_eq!(Pane::Series.key(), "series");
     }
 
     #[test]

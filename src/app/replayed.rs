@@ -62,30 +62,18 @@ impl App {
                 (v.zoom, v.pan_x, v.pan_y, v.wrap) = (*zoom, *pan_x, *pan_y, *wrap);
                 Vec::new()
             }
-            Event::Panes {
-                effective,
-                series,
-                sweep,
-                weak,
-                map,
-                body,
-            } => {
-                self.view.panes.set(Pane::Series, *series);
-                self.view.panes.set(Pane::Body, *body);
-                let mut effects = Vec::new();
-                for (pane, on) in [(Pane::Sweep, sweep), (Pane::Weak, weak), (Pane::Map, map)] {
-                    if self.view.panes.shows(pane) != *on {
-                        effects.extend(self.toggle_computed(pane));
+            Event::Layout { .. } | Event::Panes { .. } => {
+                let (effective, panes) = event.layout().unwrap_or_default();
+                self.apply_layout(effective, &panes)
+            }
+            Event::Partner { toml } => {
+                match Preset::parse(toml, "recorded partner", "recorded", &[]) {
+                    Ok(p) => self.replay_partner(&p),
+                    Err(e) => {
+                        self.mode = Mode::Dialog(clean(&e.to_string()));
+                        Vec::new()
                     }
                 }
-                // The replay's keys are its own: the map never takes them.
-                if self.mode == Mode::Map {
-                    self.mode = Mode::Normal;
-                }
-                if *effective != self.view.overlay {
-                    effects.extend(self.carry_out(Action::ToggleEffective));
-                }
-                effects
             }
             Event::ClearTrail => self.carry_out(Action::ClearTrail),
             Event::Preset { toml } => match Preset::parse(toml, "recorded preset", "recorded", &[])
@@ -116,6 +104,27 @@ impl App {
         }
     }
 
+    /// Shows exactly the recorded panes (those a key toggles) and the overlay.
+    fn apply_layout(&mut self, effective: bool, panes: &[Pane]) -> Vec<Effect> {
+        let mut effects = Vec::new();
+        for pane in Pane::ALL {
+            let Some(action) = pane.toggle_action() else {
+                continue;
+            };
+            if self.view.panes.shows(pane) != panes.contains(&pane) {
+                effects.extend(self.carry_out(action));
+            }
+        }
+        // The replay's keys are its own: the map never takes them.
+        if self.mode == Mode::Map {
+            self.mode = Mode::Normal;
+        }
+        if effective != self.view.overlay {
+            effects.extend(self.carry_out(Action::ToggleEffective));
+        }
+        effects
+    }
+
     /// What the status bar shows now, as recorded values.
     #[must_use]
     pub fn shown(&self) -> Shown {
@@ -135,6 +144,12 @@ impl App {
                 .then(|| run.effective_reversals_shown()),
             falls: run.falls_shown(),
             crossings: run.crossings_shown(),
+            compare: self
+                .view
+                .panes
+                .shows(Pane::Compare)
+                .then(|| self.compare.shown(run.shown))
+                .flatten(),
             point: run
                 .current()
                 .map(|p| [p.alpha, p.alpha_dot, p.energy_error]),
@@ -151,7 +166,8 @@ impl App {
             return Vec::new();
         }
         let mut effects = Vec::new();
-        let settled = self.run.playing || self.run.done() || self.run.shown >= self.run.goal;
+        let settled = (self.run.playing || self.run.done() || self.run.shown >= self.run.goal)
+            && self.compare_settled();
         if self.journal.screen_due && settled {
             self.journal.screen_due = false;
             self.log_screen();

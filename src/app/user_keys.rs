@@ -26,6 +26,7 @@ pub const ACTION_NAMES: &[(Action, &str)] = &[
     (Action::ToggleWeak, "toggle_weak"),
     (Action::ToggleMap, "toggle_map"),
     (Action::ToggleBody, "toggle_body"),
+    (Action::ToggleCompare, "toggle_compare"),
     (Action::WiderWindow, "wider_window"),
     (Action::NarrowerWindow, "narrower_window"),
     (Action::ZoomIn, "zoom_in"),

@@ -70,6 +70,8 @@ pub struct ExplorerOptions {
     pub keys: crate::app::user_keys::UserKeys,
     /// A lesson to open (`rattleback lesson`).
     pub lesson: Option<crate::scenario::lesson::Lesson>,
+    /// A partner to compare the preset with (`rattleback compare A B`): the compare pane opens.
+    pub partner: Option<crate::scenario::Preset>,
     /// Follow this session file as it is written (`rattleback follow FILE`; `replay` holds
     /// what it had when opened).
     pub follow: Option<std::path::PathBuf>,
@@ -456,6 +458,9 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
     let rebuild = |old: &App| App::new_after(preset, app_options.clone(), old);
     if let Some(lesson) = &options.lesson {
         effects.extend(app.start_lesson(lesson.clone()));
+    }
+    if let Some(partner) = &options.partner {
+        effects.extend(app.set_partner(partner));
     }
     if !options.startup_problems.is_empty() {
         app.show_dialog(&options.startup_problems.join("\n"));

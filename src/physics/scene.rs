@@ -97,6 +97,9 @@ pub struct Studies {
     pub map: bool,
     /// The body seen from above.
     pub body: bool,
+    /// The shipped preset the compare pane sets beside this scene when no partner was chosen
+    /// (the paper's contrast: the holonomic rattleback beside the rolling celt).
+    pub counterpart: &'static str,
 }
 
 /// One read-only line the panel shows under a model's parameters.

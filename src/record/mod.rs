@@ -31,7 +31,9 @@ pub const FORMAT: &str = "rattleback-session";
 /// The format version this build writes (it reads 1 to this). 3: the header names its theme.
 /// 4: a SHA-256 chain over every byte of every line, an end line with the count (and an optional
 /// signature), checkpoints and events at the displayed time, `clock` and `screen` lines.
-pub const VERSION: u32 = 4;
+/// 5: `layout` lines (the panes as a list) and `partner` lines (the comparison), and a screen's
+/// `crossings` (the celt's) and `compare` (the partner shown).
+pub const VERSION: u32 = 5;
 
 /// First line of a session file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]

@@ -150,6 +150,12 @@ fn newer_than(version: u32, line: &super::Line) -> Option<&'static str> {
             Some("a counted or signed end line (format 4)")
         }
         Event::Plan { .. } if version < 2 => Some("a plan line (format 2)"),
+        Event::Layout { .. } | Event::Partner { .. } if version < 5 => {
+            Some("a layout or partner line (format 5)")
+        }
+        Event::Screen(s) if version < 5 && (s.crossings.is_some() || s.compare.is_some()) => {
+            Some("a screen with crossings or a compared partner (format 5)")
+        }
         Event::Plan {
             estimate: Some(_), ..
         } if version < 4 => Some("a plan line with an estimate (format 4)"),

@@ -11,7 +11,8 @@
 //! preset = "subcritical"             # optional: loaded when the step begins
 //! set = ["spring.k=1e6"]             # optional: then these changes, as `--set`
 //! pane = "series"                    # optional: the pane the step is about (series, sweep,
-//!                                    # weak, map, body): opened, and given room on screen
+//!                                    # weak, map, body, compare): opened, given room on screen
+//! partner = "celt-clockwise"         # optional: drawn beside the step's run (compare pane)
 //!
 //! [step.question]                    # optional: asked before the run
 //! prompt = "Will the spin reverse before t = 30?"
@@ -56,6 +57,7 @@ pub const SHIPPED_LESSONS: &[(&str, &str)] = &[
         "kapitza-ripple",
         include_str!("../../lessons/kapitza-ripple.toml"),
     ),
+    ("two-ways", include_str!("../../lessons/two-ways.toml")),
 ];
 
 /// A prediction asked before a step's run; the answer is revealed after it.
@@ -142,13 +144,15 @@ pub struct Step {
     pub question: Option<Question>,
     /// What `n` waits for.
     pub until: Until,
-    /// The pane the step is about (`series`, `sweep`, `weak`, `map`, `body`): opened when the
-    /// step begins and given room beside the lesson.
+    /// The pane the step is about (`series`, `sweep`, `weak`, `map`, `body`, `compare`):
+    /// opened when the step begins and given room beside the lesson.
     pub pane: Option<String>,
+    /// A preset drawn beside the step's own in the compare pane (which opens with it).
+    pub partner: Option<Preset>,
 }
 
 /// The panes a step may ask for.
-pub const STEP_PANES: [&str; 5] = ["series", "sweep", "weak", "map", "body"];
+pub const STEP_PANES: [&str; 6] = ["series", "sweep", "weak", "map", "body", "compare"];
 
 /// A lesson.
 #[derive(Clone, Debug, PartialEq)]
@@ -376,8 +380,8 @@ impl Lesson {
 }
 
 /// The keys a step takes.
-const STEP_KEYS: [&str; 7] = [
-    "title", "text", "preset", "set", "question", "until", "pane",
+const STEP_KEYS: [&str; 8] = [
+    "title", "text", "preset", "set", "question", "until", "pane", "partner",
 ];
 
 fn number(v: &Value) -> Option<f64> {
@@ -441,16 +445,18 @@ fn step(item: &Value, path: &str, at: &mut dyn FnMut(&str, String)) -> Option<St
         );
     }
     let text = text_of("text", at).unwrap_or_default();
-    let preset = match text_of("preset", at) {
+    let named = |key: &str, at: &mut dyn FnMut(&str, String)| match text_of(key, at) {
         Some(name) => match super::shipped::resolve(&name, &[]) {
             Ok(p) => Some(p),
             Err(e) => {
-                at(&format!("{path}.preset"), e.to_string());
+                at(&format!("{path}.{key}"), e.to_string());
                 None
             }
         },
         None => None,
     };
+    let preset = named("preset", at);
+    let partner = named("partner", at);
     let set = step_set(t.get("set"), preset.as_ref(), path, at);
     let question = match t.get("question") {
         None => None,
@@ -489,6 +495,7 @@ fn step(item: &Value, path: &str, at: &mut dyn FnMut(&str, String)) -> Option<St
         question,
         until,
         pane,
+        partner,
     })
 }
 

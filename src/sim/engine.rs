@@ -162,8 +162,19 @@ pub struct Engine {
     weak: Option<(u64, super::WeakSpec)>,
     /// The regime map being computed: its stamp, spec and next cell (after the sweep).
     map: Option<(u64, super::MapSpec, usize)>,
+    /// The comparison's partner being run (first, after the run's planning: it is short, and
+    /// what a recording shows waits for it).
+    partner: Option<PartnerJob>,
     /// Predicted seconds of the runs started so far (against [`PlanBook::total`]).
     spent: f64,
+}
+
+/// The comparison's partner in progress: planned, then integrated in slices to its end.
+struct PartnerJob {
+    id: u64,
+    spec: SessionSpec,
+    /// The session and what it produced so far, once planned.
+    started: Option<(Session, super::PartnerRun)>,
 }
 
 /// A stiffness sweep in progress: the limit's curve once, then one rung per slice.
@@ -188,6 +199,7 @@ impl Engine {
             sweep: None,
             weak: None,
             map: None,
+            partner: None,
             spent: 0.0,
         }
     }
@@ -202,7 +214,11 @@ impl Engine {
     /// Whether `work` has anything to do.
     #[must_use]
     pub fn busy(&self) -> bool {
-        self.run_busy() || self.sweep.is_some() || self.weak.is_some() || self.map.is_some()
+        self.run_busy()
+            || self.sweep.is_some()
+            || self.weak.is_some()
+            || self.map.is_some()
+            || self.partner.is_some()
     }
 
     /// Whether the run itself has work (it goes before the sweep).
@@ -230,6 +246,13 @@ impl Engine {
             }
             Command::Map { id, spec, from } => {
                 self.map = spec.map(|spec| (id, spec, from));
+            }
+            Command::Compare { id, spec } => {
+                self.partner = spec.map(|spec| PartnerJob {
+                    id,
+                    spec,
+                    started: None,
+                });
             }
             Command::Restart { generation, spec } => {
                 self.sweep = None;
@@ -274,67 +297,10 @@ impl Engine {
         let Some((generation, spec)) = self.planning else {
             return true;
         };
-        // `auto` as planned is priced before any probe runs (as `simulate` does): a plan that
-        // would verify for minutes is refused at once.
-        let limit_cost = || {
-            spec.model.predicted_seconds(
-                Method::Effective,
-                spec.model.kind().limit_tolerance(),
-                None,
-                spec.t_end,
-            )
-        };
-        let auto_cost = || {
-            spec.model
-                .predicted_seconds(Method::Auto, spec.tolerance, None, spec.t_end)
-                + limit_cost()
-        };
-        let resolved = match self.book.lookup(&spec) {
-            Some(plan) => Ok((plan, self.book.estimate(&spec))),
-            None if spec.method == Method::Auto
-                && crate::physics::budget::check(auto_cost(), self.book.budget).is_err() =>
-            {
-                Err(StepError::OverBudget {
-                    what: "auto".to_owned(),
-                    over: crate::physics::budget::OverBudget {
-                        predicted: auto_cost(),
-                        budget: self.book.budget,
-                    },
-                })
-            }
-            None => spec
-                .model
-                .resolve(&self.book.request(&spec), go_on)
-                .map(|r| (r.plan, r.estimate)),
-        };
-        let started = match resolved {
+        let started = match self.resolve(&spec, go_on) {
             Err(StepError::Cancelled { .. }) => return true,
             Err(e) => Err(e),
-            Ok((mut plan, estimate)) => {
-                // A method asked by name integrates with the preset's step, as `simulate` does.
-                if spec.method != Method::Auto && spec.step.is_some() {
-                    plan.step = spec.step;
-                }
-                // The scene's cost model, asked before the run starts (a plan read from a file
-                // included): a run over the budget is refused, never left to grow.
-                // The limit's overlay is counted too (it may be turned on at any time), as
-                // `simulate` counts its comparison run.
-                let model = &spec.model;
-                let predicted =
-                    model.predicted_seconds(plan.method, plan.tolerance, plan.step, spec.t_end)
-                        + limit_cost();
-                let left = self.book.total - self.spent;
-                match crate::physics::budget::check(predicted, self.book.budget.min(left)) {
-                    Ok(()) => {
-                        self.spent += predicted;
-                        Session::new(generation, spec, plan).map(|s| (s, estimate))
-                    }
-                    Err(over) => Err(StepError::OverBudget {
-                        what: plan.method.name().to_owned(),
-                        over,
-                    }),
-                }
-            }
+            Ok((plan, estimate)) => Session::new(generation, spec, plan).map(|s| (s, estimate)),
         };
         self.planning = None;
         match started {
@@ -351,26 +317,69 @@ impl Engine {
             Err(e) => {
                 self.pending = None;
                 self.checkpoints.clear();
-                // Short enough for the parameter panel at 80×24.
-                let message = match &e {
-                    StepError::OverBudget { over, .. } if spec.method == Method::Auto => format!(
-                        "auto needs about {} to verify (budget {}): pick a method in the panel or a shorter t_end",
-                        crate::physics::budget::duration(over.predicted),
-                        crate::physics::budget::duration(over.budget)
-                    ),
-                    StepError::OverBudget { what, over } => format!(
-                        "{what} would take about {} (budget {}): shorten t_end, loosen the tolerance or pick another method",
-                        crate::physics::budget::duration(over.predicted),
-                        crate::physics::budget::duration(over.budget)
-                    ),
-                    e => format!("planning {} failed: {e}", spec.method),
-                };
                 sink(SimEvent::Failed {
                     generation,
-                    message,
+                    message: refusal(&spec, &e),
                 })
             }
         }
+    }
+
+    /// The plan `spec` integrates, with `auto`'s estimate: a recorded plan, else `auto` priced
+    /// before any probe runs (as `simulate` does: a plan that would verify for minutes is
+    /// refused at once) and verified, else the method asked. The scene's cost model is asked
+    /// before the run starts (a plan read from a file included) and the prediction is charged
+    /// to the engine's total; the limit's overlay is counted too (it may be turned on at any
+    /// time), as `simulate` counts its comparison run.
+    fn resolve(
+        &mut self,
+        spec: &SessionSpec,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<(Resolved, Option<f64>), StepError> {
+        let model = &spec.model;
+        let limit_cost = || {
+            model.predicted_seconds(
+                Method::Effective,
+                model.kind().limit_tolerance(),
+                None,
+                spec.t_end,
+            )
+        };
+        let auto_cost = || {
+            model.predicted_seconds(Method::Auto, spec.tolerance, None, spec.t_end) + limit_cost()
+        };
+        let (mut plan, estimate) = match self.book.lookup(spec) {
+            Some(plan) => (plan, self.book.estimate(spec)),
+            None if spec.method == Method::Auto => {
+                crate::physics::budget::check(auto_cost(), self.book.budget).map_err(|over| {
+                    StepError::OverBudget {
+                        what: "auto".to_owned(),
+                        over,
+                    }
+                })?;
+                let r = model.resolve(&self.book.request(spec), go_on)?;
+                (r.plan, r.estimate)
+            }
+            None => {
+                let r = model.resolve(&self.book.request(spec), go_on)?;
+                (r.plan, r.estimate)
+            }
+        };
+        // A method asked by name integrates with the preset's step, as `simulate` does.
+        if spec.method != Method::Auto && spec.step.is_some() {
+            plan.step = spec.step;
+        }
+        let predicted = model.predicted_seconds(plan.method, plan.tolerance, plan.step, spec.t_end)
+            + limit_cost();
+        let left = self.book.total - self.spent;
+        crate::physics::budget::check(predicted, self.book.budget.min(left)).map_err(|over| {
+            StepError::OverBudget {
+                what: plan.method.name().to_owned(),
+                over,
+            }
+        })?;
+        self.spent += predicted;
+        Ok((plan, estimate))
     }
 
     /// Works one slice (at most `max_steps` steps, or one planning) towards the next target or
@@ -383,6 +392,9 @@ impl Engine {
     ) -> bool {
         if self.planning.is_some() {
             return self.plan(go_on, sink);
+        }
+        if self.partner.is_some() {
+            return self.partner_step(max_steps, go_on, sink);
         }
         if !self.run_busy() && self.weak.is_some() {
             return self.weak_step(go_on, sink);
@@ -443,6 +455,81 @@ impl Engine {
 }
 
 impl Engine {
+    /// One slice of the comparison's partner: its plan, or at most `max_steps` steps; its
+    /// event once it reaches its end (or fails). A cancelled planning is redone next time.
+    fn partner_step(
+        &mut self,
+        max_steps: usize,
+        go_on: &mut dyn FnMut(f64) -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+    ) -> bool {
+        let Some(job) = self.partner.as_ref() else {
+            return true;
+        };
+        let (id, spec) = (job.id, job.spec);
+        if job.started.is_none() {
+            let started = match self.resolve(&spec, go_on) {
+                Err(StepError::Cancelled { .. }) => return true,
+                Err(e) => Err(refusal(&spec, &e)),
+                Ok((plan, estimate)) => Session::new(id, spec, plan)
+                    .map(|s| (s, plan, estimate))
+                    .map_err(|e| refusal(&spec, &e)),
+            };
+            return match started {
+                Err(why) => {
+                    self.partner = None;
+                    sink(SimEvent::Partner {
+                        id,
+                        outcome: Err(why),
+                    })
+                }
+                Ok((session, plan, estimate)) => {
+                    if let Some(job) = self.partner.as_mut() {
+                        job.started = Some((
+                            session,
+                            super::PartnerRun {
+                                plan,
+                                estimate,
+                                samples: Vec::new(),
+                                reversals: Vec::new(),
+                                marks: Vec::new(),
+                            },
+                        ));
+                    }
+                    true
+                }
+            };
+        }
+        let Some((session, run)) = self.partner.as_mut().and_then(|j| j.started.as_mut()) else {
+            return true;
+        };
+        let (events, _) = session.advance(spec.t_end, max_steps);
+        let mut end = None;
+        for e in events {
+            match e {
+                SimEvent::Samples { full, .. } => run.samples.extend(full),
+                SimEvent::Reversal {
+                    t,
+                    effective: false,
+                    ..
+                } => run.reversals.push(t),
+                SimEvent::Mark { t, .. } => run.marks.push(t),
+                SimEvent::Failed { message, .. } => end = Some(Err(message)),
+                SimEvent::Finished { .. } => end = Some(Ok(())),
+                _ => {}
+            }
+        }
+        let Some(end) = end else {
+            return true;
+        };
+        let outcome = match (end, self.partner.take().and_then(|j| j.started)) {
+            (Ok(()), Some((_, run))) => Ok(Box::new(run)),
+            (Err(why), _) => Err(why),
+            (Ok(()), None) => return true,
+        };
+        sink(SimEvent::Partner { id, outcome })
+    }
+
     /// Computes the weak-* view (one bounded run: at most `VIEW_PERIODS` fast periods).
     fn weak_step(
         &mut self,
@@ -593,6 +680,24 @@ impl Engine {
             return sink(SimEvent::MapDone { id, failed: None });
         }
         true
+    }
+}
+
+/// Why a run was refused or failed before it started, short enough for the parameter panel at
+/// 80×24.
+fn refusal(spec: &SessionSpec, e: &StepError) -> String {
+    match e {
+        StepError::OverBudget { over, .. } if spec.method == Method::Auto => format!(
+            "auto needs about {} to verify (budget {}): pick a method in the panel or a shorter t_end",
+            crate::physics::budget::duration(over.predicted),
+            crate::physics::budget::duration(over.budget)
+        ),
+        StepError::OverBudget { what, over } => format!(
+            "{what} would take about {} (budget {}): shorten t_end, loosen the tolerance or pick another method",
+            crate::physics::budget::duration(over.predicted),
+            crate::physics::budget::duration(over.budget)
+        ),
+        e => format!("planning {} failed: {e}", spec.method),
     }
 }
 

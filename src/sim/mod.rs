@@ -76,8 +76,32 @@ pub enum Command {
         /// The first cell to compute (grid order): the cells before it are already known.
         from: usize,
     },
+    /// Run the comparison's partner (another preset, on the run's time axis) to its end, or
+    /// stop (`spec: None`). Not stopped by a restart: the partner does not depend on the run.
+    Compare {
+        /// Stamp of this partner run, echoed in its event.
+        id: u64,
+        /// What to run.
+        spec: Option<SessionSpec>,
+    },
     /// Stop the worker.
     Quit,
+}
+
+/// The comparison's partner, run to its end: what the compare pane draws up to the displayed
+/// time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PartnerRun {
+    /// The plan that integrated it (journaled, so a replay runs the same).
+    pub plan: Resolved,
+    /// `auto`'s error estimate, when it planned.
+    pub estimate: Option<f64>,
+    /// Samples on its grid.
+    pub samples: Vec<Point>,
+    /// Its reversals, at the times a display counts them.
+    pub reversals: Vec<f64>,
+    /// Its second events (the celt's crossings), when the model has them.
+    pub marks: Vec<f64>,
 }
 
 /// The regime map's computation.
@@ -225,6 +249,13 @@ pub enum SimEvent {
         id: u64,
         /// Why it stopped short, if it did.
         failed: Option<String>,
+    },
+    /// The comparison's partner ran to its end (or why it could not).
+    Partner {
+        /// Its stamp.
+        id: u64,
+        /// The run, or why it failed.
+        outcome: Result<Box<PartnerRun>, String>,
     },
     /// The integration (or `auto`'s planning) failed.
     Failed {

@@ -20,6 +20,7 @@
 //! ```
 
 mod body;
+mod compare;
 mod dialogs;
 mod help;
 mod lesson;
@@ -86,8 +87,11 @@ fn lesson_rows(app: &App, column: &mut Vec<(Pane, u16)>, need: u16, height: u16)
 /// The right-hand column: the visible panes, stacked by weight.
 fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, cache: &mut Cache) {
     let mut column = app.view.panes.column();
-    // On a short terminal the body takes the portrait's place (B brings the portrait back).
-    if right.height < 30 && app.view.panes.shows(Pane::Body) {
+    // On a short terminal the body or the comparison takes the portrait's place (B or C brings
+    // the portrait back).
+    if right.height < 30
+        && (app.view.panes.shows(Pane::Body) || app.view.panes.shows(Pane::Compare))
+    {
         column.retain(|(p, _)| *p != Pane::Portrait);
     }
     let look_ref = look;
@@ -105,78 +109,99 @@ fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, c
     }))
     .split(right);
     for ((pane, _), area) in column.iter().zip(areas.iter()) {
-        match pane {
-            Pane::Portrait => frame.render_stateful_widget(
-                portrait::PortraitPane {
-                    scenario: &app.scenario,
-                    run: &app.run,
-                    view: &app.view,
-                    bounds: app.bounds(),
-                    look,
-                },
-                *area,
-                cache,
-            ),
-            Pane::Series => frame.render_widget(
-                series::SeriesPane {
-                    run: &app.run,
-                    overlay: app.view.overlay,
-                    model: app.scenario.settings.model.kind(),
-                    look,
-                },
-                *area,
-            ),
-            Pane::Sweep => frame.render_widget(
-                sweep::SweepPane {
-                    model: app.scenario.settings.model.kind(),
-                    sweep: &app.sweep,
-                    look,
-                },
-                *area,
-            ),
-            Pane::Weak => frame.render_widget(
-                weak::WeakPane {
-                    weak: &app.weak,
-                    look,
-                },
-                *area,
-            ),
-            Pane::Map => frame.render_widget(
-                map::MapPane {
-                    map: &app.map,
-                    focused: app.mode == Mode::Map,
-                    look,
-                },
-                *area,
-            ),
-            Pane::Lesson => {
-                if let Some(state) = &app.lesson {
-                    frame.render_widget(
-                        lesson::LessonPane {
-                            lesson: state,
-                            missing: app.lesson_missing(),
-                            look,
-                        },
-                        *area,
-                    );
-                }
+        draw_pane(frame, app, *pane, *area, look, cache);
+    }
+}
+
+/// One pane of the column.
+fn draw_pane(
+    frame: &mut Frame<'_>,
+    app: &App,
+    pane: Pane,
+    area: Rect,
+    look: &Look<'_>,
+    cache: &mut Cache,
+) {
+    match pane {
+        Pane::Portrait => frame.render_stateful_widget(
+            portrait::PortraitPane {
+                scenario: &app.scenario,
+                run: &app.run,
+                view: &app.view,
+                bounds: app.bounds(),
+                look,
+            },
+            area,
+            cache,
+        ),
+        Pane::Series => frame.render_widget(
+            series::SeriesPane {
+                run: &app.run,
+                overlay: app.view.overlay,
+                model: app.scenario.settings.model.kind(),
+                look,
+            },
+            area,
+        ),
+        Pane::Sweep => frame.render_widget(
+            sweep::SweepPane {
+                model: app.scenario.settings.model.kind(),
+                sweep: &app.sweep,
+                look,
+            },
+            area,
+        ),
+        Pane::Weak => frame.render_widget(
+            weak::WeakPane {
+                weak: &app.weak,
+                look,
+            },
+            area,
+        ),
+        Pane::Map => frame.render_widget(
+            map::MapPane {
+                map: &app.map,
+                focused: app.mode == Mode::Map,
+                look,
+            },
+            area,
+        ),
+        Pane::Lesson => {
+            if let Some(state) = &app.lesson {
+                frame.render_widget(
+                    lesson::LessonPane {
+                        lesson: state,
+                        missing: app.lesson_missing(),
+                        look,
+                    },
+                    area,
+                );
             }
-            Pane::Body => frame.render_widget(
-                body::BodyPane {
-                    run: &app.run,
-                    aspect: app
-                        .scenario
-                        .settings
-                        .model
-                        .plan_view()
-                        .map_or(1.0, |[x, y]| y / x),
-                    fast: app.scenario.settings.model.kind().words().fast_name,
-                    look,
-                },
-                *area,
-            ),
-            Pane::Params => {}
         }
+        Pane::Body => frame.render_widget(
+            body::BodyPane {
+                run: &app.run,
+                aspect: app
+                    .scenario
+                    .settings
+                    .model
+                    .plan_view()
+                    .map_or(1.0, |[x, y]| y / x),
+                fast: app.scenario.settings.model.kind().words().fast_name,
+                look,
+            },
+            area,
+        ),
+        Pane::Compare => frame.render_widget(
+            compare::ComparePane {
+                run: &app.run,
+                scenario: &app.scenario,
+                compare: &app.compare,
+                look,
+            },
+            area,
+        ),
+        Pane::Params => {}
     }
 }
 

@@ -36,7 +36,7 @@ fn render_with(app: &App, width: u16, height: u16, options: &UiOptions) -> Buffe
     terminal.backend().buffer().clone()
 }
 
-fn render(app: &App, width: u16, height: u16) -> Buffer {
+pub fn render(app: &App, width: u16, height: u16) -> Buffer {
     render_with(app, width, height, &UiOptions::default())
 }
 
@@ -57,7 +57,7 @@ fn text(buffer: &Buffer) -> String {
     out
 }
 
-fn find(buffer: &Buffer, needle: &str) -> Option<(u16, u16)> {
+pub fn find(buffer: &Buffer, needle: &str) -> Option<(u16, u16)> {
     let area = buffer.area;
     for y in 0..area.height {
         let row: String = (0..area.width)
@@ -551,6 +551,7 @@ fn a_lesson_steps_pane_gets_room_at_80x24() {
             let title = match pane {
                 "series" => "(t): full",
                 "sweep" => "-sweep:",
+                "compare" => "compare: spin(t)",
                 other => panic!("a shipped step asks for {other}: add its title here"),
             };
             assert!(

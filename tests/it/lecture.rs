@@ -119,6 +119,12 @@ fn first_event(preset: &str) -> f64 {
 }
 
 fn lecture(preset: &str, speed: f64, field: &str) -> Lecture {
+    lecture_with(preset, speed, field, false)
+}
+
+/// [`lecture`], with the compare pane opened (`C`, the scene's counterpart beside the run) as
+/// the recording starts.
+fn lecture_with(preset: &str, speed: f64, field: &str, compare: bool) -> Lecture {
     let before = first_event(preset);
     let mut l = Lecturer {
         h: Headless::new(preset),
@@ -132,6 +138,10 @@ fn lecture(preset: &str, speed: f64, field: &str) -> Lecture {
             .on_outcome(Outcome::Recording(Ok("lecture.jsonl".into())));
     l.h.exec(effects);
     l.collect();
+    if compare {
+        l.key(Key::Char('C'));
+        assert!(l.h.app.compare.outcome.is_some(), "the partner ran");
+    }
     while l.h.app.run.speed < speed {
         l.key(Key::Char('+'));
     }
@@ -175,6 +185,13 @@ fn lecture(preset: &str, speed: f64, field: &str) -> Lecture {
     {
         l.tick();
     }
+    // With the comparison, every screen recorded the partner as the pane showed it.
+    let with_partner =
+        |(_, f, s): &(usize, String, Shown)| s.compare.is_some() && f.contains("compare: spin(t)");
+    assert!(
+        !compare || l.frames.iter().all(with_partner),
+        "{preset} ×{speed}: a screen without the partner"
+    );
     Lecture {
         header,
         lines: l.lines,
@@ -334,8 +351,12 @@ fn write(
 }
 
 fn check(preset: &str, field: &str) {
+    check_with(preset, field, false);
+}
+
+fn check_with(preset: &str, field: &str, compare: bool) {
     for speed in [1.0, 16.0, 1024.0] {
-        let lecture = lecture(preset, speed, field);
+        let lecture = lecture_with(preset, speed, field, compare);
         let screens = lecture.frames.len();
         assert!(
             screens >= 7,
@@ -446,6 +467,14 @@ fn a_pendulum_lecture_replays_and_follows_frame_for_frame() {
     check("kapitza-upright", "b");
 }
 
+/// Issue 26: the comparison is recorded and replayed like any other pane: the holonomic
+/// rattleback beside the celt, and the celt beside the holonomic rattleback (its spin changed).
+#[test]
+fn a_comparison_lecture_replays_and_follows_frame_for_frame() {
+    check_with("subcritical", "k", true);
+    check_with("celt-clockwise", "omega_z", true);
+}
+
 fn one_lecture() -> Lecture {
     lecture("subcritical", 16.0, "k")
 }
@@ -497,9 +526,10 @@ fn edits_downgrades_cuts_and_extra_fields_fail_naming_the_line() {
     });
     assert_eq!(diverged_at(&forged, None), note + 1);
     // The header says version 3: its rules refuse format-4 lines.
+    let current = format!("\"version\":{}", record::VERSION);
     let downgraded = edit(&path, "downgraded.jsonl", |i, l| {
         Some(if i == 0 {
-            l.replace("\"version\":4", "\"version\":3")
+            l.replace(&current, "\"version\":3")
         } else {
             l.to_owned()
         })

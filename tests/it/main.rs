@@ -12,6 +12,7 @@ mod bounded;
 mod budget;
 mod celt;
 mod cli_conventions;
+mod compare;
 mod convergence_order;
 mod ecosystem;
 mod effective_limit;

@@ -627,14 +627,14 @@ fn panes_and_a_map_cell_loaded_are_recorded_and_replayed() {
     h.key(Key::Esc);
     h.key(Key::Char('W'));
     let journal = h.app.take_journal();
-    let panes: Vec<(bool, bool)> = journal
+    let panes: Vec<Vec<Pane>> = journal
         .iter()
         .filter_map(|(_, _, e)| match e {
-            Event::Panes { weak, map, .. } => Some((*weak, *map)),
+            Event::Layout { panes, .. } => Some(panes.clone()),
             _ => None,
         })
         .collect();
-    assert_eq!(panes, [(false, true), (true, true)]);
+    assert_eq!(panes, [vec![Pane::Map], vec![Pane::Weak, Pane::Map]]);
     assert!(
         journal
             .iter()
@@ -672,6 +672,25 @@ fn panes_and_a_map_cell_loaded_are_recorded_and_replayed() {
             body: false
         }
     );
+    // And an old line with panes replays as the list form does.
+    let old: Event = serde_json::from_str(
+        r#"{"kind":"panes","effective":false,"series":true,"weak":true,"body":true}"#,
+    )
+    .unwrap();
+    let mut o = Headless::of(&first);
+    let effects = o.app.apply_event(&old);
+    o.exec(effects);
+    assert!(!o.app.view.overlay);
+    for pane in Pane::ALL {
+        assert_eq!(
+            o.app.view.panes.shows(pane),
+            matches!(
+                pane,
+                Pane::Params | Pane::Portrait | Pane::Series | Pane::Weak | Pane::Body
+            ),
+            "{pane:?}"
+        );
+    }
 }
 
 /// Issue 14, item 4: a lecturer's view of the session file.

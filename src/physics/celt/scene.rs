@@ -271,6 +271,7 @@ impl Scene for CeltScene {
             weak: false,
             map: false,
             body: true,
+            counterpart: "subcritical",
         }
     }
 }

@@ -138,6 +138,7 @@ impl Scene for KapitzaScene {
             weak: true,
             map: false,
             body: false,
+            counterpart: "subcritical",
         }
     }
 }

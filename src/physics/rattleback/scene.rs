@@ -182,6 +182,7 @@ impl Scene for RattlebackScene {
             weak: true,
             map: true,
             body: true,
+            counterpart: "celt-clockwise",
         }
     }
 }

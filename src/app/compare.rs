@@ -1,0 +1,242 @@
+//! The comparison (`C`, `rattleback compare A B`, a lesson's `partner`): a second preset, the
+//! partner, run by the worker over the run's own window and drawn beside the run on one time
+//! axis, each with its reversal ticks and its own status line. The paper's contrast on one
+//! screen: the holonomic rattleback reversing beside the classical rolling celt.
+//!
+//! The partner is computed to its end at once (it is short: the budget refuses one that is
+//! not) and shown up to the displayed time, so what the pane shows depends on the displayed
+//! time only, never on how far the worker got: a recording and its replay show the same.
+
+use serde::{Deserialize, Serialize};
+
+use super::journal::Event;
+use super::panes::Pane;
+use super::{App, Effect, Message, Scenario};
+use crate::scenario::Preset;
+use crate::scenario::text::clean;
+use crate::sim::{Command, PartnerRun, SessionSpec};
+
+/// The partner chosen.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Partner {
+    /// Its preset.
+    pub preset: Preset,
+    /// Its scenario (name cleaned, settings).
+    pub scenario: Scenario,
+}
+
+/// The comparison's state: the partner, its run, and which run that is.
+#[derive(Clone, Debug, Default)]
+pub struct CompareState {
+    /// The partner, once chosen.
+    pub partner: Option<Partner>,
+    /// What the worker was last asked to run (the partner over the run's window).
+    asked: Option<SessionSpec>,
+    /// Stamp of the partner run asked last; older answers are ignored.
+    id: u64,
+    /// The partner's run, or why it failed; `None` while it is computed.
+    pub outcome: Option<Result<Box<PartnerRun>, String>>,
+}
+
+/// What the compare pane showed of the partner at a displayed time (part of a recorded
+/// screen).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Compared {
+    /// The partner's preset name.
+    pub partner: String,
+    /// Its reversals shown.
+    pub events: usize,
+    /// Its second events shown (the celt's crossings), when its model has them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crossings: Option<usize>,
+    /// Its spin at the displayed time (none before its first sample, or when it failed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spin: Option<f64>,
+}
+
+impl CompareState {
+    /// The worker's spec of the partner over `window` (the run's `t_end`).
+    fn spec(&self, window: f64) -> Option<SessionSpec> {
+        let partner = self.partner.as_ref()?;
+        let mut scenario = partner.scenario.clone();
+        let mut settings = scenario.settings;
+        settings.t_end = window;
+        scenario.set(settings);
+        Some(scenario.spec(false))
+    }
+
+    /// Asks for the partner's run over `window`, unless that is what was asked last (its
+    /// outcome stands).
+    fn start(&mut self, window: f64) -> Option<Command> {
+        let spec = self.spec(window)?;
+        if self.asked == Some(spec) {
+            return None;
+        }
+        self.id += 1;
+        self.asked = Some(spec);
+        self.outcome = None;
+        Some(Command::Compare {
+            id: self.id,
+            spec: Some(spec),
+        })
+    }
+
+    /// Stops the partner's run; its outcome is forgotten.
+    fn stop(&mut self) -> Command {
+        self.id += 1;
+        self.asked = None;
+        self.outcome = None;
+        Command::Compare {
+            id: self.id,
+            spec: None,
+        }
+    }
+
+    /// Takes the worker's answer; whether it is this comparison's.
+    pub fn on_partner(&mut self, id: u64, outcome: Result<Box<PartnerRun>, String>) -> bool {
+        if id != self.id || self.asked.is_none() {
+            return false;
+        }
+        self.outcome = Some(outcome.map_err(|e| clean(&e)));
+        true
+    }
+
+    /// The partner's spec as run (for its plan's journal key).
+    #[must_use]
+    pub fn asked(&self) -> Option<&SessionSpec> {
+        self.asked.as_ref()
+    }
+
+    /// What the pane shows of the partner at displayed time `t` (none while it is computed).
+    #[must_use]
+    pub fn shown(&self, t: f64) -> Option<Compared> {
+        let partner = self.partner.as_ref()?;
+        let name = partner.scenario.name.clone();
+        match self.outcome.as_ref()? {
+            Err(_) => Some(Compared {
+                partner: name,
+                events: 0,
+                crossings: None,
+                spin: None,
+            }),
+            Ok(run) => {
+                let count = |times: &[f64]| times.partition_point(|x| *x <= t);
+                let has_marks = partner
+                    .scenario
+                    .settings
+                    .model
+                    .kind()
+                    .words()
+                    .second_events
+                    .is_some_and(|s| s.found == crate::physics::scene::Found::Flow);
+                Some(Compared {
+                    partner: name,
+                    events: count(&run.reversals),
+                    crossings: has_marks.then(|| count(&run.marks)),
+                    spin: crate::app::run::upto(&run.samples, t)
+                        .last()
+                        .map(|p| p.alpha_dot),
+                })
+            }
+        }
+    }
+}
+
+impl App {
+    /// Sets the comparison's partner and opens the compare pane (`rattleback compare`, a
+    /// lesson's step).
+    pub fn set_partner(&mut self, preset: &Preset) -> Vec<Effect> {
+        let mut effects = self.replay_partner(preset);
+        if !self.view.panes.shows(Pane::Compare) {
+            effects.extend(self.toggle_computed(Pane::Compare));
+            self.log_layout();
+        }
+        effects
+    }
+
+    /// Sets the comparison's partner (journaled inline, so the file stands alone); a shown
+    /// pane runs it at once.
+    pub(super) fn replay_partner(&mut self, preset: &Preset) -> Vec<Effect> {
+        self.compare.partner = Some(Partner {
+            preset: preset.clone(),
+            scenario: Scenario::of(preset),
+        });
+        self.log(Event::Partner {
+            toml: preset.to_toml(),
+        });
+        if !self.view.panes.shows(Pane::Compare) {
+            return Vec::new();
+        }
+        // A new partner: the old run is moot.
+        let mut effects = vec![Effect::Sim(self.compare.stop())];
+        effects.extend(self.start_compare().map(Effect::Sim));
+        effects
+    }
+
+    /// The partner's run over the run's window, if it is not asked already. A scene opened
+    /// without a partner takes its scene's counterpart (a shipped preset).
+    pub(super) fn start_compare(&mut self) -> Option<Command> {
+        if self.compare.partner.is_none() {
+            let kind = self.scenario.settings.model.kind();
+            let name = kind.studies().counterpart;
+            match crate::scenario::shipped::resolve(name, &[]) {
+                Ok(p) => {
+                    self.compare.partner = Some(Partner {
+                        scenario: Scenario::of(&p),
+                        preset: p.clone(),
+                    });
+                    self.log(Event::Partner { toml: p.to_toml() });
+                }
+                Err(e) => {
+                    self.status = Message::error(e.to_string());
+                    return None;
+                }
+            }
+        }
+        self.compare.start(self.scenario.settings.t_end)
+    }
+
+    /// The layout as a recording keeps it: the overlay and the panes a key shows.
+    pub(super) fn layout(&self) -> Event {
+        Event::Layout {
+            effective: self.view.overlay,
+            panes: self.view.panes.toggled(),
+        }
+    }
+
+    /// Journals the layout now.
+    pub(super) fn log_layout(&mut self) {
+        let layout = self.layout();
+        self.log(layout);
+    }
+
+    /// Stops the partner's run (the pane was hidden).
+    pub(super) fn stop_compare(&mut self) -> Command {
+        self.compare.stop()
+    }
+
+    /// Whether what the compare pane shows is complete (hidden, or its partner has answered):
+    /// a recorded screen waits for it.
+    #[must_use]
+    pub fn compare_settled(&self) -> bool {
+        !self.view.panes.shows(Pane::Compare) || self.compare.outcome.is_some()
+    }
+
+    /// Takes the partner's run: its plan is journaled (a replay runs the same plan).
+    pub(super) fn on_partner(&mut self, id: u64, outcome: Result<Box<PartnerRun>, String>) -> bool {
+        if let (Ok(run), Some(spec)) = (&outcome, self.compare.asked()) {
+            let event = Event::Plan {
+                key: crate::sim::PlanKey::of(spec),
+                plan: run.plan,
+                estimate: run.estimate,
+            };
+            if self.compare.on_partner(id, outcome) {
+                self.log(event);
+                return true;
+            }
+            return false;
+        }
+        self.compare.on_partner(id, outcome)
+    }
+}
