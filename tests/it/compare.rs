@@ -281,3 +281,108 @@ fn a_layout_line_needs_format_5() {
     assert!(err.contains("format 5"), "{err}");
     let _ = std::fs::remove_file(&path);
 }
+
+/// Issue 26, item 7: the lesson "two ways to reverse a spin", walked with the right answers and
+/// recorded: its comparison steps open the pane with the celt beside the holonomic body, every
+/// answer is right, and the recording verifies bit for bit.
+#[test]
+fn the_two_ways_lesson_is_right_and_its_recording_verifies() {
+    use rattleback::app::Outcome;
+    use rattleback::app::journal::Event;
+    use rattleback::record::{self, Line, Recorder};
+    use rattleback::scenario::lesson::Question;
+    let lesson = rattleback::scenario::lesson::resolve("two-ways").unwrap();
+    let mut h = Headless::new("celt-clockwise");
+    let header = crate::common::header_of(&h.app);
+    h.app
+        .on_outcome(Outcome::Recording(Ok("two-ways.jsonl".to_owned())));
+    let e = h.app.start_lesson(lesson.clone());
+    h.exec(e);
+    for (i, step) in lesson.steps.iter().enumerate() {
+        match &step.question {
+            Some(Question::Choice {
+                choices, answer, ..
+            }) => {
+                assert!(*answer < choices.len());
+                h.key(Key::Char(char::from(b'1' + u8::try_from(*answer).unwrap())));
+            }
+            Some(Question::Number { answer, .. }) => {
+                h.key(Key::Char('a'));
+                for c in format!("{answer}").chars() {
+                    h.key(Key::Char(c));
+                }
+                h.key(Key::Enter);
+            }
+            None => {}
+        }
+        if step.partner.is_some() {
+            assert!(h.app.view.panes.shows(Pane::Compare), "step {}", i + 1);
+        }
+        h.play_until(step.until.time.unwrap(), 64.0);
+        for _ in 0..3 {
+            h.tick(1.0 / 30.0);
+        }
+        let state = h.app.lesson.as_ref().unwrap();
+        assert_eq!(
+            state.correct(),
+            Some(true),
+            "step {}: {}",
+            i + 1,
+            step.title
+        );
+        if step.partner.is_some() {
+            let b = h.app.compare.shown(h.app.run.shown).unwrap();
+            assert_eq!(
+                b.events,
+                1,
+                "step {}: the celt reversed once by 10 s",
+                i + 1
+            );
+        }
+        h.key(Key::Char('n'));
+    }
+    assert!(h.app.lesson.as_ref().unwrap().finished);
+    h.key(Key::Char('R'));
+    let c = vec![h.app.checkpoint()];
+    h.exec(c);
+    let journal = h.app.take_journal();
+    assert!(
+        journal.iter().any(|(_, _, e)| matches!(
+            e,
+            Event::Layout { panes, .. } if panes.contains(&Pane::Compare)
+        )),
+        "the comparison is recorded"
+    );
+    assert!(
+        journal
+            .iter()
+            .filter(|(_, _, e)| matches!(e, Event::Answer { correct: true, .. }))
+            .count()
+            == lesson.steps.len()
+    );
+    let path = std::env::temp_dir().join(format!("two-ways-{}.jsonl", std::process::id()));
+    let _ = std::fs::remove_file(&path);
+    let mut rec = Recorder::create(&path, &header, None).unwrap();
+    for (i, (t, generation, event)) in journal.into_iter().enumerate() {
+        rec.write(&Line {
+            wall: i as f64 * 0.1,
+            t,
+            generation,
+            chain: None,
+            event,
+        })
+        .unwrap();
+    }
+    rec.write(&Line {
+        wall: 1e3,
+        t: 0.0,
+        generation: 0,
+        chain: None,
+        event: Event::end(),
+    })
+    .unwrap();
+    drop(rec);
+    let report = record::verify(&record::read(&path).unwrap(), "two-ways", None).unwrap();
+    assert!(report.screens >= lesson.steps.len(), "{}", report.screens);
+    let _ = std::fs::remove_file(&path);
+}
