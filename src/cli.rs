@@ -29,8 +29,17 @@ pub struct Cli {
     /// selection and scrolling.
     #[arg(long)]
     pub mouse: bool,
-    /// Record the session into this file (a key, R, also starts and stops recording). An
-    /// existing file is refused (exit 2) unless `--force`.
+    /// Recording.
+    #[command(flatten)]
+    pub rec: RecordArgs,
+}
+
+/// How the explorer records: `--record FILE [--force] [--sign KEYFILE]`.
+#[derive(Debug, Args, Clone)]
+pub struct RecordArgs {
+    /// Record the session into this file (a key, R, also starts and stops recording; a
+    /// lesson's steps and answers and a comparison are recorded too). An existing file is
+    /// refused (exit 2) unless `--force`.
     #[arg(long, value_name = "FILE")]
     pub record: Option<std::path::PathBuf>,
     /// Replace an existing `--record` file.
@@ -135,22 +144,15 @@ pub enum ConfigCommand {
 /// Arguments of `lesson`.
 #[derive(Debug, Args)]
 pub struct LessonArgs {
-    /// A lesson: a shipped name (first-reversal, stiff-limit, tapping), a user lesson or a path.
+    /// A lesson: a shipped name (`rattleback lessons` lists them), a user lesson or a path.
     #[arg(value_name = "NAME|PATH")]
     pub lesson: String,
     /// How the explorer draws.
     #[command(flatten)]
     pub look: LookArgs,
-    /// Record the session (steps and answers included) into this file; an existing file is
-    /// refused unless `--force`.
-    #[arg(long, value_name = "FILE")]
-    pub record: Option<std::path::PathBuf>,
-    /// Replace an existing `--record` file.
-    #[arg(long)]
-    pub force: bool,
-    /// Sign recordings with this private key (see the explorer's `--sign`).
-    #[arg(long, value_name = "KEYFILE")]
-    pub sign: Option<std::path::PathBuf>,
+    /// Recording.
+    #[command(flatten)]
+    pub rec: RecordArgs,
 }
 
 /// Arguments of `compare`.
@@ -165,16 +167,9 @@ pub struct CompareArgs {
     /// How the explorer draws.
     #[command(flatten)]
     pub look: LookArgs,
-    /// Record the session (the comparison included) into this file; an existing file is
-    /// refused unless `--force`.
-    #[arg(long, value_name = "FILE")]
-    pub record: Option<std::path::PathBuf>,
-    /// Replace an existing `--record` file.
-    #[arg(long)]
-    pub force: bool,
-    /// Sign recordings with this private key (see the explorer's `--sign`).
-    #[arg(long, value_name = "KEYFILE")]
-    pub sign: Option<std::path::PathBuf>,
+    /// Recording.
+    #[command(flatten)]
+    pub rec: RecordArgs,
 }
 
 /// Arguments of `follow`.

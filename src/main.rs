@@ -6,7 +6,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use rattleback::app::user_keys::UserKeys;
-use rattleback::cli::{Cli, Command, LookArgs, MarkerChoice, ReplayArgs, SimulateArgs};
+use rattleback::cli::{Cli, Command, LookArgs, MarkerChoice, RecordArgs, ReplayArgs, SimulateArgs};
 use rattleback::commands;
 use rattleback::explorer::{self, ExplorerOptions};
 use rattleback::physics::StepError;
@@ -416,43 +416,23 @@ fn run_lesson(args: &rattleback::cli::LessonArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let (config, keys) = match config_or_exit() {
-        Ok(c) => c,
-        Err(code) => return code,
-    };
-    if let Err(code) = prepare_record(args.record.as_deref(), args.force) {
-        return code;
-    }
     // The first step's preset, else the default, opens the explorer; the lesson takes over.
     let preset = match lesson.steps[0].preset.clone() {
-        Some(p) => p,
-        None => match resolve(rattleback::scenario::shipped::DEFAULT_PRESET, &[]) {
-            Ok(p) => p,
-            Err(e) => {
-                say_err!("rattleback: error: {e}");
-                return ExitCode::from(2);
-            }
-        },
+        Some(p) => Ok(p),
+        None => resolve(rattleback::scenario::shipped::DEFAULT_PRESET, &[]),
     };
-    let setup = Setup {
-        look: with_config(&args.look, &config),
-        sessions_dir: config.sessions_dir(),
-        mouse: config.mouse,
-        keys,
+    let opening = Opening {
+        look: &args.look,
+        rec: &args.rec,
+        mouse: false,
         lesson: Some(lesson),
         partner: None,
-        follow: None,
-        sign: args.sign.clone(),
     };
-    explore(&setup, &preset, args.record.clone(), None)
+    open_explorer(Some(preset.map_err(|e| e.to_string())), opening)
 }
 
 /// `compare A B`: the explorer on `A` with `B` beside it on one time axis.
 fn run_compare(args: &rattleback::cli::CompareArgs) -> ExitCode {
-    let (config, keys) = match config_or_exit() {
-        Ok(c) => c,
-        Err(code) => return code,
-    };
     let (preset, partner) = match (resolve(&args.a, &[]), resolve(&args.b, &[])) {
         (Ok(a), Ok(b)) => (a, b),
         (Err(e), _) | (_, Err(e)) => {
@@ -460,53 +440,79 @@ fn run_compare(args: &rattleback::cli::CompareArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    if let Err(code) = prepare_record(args.record.as_deref(), args.force) {
-        return code;
-    }
-    let setup = Setup {
-        look: with_config(&args.look, &config),
-        sessions_dir: config.sessions_dir(),
-        mouse: config.mouse,
-        keys,
+    let opening = Opening {
+        look: &args.look,
+        rec: &args.rec,
+        mouse: false,
         lesson: None,
         partner: Some(partner),
-        follow: None,
-        sign: args.sign.clone(),
     };
-    explore(&setup, &preset, args.record.clone(), None)
+    open_explorer(Some(Ok(preset)), opening)
 }
 
 fn run_explorer(cli: &Cli) -> ExitCode {
+    let opening = Opening {
+        look: &cli.look,
+        rec: &cli.rec,
+        mouse: cli.mouse,
+        lesson: None,
+        partner: None,
+    };
+    let preset = cli
+        .preset
+        .as_deref()
+        .map(|name| resolve(name, &[]).map_err(|e| e.to_string()));
+    open_explorer(preset, opening)
+}
+
+/// How an interactive command opens the explorer.
+struct Opening<'a> {
+    look: &'a LookArgs,
+    rec: &'a RecordArgs,
+    mouse: bool,
+    lesson: Option<rattleback::scenario::lesson::Lesson>,
+    partner: Option<rattleback::scenario::Preset>,
+}
+
+/// The one way the explorer opens from the command line: the configuration, the preset (`None`:
+/// the configured default, else the shipped one), the recording's file, then the loop.
+fn open_explorer(
+    preset: Option<Result<rattleback::scenario::Preset, String>>,
+    o: Opening<'_>,
+) -> ExitCode {
     let (config, keys) = match config_or_exit() {
         Ok(c) => c,
         Err(code) => return code,
     };
-    let name = cli
-        .preset
-        .clone()
-        .or_else(|| config.preset.clone())
-        .unwrap_or_else(|| rattleback::scenario::shipped::DEFAULT_PRESET.to_owned());
-    let preset = match resolve(&name, &[]) {
+    let preset = preset.unwrap_or_else(|| {
+        let name = config.preset.as_deref();
+        resolve(
+            name.unwrap_or(rattleback::scenario::shipped::DEFAULT_PRESET),
+            &[],
+        )
+        .map_err(|e| e.to_string())
+    });
+    let preset = match preset {
         Ok(p) => p,
         Err(e) => {
             say_err!("rattleback: error: {e}");
             return ExitCode::from(2);
         }
     };
-    if let Err(code) = prepare_record(cli.record.as_deref(), cli.force) {
+    if let Err(code) = prepare_record(o.rec.record.as_deref(), o.rec.force) {
         return code;
     }
     let setup = Setup {
-        look: with_config(&cli.look, &config),
+        look: with_config(o.look, &config),
         sessions_dir: config.sessions_dir(),
-        mouse: cli.mouse || config.mouse,
+        mouse: o.mouse || config.mouse,
         keys,
-        lesson: None,
-        partner: None,
+        lesson: o.lesson,
+        partner: o.partner,
         follow: None,
-        sign: cli.sign.clone(),
+        sign: o.rec.sign.clone(),
     };
-    explore(&setup, &preset, cli.record.clone(), None)
+    explore(&setup, &preset, o.rec.record.clone(), None)
 }
 
 /// What the explorer needs from the command line and the configuration.
