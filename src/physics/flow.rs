@@ -19,6 +19,9 @@ pub struct Sample {
     pub q_dot: f64,
     /// The fast coordinate (the rattleback's tilt `γ`; the pendulum's ripple of `θ`, `θ − Θ`).
     pub fast: f64,
+    /// The body's lean, for a model whose body pane draws it from the side (the celt): the
+    /// angles (rad) by which the ends of its long and its cross axis rise above the horizontal.
+    pub lean: Option<[f64; 2]>,
 }
 
 /// A running integration of one model's problem.

@@ -172,6 +172,20 @@ pub struct WeakView {
     pub reference: Vec<f64>,
 }
 
+/// A body's profile seen from the side: a half-ellipsoid, flat on top, its mass centre below
+/// its centre (any unit: the body pane draws the shape to scale).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SideView {
+    /// Semi-axis along the body's x (long) axis.
+    pub long: f64,
+    /// Semi-axis along its y (cross) axis.
+    pub cross: f64,
+    /// Semi-axis along its z axis (the depth of the bottom).
+    pub height: f64,
+    /// How far the mass centre lies below the centre.
+    pub offset: f64,
+}
+
 /// The facts of one validated problem of a model.
 pub trait Posed {
     /// Its scene.
@@ -187,6 +201,9 @@ pub trait Posed {
     /// The body's half-extents seen from above, along its own x and y axes (any unit: the body
     /// pane draws their ratio), or `None` for a model without a body to draw.
     fn plan_view(&self) -> Option<[f64; 2]>;
+    /// The body's profile for the side and end views (the celt's ellipsoidal bottom), or
+    /// `None` for a model whose body pane draws it from above only.
+    fn side_view(&self) -> Option<SideView>;
     /// Builds a concrete method's integration at `t = 0`.
     ///
     /// # Errors

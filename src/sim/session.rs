@@ -49,6 +49,9 @@ pub struct Point {
     /// The fast coordinate (the rattleback's tilt `γ`, whose envelope the body pane draws;
     /// the pendulum's ripple `θ − Θ`).
     pub gamma: f64,
+    /// The body's lean (the celt's): see [`crate::physics::flow::Sample::lean`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lean: Option<[f64; 2]>,
 }
 
 /// Steps between two snapshots of the full motion, at first (the spacing doubles whenever
@@ -205,6 +208,7 @@ impl Track {
             alpha_dot: y.q_dot,
             energy_error: (self.integrator.energy() - self.e0) / self.scale,
             gamma: y.fast,
+            lean: y.lean,
         }
     }
 

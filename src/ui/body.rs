@@ -15,6 +15,7 @@ use ratatui::widgets::{Block, Widget};
 
 use super::{Look, title};
 use crate::app::RunState;
+use crate::physics::scene::SideView;
 
 /// Seconds of trace drawn around the body.
 pub const TRACE_SECONDS: f64 = 6.0;
@@ -30,6 +31,8 @@ pub struct BodyPane<'a> {
     pub aspect: f64,
     /// The fast coordinate's name (`gamma`, `tilt`).
     pub fast: &'a str,
+    /// The body's profile, when the scene draws it from the side too (the celt).
+    pub side: Option<SideView>,
     /// Marker and colours.
     pub look: &'a Look<'a>,
 }
@@ -45,14 +48,19 @@ pub fn envelope(run: &RunState) -> f64 {
 }
 
 /// The pane's title: the sense of the spin, the reversals, the rocking envelope.
-fn heading(run: &RunState, alpha_dot: f64, rock: f64, fast: &str) -> String {
+fn heading(run: &RunState, alpha_dot: f64, rock: f64, fast: &str, sides: bool) -> String {
     let turning = match alpha_dot.partial_cmp(&0.0) {
         Some(std::cmp::Ordering::Greater) => "↺ counter-clockwise",
         Some(std::cmp::Ordering::Less) => "↻ clockwise",
         _ => "at rest",
     };
     format!(
-        "body from above (B): spin {turning}, reversals {} │ rocking |{fast}| {rock:.1e}",
+        "body {} (B): spin {turning}, reversals {} │ rocking |{fast}| {rock:.1e}",
+        if sides {
+            "from above, side, end"
+        } else {
+            "from above"
+        },
         run.reversals_shown()
     )
 }
@@ -80,12 +88,29 @@ impl Widget for BodyPane<'_> {
         let now = run.current().copied();
         let (alpha, alpha_dot) = now.map_or((0.0, 0.0), |p| (p.alpha, p.alpha_dot));
         let rock = envelope(run);
-        let block =
-            Block::bordered().title(title(&heading(run, alpha_dot, rock, self.fast), area.width));
-        let inner = block.inner(area);
+        let block = Block::bordered().title(title(
+            &heading(run, alpha_dot, rock, self.fast, self.side.is_some()),
+            area.width,
+        ));
+        let mut inner = block.inner(area);
         block.render(area, buf);
         if inner.width < 4 || inner.height < 3 {
             return;
+        }
+        // The side and end views take the bottom third, when there is room for them.
+        if let Some(side) = self.side
+            && inner.height >= 10
+            && inner.width >= 30
+        {
+            let rows = (inner.height / 3).clamp(4, 8);
+            inner.height -= rows;
+            let below = Rect {
+                y: inner.y + inner.height,
+                height: rows,
+                ..inner
+            };
+            let lean = now.and_then(|p| p.lean).unwrap_or([0.0, 0.0]);
+            sides(side, lean, exaggeration(run), look, below, buf);
         }
         // Cells are about twice as tall as wide: keep circles round.
         let ratio = f64::from(inner.width) / (2.0 * f64::from(inner.height));
@@ -165,5 +190,209 @@ impl Widget for BodyPane<'_> {
                 );
             })
             .render(inner, buf);
+    }
+}
+
+/// The side view (pitch, three fifths of `area`) and the end view (roll) side by side.
+fn sides(side: SideView, lean: [f64; 2], gain: f64, look: &Look, area: Rect, buf: &mut Buffer) {
+    let left = area.width * 3 / 5;
+    let profile = |half_width, angle, label| Profile {
+        half_width,
+        depth: side.height,
+        offset: side.offset,
+        angle,
+        gain,
+        label,
+        look,
+    };
+    profile(side.long, lean[0], "side, pitch").render(
+        Rect {
+            width: left,
+            ..area
+        },
+        buf,
+    );
+    profile(side.cross, lean[1], "end, roll").render(
+        Rect {
+            x: area.x + left + 1,
+            width: area.width - left - 1,
+            ..area
+        },
+        buf,
+    );
+}
+
+/// How much the side and end views exaggerate the lean: the largest lean shown so far is drawn
+/// as about 0.3 rad (17°), never less than its true angle; a power of ten times 1, 2 or 5, so
+/// the label reads simply.
+#[must_use]
+pub fn exaggeration(run: &RunState) -> f64 {
+    let biggest = run
+        .trail_shown()
+        .iter()
+        .filter_map(|p| p.lean)
+        .map(|[x, y]| x.abs().max(y.abs()))
+        .fold(0.0, f64::max);
+    gain_for(biggest)
+}
+
+/// The exaggeration that draws a lean of `biggest` (rad) as about 0.3 rad.
+fn gain_for(biggest: f64) -> f64 {
+    if biggest.is_nan() || biggest <= 0.0 || biggest >= 0.3 {
+        return 1.0;
+    }
+    let want = 0.3 / biggest;
+    let decade = 10f64.powf(want.log10().floor());
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * decade)
+        .find(|&g| g <= want)
+        .unwrap_or(1.0)
+        .max(1.0)
+}
+
+/// One profile of the body on the ground, seen from the side (`long`, pitch) or from an end
+/// (`cross`, roll): the half-ellipse of its bottom and its flat top, tipped by the lean times
+/// the gain, resting on the ground at its lowest point, its mass centre and the contact marked.
+struct Profile<'a> {
+    half_width: f64,
+    depth: f64,
+    offset: f64,
+    angle: f64,
+    gain: f64,
+    label: &'a str,
+    look: &'a Look<'a>,
+}
+
+impl Profile<'_> {
+    /// The outline, the mass centre and the contact's x, in the ground's frame (the body
+    /// tipped by `theta`, its lowest point at height 0).
+    fn shape(&self, theta: f64) -> (Vec<(f64, f64)>, (f64, f64), f64) {
+        let (a, c) = (self.half_width, self.depth);
+        let (ct, st) = (theta.cos(), theta.sin());
+        let lift = (a * a * st * st + c * c * ct * ct).sqrt();
+        let place = |x: f64, z: f64| (x * ct - z * st, x * st + z * ct + lift);
+        let mut outline: Vec<(f64, f64)> = (0..=48)
+            .map(|i| {
+                let u = std::f64::consts::PI * (1.0 + f64::from(i) / 48.0);
+                place(a * u.cos(), c * u.sin())
+            })
+            .collect();
+        outline.push(outline[0]);
+        let centre = place(0.0, -self.offset);
+        let contact = -(a * a - c * c) * st * ct / lift;
+        (outline, centre, contact)
+    }
+}
+
+impl Widget for Profile<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        if area.width < 8 || area.height < 2 {
+            return;
+        }
+        let theme = self.look.theme;
+        let (outline, centre, contact) = self.shape(self.angle * self.gain);
+        // Equal scales on both axes (a cell is about twice as tall as wide); zoom out until the
+        // tipped body fits under the label row.
+        let top = outline.iter().map(|p| p.1).fold(0.0, f64::max);
+        let (cols, rows) = (f64::from(area.width), f64::from(area.height));
+        let mut half = self.half_width * 1.15;
+        let span = |half: f64| rows * 4.0 * half / cols;
+        let room = (rows - 1.0) / rows;
+        if top * 1.1 > room * span(half) * 0.9 {
+            half *= top * 1.1 / (room * span(half) * 0.9);
+        }
+        let floor = -0.08 * span(half);
+        let gain = if self.gain > 1.0 {
+            format!(" drawn ×{}", self.gain)
+        } else {
+            String::new()
+        };
+        let text = format!("{} {:+.3}{gain}", self.label, self.angle);
+        Canvas::default()
+            .marker(self.look.marker)
+            .background_color(theme.background)
+            .x_bounds([-half, half])
+            .y_bounds([floor, floor + span(half)])
+            .paint(|ctx| {
+                ctx.draw(&Line::new(-half, 0.0, half, 0.0, theme.dim));
+                for w in outline.windows(2) {
+                    ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, theme.trail));
+                }
+                ctx.draw(&Points {
+                    coords: &[centre],
+                    color: theme.current,
+                });
+                ctx.layer();
+                ctx.print(
+                    contact,
+                    0.0,
+                    TextLine::styled("^", Style::default().fg(theme.reversal)),
+                );
+                ctx.print(
+                    -half,
+                    floor + span(half),
+                    TextLine::styled(text.clone(), Style::default().fg(theme.dim)),
+                );
+            })
+            .render(area, buf);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The profile rests on the ground at its lowest point, which is where the contact mark
+    /// goes, whatever the lean; the mass centre lies below the centre along the tipped axis.
+    #[test]
+    fn the_profile_rests_on_its_contact() {
+        let theme = crate::ui::Theme::default();
+        let look = Look {
+            theme: &theme,
+            marker: ratatui::symbols::Marker::Braille,
+            no_color: false,
+        };
+        for theta in [-0.6, -0.2, -0.01, 0.0, 0.05, 0.3, 0.7] {
+            let p = Profile {
+                half_width: 20.0,
+                depth: 2.0,
+                offset: 1.0,
+                angle: theta,
+                gain: 1.0,
+                label: "",
+                look: &look,
+            };
+            let (outline, centre, contact) = p.shape(theta);
+            let lowest = outline
+                .iter()
+                .copied()
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .unwrap();
+            assert!(lowest.1 < 1e-2 && lowest.1 > -1e-12, "{theta}: {lowest:?}");
+            // The outline is sampled every 3.75°: the contact lies within a sample of it.
+            assert!(
+                (lowest.0 - contact).abs() < 20.0 * 0.07,
+                "{theta}: {contact}"
+            );
+            // G is 1 below the centre (height `lift`), along the body's tipped z axis.
+            let lift = (400.0 * theta.sin().powi(2) + 4.0 * theta.cos().powi(2)).sqrt();
+            assert!((centre.0 - theta.sin()).abs() < 1e-12, "{theta}");
+            assert!((centre.1 - (lift - theta.cos())).abs() < 1e-12, "{theta}");
+        }
+    }
+
+    #[test]
+    fn the_exaggeration_is_a_round_factor_that_never_shrinks() {
+        let gain = gain_for;
+        assert!((gain(0.005) - 50.0).abs() < 1e-9);
+        assert!((gain(0.02) - 10.0).abs() < 1e-9);
+        assert!((gain(0.1) - 2.0).abs() < 1e-9);
+        assert!((gain(0.2) - 1.0).abs() < 1e-9);
+        assert!((gain(0.5) - 1.0).abs() < 1e-9);
+        assert!((gain(0.0) - 1.0).abs() < 1e-9);
+        assert!((gain(f64::NAN) - 1.0).abs() < 1e-9);
+        assert!((gain(1e-300) - 1.0).abs() >= 1.0, "finite and large");
+        assert!(gain(1e-300).is_finite());
     }
 }

@@ -188,6 +188,7 @@ fn draw_pane(
                     .plan_view()
                     .map_or(1.0, |[x, y]| y / x),
                 fast: app.scenario.settings.model.kind().words().fast_name,
+                side: app.scenario.settings.model.side_view(),
                 look,
             },
             area,

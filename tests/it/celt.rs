@@ -416,7 +416,11 @@ fn the_celt_body_pane_at_80x24_and_160x48() {
     h.play_until(5.0, 4.0);
     h.key(Key::Char(' '));
     let small = crate::explorer_ui::screen_text(&h.app, 80, 24);
-    assert!(small.contains("body from above (B): spin"), "{small}");
+    assert!(small.contains("body from above, side, end (B)"), "{small}");
+    assert!(
+        small.contains("side, pitch") && small.contains("end, roll"),
+        "{small}"
+    );
     // The reversal near 3 s is inside the trace's window: both senses are on the ring.
     assert!(small.contains('+') && small.contains('-'), "{small}");
     insta::assert_snapshot!("celt_body_80x24", small);
@@ -431,4 +435,44 @@ fn the_celt_body_pane_at_80x24_and_160x48() {
         screen.contains("the body pane is of the rattleback and the celt"),
         "{screen}"
     );
+}
+
+/// The side and end views read the lean of the state on display: at the end of the run, the
+/// pitch and roll they print are those of the independent reference's final `γ`
+/// (`asin γ_x`, `asin γ_y`), to the three decimals printed, at x1024.
+#[test]
+fn the_side_and_end_views_show_the_reference_lean_at_the_end() {
+    use rattleback::app::Key;
+    for case in references()["cases"].as_array().unwrap() {
+        let name = case["preset"].as_str().unwrap();
+        if !["celt-clockwise", "celt-fast-spin", "celt-anticlockwise"].contains(&name) {
+            continue;
+        }
+        let t_end = case["t_end"].as_f64().unwrap();
+        let gamma = floats(&case["reference"]["gamma"]);
+        let mut h = crate::common::Headless::new(name);
+        h.key(Key::Char('B'));
+        h.play_until(t_end, 1024.0);
+        assert_eq!(h.app.run.current().map(|p| p.t), Some(t_end), "{name}");
+        let screen = crate::explorer_ui::screen_text(&h.app, 160, 48);
+        let read = |label: &str| -> f64 {
+            let at = screen
+                .find(label)
+                .unwrap_or_else(|| panic!("{label}: {screen}"));
+            screen[at + label.len()..]
+                .split_whitespace()
+                .next()
+                .and_then(|w| w.parse().ok())
+                .unwrap_or_else(|| panic!("{label}: {screen}"))
+        };
+        let (pitch, roll) = (read("side, pitch "), read("end, roll "));
+        assert!(
+            (pitch - gamma[0].asin()).abs() <= 6e-4,
+            "{name}: pitch {pitch}"
+        );
+        assert!(
+            (roll - gamma[1].asin()).abs() <= 6e-4,
+            "{name}: roll {roll}"
+        );
+    }
 }

@@ -16,7 +16,7 @@
 //! [`crate::physics::flow::EventTracker`] counts reversals and asks [`Flow::locate_event`] for
 //! that crossing.
 
-use super::{DIM, Params, Problem, State, spin, tilt};
+use super::{DIM, Params, Problem, State, lean, spin, tilt};
 use crate::physics::flow::{Flow, Sample};
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::numerics::dop853::{Dop853, Field, Stats};
@@ -217,6 +217,7 @@ impl Flow for CeltFlow {
             q: y[DIM - 1],
             q_dot: spin(&y),
             fast: tilt(&y),
+            lean: Some(lean(&y)),
         }
     }
     fn state_at(&mut self, t: f64) -> Vec<f64> {

@@ -317,6 +317,18 @@ pub fn heading(y: &State) -> f64 {
     r[(1, 0)].atan2(r[(0, 0)])
 }
 
+/// The body's lean: the angles (rad) by which the `+x` end of its long axis and the `+y` end
+/// of its cross axis rise above the horizontal (`asin γ_x`, `asin γ_y`).
+#[must_use]
+pub fn lean(y: &State) -> [f64; 2] {
+    let g = gamma(y);
+    let n = g.norm();
+    [
+        (g.x / n).clamp(-1.0, 1.0).asin(),
+        (g.y / n).clamp(-1.0, 1.0).asin(),
+    ]
+}
+
 /// The tilt of the body's z axis from the vertical (rad).
 #[must_use]
 pub fn tilt(y: &State) -> f64 {

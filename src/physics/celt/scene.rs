@@ -14,8 +14,8 @@ use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, PlanRequest};
 use crate::physics::scene::{
-    Found, Planned, Posed, Scene, SecondEvents, Shown, SlowCurve, SmallParameter, Studies,
-    SummaryLine, WeakView, Words,
+    Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve, SmallParameter,
+    Studies, SummaryLine, WeakView, Words,
 };
 
 const LENGTH: Scale = Scale::Linear {
@@ -350,6 +350,15 @@ impl Posed for Problem {
     }
     fn plan_view(&self) -> Option<[f64; 2]> {
         Some([self.params().a, self.params().b])
+    }
+    fn side_view(&self) -> Option<SideView> {
+        let p = self.params();
+        Some(SideView {
+            long: p.a,
+            cross: p.b,
+            height: p.c,
+            offset: p.offset,
+        })
     }
     fn build(
         &self,

@@ -124,6 +124,7 @@ fn slow_sample(p: &Params, t: f64, theta: f64, theta_dot: f64) -> Sample {
         q: theta,
         q_dot: theta_dot,
         fast: theta - slow,
+        lean: None,
     }
 }
 
@@ -519,6 +520,7 @@ impl Flow for LimitDop853 {
             q: th,
             q_dot: thd,
             fast: th - y[0],
+            lean: None,
         }
     }
     fn state_at(&mut self, t: f64) -> Vec<f64> {

@@ -10,8 +10,8 @@ use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, PlanRequest, Resolution, Resolved};
 use crate::physics::scene::{
-    Found, Planned, Posed, Scene, SecondEvents, Shown, SlowCurve, SmallParameter, Studies,
-    SummaryLine, WeakView, Words,
+    Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve, SmallParameter,
+    Studies, SummaryLine, WeakView, Words,
 };
 
 const STRENGTH: Scale = Scale::Linear {
@@ -201,6 +201,9 @@ impl Posed for Problem {
         super::flows::default_step(method, self, tolerance, t_end)
     }
     fn plan_view(&self) -> Option<[f64; 2]> {
+        None
+    }
+    fn side_view(&self) -> Option<SideView> {
         None
     }
     fn build(

@@ -13,7 +13,8 @@ use crate::physics::numerics::dop853::Stats;
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::PlanRequest;
 use crate::physics::scene::{
-    Planned, Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine, WeakView, Words,
+    Planned, Posed, Scene, Shown, SideView, SlowCurve, SmallParameter, Studies, SummaryLine,
+    WeakView, Words,
 };
 
 const INERTIA: Scale = Scale::Linear {
@@ -254,6 +255,10 @@ impl Posed for Problem {
         // The long axis is the body's x axis when ix > iy (the keel).
         Some([self.params().ix, self.params().iy])
     }
+    fn side_view(&self) -> Option<SideView> {
+        // The paper's body has no shape beyond its inertia; its tilt is the cross bar above.
+        None
+    }
     fn build(
         &self,
         method: Method,
@@ -375,6 +380,7 @@ impl Flow for RattlebackFlow {
             q: y[ALPHA],
             q_dot: y[ALPHA_DOT],
             fast: y[GAMMA],
+            lean: None,
         }
     }
     fn state_at(&mut self, t: f64) -> Vec<f64> {
