@@ -221,8 +221,9 @@ fn check_integrity(
     }
     let (signature, ended) = check_sha256(rec, key)?;
     Ok((
-        "format 4: SHA-256 chain over every byte of every line, end line with the line count"
-            .to_owned(),
+        format!(
+            "format {version}: SHA-256 chain over every byte of every line, end line with the line count"
+        ),
         signature,
         ended,
     ))

@@ -384,5 +384,14 @@ fn the_two_ways_lesson_is_right_and_its_recording_verifies() {
     drop(rec);
     let report = record::verify(&record::read(&path).unwrap(), "two-ways", None).unwrap();
     assert!(report.screens >= lesson.steps.len(), "{}", report.screens);
+    // The words name the file's own format, not the first with this chain.
+    assert_eq!(report.format, record::VERSION);
+    assert!(
+        report
+            .integrity
+            .starts_with(&format!("format {}: SHA-256", record::VERSION)),
+        "{}",
+        report.integrity
+    );
     let _ = std::fs::remove_file(&path);
 }
