@@ -282,7 +282,7 @@ pub struct BenchArgs {
     #[arg(long)]
     pub quick: bool,
     /// Folder for `work_precision.csv`, `work_precision.svg`, `auto_profile.csv`,
-    /// `kapitza.csv` and `stability.csv`.
+    /// `kapitza.csv`, `celt.csv` and `stability.csv`.
     #[arg(long, value_name = "DIR", default_value = "bench-results")]
     pub out: std::path::PathBuf,
     /// Run one part only.
@@ -302,6 +302,8 @@ pub enum BenchPart {
     Auto,
     /// Kapitza's pendulum: cost against ε (`kapitza.csv`).
     Kapitza,
+    /// The celt: run time against error on its presets (`celt.csv`).
+    Celt,
     /// The stability report (`stability.csv`).
     Stability,
 }

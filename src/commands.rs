@@ -252,17 +252,9 @@ fn is_theme(src: &str) -> bool {
         .is_ok_and(|t| t.contains_key("theme") || t.contains_key("colors"))
 }
 
-/// `rattleback bench`.
-#[must_use]
-pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
-    use crate::bench;
-    let config = bench::Config { quick: args.quick };
-    if let Err(e) = std::fs::create_dir_all(&args.out) {
-        say_err!("rattleback: error: {}: {e}", args.out.display());
-        return ExitCode::from(2);
-    }
+/// Refused before minutes of work: files of an earlier run are replaced only with `--force`.
+fn bench_refuses_old_files(args: &crate::cli::BenchArgs) -> Result<(), ExitCode> {
     let part = |p: crate::cli::BenchPart| args.only.is_none_or(|o| o == p);
-    // Refused before minutes of work: files of an earlier run are replaced only with --force.
     let files: &[(crate::cli::BenchPart, &[&str])] = &[
         (
             crate::cli::BenchPart::WorkPrecision,
@@ -270,6 +262,7 @@ pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
         ),
         (crate::cli::BenchPart::Auto, &["auto_profile.csv"]),
         (crate::cli::BenchPart::Kapitza, &["kapitza.csv"]),
+        (crate::cli::BenchPart::Celt, &["celt.csv"]),
         (crate::cli::BenchPart::Stability, &["stability.csv"]),
     ];
     if !args.force
@@ -283,7 +276,23 @@ pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
             "rattleback: error: {}: exists (from an earlier run); choose another --out or add --force to replace it",
             existing.display()
         );
+        return Err(ExitCode::from(2));
+    }
+    Ok(())
+}
+
+/// `rattleback bench`.
+#[must_use]
+pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
+    use crate::bench;
+    let config = bench::Config { quick: args.quick };
+    if let Err(e) = std::fs::create_dir_all(&args.out) {
+        say_err!("rattleback: error: {}: {e}", args.out.display());
         return ExitCode::from(2);
+    }
+    let part = |p: crate::cli::BenchPart| args.only.is_none_or(|o| o == p);
+    if let Err(code) = bench_refuses_old_files(args) {
+        return code;
     }
     let mut wrote = Vec::new();
     let fail = |path: &std::path::Path, e: std::io::Error| {
@@ -323,17 +332,35 @@ pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
         }
         wrote.push(profile_csv);
     }
+    // A scene's part: its heading, its table, its CSV.
+    let mut scene = |heading: &str,
+                     table: String,
+                     name: &str,
+                     write: &dyn Fn(&std::path::Path) -> std::io::Result<()>| {
+        say!("\n{heading}");
+        say_raw!("{table}");
+        let path = args.out.join(name);
+        write(&path).map_err(|e| fail(&path, e))?;
+        wrote.push(path);
+        Ok::<(), ExitCode>(())
+    };
     if part(crate::cli::BenchPart::Kapitza) {
-        say!(
-            "\nKapitza's pendulum: cost against epsilon (T = 5; errors against tests/fixtures/reference/kapitza.toml)"
-        );
-        let pendulum = bench::kapitza::study(config.quick, &mut |line| say_err!("{line}"));
-        say_raw!("{}", bench::kapitza::table(&pendulum));
-        let pendulum_csv = args.out.join("kapitza.csv");
-        if let Err(e) = bench::kapitza::write_csv(&pendulum, &pendulum_csv) {
-            return fail(&pendulum_csv, e);
+        let rows = bench::kapitza::study(config.quick, &mut |line| say_err!("{line}"));
+        let heading = "Kapitza's pendulum: cost against epsilon (T = 5; errors against tests/fixtures/reference/kapitza.toml)";
+        if let Err(code) = scene(heading, bench::kapitza::table(&rows), "kapitza.csv", &|p| {
+            bench::kapitza::write_csv(&rows, p)
+        }) {
+            return code;
         }
-        wrote.push(pendulum_csv);
+    }
+    if part(crate::cli::BenchPart::Celt) {
+        let rows = bench::celt::study(config.quick, &mut |line| say_err!("{line}"));
+        let heading = "The celt: run time against error (final omega against tests/fixtures/celt/references.json)";
+        if let Err(code) = scene(heading, bench::celt::table(&rows), "celt.csv", &|p| {
+            bench::celt::write_csv(&rows, p)
+        }) {
+            return code;
+        }
     }
     if part(crate::cli::BenchPart::Stability) {
         let stability = bench::stability(config);

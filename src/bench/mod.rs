@@ -4,6 +4,7 @@
 //! blanes-moan4 at 1e8, the second-order averaged model beyond), itself cross-checked.
 
 mod auto_profile;
+pub mod celt;
 pub mod implicit;
 pub mod kapitza;
 mod plot;

@@ -56,3 +56,45 @@ fn quick_study_covers_every_method_and_writes_its_files() {
     assert!(bench::terminal_diagram(&rows, 1e4, 60, 12).lines().count() > 12);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The celt's part: every configuration counts exactly, every `auto` claim holds against the
+/// references (met ⇒ error within the tolerance, and the estimate above the error), and the
+/// tables and CSV carry every row.
+#[test]
+fn the_celt_part_measures_against_the_references_and_auto_keeps_its_claims() {
+    let mut log = Vec::new();
+    let rows = bench::celt::study(true, &mut |l| log.push(l.to_owned()));
+    assert!(log.is_empty(), "{log:?}");
+    assert_eq!(
+        rows.len(),
+        2 * 2 * 3,
+        "two presets, two tolerances, three methods"
+    );
+    for r in &rows {
+        assert!(
+            r.counts_exact,
+            "{} {} {:e}",
+            r.preset, r.method, r.tolerance
+        );
+        assert!(r.seconds > 0.0 && r.error.is_finite());
+        if r.met == Some(true) {
+            let floor = r.reference_uncertainty;
+            assert!(r.error <= r.tolerance + floor, "{r:?}");
+            assert!(r.estimate.unwrap() + floor >= r.error, "{r:?}");
+        }
+    }
+    // DOP853 at a loose tolerance is far off on these unstable spins: the study sees it.
+    assert!(
+        rows.iter()
+            .any(|r| r.method == "dop853" && r.tolerance == 1e-6 && r.error > 1e-4)
+    );
+    let table = bench::celt::table(&rows);
+    assert!(table.lines().count() > rows.len() + 2, "{table}");
+    let dir = std::env::temp_dir().join(format!("rattleback-celt-bench-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    bench::celt::write_csv(&rows, &dir.join("celt.csv")).unwrap();
+    let csv = std::fs::read_to_string(dir.join("celt.csv")).unwrap();
+    assert_eq!(csv.lines().count(), rows.len() + 1);
+    assert!(csv.starts_with("preset,method,tolerance,"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

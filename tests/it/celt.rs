@@ -332,7 +332,7 @@ fn every_celt_preset_ends_in_the_explorer_where_simulate_ends() {
 fn a_recorded_celt_session_verifies() {
     use rattleback::app::journal::Event;
     use rattleback::app::{Key, Outcome};
-    use rattleback::record::{self, Line, Recorder};
+    use rattleback::record;
     let mut h = crate::common::Headless::new("celt-clockwise");
     let app = &h.app;
     let header = crate::common::header_of(app);
@@ -380,27 +380,7 @@ fn a_recorded_celt_session_verifies() {
         .collect();
     assert!(pauses.contains(&Some(3)), "{pauses:?}");
     let path = std::env::temp_dir().join(format!("celt-{}.jsonl", std::process::id()));
-    let mut rec = Recorder::create(&path, &header, None).unwrap();
-    for (i, (t, generation, event)) in journal.into_iter().enumerate() {
-        rec.write(&Line {
-            wall: i as f64 * 0.5,
-            t,
-            generation,
-            chain: None,
-            event,
-        })
-        .unwrap();
-    }
-    rec.write(&Line {
-        wall: 60.0,
-        t: 0.0,
-        generation: 0,
-        chain: None,
-        event: Event::end(),
-    })
-    .unwrap();
-    drop(rec);
-    let back = record::read(&path).unwrap();
+    let back = crate::common::write_session(&path, &header, journal, 0.5);
     assert!(back.header.preset.contains("model = \"celt\""));
     assert!(record::verify(&back, "celt", None).unwrap().checkpoints >= 3);
     let _ = std::fs::remove_file(&path);

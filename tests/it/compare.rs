@@ -289,7 +289,7 @@ fn a_layout_line_needs_format_5() {
 fn the_two_ways_lesson_is_right_and_its_recording_verifies() {
     use rattleback::app::Outcome;
     use rattleback::app::journal::Event;
-    use rattleback::record::{self, Line, Recorder};
+    use rattleback::record;
     use rattleback::scenario::lesson::Question;
     let lesson = rattleback::scenario::lesson::resolve("two-ways").unwrap();
     let mut h = Headless::new("celt-clockwise");
@@ -361,28 +361,8 @@ fn the_two_ways_lesson_is_right_and_its_recording_verifies() {
             == lesson.steps.len()
     );
     let path = std::env::temp_dir().join(format!("two-ways-{}.jsonl", std::process::id()));
-    let _ = std::fs::remove_file(&path);
-    let mut rec = Recorder::create(&path, &header, None).unwrap();
-    for (i, (t, generation, event)) in journal.into_iter().enumerate() {
-        rec.write(&Line {
-            wall: i as f64 * 0.1,
-            t,
-            generation,
-            chain: None,
-            event,
-        })
-        .unwrap();
-    }
-    rec.write(&Line {
-        wall: 1e3,
-        t: 0.0,
-        generation: 0,
-        chain: None,
-        event: Event::end(),
-    })
-    .unwrap();
-    drop(rec);
-    let report = record::verify(&record::read(&path).unwrap(), "two-ways", None).unwrap();
+    let back = crate::common::write_session(&path, &header, journal, 0.1);
+    let report = record::verify(&back, "two-ways", None).unwrap();
     assert!(report.screens >= lesson.steps.len(), "{}", report.screens);
     // The words name the file's own format, not the first with this chain.
     assert_eq!(report.format, record::VERSION);

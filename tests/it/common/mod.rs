@@ -292,3 +292,38 @@ pub fn header_of(app: &rattleback::app::App) -> rattleback::record::Header {
         fps: 30.0,
     }
 }
+
+/// Writes `journal` (what `App::take_journal` gave) as a session file at `path`, a line every
+/// `spacing` wall seconds, then its end line; returns the file read back.
+pub fn write_session(
+    path: &std::path::Path,
+    header: &rattleback::record::Header,
+    journal: Vec<(f64, u64, rattleback::app::journal::Event)>,
+    spacing: f64,
+) -> rattleback::record::Recording {
+    use rattleback::app::journal::Event;
+    use rattleback::record::{Line, Recorder};
+    let _ = std::fs::remove_file(path);
+    let mut rec = Recorder::create(path, header, None).unwrap();
+    let n = journal.len();
+    for (i, (t, generation, event)) in journal.into_iter().enumerate() {
+        rec.write(&Line {
+            wall: i as f64 * spacing,
+            t,
+            generation,
+            chain: None,
+            event,
+        })
+        .unwrap();
+    }
+    rec.write(&Line {
+        wall: n as f64 * spacing + 1.0,
+        t: 0.0,
+        generation: 0,
+        chain: None,
+        event: Event::end(),
+    })
+    .unwrap();
+    drop(rec);
+    rattleback::record::read(path).unwrap()
+}
