@@ -66,7 +66,7 @@ impl ModelKind {
 
     /// The model's own description (the one dispatch on the kind).
     #[must_use]
-    pub fn scene(self) -> &'static dyn Scene {
+    pub fn scene(self) -> &'static Scene {
         match self {
             Self::Rattleback => &super::rattleback::scene::SCENE,
             Self::Kapitza => &kapitza::scene::SCENE,
@@ -93,7 +93,7 @@ impl ModelKind {
     pub fn default_kind() -> Self {
         Self::ALL
             .into_iter()
-            .find(|m| !m.scene().model_required())
+            .find(|m| !m.scene().model_required)
             .unwrap_or(Self::ALL[0])
     }
 
@@ -102,19 +102,19 @@ impl ModelKind {
     /// run.
     #[must_use]
     pub fn limit_tolerance(self) -> f64 {
-        self.scene().limit_tolerance()
+        self.scene().limit_tolerance
     }
 
     /// The name used in presets and JSON.
     #[must_use]
     pub fn name(self) -> &'static str {
-        self.scene().name()
+        self.scene().name
     }
 
     /// The name for people.
     #[must_use]
     pub fn title(self) -> &'static str {
-        self.scene().title()
+        self.scene().title
     }
 
     /// Parses a name from [`ModelKind::name`] (any case).
@@ -134,7 +134,7 @@ impl ModelKind {
     /// The methods this model offers, `auto` first.
     #[must_use]
     pub fn methods(self) -> &'static [Method] {
-        self.scene().methods()
+        self.scene().methods
     }
 
     /// Whether this model offers `method`.
@@ -156,25 +156,25 @@ impl ModelKind {
     /// What the model calls its slow coordinate and its events, for labels.
     #[must_use]
     pub fn words(self) -> Words {
-        self.scene().words()
+        self.scene().words
     }
 
     /// Its parameters, in the panel's order.
     #[must_use]
     pub fn params(self) -> &'static [ParamSpec] {
-        self.scene().params()
+        self.scene().params
     }
 
     /// Its small parameter, if it has a limit.
     #[must_use]
     pub fn small(self) -> Option<SmallParameter> {
-        self.scene().small()
+        self.scene().small
     }
 
     /// The studies it offers.
     #[must_use]
     pub fn studies(self) -> Studies {
-        self.scene().studies()
+        self.scene().studies
     }
 }
 

@@ -122,27 +122,30 @@ pub enum Shown {
     Verdict(&'static str),
 }
 
-/// A model's fixed facts.
-pub trait Scene: Sync {
+/// A model's fixed facts: one `static` per model, in its folder. A struct, so a model that
+/// forgets a fact does not compile.
+#[derive(Debug)]
+pub struct Scene {
     /// The name used in presets and JSON.
-    fn name(&self) -> &'static str;
+    pub name: &'static str,
     /// The name for people.
-    fn title(&self) -> &'static str;
+    pub title: &'static str,
     /// Labels of its variables and events.
-    fn words(&self) -> Words;
+    pub words: Words,
     /// Its parameters, in the panel's order (the physical ones, then the start).
-    fn params(&self) -> &'static [ParamSpec];
+    pub params: &'static [ParamSpec],
     /// Whether presets must name the model (`[preset] model`); the first model is the default.
-    fn model_required(&self) -> bool;
+    pub model_required: bool,
     /// The methods it offers, `auto` first.
-    fn methods(&self) -> &'static [Method];
+    pub methods: &'static [Method],
     /// The tolerance of the limit's own run, whatever the user's.
-    fn limit_tolerance(&self) -> f64;
+    pub limit_tolerance: f64,
     /// Its small parameter, or `None` for a model without a limit.
-    fn small(&self) -> Option<SmallParameter>;
+    pub small: Option<SmallParameter>,
     /// The studies it offers.
-    fn studies(&self) -> Studies;
+    pub studies: Studies,
 }
+
 
 /// The slow coordinate of one run, sampled on a grid.
 #[derive(Clone, Debug, PartialEq)]
@@ -189,7 +192,7 @@ pub struct SideView {
 /// The facts of one validated problem of a model.
 pub trait Posed {
     /// Its scene.
-    fn scene(&self) -> &'static dyn Scene;
+    fn scene(&self) -> &'static Scene;
     /// Its parameter values, in the order of [`Scene::params`].
     fn values(&self) -> Vec<f64>;
     /// The panel's derived lines.

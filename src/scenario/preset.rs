@@ -137,7 +137,7 @@ pub fn schema(model: ModelKind) -> Vec<KeySpec> {
             "preset",
             "model",
             Kind::Model,
-            model.scene().model_required(),
+            model.scene().model_required,
         ),
     ];
     keys.extend(
@@ -745,7 +745,7 @@ impl Preset {
             q(&self.description)
         );
         let kind = self.model.kind();
-        if kind.scene().model_required() {
+        if kind.scene().model_required {
             let _ = writeln!(o, "model = {}", q(kind.name()));
         }
         let mut section = "";
@@ -814,7 +814,7 @@ pub fn reference() -> String {
          left out is 0; an optional `[run]` or `[view]` key left out keeps the default.\n",
     );
     for model in ModelKind::ALL {
-        let required = if model.scene().model_required() {
+        let required = if model.scene().model_required {
             format!("`model = \"{}\"` in `[preset]` is required", model.name())
         } else {
             "`[preset] model` may be left out: this is the default model".to_owned()

@@ -562,7 +562,7 @@ pub fn csv_metadata_of(
     numbers.extend(kind.params().iter().map(|p| p.key).zip(model.values()));
     metadata_lines(
         preset,
-        kind.scene().model_required().then(|| kind.name()),
+        kind.scene().model_required.then(|| kind.name()),
         method,
         ran,
         &numbers,

@@ -17,8 +17,8 @@ fn shipped_of(kind: ModelKind) -> Vec<Preset> {
 fn every_scene_is_complete_and_agrees_with_itself() {
     for kind in ModelKind::ALL {
         let scene = kind.scene();
-        let params = scene.params();
-        assert_eq!(scene.name(), kind.name());
+        let params = scene.params;
+        assert_eq!(scene.name, kind.name());
         // Keys are unique: a panel row, a preset key and a `--set` name each.
         for (i, p) in params.iter().enumerate() {
             assert!(
@@ -51,7 +51,7 @@ fn every_scene_is_complete_and_agrees_with_itself() {
             );
             assert!(!preset.model.summary().is_empty(), "{}", preset.name);
             let (q, q_dot) = preset.model.slow_start();
-            let words = scene.words();
+            let words = scene.words;
             // A slow coordinate that is a parameter (the rattleback's α, the pendulum's θ)
             // starts at its value; one that is not (the celt's turn and spin) is checked below.
             if kind.params().iter().any(|p| p.key == words.q_name) {
@@ -73,9 +73,9 @@ fn every_scene_is_complete_and_agrees_with_itself() {
             // The weak-* view is there exactly when the scene says so (a stopped run answers
             // at once).
             let view = preset.model.weak_view(1.0, &mut |_| false);
-            assert_eq!(view.is_some(), scene.studies().weak, "{}", preset.name);
+            assert_eq!(view.is_some(), scene.studies.weak, "{}", preset.name);
         }
-        if let Some(small) = scene.small() {
+        if let Some(small) = scene.small {
             let spec = params
                 .iter()
                 .find(|p| p.key == small.key)
@@ -89,7 +89,7 @@ fn every_scene_is_complete_and_agrees_with_itself() {
             let rung = model.with_value(small.key, small.ladder[0]).unwrap();
             assert_eq!(rung.value(small.key), Some(small.ladder[0]));
         }
-        assert_eq!(scene.methods()[0], Method::Auto, "{}", kind.name());
+        assert_eq!(scene.methods[0], Method::Auto, "{}", kind.name());
     }
 }
 

@@ -14,7 +14,7 @@ use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, PlanRequest};
 use crate::physics::scene::{
-    Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve, SmallParameter,
+    Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve,
     Studies, SummaryLine, WeakView, Words,
 };
 
@@ -220,61 +220,38 @@ pub fn values_of(p: &Params, s: &Start, band: f64) -> Vec<f64> {
 }
 
 /// The celt's scene.
-pub struct CeltScene;
-
-/// The one instance.
-pub static SCENE: CeltScene = CeltScene;
-
-impl Scene for CeltScene {
-    fn name(&self) -> &'static str {
-        "celt"
-    }
-    fn title(&self) -> &'static str {
-        "classical rattleback (celt)"
-    }
-    fn words(&self) -> Words {
-        Words {
-            q_name: "turn",
-            q_dot_name: "spin",
-            q: "φ",
-            q_dot: "ω·γ",
-            fast: "tilt",
-            fast_name: "tilt",
-            event: "reversal",
-            events: "reversals",
-            second_events: Some(SecondEvents {
-                name: "crossings",
-                found: Found::Flow,
-            }),
-            monitor: "ΔE/E",
-            monitor_column: "energy_error",
-        }
-    }
-    fn params(&self) -> &'static [ParamSpec] {
-        &PARAMS
-    }
-    fn model_required(&self) -> bool {
-        true
-    }
-    fn methods(&self) -> &'static [Method] {
-        &super::flows::METHODS
-    }
-    fn limit_tolerance(&self) -> f64 {
-        // No limit: nothing runs at it.
-        1e-10
-    }
-    fn small(&self) -> Option<SmallParameter> {
-        None
-    }
-    fn studies(&self) -> Studies {
-        Studies {
-            weak: false,
-            map: false,
-            body: true,
-            counterpart: "subcritical",
-        }
-    }
-}
+pub static SCENE: Scene = Scene {
+    name: "celt",
+    title: "classical rattleback (celt)",
+    words: Words {
+        q_name: "turn",
+        q_dot_name: "spin",
+        q: "φ",
+        q_dot: "ω·γ",
+        fast: "tilt",
+        fast_name: "tilt",
+        event: "reversal",
+        events: "reversals",
+        second_events: Some(SecondEvents {
+            name: "crossings",
+            found: Found::Flow,
+        }),
+        monitor: "ΔE/E",
+        monitor_column: "energy_error",
+    },
+    params: &PARAMS,
+    model_required: true,
+    methods: &super::flows::METHODS,
+    // No limit: nothing runs at it.
+    limit_tolerance: 1e-10,
+    small: None,
+    studies: Studies {
+        weak: false,
+        map: false,
+        body: true,
+        counterpart: "subcritical",
+    },
+};
 
 impl Problem {
     /// The problem of `values`, in the order of [`PARAMS`].
@@ -316,7 +293,7 @@ impl Problem {
 }
 
 impl Posed for Problem {
-    fn scene(&self) -> &'static dyn Scene {
+    fn scene(&self) -> &'static Scene {
         &SCENE
     }
     fn values(&self) -> Vec<f64> {

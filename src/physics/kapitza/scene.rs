@@ -79,69 +79,46 @@ pub const PARAMS: [ParamSpec; 5] = [
 ];
 
 /// The pendulum's scene.
-pub struct KapitzaScene;
-
-/// The one instance.
-pub static SCENE: KapitzaScene = KapitzaScene;
-
-impl Scene for KapitzaScene {
-    fn name(&self) -> &'static str {
-        "kapitza"
-    }
-    fn title(&self) -> &'static str {
-        "Kapitza's pendulum"
-    }
-    fn words(&self) -> Words {
-        Words {
-            q_name: "theta",
-            q_dot_name: "theta_dot",
-            q: "θ",
-            q_dot: "θ̇",
-            fast: "θ−Θ",
-            fast_name: "ripple",
-            event: "swing",
-            events: "swings",
-            second_events: Some(SecondEvents {
-                name: "falls",
-                found: Found::SlowAngleFalls,
-            }),
-            monitor: "ΔE_eff",
-            monitor_column: "energy_drift",
-        }
-    }
-    fn params(&self) -> &'static [ParamSpec] {
-        &PARAMS
-    }
-    fn model_required(&self) -> bool {
-        true
-    }
-    fn methods(&self) -> &'static [Method] {
-        &super::flows::METHODS
-    }
-    fn limit_tolerance(&self) -> f64 {
-        1e-13
-    }
-    fn small(&self) -> Option<SmallParameter> {
-        Some(SmallParameter {
-            key: "epsilon",
-            symbol: "ε",
-            limit: "ε → 0",
-            column: "epsilon",
-            tag: "eps",
-            sup: "sup|theta_eps − theta_lim|",
-            sup_short: "sup|θ_ε−θ|",
-            ladder: &[1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6],
-        })
-    }
-    fn studies(&self) -> Studies {
-        Studies {
-            weak: true,
-            map: false,
-            body: false,
-            counterpart: "subcritical",
-        }
-    }
-}
+pub static SCENE: Scene = Scene {
+    name: "kapitza",
+    title: "Kapitza's pendulum",
+    words: Words {
+        q_name: "theta",
+        q_dot_name: "theta_dot",
+        q: "θ",
+        q_dot: "θ̇",
+        fast: "θ−Θ",
+        fast_name: "ripple",
+        event: "swing",
+        events: "swings",
+        second_events: Some(SecondEvents {
+            name: "falls",
+            found: Found::SlowAngleFalls,
+        }),
+        monitor: "ΔE_eff",
+        monitor_column: "energy_drift",
+    },
+    params: &PARAMS,
+    model_required: true,
+    methods: &super::flows::METHODS,
+    limit_tolerance: 1e-13,
+    small: Some(SmallParameter {
+        key: "epsilon",
+        symbol: "ε",
+        limit: "ε → 0",
+        column: "epsilon",
+        tag: "eps",
+        sup: "sup|theta_eps − theta_lim|",
+        sup_short: "sup|θ_ε−θ|",
+        ladder: &[1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6],
+    }),
+    studies: Studies {
+        weak: true,
+        map: false,
+        body: false,
+        counterpart: "subcritical",
+    },
+};
 
 impl Problem {
     /// The problem of `values`, in the order of [`PARAMS`].
@@ -165,7 +142,7 @@ impl Problem {
 }
 
 impl Posed for Problem {
-    fn scene(&self) -> &'static dyn Scene {
+    fn scene(&self) -> &'static Scene {
         &SCENE
     }
     fn values(&self) -> Vec<f64> {

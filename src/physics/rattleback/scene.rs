@@ -125,68 +125,45 @@ pub const METHODS: [Method; 12] = [
 ];
 
 /// The rattleback's scene.
-pub struct RattlebackScene;
-
-/// The one instance.
-pub static SCENE: RattlebackScene = RattlebackScene;
-
-impl Scene for RattlebackScene {
-    fn name(&self) -> &'static str {
-        "rattleback"
-    }
-    fn title(&self) -> &'static str {
-        "holonomic rattleback"
-    }
-    fn words(&self) -> Words {
-        Words {
-            q_name: "alpha",
-            q_dot_name: "alpha_dot",
-            q: "α",
-            q_dot: "α̇",
-            fast: "γ",
-            fast_name: "gamma",
-            event: "reversal",
-            events: "reversals",
-            second_events: None,
-            monitor: "ΔE/E",
-            monitor_column: "energy_error",
-        }
-    }
-    fn params(&self) -> &'static [ParamSpec] {
-        &PARAMS
-    }
-    fn model_required(&self) -> bool {
-        false
-    }
-    fn methods(&self) -> &'static [Method] {
-        &METHODS
-    }
-    fn limit_tolerance(&self) -> f64 {
-        // The one-degree-of-freedom ODE is cheap: then good to about 1e-12
-        // (`tests/it/auto_honest.rs`).
-        1e-14
-    }
-    fn small(&self) -> Option<SmallParameter> {
-        Some(SmallParameter {
-            key: "k",
-            symbol: "k",
-            limit: "k → ∞",
-            column: "stiffness",
-            tag: "k",
-            sup: "sup|alpha_k − alpha_eff|",
-            sup_short: "sup|α_k−α_eff|",
-            ladder: &[1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8],
-        })
-    }
-    fn studies(&self) -> Studies {
-        Studies {
-            weak: true,
-            map: true,
-            body: true,
-            counterpart: "celt-clockwise",
-        }
-    }
-}
+pub static SCENE: Scene = Scene {
+    name: "rattleback",
+    title: "holonomic rattleback",
+    words: Words {
+        q_name: "alpha",
+        q_dot_name: "alpha_dot",
+        q: "α",
+        q_dot: "α̇",
+        fast: "γ",
+        fast_name: "gamma",
+        event: "reversal",
+        events: "reversals",
+        second_events: None,
+        monitor: "ΔE/E",
+        monitor_column: "energy_error",
+    },
+    params: &PARAMS,
+    model_required: false,
+    methods: &METHODS,
+    // The one-degree-of-freedom ODE is cheap: then good to about 1e-12
+    // (`tests/it/auto_honest.rs`).
+    limit_tolerance: 1e-14,
+    small: Some(SmallParameter {
+        key: "k",
+        symbol: "k",
+        limit: "k → ∞",
+        column: "stiffness",
+        tag: "k",
+        sup: "sup|alpha_k − alpha_eff|",
+        sup_short: "sup|α_k−α_eff|",
+        ladder: &[1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8],
+    }),
+    studies: Studies {
+        weak: true,
+        map: true,
+        body: true,
+        counterpart: "celt-clockwise",
+    },
+};
 
 impl Problem {
     /// The problem of `values`, in the order of [`PARAMS`].
@@ -213,7 +190,7 @@ impl Problem {
 }
 
 impl Posed for Problem {
-    fn scene(&self) -> &'static dyn Scene {
+    fn scene(&self) -> &'static Scene {
         &SCENE
     }
     fn values(&self) -> Vec<f64> {
