@@ -74,8 +74,8 @@ pub enum Shortfall {
     Refinements,
     /// The next refinement would take the work past the time `auto` allows itself.
     Time,
-    /// The averaged model's error at this `k` is above the tolerance, and resolving the fast
-    /// motion is predicted to do no better.
+    /// The limit's model error (the averaged model's at this `k`, the pendulum's at this `ε`)
+    /// is above the tolerance, and resolving the fast motion is predicted to do no better.
     Model,
 }
 
@@ -91,7 +91,7 @@ impl Shortfall {
             Self::Refinements => "the refinements ran out",
             Self::Time => "a further refinement would take too long",
             Self::Model => {
-                "the averaged model's error at this k is above it, and resolving would do no better"
+                "the limit's model error here (the averaged model's at this k, the pendulum's at this epsilon) is above it, and resolving would do no better"
             }
         }
     }

@@ -146,7 +146,6 @@ pub struct Scene {
     pub studies: Studies,
 }
 
-
 /// The slow coordinate of one run, sampled on a grid.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SlowCurve {

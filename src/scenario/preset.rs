@@ -133,12 +133,7 @@ pub fn schema(model: ModelKind) -> Vec<KeySpec> {
     let mut keys = vec![
         spec("preset", "name", Kind::Text, false),
         spec("preset", "description", Kind::Text, false),
-        spec(
-            "preset",
-            "model",
-            Kind::Model,
-            model.scene().model_required,
-        ),
+        spec("preset", "model", Kind::Model, model.scene().model_required),
     ];
     keys.extend(
         model

@@ -15,6 +15,7 @@ use crate::physics::StepError;
 use crate::physics::kapitza::limit::Limit;
 use crate::physics::kapitza::run::{self, RunResult, RunSpec};
 use crate::physics::kapitza::{self, Problem, plan};
+use crate::physics::plan::Shortfall;
 use crate::scenario::Preset;
 
 /// Predicted seconds of the run `spec` asks for (the pendulum's cost model,
@@ -69,6 +70,9 @@ struct AutoOut {
     error_estimate: f64,
     /// Whether `error_estimate` meets the requested tolerance.
     met: bool,
+    /// Why not, when not (as the celt's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    shortfall: Option<Shortfall>,
 }
 
 #[derive(Serialize)]
@@ -153,7 +157,11 @@ fn non_finite(r: &RunResult) -> Option<&'static str> {
 }
 
 /// The concrete method and tolerance of `resolved`, with `auto`'s account.
-fn plan_of(problem: &Problem, resolved: &Resolved) -> (RunSpec, Option<AutoOut>) {
+fn plan_of(
+    problem: &Problem,
+    resolved: &Resolved,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<(RunSpec, Option<AutoOut>), StepError> {
     let spec = resolved.spec;
     let mut run = RunSpec {
         method: spec.method,
@@ -163,9 +171,15 @@ fn plan_of(problem: &Problem, resolved: &Resolved) -> (RunSpec, Option<AutoOut>)
         samples: spec.samples,
     };
     if spec.method != Method::Auto {
-        return (run, None);
+        return Ok((run, None));
     }
-    let c = plan::resolve(problem, spec.tolerance, spec.t_end);
+    let c = plan::verified(
+        problem,
+        spec.tolerance,
+        spec.t_end,
+        resolved.budget,
+        progress,
+    )?;
     run.method = c.method;
     run.tolerance = c.settings.tolerance;
     run.step = None;
@@ -179,15 +193,15 @@ fn plan_of(problem: &Problem, resolved: &Resolved) -> (RunSpec, Option<AutoOut>)
             c.predicted_model_error, c.estimate
         ),
         (_, true) => format!(
-            "the full model resolved: the limit's predicted model error {:.1e} exceeds the tolerance",
-            c.predicted_model_error
+            "the full model resolved at local tolerance {:.1e}, verified against a run 16x looser: the limit's predicted model error {:.1e} exceeds the tolerance",
+            c.settings.tolerance, c.predicted_model_error
         ),
         (_, false) => format!(
-            "the full model resolved, but over this many fast periods its rounding ({:.1e}) exceeds the tolerance; the limit's model error {:.1e} is larger still",
-            c.estimate, c.predicted_model_error
+            "the full model resolved at local tolerance {:.1e}, but its error ({:.1e}, against a run 16x looser, with the rounding) stays above the tolerance; the limit's model error {:.1e} is larger still",
+            c.settings.tolerance, c.estimate, c.predicted_model_error
         ),
     };
-    (
+    Ok((
         run,
         Some(AutoOut {
             choice: c.method,
@@ -196,8 +210,9 @@ fn plan_of(problem: &Problem, resolved: &Resolved) -> (RunSpec, Option<AutoOut>)
             predicted_model_error: c.predicted_model_error,
             error_estimate: c.estimate,
             met: c.met,
+            shortfall: c.shortfall,
         }),
-    )
+    ))
 }
 
 /// Runs the pendulum's preset and writes the report.
@@ -212,11 +227,11 @@ pub fn simulate_to(
     out: &mut dyn std::io::Write,
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Option<Missed>, Failure> {
-    let (spec, auto) = plan_of(problem, resolved);
+    let (spec, auto) = plan_of(problem, resolved, progress)?;
     let missed = auto.as_ref().filter(|a| !a.met).map(|a| Missed {
         estimate: a.error_estimate,
         tolerance: resolved.spec.tolerance,
-        why: crate::physics::plan::Shortfall::Model,
+        why: a.shortfall.unwrap_or(Shortfall::Floor),
     });
     let clock = Instant::now();
     let result = run::run(problem, &spec, progress)?;

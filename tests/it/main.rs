@@ -25,6 +25,7 @@ mod hostile_props;
 mod kapitza;
 mod kapitza_cli;
 mod kapitza_explorer;
+mod kapitza_honest;
 mod layering;
 mod lecture;
 mod lessons;

@@ -14,8 +14,8 @@ use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, PlanRequest};
 use crate::physics::scene::{
-    Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve,
-    Studies, SummaryLine, WeakView, Words,
+    Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve, Studies, SummaryLine,
+    WeakView, Words,
 };
 
 const LENGTH: Scale = Scale::Linear {

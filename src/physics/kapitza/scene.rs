@@ -191,11 +191,12 @@ impl Posed for Problem {
     ) -> Result<Box<dyn Flow>, StepError> {
         super::flows::build(method, self, settings, t_end)
     }
-    fn resolve(&self, ask: &PlanRequest, _go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
-        // The pendulum's `auto` is chosen from the limit's predicted model error: no probe.
+    fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
+        // The pendulum's `auto`: the limit from its predicted model error, or a resolved run
+        // verified against a companion (format-1 sessions, which hold no pendulum, aside).
         let (method, tolerance, t_end) = (ask.method, ask.tolerance, ask.t_end);
         let (plan, estimate) = if method == Method::Auto {
-            let c = super::plan::resolve(self, tolerance, t_end);
+            let c = super::plan::verified(self, tolerance, t_end, ask.budget, go_on)?;
             let plan = Resolved {
                 method: c.method,
                 tolerance: c.settings.tolerance,
