@@ -14,6 +14,8 @@ import os
 import subprocess
 import tempfile
 
+from kapitza_references import run  # the same driver of kapitza_taylor.c
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASES = [
     # name, a, b, eps, theta0, theta_dot0, t_end
@@ -25,12 +27,6 @@ CASES = [
     ("near_threshold", 1.0, 1.45, 1e-2, 0.2, 0.0, 40.0),
 ]
 SAMPLES = 20
-
-
-def run(exe, args):
-    out = subprocess.run([exe] + [repr(x) if isinstance(x, float) else str(x) for x in args],
-                         check=True, capture_output=True, text=True).stdout
-    return [tuple(float(v) for v in line.split()) for line in out.splitlines()]
 
 
 def main():

@@ -12,9 +12,10 @@
 
 use crate::physics::rattleback::model::{ALPHA, ALPHA_DOT};
 use std::fmt::Write as _;
-use std::time::Instant;
 
 use serde::Serialize;
+
+use super::best_of;
 
 use crate::physics::rattleback::auto::run_auto;
 use crate::physics::rattleback::integrators::Method;
@@ -119,17 +120,6 @@ fn error(r: &RunResult, reference: &Reference) -> f64 {
         e = e.max((a - b).abs());
     }
     e
-}
-
-fn best_of(repeats: usize, mut f: impl FnMut()) -> f64 {
-    f();
-    (0..repeats)
-        .map(|_| {
-            let clock = Instant::now();
-            f();
-            clock.elapsed().as_secs_f64()
-        })
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// Single configurations searched for the fastest at `auto`'s accuracy.

@@ -6,9 +6,9 @@
 //! (verification included) against the cheapest single configuration that meets the same
 //! tolerance, which a user could only have chosen knowing the reference.
 
-use std::time::Instant;
-
 use serde::Serialize;
+
+use super::best_of;
 
 use crate::physics::celt::plan::resolve;
 use crate::physics::celt::run::{RunSpec, run};
@@ -86,16 +86,6 @@ fn references(log: &mut dyn FnMut(&str)) -> Vec<Reference> {
             })
         })
         .collect()
-}
-
-fn best_of(repeats: usize, mut f: impl FnMut()) -> f64 {
-    (0..repeats.max(1))
-        .map(|_| {
-            let clock = Instant::now();
-            f();
-            clock.elapsed().as_secs_f64()
-        })
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// The study: every preset with a reference, `dop853`, `dop853-projected` and `auto` at every

@@ -5,9 +5,9 @@
 //! it resolves the full motion while the limit's model error is above the tolerance and
 //! switches to the limit with its ripple below, so its cost stops growing like `1/ε`.
 
-use std::time::Instant;
-
 use serde::Serialize;
+
+use super::best_of;
 
 use crate::physics::Method;
 use crate::physics::kapitza::run::{RunSpec, run};
@@ -81,17 +81,6 @@ fn reference(epsilon: f64) -> Option<Reference> {
         theta: list("theta")?,
         theta_dot: list("theta_dot")?,
     })
-}
-
-fn best_of(repeats: usize, mut f: impl FnMut()) -> f64 {
-    f();
-    (0..repeats)
-        .map(|_| {
-            let clock = Instant::now();
-            f();
-            clock.elapsed().as_secs_f64()
-        })
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// Most right-hand-side evaluations one configuration may cost (larger ones are skipped).

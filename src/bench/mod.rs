@@ -22,6 +22,18 @@ use crate::physics::rattleback::integrators::Method;
 use crate::physics::rattleback::run::RunResult;
 use crate::physics::rattleback::{Params, Problem, RunSpec, Start, run};
 
+/// The best of `repeats` timed calls of `f`, after one untimed call that warms the caches.
+pub(crate) fn best_of(repeats: usize, mut f: impl FnMut()) -> f64 {
+    f();
+    (0..repeats.max(1))
+        .map(|_| {
+            let clock = Instant::now();
+            f();
+            clock.elapsed().as_secs_f64()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// How much to measure.
 #[derive(Clone, Copy, Debug)]
 pub struct Config {

@@ -78,6 +78,11 @@ pub fn phase_rounding(problem: &Problem, t_end: f64) -> f64 {
     p.b.abs() * f64::EPSILON * t_end / p.epsilon
 }
 
+/// What rounding alone leaves in a resolved run: per fast period, and the fast phase's.
+fn rounding_floor(problem: &Problem, t_end: f64) -> f64 {
+    ROUNDING_PER_PERIOD * periods(problem, t_end) + phase_rounding(problem, t_end)
+}
+
 /// Resolves `auto` for `problem` at `tolerance` over `[0, t_end]`, a priori (no run): what
 /// [`verified`] starts from, and what the cost model assumes.
 #[must_use]
@@ -85,7 +90,7 @@ pub fn resolve(problem: &Problem, tolerance: f64, t_end: f64) -> Choice {
     let model = model_error(problem, t_end);
     let n = periods(problem, t_end);
     let phase = phase_rounding(problem, t_end);
-    let floor = ROUNDING_PER_PERIOD * n + phase;
+    let floor = rounding_floor(problem, t_end);
     // The limit integrated at 1e-4 of the tolerance: its global error stays below 1e-2 of it
     // (at most 100× DOP853's per-step tolerance, which growing motions reach).
     let limit_tolerance = (tolerance * 1e-4).max(1e-14);
@@ -161,7 +166,7 @@ pub fn verified(
     if first.method != Method::Dop853 {
         return Ok(first);
     }
-    let floor = ROUNDING_PER_PERIOD * periods(problem, t_end) + phase_rounding(problem, t_end);
+    let floor = rounding_floor(problem, t_end);
     let spec = |tolerance: f64| RunSpec {
         method: Method::Dop853,
         tolerance,

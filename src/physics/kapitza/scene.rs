@@ -202,7 +202,7 @@ impl Posed for Problem {
                 tolerance: c.settings.tolerance,
                 step: None,
             };
-            (plan, Some(c.estimate))
+            (plan, Some((c.estimate, c.shortfall)))
         } else {
             let plan = Resolved {
                 method,
@@ -213,8 +213,8 @@ impl Posed for Problem {
         };
         Ok(Resolution {
             plan,
-            estimate,
-            shortfall: None,
+            estimate: estimate.map(|(e, _)| e),
+            shortfall: estimate.and_then(|(_, s)| s),
         })
     }
     fn predicted_seconds(
