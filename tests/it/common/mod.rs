@@ -157,7 +157,7 @@ impl Headless {
 pub struct AveragedCase {
     /// `A_k1e04` and so on.
     pub name: String,
-    /// The note's start letter (A–E).
+    /// The note's start letter (A–E), or the shape of a held-out start.
     pub start: String,
     /// Hooke constant.
     pub k: f64,
@@ -173,13 +173,26 @@ pub struct AveragedCase {
     pub reversals: Vec<f64>,
     /// `(t, α, α̇)` at `t = i T / 60` (full-model cases only).
     pub samples: Vec<(f64, f64, f64)>,
+    /// How far the reference itself may be off (`rattleback_honesty.toml`; 0 where the file
+    /// does not say, whose own floors the tests state).
+    pub uncertainty: f64,
+    /// The start's condition number, where the file gives it.
+    pub condition: Option<f64>,
 }
 
 /// Every case of the averaged references; a missing file is a failure, not a skip.
 #[track_caller]
 pub fn averaged_cases() -> Vec<AveragedCase> {
+    cases_from("averaged.toml")
+}
+
+/// Every case of a reference file of `tests/fixtures/reference/` in the averaged references'
+/// format (`averaged.toml`, `rattleback_honesty.toml`).
+#[track_caller]
+pub fn cases_from(file: &str) -> Vec<AveragedCase> {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/fixtures/reference/averaged.toml");
+        .join("tests/fixtures/reference")
+        .join(file);
     let text = std::fs::read_to_string(&path)
         .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
     let table: toml::Table = text
@@ -227,6 +240,8 @@ pub fn averaged_cases() -> Vec<AveragedCase> {
                 t_end,
                 reversals: floats(c, "reversals"),
                 samples,
+                uncertainty: c.get("uncertainty").map_or(0.0, |_| num(c, "uncertainty")),
+                condition: c.get("condition").map(|_| num(c, "condition")),
             }
         })
         .collect()
