@@ -276,6 +276,40 @@ impl StepCap {
     }
 }
 
+/// How a fixed-step integrator adds its steps to the time.
+///
+/// `Plain` adds `t + h` in double each step: the rounding drifts the time, and with it every
+/// reversal time (4.3e-11 after 7·10⁴ steps of `blanes-moan4` at `t` = 29: docs/benchmarks.md,
+/// "Issue 29"). `Compensated`
+/// carries the rounding (Kahan) and keeps the time within an ulp of the sum of the steps. The
+/// states do not depend on it (the models are autonomous), but the last step's length and
+/// every interpolated state do, in their last bits: session files of format 5 and older were
+/// recorded with `Plain` and replay with it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TimeSum {
+    /// Carried rounding (what runs now).
+    #[default]
+    Compensated,
+    /// Plain double addition (session files of format 5 and older).
+    Plain,
+}
+
+impl TimeSum {
+    /// `t + h` with this rule; `carry` holds what `Compensated` carries between steps.
+    #[must_use]
+    pub fn add(self, t: f64, h: f64, carry: &mut f64) -> f64 {
+        match self {
+            Self::Plain => t + h,
+            Self::Compensated => {
+                let y = h - *carry;
+                let sum = t + y;
+                *carry = (sum - t) - y;
+                sum
+            }
+        }
+    }
+}
+
 /// How a method is to be run.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Settings {

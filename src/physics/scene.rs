@@ -13,6 +13,7 @@ use super::flow::Flow;
 use super::method::{Method, Settings, StepError};
 use super::params::ParamSpec;
 use super::plan::{PlanRequest, Resolution};
+use crate::physics::method::TimeSum;
 
 /// What resolving a plan gives.
 pub type Planned = Result<Resolution, StepError>;
@@ -206,7 +207,9 @@ pub trait Posed {
     /// The body's profile for the side and end views (the celt's ellipsoidal bottom), or
     /// `None` for a model whose body pane draws it from above only.
     fn side_view(&self) -> Option<SideView>;
-    /// Builds a concrete method's integration at `t = 0`.
+    /// Builds a concrete method's integration at `t = 0`; `time_sum` is how fixed-step
+    /// methods add their steps to the time (a model without such methods has nothing to add
+    /// differently).
     ///
     /// # Errors
     /// `auto`, or a problem the method cannot represent.
@@ -215,6 +218,7 @@ pub trait Posed {
         method: Method,
         settings: Settings,
         t_end: f64,
+        time_sum: TimeSum,
     ) -> Result<Box<dyn Flow>, StepError>;
     /// Resolves `method` (the model's own `auto`).
     ///

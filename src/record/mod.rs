@@ -32,8 +32,11 @@ pub const FORMAT: &str = "rattleback-session";
 /// 4: a SHA-256 chain over every byte of every line, an end line with the count (and an optional
 /// signature), checkpoints and events at the displayed time, `clock` and `screen` lines.
 /// 5: `layout` lines (the panes as a list) and `partner` lines (the comparison), and a screen's
-/// `crossings` (the celt's) and `compare` (the partner shown).
-pub const VERSION: u32 = 5;
+/// `crossings` (the celt's) and `compare` (the partner shown). 6: nothing new in the lines;
+/// fixed-step runs add their steps to the time with a compensated sum
+/// ([`crate::physics::method::TimeSum`]), so a file of 5 or older replays with the plain sum it
+/// was recorded with.
+pub const VERSION: u32 = 6;
 
 /// First line of a session file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]

@@ -3,6 +3,7 @@
 //! `work` does a bounded slice of what is pending (planning `auto`, integrating towards the
 //! target, checkpoints, the overlay's catch-up).
 
+use crate::physics::method::TimeSum;
 use std::collections::VecDeque;
 
 use serde::{Deserialize, Serialize};
@@ -101,6 +102,9 @@ pub struct PlanBook {
     /// Budget of all the runs together, in predicted seconds (a replayed session: its own
     /// length and a margin; unbounded in the explorer, whose user restarts at will).
     pub total: f64,
+    /// How fixed-step runs add their steps to the time: compensated, as `simulate` does,
+    /// except in a replay of a file of format 5 or older, recorded with the plain sum.
+    pub time_sum: TimeSum,
 }
 
 impl Default for PlanBook {
@@ -111,6 +115,7 @@ impl Default for PlanBook {
             estimates: Vec::new(),
             budget: crate::physics::budget::BUDGET_SECONDS,
             total: f64::INFINITY,
+            time_sum: TimeSum::default(),
         }
     }
 }
@@ -300,7 +305,9 @@ impl Engine {
         let started = match self.resolve(&spec, go_on) {
             Err(StepError::Cancelled { .. }) => return true,
             Err(e) => Err(e),
-            Ok((plan, estimate)) => Session::new(generation, spec, plan).map(|s| (s, estimate)),
+            Ok((plan, estimate)) => {
+                Session::new(generation, spec, plan, self.book.time_sum).map(|s| (s, estimate))
+            }
         };
         self.planning = None;
         match started {
@@ -471,7 +478,7 @@ impl Engine {
             let started = match self.resolve(&spec, go_on) {
                 Err(StepError::Cancelled { .. }) => return true,
                 Err(e) => Err(refusal(&spec, &e)),
-                Ok((plan, estimate)) => Session::new(id, spec, plan)
+                Ok((plan, estimate)) => Session::new(id, spec, plan, self.book.time_sum)
                     .map(|s| (s, plan, estimate))
                     .map_err(|e| refusal(&spec, &e)),
             };

@@ -4,6 +4,7 @@
 //! The grid (`i · sample_dt`, and `t_end` exactly) depends on the dynamics only, never on the
 //! playback speed or the frame rate, so the trail at ×1024 is the same curve as at ×1.
 
+use crate::physics::method::TimeSum;
 use std::collections::VecDeque;
 
 use serde::{Deserialize, Serialize};
@@ -171,8 +172,9 @@ impl Track {
         method: Method,
         settings: Settings,
         t_end: f64,
+        time_sum: TimeSum,
     ) -> Result<Self, StepError> {
-        let integrator = model.build(method, settings, t_end)?;
+        let integrator = model.build(method, settings, t_end, time_sum)?;
         let e0 = integrator.energy();
         let cap = crate::physics::method::StepCap::of(model.predicted_seconds(
             method,
@@ -267,13 +269,25 @@ pub struct Session {
 }
 
 impl Session {
-    /// Starts a run of the resolved `plan` at `t = 0`.
+    /// Starts a run of the resolved `plan` at `t = 0`, its fixed steps added to the time by
+    /// `time_sum` (a replay of an old file: as it was recorded).
     ///
     /// # Errors
     /// [`StepError::Unplanned`] when `plan` is still `auto`.
-    pub fn new(generation: u64, mut spec: SessionSpec, plan: Resolved) -> Result<Self, StepError> {
+    pub fn new(
+        generation: u64,
+        mut spec: SessionSpec,
+        plan: Resolved,
+        time_sum: TimeSum,
+    ) -> Result<Self, StepError> {
         spec.sample_dt = grid_spacing(spec.sample_dt, spec.t_end);
-        let full = Track::new(&spec.model, plan.method, plan.settings(), spec.t_end)?;
+        let full = Track::new(
+            &spec.model,
+            plan.method,
+            plan.settings(),
+            spec.t_end,
+            time_sum,
+        )?;
         Ok(Self {
             spec,
             plan,
@@ -347,6 +361,8 @@ impl Session {
                     step: None,
                 },
                 self.spec.t_end,
+                // Adaptive: the rule does not apply.
+                TimeSum::default(),
             )
             .ok()
         } else {

@@ -6,6 +6,7 @@ use crate::common;
 
 use proptest::prelude::*;
 use rattleback::physics::Method;
+use rattleback::physics::method::TimeSum;
 use rattleback::physics::rattleback::integrators::splitting::{Canonical, composed_step};
 use rattleback::physics::rattleback::integrators::{Settings, build};
 use rattleback::physics::rattleback::model::{energy, initial_state};
@@ -22,7 +23,8 @@ fn energy_error_early_and_late(
         tolerance: 1e-9,
         step: Some(step),
     };
-    let mut integ = build(method, problem, settings, t_end).expect("a concrete method");
+    let mut integ =
+        build(method, problem, settings, t_end, TimeSum::default()).expect("a concrete method");
     let e0 = energy(problem.params(), &initial_state(problem.start()));
     let (mut early, mut late) = (0.0f64, 0.0f64);
     while integ.time() < t_end {

@@ -10,6 +10,7 @@
 use super::run::RunSpec;
 use super::{Params, Problem, Start, TILT_MAX};
 use crate::physics::flow::Flow;
+use crate::physics::method::TimeSum;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, PlanRequest};
@@ -342,6 +343,8 @@ impl Posed for Problem {
         method: Method,
         settings: Settings,
         _t_end: f64,
+        // Adaptive methods only: they add few steps, plainly.
+        _time_sum: TimeSum,
     ) -> Result<Box<dyn Flow>, StepError> {
         Ok(Box::new(super::flows::build(self, method, settings)?))
     }

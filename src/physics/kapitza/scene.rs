@@ -6,6 +6,7 @@ use super::limit::Limit;
 use super::run::RunSpec;
 use super::{EPSILON_MAX, EPSILON_MIN, Params, Problem, Start};
 use crate::physics::flow::Flow;
+use crate::physics::method::TimeSum;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, PlanRequest, Resolution, Resolved};
@@ -188,6 +189,9 @@ impl Posed for Problem {
         method: Method,
         settings: Settings,
         t_end: f64,
+        // Its fixed-step methods take the time from the step count, (n + 1) h (flows.rs): no
+        // sum to compensate.
+        _time_sum: TimeSum,
     ) -> Result<Box<dyn Flow>, StepError> {
         super::flows::build(method, self, settings, t_end)
     }

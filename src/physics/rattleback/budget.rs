@@ -1,6 +1,6 @@
 //! The work budget: how long a run is predicted to take, from the cost model `auto` plans
 //! with, before anything runs. Headless commands refuse a run predicted over
-//! [`BUDGET_SECONDS`] unless forced; `auto` checks each verification run against the budget
+//! [`BUDGET_SECONDS`](crate::physics::budget::BUDGET_SECONDS) unless forced; `auto` checks each verification run against the budget
 //! it is given before starting it (so a refinement that would take hours is refused, not run);
 //! the explorer gives `auto` the same budget and offers a concrete method instead, which it
 //! integrates a slice at a time.

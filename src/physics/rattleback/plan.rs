@@ -1,5 +1,5 @@
 //! Turning a requested method into the concrete integration that runs: `auto` is resolved
-//! here, above [`run`](super::run) and the integrators, so nothing below calls back up into the
+//! here, above [`run`](mod@super::run) and the integrators, so nothing below calls back up into the
 //! planner. The explorer and `simulate` both go through [`resolve`], which is what makes them
 //! show the same trajectory.
 //!

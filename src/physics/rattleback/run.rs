@@ -126,7 +126,13 @@ pub fn run_streaming(
         tolerance: spec.tolerance,
         step: spec.step,
     };
-    let mut integrator = integrators::build(spec.method, problem, settings, spec.t_end)?;
+    let mut integrator = integrators::build(
+        spec.method,
+        problem,
+        settings,
+        spec.t_end,
+        crate::physics::method::TimeSum::default(),
+    )?;
     let e0 = integrator.energy();
     let scale = if e0 == 0.0 { 1.0 } else { e0.abs() };
     let mut tracker = ReversalTracker::new(problem.start().alpha_dot);

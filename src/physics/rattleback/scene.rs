@@ -8,6 +8,7 @@ use super::model::{ALPHA, ALPHA_DOT, GAMMA};
 use super::params::{Params, Problem, Start};
 use super::run::RunSpec;
 use crate::physics::flow::{Flow, Sample};
+use crate::physics::method::TimeSum;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::numerics::dop853::Stats;
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
@@ -241,9 +242,10 @@ impl Posed for Problem {
         method: Method,
         settings: Settings,
         t_end: f64,
+        time_sum: TimeSum,
     ) -> Result<Box<dyn Flow>, StepError> {
         Ok(Box::new(RattlebackFlow(integrators::build(
-            method, self, settings, t_end,
+            method, self, settings, t_end, time_sum,
         )?)))
     }
     fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned {

@@ -18,6 +18,7 @@ pub use crate::physics::numerics::roots;
 
 use super::model::State;
 use super::params::Problem;
+use crate::physics::method::TimeSum;
 
 /// A running integration of one problem.
 pub trait Integrator: Send {
@@ -85,7 +86,8 @@ pub fn default_step(method: Method, problem: &Problem, tolerance: f64, t_end: f6
 }
 
 /// Builds a ready-to-step integrator at `t = 0`; `t_end` is the horizon a default step is
-/// budgeted for.
+/// budgeted for; `time_sum` is how the fixed-step methods add their steps (the adaptive ones
+/// take far fewer steps and add them plainly).
 ///
 /// # Errors
 /// [`StepError::Unplanned`] for `auto`, which is resolved above the integrators
@@ -95,23 +97,25 @@ pub fn build(
     problem: &Problem,
     settings: Settings,
     t_end: f64,
+    time_sum: TimeSum,
 ) -> Result<Box<dyn Integrator>, StepError> {
     let step = settings
         .step
         .unwrap_or_else(|| default_step(method, problem, settings.tolerance, t_end));
     Ok(match method {
-        Method::Rk4 => Box::new(rk4::Rk4::new(problem, step)),
+        Method::Rk4 => Box::new(rk4::Rk4::new(problem, step).with_time_sum(time_sum)),
         Method::Dop853 => Box::new(full_dop853::FullDop853::new(problem, settings.tolerance)),
         Method::Strang
         | Method::Yoshida4
         | Method::BlanesMoan4
         | Method::Yoshida6
-        | Method::Suzuki8 => Box::new(splitting::Splitting::new(
-            problem,
-            splitting::Composition::of(method),
-            step,
-        )),
-        Method::Locked => Box::new(splitting::Splitting::phase_locked(problem, step)),
+        | Method::Suzuki8 => Box::new(
+            splitting::Splitting::new(problem, splitting::Composition::of(method), step)
+                .with_time_sum(time_sum),
+        ),
+        Method::Locked => {
+            Box::new(splitting::Splitting::phase_locked(problem, step).with_time_sum(time_sum))
+        }
         Method::Effective => Box::new(effective::EffectiveDop853::new(
             problem,
             settings.tolerance,

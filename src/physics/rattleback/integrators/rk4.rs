@@ -8,6 +8,7 @@
 use super::dop853::Stats;
 use super::roots::find_root;
 use super::{Integrator, Method, StepError};
+use crate::physics::method::TimeSum;
 use crate::physics::rattleback::model::{ALPHA_DOT, State, energy, initial_state, rhs};
 use crate::physics::rattleback::params::{Params, Problem};
 
@@ -23,9 +24,18 @@ pub struct Rk4 {
     y_prev: State,
     f_prev: State,
     stats: Stats,
+    time_sum: TimeSum,
+    carry: f64,
 }
 
 impl Rk4 {
+    /// How the steps are added to the time (compensated unless told).
+    #[must_use]
+    pub fn with_time_sum(mut self, time_sum: TimeSum) -> Self {
+        self.time_sum = time_sum;
+        self
+    }
+
     /// Starts at the problem's initial values with step `h`.
     pub fn new(problem: &Problem, h: f64) -> Self {
         let params = *problem.params();
@@ -44,6 +54,8 @@ impl Rk4 {
                 rhs_evaluations: 1,
                 ..Stats::default()
             },
+            time_sum: TimeSum::default(),
+            carry: 0.0,
         }
     }
 }
@@ -80,7 +92,11 @@ impl Integrator for Rk4 {
         self.t_prev = self.t;
         self.y_prev = self.y;
         self.f_prev = self.f;
-        self.t = if last { t_limit } else { self.t + h };
+        self.t = if last {
+            t_limit
+        } else {
+            self.time_sum.add(self.t, h, &mut self.carry)
+        };
         self.y = y_new;
         self.f = rhs(p, &y_new);
         self.stats.steps += 1;

@@ -27,6 +27,7 @@
 use super::dop853::Stats;
 use super::roots::find_root;
 use super::{Integrator, Method, StepError};
+use crate::physics::method::TimeSum;
 pub use crate::physics::numerics::compositions::Composition;
 use crate::physics::numerics::compositions::Split;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -188,9 +189,18 @@ pub struct Splitting {
     t_prev: f64,
     y_prev: Canonical,
     stats: Stats,
+    time_sum: TimeSum,
+    carry: f64,
 }
 
 impl Splitting {
+    /// How the steps are added to the time (compensated unless told).
+    #[must_use]
+    pub fn with_time_sum(mut self, time_sum: TimeSum) -> Self {
+        self.time_sum = time_sum;
+        self
+    }
+
     /// Starts at the problem's initial values with step `h`.
     #[must_use]
     pub fn new(problem: &Problem, composition: Composition, h: f64) -> Self {
@@ -206,6 +216,8 @@ impl Splitting {
             t_prev: 0.0,
             y_prev: y,
             stats: Stats::default(),
+            time_sum: TimeSum::default(),
+            carry: 0.0,
         }
     }
 }
@@ -330,7 +342,11 @@ impl Integrator for Splitting {
         }
         self.t_prev = self.t;
         self.y_prev = self.y;
-        self.t = if last { t_limit } else { self.t + h };
+        self.t = if last {
+            t_limit
+        } else {
+            self.time_sum.add(self.t, h, &mut self.carry)
+        };
         self.y = y_new;
         self.stats.steps += 1;
         self.stats.rhs_evaluations += self.composition.stages() as u64;
