@@ -108,17 +108,18 @@ pub const AUTO_SECONDS: f64 = 10.0;
 /// docs/benchmarks.md, "Issue 29"), so only the planner's predictions and the adaptive methods'
 /// estimates keep it (`phase_round_off`).
 pub const ROUND_OFF_GAIN: f64 = 5.0;
-/// Relative nudge of the start by which [`conditioning`] measures how much the start's
-/// rounding is amplified by `T` (small enough to stay linear at condition numbers of 1e7, large
+/// Relative nudge of the rates, and absolute nudge of the angle (radians), by which
+/// [`conditioning`] measures how much the start's rounding is amplified by `T` (small enough to stay linear at condition numbers of 1e7, large
 /// enough to stand far above the rounding of the two runs it compares).
 pub const NUDGE: f64 = 1e-10;
 /// Local tolerance of [`conditioning`]'s runs (at least; the companion's when looser).
 pub const CONDITIONING_TOLERANCE: f64 = 1e-9;
-/// Gain of the conditioned round-off floor `CONDITIONED_GAIN · ε · √steps · κ`: near the
-/// separatrix, against the long-double references of `rattleback_honesty.toml` (condition
-/// numbers 1e3 … 2e7, 2·10³ … 7·10⁶ steps), the errors at the round-off floor were 0.02–0.64
-/// of `ε √steps κ` (the references' κ); 2 keeps a margin of three over the worst.
-pub const CONDITIONED_GAIN: f64 = 2.0;
+/// Gain of the conditioned round-off floor `CONDITIONED_GAIN · ε · √steps · κ`: a step rounds
+/// several numbers, so the random walk's step is a few ε. Measured on the held-out starts near
+/// the separatrix of `rattleback_honesty.toml` (κ = 1e3 … 2e7): restarting from one to five ulps
+/// away spreads `α(T)` by up to 3.3 `ε √steps κ` (`sep_b2_in5_k1e03`, a 1-ulp change moved it
+/// by 1e-8); 10 bounds every one of 225 such runs with a margin of two.
+pub const CONDITIONED_GAIN: f64 = 10.0;
 /// Global-to-local error growth of the averaged slow flow over `T = 30` (measured 6–140 on the
 /// note's starts at local tolerance 1e-10; it grows linearly with `T` on rotating starts).
 pub const AVERAGED_GROWTH: f64 = 150.0;
@@ -607,7 +608,7 @@ pub fn run_auto_cancellable(
     } = plan_cancellable(problem, tolerance, t_end, go_on)?;
     let measure = conditioning_spec(problem, t_end, &plan);
     spent += plan.predicted_seconds
-        + 2.0 * cost_seconds(problem, plan.method, measure.tolerance, measure.step, t_end);
+        + 3.0 * cost_seconds(problem, plan.method, measure.tolerance, measure.step, t_end);
     over_budget(
         &format!("auto's run and verification with {}", plan.method),
         spent,
@@ -695,7 +696,7 @@ fn run_and_check(
     spec: &RunSpec,
     plan: &Plan,
     model_error: f64,
-    kappa: f64,
+    kappa: Conditioning,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<(RunResult, f64), StepError> {
     let run_spec = RunSpec {
@@ -721,7 +722,7 @@ fn run_and_check(
     let estimate = difference(&result, &check)
         + model_error
         + phase_round_off(problem, plan, steps, spec.t_end)
-        + conditioned_round_off(steps, kappa * rounding_scale(problem, &result));
+        + conditioned_round_off(steps, kappa.of_run(problem, &result));
     Ok((result, estimate))
 }
 
@@ -744,12 +745,35 @@ fn conditioning_spec(problem: &Problem, t_end: f64, plan: &Plan) -> RunSpec {
     }
 }
 
-/// The start's condition number `κ`: by how much the largest change of `α(T)`, `α̇(T)` and
-/// the reversal times exceeds a relative nudge of the start, which is what a rounding error
-/// made early in the run becomes by `T`. Measured with two coarse runs of `plan`'s method
-/// (`conditioning_spec`), the second with the spin rate `α̇0` scaled by `1 + NUDGE` (it sets the energy on
-/// which the slow motion's period depends), or, for a start at rest in `α̇` (where a nudge of
-/// `α̇0` would add a reversal at `t = 0`), the tilt rate `γ̇0`. Where the two runs count
+/// How much the start's rounding is amplified by `T` ([`conditioning`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Conditioning {
+    /// Per relative change of the spin rate `α̇0` (of `γ̇0` for a start at rest in `α̇`): the
+    /// energy on which the slow motion's period depends. Near the separatrix 1e3 … 1e7.
+    pub rate: f64,
+    /// Per radian of the spin angle `α0`: the angle is rounded in absolute terms, `ε |α|`, and
+    /// a rotating start takes it to tens of radians.
+    pub angle: f64,
+}
+
+impl Conditioning {
+    /// The condition number one step's rounding sees in `result`: `rate` for the relative
+    /// rounding of the rates, plus `angle · |α|` for the angle's, at the larger of its start
+    /// and end values (a rotating `α` grows monotonically; a trapped one stays within its
+    /// turning points).
+    #[must_use]
+    pub fn of_run(&self, problem: &Problem, result: &RunResult) -> f64 {
+        let alpha = problem.start().alpha.abs().max(result.final_state[1].abs());
+        self.rate + self.angle * alpha
+    }
+}
+
+/// The start's condition numbers ([`Conditioning`]): by how much the largest change of
+/// `α(T)`, `α̇(T)` and the reversal times exceeds a nudge of the start, which is what a
+/// rounding error made early in the run becomes by `T`. Measured with three coarse runs of
+/// `plan`'s method (`conditioning_spec`): as started, with the spin rate scaled by
+/// `1 + NUDGE` (the tilt rate for a start at rest in `α̇`, where a nudge of `α̇0` would add a
+/// reversal at `t = 0`), and with the angle moved by `NUDGE` radians. Where two runs count
 /// different reversals (an event at a tangency), a nudge a thousand times smaller is tried,
 /// then the final state alone is compared.
 ///
@@ -760,27 +784,46 @@ pub fn conditioning(
     t_end: f64,
     plan: &Plan,
     go_on: &mut dyn FnMut(f64) -> bool,
-) -> Result<f64, StepError> {
+) -> Result<Conditioning, StepError> {
     let spec = conditioning_spec(problem, t_end, plan);
     let start = *problem.start();
     if start.alpha_dot == 0.0 && start.gamma_dot == 0.0 {
-        // At rest in both rates: the nudge would be nothing.
-        return Ok(0.0);
+        // At rest in both rates: nothing moves, nothing is amplified.
+        return Ok(Conditioning {
+            rate: 0.0,
+            angle: 0.0,
+        });
     }
     let base = run_cancellable(problem, &spec, go_on)?;
+    let rate = sensitivity(problem, &spec, &base, go_on, |s, nudge| {
+        if s.alpha_dot == 0.0 {
+            s.gamma_dot *= 1.0 + nudge;
+        } else {
+            s.alpha_dot *= 1.0 + nudge;
+        }
+    })?;
+    let angle = sensitivity(problem, &spec, &base, go_on, |s, nudge| s.alpha += nudge)?;
+
+    Ok(Conditioning { rate, angle })
+}
+
+/// How much `base` moves per unit of a nudge that `nudge_start` applies to the start.
+fn sensitivity(
+    problem: &Problem,
+    spec: &RunSpec,
+    base: &RunResult,
+    go_on: &mut dyn FnMut(f64) -> bool,
+    nudge_start: impl Fn(&mut super::params::Start, f64),
+) -> Result<f64, StepError> {
     let mut last = (base.final_state, NUDGE);
     for nudge in [NUDGE, NUDGE * 1e-3] {
-        let mut moved = start;
-        if start.alpha_dot == 0.0 {
-            moved.gamma_dot *= 1.0 + nudge;
-        } else {
-            moved.alpha_dot *= 1.0 + nudge;
-        }
+        let mut moved = *problem.start();
+        nudge_start(&mut moved, nudge);
         let Ok(nudged) = Problem::new(*problem.params(), moved) else {
             return Ok(f64::INFINITY);
         };
-        let run = run_cancellable(&nudged, &spec, go_on)?;
-        let d = difference(&base, &run);
+        let run = run_cancellable(&nudged, spec, go_on)?;
+        let d = difference(base, &run);
         if d.is_finite() {
             return Ok(d / nudge);
         }
@@ -791,32 +834,11 @@ pub fn conditioning(
 }
 
 /// The round-off floor of a run of `steps` steps from a start of condition number `kappa`
-/// ([`conditioning`]): one rounding per step, each amplified by at most `κ` by the end, adding
-/// up like a random walk, `CONDITIONED_GAIN · ε · √steps · max(κ, 1)`.
+/// ([`Conditioning::of_run`]): a few roundings per step, each amplified by at most `κ` by the
+/// end, adding up like a random walk, `CONDITIONED_GAIN · ε · √steps · max(κ, 1)`.
 #[must_use]
 pub fn conditioned_round_off(steps: f64, kappa: f64) -> f64 {
     CONDITIONED_GAIN * f64::EPSILON * steps.max(1.0).sqrt() * kappa.max(1.0)
-}
-
-/// How large one step's rounding is against the nudge that measured `κ`: the spin angle is
-/// rounded to `ε |α|`, which a rotating start makes tens of radians, while `κ` is measured per
-/// relative change of the spin rate. `max(1, |α| / |α̇0|)` at the larger of the start and the
-/// end (a rotating `α` grows monotonically; a trapped one stays within its turning points).
-/// Near the separatrix on a rotating start (`sep_b2_in5_k1e03`: `α` reaches 46 rad) the error
-/// was 5.6 `ε √N κ` without it.
-fn rounding_scale(problem: &Problem, result: &RunResult) -> f64 {
-    let start = problem.start();
-    let alpha = start.alpha.abs().max(result.final_state[1].abs());
-    let rate = start.alpha_dot.abs().max(if start.alpha_dot == 0.0 {
-        start.gamma_dot.abs()
-    } else {
-        0.0
-    });
-    if rate > 0.0 {
-        (alpha / rate).max(1.0)
-    } else {
-        1.0
-    }
 }
 
 /// The phase's round-off floor in an estimate: [`round_off`] for the adaptive methods; nothing
