@@ -105,8 +105,9 @@ pub const AUTO_SECONDS: f64 = 10.0;
 /// T = 1000, k = 1e2, 10⁵–6·10⁵ steps); 5 keeps a margin for the scatter. What it was fitted
 /// to was mostly the time itself, summed `t + h` in double each step; the fixed-step methods now
 /// sum it compensated (4.3e-11 → 1.2e-12 on `lib_b1_a015_k1e06`'s reversal times:
-/// docs/benchmarks.md, "Issue 29"), so only the planner's predictions and the adaptive methods'
-/// estimates keep it (`phase_round_off`).
+/// docs/benchmarks.md, "Issue 29"), so only the adaptive methods keep it, in their predicted
+/// errors and their estimates (`phase_round_off`); the splitting's prediction counts one
+/// rounding per step ([`conditioned_round_off`] at κ = 1).
 pub const ROUND_OFF_GAIN: f64 = 5.0;
 /// Relative nudge of the rates, and absolute nudge of the angle (radians), by which
 /// [`conditioning`] measures how much the start's rounding is amplified by `T` (small enough to stay linear at condition numbers of 1e7, large
@@ -397,7 +398,7 @@ fn resolved_plans(problem: &Problem, tolerance: f64, t_end: f64) -> [Plan; 2] {
         tolerance,
         step: Some(h),
         predicted_error: blanes_moan_error(problem, 2.0 * h, t_end)
-            + round_off(problem, t_end / h, t_end),
+            + conditioned_round_off(t_end / h, 1.0),
         predicted_seconds: with_companion(problem, Method::BlanesMoan4, tolerance, Some(h), t_end),
         reason: format!("resolved exact-flow splitting at ν·h = {:.2}", nu * h),
     };
