@@ -110,8 +110,9 @@ pub const AUTO_SECONDS: f64 = 10.0;
 /// rounding per step ([`conditioned_round_off`] at κ = 1).
 pub const ROUND_OFF_GAIN: f64 = 5.0;
 /// Relative nudge of the rates, and absolute nudge of the angle (radians), by which
-/// [`conditioning`] measures how much the start's rounding is amplified by `T` (small enough to stay linear at condition numbers of 1e7, large
-/// enough to stand far above the rounding of the two runs it compares).
+/// [`conditioning`] measures how much the start's rounding is amplified by `T` (small enough
+/// to stay linear at condition numbers of 1e7, large enough to stand far above the rounding of
+/// the runs it compares).
 pub const NUDGE: f64 = 1e-10;
 /// Local tolerance of [`conditioning`]'s runs (at least; the companion's when looser).
 pub const CONDITIONING_TOLERANCE: f64 = 1e-9;
@@ -727,7 +728,7 @@ fn run_and_check(
     Ok((result, estimate))
 }
 
-/// The settings of [`conditioning`]'s two runs: the plan's method at a coarse setting (its
+/// The settings of [`conditioning`]'s three runs: the plan's method at a coarse setting (its
 /// companion's, loosened to a local tolerance of [`CONDITIONING_TOLERANCE`] or a step of
 /// `ν h` = [`BLANES_MOAN_MAX_NU_H`]): both runs make nearly the same truncation errors, which
 /// mostly cancel in their difference (on the held-out starts of `rattleback_honesty.toml` it
@@ -773,8 +774,8 @@ impl Conditioning {
 /// `α(T)`, `α̇(T)` and the reversal times exceeds a nudge of the start, which is what a
 /// rounding error made early in the run becomes by `T`. Measured with three coarse runs of
 /// `plan`'s method (`conditioning_spec`): as started, with the spin rate scaled by
-/// `1 + NUDGE` (the tilt rate for a start at rest in `α̇`, where a nudge of `α̇0` would add a
-/// reversal at `t = 0`), and with the angle moved by `NUDGE` radians. Where two runs count
+/// `1 + NUDGE` (the tilt rate, or the tilt, for a start at rest in `α̇`, where a nudge of `α̇0`
+/// would add a reversal at `t = 0`), and with the angle moved by `NUDGE` radians. Where two runs count
 /// different reversals (an event at a tangency), a nudge a thousand times smaller is tried,
 /// then the final state alone is compared.
 ///
@@ -788,23 +789,25 @@ pub fn conditioning(
 ) -> Result<Conditioning, StepError> {
     let spec = conditioning_spec(problem, t_end, plan);
     let start = *problem.start();
-    if start.alpha_dot == 0.0 && start.gamma_dot == 0.0 {
-        // At rest in both rates: nothing moves, nothing is amplified.
+    if start.alpha_dot == 0.0 && start.gamma_dot == 0.0 && start.gamma == 0.0 {
+        // The equilibrium: nothing moves, nothing is amplified.
         return Ok(Conditioning {
             rate: 0.0,
             angle: 0.0,
         });
     }
     let base = run_cancellable(problem, &spec, go_on)?;
+    // The energy's first non-zero carrier: the spin rate, else the tilt rate, else the tilt.
     let rate = sensitivity(problem, &spec, &base, go_on, |s, nudge| {
-        if s.alpha_dot == 0.0 {
+        if s.alpha_dot != 0.0 {
+            s.alpha_dot *= 1.0 + nudge;
+        } else if s.gamma_dot != 0.0 {
             s.gamma_dot *= 1.0 + nudge;
         } else {
-            s.alpha_dot *= 1.0 + nudge;
+            s.gamma *= 1.0 + nudge;
         }
     })?;
     let angle = sensitivity(problem, &spec, &base, go_on, |s, nudge| s.alpha += nudge)?;
-
     Ok(Conditioning { rate, angle })
 }
 
