@@ -71,6 +71,18 @@ impl Tally {
     }
 }
 
+/// Every tolerance of `tolerances`: the scene's `run` honest, and something claimed.
+fn audit(scene: &str, tolerances: &[f64], run: fn(f64) -> Tally) {
+    for &tol in tolerances {
+        let tally = run(tol);
+        tally.assert_honest(scene, &format!("{tol:e}"));
+        assert!(
+            tally.made > 0,
+            "{scene}: auto never claimed anything at {tol:e}"
+        );
+    }
+}
+
 fn with_sets(preset: &str, sets: &[String]) -> serde_json::Value {
     let mut args = vec!["--preset", preset];
     for s in sets {
@@ -79,42 +91,45 @@ fn with_sets(preset: &str, sets: &[String]) -> serde_json::Value {
     simulate_json(&args)
 }
 
+/// `simulate` on a held-out rattleback case at `tol`, its spin rate replaced by `alpha_dot`:
+/// the report and its true error (`α(T)`, `α̇(T)`, reversal times; infinite when the counts
+/// differ).
+fn run_case(case: &common::AveragedCase, alpha_dot: f64, tol: f64) -> (serde_json::Value, f64) {
+    let p = case.problem.params();
+    let s = case.problem.start();
+    let sets = [
+        format!("body.ix={}", p.ix),
+        format!("body.iy={}", p.iy),
+        format!("body.iz={}", p.iz),
+        format!("spring.k={}", p.k),
+        format!("initial.gamma={}", s.gamma),
+        format!("initial.alpha={}", s.alpha),
+        format!("initial.gamma_dot={}", s.gamma_dot),
+        format!("initial.alpha_dot={alpha_dot}"),
+        format!("run.t_end={}", case.t_end),
+        format!("run.tolerance={tol}"),
+    ];
+    let r = with_sets("subcritical", &sets);
+    let f = &r["final"];
+    let times = r["reversals"]["times"].as_array().expect("reversal times");
+    let mut err = (f["alpha"].as_f64().unwrap() - case.end.0)
+        .abs()
+        .max((f["alpha_dot"].as_f64().unwrap() - case.end.1).abs());
+    if times.len() == case.reversals.len() {
+        for (a, b) in times.iter().zip(&case.reversals) {
+            err = err.max((a.as_f64().unwrap() - b).abs());
+        }
+    } else {
+        err = f64::INFINITY;
+    }
+    (r, err)
+}
+
 fn rattleback(tol: f64) -> Tally {
     let mut tally = Tally::default();
     for case in common::cases_from("rattleback_honesty.toml") {
         let started = std::time::Instant::now();
-        let p = case.problem.params();
-        let s = case.problem.start();
-        let sets = [
-            format!("body.ix={}", p.ix),
-            format!("body.iy={}", p.iy),
-            format!("body.iz={}", p.iz),
-            format!("spring.k={}", p.k),
-            format!("initial.gamma={}", s.gamma),
-            format!("initial.alpha={}", s.alpha),
-            format!("initial.gamma_dot={}", s.gamma_dot),
-            format!("initial.alpha_dot={}", s.alpha_dot),
-            format!("run.t_end={}", case.t_end),
-            format!("run.tolerance={tol}"),
-        ];
-        let r = with_sets("subcritical", &sets);
-        let f = &r["final"];
-        let times: Vec<f64> = r["reversals"]["times"]
-            .as_array()
-            .expect("reversal times")
-            .iter()
-            .map(|t| t.as_f64().unwrap())
-            .collect();
-        let mut err = (f["alpha"].as_f64().unwrap() - case.end.0)
-            .abs()
-            .max((f["alpha_dot"].as_f64().unwrap() - case.end.1).abs());
-        if times.len() == case.reversals.len() {
-            for (a, b) in times.iter().zip(&case.reversals) {
-                err = err.max((a - b).abs());
-            }
-        } else {
-            err = f64::INFINITY;
-        }
+        let (r, err) = run_case(&case, case.problem.start().alpha_dot, tol);
         eprintln!(
             "{} at {tol:e}: {} est {:.1e} err {err:.1e} met {} cond {:.0e} ({:.1} s)",
             case.name,
@@ -131,11 +146,7 @@ fn rattleback(tol: f64) -> Tally {
 
 #[test]
 fn the_rattleback_keeps_its_claims_near_the_separatrix_and_at_very_large_k() {
-    for tol in [1e-6, 1e-8, 1e-10] {
-        let tally = rattleback(tol);
-        tally.assert_honest("rattleback", &format!("{tol:e}"));
-        assert!(tally.made > 0, "auto never claimed anything at {tol:e}");
-    }
+    audit("rattleback", &[1e-6, 1e-8, 1e-10], rattleback);
 }
 
 fn pendulum(tol: f64) -> Tally {
@@ -168,11 +179,7 @@ fn pendulum(tol: f64) -> Tally {
 
 #[test]
 fn the_pendulum_keeps_its_claims_on_the_held_out_starts() {
-    for tol in [1e-6, 1e-8, 1e-9] {
-        let tally = pendulum(tol);
-        tally.assert_honest("pendulum", &format!("{tol:e}"));
-        assert!(tally.made > 0, "auto never claimed anything at {tol:e}");
-    }
+    audit("pendulum", &[1e-6, 1e-8, 1e-9], pendulum);
 }
 
 fn celt(tol: f64) -> Tally {
@@ -215,11 +222,7 @@ fn celt(tol: f64) -> Tally {
 
 #[test]
 fn the_celt_keeps_its_claims_on_every_preset() {
-    for tol in [1e-6, 1e-8, 1e-10] {
-        let tally = celt(tol);
-        tally.assert_honest("celt", &format!("{tol:e}"));
-        assert!(tally.made > 0, "auto never claimed anything at {tol:e}");
-    }
+    audit("celt", &[1e-6, 1e-8, 1e-10], celt);
 }
 
 #[test]
@@ -289,36 +292,13 @@ fn near_the_separatrix_the_estimate_bounds_every_rounding_of_the_start() {
         .into_iter()
         .filter(|c| c.name.starts_with("sep_"))
     {
-        let p = case.problem.params();
         let s = case.problem.start();
         for ulps in 1..=3_u64 {
             let alpha_dot = f64::from_bits(s.alpha_dot.to_bits() + ulps);
             #[allow(clippy::cast_precision_loss)]
             let moved = case.condition.expect("stated") * (ulps as f64) * 2.0 * f64::EPSILON;
             for tol in [1e-8, 1e-10] {
-                let sets = [
-                    format!("body.ix={}", p.ix),
-                    format!("body.iy={}", p.iy),
-                    format!("body.iz={}", p.iz),
-                    format!("spring.k={}", p.k),
-                    format!("initial.gamma_dot={}", s.gamma_dot),
-                    format!("initial.alpha_dot={alpha_dot}"),
-                    format!("run.t_end={}", case.t_end),
-                    format!("run.tolerance={tol}"),
-                ];
-                let r = with_sets("subcritical", &sets);
-                let f = &r["final"];
-                let times = r["reversals"]["times"].as_array().unwrap();
-                let mut err = (f["alpha"].as_f64().unwrap() - case.end.0)
-                    .abs()
-                    .max((f["alpha_dot"].as_f64().unwrap() - case.end.1).abs());
-                if times.len() == case.reversals.len() {
-                    for (a, b) in times.iter().zip(&case.reversals) {
-                        err = err.max((a.as_f64().unwrap() - b).abs());
-                    }
-                } else {
-                    err = f64::INFINITY;
-                }
+                let (r, err) = run_case(&case, alpha_dot, tol);
                 let what = format!("{} +{ulps} ulp", case.name);
                 tally.count(&what, tol, &r, err, case.uncertainty + moved);
             }
