@@ -196,6 +196,9 @@ struct AutoOut {
     /// The averaged model's probed error included in the estimate (0 for a resolved run).
     model_error: f64,
     refinements: u32,
+    /// The start's condition numbers (`rate`: per relative change of the spin rate; `angle`:
+    /// per radian of the spin angle) that scale the round-off floor in `error_estimate`.
+    condition: crate::physics::rattleback::auto::Conditioning,
 }
 
 /// The averaged model's own account of the start (method `averaged2`, or `auto` choosing it).
@@ -539,6 +542,7 @@ fn requested_run(
         shortfall: v.shortfall,
         model_error: v.model_error,
         refinements: v.refinements,
+        condition: v.condition,
     };
     Ok((v.result, Some(auto)))
 }

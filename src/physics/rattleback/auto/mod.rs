@@ -549,6 +549,9 @@ pub struct Verified {
     pub model_error: f64,
     /// How many times the first plan had to be refined.
     pub refinements: u32,
+    /// The start's measured condition numbers, which scale the round-off floor in the
+    /// estimate.
+    pub condition: Conditioning,
     /// The settings of the returned run: integrating `plan.method` with these gives `result`
     /// bit for bit, which is how the explorer shows exactly what `simulate` reports.
     pub run_settings: Settings,
@@ -657,6 +660,7 @@ pub fn run_auto_cancellable(
             shortfall,
             model_error,
             refinements,
+            condition: kappa,
         };
         if estimate <= tolerance {
             return Ok(verified);
@@ -748,7 +752,7 @@ fn conditioning_spec(problem: &Problem, t_end: f64, plan: &Plan) -> RunSpec {
 }
 
 /// How much the start's rounding is amplified by `T` ([`conditioning`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Conditioning {
     /// Per relative change of the spin rate `α̇0` (of `γ̇0` for a start at rest in `α̇`): the
     /// energy on which the slow motion's period depends. Near the separatrix 1e3 … 1e7.
