@@ -14,7 +14,7 @@ import os
 import subprocess
 import tempfile
 
-from kapitza_references import run  # the same driver of kapitza_taylor.c
+from kapitza_references import print_case, run  # the same driver of kapitza_taylor.c
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASES = [
@@ -38,15 +38,7 @@ def main():
     for name, a, b, eps, th, thd, t_end in CASES:
         c = run(exe, [a, b, eps, th, thd, t_end, SAMPLES])
         f = run(exe, [a, b, eps, th, thd, t_end, SAMPLES, 3])
-        acc = max(max(abs(x[1] - y[1]), abs(x[2] - y[2])) for x, y in zip(c, f))
-        print()
-        print("[case.%s]" % name)
-        for k, v in (("a", a), ("b", b), ("epsilon", eps), ("theta0", th), ("theta_dot0", thd), ("t_end", t_end)):
-            print("%s = %r" % (k, v))
-        print('source = "taylor28-long-double"')
-        print("accuracy = %.1e" % max(acc, 1e-18))
-        print("theta = [%s]" % ", ".join(repr(x[1]) for x in c))
-        print("theta_dot = [%s]" % ", ".join(repr(x[2]) for x in c))
+        print_case(name, None, (a, b, eps, th, thd, t_end), c, f)
 
 
 if __name__ == "__main__":

@@ -35,6 +35,22 @@ def run(exe, args):
     return [tuple(float(v) for v in line.split()) for line in out.splitlines()]
 
 
+def print_case(name, start, params, coarse, fine):
+    """One `[case.NAME]` table: the parameters, the accuracy (the largest difference between the
+    run and its refinement `fine`) and the samples of `coarse`; `start` is omitted when None."""
+    acc = max(max(abs(x[1] - y[1]), abs(x[2] - y[2])) for x, y in zip(coarse, fine))
+    print()
+    print("[case.%s]" % name)
+    if start is not None:
+        print("start = %r" % start)
+    for k, v in zip(("a", "b", "epsilon", "theta0", "theta_dot0", "t_end"), params):
+        print("%s = %r" % (k, v))
+    print('source = "taylor28-long-double"')
+    print("accuracy = %.1e" % max(acc, 1e-18))
+    print("theta = [%s]" % ", ".join(repr(x[1]) for x in coarse))
+    print("theta_dot = [%s]" % ", ".join(repr(x[2]) for x in coarse))
+
+
 def main():
     tmp = tempfile.mkdtemp()
     exe = os.path.join(tmp, "kapitza_taylor")
@@ -49,16 +65,8 @@ def main():
     print(__doc__.strip().replace("\n", "\n# ").join(["# ", ""]))
     print("# Per case: a, b, epsilon, theta0, theta_dot0, t_end; samples at t = i t_end / %d, i = 0..%d." % (SAMPLES, SAMPLES))
     for (name, a, b, th, thd, eps), c, f in zip(jobs, coarse, fine):
-        acc = max(max(abs(x[1] - y[1]), abs(x[2] - y[2])) for x, y in zip(c, f))
-        print()
-        print("[case.%s_eps%s]" % (name, ("%.0e" % eps).replace("-0", "-")))
-        print("start = %r" % name)
-        for k, v in (("a", a), ("b", b), ("epsilon", eps), ("theta0", th), ("theta_dot0", thd), ("t_end", T_END)):
-            print("%s = %r" % (k, v))
-        print('source = "taylor28-long-double"')
-        print("accuracy = %.1e" % max(acc, 1e-18))
-        print("theta = [%s]" % ", ".join(repr(x[1]) for x in c))
-        print("theta_dot = [%s]" % ", ".join(repr(x[2]) for x in c))
+        print_case("%s_eps%s" % (name, ("%.0e" % eps).replace("-0", "-")), name,
+                   (a, b, eps, th, thd, T_END), c, f)
 
 
 if __name__ == "__main__":
