@@ -192,6 +192,30 @@ fn a_click_in_the_portrait_sets_the_start_there() {
 }
 
 #[test]
+fn the_guides_config_example_is_accepted_as_written() {
+    // docs/guide.md's example under "## Configuration", copied into a config file: every key
+    // it shows must load (its `[keys]` once bound 'p', which the explorer already uses for the
+    // presets, and was refused).
+    let guide = include_str!("../../docs/guide.md");
+    let section = &guide[guide.find("## Configuration").expect("the section")..];
+    let start = section.find("```toml\n").expect("a toml block") + "```toml\n".len();
+    let block = &section[start..start + section[start..].find("```").expect("closed")];
+    assert!(block.contains("[keys]"), "{block}");
+    let dir = temp("guide-config");
+    std::fs::write(dir.join("config.toml"), block).unwrap();
+    let (code, out, err) = bin_in(&dir, &["config", "show"]);
+    assert_eq!(code, 0, "the guide's example is refused: {err}");
+    let code = block.lines().map(|l| l.split('#').next().unwrap_or(""));
+    for line in code.filter(|l| l.contains(" = ")) {
+        let key = line.split(" = ").next().unwrap().trim();
+        assert!(
+            out.contains(&format!("{key} = ")),
+            "{key} missing from {out}"
+        );
+    }
+}
+
+#[test]
 fn config_path_show_and_a_bad_config_file() {
     let dir = temp("config");
     let (code, out, _) = bin_in(&dir, &["config", "path"]);
