@@ -565,6 +565,14 @@ fn explore(
         follow: setup.follow.clone(),
         sign: setup.sign.clone(),
     };
+    if std::env::var_os("TERM").is_some_and(|t| t == "dumb") {
+        // Checked after the preset and config, which a user wants to hear about first, and
+        // before the terminal is touched: a dumb terminal shows escape codes as text.
+        say_err!(
+            "rattleback: TERM=dumb cannot show the explorer (it moves the cursor and draws); set TERM to the terminal's name (xterm-256color, screen, linux, …), or use `rattleback simulate` for text"
+        );
+        return ExitCode::from(1);
+    }
     match explorer::run(preset, &options) {
         Ok(None) => ExitCode::SUCCESS,
         // Ended by a signal: the terminal is restored; exit as the convention says.

@@ -260,3 +260,48 @@ fn config_path_show_and_a_bad_config_file() {
     assert_eq!(code, 0, "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_dumb_terminal_gets_one_line_from_every_interactive_entry_point() {
+    // Issue 28: with TERM=dumb the program used to draw a full screen of escape codes. Every
+    // command that opens the explorer refuses it in one line (after the preset is checked);
+    // the headless commands do not care.
+    let session = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/sessions/lecture.jsonl"
+    );
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+            .args(args)
+            .env("RATTLEBACK_CONFIG_DIR", temp("dumb"))
+            .env("TERM", "dumb")
+            .output()
+            .expect("the binary runs");
+        (
+            out.status.code().unwrap_or(-1),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    for args in [
+        &[][..],
+        &["--preset", "kapitza-falls"],
+        &["replay", session],
+        &["follow", session],
+        &["compare", "subcritical", "celt-clockwise"],
+        &["lesson", "first-reversal"],
+    ] {
+        let (code, out, err) = run(args);
+        assert_eq!(code, 1, "{args:?}: {err}");
+        assert!(out.is_empty(), "{args:?}: {out}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains("TERM=dumb"), "{args:?}: {err}");
+    }
+    // A bad preset is still named first; headless commands run.
+    let (code, _, err) = run(&["--preset", "nope"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("no preset named"), "{err}");
+    let (code, out, _) = run(&["simulate", "--format", "csv"]);
+    assert_eq!(code, 0);
+    assert!(out.starts_with("# program"), "{out}");
+}
