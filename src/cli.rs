@@ -68,6 +68,50 @@ pub struct LookArgs {
     /// braille).
     #[arg(long, value_enum)]
     pub marker: Option<MarkerChoice>,
+    /// Colours: `auto` (the default) draws in colour unless `NO_COLOR` is set and non-empty, or
+    /// `CLICOLOR=0` without `CLICOLOR_FORCE`; `always` and `never` decide whatever the
+    /// environment says.
+    #[arg(long, value_enum, default_value_t = ColorChoice::Auto)]
+    pub color: ColorChoice,
+}
+
+/// `--color`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ColorChoice {
+    /// As the environment says (`NO_COLOR`, `CLICOLOR`, `CLICOLOR_FORCE`).
+    Auto,
+    /// Colours, whatever the environment says.
+    Always,
+    /// No colours: the selection and the status bar in reverse video.
+    Never,
+}
+
+impl ColorChoice {
+    /// Whether colours are off, given the environment's `NO_COLOR`, `CLICOLOR` and
+    /// `CLICOLOR_FORCE` (<https://no-color.org>, <https://bixense.com/clicolors/>): a flag wins;
+    /// then `NO_COLOR` (non-empty) turns them off; then `CLICOLOR_FORCE` (non-empty, not `0`)
+    /// keeps them on; then `CLICOLOR=0` turns them off.
+    #[must_use]
+    pub fn colours_off(
+        self,
+        no_color: Option<&str>,
+        clicolor: Option<&str>,
+        clicolor_force: Option<&str>,
+    ) -> bool {
+        match self {
+            Self::Always => false,
+            Self::Never => true,
+            Self::Auto => {
+                if no_color.is_some_and(|v| !v.is_empty()) {
+                    true
+                } else if clicolor_force.is_some_and(|v| !v.is_empty() && v != "0") {
+                    false
+                } else {
+                    clicolor == Some("0")
+                }
+            }
+        }
+    }
 }
 
 /// `--marker`.

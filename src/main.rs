@@ -89,7 +89,7 @@ fn export_cast(
             }
         };
     let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
-    let options = UiOptions::new(marker(look.marker), &theme, &all, no_color());
+    let options = UiOptions::new(marker(look.marker), &theme, &all, no_color(look.color));
     let size = rattleback::cast::CastSize {
         cols: args.cols,
         rows: args.rows,
@@ -317,6 +317,7 @@ fn with_config(look: &LookArgs, config: &Config) -> LookArgs {
         fps: look.fps.or(config.fps),
         theme: look.theme.clone().or_else(|| config.theme.clone()),
         marker: look.marker.or(marker),
+        color: look.color,
     }
 }
 
@@ -553,7 +554,7 @@ fn explore(
     let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
     let options = ExplorerOptions {
         fps: f64::from(look.fps.unwrap_or(30)),
-        ui: UiOptions::new(marker, &theme, &all, no_color()),
+        ui: UiOptions::new(marker, &theme, &all, no_color(look.color)),
         startup_problems: problems.iter().map(ToString::to_string).collect(),
         record,
         replay,
@@ -586,9 +587,18 @@ fn explore(
     }
 }
 
-/// `NO_COLOR` set to anything non-empty turns colours off (<https://no-color.org>).
-fn no_color() -> bool {
-    std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty())
+/// Whether colours are off: `--color`, then the environment ([`ColorChoice::colours_off`]).
+fn no_color(choice: rattleback::cli::ColorChoice) -> bool {
+    if choice == rattleback::cli::ColorChoice::Always {
+        // crossterm itself leaves colours out under NO_COLOR unless told otherwise.
+        ratatui::crossterm::style::force_color_output(true);
+    }
+    let var = |name: &str| std::env::var(name).ok();
+    choice.colours_off(
+        var("NO_COLOR").as_deref(),
+        var("CLICOLOR").as_deref(),
+        var("CLICOLOR_FORCE").as_deref(),
+    )
 }
 
 fn run_simulate(args: &SimulateArgs) -> ExitCode {

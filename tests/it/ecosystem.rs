@@ -305,3 +305,64 @@ fn a_dumb_terminal_gets_one_line_from_every_interactive_entry_point() {
     assert_eq!(code, 0);
     assert!(out.starts_with("# program"), "{out}");
 }
+
+#[test]
+fn colours_follow_the_flag_then_no_color_then_clicolor() {
+    use rattleback::cli::ColorChoice::{Always, Auto, Never};
+    // (choice, NO_COLOR, CLICOLOR, CLICOLOR_FORCE) → colours off?
+    let cases = [
+        (Auto, None, None, None, false),
+        (Auto, Some("1"), None, None, true),
+        (Auto, Some(""), None, None, false),
+        (Auto, None, Some("0"), None, true),
+        (Auto, None, Some("1"), None, false),
+        (Auto, None, Some("0"), Some("1"), false),
+        (Auto, None, Some("0"), Some("0"), true),
+        (Auto, Some("1"), None, Some("1"), true),
+        (Always, Some("1"), Some("0"), None, false),
+        (Never, None, None, Some("1"), true),
+    ];
+    for (choice, no_color, clicolor, force, off) in cases {
+        assert_eq!(
+            choice.colours_off(no_color, clicolor, force),
+            off,
+            "{choice:?} NO_COLOR={no_color:?} CLICOLOR={clicolor:?} CLICOLOR_FORCE={force:?}"
+        );
+    }
+    // End to end, through what a user can see: a cast exported with CLICOLOR=0, or with
+    // --color never, has no colour in it; --color always overrides NO_COLOR.
+    let session = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/sessions/subcritical.jsonl"
+    );
+    let dir = temp("colour-cast");
+    let cast = |name: &str, flag: &str, env: &[(&str, &str)]| {
+        let out = dir.join(name);
+        let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"));
+        cmd.args(["replay", session, "--export-cast"])
+            .arg(&out)
+            .args(["--color", flag])
+            .env("RATTLEBACK_CONFIG_DIR", &dir)
+            .env_remove("NO_COLOR")
+            .env_remove("CLICOLOR")
+            .env_remove("CLICOLOR_FORCE");
+        for (k, v) in env {
+            cmd.env(k, v);
+        }
+        assert!(cmd.output().unwrap().status.success());
+        std::fs::read_to_string(out).unwrap()
+    };
+    let coloured = |text: &str| text.contains("\\u001b[38;");
+    assert!(coloured(&cast("auto.cast", "auto", &[])));
+    assert!(!coloured(&cast(
+        "clicolor.cast",
+        "auto",
+        &[("CLICOLOR", "0")]
+    )));
+    assert!(!coloured(&cast("never.cast", "never", &[])));
+    assert!(coloured(&cast(
+        "always.cast",
+        "always",
+        &[("NO_COLOR", "1")]
+    )));
+}
