@@ -11,8 +11,8 @@ use ratatui::Frame;
 use ratatui::Terminal;
 use ratatui::backend::CrosstermBackend;
 use ratatui::crossterm::event::{
-    DisableMouseCapture, EnableMouseCapture, Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers,
-    MouseButton, MouseEventKind,
+    DisableMouseCapture, Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton,
+    MouseEventKind,
 };
 use ratatui::crossterm::terminal::{
     BeginSynchronizedUpdate, EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen,
@@ -21,6 +21,24 @@ use ratatui::crossterm::terminal::{
 use ratatui::crossterm::{cursor, execute, queue};
 
 use crate::app::Key;
+
+/// Mouse reporting for what the explorer uses, clicks and the wheel: normal tracking (`?1000`)
+/// in SGR coordinates (`?1006`). Crossterm's `EnableMouseCapture` also asks for any-motion
+/// tracking (`?1003`), which sends every move of the mouse over the pane, and over SSH every
+/// one of them crosses the network for nothing. `DisableMouseCapture` turns all of them off.
+pub struct EnableClickCapture;
+
+impl ratatui::crossterm::Command for EnableClickCapture {
+    fn write_ansi(&self, f: &mut impl std::fmt::Write) -> std::fmt::Result {
+        f.write_str("\x1b[?1000h\x1b[?1006h")
+    }
+
+    #[cfg(windows)]
+    fn execute_winapi(&self) -> io::Result<()> {
+        // The Windows console reports what it reports; no escape codes cross anything there.
+        ratatui::crossterm::Command::execute_winapi(&ratatui::crossterm::event::EnableMouseCapture)
+    }
+}
 
 /// The terminal in explorer mode; restores it when dropped.
 pub struct Tty {
@@ -61,7 +79,7 @@ impl Tty {
             restore();
             return Err(e);
         }
-        if mouse && let Err(e) = execute!(io::stdout(), EnableMouseCapture) {
+        if mouse && let Err(e) = execute!(io::stdout(), EnableClickCapture) {
             restore();
             return Err(e);
         }
@@ -134,7 +152,7 @@ impl Tty {
         enable_raw_mode()?;
         execute!(io::stdout(), EnterAlternateScreen, cursor::Hide)?;
         if self.mouse {
-            execute!(io::stdout(), EnableMouseCapture)?;
+            execute!(io::stdout(), EnableClickCapture)?;
         }
         self.invalidate()
     }
@@ -355,6 +373,27 @@ mod tests {
         assert_eq!(
             key(KeyCode::Left, KeyModifiers::SHIFT),
             Some(Key::ShiftLeft)
+        );
+    }
+}
+
+#[cfg(test)]
+mod mouse_tests {
+    use super::EnableClickCapture;
+    use ratatui::crossterm::Command;
+
+    #[test]
+    fn the_mouse_reports_clicks_and_the_wheel_not_every_motion() {
+        let mut ansi = String::new();
+        EnableClickCapture.write_ansi(&mut ansi).unwrap();
+        assert!(
+            ansi.contains("?1000h") && ansi.contains("?1006h"),
+            "{ansi:?}"
+        );
+        // Any-motion (1003) and button-motion (1002) tracking would send every move over SSH.
+        assert!(
+            !ansi.contains("?1003h") && !ansi.contains("?1002h"),
+            "{ansi:?}"
         );
     }
 }
