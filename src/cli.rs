@@ -12,7 +12,14 @@ use crate::scenario::shipped::DEFAULT_PRESET;
 /// The explorer's flags go before nothing else: `rattleback --preset NAME simulate` is refused
 /// (each subcommand takes its own `--preset`).
 #[derive(Debug, Parser)]
-#[command(name = "rattleback", version, about, long_about = None, args_conflicts_with_subcommands = true)]
+#[command(
+    name = "rattleback",
+    version,
+    about,
+    long_about = None,
+    args_conflicts_with_subcommands = true,
+    after_long_help = crate::manual::after_help()
+)]
 pub struct Cli {
     /// What to do; without a command, the explorer opens.
     #[command(subcommand)]
@@ -73,6 +80,11 @@ pub struct LookArgs {
     /// environment says.
     #[arg(long, value_enum, default_value_t = ColorChoice::Auto)]
     pub color: ColorChoice,
+    /// ASCII only: borders, symbols and curves drawn with ASCII characters, one point per cell,
+    /// each curve its own character. Chosen by itself under a locale that is not UTF-8
+    /// (`LANG=C`); the Linux console (`TERM=linux`) gets the characters its fonts have.
+    #[arg(long)]
+    pub ascii: bool,
 }
 
 /// `--color`.

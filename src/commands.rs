@@ -193,7 +193,7 @@ pub fn completions(shell: clap_complete::Shell) -> ExitCode {
 pub fn man() -> ExitCode {
     let cmd = <crate::cli::Cli as clap::CommandFactory>::command();
     let mut out = Vec::new();
-    if let Err(e) = clap_mangen::Man::new(cmd).render(&mut out) {
+    if let Err(e) = crate::manual::render(cmd, &mut out) {
         say_err!("rattleback: error: rendering the manual: {e}");
         return ExitCode::from(1);
     }

@@ -12,6 +12,7 @@ pub mod commands;
 pub mod explorer;
 pub mod export;
 pub mod interrupt;
+pub mod manual;
 pub mod physics;
 pub mod progress;
 pub mod record;

@@ -89,7 +89,14 @@ fn export_cast(
             }
         };
     let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
-    let options = UiOptions::new(marker(look.marker), &theme, &all, no_color(look.color));
+    // A cast is played elsewhere: ASCII only when asked, not because of this terminal.
+    let charset = if look.ascii {
+        rattleback::ui::glyphs::Charset::Ascii
+    } else {
+        rattleback::ui::glyphs::Charset::Unicode
+    };
+    let options = UiOptions::new(marker(look.marker), &theme, &all, no_color(look.color))
+        .with_charset(charset);
     let size = rattleback::cast::CastSize {
         cols: args.cols,
         rows: args.rows,
@@ -318,6 +325,7 @@ fn with_config(look: &LookArgs, config: &Config) -> LookArgs {
         theme: look.theme.clone().or_else(|| config.theme.clone()),
         marker: look.marker.or(marker),
         color: look.color,
+        ascii: look.ascii || config.ascii,
     }
 }
 
@@ -554,7 +562,7 @@ fn explore(
     let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
     let options = ExplorerOptions {
         fps: f64::from(look.fps.unwrap_or(30)),
-        ui: UiOptions::new(marker, &theme, &all, no_color(look.color)),
+        ui: UiOptions::new(marker, &theme, &all, no_color(look.color)).with_charset(charset(look)),
         startup_problems: problems.iter().map(ToString::to_string).collect(),
         record,
         replay,
@@ -585,6 +593,13 @@ fn explore(
             ExitCode::from(1)
         }
     }
+}
+
+/// What this terminal shows: `--ascii`, the locale, `TERM` ([`Charset::detect`]).
+///
+/// [`Charset::detect`]: rattleback::ui::glyphs::Charset::detect
+fn charset(look: &LookArgs) -> rattleback::ui::glyphs::Charset {
+    rattleback::ui::glyphs::Charset::detect(look.ascii, &|name| std::env::var(name).ok()).charset
 }
 
 /// Whether colours are off: `--color`, then the environment ([`ColorChoice::colours_off`]).

@@ -74,7 +74,7 @@ impl App {
                     let effects = self.load(&preset);
                     self.mode = Mode::Map;
                     self.status = Message::info(format!(
-                        "loaded the cell α̇0²/γ̇0² {ratio:.3}, iy/ix {inertia:.3}"
+                        "loaded the cell alpha_dot0^2/gamma_dot0^2 {ratio:.3}, iy/ix {inertia:.3}"
                     ));
                     effects
                 }

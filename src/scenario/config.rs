@@ -9,6 +9,7 @@
 //! marker = "braille"         # braille, halfblock or dot
 //! sessions = "~/lectures"    # where R records (and x exports); ~ is the home folder
 //! mouse = true               # click in the portrait sets the start, the wheel zooms
+//! ascii = true               # ASCII only (as --ascii), for terminals without UTF-8
 //!
 //! [keys]                     # extra keys: action = "key" or ["key", "key"]
 //! zoom_in = "i"
@@ -27,8 +28,8 @@ use super::error::{PresetError, SourceMap};
 pub const FILE_NAME: &str = "config.toml";
 
 /// The keys of the top level.
-pub const KEYS: [&str; 7] = [
-    "preset", "theme", "fps", "marker", "sessions", "mouse", "keys",
+pub const KEYS: [&str; 8] = [
+    "preset", "theme", "fps", "marker", "sessions", "mouse", "ascii", "keys",
 ];
 
 /// The markers `marker` takes.
@@ -62,6 +63,8 @@ pub struct Config {
     pub sessions: Option<PathBuf>,
     /// Mouse on.
     pub mouse: bool,
+    /// ASCII only (`--ascii`).
+    pub ascii: bool,
     /// Extra key bindings.
     pub keys: Vec<KeyEntry>,
 }
@@ -70,6 +73,39 @@ pub struct Config {
 #[must_use]
 pub fn path() -> Option<PathBuf> {
     super::shipped::config_dir().map(|d| d.join(FILE_NAME))
+}
+
+/// The `[keys]` table's entries, each with its line.
+fn key_entries(
+    map: &SourceMap,
+    label: &str,
+    keys: &toml::Table,
+) -> Result<Vec<KeyEntry>, PresetError> {
+    let mut out = Vec::new();
+    for (action, v) in keys {
+        let at = map.find_key("keys", action).unwrap_or(1);
+        let bad = || PresetError::Invalid {
+            path: label.to_owned(),
+            line: Some(at),
+            key: Some(format!("keys.{action}")),
+            message: "expected a key in quotes or a list of them".to_owned(),
+        };
+        let list = match v {
+            toml::Value::String(s) => vec![s.clone()],
+            toml::Value::Array(a) => a
+                .iter()
+                .map(|k| k.as_str().map(str::to_owned))
+                .collect::<Option<Vec<_>>>()
+                .ok_or_else(bad)?,
+            _ => return Err(bad()),
+        };
+        out.push(KeyEntry {
+            action: action.clone(),
+            keys: list,
+            line: at,
+        });
+    }
+    Ok(out)
 }
 
 /// The folder recordings and exports go to by default: the platform's data folder
@@ -157,44 +193,21 @@ impl Config {
                     c.marker = Some(m);
                 }
                 "sessions" => c.sessions = Some(expand_home(&text()?)),
-                "mouse" => {
-                    c.mouse = value
+                "mouse" | "ascii" => {
+                    let on = value
                         .as_bool()
                         .ok_or_else(|| err(key, format!("{value}: allowed true or false")))?;
+                    if key == "mouse" {
+                        c.mouse = on;
+                    } else {
+                        c.ascii = on;
+                    }
                 }
                 "keys" => {
                     let Some(keys) = value.as_table() else {
                         return Err(err(key, "expected a [keys] table".to_owned()));
                     };
-                    for (action, v) in keys {
-                        let at = map.find_key("keys", action).unwrap_or(1);
-                        let bad = |message: String| PresetError::Invalid {
-                            path: label.to_owned(),
-                            line: Some(at),
-                            key: Some(format!("keys.{action}")),
-                            message,
-                        };
-                        let list = match v {
-                            toml::Value::String(s) => vec![s.clone()],
-                            toml::Value::Array(a) => a
-                                .iter()
-                                .map(|k| k.as_str().map(str::to_owned))
-                                .collect::<Option<Vec<_>>>()
-                                .ok_or_else(|| {
-                                    bad("expected a key in quotes or a list of them".to_owned())
-                                })?,
-                            _ => {
-                                return Err(bad(
-                                    "expected a key in quotes or a list of them".to_owned()
-                                ));
-                            }
-                        };
-                        c.keys.push(KeyEntry {
-                            action: action.clone(),
-                            keys: list,
-                            line: at,
-                        });
-                    }
+                    c.keys = key_entries(&map, label, keys)?;
                 }
                 other => {
                     return Err(err(
@@ -242,6 +255,7 @@ impl Config {
             &q(&default_sessions),
         );
         out += &line(self.mouse.then(|| "true".to_owned()), "mouse", "false");
+        out += &line(self.ascii.then(|| "true".to_owned()), "ascii", "false");
         out += "\n[keys]\n";
         if self.keys.is_empty() {
             out += "# zoom_in = \"i\"\n";

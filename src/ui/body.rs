@@ -352,6 +352,7 @@ mod tests {
             theme: &theme,
             marker: ratatui::symbols::Marker::Braille,
             no_color: false,
+            charset: crate::ui::glyphs::Charset::Unicode,
         };
         for theta in [-0.6, -0.2, -0.01, 0.0, 0.05, 0.3, 0.7] {
             let p = Profile {

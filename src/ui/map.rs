@@ -139,7 +139,7 @@ impl Widget for MapPane<'_> {
         }
         Paragraph::new(labels).render(y_axis, buf);
         let right = tick(g.ratio_max);
-        let axis = "alpha_dot0²/gamma_dot0²";
+        let axis = "alpha_dot0^2/gamma_dot0^2";
         let cursor = self.cursor_text().unwrap_or_default();
         let width = x_axis.width as usize;
         let room = width.saturating_sub(4 + right.len());

@@ -22,6 +22,7 @@
 mod body;
 mod compare;
 mod dialogs;
+pub mod glyphs;
 mod help;
 mod lesson;
 mod map;
@@ -268,6 +269,9 @@ pub struct UiOptions {
     pub themes: Vec<Theme>,
     /// `NO_COLOR`: every colour is off; shapes, density and bold tell the curves apart.
     pub no_color: bool,
+    /// What the terminal can show ([`glyphs::Charset::detect`]); other than Unicode, every
+    /// canvas draws one point per cell and every cell is folded into the set.
+    pub charset: glyphs::Charset,
 }
 
 impl Default for UiOptions {
@@ -276,6 +280,7 @@ impl Default for UiOptions {
             marker: Marker::Braille,
             themes: vec![Theme::default()],
             no_color: false,
+            charset: glyphs::Charset::Unicode,
         }
     }
 }
@@ -297,7 +302,14 @@ impl UiOptions {
             marker,
             themes,
             no_color,
+            charset: glyphs::Charset::Unicode,
         }
+    }
+
+    /// The same options for a terminal that shows `charset`.
+    #[must_use]
+    pub fn with_charset(self, charset: glyphs::Charset) -> Self {
+        Self { charset, ..self }
     }
 
     /// The theme names, in `T` order.
@@ -308,9 +320,15 @@ impl UiOptions {
 
     fn look(&self, theme: usize) -> Look<'_> {
         Look {
-            marker: self.marker,
+            // Braille and half blocks need glyphs only the Unicode set has.
+            marker: if self.charset == glyphs::Charset::Unicode {
+                self.marker
+            } else {
+                Marker::Dot
+            },
             theme: &self.themes[theme % self.themes.len().max(1)],
             no_color: self.no_color,
+            charset: self.charset,
         }
     }
 }
@@ -324,6 +342,8 @@ pub struct Look<'a> {
     pub theme: &'a Theme,
     /// No colours at all.
     pub no_color: bool,
+    /// What the terminal shows.
+    pub charset: glyphs::Charset,
 }
 
 impl Look<'_> {
@@ -403,6 +423,11 @@ pub fn portrait_point(cache: &Cache, column: u16, row: u16) -> Option<(f64, f64)
 
 /// Draws the whole screen from `app`; `cache` keeps the level sets between frames.
 pub fn draw(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mut Cache) {
+    draw_screen(frame, app, options, cache);
+    glyphs::fold_buffer(frame.buffer_mut(), options.charset);
+}
+
+fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mut Cache) {
     let look = options.look(app.view.theme);
     let area = frame.area();
     frame.render_widget(
@@ -604,7 +629,13 @@ fn draw_footer(frame: &mut Frame<'_>, area: Rect, hints: &[Hint], look: &Look) {
     let mut spans = Vec::new();
     for (i, (key, what, _)) in fit_hints(hints, area.width as usize).iter().enumerate() {
         if i > 0 {
-            spans.push(Span::styled(" · ", look.dim()));
+            // ASCII would fold `·` into `.`, which the keys use.
+            let sep = if look.charset == glyphs::Charset::Ascii {
+                " | "
+            } else {
+                " · "
+            };
+            spans.push(Span::styled(sep, look.dim()));
         }
         spans.push(Span::styled(
             *key,

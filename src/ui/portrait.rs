@@ -4,7 +4,9 @@
 //!
 //! The curves differ by shape as well as colour, so they read under `NO_COLOR`: background
 //! levels are dotted, the start's level dashed, the separatrix solid; the trail is a dense
-//! line of dots and the limit's overlay a row of `∘` marks.
+//! line of dots and the limit's overlay a row of `∘` marks. With one point per cell (`--marker
+//! dot`, the console, ASCII) each curve has its own character instead: `.` levels, `:` the
+//! start's level, `+` the separatrix, `•` the trail, `∘` the limit, `●` now.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -25,6 +27,34 @@ use crate::app::{RunState, Scenario, ViewState};
 const Y_LABELS: u16 = 8;
 /// Marks of the limit's overlay across the plot (about one per this many columns).
 const OVERLAY_MARK_EVERY: usize = 3;
+
+/// The characters of the portrait's curves when each cell holds one point (`--marker dot`, the
+/// Linux console, ASCII): one per curve, so they stay apart without colour. Folded further
+/// under ASCII (`•` → `*`), still distinct.
+#[derive(Clone, Copy, Debug)]
+struct CellMarks {
+    plain: char,
+    start: char,
+    separatrix: char,
+    trail: char,
+}
+
+const CELL_MARKS: CellMarks = CellMarks {
+    plain: '.',
+    start: ':',
+    separatrix: '+',
+    trail: '•',
+};
+
+impl CellMarks {
+    fn level(self, kind: LevelKind) -> char {
+        match kind {
+            LevelKind::Plain => self.plain,
+            LevelKind::Start => self.start,
+            LevelKind::Separatrix => self.separatrix,
+        }
+    }
+}
 
 /// Canvas cells per terminal cell for a marker.
 pub fn resolution(marker: Marker) -> (usize, usize) {
@@ -143,29 +173,16 @@ fn pane(p: &PortraitPane<'_>, area: Rect, buf: &mut Buffer, cache: &mut Cache) {
         Vec::new()
     };
     let current = p.run.current().map(to_xy);
+    let one_per_cell = (look.marker == Marker::Dot).then_some(CELL_MARKS);
     let canvas = Canvas::default()
         .marker(look.marker)
         .background_color(look.theme.background)
         .x_bounds(bounds.x)
         .y_bounds(bounds.y)
         .paint(move |ctx| {
-            for kind in [LevelKind::Plain, LevelKind::Start, LevelKind::Separatrix] {
-                let (color, every) = match kind {
-                    LevelKind::Plain => (theme.contour, 3),
-                    LevelKind::Start => (theme.start_level, 2),
-                    LevelKind::Separatrix => (theme.separatrix, 1),
-                };
-                for level in levels.iter().filter(|l| l.kind == kind) {
-                    for line in &level.lines {
-                        for (i, w) in line.windows(2).enumerate() {
-                            // Dotted, dashed or solid: readable without colour.
-                            if i % every == 0 {
-                                ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, color));
-                            }
-                        }
-                    }
-                }
-                ctx.layer();
+            draw_levels(ctx, levels, theme, one_per_cell);
+            if let Some(m) = one_per_cell {
+                ctx.marker(Marker::Custom(m.trail));
             }
             ctx.draw(&Points {
                 coords: &trail,
@@ -194,6 +211,36 @@ fn pane(p: &PortraitPane<'_>, area: Rect, buf: &mut Buffer, cache: &mut Cache) {
         });
     canvas.render(plot, buf);
     draw_axes(buf, y_axis, x_axis, plot, &bounds, look);
+}
+
+/// The level sets, each kind a layer: dotted, dashed or solid, so they read without colour;
+/// with one point per cell, each kind its own character too.
+fn draw_levels(
+    ctx: &mut ratatui::widgets::canvas::Context<'_>,
+    levels: &[Level],
+    theme: &super::Theme,
+    one_per_cell: Option<CellMarks>,
+) {
+    for kind in [LevelKind::Plain, LevelKind::Start, LevelKind::Separatrix] {
+        let (color, every) = match kind {
+            LevelKind::Plain => (theme.contour, 3),
+            LevelKind::Start => (theme.start_level, 2),
+            LevelKind::Separatrix => (theme.separatrix, 1),
+        };
+        if let Some(m) = one_per_cell {
+            ctx.marker(Marker::Custom(m.level(kind)));
+        }
+        for level in levels.iter().filter(|l| l.kind == kind) {
+            for line in &level.lines {
+                for (i, w) in line.windows(2).enumerate() {
+                    if i % every == 0 {
+                        ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, color));
+                    }
+                }
+            }
+        }
+        ctx.layer();
+    }
 }
 
 fn draw_axes(buf: &mut Buffer, y_axis: Rect, x_axis: Rect, plot: Rect, b: &Bounds, look: &Look) {

@@ -149,13 +149,13 @@ fn heading(weak: &WeakState, pendulum: bool) -> String {
             "average over w = {} within {:.2} % of {}",
             crate::study::svg::tick(weak.window),
             100.0 * weak.worst_deviation(),
-            if pendulum { "the limit's" } else { "θ" }
+            if pendulum { "the limit's" } else { "theta" }
         ),
     };
     let what = if pendulum {
         "theta_dot (dots), average (line), limit's theta_dot (dashed)"
     } else {
-        "gamma_dot²·g^1.5 (dots), average (line), θ (dashed)"
+        "gamma_dot^2*g^1.5 (dots), average (line), theta (dashed)"
     };
     format!("weak-*: {status} │ {what} │ < >")
 }

@@ -267,7 +267,7 @@ fn the_pendulum_draws_at_80x24_and_160x48_at_x1_and_top_speed() {
                     "{name}: {status}"
                 );
                 assert!(screen.contains("theta_dot"), "{name} {w}x{hgt}");
-                assert!(screen.contains("b²−2a"), "{name} {w}x{hgt}: the verdict");
+                assert!(screen.contains("b^2-2a"), "{name} {w}x{hgt}: the verdict");
                 assert!(
                     screen.contains("stable") || screen.contains("unstable"),
                     "{name}"

@@ -11,6 +11,7 @@ mod bench_study;
 mod bounded;
 mod budget;
 mod celt;
+mod charsets;
 mod cli_conventions;
 mod compare;
 mod convergence_order;

@@ -156,7 +156,7 @@ impl Posed for Problem {
         let s = self.start();
         let line = |label, value| SummaryLine { label, value };
         vec![
-            line("b²−2a", Shown::Number(Some(p.threshold()))),
+            line("b^2-2a", Shown::Number(Some(p.threshold()))),
             line(
                 "limit E",
                 Shown::Number(Some(limit.energy_of(s.theta, s.theta_dot))),

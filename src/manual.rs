@@ -1,0 +1,325 @@
+//! The manual's own sections, said once: `--help` prints the examples, the environment and the
+//! exit status after the options; `rattleback man` renders them, with the keys, the files and
+//! every subcommand, as one page (`rattleback.1`) that refers to no other page.
+
+use std::fmt::Write as _;
+
+use clap_mangen::roff::{Roff, bold, italic, roman};
+
+use crate::app::keys::{KEYMAP, MAP_KEYS, REPLAY_KEYMAP};
+
+/// `(command line, what it does)`.
+pub const EXAMPLES: &[(&str, &str)] = &[
+    (
+        "rattleback",
+        "open the explorer on the default preset (subcritical); ? lists the keys",
+    ),
+    (
+        "rattleback --preset celt-clockwise",
+        "open it on another preset (rattleback presets lists them)",
+    ),
+    (
+        "rattleback simulate --preset supercritical --format json",
+        "run one trajectory headless; the report as JSON",
+    ),
+    (
+        "rattleback --record lecture.jsonl",
+        "record a session while exploring",
+    ),
+    (
+        "rattleback follow lecture.jsonl",
+        "in a second terminal: follow it live, read-only",
+    ),
+    (
+        "rattleback replay lecture.jsonl --verify",
+        "check a recording bit for bit against a fresh run",
+    ),
+    (
+        "rattleback replay lecture.jsonl --export-cast lecture.cast",
+        "turn it into an asciinema cast",
+    ),
+    (
+        "rattleback compare subcritical celt-clockwise",
+        "the holonomic rattleback beside the rolling celt",
+    ),
+    (
+        "rattleback study sweep --preset subcritical",
+        "the distance to the limit against k, with its slope",
+    ),
+    (
+        "LANG=C rattleback --preset kapitza-just-above",
+        "ASCII only, for a terminal without UTF-8 (as --ascii)",
+    ),
+    (
+        "source <(rattleback completions bash)",
+        "complete commands, presets and themes in bash",
+    ),
+];
+
+/// `(variable, what it does)`.
+pub const ENVIRONMENT: &[(&str, &str)] = &[
+    (
+        "RATTLEBACK_CONFIG_DIR",
+        "the configuration folder instead of the platform's (config.toml, presets/, themes/, lessons/); recordings then go to its sessions/ folder",
+    ),
+    (
+        "NO_COLOR",
+        "set and not empty: no colours (under --color auto)",
+    ),
+    (
+        "CLICOLOR_FORCE",
+        "set, not empty and not 0: colours even where NO_COLOR is unset and CLICOLOR=0",
+    ),
+    ("CLICOLOR", "0: no colours (unless CLICOLOR_FORCE)"),
+    (
+        "LC_ALL, LC_CTYPE, LANG",
+        "the first one set: a locale that is not UTF-8 (C, POSIX, en_US.ISO-8859-1) draws in ASCII only (as --ascii)",
+    ),
+    (
+        "TERM",
+        "dumb: the explorer, replay, follow, compare and lesson refuse (headless commands work); linux: only the characters the console's fonts have (no Braille); vt100, vt102, vt220, ansi: ASCII only",
+    ),
+];
+
+/// `(path, what it holds)`, as on Linux.
+pub const FILES: &[(&str, &str)] = &[
+    (
+        "~/.config/rattleback/config.toml",
+        "the configuration: default preset, theme, fps, marker, sessions folder, mouse, ascii, extra keys (rattleback config show prints it; rattleback config path says where it is on this platform)",
+    ),
+    (
+        "~/.config/rattleback/presets/*.toml",
+        "the user's presets, listed beside the shipped ones by rattleback presets",
+    ),
+    (
+        "~/.config/rattleback/themes/*.toml",
+        "the user's colour themes (rattleback themes)",
+    ),
+    (
+        "~/.config/rattleback/lessons/*.toml",
+        "the user's lessons (rattleback lessons)",
+    ),
+    (
+        "~/.local/share/rattleback/sessions/",
+        "where R records and x exports when no path is given",
+    ),
+];
+
+/// `(code, when)`.
+pub const EXIT_STATUS: &[(&str, &str)] = &[
+    ("0", "success"),
+    (
+        "1",
+        "a run failed: an integration that could not continue, a recording that did not verify, simulate --strict that missed its tolerance, an output that could not be written, or no interactive terminal for the explorer",
+    ),
+    (
+        "2",
+        "bad input: an unknown flag or value, an invalid preset, theme, lesson, config or session file (every problem is named with its file, line and key), an output file that exists without --force, or work refused as over the budget",
+    ),
+    (
+        "128+N",
+        "ended by signal N (130 for Ctrl-C, 143 for SIGTERM), with the terminal restored and no half-written file",
+    ),
+];
+
+/// The text `--help` prints after the options.
+#[must_use]
+pub fn after_help() -> String {
+    let mut out = String::new();
+    let section = |out: &mut String, title: &str, rows: &[(&str, &str)]| {
+        let _ = writeln!(out, "{title}:");
+        for (what, why) in rows {
+            let _ = writeln!(out, "  {what}");
+            for line in wrap(why, 78) {
+                let _ = writeln!(out, "          {line}");
+            }
+        }
+        out.push('\n');
+    };
+    section(&mut out, "Examples", EXAMPLES);
+    section(&mut out, "Environment", ENVIRONMENT);
+    section(&mut out, "Exit status", EXIT_STATUS);
+    out += "Keys: ? in the explorer, or `rattleback man`. The guide: docs/guide.md.";
+    out
+}
+
+/// `text` in lines of at most `width` characters, broken at spaces.
+fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines = vec![String::new()];
+    for word in text.split_whitespace() {
+        let last = lines.last_mut().expect("one line");
+        if !last.is_empty() && last.chars().count() + 1 + word.chars().count() > width {
+            lines.push(word.to_owned());
+        } else {
+            if !last.is_empty() {
+                last.push(' ');
+            }
+            last.push_str(word);
+        }
+    }
+    lines
+}
+
+/// The whole manual page: clap's title, name, synopsis, description and options, then every
+/// subcommand with its own options, then KEYS, ENVIRONMENT, FILES, EXIT STATUS and EXAMPLES.
+///
+/// # Errors
+/// Writing into `w`.
+pub fn render(cmd: clap::Command, w: &mut dyn std::io::Write) -> std::io::Result<()> {
+    let cmd = cmd.after_long_help("");
+    let man = clap_mangen::Man::new(cmd.clone());
+    man.render_title(w)?;
+    man.render_name_section(w)?;
+    man.render_synopsis_section(w)?;
+    man.render_description_section(w)?;
+    man.render_options_section(w)?;
+    let mut roff = Roff::new();
+    roff.control("SH", ["COMMANDS"]);
+    for sub in cmd.get_subcommands().filter(|s| s.get_name() != "help") {
+        command(&mut roff, &[cmd.get_name()], sub);
+    }
+    roff.control("SH", ["KEYS"]);
+    roff.text([roman(
+        "In the explorer (? shows them with the colours of the curves):",
+    )]);
+    let key_rows = |roff: &mut Roff, rows: Vec<(&str, &str)>| {
+        for (keys, what) in rows {
+            roff.control("TP", []);
+            roff.text([bold(keys)]);
+            roff.text([roman(what)]);
+        }
+    };
+    let explorer = KEYMAP
+        .iter()
+        .filter(|b| !b.label.is_empty())
+        .map(|b| (b.label, b.help));
+    key_rows(&mut roff, explorer.collect());
+    roff.control("PP", []);
+    roff.text([roman("While the regime map (M) has the arrows:")]);
+    key_rows(&mut roff, MAP_KEYS.to_vec());
+    roff.control("PP", []);
+    roff.text([roman("In a replay:")]);
+    let replay = REPLAY_KEYMAP
+        .iter()
+        .filter(|b| !b.label.is_empty())
+        .map(|b| (b.label, b.help));
+    key_rows(&mut roff, replay.collect());
+    roff.control("PP", []);
+    roff.text([roman(
+        "Keys can be added in the [keys] table of config.toml (rattleback config show lists the actions).",
+    )]);
+    for (title, rows) in [
+        ("ENVIRONMENT", ENVIRONMENT),
+        ("FILES", FILES),
+        ("EXIT STATUS", EXIT_STATUS),
+    ] {
+        roff.control("SH", [title]);
+        for (what, why) in rows {
+            roff.control("TP", []);
+            roff.text([bold(*what)]);
+            roff.text([roman(*why)]);
+        }
+    }
+    roff.control("SH", ["EXAMPLES"]);
+    for (line, what) in EXAMPLES {
+        roff.control("TP", []);
+        roff.text([bold(*line)]);
+        roff.text([roman(*what)]);
+    }
+    roff.to_writer(w)?;
+    man.render_version_section(w)
+}
+
+/// One subcommand (and its own subcommands): a subsection with its usage, its description and
+/// its options.
+fn command(roff: &mut Roff, parents: &[&str], cmd: &clap::Command) {
+    let mut path = parents.to_vec();
+    path.push(cmd.get_name());
+    roff.control("SS", [path.join(" ").as_str()]);
+    let about = cmd
+        .get_long_about()
+        .or_else(|| cmd.get_about())
+        .map(ToString::to_string)
+        .unwrap_or_default();
+    let mut usage = vec![bold(path.join(" "))];
+    let mut words = Vec::new();
+    for arg in cmd.get_arguments().filter(|a| !a.is_hide_set()) {
+        let id = arg.get_id().as_str();
+        if id == "help" || id == "version" {
+            continue;
+        }
+        let word = usage_word(arg);
+        words.push(if arg.is_required_set() || arg.get_long().is_none() {
+            word
+        } else {
+            format!("[{word}]")
+        });
+    }
+    if cmd.has_subcommands() {
+        words.push(format!(
+            "{{{}}}",
+            cmd.get_subcommands()
+                .map(clap::Command::get_name)
+                .filter(|n| *n != "help")
+                .collect::<Vec<_>>()
+                .join("|")
+        ));
+    }
+    for w in &words {
+        usage.push(roman(" "));
+        usage.push(italic(w.as_str()));
+    }
+    roff.control("PP", []);
+    roff.text(usage);
+    roff.control("PP", []);
+    roff.text([roman(about)]);
+    for arg in cmd.get_arguments().filter(|a| !a.is_hide_set()) {
+        let id = arg.get_id().as_str();
+        if id == "help" || id == "version" {
+            continue;
+        }
+        roff.control("TP", []);
+        roff.text([bold(usage_word(arg))]);
+        let help = arg
+            .get_long_help()
+            .or_else(|| arg.get_help())
+            .map(ToString::to_string)
+            .unwrap_or_default();
+        let values: Vec<String> = arg
+            .get_possible_values()
+            .iter()
+            .filter(|v| !v.is_hide_set())
+            .map(|v| v.get_name().to_owned())
+            .collect();
+        let mut text = help;
+        if !values.is_empty() && arg.get_action().takes_values() {
+            let _ = write!(text, " [possible values: {}]", values.join(", "));
+        }
+        let defaults: Vec<String> = arg
+            .get_default_values()
+            .iter()
+            .map(|v| v.to_string_lossy().into_owned())
+            .collect();
+        if !defaults.is_empty() {
+            let _ = write!(text, " [default: {}]", defaults.join(","));
+        }
+        roff.text([roman(text)]);
+    }
+    for sub in cmd.get_subcommands().filter(|s| s.get_name() != "help") {
+        command(roff, &path, sub);
+    }
+}
+
+/// `--flag VALUE`, `-f`, or `NAME` for a positional argument.
+fn usage_word(arg: &clap::Arg) -> String {
+    let value = arg
+        .get_value_names()
+        .and_then(|v| v.first())
+        .map_or_else(|| arg.get_id().as_str().to_uppercase(), ToString::to_string);
+    match (arg.get_long(), arg.get_short()) {
+        (Some(l), _) if arg.get_action().takes_values() => format!("--{l} {value}"),
+        (Some(l), _) => format!("--{l}"),
+        (None, Some(s)) => format!("-{s}"),
+        (None, None) => value,
+    }
+}
