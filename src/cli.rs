@@ -178,6 +178,21 @@ pub enum Command {
     /// Where the configuration file is (`config path`) or what it sets (`config show`).
     #[command(subcommand)]
     Config(ConfigCommand),
+    /// What this terminal and machine look like to the program and what the explorer would
+    /// choose here (characters, colours, marker, preset, theme, folders), each with why: paste
+    /// it into a bug report. Takes the explorer's look flags to show their effect.
+    Doctor(DoctorArgs),
+}
+
+/// Arguments of `doctor`.
+#[derive(Debug, Args)]
+pub struct DoctorArgs {
+    /// As the explorer would take them.
+    #[command(flatten)]
+    pub look: LookArgs,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = ListFormat::Table)]
+    pub format: ListFormat,
 }
 
 /// Arguments of `keygen`.
@@ -434,7 +449,8 @@ pub struct ListArgs {
 /// Output format of `presets`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ListFormat {
-    /// An array of objects with `name`, `title`, `source`, `path`, `description`.
+    /// One object: `schema_version`, `model` (`null` for a list) and the entries (`presets`,
+    /// `themes`, `lessons`), each with `name`, `title`, `source`, `path`…
     Json,
     /// For people.
     Table,

@@ -58,8 +58,14 @@ pub fn presets(args: &PresetsArgs) -> ExitCode {
         };
     }
     let (entries, problems) = catalogue();
+    let json = crate::outputs::PresetList {
+        schema_version: crate::outputs::SCHEMA_VERSION,
+        model: None,
+        presets: entries.clone(),
+    };
     print_list(
         &entries,
+        &json,
         args.format,
         &|e| {
             format!(
@@ -76,23 +82,13 @@ pub fn presets(args: &PresetsArgs) -> ExitCode {
     )
 }
 
-/// One row of `rattleback themes`.
-#[derive(serde::Serialize)]
-struct ThemeEntry {
-    name: String,
-    title: String,
-    source: &'static str,
-    path: String,
-    description: String,
-}
-
 /// `rattleback themes`: every theme, like `presets`.
 #[must_use]
 pub fn themes(args: &ListArgs) -> ExitCode {
     use crate::scenario::theme::{SHIPPED_THEMES, themes};
     let (all, problems) = themes();
     let user_dir = crate::scenario::shipped::config_dir().map(|d| d.join("themes"));
-    let entries: Vec<ThemeEntry> = all
+    let entries: Vec<crate::outputs::ThemeEntry> = all
         .into_iter()
         .map(|(name, spec)| {
             let user = user_dir
@@ -106,7 +102,7 @@ pub fn themes(args: &ListArgs) -> ExitCode {
                 }
                 None => ("user", String::new()),
             };
-            ThemeEntry {
+            crate::outputs::ThemeEntry {
                 title: spec.name.clone(),
                 description: spec.description.clone(),
                 name,
@@ -115,8 +111,14 @@ pub fn themes(args: &ListArgs) -> ExitCode {
             }
         })
         .collect();
+    let json = crate::outputs::ThemeList {
+        schema_version: crate::outputs::SCHEMA_VERSION,
+        model: None,
+        themes: entries,
+    };
     print_list(
-        &entries,
+        &json.themes,
+        &json,
         args.format,
         &|e| {
             format!(
@@ -132,8 +134,14 @@ pub fn themes(args: &ListArgs) -> ExitCode {
 #[must_use]
 pub fn lessons(args: &ListArgs) -> ExitCode {
     let (entries, problems) = crate::scenario::lesson::catalogue();
+    let json = crate::outputs::LessonList {
+        schema_version: crate::outputs::SCHEMA_VERSION,
+        model: None,
+        lessons: entries,
+    };
     print_list(
-        &entries,
+        &json.lessons,
+        &json,
         args.format,
         &|e| {
             format!(
@@ -188,6 +196,38 @@ pub fn completions(shell: clap_complete::Shell) -> ExitCode {
     write_stdout(&out)
 }
 
+/// `rattleback doctor`.
+#[must_use]
+pub fn doctor(args: &crate::cli::DoctorArgs) -> ExitCode {
+    let var = |name: &str| std::env::var(name).ok();
+    let look = &args.look;
+    let asked = crate::doctor::Asked {
+        ascii: look.ascii,
+        colours_off: look.color.colours_off(
+            var("NO_COLOR").as_deref(),
+            var("CLICOLOR").as_deref(),
+            var("CLICOLOR_FORCE").as_deref(),
+        ),
+        color_flag: match look.color {
+            crate::cli::ColorChoice::Auto => "auto",
+            crate::cli::ColorChoice::Always => "always",
+            crate::cli::ColorChoice::Never => "never",
+        },
+        marker: look.marker.map(|m| match m {
+            crate::cli::MarkerChoice::Braille => "braille",
+            crate::cli::MarkerChoice::Halfblock => "halfblock",
+            crate::cli::MarkerChoice::Dot => "dot",
+        }),
+        config: None,
+    };
+    let d = crate::doctor::diagnose(&asked);
+    let text = match args.format {
+        ListFormat::Json => json_text(&d),
+        ListFormat::Table => crate::scenario::text::clean(&d.table()),
+    };
+    write_stdout(text.as_bytes())
+}
+
 /// `rattleback man`.
 #[must_use]
 pub fn man() -> ExitCode {
@@ -198,6 +238,16 @@ pub fn man() -> ExitCode {
         return ExitCode::from(1);
     }
     write_stdout(&out)
+}
+
+/// An output as pretty JSON with a final newline, control characters escaped (text from files
+/// is untrusted).
+fn json_text(value: &impl serde::Serialize) -> String {
+    // Outputs are plain data (strings, numbers, vectors): serializing them cannot fail.
+    let text = serde_json::to_string_pretty(value).unwrap_or_default();
+    let mut s = crate::scenario::text::json_safe(&text);
+    s.push('\n');
+    s
 }
 
 fn write_stdout(bytes: &[u8]) -> ExitCode {
@@ -213,22 +263,18 @@ fn write_stdout(bytes: &[u8]) -> ExitCode {
     }
 }
 
-/// Prints a list as JSON (an array of objects) or as a table (`row` per entry), then the
-/// problems found; exit 2 if any (`presets`, `themes`, `lessons`).
-fn print_list<T: serde::Serialize>(
+/// Prints a list as JSON (`json`: the entries under `schema_version` and `model`) or as a
+/// table (`row` per entry), then the problems found; exit 2 if any (`presets`, `themes`,
+/// `lessons`).
+fn print_list<T>(
     entries: &[T],
+    json: &impl serde::Serialize,
     format: ListFormat,
     row: &dyn Fn(&T) -> String,
     problems: &[PresetError],
 ) -> ExitCode {
     let out = match format {
-        ListFormat::Json => {
-            let mut s = crate::scenario::text::json_safe(
-                &serde_json::to_string_pretty(entries).unwrap_or_else(|_| "[]".to_owned()),
-            );
-            s.push('\n');
-            s
-        }
+        ListFormat::Json => json_text(json),
         ListFormat::Table => entries.iter().map(row).collect(),
     };
     say_raw!("{out}");
@@ -565,23 +611,20 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
     }
     let printed = match args.common.format {
         crate::cli::Format::Json => {
-            let v = serde_json::json!({
-                "preset": preset.name,
-                "model": model.kind().name(),
-                "t_end": t_end,
-                "tolerance": tolerance,
-                column: s.stiffness(),
-                "sup_error": s.sup_error(),
-                "slope": s.slope,
-                "methods": s.rungs.iter().map(|r| r.method.name()).collect::<Vec<_>>(),
-                "estimates": s.rungs.iter().map(|r| r.estimate).collect::<Vec<_>>(),
-            });
-            emit(&format!(
-                "{}\n",
-                crate::scenario::text::json_safe(
-                    &serde_json::to_string_pretty(&v).expect("serializes")
-                )
-            ))
+            let ladder = s.stiffness();
+            emit(&json_text(&crate::outputs::Sweep {
+                schema_version: crate::outputs::SCHEMA_VERSION,
+                model: model.kind(),
+                preset: preset.name.clone(),
+                t_end,
+                tolerance,
+                stiffness: (column == "stiffness").then(|| ladder.clone()),
+                epsilon: (column != "stiffness").then_some(ladder),
+                sup_error: s.sup_error(),
+                slope: s.slope,
+                methods: s.rungs.iter().map(|r| r.method.name()).collect(),
+                estimates: s.rungs.iter().map(|r| r.estimate).collect(),
+            }))
         }
         crate::cli::Format::Csv => emit(&crate::scenario::text::clean(&csv)),
         crate::cli::Format::Table => emit(&crate::scenario::text::clean(&sweep_table(
@@ -743,10 +786,11 @@ fn study_map(args: &crate::cli::MapArgs) -> ExitCode {
         let _ = writeln!(csv, "{},{},{}", c.ratio, c.inertia_ratio, c.reversals);
     }
     let printed = match args.common.format {
-        crate::cli::Format::Json => emit(&format!(
-            "{}\n",
-            crate::scenario::text::json_safe(&serde_json::to_string(&map).expect("serializes"))
-        )),
+        crate::cli::Format::Json => emit(&json_text(&crate::outputs::Map {
+            schema_version: crate::outputs::SCHEMA_VERSION,
+            model: model.kind(),
+            map: map.clone(),
+        })),
         crate::cli::Format::Csv => emit(&csv),
         crate::cli::Format::Table => emit(&map_table(&grid, &map)),
     };

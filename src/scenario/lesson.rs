@@ -168,7 +168,7 @@ pub struct Lesson {
 }
 
 /// Shipped or the user's.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Source {
     /// Inside the binary.
@@ -178,7 +178,8 @@ pub enum Source {
 }
 
 /// One row of `rattleback lessons`.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
 pub struct Entry {
     /// What `rattleback lesson` takes.
     pub name: String,

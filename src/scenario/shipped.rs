@@ -143,7 +143,7 @@ pub fn shipped_names() -> String {
 }
 
 /// Where a preset comes from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Source {
     /// Inside the binary.
@@ -153,7 +153,8 @@ pub enum Source {
 }
 
 /// One entry of the catalogue.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
 pub struct Entry {
     /// What `--preset` takes (the file stem).
     pub name: String,

@@ -125,7 +125,8 @@ impl Grid {
 }
 
 /// One cell.
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Copy, Debug, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
 pub struct Cell {
     /// `α̇0²/γ̇0²`.
     pub ratio: f64,
@@ -136,7 +137,8 @@ pub struct Cell {
 }
 
 /// A point of the critical curve.
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Copy, Debug, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
 pub struct CriticalPoint {
     /// `iy/ix`.
     pub inertia_ratio: f64,
@@ -145,7 +147,7 @@ pub struct CriticalPoint {
 }
 
 /// A computed map, cells row by row (row 0 the smallest inertia ratio).
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, schemars::JsonSchema)]
 pub struct RegimeMap {
     /// The cells.
     pub cells: Vec<Cell>,

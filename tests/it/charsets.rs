@@ -167,3 +167,53 @@ fn an_exported_cast_is_ascii_with_the_flag() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `rattleback doctor` reports the same decisions the explorer makes, with the reason.
+#[test]
+fn doctor_says_what_was_chosen_and_why() {
+    let run = |env: &[(&str, &str)], args: &[&str]| -> serde_json::Value {
+        let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"));
+        cmd.args(["doctor", "--format", "json"]).args(args);
+        for name in ["LC_ALL", "LC_CTYPE", "LANG", "TERM", "NO_COLOR", "CLICOLOR"] {
+            cmd.env_remove(name);
+        }
+        cmd.envs(env.iter().copied());
+        let out = cmd.output().unwrap();
+        assert!(out.status.success());
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let d = run(&[("LANG", "C"), ("TERM", "xterm")], &[]);
+    assert_eq!(d["chosen"]["characters"], "ascii");
+    assert!(
+        d["chosen"]["characters_because"]
+            .as_str()
+            .unwrap()
+            .contains("LANG=C")
+    );
+    let d = run(&[("LANG", "C.UTF-8"), ("TERM", "linux")], &[]);
+    assert_eq!(d["chosen"]["characters"], "console");
+    let d = run(
+        &[("LANG", "C.UTF-8"), ("TERM", "xterm-256color")],
+        &["--ascii"],
+    );
+    assert_eq!(d["chosen"]["characters"], "ascii");
+    let d = run(&[("LANG", "C.UTF-8"), ("TERM", "xterm-256color")], &[]);
+    assert_eq!(d["chosen"]["characters"], "unicode");
+    assert_eq!(d["chosen"]["colours"], true);
+    let d = run(&[("NO_COLOR", "1")], &[]);
+    assert_eq!(d["chosen"]["colours"], false);
+    let d = run(&[("TERM", "dumb")], &[]);
+    assert_eq!(d["chosen"]["explorer"], "refused: TERM=dumb");
+    // An invalid config file is named, with its problem.
+    let dir = std::env::temp_dir().join(format!("rattleback-doctor-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("config.toml"), "fsp = 20\n").unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        .args(["doctor"])
+        .env("RATTLEBACK_CONFIG_DIR", &dir)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("invalid") && text.contains("fps"), "{text}");
+    std::fs::remove_dir_all(&dir).ok();
+}

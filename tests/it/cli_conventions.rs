@@ -183,7 +183,7 @@ fn presets_show_prints_a_preset_to_copy_and_themes_lists_themes() {
     let (code, out, err) = bin(&["themes", "--format", "json"]);
     assert_eq!(code, 0, "{err}");
     let list: serde_json::Value = serde_json::from_str(&out).unwrap();
-    let names: Vec<&str> = list
+    let names: Vec<&str> = list["themes"]
         .as_array()
         .unwrap()
         .iter()
@@ -191,7 +191,7 @@ fn presets_show_prints_a_preset_to_copy_and_themes_lists_themes() {
         .collect();
     assert_eq!(names, ["default", "dark", "light", "high-contrast"]);
     for key in ["title", "source", "path", "description"] {
-        assert!(list[0].get(key).is_some(), "{key}");
+        assert!(list["themes"][0].get(key).is_some(), "{key}");
     }
     let (code, out, _) = bin(&["themes"]);
     assert_eq!(code, 0);

@@ -27,7 +27,7 @@ fn the_shipped_lessons_parse_and_are_listed() {
     let (code, out, err) = bin(&["lessons", "--format", "json"]);
     assert_eq!(code, 0, "{err}");
     let list: serde_json::Value = serde_json::from_str(&out).unwrap();
-    let first = &list[0];
+    let first = &list["lessons"][0];
     assert_eq!(first["name"], "first-reversal");
     assert_eq!(first["source"], "shipped");
     assert_eq!(first["steps"], 4);

@@ -60,7 +60,7 @@ fn presets_lists_name_source_path_description_as_json() {
     let (code, out, err) = bin(&["presets", "--format", "json"]);
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-    let list = v.as_array().unwrap();
+    let list = v["presets"].as_array().unwrap();
     assert_eq!(list.len(), SHIPPED.len());
     for e in list {
         for key in ["name", "source", "path", "description"] {

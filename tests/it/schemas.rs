@@ -202,3 +202,93 @@ fn the_preset_reference_is_generated_from_the_tables() {
         assert!(want.contains(&format!("`{key}`")), "{key}");
     }
 }
+
+/// Issue 28: every JSON output begins with `schema_version` and `model` and has a JSON Schema,
+/// generated from its type and checked in (`cargo run --example output_schemas`); real outputs
+/// of each command validate, and a bent one does not.
+#[test]
+fn every_other_json_output_has_its_version_model_and_schema() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/schemas");
+    let mut validators = std::collections::BTreeMap::new();
+    for (name, text) in rattleback::outputs::schemas() {
+        let path = dir.join(format!("{name}.schema.json"));
+        let on_disk = std::fs::read_to_string(&path).unwrap_or_default();
+        assert_eq!(
+            on_disk,
+            text,
+            "{}: regenerate with `cargo run --example output_schemas`",
+            path.display()
+        );
+        let value: Value = serde_json::from_str(&text).unwrap();
+        validators.insert(name, jsonschema::draft202012::new(&value).unwrap());
+    }
+    // A user preset, theme and lesson, so the lists hold both sources.
+    let config = std::env::temp_dir().join(format!("rattleback-outputs-{}", std::process::id()));
+    for sub in ["presets", "themes", "lessons"] {
+        std::fs::create_dir_all(config.join(sub)).unwrap();
+    }
+    let preset = rattleback::scenario::shipped::source_text("subcritical").unwrap();
+    let preset = preset.replace("name = \"Subcritical start\"", "name = \"Mine\"");
+    assert!(preset.contains("\"Mine\""));
+    std::fs::write(config.join("presets/mine.toml"), preset).unwrap();
+    let runs: &[(&str, &[&str])] = &[
+        ("presets", &["presets", "--format", "json"]),
+        ("themes", &["themes", "--format", "json"]),
+        ("lessons", &["lessons", "--format", "json"]),
+        (
+            "sweep",
+            &[
+                "study", "sweep", "--format", "json", "--ladder", "10,100", "--t-end", "2",
+            ],
+        ),
+        (
+            "sweep",
+            &[
+                "study",
+                "sweep",
+                "--preset",
+                "kapitza-upright",
+                "--format",
+                "json",
+                "--ladder",
+                "0.1,0.05",
+                "--t-end",
+                "2",
+            ],
+        ),
+        (
+            "map",
+            &[
+                "study", "map", "--format", "json", "--grid", "4x3", "--t-end", "2",
+            ],
+        ),
+        ("doctor", &["doctor", "--format", "json"]),
+    ];
+    for (schema, args) in runs {
+        let (code, out, err) = crate::common::bin_in(&config, args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        // The first two keys, as printed.
+        let keys: Vec<&str> = out
+            .lines()
+            .filter_map(|l| l.trim_start().strip_prefix('"'))
+            .filter_map(|l| l.split('"').next())
+            .take(2)
+            .collect();
+        let compact_first = out.trim_start().starts_with("{\"schema_version\":");
+        assert!(
+            keys == ["schema_version", "model"] || compact_first,
+            "{args:?}: begins with {keys:?}"
+        );
+        let value: Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(value["schema_version"], rattleback::outputs::SCHEMA_VERSION);
+        assert!(value.get("model").is_some(), "{args:?}: no model");
+        check(&validators[schema], &format!("{args:?}"), &value);
+        let mut bent = value.clone();
+        bent["surprise"] = Value::from(1);
+        assert!(
+            !validators[schema].is_valid(&bent),
+            "{args:?}: accepts a stray field"
+        );
+    }
+    std::fs::remove_dir_all(&config).ok();
+}

@@ -43,7 +43,7 @@ fn user_folder_end_to_end() {
     let (code, out, _) = bin(&config, &["presets", "--format", "json"]);
     assert_eq!(code, 0);
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-    let mine = v
+    let mine = v["presets"]
         .as_array()
         .unwrap()
         .iter()
