@@ -39,6 +39,10 @@ pub struct Cli {
     /// Recording.
     #[command(flatten)]
     pub rec: RecordArgs,
+    /// Read this configuration file instead of `config.toml` in the config folder (`rattleback
+    /// config path`); it must exist. Goes before or after any command.
+    #[arg(long, global = true, value_name = "FILE")]
+    pub config: Option<std::path::PathBuf>,
 }
 
 /// How the explorer records: `--record FILE [--force] [--sign KEYFILE]`.

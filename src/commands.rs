@@ -218,7 +218,6 @@ pub fn doctor(args: &crate::cli::DoctorArgs) -> ExitCode {
             crate::cli::MarkerChoice::Halfblock => "halfblock",
             crate::cli::MarkerChoice::Dot => "dot",
         }),
-        config: None,
     };
     let d = crate::doctor::diagnose(&asked);
     let text = match args.format {
@@ -850,28 +849,53 @@ pub fn load_config() -> Result<
         crate::scenario::config::Config,
         crate::app::user_keys::UserKeys,
     ),
-    String,
+    Vec<String>,
 > {
-    let config = crate::scenario::config::Config::load().map_err(|e| e.to_string())?;
+    // The keys that did parse are still checked, so every problem is said at once.
+    let (config, problems) = crate::scenario::config::Config::load_all();
+    let mut errors: Vec<(usize, String)> = problems
+        .iter()
+        .map(|e| match e {
+            crate::scenario::PresetError::Invalid { line, .. } => {
+                (line.unwrap_or(0), e.to_string())
+            }
+            _ => (0, e.to_string()),
+        })
+        .collect();
     let entries: Vec<(String, Vec<String>)> = config
         .keys
         .iter()
         .map(|k| (k.action.clone(), k.keys.clone()))
         .collect();
-    let keys = crate::app::user_keys::UserKeys::parse(&entries).map_err(|(i, message)| {
-        let entry = &config.keys[i];
-        crate::scenario::PresetError::Invalid {
-            path: config
-                .path
-                .as_ref()
-                .map_or_else(String::new, |p| p.display().to_string()),
-            line: Some(entry.line),
-            key: Some(format!("keys.{}", entry.action)),
-            message,
+    let keys = match crate::app::user_keys::UserKeys::parse(&entries) {
+        Ok(k) => k,
+        Err(bad) => {
+            for (i, message) in bad {
+                let entry = &config.keys[i];
+                errors.push((
+                    entry.line,
+                    crate::scenario::PresetError::Invalid {
+                        path: config
+                            .path
+                            .as_ref()
+                            .map_or_else(String::new, |p| p.display().to_string()),
+                        line: Some(entry.line),
+                        key: Some(format!("keys.{}", entry.action)),
+                        message,
+                    }
+                    .to_string(),
+                ));
+            }
+            crate::app::user_keys::UserKeys::default()
         }
-        .to_string()
-    })?;
-    Ok((config, keys))
+    };
+    if errors.is_empty() {
+        Ok((config, keys))
+    } else {
+        // In the file's order.
+        errors.sort_by_key(|(line, _)| *line);
+        Err(errors.into_iter().map(|(_, e)| e).collect())
+    }
 }
 
 /// `rattleback config path|show`.
@@ -905,8 +929,10 @@ pub fn config(command: &crate::cli::ConfigCommand) -> ExitCode {
                 say_raw!("{origin}\n{}", c.to_toml());
                 ExitCode::SUCCESS
             }
-            Err(e) => {
-                say_err!("rattleback: error: {e}");
+            Err(errors) => {
+                for e in errors {
+                    say_err!("rattleback: error: {e}");
+                }
                 ExitCode::from(2)
             }
         },

@@ -115,24 +115,17 @@ pub struct Asked {
     pub color_flag: &'static str,
     /// `--marker`, if given.
     pub marker: Option<&'static str>,
-    /// `--config FILE`, if given.
-    pub config: Option<std::path::PathBuf>,
 }
 
 /// Looks at the environment, the terminal and the configuration.
 #[must_use]
 pub fn diagnose(asked: &Asked) -> Diagnosis {
     let var = |name: &str| std::env::var(name).ok();
-    let (config, config_status) = match &asked.config {
-        Some(p) => match Config::read(p) {
-            Ok(c) => (c, "valid".to_owned()),
-            Err(e) => (Config::default(), format!("invalid: {e}")),
-        },
-        None => match Config::load() {
-            Ok(c) if c.path.is_some() => (c, "valid".to_owned()),
-            Ok(c) => (c, "absent: the defaults".to_owned()),
-            Err(e) => (Config::default(), format!("invalid: {e}")),
-        },
+    // `--config FILE` is already in effect: `load` reads it.
+    let (config, config_status) = match Config::load() {
+        Ok(c) if c.path.is_some() => (c, "valid".to_owned()),
+        Ok(c) => (c, "absent: the defaults".to_owned()),
+        Err(e) => (Config::default(), invalid(&e)),
     };
     let detected = Charset::detect(asked.ascii || config.ascii, &var);
     let explorer = if var("TERM").as_deref() == Some("dumb") {
@@ -200,11 +193,7 @@ pub fn diagnose(asked: &Asked) -> Diagnosis {
         files: Files {
             config_dir: config_dir.as_ref().map(|d| d.display().to_string()),
             config_dir_variable: var(shipped::CONFIG_ENV),
-            config_file: asked
-                .config
-                .clone()
-                .or_else(config::path)
-                .map(|p| p.display().to_string()),
+            config_file: config::path().map(|p| p.display().to_string()),
             config_status,
             user_presets: count(shipped::user_preset_dir()),
             user_themes: count(config_dir.as_ref().map(|d| d.join("themes"))),
@@ -212,6 +201,11 @@ pub fn diagnose(asked: &Asked) -> Diagnosis {
             sessions: config.sessions_dir().map(|d| d.display().to_string()),
         },
     }
+}
+
+fn invalid(errors: &[crate::scenario::PresetError]) -> String {
+    let all: Vec<String> = errors.iter().map(ToString::to_string).collect();
+    format!("invalid: {}", all.join("; "))
 }
 
 /// The terminal and its variables.

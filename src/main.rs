@@ -26,7 +26,17 @@ macro_rules! say_err {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = Cli::parse_from(config_last(std::env::args_os().collect()));
+    if let Some(file) = &cli.config {
+        if !file.is_file() {
+            say_err!(
+                "rattleback: error: --config {}: no such file (`rattleback config show > FILE` writes one to start from)",
+                file.display()
+            );
+            return ExitCode::from(2);
+        }
+        rattleback::scenario::config::use_file(file.clone());
+    }
     match cli.command {
         Some(Command::Simulate(args)) => run_simulate(&args),
         Some(Command::Presets(args)) => commands::presets(&args),
@@ -46,6 +56,29 @@ fn main() -> ExitCode {
         Some(Command::Study(ref command)) => commands::study(command),
         None => run_explorer(&cli),
     }
+}
+
+/// The command line with a leading `--config FILE` (or `--config=FILE`) moved to the end: the
+/// explorer's own flags conflict with a subcommand (`rattleback --preset X simulate` is
+/// refused), and clap counts a global flag before the subcommand among them.
+fn config_last(mut args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsString> {
+    let mut moved = Vec::new();
+    let mut i = 1;
+    while i < args.len() {
+        let a = args[i].to_string_lossy();
+        if a == "--" || !a.starts_with('-') {
+            break;
+        }
+        if a == "--config" && i + 1 < args.len() {
+            moved.extend(args.drain(i..i + 2));
+        } else if a.starts_with("--config=") {
+            moved.push(args.remove(i));
+        } else {
+            i += 1;
+        }
+    }
+    args.extend(moved);
+    args
 }
 
 /// Refuses an output that exists (unless `force`) or that is `input` itself.
@@ -308,8 +341,10 @@ fn replay_theme(asked: Option<&str>, recorded: &record::ThemeRef) -> String {
 /// The configuration and the user's keys, or the exit of an invalid `config.toml` (its error
 /// said on stderr).
 fn config_or_exit() -> Result<(Config, UserKeys), ExitCode> {
-    commands::load_config().map_err(|e| {
-        say_err!("rattleback: error: {e}");
+    commands::load_config().map_err(|errors| {
+        for e in errors {
+            say_err!("rattleback: error: {e}");
+        }
         ExitCode::from(2)
     })
 }

@@ -88,6 +88,10 @@ pub const FILES: &[(&str, &str)] = &[
         "the configuration: default preset, theme, fps, marker, sessions folder, mouse, ascii, extra keys (rattleback config show prints it; rattleback config path says where it is on this platform)",
     ),
     (
+        "--config FILE",
+        "read FILE instead of config.toml (before or after any command)",
+    ),
+    (
         "~/.config/rattleback/presets/*.toml",
         "the user's presets, listed beside the shipped ones by rattleback presets",
     ),
@@ -206,7 +210,7 @@ pub fn render(cmd: clap::Command, w: &mut dyn std::io::Write) -> std::io::Result
     key_rows(&mut roff, replay.collect());
     roff.control("PP", []);
     roff.text([roman(
-        "Keys can be added in the [keys] table of config.toml (rattleback config show lists the actions).",
+        "Keys are added, moved or unbound in the [keys] table of config.toml: action = \"key\" adds one; \"none\" first takes the action's own keys away (presets = [\"none\", \"P\"]), which frees them for another. rattleback config show lists the actions.",
     )]);
     for (title, rows) in [
         ("ENVIRONMENT", ENVIRONMENT),

@@ -2,7 +2,7 @@
 //! replay's and the recording's state; and the text helpers the app and the UI share.
 
 use super::journal::Event;
-use super::keys::{self, Action, Key};
+use super::keys::{Action, Key};
 use super::panes::Panes;
 use super::portrait::View;
 use super::user_keys;
@@ -33,7 +33,7 @@ impl Options {
     /// The action of `key`: the user's binding, else the keymap's.
     #[must_use]
     pub fn action_for(&self, key: Key) -> Option<Action> {
-        self.keys.action_for(key).or_else(|| keys::action_for(key))
+        self.keys.resolve(key)
     }
 }
 

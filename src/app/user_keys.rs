@@ -132,67 +132,77 @@ pub fn key_label(key: Key) -> String {
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct UserKeys {
     bindings: Vec<(Key, Action)>,
+    /// Actions whose default keys are gone (`"none"` first in their entry).
+    replaced: Vec<Action>,
 }
 
+/// What `[keys]` writes to take an action's default keys away.
+pub const NONE: &str = "none";
+
 impl UserKeys {
-    /// Checks `(action name, keys)` entries; an error gives the entry's index and why.
+    /// Checks `(action name, keys)` entries. Keys are added to the action's defaults; `"none"`
+    /// first takes the defaults away (`presets = "none"`; `toggle_play = ["none", "p"]`
+    /// moves it), which frees them for other actions. Every problem is returned, each with its
+    /// entry's index.
     ///
     /// # Errors
-    /// An unknown action, a malformed key, a key the explorer already uses, or a key given twice.
-    pub fn parse(entries: &[(String, Vec<String>)]) -> Result<Self, (usize, String)> {
-        let mut bindings: Vec<(Key, Action)> = Vec::new();
-        for (i, (name, keys)) in entries.iter().enumerate() {
-            let Some(action) = ACTION_NAMES
+    /// An unknown action, a malformed key, `"none"` after a key, a key another action holds (and
+    /// keeps), or a key given twice.
+    pub fn parse(entries: &[(String, Vec<String>)]) -> Result<Self, Vec<(usize, String)>> {
+        let mut errors = Vec::new();
+        let mut actions = Vec::new();
+        for (i, (name, _)) in entries.iter().enumerate() {
+            let found = ACTION_NAMES
                 .iter()
                 .find(|(_, n)| n == name)
-                .map(|(a, _)| *a)
-            else {
-                return Err((
-                    i,
-                    format!(
-                        "unknown action `{name}`{}; allowed: {}",
-                        crate::scenario::text::did_you_mean(
-                            name,
-                            ACTION_NAMES.iter().map(|(_, n)| *n)
-                        ),
-                        ACTION_NAMES
-                            .iter()
-                            .map(|(_, n)| *n)
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    ),
-                ));
-            };
-            for text in keys {
-                let key = parse_key(text).map_err(|e| (i, e))?;
-                if key == Key::Ctrl('c') {
-                    return Err((i, "Ctrl-C always quits; choose another key".to_owned()));
-                }
-                if let Some(b) = KEYMAP.iter().find(|b| b.keys.contains(&key)) {
-                    if b.action == action {
-                        continue;
+                .map(|(a, _)| *a);
+            if found.is_none() {
+                errors.push((i, unknown_action(name)));
+            }
+            actions.push(found);
+        }
+        let replaced: Vec<Action> = entries
+            .iter()
+            .zip(&actions)
+            .filter(|((_, keys), _)| keys.first().is_some_and(|k| k.eq_ignore_ascii_case(NONE)))
+            .filter_map(|(_, a)| *a)
+            .collect();
+        let mut bindings: Vec<(Key, Action)> = Vec::new();
+        for (i, ((_, keys), action)) in entries.iter().zip(&actions).enumerate() {
+            let Some(action) = *action else { continue };
+            for (j, text) in keys.iter().enumerate() {
+                if text.eq_ignore_ascii_case(NONE) {
+                    if j > 0 {
+                        errors.push((i, "\"none\" goes first: it takes the action's default keys away, then the keys after it are its own".to_owned()));
                     }
-                    return Err((
-                        i,
-                        format!(
-                            "'{text}' is already bound to {}; choose a free key",
-                            action_name(b.action).replace('_', " ")
-                        ),
-                    ));
+                    continue;
                 }
-                if let Some((_, other)) = bindings.iter().find(|(k, _)| *k == key) {
-                    return Err((
-                        i,
-                        format!(
-                            "'{text}' is given twice (also to `{}`)",
-                            action_name(*other)
-                        ),
-                    ));
+                match bind(text, action, &replaced, &bindings) {
+                    Ok(Some(key)) => bindings.push((key, action)),
+                    Ok(None) => {}
+                    Err(e) => errors.push((i, e)),
                 }
-                bindings.push((key, action));
             }
         }
-        Ok(Self { bindings })
+        if errors.is_empty() {
+            Ok(Self { bindings, replaced })
+        } else {
+            Err(errors)
+        }
+    }
+
+    /// The action of `key`: the user's binding, else the default one unless its action was
+    /// given `"none"`.
+    #[must_use]
+    pub fn resolve(&self, key: Key) -> Option<Action> {
+        self.action_for(key)
+            .or_else(|| super::keys::action_for(key).filter(|a| !self.replaced.contains(a)))
+    }
+
+    /// Whether `action` lost its default keys.
+    #[must_use]
+    pub fn is_replaced(&self, action: Action) -> bool {
+        self.replaced.contains(&action)
     }
 
     /// The user's action for `key`, if any.
@@ -214,11 +224,75 @@ impl UserKeys {
             .collect()
     }
 
+    /// The footer of `map` (the explorer's keymap): an action that lost its default keys shows
+    /// the user's first key instead, or nothing when it has none.
+    #[must_use]
+    pub fn footer(&self, map: &[super::keys::Binding<Action>]) -> Vec<(String, &'static str, u8)> {
+        map.iter()
+            .filter_map(|b| {
+                let (keys, word, rank) = b.footer?;
+                if self.is_replaced(b.action) {
+                    let mine = self.labels(b.action).into_iter().next()?;
+                    Some((mine, word, rank))
+                } else {
+                    Some((keys.to_owned(), word, rank))
+                }
+            })
+            .collect()
+    }
+
     /// Whether there are any.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.bindings.is_empty()
+        self.bindings.is_empty() && self.replaced.is_empty()
     }
+}
+
+fn unknown_action(name: &str) -> String {
+    format!(
+        "unknown action `{name}`{}; allowed: {}",
+        crate::scenario::text::did_you_mean(name, ACTION_NAMES.iter().map(|(_, n)| *n)),
+        ACTION_NAMES
+            .iter()
+            .map(|(_, n)| *n)
+            .collect::<Vec<_>>()
+            .join(", ")
+    )
+}
+
+/// One key of `action`'s entry: `Ok(None)` when it is already the action's default (kept);
+/// `Err` when it is not a key, is Ctrl-C, is held by another action that keeps its defaults, or
+/// was given already.
+fn bind(
+    text: &str,
+    action: Action,
+    replaced: &[Action],
+    bindings: &[(Key, Action)],
+) -> Result<Option<Key>, String> {
+    let key = parse_key(text)?;
+    if key == Key::Ctrl('c') {
+        return Err("Ctrl-C always quits; choose another key".to_owned());
+    }
+    if let Some(b) = KEYMAP.iter().find(|b| b.keys.contains(&key)) {
+        let free = replaced.contains(&b.action);
+        if b.action == action && !free {
+            return Ok(None);
+        }
+        if b.action != action && !free {
+            let holder = action_name(b.action);
+            return Err(format!(
+                "'{text}' is already bound to {}; choose a free key, or free it with {holder} = \"none\" (or {holder} = [\"none\", \"OTHER KEY\"])",
+                holder.replace('_', " ")
+            ));
+        }
+    }
+    if let Some((_, other)) = bindings.iter().find(|(k, _)| *k == key) {
+        return Err(format!(
+            "'{text}' is given twice (also to `{}`)",
+            action_name(*other)
+        ));
+    }
+    Ok(Some(key))
 }
 
 #[cfg(test)]
@@ -258,20 +332,55 @@ mod tests {
         assert_eq!(keys.action_for(Key::Alt('x')), Some(Action::TogglePlay));
         assert_eq!(keys.labels(Action::TogglePlay), ["Ctrl-P", "Alt-x"]);
 
-        let e =
-            UserKeys::parse(&[entry("zoom_in", &["i"]), entry("zoom_out", &["q"])]).unwrap_err();
+        let one = |entries: &[(String, Vec<String>)]| {
+            let mut e = UserKeys::parse(entries).unwrap_err();
+            assert_eq!(e.len(), 1, "{e:?}");
+            e.remove(0)
+        };
+        let e = one(&[entry("zoom_in", &["i"]), entry("zoom_out", &["q"])]);
         assert_eq!(e.0, 1);
         assert!(e.1.contains("'q' is already bound to quit"), "{}", e.1);
-        let e = UserKeys::parse(&[entry("zom_in", &["i"])]).unwrap_err();
+        let e = one(&[entry("zom_in", &["i"])]);
         assert!(e.1.contains("did you mean `zoom_in`?"), "{}", e.1);
-        let e = UserKeys::parse(&[entry("zoom_in", &["ctrl-"])]).unwrap_err();
+        let e = one(&[entry("zoom_in", &["ctrl-"])]);
         assert!(e.1.contains("is not a key"), "{}", e.1);
-        let e =
-            UserKeys::parse(&[entry("zoom_in", &["i"]), entry("zoom_out", &["i"])]).unwrap_err();
+        let e = one(&[entry("zoom_in", &["i"]), entry("zoom_out", &["i"])]);
         assert!(e.1.contains("given twice"), "{}", e.1);
-        let e = UserKeys::parse(&[entry("quit", &["ctrl-c"])]).unwrap_err();
+        let e = one(&[entry("quit", &["ctrl-c"])]);
         assert!(e.1.contains("Ctrl-C always quits"), "{}", e.1);
+        // Every problem at once, each with its entry.
+        let all = UserKeys::parse(&[
+            entry("zom_in", &["i"]),
+            entry("zoom_out", &["q"]),
+            entry("pan_up", &["ctrl-"]),
+        ])
+        .unwrap_err();
+        assert_eq!(all.iter().map(|e| e.0).collect::<Vec<_>>(), [0, 1, 2]);
         // A default key bound to its own action again is harmless.
         assert!(UserKeys::parse(&[entry("zoom_in", &["z", "i"])]).is_ok());
+    }
+
+    #[test]
+    fn none_unbinds_and_frees_the_keys_for_another_action() {
+        // `p` moves from the picker to play/pause; the picker gets `P`; space plays no more.
+        let keys = UserKeys::parse(&[
+            entry("presets", &["none", "P"]),
+            entry("toggle_play", &["none", "p"]),
+        ])
+        .unwrap();
+        assert_eq!(keys.resolve(Key::Char('p')), Some(Action::TogglePlay));
+        assert_eq!(keys.resolve(Key::Char('P')), Some(Action::OpenPicker));
+        assert_eq!(keys.resolve(Key::Char(' ')), None);
+        assert_eq!(keys.resolve(Key::Char('q')), Some(Action::Quit));
+        // Unbound alone: the key does nothing.
+        let keys = UserKeys::parse(&[entry("clear_trail", &["none"])]).unwrap();
+        assert_eq!(keys.resolve(Key::Char('c')), None);
+        assert!(keys.is_replaced(Action::ClearTrail));
+        // Without freeing it, the key is still refused, with the way to free it.
+        let e = UserKeys::parse(&[entry("toggle_play", &["p"])]).unwrap_err();
+        assert!(e[0].1.contains("presets = \"none\""), "{}", e[0].1);
+        // "none" after a key is a mistake.
+        let e = UserKeys::parse(&[entry("zoom_in", &["i", "none"])]).unwrap_err();
+        assert!(e[0].1.contains("goes first"), "{}", e[0].1);
     }
 }

@@ -69,43 +69,55 @@ pub struct Config {
     pub keys: Vec<KeyEntry>,
 }
 
-/// The config file's path (it need not exist).
-#[must_use]
-pub fn path() -> Option<PathBuf> {
-    super::shipped::config_dir().map(|d| d.join(FILE_NAME))
+/// `--config FILE`: read this file instead of the config folder's (set once, at start).
+static OVERRIDE: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+
+/// Makes every later [`Config::load`] (and [`path`]) read `file` instead of the config folder's
+/// `config.toml` (`--config FILE`); the first call wins.
+pub fn use_file(file: PathBuf) {
+    let _ = OVERRIDE.set(file);
 }
 
-/// The `[keys]` table's entries, each with its line.
+/// The config file's path (it need not exist): `--config FILE`, else `config.toml` in the
+/// config folder.
+#[must_use]
+pub fn path() -> Option<PathBuf> {
+    OVERRIDE
+        .get()
+        .cloned()
+        .or_else(|| super::shipped::config_dir().map(|d| d.join(FILE_NAME)))
+}
+
+/// The `[keys]` table's entries, each with its line, and the problems of those that are not a
+/// key or a list of keys.
 fn key_entries(
     map: &SourceMap,
     label: &str,
     keys: &toml::Table,
-) -> Result<Vec<KeyEntry>, PresetError> {
-    let mut out = Vec::new();
+) -> (Vec<KeyEntry>, Vec<PresetError>) {
+    let (mut out, mut errors) = (Vec::new(), Vec::new());
     for (action, v) in keys {
         let at = map.find_key("keys", action).unwrap_or(1);
-        let bad = || PresetError::Invalid {
-            path: label.to_owned(),
-            line: Some(at),
-            key: Some(format!("keys.{action}")),
-            message: "expected a key in quotes or a list of them".to_owned(),
-        };
         let list = match v {
-            toml::Value::String(s) => vec![s.clone()],
-            toml::Value::Array(a) => a
-                .iter()
-                .map(|k| k.as_str().map(str::to_owned))
-                .collect::<Option<Vec<_>>>()
-                .ok_or_else(bad)?,
-            _ => return Err(bad()),
+            toml::Value::String(s) => Some(vec![s.clone()]),
+            toml::Value::Array(a) => a.iter().map(|k| k.as_str().map(str::to_owned)).collect(),
+            _ => None,
         };
-        out.push(KeyEntry {
-            action: action.clone(),
-            keys: list,
-            line: at,
-        });
+        match list {
+            Some(keys) => out.push(KeyEntry {
+                action: action.clone(),
+                keys,
+                line: at,
+            }),
+            None => errors.push(PresetError::Invalid {
+                path: label.to_owned(),
+                line: Some(at),
+                key: Some(format!("keys.{action}")),
+                message: "expected a key in quotes, a list of them, or \"none\"".to_owned(),
+            }),
+        }
     }
-    Ok(out)
+    (out, errors)
 }
 
 /// The folder recordings and exports go to by default: the platform's data folder
@@ -120,23 +132,50 @@ pub fn default_sessions_dir() -> Option<PathBuf> {
 }
 
 impl Config {
-    /// Reads the user's config file; no file is the defaults.
+    /// Reads the user's config file (`--config FILE` when given, which must exist); no file is
+    /// the defaults.
     ///
     /// # Errors
-    /// An unreadable or invalid file (its first problem).
-    pub fn load() -> Result<Self, PresetError> {
-        match path() {
-            Some(p) if p.exists() => Self::read(&p),
-            _ => Ok(Self::default()),
+    /// An unreadable file, or every problem of an invalid one.
+    pub fn load() -> Result<Self, Vec<PresetError>> {
+        let (config, errors) = Self::load_all();
+        if errors.is_empty() {
+            Ok(config)
+        } else {
+            Err(errors)
         }
+    }
+
+    /// What [`Config::load`] reads, with what could be read of an invalid file (its `[keys]`,
+    /// to check them too) beside every problem, in the order of the file's lines.
+    #[must_use]
+    pub fn load_all() -> (Self, Vec<PresetError>) {
+        let file = match OVERRIDE.get() {
+            Some(p) => p.clone(),
+            None => match path() {
+                Some(p) if p.exists() => p,
+                _ => return (Self::default(), Vec::new()),
+            },
+        };
+        let src = match PresetError::read(&file) {
+            Ok(s) => s,
+            Err(e) => return (Self::default(), vec![e]),
+        };
+        let (mut config, mut errors) = Self::parse_all(&src, &file.display().to_string());
+        config.path = Some(file);
+        errors.sort_by_key(|e| match e {
+            PresetError::Invalid { line, .. } => line.unwrap_or(0),
+            _ => 0,
+        });
+        (config, errors)
     }
 
     /// Reads the config file at `path`.
     ///
     /// # Errors
-    /// An unreadable or invalid file (its first problem).
-    pub fn read(path: &Path) -> Result<Self, PresetError> {
-        let src = PresetError::read(path)?;
+    /// An unreadable file, or every problem of an invalid one, each located.
+    pub fn read(path: &Path) -> Result<Self, Vec<PresetError>> {
+        let src = PresetError::read(path).map_err(|e| vec![e])?;
         let mut config = Self::parse(&src, &path.display().to_string())?;
         config.path = Some(path.to_path_buf());
         Ok(config)
@@ -145,83 +184,95 @@ impl Config {
     /// Parses a config file's text; `label` names it in errors.
     ///
     /// # Errors
-    /// The first problem, located.
-    pub fn parse(src: &str, label: &str) -> Result<Self, PresetError> {
+    /// Every problem, each located (a TOML syntax error is one problem: nothing after it can be
+    /// read).
+    pub fn parse(src: &str, label: &str) -> Result<Self, Vec<PresetError>> {
+        let (c, errors) = Self::parse_all(src, label);
+        if errors.is_empty() {
+            Ok(c)
+        } else {
+            Err(errors)
+        }
+    }
+
+    /// What can be read of a config file's text, and every problem.
+    fn parse_all(src: &str, label: &str) -> (Self, Vec<PresetError>) {
         let map = SourceMap::new(src);
-        let table = map.parse_table(label)?;
-        let err = |key: &str, message: String| PresetError::Invalid {
-            path: label.to_owned(),
-            line: Some(map.find_path(key).unwrap_or(1)),
-            key: Some(key.to_owned()),
-            message,
+        let table = match map.parse_table(label) {
+            Ok(t) => t,
+            Err(e) => return (Self::default(), vec![e]),
         };
         let mut c = Self::default();
+        let mut errors = Vec::new();
         for (key, value) in &table {
-            let text = || {
-                value
-                    .as_str()
-                    .map(str::to_owned)
-                    .ok_or_else(|| err(key, format!("expected text in quotes, found {value}")))
+            let err = |message: String| PresetError::Invalid {
+                path: label.to_owned(),
+                line: Some(map.find_path(key).unwrap_or(1)),
+                key: Some(key.clone()),
+                message,
             };
-            match key.as_str() {
-                "preset" => c.preset = Some(text()?),
-                "theme" => c.theme = Some(text()?),
-                "fps" => {
-                    let fps = value
-                        .as_integer()
-                        .filter(|n| (1..=240).contains(n))
-                        .ok_or_else(|| {
-                            err(
-                                key,
-                                format!("{value}: allowed a whole number from 1 to 240"),
-                            )
-                        })?;
-                    c.fps = Some(u32::try_from(fps).unwrap_or(30));
-                }
-                "marker" => {
-                    let m = text()?;
-                    if !MARKERS.contains(&m.as_str()) {
-                        return Err(err(
-                            key,
-                            format!(
-                                "unknown marker '{m}'; allowed: {}{}",
-                                MARKERS.join(", "),
-                                super::text::did_you_mean(&m, MARKERS)
-                            ),
-                        ));
+            if key == "keys" {
+                match value.as_table() {
+                    Some(keys) => {
+                        let (entries, bad) = key_entries(&map, label, keys);
+                        c.keys = entries;
+                        errors.extend(bad);
                     }
-                    c.marker = Some(m);
+                    None => errors.push(err("expected a [keys] table".to_owned())),
                 }
-                "sessions" => c.sessions = Some(expand_home(&text()?)),
-                "mouse" | "ascii" => {
-                    let on = value
-                        .as_bool()
-                        .ok_or_else(|| err(key, format!("{value}: allowed true or false")))?;
-                    if key == "mouse" {
-                        c.mouse = on;
-                    } else {
-                        c.ascii = on;
-                    }
-                }
-                "keys" => {
-                    let Some(keys) = value.as_table() else {
-                        return Err(err(key, "expected a [keys] table".to_owned()));
-                    };
-                    c.keys = key_entries(&map, label, keys)?;
-                }
-                other => {
-                    return Err(err(
-                        other,
-                        format!(
-                            "unknown key `{other}`, expected one of {}{}",
-                            KEYS.map(|k| format!("`{k}`")).join(", "),
-                            super::text::did_you_mean(other, KEYS)
-                        ),
-                    ));
-                }
+            } else if let Err(message) = c.set(key, value) {
+                errors.push(err(message));
             }
         }
-        Ok(c)
+        (c, errors)
+    }
+
+    /// Sets one top-level key; `Err` says what is wrong and what is allowed.
+    fn set(&mut self, key: &str, value: &toml::Value) -> Result<(), String> {
+        let text = || {
+            value
+                .as_str()
+                .map(str::to_owned)
+                .ok_or_else(|| format!("expected text in quotes, found {value}"))
+        };
+        let flag = || {
+            value
+                .as_bool()
+                .ok_or_else(|| format!("{value}: allowed true or false"))
+        };
+        match key {
+            "preset" => self.preset = Some(text()?),
+            "theme" => self.theme = Some(text()?),
+            "fps" => {
+                let fps = value
+                    .as_integer()
+                    .filter(|n| (1..=240).contains(n))
+                    .ok_or_else(|| format!("{value}: allowed a whole number from 1 to 240"))?;
+                self.fps = Some(u32::try_from(fps).unwrap_or(30));
+            }
+            "marker" => {
+                let m = text()?;
+                if !MARKERS.contains(&m.as_str()) {
+                    return Err(format!(
+                        "unknown marker '{m}'; allowed: {}{}",
+                        MARKERS.join(", "),
+                        super::text::did_you_mean(&m, MARKERS)
+                    ));
+                }
+                self.marker = Some(m);
+            }
+            "sessions" => self.sessions = Some(expand_home(&text()?)),
+            "mouse" => self.mouse = flag()?,
+            "ascii" => self.ascii = flag()?,
+            other => {
+                return Err(format!(
+                    "unknown key `{other}`, expected one of {}{}",
+                    KEYS.map(|k| format!("`{k}`")).join(", "),
+                    super::text::did_you_mean(other, KEYS)
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The folder recordings and exports go to.
@@ -314,18 +365,26 @@ mod tests {
             strip(c)
         );
 
-        let e = Config::parse("fps = 30\n\nmarkr = \"dot\"\n", "c.toml").unwrap_err();
+        let one = |src: &str| {
+            let mut e = Config::parse(src, "c.toml").unwrap_err();
+            assert_eq!(e.len(), 1, "{e:?}");
+            e.remove(0)
+        };
+        let e = one("fps = 30\n\nmarkr = \"dot\"\n");
         assert_eq!(e.line(), Some(3));
         assert!(e.to_string().contains("did you mean `marker`?"), "{e}");
-        let e = Config::parse("fps = 0\n", "c.toml").unwrap_err();
+        let e = one("fps = 0\n");
         assert!(
             e.to_string()
                 .contains("c.toml:1: fps: 0: allowed a whole number from 1 to 240"),
             "{e}"
         );
-        let e = Config::parse("marker = \"brail\"\n", "c.toml").unwrap_err();
+        let e = one("marker = \"brail\"\n");
         assert!(e.to_string().contains("did you mean `braille`?"), "{e}");
-        let e = Config::parse("[keys]\n\nzoom_in = 3\n", "c.toml").unwrap_err();
+        // Every problem, not the first.
+        let all = Config::parse("fps = 0\nmarkr = 1\nmouse = 3\n", "c.toml").unwrap_err();
+        assert_eq!(all.len(), 3, "{all:?}");
+        let e = one("[keys]\n\nzoom_in = 3\n");
         assert_eq!(e.line(), Some(3));
         assert_eq!(e.key(), Some("keys.zoom_in"));
     }

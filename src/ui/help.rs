@@ -10,22 +10,53 @@ use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
 use super::Look;
 use crate::app::keys::{Binding, KEYMAP, REPLAY_KEYMAP};
 use crate::app::mode::HelpPage;
-use crate::app::user_keys::UserKeys;
+use crate::app::user_keys::{UserKeys, key_label};
 
 /// The rows of a keymap; `extra` gives the user's keys of a row's bindings (a labelled binding
-/// and the unlabelled ones after it), added to its label.
-fn key_rows<A: Copy>(map: &[Binding<A>], extra: &dyn Fn(A) -> Vec<String>) -> Vec<Line<'static>> {
-    let mut rows: Vec<(String, &'static str)> = Vec::new();
+/// and the unlabelled ones after it), added to its label; `replaced` says which actions lost
+/// their default keys (`"none"` in `[keys]`): a row with one is labelled with the keys in
+/// effect (`none` where an action has none).
+fn key_rows<A: Copy>(
+    map: &[Binding<A>],
+    extra: &dyn Fn(A) -> Vec<String>,
+    replaced: &dyn Fn(A) -> bool,
+) -> Vec<Line<'static>> {
+    let mut groups: Vec<Vec<&Binding<A>>> = Vec::new();
     for b in map {
-        let added = extra(b.action);
-        if !b.label.is_empty() {
-            rows.push((b.label.to_owned(), b.help));
+        match groups.last_mut() {
+            Some(g) if b.label.is_empty() => g.push(b),
+            _ => groups.push(vec![b]),
         }
-        if let Some(last) = rows.last_mut()
-            && !added.is_empty()
-        {
-            last.0 = format!("{} +{}", last.0, added.join(","));
-        }
+    }
+    let mut rows: Vec<(String, &'static str)> = Vec::new();
+    for group in groups.iter().filter(|g| !g[0].label.is_empty()) {
+        let label = if group.iter().any(|b| replaced(b.action)) {
+            let per_action: Vec<String> = group
+                .iter()
+                .map(|b| {
+                    let mut keys = if replaced(b.action) {
+                        Vec::new()
+                    } else {
+                        b.keys.iter().map(|k| key_label(*k)).collect()
+                    };
+                    keys.extend(extra(b.action));
+                    if keys.is_empty() {
+                        "none".to_owned()
+                    } else {
+                        keys.join(",")
+                    }
+                })
+                .collect();
+            per_action.join(" / ")
+        } else {
+            let added: Vec<String> = group.iter().flat_map(|b| extra(b.action)).collect();
+            if added.is_empty() {
+                group[0].label.to_owned()
+            } else {
+                format!("{} +{}", group[0].label, added.join(","))
+            }
+        };
+        rows.push((label, group[0].help));
     }
     let width = rows
         .iter()
@@ -96,11 +127,11 @@ pub fn draw(
 ) {
     let (rows, heading) = match page {
         HelpPage::Keys if replay => (
-            key_rows(REPLAY_KEYMAP, &|_| Vec::new()),
+            key_rows(REPLAY_KEYMAP, &|_| Vec::new(), &|_| false),
             " replay keys: ? legend · Esc closes ",
         ),
         HelpPage::Keys => (
-            key_rows(KEYMAP, &|a| keys.labels(a)),
+            key_rows(KEYMAP, &|a| keys.labels(a), &|a| keys.is_replaced(a)),
             " keys: ? legend · Esc closes ",
         ),
         HelpPage::Legend => (legend(look), " legend: ? or Esc closes "),

@@ -499,12 +499,18 @@ fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mu
         },
         status_area,
     );
+    let owned = |h: Vec<Hint>| -> Vec<FooterHint> {
+        h.into_iter()
+            .map(|(k, w, r)| (k.to_owned(), w, r))
+            .collect()
+    };
     let hints = if app.replay.is_some() {
-        keys::footer(REPLAY_KEYMAP)
+        owned(keys::footer(REPLAY_KEYMAP))
     } else if app.mode == Mode::Map {
-        keys::MAP_FOOTER.to_vec()
+        owned(keys::MAP_FOOTER.to_vec())
     } else {
-        keys::footer(KEYMAP)
+        // The user's keys where an action lost its defaults.
+        app.options.keys.footer(KEYMAP)
     };
     draw_footer(frame, footer, &hints, &look);
     match &app.mode {
@@ -600,12 +606,19 @@ pub fn wrap_words(text: &str, width: usize, most: usize) -> Vec<String> {
     lines
 }
 
+/// A footer hint as drawn: the keys (the user's, where they replace the defaults), the word,
+/// the rank.
+pub type FooterHint = (String, &'static str, u8);
+
 /// The hints that fit in `width`, dropping the highest ranks first; rank 0 always stays.
 #[must_use]
-pub fn fit_hints(hints: &[Hint], width: usize) -> Vec<Hint> {
-    let len = |h: &[Hint]| -> usize {
+pub fn fit_hints<K: AsRef<str> + Clone>(
+    hints: &[(K, &'static str, u8)],
+    width: usize,
+) -> Vec<(K, &'static str, u8)> {
+    let len = |h: &[(K, &'static str, u8)]| -> usize {
         h.iter()
-            .map(|(k, w, _)| k.chars().count() + 1 + w.chars().count())
+            .map(|(k, w, _)| k.as_ref().chars().count() + 1 + w.chars().count())
             .sum::<usize>()
             + 3 * h.len().saturating_sub(1)
     };
@@ -625,9 +638,12 @@ pub fn fit_hints(hints: &[Hint], width: usize) -> Vec<Hint> {
     kept
 }
 
-fn draw_footer(frame: &mut Frame<'_>, area: Rect, hints: &[Hint], look: &Look) {
+fn draw_footer(frame: &mut Frame<'_>, area: Rect, hints: &[FooterHint], look: &Look) {
     let mut spans = Vec::new();
-    for (i, (key, what, _)) in fit_hints(hints, area.width as usize).iter().enumerate() {
+    for (i, (key, what, _)) in fit_hints(hints, area.width as usize)
+        .into_iter()
+        .enumerate()
+    {
         if i > 0 {
             // ASCII would fold `·` into `.`, which the keys use.
             let sep = if look.charset == glyphs::Charset::Ascii {
@@ -638,7 +654,7 @@ fn draw_footer(frame: &mut Frame<'_>, area: Rect, hints: &[Hint], look: &Look) {
             spans.push(Span::styled(sep, look.dim()));
         }
         spans.push(Span::styled(
-            *key,
+            key,
             Style::default().add_modifier(Modifier::BOLD),
         ));
         spans.push(Span::raw(format!(" {what}")));

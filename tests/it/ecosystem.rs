@@ -261,6 +261,140 @@ fn config_path_show_and_a_bad_config_file() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Issue 28: keys can be rebound and unbound (`"none"` first takes an action's defaults away,
+/// which frees them); the help and the footer show the keys in effect.
+#[test]
+fn keys_rebind_and_unbind_and_help_and_footer_follow() {
+    let keys = UserKeys::parse(&[
+        (
+            "presets".to_owned(),
+            vec!["none".to_owned(), "P".to_owned()],
+        ),
+        (
+            "toggle_play".to_owned(),
+            vec!["none".to_owned(), "p".to_owned()],
+        ),
+        ("clear_trail".to_owned(), vec!["none".to_owned()]),
+    ])
+    .unwrap();
+    let options = Options {
+        keys,
+        ..Options::at(30.0)
+    };
+    let preset = rattleback::scenario::shipped::resolve("subcritical", &[]).unwrap();
+    let (mut app, _) = rattleback::app::App::new(&preset, options);
+    let draw = |app: &rattleback::app::App| -> String {
+        let mut terminal =
+            ratatui::Terminal::new(ratatui::backend::TestBackend::new(120, 44)).unwrap();
+        let mut cache = rattleback::ui::Cache::default();
+        terminal
+            .draw(|f| {
+                rattleback::ui::draw(f, app, &rattleback::ui::UiOptions::default(), &mut cache);
+            })
+            .unwrap();
+        let b = terminal.backend().buffer();
+        (0..b.area.height)
+            .map(|y| {
+                (0..b.area.width)
+                    .map(|x| b[(x, y)].symbol().to_owned())
+                    .collect::<String>()
+                    + "\n"
+            })
+            .collect()
+    };
+    let screen = draw(&app);
+    let footer = screen.lines().nth(43).unwrap();
+    assert!(
+        footer.contains("p play"),
+        "the footer names the new key: {footer}"
+    );
+    assert!(!footer.contains("space play"), "{footer}");
+    // space does nothing now; p plays.
+    let playing = app.run.playing;
+    app.on_key(Key::Char(' '));
+    assert_eq!(app.run.playing, playing, "space no longer plays");
+    app.on_key(Key::Char('p'));
+    assert_ne!(app.run.playing, playing, "p toggles play");
+    app.on_key(Key::Char('?'));
+    let help = draw(&app);
+    assert!(
+        help.contains(" p ") && help.contains("play / pause"),
+        "{help}"
+    );
+    assert!(
+        help.contains(" P ") && help.contains("pick a preset"),
+        "{help}"
+    );
+    let clear = help
+        .lines()
+        .find(|l| l.contains("clear the trail"))
+        .unwrap();
+    assert!(clear.contains("none"), "{clear}");
+}
+
+/// Issue 28: every problem of a config file is said in one run (in the file's order), with how
+/// to free a held key; `--config FILE` reads another file, before or after the command.
+#[test]
+fn every_config_error_at_once_and_config_file() {
+    // Every problem of a file in one run, in its order; exit 2.
+    let dir = temp("config-errors");
+    std::fs::write(
+        dir.join("config.toml"),
+        "fsp = 20\nmarker = \"brail\"\n[keys]\nzom_in = \"i\"\nzoom_out = \"q\"\ntoggle_play = \"p\"\n",
+    )
+    .unwrap();
+    let (code, _, err) = bin_in(&dir, &["config", "show"]);
+    assert_eq!(code, 2);
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 5, "{err}");
+    for (line, what) in [
+        (1, "fsp"),
+        (2, "marker"),
+        (4, "keys.zom_in"),
+        (5, "keys.zoom_out"),
+        (6, "keys.toggle_play"),
+    ] {
+        assert!(
+            lines
+                .iter()
+                .any(|l| l.contains(&format!("config.toml:{line}: {what}:"))),
+            "{line} {what}: {err}"
+        );
+    }
+    assert!(
+        err.contains("presets = \"none\""),
+        "how to free the key: {err}"
+    );
+    // --config FILE: another file, before or after the command; a missing one is exit 2.
+    let other = dir.join("lecture.toml");
+    std::fs::write(
+        &other,
+        "fps = 12\n[keys]\npresets = [\"none\", \"P\"]\ntoggle_play = [\"none\", \"p\"]\n",
+    )
+    .unwrap();
+    let o = other.to_str().unwrap();
+    for args in [
+        vec!["--config", o, "config", "show"],
+        vec!["config", "show", "--config", o],
+    ] {
+        let (code, out, err) = bin_in(&dir, &args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        assert!(
+            out.contains(&format!("# from {o}")) && out.contains("fps = 12"),
+            "{out}"
+        );
+    }
+    let (code, out, _) = bin_in(&dir, &["--config", o, "config", "path"]);
+    assert_eq!((code, out.trim()), (0, o));
+    let (code, _, err) = bin_in(&dir, &["--config", "/nonexistent.toml", "config", "show"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("--config /nonexistent.toml: no such file"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn a_dumb_terminal_gets_one_line_from_every_interactive_entry_point() {
     // Issue 28: with TERM=dumb the program used to draw a full screen of escape codes. Every
