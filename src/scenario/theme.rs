@@ -15,8 +15,22 @@ pub enum Colour {
     Default,
     /// One of the 16 ANSI colours, by index 0–15.
     Ansi(u8),
+    /// One of the 256-colour palette's colours beyond the 16, by index 16–255.
+    Indexed(u8),
     /// 24-bit colour.
     Rgb(u8, u8, u8),
+}
+
+impl Colour {
+    /// A palette index 0–255: the ANSI colours below 16, the 256-colour palette above.
+    #[must_use]
+    pub fn index(i: u8) -> Self {
+        if i < 16 {
+            Self::Ansi(i)
+        } else {
+            Self::Indexed(i)
+        }
+    }
 }
 
 /// ANSI names, in index order; `grey` spellings are accepted too.
@@ -51,13 +65,27 @@ impl std::str::FromStr for Colour {
             return Ok(Self::Default);
         }
         if let Some(hex) = t.strip_prefix('#') {
+            let digits = |h: &str| h.chars().all(|c| c.is_ascii_hexdigit());
             if hex.len() == 6
+                && digits(hex)
                 && let Ok(v) = u32::from_str_radix(hex, 16)
             {
                 let [_, r, g, b] = v.to_be_bytes();
                 return Ok(Self::Rgb(r, g, b));
             }
-            return Err(format!("'{s}' is not a colour: hex colours are #rrggbb"));
+            if hex.len() == 3 && digits(hex) {
+                // #rgb is #rrggbb with each digit doubled, as in CSS.
+                let d = |i: usize| u8::from_str_radix(&hex[i..=i], 16).unwrap_or(0) * 17;
+                return Ok(Self::Rgb(d(0), d(1), d(2)));
+            }
+            return Err(format!(
+                "'{s}' is not a colour: hex colours are #rrggbb or #rgb"
+            ));
+        }
+        if !t.is_empty() && t.chars().all(|c| c.is_ascii_digit()) {
+            return t.parse::<u8>().map(Self::index).map_err(|_| {
+                format!("'{s}' is not a colour: a palette index is a whole number from 0 to 255")
+            });
         }
         ANSI_NAMES
             .iter()
@@ -65,10 +93,23 @@ impl std::str::FromStr for Colour {
             .map(|i| Self::Ansi(u8::try_from(i).unwrap_or(0)))
             .ok_or_else(|| {
                 format!(
-                    "unknown colour '{s}'; allowed: {}, default, or #rrggbb",
-                    ANSI_NAMES.join(", ")
+                    "unknown colour '{s}'; allowed: {}, default, a palette index 0–255, or #rrggbb{}",
+                    ANSI_NAMES.join(", "),
+                    super::text::did_you_mean(&t, ANSI_NAMES)
                 )
             })
+    }
+}
+
+/// A colour as a TOML value: text (a name, `#rrggbb`, `#rgb`, an index) or a bare palette
+/// index (`trail = 114`); `None` for any other type.
+fn colour_value(v: &toml::Value) -> Option<Result<Colour, String>> {
+    match v {
+        toml::Value::String(text) => Some(text.parse::<Colour>()),
+        toml::Value::Integer(n) => Some(u8::try_from(*n).map(Colour::index).map_err(|_| {
+            format!("{n} is not a colour: a palette index is a whole number from 0 to 255")
+        })),
+        _ => None,
     }
 }
 
@@ -179,13 +220,14 @@ impl ThemeSpec {
                         };
                         // Present, even if invalid: reported once, as invalid, not also missing.
                         seen[i] = true;
-                        match v.as_str().map(str::parse::<Colour>) {
+                        let parsed = colour_value(v);
+                        match parsed {
                             Some(Ok(c)) => colours[i] = c,
                             Some(Err(e)) => problem(section, k, e),
                             None => problem(
                                 section,
                                 k,
-                                "expected a colour name or \"#rrggbb\" in quotes".to_owned(),
+                                "expected a colour name, \"#rrggbb\" in quotes, or a palette index 0–255".to_owned(),
                             ),
                         }
                     }

@@ -360,6 +360,7 @@ fn colour(c: Colour, no_color: bool) -> Color {
     match c {
         Colour::Default => Color::Reset,
         Colour::Rgb(r, g, b) => Color::Rgb(r, g, b),
+        Colour::Indexed(i) => Color::Indexed(i),
         Colour::Ansi(i) => match i {
             0 => Color::Black,
             1 => Color::Red,

@@ -187,3 +187,65 @@ fn saving_is_atomic_and_never_overwrites_without_consent() {
     assert!(preset::check(&text, "saved").is_empty());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 28: themes take the 256-colour palette (an index 0–255, bare or in quotes) and short
+/// hex (`#rgb`) beside names and `#rrggbb`; each reaches the screen as that colour; an index
+/// out of range is named with its line.
+#[test]
+fn themes_take_palette_indices_and_short_hex() {
+    let dir = std::env::temp_dir().join(format!("rattleback-palette-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("palette.toml");
+    std::fs::write(
+        &path,
+        "[theme]\nname = \"Palette\"\n\n[colors]\ncontour = \"238\"\nseparatrix = 214\nstart_level = 6\ntrail = 114\neffective = \"#c6d\"\ncurrent = \"#ff0000\"\nreversal = \"yellow\"\nerror = \"red\"\ndim = 245\n",
+    )
+    .unwrap();
+    let p = path.to_str().unwrap();
+    let (code, _, err) = bin(&["check", p]);
+    assert_eq!(code, 0, "{err}");
+    let spec = rattleback::scenario::theme::theme(p).unwrap();
+    let t = rattleback::ui::Theme::from_spec(&spec, false);
+    assert_eq!(t.contour, Color::Indexed(238));
+    assert_eq!(t.separatrix, Color::Indexed(214));
+    assert_eq!(t.start_level, Color::Cyan, "0–15 are the ANSI colours");
+    assert_eq!(t.trail, Color::Indexed(114));
+    assert_eq!(t.effective, Color::Rgb(0xcc, 0x66, 0xdd));
+    assert_eq!(t.dim, Color::Indexed(245));
+    // On screen: the trail is drawn in colour 114.
+    let mut h = crate::common::Headless::new("subcritical");
+    h.play_until(3.0, 4.0);
+    let options =
+        rattleback::ui::UiOptions::new(ratatui::symbols::Marker::Braille, &spec, &[], false);
+    let mut terminal = ratatui::Terminal::new(ratatui::backend::TestBackend::new(80, 24)).unwrap();
+    terminal
+        .draw(|f| rattleback::ui::draw(f, &h.app, &options, &mut rattleback::ui::Cache::default()))
+        .unwrap();
+    let cells = terminal.backend().buffer().content();
+    assert!(
+        cells.iter().any(|c| c.fg == Color::Indexed(114)),
+        "no trail cell in 114"
+    );
+    assert!(
+        cells.iter().any(|c| c.fg == Color::Indexed(238)),
+        "no level cell in 238"
+    );
+    // Out of range, bare or quoted; a bad short hex.
+    std::fs::write(
+        &path,
+        "[theme]\nname = \"Bad\"\n\n[colors]\ncontour = 256\nseparatrix = \"300\"\nstart_level = \"#12\"\ntrail = \"green\"\neffective = \"magenta\"\ncurrent = \"red\"\nreversal = \"yellow\"\nerror = \"red\"\ndim = \"gray\"\n",
+    )
+    .unwrap();
+    let (code, _, err) = bin(&["check", p]);
+    assert_eq!(code, 2);
+    assert!(err.contains(":5: colors.contour: 256 is not a colour: a palette index is a whole number from 0 to 255"), "{err}");
+    assert!(
+        err.contains(":6: colors.separatrix:") && err.contains("0 to 255"),
+        "{err}"
+    );
+    assert!(
+        err.contains(":7: colors.start_level:") && err.contains("#rgb"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
