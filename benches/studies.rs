@@ -26,6 +26,7 @@ fn studies(c: &mut Criterion) {
                 30.0,
                 1e-8,
                 &|_| true,
+                &|| {},
             )
             .unwrap()
         });

@@ -75,6 +75,23 @@ pub fn export_cast(
     size: CastSize,
     replace: bool,
 ) -> Result<usize, RecordError> {
+    export_cast_watched(rec, path, out, options, size, replace, &mut |_| {})
+}
+
+/// As [`export_cast`], telling `seen` how many of the file's lines have been drawn (for
+/// progress).
+///
+/// # Errors
+/// As [`export_cast`].
+pub fn export_cast_watched(
+    rec: &Recording,
+    path: &str,
+    out: &Path,
+    options: &UiOptions,
+    size: CastSize,
+    replace: bool,
+    seen: &mut dyn FnMut(usize),
+) -> Result<usize, RecordError> {
     let io = |source| RecordError::Io {
         path: out.display().to_string(),
         source,
@@ -107,6 +124,7 @@ pub fn export_cast(
             (&mut terminal, &screen),
             (options, size.fps),
             cast,
+            seen,
         )
     })
     .map_err(io)
@@ -121,6 +139,7 @@ fn frames_of(
     (terminal, screen): (&mut Terminal<CrosstermBackend<Shared>>, &Shared),
     (options, fps): (&UiOptions, f64),
     cast: &mut dyn std::io::Write,
+    seen: &mut dyn FnMut(usize),
 ) -> std::io::Result<usize> {
     let mut cache = Cache::default();
     let run = |effects: Vec<crate::app::Effect>, engine: &mut Engine, app: &mut crate::app::App| {
@@ -157,6 +176,7 @@ fn frames_of(
         let clock = at(frame);
         let before = replay.position();
         let c = replay.advance(clock - shown_until, app);
+        seen(replay.position());
         shown_until = clock;
         run(c, engine, app);
         for (_, line) in &rec.lines[before..replay.position()] {

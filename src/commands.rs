@@ -239,6 +239,51 @@ pub fn man() -> ExitCode {
     write_stdout(&out)
 }
 
+/// Whether work goes on: no signal has come.
+fn go_on() -> bool {
+    crate::interrupt::requested().is_none()
+}
+
+/// Runs `work` with a progress bar of `total` `unit`s on stderr (a terminal only), counting
+/// each call of the counter `work` is given (from any thread); the bar is erased at the end.
+fn counted<R>(
+    label: &str,
+    total: usize,
+    unit: &'static str,
+    work: &dyn Fn(&(dyn Fn() + Sync)) -> R,
+) -> R {
+    let progress = std::sync::Mutex::new(crate::progress::Progress::count(label, total, unit));
+    let count = std::sync::atomic::AtomicUsize::new(0);
+    let out = work(&|| {
+        let n = count.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        if let Ok(mut p) = progress.lock() {
+            p.tick(n as f64);
+        }
+    });
+    if let Ok(mut p) = progress.lock() {
+        p.finish();
+    }
+    out
+}
+
+/// A study's result, or its exit: 128 + the signal that ended it, or 1 when a run failed.
+fn finished<T>(result: Result<T, crate::physics::StepError>, what: &str) -> Result<T, ExitCode> {
+    if let Some(code) = interrupted() {
+        return Err(code);
+    }
+    result.map_err(|e| {
+        say_err!("rattleback: {what} failed: {e}");
+        ExitCode::from(1)
+    })
+}
+
+/// The exit of work ended by a signal (128 + its number), after saying so; `None` when none came.
+fn interrupted() -> Option<ExitCode> {
+    let n = crate::interrupt::requested()?;
+    say_err!("rattleback: interrupted: nothing was written");
+    Some(ExitCode::from(u8::try_from(128 + n).unwrap_or(1)))
+}
+
 /// An output as pretty JSON with a final newline, control characters escaped (text from files
 /// is untrusted).
 fn json_text(value: &impl serde::Serialize) -> String {
@@ -460,6 +505,12 @@ pub fn check(args: &CheckArgs) -> ExitCode {
 #[must_use]
 pub fn study(command: &crate::cli::StudyCommand) -> ExitCode {
     use crate::cli::StudyCommand;
+    // Ctrl-C (or SIGTERM) cancels the runs in flight and ends with 128 + the signal, the
+    // progress bar erased and no file written.
+    if let Err(e) = crate::interrupt::install() {
+        say_err!("rattleback: error: {e}");
+        return ExitCode::from(1);
+    }
     match command {
         StudyCommand::Sweep(args) => study_sweep(args),
         StudyCommand::Map(args) => study_map(args),
@@ -591,12 +642,13 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
     if let Err(code) = sweep_budget(&model, &ladder, t_end, tolerance, args.common.force) {
         return code;
     }
-    let s = match sweep(&model, &ladder, t_end, tolerance, &|_| true) {
+    // Progress by runs (the limit is one); Ctrl-C cancels the runs in flight.
+    let swept = counted("study sweep", ladder.len() + 1, "runs", &|done| {
+        sweep(&model, &ladder, t_end, tolerance, &|_| go_on(), done)
+    });
+    let s = match finished(swept, "study sweep") {
         Ok(s) => s,
-        Err(e) => {
-            say_err!("rattleback: study sweep failed: {e}");
-            return ExitCode::from(1);
-        }
+        Err(code) => return code,
     };
     // The rattleback's column and field are `stiffness` (a contract); the pendulum's `epsilon`.
     let column = small.column;
@@ -705,7 +757,7 @@ fn sweep_curves(s: &crate::study::sweep::Sweep) -> String {
 }
 
 fn study_map(args: &crate::cli::MapArgs) -> ExitCode {
-    use crate::study::map::{Grid, Source, regime_map};
+    use crate::study::map::{Grid, regime_map};
     let (_, model, t_end, tolerance) = match study_setup(&args.common) {
         Ok(s) => s,
         Err(code) => return code,
@@ -738,47 +790,22 @@ fn study_map(args: &crate::cli::MapArgs) -> ExitCode {
         gamma_dot: if s.gamma_dot == 0.0 { 1.0 } else { s.gamma_dot },
         t_end,
     };
-    let source = match args.k {
-        None => Source::Limit,
-        Some(k) => {
-            // The full model: one verified auto run per cell, predicted before anything runs.
-            let probe = grid
-                .problem(args.ratio_max, args.inertia_min, k)
-                .expect("valid corner");
-            #[allow(clippy::cast_precision_loss)]
-            let cells = (grid.cols * grid.rows) as f64;
-            let predicted = cells
-                * crate::physics::rattleback::plan::predicted_seconds(
-                    &probe,
-                    crate::physics::Method::Auto,
-                    tolerance,
-                    None,
-                    t_end,
-                )
-                / 2.0;
-            if let Err(over) = crate::physics::budget::check(
-                predicted,
-                if args.common.force {
-                    f64::INFINITY
-                } else {
-                    crate::physics::budget::BUDGET_SECONDS
-                },
-            ) {
-                say_err!(
-                    "rattleback: error: this map ({} cells of the full model at k = {k:e}) is {over}; use a smaller --grid, or pass --force",
-                    grid.cols * grid.rows
-                );
-                return ExitCode::from(2);
-            }
-            Source::Full { k, tolerance }
-        }
+    let source = match map_source(args, &grid, tolerance) {
+        Ok(s) => s,
+        Err(code) => return code,
     };
-    let map = match regime_map(&grid, source, &|_| true) {
+    // Progress by cells started (each asks at t = 0); Ctrl-C cancels the cells in flight.
+    let mapped = counted("study map", grid.cols * grid.rows, "cells", &|started| {
+        regime_map(&grid, source, &|t| {
+            if t == 0.0 {
+                started();
+            }
+            go_on()
+        })
+    });
+    let map = match finished(mapped, "study map") {
         Ok(m) => m,
-        Err(e) => {
-            say_err!("rattleback: study map failed: {e}");
-            return ExitCode::from(1);
-        }
+        Err(code) => return code,
     };
     let mut csv = String::from("ratio,inertia_ratio,reversals\n");
     for c in &map.cells {
@@ -804,6 +831,47 @@ fn study_map(args: &crate::cli::MapArgs) -> ExitCode {
         }
     };
     write_outputs(&args.common, &[("map.csv", csv), ("map.svg", svg)])
+}
+
+/// Where a map's counts come from: the limit, or the full model at `--k` when the prediction
+/// is within the work budget (or `--force`).
+fn map_source(
+    args: &crate::cli::MapArgs,
+    grid: &crate::study::map::Grid,
+    tolerance: f64,
+) -> Result<crate::study::map::Source, ExitCode> {
+    use crate::study::map::Source;
+    let Some(k) = args.k else {
+        return Ok(Source::Limit);
+    };
+    // The full model: one verified auto run per cell, predicted before anything runs.
+    let probe = grid
+        .problem(args.ratio_max, args.inertia_min, k)
+        .expect("valid corner");
+    #[allow(clippy::cast_precision_loss)]
+    let cells = (grid.cols * grid.rows) as f64;
+    let predicted = cells
+        * crate::physics::rattleback::plan::predicted_seconds(
+            &probe,
+            crate::physics::Method::Auto,
+            tolerance,
+            None,
+            grid.t_end,
+        )
+        / 2.0;
+    let budget = if args.common.force {
+        f64::INFINITY
+    } else {
+        crate::physics::budget::BUDGET_SECONDS
+    };
+    if let Err(over) = crate::physics::budget::check(predicted, budget) {
+        say_err!(
+            "rattleback: error: this map ({} cells of the full model at k = {k:e}) is {over}; use a smaller --grid, or pass --force",
+            grid.cols * grid.rows
+        );
+        return Err(ExitCode::from(2));
+    }
+    Ok(Source::Full { k, tolerance })
 }
 
 /// The map in text: at most 60 columns and 20 rows of digits (reversals, `+` for 10 or more,

@@ -140,7 +140,20 @@ fn export_cast(
         say_err!("rattleback: error: {e}");
         return ExitCode::from(1);
     }
-    let written = rattleback::cast::export_cast(rec, path, out, &options, size, args.force);
+    let mut progress =
+        rattleback::progress::Progress::count("export-cast", rec.lines.len(), "lines");
+    let written = rattleback::cast::export_cast_watched(
+        rec,
+        path,
+        out,
+        &options,
+        size,
+        args.force,
+        &mut |n| {
+            progress.tick(n as f64);
+        },
+    );
+    progress.finish();
     if let (Err(_), Some(n)) = (&written, rattleback::interrupt::requested()) {
         say_err!("rattleback: interrupted: {} was not written", out.display());
         return ExitCode::from(u8::try_from(128 + n).unwrap_or(1));
@@ -248,7 +261,12 @@ fn run_verify(args: &ReplayArgs, rec: &record::Recording, path: &str) -> Result<
             return Err(ExitCode::from(2));
         }
     };
-    match record::verify(rec, path, key.as_ref()) {
+    let mut progress = rattleback::progress::Progress::count("verify", rec.lines.len(), "lines");
+    let verified = record::verify_watched(rec, path, key.as_ref(), &mut |n| {
+        progress.tick(n as f64);
+    });
+    progress.finish();
+    match verified {
         Ok(r) => print_report(path, &r, None),
         Err(record::VerifyError::Incomplete { through, report }) => {
             print_report(path, &report, Some(through));

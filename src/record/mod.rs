@@ -20,7 +20,7 @@ pub mod tail;
 mod verify;
 
 pub use file::{Recorder, Recording, read};
-pub use verify::{Divergence, Report, VerifyError, plan_book, start, verify};
+pub use verify::{Divergence, Report, VerifyError, plan_book, start, verify, verify_watched};
 
 use serde::{Deserialize, Serialize};
 

@@ -450,6 +450,19 @@ fn run(
 /// # Errors
 /// A bad header preset, the first line that fails, or a file cut short.
 pub fn verify(rec: &Recording, path: &str, key: Option<&PublicKey>) -> Result<Report, VerifyError> {
+    verify_watched(rec, path, key, &mut |_| {})
+}
+
+/// As [`verify`], telling `seen` how many of the file's lines have been re-run (for progress).
+///
+/// # Errors
+/// As [`verify`].
+pub fn verify_watched(
+    rec: &Recording,
+    path: &str,
+    key: Option<&PublicKey>,
+    seen: &mut dyn FnMut(usize),
+) -> Result<Report, VerifyError> {
     let (integrity, signature, ended) = check_integrity(rec, key)?;
     let (mut app, effects) = start(rec, path)?;
     let mut engine = Engine::new(plan_book(rec));
@@ -462,7 +475,8 @@ pub fn verify(rec: &Recording, path: &str, key: Option<&PublicKey>) -> Result<Re
         integrity,
         signature,
     };
-    for (number, line) in &rec.lines {
+    for (i, (number, line)) in rec.lines.iter().enumerate() {
+        seen(i);
         let mut effects = app.seek(line.t);
         match &line.event {
             Event::Checkpoint {

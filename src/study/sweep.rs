@@ -172,7 +172,8 @@ pub fn predicted_seconds(
 
 /// Sweeps `problem`'s start over `ladder` (its own `k` is replaced) to `t_end` at `tolerance`,
 /// the rungs in parallel; `go_on` is asked every few hundred steps of every run (from several
-/// threads) whether to go on.
+/// threads) whether to go on; `done` is told when the limit and each rung are finished (for
+/// progress).
 ///
 /// # Errors
 /// The first integration that fails, or [`StepError::Cancelled`].
@@ -182,12 +183,18 @@ pub fn sweep(
     t_end: f64,
     tolerance: f64,
     go_on: &(dyn Fn(f64) -> bool + Sync),
+    done: &(dyn Fn() + Sync),
 ) -> Result<Sweep, StepError> {
     let small = small_of(model)?;
     let (t, limit) = limit_curve(model, t_end, &mut |t| go_on(t))?;
+    done();
     let rungs = ladder
         .par_iter()
-        .map(|&k| rung(model, k, t_end, tolerance, &limit, &mut |t| go_on(t)))
+        .map(|&k| {
+            let r = rung(model, k, t_end, tolerance, &limit, &mut |t| go_on(t));
+            done();
+            r
+        })
         .collect::<Result<Vec<Rung>, StepError>>()?;
     let points: Vec<(f64, f64)> = rungs.iter().map(|r| (r.parameter, r.sup_error)).collect();
     Ok(Sweep {

@@ -687,6 +687,7 @@ fn the_sweep_pane_shows_what_study_sweep_computes_and_follows_the_parameters() {
         settings.t_end,
         settings.tolerance,
         &|_| true,
+        &|| {},
     )
     .unwrap();
     for (shown, computed) in s.points.iter().zip(&headless.rungs) {

@@ -137,6 +137,7 @@ fn the_sweep_pane_sweeps_epsilon() {
         settings.t_end,
         settings.tolerance,
         &|_| true,
+        &|| {},
     )
     .unwrap();
     for (shown, computed) in s.points.iter().zip(&headless.rungs) {
