@@ -477,7 +477,7 @@ pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
 pub fn check(args: &CheckArgs) -> ExitCode {
     let mut problems = Vec::new();
     for path in &args.files {
-        let label = path.display().to_string();
+        let label = crate::scenario::write::label(path);
         // Bounded, regular files only (a FIFO or /dev/zero is refused, not read), and an
         // encoding error names its line.
         match PresetError::read(path) {

@@ -81,6 +81,14 @@ fn config_last(mut args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsString> {
     args
 }
 
+/// `-` (standard input) where the explorer opens: it reads its keys from standard input.
+fn refuse_stdin(what: &str) -> ExitCode {
+    say_err!(
+        "rattleback: error: {what}: the explorer reads its keys from standard input, so it cannot read a file from it; save it to a file, or use - with simulate, study, check, presets show or replay --verify/--chapters/--export-cast"
+    );
+    ExitCode::from(2)
+}
+
 /// Refuses an output that exists (unless `force`) or that is `input` itself.
 fn check_output(
     out: &std::path::Path,
@@ -171,7 +179,11 @@ fn export_cast(
 }
 
 fn run_replay(args: &ReplayArgs) -> ExitCode {
-    let path = args.file.display().to_string();
+    if args.file.as_os_str() == "-" && !args.verify && !args.chapters && args.export_cast.is_none()
+    {
+        return refuse_stdin("replay -");
+    }
+    let path = rattleback::scenario::write::label(&args.file);
     // A bad `--theme` is an error whatever else is asked (it would be when drawing).
     if let Some(name) = &args.look.theme
         && let Err(e) = rattleback::scenario::theme::theme(name)
@@ -406,6 +418,9 @@ fn prepare_record(out: Option<&std::path::Path>, force: bool) -> Result<(), Exit
 }
 
 fn run_follow(args: &rattleback::cli::FollowArgs) -> ExitCode {
+    if args.file.as_os_str() == "-" {
+        return refuse_stdin("follow -");
+    }
     // Students often start first: wait for the file (and its header) to appear, saying so.
     let mut said = false;
     while !args
@@ -472,6 +487,9 @@ fn run_follow(args: &rattleback::cli::FollowArgs) -> ExitCode {
 }
 
 fn run_lesson(args: &rattleback::cli::LessonArgs) -> ExitCode {
+    if args.lesson == "-" {
+        return refuse_stdin("lesson -");
+    }
     let lesson = match rattleback::scenario::lesson::resolve(&args.lesson) {
         Ok(l) => l,
         Err(e) => {
@@ -496,6 +514,9 @@ fn run_lesson(args: &rattleback::cli::LessonArgs) -> ExitCode {
 
 /// `compare A B`: the explorer on `A` with `B` beside it on one time axis.
 fn run_compare(args: &rattleback::cli::CompareArgs) -> ExitCode {
+    if args.a == "-" || args.b == "-" {
+        return refuse_stdin("compare -");
+    }
     let (preset, partner) = match (resolve(&args.a, &[]), resolve(&args.b, &[])) {
         (Ok(a), Ok(b)) => (a, b),
         (Err(e), _) | (_, Err(e)) => {
@@ -514,6 +535,9 @@ fn run_compare(args: &rattleback::cli::CompareArgs) -> ExitCode {
 }
 
 fn run_explorer(cli: &Cli) -> ExitCode {
+    if cli.preset.as_deref() == Some("-") {
+        return refuse_stdin("--preset -");
+    }
     let opening = Opening {
         look: &cli.look,
         rec: &cli.rec,

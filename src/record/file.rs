@@ -165,7 +165,7 @@ pub struct Recording {
 pub fn read(path: &Path) -> Result<Recording, RecordError> {
     /// Largest session file read (an hour of lectures is a few megabytes).
     const MAX_SESSION_BYTES: u64 = 256 << 20;
-    let label = path.display().to_string();
+    let label = crate::scenario::write::label(path);
     let bytes =
         crate::scenario::write::read_bounded_bytes(path, MAX_SESSION_BYTES).map_err(|source| {
             RecordError::Io {

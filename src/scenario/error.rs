@@ -71,7 +71,7 @@ impl PresetError {
     pub fn read(path: &std::path::Path) -> Result<String, Self> {
         let bytes = super::write::read_bounded_bytes(path, super::write::MAX_CONFIG_BYTES)
             .map_err(|source| Self::Unreadable {
-                path: path.display().to_string(),
+                path: super::write::label(path),
                 source,
             })?;
         String::from_utf8(bytes).map_err(|e| {
@@ -80,7 +80,7 @@ impl PresetError {
             let line = super::text::line_at(bytes, at);
             let column = at - bytes[..at].iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1) + 1;
             Self::Invalid {
-                path: path.display().to_string(),
+                path: super::write::label(path),
                 line: Some(line),
                 key: None,
                 message: format!(

@@ -634,11 +634,14 @@ impl Preset {
     /// # Errors
     /// An unreadable file or the first problem found.
     pub fn load(path: &std::path::Path, overrides: &[Override]) -> Result<Self, PresetError> {
-        let label = path.display().to_string();
+        let label = super::write::label(path);
         let src = PresetError::read(path)?;
-        let stem = path
-            .file_stem()
-            .map_or_else(|| label.clone(), |s| s.to_string_lossy().into_owned());
+        let stem = if super::write::is_stdin(path) {
+            label.clone()
+        } else {
+            path.file_stem()
+                .map_or_else(|| label.clone(), |s| s.to_string_lossy().into_owned())
+        };
         Self::parse(&src, &label, &stem, overrides)
     }
 

@@ -178,7 +178,7 @@ pub struct Entry {
 pub fn source_text(name_or_path: &str) -> Result<String, PresetError> {
     resolve(name_or_path, &[])?;
     let path = Path::new(name_or_path);
-    if path.is_file() {
+    if path.is_file() || super::write::is_stdin(path) {
         return PresetError::read(path);
     }
     if let Some(user) = user_preset_dir().map(|d| d.join(format!("{name_or_path}.toml")))
@@ -281,7 +281,7 @@ fn stem(path: &Path) -> String {
 /// No such file or preset, or an invalid preset.
 pub fn resolve(name_or_path: &str, overrides: &[Override]) -> Result<Preset, PresetError> {
     let path = Path::new(name_or_path);
-    if path.is_file() {
+    if path.is_file() || super::write::is_stdin(path) {
         return Preset::load(path, overrides);
     }
     if let Some(user) = user_preset_dir().map(|d| d.join(format!("{name_or_path}.toml")))

@@ -22,11 +22,57 @@ pub fn read_bounded(path: &Path, limit: u64) -> io::Result<String> {
         .map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e.utf8_error()))
 }
 
+/// The most read from standard input (`-`): the largest file any reader takes.
+const MAX_STDIN_BYTES: u64 = 256 << 20;
+
+/// Whether `path` is `-`, standard input (as a command line writes it).
+#[must_use]
+pub fn is_stdin(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}
+
+/// How a file is named in messages: `stdin` for `-`, else its path.
+#[must_use]
+pub fn label(path: &Path) -> String {
+    if is_stdin(path) {
+        "stdin".to_owned()
+    } else {
+        path.display().to_string()
+    }
+}
+
+/// Standard input, read once (bounded) and kept, so every reader of `-` in this process sees
+/// the same bytes (a preset is read to check it, then again to print it).
+fn stdin_bytes() -> io::Result<Vec<u8>> {
+    static READ: std::sync::OnceLock<Result<Vec<u8>, String>> = std::sync::OnceLock::new();
+    let read = READ.get_or_init(|| {
+        let mut bytes = Vec::new();
+        io::Read::read_to_end(
+            &mut io::Read::take(io::stdin().lock(), MAX_STDIN_BYTES + 1),
+            &mut bytes,
+        )
+        .map_err(|e| e.to_string())?;
+        Ok(bytes)
+    });
+    read.clone()
+        .map_err(|e| io::Error::other(format!("standard input: {e}")))
+}
+
 /// [`read_bounded`] without the UTF-8 check (callers that locate an encoding error).
 ///
 /// # Errors
 /// As [`read_bounded`].
 pub fn read_bounded_bytes(path: &Path, limit: u64) -> io::Result<Vec<u8>> {
+    if is_stdin(path) {
+        let bytes = stdin_bytes()?;
+        if bytes.len() as u64 > limit {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                format!("more than the {limit} bytes allowed"),
+            ));
+        }
+        return Ok(bytes);
+    }
     let meta = std::fs::metadata(path)?;
     if !meta.is_file() {
         return Err(io::Error::new(

@@ -225,3 +225,75 @@ fn a_closed_pipe_ends_printing_commands_quietly() {
         assert_eq!(out.status.code(), Some(0), "{args:?}: {err}");
     }
 }
+
+/// Issue 28: `-` is standard input wherever a file is read headless (a preset for `simulate`,
+/// `study` and `presets show`, `check`, a session for `replay --verify`/`--chapters`), named
+/// `stdin` in messages; where the explorer opens, `-` is refused (it reads its keys there).
+#[test]
+fn a_dash_reads_standard_input_where_a_file_is_read_headless() {
+    use std::io::Write as _;
+    let with_stdin = |args: &[&str], input: &[u8]| -> (i32, String, String) {
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+            .args(args)
+            .env("TERM", "xterm")
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        // A refusal may exit before reading: a closed pipe is not a failure of the test.
+        let _ = child.stdin.take().unwrap().write_all(input);
+        let out = child.wait_with_output().unwrap();
+        (
+            out.status.code().unwrap_or(-1),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    let preset = rattleback::scenario::shipped::source_text("supercritical").unwrap();
+    let from_file = crate::common::simulate_json(&["--preset", "supercritical", "--t-end", "2"]);
+    let (code, out, err) = with_stdin(
+        &[
+            "simulate", "--preset", "-", "--t-end", "2", "--format", "json",
+        ],
+        preset.as_bytes(),
+    );
+    assert_eq!(code, 0, "{err}");
+    let from_stdin: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(from_stdin["final"], from_file["final"], "the same run");
+    let (code, out, _) = with_stdin(&["presets", "show", "-"], preset.as_bytes());
+    assert_eq!((code, out.as_str()), (0, preset.as_str()));
+    // Errors name stdin and the line.
+    let (code, _, err) = with_stdin(
+        &["check", "-"],
+        b"[preset]\nname = \"x\"\n[spring]\nk = -1\n",
+    );
+    assert_eq!(code, 2);
+    assert!(err.contains("stdin:4: spring.k"), "{err}");
+    let session = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/sessions/subcritical.jsonl"
+    ))
+    .unwrap();
+    let (code, out, err) = with_stdin(&["replay", "-", "--verify"], &session);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("stdin: 4 checkpoint(s) reproduced bit for bit"),
+        "{out}"
+    );
+    // Where the explorer opens, `-` is refused before anything is read.
+    for args in [
+        &["--preset", "-"][..],
+        &["replay", "-"],
+        &["lesson", "-"],
+        &["compare", "-", "subcritical"],
+        &["follow", "-"],
+    ] {
+        let (code, _, err) = with_stdin(args, b"");
+        assert_eq!(code, 2, "{args:?}");
+        assert!(
+            err.contains("reads its keys from standard input"),
+            "{args:?}: {err}"
+        );
+    }
+}
