@@ -401,6 +401,10 @@ pub struct ReplayArgs {
     /// then exit.
     #[arg(long)]
     pub chapters: bool,
+    /// Output of `--chapters` or `--verify` (one of them with `json`): text, or one JSON
+    /// object on stdout (`docs/schemas/chapters.schema.json`, `verify.schema.json`).
+    #[arg(long, value_enum, default_value_t = ListFormat::Table)]
+    pub format: ListFormat,
     /// Write an asciicast v2 file (asciinema-player plays it), chapters as markers. With
     /// `--verify`, the session is checked first and exported only if it verifies. An existing
     /// file is refused (exit 2) unless `--force`.
@@ -464,9 +468,12 @@ pub enum ListFormat {
 #[derive(Debug, Args)]
 pub struct CheckArgs {
     /// Files to check: presets, themes (files with a `[theme]` or `[colors]` table) or lessons
-    /// (files with a `[lesson]` table).
+    /// (files with a `[lesson]` table); `-` is standard input.
     #[arg(required = true, value_name = "FILE")]
     pub files: Vec<std::path::PathBuf>,
+    /// Output format: every problem as text on stderr, or one JSON object on stdout.
+    #[arg(long, value_enum, default_value_t = ListFormat::Table)]
+    pub format: ListFormat,
 }
 
 /// Output format of `simulate`.

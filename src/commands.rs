@@ -286,7 +286,8 @@ fn interrupted() -> Option<ExitCode> {
 
 /// An output as pretty JSON with a final newline, control characters escaped (text from files
 /// is untrusted).
-fn json_text(value: &impl serde::Serialize) -> String {
+#[must_use]
+pub fn json_text(value: &impl serde::Serialize) -> String {
     // Outputs are plain data (strings, numbers, vectors): serializing them cannot fail.
     let text = serde_json::to_string_pretty(value).unwrap_or_default();
     let mut s = crate::scenario::text::json_safe(&text);
@@ -494,6 +495,24 @@ pub fn check(args: &CheckArgs) -> ExitCode {
             }
             Ok(src) => problems.extend(preset::check(&src, &label)),
         }
+    }
+    if args.format == ListFormat::Json {
+        let out = crate::outputs::Check {
+            schema_version: crate::outputs::SCHEMA_VERSION,
+            model: None,
+            files: args
+                .files
+                .iter()
+                .map(|p| crate::scenario::write::label(p))
+                .collect(),
+            problems: problems.iter().map(crate::outputs::Problem::of).collect(),
+        };
+        say_raw!("{}", json_text(&out));
+        return if problems.is_empty() {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::from(2)
+        };
     }
     if problems.is_empty() {
         say!("{} file(s) ok", args.files.len());

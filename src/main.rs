@@ -184,6 +184,13 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
         return refuse_stdin("replay -");
     }
     let path = rattleback::scenario::write::label(&args.file);
+    let json = args.format == rattleback::cli::ListFormat::Json;
+    if json && (args.chapters == args.verify || args.export_cast.is_some()) {
+        say_err!(
+            "rattleback: error: --format json goes with one of --chapters or --verify (and not --export-cast)"
+        );
+        return ExitCode::from(2);
+    }
     // A bad `--theme` is an error whatever else is asked (it would be when drawing).
     if let Some(name) = &args.look.theme
         && let Err(e) = rattleback::scenario::theme::theme(name)
@@ -201,11 +208,23 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
         Ok(r) => r,
         Err(e) => {
             say_err!("rattleback: error: {e}");
+            if json && args.verify {
+                let failed = record::VerifyError::Record(e);
+                let v = rattleback::outputs::Verification::of(None, &path, Err(&failed));
+                print!("{}", commands::json_text(&v));
+            }
             return ExitCode::from(2);
         }
     };
     for w in &rec.warnings {
         say_err!("rattleback: warning: {w}");
+    }
+    if json && args.chapters {
+        print!(
+            "{}",
+            commands::json_text(&rattleback::outputs::Chapters::of(&rec, &path))
+        );
+        return ExitCode::SUCCESS;
     }
     if args.chapters {
         say!("{}", record::chapters(&rec));
@@ -278,6 +297,15 @@ fn run_verify(args: &ReplayArgs, rec: &record::Recording, path: &str) -> Result<
         progress.tick(n as f64);
     });
     progress.finish();
+    if args.format == rattleback::cli::ListFormat::Json {
+        let v = rattleback::outputs::Verification::of(Some(rec), path, verified.as_ref());
+        print!("{}", commands::json_text(&v));
+        return match verified {
+            Ok(_) => Ok(()),
+            Err(record::VerifyError::Record(_)) => Err(ExitCode::from(2)),
+            Err(_) => Err(ExitCode::from(1)),
+        };
+    }
     match verified {
         Ok(r) => print_report(path, &r, None),
         Err(record::VerifyError::Incomplete { through, report }) => {

@@ -111,6 +111,185 @@ pub struct Map {
     pub map: crate::study::map::RegimeMap,
 }
 
+/// `rattleback replay FILE --chapters --format json`.
+#[derive(Debug, Serialize, JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct Chapters {
+    /// The version of this output's shape.
+    pub schema_version: u32,
+    /// The recording's scene (`null` when its header's preset cannot be read).
+    pub model: Option<ModelKind>,
+    /// The session file (`stdin` for `-`).
+    pub file: String,
+    /// Chapter markers and lesson steps, in order.
+    pub chapters: Vec<crate::record::Chapter>,
+}
+
+/// Where a replay first differed from the recording.
+#[derive(Debug, Serialize, JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct Divergence {
+    /// 1-based line of the file.
+    pub line: usize,
+    /// Its simulated time.
+    pub t: f64,
+    /// What the file says.
+    pub expected: String,
+    /// What this build computes.
+    pub got: String,
+}
+
+/// `rattleback replay FILE --verify --format json`.
+#[derive(Debug, Serialize, JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct Verification {
+    /// The version of this output's shape.
+    pub schema_version: u32,
+    /// The recording's scene (`null` when its header's preset cannot be read).
+    pub model: Option<ModelKind>,
+    /// The session file (`stdin` for `-`).
+    pub file: String,
+    /// Reproduced bit for bit, intact and ended (the exit status is 0 exactly then).
+    pub verified: bool,
+    /// The format the header claims (`null` when the file could not be checked that far).
+    pub format: Option<u32>,
+    /// Checkpoints reproduced bit for bit.
+    pub checkpoints: usize,
+    /// Screens (status-bar values) reproduced.
+    pub screens: usize,
+    /// What the integrity check covers, in words (`null` when it did not run).
+    pub integrity: Option<String>,
+    /// Who signed it and whether it was checked against a key (`null`: not signed).
+    pub signature: Option<String>,
+    /// Intact up to this line but with no end line (cut short).
+    pub incomplete_through: Option<usize>,
+    /// The first checkpoint or screen that differs.
+    pub divergence: Option<Divergence>,
+    /// Any other reason it did not verify (a bad file, a bad signature…).
+    pub error: Option<String>,
+}
+
+/// One problem `check` found.
+#[derive(Debug, Serialize, JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct Problem {
+    /// The file (`stdin` for `-`).
+    pub path: Option<String>,
+    /// 1-based line, when it has one.
+    pub line: Option<usize>,
+    /// `section.key`, when it concerns one.
+    pub key: Option<String>,
+    /// The whole message, as the table prints it.
+    pub message: String,
+}
+
+/// `rattleback check FILE… --format json`.
+#[derive(Debug, Serialize, JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct Check {
+    /// The version of this output's shape.
+    pub schema_version: u32,
+    /// `null`: the files name their own scenes.
+    pub model: Option<ModelKind>,
+    /// The files checked.
+    pub files: Vec<String>,
+    /// Every problem (none: all valid; the exit status is 2 otherwise).
+    pub problems: Vec<Problem>,
+}
+
+/// The scene of a recording, from its header's preset (`None` when that cannot be read).
+#[must_use]
+pub fn recorded_model(rec: &crate::record::Recording) -> Option<ModelKind> {
+    crate::scenario::Preset::parse(&rec.header.preset, "header", "recorded", &[])
+        .ok()
+        .map(|p| p.model.kind())
+}
+
+impl Chapters {
+    /// The chapters of `rec`, read from `file`.
+    #[must_use]
+    pub fn of(rec: &crate::record::Recording, file: &str) -> Self {
+        Self {
+            schema_version: SCHEMA_VERSION,
+            model: recorded_model(rec),
+            file: file.to_owned(),
+            chapters: crate::record::chapter_list(rec),
+        }
+    }
+}
+
+impl Verification {
+    /// What `verify` found for `rec` (or `error`, when the file could not be read).
+    #[must_use]
+    pub fn of(
+        rec: Option<&crate::record::Recording>,
+        file: &str,
+        result: Result<&crate::record::Report, &crate::record::VerifyError>,
+    ) -> Self {
+        use crate::record::VerifyError;
+        let mut v = Self {
+            schema_version: SCHEMA_VERSION,
+            model: rec.and_then(recorded_model),
+            file: file.to_owned(),
+            verified: result.is_ok(),
+            format: rec.map(|r| r.header.version),
+            checkpoints: 0,
+            screens: 0,
+            integrity: None,
+            signature: None,
+            incomplete_through: None,
+            divergence: None,
+            error: None,
+        };
+        let report = match result {
+            Ok(r) | Err(VerifyError::Incomplete { report: r, .. }) => Some(r),
+            _ => None,
+        };
+        if let Some(r) = report {
+            v.format = Some(r.format);
+            v.checkpoints = r.checkpoints;
+            v.screens = r.screens;
+            v.integrity = Some(r.integrity.clone());
+            v.signature.clone_from(&r.signature);
+        }
+        match result {
+            Err(VerifyError::Incomplete { through, .. }) => v.incomplete_through = Some(*through),
+            Err(VerifyError::Diverged(d)) => {
+                v.divergence = Some(Divergence {
+                    line: d.line,
+                    t: d.t,
+                    expected: d.expected.clone(),
+                    got: d.got.clone(),
+                });
+            }
+            Err(e @ VerifyError::Record(_)) => v.error = Some(e.to_string()),
+            Ok(_) => {}
+        }
+        v
+    }
+}
+
+impl Problem {
+    /// A problem as `check` reports it.
+    #[must_use]
+    pub fn of(e: &crate::scenario::PresetError) -> Self {
+        use crate::scenario::PresetError;
+        let (path, line, key) = match e {
+            PresetError::Invalid {
+                path, line, key, ..
+            } => (Some(path.clone()), *line, key.clone()),
+            PresetError::Unreadable { path, .. } => (Some(path.clone()), None, None),
+            PresetError::NotFound { .. } => (None, None, None),
+        };
+        Self {
+            path,
+            line,
+            key,
+            message: e.to_string(),
+        }
+    }
+}
+
 /// Every output's schema file name and text.
 #[must_use]
 pub fn schemas() -> Vec<(&'static str, String)> {
@@ -129,5 +308,8 @@ pub fn schemas() -> Vec<(&'static str, String)> {
         ("sweep", text::<Sweep>()),
         ("map", text::<Map>()),
         ("doctor", text::<crate::doctor::Diagnosis>()),
+        ("chapters", text::<Chapters>()),
+        ("verify", text::<Verification>()),
+        ("check", text::<Check>()),
     ]
 }

@@ -134,14 +134,24 @@ pub fn session_schema() -> String {
     s
 }
 
-/// The chapter list of a recording, one line each: its number, the wall clock of the recording
-/// (`m:ss.s`), the simulated time and the title (cleaned of control characters); lesson steps
-/// count as chapters too.
+/// One chapter of a recording (a chapter marker or a lesson step).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct Chapter {
+    /// 1-based, in the file's order.
+    pub number: usize,
+    /// Seconds of the recording's wall clock.
+    pub wall: f64,
+    /// Simulated time shown then.
+    pub t: f64,
+    /// The title, cleaned of control characters and on one line.
+    pub title: String,
+}
+
+/// The chapters of a recording; lesson steps count as chapters too.
 #[must_use]
-pub fn chapters(rec: &Recording) -> String {
-    use std::fmt::Write as _;
-    let mut out = String::new();
-    let mut n = 0;
+pub fn chapter_list(rec: &Recording) -> Vec<Chapter> {
+    let mut out = Vec::new();
     for (_, line) in &rec.lines {
         let title = match &line.event {
             Event::Chapter { title } => title.clone(),
@@ -154,18 +164,35 @@ pub fn chapters(rec: &Recording) -> String {
             } => format!("{lesson}, step {}/{steps}: {title}", step + 1),
             _ => continue,
         };
-        n += 1;
-        let minutes = (line.wall / 60.0).floor();
-        let seconds = line.wall - 60.0 * minutes;
+        out.push(Chapter {
+            number: out.len() + 1,
+            wall: line.wall,
+            t: line.t,
+            title: crate::scenario::text::clean(&title).replace(['\n', '\t'], " "),
+        });
+    }
+    out
+}
+
+/// The chapter list of a recording, one line each: its number, the wall clock of the recording
+/// (`m:ss.s`), the simulated time and the title (cleaned of control characters); lesson steps
+/// count as chapters too.
+#[must_use]
+pub fn chapters(rec: &Recording) -> String {
+    use std::fmt::Write as _;
+    let list = chapter_list(rec);
+    if list.is_empty() {
+        return "no chapters".to_owned();
+    }
+    let mut out = String::new();
+    for c in list {
+        let minutes = (c.wall / 60.0).floor();
+        let seconds = c.wall - 60.0 * minutes;
         let _ = writeln!(
             out,
-            "{n:>3}  {minutes:.0}:{seconds:04.1}  t {:>9.2}  {}",
-            line.t,
-            crate::scenario::text::clean(&title).replace(['\n', '\t'], " ")
+            "{:>3}  {minutes:.0}:{seconds:04.1}  t {:>9.2}  {}",
+            c.number, c.t, c.title
         );
-    }
-    if n == 0 {
-        out.push_str("no chapters\n");
     }
     out.trim_end().to_owned()
 }

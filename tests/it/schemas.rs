@@ -203,6 +203,86 @@ fn the_preset_reference_is_generated_from_the_tables() {
     }
 }
 
+const LECTURE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/fixtures/sessions/lecture.jsonl"
+);
+const LECTURE_PRESET: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/presets/subcritical.toml");
+
+/// Issue 28: `--format json` where a check fails says how, in the same shape: a session that
+/// diverges (exit 1), one cut short (exit 1), one that cannot be read (exit 2), files with
+/// problems (exit 2); each validates against its schema.
+#[test]
+fn failed_checks_in_json_say_how_and_validate() {
+    let load = |name: &str| {
+        let text = rattleback::outputs::schemas()
+            .into_iter()
+            .find(|(n, _)| *n == name)
+            .unwrap()
+            .1;
+        jsonschema::draft202012::new(&serde_json::from_str::<Value>(&text).unwrap()).unwrap()
+    };
+    let (verify, check_schema) = (load("verify"), load("check"));
+    let dir = std::env::temp_dir().join(format!("rattleback-json-fail-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(LECTURE).unwrap();
+    // A checkpoint's state changed in its last digit: diverged.
+    let lines: Vec<&str> = text.lines().collect();
+    let at = lines
+        .iter()
+        .position(|l| l.contains("\"kind\":\"checkpoint\""))
+        .expect("a checkpoint");
+    let mut bent: Vec<String> = lines.iter().map(|l| (*l).to_owned()).collect();
+    bent[at] = bent[at].replacen("\"state\":[", "\"state\":[1e-3,", 1);
+    let cases: [(&str, String, i32, &str); 3] = [
+        ("bent.jsonl", bent.join("\n") + "\n", 1, "divergence"),
+        (
+            "cut.jsonl",
+            lines[..lines.len() - 1].join("\n") + "\n",
+            1,
+            "incomplete_through",
+        ),
+        ("junk.jsonl", "not a session\n".to_owned(), 2, "error"),
+    ];
+    for (name, content, want, field) in cases {
+        let file = dir.join(name);
+        std::fs::write(&file, content).unwrap();
+        let (code, out, err) = crate::common::bin(&[
+            "replay",
+            file.to_str().unwrap(),
+            "--verify",
+            "--format",
+            "json",
+        ]);
+        assert_eq!(code, want, "{name}: {err}");
+        let v: Value = serde_json::from_str(&out).unwrap_or_else(|e| panic!("{name}: {e}: {out}"));
+        assert_eq!(v["verified"], false, "{name}");
+        assert!(!v[field].is_null(), "{name}: {field} is null: {v}");
+        check(&verify, name, &v);
+    }
+    let bad = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/bad/many-problems.toml"
+    );
+    let (code, out, _) = crate::common::bin(&["check", bad, "--format", "json"]);
+    assert_eq!(code, 2);
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert!(v["problems"].as_array().unwrap().len() > 1, "{v}");
+    assert!(v["problems"][0]["line"].is_number(), "{v}");
+    check(&check_schema, "many problems", &v);
+    // json with both, or neither, is refused.
+    let (code, _, err) = crate::common::bin(&[
+        "replay",
+        LECTURE,
+        "--chapters",
+        "--verify",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// Issue 28: every JSON output begins with `schema_version` and `model` and has a JSON Schema,
 /// generated from its type and checked in (`cargo run --example output_schemas`); real outputs
 /// of each command validate, and a bent one does not.
@@ -263,6 +343,15 @@ fn every_other_json_output_has_its_version_model_and_schema() {
             ],
         ),
         ("doctor", &["doctor", "--format", "json"]),
+        (
+            "chapters",
+            &["replay", LECTURE, "--chapters", "--format", "json"],
+        ),
+        (
+            "verify",
+            &["replay", LECTURE, "--verify", "--format", "json"],
+        ),
+        ("check", &["check", LECTURE_PRESET, "--format", "json"]),
     ];
     for (schema, args) in runs {
         let (code, out, err) = crate::common::bin_in(&config, args);
