@@ -272,7 +272,7 @@ fn finished<T>(result: Result<T, crate::physics::StepError>, what: &str) -> Resu
         return Err(code);
     }
     result.map_err(|e| {
-        say_err!("rattleback: {what} failed: {e}");
+        say_err!("rattleback: error: {what} failed: {e}");
         ExitCode::from(1)
     })
 }
@@ -280,7 +280,7 @@ fn finished<T>(result: Result<T, crate::physics::StepError>, what: &str) -> Resu
 /// The exit of work ended by a signal (128 + its number), after saying so; `None` when none came.
 fn interrupted() -> Option<ExitCode> {
     let n = crate::interrupt::requested()?;
-    say_err!("rattleback: interrupted: nothing was written");
+    say_err!("rattleback: error: interrupted: nothing was written");
     Some(ExitCode::from(u8::try_from(128 + n).unwrap_or(1)))
 }
 
@@ -328,7 +328,7 @@ fn print_list<T>(
 
 fn report(problems: &[PresetError]) -> ExitCode {
     for p in problems {
-        say_err!("rattleback: {p}");
+        say_err!("rattleback: error: {p}");
     }
     if problems.is_empty() {
         ExitCode::SUCCESS

@@ -26,7 +26,25 @@ macro_rules! say_err {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse_from(config_last(std::env::args_os().collect()));
+    let cli = match Cli::try_parse_from(config_last(std::env::args_os().collect())) {
+        Ok(cli) => cli,
+        Err(e) if e.use_stderr() => {
+            // One error style: `rattleback: error: …`, as every other message (clap's own
+            // text begins with `error: `), then its usage hint; exit 2.
+            let mut text = e.render().to_string();
+            if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+                // The help of a command that needs a subcommand: say so first.
+                text = format!("error: a subcommand is needed\n\n{text}");
+            }
+            eprint!("rattleback: {}", rattleback::scenario::text::clean(&text));
+            if !text.ends_with('\n') {
+                eprintln!();
+            }
+            return ExitCode::from(2);
+        }
+        // --help and --version: printed on stdout, exit 0.
+        Err(e) => e.exit(),
+    };
     if let Some(file) = &cli.config {
         if !file.is_file() {
             say_err!(
@@ -163,7 +181,10 @@ fn export_cast(
     );
     progress.finish();
     if let (Err(_), Some(n)) = (&written, rattleback::interrupt::requested()) {
-        say_err!("rattleback: interrupted: {} was not written", out.display());
+        say_err!(
+            "rattleback: error: interrupted: {} was not written",
+            out.display()
+        );
         return ExitCode::from(u8::try_from(128 + n).unwrap_or(1));
     }
     match written {
@@ -314,7 +335,7 @@ fn run_verify(args: &ReplayArgs, rec: &record::Recording, path: &str) -> Result<
         }
         Err(record::VerifyError::Diverged(d)) => {
             say_err!(
-                "rattleback: {path}:{}: divergence at t = {}: expected {}, got {}",
+                "rattleback: error: {path}:{}: divergence at t = {}: expected {}, got {}",
                 d.line,
                 d.t,
                 d.expected,
@@ -347,7 +368,7 @@ fn print_report(path: &str, r: &record::Report, cut: Option<usize>) {
     }
     if let Some(n) = cut {
         say_err!(
-            "rattleback: {path}: incomplete: intact up to line {n}, but there is no end line (the recording was cut short, or its tail deleted)"
+            "rattleback: error: {path}: incomplete: intact up to line {n}, but there is no end line (the recording was cut short, or its tail deleted)"
         );
     }
 }
@@ -458,7 +479,7 @@ fn run_follow(args: &rattleback::cli::FollowArgs) -> ExitCode {
     {
         if !said {
             say_err!(
-                "rattleback: waiting for {} to appear (the lecturer has not started recording yet; Ctrl-C stops)",
+                "rattleback: note: waiting for {} to appear (the lecturer has not started recording yet; Ctrl-C stops)",
                 args.file.display()
             );
             said = true;
@@ -684,7 +705,7 @@ fn explore(
         // Checked after the preset and config, which a user wants to hear about first, and
         // before the terminal is touched: a dumb terminal shows escape codes as text.
         say_err!(
-            "rattleback: TERM=dumb cannot show the explorer (it moves the cursor and draws); set TERM to the terminal's name (xterm-256color, screen, linux, …), or use `rattleback simulate` for text"
+            "rattleback: error: TERM=dumb cannot show the explorer (it moves the cursor and draws); set TERM to the terminal's name (xterm-256color, screen, linux, …), or use `rattleback simulate` for text"
         );
         return ExitCode::from(1);
     }
@@ -694,7 +715,7 @@ fn explore(
         Ok(Some(n)) => ExitCode::from(u8::try_from(128 + n).unwrap_or(1)),
         Err(e) => {
             say_err!(
-                "rattleback: the explorer needs an interactive terminal ({e}); for headless runs use `rattleback simulate`"
+                "rattleback: error: the explorer needs an interactive terminal ({e}); for headless runs use `rattleback simulate`"
             );
             ExitCode::from(1)
         }
@@ -789,7 +810,7 @@ fn run_simulate(args: &SimulateArgs) -> ExitCode {
             ExitCode::from(2)
         }
         Err(Failure::Run(e)) => {
-            say_err!("rattleback: integration failed: {e}");
+            say_err!("rattleback: error: integration failed: {e}");
             ExitCode::from(1)
         }
     }

@@ -297,3 +297,59 @@ fn a_dash_reads_standard_input_where_a_file_is_read_headless() {
         );
     }
 }
+
+/// Issue 28: one error style. Whatever fails (clap's parsing, a preset, a session, a check, a
+/// terminal, a study), stderr's first line is `rattleback: error: …`, and the exit status is
+/// the documented one.
+#[test]
+fn every_failure_speaks_in_one_style() {
+    let junk = std::env::temp_dir().join(format!("rattleback-style-{}.jsonl", std::process::id()));
+    std::fs::write(&junk, "not a session\n").unwrap();
+    let j = junk.to_str().unwrap();
+    let bad = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/bad/k-zero.toml"
+    );
+    let cases: &[(&[&str], i32)] = &[
+        (&["--frob"], 2),
+        (&["simulate", "--method", "nope"], 2),
+        (&["simulate", "--preset", "nonesuch"], 2),
+        (&["simulate", "--preset", bad], 2),
+        (
+            &[
+                "simulate",
+                "--set",
+                "spring.k=1e12",
+                "--t-end",
+                "1e9",
+                "--method",
+                "rk4",
+            ],
+            2,
+        ),
+        (&["replay", j, "--verify"], 2),
+        (&["check", bad], 2),
+        (&["--config", "/nonexistent.toml", "simulate"], 2),
+        (&["study", "map", "--preset", "kapitza-upright"], 2),
+        (&["study"], 2),
+        (&["presets", "show", "nonesuch"], 2),
+        (&["completions", "tcsh"], 2),
+    ];
+    for (args, want) in cases {
+        let (code, _, err) = bin(args);
+        assert_eq!(code, *want, "{args:?}: {err}");
+        let first = err.lines().next().unwrap_or_default();
+        assert!(
+            first.starts_with("rattleback: error: "),
+            "{args:?}: first line {first:?}"
+        );
+    }
+    // The explorer without a terminal, and under TERM=dumb.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        .env("TERM", "dumb")
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.starts_with("rattleback: error: TERM=dumb"), "{err}");
+    std::fs::remove_file(&junk).ok();
+}
