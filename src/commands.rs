@@ -157,42 +157,111 @@ pub fn lessons(args: &ListArgs) -> ExitCode {
     )
 }
 
-/// The command line as clap sees it, with the preset and theme names of this machine as the
-/// values `--preset` and `--theme` complete to (a path is still accepted when typed).
-fn command_for_docs() -> clap::Command {
-    let presets: Vec<String> = catalogue().0.into_iter().map(|e| e.name).collect();
-    let themes: Vec<String> = crate::scenario::theme::themes()
-        .0
-        .into_iter()
-        .map(|(n, _)| n)
-        .collect();
-    let hint = |names: &[String]| {
-        let values: Vec<clap::builder::PossibleValue> = names
-            .iter()
-            .map(|n| clap::builder::PossibleValue::new(clap::builder::Str::from(n.clone())))
-            .collect();
-        move |a: clap::Arg| a.value_parser(clap::builder::PossibleValuesParser::new(values.clone()))
-    };
-    let (p, t) = (hint(&presets), hint(&themes));
-    let mut cmd = <crate::cli::Cli as clap::CommandFactory>::command()
-        .mut_arg("preset", &p)
-        .mut_arg("theme", &t);
-    cmd = cmd
-        .mut_subcommand("simulate", |c| c.mut_arg("preset", &p))
-        .mut_subcommand("replay", |c| c.mut_arg("theme", &t))
-        .mut_subcommand("study", |c| {
-            c.mut_subcommand("sweep", |s| s.mut_arg("preset", &p))
-                .mut_subcommand("map", |s| s.mut_arg("preset", &p))
-        });
-    cmd
+/// The command line with dynamic completers: preset, theme and lesson names are asked of the
+/// program when the shell completes (`clap_complete`'s `CompleteEnv`), so a preset made after the
+/// script was sourced completes too; a value that looks like a path completes as a path.
+#[must_use]
+pub fn command_with_completers() -> clap::Command {
+    attach_completers(<crate::cli::Cli as clap::CommandFactory>::command())
 }
 
-/// `rattleback completions SHELL`.
+fn attach_completers(cmd: clap::Command) -> clap::Command {
+    use clap_complete::engine::ArgValueCompleter;
+    let is_presets_show = cmd.get_name() == "show";
+    cmd.mut_args(move |a| match a.get_id().as_str() {
+        "preset" | "a" | "b" => a.add(ArgValueCompleter::new(complete_presets)),
+        "name" if is_presets_show => a.add(ArgValueCompleter::new(complete_presets)),
+        "theme" => a.add(ArgValueCompleter::new(complete_themes)),
+        "lesson" => a.add(ArgValueCompleter::new(complete_lessons)),
+        _ => a,
+    })
+    .mut_subcommands(attach_completers)
+}
+
+type Candidates = Vec<clap_complete::engine::CompletionCandidate>;
+
+/// Names starting with what is typed (each with its title as help), and paths when what is
+/// typed looks like one (or no name matches).
+fn named_or_path(current: &std::ffi::OsStr, names: Vec<(String, String)>) -> Candidates {
+    use clap_complete::engine::{CompletionCandidate, PathCompleter, ValueCompleter as _};
+    let typed = current.to_string_lossy();
+    let mut out: Candidates = names
+        .into_iter()
+        .filter(|(n, _)| n.starts_with(typed.as_ref()))
+        .map(|(n, title)| {
+            CompletionCandidate::new(n).help(Some(crate::scenario::text::clean(&title).into()))
+        })
+        .collect();
+    if typed.contains(['/', '.']) || out.is_empty() {
+        out.extend(PathCompleter::file().complete(current));
+    }
+    out
+}
+
+fn complete_presets(current: &std::ffi::OsStr) -> Candidates {
+    let names = catalogue()
+        .0
+        .into_iter()
+        .map(|e| (e.name, e.title))
+        .collect();
+    named_or_path(current, names)
+}
+
+fn complete_themes(current: &std::ffi::OsStr) -> Candidates {
+    let names = crate::scenario::theme::themes()
+        .0
+        .into_iter()
+        .map(|(n, spec)| (n, spec.name))
+        .collect();
+    named_or_path(current, names)
+}
+
+fn complete_lessons(current: &std::ffi::OsStr) -> Candidates {
+    let names = crate::scenario::lesson::catalogue()
+        .0
+        .into_iter()
+        .map(|e| (e.name, e.title))
+        .collect();
+    named_or_path(current, names)
+}
+
+/// Answers the shell when it asks for completions (`COMPLETE=SHELL rattleback -- WORDS…`, as
+/// the script of `rattleback completions SHELL` does), then exits; otherwise returns at once.
+pub fn answer_completion() {
+    clap_complete::CompleteEnv::with_factory(command_with_completers)
+        .bin("rattleback")
+        .complete();
+}
+
+/// `rattleback completions SHELL`: the script that registers dynamic completion in that shell
+/// (the shell asks the program for every completion, so names are never stale).
 #[must_use]
 pub fn completions(shell: clap_complete::Shell) -> ExitCode {
-    let mut cmd = command_for_docs();
+    use clap_complete::env::{Bash, Elvish, EnvCompleter, Fish, Powershell, Zsh};
+    // The program that answers: this binary, by its path when known (a build outside PATH
+    // still completes), else by name.
+    let me = std::env::current_exe()
+        .ok()
+        .and_then(|p| p.to_str().map(str::to_owned))
+        .unwrap_or_else(|| "rattleback".to_owned());
+    let completer: &dyn EnvCompleter = match shell {
+        clap_complete::Shell::Bash => &Bash,
+        clap_complete::Shell::Zsh => &Zsh,
+        clap_complete::Shell::Fish => &Fish,
+        clap_complete::Shell::Elvish => &Elvish,
+        clap_complete::Shell::PowerShell => &Powershell,
+        _ => {
+            say_err!("rattleback: error: completions: this shell is not supported");
+            return ExitCode::from(2);
+        }
+    };
     let mut out = Vec::new();
-    clap_complete::generate(shell, &mut cmd, "rattleback", &mut out);
+    if let Err(e) =
+        completer.write_registration("COMPLETE", "rattleback", "rattleback", &me, &mut out)
+    {
+        say_err!("rattleback: error: writing the completion script: {e}");
+        return ExitCode::from(1);
+    }
     write_stdout(&out)
 }
 

@@ -26,6 +26,8 @@ macro_rules! say_err {
 }
 
 fn main() -> ExitCode {
+    // A shell asking for completions is answered before anything else, then the process exits.
+    commands::answer_completion();
     let cli = match Cli::try_parse_from(config_last(std::env::args_os().collect())) {
         Ok(cli) => cli,
         Err(e) if e.use_stderr() => {

@@ -52,7 +52,7 @@ pub const EXAMPLES: &[(&str, &str)] = &[
     ),
     (
         "source <(rattleback completions bash)",
-        "complete commands, presets and themes in bash",
+        "complete commands, flags, presets, themes and lessons in bash (the program is asked each time)",
     ),
 ];
 

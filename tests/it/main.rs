@@ -14,6 +14,7 @@ mod celt;
 mod charsets;
 mod cli_conventions;
 mod compare;
+mod completions;
 mod convergence_order;
 mod ecosystem;
 mod effective_limit;
