@@ -11,29 +11,6 @@ use plotters::prelude::*;
 use crate::app::App;
 use crate::study::svg::tick;
 
-/// The separatrices of the limit, `E_eff(q, q̇) = V` at each unstable equilibrium, as two
-/// branches each over `[x0, x1]`.
-fn separatrix(app: &App, x0: f64, x1: f64) -> Vec<Vec<(f64, f64)>> {
-    let eff = &app.scenario.derived.limit;
-    let mut out = Vec::new();
-    for top in eff.separatrices() {
-        let mut upper = Vec::new();
-        let n = 400;
-        for i in 0..=n {
-            let a = x0 + (x1 - x0) * f64::from(i) / f64::from(n);
-            let base = eff.energy_of(a, 0.0);
-            let c = eff.energy_of(a, 1.0) - base;
-            if c > 0.0 && top >= base {
-                upper.push((a, ((top - base) / c).sqrt()));
-            }
-        }
-        let lower = upper.iter().map(|&(a, v)| (a, -v)).collect();
-        out.push(upper);
-        out.push(lower);
-    }
-    out
-}
-
 /// The model's physical parameters for a caption (the start left out; the small parameter by
 /// its symbol).
 fn describe(model: &crate::physics::Model) -> String {
@@ -51,102 +28,261 @@ fn describe(model: &crate::physics::Model) -> String {
         .join(" ")
 }
 
-/// The portrait as an SVG: the full trajectory shown so far, the limit's (when shown), the
-/// separatrix, the start and the current point; α unwrapped.
+/// `points` cut to the rectangle `b`: each run of segments inside is a polyline, a segment that
+/// crosses the frame ends (or starts) on it (Liang–Barsky), nothing is drawn along the frame.
+#[must_use]
+pub fn clip(points: &[(f64, f64)], b: &crate::app::portrait::Bounds) -> Vec<Vec<(f64, f64)>> {
+    let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut open = false;
+    for w in points.windows(2) {
+        let ((x0, y0), (x1, y1)) = (w[0], w[1]);
+        let (dx, dy) = (x1 - x0, y1 - y0);
+        let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+        let mut inside = true;
+        for (p, q) in [
+            (-dx, x0 - b.x[0]),
+            (dx, b.x[1] - x0),
+            (-dy, y0 - b.y[0]),
+            (dy, b.y[1] - y0),
+        ] {
+            if p == 0.0 {
+                if q < 0.0 {
+                    inside = false;
+                }
+            } else {
+                let r = q / p;
+                if p < 0.0 {
+                    t0 = t0.max(r);
+                } else {
+                    t1 = t1.min(r);
+                }
+            }
+        }
+        if !inside || t0 > t1 {
+            open = false;
+            continue;
+        }
+        let a = (x0 + t0 * dx, y0 + t0 * dy);
+        let z = (x0 + t1 * dx, y0 + t1 * dy);
+        if !open || t0 > 0.0 {
+            out.push(vec![a]);
+        }
+        if let Some(line) = out.last_mut() {
+            line.push(z);
+        }
+        // The next segment continues this line only if this one ended inside.
+        open = t1 >= 1.0;
+    }
+    out
+}
+
+/// A tick label of an axis spanning `span`: a value within 1e-9 of the span from zero is `0`
+/// (no `-1.1e-16`).
+fn axis_tick(x: f64, span: f64) -> String {
+    if x.abs() <= 1e-9 * span.abs() {
+        "0".to_owned()
+    } else {
+        tick(x)
+    }
+}
+
+/// The portrait's curves as the screen shows them: α folded when wrapped (a curve broken where
+/// it folds), clipped to the bounds; the start and the current point.
+struct Shown {
+    bounds: crate::app::portrait::Bounds,
+    trail: Vec<Vec<(f64, f64)>>,
+    limit: Vec<Vec<(f64, f64)>>,
+    start: (f64, f64),
+    now: Option<(f64, f64)>,
+}
+
+impl Shown {
+    fn of(app: &App) -> Self {
+        use crate::app::portrait::{display_alpha, wrap_centre};
+        let b = app.bounds();
+        let eff = &app.scenario.derived.limit;
+        let (wrap, period, centre) = (app.view.view.wrap, eff.period(), wrap_centre(eff));
+        let fold =
+            |p: &crate::sim::Point| (display_alpha(p.alpha, centre, wrap, period), p.alpha_dot);
+        let polylines = |points: &[crate::sim::Point]| -> Vec<Vec<(f64, f64)>> {
+            let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+            for p in points.iter().map(fold) {
+                let jump = runs
+                    .last()
+                    .and_then(|r| r.last())
+                    .is_some_and(|last| wrap && (p.0 - last.0).abs() > 0.5 * period);
+                if jump {
+                    runs.push(Vec::new());
+                }
+                if let Some(run) = runs.last_mut() {
+                    run.push(p);
+                }
+            }
+            runs.iter().flat_map(|r| clip(r, &b)).collect()
+        };
+        let limit = if app.view.overlay {
+            polylines(crate::app::run::upto(
+                &app.run.effective_trail,
+                app.run.shown,
+            ))
+        } else {
+            Vec::new()
+        };
+        let start = app.scenario.settings.model.slow_start();
+        Self {
+            bounds: b,
+            trail: polylines(app.run.trail_shown()),
+            limit,
+            start: (display_alpha(start.0, centre, wrap, period), start.1),
+            now: app.run.current().map(fold),
+        }
+    }
+
+    fn inside(&self, (x, y): (f64, f64)) -> bool {
+        let b = &self.bounds;
+        (b.x[0]..=b.x[1]).contains(&x) && (b.y[0]..=b.y[1]).contains(&y)
+    }
+}
+
+const GREY: RGBColor = RGBColor(150, 150, 150);
+const CYAN: RGBColor = RGBColor(0, 140, 160);
+const AMBER: RGBColor = RGBColor(200, 140, 0);
+const GREEN: RGBColor = RGBColor(30, 140, 60);
+const MAGENTA: RGBColor = RGBColor(170, 40, 170);
+
+type Chart<'a, 'b> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// The level sets as the screen draws them: dotted, the start's dashed, the separatrix solid.
+fn draw_levels(
+    chart: &mut Chart<'_, '_>,
+    levels: &[crate::app::portrait::Level],
+    b: &crate::app::portrait::Bounds,
+) -> Result<(), Box<dyn std::error::Error>> {
+    use crate::app::portrait::LevelKind;
+    for level in levels {
+        let (colour, every) = match level.kind {
+            LevelKind::Plain => (GREY, 3),
+            LevelKind::Start => (CYAN, 2),
+            LevelKind::Separatrix => (AMBER, 1),
+        };
+        for line in &level.lines {
+            for (k, w) in line.windows(2).enumerate() {
+                if k % every == 0 {
+                    for piece in clip(w, b) {
+                        chart.draw_series(LineSeries::new(piece, colour.stroke_width(1)))?;
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The legend in its own column: a line (or a dot) and a label per entry.
+fn draw_legend(
+    area: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
+    entries: Vec<(String, RGBColor, bool)>,
+) -> Result<(), Box<dyn std::error::Error>> {
+    for (k, (label, colour, dot)) in entries.into_iter().enumerate() {
+        let y = 60 + 26 * i32::try_from(k).unwrap_or(0);
+        if dot {
+            area.draw(&Circle::new((22, y), 5, colour.filled()))?;
+        } else {
+            area.draw(&PathElement::new(
+                vec![(10, y), (34, y)],
+                colour.stroke_width(2),
+            ))?;
+        }
+        area.draw(&Text::new(label, (42, y - 7), ("sans-serif", 14)))?;
+    }
+    Ok(())
+}
+
+/// The portrait as an SVG, as the screen shows it: the same range (zoom, pan, wrap, following),
+/// the level sets (dotted), the start's level (dashed) and the separatrix (solid), the trail,
+/// the limit (when shown), the start and the current point, every curve clipped to the frame;
+/// round tick labels; the legend in its own column right of the plot.
 ///
 /// # Errors
 /// When drawing fails.
 pub fn portrait_svg(app: &App) -> Result<String, Box<dyn std::error::Error>> {
-    let trail: Vec<(f64, f64)> = app
-        .run
-        .trail_shown()
-        .iter()
-        .map(|p| (p.alpha, p.alpha_dot))
-        .collect();
-    let limit: Vec<(f64, f64)> = if app.view.overlay {
-        crate::app::run::upto(&app.run.effective_trail, app.run.shown)
-            .iter()
-            .map(|p| (p.alpha, p.alpha_dot))
-            .collect()
-    } else {
-        Vec::new()
-    };
     let s = &app.scenario.settings;
-    let start = s.model.slow_start();
+    let shown = Shown::of(app);
+    let b = shown.bounds;
+    let eff = &app.scenario.derived.limit;
     let words = s.model.kind().words();
-    let params = describe(&s.model);
-    let small = s.model.kind().small();
-    let (mut x0, mut x1, mut y0, mut y1) = (start.0, start.0, start.1, start.1);
-    for &(x, y) in trail.iter().chain(&limit) {
-        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
-    }
-    let (px, py) = (0.08 * (x1 - x0).max(0.1), 0.08 * (y1 - y0).max(0.1));
-    let (x0, x1, y0, y1) = (x0 - px, x1 + px, y0 - py, y1 + py);
+    let level_sets = crate::app::portrait::levels(eff, &b, eff.energy(), app.view.view.levels, 400);
     let mut out = String::new();
     {
-        let root = SVGBackend::with_string(&mut out, (900, 640)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut out, (960, 640)).into_drawing_area();
         root.fill(&WHITE)?;
+        let (plot_area, legend_area) = root.split_horizontally(740);
         let caption = format!(
-            "{}: {params}, t {} of {}",
+            "{}: {}, t {} of {}",
             crate::scenario::text::clean(&app.scenario.name),
+            describe(&s.model),
             tick(app.run.shown),
             tick(s.t_end)
         );
-        let mut chart = ChartBuilder::on(&root)
-            .caption(caption, ("sans-serif", 18))
+        let mut chart = ChartBuilder::on(&plot_area)
+            .caption(caption, ("sans-serif", 16))
             .margin(12)
             .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d(x0..x1, y0..y1)?;
+            .y_label_area_size(64)
+            .build_cartesian_2d(b.x[0]..b.x[1], b.y[0]..b.y[1])?;
+        let (sx, sy) = (b.x[1] - b.x[0], b.y[1] - b.y[0]);
+        let x_desc = if app.view.view.wrap {
+            format!("{} (wrapped)", words.q_name)
+        } else {
+            words.q_name.to_owned()
+        };
         chart
             .configure_mesh()
-            .x_desc(words.q_name)
+            .disable_mesh()
+            .x_desc(x_desc)
             .y_desc(words.q_dot_name)
-            .x_label_formatter(&|x| tick(*x))
-            .y_label_formatter(&|y| tick(*y))
+            .x_label_formatter(&|x| axis_tick(*x, sx))
+            .y_label_formatter(&|y| axis_tick(*y, sy))
             .draw()?;
-        let sep_colour = RGBColor(200, 150, 0);
-        for (i, branch) in separatrix(app, x0, x1).into_iter().enumerate() {
-            let series = chart.draw_series(LineSeries::new(branch, sep_colour.stroke_width(1)))?;
-            if i == 0 {
-                series
-                    .label("separatrix of the limit")
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], sep_colour));
-            }
+        draw_levels(&mut chart, &level_sets, &b)?;
+        // The limit wide and pale beneath, the full motion on top: both stay visible where
+        // they coincide (a stiff spring), as the screen's sparse marks let the trail show.
+        for piece in &shown.limit {
+            chart.draw_series(LineSeries::new(
+                piece.iter().copied(),
+                MAGENTA.mix(0.45).stroke_width(5),
+            ))?;
         }
-        let green = RGBColor(30, 140, 60);
-        chart
-            .draw_series(LineSeries::new(
-                trail.iter().copied(),
-                green.stroke_width(1),
-            ))?
-            .label("full motion")
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], green));
-        if !limit.is_empty() {
-            let magenta = RGBColor(170, 40, 170);
-            chart
-                .draw_series(LineSeries::new(
-                    limit.iter().copied(),
-                    magenta.stroke_width(2),
-                ))?
-                .label(small.map_or_else(|| "limit".to_owned(), |s| format!("limit {}", s.limit)))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], magenta));
+        for piece in &shown.trail {
+            chart.draw_series(LineSeries::new(
+                piece.iter().copied(),
+                GREEN.stroke_width(1),
+            ))?;
         }
-        chart
-            .draw_series(std::iter::once(Circle::new(start, 4, BLACK.filled())))?
-            .label("start")
-            .legend(|(x, y)| Circle::new((x + 8, y), 4, BLACK.filled()));
-        if let Some(&last) = trail.last() {
-            chart
-                .draw_series(std::iter::once(Circle::new(last, 5, RED.filled())))?
-                .label("now")
-                .legend(|(x, y)| Circle::new((x + 8, y), 5, RED.filled()));
+        if shown.inside(shown.start) {
+            chart.draw_series(std::iter::once(Circle::new(shown.start, 4, BLACK.filled())))?;
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()?;
+        if let Some(now) = shown.now.filter(|p| shown.inside(*p)) {
+            chart.draw_series(std::iter::once(Circle::new(now, 5, RED.filled())))?;
+        }
+        let mut entries: Vec<(String, RGBColor, bool)> = vec![
+            ("energy levels (dotted)".to_owned(), GREY, false),
+            ("start's level (dashed)".to_owned(), CYAN, false),
+            ("separatrix".to_owned(), AMBER, false),
+            ("full motion".to_owned(), GREEN, false),
+        ];
+        if app.view.overlay {
+            let small = s.model.kind().small();
+            let label = small.map_or_else(|| "limit".to_owned(), |s| format!("limit {}", s.limit));
+            entries.push((format!("{label} (wide, pale)"), MAGENTA, false));
+        }
+        entries.push(("start".to_owned(), BLACK, true));
+        entries.push(("now".to_owned(), RED, true));
+        draw_legend(&legend_area, entries)?;
         root.present()?;
     }
     Ok(out)
@@ -221,4 +357,40 @@ pub fn export(app: &App, dir: &Path, stem: &str) -> Result<Vec<PathBuf>, String>
         written.push(path);
     }
     Ok(written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::app::portrait::Bounds;
+
+    #[test]
+    fn clipping_keeps_the_inside_and_ends_on_the_frame() {
+        let b = Bounds {
+            x: [0.0, 1.0],
+            y: [0.0, 1.0],
+        };
+        // Inside: unchanged.
+        assert_eq!(
+            clip(&[(0.1, 0.1), (0.5, 0.5)], &b),
+            vec![vec![(0.1, 0.1), (0.5, 0.5)]]
+        );
+        // Out, in, out: one piece from frame to frame.
+        let got = clip(&[(-1.0, 0.5), (0.5, 0.5), (2.0, 0.5)], &b);
+        assert_eq!(got, vec![vec![(0.0, 0.5), (0.5, 0.5), (1.0, 0.5)]]);
+        // Leaving and coming back: two pieces, nothing along the frame.
+        let got = clip(&[(0.5, 0.5), (0.5, 2.0), (0.6, 2.0), (0.6, 0.5)], &b);
+        assert_eq!(
+            got,
+            vec![vec![(0.5, 0.5), (0.5, 1.0)], vec![(0.6, 1.0), (0.6, 0.5)]]
+        );
+        // Wholly outside: nothing.
+        assert!(clip(&[(2.0, 2.0), (3.0, 3.0)], &b).is_empty());
+    }
+
+    #[test]
+    fn tick_labels_near_zero_are_zero() {
+        assert_eq!(axis_tick(-1.1e-16, 2.0), "0");
+        assert_eq!(axis_tick(0.5, 2.0), "0.5");
+    }
 }

@@ -39,7 +39,7 @@ fn the_export_writes_a_portrait_and_a_csv_that_says_what_made_it() {
     );
     let svg = std::fs::read_to_string(&paths[0]).unwrap();
     assert!(svg.starts_with("<svg"), "{}", &svg[..80]);
-    assert!(svg.contains("alpha_dot") && svg.contains("separatrix of the limit"));
+    assert!(svg.contains("alpha_dot") && svg.contains("separatrix"));
     // Axis labels are short: no `9.999999999999999e-5`.
     let labels: Vec<&str> = svg
         .split("<text")
@@ -85,6 +85,121 @@ fn the_export_writes_a_portrait_and_a_csv_that_says_what_made_it() {
     let again = rattleback::export::export(&h.app, &dir, "subcritical-start").unwrap();
     assert_ne!(again[0], paths[0]);
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The `(x, y)` pixel pairs of one `<polyline` element's text.
+fn polyline_points_of(element: &str) -> Vec<(f64, f64)> {
+    element
+        .split_once("points=\"")
+        .and_then(|(_, rest)| rest.split_once('"'))
+        .map(|(pts, _)| {
+            pts.split_whitespace()
+                .filter_map(|xy| {
+                    let (x, y) = xy.split_once(',')?;
+                    Some((x.parse().ok()?, y.parse().ok()?))
+                })
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// The `(x, y)` pixel pairs of every polyline in an SVG.
+fn polyline_points(svg: &str) -> Vec<(f64, f64)> {
+    svg.split("<polyline")
+        .skip(1)
+        .filter_map(|p| p.split_once("points=\"").map(|(_, rest)| rest))
+        .filter_map(|p| p.split_once('"').map(|(pts, _)| pts))
+        .flat_map(|pts| {
+            pts.split_whitespace().filter_map(|xy| {
+                let (x, y) = xy.split_once(',')?;
+                Some((x.parse().ok()?, y.parse().ok()?))
+            })
+        })
+        .collect()
+}
+
+/// Issue 28, item 5: the export is the screen. The SVG's axes span the screen's range (the
+/// review's `subcritical` exported α ±0.8 against the screen's ±1.571); the level sets, the
+/// start's level and the separatrix are drawn; curves leave the frame instead of running along
+/// it; tick labels are round (no `-1.1e-16`); the legend sits right of the plot, over no data.
+#[test]
+fn the_exported_portrait_is_the_screens_view() {
+    let mut h = Headless::new("subcritical");
+    h.play_until(12.0, 4.0);
+    let b = h.app.bounds();
+    let svg = rattleback::export::portrait_svg(&h.app).unwrap();
+    let labels: Vec<String> = svg
+        .split("<text")
+        .skip(1)
+        .filter_map(|t| t.split_once('>').and_then(|(_, r)| r.split_once("</text>")))
+        .map(|(l, _)| l.trim().replace("&apos;", "'"))
+        .collect();
+    assert!(!labels.iter().any(|l| l.contains("e-1")), "{labels:?}");
+    let numbers: Vec<f64> = labels.iter().filter_map(|l| l.parse().ok()).collect();
+    // Some tick labels reach past 80 % of each half-range of alpha: the screen's range.
+    let reach = numbers.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    assert!(
+        reach >= 0.8 * b.x[1].abs().max(b.x[0].abs()) * 0.9,
+        "{numbers:?} vs {b:?}"
+    );
+    for word in [
+        "energy levels",
+        "start's level",
+        "separatrix",
+        "full motion",
+        "now",
+    ] {
+        assert!(
+            labels.iter().any(|l| l.contains(word)),
+            "legend lacks {word}"
+        );
+    }
+    // Many level-set pieces (dotted lines are many short polylines).
+    assert!(svg.matches("<polyline").count() > 100, "level sets missing");
+    // Every curve is inside the plot's column (x ≤ 740) or is a legend sample right of it;
+    // none crosses into the legend, whose text is right of the plot.
+    let pts = polyline_points(&svg);
+    let data = pts.iter().filter(|p| p.0 <= 740.0).count();
+    let legend = pts.len() - data;
+    assert!(data > 1000 && legend > 0 && legend < 20, "{data} {legend}");
+    let legend_x: Vec<f64> = svg
+        .split("<text")
+        .skip(1)
+        .filter(|t| t.contains("full motion"))
+        .filter_map(|t| t.split_once("x=\"").and_then(|(_, r)| r.split_once('"')))
+        .filter_map(|(x, _)| x.parse().ok())
+        .collect();
+    assert!(legend_x.iter().all(|&x| x >= 740.0), "{legend_x:?}");
+    // Zoomed in, the curves leave the frame: clipped, not clamped onto it (no segment runs
+    // along an edge of the plot).
+    for _ in 0..2 {
+        h.key(Key::Char('z'));
+    }
+    let svg = rattleback::export::portrait_svg(&h.app).unwrap();
+    let lines: Vec<Vec<(f64, f64)>> = svg
+        .split("<polyline")
+        .skip(1)
+        .map(polyline_points_of)
+        .filter(|l| l.iter().all(|p| p.0 <= 740.0))
+        .collect();
+    let all: Vec<(f64, f64)> = lines.iter().flatten().copied().collect();
+    assert!(all.len() > 200, "{} points", all.len());
+    let (x0, x1, y0, y1) = all.iter().fold(
+        (f64::MAX, f64::MIN, f64::MAX, f64::MIN),
+        |(a, b, c, d), p| (a.min(p.0), b.max(p.0), c.min(p.1), d.max(p.1)),
+    );
+    let edge = |u: f64, v: f64| (u - v).abs() < 0.01;
+    let along = lines
+        .iter()
+        .flat_map(|l| l.windows(2))
+        .filter(|w| {
+            (edge(w[0].1, y0) && edge(w[1].1, y0))
+                || (edge(w[0].1, y1) && edge(w[1].1, y1))
+                || (edge(w[0].0, x0) && edge(w[1].0, x0))
+                || (edge(w[0].0, x1) && edge(w[1].0, x1))
+        })
+        .count();
+    assert_eq!(along, 0, "segments along the frame");
 }
 
 #[test]
