@@ -43,6 +43,41 @@ impl Default for CastSize {
     }
 }
 
+/// Whether a frame's bytes print anything: some byte outside escape sequences (CSI, OSC and
+/// two-byte escapes) that is not a control character.
+#[must_use]
+pub fn changes_something(bytes: &[u8]) -> bool {
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            0x1b => {
+                i += 1;
+                match bytes.get(i) {
+                    // CSI: parameters and intermediates, then a final byte 0x40..=0x7e.
+                    Some(b'[') => {
+                        i += 1;
+                        while i < bytes.len() && !(0x40..=0x7e).contains(&bytes[i]) {
+                            i += 1;
+                        }
+                        i += 1;
+                    }
+                    // OSC: up to BEL or ESC \.
+                    Some(b']') => {
+                        while i < bytes.len() && bytes[i] != 0x07 && bytes[i] != 0x1b {
+                            i += 1;
+                        }
+                        i += if bytes.get(i) == Some(&0x1b) { 2 } else { 1 };
+                    }
+                    _ => i += 1,
+                }
+            }
+            b if b < 0x20 || b == 0x7f => i += 1,
+            _ => return true,
+        }
+    }
+    false
+}
+
 /// A time rounded to the microsecond (what asciinema writes).
 fn micro(t: f64) -> f64 {
     (t * 1e6).round() / 1e6
@@ -96,26 +131,7 @@ pub fn export_cast_watched(
         path: out.display().to_string(),
         source,
     };
-    let (mut app, start_effects) = start(rec, path)?;
-    let recorded = rec.header.terminal;
-    let area = Rect::new(
-        0,
-        0,
-        size.cols.unwrap_or(recorded.width).max(1),
-        size.rows.unwrap_or(recorded.height).max(1),
-    );
-    let screen = Shared::default();
-    let mut terminal = Terminal::with_options(
-        CrosstermBackend::new(screen.clone()),
-        TerminalOptions {
-            viewport: Viewport::Fixed(area),
-        },
-    )
-    .map_err(io)?;
-    let mut engine = Engine::new(plan_book(rec));
-    drive(&mut engine, commands(start_effects), &mut |e| {
-        app.on_sim(e);
-    });
+    let (mut app, mut engine, mut terminal, screen) = prepare(rec, path, size)?;
     crate::scenario::write::write_atomic_with(out, replace, &mut |cast| {
         frames_of(
             rec,
@@ -128,6 +144,71 @@ pub fn export_cast_watched(
         )
     })
     .map_err(io)
+}
+
+/// The cast of `rec` as text (for a page that inlines it), and its number of frames.
+///
+/// # Errors
+/// As [`export_cast`].
+pub fn cast_text(
+    rec: &Recording,
+    path: &str,
+    options: &UiOptions,
+    size: CastSize,
+    seen: &mut dyn FnMut(usize),
+) -> Result<(String, usize), RecordError> {
+    let (mut app, mut engine, mut terminal, screen) = prepare(rec, path, size)?;
+    let mut cast = Vec::new();
+    let frames = frames_of(
+        rec,
+        &mut app,
+        &mut engine,
+        (&mut terminal, &screen),
+        (options, size.fps),
+        &mut cast,
+        seen,
+    )
+    .map_err(|source| RecordError::Io {
+        path: path.to_owned(),
+        source,
+    })?;
+    Ok((String::from_utf8_lossy(&cast).into_owned(), frames))
+}
+
+type Prepared = (
+    crate::app::App,
+    Engine,
+    Terminal<CrosstermBackend<Shared>>,
+    Shared,
+);
+
+/// The replay's app at its start, its engine, and a terminal drawing into memory.
+fn prepare(rec: &Recording, path: &str, size: CastSize) -> Result<Prepared, RecordError> {
+    let io = |source| RecordError::Io {
+        path: path.to_owned(),
+        source,
+    };
+    let (mut app, start_effects) = start(rec, path)?;
+    let recorded = rec.header.terminal;
+    let area = Rect::new(
+        0,
+        0,
+        size.cols.unwrap_or(recorded.width).max(1),
+        size.rows.unwrap_or(recorded.height).max(1),
+    );
+    let screen = Shared::default();
+    let terminal = Terminal::with_options(
+        CrosstermBackend::new(screen.clone()),
+        TerminalOptions {
+            viewport: Viewport::Fixed(area),
+        },
+    )
+    .map_err(io)?;
+    let mut engine = Engine::new(plan_book(rec));
+    drive(&mut engine, commands(start_effects), &mut |e| {
+        app.on_sim(e);
+    });
+    Ok((app, engine, terminal, screen))
 }
 
 /// Writes the cast, frame by frame, into `cast` (streamed: nothing is kept but the screen).
@@ -199,7 +280,8 @@ fn frames_of(
         terminal.draw(|f| ui::draw(f, app, options, &mut cache))?;
         let bytes =
             crate::terminal::FrameWriter::strip(&std::mem::take(&mut *screen.0.borrow_mut()));
-        if !bytes.is_empty() {
+        // A frame of escape codes alone (cursor moves, resets) changes nothing on screen.
+        if changes_something(&bytes) {
             let text = String::from_utf8_lossy(&bytes);
             writeln!(cast, "{}", serde_json::json!([micro(clock), "o", text]))?;
             frames += 1;

@@ -410,17 +410,23 @@ pub struct ReplayArgs {
     /// file is refused (exit 2) unless `--force`.
     #[arg(long, value_name = "OUT.cast")]
     pub export_cast: Option<std::path::PathBuf>,
+    /// Write one self-contained web page that plays the session (asciinema-player, inlined:
+    /// no network needed), with the chapters as links and the chapters and notes as markers.
+    /// With `--verify`, written only if the session verifies. An existing file is refused
+    /// (exit 2) unless `--force`.
+    #[arg(long, value_name = "OUT.html")]
+    pub export_html: Option<std::path::PathBuf>,
     /// Replace an existing `--export-cast` file (never the session itself).
     #[arg(long)]
     pub force: bool,
     /// How the replay (and the exported cast) draws.
     #[command(flatten)]
     pub look: LookArgs,
-    /// Columns of the exported cast (default: the recorded terminal's).
-    #[arg(long, value_parser = clap::value_parser!(u16).range(80..=1000), requires = "export_cast")]
+    /// Columns of the exported cast or page (default: the recorded terminal's).
+    #[arg(long, value_parser = clap::value_parser!(u16).range(80..=1000))]
     pub cols: Option<u16>,
-    /// Rows of the exported cast (default: the recorded terminal's).
-    #[arg(long, value_parser = clap::value_parser!(u16).range(24..=1000), requires = "export_cast")]
+    /// Rows of the exported cast or page (default: the recorded terminal's).
+    #[arg(long, value_parser = clap::value_parser!(u16).range(24..=1000))]
     pub rows: Option<u16>,
 }
 

@@ -15,6 +15,7 @@ pub mod export;
 pub mod interrupt;
 pub mod manual;
 pub mod outputs;
+pub mod page;
 pub mod physics;
 pub mod progress;
 pub mod record;

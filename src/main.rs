@@ -134,12 +134,12 @@ fn check_output(
     Ok(())
 }
 
-/// `replay --export-cast`: the session drawn into an asciicast file.
-fn export_cast(
+/// `replay --export-cast` and `--export-html`: the session drawn into an asciicast file and
+/// into a page that plays it, without the key footer.
+fn export_files(
     args: &ReplayArgs,
     rec: &record::Recording,
     path: &str,
-    out: &std::path::Path,
     look: &LookArgs,
 ) -> ExitCode {
     let (theme, all) =
@@ -158,7 +158,8 @@ fn export_cast(
         rattleback::ui::glyphs::Charset::Unicode
     };
     let options = UiOptions::new(marker(look.marker), &theme, &all, no_color(look.color))
-        .with_charset(charset);
+        .with_charset(charset)
+        .without_footer();
     let size = rattleback::cast::CastSize {
         cols: args.cols,
         rows: args.rows,
@@ -168,49 +169,70 @@ fn export_cast(
         say_err!("rattleback: error: {e}");
         return ExitCode::from(1);
     }
-    let mut progress =
-        rattleback::progress::Progress::count("export-cast", rec.lines.len(), "lines");
-    let written = rattleback::cast::export_cast_watched(
-        rec,
-        path,
-        out,
-        &options,
-        size,
-        args.force,
-        &mut |n| {
+    let outputs = [
+        (args.export_cast.as_deref(), "export-cast"),
+        (args.export_html.as_deref(), "export-html"),
+    ];
+    for (out, what) in outputs {
+        let Some(out) = out else { continue };
+        let mut progress = rattleback::progress::Progress::count(what, rec.lines.len(), "lines");
+        let mut seen = |n: usize| {
             progress.tick(n as f64);
-        },
-    );
-    progress.finish();
-    if let (Err(_), Some(n)) = (&written, rattleback::interrupt::requested()) {
-        say_err!(
-            "rattleback: error: interrupted: {} was not written",
-            out.display()
-        );
-        return ExitCode::from(u8::try_from(128 + n).unwrap_or(1));
-    }
-    match written {
-        Ok(frames) => {
-            say!("{}: {frames} frames", out.display());
-            ExitCode::SUCCESS
+        };
+        let written = if what == "export-cast" {
+            rattleback::cast::export_cast_watched(
+                rec, path, out, &options, size, args.force, &mut seen,
+            )
+        } else {
+            rattleback::cast::cast_text(rec, path, &options, size, &mut seen).and_then(
+                |(cast, frames)| {
+                    let name = rattleback::scenario::Preset::parse(
+                        &rec.header.preset,
+                        "header",
+                        "recorded",
+                        &[],
+                    )
+                    .map_or_else(|_| path.to_owned(), |p| p.name);
+                    let title = format!("rattleback: {name}");
+                    let page = rattleback::page::lecture_page(rec, &title, &cast);
+                    rattleback::scenario::write::write_atomic(out, page.as_bytes(), args.force)
+                        .map(|()| frames)
+                        .map_err(|source| record::RecordError::Io {
+                            path: out.display().to_string(),
+                            source,
+                        })
+                },
+            )
+        };
+        progress.finish();
+        if let (Err(_), Some(n)) = (&written, rattleback::interrupt::requested()) {
+            say_err!(
+                "rattleback: error: interrupted: {} was not written",
+                out.display()
+            );
+            return ExitCode::from(u8::try_from(128 + n).unwrap_or(1));
         }
-        Err(e) => {
-            say_err!("rattleback: error: {e}");
-            ExitCode::from(2)
+        match written {
+            Ok(frames) => say!("{}: {frames} frames", out.display()),
+            Err(e) => {
+                say_err!("rattleback: error: {e}");
+                return ExitCode::from(2);
+            }
         }
     }
+    ExitCode::SUCCESS
 }
 
 fn run_replay(args: &ReplayArgs) -> ExitCode {
-    if args.file.as_os_str() == "-" && !args.verify && !args.chapters && args.export_cast.is_none()
-    {
+    let exporting = args.export_cast.is_some() || args.export_html.is_some();
+    if args.file.as_os_str() == "-" && !args.verify && !args.chapters && !exporting {
         return refuse_stdin("replay -");
     }
     let path = rattleback::scenario::write::label(&args.file);
     let json = args.format == rattleback::cli::ListFormat::Json;
-    if json && (args.chapters == args.verify || args.export_cast.is_some()) {
+    if json && (args.chapters == args.verify || exporting) {
         say_err!(
-            "rattleback: error: --format json goes with one of --chapters or --verify (and not --export-cast)"
+            "rattleback: error: --format json goes with one of --chapters or --verify (and not --export-cast or --export-html)"
         );
         return ExitCode::from(2);
     }
@@ -221,11 +243,16 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
         say_err!("rattleback: error: --theme: {e}");
         return ExitCode::from(2);
     }
-    if let Some(out) = &args.export_cast
-        && let Err(e) = check_output(out, Some(&args.file), args.force, "--export-cast")
-    {
-        say_err!("rattleback: error: {e}");
-        return ExitCode::from(2);
+    for (out, flag) in [
+        (&args.export_cast, "--export-cast"),
+        (&args.export_html, "--export-html"),
+    ] {
+        if let Some(out) = out
+            && let Err(e) = check_output(out, Some(&args.file), args.force, flag)
+        {
+            say_err!("rattleback: error: {e}");
+            return ExitCode::from(2);
+        }
     }
     let rec = match record::read(&args.file) {
         Ok(r) => r,
@@ -251,7 +278,7 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
     }
     if args.chapters {
         say!("{}", record::chapters(&rec));
-        if !args.verify && args.export_cast.is_none() {
+        if !args.verify && !exporting {
             return ExitCode::SUCCESS;
         }
     }
@@ -270,8 +297,8 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
     {
         return code;
     }
-    if let Some(out) = &args.export_cast {
-        return export_cast(args, &rec, &path, out, &look);
+    if exporting {
+        return export_files(args, &rec, &path, &look);
     }
     if args.verify {
         return ExitCode::SUCCESS;

@@ -272,6 +272,8 @@ pub struct UiOptions {
     /// What the terminal can show ([`glyphs::Charset::detect`]); other than Unicode, every
     /// canvas draws one point per cell and every cell is folded into the set.
     pub charset: glyphs::Charset,
+    /// The key hints on the last row (off in an exported cast or page: nobody can press them).
+    pub footer: bool,
 }
 
 impl Default for UiOptions {
@@ -281,6 +283,7 @@ impl Default for UiOptions {
             themes: vec![Theme::default()],
             no_color: false,
             charset: glyphs::Charset::Unicode,
+            footer: true,
         }
     }
 }
@@ -303,6 +306,16 @@ impl UiOptions {
             themes,
             no_color,
             charset: glyphs::Charset::Unicode,
+            footer: true,
+        }
+    }
+
+    /// The same options without the key hints (an exported cast or page).
+    #[must_use]
+    pub fn without_footer(self) -> Self {
+        Self {
+            footer: false,
+            ..self
         }
     }
 
@@ -513,7 +526,9 @@ fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mu
         // The user's keys where an action lost its defaults.
         app.options.keys.footer(KEYMAP)
     };
-    draw_footer(frame, footer, &hints, &look);
+    if options.footer {
+        draw_footer(frame, footer, &hints, &look);
+    }
     match &app.mode {
         Mode::Help(page) => help::draw(
             frame,

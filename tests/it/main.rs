@@ -31,6 +31,7 @@ mod kapitza_explorer;
 mod layering;
 mod lecture;
 mod lessons;
+mod page;
 mod presets_themes;
 mod readme;
 mod record_replay;

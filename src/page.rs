@@ -1,0 +1,168 @@
+//! `replay FILE --export-html OUT`: a lecture as one self-contained web page. The session is
+//! rendered into an asciicast (as `--export-cast` does: no key footer, no frame that changes
+//! nothing), which the page inlines beside asciinema-player 3.18.0 (vendored from its npm
+//! release with its licence, `assets/asciinema-player/`), so the page needs no network. Chapters
+//! are links that seek to them; chapters and notes are the player's markers.
+
+use std::fmt::Write as _;
+
+use crate::app::journal::Event;
+use crate::record::Recording;
+
+/// The player's script, inlined.
+const PLAYER_JS: &str = include_str!("../assets/asciinema-player/asciinema-player.min.js");
+/// The player's style sheet, inlined.
+const PLAYER_CSS: &str = include_str!("../assets/asciinema-player/asciinema-player.css");
+/// The player's licence, inlined as a comment.
+const PLAYER_LICENSE: &str = include_str!("../assets/asciinema-player/LICENSE");
+
+/// Text for HTML content and attributes.
+fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&#39;"),
+            c if c.is_control() => {}
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// JSON that is safe inside a `<script>` element: `<` written as `\u003c`, so no `</script>`
+/// (or `<!--`) can end it.
+fn script_json(value: &serde_json::Value) -> String {
+    serde_json::to_string(value)
+        .unwrap_or_else(|_| "null".to_owned())
+        .replace('<', "\\u003c")
+}
+
+/// One chapter link: its number among the cast's markers (chapters and notes, in order) and its
+/// title.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Link {
+    /// Index of the marker the link seeks to.
+    pub marker: usize,
+    /// The chapter's title (cleaned of control characters).
+    pub title: String,
+}
+
+/// The chapter links of `rec`, indexed as the cast's markers are (a note is a marker too).
+#[must_use]
+pub fn links(rec: &Recording) -> Vec<Link> {
+    let mut marker = 0;
+    let mut out = Vec::new();
+    for (_, line) in &rec.lines {
+        match &line.event {
+            Event::Chapter { title } => {
+                out.push(Link {
+                    marker,
+                    title: crate::scenario::text::clean(title).replace(['\n', '\t'], " "),
+                });
+                marker += 1;
+            }
+            Event::Note { .. } => marker += 1,
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The page: `title`, the player with `cast` inlined, and the chapter links of `rec`.
+#[must_use]
+pub fn lecture_page(rec: &Recording, title: &str, cast: &str) -> String {
+    let title = escape(&crate::scenario::text::clean(title));
+    let mut chapters = String::new();
+    for l in links(rec) {
+        let _ = writeln!(
+            chapters,
+            "<li><a href=\"#\" data-marker=\"{}\">{}</a></li>",
+            l.marker,
+            escape(&l.title)
+        );
+    }
+    let chapters = if chapters.is_empty() {
+        String::new()
+    } else {
+        format!("<nav><h2>Chapters</h2>\n<ol id=\"chapters\">\n{chapters}</ol></nav>\n")
+    };
+    let cast_json = script_json(&serde_json::Value::String(cast.to_owned()));
+    format!(
+        r##"<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<meta name="generator" content="rattleback {version}">
+<title>{title}</title>
+<style>
+{css}
+body {{ font-family: sans-serif; max-width: 1100px; margin: 1em auto; padding: 0 1em; }}
+nav ol {{ columns: 2; }}
+</style>
+</head>
+<body>
+<h1>{title}</h1>
+<div id="player"></div>
+{chapters}<p><small>Recorded with rattleback {version}; played by asciinema-player 3.18.0
+(Apache License 2.0, inlined below).</small></p>
+<script type="application/json" id="cast">{cast_json}</script>
+<script>
+/*
+{license}
+*/
+{js}
+</script>
+<script>
+(function () {{
+  var cast = JSON.parse(document.getElementById("cast").textContent);
+  var player = AsciinemaPlayer.create({{ data: cast }}, document.getElementById("player"), {{
+    fit: "width",
+    idleTimeLimit: {idle},
+    preload: true
+  }});
+  window.rattlebackPlayer = player;
+  var links = document.querySelectorAll("#chapters a");
+  for (var i = 0; i < links.length; i++) {{
+    links[i].addEventListener("click", function (e) {{
+      e.preventDefault();
+      player.seek({{ marker: Number(this.dataset.marker) }});
+      player.play();
+    }});
+  }}
+}})();
+</script>
+</body>
+</html>
+"##,
+        version = env!("CARGO_PKG_VERSION"),
+        css = PLAYER_CSS,
+        license = PLAYER_LICENSE.replace("*/", "* /"),
+        js = PLAYER_JS,
+        idle = crate::cast::IDLE_TIME_LIMIT,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn text_cannot_end_a_script_or_open_a_tag() {
+        assert_eq!(
+            escape("<b>\"x\" & 'y'\u{1b}"),
+            "&lt;b&gt;&quot;x&quot; &amp; &#39;y&#39;"
+        );
+        let j = script_json(&serde_json::Value::String("</script><!--".to_owned()));
+        assert!(!j.contains('<'), "{j}");
+        assert_eq!(
+            serde_json::from_str::<String>(&j).unwrap(),
+            "</script><!--",
+            "the same text once parsed"
+        );
+    }
+}
