@@ -385,6 +385,7 @@ pub enum BenchPart {
 
 /// Arguments of `replay`.
 #[derive(Debug, Args)]
+#[command(group(clap::ArgGroup::new("export").multiple(true).args(["export_cast", "export_html"])))]
 pub struct ReplayArgs {
     /// The session file.
     pub file: std::path::PathBuf,
@@ -423,10 +424,10 @@ pub struct ReplayArgs {
     #[command(flatten)]
     pub look: LookArgs,
     /// Columns of the exported cast or page (default: the recorded terminal's).
-    #[arg(long, value_parser = clap::value_parser!(u16).range(80..=1000))]
+    #[arg(long, value_parser = clap::value_parser!(u16).range(80..=1000), requires = "export")]
     pub cols: Option<u16>,
     /// Rows of the exported cast or page (default: the recorded terminal's).
-    #[arg(long, value_parser = clap::value_parser!(u16).range(24..=1000))]
+    #[arg(long, value_parser = clap::value_parser!(u16).range(24..=1000), requires = "export")]
     pub rows: Option<u16>,
 }
 

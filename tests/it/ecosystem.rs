@@ -330,6 +330,24 @@ fn the_guides_config_example_is_accepted_as_written() {
     }
 }
 
+/// The README's config example loads as written, and its rebinding takes effect.
+#[test]
+fn the_readmes_config_example_is_accepted_as_written() {
+    let readme = include_str!("../../README.md");
+    let section = &readme[readme.find("## Configuration").expect("the section")..];
+    let start = section.find("```toml\n").expect("a toml block") + "```toml\n".len();
+    let block = &section[start..start + section[start..].find("```").expect("closed")];
+    let dir = temp("readme-config");
+    std::fs::write(dir.join("config.toml"), block).unwrap();
+    let (code, out, err) = bin_in(&dir, &["config", "show"]);
+    assert_eq!(code, 0, "the README's example is refused: {err}");
+    assert!(out.contains("toggle_play = [\"none\", \"p\"]"), "{out}");
+    let (code, out, _) = bin_in(&dir, &["doctor"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("(valid)"), "{out}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn config_path_show_and_a_bad_config_file() {
     let dir = temp("config");
