@@ -98,27 +98,12 @@ impl std::io::Write for Shared {
 }
 
 /// Writes `rec` as an asciicast v2 file at `out` (replacing an existing file only when
-/// `replace`). Returns the number of frames.
+/// `replace`), telling `seen` how many of the file's lines have been drawn (for progress).
+/// Returns the number of frames.
 ///
 /// # Errors
 /// A bad header preset, or the output cannot be written.
 pub fn export_cast(
-    rec: &Recording,
-    path: &str,
-    out: &Path,
-    options: &UiOptions,
-    size: CastSize,
-    replace: bool,
-) -> Result<usize, RecordError> {
-    export_cast_watched(rec, path, out, options, size, replace, &mut |_| {})
-}
-
-/// As [`export_cast`], telling `seen` how many of the file's lines have been drawn (for
-/// progress).
-///
-/// # Errors
-/// As [`export_cast`].
-pub fn export_cast_watched(
     rec: &Recording,
     path: &str,
     out: &Path,

@@ -180,9 +180,7 @@ fn export_files(
             progress.tick(n as f64);
         };
         let written = if what == "export-cast" {
-            rattleback::cast::export_cast_watched(
-                rec, path, out, &options, size, args.force, &mut seen,
-            )
+            rattleback::cast::export_cast(rec, path, out, &options, size, args.force, &mut seen)
         } else {
             rattleback::cast::cast_text(rec, path, &options, size, &mut seen).and_then(
                 |(cast, frames)| {

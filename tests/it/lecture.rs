@@ -413,6 +413,7 @@ fn check_with(preset: &str, field: &str, compare: bool) {
                 ..rattleback::cast::CastSize::default()
             },
             true,
+            &mut |_| {},
         )
         .unwrap();
         assert!(frames > 10, "{preset} ×{speed}: {frames} frames");
