@@ -66,17 +66,28 @@ impl Widget for WeakPane<'_> {
             .map(|(&t, &r)| (t, r))
             .collect();
         let theme = look.theme;
+        // One point per cell (`--marker dot`, the console, ASCII): each curve its own
+        // character, so they stay apart without colour: `.` samples, `-` the reference, `•` the
+        // average (`*` in ASCII).
+        let one_per_cell = look.marker == ratatui::symbols::Marker::Dot;
+        let mark = |ctx: &mut ratatui::widgets::canvas::Context<'_>, c: char| {
+            if one_per_cell {
+                ctx.marker(ratatui::symbols::Marker::Custom(c));
+            }
+        };
         Canvas::default()
             .marker(look.marker)
             .background_color(theme.background)
             .x_bounds([0.0, t1])
             .y_bounds([bottom, top])
             .paint(|ctx| {
+                mark(ctx, '.');
                 ctx.draw(&Points {
                     coords: &dots,
                     color: theme.contour,
                 });
                 ctx.layer();
+                mark(ctx, '-');
                 if pendulum {
                     for w in reference.windows(2).step_by(2) {
                         ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, theme.effective));
@@ -90,6 +101,7 @@ impl Widget for WeakPane<'_> {
                     }
                 }
                 ctx.layer();
+                mark(ctx, '•');
                 for w in average.windows(2) {
                     ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, theme.trail));
                 }

@@ -217,3 +217,31 @@ fn doctor_says_what_was_chosen_and_why() {
     assert!(text.contains("invalid") && text.contains("fps"), "{text}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The weak-* pane, too, keeps one character per curve with one point per cell: `.` the
+/// samples, `-` the dashed reference, `*` the average (`•` on the console).
+#[test]
+fn the_weak_star_curves_stay_apart_in_ascii() {
+    let mut h = Headless::new("subcritical");
+    h.key(Key::Char('W'));
+    for (charset, average) in [(Charset::Ascii, '*'), (Charset::Console, '•')] {
+        let screen = text(&render(&h.app, 120, 40, charset));
+        let lines: Vec<&str> = screen.lines().collect();
+        let top = lines
+            .iter()
+            .position(|l| l.contains("weak-*:"))
+            .unwrap_or_else(|| panic!("no weak-* pane\n{screen}"));
+        // The pane's rows, right of the panel, until its bottom border.
+        let pane: String = lines[top + 1..]
+            .iter()
+            .take(10)
+            .map(|l| l.chars().skip(40).collect::<String>())
+            .collect();
+        for m in ['.', '-', average] {
+            assert!(
+                pane.contains(m),
+                "{charset:?}: no '{m}' in the weak-* pane\n{screen}"
+            );
+        }
+    }
+}
