@@ -78,6 +78,17 @@ pub fn changes_something(bytes: &[u8]) -> bool {
     false
 }
 
+/// The label of the player's marker an event makes: a chapter's title, `note: TEXT` for a
+/// note (cleaned of control characters); `None` for every other event.
+#[must_use]
+pub fn marker_label(event: &Event) -> Option<String> {
+    match event {
+        Event::Chapter { title } => Some(crate::scenario::text::clean(title)),
+        Event::Note { text } => Some(format!("note: {}", crate::scenario::text::clean(text))),
+        _ => None,
+    }
+}
+
 /// A time rounded to the microsecond (what asciinema writes).
 fn micro(t: f64) -> f64 {
     (t * 1e6).round() / 1e6
@@ -246,14 +257,7 @@ fn frames_of(
         shown_until = clock;
         run(c, engine, app);
         for (_, line) in &rec.lines[before..replay.position()] {
-            let marker = match &line.event {
-                Event::Chapter { title } => Some(crate::scenario::text::clean(title)),
-                Event::Note { text } => {
-                    Some(format!("note: {}", crate::scenario::text::clean(text)))
-                }
-                _ => None,
-            };
-            if let Some(label) = marker {
+            if let Some(label) = marker_label(&line.event) {
                 writeln!(
                     cast,
                     "{}",

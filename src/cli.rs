@@ -130,6 +130,40 @@ impl ColorChoice {
     }
 }
 
+impl ColorChoice {
+    /// [`ColorChoice::colours_off`] with this process's `NO_COLOR`, `CLICOLOR` and
+    /// `CLICOLOR_FORCE`.
+    #[must_use]
+    pub fn colours_off_here(self) -> bool {
+        let var = |name: &str| std::env::var(name).ok();
+        self.colours_off(
+            var("NO_COLOR").as_deref(),
+            var("CLICOLOR").as_deref(),
+            var("CLICOLOR_FORCE").as_deref(),
+        )
+    }
+
+    /// The value as written on the command line (`auto`, `always`, `never`).
+    #[must_use]
+    pub fn name(self) -> String {
+        value_name(&self)
+    }
+}
+
+/// A value of a `ValueEnum` flag as written on the command line.
+fn value_name(v: &impl ValueEnum) -> String {
+    v.to_possible_value()
+        .map_or_else(String::new, |p| p.get_name().to_owned())
+}
+
+impl MarkerChoice {
+    /// The value as written on the command line (`braille`, `halfblock`, `dot`).
+    #[must_use]
+    pub fn name(self) -> String {
+        value_name(&self)
+    }
+}
+
 /// `--marker`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum MarkerChoice {

@@ -237,23 +237,16 @@ pub fn answer_completion() {
 /// (the shell asks the program for every completion, so names are never stale).
 #[must_use]
 pub fn completions(shell: clap_complete::Shell) -> ExitCode {
-    use clap_complete::env::{Bash, Elvish, EnvCompleter, Fish, Powershell, Zsh};
     // The program that answers: this binary, by its path when known (a build outside PATH
     // still completes), else by name.
     let me = std::env::current_exe()
         .ok()
         .and_then(|p| p.to_str().map(str::to_owned))
         .unwrap_or_else(|| "rattleback".to_owned());
-    let completer: &dyn EnvCompleter = match shell {
-        clap_complete::Shell::Bash => &Bash,
-        clap_complete::Shell::Zsh => &Zsh,
-        clap_complete::Shell::Fish => &Fish,
-        clap_complete::Shell::Elvish => &Elvish,
-        clap_complete::Shell::PowerShell => &Powershell,
-        _ => {
-            say_err!("rattleback: error: completions: this shell is not supported");
-            return ExitCode::from(2);
-        }
+    let shells = clap_complete::env::Shells::builtins();
+    let Some(completer) = shells.completer(&shell.to_string()) else {
+        say_err!("rattleback: error: completions: {shell} is not supported");
+        return ExitCode::from(2);
     };
     let mut out = Vec::new();
     if let Err(e) =
@@ -268,25 +261,12 @@ pub fn completions(shell: clap_complete::Shell) -> ExitCode {
 /// `rattleback doctor`.
 #[must_use]
 pub fn doctor(args: &crate::cli::DoctorArgs) -> ExitCode {
-    let var = |name: &str| std::env::var(name).ok();
     let look = &args.look;
     let asked = crate::doctor::Asked {
         ascii: look.ascii,
-        colours_off: look.color.colours_off(
-            var("NO_COLOR").as_deref(),
-            var("CLICOLOR").as_deref(),
-            var("CLICOLOR_FORCE").as_deref(),
-        ),
-        color_flag: match look.color {
-            crate::cli::ColorChoice::Auto => "auto",
-            crate::cli::ColorChoice::Always => "always",
-            crate::cli::ColorChoice::Never => "never",
-        },
-        marker: look.marker.map(|m| match m {
-            crate::cli::MarkerChoice::Braille => "braille",
-            crate::cli::MarkerChoice::Halfblock => "halfblock",
-            crate::cli::MarkerChoice::Dot => "dot",
-        }),
+        colours_off: look.color.colours_off_here(),
+        color_flag: look.color.name(),
+        marker: look.marker.map(crate::cli::MarkerChoice::name),
     };
     let d = crate::doctor::diagnose(&asked);
     let text = match args.format {
@@ -350,7 +330,7 @@ fn finished<T>(result: Result<T, crate::physics::StepError>, what: &str) -> Resu
 fn interrupted() -> Option<ExitCode> {
     let n = crate::interrupt::requested()?;
     say_err!("rattleback: error: interrupted: nothing was written");
-    Some(ExitCode::from(u8::try_from(128 + n).unwrap_or(1)))
+    Some(crate::interrupt::exit_code(n))
 }
 
 /// An output as pretty JSON with a final newline, control characters escaped (text from files
@@ -1011,12 +991,7 @@ pub fn load_config() -> Result<
     let (config, problems) = crate::scenario::config::Config::load_all();
     let mut errors: Vec<(usize, String)> = problems
         .iter()
-        .map(|e| match e {
-            crate::scenario::PresetError::Invalid { line, .. } => {
-                (line.unwrap_or(0), e.to_string())
-            }
-            _ => (0, e.to_string()),
-        })
+        .map(|e| (e.line().unwrap_or(0), e.to_string()))
         .collect();
     let entries: Vec<(String, Vec<String>)> = config
         .keys

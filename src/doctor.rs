@@ -112,9 +112,9 @@ pub struct Asked {
     /// Colours off by `--color` and the environment.
     pub colours_off: bool,
     /// `--color`'s value (`auto`, `always`, `never`).
-    pub color_flag: &'static str,
+    pub color_flag: String,
     /// `--marker`, if given.
-    pub marker: Option<&'static str>,
+    pub marker: Option<String>,
 }
 
 /// Looks at the environment, the terminal and the configuration.
@@ -135,7 +135,7 @@ pub fn diagnose(asked: &Asked) -> Diagnosis {
     } else {
         "can open".to_owned()
     };
-    let colours_because = match asked.color_flag {
+    let colours_because = match asked.color_flag.as_str() {
         "auto" => {
             let set =
                 |n: &str| var(n).map_or_else(|| format!("{n} unset"), |v| format!("{n}={v:?}"));
@@ -151,7 +151,7 @@ pub fn diagnose(asked: &Asked) -> Diagnosis {
     let marker = if detected.charset == Charset::Unicode {
         asked
             .marker
-            .map(str::to_owned)
+            .clone()
             .or_else(|| config.marker.clone())
             .unwrap_or_else(|| "braille".to_owned())
     } else {

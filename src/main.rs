@@ -134,6 +134,17 @@ fn check_output(
     Ok(())
 }
 
+/// `cast::export_cast` and `page::export_html`: a session written into a file.
+type Export = fn(
+    &record::Recording,
+    &str,
+    &std::path::Path,
+    &UiOptions,
+    rattleback::cast::CastSize,
+    bool,
+    &mut dyn FnMut(usize),
+) -> Result<usize, record::RecordError>;
+
 /// `replay --export-cast` and `--export-html`: the session drawn into an asciicast file and
 /// into a page that plays it, without the key footer.
 fn export_files(
@@ -169,46 +180,31 @@ fn export_files(
         say_err!("rattleback: error: {e}");
         return ExitCode::from(1);
     }
-    let outputs = [
-        (args.export_cast.as_deref(), "export-cast"),
-        (args.export_html.as_deref(), "export-html"),
+    let outputs: [(Option<&std::path::Path>, &str, Export); 2] = [
+        (
+            args.export_cast.as_deref(),
+            "export-cast",
+            rattleback::cast::export_cast,
+        ),
+        (
+            args.export_html.as_deref(),
+            "export-html",
+            rattleback::page::export_html,
+        ),
     ];
-    for (out, what) in outputs {
+    for (out, what, export) in outputs {
         let Some(out) = out else { continue };
         let mut progress = rattleback::progress::Progress::count(what, rec.lines.len(), "lines");
-        let mut seen = |n: usize| {
+        let written = export(rec, path, out, &options, size, args.force, &mut |n| {
             progress.tick(n as f64);
-        };
-        let written = if what == "export-cast" {
-            rattleback::cast::export_cast(rec, path, out, &options, size, args.force, &mut seen)
-        } else {
-            rattleback::cast::cast_text(rec, path, &options, size, &mut seen).and_then(
-                |(cast, frames)| {
-                    let name = rattleback::scenario::Preset::parse(
-                        &rec.header.preset,
-                        "header",
-                        "recorded",
-                        &[],
-                    )
-                    .map_or_else(|_| path.to_owned(), |p| p.name);
-                    let title = format!("rattleback: {name}");
-                    let page = rattleback::page::lecture_page(rec, &title, &cast);
-                    rattleback::scenario::write::write_atomic(out, page.as_bytes(), args.force)
-                        .map(|()| frames)
-                        .map_err(|source| record::RecordError::Io {
-                            path: out.display().to_string(),
-                            source,
-                        })
-                },
-            )
-        };
+        });
         progress.finish();
         if let (Err(_), Some(n)) = (&written, rattleback::interrupt::requested()) {
             say_err!(
                 "rattleback: error: interrupted: {} was not written",
                 out.display()
             );
-            return ExitCode::from(u8::try_from(128 + n).unwrap_or(1));
+            return rattleback::interrupt::exit_code(n);
         }
         match written {
             Ok(frames) => say!("{}: {frames} frames", out.display()),
@@ -739,7 +735,7 @@ fn explore(
     match explorer::run(preset, &options) {
         Ok(None) => ExitCode::SUCCESS,
         // Ended by a signal: the terminal is restored; exit as the convention says.
-        Ok(Some(n)) => ExitCode::from(u8::try_from(128 + n).unwrap_or(1)),
+        Ok(Some(n)) => rattleback::interrupt::exit_code(n),
         Err(e) => {
             say_err!(
                 "rattleback: error: the explorer needs an interactive terminal ({e}); for headless runs use `rattleback simulate`"
@@ -762,12 +758,7 @@ fn no_color(choice: rattleback::cli::ColorChoice) -> bool {
         // crossterm itself leaves colours out under NO_COLOR unless told otherwise.
         ratatui::crossterm::style::force_color_output(true);
     }
-    let var = |name: &str| std::env::var(name).ok();
-    choice.colours_off(
-        var("NO_COLOR").as_deref(),
-        var("CLICOLOR").as_deref(),
-        var("CLICOLOR_FORCE").as_deref(),
-    )
+    choice.colours_off_here()
 }
 
 fn run_simulate(args: &SimulateArgs) -> ExitCode {

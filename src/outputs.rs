@@ -197,12 +197,16 @@ pub struct Check {
     pub problems: Vec<Problem>,
 }
 
+/// The preset a recording's header holds (`None` when it cannot be read).
+#[must_use]
+pub fn recorded_preset(rec: &crate::record::Recording) -> Option<crate::scenario::Preset> {
+    crate::scenario::Preset::parse(&rec.header.preset, "header", "recorded", &[]).ok()
+}
+
 /// The scene of a recording, from its header's preset (`None` when that cannot be read).
 #[must_use]
 pub fn recorded_model(rec: &crate::record::Recording) -> Option<ModelKind> {
-    crate::scenario::Preset::parse(&rec.header.preset, "header", "recorded", &[])
-        .ok()
-        .map(|p| p.model.kind())
+    recorded_preset(rec).map(|p| p.model.kind())
 }
 
 impl Chapters {

@@ -54,22 +54,44 @@ pub struct Link {
 /// The chapter links of `rec`, indexed as the cast's markers are (a note is a marker too).
 #[must_use]
 pub fn links(rec: &Recording) -> Vec<Link> {
-    let mut marker = 0;
-    let mut out = Vec::new();
-    for (_, line) in &rec.lines {
-        match &line.event {
-            Event::Chapter { title } => {
-                out.push(Link {
-                    marker,
-                    title: crate::scenario::text::clean(title).replace(['\n', '\t'], " "),
-                });
-                marker += 1;
-            }
-            Event::Note { .. } => marker += 1,
-            _ => {}
+    rec.lines
+        .iter()
+        .filter_map(|(_, line)| {
+            crate::cast::marker_label(&line.event).map(|label| (&line.event, label))
+        })
+        .enumerate()
+        .filter(|(_, (event, _))| matches!(event, Event::Chapter { .. }))
+        .map(|(marker, (_, title))| Link {
+            marker,
+            title: title.replace(['\n', '\t'], " "),
+        })
+        .collect()
+}
+
+/// Writes the page of `rec` at `out` (replacing an existing file only when `replace`), telling
+/// `seen` how many of the file's lines have been drawn; returns the cast's number of frames.
+///
+/// # Errors
+/// As [`crate::cast::export_cast`].
+pub fn export_html(
+    rec: &Recording,
+    path: &str,
+    out: &std::path::Path,
+    options: &crate::ui::UiOptions,
+    size: crate::cast::CastSize,
+    replace: bool,
+    seen: &mut dyn FnMut(usize),
+) -> Result<usize, crate::record::RecordError> {
+    let (cast, frames) = crate::cast::cast_text(rec, path, options, size, seen)?;
+    let name = crate::outputs::recorded_preset(rec).map_or_else(|| path.to_owned(), |p| p.name);
+    let page = lecture_page(rec, &format!("rattleback: {name}"), &cast);
+    crate::scenario::write::write_atomic(out, page.as_bytes(), replace).map_err(|source| {
+        crate::record::RecordError::Io {
+            path: out.display().to_string(),
+            source,
         }
-    }
-    out
+    })?;
+    Ok(frames)
 }
 
 /// The page: `title`, the player with `cast` inlined, and the chapter links of `rec`.

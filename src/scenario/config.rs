@@ -163,10 +163,7 @@ impl Config {
         };
         let (mut config, mut errors) = Self::parse_all(&src, &file.display().to_string());
         config.path = Some(file);
-        errors.sort_by_key(|e| match e {
-            PresetError::Invalid { line, .. } => line.unwrap_or(0),
-            _ => 0,
-        });
+        errors.sort_by_key(|e| e.line().unwrap_or(0));
         (config, errors)
     }
 
