@@ -97,7 +97,7 @@ impl EventTracker {
     }
 
     /// Checks the step just taken; returns the event time inside it, if any.
-    pub fn after_step(&mut self, flow: &mut dyn Flow) -> Option<f64> {
+    pub fn after_step<F: Flow + ?Sized>(&mut self, flow: &mut F) -> Option<f64> {
         let v = flow.event_value();
         let now = sign(v);
         let h = flow.event_hysteresis();

@@ -8,7 +8,8 @@
 //!   averaged model, integrators, `auto`, the cost model);
 //! - [`kapitza`]: Kapitza's inverted pendulum (full model, limit, ripple, integrators, `auto`);
 //! - [`celt`]: the classical rolling rattleback (Kane & Levinson), which has no limit;
-//! - [`numerics`]: DOP853, compositions, roots, quadrature; [`method`]: the methods' names.
+//! - [`numerics`]: DOP853, compositions, roots, quadrature; [`method`]: the methods' names;
+//!   [`drive`]: the one headless runner every model's `run` goes through.
 //!
 //! Shared vocabulary lives here, not in a model's folder: [`params::ParamError`],
 //! [`plan::Resolved`], [`budget`] (the work budget and its refusal), [`flow::CHECK_EVERY`]. A
@@ -22,6 +23,7 @@
 
 pub mod budget;
 pub mod celt;
+pub mod drive;
 pub mod flow;
 pub mod kapitza;
 pub mod method;

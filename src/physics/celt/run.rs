@@ -6,12 +6,13 @@ use serde::Serialize;
 
 use super::flows::{CeltFlow, build};
 use super::{DIM, Problem, State, gamma, spin};
-use crate::physics::flow::{CHECK_EVERY, EventTracker, Flow};
-use crate::physics::method::{Method, Settings, StepCap, StepError};
+use crate::physics::drive::{Course, Watch, drive};
+use crate::physics::flow::Flow;
+use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::numerics::dop853::Stats;
 
 /// Most event times kept of each kind; later ones are counted only.
-pub const MAX_EVENT_TIMES: usize = 100_000;
+pub const MAX_EVENT_TIMES: usize = crate::physics::drive::KEPT;
 
 /// What to run.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -88,7 +89,7 @@ fn contact_height(problem: &Problem, y: &State) -> f64 {
     -r.dot(&g) + (pose.rotation * r).z
 }
 
-/// Integrates `problem` as `spec` says, asking `go_on(t)` every [`CHECK_EVERY`] steps.
+/// Integrates `problem` as `spec` says, asking `go_on(t)` every `CHECK_EVERY` steps.
 ///
 /// # Errors
 /// A failed step, `auto` ([`StepError::Unplanned`]), another model's method, the step cap, and
@@ -103,9 +104,10 @@ pub fn run(
         step: None,
     };
     let mut flow: CeltFlow = build(problem, spec.method, settings)?;
-    let mut reversals_tracker = EventTracker::new(flow.event_value());
     let y0 = flow.state();
     let e0 = problem.params().energy(&y0);
+    let cost = super::budget::cost_seconds(problem, spec.method, spec.tolerance, spec.t_end);
+    let course = Course::of(&flow, spec.t_end, spec.samples, cost);
     let mut out = RunResult {
         method: spec.method,
         t: 0.0,
@@ -123,59 +125,46 @@ pub fn run(
         stats: Stats::default(),
         samples: Vec::with_capacity(spec.samples.min(1 << 20)),
     };
-    #[allow(clippy::cast_precision_loss)]
-    let sample_time = |i: usize| {
-        if spec.samples <= 1 {
-            spec.t_end
-        } else {
-            spec.t_end * i as f64 / (spec.samples - 1) as f64
-        }
-    };
-    let cap = StepCap::of(super::budget::cost_seconds(
+    let mut watch = Watched {
         problem,
-        spec.method,
-        spec.tolerance,
-        spec.t_end,
-    ));
-    let mut next_sample = 0usize;
-    let mut steps = 0u64;
-    loop {
-        while next_sample < spec.samples && sample_time(next_sample) <= flow.time() {
-            let t = sample_time(next_sample);
-            let y = flow.at(t);
-            out.samples.push(Sample {
-                t,
-                turn: y[DIM - 1],
-                spin: spin(&y),
-                tilt: super::tilt(&y),
-            });
-            next_sample += 1;
-        }
-        if flow.time() >= spec.t_end {
-            break;
-        }
-        flow.step(spec.t_end)?;
-        steps += 1;
-        if steps.is_multiple_of(CHECK_EVERY) && !go_on(flow.time()) {
-            return Err(StepError::Cancelled { t: flow.time() });
-        }
-        cap.check(steps, flow.time())?;
-        for &t in flow.marks() {
-            out.crossing_count += 1;
-            if out.crossings.len() < MAX_EVENT_TIMES {
-                out.crossings.push(t);
-            }
-        }
-        if let Some(t) = reversals_tracker.after_step(&mut flow) {
-            out.reversal_count += 1;
-            if out.reversals.len() < MAX_EVENT_TIMES {
-                out.reversals.push(t);
-            }
-        }
+        out: &mut out,
+    };
+    let driven = drive(&mut flow, &course, go_on, &mut watch)?;
+    out.crossings = driven.marks.times;
+    out.crossing_count = driven.marks.count;
+    out.reversals = driven.events.times;
+    out.reversal_count = driven.events.count;
+    out.t = flow.time();
+    out.state = flow.state();
+    out.energy_final = problem.params().energy(&out.state);
+    out.stats = flow.stats();
+    out.method = flow.method();
+    Ok(out)
+}
+
+/// What the celt's run watches: the samples, the energy and the constraints' drift.
+struct Watched<'a> {
+    problem: &'a Problem,
+    out: &'a mut RunResult,
+}
+
+impl Watch<CeltFlow> for Watched<'_> {
+    fn sample(&mut self, flow: &mut CeltFlow, t: f64) -> bool {
+        let y = flow.at(t);
+        self.out.samples.push(Sample {
+            t,
+            turn: y[DIM - 1],
+            spin: spin(&y),
+            tilt: super::tilt(&y),
+        });
+        true
+    }
+    fn stepped(&mut self, flow: &mut CeltFlow) {
+        let (out, problem) = (&mut *self.out, self.problem);
         let y = flow.state();
         out.max_energy_drift = out
             .max_energy_drift
-            .max((problem.params().energy(&y) - e0).abs());
+            .max((problem.params().energy(&y) - out.energy_initial).abs());
         out.gamma_norm_error = out.gamma_norm_error.max((gamma(&y).norm() - 1.0).abs());
         let qn = (y[6] * y[6] + y[7] * y[7] + y[8] * y[8] + y[9] * y[9]).sqrt();
         out.quat_norm_error = out.quat_norm_error.max((qn - 1.0).abs());
@@ -183,10 +172,4 @@ pub fn run(
             .contact_height_max
             .max(contact_height(problem, &y).abs());
     }
-    out.t = flow.time();
-    out.state = flow.state();
-    out.energy_final = problem.params().energy(&out.state);
-    out.stats = flow.stats();
-    out.method = flow.method();
-    Ok(out)
 }

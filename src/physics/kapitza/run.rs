@@ -11,14 +11,14 @@ use serde::Serialize;
 
 use super::Problem;
 use super::flows::build;
-use crate::physics::flow::CHECK_EVERY;
-use crate::physics::flow::{EventTracker, Flow};
+use crate::physics::drive::{Counted, Course, Drift, Watch, drive};
+use crate::physics::flow::Flow;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::numerics::dop853::Stats;
 use crate::physics::numerics::roots::find_root;
 
 /// Most event times kept of each kind; later ones are counted only.
-pub const MAX_EVENT_TIMES: usize = 100_000;
+pub const MAX_EVENT_TIMES: usize = crate::physics::drive::KEPT;
 
 /// What to run.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -84,7 +84,7 @@ pub struct RunResult {
     pub samples: Vec<Sample>,
 }
 
-/// Integrates `problem` as `spec` says, asking `go_on(t)` every [`CHECK_EVERY`] steps.
+/// Integrates `problem` as `spec` says, asking `go_on(t)` every `CHECK_EVERY` steps.
 ///
 /// # Errors
 /// When the integrator cannot continue, for `auto` ([`StepError::Unplanned`]), for a method
@@ -99,86 +99,73 @@ pub fn run(
         step: spec.step,
     };
     let mut flow = build(spec.method, problem, settings, spec.t_end)?;
-    let mut swings = EventTracker::new(flow.event_value());
-    let e0 = flow.energy();
-    let mut max_drift: f64 = 0.0;
-    let mut events = Events::default();
-    // `cos Θ` with `Θ = θ − ripple`, as the explorer counts falls from its samples.
-    let slow_up = |flow: &mut dyn Flow, t: f64| {
-        let y = flow.sample(t);
-        (y.q - y.fast).cos()
+    let cost =
+        super::budget::cost_seconds(problem, spec.method, spec.tolerance, spec.step, spec.t_end);
+    let course = Course::of(flow.as_ref(), spec.t_end, spec.samples, cost);
+    let mut watch = Watched {
+        drift: Drift::new(flow.energy(), false),
+        up: slow_up(flow.as_mut(), 0.0),
+        falls: Counted::default(),
+        samples: Vec::with_capacity(spec.samples.min(1 << 20)),
     };
-    let mut up = slow_up(flow.as_mut(), 0.0);
-    let mut samples = Vec::with_capacity(spec.samples.min(1 << 20));
-    let mut next_sample = 0usize;
-    #[allow(clippy::cast_precision_loss)]
-    let sample_time = |i: usize| {
-        if spec.samples <= 1 {
-            spec.t_end
-        } else {
-            spec.t_end * i as f64 / (spec.samples - 1) as f64
-        }
-    };
-    let mut steps = 0u64;
-    let cap = crate::physics::method::StepCap::of(super::budget::cost_seconds(
-        problem,
-        spec.method,
-        spec.tolerance,
-        spec.step,
-        spec.t_end,
-    ));
-    loop {
-        while next_sample < spec.samples && sample_time(next_sample) <= flow.time() {
-            let t = sample_time(next_sample);
-            let y = flow.state_at(t);
-            samples.push(Sample {
-                t,
-                theta: y[0],
-                theta_dot: y[1],
-            });
-            next_sample += 1;
-        }
-        if flow.time() >= spec.t_end {
-            break;
-        }
-        flow.step(spec.t_end)?;
-        steps += 1;
-        if steps.is_multiple_of(CHECK_EVERY) && !go_on(flow.time()) {
-            return Err(StepError::Cancelled { t: flow.time() });
-        }
-        cap.check(steps, flow.time())?;
-        if let Some(t) = swings.after_step(flow.as_mut()) {
-            events.swing_count += 1;
-            if events.swings.len() < MAX_EVENT_TIMES {
-                events.swings.push(t);
-            }
-        }
-        let t_now = flow.time();
-        let now = slow_up(flow.as_mut(), t_now);
-        if up > 0.0 && now < 0.0 {
-            let (a, b) = (flow.time_prev(), flow.time());
-            let t = find_root(|t| slow_up(flow.as_mut(), t), a, b);
-            events.fall_count += 1;
-            if events.falls.len() < MAX_EVENT_TIMES {
-                events.falls.push(t);
-            }
-        }
-        if now != 0.0 {
-            up = now;
-        }
-        max_drift = max_drift.max((flow.energy() - e0).abs());
-    }
-    let y = flow.state_at(flow.time());
+    let driven = drive(flow.as_mut(), &course, go_on, &mut watch)?;
+    let t = flow.time();
+    let y = flow.state_at(t);
     Ok(RunResult {
         method: flow.method(),
-        t: flow.time(),
+        t,
         theta: y[0],
         theta_dot: y[1],
-        events,
-        energy_initial: e0,
+        events: Events {
+            swings: driven.events.times,
+            swing_count: driven.events.count,
+            falls: watch.falls.times,
+            fall_count: watch.falls.count,
+        },
+        energy_initial: watch.drift.initial,
         energy_final: flow.energy(),
-        max_energy_drift: max_drift,
+        max_energy_drift: watch.drift.max,
         stats: flow.stats(),
-        samples,
+        samples: watch.samples,
     })
+}
+
+/// `cos Θ` with `Θ = θ − ripple`, as the explorer counts falls from its samples.
+fn slow_up(flow: &mut dyn Flow, t: f64) -> f64 {
+    let y = flow.sample(t);
+    (y.q - y.fast).cos()
+}
+
+/// What the pendulum's run watches: the samples, the falls and the limit's energy drift.
+struct Watched {
+    drift: Drift,
+    /// `cos Θ` at the last step's end that was not 0.
+    up: f64,
+    falls: Counted,
+    samples: Vec<Sample>,
+}
+
+impl Watch<dyn Flow> for Watched {
+    fn sample(&mut self, flow: &mut (dyn Flow + 'static), t: f64) -> bool {
+        let y = flow.state_at(t);
+        self.samples.push(Sample {
+            t,
+            theta: y[0],
+            theta_dot: y[1],
+        });
+        true
+    }
+    fn stepped(&mut self, flow: &mut (dyn Flow + 'static)) {
+        let t_now = flow.time();
+        let now = slow_up(flow, t_now);
+        if self.up > 0.0 && now < 0.0 {
+            let (a, b) = (flow.time_prev(), flow.time());
+            self.falls
+                .push(find_root(|t| slow_up(flow, t), a, b), MAX_EVENT_TIMES);
+        }
+        if now != 0.0 {
+            self.up = now;
+        }
+        self.drift.see(flow.energy());
+    }
 }

@@ -3,11 +3,11 @@
 
 use serde::Serialize;
 
-use super::integrators::reversals::ReversalTracker;
 use super::integrators::{self, Method, Settings, Stats, StepError};
 use super::model::State;
 use super::params::Problem;
-use crate::physics::flow::CHECK_EVERY;
+use crate::physics::drive::{Course, Drift, Watch, drive};
+use crate::physics::flow::Flow;
 
 /// What to run.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -90,7 +90,7 @@ pub fn run(problem: &Problem, spec: &RunSpec) -> Result<RunResult, StepError> {
     run_cancellable(problem, spec, &mut |_| true)
 }
 
-/// [`run`], asking `go_on(t)` every [`CHECK_EVERY`] steps whether to continue (`t` is the time
+/// [`run`], asking `go_on(t)` every `CHECK_EVERY` steps whether to continue (`t` is the time
 /// reached, for progress); the physics stays clock-free, the caller decides.
 ///
 /// # Errors
@@ -126,89 +126,65 @@ pub fn run_streaming(
         tolerance: spec.tolerance,
         step: spec.step,
     };
-    let mut integrator = integrators::build(
+    let mut flow = integrators::build(
         spec.method,
         problem,
         settings,
         spec.t_end,
         crate::physics::method::TimeSum::default(),
     )?;
-    let e0 = integrator.energy();
-    let scale = if e0 == 0.0 { 1.0 } else { e0.abs() };
-    let mut tracker = ReversalTracker::new(problem.start().alpha_dot);
-    let mut reversals = Vec::new();
-    let mut reversal_count = 0;
-    let mut max_err: f64 = 0.0;
-    let sample_time = |i: usize| {
-        if spec.samples <= 1 {
-            0.0
-        } else {
-            #[allow(clippy::cast_precision_loss)]
-            let f = i as f64 / (spec.samples - 1) as f64;
-            spec.t_end * f
-        }
+    let cost =
+        super::budget::cost_seconds(problem, spec.method, spec.tolerance, spec.step, spec.t_end);
+    let course = Course {
+        event0: problem.start().alpha_dot,
+        keep: MAX_REVERSAL_TIMES,
+        ..Course::of(flow.as_ref(), spec.t_end, spec.samples, cost)
     };
-    let mut next_sample = 0;
-    if spec.samples > 0 {
-        if !on_sample(Sample {
-            t: 0.0,
-            state: integrator.state(),
-        }) {
-            return Err(StepError::Cancelled { t: 0.0 });
-        }
-        next_sample = 1;
-    }
-    let mut steps: u64 = 0;
-    let cap = crate::physics::method::StepCap::of(super::budget::cost_seconds(
-        problem,
-        spec.method,
-        spec.tolerance,
-        spec.step,
-        spec.t_end,
-    ));
-    while integrator.time() < spec.t_end {
-        steps += 1;
-        if steps.is_multiple_of(CHECK_EVERY) && !go_on(integrator.time()) {
-            return Err(StepError::Cancelled {
-                t: integrator.time(),
-            });
-        }
-        cap.check(steps, integrator.time())?;
-        integrator.step(spec.t_end)?;
-        if let Some(t) = tracker.after_step(integrator.as_mut()) {
-            reversal_count += 1;
-            if reversals.len() < MAX_REVERSAL_TIMES {
-                reversals.push(t);
-            }
-        }
-        if spec.monitor_energy {
-            max_err = max_err.max((integrator.energy() - e0).abs() / scale);
-        }
-        while next_sample < spec.samples && sample_time(next_sample) <= integrator.time() {
-            let t = sample_time(next_sample);
-            let state = if t >= integrator.time() {
-                integrator.state()
-            } else {
-                integrator.interpolate(t)
-            };
-            if !on_sample(Sample { t, state }) {
-                return Err(StepError::Cancelled { t });
-            }
-            next_sample += 1;
-        }
-    }
-    let final_state = integrator.state();
-    let energy_final = integrator.energy();
-    max_err = max_err.max((energy_final - e0).abs() / scale);
+    let mut watch = Watched {
+        drift: Drift::new(flow.energy(), true),
+        monitor: spec.monitor_energy,
+        on_sample,
+    };
+    let driven = drive(flow.as_mut(), &course, go_on, &mut watch)?;
+    let t = flow.time();
+    let final_state = state(flow.as_mut(), t);
+    let energy_final = flow.energy();
+    watch.drift.see(energy_final);
     Ok(RunResult {
-        t: integrator.time(),
+        t,
         final_state,
-        reversals,
-        reversal_count,
-        energy_initial: e0,
+        reversals: driven.events.times,
+        reversal_count: driven.events.count,
+        energy_initial: watch.drift.initial,
         energy_final,
-        max_relative_energy_error: max_err,
-        stats: integrator.stats(),
+        max_relative_energy_error: watch.drift.max,
+        stats: flow.stats(),
         samples: Vec::new(),
     })
+}
+
+/// The state `(γ, α, γ̇, α̇)` of a rattleback flow at `t`.
+fn state(flow: &mut dyn Flow, t: f64) -> State {
+    State::from_column_slice(&flow.state_at(t))
+}
+
+/// What the rattleback's run watches: the samples, handed on, and the energy's drift.
+struct Watched<'a> {
+    drift: Drift,
+    monitor: bool,
+    on_sample: &'a mut dyn FnMut(Sample) -> bool,
+}
+
+impl Watch<dyn Flow> for Watched<'_> {
+    fn sample(&mut self, flow: &mut (dyn Flow + 'static), t: f64) -> bool {
+        (self.on_sample)(Sample {
+            t,
+            state: state(flow, t),
+        })
+    }
+    fn stepped(&mut self, flow: &mut (dyn Flow + 'static)) {
+        if self.monitor {
+            self.drift.see(flow.energy());
+        }
+    }
 }

@@ -3,14 +3,13 @@
 //! outside this folder names a rattleback parameter.
 
 use super::effective::Effective;
-use super::integrators::{self, Integrator};
-use super::model::{ALPHA, ALPHA_DOT, GAMMA};
+use super::integrators;
+use super::model::ALPHA;
 use super::params::{Params, Problem, Start};
 use super::run::RunSpec;
-use crate::physics::flow::{Flow, Sample};
+use crate::physics::flow::Flow;
 use crate::physics::method::TimeSum;
 use crate::physics::method::{Method, Settings, StepError};
-use crate::physics::numerics::dop853::Stats;
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::PlanRequest;
 use crate::physics::scene::{
@@ -244,9 +243,7 @@ impl Posed for Problem {
         t_end: f64,
         time_sum: TimeSum,
     ) -> Result<Box<dyn Flow>, StepError> {
-        Ok(Box::new(RattlebackFlow(integrators::build(
-            method, self, settings, t_end, time_sum,
-        )?)))
+        integrators::build(method, self, settings, t_end, time_sum)
     }
     fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
         let PlanRequest {
@@ -320,61 +317,5 @@ impl Posed for Problem {
             method,
             estimate,
         })
-    }
-}
-
-/// The rattleback's integrators seen through [`Flow`]: `q = α`, the event is `α̇`, the fast
-/// coordinate `γ`; the state vector is `(γ, α, γ̇, α̇)`.
-pub struct RattlebackFlow(pub Box<dyn Integrator>);
-
-impl RattlebackFlow {
-    fn at(&mut self, t: f64) -> super::State {
-        if t >= self.0.time() {
-            self.0.state()
-        } else {
-            self.0.interpolate(t)
-        }
-    }
-}
-
-impl Flow for RattlebackFlow {
-    fn boxed(&self) -> Box<dyn Flow> {
-        Box::new(Self(self.0.boxed()))
-    }
-    fn method(&self) -> Method {
-        self.0.method()
-    }
-    fn time(&self) -> f64 {
-        self.0.time()
-    }
-    fn time_prev(&self) -> f64 {
-        self.0.time_prev()
-    }
-    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
-        self.0.step(t_limit)
-    }
-    fn sample(&mut self, t: f64) -> Sample {
-        let y = self.at(t);
-        Sample {
-            q: y[ALPHA],
-            q_dot: y[ALPHA_DOT],
-            fast: y[GAMMA],
-            lean: None,
-        }
-    }
-    fn state_at(&mut self, t: f64) -> Vec<f64> {
-        self.at(t).iter().copied().collect()
-    }
-    fn event_value(&self) -> f64 {
-        self.0.alpha_dot()
-    }
-    fn locate_event(&mut self) -> f64 {
-        self.0.locate_alpha_dot_zero()
-    }
-    fn energy(&self) -> f64 {
-        self.0.energy()
-    }
-    fn stats(&self) -> Stats {
-        self.0.stats()
     }
 }

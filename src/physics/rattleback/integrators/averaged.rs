@@ -10,7 +10,8 @@
 
 use super::dop853::{Dop853, Field, Stats};
 use super::roots::find_root;
-use super::{Integrator, Method, StepError};
+use super::{Method, StepError};
+use crate::physics::flow::Flow;
 use crate::physics::rattleback::averaged::{Averaged2, SlowState};
 use crate::physics::rattleback::model::State;
 use crate::physics::rattleback::params::Problem;
@@ -64,8 +65,21 @@ impl Averaged2Dop853 {
     }
 }
 
-impl Integrator for Averaged2Dop853 {
-    fn boxed(&self) -> Box<dyn Integrator> {
+impl Averaged2Dop853 {
+    /// The current state `(γ, α, γ̇, α̇)`.
+    #[must_use]
+    pub fn state(&self) -> State {
+        self.model.to_full_state(&self.core.state())
+    }
+    /// The state at `t` inside the last step.
+    pub fn interpolate(&mut self, t: f64) -> State {
+        let y = self.core.interpolate(t);
+        self.model.to_full_state(&y)
+    }
+}
+
+impl Flow for Averaged2Dop853 {
+    fn boxed(&self) -> Box<dyn Flow> {
         Box::new(self.clone())
     }
     fn method(&self) -> Method {
@@ -77,20 +91,13 @@ impl Integrator for Averaged2Dop853 {
     fn time_prev(&self) -> f64 {
         self.core.time_prev()
     }
-    fn state(&self) -> State {
-        self.model.to_full_state(&self.core.state())
-    }
-    fn alpha_dot(&self) -> f64 {
+    fn event_value(&self) -> f64 {
         self.model.spin_rate(&self.core.state())
     }
     fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
         self.core.step(t_limit)
     }
-    fn interpolate(&mut self, t: f64) -> State {
-        let y = self.core.interpolate(t);
-        self.model.to_full_state(&y)
-    }
-    fn locate_alpha_dot_zero(&mut self) -> f64 {
+    fn locate_event(&mut self) -> f64 {
         // The full α̇ is monotone across a reversal (α̈ = g'γ̇²/(2iz) keeps the sign of g' near
         // a turning point), and so is its reconstruction: one bracketed zero per step.
         let (a, b) = (self.core.time_prev(), self.core.time());
@@ -110,4 +117,6 @@ impl Integrator for Averaged2Dop853 {
     fn stats(&self) -> Stats {
         self.core.stats()
     }
+
+    super::drawn_from_state!();
 }

@@ -14,7 +14,8 @@ use nalgebra::Vector3;
 
 use super::dop853::{Dop853, Field, Stats};
 use super::roots::find_root;
-use super::{Integrator, Method, StepError};
+use super::{Method, StepError};
+use crate::physics::flow::Flow;
 use crate::physics::rattleback::effective::Effective;
 use crate::physics::rattleback::model::State;
 use crate::physics::rattleback::params::Problem;
@@ -85,8 +86,21 @@ fn ripple(model: &Effective, action: f64, alpha: f64, phase: f64) -> f64 {
     p.g_prime(alpha) / (4.0 * p.g(alpha)) * action * (2.0 * phase).sin() / p.iz
 }
 
-impl Integrator for EffectiveDop853 {
-    fn boxed(&self) -> Box<dyn Integrator> {
+impl EffectiveDop853 {
+    /// The current state `(γ, α, γ̇, α̇)`.
+    #[must_use]
+    pub fn state(&self) -> State {
+        self.lift(&self.core.state())
+    }
+    /// The state at `t` inside the last step.
+    pub fn interpolate(&mut self, t: f64) -> State {
+        let y = self.core.interpolate(t);
+        self.lift(&y)
+    }
+}
+
+impl Flow for EffectiveDop853 {
+    fn boxed(&self) -> Box<dyn Flow> {
         Box::new(self.clone())
     }
     fn method(&self) -> Method {
@@ -102,20 +116,13 @@ impl Integrator for EffectiveDop853 {
     fn time_prev(&self) -> f64 {
         self.core.time_prev()
     }
-    fn state(&self) -> State {
-        self.lift(&self.core.state())
-    }
-    fn alpha_dot(&self) -> f64 {
+    fn event_value(&self) -> f64 {
         self.spin_rate(&self.core.state())
     }
     fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
         self.core.step(t_limit)
     }
-    fn interpolate(&mut self, t: f64) -> State {
-        let y = self.core.interpolate(t);
-        self.lift(&y)
-    }
-    fn locate_alpha_dot_zero(&mut self) -> f64 {
+    fn locate_event(&mut self) -> f64 {
         let (a, b) = (self.core.time_prev(), self.core.time());
         find_root(
             |t| {
@@ -133,4 +140,6 @@ impl Integrator for EffectiveDop853 {
     fn stats(&self) -> Stats {
         self.core.stats()
     }
+
+    super::drawn_from_state!();
 }

@@ -3,7 +3,8 @@
 
 use super::dop853::{Dop853, Field, Stats};
 use super::roots::find_root;
-use super::{Integrator, Method, StepError};
+use super::{Method, StepError};
+use crate::physics::flow::Flow;
 use crate::physics::rattleback::model::{ALPHA_DOT, State, energy, initial_state, rhs};
 use crate::physics::rattleback::params::{Params, Problem};
 
@@ -51,8 +52,20 @@ impl FullDop853 {
     }
 }
 
-impl Integrator for FullDop853 {
-    fn boxed(&self) -> Box<dyn Integrator> {
+impl FullDop853 {
+    /// The current state `(γ, α, γ̇, α̇)`.
+    #[must_use]
+    pub fn state(&self) -> State {
+        self.core.state()
+    }
+    /// The state at `t` inside the last step.
+    pub fn interpolate(&mut self, t: f64) -> State {
+        self.core.interpolate(t)
+    }
+}
+
+impl Flow for FullDop853 {
+    fn boxed(&self) -> Box<dyn Flow> {
         Box::new(self.clone())
     }
     fn method(&self) -> Method {
@@ -64,16 +77,10 @@ impl Integrator for FullDop853 {
     fn time_prev(&self) -> f64 {
         self.core.time_prev()
     }
-    fn state(&self) -> State {
-        self.core.state()
-    }
     fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
         self.core.step(t_limit)
     }
-    fn interpolate(&mut self, t: f64) -> State {
-        self.core.interpolate(t)
-    }
-    fn locate_alpha_dot_zero(&mut self) -> f64 {
+    fn locate_event(&mut self) -> f64 {
         let (a, b) = (self.core.time_prev(), self.core.time());
         find_root(|t| self.core.interpolate(t)[ALPHA_DOT], a, b)
     }
@@ -83,4 +90,9 @@ impl Integrator for FullDop853 {
     fn stats(&self) -> Stats {
         self.core.stats()
     }
+
+    fn event_value(&self) -> f64 {
+        self.state()[super::super::model::ALPHA_DOT]
+    }
+    super::drawn_from_state!();
 }

@@ -3,12 +3,11 @@
 //! Every method is deterministic: the same problem, settings and build give bit-identical
 //! results. Each file holds one method and states its order, whether it is symplectic and its
 //! cost per step. Reversals (sign changes of `α̇`) are located inside a step by each method's
-//! own interpolant or closed-form sub-flow ([`Integrator::locate_alpha_dot_zero`]).
+//! own interpolant or closed-form sub-flow (`Flow::locate_event`).
 
 mod averaged;
 mod effective;
 mod full_dop853;
-pub mod reversals;
 mod rk4;
 pub mod splitting;
 
@@ -18,40 +17,43 @@ pub use crate::physics::numerics::roots;
 
 use super::model::State;
 use super::params::Problem;
+use crate::physics::flow::Flow;
 use crate::physics::method::TimeSum;
 
-/// A running integration of one problem.
-pub trait Integrator: Send {
-    /// Which method this is.
-    fn method(&self) -> Method;
-    /// Current time.
-    fn time(&self) -> f64;
-    /// Start of the last step (equal to [`Integrator::time`] before the first).
-    fn time_prev(&self) -> f64;
-    /// Current state `(γ, α, γ̇, α̇)`; the effective model reconstructs `γ, γ̇` from its
-    /// adiabatic invariant and fast phase.
-    fn state(&self) -> State;
-    /// Current `α̇`, cheaper than a whole [`Integrator::state`] (no `γ̇` reconstruction).
-    fn alpha_dot(&self) -> f64 {
-        self.state()[3]
+/// The [`Flow`] methods every rattleback integrator draws from its own `state()` (now) and
+/// `interpolate(t)` (inside the last step), both `(γ, α, γ̇, α̇)`: `q = α`, the fast
+/// coordinate `γ`, the state vector in that order.
+macro_rules! drawn_from_state {
+    () => {
+        fn sample(&mut self, t: f64) -> crate::physics::flow::Sample {
+            let y = if t >= Flow::time(self) {
+                self.state()
+            } else {
+                self.interpolate(t)
+            };
+            super::drawn(&y)
+        }
+        fn state_at(&mut self, t: f64) -> Vec<f64> {
+            let y = if t >= Flow::time(self) {
+                self.state()
+            } else {
+                self.interpolate(t)
+            };
+            y.iter().copied().collect()
+        }
+    };
+}
+use drawn_from_state;
+
+/// What is drawn of a state `(γ, α, γ̇, α̇)`.
+fn drawn(y: &State) -> crate::physics::flow::Sample {
+    use super::model::{ALPHA, ALPHA_DOT, GAMMA};
+    crate::physics::flow::Sample {
+        q: y[ALPHA],
+        q_dot: y[ALPHA_DOT],
+        fast: y[GAMMA],
+        lean: None,
     }
-    /// Takes one step, never past `t_limit`, which must exceed the current time.
-    ///
-    /// # Errors
-    /// When the step cannot be completed with a finite result.
-    fn step(&mut self, t_limit: f64) -> Result<(), StepError>;
-    /// The state at `t` within the last step, from the method's own interpolant.
-    fn interpolate(&mut self, t: f64) -> State;
-    /// Where `α̇` vanishes within the last step, given that it changes sign over the step.
-    fn locate_alpha_dot_zero(&mut self) -> f64;
-    /// The quantity the method conserves, at the current state: the energy, or `E_eff` of the
-    /// averaged motion for the effective models.
-    fn energy(&self) -> f64;
-    /// Work counters.
-    fn stats(&self) -> Stats;
-    /// A copy of this integration in its current state (stepping the copy gives the same bits
-    /// as stepping the original: the explorer rewinds to a displayed time with it).
-    fn boxed(&self) -> Box<dyn Integrator>;
 }
 
 /// Default fixed step for `method` at `tolerance` over `[0, t_end]`: `c · tol^{1/p} / ν` with
@@ -98,7 +100,7 @@ pub fn build(
     settings: Settings,
     t_end: f64,
     time_sum: TimeSum,
-) -> Result<Box<dyn Integrator>, StepError> {
+) -> Result<Box<dyn Flow>, StepError> {
     let step = settings
         .step
         .unwrap_or_else(|| default_step(method, problem, settings.tolerance, t_end));

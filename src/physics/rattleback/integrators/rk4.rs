@@ -7,7 +7,8 @@
 
 use super::dop853::Stats;
 use super::roots::find_root;
-use super::{Integrator, Method, StepError};
+use super::{Method, StepError};
+use crate::physics::flow::Flow;
 use crate::physics::method::TimeSum;
 use crate::physics::rattleback::model::{ALPHA_DOT, State, energy, initial_state, rhs};
 use crate::physics::rattleback::params::{Params, Problem};
@@ -60,8 +61,30 @@ impl Rk4 {
     }
 }
 
-impl Integrator for Rk4 {
-    fn boxed(&self) -> Box<dyn Integrator> {
+impl Rk4 {
+    /// The current state `(γ, α, γ̇, α̇)`.
+    #[must_use]
+    pub fn state(&self) -> State {
+        self.y
+    }
+    /// The state at `t` inside the last step.
+    pub fn interpolate(&mut self, t: f64) -> State {
+        let h = self.t - self.t_prev;
+        if h == 0.0 {
+            return self.y;
+        }
+        let s = (t - self.t_prev) / h;
+        let s2 = s * s;
+        let s3 = s2 * s;
+        self.y_prev * (2.0 * s3 - 3.0 * s2 + 1.0)
+            + self.f_prev * (h * (s3 - 2.0 * s2 + s))
+            + self.y * (3.0 * s2 - 2.0 * s3)
+            + self.f * (h * (s3 - s2))
+    }
+}
+
+impl Flow for Rk4 {
+    fn boxed(&self) -> Box<dyn Flow> {
         Box::new(self.clone())
     }
     fn method(&self) -> Method {
@@ -72,9 +95,6 @@ impl Integrator for Rk4 {
     }
     fn time_prev(&self) -> f64 {
         self.t_prev
-    }
-    fn state(&self) -> State {
-        self.y
     }
     fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
         let remaining = t_limit - self.t;
@@ -103,20 +123,7 @@ impl Integrator for Rk4 {
         self.stats.rhs_evaluations += 4;
         Ok(())
     }
-    fn interpolate(&mut self, t: f64) -> State {
-        let h = self.t - self.t_prev;
-        if h == 0.0 {
-            return self.y;
-        }
-        let s = (t - self.t_prev) / h;
-        let s2 = s * s;
-        let s3 = s2 * s;
-        self.y_prev * (2.0 * s3 - 3.0 * s2 + 1.0)
-            + self.f_prev * (h * (s3 - 2.0 * s2 + s))
-            + self.y * (3.0 * s2 - 2.0 * s3)
-            + self.f * (h * (s3 - s2))
-    }
-    fn locate_alpha_dot_zero(&mut self) -> f64 {
+    fn locate_event(&mut self) -> f64 {
         let (a, b) = (self.t_prev, self.t);
         find_root(|t| self.interpolate(t)[ALPHA_DOT], a, b)
     }
@@ -126,4 +133,9 @@ impl Integrator for Rk4 {
     fn stats(&self) -> Stats {
         self.stats
     }
+
+    fn event_value(&self) -> f64 {
+        self.state()[super::super::model::ALPHA_DOT]
+    }
+    super::drawn_from_state!();
 }

@@ -26,7 +26,8 @@
 
 use super::dop853::Stats;
 use super::roots::find_root;
-use super::{Integrator, Method, StepError};
+use super::{Method, StepError};
+use crate::physics::flow::Flow;
 use crate::physics::method::TimeSum;
 pub use crate::physics::numerics::compositions::Composition;
 use crate::physics::numerics::compositions::Split;
@@ -310,8 +311,27 @@ impl Splitting {
     }
 }
 
-impl Integrator for Splitting {
-    fn boxed(&self) -> Box<dyn Integrator> {
+impl Splitting {
+    /// The current state `(γ, α, γ̇, α̇)`.
+    #[must_use]
+    pub fn state(&self) -> State {
+        self.y.to_state(&self.params)
+    }
+    /// The method's own step of size `t − t_prev` from the step's start: the same order as a
+    /// full step, and exact in the fast oscillation.
+    pub fn interpolate(&mut self, t: f64) -> State {
+        let y = composition_step(
+            &self.composition,
+            &self.params,
+            &self.y_prev,
+            t - self.t_prev,
+        );
+        y.to_state(&self.params)
+    }
+}
+
+impl Flow for Splitting {
+    fn boxed(&self) -> Box<dyn Flow> {
         Box::new(self.clone())
     }
     fn method(&self) -> Method {
@@ -323,10 +343,7 @@ impl Integrator for Splitting {
     fn time_prev(&self) -> f64 {
         self.t_prev
     }
-    fn state(&self) -> State {
-        self.y.to_state(&self.params)
-    }
-    fn alpha_dot(&self) -> f64 {
+    fn event_value(&self) -> f64 {
         self.y.p_alpha / self.params.iz
     }
     fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
@@ -352,18 +369,7 @@ impl Integrator for Splitting {
         self.stats.rhs_evaluations += self.composition.stages() as u64;
         Ok(())
     }
-    /// The method's own step of size `t − t_prev` from the step's start: the same order as a
-    /// full step, and exact in the fast oscillation.
-    fn interpolate(&mut self, t: f64) -> State {
-        let y = composition_step(
-            &self.composition,
-            &self.params,
-            &self.y_prev,
-            t - self.t_prev,
-        );
-        y.to_state(&self.params)
-    }
-    fn locate_alpha_dot_zero(&mut self) -> f64 {
+    fn locate_event(&mut self) -> f64 {
         let p = self.params;
         let h = self.t - self.t_prev;
         // The sign α̇ ends the step with; a stage crosses when it moves p_alpha onto that side.
@@ -409,6 +415,8 @@ impl Integrator for Splitting {
     fn stats(&self) -> Stats {
         self.stats
     }
+
+    super::drawn_from_state!();
 }
 
 #[cfg(test)]
