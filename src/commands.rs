@@ -2,7 +2,8 @@
 //! Output goes to stdout, problems to stderr; exit 2 on any problem.
 
 use std::fmt::Write as _;
-use std::process::ExitCode;
+
+use crate::failure::{Failure, Outcome};
 
 use crate::cli::{CheckArgs, ListArgs, ListFormat, PresetsAction, PresetsArgs};
 use crate::scenario::PresetError;
@@ -22,18 +23,32 @@ pub fn say(text: &str) {
 }
 
 /// Prints cleaned text on stdout. A reader that went away (`| head`) ends the command quietly
-/// with success, as `simulate`'s streamed output already did (`print!` panicked); any other
-/// write error ends it with one line and exit 1.
+/// with success, as `simulate`'s streamed output does; any other write error ends it with one
+/// line and exit 1. The first failed write is kept (later ones are skipped) for `main`'s exit
+/// decision ([`crate::failure::exit`] asks [`stdout_failure`]).
 pub fn say_raw(text: &str) {
     use std::io::Write as _;
+    if STDOUT_FAILED.get().is_some() {
+        return;
+    }
     let text = crate::scenario::text::clean(text);
     if let Err(e) = std::io::stdout().lock().write_all(text.as_bytes()) {
-        if e.kind() == std::io::ErrorKind::BrokenPipe {
-            std::process::exit(0);
-        }
-        eprintln!("rattleback: error: writing to standard output: {e}");
-        std::process::exit(1);
+        let _ = STDOUT_FAILED.set((e.kind(), e.to_string()));
     }
+}
+
+/// The first failed write on stdout through [`say_raw`].
+static STDOUT_FAILED: std::sync::OnceLock<(std::io::ErrorKind, String)> =
+    std::sync::OnceLock::new();
+
+/// How a failed write on stdout ends the command, if one failed: a closed pipe ends it with
+/// success and nothing said; any other error with exit 1.
+#[must_use]
+pub fn stdout_failure() -> Option<crate::failure::Outcome> {
+    STDOUT_FAILED.get().map(|(kind, e)| match kind {
+        std::io::ErrorKind::BrokenPipe => Ok(()),
+        _ => Err(Failure::failed(format!("writing to standard output: {e}"))),
+    })
 }
 macro_rules! say_err {
     ($($t:tt)*) => { eprintln!("{}", crate::scenario::text::clean(&format!($($t)*))) };
@@ -43,18 +58,14 @@ macro_rules! say_raw {
 }
 
 /// `rattleback presets`.
-#[must_use]
-pub fn presets(args: &PresetsArgs) -> ExitCode {
+pub fn presets(args: &PresetsArgs) -> Outcome {
     if let Some(PresetsAction::Show { name }) = &args.action {
         return match crate::scenario::shipped::source_text(name) {
             Ok(text) => {
                 say_raw!("{text}");
-                ExitCode::SUCCESS
+                Ok(())
             }
-            Err(e) => {
-                say_err!("rattleback: error: {e}");
-                ExitCode::from(2)
-            }
+            Err(e) => Err(Failure::input(e)),
         };
     }
     let (entries, problems) = catalogue();
@@ -83,8 +94,7 @@ pub fn presets(args: &PresetsArgs) -> ExitCode {
 }
 
 /// `rattleback themes`: every theme, like `presets`.
-#[must_use]
-pub fn themes(args: &ListArgs) -> ExitCode {
+pub fn themes(args: &ListArgs) -> Outcome {
     use crate::scenario::theme::{SHIPPED_THEMES, themes};
     let (all, problems) = themes();
     let user_dir = crate::scenario::shipped::config_dir().map(|d| d.join("themes"));
@@ -131,8 +141,7 @@ pub fn themes(args: &ListArgs) -> ExitCode {
 }
 
 /// `rattleback lessons`: every lesson, like `presets`.
-#[must_use]
-pub fn lessons(args: &ListArgs) -> ExitCode {
+pub fn lessons(args: &ListArgs) -> Outcome {
     let (entries, problems) = crate::scenario::lesson::catalogue();
     let json = crate::outputs::LessonList {
         schema_version: crate::outputs::SCHEMA_VERSION,
@@ -235,8 +244,7 @@ pub fn answer_completion() {
 
 /// `rattleback completions SHELL`: the script that registers dynamic completion in that shell
 /// (the shell asks the program for every completion, so names are never stale).
-#[must_use]
-pub fn completions(shell: clap_complete::Shell) -> ExitCode {
+pub fn completions(shell: clap_complete::Shell) -> Outcome {
     // The program that answers: this binary, by its path when known (a build outside PATH
     // still completes), else by name.
     let me = std::env::current_exe()
@@ -245,22 +253,23 @@ pub fn completions(shell: clap_complete::Shell) -> ExitCode {
         .unwrap_or_else(|| "rattleback".to_owned());
     let shells = clap_complete::env::Shells::builtins();
     let Some(completer) = shells.completer(&shell.to_string()) else {
-        say_err!("rattleback: error: completions: {shell} is not supported");
-        return ExitCode::from(2);
+        return Err(Failure::input(format!(
+            "completions: {shell} is not supported"
+        )));
     };
     let mut out = Vec::new();
     if let Err(e) =
         completer.write_registration("COMPLETE", "rattleback", "rattleback", &me, &mut out)
     {
-        say_err!("rattleback: error: writing the completion script: {e}");
-        return ExitCode::from(1);
+        return Err(Failure::failed(format!(
+            "writing the completion script: {e}"
+        )));
     }
     write_stdout(&out)
 }
 
 /// `rattleback doctor`.
-#[must_use]
-pub fn doctor(args: &crate::cli::DoctorArgs) -> ExitCode {
+pub fn doctor(args: &crate::cli::DoctorArgs) -> Outcome {
     let look = &args.look;
     let asked = crate::doctor::Asked {
         ascii: look.ascii,
@@ -277,13 +286,11 @@ pub fn doctor(args: &crate::cli::DoctorArgs) -> ExitCode {
 }
 
 /// `rattleback man`.
-#[must_use]
-pub fn man() -> ExitCode {
+pub fn man() -> Outcome {
     let cmd = <crate::cli::Cli as clap::CommandFactory>::command();
     let mut out = Vec::new();
     if let Err(e) = crate::manual::render(cmd, &mut out) {
-        say_err!("rattleback: error: rendering the manual: {e}");
-        return ExitCode::from(1);
+        return Err(Failure::failed(format!("rendering the manual: {e}")));
     }
     write_stdout(&out)
 }
@@ -316,21 +323,17 @@ fn counted<R>(
 }
 
 /// A study's result, or its exit: 128 + the signal that ended it, or 1 when a run failed.
-fn finished<T>(result: Result<T, crate::physics::StepError>, what: &str) -> Result<T, ExitCode> {
-    if let Some(code) = interrupted() {
-        return Err(code);
+fn finished<T>(result: Result<T, crate::physics::StepError>, what: &str) -> Result<T, Failure> {
+    if let Some(failure) = interrupted() {
+        return Err(failure);
     }
-    result.map_err(|e| {
-        say_err!("rattleback: error: {what} failed: {e}");
-        ExitCode::from(1)
-    })
+    result.map_err(|e| Failure::failed(format!("{what} failed: {e}")))
 }
 
-/// The exit of work ended by a signal (128 + its number), after saying so; `None` when none came.
-fn interrupted() -> Option<ExitCode> {
-    let n = crate::interrupt::requested()?;
-    say_err!("rattleback: error: interrupted: nothing was written");
-    Some(crate::interrupt::exit_code(n))
+/// The end of work stopped by a signal (128 + its number, saying nothing was written); `None`
+/// when none came.
+fn interrupted() -> Option<Failure> {
+    crate::interrupt::requested().map(Failure::interrupted)
 }
 
 /// An output as pretty JSON with a final newline, control characters escaped (text from files
@@ -344,16 +347,13 @@ pub fn json_text(value: &impl serde::Serialize) -> String {
     s
 }
 
-fn write_stdout(bytes: &[u8]) -> ExitCode {
+fn write_stdout(bytes: &[u8]) -> Outcome {
     use std::io::Write as _;
     let mut out = std::io::stdout().lock();
     match out.write_all(bytes).and_then(|()| out.flush()) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
-        Err(e) => {
-            say_err!("rattleback: error: writing the output: {e}");
-            ExitCode::from(1)
-        }
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        Err(e) => Err(Failure::failed(format!("writing the output: {e}"))),
     }
 }
 
@@ -366,7 +366,7 @@ fn print_list<T>(
     format: ListFormat,
     row: &dyn Fn(&T) -> String,
     problems: &[PresetError],
-) -> ExitCode {
+) -> Outcome {
     let out = match format {
         ListFormat::Json => json_text(json),
         ListFormat::Table => entries.iter().map(row).collect(),
@@ -375,14 +375,11 @@ fn print_list<T>(
     report(problems)
 }
 
-fn report(problems: &[PresetError]) -> ExitCode {
-    for p in problems {
-        say_err!("rattleback: error: {p}");
-    }
+fn report(problems: &[PresetError]) -> Outcome {
     if problems.is_empty() {
-        ExitCode::SUCCESS
+        Ok(())
     } else {
-        ExitCode::from(2)
+        Err(Failure::inputs(problems))
     }
 }
 
@@ -393,7 +390,7 @@ fn is_theme(src: &str) -> bool {
 }
 
 /// Refused before minutes of work: files of an earlier run are replaced only with `--force`.
-fn bench_refuses_old_files(args: &crate::cli::BenchArgs) -> Result<(), ExitCode> {
+fn bench_refuses_old_files(args: &crate::cli::BenchArgs) -> Outcome {
     let part = |p: crate::cli::BenchPart| args.only.is_none_or(|o| o == p);
     let files: &[(crate::cli::BenchPart, &[&str])] = &[
         (
@@ -412,32 +409,26 @@ fn bench_refuses_old_files(args: &crate::cli::BenchArgs) -> Result<(), ExitCode>
             .flat_map(|(_, names)| names.iter().map(|n| args.out.join(n)))
             .find(|p| std::fs::symlink_metadata(p).is_ok())
     {
-        say_err!(
-            "rattleback: error: {}: exists (from an earlier run); choose another --out or add --force to replace it",
+        return Err(Failure::input(format!(
+            "{}: exists (from an earlier run); choose another --out or add --force to replace it",
             existing.display()
-        );
-        return Err(ExitCode::from(2));
+        )));
     }
     Ok(())
 }
 
 /// `rattleback bench`.
-#[must_use]
-pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
+pub fn bench(args: &crate::cli::BenchArgs) -> Outcome {
     use crate::bench;
     let config = bench::Config { quick: args.quick };
     if let Err(e) = std::fs::create_dir_all(&args.out) {
-        say_err!("rattleback: error: {}: {e}", args.out.display());
-        return ExitCode::from(2);
+        return Err(Failure::input(format!("{}: {e}", args.out.display())));
     }
     let part = |p: crate::cli::BenchPart| args.only.is_none_or(|o| o == p);
-    if let Err(code) = bench_refuses_old_files(args) {
-        return code;
-    }
+    bench_refuses_old_files(args)?;
     let mut wrote = Vec::new();
     let fail = |path: &std::path::Path, e: std::io::Error| {
-        say_err!("rattleback: error: {}: {e}", path.display());
-        ExitCode::from(1)
+        Failure::failed(format!("{}: {e}", path.display()))
     };
     if part(crate::cli::BenchPart::WorkPrecision) {
         let rows = bench::work_precision(config, &mut |line| say_err!("{line}"));
@@ -451,13 +442,9 @@ pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
         }
         let csv = args.out.join("work_precision.csv");
         let svg = args.out.join("work_precision.svg");
-        if let Err(e) = bench::write_csv(&rows, &csv) {
-            return fail(&csv, e);
-        }
-        if let Err(e) = bench::write_svg(&rows, &svg) {
-            say_err!("rattleback: error: {}: {e}", svg.display());
-            return ExitCode::from(1);
-        }
+        bench::write_csv(&rows, &csv).map_err(|e| fail(&csv, e))?;
+        bench::write_svg(&rows, &svg)
+            .map_err(|e| Failure::failed(format!("{}: {e}", svg.display())))?;
         wrote.extend([csv, svg]);
     }
     if part(crate::cli::BenchPart::Auto) {
@@ -467,9 +454,7 @@ pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
         let profile = bench::profile(config.quick, &mut |line| say_err!("{line}"));
         say_raw!("{}", bench::profile_table(&profile));
         let profile_csv = args.out.join("auto_profile.csv");
-        if let Err(e) = bench::write_profile_csv(&profile, &profile_csv) {
-            return fail(&profile_csv, e);
-        }
+        bench::write_profile_csv(&profile, &profile_csv).map_err(|e| fail(&profile_csv, e))?;
         wrote.push(profile_csv);
     }
     // A scene's part: its heading, its table, its CSV.
@@ -482,33 +467,27 @@ pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
         let path = args.out.join(name);
         write(&path).map_err(|e| fail(&path, e))?;
         wrote.push(path);
-        Ok::<(), ExitCode>(())
+        Ok::<(), Failure>(())
     };
     if part(crate::cli::BenchPart::Kapitza) {
         let rows = bench::kapitza::study(config.quick, &mut |line| say_err!("{line}"));
         let heading = "Kapitza's pendulum: cost against epsilon (T = 5; errors against tests/fixtures/reference/kapitza.toml)";
-        if let Err(code) = scene(heading, bench::kapitza::table(&rows), "kapitza.csv", &|p| {
+        scene(heading, bench::kapitza::table(&rows), "kapitza.csv", &|p| {
             bench::kapitza::write_csv(&rows, p)
-        }) {
-            return code;
-        }
+        })?;
     }
     if part(crate::cli::BenchPart::Celt) {
         let rows = bench::celt::study(config.quick, &mut |line| say_err!("{line}"));
         let heading = "The celt: run time against error (final omega against tests/fixtures/celt/references.json)";
-        if let Err(code) = scene(heading, bench::celt::table(&rows), "celt.csv", &|p| {
+        scene(heading, bench::celt::table(&rows), "celt.csv", &|p| {
             bench::celt::write_csv(&rows, p)
-        }) {
-            return code;
-        }
+        })?;
     }
     if part(crate::cli::BenchPart::Stability) {
         let stability = bench::stability(config);
         say!("\nStability\n{}", bench::stability_table(&stability));
         let path = args.out.join("stability.csv");
-        if let Err(e) = bench::write_stability_csv(&stability, &path) {
-            return fail(&path, e);
-        }
+        bench::write_stability_csv(&stability, &path).map_err(|e| fail(&path, e))?;
         wrote.push(path);
     }
     say!(
@@ -519,12 +498,11 @@ pub fn bench(args: &crate::cli::BenchArgs) -> ExitCode {
             .collect::<Vec<_>>()
             .join(", ")
     );
-    ExitCode::SUCCESS
+    Ok(())
 }
 
 /// `rattleback check FILE...`.
-#[must_use]
-pub fn check(args: &CheckArgs) -> ExitCode {
+pub fn check(args: &CheckArgs) -> Outcome {
     let mut problems = Vec::new();
     for path in &args.files {
         let label = crate::scenario::write::label(path);
@@ -558,9 +536,9 @@ pub fn check(args: &CheckArgs) -> ExitCode {
         };
         say_raw!("{}", json_text(&out));
         return if problems.is_empty() {
-            ExitCode::SUCCESS
+            Ok(())
         } else {
-            ExitCode::from(2)
+            Err(Failure::said(2))
         };
     }
     if problems.is_empty() {
@@ -570,14 +548,12 @@ pub fn check(args: &CheckArgs) -> ExitCode {
 }
 
 /// `rattleback study sweep|map`.
-#[must_use]
-pub fn study(command: &crate::cli::StudyCommand) -> ExitCode {
+pub fn study(command: &crate::cli::StudyCommand) -> Outcome {
     use crate::cli::StudyCommand;
     // Ctrl-C (or SIGTERM) cancels the runs in flight and ends with 128 + the signal, the
     // progress bar erased and no file written.
     if let Err(e) = crate::interrupt::install() {
-        say_err!("rattleback: error: {e}");
-        return ExitCode::from(1);
+        return Err(Failure::failed(e));
     }
     match command {
         StudyCommand::Sweep(args) => study_sweep(args),
@@ -588,11 +564,9 @@ pub fn study(command: &crate::cli::StudyCommand) -> ExitCode {
 /// The preset, horizon and tolerance of a study, or the exit of a bad input.
 fn study_setup(
     common: &crate::cli::StudyCommon,
-) -> Result<(crate::scenario::Preset, crate::physics::Model, f64, f64), ExitCode> {
-    let preset = crate::scenario::shipped::resolve(&common.preset, &common.set).map_err(|e| {
-        say_err!("rattleback: error: {e}");
-        ExitCode::from(2)
-    })?;
+) -> Result<(crate::scenario::Preset, crate::physics::Model, f64, f64), Failure> {
+    let preset =
+        crate::scenario::shipped::resolve(&common.preset, &common.set).map_err(Failure::input)?;
     let model = preset.model;
     let t_end = common.t_end.unwrap_or(preset.run.t_end);
     let tolerance = common
@@ -602,26 +576,23 @@ fn study_setup(
     if let Some(dir) = &common.out
         && let Err(e) = std::fs::create_dir_all(dir)
     {
-        say_err!("rattleback: error: --out {}: {e}", dir.display());
-        return Err(ExitCode::from(2));
+        return Err(Failure::input(format!("--out {}: {e}", dir.display())));
     }
     Ok((preset, model, t_end, tolerance))
 }
 
 /// Writes `files` (name, contents) into `--out`, refusing to replace without `--force`.
-fn write_outputs(common: &crate::cli::StudyCommon, files: &[(&str, String)]) -> ExitCode {
+fn write_outputs(common: &crate::cli::StudyCommon, files: &[(&str, String)]) -> Outcome {
     let Some(dir) = &common.out else {
-        return ExitCode::SUCCESS;
+        return Ok(());
     };
     for (name, text) in files {
         let path = dir.join(name);
         if let Err(e) = crate::scenario::write::write_atomic(&path, text.as_bytes(), common.force) {
             if e.kind() == std::io::ErrorKind::AlreadyExists {
-                say_err!("rattleback: error: {e}; --force replaces it");
-                return ExitCode::from(2);
+                return Err(Failure::input(format!("{e}; --force replaces it")));
             }
-            say_err!("rattleback: error: {}: {e}", path.display());
-            return ExitCode::from(1);
+            return Err(Failure::failed(format!("{}: {e}", path.display())));
         }
     }
     say_err!(
@@ -632,21 +603,18 @@ fn write_outputs(common: &crate::cli::StudyCommon, files: &[(&str, String)]) -> 
             .collect::<Vec<_>>()
             .join(", ")
     );
-    ExitCode::SUCCESS
+    Ok(())
 }
 
 /// Writes `text` to stdout; a closed pipe (`| head`) ends the output quietly (exit 0, the
 /// `--out` files are still written), another failure is exit 1.
-fn emit(text: &str) -> Result<(), ExitCode> {
+fn emit(text: &str) -> Outcome {
     use std::io::Write as _;
     let mut out = std::io::stdout().lock();
     match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
         Ok(()) => Ok(()),
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
-        Err(e) => {
-            say_err!("rattleback: error: writing the output: {e}");
-            Err(ExitCode::from(1))
-        }
+        Err(e) => Err(Failure::failed(format!("writing the output: {e}"))),
     }
 }
 
@@ -658,37 +626,29 @@ fn sweep_budget(
     t_end: f64,
     tolerance: f64,
     force: bool,
-) -> Result<(), ExitCode> {
+) -> Outcome {
     match crate::study::sweep::predicted_seconds(model, ladder, t_end, tolerance) {
-        Err(e) => {
-            say_err!("rattleback: error: --ladder: {e}");
-            Err(ExitCode::from(2))
-        }
+        Err(e) => Err(Failure::input(format!("--ladder: {e}"))),
         Ok(predicted) if predicted > crate::physics::budget::BUDGET_SECONDS && !force => {
-            say_err!(
-                "rattleback: error: this sweep is predicted to take about {} (budget {}); use fewer rungs, a shorter --t-end or a looser --tolerance, or pass --force",
+            Err(Failure::input(format!(
+                "this sweep is predicted to take about {} (budget {}); use fewer rungs, a shorter --t-end or a looser --tolerance, or pass --force",
                 crate::physics::budget::duration(predicted),
                 crate::physics::budget::duration(crate::physics::budget::BUDGET_SECONDS)
-            );
-            Err(ExitCode::from(2))
+            )))
         }
         Ok(_) => Ok(()),
     }
 }
 
-fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
+fn study_sweep(args: &crate::cli::SweepArgs) -> Outcome {
     use crate::study::sweep::{ladder, sweep};
-    let (preset, model, t_end, tolerance) = match study_setup(&args.common) {
-        Ok(s) => s,
-        Err(code) => return code,
-    };
+    let (preset, model, t_end, tolerance) = study_setup(&args.common)?;
     let kind = model.kind();
     let Some(small) = kind.small() else {
-        say_err!(
-            "rattleback: error: the {} has no small parameter to sweep",
+        return Err(Failure::input(format!(
+            "the {} has no small parameter to sweep",
             kind.title()
-        );
-        return ExitCode::from(2);
+        )));
     };
     let ladder = if args.ladder.is_empty() {
         ladder(kind).to_vec()
@@ -699,25 +659,19 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
     if let Some(spec) = kind.params().iter().find(|p| p.key == small.key)
         && let Some(bad) = ladder.iter().find(|x| !spec.allowed.contains(**x))
     {
-        say_err!(
-            "rattleback: error: --ladder: {} = {bad} is out of range for the {} model; allowed: {}",
+        return Err(Failure::input(format!(
+            "--ladder: {} = {bad} is out of range for the {} model; allowed: {}",
             small.key,
             kind.name(),
             spec.allowed.text()
-        );
-        return ExitCode::from(2);
+        )));
     }
-    if let Err(code) = sweep_budget(&model, &ladder, t_end, tolerance, args.common.force) {
-        return code;
-    }
+    sweep_budget(&model, &ladder, t_end, tolerance, args.common.force)?;
     // Progress by runs (the limit is one); Ctrl-C cancels the runs in flight.
     let swept = counted("study sweep", ladder.len() + 1, "runs", &|done| {
         sweep(&model, &ladder, t_end, tolerance, &|_| go_on(), done)
     });
-    let s = match finished(swept, "study sweep") {
-        Ok(s) => s,
-        Err(code) => return code,
-    };
+    let s = finished(swept, "study sweep")?;
     // The rattleback's column and field are `stiffness` (a contract); the pendulum's `epsilon`.
     let column = small.column;
     let mut csv = format!("{column},sup_error,method,estimate\n");
@@ -753,19 +707,16 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> ExitCode {
             &s,
         ))),
     };
-    if let Err(code) = printed {
-        return code;
-    }
+    printed?;
     // The files only when asked for (a scene never computes what it does not need).
     if args.common.out.is_none() {
-        return ExitCode::SUCCESS;
+        return Ok(());
     }
     let curves = sweep_curves(&s);
     let svg = match crate::study::svg::sweep_svg(&s) {
         Ok(svg) => svg,
         Err(e) => {
-            say_err!("rattleback: error: drawing the sweep: {e}");
-            return ExitCode::from(1);
+            return Err(Failure::failed(format!("drawing the sweep: {e}")));
         }
     };
     write_outputs(
@@ -824,27 +775,21 @@ fn sweep_curves(s: &crate::study::sweep::Sweep) -> String {
     curves
 }
 
-fn study_map(args: &crate::cli::MapArgs) -> ExitCode {
+fn study_map(args: &crate::cli::MapArgs) -> Outcome {
     use crate::study::map::{Grid, regime_map};
-    let (_, model, t_end, tolerance) = match study_setup(&args.common) {
-        Ok(s) => s,
-        Err(code) => return code,
-    };
+    let (_, model, t_end, tolerance) = study_setup(&args.common)?;
     let Some(problem) = model.rattleback().copied() else {
-        say_err!(
-            "rattleback: error: {}: the regime map is of the rattleback (reversals over its inertia and start); this is a {} preset",
+        return Err(Failure::input(format!(
+            "{}: the regime map is of the rattleback (reversals over its inertia and start); this is a {} preset",
             args.common.preset,
             model.kind().name()
-        );
-        return ExitCode::from(2);
+        )));
     };
     if args.inertia_min >= args.inertia_max {
-        say_err!(
-            "rattleback: error: --inertia-min ({}) must be below --inertia-max ({})",
-            args.inertia_min,
-            args.inertia_max
-        );
-        return ExitCode::from(2);
+        return Err(Failure::input(format!(
+            "--inertia-min ({}) must be below --inertia-max ({})",
+            args.inertia_min, args.inertia_max
+        )));
     }
     let p = problem.params();
     let s = problem.start();
@@ -858,10 +803,7 @@ fn study_map(args: &crate::cli::MapArgs) -> ExitCode {
         gamma_dot: if s.gamma_dot == 0.0 { 1.0 } else { s.gamma_dot },
         t_end,
     };
-    let source = match map_source(args, &grid, tolerance) {
-        Ok(s) => s,
-        Err(code) => return code,
-    };
+    let source = map_source(args, &grid, tolerance)?;
     // Progress by cells started (each asks at t = 0); Ctrl-C cancels the cells in flight.
     let mapped = counted("study map", grid.cols * grid.rows, "cells", &|started| {
         regime_map(&grid, source, &|t| {
@@ -871,10 +813,7 @@ fn study_map(args: &crate::cli::MapArgs) -> ExitCode {
             go_on()
         })
     });
-    let map = match finished(mapped, "study map") {
-        Ok(m) => m,
-        Err(code) => return code,
-    };
+    let map = finished(mapped, "study map")?;
     let mut csv = String::from("ratio,inertia_ratio,reversals\n");
     for c in &map.cells {
         let _ = writeln!(csv, "{},{},{}", c.ratio, c.inertia_ratio, c.reversals);
@@ -888,14 +827,11 @@ fn study_map(args: &crate::cli::MapArgs) -> ExitCode {
         crate::cli::Format::Csv => emit(&csv),
         crate::cli::Format::Table => emit(&map_table(&grid, &map)),
     };
-    if let Err(code) = printed {
-        return code;
-    }
+    printed?;
     let svg = match crate::study::svg::map_svg(&map, grid.cols, grid.rows) {
         Ok(svg) => svg,
         Err(e) => {
-            say_err!("rattleback: error: drawing the map: {e}");
-            return ExitCode::from(1);
+            return Err(Failure::failed(format!("drawing the map: {e}")));
         }
     };
     write_outputs(&args.common, &[("map.csv", csv), ("map.svg", svg)])
@@ -907,7 +843,7 @@ fn map_source(
     args: &crate::cli::MapArgs,
     grid: &crate::study::map::Grid,
     tolerance: f64,
-) -> Result<crate::study::map::Source, ExitCode> {
+) -> Result<crate::study::map::Source, Failure> {
     use crate::study::map::Source;
     let Some(k) = args.k else {
         return Ok(Source::Limit);
@@ -933,11 +869,10 @@ fn map_source(
         crate::physics::budget::BUDGET_SECONDS
     };
     if let Err(over) = crate::physics::budget::check(predicted, budget) {
-        say_err!(
-            "rattleback: error: this map ({} cells of the full model at k = {k:e}) is {over}; use a smaller --grid, or pass --force",
+        return Err(Failure::input(format!(
+            "this map ({} cells of the full model at k = {k:e}) is {over}; use a smaller --grid, or pass --force",
             grid.cols * grid.rows
-        );
-        return Err(ExitCode::from(2));
+        )));
     }
     Ok(Source::Full { k, tolerance })
 }
@@ -1030,20 +965,18 @@ pub fn load_config() -> Result<
 }
 
 /// `rattleback config path|show`.
-#[must_use]
-pub fn config(command: &crate::cli::ConfigCommand) -> ExitCode {
+pub fn config(command: &crate::cli::ConfigCommand) -> Outcome {
     use crate::cli::ConfigCommand;
     use crate::scenario::config;
     match command {
         ConfigCommand::Path => {
             if let Some(p) = config::path() {
                 say!("{}", p.display());
-                ExitCode::SUCCESS
+                Ok(())
             } else {
-                say_err!(
-                    "rattleback: error: no config folder (no home folder); set RATTLEBACK_CONFIG_DIR"
-                );
-                ExitCode::from(2)
+                Err(Failure::input(
+                    "no config folder (no home folder); set RATTLEBACK_CONFIG_DIR",
+                ))
             }
         }
         ConfigCommand::Show => match load_config() {
@@ -1058,14 +991,9 @@ pub fn config(command: &crate::cli::ConfigCommand) -> ExitCode {
                     |p| format!("# from {}", p.display()),
                 );
                 say_raw!("{origin}\n{}", c.to_toml());
-                ExitCode::SUCCESS
+                Ok(())
             }
-            Err(errors) => {
-                for e in errors {
-                    say_err!("rattleback: error: {e}");
-                }
-                ExitCode::from(2)
-            }
+            Err(errors) => Err(Failure::inputs(errors)),
         },
     }
 }

@@ -37,12 +37,6 @@ pub fn requested() -> Option<i32> {
         .map(|n| i32::try_from(n).unwrap_or(signal_hook::consts::SIGTERM))
 }
 
-/// The exit status after signal `n`, as shells report it: `128 + n`.
-#[must_use]
-pub fn exit_code(n: i32) -> std::process::ExitCode {
-    std::process::ExitCode::from(u8::try_from(128 + n).unwrap_or(1))
-}
-
 /// An error for a loop that stopped because a signal arrived.
 #[must_use]
 pub fn error() -> std::io::Error {

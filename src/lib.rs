@@ -12,6 +12,7 @@ pub mod commands;
 pub mod doctor;
 pub mod explorer;
 pub mod export;
+pub mod failure;
 pub mod interrupt;
 pub mod manual;
 pub mod outputs;

@@ -9,11 +9,12 @@ use rattleback::app::user_keys::UserKeys;
 use rattleback::cli::{Cli, Command, LookArgs, MarkerChoice, RecordArgs, ReplayArgs, SimulateArgs};
 use rattleback::commands;
 use rattleback::explorer::{self, ExplorerOptions};
+use rattleback::failure::{self, Failure, Outcome};
 use rattleback::physics::StepError;
 use rattleback::record;
 use rattleback::scenario::config::Config;
 use rattleback::scenario::shipped::resolve;
-use rattleback::simulate::{Failure, resolve as resolve_run, simulate_to};
+use rattleback::simulate::{Failure as Stopped, resolve as resolve_run, simulate_to};
 use rattleback::ui::UiOptions;
 
 /// Untrusted text (names, descriptions, echoed values) never reaches a terminal raw: every line
@@ -28,6 +29,12 @@ macro_rules! say_err {
 fn main() -> ExitCode {
     // A shell asking for completions is answered before anything else, then the process exits.
     commands::answer_completion();
+    // The one exit decision: every command says why it stopped, `failure` says how that ends.
+    failure::exit(run())
+}
+
+/// Parses the command line and runs the command it names.
+fn run() -> Outcome {
     let cli = match Cli::try_parse_from(config_last(std::env::args_os().collect())) {
         Ok(cli) => cli,
         Err(e) if e.use_stderr() => {
@@ -42,18 +49,17 @@ fn main() -> ExitCode {
             if !text.ends_with('\n') {
                 eprintln!();
             }
-            return ExitCode::from(2);
+            return Err(Failure::said(2));
         }
         // --help and --version: printed on stdout, exit 0.
         Err(e) => e.exit(),
     };
     if let Some(file) = &cli.config {
         if !file.is_file() {
-            say_err!(
-                "rattleback: error: --config {}: no such file (`rattleback config show > FILE` writes one to start from)",
+            return Err(Failure::input(format!(
+                "--config {}: no such file (`rattleback config show > FILE` writes one to start from)",
                 file.display()
-            );
-            return ExitCode::from(2);
+            )));
         }
         rattleback::scenario::config::use_file(file.clone());
     }
@@ -102,11 +108,10 @@ fn config_last(mut args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsString> {
 }
 
 /// `-` (standard input) where the explorer opens: it reads its keys from standard input.
-fn refuse_stdin(what: &str) -> ExitCode {
-    say_err!(
-        "rattleback: error: {what}: the explorer reads its keys from standard input, so it cannot read a file from it; save it to a file, or use - with simulate, study, check, presets show or replay --verify/--chapters/--export-cast"
-    );
-    ExitCode::from(2)
+fn refuse_stdin(what: &str) -> Outcome {
+    Err(Failure::input(format!(
+        "{what}: the explorer reads its keys from standard input, so it cannot read a file from it; save it to a file, or use - with simulate, study, check, presets show or replay --verify/--chapters/--export-cast"
+    )))
 }
 
 /// Refuses an output that exists (unless `force`) or that is `input` itself.
@@ -152,13 +157,12 @@ fn export_files(
     rec: &record::Recording,
     path: &str,
     look: &LookArgs,
-) -> ExitCode {
+) -> Outcome {
     let (theme, all) =
         match rattleback::scenario::theme::theme(look.theme.as_deref().unwrap_or("default")) {
             Ok(t) => (t, rattleback::scenario::theme::themes().0),
             Err(e) => {
-                say_err!("rattleback: error: {e}");
-                return ExitCode::from(2);
+                return Err(Failure::input(e));
             }
         };
     let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
@@ -177,8 +181,7 @@ fn export_files(
         fps: f64::from(look.fps.unwrap_or(10)),
     };
     if let Err(e) = rattleback::interrupt::install() {
-        say_err!("rattleback: error: {e}");
-        return ExitCode::from(1);
+        return Err(Failure::failed(e));
     }
     let outputs: [(Option<&std::path::Path>, &str, Export); 2] = [
         (
@@ -200,24 +203,20 @@ fn export_files(
         });
         progress.finish();
         if let (Err(_), Some(n)) = (&written, rattleback::interrupt::requested()) {
-            say_err!(
-                "rattleback: error: interrupted: {} was not written",
-                out.display()
-            );
-            return rattleback::interrupt::exit_code(n);
+            return Err(Failure::signalled(n)
+                .saying(format!("interrupted: {} was not written", out.display())));
         }
         match written {
             Ok(frames) => say!("{}: {frames} frames", out.display()),
             Err(e) => {
-                say_err!("rattleback: error: {e}");
-                return ExitCode::from(2);
+                return Err(Failure::input(e));
             }
         }
     }
-    ExitCode::SUCCESS
+    Ok(())
 }
 
-fn run_replay(args: &ReplayArgs) -> ExitCode {
+fn run_replay(args: &ReplayArgs) -> Outcome {
     let exporting = args.export_cast.is_some() || args.export_html.is_some();
     if args.file.as_os_str() == "-" && !args.verify && !args.chapters && !exporting {
         return refuse_stdin("replay -");
@@ -225,17 +224,15 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
     let path = rattleback::scenario::write::label(&args.file);
     let json = args.format == rattleback::cli::ListFormat::Json;
     if json && (args.chapters == args.verify || exporting) {
-        say_err!(
-            "rattleback: error: --format json goes with one of --chapters or --verify (and not --export-cast or --export-html)"
-        );
-        return ExitCode::from(2);
+        return Err(Failure::input(
+            "--format json goes with one of --chapters or --verify (and not --export-cast or --export-html)",
+        ));
     }
     // A bad `--theme` is an error whatever else is asked (it would be when drawing).
     if let Some(name) = &args.look.theme
         && let Err(e) = rattleback::scenario::theme::theme(name)
     {
-        say_err!("rattleback: error: --theme: {e}");
-        return ExitCode::from(2);
+        return Err(Failure::input(format!("--theme: {e}")));
     }
     for (out, flag) in [
         (&args.export_cast, "--export-cast"),
@@ -244,20 +241,19 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
         if let Some(out) = out
             && let Err(e) = check_output(out, Some(&args.file), args.force, flag)
         {
-            say_err!("rattleback: error: {e}");
-            return ExitCode::from(2);
+            return Err(Failure::input(e));
         }
     }
     let rec = match record::read(&args.file) {
         Ok(r) => r,
         Err(e) => {
-            say_err!("rattleback: error: {e}");
+            let failure = Failure::input(&e);
             if json && args.verify {
                 let failed = record::VerifyError::Record(e);
                 let v = rattleback::outputs::Verification::of(None, &path, Err(&failed));
                 print!("{}", commands::json_text(&v));
             }
-            return ExitCode::from(2);
+            return Err(failure);
         }
     };
     for w in &rec.warnings {
@@ -268,34 +264,29 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
             "{}",
             commands::json_text(&rattleback::outputs::Chapters::of(&rec, &path))
         );
-        return ExitCode::SUCCESS;
+        return Ok(());
     }
     if args.chapters {
         say!("{}", record::chapters(&rec));
         if !args.verify && !exporting {
-            return ExitCode::SUCCESS;
+            return Ok(());
         }
     }
-    let (config, keys) = match config_or_exit() {
-        Ok(c) => c,
-        Err(code) => return code,
-    };
+    let (config, keys) = config_or_exit()?;
     let asked = with_config(&args.look, &config);
     let look = LookArgs {
         // The replay's own theme wins over the configuration's, not over `--theme`.
         theme: Some(replay_theme(args.look.theme.as_deref(), &rec.header.theme)),
         ..asked
     };
-    if args.verify
-        && let Err(code) = run_verify(args, &rec, &path)
-    {
-        return code;
+    if args.verify {
+        run_verify(args, &rec, &path)?;
     }
     if exporting {
         return export_files(args, &rec, &path, &look);
     }
     if args.verify {
-        return ExitCode::SUCCESS;
+        return Ok(());
     }
     let preset = match rattleback::scenario::Preset::parse(
         &rec.header.preset,
@@ -305,8 +296,7 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
     ) {
         Ok(p) => p,
         Err(e) => {
-            say_err!("rattleback: error: {e}");
-            return ExitCode::from(2);
+            return Err(Failure::input(e));
         }
     };
     let setup = Setup {
@@ -323,7 +313,7 @@ fn run_replay(args: &ReplayArgs) -> ExitCode {
 }
 
 /// `replay --verify`: the report on stdout; `Err` with the exit code when it did not verify.
-fn run_verify(args: &ReplayArgs, rec: &record::Recording, path: &str) -> Result<(), ExitCode> {
+fn run_verify(args: &ReplayArgs, rec: &record::Recording, path: &str) -> Outcome {
     let key = match args
         .key
         .as_deref()
@@ -332,8 +322,7 @@ fn run_verify(args: &ReplayArgs, rec: &record::Recording, path: &str) -> Result<
     {
         Ok(k) => k,
         Err(e) => {
-            say_err!("rattleback: error: --key: {e}");
-            return Err(ExitCode::from(2));
+            return Err(Failure::input(format!("--key: {e}")));
         }
     };
     let mut progress = rattleback::progress::Progress::count("verify", rec.lines.len(), "lines");
@@ -346,29 +335,24 @@ fn run_verify(args: &ReplayArgs, rec: &record::Recording, path: &str) -> Result<
         print!("{}", commands::json_text(&v));
         return match verified {
             Ok(_) => Ok(()),
-            Err(record::VerifyError::Record(_)) => Err(ExitCode::from(2)),
-            Err(_) => Err(ExitCode::from(1)),
+            Err(record::VerifyError::Record(_)) => Err(Failure::said(2)),
+            Err(_) => Err(Failure::said(1)),
         };
     }
     match verified {
         Ok(r) => print_report(path, &r, None),
         Err(record::VerifyError::Incomplete { through, report }) => {
             print_report(path, &report, Some(through));
-            return Err(ExitCode::from(1));
+            return Err(Failure::said(1));
         }
         Err(record::VerifyError::Diverged(d)) => {
-            say_err!(
-                "rattleback: error: {path}:{}: divergence at t = {}: expected {}, got {}",
-                d.line,
-                d.t,
-                d.expected,
-                d.got
-            );
-            return Err(ExitCode::from(1));
+            return Err(Failure::failed(format!(
+                "{path}:{}: divergence at t = {}: expected {}, got {}",
+                d.line, d.t, d.expected, d.got
+            )));
         }
         Err(record::VerifyError::Record(e)) => {
-            say_err!("rattleback: error: {e}");
-            return Err(ExitCode::from(2));
+            return Err(Failure::input(e));
         }
     }
     Ok(())
@@ -396,7 +380,7 @@ fn print_report(path: &str, r: &record::Report, cut: Option<usize>) {
     }
 }
 
-fn keygen(args: &rattleback::cli::KeygenArgs) -> ExitCode {
+fn keygen(args: &rattleback::cli::KeygenArgs) -> Outcome {
     match record::sign::keygen(&args.name) {
         Ok((secret, public)) => {
             say!(
@@ -409,12 +393,9 @@ fn keygen(args: &rattleback::cli::KeygenArgs) -> ExitCode {
                 public.display(),
                 public.display()
             );
-            ExitCode::SUCCESS
+            Ok(())
         }
-        Err(e) => {
-            say_err!("rattleback: error: keygen: {e}");
-            ExitCode::from(2)
-        }
+        Err(e) => Err(Failure::input(format!("keygen: {e}"))),
     }
 }
 
@@ -442,13 +423,8 @@ fn replay_theme(asked: Option<&str>, recorded: &record::ThemeRef) -> String {
 
 /// The configuration and the user's keys, or the exit of an invalid `config.toml` (its error
 /// said on stderr).
-fn config_or_exit() -> Result<(Config, UserKeys), ExitCode> {
-    commands::load_config().map_err(|errors| {
-        for e in errors {
-            say_err!("rattleback: error: {e}");
-        }
-        ExitCode::from(2)
-    })
+fn config_or_exit() -> Result<(Config, UserKeys), Failure> {
+    commands::load_config().map_err(Failure::inputs)
 }
 
 /// The look asked on the command line, completed by the configuration.
@@ -477,11 +453,10 @@ fn marker(choice: Option<MarkerChoice>) -> ratatui::symbols::Marker {
 
 /// Checks a `--record` file before the terminal is touched: new, or `force` (then the old one
 /// is removed, since the recorder itself never replaces a file).
-fn prepare_record(out: Option<&std::path::Path>, force: bool) -> Result<(), ExitCode> {
+fn prepare_record(out: Option<&std::path::Path>, force: bool) -> Outcome {
     let Some(out) = out else { return Ok(()) };
     if let Err(e) = check_output(out, None, force, "--record") {
-        say_err!("rattleback: error: {e}");
-        return Err(ExitCode::from(2));
+        return Err(Failure::input(e));
     }
     if force {
         let _ = std::fs::remove_file(out);
@@ -489,7 +464,7 @@ fn prepare_record(out: Option<&std::path::Path>, force: bool) -> Result<(), Exit
     Ok(())
 }
 
-fn run_follow(args: &rattleback::cli::FollowArgs) -> ExitCode {
+fn run_follow(args: &rattleback::cli::FollowArgs) -> Outcome {
     if args.file.as_os_str() == "-" {
         return refuse_stdin("follow -");
     }
@@ -515,20 +490,15 @@ fn run_follow(args: &rattleback::cli::FollowArgs) -> ExitCode {
         Err(record::RecordError::Io { path, source })
             if source.kind() == std::io::ErrorKind::PermissionDenied =>
         {
-            say_err!(
-                "rattleback: error: {path}: permission denied: the lecturer's file is not readable by you (recorded under umask 077?); the lecturer can run `chmod a+r {path}`, or record with `umask 022`"
-            );
-            return ExitCode::from(2);
+            return Err(Failure::input(format!(
+                "{path}: permission denied: the lecturer's file is not readable by you (recorded under umask 077?); the lecturer can run `chmod a+r {path}`, or record with `umask 022`"
+            )));
         }
         Err(e) => {
-            say_err!("rattleback: error: {e}");
-            return ExitCode::from(2);
+            return Err(Failure::input(e));
         }
     };
-    let (config, keys) = match config_or_exit() {
-        Ok(c) => c,
-        Err(code) => return code,
-    };
+    let (config, keys) = config_or_exit()?;
     let preset = match rattleback::scenario::Preset::parse(
         &rec.header.preset,
         &format!("{} (header)", args.file.display()),
@@ -537,8 +507,7 @@ fn run_follow(args: &rattleback::cli::FollowArgs) -> ExitCode {
     ) {
         Ok(p) => p,
         Err(e) => {
-            say_err!("rattleback: error: {e}");
-            return ExitCode::from(2);
+            return Err(Failure::input(e));
         }
     };
     let asked = with_config(&args.look, &config);
@@ -558,15 +527,14 @@ fn run_follow(args: &rattleback::cli::FollowArgs) -> ExitCode {
     explore(&setup, &preset, None, Some(rec))
 }
 
-fn run_lesson(args: &rattleback::cli::LessonArgs) -> ExitCode {
+fn run_lesson(args: &rattleback::cli::LessonArgs) -> Outcome {
     if args.lesson == "-" {
         return refuse_stdin("lesson -");
     }
     let lesson = match rattleback::scenario::lesson::resolve(&args.lesson) {
         Ok(l) => l,
         Err(e) => {
-            say_err!("rattleback: error: {e}");
-            return ExitCode::from(2);
+            return Err(Failure::input(e));
         }
     };
     // The first step's preset, else the default, opens the explorer; the lesson takes over.
@@ -585,15 +553,14 @@ fn run_lesson(args: &rattleback::cli::LessonArgs) -> ExitCode {
 }
 
 /// `compare A B`: the explorer on `A` with `B` beside it on one time axis.
-fn run_compare(args: &rattleback::cli::CompareArgs) -> ExitCode {
+fn run_compare(args: &rattleback::cli::CompareArgs) -> Outcome {
     if args.a == "-" || args.b == "-" {
         return refuse_stdin("compare -");
     }
     let (preset, partner) = match (resolve(&args.a, &[]), resolve(&args.b, &[])) {
         (Ok(a), Ok(b)) => (a, b),
         (Err(e), _) | (_, Err(e)) => {
-            say_err!("rattleback: error: compare: {e}");
-            return ExitCode::from(2);
+            return Err(Failure::input(format!("compare: {e}")));
         }
     };
     let opening = Opening {
@@ -606,7 +573,7 @@ fn run_compare(args: &rattleback::cli::CompareArgs) -> ExitCode {
     open_explorer(Some(Ok(preset)), opening)
 }
 
-fn run_explorer(cli: &Cli) -> ExitCode {
+fn run_explorer(cli: &Cli) -> Outcome {
     if cli.preset.as_deref() == Some("-") {
         return refuse_stdin("--preset -");
     }
@@ -638,11 +605,8 @@ struct Opening<'a> {
 fn open_explorer(
     preset: Option<Result<rattleback::scenario::Preset, String>>,
     o: Opening<'_>,
-) -> ExitCode {
-    let (config, keys) = match config_or_exit() {
-        Ok(c) => c,
-        Err(code) => return code,
-    };
+) -> Outcome {
+    let (config, keys) = config_or_exit()?;
     let preset = preset.unwrap_or_else(|| {
         let name = config.preset.as_deref();
         resolve(
@@ -654,13 +618,10 @@ fn open_explorer(
     let preset = match preset {
         Ok(p) => p,
         Err(e) => {
-            say_err!("rattleback: error: {e}");
-            return ExitCode::from(2);
+            return Err(Failure::input(e));
         }
     };
-    if let Err(code) = prepare_record(o.rec.record.as_deref(), o.rec.force) {
-        return code;
-    }
+    prepare_record(o.rec.record.as_deref(), o.rec.force)?;
     let setup = Setup {
         look: with_config(o.look, &config),
         sessions_dir: config.sessions_dir(),
@@ -691,12 +652,11 @@ fn explore(
     preset: &rattleback::scenario::Preset,
     record: Option<std::path::PathBuf>,
     replay: Option<record::Recording>,
-) -> ExitCode {
+) -> Outcome {
     if let Some(key) = &setup.sign
         && let Err(e) = record::sign::Signer::read(key)
     {
-        say_err!("rattleback: error: --sign: {e}");
-        return ExitCode::from(2);
+        return Err(Failure::input(format!("--sign: {e}")));
     }
     let look = &setup.look;
     let marker = marker(look.marker);
@@ -704,8 +664,7 @@ fn explore(
     {
         Ok(t) => t,
         Err(e) => {
-            say_err!("rattleback: error: {e}");
-            return ExitCode::from(2);
+            return Err(Failure::input(e));
         }
     };
     let (all, problems) = rattleback::scenario::theme::themes();
@@ -727,21 +686,17 @@ fn explore(
     if std::env::var_os("TERM").is_some_and(|t| t == "dumb") {
         // Checked after the preset and config, which a user wants to hear about first, and
         // before the terminal is touched: a dumb terminal shows escape codes as text.
-        say_err!(
-            "rattleback: error: TERM=dumb cannot show the explorer (it moves the cursor and draws); set TERM to the terminal's name (xterm-256color, screen, linux, …), or use `rattleback simulate` for text"
-        );
-        return ExitCode::from(1);
+        return Err(Failure::failed(
+            "TERM=dumb cannot show the explorer (it moves the cursor and draws); set TERM to the terminal's name (xterm-256color, screen, linux, …), or use `rattleback simulate` for text",
+        ));
     }
     match explorer::run(preset, &options) {
-        Ok(None) => ExitCode::SUCCESS,
+        Ok(None) => Ok(()),
         // Ended by a signal: the terminal is restored; exit as the convention says.
-        Ok(Some(n)) => rattleback::interrupt::exit_code(n),
-        Err(e) => {
-            say_err!(
-                "rattleback: error: the explorer needs an interactive terminal ({e}); for headless runs use `rattleback simulate`"
-            );
-            ExitCode::from(1)
-        }
+        Ok(Some(n)) => Err(Failure::signalled(n)),
+        Err(e) => Err(Failure::failed(format!(
+            "the explorer needs an interactive terminal ({e}); for headless runs use `rattleback simulate`"
+        ))),
     }
 }
 
@@ -761,32 +716,29 @@ fn no_color(choice: rattleback::cli::ColorChoice) -> bool {
     choice.colours_off_here()
 }
 
-fn run_simulate(args: &SimulateArgs) -> ExitCode {
+fn run_simulate(args: &SimulateArgs) -> Outcome {
     let preset = match resolve(&args.preset, &args.set) {
         Ok(p) => p,
         Err(e) => {
-            say_err!("rattleback: error: {e}");
-            return ExitCode::from(2);
+            return Err(Failure::input(e));
         }
     };
     let request = args.request();
     let resolved = resolve_run(&preset, &request);
     let kind = preset.model.kind();
     if !kind.offers(resolved.spec.method) {
-        say_err!(
-            "rattleback: error: --method {}: not offered for the {} model ({}); allowed: {}",
+        return Err(Failure::input(format!(
+            "--method {}: not offered for the {} model ({}); allowed: {}",
             resolved.spec.method,
             kind.name(),
             args.preset,
             kind.method_names()
-        );
-        return ExitCode::from(2);
+        )));
     }
     if let Some(h) = resolved.spec.step
         && let Err(e) = rattleback::physics::rattleback::run::check_step(h, resolved.spec.t_end)
     {
-        say_err!("rattleback: error: --step: {e}");
-        return ExitCode::from(2);
+        return Err(Failure::input(format!("--step: {e}")));
     }
     let format = request.format;
     let mut progress = rattleback::progress::Progress::stderr("simulate", resolved.spec.t_end);
@@ -802,35 +754,25 @@ fn run_simulate(args: &SimulateArgs) -> ExitCode {
     };
     progress.finish();
     match outcome {
-        Ok(None) => ExitCode::SUCCESS,
+        Ok(None) => Ok(()),
         Ok(Some(missed)) => {
             say_err!("rattleback: warning: {missed}");
             if args.strict {
-                ExitCode::from(1)
+                Err(Failure::said(1))
             } else {
-                ExitCode::SUCCESS
+                Ok(())
             }
         }
         // A closed pipe (e.g. `| head`) ends the output early; not an error worth a message.
-        Err(Failure::Output(e)) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
-        Err(Failure::Output(e)) => {
-            say_err!("rattleback: error: writing the output: {e}");
-            ExitCode::from(1)
+        Err(Stopped::Output(e)) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        Err(Stopped::Output(e)) => Err(Failure::failed(format!("writing the output: {e}"))),
+        Err(Stopped::Run(e @ StepError::OverBudget { .. })) => Err(Failure::input(format!(
+            "{e}; shorten --t-end, loosen --tolerance or choose another --method (`rattleback simulate --help`), or pass --force to run it anyway"
+        ))),
+        Err(Stopped::Run(e @ StepError::OutsideModel { .. })) => {
+            Err(Failure::input(format!("--method averaged2: {e}")))
         }
-        Err(Failure::Run(e @ StepError::OverBudget { .. })) => {
-            say_err!(
-                "rattleback: error: {e}; shorten --t-end, loosen --tolerance or choose another --method (`rattleback simulate --help`), or pass --force to run it anyway"
-            );
-            ExitCode::from(2)
-        }
-        Err(Failure::Run(e @ StepError::OutsideModel { .. })) => {
-            say_err!("rattleback: error: --method averaged2: {e}");
-            ExitCode::from(2)
-        }
-        Err(Failure::Run(e)) => {
-            say_err!("rattleback: error: integration failed: {e}");
-            ExitCode::from(1)
-        }
+        Err(Stopped::Run(e)) => Err(Failure::failed(format!("integration failed: {e}"))),
     }
 }
 
@@ -838,7 +780,7 @@ fn simulate_to_text(
     preset: &rattleback::scenario::Preset,
     resolved: &rattleback::simulate::Resolved,
     progress: &mut rattleback::progress::Progress,
-) -> Result<Option<rattleback::simulate::Missed>, Failure> {
+) -> Result<Option<rattleback::simulate::Missed>, Stopped> {
     let mut text = Vec::new();
     let missed = simulate_to(
         preset,

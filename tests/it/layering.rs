@@ -129,6 +129,43 @@ fn only_the_binary_shell_sees_the_command_line() {
     }
 }
 
+/// Issue 25: one exit decision. Commands return `failure::Outcome`; only `main` turns it into an
+/// exit status (`failure::exit`), and nothing ends the process on its own.
+#[test]
+fn the_exit_is_decided_once_in_main() {
+    let mut files = Vec::new();
+    rust_files(&src(), &mut files);
+    let mut found = Vec::new();
+    for file in files {
+        let name = file
+            .strip_prefix(src())
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        let text = std::fs::read_to_string(&file).unwrap();
+        for (n, line) in text.lines().enumerate() {
+            let code = line.split("//").next().unwrap_or("");
+            let exits = code.contains("process::exit(")
+                || (code.contains("ExitCode")
+                    && !["main.rs", "failure.rs"].contains(&name.as_str()))
+                || (code.contains("ExitCode::") && name == "main.rs");
+            if exits {
+                found.push(format!("{name}:{}: {}", n + 1, line.trim()));
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "exits decided outside main:\n{}",
+        found.join("\n")
+    );
+    let main = std::fs::read_to_string(src().join("main.rs")).unwrap();
+    assert!(
+        main.contains("failure::exit(run())"),
+        "main decides through failure::exit"
+    );
+}
+
 #[test]
 fn physics_has_no_import_cycle_through_auto() {
     // `auto` is resolved in plan.rs, above the integrators: nothing below calls the planner.
