@@ -8,6 +8,7 @@ use std::collections::VecDeque;
 
 use serde::{Deserialize, Serialize};
 
+use super::jobs::{Job, JobKind, MapJob, PartnerJob, Slice, SweepJob, WeakJob};
 use super::{Command, Session, SessionSpec, SimEvent};
 use crate::physics::Model;
 use crate::physics::plan::{AutoPolicy, Resolved};
@@ -150,7 +151,7 @@ impl PlanBook {
 
 /// The worker's state between commands.
 pub struct Engine {
-    book: PlanBook,
+    planner: Planner,
     session: Option<Session>,
     /// A restart whose plan is not resolved yet.
     planning: Option<(u64, SessionSpec)>,
@@ -161,33 +162,16 @@ pub struct Engine {
     checkpoints: VecDeque<(u64, f64)>,
     /// Stamp of the overlay's current life.
     epoch: u64,
-    /// The stiffness sweep being computed (after the run's own work).
-    sweep: Option<SweepJob>,
-    /// The weak-* view to compute (after the run's own work, before the sweep).
-    weak: Option<(u64, super::WeakSpec)>,
-    /// The regime map being computed: its stamp, spec and next cell (after the sweep).
-    map: Option<(u64, super::MapSpec, usize)>,
-    /// The comparison's partner being run (first, after the run's planning: it is short, and
-    /// what a recording shows waits for it).
-    partner: Option<PartnerJob>,
-    /// Predicted seconds of the runs started so far (against [`PlanBook::total`]).
+    /// The panes' computations, at most one of each kind, in the order of their kinds.
+    jobs: Vec<Box<dyn Job>>,
+}
+
+/// How runs are planned: the book of recorded plans and policy, and the predicted seconds of
+/// the runs started so far (against [`PlanBook::total`]). The run and the comparison's partner
+/// are planned by the same planner.
+pub struct Planner {
+    book: PlanBook,
     spent: f64,
-}
-
-/// The comparison's partner in progress: planned, then integrated in slices to its end.
-struct PartnerJob {
-    id: u64,
-    spec: SessionSpec,
-    /// The session and what it produced so far, once planned.
-    started: Option<(Session, super::PartnerRun)>,
-}
-
-/// A stiffness sweep in progress: the limit's curve once, then one rung per slice.
-struct SweepJob {
-    generation: u64,
-    spec: super::SweepSpec,
-    limit: Option<Vec<f64>>,
-    next: usize,
 }
 
 impl Engine {
@@ -195,17 +179,13 @@ impl Engine {
     #[must_use]
     pub fn new(book: PlanBook) -> Self {
         Self {
-            book,
+            planner: Planner { book, spent: 0.0 },
             session: None,
             planning: None,
             pending: None,
             checkpoints: VecDeque::new(),
             epoch: 0,
-            sweep: None,
-            weak: None,
-            map: None,
-            partner: None,
-            spent: 0.0,
+            jobs: Vec::new(),
         }
     }
 
@@ -216,14 +196,19 @@ impl Engine {
             .or_else(|| self.session.as_ref().map(Session::generation))
     }
 
+    /// Replaces the job of `kind` by `job` (none: stops it), keeping the kinds' order.
+    fn set_job(&mut self, kind: JobKind, job: Option<Box<dyn Job>>) {
+        self.jobs.retain(|j| j.kind() != kind);
+        if let Some(job) = job {
+            let at = self.jobs.partition_point(|j| j.kind() < kind);
+            self.jobs.insert(at, job);
+        }
+    }
+
     /// Whether `work` has anything to do.
     #[must_use]
     pub fn busy(&self) -> bool {
-        self.run_busy()
-            || self.sweep.is_some()
-            || self.weak.is_some()
-            || self.map.is_some()
-            || self.partner.is_some()
+        self.run_busy() || !self.jobs.is_empty()
     }
 
     /// Whether the run itself has work (it goes before the sweep).
@@ -238,36 +223,29 @@ impl Engine {
     pub fn handle(&mut self, command: &Command, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
         match *command {
             Command::Quit => return false,
-            Command::Sweep { generation, spec } => {
-                self.sweep = spec.map(|spec| SweepJob {
-                    generation,
-                    spec,
-                    limit: None,
-                    next: 0,
-                });
-            }
-            Command::Weak { generation, spec } => {
-                self.weak = spec.map(|spec| (generation, spec));
-            }
-            Command::Map { id, spec, from } => {
-                self.map = spec.map(|spec| (id, spec, from));
-            }
-            Command::Compare { id, spec } => {
-                self.partner = spec.map(|spec| PartnerJob {
-                    id,
-                    spec,
-                    started: None,
-                });
-            }
+            Command::Sweep { generation, spec } => self.set_job(
+                JobKind::Sweep,
+                spec.map(|spec| Box::new(SweepJob::new(generation, spec)) as Box<dyn Job>),
+            ),
+            Command::Weak { generation, spec } => self.set_job(
+                JobKind::Weak,
+                spec.map(|spec| Box::new(WeakJob::new(generation, spec)) as Box<dyn Job>),
+            ),
+            Command::Map { id, spec, from } => self.set_job(
+                JobKind::Map,
+                spec.map(|spec| Box::new(MapJob::new(id, spec, from)) as Box<dyn Job>),
+            ),
+            Command::Compare { id, spec } => self.set_job(
+                JobKind::Partner,
+                spec.map(|spec| Box::new(PartnerJob::new(id, spec)) as Box<dyn Job>),
+            ),
             Command::Restart { generation, spec } => {
-                self.sweep = None;
-                self.weak = None;
-                self.map = None;
+                self.jobs.retain(|j| !j.kind().ends_with_run());
                 self.session = None;
                 self.pending = None;
                 self.checkpoints.clear();
                 let needs_planning =
-                    spec.method == Method::Auto && self.book.lookup(&spec).is_none();
+                    spec.method == Method::Auto && self.planner.book.lookup(&spec).is_none();
                 self.planning = Some((generation, spec));
                 if needs_planning {
                     return sink(SimEvent::Planning { generation });
@@ -302,12 +280,9 @@ impl Engine {
         let Some((generation, spec)) = self.planning else {
             return true;
         };
-        let started = match self.resolve(&spec, go_on) {
+        let started = match self.planner.start(generation, &spec, go_on) {
             Err(StepError::Cancelled { .. }) => return true,
-            Err(e) => Err(e),
-            Ok((plan, estimate)) => {
-                Session::new(generation, spec, plan, self.book.time_sum).map(|s| (s, estimate))
-            }
+            started => started,
         };
         self.planning = None;
         match started {
@@ -332,6 +307,83 @@ impl Engine {
         }
     }
 
+    /// Works one slice (at most `max_steps` steps, or one planning) towards the next target or
+    /// checkpoint; `false` means stop.
+    pub fn work(
+        &mut self,
+        max_steps: usize,
+        go_on: &mut dyn FnMut(f64) -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+    ) -> bool {
+        if self.planning.is_some() {
+            return self.plan(go_on, sink);
+        }
+        let run_busy = self.run_busy();
+        if let Some(i) = self
+            .jobs
+            .iter()
+            .position(|j| j.kind().before_run() || !run_busy)
+        {
+            let mut job = self.jobs.remove(i);
+            return match job.slice(&mut self.planner, max_steps, go_on, sink) {
+                Slice::More => {
+                    self.jobs.insert(i, job);
+                    true
+                }
+                Slice::Done => true,
+                Slice::Closed => false,
+            };
+        }
+        let Some(s) = self.session.as_mut() else {
+            self.pending = None;
+            self.checkpoints.clear();
+            return true;
+        };
+        let generation = s.generation();
+        self.checkpoints.retain(|(g, _)| *g == generation);
+        if self.pending.is_some_and(|(g, _)| g != generation) {
+            self.pending = None;
+        }
+        let due = self.checkpoints.front().map(|c| c.1);
+        let target = match (self.pending.map(|p| p.1), due) {
+            (Some(p), Some(c)) => p.min(c),
+            (Some(p), None) => p,
+            (None, Some(c)) => c,
+            // Only the overlay is behind: catch it up (a target at 0 moves nothing else).
+            (None, None) => 0.0,
+        };
+        let (events, reached) = s.advance(target, max_steps);
+        for e in events {
+            if !sink(e) {
+                return false;
+            }
+        }
+        if !reached {
+            return true;
+        }
+        if let Some(c) = due.filter(|c| *c <= target) {
+            self.checkpoints.pop_front();
+            // Exactly at the time asked, even when the run has passed it (it computes ahead
+            // of the display): the session integrates again from a snapshot.
+            if let Some((state, reversals)) = s.checkpoint(c)
+                && !sink(SimEvent::Checkpoint {
+                    generation,
+                    t: c,
+                    state,
+                    reversals,
+                })
+            {
+                return false;
+            }
+        }
+        if self.pending.is_some_and(|(_, p)| target >= p) {
+            self.pending = None;
+        }
+        true
+    }
+}
+
+impl Planner {
     /// The plan `spec` integrates, with `auto`'s estimate: a recorded plan, else `auto` priced
     /// before any probe runs (as `simulate` does: a plan that would verify for minutes is
     /// refused at once) and verified, else the method asked. The scene's cost model is asked
@@ -389,310 +441,25 @@ impl Engine {
         Ok((plan, estimate))
     }
 
-    /// Works one slice (at most `max_steps` steps, or one planning) towards the next target or
-    /// checkpoint; `false` means stop.
-    pub fn work(
+    /// A session of `spec` stamped `generation`, on the plan [`Planner::resolve`] gives, with
+    /// `auto`'s estimate.
+    ///
+    /// # Errors
+    /// As [`Planner::resolve`], and a plan the model cannot build.
+    pub fn start(
         &mut self,
-        max_steps: usize,
+        generation: u64,
+        spec: &SessionSpec,
         go_on: &mut dyn FnMut(f64) -> bool,
-        sink: &mut dyn FnMut(SimEvent) -> bool,
-    ) -> bool {
-        if self.planning.is_some() {
-            return self.plan(go_on, sink);
-        }
-        if self.partner.is_some() {
-            return self.partner_step(max_steps, go_on, sink);
-        }
-        if !self.run_busy() && self.weak.is_some() {
-            return self.weak_step(go_on, sink);
-        }
-        if !self.run_busy() && self.sweep.is_some() {
-            return self.sweep_step(go_on, sink);
-        }
-        if !self.run_busy() && self.map.is_some() {
-            return self.map_step(go_on, sink);
-        }
-        let Some(s) = self.session.as_mut() else {
-            self.pending = None;
-            self.checkpoints.clear();
-            return true;
-        };
-        let generation = s.generation();
-        self.checkpoints.retain(|(g, _)| *g == generation);
-        if self.pending.is_some_and(|(g, _)| g != generation) {
-            self.pending = None;
-        }
-        let due = self.checkpoints.front().map(|c| c.1);
-        let target = match (self.pending.map(|p| p.1), due) {
-            (Some(p), Some(c)) => p.min(c),
-            (Some(p), None) => p,
-            (None, Some(c)) => c,
-            // Only the overlay is behind: catch it up (a target at 0 moves nothing else).
-            (None, None) => 0.0,
-        };
-        let (events, reached) = s.advance(target, max_steps);
-        for e in events {
-            if !sink(e) {
-                return false;
-            }
-        }
-        if !reached {
-            return true;
-        }
-        if let Some(c) = due.filter(|c| *c <= target) {
-            self.checkpoints.pop_front();
-            // Exactly at the time asked, even when the run has passed it (it computes ahead
-            // of the display): the session integrates again from a snapshot.
-            if let Some((state, reversals)) = s.checkpoint(c)
-                && !sink(SimEvent::Checkpoint {
-                    generation,
-                    t: c,
-                    state,
-                    reversals,
-                })
-            {
-                return false;
-            }
-        }
-        if self.pending.is_some_and(|(_, p)| target >= p) {
-            self.pending = None;
-        }
-        true
-    }
-}
-
-impl Engine {
-    /// One slice of the comparison's partner: its plan, or at most `max_steps` steps; its
-    /// event once it reaches its end (or fails). A cancelled planning is redone next time.
-    fn partner_step(
-        &mut self,
-        max_steps: usize,
-        go_on: &mut dyn FnMut(f64) -> bool,
-        sink: &mut dyn FnMut(SimEvent) -> bool,
-    ) -> bool {
-        let Some(job) = self.partner.as_ref() else {
-            return true;
-        };
-        let (id, spec) = (job.id, job.spec);
-        if job.started.is_none() {
-            let started = match self.resolve(&spec, go_on) {
-                Err(StepError::Cancelled { .. }) => return true,
-                Err(e) => Err(refusal(&spec, &e)),
-                Ok((plan, estimate)) => Session::new(id, spec, plan, self.book.time_sum)
-                    .map(|s| (s, plan, estimate))
-                    .map_err(|e| refusal(&spec, &e)),
-            };
-            return match started {
-                Err(why) => {
-                    self.partner = None;
-                    sink(SimEvent::Partner {
-                        id,
-                        outcome: Err(why),
-                    })
-                }
-                Ok((session, plan, estimate)) => {
-                    if let Some(job) = self.partner.as_mut() {
-                        job.started = Some((
-                            session,
-                            super::PartnerRun {
-                                plan,
-                                estimate,
-                                samples: Vec::new(),
-                                reversals: Vec::new(),
-                                marks: Vec::new(),
-                            },
-                        ));
-                    }
-                    true
-                }
-            };
-        }
-        let Some((session, run)) = self.partner.as_mut().and_then(|j| j.started.as_mut()) else {
-            return true;
-        };
-        let (events, _) = session.advance(spec.t_end, max_steps);
-        let mut end = None;
-        for e in events {
-            match e {
-                SimEvent::Samples { full, .. } => run.samples.extend(full),
-                SimEvent::Reversal {
-                    t,
-                    effective: false,
-                    ..
-                } => run.reversals.push(t),
-                SimEvent::Mark { t, .. } => run.marks.push(t),
-                SimEvent::Failed { message, .. } => end = Some(Err(message)),
-                SimEvent::Finished { .. } => end = Some(Ok(())),
-                _ => {}
-            }
-        }
-        let Some(end) = end else {
-            return true;
-        };
-        let outcome = match (end, self.partner.take().and_then(|j| j.started)) {
-            (Ok(()), Some((_, run))) => Ok(Box::new(run)),
-            (Err(why), _) => Err(why),
-            (Ok(()), None) => return true,
-        };
-        sink(SimEvent::Partner { id, outcome })
-    }
-
-    /// Computes the weak-* view (one bounded run: at most `VIEW_PERIODS` fast periods).
-    fn weak_step(
-        &mut self,
-        go_on: &mut dyn FnMut(f64) -> bool,
-        sink: &mut dyn FnMut(SimEvent) -> bool,
-    ) -> bool {
-        let Some((generation, spec)) = self.weak else {
-            return true;
-        };
-        let data = spec
-            .model
-            .weak_view(spec.t_end, go_on)
-            .unwrap_or(Err(StepError::NoStudy {
-                what: "weak-* view",
-                model: spec.model.kind().name(),
-            }));
-        let event = match data {
-            Err(StepError::Cancelled { .. }) => return true,
-            Err(e) => SimEvent::Weak {
-                generation,
-                t: Vec::new(),
-                pointwise: Vec::new(),
-                theta: 0.0,
-                reference: Vec::new(),
-                failed: Some(e.to_string()),
-            },
-            Ok(v) => SimEvent::Weak {
-                generation,
-                t: v.t,
-                pointwise: v.pointwise,
-                theta: v.level,
-                reference: v.reference,
-                failed: None,
-            },
-        };
-        self.weak = None;
-        sink(event)
-    }
-
-    /// One step of the sweep: the limit's curve, or the next rung. A cancelled step (a command
-    /// arrived) is redone from its start next time.
-    fn sweep_step(
-        &mut self,
-        go_on: &mut dyn FnMut(f64) -> bool,
-        sink: &mut dyn FnMut(SimEvent) -> bool,
-    ) -> bool {
-        use crate::study::sweep::{ladder, limit_curve, rung};
-        let Some(job) = self.sweep.as_mut() else {
-            return true;
-        };
-        let (generation, spec) = (job.generation, job.spec);
-        let outcome = match &job.limit {
-            None => limit_curve(&spec.model, spec.t_end, go_on).map(|(_, limit)| {
-                job.limit = Some(limit);
-                None
-            }),
-            Some(limit) => rung(
-                &spec.model,
-                ladder(spec.model.kind())[job.next],
-                spec.t_end,
-                spec.tolerance,
-                limit,
-                go_on,
-            )
-            .map(Some),
-        };
-        let event = match outcome {
-            Err(StepError::Cancelled { .. }) => return true,
-            Err(e) => {
-                self.sweep = None;
-                Some(SimEvent::SweepDone {
-                    generation,
-                    failed: Some(e.to_string()),
-                })
-            }
-            Ok(None) => None,
-            Ok(Some(r)) => {
-                job.next += 1;
-                Some(SimEvent::SweepPoint {
-                    generation,
-                    parameter: r.parameter,
-                    sup_error: r.sup_error,
-                    method: r.method,
-                })
-            }
-        };
-        if let Some(e) = event
-            && !sink(e)
-        {
-            return false;
-        }
-        if self
-            .sweep
-            .as_ref()
-            .is_some_and(|j| j.next == ladder(j.spec.model.kind()).len())
-        {
-            self.sweep = None;
-            return sink(SimEvent::SweepDone {
-                generation,
-                failed: None,
-            });
-        }
-        true
-    }
-}
-
-impl Engine {
-    /// One slice of the regime map: a row from the limit (cheap), or as many cells of the full
-    /// model as the pool has threads, in parallel. A cancelled slice is redone next time.
-    fn map_step(
-        &mut self,
-        go_on: &mut dyn FnMut(f64) -> bool,
-        sink: &mut dyn FnMut(SimEvent) -> bool,
-    ) -> bool {
-        use crate::study::map::{Source, cells_in_parallel};
-        let Some((id, spec, next)) = self.map else {
-            return true;
-        };
-        let total = spec.grid.cols * spec.grid.rows;
-        let chunk = match spec.source {
-            Source::Limit => spec.grid.cols,
-            Source::Full { .. } => rayon::current_num_threads().max(1),
-        };
-        let end = (next + chunk).min(total);
-        let event = match cells_in_parallel(&spec.grid, spec.source, next..end, go_on) {
-            Err(StepError::Cancelled { .. }) => return true,
-            Err(e) => {
-                self.map = None;
-                SimEvent::MapDone {
-                    id,
-                    failed: Some(e.to_string()),
-                }
-            }
-            Ok(reversals) => {
-                self.map = Some((id, spec, end));
-                SimEvent::MapCells {
-                    id,
-                    first: next,
-                    reversals,
-                }
-            }
-        };
-        if !sink(event) {
-            return false;
-        }
-        if self.map.is_some_and(|(_, _, n)| n >= total) {
-            self.map = None;
-            return sink(SimEvent::MapDone { id, failed: None });
-        }
-        true
+    ) -> Result<(Session, Option<f64>), StepError> {
+        let (plan, estimate) = self.resolve(spec, go_on)?;
+        Session::new(generation, *spec, plan, self.book.time_sum).map(|s| (s, estimate))
     }
 }
 
 /// Why a run was refused or failed before it started, short enough for the parameter panel at
 /// 80×24.
-fn refusal(spec: &SessionSpec, e: &StepError) -> String {
+pub(super) fn refusal(spec: &SessionSpec, e: &StepError) -> String {
     match e {
         StepError::OverBudget { over, .. } if spec.method == Method::Auto => format!(
             "auto needs about {} to verify (budget {}): pick a method in the panel or a shorter t_end",

@@ -8,6 +8,7 @@
 //! Imports `physics` only; never the UI.
 
 mod engine;
+mod jobs;
 mod session;
 mod worker;
 

@@ -1,0 +1,364 @@
+//! The computations the worker does for panes, behind one [`Job`] interface: the comparison's
+//! partner, the weak-* view, the sweep of the small parameter and the regime map. The engine
+//! keeps at most one job of each [`JobKind`], works them a slice at a time in the kind's order
+//! (the partner before the run's own work, the others after it), drops a finished one, and
+//! stops the ones that belong to the run when it restarts. A new computed pane is a new job
+//! here and its command; the engine does not change.
+
+use super::engine::Planner;
+use super::{MapSpec, PartnerRun, Session, SessionSpec, SimEvent, SweepSpec, WeakSpec};
+use crate::physics::StepError;
+
+/// Which job: one of each at a time, worked in this order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum JobKind {
+    /// The comparison's partner: before the run's own work (it is short, and what a recording
+    /// shows waits for it); a restart does not stop it (it does not depend on the run).
+    Partner,
+    /// The weak-* view of the run's start.
+    Weak,
+    /// The sweep of the run's small parameter.
+    Sweep,
+    /// The regime map.
+    Map,
+}
+
+impl JobKind {
+    /// Whether it goes before the run's own work.
+    #[must_use]
+    pub fn before_run(self) -> bool {
+        self == Self::Partner
+    }
+
+    /// Whether a restart of the run stops it.
+    #[must_use]
+    pub fn ends_with_run(self) -> bool {
+        self != Self::Partner
+    }
+}
+
+/// How a slice ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Slice {
+    /// There is more to do (a cancelled slice is redone from its start).
+    More,
+    /// The job is finished (its last event sent).
+    Done,
+    /// Nobody listens any more: the worker stops.
+    Closed,
+}
+
+impl Slice {
+    /// `Closed` when `sent` is false, else `then`.
+    fn after(sent: bool, then: Self) -> Self {
+        if sent { then } else { Self::Closed }
+    }
+}
+
+/// A pane's computation, worked a slice at a time.
+pub trait Job: Send {
+    /// Which job it is.
+    fn kind(&self) -> JobKind;
+    /// One slice: at most `max_steps` steps where it steps, else one bounded piece; events go
+    /// to `sink`. `go_on` cancels a slice (a command arrived): it is redone next time.
+    fn slice(
+        &mut self,
+        planner: &mut Planner,
+        max_steps: usize,
+        go_on: &mut dyn FnMut(f64) -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+    ) -> Slice;
+}
+
+/// The comparison's partner: planned, then integrated in slices to its end.
+pub struct PartnerJob {
+    id: u64,
+    spec: SessionSpec,
+    /// The session and what it produced so far, once planned.
+    started: Option<(Session, PartnerRun)>,
+}
+
+impl PartnerJob {
+    /// The partner `spec`, stamped `id`.
+    #[must_use]
+    pub fn new(id: u64, spec: SessionSpec) -> Self {
+        Self {
+            id,
+            spec,
+            started: None,
+        }
+    }
+}
+
+impl Job for PartnerJob {
+    fn kind(&self) -> JobKind {
+        JobKind::Partner
+    }
+
+    fn slice(
+        &mut self,
+        planner: &mut Planner,
+        max_steps: usize,
+        go_on: &mut dyn FnMut(f64) -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+    ) -> Slice {
+        let (id, spec) = (self.id, self.spec);
+        let Some((session, run)) = self.started.as_mut() else {
+            return match planner.start(id, &spec, go_on) {
+                Err(StepError::Cancelled { .. }) => Slice::More,
+                Err(e) => Slice::after(
+                    sink(SimEvent::Partner {
+                        id,
+                        outcome: Err(super::engine::refusal(&spec, &e)),
+                    }),
+                    Slice::Done,
+                ),
+                Ok((session, estimate)) => {
+                    let plan = session.plan();
+                    self.started = Some((
+                        session,
+                        PartnerRun {
+                            plan,
+                            estimate,
+                            samples: Vec::new(),
+                            reversals: Vec::new(),
+                            marks: Vec::new(),
+                        },
+                    ));
+                    Slice::More
+                }
+            };
+        };
+        let (events, _) = session.advance(spec.t_end, max_steps);
+        let mut end = None;
+        for e in events {
+            match e {
+                SimEvent::Samples { full, .. } => run.samples.extend(full),
+                SimEvent::Reversal {
+                    t,
+                    effective: false,
+                    ..
+                } => run.reversals.push(t),
+                SimEvent::Mark { t, .. } => run.marks.push(t),
+                SimEvent::Failed { message, .. } => end = Some(Err(message)),
+                SimEvent::Finished { .. } => end = Some(Ok(())),
+                _ => {}
+            }
+        }
+        let outcome = match end {
+            None => return Slice::More,
+            Some(Err(why)) => Err(why),
+            Some(Ok(())) => match self.started.take() {
+                Some((_, run)) => Ok(Box::new(run)),
+                None => return Slice::More,
+            },
+        };
+        Slice::after(sink(SimEvent::Partner { id, outcome }), Slice::Done)
+    }
+}
+
+/// The weak-* view of run `generation`: one bounded run (at most `VIEW_PERIODS` fast periods).
+pub struct WeakJob {
+    generation: u64,
+    spec: WeakSpec,
+}
+
+impl WeakJob {
+    /// The view `spec` of run `generation`.
+    #[must_use]
+    pub fn new(generation: u64, spec: WeakSpec) -> Self {
+        Self { generation, spec }
+    }
+}
+
+impl Job for WeakJob {
+    fn kind(&self) -> JobKind {
+        JobKind::Weak
+    }
+
+    fn slice(
+        &mut self,
+        _: &mut Planner,
+        _: usize,
+        go_on: &mut dyn FnMut(f64) -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+    ) -> Slice {
+        let (generation, spec) = (self.generation, self.spec);
+        let data = spec
+            .model
+            .weak_view(spec.t_end, go_on)
+            .unwrap_or(Err(StepError::NoStudy {
+                what: "weak-* view",
+                model: spec.model.kind().name(),
+            }));
+        let event = match data {
+            Err(StepError::Cancelled { .. }) => return Slice::More,
+            Err(e) => SimEvent::Weak {
+                generation,
+                t: Vec::new(),
+                pointwise: Vec::new(),
+                theta: 0.0,
+                reference: Vec::new(),
+                failed: Some(e.to_string()),
+            },
+            Ok(v) => SimEvent::Weak {
+                generation,
+                t: v.t,
+                pointwise: v.pointwise,
+                theta: v.level,
+                reference: v.reference,
+                failed: None,
+            },
+        };
+        Slice::after(sink(event), Slice::Done)
+    }
+}
+
+/// The sweep of run `generation`'s small parameter: the limit's curve once, then one rung per
+/// slice.
+pub struct SweepJob {
+    generation: u64,
+    spec: SweepSpec,
+    limit: Option<Vec<f64>>,
+    next: usize,
+}
+
+impl SweepJob {
+    /// The sweep `spec` of run `generation`.
+    #[must_use]
+    pub fn new(generation: u64, spec: SweepSpec) -> Self {
+        Self {
+            generation,
+            spec,
+            limit: None,
+            next: 0,
+        }
+    }
+}
+
+impl Job for SweepJob {
+    fn kind(&self) -> JobKind {
+        JobKind::Sweep
+    }
+
+    fn slice(
+        &mut self,
+        _: &mut Planner,
+        _: usize,
+        go_on: &mut dyn FnMut(f64) -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+    ) -> Slice {
+        use crate::study::sweep::{ladder, limit_curve, rung};
+        let (generation, spec) = (self.generation, self.spec);
+        let rungs = ladder(spec.model.kind());
+        let outcome = match &self.limit {
+            None => limit_curve(&spec.model, spec.t_end, go_on).map(|(_, limit)| {
+                self.limit = Some(limit);
+                None
+            }),
+            Some(limit) => rung(
+                &spec.model,
+                rungs[self.next],
+                spec.t_end,
+                spec.tolerance,
+                limit,
+                go_on,
+            )
+            .map(Some),
+        };
+        let point = match outcome {
+            Err(StepError::Cancelled { .. }) => return Slice::More,
+            Err(e) => {
+                let failed = Some(e.to_string());
+                return Slice::after(
+                    sink(SimEvent::SweepDone { generation, failed }),
+                    Slice::Done,
+                );
+            }
+            Ok(point) => point,
+        };
+        if let Some(r) = point {
+            self.next += 1;
+            if !sink(SimEvent::SweepPoint {
+                generation,
+                parameter: r.parameter,
+                sup_error: r.sup_error,
+                method: r.method,
+            }) {
+                return Slice::Closed;
+            }
+        }
+        if self.next < rungs.len() {
+            return Slice::More;
+        }
+        let done = SimEvent::SweepDone {
+            generation,
+            failed: None,
+        };
+        Slice::after(sink(done), Slice::Done)
+    }
+}
+
+/// The regime map stamped `id`, from cell `next` on: a row from the limit (cheap), or as many
+/// cells of the full model as the pool has threads, in parallel, per slice.
+pub struct MapJob {
+    id: u64,
+    spec: MapSpec,
+    next: usize,
+}
+
+impl MapJob {
+    /// The map `spec` stamped `id`, from cell `from` (the cells before it are known).
+    #[must_use]
+    pub fn new(id: u64, spec: MapSpec, from: usize) -> Self {
+        Self {
+            id,
+            spec,
+            next: from,
+        }
+    }
+}
+
+impl Job for MapJob {
+    fn kind(&self) -> JobKind {
+        JobKind::Map
+    }
+
+    fn slice(
+        &mut self,
+        _: &mut Planner,
+        _: usize,
+        go_on: &mut dyn FnMut(f64) -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+    ) -> Slice {
+        use crate::study::map::{Source, cells_in_parallel};
+        let (id, spec, next) = (self.id, self.spec, self.next);
+        let total = spec.grid.cols * spec.grid.rows;
+        let chunk = match spec.source {
+            Source::Limit => spec.grid.cols,
+            Source::Full { .. } => rayon::current_num_threads().max(1),
+        };
+        let end = (next + chunk).min(total);
+        let reversals = match cells_in_parallel(&spec.grid, spec.source, next..end, go_on) {
+            Err(StepError::Cancelled { .. }) => return Slice::More,
+            Err(e) => {
+                let failed = Some(e.to_string());
+                return Slice::after(sink(SimEvent::MapDone { id, failed }), Slice::Done);
+            }
+            Ok(reversals) => reversals,
+        };
+        self.next = end;
+        let cells = SimEvent::MapCells {
+            id,
+            first: next,
+            reversals,
+        };
+        if !sink(cells) {
+            return Slice::Closed;
+        }
+        if end < total {
+            return Slice::More;
+        }
+        Slice::after(sink(SimEvent::MapDone { id, failed: None }), Slice::Done)
+    }
+}
