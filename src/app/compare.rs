@@ -149,7 +149,7 @@ impl App {
     pub fn set_partner(&mut self, preset: &Preset) -> Vec<Effect> {
         let mut effects = self.replay_partner(preset);
         if !self.view.panes.shows(Pane::Compare) {
-            effects.extend(self.toggle_computed(Pane::Compare));
+            effects.extend(self.toggle_pane(Pane::Compare));
             self.log_layout();
         }
         effects

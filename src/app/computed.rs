@@ -6,9 +6,10 @@ use super::panes::Pane;
 use super::{App, Effect, Message, Mode};
 
 impl App {
-    /// Shows or hides a pane the worker computes for (sweep, weak-*, map): shown, its
-    /// computation starts; hidden, it stops. The map, shown, takes the arrows.
-    pub(super) fn toggle_computed(&mut self, pane: Pane) -> Vec<Effect> {
+    /// Shows or hides a pane (one the scene offers, when it shows it): a pane the worker
+    /// computes for (sweep, weak-*, map, compare), shown, starts its job; hidden, stops it. The
+    /// map, shown, takes the arrows.
+    pub(super) fn toggle_pane(&mut self, pane: Pane) -> Vec<Effect> {
         if !self.view.panes.shows(pane) && !self.scene_has(pane) {
             return Vec::new();
         }
@@ -95,7 +96,7 @@ impl App {
                 };
                 let effects = self.update(action);
                 // `M` hid the map; an action that opened its own mode (help, picker…) keeps it.
-                if action == Action::ToggleMap && self.mode == Mode::Map {
+                if action == Action::Toggle(Pane::Map) && self.mode == Mode::Map {
                     self.mode = Mode::Normal;
                 }
                 effects
@@ -141,14 +142,8 @@ impl App {
         let mut effects = Vec::new();
         for pane in Pane::ALL {
             if self.view.panes.shows(pane) && !pane.offered_by(kind) {
-                match pane {
-                    Pane::Sweep | Pane::Weak | Pane::Map | Pane::Compare => {
-                        effects.extend(self.toggle_computed(pane));
-                    }
-                    Pane::Params | Pane::Portrait | Pane::Series | Pane::Lesson | Pane::Body => {
-                        self.view.panes.set(pane, false);
-                    }
-                }
+                // Shown, so this hides it (and stops its job).
+                effects.extend(self.toggle_pane(pane));
             }
         }
         if self.mode == Mode::Map && !Pane::Map.offered_by(kind) {

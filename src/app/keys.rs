@@ -34,6 +34,8 @@ pub enum Key {
     Alt(char),
 }
 
+use super::panes::Pane;
+
 /// What a key asks for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Action {
@@ -65,18 +67,9 @@ pub enum Action {
     Slower,
     /// Show or hide the effective motion.
     ToggleEffective,
-    /// Show or hide the time-series pane.
-    ToggleSeries,
-    /// Show or hide the stiffness-sweep pane.
-    ToggleSweep,
-    /// Show or hide the weak-* pane.
-    ToggleWeak,
-    /// Show the regime map and give it the arrows, or hide it.
-    ToggleMap,
-    /// Show or hide the body pane.
-    ToggleBody,
-    /// Show or hide the comparison (the run beside a partner preset on one time axis).
-    ToggleCompare,
+    /// Show or hide a pane (one a key toggles: `Pane::toggle_name`); the regime map, shown,
+    /// takes the arrows; a computed pane's job starts and stops with it.
+    Toggle(super::panes::Pane),
     /// Double the weak-* averaging window.
     WiderWindow,
     /// Halve it.
@@ -234,42 +227,42 @@ pub const KEYMAP: &[Binding<Action>] = &[
     Binding {
         keys: &[Key::Char('t')],
         label: "",
-        action: Action::ToggleSeries,
+        action: Action::Toggle(Pane::Series),
         help: "",
         footer: Some(("t", "series", 7)),
     },
     Binding {
         keys: &[Key::Char('K')],
         label: "K W M B / < >",
-        action: Action::ToggleSweep,
+        action: Action::Toggle(Pane::Sweep),
         help: "k-sweep / weak-* / map / body panes; < > window",
         footer: Some(("K", "sweep", 10)),
     },
     Binding {
         keys: &[Key::Char('W')],
         label: "",
-        action: Action::ToggleWeak,
+        action: Action::Toggle(Pane::Weak),
         help: "",
         footer: Some(("W", "weak-*", 10)),
     },
     Binding {
         keys: &[Key::Char('B')],
         label: "",
-        action: Action::ToggleBody,
+        action: Action::Toggle(Pane::Body),
         help: "",
         footer: Some(("B", "body", 10)),
     },
     Binding {
         keys: &[Key::Char('C')],
         label: "C",
-        action: Action::ToggleCompare,
+        action: Action::Toggle(Pane::Compare),
         help: "compare with a partner on one time axis",
         footer: Some(("C", "compare", 9)),
     },
     Binding {
         keys: &[Key::Char('M')],
         label: "",
-        action: Action::ToggleMap,
+        action: Action::Toggle(Pane::Map),
         help: "",
         footer: Some(("M", "map", 10)),
     },

@@ -338,13 +338,7 @@ impl App {
                 pan_y: self.view.view.pan_y,
                 wrap: self.view.view.wrap,
             }),
-            Action::ToggleEffective
-            | Action::ToggleSeries
-            | Action::ToggleSweep
-            | Action::ToggleWeak
-            | Action::ToggleMap
-            | Action::ToggleBody
-            | Action::ToggleCompare => Some(self.layout()),
+            Action::ToggleEffective | Action::Toggle(_) => Some(self.layout()),
             Action::ClearTrail => Some(Event::ClearTrail),
             Action::SelectPrev | Action::SelectNext => Some(Event::Select {
                 field: self.field().label().to_owned(),
@@ -424,18 +418,9 @@ impl App {
             Action::Faster => self.run.speed = (self.run.speed * 2.0).min(SPEED_RANGE.1),
             Action::Slower => self.run.speed = (self.run.speed / 2.0).max(SPEED_RANGE.0),
             Action::ToggleEffective => return self.toggle_overlay(),
-            Action::ToggleSeries => self.view.panes.toggle(Pane::Series),
-            Action::ToggleWeak => return self.toggle_computed(Pane::Weak),
+            Action::Toggle(pane) => return self.toggle_pane(pane),
             Action::WiderWindow => self.weak.scale_window(2.0),
             Action::NarrowerWindow => self.weak.scale_window(0.5),
-            Action::ToggleSweep => return self.toggle_computed(Pane::Sweep),
-            Action::ToggleMap => return self.toggle_computed(Pane::Map),
-            Action::ToggleCompare => return self.toggle_computed(Pane::Compare),
-            Action::ToggleBody => {
-                if self.view.panes.shows(Pane::Body) || self.scene_has(Pane::Body) {
-                    self.view.panes.toggle(Pane::Body);
-                }
-            }
             Action::ZoomIn => v.zoom = (v.zoom * 1.5).min(1e6),
             Action::ZoomOut => v.zoom = (v.zoom / 1.5).max(0.1),
             Action::PanLeft => v.pan_x -= 0.1,

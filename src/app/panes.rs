@@ -84,17 +84,23 @@ impl Pane {
             .unwrap_or_default()
     }
 
-    /// The action that shows or hides this pane.
+    /// The action that shows or hides this pane, when a key does.
     #[must_use]
     pub fn toggle_action(self) -> Option<super::Action> {
-        use super::Action;
+        self.toggle_name().map(|_| super::Action::Toggle(self))
+    }
+
+    /// The name of its toggle in `[keys]` (a user's config file: never rename one), when a key
+    /// shows and hides it.
+    #[must_use]
+    pub fn toggle_name(self) -> Option<&'static str> {
         match self {
-            Self::Series => Some(Action::ToggleSeries),
-            Self::Sweep => Some(Action::ToggleSweep),
-            Self::Weak => Some(Action::ToggleWeak),
-            Self::Map => Some(Action::ToggleMap),
-            Self::Body => Some(Action::ToggleBody),
-            Self::Compare => Some(Action::ToggleCompare),
+            Self::Series => Some("toggle_series"),
+            Self::Sweep => Some("toggle_sweep"),
+            Self::Weak => Some("toggle_weak"),
+            Self::Map => Some("toggle_map"),
+            Self::Body => Some("toggle_body"),
+            Self::Compare => Some("toggle_compare"),
             Self::Params | Self::Portrait | Self::Lesson => None,
         }
     }

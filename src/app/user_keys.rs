@@ -4,9 +4,23 @@
 //! the README stay true for everyone else's keys.
 
 use super::keys::{Action, KEYMAP, Key};
+use super::panes::Pane;
 
-/// Every action a user may bind, with its name in `[keys]`.
-pub const ACTION_NAMES: &[(Action, &str)] = &[
+/// Every action a user may bind, with its name in `[keys]`: the panes' toggles (their names
+/// from [`Pane::toggle_name`]) after `toggle_effective`, in the order help lists them.
+pub static ACTION_NAMES: std::sync::LazyLock<Vec<(Action, &'static str)>> =
+    std::sync::LazyLock::new(|| {
+        let panes = Pane::ALL
+            .into_iter()
+            .filter_map(|p| Some((Action::Toggle(p), p.toggle_name()?)));
+        let mut names: Vec<_> = BEFORE_PANES.to_vec();
+        names.extend(panes);
+        names.extend_from_slice(AFTER_PANES);
+        names
+    });
+
+/// The actions before the panes' toggles.
+const BEFORE_PANES: &[(Action, &str)] = &[
     (Action::Quit, "quit"),
     (Action::SelectPrev, "select_prev"),
     (Action::SelectNext, "select_next"),
@@ -21,12 +35,10 @@ pub const ACTION_NAMES: &[(Action, &str)] = &[
     (Action::Faster, "faster"),
     (Action::Slower, "slower"),
     (Action::ToggleEffective, "toggle_effective"),
-    (Action::ToggleSeries, "toggle_series"),
-    (Action::ToggleSweep, "toggle_sweep"),
-    (Action::ToggleWeak, "toggle_weak"),
-    (Action::ToggleMap, "toggle_map"),
-    (Action::ToggleBody, "toggle_body"),
-    (Action::ToggleCompare, "toggle_compare"),
+];
+
+/// The actions after them.
+const AFTER_PANES: &[(Action, &str)] = &[
     (Action::WiderWindow, "wider_window"),
     (Action::NarrowerWindow, "narrower_window"),
     (Action::ZoomIn, "zoom_in"),
