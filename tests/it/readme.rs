@@ -246,7 +246,7 @@ fn the_architecture_page_is_true() {
             .chars()
             .take_while(|c| *c != '`' && *c != ' ')
             .collect();
-        let path = path.replace("NAME", "kapitza");
+        let path = path.replace("NAME", "kapitza").replace("PANE", "weak");
         let p = root().join("src").join(&path);
         assert!(
             p.exists(),
