@@ -74,6 +74,34 @@ pub trait Flow: Send {
     fn boxed(&self) -> Box<dyn Flow>;
 }
 
+/// The [`Flow`] methods of a `Clone` flow whose integration is its field `core` (a
+/// [`crate::physics::numerics::dop853::Dop853`]): the copy, the clock, the step and the
+/// counters (`on_core!(own step)`: all but the step, for a flow that does more in a step). The
+/// flow says the rest (its method, samples, events and energy).
+macro_rules! on_core {
+    () => {
+        $crate::physics::flow::on_core!(own step);
+        fn step(&mut self, t_limit: f64) -> Result<(), $crate::physics::method::StepError> {
+            self.core.step(t_limit)
+        }
+    };
+    (own step) => {
+        fn boxed(&self) -> Box<dyn $crate::physics::flow::Flow> {
+            Box::new(self.clone())
+        }
+        fn time(&self) -> f64 {
+            self.core.time()
+        }
+        fn time_prev(&self) -> f64 {
+            self.core.time_prev()
+        }
+        fn stats(&self) -> $crate::physics::numerics::dop853::Stats {
+            self.core.stats()
+        }
+    };
+}
+pub(crate) use on_core;
+
 /// Follows the sign of a flow's event function from step to step.
 ///
 /// It remembers the last nonzero sign, so a start on zero is not an event and a step ending

@@ -8,7 +8,7 @@ use std::collections::VecDeque;
 
 use serde::{Deserialize, Serialize};
 
-use super::jobs::{Job, JobKind, MapJob, PartnerJob, Slice, SweepJob, WeakJob};
+use super::jobs::{Job, JobKind, MapJob, PartnerJob, Slice, SweepJob, WeakJob, Work};
 use super::{Command, Session, SessionSpec, SimEvent};
 use crate::physics::Model;
 use crate::physics::plan::{AutoPolicy, Resolved};
@@ -325,7 +325,13 @@ impl Engine {
             .position(|j| j.kind().before_run() || !run_busy)
         {
             let mut job = self.jobs.remove(i);
-            return match job.slice(&mut self.planner, max_steps, go_on, sink) {
+            let mut work = Work {
+                planner: &mut self.planner,
+                max_steps,
+                go_on,
+                sink,
+            };
+            return match job.slice(&mut work) {
                 Slice::More => {
                     self.jobs.insert(i, job);
                     true

@@ -8,6 +8,8 @@
 use super::engine::Planner;
 use super::{MapSpec, PartnerRun, Session, SessionSpec, SimEvent, SweepSpec, WeakSpec};
 use crate::physics::StepError;
+use crate::study::map::{Source, cells_in_parallel};
+use crate::study::sweep::{ladder, limit_curve, rung};
 
 /// Which job: one of each at a time, worked in this order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -55,19 +57,24 @@ impl Slice {
     }
 }
 
+/// What a slice of a job works with.
+pub struct Work<'a> {
+    /// Plans a run as the engine plans its own (the partner's).
+    pub planner: &'a mut Planner,
+    /// Most steps in a slice, for a job that steps.
+    pub max_steps: usize,
+    /// Whether to go on (a command arrived: the slice is cancelled, and redone next time).
+    pub go_on: &'a mut dyn FnMut(f64) -> bool,
+    /// Where events go; `false` means nobody listens any more.
+    pub sink: &'a mut dyn FnMut(SimEvent) -> bool,
+}
+
 /// A pane's computation, worked a slice at a time.
 pub trait Job: Send {
     /// Which job it is.
     fn kind(&self) -> JobKind;
-    /// One slice: at most `max_steps` steps where it steps, else one bounded piece; events go
-    /// to `sink`. `go_on` cancels a slice (a command arrived): it is redone next time.
-    fn slice(
-        &mut self,
-        planner: &mut Planner,
-        max_steps: usize,
-        go_on: &mut dyn FnMut(f64) -> bool,
-        sink: &mut dyn FnMut(SimEvent) -> bool,
-    ) -> Slice;
+    /// One slice: at most `max_steps` steps where it steps, else one bounded piece.
+    fn slice(&mut self, work: &mut Work) -> Slice;
 }
 
 /// The comparison's partner: planned, then integrated in slices to its end.
@@ -95,16 +102,11 @@ impl Job for PartnerJob {
         JobKind::Partner
     }
 
-    fn slice(
-        &mut self,
-        planner: &mut Planner,
-        max_steps: usize,
-        go_on: &mut dyn FnMut(f64) -> bool,
-        sink: &mut dyn FnMut(SimEvent) -> bool,
-    ) -> Slice {
+    fn slice(&mut self, work: &mut Work) -> Slice {
+        let (go_on, sink) = (&mut *work.go_on, &mut *work.sink);
         let (id, spec) = (self.id, self.spec);
         let Some((session, run)) = self.started.as_mut() else {
-            return match planner.start(id, &spec, go_on) {
+            return match work.planner.start(id, &spec, go_on) {
                 Err(StepError::Cancelled { .. }) => Slice::More,
                 Err(e) => Slice::after(
                     sink(SimEvent::Partner {
@@ -129,7 +131,7 @@ impl Job for PartnerJob {
                 }
             };
         };
-        let (events, _) = session.advance(spec.t_end, max_steps);
+        let (events, _) = session.advance(spec.t_end, work.max_steps);
         let mut end = None;
         for e in events {
             match e {
@@ -176,13 +178,8 @@ impl Job for WeakJob {
         JobKind::Weak
     }
 
-    fn slice(
-        &mut self,
-        _: &mut Planner,
-        _: usize,
-        go_on: &mut dyn FnMut(f64) -> bool,
-        sink: &mut dyn FnMut(SimEvent) -> bool,
-    ) -> Slice {
+    fn slice(&mut self, work: &mut Work) -> Slice {
+        let (go_on, sink) = (&mut *work.go_on, &mut *work.sink);
         let (generation, spec) = (self.generation, self.spec);
         let data = spec
             .model
@@ -241,14 +238,8 @@ impl Job for SweepJob {
         JobKind::Sweep
     }
 
-    fn slice(
-        &mut self,
-        _: &mut Planner,
-        _: usize,
-        go_on: &mut dyn FnMut(f64) -> bool,
-        sink: &mut dyn FnMut(SimEvent) -> bool,
-    ) -> Slice {
-        use crate::study::sweep::{ladder, limit_curve, rung};
+    fn slice(&mut self, work: &mut Work) -> Slice {
+        let (go_on, sink) = (&mut *work.go_on, &mut *work.sink);
         let (generation, spec) = (self.generation, self.spec);
         let rungs = ladder(spec.model.kind());
         let outcome = match &self.limit {
@@ -324,14 +315,8 @@ impl Job for MapJob {
         JobKind::Map
     }
 
-    fn slice(
-        &mut self,
-        _: &mut Planner,
-        _: usize,
-        go_on: &mut dyn FnMut(f64) -> bool,
-        sink: &mut dyn FnMut(SimEvent) -> bool,
-    ) -> Slice {
-        use crate::study::map::{Source, cells_in_parallel};
+    fn slice(&mut self, work: &mut Work) -> Slice {
+        let (go_on, sink) = (&mut *work.go_on, &mut *work.sink);
         let (id, spec, next) = (self.id, self.spec, self.next);
         let total = spec.grid.cols * spec.grid.rows;
         let chunk = match spec.source {

@@ -19,7 +19,7 @@
 use super::{DIM, Params, Problem, State, lean, spin, tilt};
 use crate::physics::flow::{Flow, Sample};
 use crate::physics::method::{Method, Settings, StepError};
-use crate::physics::numerics::dop853::{Dop853, Field, Stats};
+use crate::physics::numerics::dop853::{Dop853, Field};
 use crate::physics::numerics::roots::find_root;
 
 /// The methods this model offers (`auto` first).
@@ -166,21 +166,13 @@ impl CeltFlow {
 }
 
 impl Flow for CeltFlow {
-    fn boxed(&self) -> Box<dyn Flow> {
-        Box::new(self.clone())
-    }
+    crate::physics::flow::on_core!(own step);
     fn method(&self) -> Method {
         if self.project {
             Method::Dop853Projected
         } else {
             Method::Dop853
         }
-    }
-    fn time(&self) -> f64 {
-        self.core.time()
-    }
-    fn time_prev(&self) -> f64 {
-        self.core.time_prev()
     }
     fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
         let s_prev = self.spin_now;
@@ -237,8 +229,5 @@ impl Flow for CeltFlow {
     }
     fn energy(&self) -> f64 {
         self.params.energy(&self.core.state())
-    }
-    fn stats(&self) -> Stats {
-        self.core.stats()
     }
 }

@@ -176,20 +176,9 @@ impl FullDop853 {
 }
 
 impl Flow for FullDop853 {
-    fn boxed(&self) -> Box<dyn Flow> {
-        Box::new(self.clone())
-    }
+    crate::physics::flow::on_core!();
     fn method(&self) -> Method {
         Method::Dop853
-    }
-    fn time(&self) -> f64 {
-        self.core.time()
-    }
-    fn time_prev(&self) -> f64 {
-        self.core.time_prev()
-    }
-    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
-        self.core.step(t_limit)
     }
     fn sample(&mut self, t: f64) -> Sample {
         let y = self.at(t);
@@ -222,9 +211,6 @@ impl Flow for FullDop853 {
         let y = self.core.state();
         let (th, thd) = limit::to_slow(&self.params, self.core.time(), (y[0], y[1]));
         self.limit.energy_of(th, thd)
-    }
-    fn stats(&self) -> Stats {
-        self.core.stats()
     }
 }
 
@@ -494,24 +480,13 @@ impl LimitDop853 {
 }
 
 impl Flow for LimitDop853 {
-    fn boxed(&self) -> Box<dyn Flow> {
-        Box::new(self.clone())
-    }
+    crate::physics::flow::on_core!();
     fn method(&self) -> Method {
         if self.corrected {
             Method::EffectiveCorrected
         } else {
             Method::Effective
         }
-    }
-    fn time(&self) -> f64 {
-        self.core.time()
-    }
-    fn time_prev(&self) -> f64 {
-        self.core.time_prev()
-    }
-    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
-        self.core.step(t_limit)
     }
     fn sample(&mut self, t: f64) -> Sample {
         let y = self.at(t);
@@ -538,9 +513,6 @@ impl Flow for LimitDop853 {
     fn energy(&self) -> f64 {
         let y = self.core.state();
         self.limit.energy_of(y[0], y[1])
-    }
-    fn stats(&self) -> Stats {
-        self.core.stats()
     }
 }
 

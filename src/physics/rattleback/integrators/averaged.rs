@@ -8,9 +8,9 @@
 //! controls. The reported state is reconstructed (the fast ripple included); reversals are
 //! zeros of the reconstructed `α̇`, located on the dense output.
 
-use super::dop853::{Dop853, Field, Stats};
+use super::Method;
+use super::dop853::{Dop853, Field};
 use super::roots::find_root;
-use super::{Method, StepError};
 use crate::physics::flow::Flow;
 use crate::physics::rattleback::averaged::{Averaged2, SlowState};
 use crate::physics::rattleback::model::State;
@@ -79,23 +79,12 @@ impl Averaged2Dop853 {
 }
 
 impl Flow for Averaged2Dop853 {
-    fn boxed(&self) -> Box<dyn Flow> {
-        Box::new(self.clone())
-    }
+    crate::physics::flow::on_core!();
     fn method(&self) -> Method {
         Method::Averaged2
     }
-    fn time(&self) -> f64 {
-        self.core.time()
-    }
-    fn time_prev(&self) -> f64 {
-        self.core.time_prev()
-    }
     fn event_value(&self) -> f64 {
         self.model.spin_rate(&self.core.state())
-    }
-    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
-        self.core.step(t_limit)
     }
     fn locate_event(&mut self) -> f64 {
         // The full α̇ is monotone across a reversal (α̈ = g'γ̇²/(2iz) keeps the sign of g' near
@@ -113,9 +102,6 @@ impl Flow for Averaged2Dop853 {
     fn energy(&self) -> f64 {
         let y = self.core.state();
         self.model.kbar(y[0], y[1])
-    }
-    fn stats(&self) -> Stats {
-        self.core.stats()
     }
 
     super::drawn_from_state!();

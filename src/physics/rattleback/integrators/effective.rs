@@ -12,9 +12,9 @@
 
 use nalgebra::Vector3;
 
-use super::dop853::{Dop853, Field, Stats};
+use super::Method;
+use super::dop853::{Dop853, Field};
 use super::roots::find_root;
-use super::{Method, StepError};
 use crate::physics::flow::Flow;
 use crate::physics::rattleback::effective::Effective;
 use crate::physics::rattleback::model::State;
@@ -100,9 +100,7 @@ impl EffectiveDop853 {
 }
 
 impl Flow for EffectiveDop853 {
-    fn boxed(&self) -> Box<dyn Flow> {
-        Box::new(self.clone())
-    }
+    crate::physics::flow::on_core!();
     fn method(&self) -> Method {
         if self.ripple_action == 0.0 {
             Method::Effective
@@ -110,17 +108,8 @@ impl Flow for EffectiveDop853 {
             Method::EffectiveCorrected
         }
     }
-    fn time(&self) -> f64 {
-        self.core.time()
-    }
-    fn time_prev(&self) -> f64 {
-        self.core.time_prev()
-    }
     fn event_value(&self) -> f64 {
         self.spin_rate(&self.core.state())
-    }
-    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
-        self.core.step(t_limit)
     }
     fn locate_event(&mut self) -> f64 {
         let (a, b) = (self.core.time_prev(), self.core.time());
@@ -136,9 +125,6 @@ impl Flow for EffectiveDop853 {
     fn energy(&self) -> f64 {
         let y = self.core.state();
         self.model.energy_of(y[0], y[1])
-    }
-    fn stats(&self) -> Stats {
-        self.core.stats()
     }
 
     super::drawn_from_state!();

@@ -1,9 +1,9 @@
 //! `dop853` on the full model: the generic core of [`super::dop853`] with the Euler–Lagrange
 //! right-hand side. Order 8, not symplectic, 12 evaluations per step (see the core's doc).
 
-use super::dop853::{Dop853, Field, Stats};
+use super::Method;
+use super::dop853::{Dop853, Field};
 use super::roots::find_root;
-use super::{Method, StepError};
 use crate::physics::flow::Flow;
 use crate::physics::rattleback::model::{ALPHA_DOT, State, energy, initial_state, rhs};
 use crate::physics::rattleback::params::{Params, Problem};
@@ -65,20 +65,9 @@ impl FullDop853 {
 }
 
 impl Flow for FullDop853 {
-    fn boxed(&self) -> Box<dyn Flow> {
-        Box::new(self.clone())
-    }
+    crate::physics::flow::on_core!();
     fn method(&self) -> Method {
         Method::Dop853
-    }
-    fn time(&self) -> f64 {
-        self.core.time()
-    }
-    fn time_prev(&self) -> f64 {
-        self.core.time_prev()
-    }
-    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
-        self.core.step(t_limit)
     }
     fn locate_event(&mut self) -> f64 {
         let (a, b) = (self.core.time_prev(), self.core.time());
@@ -86,9 +75,6 @@ impl Flow for FullDop853 {
     }
     fn energy(&self) -> f64 {
         energy(&self.params, &self.state())
-    }
-    fn stats(&self) -> Stats {
-        self.core.stats()
     }
 
     fn event_value(&self) -> f64 {
