@@ -5,6 +5,7 @@
 //! over 20 s are not measured. The budget only needs the right order of magnitude: it decides
 //! between "run" and "ask for --force" at 60 s.
 
+use rattleback::physics::method::Asked;
 use std::time::Instant;
 
 use rattleback::physics::Method;
@@ -49,7 +50,8 @@ fn main() {
             Method::Yoshida6,
             Method::Effective,
         ] {
-            let predicted = predicted_seconds(p.problem().unwrap(), method, tol, None, t_end);
+            let predicted =
+                predicted_seconds(p.problem().unwrap(), &Asked::new(method, tol, None, t_end));
             if predicted > 20.0 {
                 println!(
                     "{label:<34} {method:<20} {predicted:>10.3e} {:>10} {:>7}",

@@ -857,10 +857,12 @@ fn map_source(
     let predicted = cells
         * crate::physics::rattleback::plan::predicted_seconds(
             &probe,
-            crate::physics::Method::Auto,
-            tolerance,
-            None,
-            grid.t_end,
+            &crate::physics::method::Asked::new(
+                crate::physics::Method::Auto,
+                tolerance,
+                None,
+                grid.t_end,
+            ),
         )
         / 2.0;
     let budget = if args.common.force {

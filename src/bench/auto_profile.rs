@@ -10,6 +10,7 @@
 //! implementation of the averaged model at 1e10 and 1e12, model error below 1e-18), embedded
 //! in the binary at build time.
 
+use crate::physics::method::Asked;
 use crate::physics::rattleback::model::{ALPHA, ALPHA_DOT};
 use std::fmt::Write as _;
 
@@ -170,8 +171,10 @@ pub fn profile(quick: bool, log: &mut dyn FnMut(&str)) -> Vec<ProfileRow> {
                 });
                 for (method, tol, step) in singles(p) {
                     let s = spec(method, tol, step, T_END);
-                    if crate::physics::rattleback::budget::cost_seconds(p, method, tol, step, T_END)
-                        > 2.0
+                    if crate::physics::rattleback::budget::cost_seconds(
+                        p,
+                        &Asked::new(method, tol, step, T_END),
+                    ) > 2.0
                     {
                         continue;
                     }

@@ -310,6 +310,34 @@ impl TimeSum {
     }
 }
 
+/// A run as it is asked for and priced: the method, its tolerance (or, for a fixed-step method,
+/// its default step's target), its fixed step (`None`: derived from the tolerance), and the
+/// horizon. Every cost model prices one.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Asked {
+    /// The method (`auto` as it would resolve).
+    pub method: Method,
+    /// Tolerance.
+    pub tolerance: f64,
+    /// Fixed step, for fixed-step methods.
+    pub step: Option<f64>,
+    /// Horizon.
+    pub t_end: f64,
+}
+
+impl Asked {
+    /// `method` at `tolerance` (or with `step`) over `[0, t_end]`.
+    #[must_use]
+    pub const fn new(method: Method, tolerance: f64, step: Option<f64>, t_end: f64) -> Self {
+        Self {
+            method,
+            tolerance,
+            step,
+            t_end,
+        }
+    }
+}
+
 /// How a method is to be run.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Settings {

@@ -13,6 +13,7 @@ use super::flow::Flow;
 use super::method::{Method, Settings, StepError};
 use super::params::ParamSpec;
 use super::plan::{PlanRequest, Resolution};
+use crate::physics::method::Asked;
 use crate::physics::method::TimeSum;
 
 /// What resolving a plan gives.
@@ -226,13 +227,7 @@ pub trait Posed {
     /// A failed or refused probe.
     fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned;
     /// Predicted seconds of a run (the model's cost model).
-    fn predicted_seconds(
-        &self,
-        method: Method,
-        tolerance: f64,
-        step: Option<f64>,
-        t_end: f64,
-    ) -> f64;
+    fn predicted_seconds(&self, ask: &Asked) -> f64;
     /// The weak-* view over a bounded horizon within `[0, t_end]` (at most a few thousand fast
     /// periods, whatever the small parameter), or `None` for a model without one
     /// ([`Studies::weak`] false).

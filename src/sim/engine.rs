@@ -3,6 +3,7 @@
 //! `work` does a bounded slice of what is pending (planning `auto`, integrating towards the
 //! target, checkpoints, the overlay's catch-up).
 
+use crate::physics::method::Asked;
 use crate::physics::method::TimeSum;
 use std::collections::VecDeque;
 
@@ -403,15 +404,16 @@ impl Planner {
     ) -> Result<(Resolved, Option<f64>), StepError> {
         let model = &spec.model;
         let limit_cost = || {
-            model.predicted_seconds(
+            model.predicted_seconds(&Asked::new(
                 Method::Effective,
                 model.kind().limit_tolerance(),
                 None,
                 spec.t_end,
-            )
+            ))
         };
         let auto_cost = || {
-            model.predicted_seconds(Method::Auto, spec.tolerance, None, spec.t_end) + limit_cost()
+            model.predicted_seconds(&Asked::new(Method::Auto, spec.tolerance, None, spec.t_end))
+                + limit_cost()
         };
         let (mut plan, estimate) = match self.book.lookup(spec) {
             Some(plan) => (plan, self.book.estimate(spec)),
@@ -434,8 +436,12 @@ impl Planner {
         if spec.method != Method::Auto && spec.step.is_some() {
             plan.step = spec.step;
         }
-        let predicted = model.predicted_seconds(plan.method, plan.tolerance, plan.step, spec.t_end)
-            + limit_cost();
+        let predicted = model.predicted_seconds(&Asked::new(
+            plan.method,
+            plan.tolerance,
+            plan.step,
+            spec.t_end,
+        )) + limit_cost();
         let left = self.book.total - self.spent;
         crate::physics::budget::check(predicted, self.book.budget.min(left)).map_err(|over| {
             StepError::OverBudget {

@@ -4,7 +4,7 @@
 //! The grid (`i · sample_dt`, and `t_end` exactly) depends on the dynamics only, never on the
 //! playback speed or the frame rate, so the trail at ×1024 is the same curve as at ×1.
 
-use crate::physics::method::TimeSum;
+use crate::physics::method::{Asked, TimeSum};
 use std::collections::VecDeque;
 
 use serde::{Deserialize, Serialize};
@@ -176,12 +176,12 @@ impl Track {
     ) -> Result<Self, StepError> {
         let integrator = model.build(method, settings, t_end, time_sum)?;
         let e0 = integrator.energy();
-        let cap = crate::physics::method::StepCap::of(model.predicted_seconds(
+        let cap = crate::physics::method::StepCap::of(model.predicted_seconds(&Asked::new(
             method,
             settings.tolerance,
             settings.step,
             t_end,
-        ));
+        )));
         Ok(Self {
             cap,
             tracker: EventTracker::new(integrator.event_value()),

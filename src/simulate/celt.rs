@@ -5,6 +5,7 @@
 //! CSV (`t,turn,spin,tilt`) and a table too. The celt has no limit, so there is no
 //! `effective` section.
 
+use crate::physics::method::Asked;
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -22,7 +23,10 @@ use crate::scenario::Preset;
 /// Predicted seconds of the run `spec` asks for (the celt's cost model, [`celt::budget`]).
 #[must_use]
 pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::rattleback::RunSpec) -> f64 {
-    celt::budget::cost_seconds(problem, spec.method, spec.tolerance, spec.t_end)
+    celt::budget::cost_seconds(
+        problem,
+        &Asked::new(spec.method, spec.tolerance, None, spec.t_end),
+    )
 }
 
 #[derive(Serialize)]

@@ -3,6 +3,7 @@
 //! `theta_dot`, …}, `events` {`swings`, `falls`}, `energy` (the full model is driven: the
 //! limit's energy `E_eff` of the averaged state, and its drift), `stats`; CSV and a table too.
 
+use crate::physics::method::Asked;
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -24,14 +25,18 @@ use crate::scenario::Preset;
 pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::rattleback::RunSpec) -> f64 {
     // The requested run, and the limit's own run the report compares it with (cheap, except
     // when `b` makes the slow motion fast too).
-    kapitza::budget::cost_seconds(problem, spec.method, spec.tolerance, spec.step, spec.t_end)
-        + kapitza::budget::cost_seconds(
-            problem,
+    kapitza::budget::cost_seconds(
+        problem,
+        &Asked::new(spec.method, spec.tolerance, spec.step, spec.t_end),
+    ) + kapitza::budget::cost_seconds(
+        problem,
+        &Asked::new(
             Method::Effective,
             crate::physics::ModelKind::Kapitza.limit_tolerance(),
             None,
             spec.t_end,
-        )
+        ),
+    )
 }
 
 #[derive(Serialize)]

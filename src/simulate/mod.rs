@@ -8,6 +8,7 @@ mod celt;
 mod kapitza;
 mod render;
 
+use crate::physics::method::Asked;
 use render::StatsOut;
 
 use crate::physics::rattleback::model::{ALPHA, ALPHA_DOT, GAMMA, GAMMA_DOT};
@@ -124,13 +125,17 @@ pub fn predicted_seconds(preset: &Preset, resolved: &Resolved, format: Format) -
         crate::physics::Model::Kapitza(p) => return kapitza::predicted_seconds(p, &spec),
         crate::physics::Model::Celt(p) => return celt::predicted_seconds(p, &spec),
     };
-    let main = plan::predicted_seconds(problem, spec.method, spec.tolerance, spec.step, spec.t_end);
+    let main = plan::predicted_seconds(
+        problem,
+        &Asked::new(spec.method, spec.tolerance, spec.step, spec.t_end),
+    );
     let extra = match format {
         Format::Csv if spec.method == Method::Auto => main / (1.0 + plan::VERIFY_FRACTION),
         Format::Csv => 0.0,
-        Format::Json | Format::Table => {
-            cost_seconds(problem, Method::Effective, spec.tolerance, None, spec.t_end)
-        }
+        Format::Json | Format::Table => cost_seconds(
+            problem,
+            &Asked::new(Method::Effective, spec.tolerance, None, spec.t_end),
+        ),
     };
     main + extra
 }

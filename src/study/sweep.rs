@@ -6,6 +6,7 @@
 //! Each rung runs `auto` (so the whole ladder costs little more than its hardest rung) with
 //! samples on one grid; the limit is integrated at 1e-14 (1e-13 for the pendulum).
 
+use crate::physics::method::Asked;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -162,10 +163,10 @@ pub fn predicted_seconds(
         return Err(format!("{} rungs: at most {MAX_RUNGS}", ladder.len()));
     }
     let limit_tol = model.kind().limit_tolerance();
-    let mut total = model.predicted_seconds(Method::Effective, limit_tol, None, t_end);
+    let mut total = model.predicted_seconds(&Asked::new(Method::Effective, limit_tol, None, t_end));
     for &x in ladder {
         let m = at_rung(model, x).map_err(|e| format!("the rung {x:e}: {e}"))?;
-        total += m.predicted_seconds(Method::Auto, tolerance, None, t_end);
+        total += m.predicted_seconds(&Asked::new(Method::Auto, tolerance, None, t_end));
     }
     Ok(total)
 }

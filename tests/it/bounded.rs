@@ -5,6 +5,7 @@
 //! an allocation past it aborts, which fails the test) and must end within the work budget plus
 //! 5 s, refused or finished, leaving no temporary file behind.
 
+use rattleback::physics::method::Asked;
 use std::io::Write as _;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -616,7 +617,7 @@ fn a_replays_runs_are_bounded_as_a_whole() {
         sample_dt: 0.05,
         step: None,
     };
-    let one = model.predicted_seconds(spec.method, spec.tolerance, None, spec.t_end);
+    let one = model.predicted_seconds(&Asked::new(spec.method, spec.tolerance, None, spec.t_end));
     assert!(one > 1.0 && one < 60.0, "{one}");
     let mut engine = Engine::new(PlanBook {
         total: 2.5 * one + 1.0,

@@ -5,6 +5,7 @@
 //! capped while their counts stay exact.
 
 use crate::common;
+use rattleback::physics::method::Asked;
 
 use std::process::Command;
 
@@ -99,7 +100,7 @@ fn every_shipped_preset_runs_within_the_budget_with_every_method() {
             continue;
         };
         for &method in rattleback::physics::ModelKind::Rattleback.methods() {
-            let s = predicted_seconds(problem, method, tol, None, p.run.t_end);
+            let s = predicted_seconds(problem, &Asked::new(method, tol, None, p.run.t_end));
             assert!(
                 s.is_finite() && s > 0.0 && s < BUDGET_SECONDS / 10.0,
                 "{name} {method}: {s}"

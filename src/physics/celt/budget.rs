@@ -4,6 +4,7 @@
 //! machine (release build); `simulate`, the explorer and every replay ask it first.
 
 use super::{Params, Problem};
+use crate::physics::method::Asked;
 use crate::physics::method::Method;
 
 /// Seconds one right-hand-side evaluation takes, about (this machine, release build; the
@@ -39,7 +40,14 @@ pub fn fastest_rate(problem: &Problem) -> f64 {
 /// companion at least) over `[0, t_end]`; 0 for a method the celt does not offer (its limit:
 /// it has none).
 #[must_use]
-pub fn cost_seconds(problem: &Problem, method: Method, tolerance: f64, t_end: f64) -> f64 {
+/// The celt's runs have no fixed step (`ask.step` is not read).
+pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
+    let Asked {
+        method,
+        tolerance,
+        t_end,
+        ..
+    } = *ask;
     let one = |tol: f64| {
         let per_tol = tol.clamp(1e-16, 1.0).powf(-0.125);
         EVALUATIONS_PER_RADIAN

@@ -16,6 +16,7 @@
 
 use super::Problem;
 use super::run::{RunResult, RunSpec, run};
+use crate::physics::method::Asked;
 use crate::physics::method::{Method, StepError};
 use crate::physics::plan::{AutoPolicy, PlanRequest, Resolution, Resolved, Shortfall};
 
@@ -82,7 +83,9 @@ pub fn resolve(
         t_end: ask.t_end,
         samples: SAMPLES,
     };
-    let cost = |l: f64| super::budget::cost_seconds(problem, Method::Dop853, l, ask.t_end);
+    let cost = |l: f64| {
+        super::budget::cost_seconds(problem, &Asked::new(Method::Dop853, l, None, ask.t_end))
+    };
     let mut local = (ask.tolerance * FIRST).clamp(TIGHTEST, 1e-3);
     if ask.policy == AutoPolicy::Legacy {
         // No session of format 1 holds a celt; plan as the first step does, unverified.

@@ -2,6 +2,7 @@
 //! spin, follow the energy and the constraints, keep optional samples. Used by `simulate`,
 //! `auto`, the tests and the benchmarks; the explorer's worker drives the same [`CeltFlow`].
 
+use crate::physics::method::Asked;
 use serde::Serialize;
 
 use super::flows::{CeltFlow, build};
@@ -106,7 +107,10 @@ pub fn run(
     let mut flow: CeltFlow = build(problem, spec.method, settings)?;
     let y0 = flow.state();
     let e0 = problem.params().energy(&y0);
-    let cost = super::budget::cost_seconds(problem, spec.method, spec.tolerance, spec.t_end);
+    let cost = super::budget::cost_seconds(
+        problem,
+        &Asked::new(spec.method, spec.tolerance, None, spec.t_end),
+    );
     let course = Course::of(&flow, spec.t_end, spec.samples, cost);
     let mut out = RunResult {
         method: spec.method,

@@ -10,6 +10,7 @@
 use super::run::RunSpec;
 use super::{Params, Problem, Start, TILT_MAX};
 use crate::physics::flow::Flow;
+use crate::physics::method::Asked;
 use crate::physics::method::TimeSum;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
@@ -351,14 +352,8 @@ impl Posed for Problem {
     fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
         super::plan::resolve(self, ask, go_on)
     }
-    fn predicted_seconds(
-        &self,
-        method: Method,
-        tolerance: f64,
-        _step: Option<f64>,
-        t_end: f64,
-    ) -> f64 {
-        super::budget::cost_seconds(self, method, tolerance, t_end)
+    fn predicted_seconds(&self, ask: &Asked) -> f64 {
+        super::budget::cost_seconds(self, ask)
     }
     fn weak_view(
         &self,

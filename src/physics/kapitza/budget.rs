@@ -5,6 +5,7 @@
 //! build); `simulate`, the explorer and every replay ask it before a run starts.
 
 use super::{Problem, flows, plan};
+use crate::physics::method::Asked;
 use crate::physics::method::Method;
 
 /// Seconds one right-hand-side evaluation takes, about (this machine, release build).
@@ -35,13 +36,8 @@ pub fn slow_rate(problem: &Problem) -> f64 {
 
 /// Predicted seconds of a run of `method` (`auto` as it would resolve) over `[0, t_end]`.
 #[must_use]
-pub fn cost_seconds(
-    problem: &Problem,
-    method: Method,
-    tolerance: f64,
-    step: Option<f64>,
-    t_end: f64,
-) -> f64 {
+pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
+    let (method, tolerance, step, t_end) = (ask.method, ask.tolerance, ask.step, ask.t_end);
     let (method, tolerance) = if method == Method::Auto {
         let c = plan::resolve(problem, tolerance, t_end);
         (c.method, c.settings.tolerance)
@@ -90,15 +86,15 @@ mod tests {
     #[test]
     fn b_and_theta_dot_count() {
         let base = problem(1.0, 2.0, 1e-3, 0.0);
-        let cheap = cost_seconds(&base, Method::Dop853, 1e-8, None, 20.0);
+        let cheap = cost_seconds(&base, &Asked::new(Method::Dop853, 1e-8, None, 20.0));
         assert!(cheap < 1.0, "{cheap}");
         for hard in [problem(1.0, 1e6, 1e-3, 0.0), problem(1.0, 2.0, 1e-3, 1e9)] {
             for m in [Method::Dop853, Method::Auto] {
-                let s = cost_seconds(&hard, m, 1e-8, None, 20.0);
+                let s = cost_seconds(&hard, &Asked::new(m, 1e-8, None, 20.0));
                 assert!(s > 60.0, "{m:?}: {s}");
             }
         }
-        let tiny_step = cost_seconds(&base, Method::Rk4, 1e-8, Some(1e-300), 20.0);
+        let tiny_step = cost_seconds(&base, &Asked::new(Method::Rk4, 1e-8, Some(1e-300), 20.0));
         assert!(tiny_step > 1e100, "{tiny_step}");
     }
 }

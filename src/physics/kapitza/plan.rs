@@ -34,6 +34,7 @@
 
 use super::Problem;
 use super::run::{RunResult, RunSpec, run};
+use crate::physics::method::Asked;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::plan::Shortfall;
 
@@ -174,7 +175,8 @@ pub fn verified(
         t_end,
         samples: SAMPLES,
     };
-    let cost = |l: f64| super::budget::cost_seconds(problem, Method::Dop853, l, None, t_end);
+    let cost =
+        |l: f64| super::budget::cost_seconds(problem, &Asked::new(Method::Dop853, l, None, t_end));
     let at = |local: f64, estimate: f64, shortfall: Option<Shortfall>| Choice {
         settings: Settings {
             tolerance: local,

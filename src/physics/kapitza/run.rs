@@ -7,6 +7,7 @@
 //! - **falls**: the slow angle leaving the upper half, `cos Θ` going from positive to negative
 //!   (the pendulum passes the horizontal on its way down).
 
+use crate::physics::method::Asked;
 use serde::Serialize;
 
 use super::Problem;
@@ -99,8 +100,10 @@ pub fn run(
         step: spec.step,
     };
     let mut flow = build(spec.method, problem, settings, spec.t_end)?;
-    let cost =
-        super::budget::cost_seconds(problem, spec.method, spec.tolerance, spec.step, spec.t_end);
+    let cost = super::budget::cost_seconds(
+        problem,
+        &Asked::new(spec.method, spec.tolerance, spec.step, spec.t_end),
+    );
     let course = Course::of(flow.as_ref(), spec.t_end, spec.samples, cost);
     let mut watch = Watched {
         drift: Drift::new(flow.energy(), false),

@@ -6,6 +6,7 @@ use super::limit::Limit;
 use super::run::RunSpec;
 use super::{EPSILON_MAX, EPSILON_MIN, Params, Problem, Start};
 use crate::physics::flow::Flow;
+use crate::physics::method::Asked;
 use crate::physics::method::TimeSum;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
@@ -221,14 +222,8 @@ impl Posed for Problem {
             shortfall: estimate.and_then(|(_, s)| s),
         })
     }
-    fn predicted_seconds(
-        &self,
-        method: Method,
-        tolerance: f64,
-        step: Option<f64>,
-        t_end: f64,
-    ) -> f64 {
-        super::budget::cost_seconds(self, method, tolerance, step, t_end)
+    fn predicted_seconds(&self, ask: &Asked) -> f64 {
+        super::budget::cost_seconds(self, ask)
     }
     fn weak_view(
         &self,

@@ -12,6 +12,7 @@
 
 use super::integrators::{Method, default_step};
 use super::params::Problem;
+use crate::physics::method::Asked;
 
 /// Nanoseconds per right-hand-side evaluation of the full model (DOP853, RK4).
 pub const NS_DOP853_EVAL: f64 = 36.0;
@@ -52,13 +53,8 @@ pub fn dop853_evaluations(tol: f64, periods: f64) -> f64 {
 /// Predicted seconds of one run of a concrete `method` with these settings over `[0, t_end]`
 /// (`auto` is planned above: [`crate::physics::rattleback::plan::predicted_seconds`]).
 #[must_use]
-pub fn cost_seconds(
-    problem: &Problem,
-    method: Method,
-    tolerance: f64,
-    step: Option<f64>,
-    t_end: f64,
-) -> f64 {
+pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
+    let (method, tolerance, step, t_end) = (ask.method, ask.tolerance, ask.step, ask.t_end);
     let nu = fastest_rate(problem);
     let h = || step.unwrap_or_else(|| default_step(method, problem, tolerance, t_end));
     let periods = |rate: f64| rate * t_end / std::f64::consts::TAU;

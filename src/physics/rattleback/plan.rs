@@ -11,6 +11,7 @@ use super::budget;
 use super::integrators::{Method, StepError};
 use super::params::Problem;
 use super::run::RunSpec;
+use crate::physics::method::Asked;
 use crate::physics::plan::{AutoPolicy, Resolution, Resolved};
 
 /// Resolves `method` for `problem` over `[0, t_end]` at `tolerance`; `go_on(t)` is asked every
@@ -84,22 +85,18 @@ pub fn resolve(
 /// admitted by the probes). Checked against the budget before anything starts; `auto` checks
 /// its actual plan again, and stops refining past the time it allows itself.
 #[must_use]
-pub fn predicted_seconds(
-    problem: &Problem,
-    method: Method,
-    tolerance: f64,
-    step: Option<f64>,
-    t_end: f64,
-) -> f64 {
+pub fn predicted_seconds(problem: &Problem, ask: &Asked) -> f64 {
+    let (method, tolerance, step, t_end) = (ask.method, ask.tolerance, ask.step, ask.t_end);
     if method != Method::Auto {
-        return budget::cost_seconds(problem, method, tolerance, step, t_end);
+        return budget::cost_seconds(problem, &Asked::new(method, tolerance, step, t_end));
     }
     let resolved = auto::best_resolved(problem, tolerance, t_end).predicted_seconds;
     if auto::considers_averaged(problem, tolerance, t_end) {
         let local =
             (tolerance / (2.0 * auto::COMPANION_RATIO * auto::AVERAGED_GROWTH)).max(auto::TIGHTEST);
-        let averaged = budget::cost_seconds(problem, Method::Averaged2, local, None, t_end)
-            * (1.0 + VERIFY_FRACTION);
+        let averaged =
+            budget::cost_seconds(problem, &Asked::new(Method::Averaged2, local, None, t_end))
+                * (1.0 + VERIFY_FRACTION);
         auto::probes_cost(problem, t_end) + resolved.min(averaged)
     } else {
         resolved

@@ -1,6 +1,7 @@
 //! One headless trajectory: integrate to `t_end`, collect reversals, the energy error and
 //! optional samples. Used by `simulate`, the tests and the benchmarks.
 
+use crate::physics::method::Asked;
 use serde::Serialize;
 
 use super::integrators::{self, Method, Settings, Stats, StepError};
@@ -133,8 +134,10 @@ pub fn run_streaming(
         spec.t_end,
         crate::physics::method::TimeSum::default(),
     )?;
-    let cost =
-        super::budget::cost_seconds(problem, spec.method, spec.tolerance, spec.step, spec.t_end);
+    let cost = super::budget::cost_seconds(
+        problem,
+        &Asked::new(spec.method, spec.tolerance, spec.step, spec.t_end),
+    );
     let course = Course {
         event0: problem.start().alpha_dot,
         keep: MAX_REVERSAL_TIMES,

@@ -8,6 +8,7 @@ use super::model::ALPHA;
 use super::params::{Params, Problem, Start};
 use super::run::RunSpec;
 use crate::physics::flow::Flow;
+use crate::physics::method::Asked;
 use crate::physics::method::TimeSum;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
@@ -255,14 +256,8 @@ impl Posed for Problem {
         } = *ask;
         super::plan::resolve(self, method, tolerance, t_end, policy, budget, go_on)
     }
-    fn predicted_seconds(
-        &self,
-        method: Method,
-        tolerance: f64,
-        step: Option<f64>,
-        t_end: f64,
-    ) -> f64 {
-        super::plan::predicted_seconds(self, method, tolerance, step, t_end)
+    fn predicted_seconds(&self, ask: &Asked) -> f64 {
+        super::plan::predicted_seconds(self, ask)
     }
     fn weak_view(
         &self,

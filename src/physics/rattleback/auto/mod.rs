@@ -43,6 +43,7 @@
 
 pub mod legacy;
 
+use crate::physics::method::Asked;
 use std::fmt::Write as _;
 
 use serde::Serialize;
@@ -244,11 +245,16 @@ pub fn probes_cost(problem: &Problem, t_end: f64) -> f64 {
             let nu = fastest_rate(&probe);
             cost_seconds(
                 &probe,
-                Method::BlanesMoan4,
-                PROBE_TOLERANCE,
-                Some(PROBE_NU_H / nu),
-                t_end,
-            ) + cost_seconds(&probe, Method::Averaged2, PROBE_TOLERANCE, None, t_end)
+                &Asked::new(
+                    Method::BlanesMoan4,
+                    PROBE_TOLERANCE,
+                    Some(PROBE_NU_H / nu),
+                    t_end,
+                ),
+            ) + cost_seconds(
+                &probe,
+                &Asked::new(Method::Averaged2, PROBE_TOLERANCE, None, t_end),
+            )
         })
         .sum()
 }
@@ -387,7 +393,7 @@ fn resolved_plans(problem: &Problem, tolerance: f64, t_end: f64) -> [Plan; 2] {
         tolerance: local,
         step: None,
         predicted_error: dop_error,
-        predicted_seconds: with_companion(problem, Method::Dop853, local, None, t_end),
+        predicted_seconds: with_companion(problem, &Asked::new(Method::Dop853, local, None, t_end)),
         reason: "resolved adaptive integration".to_owned(),
     };
     // The companion at 2h should meet the tolerance: error(2h) ≤ tolerance / 2.
@@ -400,7 +406,10 @@ fn resolved_plans(problem: &Problem, tolerance: f64, t_end: f64) -> [Plan; 2] {
         step: Some(h),
         predicted_error: blanes_moan_error(problem, 2.0 * h, t_end)
             + conditioned_round_off(t_end / h, 1.0),
-        predicted_seconds: with_companion(problem, Method::BlanesMoan4, tolerance, Some(h), t_end),
+        predicted_seconds: with_companion(
+            problem,
+            &Asked::new(Method::BlanesMoan4, tolerance, Some(h), t_end),
+        ),
         reason: format!("resolved exact-flow splitting at ν·h = {:.2}", nu * h),
     };
     [dop, bm]
@@ -436,16 +445,11 @@ fn averaged_local(share: f64, t_end: f64) -> f64 {
     (share / (2.0 * COMPANION_RATIO * growth)).max(TIGHTEST)
 }
 
-fn with_companion(
-    problem: &Problem,
-    method: Method,
-    tolerance: f64,
-    step: Option<f64>,
-    t_end: f64,
-) -> f64 {
+fn with_companion(problem: &Problem, ask: &Asked) -> f64 {
+    let (method, tolerance, step, t_end) = (ask.method, ask.tolerance, ask.step, ask.t_end);
     let c = companion_of(tolerance, step);
-    cost_seconds(problem, method, tolerance, step, t_end)
-        + cost_seconds(problem, method, c.tolerance, c.step, t_end)
+    cost_seconds(problem, &Asked::new(method, tolerance, step, t_end))
+        + cost_seconds(problem, &Asked::new(method, c.tolerance, c.step, t_end))
 }
 
 /// What [`plan_cancellable`] decided: the plan, the probed model error it carries (0 for a
@@ -488,7 +492,10 @@ pub fn plan_cancellable(
         tolerance: local,
         step: None,
         predicted_error: model_error + 0.5 * share,
-        predicted_seconds: with_companion(problem, Method::Averaged2, local, None, t_end),
+        predicted_seconds: with_companion(
+            problem,
+            &Asked::new(Method::Averaged2, local, None, t_end),
+        ),
         reason: format!(
             "k large enough: the averaged model's error, probed at k = {:.0} and {:.0} \
              (slope {:.2}), scales to {model_error:.1e}",
@@ -613,7 +620,11 @@ pub fn run_auto_cancellable(
     } = plan_cancellable(problem, tolerance, t_end, go_on)?;
     let measure = conditioning_spec(problem, t_end, &plan);
     spent += plan.predicted_seconds
-        + 3.0 * cost_seconds(problem, plan.method, measure.tolerance, measure.step, t_end);
+        + 3.0
+            * cost_seconds(
+                problem,
+                &Asked::new(plan.method, measure.tolerance, measure.step, t_end),
+            );
     over_budget(
         &format!("auto's run and verification with {}", plan.method),
         spent,
@@ -949,7 +960,10 @@ fn refine(
         }
         None => next.tolerance = (plan.tolerance / (2.0 * excess)).max(TIGHTEST),
     }
-    next.predicted_seconds = with_companion(problem, next.method, next.tolerance, next.step, t_end);
+    next.predicted_seconds = with_companion(
+        problem,
+        &Asked::new(next.method, next.tolerance, next.step, t_end),
+    );
     next.predicted_error = plan.predicted_error / excess;
     let _ = write!(next.reason, "; refined ×{excess:.1}");
     Some(next)
