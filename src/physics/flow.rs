@@ -159,5 +159,10 @@ pub(crate) fn sign(x: f64) -> f64 {
     }
 }
 
+/// Asked now and then during long work whether to go on (given the time reached, for progress);
+/// `false` stops it with [`StepError::Cancelled`]. The physics stays clock-free: the caller
+/// decides.
+pub type GoOn<'a> = &'a mut dyn FnMut(f64) -> bool;
+
 /// Steps between two calls of a run's cancellation check.
 pub const CHECK_EVERY: u64 = 256;

@@ -13,6 +13,7 @@ use super::flow::Flow;
 use super::method::{Method, Settings, StepError};
 use super::params::ParamSpec;
 use super::plan::{PlanRequest, Resolution};
+use crate::physics::flow::GoOn;
 use crate::physics::method::Asked;
 use crate::physics::method::TimeSum;
 
@@ -244,12 +245,5 @@ pub trait Posed {
     ///
     /// # Errors
     /// A failed, refused or stopped integration.
-    fn slow_curve(
-        &self,
-        method: Method,
-        tolerance: f64,
-        t_end: f64,
-        samples: usize,
-        go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<SlowCurve, StepError>;
+    fn slow_curve(&self, ask: &Asked, samples: usize, go_on: GoOn) -> Result<SlowCurve, StepError>;
 }

@@ -89,7 +89,11 @@ pub fn limit_curve(
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<(Vec<f64>, Vec<f64>), StepError> {
     let tolerance = model.kind().limit_tolerance();
-    let c = model.slow_curve(Method::Effective, tolerance, t_end, SAMPLES, go_on)?;
+    let c = model.slow_curve(
+        &Asked::new(Method::Effective, tolerance, None, t_end),
+        SAMPLES,
+        go_on,
+    )?;
     Ok((c.t, c.q))
 }
 
@@ -109,7 +113,11 @@ pub fn rung(
         what: e.field(),
         t: 0.0,
     })?;
-    let c = at.slow_curve(Method::Auto, tolerance, t_end, SAMPLES, go_on)?;
+    let c = at.slow_curve(
+        &Asked::new(Method::Auto, tolerance, None, t_end),
+        SAMPLES,
+        go_on,
+    )?;
     let sup_error =
         c.q.iter()
             .zip(limit)

@@ -10,6 +10,7 @@
 use super::run::RunSpec;
 use super::{Params, Problem, Start, TILT_MAX};
 use crate::physics::flow::Flow;
+use crate::physics::flow::GoOn;
 use crate::physics::method::Asked;
 use crate::physics::method::TimeSum;
 use crate::physics::method::{Method, Settings, StepError};
@@ -362,14 +363,8 @@ impl Posed for Problem {
     ) -> Option<Result<WeakView, StepError>> {
         None
     }
-    fn slow_curve(
-        &self,
-        method: Method,
-        tolerance: f64,
-        t_end: f64,
-        samples: usize,
-        go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<SlowCurve, StepError> {
+    fn slow_curve(&self, ask: &Asked, samples: usize, go_on: GoOn) -> Result<SlowCurve, StepError> {
+        let (method, tolerance, t_end) = (ask.method, ask.tolerance, ask.t_end);
         if method == Method::Effective {
             return Err(StepError::NoStudy {
                 what: "limit",

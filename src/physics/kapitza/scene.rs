@@ -6,6 +6,7 @@ use super::limit::Limit;
 use super::run::RunSpec;
 use super::{EPSILON_MAX, EPSILON_MIN, Params, Problem, Start};
 use crate::physics::flow::Flow;
+use crate::physics::flow::GoOn;
 use crate::physics::method::Asked;
 use crate::physics::method::TimeSum;
 use crate::physics::method::{Method, Settings, StepError};
@@ -240,14 +241,8 @@ impl Posed for Problem {
             },
         ))
     }
-    fn slow_curve(
-        &self,
-        method: Method,
-        tolerance: f64,
-        t_end: f64,
-        samples: usize,
-        go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<SlowCurve, StepError> {
+    fn slow_curve(&self, ask: &Asked, samples: usize, go_on: GoOn) -> Result<SlowCurve, StepError> {
+        let (method, tolerance, t_end) = (ask.method, ask.tolerance, ask.t_end);
         let ask = PlanRequest {
             method,
             tolerance,
