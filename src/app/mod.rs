@@ -316,7 +316,13 @@ impl App {
     /// Carries out an action; returns the effects. While recording, the actions that change
     /// what is shown are journaled.
     pub fn update(&mut self, action: Action) -> Vec<Effect> {
+        // Play at the end starts the run again: journaled as a reset before the play, so a
+        // replay (which seeks each line's time before applying it) starts again too.
+        let again = action == Action::TogglePlay && self.run.done();
         let effects = self.carry_out(action);
+        if again {
+            self.log(Event::Reset);
+        }
         let event = match action {
             Action::TogglePlay if self.run.playing => Some(Event::Play),
             Action::TogglePlay => Some(Event::Pause),

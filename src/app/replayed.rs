@@ -15,8 +15,17 @@ use crate::scenario::text::clean;
 use crate::sim::Command;
 
 impl App {
-    /// Replays one recorded event (used by `replay` and `replay --verify`).
-    pub fn apply_event(&mut self, event: &Event) -> Vec<Effect> {
+    /// Replays one recorded event (used by `replay`, `follow` and `replay --verify`);
+    /// `generation_rose`: its line's run stamp is above the line's before it. A play that
+    /// started the run over from its end was recorded by earlier versions as a play alone, in
+    /// the new run: such a play starts the replay's run over too (files written now journal a
+    /// reset before it, whose line carries the new stamp already).
+    pub fn apply_event(&mut self, event: &Event, generation_rose: bool) -> Vec<Effect> {
+        if generation_rose && matches!(event, Event::Play) {
+            let mut effects = self.carry_out(Action::Reset);
+            effects.extend(self.apply_event(event, false));
+            return effects;
+        }
         match event {
             Event::Set { field, value } => {
                 let kind = self.scenario.settings.model.kind();

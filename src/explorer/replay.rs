@@ -118,8 +118,12 @@ impl Replayer {
         let mut effects = Vec::new();
         while self.next < self.lines.len() && self.lines[self.next].wall <= self.clock {
             let line = &self.lines[self.next];
+            let rose = self
+                .next
+                .checked_sub(1)
+                .is_some_and(|i| line.generation > self.lines[i].generation);
             effects.extend(app.seek(line.t));
-            effects.extend(app.apply_event(&line.event));
+            effects.extend(app.apply_event(&line.event, rose));
             self.next += 1;
         }
         // The display moves between recorded displayed times, never past the next one (while

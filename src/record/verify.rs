@@ -519,7 +519,10 @@ pub fn verify_watched(
                 report.screens += 1;
             }
             event => {
-                effects.extend(app.apply_event(event));
+                let rose = i
+                    .checked_sub(1)
+                    .is_some_and(|j| line.generation > rec.lines[j].1.generation);
+                effects.extend(app.apply_event(event, rose));
                 run(&mut engine, &mut app, effects, &mut got);
             }
         }

@@ -1,6 +1,7 @@
 //! A recorded session is the lecture, frame for frame. A lecturer's explorer is driven headless
 //! through a scripted key sequence (play; pause just before a reversal; three steps; a change of
-//! `k` or `b`; a chapter; a note; play to the end) at ×1, ×16 and ×1024 in both scenes, and
+//! `k` or `b`; a chapter; a note; play to the end; play again from the start and pause) at ×1,
+//! ×16 and ×1024 in both scenes, and
 //! recorded. The file is then fed to the replay, to a follower (line by line as it grows) and to
 //! `replay --verify`: at every recorded screen, the frame above the status bar (rendered through
 //! ratatui's `TestBackend` at 80×24) and the status bar's values equal the lecturer's, and the
@@ -174,6 +175,19 @@ fn lecture_with(preset: &str, speed: f64, field: &str, compare: bool) -> Lecture
         assert!(frames < 200_000, "never reached the end");
     }
     l.tick();
+    // Play again from the end (the run starts over), then pause a few frames in: a replay
+    // must start over too.
+    l.key(Key::Char(' '));
+    // A few frames in, fewer at a speed that would reach the end again.
+    for _ in 0..(5.0 / speed).floor() as usize {
+        l.tick();
+    }
+    l.key(Key::Char(' '));
+    l.tick();
+    assert!(
+        l.h.app.run.shown < l.h.app.run.t_end,
+        "{preset} ×{speed}: playing again did not start over"
+    );
     // Stop: the final screen and checkpoint, then the end line.
     l.key(Key::Char('R'));
     while !l
@@ -350,6 +364,29 @@ fn write(
     path
 }
 
+/// Files written before the fix journaled the play that started the run over from its end as a
+/// play alone (in the new run): without the reset, the lecture verifies too.
+fn older_file_verifies(lecture: &Lecture, what: &str) {
+    let mut older = Lecture {
+        header: lecture.header.clone(),
+        lines: lecture.lines.clone(),
+        frames: Vec::new(),
+    };
+    let again = older
+        .lines
+        .windows(2)
+        .rposition(|w| w[0].event == Event::Reset && w[1].event == Event::Play)
+        .expect("a reset before the play again");
+    older.lines.remove(again);
+    let path = write(
+        &older,
+        &format!("{}-older.jsonl", what.replace(' ', "-")),
+        None,
+    );
+    let rec = record::read(&path).unwrap();
+    record::verify(&rec, "older", None).unwrap_or_else(|e| panic!("{what}: an older file: {e:?}"));
+}
+
 fn check(preset: &str, field: &str) {
     check_with(preset, field, false);
 }
@@ -437,6 +474,7 @@ fn check_with(preset: &str, field: &str, compare: bool) {
         );
         let report = record::verify(&rec, "lecture", None).unwrap();
         assert_eq!(report.screens, screens);
+        older_file_verifies(&lecture, &format!("{preset} ×{speed}"));
         assert!(
             report.checkpoints >= screens,
             "a checkpoint with every screen"

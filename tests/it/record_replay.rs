@@ -644,7 +644,7 @@ fn panes_and_a_map_cell_loaded_are_recorded_and_replayed() {
     // Played back on a fresh explorer: the same panes, the same start.
     let mut r = Headless::of(&first);
     for (_, _, e) in &journal {
-        let effects = r.app.apply_event(e);
+        let effects = r.app.apply_event(e, false);
         r.exec(effects);
     }
     assert_eq!(r.app.scenario.settings, h.app.scenario.settings);
@@ -678,7 +678,7 @@ fn panes_and_a_map_cell_loaded_are_recorded_and_replayed() {
     )
     .unwrap();
     let mut o = Headless::of(&first);
-    let effects = o.app.apply_event(&old);
+    let effects = o.app.apply_event(&old, false);
     o.exec(effects);
     assert!(!o.app.view.overlay);
     for pane in Pane::ALL {
