@@ -79,6 +79,11 @@ pub enum Event {
     },
     /// The trail was cleared.
     ClearTrail,
+    /// The weak-* pane's averaging window was changed (`<`, `>`; format 7).
+    Window {
+        /// The window in simulated seconds, as shown.
+        value: f64,
+    },
     /// A preset was loaded (inline, so the file stands alone).
     Preset {
         /// The preset as TOML.

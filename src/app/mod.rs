@@ -346,6 +346,9 @@ impl App {
             }),
             Action::ToggleEffective | Action::Toggle(_) => Some(self.layout()),
             Action::ClearTrail => Some(Event::ClearTrail),
+            Action::WiderWindow | Action::NarrowerWindow => Some(Event::Window {
+                value: self.weak.window,
+            }),
             Action::SelectPrev | Action::SelectNext => Some(Event::Select {
                 field: self.field().label().to_owned(),
             }),
@@ -368,9 +371,7 @@ impl App {
             | Action::Chapter
             | Action::ToggleRecording
             | Action::Redraw
-            | Action::Suspend
-            | Action::WiderWindow
-            | Action::NarrowerWindow => None,
+            | Action::Suspend => None,
         };
         if let Some(e) = event {
             self.log(e);

@@ -85,6 +85,10 @@ impl App {
                 }
             }
             Event::ClearTrail => self.carry_out(Action::ClearTrail),
+            Event::Window { value } => {
+                self.weak.set_window(*value);
+                Vec::new()
+            }
             Event::Preset { toml } => match Preset::parse(toml, "recorded preset", "recorded", &[])
             {
                 Ok(p) => self.load(&p),

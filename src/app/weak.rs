@@ -109,7 +109,16 @@ impl WeakState {
 
     /// Multiplies the window by `factor` (within [`WINDOW_RANGE`]) and averages again.
     pub fn scale_window(&mut self, factor: f64) {
-        self.window = (self.window * factor).clamp(WINDOW_RANGE.0, WINDOW_RANGE.1);
+        self.set_window(self.window * factor);
+    }
+
+    /// Sets the window (within [`WINDOW_RANGE`]; a value that is not a number keeps it) and
+    /// averages again.
+    pub fn set_window(&mut self, window: f64) {
+        if window.is_nan() {
+            return;
+        }
+        self.window = window.clamp(WINDOW_RANGE.0, WINDOW_RANGE.1);
         self.average_again();
     }
 

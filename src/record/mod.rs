@@ -36,7 +36,7 @@ pub const FORMAT: &str = "rattleback-session";
 /// fixed-step runs add their steps to the time with a compensated sum
 /// ([`crate::physics::method::TimeSum`]), so a file of 5 or older replays with the plain sum it
 /// was recorded with.
-pub const VERSION: u32 = 6;
+pub const VERSION: u32 = 7;
 
 /// First line of a session file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]

@@ -157,6 +157,7 @@ fn newer_than(version: u32, line: &super::Line) -> Option<&'static str> {
             Some("a counted or signed end line (format 4)")
         }
         Event::Plan { .. } if version < 2 => Some("a plan line (format 2)"),
+        Event::Window { .. } if version < 7 => Some("a window line (format 7)"),
         Event::Layout { .. } | Event::Partner { .. } if version < 5 => {
             Some("a layout or partner line (format 5)")
         }

@@ -717,3 +717,55 @@ fn replay_chapters_lists_the_chapters_with_their_times() {
     assert_eq!(code, 0);
     assert!(out.contains("Higher k") && out.contains("reproduced bit for bit"));
 }
+
+/// The weak-* pane's averaging window is part of what was shown (format 7): `>` and `<` are
+/// journaled, and a replay averages over the lecturer's window, not the default one.
+#[test]
+fn the_weak_window_the_lecturer_chose_is_replayed() {
+    use rattleback::explorer::replay::Replayer;
+    let mut h = Headless::new("subcritical");
+    h.app
+        .on_outcome(Outcome::Recording(Ok("window.jsonl".to_owned())));
+    h.key(Key::Char('W'));
+    for k in ['>', '>', '>', '<'] {
+        h.key(Key::Char(k));
+    }
+    let chosen = h.app.weak.window;
+    assert!((chosen - 4.0).abs() < 1e-12, "window {chosen}");
+    let mut wall = 0.0;
+    let lines: Vec<Line> = h
+        .app
+        .take_journal()
+        .into_iter()
+        .map(|(t, generation, event)| {
+            wall += 0.5;
+            Line {
+                wall,
+                t,
+                generation,
+                chain: None,
+                event,
+            }
+        })
+        .collect();
+    let windows: Vec<f64> = lines
+        .iter()
+        .filter_map(|l| match l.event {
+            Event::Window { value } => Some(value),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(windows, vec![2.0, 4.0, 8.0, 4.0]);
+    let preset = rattleback::scenario::shipped::resolve("subcritical", &[]).unwrap();
+    let mut replay = Headless::of(&preset);
+    let mut r = Replayer::new(lines);
+    let e = r.catch_up(&mut replay.app);
+    replay.exec(e);
+    let e = r.advance(10.0, &mut replay.app);
+    replay.exec(e);
+    assert!(
+        (replay.app.weak.window - chosen).abs() < 1e-12,
+        "the replay averages over {} s, the lecturer over {chosen} s",
+        replay.app.weak.window
+    );
+}
