@@ -291,23 +291,13 @@ pub fn format_number(v: f64) -> String {
 mod tests {
     use super::*;
     use crate::physics::kapitza;
-    use crate::physics::rattleback::{Params, Start};
 
     fn settings() -> Settings {
-        let params = Params {
-            ix: 2.0,
-            iy: 1.0,
-            iz: 1.0,
-            k: 1e4,
-        };
-        let start = Start {
-            gamma: 0.0,
-            alpha: 0.0,
-            gamma_dot: 1.0,
-            alpha_dot: 0.5,
-        };
         Settings {
-            model: Model::Rattleback(Problem::new(params, start).unwrap()),
+            model: Model::Rattleback(crate::physics::rattleback::paper_body(
+                1e4,
+                [0.0, 0.0, 1.0, 0.5],
+            )),
             t_end: 30.0,
             method: Method::Auto,
             tolerance: 1e-8,

@@ -316,26 +316,12 @@ pub fn decimate(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::rattleback::{Params, Problem, Start};
+
     use std::f64::consts::PI;
 
     fn eff() -> LimitView {
         LimitView::Rattleback(crate::physics::rattleback::effective::Effective::new(
-            &Problem::new(
-                Params {
-                    ix: 2.0,
-                    iy: 1.0,
-                    iz: 1.0,
-                    k: 1e4,
-                },
-                Start {
-                    gamma: 0.0,
-                    alpha: 0.0,
-                    gamma_dot: 1.0,
-                    alpha_dot: 0.5,
-                },
-            )
-            .unwrap(),
+            &crate::physics::rattleback::paper_body(1e4, [0.0, 0.0, 1.0, 0.5]),
         ))
     }
 

@@ -89,12 +89,10 @@ impl Method {
         }
     }
 
-    /// Parses a name from [`Method::name`].
+    /// Parses a name from [`Method::name`] (any case).
     #[must_use]
     pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL
-            .into_iter()
-            .find(|m| m.name().eq_ignore_ascii_case(name.trim()))
+        named(&Self::ALL, Self::name, name)
     }
 
     /// Comma-separated list of valid names, for error messages.
@@ -310,6 +308,13 @@ impl TimeSum {
     }
 }
 
+/// The member of `all` whose `name_of` is `name` (any case; surrounding spaces ignored).
+pub(crate) fn named<T: Copy>(all: &[T], name_of: fn(T) -> &'static str, name: &str) -> Option<T> {
+    all.iter()
+        .copied()
+        .find(|m| name_of(*m).eq_ignore_ascii_case(name.trim()))
+}
+
 /// A run as it is asked for and priced: the method, its tolerance (or, for a fixed-step method,
 /// its default step's target), its fixed step (`None`: derived from the tolerance), and the
 /// horizon. Every cost model prices one.
@@ -334,6 +339,15 @@ impl Asked {
             tolerance,
             step,
             t_end,
+        }
+    }
+
+    /// Its tolerance and step, as an integrator takes them.
+    #[must_use]
+    pub const fn settings(&self) -> Settings {
+        Settings {
+            tolerance: self.tolerance,
+            step: self.step,
         }
     }
 }

@@ -120,9 +120,7 @@ impl ModelKind {
     /// Parses a name from [`ModelKind::name`] (any case).
     #[must_use]
     pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL
-            .into_iter()
-            .find(|m| m.name().eq_ignore_ascii_case(name.trim()))
+        super::method::named(&Self::ALL, Self::name, name)
     }
 
     /// Comma-separated names, for error messages.

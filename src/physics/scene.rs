@@ -10,7 +10,7 @@
 //! compile. `Model` and `ModelKind` (in `models.rs`) are the one dispatch to them.
 
 use super::flow::Flow;
-use super::method::{Method, Settings, StepError};
+use super::method::{Method, StepError};
 use super::params::ParamSpec;
 use super::plan::{PlanRequest, Resolution};
 use crate::physics::flow::GoOn;
@@ -215,13 +215,7 @@ pub trait Posed {
     ///
     /// # Errors
     /// `auto`, or a problem the method cannot represent.
-    fn build(
-        &self,
-        method: Method,
-        settings: Settings,
-        t_end: f64,
-        time_sum: TimeSum,
-    ) -> Result<Box<dyn Flow>, StepError>;
+    fn build(&self, ask: &Asked, time_sum: TimeSum) -> Result<Box<dyn Flow>, StepError>;
     /// Resolves `method` (the model's own `auto`).
     ///
     /// # Errors

@@ -174,14 +174,10 @@ impl Track {
         t_end: f64,
         time_sum: TimeSum,
     ) -> Result<Self, StepError> {
-        let integrator = model.build(method, settings, t_end, time_sum)?;
+        let ask = Asked::new(method, settings.tolerance, settings.step, t_end);
+        let integrator = model.build(&ask, time_sum)?;
         let e0 = integrator.energy();
-        let cap = crate::physics::method::StepCap::of(model.predicted_seconds(&Asked::new(
-            method,
-            settings.tolerance,
-            settings.step,
-            t_end,
-        )));
+        let cap = crate::physics::method::StepCap::of(model.predicted_seconds(&ask));
         Ok(Self {
             cap,
             tracker: EventTracker::new(integrator.event_value()),

@@ -13,7 +13,7 @@ use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Asked;
 use crate::physics::method::TimeSum;
-use crate::physics::method::{Method, Settings, StepError};
+use crate::physics::method::{Method, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, PlanRequest};
 use crate::physics::scene::{
@@ -340,15 +340,13 @@ impl Posed for Problem {
             offset: p.offset,
         })
     }
-    fn build(
-        &self,
-        method: Method,
-        settings: Settings,
-        _t_end: f64,
-        // Adaptive methods only: they add few steps, plainly.
-        _time_sum: TimeSum,
-    ) -> Result<Box<dyn Flow>, StepError> {
-        Ok(Box::new(super::flows::build(self, method, settings)?))
+    // Adaptive methods only: they add few steps, plainly (no time sum).
+    fn build(&self, ask: &Asked, _: TimeSum) -> Result<Box<dyn Flow>, StepError> {
+        Ok(Box::new(super::flows::build(
+            self,
+            ask.method,
+            ask.settings(),
+        )?))
     }
     fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
         super::plan::resolve(self, ask, go_on)

@@ -9,7 +9,7 @@ use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Asked;
 use crate::physics::method::TimeSum;
-use crate::physics::method::{Method, Settings, StepError};
+use crate::physics::method::{Method, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, PlanRequest, Resolution, Resolved};
 use crate::physics::scene::{
@@ -186,16 +186,10 @@ impl Posed for Problem {
     fn side_view(&self) -> Option<SideView> {
         None
     }
-    fn build(
-        &self,
-        method: Method,
-        settings: Settings,
-        t_end: f64,
-        // Its fixed-step methods take the time from the step count, (n + 1) h (flows.rs): no
-        // sum to compensate.
-        _time_sum: TimeSum,
-    ) -> Result<Box<dyn Flow>, StepError> {
-        super::flows::build(method, self, settings, t_end)
+    // Its fixed-step methods take the time from the step count, (n + 1) h (flows.rs): no sum to
+    // compensate.
+    fn build(&self, ask: &Asked, _: TimeSum) -> Result<Box<dyn Flow>, StepError> {
+        super::flows::build(ask.method, self, ask.settings(), ask.t_end)
     }
     fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
         // The pendulum's `auto`: the limit from its predicted model error, or a resolved run

@@ -339,24 +339,9 @@ struct Fast {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::rattleback::params::Start;
 
     fn problem(k: f64, gamma: f64, alpha: f64, gamma_dot: f64, alpha_dot: f64) -> Problem {
-        Problem::new(
-            Params {
-                ix: 2.0,
-                iy: 1.0,
-                iz: 1.0,
-                k,
-            },
-            Start {
-                gamma,
-                alpha,
-                gamma_dot,
-                alpha_dot,
-            },
-        )
-        .unwrap()
+        crate::physics::rattleback::params::paper_body(k, [gamma, alpha, gamma_dot, alpha_dot])
     }
 
     /// Note §4.2: the reconstruction composed with the initial map is the identity to O(ε⁴)

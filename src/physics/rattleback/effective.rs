@@ -374,24 +374,9 @@ pub fn tapping_acceleration(problem: &Problem) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::rattleback::params::Start;
 
     fn problem(alpha_dot: f64) -> Problem {
-        Problem::new(
-            Params {
-                ix: 2.0,
-                iy: 1.0,
-                iz: 1.0,
-                k: 1e4,
-            },
-            Start {
-                gamma: 0.0,
-                alpha: 0.0,
-                gamma_dot: 1.0,
-                alpha_dot,
-            },
-        )
-        .unwrap()
+        crate::physics::rattleback::paper_body(1e4, [0.0, 0.0, 1.0, alpha_dot])
     }
 
     #[test]

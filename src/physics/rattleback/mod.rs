@@ -17,5 +17,7 @@ pub mod scene;
 pub mod weak;
 
 pub use model::State;
+#[cfg(test)]
+pub(crate) use params::paper_body;
 pub use params::{Params, Problem, Start};
 pub use run::{RunResult, RunSpec, run};

@@ -122,6 +122,25 @@ impl Problem {
     }
 }
 
+/// The paper's body (`ix = 2`, `iy = iz = 1`) on a spring `k`, from `(γ, α, γ̇, α̇)`: the
+/// start the unit tests share.
+#[cfg(test)]
+pub(crate) fn paper_body(k: f64, [gamma, alpha, gamma_dot, alpha_dot]: [f64; 4]) -> Problem {
+    let params = Params {
+        ix: 2.0,
+        iy: 1.0,
+        iz: 1.0,
+        k,
+    };
+    let start = Start {
+        gamma,
+        alpha,
+        gamma_dot,
+        alpha_dot,
+    };
+    Problem::new(params, start).expect("the paper's body")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

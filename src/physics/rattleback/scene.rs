@@ -11,7 +11,7 @@ use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Asked;
 use crate::physics::method::TimeSum;
-use crate::physics::method::{Method, Settings, StepError};
+use crate::physics::method::{Method, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::PlanRequest;
 use crate::physics::scene::{
@@ -238,14 +238,8 @@ impl Posed for Problem {
         // The paper's body has no shape beyond its inertia; its tilt is the cross bar above.
         None
     }
-    fn build(
-        &self,
-        method: Method,
-        settings: Settings,
-        t_end: f64,
-        time_sum: TimeSum,
-    ) -> Result<Box<dyn Flow>, StepError> {
-        integrators::build(method, self, settings, t_end, time_sum)
+    fn build(&self, ask: &Asked, time_sum: TimeSum) -> Result<Box<dyn Flow>, StepError> {
+        integrators::build(ask.method, self, ask.settings(), ask.t_end, time_sum)
     }
     fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
         let PlanRequest {
