@@ -8,8 +8,8 @@ use serde::Serialize;
 use super::flows::{CeltFlow, build};
 use super::{DIM, Problem, State, gamma, spin};
 use crate::physics::drive::{Course, Watch, drive};
-use crate::physics::flow::Flow;
-use crate::physics::method::{Method, Settings, StepError};
+use crate::physics::flow::{Flow, GoOn};
+use crate::physics::method::{Method, StepError};
 use crate::physics::numerics::dop853::Stats;
 
 /// Most event times kept of each kind; later ones are counted only.
@@ -95,22 +95,12 @@ fn contact_height(problem: &Problem, y: &State) -> f64 {
 /// # Errors
 /// A failed step, `auto` ([`StepError::Unplanned`]), another model's method, the step cap, and
 /// [`StepError::Cancelled`] when `go_on` says stop.
-pub fn run(
-    problem: &Problem,
-    spec: &RunSpec,
-    go_on: &mut dyn FnMut(f64) -> bool,
-) -> Result<RunResult, StepError> {
-    let settings = Settings {
-        tolerance: spec.tolerance,
-        step: None,
-    };
-    let mut flow: CeltFlow = build(problem, spec.method, settings)?;
+pub fn run(problem: &Problem, spec: &RunSpec, go_on: GoOn) -> Result<RunResult, StepError> {
+    let ask = Asked::new(spec.method, spec.tolerance, None, spec.t_end);
+    let mut flow: CeltFlow = build(problem, ask.method, ask.settings())?;
     let y0 = flow.state();
     let e0 = problem.params().energy(&y0);
-    let cost = super::budget::cost_seconds(
-        problem,
-        &Asked::new(spec.method, spec.tolerance, None, spec.t_end),
-    );
+    let cost = super::budget::cost_seconds(problem, &ask);
     let course = Course::of(&flow, spec.t_end, spec.samples, cost);
     let mut out = RunResult {
         method: spec.method,

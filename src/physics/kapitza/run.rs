@@ -13,8 +13,8 @@ use serde::Serialize;
 use super::Problem;
 use super::flows::build;
 use crate::physics::drive::{Counted, Course, Drift, Watch, drive};
-use crate::physics::flow::Flow;
-use crate::physics::method::{Method, Settings, StepError};
+use crate::physics::flow::{Flow, GoOn};
+use crate::physics::method::{Method, StepError};
 use crate::physics::numerics::dop853::Stats;
 use crate::physics::numerics::roots::find_root;
 
@@ -90,20 +90,10 @@ pub struct RunResult {
 /// # Errors
 /// When the integrator cannot continue, for `auto` ([`StepError::Unplanned`]), for a method
 /// the model does not offer, and [`StepError::Cancelled`] when `go_on` says stop.
-pub fn run(
-    problem: &Problem,
-    spec: &RunSpec,
-    go_on: &mut dyn FnMut(f64) -> bool,
-) -> Result<RunResult, StepError> {
-    let settings = Settings {
-        tolerance: spec.tolerance,
-        step: spec.step,
-    };
-    let mut flow = build(spec.method, problem, settings, spec.t_end)?;
-    let cost = super::budget::cost_seconds(
-        problem,
-        &Asked::new(spec.method, spec.tolerance, spec.step, spec.t_end),
-    );
+pub fn run(problem: &Problem, spec: &RunSpec, go_on: GoOn) -> Result<RunResult, StepError> {
+    let ask = Asked::new(spec.method, spec.tolerance, spec.step, spec.t_end);
+    let mut flow = build(ask.method, problem, ask.settings(), ask.t_end)?;
+    let cost = super::budget::cost_seconds(problem, &ask);
     let course = Course::of(flow.as_ref(), spec.t_end, spec.samples, cost);
     let mut watch = Watched {
         drift: Drift::new(flow.energy(), false),
