@@ -6,9 +6,9 @@ use crate::common;
 
 use proptest::prelude::*;
 use rattleback::physics::Method;
-use rattleback::physics::method::TimeSum;
+use rattleback::physics::method::{Asked, TimeSum};
+use rattleback::physics::rattleback::integrators::build;
 use rattleback::physics::rattleback::integrators::splitting::{Canonical, composed_step};
-use rattleback::physics::rattleback::integrators::{Settings, build};
 use rattleback::physics::rattleback::model::{energy, initial_state};
 use rattleback::physics::rattleback::{Problem, RunSpec, run};
 
@@ -19,12 +19,8 @@ fn energy_error_early_and_late(
     step: f64,
     t_end: f64,
 ) -> (f64, f64) {
-    let settings = Settings {
-        tolerance: 1e-9,
-        step: Some(step),
-    };
-    let mut integ =
-        build(method, problem, settings, t_end, TimeSum::default()).expect("a concrete method");
+    let ask = Asked::new(method, 1e-9, Some(step), t_end);
+    let mut integ = build(problem, &ask, TimeSum::default()).expect("a concrete method");
     let e0 = energy(problem.params(), &initial_state(problem.start()));
     let (mut early, mut late) = (0.0f64, 0.0f64);
     while integ.time() < t_end {

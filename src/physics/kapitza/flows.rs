@@ -23,7 +23,7 @@ use nalgebra::Vector2;
 use super::limit::{self, Limit};
 use super::{Params, Problem};
 use crate::physics::flow::{Flow, Sample};
-use crate::physics::method::{DEFAULT_STEP_BUDGET, Method, Settings, StepError};
+use crate::physics::method::{Asked, DEFAULT_STEP_BUDGET, Method, StepError};
 use crate::physics::numerics::compositions::{Composition, Split};
 use crate::physics::numerics::dop853::Stats;
 use crate::physics::numerics::dop853::{Dop853, Field};
@@ -77,12 +77,8 @@ pub fn default_step(method: Method, problem: &Problem, tolerance: f64, t_end: f6
 /// # Errors
 /// [`StepError::Unplanned`] for `auto` (resolved by [`super::plan`]), and
 /// [`StepError::NotOffered`] for a method of another model.
-pub fn build(
-    method: Method,
-    problem: &Problem,
-    settings: Settings,
-    t_end: f64,
-) -> Result<Box<dyn Flow>, StepError> {
+pub fn build(problem: &Problem, ask: &Asked) -> Result<Box<dyn Flow>, StepError> {
+    let (method, settings, t_end) = (ask.method, ask.settings(), ask.t_end);
     let step = settings
         .step
         .unwrap_or_else(|| default_step(method, problem, settings.tolerance, t_end));

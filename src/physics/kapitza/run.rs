@@ -92,7 +92,7 @@ pub struct RunResult {
 /// the model does not offer, and [`StepError::Cancelled`] when `go_on` says stop.
 pub fn run(problem: &Problem, spec: &RunSpec, go_on: GoOn) -> Result<RunResult, StepError> {
     let ask = Asked::new(spec.method, spec.tolerance, spec.step, spec.t_end);
-    let mut flow = build(ask.method, problem, ask.settings(), ask.t_end)?;
+    let mut flow = build(problem, &ask)?;
     let cost = super::budget::cost_seconds(problem, &ask);
     let course = Course::of(flow.as_ref(), spec.t_end, spec.samples, cost);
     let mut watch = Watched {

@@ -189,7 +189,7 @@ impl Posed for Problem {
     // Its fixed-step methods take the time from the step count, (n + 1) h (flows.rs): no sum to
     // compensate.
     fn build(&self, ask: &Asked, _: TimeSum) -> Result<Box<dyn Flow>, StepError> {
-        super::flows::build(ask.method, self, ask.settings(), ask.t_end)
+        super::flows::build(self, ask)
     }
     fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
         // The pendulum's `auto`: the limit from its predicted model error, or a resolved run

@@ -4,7 +4,7 @@
 use crate::physics::method::Asked;
 use serde::Serialize;
 
-use super::integrators::{self, Method, Settings, Stats, StepError};
+use super::integrators::{self, Method, Stats, StepError};
 use super::model::State;
 use super::params::Problem;
 use crate::physics::drive::{Course, Drift, Watch, drive};
@@ -123,21 +123,9 @@ pub fn run_streaming(
     go_on: &mut dyn FnMut(f64) -> bool,
     on_sample: &mut dyn FnMut(Sample) -> bool,
 ) -> Result<RunResult, StepError> {
-    let settings = Settings {
-        tolerance: spec.tolerance,
-        step: spec.step,
-    };
-    let mut flow = integrators::build(
-        spec.method,
-        problem,
-        settings,
-        spec.t_end,
-        crate::physics::method::TimeSum::default(),
-    )?;
-    let cost = super::budget::cost_seconds(
-        problem,
-        &Asked::new(spec.method, spec.tolerance, spec.step, spec.t_end),
-    );
+    let ask = Asked::new(spec.method, spec.tolerance, spec.step, spec.t_end);
+    let mut flow = integrators::build(problem, &ask, crate::physics::method::TimeSum::default())?;
+    let cost = super::budget::cost_seconds(problem, &ask);
     let course = Course {
         event0: problem.start().alpha_dot,
         keep: MAX_REVERSAL_TIMES,

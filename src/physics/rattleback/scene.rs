@@ -239,7 +239,7 @@ impl Posed for Problem {
         None
     }
     fn build(&self, ask: &Asked, time_sum: TimeSum) -> Result<Box<dyn Flow>, StepError> {
-        integrators::build(ask.method, self, ask.settings(), ask.t_end, time_sum)
+        integrators::build(self, ask, time_sum)
     }
     fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
         let PlanRequest {

@@ -18,7 +18,7 @@ pub use crate::physics::numerics::roots;
 use super::model::State;
 use super::params::Problem;
 use crate::physics::flow::Flow;
-use crate::physics::method::TimeSum;
+use crate::physics::method::{Asked, TimeSum};
 
 /// The [`Flow`] methods every rattleback integrator draws from its own `state()` (now) and
 /// `interpolate(t)` (inside the last step), both `(γ, α, γ̇, α̇)`: `q = α`, the fast
@@ -95,12 +95,11 @@ pub fn default_step(method: Method, problem: &Problem, tolerance: f64, t_end: f6
 /// [`StepError::Unplanned`] for `auto`, which is resolved above the integrators
 /// (`physics::plan`), so this layer never calls back up into the planner.
 pub fn build(
-    method: Method,
     problem: &Problem,
-    settings: Settings,
-    t_end: f64,
+    ask: &Asked,
     time_sum: TimeSum,
 ) -> Result<Box<dyn Flow>, StepError> {
+    let (method, settings, t_end) = (ask.method, ask.settings(), ask.t_end);
     let step = settings
         .step
         .unwrap_or_else(|| default_step(method, problem, settings.tolerance, t_end));
