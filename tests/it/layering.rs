@@ -111,20 +111,29 @@ fn each_layer_imports_only_below_it() {
     );
 }
 
-#[test]
-fn only_the_binary_shell_sees_the_command_line() {
+/// Every file under `src/`, by its path below `src/`, with its text.
+fn sources() -> Vec<(String, String)> {
     let mut files = Vec::new();
     rust_files(&src(), &mut files);
-    for file in files {
-        let name = file
-            .strip_prefix(src())
-            .unwrap()
-            .to_string_lossy()
-            .into_owned();
+    files
+        .into_iter()
+        .map(|file| {
+            let name = file
+                .strip_prefix(src())
+                .unwrap()
+                .to_string_lossy()
+                .into_owned();
+            (name, std::fs::read_to_string(&file).unwrap())
+        })
+        .collect()
+}
+
+#[test]
+fn only_the_binary_shell_sees_the_command_line() {
+    for (name, text) in sources() {
         if ["main.rs", "commands.rs", "cli.rs"].contains(&name.as_str()) {
             continue;
         }
-        let text = std::fs::read_to_string(&file).unwrap();
         assert!(!text.contains("crate::cli"), "{name} imports cli");
     }
 }
@@ -133,16 +142,8 @@ fn only_the_binary_shell_sees_the_command_line() {
 /// exit status (`failure::exit`), and nothing ends the process on its own.
 #[test]
 fn the_exit_is_decided_once_in_main() {
-    let mut files = Vec::new();
-    rust_files(&src(), &mut files);
     let mut found = Vec::new();
-    for file in files {
-        let name = file
-            .strip_prefix(src())
-            .unwrap()
-            .to_string_lossy()
-            .into_owned();
-        let text = std::fs::read_to_string(&file).unwrap();
+    for (name, text) in sources() {
         for (n, line) in text.lines().enumerate() {
             let code = line.split("//").next().unwrap_or("");
             let exits = code.contains("process::exit(")
