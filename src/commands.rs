@@ -295,9 +295,10 @@ pub fn man() -> Outcome {
     write_stdout(&out)
 }
 
-/// Whether work goes on: no signal has come.
+/// Whether work goes on: no signal has come, and standard output still takes what is printed
+/// (a reader gone away, `| head`, ends the work; `main` then exits as [`stdout_failure`] says).
 fn go_on() -> bool {
-    crate::interrupt::requested().is_none()
+    crate::interrupt::requested().is_none() && STDOUT_FAILED.get().is_none()
 }
 
 /// Runs `work` with a progress bar of `total` `unit`s on stderr (a terminal only), counting
