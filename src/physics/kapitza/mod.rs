@@ -95,8 +95,7 @@ impl Problem {
     /// The first value outside what the model allows.
     pub fn new(params: Params, start: Start) -> Result<Self, ParamError> {
         let problem = Self { params, start };
-        let values = crate::physics::scene::Posed::values(&problem);
-        ParamSpec::check_all(&scene::PARAMS, &values)?;
+        ParamSpec::checked_values(&problem)?;
         let p = &params;
         check_derived(
             &[

@@ -78,8 +78,7 @@ impl Problem {
     /// The first field out of its allowed range.
     pub fn new(params: Params, start: Start) -> Result<Self, ParamError> {
         let problem = Self { params, start };
-        let values = crate::physics::scene::Posed::values(&problem);
-        ParamSpec::check_all(&super::scene::PARAMS, &values)?;
+        let values = ParamSpec::checked_values(&problem)?;
         let p = &params;
         let y0 = super::model::initial_state(&start);
         let inputs: Vec<(&'static str, f64)> = super::scene::PARAMS
