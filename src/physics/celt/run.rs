@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use super::flows::{CeltFlow, build};
 use super::{DIM, Problem, State, gamma, spin};
-use crate::physics::drive::{Course, Watch, drive};
+use crate::physics::drive::{Course, Drift, Watch, drive};
 use crate::physics::flow::{Flow, GoOn};
 use crate::physics::method::{Method, StepError};
 use crate::physics::numerics::dop853::Stats;
@@ -102,50 +102,49 @@ pub fn run(problem: &Problem, spec: &RunSpec, go_on: GoOn) -> Result<RunResult, 
     let e0 = problem.params().energy(&y0);
     let cost = super::budget::cost_seconds(problem, &ask);
     let course = Course::of(&flow, spec.t_end, spec.samples, cost);
-    let mut out = RunResult {
-        method: spec.method,
-        t: 0.0,
-        state: y0,
-        crossings: Vec::new(),
-        crossing_count: 0,
-        reversals: Vec::new(),
-        reversal_count: 0,
-        energy_initial: e0,
-        energy_final: e0,
-        max_energy_drift: 0.0,
+    let mut watch = Watched {
+        problem,
+        drift: Drift::new(e0, false),
         gamma_norm_error: 0.0,
         quat_norm_error: 0.0,
         contact_height_max: 0.0,
-        stats: Stats::default(),
         samples: Vec::with_capacity(spec.samples.min(1 << 20)),
     };
-    let mut watch = Watched {
-        problem,
-        out: &mut out,
-    };
     let driven = drive(&mut flow, &course, go_on, &mut watch)?;
-    out.crossings = driven.marks.times;
-    out.crossing_count = driven.marks.count;
-    out.reversals = driven.events.times;
-    out.reversal_count = driven.events.count;
-    out.t = flow.time();
-    out.state = flow.state();
-    out.energy_final = problem.params().energy(&out.state);
-    out.stats = flow.stats();
-    out.method = flow.method();
-    Ok(out)
+    let state = flow.state();
+    Ok(RunResult {
+        method: flow.method(),
+        t: flow.time(),
+        state,
+        crossings: driven.marks.times,
+        crossing_count: driven.marks.count,
+        reversals: driven.events.times,
+        reversal_count: driven.events.count,
+        energy_initial: e0,
+        energy_final: problem.params().energy(&state),
+        max_energy_drift: watch.drift.max,
+        gamma_norm_error: watch.gamma_norm_error,
+        quat_norm_error: watch.quat_norm_error,
+        contact_height_max: watch.contact_height_max,
+        stats: flow.stats(),
+        samples: watch.samples,
+    })
 }
 
 /// What the celt's run watches: the samples, the energy and the constraints' drift.
 struct Watched<'a> {
     problem: &'a Problem,
-    out: &'a mut RunResult,
+    drift: Drift,
+    gamma_norm_error: f64,
+    quat_norm_error: f64,
+    contact_height_max: f64,
+    samples: Vec<Sample>,
 }
 
 impl Watch<CeltFlow> for Watched<'_> {
     fn sample(&mut self, flow: &mut CeltFlow, t: f64) -> bool {
         let y = flow.at(t);
-        self.out.samples.push(Sample {
+        self.samples.push(Sample {
             t,
             turn: y[DIM - 1],
             spin: spin(&y),
@@ -154,16 +153,13 @@ impl Watch<CeltFlow> for Watched<'_> {
         true
     }
     fn stepped(&mut self, flow: &mut CeltFlow) {
-        let (out, problem) = (&mut *self.out, self.problem);
         let y = flow.state();
-        out.max_energy_drift = out
-            .max_energy_drift
-            .max((problem.params().energy(&y) - out.energy_initial).abs());
-        out.gamma_norm_error = out.gamma_norm_error.max((gamma(&y).norm() - 1.0).abs());
+        self.drift.see(self.problem.params().energy(&y));
+        self.gamma_norm_error = self.gamma_norm_error.max((gamma(&y).norm() - 1.0).abs());
         let qn = (y[6] * y[6] + y[7] * y[7] + y[8] * y[8] + y[9] * y[9]).sqrt();
-        out.quat_norm_error = out.quat_norm_error.max((qn - 1.0).abs());
-        out.contact_height_max = out
+        self.quat_norm_error = self.quat_norm_error.max((qn - 1.0).abs());
+        self.contact_height_max = self
             .contact_height_max
-            .max(contact_height(problem, &y).abs());
+            .max(contact_height(self.problem, &y).abs());
     }
 }
