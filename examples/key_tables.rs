@@ -4,7 +4,7 @@
 fn main() {
     print!(
         "{}",
-        rattleback::app::keys::markdown(rattleback::app::keys::KEYMAP)
+        rattleback::app::keys::markdown(&rattleback::app::keys::KEYMAP)
     );
     println!();
     print!("{}", rattleback::app::keys::map_markdown());

@@ -228,7 +228,7 @@ pub struct Shown {
     pub crossings: Option<usize>,
     /// What the compare pane showed of its partner, when it was open.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub compare: Option<super::compare::Compared>,
+    pub compare: Option<super::computed::compare::Compared>,
     /// The displayed point: the slow coordinate, its rate and the energy error (none before the
     /// first sample).
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -131,8 +131,17 @@ pub struct Binding<A: 'static> {
     pub footer: Option<(&'static str, &'static str, u8)>,
 }
 
-/// The keymap, in the order help lists it.
-pub const KEYMAP: &[Binding<Action>] = &[
+/// The keymap, in the order help lists it: the panes' toggles (each pane's row is in
+/// [`Pane::binding`]) between the rows before and after them.
+pub static KEYMAP: std::sync::LazyLock<Vec<Binding<Action>>> = std::sync::LazyLock::new(|| {
+    let mut rows = BEFORE_PANES.to_vec();
+    rows.extend(Pane::KEYED.into_iter().filter_map(Pane::binding));
+    rows.extend_from_slice(AFTER_PANES);
+    rows
+});
+
+/// The keymap's rows before the panes' toggles.
+const BEFORE_PANES: &[Binding<Action>] = &[
     Binding {
         keys: &[Key::Up, Key::Char('k')],
         label: "↑↓ / k j",
@@ -224,48 +233,10 @@ pub const KEYMAP: &[Binding<Action>] = &[
         help: "effective overlay / time-series pane",
         footer: Some(("e", "limit", 7)),
     },
-    Binding {
-        keys: &[Key::Char('t')],
-        label: "",
-        action: Action::Toggle(Pane::Series),
-        help: "",
-        footer: Some(("t", "series", 7)),
-    },
-    Binding {
-        keys: &[Key::Char('K')],
-        label: "K W M B / < >",
-        action: Action::Toggle(Pane::Sweep),
-        help: "k-sweep / weak-* / map / body panes; < > window",
-        footer: Some(("K", "sweep", 10)),
-    },
-    Binding {
-        keys: &[Key::Char('W')],
-        label: "",
-        action: Action::Toggle(Pane::Weak),
-        help: "",
-        footer: Some(("W", "weak-*", 10)),
-    },
-    Binding {
-        keys: &[Key::Char('B')],
-        label: "",
-        action: Action::Toggle(Pane::Body),
-        help: "",
-        footer: Some(("B", "body", 10)),
-    },
-    Binding {
-        keys: &[Key::Char('C')],
-        label: "C",
-        action: Action::Toggle(Pane::Compare),
-        help: "compare with a partner on one time axis",
-        footer: Some(("C", "compare", 9)),
-    },
-    Binding {
-        keys: &[Key::Char('M')],
-        label: "",
-        action: Action::Toggle(Pane::Map),
-        help: "",
-        footer: Some(("M", "map", 10)),
-    },
+];
+
+/// The keymap's rows after the panes' toggles.
+const AFTER_PANES: &[Binding<Action>] = &[
     Binding {
         keys: &[Key::Char('<')],
         label: "",
@@ -609,7 +580,7 @@ mod tests {
 
     #[test]
     fn every_key_maps_to_one_action() {
-        unique(KEYMAP);
+        unique(&KEYMAP);
         unique(REPLAY_KEYMAP);
         assert_eq!(action_for(Key::Char('q')), Some(Action::Quit));
         assert_eq!(action_for(Key::Ctrl('c')), Some(Action::Quit));
@@ -626,7 +597,7 @@ mod tests {
 
     #[test]
     fn footers_come_from_the_tables_and_keep_help_and_quit() {
-        for hints in [footer(KEYMAP), footer(REPLAY_KEYMAP)] {
+        for hints in [footer(&KEYMAP), footer(REPLAY_KEYMAP)] {
             let never: Vec<&str> = hints.iter().filter(|h| h.2 == 0).map(|h| h.1).collect();
             assert_eq!(never, ["help", "quit"]);
         }

@@ -7,14 +7,12 @@
 //! and what is displayed), the view (zoom, panes, theme), one [`Mode`] for whatever has the
 //! keyboard, the status line, the caption (notes and chapters), and the journal of a recording.
 
-pub mod compare;
-mod computed;
+pub mod computed;
 pub mod effects;
 pub mod fields;
 pub mod journal;
 pub mod keys;
 pub mod lesson;
-pub mod map;
 pub mod mode;
 mod outcomes;
 pub mod panes;
@@ -24,9 +22,7 @@ mod replayed;
 pub mod run;
 mod scenario;
 mod state;
-pub mod sweep;
 pub mod user_keys;
-pub mod weak;
 
 pub use effects::{Effect, Outcome};
 pub use keys::{Action, Key};
@@ -57,14 +53,8 @@ pub struct App {
     pub run: RunState,
     /// Zoom, panes, overlay, theme.
     pub view: ViewState,
-    /// The sweep pane's data.
-    pub sweep: sweep::SweepState,
-    /// The weak-* pane's data.
-    pub weak: weak::WeakState,
-    /// The regime map's data and cursor.
-    pub map: map::MapState,
-    /// The comparison's partner and its run.
-    pub compare: compare::CompareState,
+    /// What the panes the worker computes for show (sweep, weak-*, map, compare).
+    pub computed: computed::Computed,
     /// The lesson, when one is open.
     pub lesson: Option<lesson::LessonState>,
     /// What has the keyboard.
@@ -98,10 +88,7 @@ impl App {
                 overlay: true,
                 theme: 0,
             },
-            sweep: sweep::SweepState::default(),
-            weak: weak::WeakState::default(),
-            map: map::MapState::default(),
-            compare: compare::CompareState::default(),
+            computed: computed::Computed::default(),
             lesson: None,
             mode: Mode::Normal,
             status: None,
@@ -213,18 +200,7 @@ impl App {
             .into_iter()
             .map(Effect::Sim)
             .collect();
-        if self.view.panes.shows(Pane::Sweep) {
-            effects.push(Effect::Sim(self.start_sweep()));
-        }
-        if self.view.panes.shows(Pane::Weak) {
-            effects.push(Effect::Sim(self.start_weak()));
-        }
-        if self.view.panes.shows(Pane::Map) {
-            effects.extend(self.map.start(&self.scenario.settings).map(Effect::Sim));
-        }
-        if self.view.panes.shows(Pane::Compare) {
-            effects.extend(self.start_compare().map(Effect::Sim));
-        }
+        effects.extend(self.start_shown_jobs());
         effects
     }
 
@@ -347,7 +323,7 @@ impl App {
             Action::ToggleEffective | Action::Toggle(_) => Some(self.layout()),
             Action::ClearTrail => Some(Event::ClearTrail),
             Action::WiderWindow | Action::NarrowerWindow => Some(Event::Window {
-                value: self.weak.window,
+                value: self.computed.weak.window,
             }),
             Action::SelectPrev | Action::SelectNext => Some(Event::Select {
                 field: self.field().label().to_owned(),
@@ -426,8 +402,8 @@ impl App {
             Action::Slower => self.run.speed = (self.run.speed / 2.0).max(SPEED_RANGE.0),
             Action::ToggleEffective => return self.toggle_overlay(),
             Action::Toggle(pane) => return self.toggle_pane(pane),
-            Action::WiderWindow => self.weak.scale_window(2.0),
-            Action::NarrowerWindow => self.weak.scale_window(0.5),
+            Action::WiderWindow => self.computed.weak.scale_window(2.0),
+            Action::NarrowerWindow => self.computed.weak.scale_window(0.5),
             Action::ZoomIn => v.zoom = (v.zoom * 1.5).min(1e6),
             Action::ZoomOut => v.zoom = (v.zoom / 1.5).max(0.1),
             Action::PanLeft => v.pan_x -= 0.1,
@@ -532,37 +508,7 @@ impl App {
                 self.status = Message::error(message.clone());
                 self.run.on_sim(event, self.view.overlay)
             }
-            SimEvent::SweepPoint {
-                generation,
-                parameter,
-                sup_error,
-                method,
-            } => self.sweep.on_point(
-                generation,
-                sweep::SweepPoint {
-                    parameter,
-                    sup_error,
-                    method,
-                },
-            ),
-            SimEvent::SweepDone { generation, failed } => self.sweep.on_done(generation, failed),
-            SimEvent::MapCells {
-                id,
-                first,
-                ref reversals,
-            } => self.map.on_cells(id, first, reversals),
-            SimEvent::MapDone { id, failed } => self.map.on_done(id, failed),
-            SimEvent::Partner { id, outcome } => self.on_partner(id, outcome),
-            SimEvent::Weak {
-                generation,
-                t,
-                pointwise,
-                theta,
-                reference,
-                failed,
-            } => self
-                .weak
-                .on_data(generation, t, pointwise, theta, reference, failed),
+            SimEvent::Job { stamp, data } => self.on_job(stamp, data),
             other => self.run.on_sim(other, self.view.overlay),
         }
     }

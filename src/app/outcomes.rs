@@ -37,7 +37,12 @@ impl App {
                 // the preset, which says only whether the time series is shown), and the
                 // comparison's partner with its plan.
                 if self.view.panes.shows(super::panes::Pane::Compare)
-                    && let Some(p) = self.compare.partner.as_ref().map(|p| p.preset.to_toml())
+                    && let Some(p) = self
+                        .computed
+                        .compare
+                        .partner
+                        .as_ref()
+                        .map(|p| p.preset.to_toml())
                 {
                     self.log(Event::Partner { toml: p });
                 }
@@ -49,8 +54,11 @@ impl App {
                     .any(|p| *p != super::panes::Pane::Series)
                 {
                     self.log_layout();
-                    if let Some((spec, Ok(run))) =
-                        self.compare.asked().zip(self.compare.outcome.as_ref())
+                    if let Some((spec, Ok(run))) = self
+                        .computed
+                        .compare
+                        .asked()
+                        .zip(self.computed.compare.outcome.as_ref())
                     {
                         let plan = Event::Plan {
                             key: crate::sim::PlanKey::of(spec),

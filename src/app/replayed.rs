@@ -86,7 +86,7 @@ impl App {
             }
             Event::ClearTrail => self.carry_out(Action::ClearTrail),
             Event::Window { value } => {
-                self.weak.set_window(*value);
+                self.computed.weak.set_window(*value);
                 Vec::new()
             }
             Event::Preset { toml } => match Preset::parse(toml, "recorded preset", "recorded", &[])
@@ -161,7 +161,7 @@ impl App {
                 .view
                 .panes
                 .shows(Pane::Compare)
-                .then(|| self.compare.shown(run.shown))
+                .then(|| self.computed.compare.shown(run.shown))
                 .flatten(),
             point: run
                 .current()

@@ -3,6 +3,7 @@
 
 use super::fields::Settings;
 use super::portrait::{self, View};
+use super::{App, Effect, Message};
 use crate::physics::Method;
 use crate::physics::scene::SummaryLine;
 use crate::physics::{DEFAULT_TOLERANCE, LimitView};
@@ -112,5 +113,59 @@ impl Scenario {
                 wrap: Some(view.wrap),
             },
         }
+    }
+}
+
+impl App {
+    /// Turns the limit's overlay on or off; a scene without a limit (the celt) says so instead.
+    pub(super) fn toggle_overlay(&mut self) -> Vec<Effect> {
+        let kind = self.scenario.settings.model.kind();
+        if kind.small().is_none() {
+            self.status = Message::error(format!("the {} has no limit to draw", kind.title()));
+            return Vec::new();
+        }
+        self.view.overlay = !self.view.overlay;
+        vec![Effect::Sim(self.run.set_overlay(self.view.overlay))]
+    }
+
+    /// Sets the start's slow coordinate and rate (a click in the portrait: the rattleback's
+    /// `(alpha, alpha_dot)`, keeping `gamma` and `gamma_dot`; the pendulum's `(theta,
+    /// theta_dot)`), and restarts; journaled as two `set` events.
+    pub fn set_start_point(&mut self, alpha: f64, alpha_dot: f64) -> Vec<Effect> {
+        use super::fields::Field;
+        use super::journal::Event;
+        let s = self.scenario.settings;
+        let (kind, words) = (s.model.kind(), s.model.kind().words());
+        let named = |name| {
+            Field::named(kind, name).ok_or_else(|| format!("the {} has no `{name}`", kind.title()))
+        };
+        let set = named(words.q_name).and_then(|q| {
+            let q_dot = named(words.q_dot_name)?;
+            let s = q.with_value(&s, alpha)?;
+            Ok(([q, q_dot], q_dot.with_value(&s, alpha_dot)?))
+        });
+        let (fields, s) = match set {
+            Ok(set) => set,
+            Err(e) => {
+                self.status = Message::error(format!("{e}; start kept"));
+                return Vec::new();
+            }
+        };
+        self.scenario.set(s);
+        for f in fields {
+            let value = f.exact(&self.scenario.settings);
+            self.log(Event::Set {
+                field: f.label().to_owned(),
+                value,
+            });
+        }
+        self.status = Message::info(format!(
+            "start {} {}, {} {}",
+            words.q_name,
+            super::fields::format_number(alpha),
+            words.q_dot_name,
+            super::fields::format_number(alpha_dot)
+        ));
+        self.restart()
     }
 }

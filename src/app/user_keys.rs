@@ -325,7 +325,7 @@ mod tests {
         names.dedup();
         assert_eq!(names.len(), ACTION_NAMES.len());
         // Every bound action of the keymap can be named.
-        for b in KEYMAP {
+        for b in KEYMAP.iter() {
             assert_ne!(action_name(b.action), "?", "{:?}", b.action);
         }
     }

@@ -414,7 +414,7 @@ fn check_signature(
 }
 
 /// Runs `effects` on the engine, the app taking every event (as the explorer's loop does);
-/// the computed panes are dropped (they change nothing recorded). A checkpoint's state is kept.
+/// the computed panes whose numbers a recorded screen does not hold are dropped. A checkpoint's state is kept.
 fn run(
     engine: &mut Engine,
     app: &mut App,
@@ -423,12 +423,7 @@ fn run(
 ) {
     let commands = commands(effects)
         .into_iter()
-        .filter(|c| {
-            !matches!(
-                c,
-                Command::Sweep { .. } | Command::Weak { .. } | Command::Map { .. }
-            )
-        })
+        .filter(|c| !matches!(c, Command::Job { kind, .. } if !kind.shown_in_record()))
         .collect();
     drive(engine, commands, &mut |e| {
         if let SimEvent::Checkpoint {

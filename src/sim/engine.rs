@@ -9,7 +9,7 @@ use std::collections::VecDeque;
 
 use serde::{Deserialize, Serialize};
 
-use super::jobs::{Job, JobKind, MapJob, PartnerJob, Slice, SweepJob, WeakJob, Work};
+use super::jobs::{Job, JobKind, Slice, Work};
 use super::{Command, Session, SessionSpec, SimEvent};
 use crate::physics::Model;
 use crate::physics::plan::{AutoPolicy, Resolved};
@@ -224,22 +224,14 @@ impl Engine {
     pub fn handle(&mut self, command: &Command, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
         match *command {
             Command::Quit => return false,
-            Command::Sweep { generation, spec } => self.set_job(
-                JobKind::Sweep,
-                spec.map(|spec| Box::new(SweepJob::new(generation, spec)) as Box<dyn Job>),
-            ),
-            Command::Weak { generation, spec } => self.set_job(
-                JobKind::Weak,
-                spec.map(|spec| Box::new(WeakJob::new(generation, spec)) as Box<dyn Job>),
-            ),
-            Command::Map { id, spec, from } => self.set_job(
-                JobKind::Map,
-                spec.map(|spec| Box::new(MapJob::new(id, spec, from)) as Box<dyn Job>),
-            ),
-            Command::Compare { id, spec } => self.set_job(
-                JobKind::Partner,
-                spec.map(|spec| Box::new(PartnerJob::new(id, spec)) as Box<dyn Job>),
-            ),
+            Command::Job {
+                kind,
+                stamp,
+                ref spec,
+            } => {
+                debug_assert!(spec.as_ref().is_none_or(|s| s.kind() == kind));
+                self.set_job(kind, spec.clone().map(|spec| spec.job(stamp)));
+            }
             Command::Restart { generation, spec } => {
                 self.jobs.retain(|j| !j.kind().ends_with_run());
                 self.session = None;

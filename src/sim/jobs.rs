@@ -2,12 +2,16 @@
 //! partner, the weak-* view, the sweep of the small parameter and the regime map. The engine
 //! keeps at most one job of each [`JobKind`], works them a slice at a time in the kind's order
 //! (the partner before the run's own work, the others after it), drops a finished one, and
-//! stops the ones that belong to the run when it restarts. A new computed pane is a new job
-//! here and its command; the engine does not change.
+//! stops the ones that belong to the run when it restarts. A pane orders its job with
+//! [`Command::Job`](super::Command::Job) and a [`JobSpec`], and the job answers with
+//! [`SimEvent::Job`] and a [`JobData`]: a new computed pane is a job, a spec and its data here,
+//! and neither the engine nor the worker's commands and events change.
 
 use super::engine::Planner;
-use super::{MapSpec, PartnerRun, Session, SessionSpec, SimEvent, SweepSpec, WeakSpec};
+use super::{Point, Session, SessionSpec, SimEvent};
 use crate::physics::StepError;
+use crate::physics::plan::Resolved;
+use crate::physics::rattleback::integrators::Method;
 use crate::study::map::{Source, cells_in_parallel};
 use crate::study::sweep::{ladder, limit_curve, rung};
 
@@ -37,6 +41,162 @@ impl JobKind {
     pub fn ends_with_run(self) -> bool {
         self != Self::Partner
     }
+
+    /// Whether what it computes is part of a recorded screen (`replay --verify` computes it
+    /// and compares what the pane showed); the others are dropped there.
+    #[must_use]
+    pub fn shown_in_record(self) -> bool {
+        match self {
+            Self::Partner => true,
+            Self::Weak | Self::Sweep | Self::Map => false,
+        }
+    }
+}
+
+/// What a pane asks its job to compute.
+#[derive(Clone, Debug, PartialEq)]
+pub enum JobSpec {
+    /// The comparison's partner (another preset, on the run's time axis), run to its end.
+    Partner(SessionSpec),
+    /// The weak-* view of the run's start.
+    Weak(WeakSpec),
+    /// The sweep of the run's small parameter.
+    Sweep(SweepSpec),
+    /// The regime map, from cell `from` on (grid order: the cells before it are known).
+    Map {
+        /// What to compute.
+        spec: MapSpec,
+        /// The first cell to compute.
+        from: usize,
+    },
+}
+
+impl JobSpec {
+    /// Its job's kind.
+    #[must_use]
+    pub fn kind(&self) -> JobKind {
+        match self {
+            Self::Partner(_) => JobKind::Partner,
+            Self::Weak(_) => JobKind::Weak,
+            Self::Sweep(_) => JobKind::Sweep,
+            Self::Map { .. } => JobKind::Map,
+        }
+    }
+
+    /// The job that computes it, stamped `stamp`.
+    #[must_use]
+    pub fn job(self, stamp: u64) -> Box<dyn Job> {
+        match self {
+            Self::Partner(spec) => Box::new(PartnerJob::new(stamp, spec)),
+            Self::Weak(spec) => Box::new(WeakJob::new(stamp, spec)),
+            Self::Sweep(spec) => Box::new(SweepJob::new(stamp, spec)),
+            Self::Map { spec, from } => Box::new(MapJob::new(stamp, spec, from)),
+        }
+    }
+}
+
+/// What a job sends back, in [`SimEvent::Job`] with its stamp.
+#[derive(Clone, Debug, PartialEq)]
+pub enum JobData {
+    /// The comparison's partner ran to its end (or why it could not).
+    Partner(Result<Box<PartnerRun>, String>),
+    /// The weak-* view's data (or why it could not be computed).
+    Weak {
+        /// Sample times, evenly spaced.
+        t: Vec<f64>,
+        /// `γ̇² g^{3/2}` (the pendulum: `θ̇_ε`) at those times.
+        pointwise: Vec<f64>,
+        /// The limit's `θ` (the rattleback's constant; 0 for the pendulum).
+        theta: f64,
+        /// The limit's value at those times, when it is not a constant (the pendulum's `θ̇`).
+        reference: Vec<f64>,
+        /// Why it failed, if it did.
+        failed: Option<String>,
+    },
+    /// A rung of the sweep.
+    SweepPoint {
+        /// The rung's parameter (`k`, or `ε`).
+        parameter: f64,
+        /// `sup |α_k − α_eff|` (`sup |θ_ε − θ|`) over `[0, T]`.
+        sup_error: f64,
+        /// What `auto` ran.
+        method: Method,
+    },
+    /// The sweep is complete (or could not go on: `failed`).
+    SweepDone {
+        /// Why it stopped short, if it did.
+        failed: Option<String>,
+    },
+    /// Cells of the regime map, in grid order from `first`.
+    MapCells {
+        /// Index of the first cell.
+        first: usize,
+        /// Reversals in `(0, T]` of each cell.
+        reversals: Vec<usize>,
+    },
+    /// The regime map is complete (or could not go on: `failed`).
+    MapDone {
+        /// Why it stopped short, if it did.
+        failed: Option<String>,
+    },
+}
+
+impl JobData {
+    /// The kind of job that sent it.
+    #[must_use]
+    pub fn kind(&self) -> JobKind {
+        match self {
+            Self::Partner(_) => JobKind::Partner,
+            Self::Weak { .. } => JobKind::Weak,
+            Self::SweepPoint { .. } | Self::SweepDone { .. } => JobKind::Sweep,
+            Self::MapCells { .. } | Self::MapDone { .. } => JobKind::Map,
+        }
+    }
+}
+
+/// The comparison's partner, run to its end: what the compare pane draws up to the displayed
+/// time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PartnerRun {
+    /// The plan that integrated it (journaled, so a replay runs the same).
+    pub plan: Resolved,
+    /// `auto`'s error estimate, when it planned.
+    pub estimate: Option<f64>,
+    /// Samples on its grid.
+    pub samples: Vec<Point>,
+    /// Its reversals, at the times a display counts them.
+    pub reversals: Vec<f64>,
+    /// Its second events (the celt's crossings), when the model has them.
+    pub marks: Vec<f64>,
+}
+
+/// The regime map's computation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MapSpec {
+    /// The grid, body and horizon.
+    pub grid: crate::study::map::Grid,
+    /// From the limit or the full model at a `k`.
+    pub source: crate::study::map::Source,
+}
+
+/// The weak-* view's computation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WeakSpec {
+    /// The start (the rattleback's `γ̇² g^{3/2}`, or the pendulum's `θ̇`).
+    pub model: crate::physics::Model,
+    /// The run's horizon (the view covers a bounded number of fast periods: `Posed::weak_view`).
+    pub t_end: f64,
+}
+
+/// A sweep of the small parameter (`k`, or the pendulum's `ε`) for the explorer's sweep pane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SweepSpec {
+    /// The start (its `k` or `ε` is replaced by each rung's).
+    pub model: crate::physics::Model,
+    /// Horizon.
+    pub t_end: f64,
+    /// `auto`'s tolerance.
+    pub tolerance: f64,
 }
 
 /// How a slice ended.
@@ -109,9 +269,9 @@ impl Job for PartnerJob {
             return match work.planner.start(id, &spec, go_on) {
                 Err(StepError::Cancelled { .. }) => Slice::More,
                 Err(e) => Slice::after(
-                    sink(SimEvent::Partner {
-                        id,
-                        outcome: Err(super::engine::refusal(&spec, &e)),
+                    sink(SimEvent::Job {
+                        stamp: id,
+                        data: JobData::Partner(Err(super::engine::refusal(&spec, &e))),
                     }),
                     Slice::Done,
                 ),
@@ -155,7 +315,8 @@ impl Job for PartnerJob {
                 None => return Slice::More,
             },
         };
-        Slice::after(sink(SimEvent::Partner { id, outcome }), Slice::Done)
+        let data = JobData::Partner(outcome);
+        Slice::after(sink(SimEvent::Job { stamp: id, data }), Slice::Done)
     }
 }
 
@@ -190,22 +351,24 @@ impl Job for WeakJob {
             }));
         let event = match data {
             Err(StepError::Cancelled { .. }) => return Slice::More,
-            Err(e) => SimEvent::Weak {
-                generation,
+            Err(e) => JobData::Weak {
                 t: Vec::new(),
                 pointwise: Vec::new(),
                 theta: 0.0,
                 reference: Vec::new(),
                 failed: Some(e.to_string()),
             },
-            Ok(v) => SimEvent::Weak {
-                generation,
+            Ok(v) => JobData::Weak {
                 t: v.t,
                 pointwise: v.pointwise,
                 theta: v.level,
                 reference: v.reference,
                 failed: None,
             },
+        };
+        let event = SimEvent::Job {
+            stamp: generation,
+            data: event,
         };
         Slice::after(sink(event), Slice::Done)
     }
@@ -261,8 +424,12 @@ impl Job for SweepJob {
             Err(StepError::Cancelled { .. }) => return Slice::More,
             Err(e) => {
                 let failed = Some(e.to_string());
+                let data = JobData::SweepDone { failed };
                 return Slice::after(
-                    sink(SimEvent::SweepDone { generation, failed }),
+                    sink(SimEvent::Job {
+                        stamp: generation,
+                        data,
+                    }),
                     Slice::Done,
                 );
             }
@@ -270,11 +437,14 @@ impl Job for SweepJob {
         };
         if let Some(r) = point {
             self.next += 1;
-            if !sink(SimEvent::SweepPoint {
-                generation,
+            let data = JobData::SweepPoint {
                 parameter: r.parameter,
                 sup_error: r.sup_error,
                 method: r.method,
+            };
+            if !sink(SimEvent::Job {
+                stamp: generation,
+                data,
             }) {
                 return Slice::Closed;
             }
@@ -282,9 +452,9 @@ impl Job for SweepJob {
         if self.next < rungs.len() {
             return Slice::More;
         }
-        let done = SimEvent::SweepDone {
-            generation,
-            failed: None,
+        let done = SimEvent::Job {
+            stamp: generation,
+            data: JobData::SweepDone { failed: None },
         };
         Slice::after(sink(done), Slice::Done)
     }
@@ -328,15 +498,21 @@ impl Job for MapJob {
             Err(StepError::Cancelled { .. }) => return Slice::More,
             Err(e) => {
                 let failed = Some(e.to_string());
-                return Slice::after(sink(SimEvent::MapDone { id, failed }), Slice::Done);
+                let done = SimEvent::Job {
+                    stamp: id,
+                    data: JobData::MapDone { failed },
+                };
+                return Slice::after(sink(done), Slice::Done);
             }
             Ok(reversals) => reversals,
         };
         self.next = end;
-        let cells = SimEvent::MapCells {
-            id,
-            first: next,
-            reversals,
+        let cells = SimEvent::Job {
+            stamp: id,
+            data: JobData::MapCells {
+                first: next,
+                reversals,
+            },
         };
         if !sink(cells) {
             return Slice::Closed;
@@ -344,6 +520,10 @@ impl Job for MapJob {
         if end < total {
             return Slice::More;
         }
-        Slice::after(sink(SimEvent::MapDone { id, failed: None }), Slice::Done)
+        let done = SimEvent::Job {
+            stamp: id,
+            data: JobData::MapDone { failed: None },
+        };
+        Slice::after(sink(done), Slice::Done)
     }
 }

@@ -8,11 +8,12 @@
 //! Imports `physics` only; never the UI.
 
 mod engine;
-mod jobs;
+pub mod jobs;
 mod session;
 mod worker;
 
 pub use engine::{Engine, PlanBook, PlanKey, drive};
+pub use jobs::{JobData, JobKind, JobSpec};
 pub use session::{MAX_GRID_SAMPLES, Point, Session, SessionSpec, grid_spacing};
 pub use worker::Worker;
 
@@ -50,88 +51,19 @@ pub enum Command {
         /// The time.
         t: f64,
     },
-    /// Compute the stiffness sweep of `problem`'s start (one rung per slice, after the run's own
-    /// work), or stop computing it (`spec: None`). A restart stops it too.
-    Sweep {
-        /// Run this belongs to; its events carry it.
-        generation: u64,
-        /// What to sweep.
-        spec: Option<SweepSpec>,
-    },
-    /// Compute the weak-* view of `problem`'s start (`γ̇² g^{3/2}` of the resolved full motion
-    /// over the view's horizon), or stop (`spec: None`). A restart stops it too.
-    Weak {
-        /// Run this belongs to.
-        generation: u64,
+    /// Start a pane's job (`spec`), or stop the one of `kind` (`spec: None`). A job of a kind
+    /// that [`JobKind::ends_with_run`] also stops when the run restarts.
+    Job {
+        /// Which job.
+        kind: JobKind,
+        /// Stamp of this life of the job (the run's generation, or the pane's own stamp),
+        /// echoed in its answers; older answers are ignored.
+        stamp: u64,
         /// What to compute.
-        spec: Option<WeakSpec>,
-    },
-    /// Compute the regime map of `spec` from cell `from` on (row by row, after the run's own
-    /// work), or stop (`spec: None`). A restart stops it too.
-    Map {
-        /// Stamp of this map, echoed in its events (the map does not depend on the run's start,
-        /// so it outlives restarts that keep its spec).
-        id: u64,
-        /// What to compute.
-        spec: Option<MapSpec>,
-        /// The first cell to compute (grid order): the cells before it are already known.
-        from: usize,
-    },
-    /// Run the comparison's partner (another preset, on the run's time axis) to its end, or
-    /// stop (`spec: None`). Not stopped by a restart: the partner does not depend on the run.
-    Compare {
-        /// Stamp of this partner run, echoed in its event.
-        id: u64,
-        /// What to run.
-        spec: Option<SessionSpec>,
+        spec: Option<JobSpec>,
     },
     /// Stop the worker.
     Quit,
-}
-
-/// The comparison's partner, run to its end: what the compare pane draws up to the displayed
-/// time.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PartnerRun {
-    /// The plan that integrated it (journaled, so a replay runs the same).
-    pub plan: Resolved,
-    /// `auto`'s error estimate, when it planned.
-    pub estimate: Option<f64>,
-    /// Samples on its grid.
-    pub samples: Vec<Point>,
-    /// Its reversals, at the times a display counts them.
-    pub reversals: Vec<f64>,
-    /// Its second events (the celt's crossings), when the model has them.
-    pub marks: Vec<f64>,
-}
-
-/// The regime map's computation.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MapSpec {
-    /// The grid, body and horizon.
-    pub grid: crate::study::map::Grid,
-    /// From the limit or the full model at a `k`.
-    pub source: crate::study::map::Source,
-}
-
-/// The weak-* view's computation.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct WeakSpec {
-    /// The start (the rattleback's `γ̇² g^{3/2}`, or the pendulum's `θ̇`).
-    pub model: crate::physics::Model,
-    /// The run's horizon (the view covers a bounded number of fast periods: `Posed::weak_view`).
-    pub t_end: f64,
-}
-
-/// A sweep of the small parameter (`k`, or the pendulum's `ε`) for the explorer's sweep pane.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SweepSpec {
-    /// The start (its `k` or `ε` is replaced by each rung's).
-    pub model: crate::physics::Model,
-    /// Horizon.
-    pub t_end: f64,
-    /// `auto`'s tolerance.
-    pub tolerance: f64,
 }
 
 /// Worker to UI.
@@ -202,61 +134,12 @@ pub enum SimEvent {
         /// Run stamp.
         generation: u64,
     },
-    /// A rung of the stiffness sweep.
-    SweepPoint {
-        /// Run stamp.
-        generation: u64,
-        /// The rung's parameter (`k`, or `ε`).
-        parameter: f64,
-        /// `sup |α_k − α_eff|` (`sup |θ_ε − θ|`) over `[0, T]`.
-        sup_error: f64,
-        /// What `auto` ran.
-        method: Method,
-    },
-    /// The sweep is complete (or could not go on: `failed`).
-    SweepDone {
-        /// Run stamp.
-        generation: u64,
-        /// Why it stopped short, if it did.
-        failed: Option<String>,
-    },
-    /// The weak-* view's data (or why it could not be computed).
-    Weak {
-        /// Run stamp.
-        generation: u64,
-        /// Sample times, evenly spaced.
-        t: Vec<f64>,
-        /// `γ̇² g^{3/2}` (the pendulum: `θ̇_ε`) at those times.
-        pointwise: Vec<f64>,
-        /// The limit's `θ` (the rattleback's constant; 0 for the pendulum).
-        theta: f64,
-        /// The limit's value at those times, when it is not a constant (the pendulum's `θ̇`).
-        reference: Vec<f64>,
-        /// Why it failed, if it did.
-        failed: Option<String>,
-    },
-    /// Cells of the regime map, in grid order from `first`.
-    MapCells {
-        /// The map's stamp.
-        id: u64,
-        /// Index of the first cell.
-        first: usize,
-        /// Reversals in `(0, T]` of each cell.
-        reversals: Vec<usize>,
-    },
-    /// The regime map is complete (or could not go on: `failed`).
-    MapDone {
-        /// The map's stamp.
-        id: u64,
-        /// Why it stopped short, if it did.
-        failed: Option<String>,
-    },
-    /// The comparison's partner ran to its end (or why it could not).
-    Partner {
-        /// Its stamp.
-        id: u64,
-        /// The run, or why it failed.
-        outcome: Result<Box<PartnerRun>, String>,
+    /// A pane's job answered.
+    Job {
+        /// The stamp of the job's order.
+        stamp: u64,
+        /// What it computed.
+        data: JobData,
     },
     /// The integration (or `auto`'s planning) failed.
     Failed {
@@ -265,6 +148,28 @@ pub enum SimEvent {
         /// Why.
         message: String,
     },
+}
+
+impl Command {
+    /// Starts the job that computes `spec`, stamped `stamp` (it replaces the job of its kind).
+    #[must_use]
+    pub fn start_job(stamp: u64, spec: JobSpec) -> Self {
+        Self::Job {
+            kind: spec.kind(),
+            stamp,
+            spec: Some(spec),
+        }
+    }
+
+    /// Stops the job of `kind`.
+    #[must_use]
+    pub fn stop_job(kind: JobKind, stamp: u64) -> Self {
+        Self::Job {
+            kind,
+            stamp,
+            spec: None,
+        }
+    }
 }
 
 impl SimEvent {

@@ -12,7 +12,7 @@ use ratatui::widgets::{Block, Paragraph, Widget};
 
 use super::portrait::{resolution, short, y_labels};
 use super::{Look, title};
-use crate::app::compare::CompareState;
+use crate::app::computed::compare::CompareState;
 use crate::app::{RunState, Scenario, run::upto};
 use crate::physics::scene::Found;
 use crate::sim::Point;

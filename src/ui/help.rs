@@ -131,7 +131,7 @@ pub fn draw(
             " replay keys: ? legend · Esc closes ",
         ),
         HelpPage::Keys => (
-            key_rows(KEYMAP, &|a| keys.labels(a), &|a| keys.is_replaced(a)),
+            key_rows(&KEYMAP, &|a| keys.labels(a), &|a| keys.is_replaced(a)),
             " keys: ? legend · Esc closes ",
         ),
         HelpPage::Legend => (legend(look), " legend: ? or Esc closes "),

@@ -12,7 +12,7 @@ use ratatui::text::Line as TextLine;
 use ratatui::widgets::{Block, Paragraph, Widget};
 
 use super::{Look, title};
-use crate::app::map::{MapSource, MapState};
+use crate::app::computed::map::{MapSource, MapState};
 use crate::study::map::Source;
 
 /// The glyph of a count of reversals (`None`: not computed).

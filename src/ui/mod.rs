@@ -147,21 +147,21 @@ fn draw_pane(
         Pane::Sweep => frame.render_widget(
             sweep::SweepPane {
                 model: app.scenario.settings.model.kind(),
-                sweep: &app.sweep,
+                sweep: &app.computed.sweep,
                 look,
             },
             area,
         ),
         Pane::Weak => frame.render_widget(
             weak::WeakPane {
-                weak: &app.weak,
+                weak: &app.computed.weak,
                 look,
             },
             area,
         ),
         Pane::Map => frame.render_widget(
             map::MapPane {
-                map: &app.map,
+                map: &app.computed.map,
                 focused: app.mode == Mode::Map,
                 look,
             },
@@ -198,7 +198,7 @@ fn draw_pane(
             compare::ComparePane {
                 run: &app.run,
                 scenario: &app.scenario,
-                compare: &app.compare,
+                compare: &app.computed.compare,
                 look,
             },
             area,
@@ -524,7 +524,7 @@ fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mu
         owned(keys::MAP_FOOTER.to_vec())
     } else {
         // The user's keys where an action lost its defaults.
-        app.options.keys.footer(KEYMAP)
+        app.options.keys.footer(&KEYMAP)
     };
     if options.footer {
         draw_footer(frame, footer, &hints, &look);

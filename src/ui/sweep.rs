@@ -10,7 +10,7 @@ use ratatui::widgets::canvas::{Canvas, Line};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
 use super::{Look, title};
-use crate::app::sweep::SweepState;
+use crate::app::computed::sweep::SweepState;
 use crate::physics::ModelKind;
 use crate::study::sweep::ladder;
 

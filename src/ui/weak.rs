@@ -13,7 +13,7 @@ use ratatui::widgets::{Block, Paragraph, Widget};
 
 use super::portrait::resolution;
 use super::{Look, title};
-use crate::app::weak::WeakState;
+use crate::app::computed::weak::WeakState;
 
 /// The weak-* pane: what it shows, borrowed.
 pub struct WeakPane<'a> {

@@ -11,7 +11,7 @@ use crate::explorer_ui::{find, render, screen_text};
 use rattleback::app::panes::Pane;
 use rattleback::app::{Effect, Key};
 use rattleback::scenario::shipped::{SHIPPED, resolve};
-use rattleback::sim::Command;
+use rattleback::sim::{Command, JobKind};
 
 /// `main` with `partner` in the compare pane (as `rattleback compare main partner` opens it).
 fn comparing(main: &str, partner: &str) -> Headless {
@@ -56,6 +56,7 @@ fn the_partner_ends_where_simulate_ends_at_x1_and_x1024() {
         let window = h.app.run.t_end;
         let shown = h
             .app
+            .computed
             .compare
             .shown(h.app.run.shown)
             .expect("the partner ran");
@@ -94,12 +95,12 @@ fn each_lane_counts_up_to_the_displayed_time() {
     let mut h = comparing("subcritical", "celt-clockwise");
     h.play_until(2.6, 1.0);
     h.key(Key::Char(' '));
-    let shown = h.app.compare.shown(h.app.run.shown).unwrap();
+    let shown = h.app.computed.compare.shown(h.app.run.shown).unwrap();
     assert_eq!(h.app.run.reversals_shown(), 1);
     assert_eq!(shown.events, 0, "the celt reverses near 3.02");
     assert!(shown.spin.unwrap() < 0.0, "still clockwise");
     h.play_until(3.5, 1.0);
-    let shown = h.app.compare.shown(h.app.run.shown).unwrap();
+    let shown = h.app.computed.compare.shown(h.app.run.shown).unwrap();
     assert_eq!(shown.events, 1);
     assert_eq!(shown.crossings, Some(3));
 }
@@ -148,9 +149,15 @@ fn a_recorded_screen_waits_for_the_partner() {
     h.exec(e);
     // `C`: the partner's command is held back (the worker has not answered yet).
     let effects = h.app.on_key(Key::Char('C'));
-    let (compare, rest): (Vec<Effect>, Vec<Effect>) = effects
-        .into_iter()
-        .partition(|e| matches!(e, Effect::Sim(Command::Compare { .. })));
+    let (compare, rest): (Vec<Effect>, Vec<Effect>) = effects.into_iter().partition(|e| {
+        matches!(
+            e,
+            Effect::Sim(Command::Job {
+                kind: JobKind::Partner,
+                ..
+            })
+        )
+    });
     assert_eq!(compare.len(), 1);
     h.exec(rest);
     h.key(Key::Char(' '));
@@ -198,12 +205,20 @@ fn a_recorded_screen_waits_for_the_partner() {
 #[test]
 fn the_partner_runs_again_only_when_its_window_changes() {
     let mut h = comparing("subcritical", "celt-clockwise");
-    let asked = |h: &Headless| h.app.compare.asked().map(|s| s.t_end);
+    let asked = |h: &Headless| h.app.computed.compare.asked().map(|s| s.t_end);
     assert_eq!(asked(&h), Some(30.0));
     let keep = |effects: &[Effect]| {
         effects
             .iter()
-            .filter(|e| matches!(e, Effect::Sim(Command::Compare { .. })))
+            .filter(|e| {
+                matches!(
+                    e,
+                    Effect::Sim(Command::Job {
+                        kind: JobKind::Partner,
+                        ..
+                    })
+                )
+            })
             .count()
     };
     // k: the panel's fourth row, one step up.
@@ -213,7 +228,7 @@ fn the_partner_runs_again_only_when_its_window_changes() {
     let effects = h.app.on_key(Key::Right);
     assert_eq!(keep(&effects), 0, "k does not change the partner's run");
     h.exec(effects);
-    assert!(h.app.compare.outcome.is_some());
+    assert!(h.app.computed.compare.outcome.is_some());
     // t_end.
     while h.app.field().label() != "t_end" {
         h.key(Key::Down);
@@ -222,13 +237,20 @@ fn the_partner_runs_again_only_when_its_window_changes() {
     assert_eq!(keep(&effects), 1);
     h.exec(effects);
     assert!(asked(&h).unwrap() < 30.0);
-    assert!(h.app.compare.outcome.is_some());
+    assert!(h.app.computed.compare.outcome.is_some());
     let effects = h.app.set_partner(&resolve("celt-stubby", &[]).unwrap());
     assert_eq!(keep(&effects), 2, "the old run stops, the new one starts");
     h.exec(effects);
     assert_eq!(
-        h.app.compare.shown(0.0).unwrap().partner,
-        h.app.compare.partner.as_ref().unwrap().scenario.name
+        h.app.computed.compare.shown(0.0).unwrap().partner,
+        h.app
+            .computed
+            .compare
+            .partner
+            .as_ref()
+            .unwrap()
+            .scenario
+            .name
     );
 }
 
@@ -331,7 +353,7 @@ fn the_two_ways_lesson_is_right_and_its_recording_verifies() {
             step.title
         );
         if step.partner.is_some() {
-            let b = h.app.compare.shown(h.app.run.shown).unwrap();
+            let b = h.app.computed.compare.shown(h.app.run.shown).unwrap();
             assert_eq!(
                 b.events,
                 1,

@@ -673,7 +673,7 @@ fn the_sweep_pane_shows_what_study_sweep_computes_and_follows_the_parameters() {
     let mut h = Headless::new("subcritical");
     h.key(Key::Char('K'));
     assert!(h.app.view.panes.shows(Pane::Sweep));
-    let s = &h.app.sweep;
+    let s = &h.app.computed.sweep;
     assert!(s.done && s.failed.is_none(), "{s:?}");
     assert_eq!(
         s.points.len(),
@@ -706,7 +706,7 @@ fn the_sweep_pane_shows_what_study_sweep_computes_and_follows_the_parameters() {
     h.key(Key::Down); // gamma_dot
     h.key(Key::Down); // alpha_dot
     h.key(Key::Right);
-    let s = &h.app.sweep;
+    let s = &h.app.computed.sweep;
     assert_eq!(s.generation, h.app.run.generation);
     assert!(s.done && s.points.len() == ladder(rattleback::physics::ModelKind::Rattleback).len());
     assert_ne!(
@@ -725,7 +725,7 @@ fn the_weak_star_pane_settles_on_theta_as_the_window_widens() {
     let mut h = Headless::of(&preset);
     h.key(Key::Char('W'));
     assert!(h.app.view.panes.shows(Pane::Weak));
-    let w = &h.app.weak;
+    let w = &h.app.computed.weak;
     assert!(w.done && w.failed.is_none(), "{:?}", w.failed);
     let theta = w.theta;
     let (lo, hi) = w
@@ -741,8 +741,8 @@ fn the_weak_star_pane_settles_on_theta_as_the_window_widens() {
     for _ in 0..12 {
         h.key(Key::Char('<'));
     }
-    assert!(h.app.weak.window <= 2e-3);
-    assert!(h.app.weak.worst_deviation() > 0.1);
+    assert!(h.app.computed.weak.window <= 2e-3);
+    assert!(h.app.computed.weak.worst_deviation() > 0.1);
     h.key(Key::Char('W'));
     assert!(!h.app.view.panes.shows(Pane::Weak));
 }
@@ -758,7 +758,9 @@ fn shown_ratio(d: &rattleback::app::Derived) -> Option<f64> {
 #[test]
 fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_cursor() {
     use rattleback::app::Mode;
-    use rattleback::app::map::{FULL_GRID, FULL_TOLERANCE, LIMIT_GRID, MapSource, PANE_INERTIA};
+    use rattleback::app::computed::map::{
+        FULL_GRID, FULL_TOLERANCE, LIMIT_GRID, MapSource, PANE_INERTIA,
+    };
     use rattleback::app::panes::Pane;
     use rattleback::study::map::{Grid, Source, regime_map};
     let mut h = Headless::new("subcritical");
@@ -766,20 +768,18 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
     assert!(h.app.view.panes.shows(Pane::Map));
     assert_eq!(h.app.mode, Mode::Map, "the map takes the arrows");
     let s = h.app.scenario.settings;
-    let m = &h.app.map;
+    let m = &h.app.computed.map;
     assert!(m.done && m.failed.is_none(), "{m:?}");
     // The same counts as `study map` on the same grid (row by row here, all at once there).
+    let (p, g0) = (
+        s.rattleback().unwrap().params(),
+        s.rattleback().unwrap().start().gamma_dot,
+    );
+    let (cols, rows) = LIMIT_GRID;
     let grid = Grid {
-        ratio_max: s.rattleback().unwrap().params().ix / s.rattleback().unwrap().params().iz,
+        ratio_max: p.ix / p.iz,
         inertia: PANE_INERTIA,
-        ..Grid::new(
-            LIMIT_GRID.0,
-            LIMIT_GRID.1,
-            s.rattleback().unwrap().params().ix,
-            s.rattleback().unwrap().params().iz,
-            s.rattleback().unwrap().start().gamma_dot,
-            s.t_end,
-        )
+        ..Grid::new(cols, rows, p.ix, p.iz, g0, s.t_end)
     };
     let study = regime_map(&grid, Source::Limit, &|_| true).unwrap();
     let shown: Vec<usize> = m.cells.iter().map(|c| c.unwrap()).collect();
@@ -792,18 +792,18 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
 
     // Arrows move the cursor, not the parameters; Enter loads the cell.
     let selected = h.app.scenario.selected;
-    let start = h.app.map.cursor;
+    let start = h.app.computed.map.cursor;
     for k in [Key::Right, Key::Right, Key::Up, Key::ShiftRight] {
         h.key(k);
     }
-    assert_eq!(h.app.map.cursor, (start.0 + 6, start.1 + 1));
+    assert_eq!(h.app.computed.map.cursor, (start.0 + 6, start.1 + 1));
     assert_eq!(h.app.scenario.selected, selected);
     assert_eq!(
         h.app.scenario.settings, s,
         "moving the cursor changes nothing"
     );
-    let cell = h.app.map.cursor;
-    let count = h.app.map.cell(cell.0, cell.1).unwrap();
+    let cell = h.app.computed.map.cursor;
+    let count = h.app.computed.map.cell(cell.0, cell.1).unwrap();
     let generation = h.app.run.generation;
     h.key(Key::Enter);
     let loaded = h.app.scenario.settings;
@@ -829,14 +829,14 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
         Mode::Map,
         "the map keeps the arrows after a load"
     );
-    assert!(h.app.map.done, "the same body keeps its map");
+    assert!(h.app.computed.map.done, "the same body keeps its map");
     // The loaded start's limit reverses as often as its cell said.
     let limit = Effective::new(loaded.rattleback().unwrap());
     assert_eq!(limit.reversal_count(loaded.t_end), count);
 
     // `f`: the full model at this k, on its own grid; Esc gives the arrows back.
     h.key(Key::Char('f'));
-    let m = &h.app.map;
+    let m = &h.app.computed.map;
     assert_eq!(m.source, MapSource::Full);
     assert!(m.done && m.failed.is_none(), "{m:?}");
     assert_eq!(m.cells.len(), FULL_GRID.0 * FULL_GRID.1);
@@ -867,7 +867,8 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
 
 #[test]
 fn a_restart_cancels_the_maps_row_and_the_map_resumes_where_it_stopped() {
-    use rattleback::sim::{Command, Engine, MapSpec, PlanBook, SimEvent};
+    use rattleback::sim::jobs::MapSpec;
+    use rattleback::sim::{Command, Engine, JobData, JobSpec, PlanBook, SimEvent};
     use rattleback::study::map::{Grid, Source};
     let grid = Grid::new(8, 4, 2.0, 1.0, 1.0, 30.0);
     let spec = MapSpec {
@@ -884,11 +885,7 @@ fn a_restart_cancels_the_maps_row_and_the_map_resumes_where_it_stopped() {
         true
     };
     engine.handle(
-        &Command::Map {
-            id: 7,
-            spec: Some(spec),
-            from: 30,
-        },
+        &Command::start_job(7, JobSpec::Map { spec, from: 30 }),
         &mut sink,
     );
     // Cancelled from the start: nothing is sent, and the slice is redone next time.
@@ -901,10 +898,9 @@ fn a_restart_cancels_the_maps_row_and_the_map_resumes_where_it_stopped() {
     let cells: Vec<(usize, usize)> = events
         .iter()
         .filter_map(|e| match e {
-            SimEvent::MapCells {
-                id: 7,
-                first,
-                reversals,
+            SimEvent::Job {
+                stamp: 7,
+                data: JobData::MapCells { first, reversals },
             } => Some((*first, reversals.len())),
             _ => None,
         })
@@ -913,9 +909,9 @@ fn a_restart_cancels_the_maps_row_and_the_map_resumes_where_it_stopped() {
     assert_eq!(cells.iter().map(|c| c.1).sum::<usize>(), 2);
     assert!(matches!(
         events.last(),
-        Some(SimEvent::MapDone {
-            id: 7,
-            failed: None
+        Some(SimEvent::Job {
+            stamp: 7,
+            data: JobData::MapDone { failed: None }
         })
     ));
 }

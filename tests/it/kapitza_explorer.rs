@@ -124,7 +124,7 @@ fn the_sweep_pane_sweeps_epsilon() {
     let mut h = Headless::new("kapitza-upright");
     h.key(Key::Char('K'));
     assert!(h.app.view.panes.shows(Pane::Sweep));
-    let s = &h.app.sweep;
+    let s = &h.app.computed.sweep;
     assert!(s.done && s.failed.is_none(), "{s:?}");
     assert_eq!(
         s.points.len(),
@@ -162,7 +162,7 @@ fn the_weak_star_pane_shows_the_velocity_converging_only_on_average() {
     let mut h = Headless::new("kapitza-upright");
     h.key(Key::Char('W'));
     assert!(h.app.view.panes.shows(Pane::Weak));
-    let w = &h.app.weak;
+    let w = &h.app.computed.weak;
     assert!(w.done && w.failed.is_none(), "{:?}", w.failed);
     assert_eq!(w.reference.len(), w.pointwise.len());
     // Pointwise: the ripple b sin(t/ε) sin θ, about ±0.6 here, never goes away.
@@ -183,7 +183,7 @@ fn the_weak_star_pane_shows_the_velocity_converging_only_on_average() {
     for _ in 0..6 {
         h.key(Key::Char('<'));
     }
-    let narrow = h.app.weak.worst_deviation();
+    let narrow = h.app.computed.weak.worst_deviation();
     assert!(narrow > dev, "{narrow} vs {dev}");
 }
 

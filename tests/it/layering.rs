@@ -360,3 +360,46 @@ fn a_model_is_dispatched_in_few_places() {
         assert!(!text.contains(banned), "{path} has `{banned}`");
     }
 }
+
+/// Issue 25: a computed pane is the six files of the recipe in docs/architecture.md. The sweep
+/// pane is the example: outside its own two files (`app/computed/sweep.rs`, `ui/sweep.rs`)
+/// only the four shared places the recipe lists name it (its variant's arms, its field and
+/// `pane_mut` arm, its `draw_column` arm, its job). `app/journal.rs` reads format 4's fixed
+/// pane flags (frozen: older files still replay). Tests inside a file are left out.
+#[test]
+fn a_computed_pane_is_six_files() {
+    let names = [
+        "Pane::Sweep",
+        "Self::Sweep",
+        "JobKind::Sweep",
+        "JobData::Sweep",
+        "JobSpec::Sweep",
+        "SweepState",
+        "SweepJob",
+        "SweepSpec",
+        "computed.sweep",
+        "computed::sweep",
+    ];
+    let recipe = [
+        "app/panes.rs",
+        "app/computed/mod.rs",
+        "app/computed/sweep.rs",
+        "ui/mod.rs",
+        "ui/sweep.rs",
+        "sim/jobs.rs",
+    ];
+    let frozen = ["app/journal.rs"];
+    let mut found = Vec::new();
+    for (name, text) in sources() {
+        let name = name.replace('\\', "/");
+        let code = text.split("#[cfg(test)]").next().unwrap_or_default();
+        let named = names.iter().any(|n| code.contains(n));
+        if named && !recipe.contains(&name.as_str()) && !frozen.contains(&name.as_str()) {
+            found.push(name);
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "the sweep pane is named outside the recipe's files: {found:?}"
+    );
+}

@@ -141,7 +141,10 @@ fn lecture_with(preset: &str, speed: f64, field: &str, compare: bool) -> Lecture
     l.collect();
     if compare {
         l.key(Key::Char('C'));
-        assert!(l.h.app.compare.outcome.is_some(), "the partner ran");
+        assert!(
+            l.h.app.computed.compare.outcome.is_some(),
+            "the partner ran"
+        );
     }
     while l.h.app.run.speed < speed {
         l.key(Key::Char('+'));

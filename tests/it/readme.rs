@@ -23,7 +23,7 @@ fn readme() -> String {
 fn key_tables_are_generated_from_the_keymaps() {
     let guide = read("docs/guide.md");
     for (what, table) in [
-        ("explorer", markdown(KEYMAP)),
+        ("explorer", markdown(&KEYMAP)),
         ("replay", markdown(REPLAY_KEYMAP)),
         ("regime map", map_markdown()),
     ] {
@@ -33,7 +33,7 @@ fn key_tables_are_generated_from_the_keymaps() {
         );
     }
     // The README's short table: every row is a row of the generated one.
-    let full = markdown(KEYMAP);
+    let full = markdown(&KEYMAP);
     let text = readme();
     let keys = text
         .split("## Keys")

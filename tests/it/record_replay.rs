@@ -652,7 +652,7 @@ fn panes_and_a_map_cell_loaded_are_recorded_and_replayed() {
         assert!(r.app.view.panes.shows(pane), "{pane:?}");
     }
     assert!(!r.app.view.panes.shows(Pane::Sweep));
-    assert_eq!(r.app.map.cells, h.app.map.cells);
+    assert_eq!(r.app.computed.map.cells, h.app.computed.map.cells);
     assert_eq!(
         r.app.mode,
         rattleback::app::Mode::Normal,
@@ -730,7 +730,7 @@ fn the_weak_window_the_lecturer_chose_is_replayed() {
     for k in ['>', '>', '>', '<'] {
         h.key(Key::Char(k));
     }
-    let chosen = h.app.weak.window;
+    let chosen = h.app.computed.weak.window;
     assert!((chosen - 4.0).abs() < 1e-12, "window {chosen}");
     let mut wall = 0.0;
     let lines: Vec<Line> = h
@@ -764,8 +764,8 @@ fn the_weak_window_the_lecturer_chose_is_replayed() {
     let e = r.advance(10.0, &mut replay.app);
     replay.exec(e);
     assert!(
-        (replay.app.weak.window - chosen).abs() < 1e-12,
+        (replay.app.computed.weak.window - chosen).abs() < 1e-12,
         "the replay averages over {} s, the lecturer over {chosen} s",
-        replay.app.weak.window
+        replay.app.computed.weak.window
     );
 }

@@ -3,7 +3,9 @@
 //! user changes (`<`, `>`): pointwise it keeps swinging between 0 and `2θ`; averaged over a
 //! window much longer than the fast period it settles on `θ` as `k` grows.
 
-use crate::sim::{Command, WeakSpec};
+use super::{ComputedPane, Cx};
+use crate::sim::jobs::WeakSpec;
+use crate::sim::{Command, JobData, JobKind, JobSpec};
 use crate::study::weak::moving_average;
 
 /// Smallest and largest window.
@@ -53,51 +55,6 @@ impl Default for WeakState {
 }
 
 impl WeakState {
-    /// Forgets the data (keeps the window) and asks the worker for `spec` of run `generation`.
-    pub fn start(&mut self, generation: u64, spec: WeakSpec) -> Command {
-        *self = Self {
-            generation,
-            window: self.window,
-            ..Self::default()
-        };
-        Command::Weak {
-            generation,
-            spec: Some(spec),
-        }
-    }
-
-    /// Stops the worker's computation.
-    #[must_use]
-    pub fn stop(&self) -> Command {
-        Command::Weak {
-            generation: self.generation,
-            spec: None,
-        }
-    }
-
-    /// Takes the worker's data for run `generation`; whether they were this view's.
-    pub fn on_data(
-        &mut self,
-        generation: u64,
-        t: Vec<f64>,
-        pointwise: Vec<f64>,
-        theta: f64,
-        reference: Vec<f64>,
-        failed: Option<String>,
-    ) -> bool {
-        if generation != self.generation {
-            return false;
-        }
-        self.t = t;
-        self.pointwise = pointwise;
-        self.theta = theta;
-        self.reference = reference;
-        self.failed = failed;
-        self.done = true;
-        self.average_again();
-        true
-    }
-
     fn average_again(&mut self) {
         self.average = moving_average(&self.t, &self.pointwise, self.window);
         self.reference_average = if self.reference.is_empty() {
@@ -150,5 +107,54 @@ impl WeakState {
             .filter(|a| a.is_finite())
             .map(|a| (a / self.theta - 1.0).abs())
             .fold(0.0, f64::max)
+    }
+}
+
+impl ComputedPane for WeakState {
+    fn kind(&self) -> JobKind {
+        JobKind::Weak
+    }
+
+    /// Forgets the data (keeps the window) and asks for the view of the current start.
+    fn start(&mut self, cx: &mut Cx) -> Option<Command> {
+        *self = Self {
+            generation: cx.generation,
+            window: self.window,
+            ..Self::default()
+        };
+        let spec = WeakSpec {
+            model: cx.settings.model,
+            t_end: cx.settings.t_end,
+        };
+        Some(Command::start_job(cx.generation, JobSpec::Weak(spec)))
+    }
+
+    fn stop(&mut self) -> Command {
+        Command::stop_job(JobKind::Weak, self.generation)
+    }
+
+    /// The view's data (or why it could not be computed), averaged over the window.
+    fn take(&mut self, stamp: u64, data: JobData, _: &mut Cx) -> bool {
+        let JobData::Weak {
+            t,
+            pointwise,
+            theta,
+            reference,
+            failed,
+        } = data
+        else {
+            return false;
+        };
+        if stamp != self.generation {
+            return false;
+        }
+        self.t = t;
+        self.pointwise = pointwise;
+        self.theta = theta;
+        self.reference = reference;
+        self.failed = failed;
+        self.done = true;
+        self.average_again();
+        true
     }
 }

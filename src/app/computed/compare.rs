@@ -9,12 +9,14 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::journal::Event;
-use super::panes::Pane;
-use super::{App, Effect, Message, Scenario};
+use super::{ComputedPane, Cx};
+use crate::app::journal::Event;
+use crate::app::panes::Pane;
+use crate::app::{App, Effect, Message, Scenario};
 use crate::scenario::Preset;
 use crate::scenario::text::clean;
-use crate::sim::{Command, PartnerRun, SessionSpec};
+use crate::sim::jobs::PartnerRun;
+use crate::sim::{Command, JobData, JobKind, JobSpec, SessionSpec};
 
 /// The partner chosen.
 #[derive(Clone, Debug, PartialEq)]
@@ -64,42 +66,6 @@ impl CompareState {
         settings.t_end = window;
         scenario.set(settings);
         Some(scenario.spec(false))
-    }
-
-    /// Asks for the partner's run over `window`, unless that is what was asked last (its
-    /// outcome stands).
-    fn start(&mut self, window: f64) -> Option<Command> {
-        let spec = self.spec(window)?;
-        if self.asked == Some(spec) {
-            return None;
-        }
-        self.id += 1;
-        self.asked = Some(spec);
-        self.outcome = None;
-        Some(Command::Compare {
-            id: self.id,
-            spec: Some(spec),
-        })
-    }
-
-    /// Stops the partner's run; its outcome is forgotten.
-    fn stop(&mut self) -> Command {
-        self.id += 1;
-        self.asked = None;
-        self.outcome = None;
-        Command::Compare {
-            id: self.id,
-            spec: None,
-        }
-    }
-
-    /// Takes the worker's answer; whether it is this comparison's.
-    pub fn on_partner(&mut self, id: u64, outcome: Result<Box<PartnerRun>, String>) -> bool {
-        if id != self.id || self.asked.is_none() {
-            return false;
-        }
-        self.outcome = Some(outcome.map_err(|e| clean(&e)));
-        true
     }
 
     /// The partner's spec as run (for its plan's journal key).
@@ -157,8 +123,8 @@ impl App {
 
     /// Sets the comparison's partner (journaled inline, so the file stands alone); a shown
     /// pane runs it at once.
-    pub(super) fn replay_partner(&mut self, preset: &Preset) -> Vec<Effect> {
-        self.compare.partner = Some(Partner {
+    pub(in crate::app) fn replay_partner(&mut self, preset: &Preset) -> Vec<Effect> {
+        self.computed.compare.partner = Some(Partner {
             preset: preset.clone(),
             scenario: Scenario::of(preset),
         });
@@ -169,36 +135,17 @@ impl App {
             return Vec::new();
         }
         // A new partner: the old run is moot.
-        let mut effects = vec![Effect::Sim(self.compare.stop())];
-        effects.extend(self.start_compare().map(Effect::Sim));
+        let mut effects: Vec<Effect> = self
+            .stop_job(Pane::Compare)
+            .map(Effect::Sim)
+            .into_iter()
+            .collect();
+        effects.extend(self.start_job(Pane::Compare).map(Effect::Sim));
         effects
     }
 
-    /// The partner's run over the run's window, if it is not asked already. A scene opened
-    /// without a partner takes its scene's counterpart (a shipped preset).
-    pub(super) fn start_compare(&mut self) -> Option<Command> {
-        if self.compare.partner.is_none() {
-            let kind = self.scenario.settings.model.kind();
-            let name = kind.studies().counterpart;
-            match crate::scenario::shipped::resolve(name, &[]) {
-                Ok(p) => {
-                    self.compare.partner = Some(Partner {
-                        scenario: Scenario::of(&p),
-                        preset: p.clone(),
-                    });
-                    self.log(Event::Partner { toml: p.to_toml() });
-                }
-                Err(e) => {
-                    self.status = Message::error(e.to_string());
-                    return None;
-                }
-            }
-        }
-        self.compare.start(self.scenario.settings.t_end)
-    }
-
     /// The layout as a recording keeps it: the overlay and the panes a key shows.
-    pub(super) fn layout(&self) -> Event {
+    pub(in crate::app) fn layout(&self) -> Event {
         Event::Layout {
             effective: self.view.overlay,
             panes: self.view.panes.toggled(),
@@ -206,37 +153,82 @@ impl App {
     }
 
     /// Journals the layout now.
-    pub(super) fn log_layout(&mut self) {
+    pub(in crate::app) fn log_layout(&mut self) {
         let layout = self.layout();
         self.log(layout);
-    }
-
-    /// Stops the partner's run (the pane was hidden).
-    pub(super) fn stop_compare(&mut self) -> Command {
-        self.compare.stop()
     }
 
     /// Whether what the compare pane shows is complete (hidden, or its partner has answered):
     /// a recorded screen waits for it.
     #[must_use]
     pub fn compare_settled(&self) -> bool {
-        !self.view.panes.shows(Pane::Compare) || self.compare.outcome.is_some()
+        !self.view.panes.shows(Pane::Compare) || self.computed.compare.outcome.is_some()
+    }
+}
+
+impl ComputedPane for CompareState {
+    fn kind(&self) -> JobKind {
+        JobKind::Partner
     }
 
-    /// Takes the partner's run: its plan is journaled (a replay runs the same plan).
-    pub(super) fn on_partner(&mut self, id: u64, outcome: Result<Box<PartnerRun>, String>) -> bool {
-        if let (Ok(run), Some(spec)) = (&outcome, self.compare.asked()) {
-            let event = Event::Plan {
-                key: crate::sim::PlanKey::of(spec),
-                plan: run.plan,
-                estimate: run.estimate,
-            };
-            if self.compare.on_partner(id, outcome) {
-                self.log(event);
-                return true;
+    /// Asks for the partner's run over the run's window, unless that is what was asked last
+    /// (its outcome stands). A scene opened without a partner takes its scene's counterpart
+    /// (a shipped preset, journaled inline).
+    fn start(&mut self, cx: &mut Cx) -> Option<Command> {
+        if self.partner.is_none() {
+            let name = cx.settings.model.kind().studies().counterpart;
+            match crate::scenario::shipped::resolve(name, &[]) {
+                Ok(p) => {
+                    cx.log.push(Event::Partner { toml: p.to_toml() });
+                    self.partner = Some(Partner {
+                        scenario: Scenario::of(&p),
+                        preset: p,
+                    });
+                }
+                Err(e) => {
+                    cx.status = Message::error(e.to_string());
+                    return None;
+                }
             }
+        }
+        let spec = self.spec(cx.settings.t_end)?;
+        if self.asked == Some(spec) {
+            return None;
+        }
+        self.id += 1;
+        self.asked = Some(spec);
+        self.outcome = None;
+        Some(Command::start_job(self.id, JobSpec::Partner(spec)))
+    }
+
+    /// Stops the partner's run; its outcome is forgotten.
+    fn stop(&mut self) -> Command {
+        self.id += 1;
+        self.asked = None;
+        self.outcome = None;
+        Command::stop_job(JobKind::Partner, self.id)
+    }
+
+    /// The partner's run (its plan is journaled, so a replay runs the same plan), or why it
+    /// failed.
+    fn take(&mut self, stamp: u64, data: JobData, cx: &mut Cx) -> bool {
+        let JobData::Partner(outcome) = data else {
+            return false;
+        };
+        let Some(spec) = self.asked else {
+            return false;
+        };
+        if stamp != self.id {
             return false;
         }
-        self.compare.on_partner(id, outcome)
+        if let Ok(run) = &outcome {
+            cx.log.push(Event::Plan {
+                key: crate::sim::PlanKey::of(&spec),
+                plan: run.plan,
+                estimate: run.estimate,
+            });
+        }
+        self.outcome = Some(outcome.map_err(|e| clean(&e)));
+        true
     }
 }

@@ -4,9 +4,11 @@
 //! full model at the current `k` on request), a cursor over the cells, and Enter loading the
 //! cell under it as the current start (`iy = ix · iy/ix`, `γ0 = α0 = 0`, `α̇0 = √ratio · γ̇0`).
 
-use super::fields::Settings;
+use super::{ComputedPane, Cx};
+use crate::app::fields::Settings;
 use crate::physics::rattleback::{Params, Problem, Start};
-use crate::sim::{Command, MapSpec};
+use crate::sim::jobs::MapSpec;
+use crate::sim::{Command, JobData, JobKind, JobSpec};
 use crate::study::map::{Grid, Source};
 
 /// Columns × rows of the map from the limit (two quadratures a cell: instant).
@@ -110,21 +112,13 @@ impl MapState {
             .iter()
             .position(Option::is_none)
             .unwrap_or(self.cells.len());
-        Some(Command::Map {
-            id: self.id,
-            spec: Some(spec),
-            from,
-        })
+        Some(Command::start_job(self.id, JobSpec::Map { spec, from }))
     }
 
     /// Stops the worker's computation (the cells so far are kept).
     pub fn stop(&mut self) -> Command {
         self.id += 1;
-        Command::Map {
-            id: self.id,
-            spec: None,
-            from: 0,
-        }
+        Command::stop_job(JobKind::Map, self.id)
     }
 
     /// Switches between the limit and the full model; the new map starts from scratch.
@@ -245,6 +239,29 @@ pub fn nearest_cell(grid: &Grid, ratio: f64, inertia: f64) -> (usize, usize) {
     (clamp(i, grid.cols), clamp(j, grid.rows))
 }
 
+impl ComputedPane for MapState {
+    fn kind(&self) -> JobKind {
+        JobKind::Map
+    }
+
+    fn start(&mut self, cx: &mut Cx) -> Option<Command> {
+        MapState::start(self, cx.settings)
+    }
+
+    fn stop(&mut self) -> Command {
+        MapState::stop(self)
+    }
+
+    /// Cells, or the end of the map (or why it stopped short).
+    fn take(&mut self, stamp: u64, data: JobData, _: &mut Cx) -> bool {
+        match data {
+            JobData::MapCells { first, reversals } => self.on_cells(stamp, first, &reversals),
+            JobData::MapDone { failed } => self.on_done(stamp, failed),
+            _ => false,
+        }
+    }
+}
+
 #[cfg(test)]
 #[allow(clippy::float_cmp)] // exact values are copied, not computed
 mod tests {
@@ -277,13 +294,21 @@ mod tests {
     fn a_complete_map_of_the_same_spec_is_not_asked_again_and_a_partial_one_resumes() {
         let s = settings();
         let mut m = MapState::default();
-        let Some(Command::Map { from: 0, .. }) = m.start(&s) else {
+        let Some(Command::Job {
+            spec: Some(JobSpec::Map { from: 0, .. }),
+            ..
+        }) = m.start(&s)
+        else {
             panic!("a first map starts at cell 0")
         };
         let id = m.id;
         assert!(m.on_cells(id, 0, &[1; 48]));
         assert!(!m.on_cells(id - 1, 48, &[1; 48]), "stale cells are ignored");
-        let Some(Command::Map { from: 48, .. }) = m.start(&s) else {
+        let Some(Command::Job {
+            spec: Some(JobSpec::Map { from: 48, .. }),
+            ..
+        }) = m.start(&s)
+        else {
             panic!("a partial map resumes where it stopped")
         };
         assert!(m.on_done(m.id, None));
@@ -292,7 +317,13 @@ mod tests {
             .unwrap()
             .with_value(&s, 3.0)
             .unwrap();
-        assert!(matches!(m.start(&t), Some(Command::Map { from: 0, .. })));
+        assert!(matches!(
+            m.start(&t),
+            Some(Command::Job {
+                spec: Some(JobSpec::Map { from: 0, .. }),
+                ..
+            })
+        ));
         assert_eq!(m.computed(), 0, "a new body forgets the old counts");
     }
 
