@@ -204,3 +204,22 @@ pub fn check_derived(
         }
     }
 }
+
+/// A model's validated problem's two accessors, its parameters and its start (fields `params`
+/// and `start`, of the model's `Params` and `Start`), each documented by its own words.
+macro_rules! params_and_start {
+    ($params:literal, $start:literal) => {
+        #[doc = $params]
+        #[must_use]
+        pub fn params(&self) -> &Params {
+            &self.params
+        }
+
+        #[doc = $start]
+        #[must_use]
+        pub fn start(&self) -> &Start {
+            &self.start
+        }
+    };
+}
+pub(crate) use params_and_start;

@@ -10,10 +10,10 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::Line as TextLine;
+use ratatui::widgets::Widget;
 use ratatui::widgets::canvas::{Canvas, Line, Points};
-use ratatui::widgets::{Block, Widget};
 
-use super::{Look, title};
+use super::{Look, framed};
 use crate::app::RunState;
 use crate::physics::scene::SideView;
 
@@ -88,12 +88,11 @@ impl Widget for BodyPane<'_> {
         let now = run.current().copied();
         let (alpha, alpha_dot) = now.map_or((0.0, 0.0), |p| (p.alpha, p.alpha_dot));
         let rock = envelope(run);
-        let block = Block::bordered().title(title(
+        let mut inner = framed(
             &heading(run, alpha_dot, rock, self.fast, self.side.is_some()),
-            area.width,
-        ));
-        let mut inner = block.inner(area);
-        block.render(area, buf);
+            area,
+            buf,
+        );
         if inner.width < 4 || inner.height < 3 {
             return;
         }

@@ -8,10 +8,10 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line as TextLine, Span};
 use ratatui::widgets::canvas::{Canvas, Line, Points};
-use ratatui::widgets::{Block, Paragraph, Widget};
+use ratatui::widgets::{Paragraph, Widget};
 
 use super::portrait::{resolution, short, y_labels};
-use super::{Look, title};
+use super::{Look, framed};
 use crate::app::computed::compare::CompareState;
 use crate::app::{RunState, Scenario, run::upto};
 use crate::physics::scene::Found;
@@ -56,12 +56,11 @@ fn pane(pane: &ComparePane<'_>, area: Rect, buf: &mut Buffer) {
     let (run, look) = (pane.run, pane.look);
     let t = run.shown;
     let window = run.t_end.max(1e-9);
-    let block = Block::bordered().title(title(
+    let inner = framed(
         &format!("compare: spin(t) on one time axis, 0 to {}", short(window)),
-        area.width,
-    ));
-    let inner = block.inner(area);
-    block.render(area, buf);
+        area,
+        buf,
+    );
     let kind = pane.scenario.settings.model.kind();
     let words = kind.words();
     let marks = run.second.as_ref().and_then(|(found, e)| {

@@ -9,9 +9,9 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::Line as TextLine;
-use ratatui::widgets::{Block, Paragraph, Widget};
+use ratatui::widgets::{Paragraph, Widget};
 
-use super::{Look, title};
+use super::{Look, framed};
 use crate::app::computed::map::{MapSource, MapState};
 use crate::study::map::Source;
 
@@ -70,9 +70,7 @@ impl MapPane<'_> {
 impl Widget for MapPane<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let (map, look) = (self.map, self.look);
-        let block = Block::bordered().title(title(&self.heading(), area.width));
-        let inner = block.inner(area);
-        block.render(area, buf);
+        let inner = framed(&self.heading(), area, buf);
         let (y_axis, plot, x_axis) = super::plot_areas(inner);
         let Some(spec) = map.spec else { return };
         let g = spec.grid;

@@ -678,6 +678,14 @@ fn draw_footer(frame: &mut Frame<'_>, area: Rect, hints: &[FooterHint], look: &L
     frame.render_widget(Paragraph::new(Line::from(spans)), area);
 }
 
+/// Draws a bordered pane titled `text` (cut to fit) over `area`; returns its inside.
+fn framed(text: &str, area: Rect, buf: &mut ratatui::buffer::Buffer) -> Rect {
+    let block = Block::bordered().title(title(text, area.width));
+    let inner = block.inner(area);
+    ratatui::widgets::Widget::render(block, area, buf);
+    inner
+}
+
 /// A block title cut to fit `width` columns, ending in `…` when cut.
 fn title(text: &str, width: u16) -> String {
     format!(

@@ -14,9 +14,9 @@ use ratatui::style::{Modifier, Style};
 use ratatui::symbols::Marker;
 use ratatui::text::{Line as TextLine, Span};
 use ratatui::widgets::canvas::{Canvas, Line, Points};
-use ratatui::widgets::{Block, Paragraph, StatefulWidget, Widget};
+use ratatui::widgets::{Paragraph, StatefulWidget, Widget};
 
-use super::{Look, title};
+use super::{Look, framed};
 use crate::app::fields::{Settings, format_number};
 use crate::app::portrait::{
     Bounds, Level, LevelKind, decimate, display_alpha, following, levels as level_sets, wrap_centre,
@@ -141,15 +141,14 @@ fn pane(p: &PortraitPane<'_>, area: Rect, buf: &mut Buffer, cache: &mut Cache) {
         "unwrapped"
     };
     let words = p.scenario.settings.model.kind().words();
-    let block = Block::bordered().title(title(
+    let inner = framed(
         &format!(
             "phase portrait: {} ({mode}) vs {}",
             words.q_name, words.q_dot_name
         ),
-        area.width,
-    ));
-    let inner = block.inner(area);
-    block.render(area, buf);
+        area,
+        buf,
+    );
     let [body, x_axis] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)]).areas(inner);
     let [y_axis, plot] =
         Layout::horizontal([Constraint::Length(Y_LABELS), Constraint::Min(0)]).areas(body);

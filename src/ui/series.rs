@@ -5,10 +5,10 @@
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::widgets::canvas::{Canvas, Line, Points};
-use ratatui::widgets::{Block, Paragraph, Widget};
+use ratatui::widgets::{Paragraph, Widget};
 
 use super::portrait::{resolution, y_labels};
-use super::{Look, title};
+use super::{Look, framed};
 use crate::app::RunState;
 use crate::sim::Point;
 
@@ -56,15 +56,14 @@ fn pane(pane: &SeriesPane<'_>, area: Rect, buf: &mut Buffer) {
     } else {
         "full"
     };
-    let block = Block::bordered().title(title(
+    let inner = framed(
         &format!(
             "{}(t): {limit}, {} │ log10|ΔE/E|",
             words.q_dot_name, words.events
         ),
-        area.width,
-    ));
-    let inner = block.inner(area);
-    block.render(area, buf);
+        area,
+        buf,
+    );
     let [top, energy_area] =
         Layout::vertical([Constraint::Min(2), Constraint::Length(3)]).areas(inner);
     let [y_axis, plot] = Layout::horizontal([Constraint::Length(8), Constraint::Min(0)]).areas(top);

@@ -7,9 +7,9 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::text::Line as TextLine;
 use ratatui::widgets::canvas::{Canvas, Line};
-use ratatui::widgets::{Block, Paragraph, Widget};
+use ratatui::widgets::{Paragraph, Widget};
 
-use super::{Look, title};
+use super::{Look, framed};
 use crate::app::computed::sweep::SweepState;
 use crate::physics::ModelKind;
 use crate::study::sweep::ladder;
@@ -40,12 +40,11 @@ impl Widget for SweepPane<'_> {
             }
             (None, true, None) => "no rung".to_owned(),
         };
-        let block = Block::bordered().title(title(
+        let inner = framed(
             &format!("{symbol}-sweep: {status} │ {} against {symbol}", small.sup),
-            area.width,
-        ));
-        let inner = block.inner(area);
-        block.render(area, buf);
+            area,
+            buf,
+        );
         let (y_axis, plot, x_axis) = super::plot_areas(inner);
         let (lo_x, hi_x) = ladder
             .iter()

@@ -9,10 +9,10 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::text::Line as TextLine;
 use ratatui::widgets::canvas::{Canvas, Line, Points};
-use ratatui::widgets::{Block, Paragraph, Widget};
+use ratatui::widgets::{Paragraph, Widget};
 
 use super::portrait::resolution;
-use super::{Look, title};
+use super::{Look, framed};
 use crate::app::computed::weak::WeakState;
 
 /// The weak-* pane: what it shows, borrowed.
@@ -27,9 +27,7 @@ impl Widget for WeakPane<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let (weak, look) = (self.weak, self.look);
         let pendulum = !weak.reference.is_empty();
-        let block = Block::bordered().title(title(&heading(weak, pendulum), area.width));
-        let inner = block.inner(area);
-        block.render(area, buf);
+        let inner = framed(&heading(weak, pendulum), area, buf);
         let (y_axis, plot, x_axis) = super::plot_areas(inner);
         if weak.t.len() < 2 || (!pendulum && weak.theta <= 0.0) {
             return;

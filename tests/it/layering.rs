@@ -283,6 +283,7 @@ fn no_old_paths_and_no_model_reexports() {
                             "Scale",
                             "Allowed",
                             "check_derived",
+                            "params_and_start",
                             "{",
                         ]
                         .iter()

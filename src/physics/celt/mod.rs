@@ -364,17 +364,7 @@ impl Problem {
         })
     }
 
-    /// The body.
-    #[must_use]
-    pub fn params(&self) -> &Params {
-        &self.params
-    }
-
-    /// The start.
-    #[must_use]
-    pub fn start(&self) -> &Start {
-        &self.start
-    }
+    crate::physics::params::params_and_start!("The body.", "The start.");
 
     /// The hysteresis band of macro reversals (rad/s).
     #[must_use]

@@ -116,17 +116,7 @@ impl Problem {
         Ok(problem)
     }
 
-    /// The pendulum.
-    #[must_use]
-    pub fn params(&self) -> &Params {
-        &self.params
-    }
-
-    /// The start.
-    #[must_use]
-    pub fn start(&self) -> &Start {
-        &self.start
-    }
+    crate::physics::params::params_and_start!("The pendulum.", "The start.");
 }
 
 #[cfg(test)]

@@ -100,17 +100,7 @@ impl Problem {
         Ok(problem)
     }
 
-    /// The body and spring.
-    #[must_use]
-    pub fn params(&self) -> &Params {
-        &self.params
-    }
-
-    /// The initial values.
-    #[must_use]
-    pub fn start(&self) -> &Start {
-        &self.start
-    }
+    crate::physics::params::params_and_start!("The body and spring.", "The initial values.");
 
     /// The same problem with another Hooke constant.
     ///
