@@ -157,7 +157,49 @@ pub struct ParamSpec {
     pub doc: &'static str,
 }
 
+impl Scale {
+    /// Steps of `fine` and `coarse`.
+    #[must_use]
+    pub const fn linear(fine: f64, coarse: f64) -> Self {
+        Self::Linear { fine, coarse }
+    }
+}
+
 impl ParamSpec {
+    /// A row a preset must give.
+    #[must_use]
+    pub const fn required(
+        (section, key): (&'static str, &'static str),
+        allowed: Allowed,
+        scale: Scale,
+        doc: &'static str,
+    ) -> Self {
+        Self {
+            required: true,
+            ..Self::optional((section, key), allowed, 0.0, scale, doc)
+        }
+    }
+
+    /// A row a preset may leave out, which is then `default`.
+    #[must_use]
+    pub const fn optional(
+        (section, key): (&'static str, &'static str),
+        allowed: Allowed,
+        default: f64,
+        scale: Scale,
+        doc: &'static str,
+    ) -> Self {
+        Self {
+            section,
+            key,
+            allowed,
+            required: false,
+            default,
+            scale,
+            doc,
+        }
+    }
+
     /// Checks every value of `values` (in the order of `specs`).
     ///
     /// # Errors

@@ -241,3 +241,31 @@ pub trait Posed {
     /// A failed, refused or stopped integration.
     fn slow_curve(&self, ask: &Asked, samples: usize, go_on: GoOn) -> Result<SlowCurve, StepError>;
 }
+
+/// A model's `Problem::from_values` and `Problem::table_values`, for a model whose parameter
+/// table lists its `Params`' fields and then its `Start`'s, one number each, in the order given
+/// here (the scene's `PARAMS`; `tests/it/scenes.rs` round-trips every shipped preset through
+/// them).
+macro_rules! table_order {
+    (Params { $($p:ident),+ }, Start { $($s:ident),+ }) => {
+        impl Problem {
+            /// The problem of `values`, in the order of [`PARAMS`] (a missing value is NaN,
+            /// refused as out of range).
+            ///
+            /// # Errors
+            /// The first value outside its range, or a derived quantity that overflows.
+            pub fn from_values(values: &[f64]) -> Result<Self, ParamError> {
+                let mut v = values.iter().copied();
+                let mut next = || v.next().unwrap_or(f64::NAN);
+                Self::new(Params { $($p: next()),+ }, Start { $($s: next()),+ })
+            }
+
+            /// Its values in the order of [`PARAMS`].
+            fn table_values(&self) -> Vec<f64> {
+                let (p, s) = (self.params(), self.start());
+                vec![$(p.$p),+, $(s.$s),+]
+            }
+        }
+    };
+}
+pub(crate) use table_order;

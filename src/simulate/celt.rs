@@ -31,18 +31,8 @@ pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::rattleback::R
 
 #[derive(Serialize)]
 struct Report {
-    /// [`super::SCHEMA_VERSION`]: `docs/schemas/simulate-celt.schema.json`.
-    schema_version: u32,
-    preset: String,
-    model: &'static str,
-    params: celt::Params,
-    initial: celt::Start,
-    method: Method,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    auto_choice: Option<Method>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    auto: Option<AutoOut>,
-    tolerance: f64,
+    #[serde(flatten)]
+    head: super::Head<celt::Params, celt::Start, AutoOut>,
     t_end: f64,
     /// The chirality of the body: the turn of the principal axes from the long axis (degrees).
     skew_degrees: f64,
@@ -118,13 +108,15 @@ struct ConstraintOut {
     contact_height_max: f64,
 }
 
-fn non_finite(r: &RunResult) -> Option<&'static str> {
-    if r.state.iter().any(|x| !x.is_finite()) {
-        Some("the state")
-    } else if !r.energy_final.is_finite() || !r.max_energy_drift.is_finite() {
-        Some("the energy")
-    } else {
-        None
+impl super::Finite for RunResult {
+    fn named_numbers(&self) -> Vec<(&'static str, f64)> {
+        let state = self.state.iter().map(|&x| ("the state", x));
+        let energy = [self.energy_final, self.max_energy_drift].map(|e| ("the energy", e));
+        state.chain(energy).collect()
+    }
+
+    fn reached(&self) -> f64 {
+        self.t
     }
 }
 
@@ -194,26 +186,19 @@ pub fn simulate_to(
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Option<Missed>, Failure> {
     let (spec, auto) = plan_of(problem, resolved, progress)?;
-    let missed = auto.as_ref().filter(|a| !a.met).map(|a| Missed {
-        estimate: a.error_estimate,
-        tolerance: resolved.spec.tolerance,
-        why: a.shortfall.unwrap_or(Shortfall::Floor),
+    let missed = auto.as_ref().and_then(|a| {
+        Missed::unless(
+            a.met,
+            a.error_estimate,
+            resolved.spec.tolerance,
+            a.shortfall,
+        )
     });
     let clock = Instant::now();
-    let result = run::run(problem, &spec, progress)?;
-    if let Some(what) = non_finite(&result) {
-        return Err(StepError::NotFinite { what, t: result.t }.into());
-    }
+    let result = run::run(problem, &spec, progress).and_then(super::Finite::finite)?;
     let wall_seconds = clock.elapsed().as_secs_f64();
     if format == Format::Csv {
-        let head = super::csv_metadata_of(
-            &preset.name,
-            &preset.model,
-            resolved.spec.method,
-            Some(spec.method),
-            resolved.spec.tolerance,
-            spec.t_end,
-        );
+        let head = super::csv_head(preset, resolved, spec.method, spec.t_end);
         out.write_all(head.as_bytes())?;
         out.write_all(b"t,turn,spin,tilt\n")?;
         for s in &result.samples {
@@ -226,15 +211,13 @@ pub fn simulate_to(
     let pose = problem.pose(&y);
     let e0 = result.energy_initial;
     let report = Report {
-        schema_version: super::SCHEMA_VERSION,
-        preset: preset.name.clone(),
-        model: crate::physics::ModelKind::Celt.name(),
-        params: *problem.params(),
-        initial: *problem.start(),
-        method: resolved.spec.method,
-        auto_choice: auto.as_ref().map(|a| a.choice),
-        auto,
-        tolerance: resolved.spec.tolerance,
+        head: super::Head::new(
+            preset,
+            (*problem.params(), *problem.start()),
+            resolved,
+            auto,
+            |a| a.choice,
+        ),
         t_end: spec.t_end,
         skew_degrees: problem.params().skew().to_degrees(),
         final_: FinalOut {
@@ -286,9 +269,13 @@ fn triple(v: &[f64]) -> String {
 
 fn table(r: &Report) -> String {
     let mut o = String::new();
-    let p = &r.params;
-    let s = &r.initial;
-    let _ = writeln!(o, "preset        {} (classical rattleback, celt)", r.preset);
+    let p = &r.head.params;
+    let s = &r.head.initial;
+    let _ = writeln!(
+        o,
+        "preset        {} (classical rattleback, celt)",
+        r.head.preset
+    );
     let _ = writeln!(
         o,
         "body          a, b, c = {}, {}, {} cm, offset {} cm, inertia {}, {}, {}, product {} cm^2, g = {}",
@@ -306,9 +293,9 @@ fn table(r: &Report) -> String {
     );
     super::render::method_lines(
         &mut o,
-        (r.method, r.tolerance, None),
+        (r.head.method, r.head.tolerance, None),
         &compact(r.t_end),
-        r.auto.as_ref().map(|a| super::render::Choice {
+        r.head.auto.as_ref().map(|a| super::render::Choice {
             method: a.choice,
             reason: &a.reason,
             error_estimate: a.error_estimate,

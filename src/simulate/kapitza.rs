@@ -41,18 +41,8 @@ pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::rattleback::R
 
 #[derive(Serialize)]
 struct Report {
-    /// [`super::SCHEMA_VERSION`]: `docs/schemas/simulate-kapitza.schema.json`.
-    schema_version: u32,
-    preset: String,
-    model: &'static str,
-    params: kapitza::Params,
-    initial: kapitza::Start,
-    method: Method,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    auto_choice: Option<Method>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    auto: Option<AutoOut>,
-    tolerance: f64,
+    #[serde(flatten)]
+    head: super::Head<kapitza::Params, kapitza::Start, AutoOut>,
     step: Option<f64>,
     t_end: f64,
     #[serde(rename = "final")]
@@ -149,15 +139,18 @@ fn times_of(list: &[f64], count: usize) -> Times {
     }
 }
 
-fn non_finite(r: &RunResult) -> Option<&'static str> {
-    if !r.theta.is_finite() {
-        Some("theta")
-    } else if !r.theta_dot.is_finite() {
-        Some("theta_dot")
-    } else if !r.energy_final.is_finite() || !r.max_energy_drift.is_finite() {
-        Some("the energy")
-    } else {
-        None
+impl super::Finite for RunResult {
+    fn named_numbers(&self) -> Vec<(&'static str, f64)> {
+        vec![
+            ("theta", self.theta),
+            ("theta_dot", self.theta_dot),
+            ("the energy", self.energy_final),
+            ("the energy", self.max_energy_drift),
+        ]
+    }
+
+    fn reached(&self) -> f64 {
+        self.t
     }
 }
 
@@ -233,26 +226,19 @@ pub fn simulate_to(
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Option<Missed>, Failure> {
     let (spec, auto) = plan_of(problem, resolved, progress)?;
-    let missed = auto.as_ref().filter(|a| !a.met).map(|a| Missed {
-        estimate: a.error_estimate,
-        tolerance: resolved.spec.tolerance,
-        why: a.shortfall.unwrap_or(Shortfall::Floor),
+    let missed = auto.as_ref().and_then(|a| {
+        Missed::unless(
+            a.met,
+            a.error_estimate,
+            resolved.spec.tolerance,
+            a.shortfall,
+        )
     });
     let clock = Instant::now();
-    let result = run::run(problem, &spec, progress)?;
-    if let Some(what) = non_finite(&result) {
-        return Err(StepError::NotFinite { what, t: result.t }.into());
-    }
+    let result = run::run(problem, &spec, progress).and_then(super::Finite::finite)?;
     let wall_seconds = clock.elapsed().as_secs_f64();
     if format == Format::Csv {
-        let head = super::csv_metadata_of(
-            &preset.name,
-            &preset.model,
-            resolved.spec.method,
-            Some(spec.method),
-            resolved.spec.tolerance,
-            spec.t_end,
-        );
+        let head = super::csv_head(preset, resolved, spec.method, spec.t_end);
         return write_csv(problem, &head, &result, out).map(|()| missed);
     }
     let limit_spec = RunSpec {
@@ -262,29 +248,16 @@ pub fn simulate_to(
         t_end: spec.t_end,
         samples: 0,
     };
-    let limit_run = run::run(problem, &limit_spec, progress).and_then(|r| match non_finite(&r) {
-        Some(what) => Err(StepError::NotFinite { what, t: r.t }),
-        None => Ok(r),
-    });
+    let limit_run = run::run(problem, &limit_spec, progress).and_then(super::Finite::finite);
     let p = problem.params();
     let s = problem.start();
     let report = Report {
-        schema_version: super::SCHEMA_VERSION,
-        preset: preset.name.clone(),
-        model: crate::physics::ModelKind::Kapitza.name(),
-        params: *p,
-        initial: *s,
-        method: resolved.spec.method,
-        auto_choice: auto.as_ref().map(|a| a.choice),
-        step: if spec.method.is_fixed_step() {
-            Some(spec.step.unwrap_or_else(|| {
+        head: super::Head::new(preset, (*p, *s), resolved, auto, |a| a.choice),
+        step: spec.method.is_fixed_step().then(|| {
+            spec.step.unwrap_or_else(|| {
                 kapitza::flows::default_step(spec.method, problem, spec.tolerance, spec.t_end)
-            }))
-        } else {
-            None
-        },
-        auto,
-        tolerance: resolved.spec.tolerance,
+            })
+        }),
         t_end: spec.t_end,
         final_: FinalOut {
             t: result.t,
@@ -376,22 +349,22 @@ fn write_csv(
 fn table(r: &Report) -> String {
     let mut o = String::new();
     let e = &r.effective;
-    let _ = writeln!(o, "preset        {} (Kapitza's pendulum)", r.preset);
+    let _ = writeln!(o, "preset        {} (Kapitza's pendulum)", r.head.preset);
     let _ = writeln!(
         o,
         "pendulum      a = {}, b = {}, epsilon = {:e}",
-        r.params.a, r.params.b, r.params.epsilon
+        r.head.params.a, r.head.params.b, r.head.params.epsilon
     );
     let _ = writeln!(
         o,
         "start         theta = {}, theta_dot = {}",
-        r.initial.theta, r.initial.theta_dot
+        r.head.initial.theta, r.head.initial.theta_dot
     );
     super::render::method_lines(
         &mut o,
-        (r.method, r.tolerance, r.step),
+        (r.head.method, r.head.tolerance, r.step),
         &compact(r.t_end),
-        r.auto.as_ref().map(|a| super::render::Choice {
+        r.head.auto.as_ref().map(|a| super::render::Choice {
             method: a.choice,
             reason: &a.reason,
             error_estimate: a.error_estimate,

@@ -156,22 +156,75 @@ pub enum Failure {
 /// field is renamed, removed or changes meaning; adding a field does not raise it.
 pub const SCHEMA_VERSION: u32 = 1;
 
+/// What every scene's report starts with, flattened into it (the JSON keeps its keys and order).
 #[derive(Serialize)]
-struct Report {
-    /// [`SCHEMA_VERSION`]: `docs/schemas/simulate-rattleback.schema.json` describes this report.
+struct Head<P, S, A> {
+    /// [`SCHEMA_VERSION`]: `docs/schemas/simulate-MODEL.schema.json` describes the report.
     schema_version: u32,
     preset: String,
-    /// Which scene: `rattleback` here (`kapitza` for the pendulum's report).
+    /// Which scene: `rattleback`, `kapitza` or `celt`.
     model: &'static str,
-    params: ParamsOut,
-    initial: crate::physics::rattleback::Start,
+    params: P,
+    initial: S,
     method: Method,
     /// With `method = auto`: the method it chose (also in `auto.choice`).
     #[serde(skip_serializing_if = "Option::is_none")]
     auto_choice: Option<Method>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    auto: Option<AutoOut>,
+    auto: Option<A>,
     tolerance: f64,
+}
+
+impl<P, S, A> Head<P, S, A> {
+    /// The head of `preset`'s report, asked as `resolved` says; `choice` reads the method `auto`
+    /// chose from its account.
+    fn new(
+        preset: &Preset,
+        (params, initial): (P, S),
+        resolved: &Resolved,
+        auto: Option<A>,
+        choice: impl Fn(&A) -> Method,
+    ) -> Self {
+        Self {
+            schema_version: SCHEMA_VERSION,
+            preset: preset.name.clone(),
+            model: preset.model.kind().name(),
+            params,
+            initial,
+            method: resolved.spec.method,
+            auto_choice: auto.as_ref().map(choice),
+            auto,
+            tolerance: resolved.spec.tolerance,
+        }
+    }
+}
+
+/// A run's result, which holds only finite numbers before it is reported.
+trait Finite: Sized {
+    /// Its numbers, each with the name an error gives it, in the order they are checked.
+    fn named_numbers(&self) -> Vec<(&'static str, f64)>;
+    /// The time the run reached.
+    fn reached(&self) -> f64;
+    /// `self`, or the error naming its first number that is not finite.
+    fn finite(self) -> Result<Self, StepError> {
+        let bad = self
+            .named_numbers()
+            .into_iter()
+            .find(|(_, x)| !x.is_finite());
+        match bad {
+            Some((what, _)) => Err(StepError::NotFinite {
+                what,
+                t: self.reached(),
+            }),
+            None => Ok(self),
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct Report {
+    #[serde(flatten)]
+    head: Head<ParamsOut, crate::physics::rattleback::Start, AutoOut>,
     step: Option<f64>,
     t_end: f64,
     #[serde(rename = "final")]
@@ -252,6 +305,17 @@ pub struct Missed {
     pub tolerance: f64,
     /// Why.
     pub why: Shortfall,
+}
+
+impl Missed {
+    /// `auto`'s shortfall unless it `met` the tolerance (`why` defaults to the round-off floor).
+    fn unless(met: bool, estimate: f64, tolerance: f64, why: Option<Shortfall>) -> Option<Self> {
+        (!met).then(|| Self {
+            estimate,
+            tolerance,
+            why: why.unwrap_or(Shortfall::Floor),
+        })
+    }
 }
 
 impl std::fmt::Display for Missed {
@@ -421,16 +485,12 @@ fn rattleback_to(
     let clock = Instant::now();
     if format == Format::Csv {
         let (result, shortfall) = csv(preset, problem, resolved, out, progress)?;
-        if let Some(what) = non_finite(&result) {
-            return Err(StepError::NotFinite { what, t: result.t }.into());
-        }
+        result.finite()?;
         out.flush()?;
         return Ok(shortfall);
     }
     let (result, auto) = requested_run(problem, resolved, progress)?;
-    if let Some(what) = non_finite(&result) {
-        return Err(StepError::NotFinite { what, t: result.t }.into());
-    }
+    let result = result.finite()?;
     let wall_seconds = clock.elapsed().as_secs_f64();
     // The limit's own trajectory at t_end, for comparison (cheap: cost independent of k).
     let eff_spec = RunSpec {
@@ -442,33 +502,25 @@ fn rattleback_to(
         ..spec
     };
     // A failure of this extra comparison does not discard the requested run: it is reported.
-    let eff_run =
-        run_cancellable(problem, &eff_spec, progress).and_then(|r| match non_finite(&r) {
-            Some(what) => Err(StepError::NotFinite { what, t: r.t }),
-            None => Ok(r),
-        });
+    let eff_run = run_cancellable(problem, &eff_spec, progress).and_then(Finite::finite);
     let eff = Effective::new(problem);
     let p = problem.params();
     let y = result.final_state;
     let ran = auto.as_ref().map_or(spec.method, |a| a.choice);
     let averaged = (ran == Method::Averaged2).then(|| AveragedOut::of(problem));
     let shortfall = auto.as_ref().and_then(|a| a.missed(spec.tolerance));
+    let step = auto.as_ref().map_or(spec.step, |a| a.step);
+    let params = ParamsOut {
+        ix: p.ix,
+        iy: p.iy,
+        iz: p.iz,
+        k: p.k,
+    };
     let report = Report {
-        schema_version: SCHEMA_VERSION,
-        preset: preset.name.clone(),
-        model: crate::physics::ModelKind::Rattleback.name(),
-        params: ParamsOut {
-            ix: p.ix,
-            iy: p.iy,
-            iz: p.iz,
-            k: p.k,
-        },
-        initial: *problem.start(),
-        method: spec.method,
-        auto_choice: auto.as_ref().map(|a| a.choice),
-        step: auto.as_ref().map_or(spec.step, |a| a.step),
-        auto,
-        tolerance: spec.tolerance,
+        head: Head::new(preset, (params, *problem.start()), resolved, auto, |a| {
+            a.choice
+        }),
+        step,
         t_end: spec.t_end,
         final_: FinalOut {
             t: result.t,
@@ -575,6 +627,18 @@ pub fn csv_metadata_of(
         method,
         ran,
         &numbers,
+    )
+}
+
+/// [`csv_metadata_of`] for `preset` run as `resolved` asks, by `ran` to `t_end`.
+fn csv_head(preset: &Preset, resolved: &Resolved, ran: Method, t_end: f64) -> String {
+    csv_metadata_of(
+        &preset.name,
+        &preset.model,
+        resolved.spec.method,
+        Some(ran),
+        resolved.spec.tolerance,
+        t_end,
     )
 }
 
@@ -705,22 +769,25 @@ pub(crate) fn times(t: &[f64]) -> String {
 fn table(r: &Report) -> String {
     let mut o = String::new();
     let e = &r.effective;
-    let _ = writeln!(o, "preset        {}", r.preset);
+    let _ = writeln!(o, "preset        {}", r.head.preset);
     let _ = writeln!(
         o,
         "body          ix = {}, iy = {}, iz = {}, k = {:e}",
-        r.params.ix, r.params.iy, r.params.iz, r.params.k
+        r.head.params.ix, r.head.params.iy, r.head.params.iz, r.head.params.k
     );
     let _ = writeln!(
         o,
         "start         gamma = {}, alpha = {}, gamma_dot = {}, alpha_dot = {}",
-        r.initial.gamma, r.initial.alpha, r.initial.gamma_dot, r.initial.alpha_dot
+        r.head.initial.gamma,
+        r.head.initial.alpha,
+        r.head.initial.gamma_dot,
+        r.head.initial.alpha_dot
     );
     render::method_lines(
         &mut o,
-        (r.method, r.tolerance, r.step),
+        (r.head.method, r.head.tolerance, r.step),
         &r.t_end.to_string(),
-        r.auto.as_ref().map(|a| render::Choice {
+        r.head.auto.as_ref().map(|a| render::Choice {
             method: a.choice,
             reason: &a.reason,
             error_estimate: a.error_estimate,
@@ -765,16 +832,17 @@ fn table(r: &Report) -> String {
 
 const STATE_NAMES: [&str; 4] = ["gamma", "alpha", "gamma_dot", "alpha_dot"];
 
-/// The first part of a result that is not a finite number, named for the error message.
-fn non_finite(r: &RunResult) -> Option<&'static str> {
-    if let Some(i) = r.final_state.iter().position(|x| !x.is_finite()) {
-        return Some(STATE_NAMES[i]);
+impl Finite for RunResult {
+    fn named_numbers(&self) -> Vec<(&'static str, f64)> {
+        let state = STATE_NAMES
+            .into_iter()
+            .zip(self.final_state.iter().copied());
+        let energy = [self.energy_final, self.max_relative_energy_error].map(|e| ("the energy", e));
+        let reversals = self.reversals.iter().map(|&t| ("a reversal time", t));
+        state.chain(energy).chain(reversals).collect()
     }
-    if !r.energy_final.is_finite() || !r.max_relative_energy_error.is_finite() {
-        return Some("the energy");
+
+    fn reached(&self) -> f64 {
+        self.t
     }
-    r.reversals
-        .iter()
-        .any(|t| !t.is_finite())
-        .then_some("a reversal time")
 }

@@ -21,45 +21,10 @@ use crate::physics::scene::{
     WeakView, Words,
 };
 
-const LENGTH: Scale = Scale::Linear {
-    fine: 0.1,
-    coarse: 1.0,
-};
-const INERTIA: Scale = Scale::Linear {
-    fine: 0.1,
-    coarse: 1.0,
-};
-const ANGLE: Scale = Scale::Linear {
-    fine: 0.001,
-    coarse: 0.01,
-};
-const RATE: Scale = Scale::Linear {
-    fine: 0.1,
-    coarse: 1.0,
-};
-
-/// A required row, or (`Some(default)`) an optional one.
-const fn row(
-    section: &'static str,
-    key: &'static str,
-    allowed: Allowed,
-    default: Option<f64>,
-    scale: Scale,
-    doc: &'static str,
-) -> ParamSpec {
-    ParamSpec {
-        section,
-        key,
-        allowed,
-        required: default.is_none(),
-        default: match default {
-            Some(d) => d,
-            None => 0.0,
-        },
-        scale,
-        doc,
-    }
-}
+const LENGTH: Scale = Scale::linear(0.1, 1.0);
+const INERTIA: Scale = Scale::linear(0.1, 1.0);
+const ANGLE: Scale = Scale::linear(0.001, 0.01);
+const RATE: Scale = Scale::linear(0.1, 1.0);
 
 const TILT: Allowed = Allowed::Between {
     lo: -TILT_MAX,
@@ -69,141 +34,108 @@ const TILT: Allowed = Allowed::Between {
 
 /// The celt's parameters, in the panel's order. Names are a contract: add, never rename.
 pub const PARAMS: [ParamSpec; 16] = [
-    row(
-        "celt",
-        "a",
+    ParamSpec::required(
+        ("celt", "a"),
         Allowed::Positive,
-        None,
         LENGTH,
         "semi-axis of the ellipsoidal bottom along body x, the long axis (cm)",
     ),
-    row(
-        "celt",
-        "b",
+    ParamSpec::required(
+        ("celt", "b"),
         Allowed::Positive,
-        None,
         LENGTH,
         "semi-axis along body y (cm)",
     ),
-    row(
-        "celt",
-        "c",
+    ParamSpec::required(
+        ("celt", "c"),
         Allowed::Positive,
-        None,
         LENGTH,
         "semi-axis along body z, the vertical at rest (cm)",
     ),
-    row(
-        "celt",
-        "offset",
+    ParamSpec::required(
+        ("celt", "offset"),
         Allowed::Finite,
-        None,
         LENGTH,
         "h: the mass centre lies h below the ellipsoid's centre on the c-axis; must be below c (cm)",
     ),
-    row(
-        "celt",
-        "ix",
+    ParamSpec::required(
+        ("celt", "ix"),
         Allowed::Positive,
-        None,
         INERTIA,
         "A: moment of inertia about body x through the mass centre, per unit mass (cm^2)",
     ),
-    row(
-        "celt",
-        "iy",
+    ParamSpec::required(
+        ("celt", "iy"),
         Allowed::Positive,
-        None,
         INERTIA,
         "B: about body y (cm^2)",
     ),
-    row(
-        "celt",
-        "iz",
+    ParamSpec::required(
+        ("celt", "iz"),
         Allowed::Positive,
-        None,
         INERTIA,
         "C: about body z (cm^2)",
     ),
-    row(
-        "celt",
-        "product",
+    ParamSpec::required(
+        ("celt", "product"),
         Allowed::Finite,
-        None,
-        Scale::Linear {
-            fine: 0.01,
-            coarse: 0.1,
-        },
+        Scale::linear(0.01, 0.1),
         "D: the inertia tensor's entry I_xy (Kane's convention), per unit mass; its sign sets the preferred sense of spin, 0 has none (cm^2)",
     ),
-    row(
-        "celt",
-        "gravity",
+    ParamSpec::optional(
+        ("celt", "gravity"),
         Allowed::NonNegative,
-        Some(DEFAULT_GRAVITY),
-        Scale::Linear {
-            fine: 1.0,
-            coarse: 100.0,
-        },
+        DEFAULT_GRAVITY,
+        Scale::linear(1.0, 100.0),
         "gravity (cm/s^2)",
     ),
-    row(
-        "initial",
-        "roll",
+    ParamSpec::optional(
+        ("initial", "roll"),
         TILT,
-        Some(0.0),
+        0.0,
         ANGLE,
         "roll about body x at t = 0 (rad)",
     ),
-    row(
-        "initial",
-        "pitch",
+    ParamSpec::optional(
+        ("initial", "pitch"),
         TILT,
-        Some(0.0),
+        0.0,
         ANGLE,
         "pitch about body y at t = 0 (rad)",
     ),
-    row(
-        "initial",
-        "yaw",
+    ParamSpec::optional(
+        ("initial", "yaw"),
         Allowed::Finite,
-        Some(0.0),
+        0.0,
         ANGLE,
         "heading at t = 0 (rad)",
     ),
-    row(
-        "initial",
-        "omega_x",
+    ParamSpec::optional(
+        ("initial", "omega_x"),
         Allowed::Finite,
-        Some(0.0),
+        0.0,
         RATE,
         "body-frame angular velocity about x at t = 0 (rad/s)",
     ),
-    row(
-        "initial",
-        "omega_y",
+    ParamSpec::optional(
+        ("initial", "omega_y"),
         Allowed::Finite,
-        Some(0.0),
+        0.0,
         RATE,
         "about y (rad/s)",
     ),
-    row(
-        "initial",
-        "omega_z",
+    ParamSpec::optional(
+        ("initial", "omega_z"),
         Allowed::Finite,
-        Some(0.0),
+        0.0,
         RATE,
         "about z; negative is clockwise seen from above (rad/s)",
     ),
-    row(
-        "run",
-        "spin_band",
+    ParamSpec::optional(
+        ("run", "spin_band"),
         Allowed::NonNegative,
-        Some(DEFAULT_BAND),
-        Scale::Linear {
-            fine: 0.05,
-            coarse: 0.5,
-        },
+        DEFAULT_BAND,
+        Scale::linear(0.05, 0.5),
         "hysteresis band of a reversal: the spin must reach this size with the new sign (rad/s)",
     ),
 ];

@@ -17,68 +17,45 @@ use crate::physics::scene::{
     Studies, SummaryLine, WeakView, Words,
 };
 
-const STRENGTH: Scale = Scale::Linear {
-    fine: 0.05,
-    coarse: 0.5,
-};
+const STRENGTH: Scale = Scale::linear(0.05, 0.5);
 
 /// The pendulum's parameters, in the panel's order. Names are a contract: add, never rename.
 pub const PARAMS: [ParamSpec; 5] = [
-    ParamSpec {
-        section: "pendulum",
-        key: "a",
-        allowed: Allowed::Finite,
-        required: true,
-        default: 0.0,
-        scale: STRENGTH,
-        doc: "gravity over length; the upright is unstable without shaking when a > 0",
-    },
-    ParamSpec {
-        section: "pendulum",
-        key: "b",
-        allowed: Allowed::NonNegative,
-        required: true,
-        default: 0.0,
-        scale: STRENGTH,
-        doc: "shaking strength: the pivot's acceleration is (b/ε) cos(t/ε)",
-    },
-    ParamSpec {
-        section: "pendulum",
-        key: "epsilon",
-        allowed: Allowed::Between {
+    ParamSpec::required(
+        ("pendulum", "a"),
+        Allowed::Finite,
+        STRENGTH,
+        "gravity over length; the upright is unstable without shaking when a > 0",
+    ),
+    ParamSpec::required(
+        ("pendulum", "b"),
+        Allowed::NonNegative,
+        STRENGTH,
+        "shaking strength: the pivot's acceleration is (b/ε) cos(t/ε)",
+    ),
+    ParamSpec::required(
+        ("pendulum", "epsilon"),
+        Allowed::Between {
             lo: EPSILON_MIN,
             hi: EPSILON_MAX,
             text: "a number in [1e-9, 1]",
         },
-        required: true,
-        default: 0.0,
-        scale: Scale::Log,
-        doc: "fast time scale: the pivot oscillates with angular frequency 1/ε",
-    },
-    ParamSpec {
-        section: "initial",
-        key: "theta",
-        allowed: Allowed::Finite,
-        required: true,
-        default: 0.0,
-        scale: Scale::Linear {
-            fine: 0.05,
-            coarse: std::f64::consts::FRAC_PI_8,
-        },
-        doc: "initial angle from the upright",
-    },
-    ParamSpec {
-        section: "initial",
-        key: "theta_dot",
-        allowed: Allowed::Finite,
-        required: false,
-        default: 0.0,
-        scale: Scale::Linear {
-            fine: 0.01,
-            coarse: 0.1,
-        },
-        doc: "initial rate",
-    },
+        Scale::Log,
+        "fast time scale: the pivot oscillates with angular frequency 1/ε",
+    ),
+    ParamSpec::required(
+        ("initial", "theta"),
+        Allowed::Finite,
+        Scale::linear(0.05, std::f64::consts::FRAC_PI_8),
+        "initial angle from the upright",
+    ),
+    ParamSpec::optional(
+        ("initial", "theta_dot"),
+        Allowed::Finite,
+        0.0,
+        Scale::linear(0.01, 0.1),
+        "initial rate",
+    ),
 ];
 
 /// The pendulum's scene.
@@ -123,34 +100,14 @@ pub static SCENE: Scene = Scene {
     },
 };
 
-impl Problem {
-    /// The problem of `values`, in the order of [`PARAMS`].
-    ///
-    /// # Errors
-    /// The first value outside its range, or a derived quantity that overflows.
-    pub fn from_values(values: &[f64]) -> Result<Self, ParamError> {
-        let v = |i: usize| values.get(i).copied().unwrap_or(f64::NAN);
-        Self::new(
-            Params {
-                a: v(0),
-                b: v(1),
-                epsilon: v(2),
-            },
-            Start {
-                theta: v(3),
-                theta_dot: v(4),
-            },
-        )
-    }
-}
+crate::physics::scene::table_order!(Params { a, b, epsilon }, Start { theta, theta_dot });
 
 impl Posed for Problem {
     fn scene(&self) -> &'static Scene {
         &SCENE
     }
     fn values(&self) -> Vec<f64> {
-        let (p, s) = (self.params(), self.start());
-        vec![p.a, p.b, p.epsilon, s.theta, s.theta_dot]
+        self.table_values()
     }
     fn summary(&self) -> Vec<SummaryLine> {
         let p = self.params();

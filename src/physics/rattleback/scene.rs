@@ -19,95 +19,61 @@ use crate::physics::scene::{
     WeakView, Words,
 };
 
-const INERTIA: Scale = Scale::Linear {
-    fine: 0.05,
-    coarse: 0.5,
-};
-const RATE: Scale = Scale::Linear {
-    fine: 0.01,
-    coarse: 0.1,
-};
+const INERTIA: Scale = Scale::linear(0.05, 0.5);
+const RATE: Scale = Scale::linear(0.01, 0.1);
 
 /// The rattleback's parameters, in the panel's order. Names are a contract: add, never rename.
 pub const PARAMS: [ParamSpec; 8] = [
-    ParamSpec {
-        section: "body",
-        key: "ix",
-        allowed: Allowed::Positive,
-        required: true,
-        default: 0.0,
-        scale: INERTIA,
-        doc: "inertia moment about the body's x axis",
-    },
-    ParamSpec {
-        section: "body",
-        key: "iy",
-        allowed: Allowed::Positive,
-        required: true,
-        default: 0.0,
-        scale: INERTIA,
-        doc: "inertia moment about the body's y axis",
-    },
-    ParamSpec {
-        section: "body",
-        key: "iz",
-        allowed: Allowed::Positive,
-        required: true,
-        default: 0.0,
-        scale: INERTIA,
-        doc: "inertia moment about the vertical (spin) axis",
-    },
-    ParamSpec {
-        section: "spring",
-        key: "k",
-        allowed: Allowed::Positive,
-        required: true,
-        default: 0.0,
-        scale: Scale::Log,
-        doc: "Hooke constant of the spring holding the tilt",
-    },
-    ParamSpec {
-        section: "initial",
-        key: "gamma",
-        allowed: Allowed::Finite,
-        required: false,
-        default: 0.0,
-        scale: Scale::Linear {
-            fine: 1e-3,
-            coarse: 1e-2,
-        },
-        doc: "initial tilt",
-    },
-    ParamSpec {
-        section: "initial",
-        key: "alpha",
-        allowed: Allowed::Finite,
-        required: false,
-        default: 0.0,
-        scale: Scale::Linear {
-            fine: 0.05,
-            coarse: std::f64::consts::FRAC_PI_8,
-        },
-        doc: "initial spin angle",
-    },
-    ParamSpec {
-        section: "initial",
-        key: "gamma_dot",
-        allowed: Allowed::Finite,
-        required: true,
-        default: 0.0,
-        scale: RATE,
-        doc: "initial tilt rate",
-    },
-    ParamSpec {
-        section: "initial",
-        key: "alpha_dot",
-        allowed: Allowed::Finite,
-        required: true,
-        default: 0.0,
-        scale: RATE,
-        doc: "initial spin rate",
-    },
+    ParamSpec::required(
+        ("body", "ix"),
+        Allowed::Positive,
+        INERTIA,
+        "inertia moment about the body's x axis",
+    ),
+    ParamSpec::required(
+        ("body", "iy"),
+        Allowed::Positive,
+        INERTIA,
+        "inertia moment about the body's y axis",
+    ),
+    ParamSpec::required(
+        ("body", "iz"),
+        Allowed::Positive,
+        INERTIA,
+        "inertia moment about the vertical (spin) axis",
+    ),
+    ParamSpec::required(
+        ("spring", "k"),
+        Allowed::Positive,
+        Scale::Log,
+        "Hooke constant of the spring holding the tilt",
+    ),
+    ParamSpec::optional(
+        ("initial", "gamma"),
+        Allowed::Finite,
+        0.0,
+        Scale::linear(1e-3, 1e-2),
+        "initial tilt",
+    ),
+    ParamSpec::optional(
+        ("initial", "alpha"),
+        Allowed::Finite,
+        0.0,
+        Scale::linear(0.05, std::f64::consts::FRAC_PI_8),
+        "initial spin angle",
+    ),
+    ParamSpec::required(
+        ("initial", "gamma_dot"),
+        Allowed::Finite,
+        RATE,
+        "initial tilt rate",
+    ),
+    ParamSpec::required(
+        ("initial", "alpha_dot"),
+        Allowed::Finite,
+        RATE,
+        "initial spin rate",
+    ),
 ];
 
 /// The methods the rattleback offers, `auto` first: every method but the celt's projected one.
@@ -167,46 +133,22 @@ pub static SCENE: Scene = Scene {
     },
 };
 
-impl Problem {
-    /// The problem of `values`, in the order of [`PARAMS`].
-    ///
-    /// # Errors
-    /// The first value outside its range, or a derived quantity that overflows.
-    pub fn from_values(values: &[f64]) -> Result<Self, ParamError> {
-        let v = |i: usize| values.get(i).copied().unwrap_or(f64::NAN);
-        Self::new(
-            Params {
-                ix: v(0),
-                iy: v(1),
-                iz: v(2),
-                k: v(3),
-            },
-            Start {
-                gamma: v(4),
-                alpha: v(5),
-                gamma_dot: v(6),
-                alpha_dot: v(7),
-            },
-        )
+crate::physics::scene::table_order!(
+    Params { ix, iy, iz, k },
+    Start {
+        gamma,
+        alpha,
+        gamma_dot,
+        alpha_dot
     }
-}
+);
 
 impl Posed for Problem {
     fn scene(&self) -> &'static Scene {
         &SCENE
     }
     fn values(&self) -> Vec<f64> {
-        let (p, s) = (self.params(), self.start());
-        vec![
-            p.ix,
-            p.iy,
-            p.iz,
-            p.k,
-            s.gamma,
-            s.alpha,
-            s.gamma_dot,
-            s.alpha_dot,
-        ]
+        self.table_values()
     }
     fn summary(&self) -> Vec<SummaryLine> {
         let e = Effective::new(self);
