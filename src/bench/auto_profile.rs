@@ -18,7 +18,7 @@ use serde::Serialize;
 
 use super::best_of;
 
-use crate::physics::rattleback::auto::run_auto;
+use crate::physics::rattleback::auto::{memo, run_auto};
 use crate::physics::rattleback::integrators::Method;
 use crate::physics::rattleback::run::RunResult;
 use crate::physics::rattleback::{Params, Problem, Start, run};
@@ -43,8 +43,12 @@ pub struct ProfileRow {
     pub choice: String,
     /// Its refinements.
     pub refinements: u32,
-    /// Best wall time of `auto` (plan, probes, run, companion, refinements), seconds.
+    /// Best wall time of `auto` (plan, probes, run, companion, refinements), seconds, with no
+    /// probe kept from an earlier run (a first `auto` on this body and start).
     pub auto_seconds: f64,
+    /// The same with the probes kept from an earlier `auto` on this body and start at another
+    /// `k` (the explorer's slider, a sweep's rungs): what every `auto` after the first costs.
+    pub auto_warm_seconds: f64,
     /// Its true error: the largest of α(T), α̇(T), reversal times.
     pub error: f64,
     /// Its estimate.
@@ -156,7 +160,11 @@ pub fn profile(quick: bool, log: &mut dyn FnMut(&str)) -> Vec<ProfileRow> {
                 log(&format!("{start} k = {k:e}: auto failed"));
                 continue;
             };
+            let auto_warm_seconds = best_of(repeats, || {
+                let _ = std::hint::black_box(run_auto(p, TOLERANCE, T_END, 0, false));
+            });
             let auto_seconds = best_of(repeats, || {
+                memo::clear();
                 let _ = std::hint::black_box(run_auto(p, TOLERANCE, T_END, 0, false));
             });
             let achieved = error(&v.result, &reference);
@@ -212,6 +220,7 @@ pub fn profile(quick: bool, log: &mut dyn FnMut(&str)) -> Vec<ProfileRow> {
                 choice: v.plan.method.to_string(),
                 refinements: v.refinements,
                 auto_seconds,
+                auto_warm_seconds,
                 error: achieved,
                 estimate: v.error_estimate,
                 met: v.met,
@@ -257,7 +266,7 @@ pub fn profile_table(rows: &[ProfileRow]) -> String {
     let mut o = String::new();
     let _ = writeln!(
         o,
-        "{:<9} {:>7} {:<13} {:>9} {:>6} {:>9} {:>9} {:>5} {:<24} {:>9} {:>6} peer dop853 within 1e-8",
+        "{:<9} {:>7} {:<13} {:>9} {:>6} {:>9} {:>9} {:>5} {:<24} {:>9} {:>6} {:>9} {:>6} peer dop853 within 1e-8",
         "start",
         "k",
         "auto chose",
@@ -268,6 +277,8 @@ pub fn profile_table(rows: &[ProfileRow]) -> String {
         "met",
         "best single (same err)",
         "ms",
+        "ratio",
+        "warm ms",
         "ratio",
     );
     for start in ["trapped", "rotating"] {
@@ -289,7 +300,7 @@ pub fn profile_table(rows: &[ProfileRow]) -> String {
             );
             let _ = writeln!(
                 o,
-                "{:<9} {:>7.0e} {:<13} {:>9.3} {:>6.2} {:>9.1e} {:>9.1e} {:>5} {:<24} {:>9.3} {:>6.2} {}",
+                "{:<9} {:>7.0e} {:<13} {:>9.3} {:>6.2} {:>9.1e} {:>9.1e} {:>5} {:<24} {:>9.3} {:>6.2} {:>9.3} {:>6.2} {}",
                 r.start,
                 r.k,
                 format!(
@@ -309,6 +320,8 @@ pub fn profile_table(rows: &[ProfileRow]) -> String {
                 r.best_single,
                 r.best_seconds * 1e3,
                 r.auto_seconds / r.best_seconds,
+                r.auto_warm_seconds * 1e3,
+                r.auto_warm_seconds / r.best_seconds,
                 peer
             );
         }
@@ -322,7 +335,7 @@ pub fn profile_table(rows: &[ProfileRow]) -> String {
 /// When the file cannot be written.
 pub fn write_profile_csv(rows: &[ProfileRow], path: &std::path::Path) -> std::io::Result<()> {
     let mut o = String::from(
-        "start,k,choice,refinements,auto_seconds,error,estimate,met,best_single,best_seconds,peer,peer_seconds\n",
+        "start,k,choice,refinements,auto_seconds,error,estimate,met,best_single,best_seconds,peer,peer_seconds,auto_warm_seconds\n",
     );
     for r in rows {
         let (peer, peer_s) = r
@@ -333,7 +346,7 @@ pub fn write_profile_csv(rows: &[ProfileRow], path: &std::path::Path) -> std::io
             });
         let _ = writeln!(
             o,
-            "{},{:e},{},{},{:e},{:e},{:e},{},{},{:e},{},{}",
+            "{},{:e},{},{},{:e},{:e},{:e},{},{},{:e},{},{},{:e}",
             r.start,
             r.k,
             r.choice,
@@ -345,7 +358,8 @@ pub fn write_profile_csv(rows: &[ProfileRow], path: &std::path::Path) -> std::io
             r.best_single,
             r.best_seconds,
             peer,
-            peer_s
+            peer_s,
+            r.auto_warm_seconds
         );
     }
     crate::scenario::write::write_atomic(path, o.as_bytes(), true)

@@ -252,3 +252,34 @@ fn averaged_runs_report_the_averaged_model() {
     let h_eff = v["effective"]["half_period"].as_f64().unwrap();
     assert!((h - h_eff).abs() < 1e-6 * h_eff, "{h} vs {h_eff}");
 }
+
+/// Issue 27: the probes of one body and start are measured once per process and read at every
+/// other `k` (the explorer's slider, a sweep's rungs), and what is read is what would be
+/// computed: `auto` at a `k` with the probes kept gives the same bits as with none kept.
+#[test]
+fn probes_are_measured_once_and_reading_them_changes_nothing() {
+    use rattleback::physics::rattleback::auto::{memo, probe_problem, probe_stiffnesses};
+    // A body no other test uses, so that its probes are this test's alone.
+    let at = |k| common::problem(0.8123, 1.27, 1.0, k, [0.0, 0.0, 1.0, 0.35]);
+    let t_end = 10.0;
+    let first = run_auto(&at(1e7), 1e-8, t_end, 0, false).unwrap();
+    assert_eq!(
+        first.plan.method,
+        Method::Averaged2,
+        "{}",
+        first.plan.reason
+    );
+    let keys = probe_stiffnesses(&at(1e7)).map(|k| memo::key(&probe_problem(&at(1e7), k), t_end));
+    let before = keys.map(|k| memo::reads(&k).expect("the probes were kept"));
+    // Another k of the same body and start asks for the same probes.
+    assert_eq!(probe_stiffnesses(&at(1e9)), probe_stiffnesses(&at(1e7)));
+    let warm = run_auto(&at(1e9), 1e-8, t_end, 0, false).unwrap();
+    let after = keys.map(|k| memo::reads(&k).unwrap_or(0));
+    assert!(
+        after[0] > before[0] && after[1] > before[1],
+        "the probes were run again: reads {before:?} then {after:?}"
+    );
+    memo::clear();
+    let cold = run_auto(&at(1e9), 1e-8, t_end, 0, false).unwrap();
+    assert_eq!(warm, cold, "a kept probe changed what auto returns");
+}

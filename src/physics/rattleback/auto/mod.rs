@@ -42,6 +42,7 @@
 //! Pure: no clock; a caller's `go_on` decides about cancellation.
 
 pub mod legacy;
+pub mod memo;
 
 use crate::physics::method::Asked;
 use std::fmt::Write as _;
@@ -268,7 +269,8 @@ pub fn considers_averaged(problem: &Problem, tolerance: f64, t_end: f64) -> bool
         && best_resolved(problem, tolerance, t_end).predicted_seconds > probes_cost(problem, t_end)
 }
 
-/// Measures the averaged model's error at the probe stiffnesses, climbing a rung (both ×4) while
+/// Measures the averaged model's error at the probe stiffnesses (each probe once per process:
+/// [`memo`]), climbing a rung (both ×4) while
 /// the measurement says the probes are not yet in the averaging's range (the full motion and the
 /// averaged one count different reversals, or the error decays slower than `1/k`) and `k` is far
 /// enough above the next rung (at most [`PROBE_RUNGS`] rungs).
@@ -325,6 +327,10 @@ fn probe_gap(
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<f64, StepError> {
     let probe = probe_problem(problem, k);
+    let key = memo::key(&probe, t_end);
+    if let Some(gap) = memo::read(&key) {
+        return Ok(gap);
+    }
     let nu = fastest_rate(&probe);
     let spec = |method, tolerance, step| RunSpec {
         method,
@@ -344,7 +350,7 @@ fn probe_gap(
         &spec(Method::Averaged2, PROBE_TOLERANCE, None),
         go_on,
     );
-    Ok(match (full, averaged) {
+    let gap = match (full, averaged) {
         (Err(e @ StepError::Cancelled { .. }), _) | (_, Err(e @ StepError::Cancelled { .. })) => {
             return Err(e);
         }
@@ -358,7 +364,9 @@ fn probe_gap(
             d
         }
         _ => f64::INFINITY,
-    })
+    };
+    memo::keep(key, gap);
+    Ok(gap)
 }
 
 /// The cheapest plan that resolves the fast motion (dop853 or blanes-moan4) among those whose

@@ -1,0 +1,87 @@
+//! The probes' answers, kept for the life of the process.
+//!
+//! A probe's gap (the resolved full model against the averaged model over `[0, T]`) depends
+//! only on the probe problem (the body at the probe stiffness and the start of the averaging's
+//! family, [`super::probe_problem`]) and on `T`: not on the `k` that asked for it. Where the
+//! start's tilt is zero (every shipped preset) or scales with the family, the probes of one body
+//! and start are the same problems at every `k`, so `auto` at another `k` (the explorer's `k`
+//! slider, a sweep's rungs, a stiffness table) reads them here instead of running them again.
+//!
+//! The answer read is the answer that would be computed, bit for bit, so nothing `auto` returns
+//! depends on what was kept: its budget counts the probes' predicted cost either way. A
+//! cancelled probe is not kept. At most [`CAPACITY`] answers are kept, the oldest forgotten
+//! first.
+
+use std::sync::Mutex;
+
+use super::super::params::Problem;
+
+/// How many probe answers are kept.
+pub const CAPACITY: usize = 256;
+
+/// A probe problem and horizon, as the bits of its numbers.
+type Key = [u64; 9];
+
+struct Entry {
+    key: Key,
+    gap: f64,
+    reads: u64,
+}
+
+static KEPT: Mutex<Vec<Entry>> = Mutex::new(Vec::new());
+
+/// The key of the probe problem `probe` over `[0, t_end]`.
+#[must_use]
+pub fn key(probe: &Problem, t_end: f64) -> Key {
+    let (p, s) = (probe.params(), probe.start());
+    [
+        p.ix,
+        p.iy,
+        p.iz,
+        p.k,
+        s.gamma,
+        s.alpha,
+        s.gamma_dot,
+        s.alpha_dot,
+        t_end,
+    ]
+    .map(f64::to_bits)
+}
+
+fn kept() -> std::sync::MutexGuard<'static, Vec<Entry>> {
+    // A panic elsewhere while holding the lock leaves whole entries: the list stays usable.
+    KEPT.lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// The kept gap of `key`, if any (counting the read).
+#[must_use]
+pub fn read(key: &Key) -> Option<f64> {
+    let mut list = kept();
+    let entry = list.iter_mut().find(|e| e.key == *key)?;
+    entry.reads += 1;
+    Some(entry.gap)
+}
+
+/// Keeps `gap` as the answer of `key`.
+pub fn keep(key: Key, gap: f64) {
+    let mut list = kept();
+    if list.iter().any(|e| e.key == key) {
+        return;
+    }
+    if list.len() == CAPACITY {
+        list.remove(0);
+    }
+    list.push(Entry { key, gap, reads: 0 });
+}
+
+/// How many times the answer of `key` was read instead of computed (`None`: not kept).
+#[must_use]
+pub fn reads(key: &Key) -> Option<u64> {
+    kept().iter().find(|e| e.key == *key).map(|e| e.reads)
+}
+
+/// Forgets every answer (the benchmark's cold runs; results never depend on it).
+pub fn clear() {
+    kept().clear();
+}
