@@ -915,3 +915,19 @@ fn a_restart_cancels_the_maps_row_and_the_map_resumes_where_it_stopped() {
         })
     ));
 }
+
+/// Hiding the map takes back its hint: the status line no longer says the arrows move a cursor
+/// that is gone (it stayed until the next message).
+#[test]
+fn hiding_the_map_takes_back_its_hint() {
+    use rattleback::app::Mode;
+    use rattleback::app::panes::Pane;
+    let mut h = Headless::new("subcritical");
+    h.key(Key::Char('M'));
+    assert!(h.app.status.as_ref().unwrap().text.contains("arrows move"));
+    h.key(Key::Char('M'));
+    assert!(!h.app.view.panes.shows(Pane::Map));
+    assert_eq!(h.app.mode, Mode::Normal);
+    let said = &h.app.status.as_ref().unwrap().text;
+    assert!(!said.contains("arrows move"), "{said}");
+}

@@ -33,6 +33,9 @@ pub struct Computed {
     pub compare: compare::CompareState,
 }
 
+/// What the status line says while the map has the arrows.
+const MAP_HINT: &str = "map: arrows move, Enter loads the cell, Esc";
+
 impl Computed {
     /// The state of `pane` when the worker computes for it; none for a pane drawn from what
     /// the run already has. Exhaustive, so a new pane must say which it is.
@@ -147,9 +150,17 @@ impl App {
         }
         self.view.panes.toggle(pane);
         let on = self.view.panes.shows(pane);
-        if on && pane == Pane::Map {
-            self.mode = Mode::Map;
-            self.status = Message::info("map: arrows move, Enter loads the cell, Esc");
+        if pane == Pane::Map {
+            if on {
+                self.mode = Mode::Map;
+                self.status = Message::info(MAP_HINT);
+            } else {
+                self.mode = Mode::Normal;
+                // Its hint said the arrows move the map's cursor: no longer true.
+                if self.status == Message::info(MAP_HINT) {
+                    self.status = Message::info("map hidden: arrows back on the parameters");
+                }
+            }
         }
         let command = if on {
             self.start_job(pane)
