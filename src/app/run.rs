@@ -74,7 +74,14 @@ pub enum PlanState {
     /// Not known yet (the worker has not answered).
     Pending,
     /// `auto` is verifying its choice over the whole run; nothing is shown until it is done.
-    Verifying,
+    /// Its `run`-th integration (0 before the first report) has reached `percent` of the
+    /// horizon.
+    Verifying {
+        /// Which of `auto`'s integrations.
+        run: u32,
+        /// How far it has reached, in whole percent.
+        percent: u8,
+    },
     /// Integrating this plan; `estimate` is `auto`'s verified error when it planned.
     Running {
         /// The plan.
@@ -280,7 +287,17 @@ impl RunState {
     pub fn on_sim(&mut self, event: SimEvent, overlay: bool) -> bool {
         match event {
             SimEvent::Planning { generation } if generation == self.generation => {
-                self.plan = PlanState::Verifying;
+                self.plan = PlanState::Verifying { run: 0, percent: 0 };
+                true
+            }
+            SimEvent::PlanProgress {
+                generation,
+                run,
+                percent,
+            } if generation == self.generation
+                && matches!(self.plan, PlanState::Verifying { .. }) =>
+            {
+                self.plan = PlanState::Verifying { run, percent };
                 true
             }
             SimEvent::Started {

@@ -273,7 +273,15 @@ impl Engine {
         let Some((generation, spec)) = self.planning else {
             return true;
         };
-        let started = match self.planner.start(generation, &spec, go_on) {
+        let mut progress = PlanProgress::new(generation, spec.t_end);
+        let started = self.planner.start(generation, &spec, &mut |t| {
+            if let Some(event) = progress.at(t) {
+                // A closed sink is seen by the next call's `sink` below.
+                sink(event);
+            }
+            go_on(t)
+        });
+        let started = match started {
             Err(StepError::Cancelled { .. }) => return true,
             started => started,
         };
@@ -491,5 +499,45 @@ pub fn drive(engine: &mut Engine, commands: Vec<Command>, on_event: &mut dyn FnM
     }
     while engine.busy() {
         engine.work(usize::MAX, &mut |_| true, &mut sink);
+    }
+}
+
+/// Turns the times `auto`'s integrations report into [`SimEvent::PlanProgress`]: a time below
+/// the last one starts the next integration (each runs from 0).
+struct PlanProgress {
+    generation: u64,
+    t_end: f64,
+    last_t: f64,
+    run: u32,
+    percent: Option<u8>,
+}
+
+impl PlanProgress {
+    fn new(generation: u64, t_end: f64) -> Self {
+        Self {
+            generation,
+            t_end,
+            last_t: f64::INFINITY,
+            run: 0,
+            percent: None,
+        }
+    }
+
+    /// The event to send for time `t`, when the integration or its whole percent changed.
+    fn at(&mut self, t: f64) -> Option<SimEvent> {
+        if t < self.last_t {
+            self.run += 1;
+            self.percent = None;
+        }
+        self.last_t = t;
+        let percent = (100.0 * t / self.t_end).clamp(0.0, 100.0) as u8;
+        (self.percent != Some(percent)).then(|| {
+            self.percent = Some(percent);
+            SimEvent::PlanProgress {
+                generation: self.generation,
+                run: self.run,
+                percent,
+            }
+        })
     }
 }

@@ -74,6 +74,17 @@ pub enum SimEvent {
         /// Run stamp.
         generation: u64,
     },
+    /// How far `auto`'s planning has come: its `run`-th integration (probes, conditioning, the
+    /// run and its companions, refinements; counted from 1) has reached `percent` of the
+    /// horizon. Sent while planning, at most once per whole percent.
+    PlanProgress {
+        /// Run stamp.
+        generation: u64,
+        /// Which of `auto`'s integrations.
+        run: u32,
+        /// How far it has reached, in whole percent of the horizon.
+        percent: u8,
+    },
     /// A run started; `plan` is what integrates (what `auto` resolved to).
     Started {
         /// Run stamp.

@@ -161,9 +161,14 @@ fn run(rx: &Receiver<Command>, mut engine: Engine, mut sink: impl FnMut(SimEvent
         let mut events = Vec::new();
         let mut stop = false;
         {
-            let mut collect = |e| {
-                events.push(e);
-                true
+            // Planning's progress goes out at once (planning is one slice, which may be long);
+            // the rest is gathered and coalesced.
+            let mut collect = |e| match e {
+                SimEvent::PlanProgress { .. } => sink(e),
+                e => {
+                    events.push(e);
+                    true
+                }
             };
             // Planning is cancelled only by what makes it moot: a restart or a quit.
             let mut go_on = |_t: f64| {

@@ -45,8 +45,12 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
     out.push(field(format!("t {:.2}/{}", run.shown, s.t_end), 0));
     let state = if run.failed.is_some() {
         "failed"
-    } else if run.plan == PlanState::Verifying {
-        "verifying auto…"
+    } else if let PlanState::Verifying { run, percent } = run.plan {
+        &if run == 0 {
+            "verifying auto…".to_owned()
+        } else {
+            format!("verifying auto… run {run} at {percent}%")
+        }
     } else if run.done() {
         "done"
     } else if run.playing {

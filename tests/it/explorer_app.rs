@@ -502,7 +502,13 @@ fn wait_for(
             }
         }
     }
-    panic!("timed out after {limit:?}; saw {} events", seen.len());
+    panic!(
+        "timed out after {limit:?}; saw {} events: {:?}",
+        seen.len(),
+        seen.iter()
+            .map(|e| format!("{e:?}").chars().take(200).collect::<String>())
+            .collect::<Vec<_>>()
+    );
 }
 
 fn spec(
@@ -930,4 +936,77 @@ fn hiding_the_map_takes_back_its_hint() {
     assert_eq!(h.app.mode, Mode::Normal);
     let said = &h.app.status.as_ref().unwrap().text;
     assert!(!said.contains("arrows move"), "{said}");
+}
+
+/// Issue 27: `auto`'s planning reports its progress while it plans (not when it is done): a
+/// long verification sends `PlanProgress` events, counting its integrations and the percent of
+/// the horizon each has reached, before anything starts; the status bar shows them.
+#[test]
+fn a_long_verification_reports_its_progress_as_it_goes() {
+    // Unbounded: the test reads only some of the worker's events.
+    let (tx, rx) = mpsc::channel();
+    let worker = Worker::spawn(move |e| tx.send(e).is_ok());
+    let preset = resolve("subcritical", &[]).unwrap();
+    // The issue's case: the default preset to t = 1000 (about 9 s of verification).
+    let long = SessionSpec {
+        t_end: 1000.0,
+        ..spec(*preset.problem().unwrap(), Method::Auto, 1e-9)
+    };
+    let quick = spec(*preset.problem().unwrap(), Method::Dop853, 1e-9);
+    worker.send(Command::Restart {
+        generation: 1,
+        spec: long,
+    });
+    let mut progress = Vec::new();
+    wait_for(&rx, Duration::from_secs(30), |e| {
+        if let SimEvent::PlanProgress {
+            generation: 1,
+            run,
+            percent,
+        } = e
+        {
+            progress.push((*run, *percent));
+        }
+        progress.len() >= 3
+    });
+    assert!(
+        progress[0].0 >= 1,
+        "integrations count from 1: {progress:?}"
+    );
+    assert!(
+        progress.windows(2).all(|w| w[1] > w[0]),
+        "each report is further on: {progress:?}"
+    );
+    // Planning is still going on, so a restart cancels it and it never starts. Had the reports
+    // been held until planning was done, it would have started, right behind them.
+    worker.send(Command::Restart {
+        generation: 2,
+        spec: quick,
+    });
+    let rest = wait_for(&rx, Duration::from_secs(30), |e| {
+        matches!(e, SimEvent::Started { generation: 2, .. })
+    });
+    assert!(
+        !rest
+            .iter()
+            .any(|e| matches!(e, SimEvent::Started { generation: 1, .. })),
+        "the progress came with the start, not before it"
+    );
+    worker.send(Command::Quit);
+    worker.join();
+}
+
+#[test]
+fn the_status_bar_shows_autos_progress() {
+    let mut h = Headless::new("subcritical");
+    h.app.run.plan = PlanState::Verifying {
+        run: 3,
+        percent: 42,
+    };
+    let screen = crate::explorer_ui::screen_text(&h.app, 120, 30);
+    assert!(screen.contains("verifying auto… run 3 at 42%"), "{screen}");
+    h.app.run.plan = PlanState::Verifying { run: 0, percent: 0 };
+    let screen = crate::explorer_ui::screen_text(&h.app, 120, 30);
+    assert!(screen.contains("verifying auto…"), "{screen}");
+    assert!(!screen.contains(" run 0"), "{screen}");
 }
