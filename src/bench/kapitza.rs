@@ -104,6 +104,7 @@ pub fn study(quick: bool, log: &mut dyn FnMut(&str)) -> Vec<Row> {
             (Method::Dop853, 1e-9),
             (Method::Suzuki8, 1e-9),
             (Method::EffectiveCorrected, 1e-10),
+            (Method::Averaged2, 1e-10),
         ] {
             let (ran, tol, estimate) = if method == Method::Auto {
                 let c = plan::resolve(&r.problem, tolerance, r.t_end);

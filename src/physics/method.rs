@@ -30,8 +30,9 @@ pub enum Method {
     Locked,
     /// The effective model with its first-order correction (the fast ripple of `α̇`).
     EffectiveCorrected,
-    /// The second-order averaged model: error O(k⁻²), cost independent of `k`
-    /// (docs/physics.md §4c, `physics::rattleback::averaged`).
+    /// The second-order averaged model: error O(k⁻²) for the rattleback, O(ε⁴) for the
+    /// pendulum; cost independent of the small parameter (docs/physics.md §4c,
+    /// `physics::rattleback::averaged`, `physics::kapitza::averaged`).
     Averaged2,
     /// DOP853 with the state projected back onto its constraints after every step (the celt's
     /// unit quaternion, with the up vector taken from it).

@@ -190,6 +190,10 @@ fn plan_of(
             "the limit with its ripple: its predicted model error {:.1e} is above the tolerance, but a resolved run's rounding ({:.1e}) would be worse",
             c.predicted_model_error, c.estimate
         ),
+        (Method::Averaged2, _) => format!(
+            "the second-order averaged model: its error, checked against the limit with its ripple and a run 16x looser, is {:.1e}; cost independent of epsilon",
+            c.estimate
+        ),
         (_, true) => format!(
             "the full model resolved at local tolerance {:.1e}, verified against a run 16x looser: the limit's predicted model error {:.1e} exceeds the tolerance",
             c.settings.tolerance, c.predicted_model_error

@@ -20,6 +20,7 @@
 
 use nalgebra::Vector2;
 
+use super::averaged;
 use super::limit::{self, Limit};
 use super::{Params, Problem};
 use crate::physics::flow::{Flow, Sample};
@@ -30,7 +31,7 @@ use crate::physics::numerics::dop853::{Dop853, Field};
 use crate::physics::numerics::roots::find_root;
 
 /// The methods this model offers (`auto` resolves to one of them).
-pub const METHODS: [Method; 10] = [
+pub const METHODS: [Method; 11] = [
     Method::Auto,
     Method::Rk4,
     Method::Dop853,
@@ -41,6 +42,7 @@ pub const METHODS: [Method; 10] = [
     Method::Suzuki8,
     Method::Effective,
     Method::EffectiveCorrected,
+    Method::Averaged2,
 ];
 
 /// Whether this model offers `method`.
@@ -95,8 +97,13 @@ pub fn build(problem: &Problem, ask: &Asked) -> Result<Box<dyn Flow>, StepError>
             Scheme::Split(Composition::of(method)),
             step,
         )),
-        Method::Effective => Box::new(LimitDop853::new(problem, settings.tolerance, false)),
-        Method::EffectiveCorrected => Box::new(LimitDop853::new(problem, settings.tolerance, true)),
+        Method::Effective => Box::new(LimitDop853::new(problem, settings.tolerance, Order::Limit)),
+        Method::EffectiveCorrected => Box::new(LimitDop853::new(
+            problem,
+            settings.tolerance,
+            Order::Corrected,
+        )),
+        Method::Averaged2 => Box::new(LimitDop853::new(problem, settings.tolerance, Order::Second)),
         other => {
             return Err(StepError::NotOffered {
                 method: other.name(),
@@ -407,26 +414,45 @@ impl Flow for Fixed {
     }
 }
 
-/// The limit's field on `(Θ, Θ̇)`.
+/// The limit's field on `(Θ, Θ̇)`, with (`second`) the averaged model's `ε² F2` term.
 #[derive(Clone)]
-struct LimitField(Limit);
+struct LimitField {
+    limit: Limit,
+    second: Option<Params>,
+}
 
 impl Field<2> for LimitField {
     #[inline]
     fn eval(&self, y: &Vector2<f64>) -> Vector2<f64> {
-        Vector2::new(y[1], self.0.acceleration(y[0]))
+        let mut acceleration = self.limit.acceleration(y[0]);
+        if let Some(p) = &self.second {
+            acceleration += p.epsilon * p.epsilon * averaged::f2(p, y[0], y[1]);
+        }
+        Vector2::new(y[1], acceleration)
     }
     fn is_angle(&self, i: usize) -> bool {
         i == 0
     }
 }
 
-/// `effective` and `effective-corrected`: DOP853 on the limit.
+/// How much of the averaging a [`LimitDop853`] keeps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Order {
+    /// `effective`: the limit from `(θ0, θ̇0)` as it is.
+    Limit,
+    /// `effective-corrected`: the limit from the averaged start, with the first ripple.
+    Corrected,
+    /// `averaged2`: the averaged equation to O(ε²) from the averaged start, with the ripple
+    /// to O(ε⁴) (`averaged`).
+    Second,
+}
+
+/// `effective`, `effective-corrected` and `averaged2`: DOP853 on the slow motion.
 #[derive(Clone)]
 pub struct LimitDop853 {
     params: Params,
     limit: Limit,
-    corrected: bool,
+    order: Order,
     core: Dop853<2, LimitField>,
 }
 
@@ -438,23 +464,27 @@ pub fn averaged_start(problem: &Problem) -> (f64, f64) {
 }
 
 impl LimitDop853 {
-    /// Starts the limit from `(θ0, θ̇0)`, or (`corrected`) from the averaged start with the
-    /// ripple added back to what it reports.
+    /// Starts the slow motion of `order` (see [`Order`]); the ripple it keeps is added back to
+    /// what it reports.
     #[must_use]
-    pub fn new(problem: &Problem, tol: f64, corrected: bool) -> Self {
+    pub fn new(problem: &Problem, tol: f64, order: Order) -> Self {
         let p = *problem.params();
         let s = problem.start();
-        let (th, thd) = if corrected {
-            averaged_start(problem)
-        } else {
-            (s.theta, s.theta_dot)
+        let (th, thd) = match order {
+            Order::Limit => (s.theta, s.theta_dot),
+            Order::Corrected => averaged_start(problem),
+            Order::Second => averaged::to_slow(&p, 0.0, (s.theta, s.theta_dot)),
         };
         let limit = Limit::new(&p);
+        let field = LimitField {
+            limit,
+            second: (order == Order::Second).then_some(p),
+        };
         Self {
             params: p,
             limit,
-            corrected,
-            core: Dop853::new(LimitField(limit), 0.0, Vector2::new(th, thd), tol),
+            order,
+            core: Dop853::new(field, 0.0, Vector2::new(th, thd), tol),
         }
     }
 
@@ -467,10 +497,10 @@ impl LimitDop853 {
     }
 
     fn lift(&self, t: f64, y: &Vector2<f64>) -> (f64, f64) {
-        if self.corrected {
-            limit::to_full(&self.params, t, (y[0], y[1]))
-        } else {
-            (y[0], y[1])
+        match self.order {
+            Order::Limit => (y[0], y[1]),
+            Order::Corrected => limit::to_full(&self.params, t, (y[0], y[1])),
+            Order::Second => averaged::to_full(&self.params, t, (y[0], y[1])),
         }
     }
 }
@@ -478,10 +508,10 @@ impl LimitDop853 {
 impl Flow for LimitDop853 {
     crate::physics::flow::on_core!();
     fn method(&self) -> Method {
-        if self.corrected {
-            Method::EffectiveCorrected
-        } else {
-            Method::Effective
+        match self.order {
+            Order::Limit => Method::Effective,
+            Order::Corrected => Method::EffectiveCorrected,
+            Order::Second => Method::Averaged2,
         }
     }
     fn sample(&mut self, t: f64) -> Sample {

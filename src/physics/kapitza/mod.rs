@@ -15,6 +15,7 @@
 //! (`run`) and `auto` (`plan`). The state vector of the full model is `(θ, θ̇)` at time `t`;
 //! no code outside this folder indexes it.
 
+pub mod averaged;
 pub mod budget;
 pub mod flows;
 pub mod limit;
