@@ -160,17 +160,23 @@ pub fn to_slow(params: &Params, t: f64, full: (f64, f64)) -> (f64, f64) {
 mod tests {
     use super::*;
 
+    /// Exactly (to rounding), unlike `limit::to_slow`, which inverts its ripple to its order:
+    /// over a grid of phases, angles and rates.
     #[test]
-    fn to_slow_inverts_to_full() {
+    fn to_slow_inverts_to_full_to_rounding() {
         let p = Params {
             a: 1.0,
             b: 2.0,
             epsilon: 0.01,
         };
-        for (t, th, thd) in [(0.0, 0.3, 0.0), (0.123, -1.2, 0.7), (5.0, 2.9, -1.5)] {
-            let back = to_slow(&p, t, to_full(&p, t, (th, thd)));
-            assert!((back.0 - th).abs() < 1e-14, "{back:?}");
-            assert!((back.1 - thd).abs() < 1e-13, "{back:?}");
+        for i in 0..7 {
+            let t = 0.0137 * f64::from(i);
+            for j in -3..=3 {
+                let slow = (0.9 * f64::from(j), 0.4 * f64::from(3 - i));
+                let back = to_slow(&p, t, to_full(&p, t, slow));
+                assert!((back.0 - slow.0).abs() < 1e-14, "{slow:?} {back:?}");
+                assert!((back.1 - slow.1).abs() < 1e-13, "{slow:?} {back:?}");
+            }
         }
     }
 
