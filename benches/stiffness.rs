@@ -3,6 +3,8 @@
 //! 1e12, and our DOP853 at k = 1e8 at the loosest tolerance that meets 1e-8. Errors, estimates
 //! and the comparison with the best single configuration and the peer are in
 //! `rattleback bench` (its `auto_profile.csv`), against independent references.
+//! `auto/…` is every `auto` after the first on a body and start (its averaged-model probes kept
+//! for the process, issue 27); `auto-cold/…` forgets them before each run (a first `auto`).
 //! Run: `cargo bench --bench stiffness`.
 
 mod common;
@@ -10,7 +12,7 @@ mod common;
 use common::problem;
 use criterion::{Criterion, criterion_group, criterion_main};
 use rattleback::physics::Method;
-use rattleback::physics::rattleback::auto::run_auto;
+use rattleback::physics::rattleback::auto::{memo, run_auto};
 use rattleback::physics::rattleback::run;
 use std::hint::black_box;
 use std::time::Duration;
@@ -35,6 +37,14 @@ fn stiffness(c: &mut Criterion) {
             group.bench_function(format!("{regime}/auto/k={k:e}"), |b| {
                 b.iter(|| run_auto(black_box(&p), TOL, T_END, 0, false).unwrap());
             });
+            if v.plan.method == Method::Averaged2 {
+                group.bench_function(format!("{regime}/auto-cold/k={k:e}"), |b| {
+                    b.iter(|| {
+                        memo::clear();
+                        run_auto(black_box(&p), TOL, T_END, 0, false).unwrap()
+                    });
+                });
+            }
         }
         let p = problem(1e8, alpha_dot);
         let s = common::spec(Method::Dop853, 1e-12, None, T_END);
