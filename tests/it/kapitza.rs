@@ -259,3 +259,45 @@ fn verified_auto_takes_the_averaged_model_honestly() {
     }
     assert!(taken > 0);
 }
+
+/// Issue 27: the cost `auto` is refused by is the cost of what it will run: where `averaged2`
+/// is expected, a long horizon at a small ε is not refused as if it were resolved; where its
+/// check then fails, the resolved run it falls back to is refused before it starts, not run
+/// past the budget.
+#[test]
+fn autos_budget_follows_the_averaged_model() {
+    use rattleback::physics::kapitza::budget::cost_seconds;
+    use rattleback::physics::method::Asked;
+    let at = |t_end: f64| {
+        let p = Problem::new(
+            Params {
+                a: 1.0,
+                b: 2.0,
+                epsilon: 1e-4,
+            },
+            Start {
+                theta: 0.3,
+                theta_dot: 0.0,
+            },
+        )
+        .unwrap();
+        (p, t_end)
+    };
+    let (p, t) = at(200.0);
+    let predicted = cost_seconds(&p, &Asked::new(Method::Auto, 1e-8, None, t));
+    let resolved = cost_seconds(&p, &Asked::new(Method::Dop853, 1e-12, None, t));
+    assert!(predicted < 1e-2 * resolved, "{predicted} {resolved}");
+    let c = plan::verified(&p, 1e-8, t, 60.0, &mut |_| true).unwrap();
+    assert_eq!(c.method, Method::Averaged2);
+    // At T = 2000 the fast phase's rounding alone nearly fills 1e-8: the check fails and the
+    // resolved run (minutes) is refused at once (an Ok would mean it ran).
+    let (p, t) = at(2000.0);
+    let refused = plan::verified(&p, 1e-8, t, 60.0, &mut |_| true);
+    assert!(
+        matches!(
+            refused,
+            Err(rattleback::physics::method::StepError::OverBudget { .. })
+        ),
+        "{refused:?}"
+    );
+}

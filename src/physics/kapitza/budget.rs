@@ -38,11 +38,17 @@ pub fn slow_rate(problem: &Problem) -> f64 {
 #[must_use]
 pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
     let (method, tolerance, step, t_end) = (ask.method, ask.tolerance, ask.step, ask.t_end);
-    let (method, tolerance) = if method == Method::Auto {
+    // `auto` as it will likely resolve: the a-priori plan, or `averaged2` (three runs of the
+    // slow motion: it, its companion and the limit) where that is expected to pass its check.
+    let (method, tolerance, runs) = if method == Method::Auto {
         let c = plan::resolve(problem, tolerance, t_end);
-        (c.method, c.settings.tolerance)
+        if c.method == Method::Dop853 && plan::averaged_expected(problem, tolerance, t_end) {
+            (Method::Averaged2, (tolerance * 1e-4).max(1e-14), 3.0)
+        } else {
+            (c.method, c.settings.tolerance, 1.0)
+        }
     } else {
-        (method, tolerance)
+        (method, tolerance, 1.0)
     };
     let per_tol = tolerance.max(1e-16).powf(-0.125);
     let evaluations = match method {
@@ -62,7 +68,7 @@ pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
             stages * t_end / h
         }
     };
-    evaluations * SECONDS_PER_EVALUATION
+    runs * evaluations * SECONDS_PER_EVALUATION
 }
 
 #[cfg(test)]

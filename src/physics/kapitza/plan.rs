@@ -82,8 +82,8 @@ pub fn model_error(problem: &Problem, t_end: f64) -> f64 {
 /// limit's scale and growth, `0.5 (ε (b² + |a| + 1))⁴ (1 + t_end)`. Against the Taylor-series
 /// references (ε = 1e-2 … 1e-6) the measured error is at most 0.35 of it (the falling start at
 /// ε = 1e-3, in θ̇), and mostly far less (`tests/it/kapitza.rs`); a start that keeps returning
-/// to the unstable upright beats it (see the module's documentation), so `auto` does not use
-/// it.
+/// to the unstable upright beats it, so `auto` chooses by the a-posteriori check and uses this
+/// only to predict its cost ([`averaged_expected`]).
 #[must_use]
 pub fn model_error2(problem: &Problem, t_end: f64) -> f64 {
     let p = problem.params();
@@ -149,6 +149,16 @@ pub fn resolve(problem: &Problem, tolerance: f64, t_end: f64) -> Choice {
         met: floor <= tolerance,
         shortfall: (floor > tolerance).then_some(Shortfall::Floor),
     }
+}
+
+/// Whether `averaged2` is expected, a priori, to pass [`averaged_checked`] where the limit does
+/// not: its predicted model error [`model_error2`] and the integration and rounding allowances
+/// within the tolerance. Only the cost model uses it (what `auto` will likely run); the choice
+/// is the a-posteriori check's.
+#[must_use]
+pub fn averaged_expected(problem: &Problem, tolerance: f64, t_end: f64) -> bool {
+    let local = (tolerance * 1e-4).max(TIGHTEST);
+    model_error2(problem, t_end) + 100.0 * local + phase_rounding(problem, t_end) <= tolerance
 }
 
 /// How much the model part of `averaged2`'s estimate widens `D (ε s)²` (see the module's
@@ -267,6 +277,13 @@ pub fn verified(
         ..first
     };
     let mut local = first.settings.tolerance;
+    // The cost model may have expected `averaged2` (`averaged_expected`): the resolved run it
+    // did not count is refused here rather than run past the budget.
+    let first_cost = cost(local) + cost((local * COMPANION_LOOSER).min(1e-3));
+    crate::physics::budget::check(first_cost, budget).map_err(|over| StepError::OverBudget {
+        what: "auto's resolved run (the averaged models cannot meet the tolerance)".to_owned(),
+        over,
+    })?;
     let mut spent = 0.0;
     let mut last: Option<(f64, f64)> = None;
     for refinement in 0..=MAX_REFINEMENTS {
