@@ -82,13 +82,8 @@ cs = {k: sp.Symbol(f'c{k}') for k in range(1, 9)}
 ss = {k: sp.Symbol(f's{k}') for k in range(1, 9)}
 St, Ct = sp.symbols('st ct')
 def real(expr):
-    expr = sp.expand(expr)
-    by = {}
-    for term in sp.Add.make_args(expr):
-        k = sp.Poly(term * z**40, z).degree() - 40 if term.has(z) else 0
-        by[k] = by.get(k, 0) + term / z**k
     out = 0
-    for k, c in by.items():
+    for k, c in coeffs(expr).items():
         c = sp.expand(c)
         im = c.coeff(sp.I); re = sp.expand(c - sp.I*im)
         if k == 0:
@@ -96,9 +91,7 @@ def real(expr):
             out += re
         elif k > 0:
             out += 2*(re*cs[k] - im*ss[k])
-    out = sp.expand(out)
-    # check conjugate symmetry: negative k must mirror
-    return out
+    return sp.expand(out)
 th_r = real(theta); thd_r = real(theta_dot); F2 = sp.expand(F[2])
 for name, ex in [('theta', th_r), ('theta_dot', thd_r)]:
     ks = sorted({int(str(s)[1:]) for s in ex.free_symbols if str(s)[0] in 'cs' and str(s)[1:].isdigit()})

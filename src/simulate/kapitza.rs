@@ -70,6 +70,12 @@ struct AutoOut {
     shortfall: Option<Shortfall>,
 }
 
+impl super::Account for AutoOut {
+    fn account(&self) -> (bool, f64, Option<Shortfall>) {
+        (self.met, self.error_estimate, self.shortfall)
+    }
+}
+
 #[derive(Serialize)]
 struct FinalOut {
     t: f64,
@@ -230,14 +236,9 @@ pub fn simulate_to(
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Option<Missed>, Failure> {
     let (spec, auto) = plan_of(problem, resolved, progress)?;
-    let missed = auto.as_ref().and_then(|a| {
-        Missed::unless(
-            a.met,
-            a.error_estimate,
-            resolved.spec.tolerance,
-            a.shortfall,
-        )
-    });
+    let missed = auto
+        .as_ref()
+        .and_then(|a| super::Account::missed(a, resolved.spec.tolerance));
     let clock = Instant::now();
     let result = run::run(problem, &spec, progress).and_then(super::Finite::finite)?;
     let wall_seconds = clock.elapsed().as_secs_f64();

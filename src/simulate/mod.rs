@@ -307,10 +307,15 @@ pub struct Missed {
     pub why: Shortfall,
 }
 
-impl Missed {
-    /// `auto`'s shortfall unless it `met` the tolerance (`why` defaults to the round-off floor).
-    fn unless(met: bool, estimate: f64, tolerance: f64, why: Option<Shortfall>) -> Option<Self> {
-        (!met).then(|| Self {
+/// A scene's account of `auto` in its report, as far as a shortfall is concerned.
+trait Account {
+    /// Whether it met the tolerance, its estimate, and why not.
+    fn account(&self) -> (bool, f64, Option<Shortfall>);
+
+    /// The shortfall unless it met `tolerance` (`why` defaults to the round-off floor).
+    fn missed(&self, tolerance: f64) -> Option<Missed> {
+        let (met, estimate, why) = self.account();
+        (!met).then(|| Missed {
             estimate,
             tolerance,
             why: why.unwrap_or(Shortfall::Floor),

@@ -43,22 +43,15 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
         out.push(field("● REC".to_owned(), 0));
     }
     out.push(field(format!("t {:.2}/{}", run.shown, s.t_end), 0));
-    let state = if run.failed.is_some() {
-        "failed"
-    } else if let PlanState::Verifying { run, percent } = run.plan {
-        &if run == 0 {
-            "verifying auto…".to_owned()
-        } else {
-            format!("verifying auto… run {run} at {percent}%")
-        }
-    } else if run.done() {
-        "done"
-    } else if run.playing {
-        "▶"
-    } else {
-        "paused"
+    let state = match run.plan {
+        _ if run.failed.is_some() => "failed".to_owned(),
+        PlanState::Verifying { run: 0, .. } => "verifying auto…".to_owned(),
+        PlanState::Verifying { run, percent } => format!("verifying auto… run {run} at {percent}%"),
+        _ if run.done() => "done".to_owned(),
+        _ if run.playing => "▶".to_owned(),
+        _ => "paused".to_owned(),
     };
-    out.push(field(state.to_owned(), 0));
+    out.push(field(state, 0));
     match bar.replay {
         Some(r) if r.live.is_some() => {
             let state = if r.live == Some(true) {

@@ -70,12 +70,16 @@ pub struct Choice {
 /// Rounding floor of a resolved run, per fast period.
 pub const ROUNDING_PER_PERIOD: f64 = 1e-12;
 
+/// The scale of the expansion's terms: `b² + |a| + 1` (the small parameter is `ε` times it).
+fn scale(problem: &Problem) -> f64 {
+    let p = problem.params();
+    p.b * p.b + p.a.abs() + 1.0
+}
+
 /// The limit's predicted model error (see the module's documentation).
 #[must_use]
 pub fn model_error(problem: &Problem, t_end: f64) -> f64 {
-    let p = problem.params();
-    let scale = p.b * p.b + p.a.abs() + 1.0;
-    (p.epsilon * scale).powi(2) * (1.0 + t_end)
+    (problem.params().epsilon * scale(problem)).powi(2) * (1.0 + t_end)
 }
 
 /// The second-order averaged model's (`averaged2`) predicted model error: O(ε⁴), with the
@@ -86,9 +90,7 @@ pub fn model_error(problem: &Problem, t_end: f64) -> f64 {
 /// only to predict its cost ([`averaged_expected`]).
 #[must_use]
 pub fn model_error2(problem: &Problem, t_end: f64) -> f64 {
-    let p = problem.params();
-    let scale = p.b * p.b + p.a.abs() + 1.0;
-    0.5 * (p.epsilon * scale).powi(4) * (1.0 + t_end)
+    0.5 * (problem.params().epsilon * scale(problem)).powi(4) * (1.0 + t_end)
 }
 
 /// Fast periods over `[0, t_end]`.
@@ -192,8 +194,8 @@ pub fn averaged_checked(
         go_on,
     )?;
     let first = run(problem, &spec(Method::EffectiveCorrected, local), go_on)?;
-    let scale = p.b * p.b + p.a.abs() + 1.0;
-    let model = SECOND_ORDER_MARGIN * difference(&second, &first) * (p.epsilon * scale).powi(2);
+    let model =
+        SECOND_ORDER_MARGIN * difference(&second, &first) * (p.epsilon * scale(problem)).powi(2);
     let estimate = model + difference(&second, &companion) + phase_rounding(problem, t_end);
     Ok((estimate <= tolerance).then_some(Choice {
         method: Method::Averaged2,
