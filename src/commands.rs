@@ -456,9 +456,13 @@ pub fn bench(args: &crate::cli::BenchArgs) -> Outcome {
         say_raw!("{}", bench::profile_table(&profile));
         let profile_csv = args.out.join("auto_profile.csv");
         bench::write_profile_csv(&profile, &profile_csv).map_err(|e| fail(&profile_csv, e))?;
-        wrote.push(profile_csv);
+        let profile_svg = args.out.join("auto_profile.svg");
+        bench::auto_profile::write_profile_svg(&profile, &profile_svg)
+            .map_err(|e| Failure::failed(format!("{}: {e}", profile_svg.display())))?;
+        wrote.extend([profile_csv, profile_svg]);
     }
-    // A scene's part: its heading, its table, its CSV.
+    // A scene's part: its heading, its table, its CSV (its curves go to `curves`).
+    let mut curves = Vec::new();
     let mut scene = |heading: &str,
                      table: String,
                      name: &str,
@@ -476,6 +480,10 @@ pub fn bench(args: &crate::cli::BenchArgs) -> Outcome {
         scene(heading, bench::kapitza::table(&rows), "kapitza.csv", &|p| {
             bench::kapitza::write_csv(&rows, p)
         })?;
+        let svg = args.out.join("kapitza.svg");
+        bench::kapitza::write_svg(&rows, &svg)
+            .map_err(|e| Failure::failed(format!("{}: {e}", svg.display())))?;
+        curves.push(svg);
     }
     if part(crate::cli::BenchPart::Celt) {
         let rows = bench::celt::study(config.quick, &mut |line| say_err!("{line}"));
@@ -484,6 +492,7 @@ pub fn bench(args: &crate::cli::BenchArgs) -> Outcome {
             bench::celt::write_csv(&rows, p)
         })?;
     }
+    wrote.extend(curves);
     if part(crate::cli::BenchPart::Stability) {
         let stability = bench::stability(config);
         say!("\nStability\n{}", bench::stability_table(&stability));

@@ -135,6 +135,7 @@ fn singles(problem: &Problem) -> Vec<(Method, f64, Option<f64>)> {
         let tol = 1e-8 * 10f64.powf(-0.5 * f64::from(i));
         c.push((Method::Dop853, tol, None));
         c.push((Method::Averaged2, tol, None));
+        c.push((Method::Averaged3, tol, None));
     }
     for nu_h in [1.5, 1.0, 0.7, 0.5, 0.35, 0.25, 0.18, 0.12, 0.09] {
         c.push((Method::BlanesMoan4, 0.0, Some(nu_h / nu)));
@@ -292,9 +293,10 @@ pub fn profile_table(rows: &[ProfileRow]) -> String {
                 || "-".to_owned(),
                 |(what, s)| {
                     format!(
-                        "{what} {:.2} ms (auto {:.0}× faster)",
+                        "{what} {:.2} ms (peer/auto {:.2} first, {:.2} probes kept)",
                         s * 1e3,
-                        s / r.auto_seconds
+                        s / r.auto_seconds,
+                        s / r.auto_warm_seconds
                     )
                 },
             );
@@ -363,4 +365,50 @@ pub fn write_profile_csv(rows: &[ProfileRow], path: &std::path::Path) -> std::io
         );
     }
     crate::scenario::write::write_atomic(path, o.as_bytes(), true)
+}
+
+/// The profile's curves: time against `k` for each start (`auto` first and with its probes
+/// kept, our best single configuration at `auto`'s error, the peer when it ran), as an SVG.
+///
+/// # Errors
+/// When drawing or writing fails.
+pub fn write_profile_svg(
+    rows: &[ProfileRow],
+    path: &std::path::Path,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let panels: Vec<super::plot::Panel> = ["trapped", "rotating"]
+        .iter()
+        .map(|&start| {
+            let of = |f: &dyn Fn(&ProfileRow) -> Option<f64>| -> Vec<(f64, f64)> {
+                rows.iter()
+                    .filter(|r| r.start == start)
+                    .filter_map(|r| f(r).map(|s| (r.k, s * 1e3)))
+                    .collect()
+            };
+            super::plot::Panel {
+                title: format!("{start} start, T = {T_END}, tolerance {TOLERANCE:e}"),
+                series: vec![
+                    ("auto (first)".to_owned(), of(&|r| Some(r.auto_seconds))),
+                    (
+                        "auto (probes kept)".to_owned(),
+                        of(&|r| Some(r.auto_warm_seconds)),
+                    ),
+                    (
+                        "best single at auto's error".to_owned(),
+                        of(&|r| Some(r.best_seconds)),
+                    ),
+                    (
+                        "peer DOP853 within the tolerance".to_owned(),
+                        of(&|r| r.peer.as_ref().map(|p| p.1)),
+                    ),
+                ],
+            }
+        })
+        .collect();
+    super::plot::write_curves_svg(
+        &panels,
+        ("k", "milliseconds"),
+        plotters::prelude::SeriesLabelPosition::UpperLeft,
+        path,
+    )
 }

@@ -249,3 +249,29 @@ pub fn write_csv(rows: &[Row], path: &std::path::Path) -> std::io::Result<()> {
     }
     crate::scenario::write::write_atomic(path, s.as_bytes(), true)
 }
+
+/// The study's curves: time against `ε` for each method and tolerance, as an SVG.
+///
+/// # Errors
+/// When drawing or writing fails.
+pub fn write_svg(rows: &[Row], path: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
+    let mut series: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    for r in rows {
+        let label = format!("{} at {:e}", r.method, r.tolerance);
+        let point = (r.epsilon, r.seconds * 1e3);
+        match series.iter_mut().find(|(l, _)| *l == label) {
+            Some((_, s)) => s.push(point),
+            None => series.push((label, vec![point])),
+        }
+    }
+    let panel = super::plot::Panel {
+        title: "Kapitza's pendulum, T = 5".to_owned(),
+        series,
+    };
+    super::plot::write_curves_svg(
+        &[panel],
+        ("epsilon", "milliseconds"),
+        plotters::prelude::SeriesLabelPosition::UpperRight,
+        path,
+    )
+}

@@ -3,11 +3,11 @@
 //! against a reference whose source the output names (tight DOP853 for k ≤ 1e6, fine
 //! blanes-moan4 at 1e8, the second-order averaged model beyond), itself cross-checked.
 
-mod auto_profile;
+pub mod auto_profile;
 pub mod celt;
 pub mod implicit;
 pub mod kapitza;
-mod plot;
+pub mod plot;
 mod stability;
 
 use crate::physics::rattleback::model::{ALPHA, ALPHA_DOT};
@@ -157,6 +157,7 @@ fn configurations(quick: bool) -> Vec<(Method, f64, Option<f64>)> {
         vec![1e-8, 1e-10, 1e-12, 1e-14]
     } {
         c.push((Method::Averaged2, tol, None));
+        c.push((Method::Averaged3, tol, None));
     }
     for tol in if quick { vec![1e-6] } else { vec![1e-6, 1e-8] } {
         c.push((Method::Auto, tol, None));

@@ -25,6 +25,24 @@ const PALETTE: [RGBColor; 11] = [
     RGBColor(0, 0, 0),
 ];
 
+/// A log–log chart on an SVG string.
+type LogChart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
+
+/// One labelled series: a line through its points, and the points.
+fn draw_line(
+    chart: &mut LogChart<'_, '_>,
+    label: &str,
+    colour: RGBColor,
+    series: &[(f64, f64)],
+) -> Result<(), Box<dyn std::error::Error>> {
+    chart
+        .draw_series(LineSeries::new(series.to_vec(), colour.stroke_width(2)))?
+        .label(label)
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], colour.stroke_width(2)));
+    chart.draw_series(series.iter().map(|p| Circle::new(*p, 3, colour.filled())))?;
+    Ok(())
+}
+
 fn usable(r: &Row) -> Option<(f64, f64)> {
     (r.error_alpha.is_finite() && r.seconds > 0.0).then(|| (r.seconds, r.error_alpha.max(1e-16)))
 }
@@ -94,13 +112,7 @@ pub fn write_svg(rows: &[Row], path: &Path) -> Result<(), Box<dyn std::error::Er
                 if series.is_empty() {
                     continue;
                 }
-                chart
-                    .draw_series(LineSeries::new(series.clone(), colour.stroke_width(2)))?
-                    .label(m.clone())
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 15, y)], colour.stroke_width(2))
-                    });
-                chart.draw_series(series.iter().map(|p| Circle::new(*p, 3, colour.filled())))?;
+                draw_line(&mut chart, m, colour, &series)?;
             }
             chart
                 .configure_series_labels()
@@ -162,4 +174,101 @@ pub fn terminal_diagram(rows: &[Row], k: f64, width: usize, height: usize) -> St
     }
     o.push('\n');
     o
+}
+
+/// A tick label with at most three significant digits (log axes put ticks at values such as
+/// 0.6000000000000001).
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+fn significant(y: f64) -> String {
+    if (1e-3..1e4).contains(&y) {
+        let decimals = (2 - y.log10().floor() as i32).clamp(0, 6) as usize;
+        let t = format!("{y:.decimals$}");
+        if t.contains('.') {
+            t.trim_end_matches('0').trim_end_matches('.').to_owned()
+        } else {
+            t
+        }
+    } else {
+        format!("{y:.1e}")
+    }
+}
+
+/// One panel of [`write_curves_svg`]: a title and its named series of `(x, y)` points.
+pub struct Panel {
+    /// Caption.
+    pub title: String,
+    /// `(label, points)`; points with a non-positive or non-finite coordinate are left out.
+    pub series: Vec<(String, Vec<(f64, f64)>)>,
+}
+
+/// Cost curves, log–log, one panel per entry side by side, as an SVG file (the `auto`
+/// profile's time against `k`, the pendulum's against `ε`).
+///
+/// # Errors
+/// When drawing or writing fails.
+pub fn write_curves_svg(
+    panels: &[Panel],
+    (x_desc, y_desc): (&str, &str),
+    legend: SeriesLabelPosition,
+    path: &Path,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let ok = |p: &&(f64, f64)| p.0.is_finite() && p.1.is_finite() && p.0 > 0.0 && p.1 > 0.0;
+    let mut svg = String::new();
+    {
+        let width = 560 * u32::try_from(panels.len().max(1)).unwrap_or(1);
+        let root = SVGBackend::with_string(&mut svg, (width, 420)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let areas = root.split_evenly((1, panels.len().max(1)));
+        for (area, panel) in areas.iter().zip(panels) {
+            let pts: Vec<(f64, f64)> = panel
+                .series
+                .iter()
+                .flat_map(|(_, s)| s.iter().filter(ok).copied())
+                .collect();
+            if pts.is_empty() {
+                continue;
+            }
+            let bounds = |f: fn(&(f64, f64)) -> f64| {
+                pts.iter()
+                    .map(f)
+                    .fold((f64::INFINITY, 0.0f64), |(a, b), v| (a.min(v), b.max(v)))
+            };
+            let ((x0, x1), (y0, y1)) = (bounds(|p| p.0), bounds(|p| p.1));
+            let mut chart = ChartBuilder::on(area)
+                .caption(&panel.title, ("sans-serif", 18))
+                .margin(10)
+                .x_label_area_size(35)
+                .y_label_area_size(55)
+                .build_cartesian_2d(
+                    (x0 * 0.5..x1 * 2.0).log_scale(),
+                    (y0 * 0.5..y1 * 2.0).log_scale(),
+                )?;
+            chart
+                .configure_mesh()
+                .x_desc(x_desc)
+                .y_desc(y_desc)
+                .x_label_formatter(&|x| format!("{x:.0e}"))
+                .y_label_formatter(&|y| significant(*y))
+                .light_line_style(RGBColor(240, 240, 240))
+                .draw()?;
+            for (i, (label, series)) in panel.series.iter().enumerate() {
+                let colour = PALETTE[i % PALETTE.len()];
+                let series: Vec<(f64, f64)> = series.iter().filter(ok).copied().collect();
+                if series.is_empty() {
+                    continue;
+                }
+                draw_line(&mut chart, label, colour, &series)?;
+            }
+            chart
+                .configure_series_labels()
+                .position(legend.clone())
+                .background_style(WHITE.mix(0.8))
+                .border_style(BLACK)
+                .label_font(("sans-serif", 11))
+                .draw()?;
+        }
+        root.present()?;
+    }
+    crate::scenario::write::write_atomic(path, svg.as_bytes(), true)?;
+    Ok(())
 }

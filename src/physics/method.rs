@@ -34,6 +34,9 @@ pub enum Method {
     /// pendulum; cost independent of the small parameter (docs/physics.md §4c,
     /// `physics::rattleback::averaged`, `physics::kapitza::averaged`).
     Averaged2,
+    /// The rattleback's third-order averaged model: error O(k⁻³), the cost of `averaged2`
+    /// (`physics::rattleback::averaged3`).
+    Averaged3,
     /// DOP853 with the state projected back onto its constraints after every step (the celt's
     /// unit quaternion, with the up vector taken from it).
     Dop853Projected,
@@ -43,7 +46,7 @@ pub enum Method {
 
 impl Method {
     /// Every method, in the order tables list them.
-    pub const ALL: [Self; 13] = [
+    pub const ALL: [Self; 14] = [
         Self::Auto,
         Self::Rk4,
         Self::Dop853,
@@ -57,13 +60,14 @@ impl Method {
         Self::Effective,
         Self::EffectiveCorrected,
         Self::Averaged2,
+        Self::Averaged3,
     ];
 
     /// Every concrete method: [`Method::ALL`] without `auto`, which resolves to one of them.
-    pub const CONCRETE: [Self; 12] = {
-        let mut out = [Self::Rk4; 12];
+    pub const CONCRETE: [Self; 13] = {
+        let mut out = [Self::Rk4; 13];
         let mut i = 0;
-        while i < 12 {
+        while i < 13 {
             out[i] = Self::ALL[i + 1];
             i += 1;
         }
@@ -85,6 +89,7 @@ impl Method {
             Self::Locked => "locked",
             Self::EffectiveCorrected => "effective-corrected",
             Self::Averaged2 => "averaged2",
+            Self::Averaged3 => "averaged3",
             Self::Dop853Projected => "dop853-projected",
             Self::Auto => "auto",
         }
@@ -115,7 +120,8 @@ impl Method {
             | Self::Suzuki8
             | Self::Effective
             | Self::EffectiveCorrected
-            | Self::Averaged2 => 8,
+            | Self::Averaged2
+            | Self::Averaged3 => 8,
         }
     }
 
@@ -129,6 +135,7 @@ impl Method {
                 | Self::Effective
                 | Self::EffectiveCorrected
                 | Self::Averaged2
+                | Self::Averaged3
                 | Self::Auto
         )
     }
@@ -138,7 +145,7 @@ impl Method {
     pub fn is_effective(self) -> bool {
         matches!(
             self,
-            Self::Effective | Self::EffectiveCorrected | Self::Averaged2
+            Self::Effective | Self::EffectiveCorrected | Self::Averaged2 | Self::Averaged3
         )
     }
 }

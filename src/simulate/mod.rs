@@ -259,7 +259,8 @@ struct AutoOut {
     condition: crate::physics::rattleback::auto::Conditioning,
 }
 
-/// The averaged model's own account of the start (method `averaged2`, or `auto` choosing it).
+/// The averaged model's own account of the start (method `averaged2` or `averaged3`, or `auto`
+/// choosing one): the second-order account, good to O(k⁻²), for either.
 #[derive(Serialize)]
 struct AveragedOut {
     /// The averaged fast action `Ī`, an exact constant of the averaged motion.
@@ -512,7 +513,8 @@ fn rattleback_to(
     let p = problem.params();
     let y = result.final_state;
     let ran = auto.as_ref().map_or(spec.method, |a| a.choice);
-    let averaged = (ran == Method::Averaged2).then(|| AveragedOut::of(problem));
+    let averaged =
+        matches!(ran, Method::Averaged2 | Method::Averaged3).then(|| AveragedOut::of(problem));
     let shortfall = auto.as_ref().and_then(|a| a.missed(spec.tolerance));
     let step = auto.as_ref().map_or(spec.step, |a| a.step);
     let params = ParamsOut {

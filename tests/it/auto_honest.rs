@@ -96,7 +96,7 @@ fn auto_chooses_the_averaged_model_at_large_k_and_it_agrees_with_the_notes_code(
         .filter(|c| c.source == "note-averaged-model")
     {
         let v = check(case, 1e-8);
-        assert_eq!(v.plan.method, Method::Averaged2, "{}", case.name);
+        assert_eq!(v.plan.method, Method::Averaged3, "{}", case.name);
         assert!(v.met);
         assert!(true_error(&v, case) < 1e-9, "{}", case.name);
     }
@@ -233,7 +233,7 @@ fn averaged_runs_report_the_averaged_model() {
         common::bin(&["simulate", "--preset", "stiff-spring", "--format", "json"]);
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-    assert_eq!(v["auto"]["choice"], "averaged2", "{out}");
+    assert_eq!(v["auto"]["choice"], "averaged3", "{out}");
     let a = &v["averaged"];
     assert_eq!(a["regime"], "trapped");
     let theta = v["effective"]["theta"].as_f64().unwrap();
@@ -246,7 +246,7 @@ fn averaged_runs_report_the_averaged_model() {
     let kbar = a["kbar"].as_f64().unwrap();
     assert!(
         (v["energy"]["initial"].as_f64().unwrap() - kbar).abs() < 1e-12 * kbar,
-        "the energy diagnostic of averaged2 is K̄"
+        "the energy diagnostic of averaged3 is K̄"
     );
     let h = a["half_period"].as_f64().unwrap();
     let h_eff = v["effective"]["half_period"].as_f64().unwrap();
@@ -265,7 +265,7 @@ fn probes_are_measured_once_and_reading_them_changes_nothing() {
     let first = run_auto(&at(1e7), 1e-8, t_end, 0, false).unwrap();
     assert_eq!(
         first.plan.method,
-        Method::Averaged2,
+        Method::Averaged3,
         "{}",
         first.plan.reason
     );

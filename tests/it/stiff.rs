@@ -127,7 +127,7 @@ fn auto_meets_its_tolerance_and_changes_method_with_k() {
         }
     }
     let stiff = common::problem(2.0, 1.0, 1.0, 1e12, [0.0, 0.0, 1.0, 0.5]);
-    assert_eq!(plan(&stiff, 1e-8, 20.0).method, Method::Averaged2);
+    assert_eq!(plan(&stiff, 1e-8, 20.0).method, Method::Averaged3);
     let soft = common::problem(2.0, 1.0, 1.0, 1e2, [0.0, 0.0, 1.0, 0.5]);
     assert!(!plan(&soft, 1e-8, 20.0).method.is_effective());
 }

@@ -150,11 +150,11 @@ fn study_commands_keep_their_json_contract_and_write_their_files() {
 fn a_long_study_prints_no_progress_into_a_pipe() {
     let started = std::time::Instant::now();
     let (code, out, err) = crate::common::bin(&[
-        "study", "map", "--grid", "16x12", "--k", "1e4", "--force", "--format", "csv",
+        "study", "map", "--grid", "32x16", "--k", "1e4", "--force", "--format", "csv",
     ]);
     assert_eq!(code, 0, "{err}");
     assert!(err.is_empty(), "progress leaked into a pipe: {err:?}");
-    assert_eq!(out.lines().count(), 1 + 16 * 12);
+    assert_eq!(out.lines().count(), 1 + 32 * 16);
     // The check means something only if a terminal would have seen a bar: the run outlasted
     // the quiet first second (a floor on a shared machine, never a speed target).
     let took = started.elapsed().as_secs_f64();

@@ -350,22 +350,10 @@ mod tests {
     #[test]
     fn reconstruction_inverts_the_initial_map_to_fourth_order() {
         for k in [1e4, 1e6] {
-            let mut worst: f64 = 0.0;
-            for i in 0..50 {
-                let x = f64::from(i);
-                let q = (0.7 * x).sin();
-                let pr = problem(
-                    k,
-                    q / k.sqrt(),
-                    (1.3 * x).sin(),
-                    1.0 + 0.3 * (0.9 * x).cos(),
-                    0.8 * (0.4 * x).cos(),
-                );
-                let (m, y0) = Averaged2::new(&pr);
-                let (a, ad) = m.reconstruct(&y0);
-                let s = pr.start();
-                worst = worst.max((a - s.alpha).abs()).max((ad - s.alpha_dot).abs());
-            }
+            let worst = crate::physics::rattleback::params::worst_round_trip(k, |pr| {
+                let (m, y0) = Averaged2::new(pr);
+                m.reconstruct(&y0)
+            });
             let bound = if k < 1e5 { 1e-7 } else { 1e-10 };
             assert!(worst < bound, "k = {k:e}: round trip off by {worst:e}");
         }

@@ -6,6 +6,9 @@
 
 pub mod auto;
 pub mod averaged;
+pub mod averaged3;
+#[rustfmt::skip]
+mod averaged3_terms;
 pub mod budget;
 pub mod effective;
 pub mod integrators;

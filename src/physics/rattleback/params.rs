@@ -111,6 +111,35 @@ impl Problem {
     }
 }
 
+/// Fifty varied starts of the paper's body at `k` (a tilt `∝ k^{-1/2}`, so that the fast
+/// action stays put): the family the averaged models' round-trip tests share.
+#[cfg(test)]
+pub(crate) fn varied_starts(k: f64) -> impl Iterator<Item = Problem> {
+    (0..50).map(move |i| {
+        let x = f64::from(i);
+        paper_body(
+            k,
+            [
+                (0.7 * x).sin() / k.sqrt(),
+                (1.3 * x).sin(),
+                1.0 + 0.3 * (0.9 * x).cos(),
+                0.8 * (0.4 * x).cos(),
+            ],
+        )
+    })
+}
+
+/// The largest `|α − α0|`, `|α̇ − α̇0|` of `round_trip` (start → averaged → reconstructed) over
+/// [`varied_starts`] at `k`.
+#[cfg(test)]
+pub(crate) fn worst_round_trip(k: f64, round_trip: impl Fn(&Problem) -> (f64, f64)) -> f64 {
+    varied_starts(k).fold(0.0, |worst: f64, pr| {
+        let (a, ad) = round_trip(&pr);
+        let s = pr.start();
+        worst.max((a - s.alpha).abs()).max((ad - s.alpha_dot).abs())
+    })
+}
+
 /// The paper's body (`ix = 2`, `iy = iz = 1`) on a spring `k`, from `(γ, α, γ̇, α̇)`: the
 /// start the unit tests share.
 #[cfg(test)]

@@ -95,7 +95,7 @@ pub fn predicted_seconds(problem: &Problem, ask: &Asked) -> f64 {
         let local =
             (tolerance / (2.0 * auto::COMPANION_RATIO * auto::AVERAGED_GROWTH)).max(auto::TIGHTEST);
         let averaged =
-            budget::cost_seconds(problem, &Asked::new(Method::Averaged2, local, None, t_end))
+            budget::cost_seconds(problem, &Asked::new(auto::AVERAGED, local, None, t_end))
                 * (1.0 + VERIFY_FRACTION);
         auto::probes_cost(problem, t_end) + resolved.min(averaged)
     } else {

@@ -77,7 +77,7 @@ pub const PARAMS: [ParamSpec; 8] = [
 ];
 
 /// The methods the rattleback offers, `auto` first: every method but the celt's projected one.
-pub const METHODS: [Method; 12] = [
+pub const METHODS: [Method; 13] = [
     Method::Auto,
     Method::Rk4,
     Method::Dop853,
@@ -90,6 +90,7 @@ pub const METHODS: [Method; 12] = [
     Method::Effective,
     Method::EffectiveCorrected,
     Method::Averaged2,
+    Method::Averaged3,
 ];
 
 /// The rattleback's scene.

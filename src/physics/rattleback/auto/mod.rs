@@ -10,28 +10,29 @@
 //! - `blanes-moan4`, resolving, at a step `h` such that its companion at `2h` should meet the
 //!   tolerance: error ≈ `(C_BM spin^2.5 c_max⁴ ν²/g_min + C_FAST ν⁴) h⁴ T` ([`C_BM`]);
 //!   `ν h ≤ 0.75`, so that the companion at `2h` stays where the error follows `h⁴`;
-//! - `averaged2`, the O(k⁻²) averaged model, once `k` is far enough above the stiffnesses at
-//!   which its model error can be *measured* cheaply. Two probes at `k_lo` and `k_hi = 4 k_lo`
-//!   (the smallest `k` where the averaging expansion is valid for this start: `|α̇|/ω ≤ 0.2`)
-//!   compare it with the resolved full model over `[0, T]` (33 samples of `α`, `α̇`, and the
-//!   reversal times); the model error at `k` is predicted as `2 · gap(k_hi) · (k_hi/k)^p`, with
-//!   `p` the measured slope between the probes clamped to `[0.5, 2]` (2 is the theory's; a
-//!   pre-asymptotic start decays slower and is extrapolated with its own, smaller slope). The
-//!   slow flow then runs at a local tolerance such that its companion at `16 L` meets the rest
-//!   of the tolerance.
+//! - `averaged3`, the O(k⁻³) averaged model ([`AVERAGED`]), once `k` is far enough above the
+//!   stiffnesses at which its model error can be *measured* cheaply. Two probes at `k_lo` and
+//!   `k_hi = 4 k_lo` (the smallest `k` where the averaging expansion is valid for this start:
+//!   `|α̇|/ω ≤ 0.2`) compare it with the resolved full model (DOP853 at 1e-12) over `[0, T]`
+//!   (33 samples of `α`, `α̇`, and the reversal times); the model error at `k` is predicted as
+//!   `2 · gap(k_hi) · (k_hi/k)^p`, with `p` the measured slope between the probes clamped to
+//!   `[0.5, 3]` (3 is the theory's; a pre-asymptotic start decays slower and is extrapolated
+//!   with its own, smaller slope). Where the model is exact (`ix = iy`, or no fast action) no
+//!   probe runs. The slow flow then runs at a local tolerance such that its companion at `16 L`
+//!   meets the rest of the tolerance.
 //!
 //! **Verification.** Every plan runs twice: the run that is returned, and a *coarser*
 //! companion (step `2h`, or tolerance `16 L`) that costs 0.5–0.7× as much and is never
 //! identical to it. The estimate is their difference in `α(T)`, `α̇(T)` and the reversal
 //! times (infinite when the reversal counts differ), plus the probed model error for
-//! `averaged2`, plus a round-off floor of `ε · steps · max(1, |α(T)|)`. The difference bounds
+//! the averaged model, plus a round-off floor of `ε · steps · max(1, |α(T)|)`. The difference bounds
 //! the returned run's error whenever the companion's error is at least twice the run's, which
 //! holds with a wide margin where the method converges (the companion's is 16× for a 4th-order
 //! step, ~14× for a 16× looser tolerance) and fails only at the round-off floor, which the
 //! refinement rule detects.
 //!
 //! **Refinement** until the estimate meets the tolerance: the step or tolerance shrinks by the
-//! factor the estimate asks for; `averaged2` whose model error is too large gives way to the
+//! factor the estimate asks for; an averaged model whose error is too large gives way to the
 //! best resolving method. It stops, and says so with `met = false`, when the estimate stops
 //! falling (less than halved by a refinement: the round-off floor or an ill-conditioned start;
 //! the estimate reached is reported as the floor), when an adaptive tolerance reaches its
@@ -78,24 +79,34 @@ pub const COMPANION_RATIO: f64 = 14.0;
 pub const DOP853_GROWTH: f64 = 2.5;
 /// Tightest local tolerance of the adaptive methods.
 pub const TIGHTEST: f64 = 1e-14;
-/// Safety factor on the probed model error of `averaged2`.
+/// The averaged model `auto` plans with (probes, plans and refines): `averaged3`, whose
+/// O(k⁻³) error reaches into the middle stiffnesses `averaged2` could not serve.
+pub const AVERAGED: Method = Method::Averaged3;
+/// The order in `1/k` of [`AVERAGED`]'s model error (the theory's; a probe's slope is clamped
+/// to it).
+pub const MODEL_ORDER: f64 = 3.0;
+/// Safety factor on the probed model error of the averaged model.
 pub const PROBE_SAFETY: f64 = 2.0;
 /// Samples of `α`, `α̇` compared by a probe.
 pub const PROBE_SAMPLES: usize = 33;
-/// `ν h` of the full model in a probe (blanes-moan4, in its asymptotic range: its error is
-/// about 2 % of the gap it measures at `k_hi` on the note's rotating start, less elsewhere).
-pub const PROBE_NU_H: f64 = 0.8;
-/// Local tolerance of the averaged model in a probe (its global error ≈ 1e-8, against gaps of
-/// 1e-6 and more at the probe stiffnesses).
-pub const PROBE_TOLERANCE: f64 = 1e-10;
+/// Local tolerance of the full model (DOP853) in a probe: its global error at the probe
+/// stiffnesses (≤ 100 fast periods over T = 30) is about 2.5e-10, against the averaged model's
+/// gaps of 1e-8 and more there (docs/averaging/third-order.md).
+pub const PROBE_FULL_TOLERANCE: f64 = 1e-12;
+/// Local tolerance of the averaged model in a probe (its global error ≈ 1e-10, against gaps
+/// of 1e-8 and more at the probe stiffnesses).
+pub const PROBE_TOLERANCE: f64 = 1e-12;
 /// Largest `|α̇| (1 + c_max) / ω_min` at the lower probe stiffness: where the averaging
 /// expansion already holds (the note's errors at k = 1e2, where this is 0.1–0.2 for its starts,
 /// follow the k⁻² law with a constant no smaller than the asymptotic one).
 pub const PROBE_VALIDITY: f64 = 0.2;
 /// Most rungs of probes ([`probe_averaged`]).
 pub const PROBE_RUNGS: u32 = 3;
-/// `averaged2` is considered from `k ≥ AVERAGED_MIN_RATIO · k_hi` on.
-pub const AVERAGED_MIN_RATIO: f64 = 10.0;
+/// The averaged model is considered from `k ≥ AVERAGED_MIN_RATIO · k_hi` on (where probing
+/// is predicted cheaper than resolving): its error is extrapolated from `k_hi` with the
+/// measured slope, which a pre-asymptotic start keeps below the theory's 3, so the prediction
+/// errs high.
+pub const AVERAGED_MIN_RATIO: f64 = 4.0;
 /// Most refinements before `auto` reports what it has.
 pub const MAX_REFINEMENTS: u32 = 6;
 /// Predicted seconds (calibration machine) after which `auto` stops refining and reports
@@ -116,6 +127,18 @@ pub const ROUND_OFF_GAIN: f64 = 5.0;
 /// to stay linear at condition numbers of 1e7, large enough to stand far above the rounding of
 /// the runs it compares).
 pub const NUDGE: f64 = 1e-10;
+/// Largest expansion parameter ([`super::averaged::expansion_parameter`]) at which a resolved
+/// DOP853 plan's condition numbers are measured on the averaged model instead of the full
+/// one: its model error there is at most about `6 x⁶ ≈ 6e-6` over T = 30
+/// (docs/averaging/third-order.md), far below what moves a sensitivity measured with nudges
+/// of 1e-10.
+pub const CONDITIONING_AVERAGED_LIMIT: f64 = 0.1;
+/// Condition number above which a measurement on the averaged model
+/// ([`CONDITIONING_AVERAGED_LIMIT`]) is repeated on the plan's own method: below it the
+/// conditioned round-off floor (`10 ε √steps κ`) is far under any tolerance `auto` is asked
+/// for, so the cheap measurement's accuracy does not matter; above it, it does (the shipped
+/// `just-below` start measures κ = 1.4e4 on `averaged3` and 9.1e3 on the full model).
+pub const CONDITIONING_RECHECK: f64 = 100.0;
 /// Local tolerance of [`conditioning`]'s runs (at least; the companion's when looser).
 pub const CONDITIONING_TOLERANCE: f64 = 1e-9;
 /// Gain of the conditioned round-off floor `CONDITIONED_GAIN · ε · √steps · κ`: a step rounds
@@ -186,16 +209,17 @@ pub struct ModelProbe {
 }
 
 impl ModelProbe {
-    /// The measured slope, clamped to `[0.5, 2]` (2 where the gaps are at the floor).
+    /// The measured slope, clamped to `[0.5, MODEL_ORDER]` (`MODEL_ORDER` where the gaps are at
+    /// the floor).
     #[must_use]
     pub fn slope(&self) -> f64 {
         let [lo, hi] = self.gap;
         if hi < 1e-12 {
-            return 2.0;
+            return MODEL_ORDER;
         }
         let s = (lo / hi).ln() / (self.k[1] / self.k[0]).ln();
         if s.is_finite() {
-            s.clamp(0.5, 2.0)
+            s.clamp(0.5, MODEL_ORDER)
         } else {
             0.5
         }
@@ -233,37 +257,43 @@ pub fn probe_stiffnesses(problem: &Problem) -> [f64; 2] {
     [k_lo, 4.0 * k_lo]
 }
 
-/// Predicted seconds of the two probes (full and averaged model at each stiffness).
+/// Predicted seconds of the two probes (full and averaged model at each stiffness); none
+/// where the averaged model is exact ([`averaged_is_exact`]).
 ///
 /// # Panics
 /// Never: the probe stiffnesses are positive and finite.
 #[must_use]
 pub fn probes_cost(problem: &Problem, t_end: f64) -> f64 {
+    if averaged_is_exact(problem) {
+        return 0.0;
+    }
     probe_stiffnesses(problem)
         .iter()
         .map(|&k| {
             let probe = probe_problem(problem, k);
-            let nu = fastest_rate(&probe);
             cost_seconds(
                 &probe,
-                &Asked::new(
-                    Method::BlanesMoan4,
-                    PROBE_TOLERANCE,
-                    Some(PROBE_NU_H / nu),
-                    t_end,
-                ),
-            ) + cost_seconds(
-                &probe,
-                &Asked::new(Method::Averaged2, PROBE_TOLERANCE, None, t_end),
-            )
+                &Asked::new(Method::Dop853, PROBE_FULL_TOLERANCE, None, t_end),
+            ) + cost_seconds(&probe, &Asked::new(AVERAGED, PROBE_TOLERANCE, None, t_end))
         })
         .sum()
 }
 
-/// Whether `auto` considers the averaged model for this problem at all: `k` well above the
-/// probes, and resolving predicted dearer than probing.
+/// Whether the averaged model is the exact motion: a body with `ix = iy` or no fast action,
+/// where every correction vanishes ([`super::averaged::expansion_parameter`] is 0). No probe is
+/// needed there, and its model error is 0.
+#[must_use]
+pub fn averaged_is_exact(problem: &Problem) -> bool {
+    super::averaged::expansion_parameter(problem) == 0.0
+}
+
+/// Whether `auto` considers the averaged model for this problem at all: exact, or `k` well
+/// above the probes and resolving predicted dearer than probing.
 #[must_use]
 pub fn considers_averaged(problem: &Problem, tolerance: f64, t_end: f64) -> bool {
+    if averaged_is_exact(problem) {
+        return true;
+    }
     let k_hi = probe_stiffnesses(problem)[1];
     problem.params().k >= AVERAGED_MIN_RATIO * k_hi
         && best_resolved(problem, tolerance, t_end).predicted_seconds > probes_cost(problem, t_end)
@@ -331,25 +361,16 @@ fn probe_gap(
     if let Some(gap) = memo::read(&key) {
         return Ok(gap);
     }
-    let nu = fastest_rate(&probe);
-    let spec = |method, tolerance, step| RunSpec {
+    let spec = |method, tolerance| RunSpec {
         method,
         tolerance,
-        step,
+        step: None,
         t_end,
         samples: PROBE_SAMPLES,
         monitor_energy: false,
     };
-    let full = run_cancellable(
-        &probe,
-        &spec(Method::BlanesMoan4, PROBE_TOLERANCE, Some(PROBE_NU_H / nu)),
-        go_on,
-    );
-    let averaged = run_cancellable(
-        &probe,
-        &spec(Method::Averaged2, PROBE_TOLERANCE, None),
-        go_on,
-    );
+    let full = run_cancellable(&probe, &spec(Method::Dop853, PROBE_FULL_TOLERANCE), go_on);
+    let averaged = run_cancellable(&probe, &spec(AVERAGED, PROBE_TOLERANCE), go_on);
     let gap = match (full, averaged) {
         (Err(e @ StepError::Cancelled { .. }), _) | (_, Err(e @ StepError::Cancelled { .. })) => {
             return Err(e);
@@ -466,7 +487,7 @@ fn with_companion(problem: &Problem, ask: &Asked) -> f64 {
 pub struct Decision {
     /// The plan.
     pub plan: Plan,
-    /// The averaged model's predicted error at this `k` (0 unless the plan is `averaged2`).
+    /// The averaged model's predicted error at this `k` (0 unless the plan is the averaged model).
     pub model_error: f64,
     /// The probes, when `k` called for them.
     pub probe: Option<ModelProbe>,
@@ -490,26 +511,32 @@ pub fn plan_cancellable(
             probe: None,
         });
     }
-    let probe = probe_averaged(problem, t_end, go_on)?;
-    let model_error = probe.predict(problem.params().k);
+    let probe = if averaged_is_exact(problem) {
+        None
+    } else {
+        Some(probe_averaged(problem, t_end, go_on)?)
+    };
+    let model_error = probe.map_or(0.0, |p| p.predict(problem.params().k));
     // The integration gets what the model error leaves of the tolerance, at least half of it.
     let share = (tolerance - model_error).max(0.5 * tolerance);
     let local = averaged_local(share, t_end);
     let averaged = Plan {
-        method: Method::Averaged2,
+        method: AVERAGED,
         tolerance: local,
         step: None,
         predicted_error: model_error + 0.5 * share,
-        predicted_seconds: with_companion(
-            problem,
-            &Asked::new(Method::Averaged2, local, None, t_end),
-        ),
-        reason: format!(
-            "k large enough: the averaged model's error, probed at k = {:.0} and {:.0} \
-             (slope {:.2}), scales to {model_error:.1e}",
-            probe.k[0],
-            probe.k[1],
-            probe.slope()
+        predicted_seconds: with_companion(problem, &Asked::new(AVERAGED, local, None, t_end)),
+        reason: probe.map_or_else(
+            || "the averaged model is exact here (ix = iy, or no fast action)".to_owned(),
+            |probe| {
+                format!(
+                    "k large enough: the averaged model's error, probed at k = {:.0} and {:.0} \
+                     (slope {:.2}), scales to {model_error:.1e}",
+                    probe.k[0],
+                    probe.k[1],
+                    probe.slope()
+                )
+            },
         ),
     };
     let meets = |p: &Plan| p.predicted_error <= tolerance;
@@ -524,7 +551,7 @@ pub fn plan_cancellable(
         return Ok(Decision {
             plan: averaged,
             model_error,
-            probe: Some(probe),
+            probe,
         });
     }
     let mut plan = resolved;
@@ -535,7 +562,7 @@ pub fn plan_cancellable(
     Ok(Decision {
         plan,
         model_error: 0.0,
-        probe: Some(probe),
+        probe,
     })
 }
 
@@ -626,7 +653,8 @@ pub fn run_auto_cancellable(
         mut model_error,
         ..
     } = plan_cancellable(problem, tolerance, t_end, go_on)?;
-    let measure = conditioning_spec(problem, t_end, &plan);
+    // Priced as the full measurement (the averaged model's, when it serves, costs less).
+    let measure = conditioning_spec(problem, t_end, &plan, false);
     spent += plan.predicted_seconds
         + 3.0
             * cost_seconds(
@@ -639,7 +667,7 @@ pub fn run_auto_cancellable(
         budget,
     )?;
     let allowance = budget.min(AUTO_SECONDS).max(spent);
-    let kappa = conditioning(problem, t_end, &plan, go_on)?;
+    let mut kappa = conditioning(problem, t_end, &plan, go_on)?;
     let mut refinements = 0;
     // The estimate before the last refinement of the same method (none after a change).
     let mut previous: Option<f64> = None;
@@ -654,7 +682,7 @@ pub fn run_auto_cancellable(
             Some(Shortfall::Floor)
         } else if refinements == MAX_REFINEMENTS {
             Some(Shortfall::Refinements)
-        } else if plan.method == Method::Averaged2
+        } else if plan.method == AVERAGED
             && plan.tolerance <= TIGHTEST
             && model_error < 0.5 * tolerance
         {
@@ -665,7 +693,7 @@ pub fn run_auto_cancellable(
         let next = (estimate > tolerance && shortfall.is_none())
             .then(|| refine(problem, &plan, model_error, estimate, tolerance, t_end));
         let shortfall = match &next {
-            Some(None) if plan.method == Method::Averaged2 => Some(Shortfall::Model),
+            Some(None) if plan.method == AVERAGED => Some(Shortfall::Model),
             Some(None) => Some(Shortfall::Clamped),
             Some(Some(n)) if spent + n.predicted_seconds > allowance => Some(Shortfall::Time),
             _ => shortfall,
@@ -708,6 +736,17 @@ pub fn run_auto_cancellable(
             None
         };
         spent += next.predicted_seconds;
+        if plan.method == AVERAGED && next.method != AVERAGED {
+            // The start's conditioning was measured on the averaged model: the full motion that
+            // now runs is measured on its own method, as a first resolved plan would be.
+            let measure = conditioning_spec(problem, t_end, &next, false);
+            spent += 3.0
+                * cost_seconds(
+                    problem,
+                    &Asked::new(next.method, measure.tolerance, measure.step, t_end),
+                );
+            kappa = conditioning(problem, t_end, &next, go_on)?;
+        }
         plan = next;
         refinements += 1;
     }
@@ -756,7 +795,25 @@ fn run_and_check(
 /// `ν h` = [`BLANES_MOAN_MAX_NU_H`]): both runs make nearly the same truncation errors, which
 /// mostly cancel in their difference (on the held-out starts of `rattleback_honesty.toml` it
 /// gives 0.93–1.6 times the long-double references' κ, at a fraction of a companion's cost).
-fn conditioning_spec(problem: &Problem, t_end: f64, plan: &Plan) -> RunSpec {
+/// A resolved plan whose start the averaged model describes well
+/// ([`CONDITIONING_AVERAGED_LIMIT`]) is measured on [`AVERAGED`] at that tolerance instead:
+/// the same slow motion, without its fast oscillation.
+fn conditioning_spec(problem: &Problem, t_end: f64, plan: &Plan, cheap: bool) -> RunSpec {
+    if cheap
+        && plan.method != AVERAGED
+        && super::averaged::expansion_parameter(problem) <= CONDITIONING_AVERAGED_LIMIT
+    {
+        // Where the averaged model is accurate, it measures the slow motion's sensitivity at a
+        // fraction of a resolved run's cost.
+        return RunSpec {
+            method: AVERAGED,
+            tolerance: CONDITIONING_TOLERANCE,
+            step: None,
+            t_end,
+            samples: 0,
+            monitor_energy: false,
+        };
+    }
     let c = plan.companion();
     RunSpec {
         method: plan.method,
@@ -810,7 +867,6 @@ pub fn conditioning(
     plan: &Plan,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Conditioning, StepError> {
-    let spec = conditioning_spec(problem, t_end, plan);
     let start = *problem.start();
     if start.alpha_dot == 0.0 && start.gamma_dot == 0.0 && start.gamma == 0.0 {
         // The equilibrium: nothing moves, nothing is amplified.
@@ -819,9 +875,29 @@ pub fn conditioning(
             angle: 0.0,
         });
     }
-    let base = run_cancellable(problem, &spec, go_on)?;
+    let spec = conditioning_spec(problem, t_end, plan, true);
+    let cheap = condition_numbers(problem, &spec, go_on)?;
+    if spec.method != plan.method && cheap.rate.max(cheap.angle) > CONDITIONING_RECHECK {
+        // An ill-conditioned start: its round-off floor matters, so it is measured as before,
+        // on the plan's own method.
+        return condition_numbers(
+            problem,
+            &conditioning_spec(problem, t_end, plan, false),
+            go_on,
+        );
+    }
+    Ok(cheap)
+}
+
+/// [`conditioning`]'s three runs with `spec`.
+fn condition_numbers(
+    problem: &Problem,
+    spec: &RunSpec,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<Conditioning, StepError> {
+    let base = run_cancellable(problem, spec, go_on)?;
     // The energy's first non-zero carrier: the spin rate, else the tilt rate, else the tilt.
-    let rate = sensitivity(problem, &spec, &base, go_on, |s, nudge| {
+    let rate = sensitivity(problem, spec, &base, go_on, |s, nudge| {
         if s.alpha_dot != 0.0 {
             s.alpha_dot *= 1.0 + nudge;
         } else if s.gamma_dot != 0.0 {
@@ -830,7 +906,7 @@ pub fn conditioning(
             s.gamma *= 1.0 + nudge;
         }
     })?;
-    let angle = sensitivity(problem, &spec, &base, go_on, |s, nudge| s.alpha += nudge)?;
+    let angle = sensitivity(problem, spec, &base, go_on, |s, nudge| s.alpha += nudge)?;
     Ok(Conditioning { rate, angle })
 }
 
@@ -929,7 +1005,7 @@ fn refine(
     tolerance: f64,
     t_end: f64,
 ) -> Option<Plan> {
-    if plan.method == Method::Averaged2 && model_error > 0.5 * tolerance {
+    if plan.method == AVERAGED && model_error > 0.5 * tolerance {
         let mut resolved = best_resolved(problem, tolerance, t_end);
         if resolved.predicted_error >= estimate {
             return None;

@@ -1,10 +1,11 @@
-//! `averaged2`: the second-order averaged model (`physics::rattleback::averaged`, docs/physics.md §4c), its slow
-//! flow on `(ᾱ, P̄, ψ̄)` integrated by the DOP853 core.
+//! `averaged2` and `averaged3`: the second- and third-order averaged models
+//! (`physics::rattleback::averaged`, docs/physics.md §4c; `physics::rattleback::averaged3`), their
+//! slow flow on `(ᾱ, P̄, ψ̄)` integrated by the DOP853 core.
 //!
 //! Order 8 in the step, not symplectic; 12 evaluations per step, each a `sin_cos` and a
 //! `sqrt`; the cost does not depend on `k`. The error against the full model is the model
-//! error, O(k⁻²) in `α`, `α̇` and the reversal times (measured exponents 1.9–2.1,
-//! `tests/it/averaged.rs`), plus the integration error of the slow flow, which the tolerance
+//! error, O(k⁻²) (`averaged2`) or O(k⁻³) (`averaged3`) in `α`, `α̇` and the reversal times
+//! (`tests/it/averaged.rs`), plus the integration error of the slow flow, which the tolerance
 //! controls. The reported state is reconstructed (the fast ripple included); reversals are
 //! zeros of the reconstructed `α̇`, located on the dense output.
 
@@ -13,18 +14,67 @@ use super::dop853::{Dop853, Field};
 use super::roots::find_root;
 use crate::physics::flow::Flow;
 use crate::physics::rattleback::averaged::{Averaged2, SlowState};
+use crate::physics::rattleback::averaged3::Averaged3;
 use crate::physics::rattleback::model::State;
 use crate::physics::rattleback::params::Problem;
 
+/// What the integrator needs of an averaged model.
+pub trait SlowModel: Clone + Copy + Send + Sync + 'static {
+    /// The method that integrates it.
+    const METHOD: Method;
+    /// The model of a problem's start and its averaged initial state.
+    fn start(problem: &Problem) -> (Self, SlowState);
+    /// The slow flow.
+    fn rhs(&self, y: &SlowState) -> SlowState;
+    /// `K̄(ᾱ, P̄)`.
+    fn kbar(&self, alpha_bar: f64, p_bar: f64) -> f64;
+    /// The reconstructed `α̇`.
+    fn spin_rate(&self, y: &SlowState) -> f64;
+    /// The full-model-shaped state.
+    fn to_full_state(&self, y: &SlowState) -> State;
+    /// The averaged fast action.
+    fn ibar(&self) -> f64;
+}
+
+macro_rules! slow_model {
+    ($t:ty, $m:expr) => {
+        impl SlowModel for $t {
+            const METHOD: Method = $m;
+            fn start(problem: &Problem) -> (Self, SlowState) {
+                <$t>::new(problem)
+            }
+            #[inline]
+            fn rhs(&self, y: &SlowState) -> SlowState {
+                <$t>::rhs(self, y)
+            }
+            fn kbar(&self, alpha_bar: f64, p_bar: f64) -> f64 {
+                <$t>::kbar(self, alpha_bar, p_bar)
+            }
+            #[inline]
+            fn spin_rate(&self, y: &SlowState) -> f64 {
+                <$t>::spin_rate(self, y)
+            }
+            fn to_full_state(&self, y: &SlowState) -> State {
+                <$t>::to_full_state(self, y)
+            }
+            fn ibar(&self) -> f64 {
+                <$t>::ibar(self)
+            }
+        }
+    };
+}
+slow_model!(Averaged2, Method::Averaged2);
+slow_model!(Averaged3, Method::Averaged3);
+
 /// The slow field of `K̄`.
 #[derive(Clone)]
-pub struct AveragedField {
-    model: Averaged2,
+pub struct AveragedField<M> {
+    model: M,
     /// Natural size of `P̄`, the momentum scale of the start.
     momentum_unit: f64,
 }
 
-impl Field<3> for AveragedField {
+impl<M: SlowModel> Field<3> for AveragedField<M> {
     #[inline]
     fn eval(&self, y: &SlowState) -> SlowState {
         self.model.rhs(y)
@@ -39,20 +89,27 @@ impl Field<3> for AveragedField {
 
 /// DOP853 on the averaged slow flow.
 #[derive(Clone)]
-pub struct Averaged2Dop853 {
-    model: Averaged2,
-    core: Dop853<3, AveragedField>,
+pub struct AveragedDop853<M> {
+    model: M,
+    core: Dop853<3, AveragedField<M>>,
 }
 
-impl Averaged2Dop853 {
+/// `averaged2`.
+pub type Averaged2Dop853 = AveragedDop853<Averaged2>;
+/// `averaged3`.
+pub type Averaged3Dop853 = AveragedDop853<Averaged3>;
+
+impl<M: SlowModel> AveragedDop853<M> {
     /// Starts at the problem's initial values (mapped to averaged variables) with local
     /// tolerance `tol`.
     pub fn new(problem: &Problem, tol: f64) -> Self {
-        let (model, y0) = Averaged2::new(problem);
+        let (model, y0) = M::start(problem);
         let p = problem.params();
-        // P̄ moves on the scale of iz·α̇ and of the potential's force, whichever is larger.
+        // P̄ moves on the scale of iz·α̇ and of the potential's force, whichever is larger
+        // (`V̄_max = Ī √(k / min(ix, iy))`).
+        let potential_max = model.ibar() * (p.k / p.ix.min(p.iy)).sqrt();
         let momentum_unit = (p.iz * problem.start().alpha_dot.abs())
-            .max((p.iz * model.potential_max()).sqrt())
+            .max((p.iz * potential_max).sqrt())
             .max(f64::MIN_POSITIVE);
         let field = AveragedField {
             model,
@@ -65,7 +122,7 @@ impl Averaged2Dop853 {
     }
 }
 
-impl Averaged2Dop853 {
+impl<M: SlowModel> AveragedDop853<M> {
     /// The current state `(γ, α, γ̇, α̇)`.
     #[must_use]
     pub fn state(&self) -> State {
@@ -78,10 +135,10 @@ impl Averaged2Dop853 {
     }
 }
 
-impl Flow for Averaged2Dop853 {
+impl<M: SlowModel> Flow for AveragedDop853<M> {
     crate::physics::flow::on_core!();
     fn method(&self) -> Method {
-        Method::Averaged2
+        M::METHOD
     }
     fn event_value(&self) -> f64 {
         self.model.spin_rate(&self.core.state())

@@ -82,6 +82,7 @@ pub fn default_step(method: Method, problem: &Problem, tolerance: f64, t_end: f6
         | Method::Effective
         | Method::EffectiveCorrected
         | Method::Averaged2
+        | Method::Averaged3
         | Method::Auto => (1.0, 8.0),
     };
     (c * tolerance.powf(1.0 / order) / rate).max(t_end / DEFAULT_STEP_BUDGET)
@@ -127,13 +128,17 @@ pub fn build(
             settings.tolerance,
             true,
         )),
-        Method::Averaged2 => {
+        Method::Averaged2 | Method::Averaged3 => {
             let parameter = crate::physics::rattleback::averaged::expansion_parameter(problem);
             let limit = crate::physics::rattleback::averaged::VALIDITY_LIMIT;
             if parameter.is_nan() || parameter > limit {
                 return Err(StepError::OutsideModel { parameter, limit });
             }
-            Box::new(averaged::Averaged2Dop853::new(problem, settings.tolerance))
+            if method == Method::Averaged2 {
+                Box::new(averaged::Averaged2Dop853::new(problem, settings.tolerance))
+            } else {
+                Box::new(averaged::Averaged3Dop853::new(problem, settings.tolerance))
+            }
         }
         Method::Auto => return Err(StepError::Unplanned),
         Method::Dop853Projected => {
