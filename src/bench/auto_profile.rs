@@ -408,7 +408,7 @@ pub fn write_profile_svg(
     super::plot::write_curves_svg(
         &panels,
         ("k", "milliseconds"),
-        plotters::prelude::SeriesLabelPosition::UpperLeft,
+        &plotters::prelude::SeriesLabelPosition::UpperLeft,
         path,
     )
 }

@@ -271,7 +271,7 @@ pub fn write_svg(rows: &[Row], path: &std::path::Path) -> Result<(), Box<dyn std
     super::plot::write_curves_svg(
         &[panel],
         ("epsilon", "milliseconds"),
-        plotters::prelude::SeriesLabelPosition::UpperRight,
+        &plotters::prelude::SeriesLabelPosition::UpperRight,
         path,
     )
 }

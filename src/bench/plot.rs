@@ -209,7 +209,7 @@ pub struct Panel {
 pub fn write_curves_svg(
     panels: &[Panel],
     (x_desc, y_desc): (&str, &str),
-    legend: SeriesLabelPosition,
+    legend: &SeriesLabelPosition,
     path: &Path,
 ) -> Result<(), Box<dyn std::error::Error>> {
     let ok = |p: &&(f64, f64)| p.0.is_finite() && p.1.is_finite() && p.0 > 0.0 && p.1 > 0.0;
