@@ -104,12 +104,6 @@ impl Averaged3 {
         self.ibar
     }
 
-    /// `θ̄ = Ī √k`.
-    #[must_use]
-    pub fn theta_bar(&self) -> f64 {
-        self.ibar * self.sqrt_k
-    }
-
     #[inline]
     fn flow(&self, y: &SlowState) -> [f64; 4] {
         let p = &self.params;
