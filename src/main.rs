@@ -769,9 +769,10 @@ fn run_simulate(args: &SimulateArgs) -> Outcome {
         Err(Stopped::Run(e @ StepError::OverBudget { .. })) => Err(Failure::input(format!(
             "{e}; shorten --t-end, loosen --tolerance or choose another --method (`rattleback simulate --help`), or pass --force to run it anyway"
         ))),
-        Err(Stopped::Run(e @ StepError::OutsideModel { .. })) => {
-            Err(Failure::input(format!("--method averaged2: {e}")))
-        }
+        Err(Stopped::Run(e @ StepError::OutsideModel { .. })) => Err(Failure::input(format!(
+            "--method {}: {e}",
+            resolved.spec.method
+        ))),
         Err(Stopped::Run(e)) => Err(Failure::failed(format!("integration failed: {e}"))),
     }
 }

@@ -205,19 +205,23 @@ fn averaged2_conserves_its_averaged_hamiltonian_and_reports_it() {
 }
 
 #[test]
-fn averaged2_refuses_starts_its_expansion_does_not_cover() {
+fn the_averaged_models_refuse_starts_their_expansion_does_not_cover() {
     // A soft spring, a tiny spin inertia (the "slow" oscillation faster than the fast one), a
     // violent tilt: each used to run for minutes into nonsense; now one line, exit 2, at once.
-    for set in [
-        "spring.k=1",
-        "body.iz=1e-9",
-        "initial.gamma=1",
-        "body.iy=1e6",
-    ] {
-        let (code, _, err) = common::bin(&["simulate", "--method", "averaged2", "--set", set]);
-        assert_eq!(code, 2, "{set}: {err}");
-        assert!(err.contains("does not apply here"), "{set}: {err}");
-        assert_eq!(err.lines().count(), 1, "{set}: {err}");
+    for method in ["averaged2", "averaged3"] {
+        for set in [
+            "spring.k=1",
+            "body.iz=1e-9",
+            "initial.gamma=1",
+            "body.iy=1e6",
+        ] {
+            let (code, _, err) = common::bin(&["simulate", "--method", method, "--set", set]);
+            assert_eq!(code, 2, "{set}: {err}");
+            assert!(err.contains("does not apply here"), "{set}: {err}");
+            // The message names the method asked for.
+            assert!(err.contains(&format!("--method {method}:")), "{set}: {err}");
+            assert_eq!(err.lines().count(), 1, "{set}: {err}");
+        }
     }
     // Inside its range it runs: the shipped default at k = 1e2 (expansion parameter 0.09).
     let case = common::problem(2.0, 1.0, 1.0, 1e2, [0.0, 0.0, 1.0, 0.5]);
