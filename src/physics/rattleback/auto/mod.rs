@@ -97,8 +97,8 @@ pub const PROBE_FULL_TOLERANCE: f64 = 1e-12;
 /// of 1e-8 and more at the probe stiffnesses).
 pub const PROBE_TOLERANCE: f64 = 1e-12;
 /// Largest `|α̇| (1 + c_max) / ω_min` at the lower probe stiffness: where the averaging
-/// expansion already holds (the note's errors at k = 1e2, where this is 0.1–0.2 for its starts,
-/// follow the k⁻² law with a constant no smaller than the asymptotic one).
+/// expansion already holds (from k = 1e2, where this is 0.1–0.3 for the note's starts,
+/// `averaged3`'s errors already fall like k^-2.7 … k^-3: docs/averaging/third-order.md).
 pub const PROBE_VALIDITY: f64 = 0.2;
 /// Most rungs of probes ([`probe_averaged`]).
 pub const PROBE_RUNGS: u32 = 3;
@@ -128,8 +128,7 @@ pub const ROUND_OFF_GAIN: f64 = 5.0;
 /// the runs it compares).
 pub const NUDGE: f64 = 1e-10;
 /// Largest expansion parameter ([`super::averaged::expansion_parameter`]) at which a resolved
-/// DOP853 plan's condition numbers are measured on the averaged model instead of the full
-/// one: its model error there is at most about `6 x⁶ ≈ 6e-6` over T = 30
+/// plan's condition numbers are measured on the averaged model instead of the full one: its model error there is at most about `6 x⁶ ≈ 6e-6` over T = 30
 /// (docs/averaging/third-order.md), far below what moves a sensitivity measured with nudges
 /// of 1e-10.
 pub const CONDITIONING_AVERAGED_LIMIT: f64 = 0.1;
