@@ -283,3 +283,42 @@ fn probes_are_measured_once_and_reading_them_changes_nothing() {
     let cold = run_auto(&at(1e9), 1e-8, t_end, 0, false).unwrap();
     assert_eq!(warm, cold, "a kept probe changed what auto returns");
 }
+
+/// Issue 27: where the averaged model is the exact motion (`ix = iy`: `c ≡ 0`, uniform spin and
+/// a harmonic tilt), `auto` runs it with no probe, and it agrees with a tight resolved run.
+#[test]
+fn an_exact_averaged_model_needs_no_probe() {
+    use rattleback::physics::rattleback::auto::{averaged_is_exact, plan_cancellable, probes_cost};
+    use rattleback::physics::rattleback::{RunSpec, run};
+    let p = common::problem(1.5, 1.5, 1.0, 1e4, [0.01, 0.2, 1.0, 0.5]);
+    assert!(averaged_is_exact(&p));
+    assert!(probes_cost(&p, 30.0) == 0.0);
+    let d = plan_cancellable(&p, 1e-9, 30.0, &mut |_| true).unwrap();
+    assert!(d.probe.is_none(), "{}", d.plan.reason);
+    assert_eq!(d.plan.method, Method::Averaged3, "{}", d.plan.reason);
+    let v = run_auto(&p, 1e-9, 30.0, 0, false).unwrap();
+    assert!(v.met);
+    let reference = run(
+        &p,
+        &RunSpec {
+            method: Method::Dop853,
+            tolerance: 1e-13,
+            step: None,
+            t_end: 30.0,
+            samples: 0,
+            monitor_energy: false,
+        },
+    )
+    .unwrap();
+    let off = (v.result.final_state[1] - reference.final_state[1])
+        .abs()
+        .max((v.result.final_state[3] - reference.final_state[3]).abs());
+    assert!(off < 1e-9, "off by {off:e}");
+    // A body that is not symmetric is probed.
+    assert!(
+        probes_cost(
+            &common::problem(1.5, 1.4, 1.0, 1e4, [0.01, 0.2, 1.0, 0.5]),
+            30.0
+        ) > 0.0
+    );
+}
