@@ -43,6 +43,24 @@ fn draw_line(
     Ok(())
 }
 
+/// The series' legend, boxed, at `position` (plotters' default where `None`).
+fn draw_legend<'a>(
+    chart: &mut LogChart<'a, 'a>,
+    position: Option<&SeriesLabelPosition>,
+    font_size: u32,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let mut labels = chart.configure_series_labels();
+    if let Some(p) = position {
+        labels.position(p.clone());
+    }
+    labels
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .label_font(("sans-serif", font_size))
+        .draw()?;
+    Ok(())
+}
+
 fn usable(r: &Row) -> Option<(f64, f64)> {
     (r.error_alpha.is_finite() && r.seconds > 0.0).then(|| (r.seconds, r.error_alpha.max(1e-16)))
 }
@@ -114,12 +132,7 @@ pub fn write_svg(rows: &[Row], path: &Path) -> Result<(), Box<dyn std::error::Er
                 }
                 draw_line(&mut chart, m, colour, &series)?;
             }
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 10))
-                .draw()?;
+            draw_legend(&mut chart, None, 10)?;
         }
         root.present()?;
     }
@@ -259,13 +272,7 @@ pub fn write_curves_svg(
                 }
                 draw_line(&mut chart, label, colour, &series)?;
             }
-            chart
-                .configure_series_labels()
-                .position(legend.clone())
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 11))
-                .draw()?;
+            draw_legend(&mut chart, Some(legend), 11)?;
         }
         root.present()?;
     }

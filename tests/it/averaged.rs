@@ -80,11 +80,6 @@ fn exponent(points: &[(f64, f64)]) -> Option<f64> {
     Some(-sxy / sxx)
 }
 
-/// Exponents `(α, α̇, reversal times)` of `method` on one start over k = 1e3 … 1e6.
-fn exponents(start: &str, method: Method, tolerance: f64) -> [Option<f64>; 3] {
-    exponents_over(start, method, tolerance, 1e3)
-}
-
 /// Exponents `(α, α̇, reversal times)` of `method` on one start over the four decades from
 /// `k_from`.
 fn exponents_over(start: &str, method: Method, tolerance: f64, k_from: f64) -> [Option<f64>; 3] {
@@ -110,31 +105,42 @@ fn exponents_over(start: &str, method: Method, tolerance: f64, k_from: f64) -> [
     ]
 }
 
-#[test]
-fn averaged2_converges_like_k_to_the_minus_two_on_the_notes_five_starts() {
+/// On each of the note's five starts, `method`'s fitted exponents over the four decades from
+/// `k_from`: α and α̇ within `state`, the reversal times (trapped starts only) within `reversals`.
+fn assert_converges(
+    method: Method,
+    k_from: f64,
+    state: std::ops::RangeInclusive<f64>,
+    reversals: std::ops::RangeInclusive<f64>,
+) {
     for start in ["A", "B", "C", "D", "E"] {
-        let [a, ad, rev] = exponents(start, Method::Averaged2, 1e-14);
+        let [a, ad, rev] = exponents_over(start, method, 1e-14, k_from);
         for (what, p) in [("alpha", a), ("alpha_dot", ad)] {
             let p = p.unwrap_or_else(|| panic!("{start}: {what}: too few points above the floor"));
             assert!(
-                (1.8..=2.3).contains(&p),
-                "{start}: {what} converges like k^-{p:.2}, expected about 2"
+                state.contains(&p),
+                "{start}: {method} {what} converges like k^-{p:.2}, expected {state:?}"
             );
         }
-        // Reversal times: trapped starts only (A, C, D); the note measured 1.85–2.12.
         if let Some(p) = rev {
             assert!(
-                (1.75..=2.4).contains(&p),
-                "{start}: reversal times converge like k^-{p:.2}, expected about 2"
+                reversals.contains(&p),
+                "{start}: {method} reversal times converge like k^-{p:.2}, expected {reversals:?}"
             );
         }
     }
 }
 
 #[test]
+fn averaged2_converges_like_k_to_the_minus_two_on_the_notes_five_starts() {
+    // Reversal times: the note measured 1.85–2.12.
+    assert_converges(Method::Averaged2, 1e3, 1.8..=2.3, 1.75..=2.4);
+}
+
+#[test]
 fn the_first_order_corrected_limit_converges_only_like_one_over_k() {
     // The same measurement, the same references: the exponent test can tell the orders apart.
-    let [a, ad, _] = exponents("B", Method::EffectiveCorrected, 1e-14);
+    let [a, ad, _] = exponents_over("B", Method::EffectiveCorrected, 1e-14, 1e3);
     for p in [a.unwrap(), ad.unwrap()] {
         assert!((0.8..=1.2).contains(&p), "effective-corrected: k^-{p:.2}");
     }
@@ -244,22 +250,7 @@ fn worst_at(k: f64, method: Method) -> Vec<(String, f64, f64)> {
 fn averaged3_converges_like_k_to_the_minus_three_on_the_notes_five_starts() {
     // From k = 1e2: above the references' floor (2e-11) only k = 1e2 … 1e4 remain, so the fit
     // has two or three points.
-    for start in ["A", "B", "C", "D", "E"] {
-        let [a, ad, rev] = exponents_over(start, Method::Averaged3, 1e-14, 1e2);
-        for (what, p) in [("alpha", a), ("alpha_dot", ad)] {
-            let p = p.unwrap_or_else(|| panic!("{start}: {what}: too few points above the floor"));
-            assert!(
-                (2.6..=3.6).contains(&p),
-                "{start}: {what} converges like k^-{p:.2}, expected about 3"
-            );
-        }
-        if let Some(p) = rev {
-            assert!(
-                (2.5..=3.8).contains(&p),
-                "{start}: reversal times converge like k^-{p:.2}, expected about 3"
-            );
-        }
-    }
+    assert_converges(Method::Averaged3, 1e2, 2.6..=3.6, 2.5..=3.8);
 }
 
 #[test]

@@ -20,6 +20,22 @@ use super::averaged3_terms::{self as terms, NC};
 use super::model::{State, initial_state, transverse_energy};
 use super::params::{Params, Problem};
 
+/// `C(n, j)` for `n < NC` (the recursion of [`c_derivatives`] needs no more).
+const BINOMIAL: [[f64; NC]; NC] = {
+    let mut t = [[0.0; NC]; NC];
+    let mut n = 0;
+    while n < NC {
+        t[n][0] = 1.0;
+        let mut j = 1;
+        while j <= n {
+            t[n][j] = t[n - 1][j - 1] + if j < n { t[n - 1][j] } else { 0.0 };
+            j += 1;
+        }
+        n += 1;
+    }
+    t
+};
+
 /// `c = g'/(4g)` and its derivatives in `α` up to the order the terms use, with `g`.
 ///
 /// With `h = ln g`, `c⁽ⁿ⁾ = h⁽ⁿ⁺¹⁾/4`, and `g h' = g'` differentiated `n` times gives
@@ -30,8 +46,8 @@ fn c_derivatives(p: &Params, alpha: f64) -> (f64, [f64; NC]) {
     let (s2, k2) = (2.0 * alpha).sin_cos();
     let b = 0.5 * (p.iy - p.ix);
     let g = 0.5 * (p.ix + p.iy) - b * k2;
-    // g⁽ʲ⁾ for j = 1 … NC + 1: the cycle cos, −sin, −cos, sin of (2α) times −B 2ʲ.
-    let mut gd = [0.0; NC + 2];
+    // g⁽ʲ⁾ for j = 1 … NC: the cycle cos, −sin, −cos, sin of (2α) times −B 2ʲ.
+    let mut gd = [0.0; NC + 1];
     let mut scale = -b;
     for (j, d) in gd.iter_mut().enumerate().skip(1) {
         scale *= 2.0;
@@ -43,20 +59,14 @@ fn c_derivatives(p: &Params, alpha: f64) -> (f64, [f64; NC]) {
                 _ => s2,
             };
     }
-    // h⁽ⁿ⁺¹⁾ for n = 0 … NC − 1, by the recursion above (binomials by Pascal's rule).
-    let mut h = [0.0; NC + 2];
-    let mut binom = [0.0; NC + 2];
-    binom[0] = 1.0;
+    // h⁽ⁿ⁺¹⁾ for n = 0 … NC − 1, by the recursion above.
+    let mut h = [0.0; NC + 1];
     for n in 0..NC {
-        // binom holds C(n, ·) on entry.
         let mut sum = gd[n + 1];
         for j in 1..=n {
-            sum -= binom[j] * gd[j] * h[n + 1 - j];
+            sum -= BINOMIAL[n][j] * gd[j] * h[n + 1 - j];
         }
         h[n + 1] = sum / g;
-        for j in (1..=n + 1).rev() {
-            binom[j] += binom[j - 1];
-        }
     }
     let mut c = [0.0; NC];
     for (n, cn) in c.iter_mut().enumerate() {
@@ -175,14 +185,19 @@ impl Averaged3 {
 mod tests {
     use super::*;
 
-    fn problem(k: f64, gamma: f64, alpha: f64, gamma_dot: f64, alpha_dot: f64) -> Problem {
-        crate::physics::rattleback::params::paper_body(k, [gamma, alpha, gamma_dot, alpha_dot])
+    use crate::physics::rattleback::params::paper_body;
+
+    #[test]
+    #[allow(clippy::float_cmp)] // small integers, exact in f64
+    fn the_binomials_are_pascals() {
+        assert_eq!(BINOMIAL[4], [1.0, 4.0, 6.0, 4.0, 1.0]);
+        assert_eq!(BINOMIAL[2][..3], [1.0, 2.0, 1.0]);
     }
 
     /// The recursion against `c = g'/(4g)` differentiated by central differences.
     #[test]
     fn c_derivatives_match_finite_differences() {
-        let pr = problem(1e4, 0.0, 0.0, 1.0, 0.5);
+        let pr = paper_body(1e4, [0.0, 0.0, 1.0, 0.5]);
         let p = pr.params();
         for alpha in [0.0, 0.3, 1.1, 2.0] {
             let (_, c) = c_derivatives(p, alpha);
@@ -229,7 +244,7 @@ mod tests {
     #[test]
     #[allow(clippy::float_cmp)]
     fn uniform_rotation_is_exact() {
-        let pr = problem(1e6, 0.0, 0.3, 0.0, 0.7);
+        let pr = paper_body(1e6, [0.0, 0.3, 0.0, 0.7]);
         let (m, y0) = Averaged3::new(&pr);
         assert_eq!(m.ibar(), 0.0);
         assert_eq!(y0[0], 0.3);
