@@ -7,18 +7,15 @@
 
 use crate::physics::method::Asked;
 use std::fmt::Write as _;
-use std::time::Instant;
 
 use serde::Serialize;
 
 use super::render::StatsOut;
-use super::{Failure, Format, Missed, Resolved, compact, times};
+use super::{Failure, Format, Missed, Resolved, Times, compact, times};
 use crate::physics::Method;
-use crate::physics::StepError;
 use crate::physics::celt::run::{self, RunResult, RunSpec};
 use crate::physics::celt::{self, Problem};
 use crate::physics::plan::{AutoPolicy, PlanRequest, Shortfall};
-use crate::scenario::Preset;
 
 /// Predicted seconds of the run `spec` asks for (the celt's cost model, [`celt::budget`]).
 #[must_use]
@@ -44,24 +41,12 @@ struct Report {
     stats: StatsOut,
 }
 
-#[derive(Serialize)]
-struct AutoOut {
-    choice: Method,
-    reason: String,
-    /// The local tolerance the chosen run was integrated at.
-    tolerance: f64,
-    /// The verified error of the spin and the final ω (rad/s).
-    error_estimate: f64,
-    met: bool,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    shortfall: Option<Shortfall>,
-}
+/// `auto`'s account: the celt adds nothing of its own (`error_estimate` is the verified error of
+/// the spin and the final ω, rad/s).
+type AutoOut = super::PlannedOut<NoExtra>;
 
-impl super::Account for AutoOut {
-    fn account(&self) -> (bool, f64, Option<Shortfall>) {
-        (self.met, self.error_estimate, self.shortfall)
-    }
-}
+#[derive(Serialize)]
+struct NoExtra {}
 
 #[derive(Serialize)]
 #[allow(non_snake_case)]
@@ -76,12 +61,6 @@ struct FinalOut {
     G: [f64; 3],
     /// The contact point in space.
     contact: [f64; 3],
-}
-
-#[derive(Serialize)]
-struct Times {
-    count: usize,
-    times: Vec<f64>,
 }
 
 #[derive(Serialize)]
@@ -115,33 +94,32 @@ struct ConstraintOut {
 }
 
 impl super::Finite for RunResult {
-    fn named_numbers(&self) -> Vec<(&'static str, f64)> {
+    fn named_numbers(&self) -> (f64, Vec<(&'static str, f64)>) {
         let state = self.state.iter().map(|&x| ("the state", x));
         let energy = [self.energy_final, self.max_energy_drift].map(|e| ("the energy", e));
-        state.chain(energy).collect()
-    }
-
-    fn reached(&self) -> f64 {
-        self.t
+        (self.t, state.chain(energy).collect())
     }
 }
 
-/// The concrete run of `resolved`, with `auto`'s account.
-fn plan_of(
-    problem: &Problem,
-    resolved: &Resolved,
-    progress: &mut dyn FnMut(f64) -> bool,
-) -> Result<(RunSpec, Option<AutoOut>), StepError> {
+/// The run `resolved` asks for (`auto` still to be resolved by [`plan_auto`]).
+fn requested(resolved: &Resolved) -> RunSpec {
     let spec = resolved.spec;
-    let mut run = RunSpec {
+    RunSpec {
         method: spec.method,
         tolerance: spec.tolerance,
         t_end: spec.t_end,
         samples: spec.samples,
-    };
-    if spec.method != Method::Auto {
-        return Ok((run, None));
     }
+}
+
+/// Resolves `auto` into `run`, and gives its account.
+fn plan_auto(
+    problem: &Problem,
+    resolved: &Resolved,
+    run: &mut RunSpec,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<AutoOut, crate::physics::StepError> {
+    let spec = resolved.spec;
     let ask = PlanRequest {
         method: Method::Auto,
         tolerance: spec.tolerance,
@@ -166,59 +144,42 @@ fn plan_of(
             r.shortfall.map_or("", Shortfall::describe)
         )
     };
-    Ok((
-        run,
-        Some(AutoOut {
-            choice: r.plan.method,
-            reason,
-            tolerance: r.plan.tolerance,
-            error_estimate: estimate,
-            met,
-            shortfall: r.shortfall,
-        }),
-    ))
+    Ok(AutoOut {
+        choice: r.plan.method,
+        reason,
+        tolerance: r.plan.tolerance,
+        extra: NoExtra {},
+        error_estimate: estimate,
+        met,
+        shortfall: r.shortfall,
+    })
 }
 
 /// Runs the celt's preset and writes the report.
 ///
 /// # Errors
 /// As [`super::simulate_to`].
-pub fn simulate_to(
-    preset: &Preset,
+pub(super) fn simulate_to(
     problem: &Problem,
-    resolved: &Resolved,
-    format: Format,
-    out: &mut dyn std::io::Write,
-    progress: &mut dyn FnMut(f64) -> bool,
+    mut ask: super::Ask<'_>,
 ) -> Result<Option<Missed>, Failure> {
-    let (spec, auto) = plan_of(problem, resolved, progress)?;
-    let missed = auto
-        .as_ref()
-        .and_then(|a| super::Account::missed(a, resolved.spec.tolerance));
-    let clock = Instant::now();
-    let result = run::run(problem, &spec, progress).and_then(super::Finite::finite)?;
-    let wall_seconds = clock.elapsed().as_secs_f64();
-    if format == Format::Csv {
-        let head = super::csv_head(preset, resolved, spec.method, spec.t_end);
-        out.write_all(head.as_bytes())?;
-        out.write_all(b"t,turn,spin,tilt\n")?;
+    let ran = ask.plan_and_run((problem, requested(ask.resolved)), plan_auto, run::run)?;
+    let (spec, result) = (ran.spec, ran.result);
+    if ask.format == Format::Csv {
+        let head = ask.csv_head(spec.method, spec.t_end);
+        ask.out.write_all(head.as_bytes())?;
+        ask.out.write_all(b"t,turn,spin,tilt\n")?;
         for s in &result.samples {
-            writeln!(out, "{},{},{},{}", s.t, s.turn, s.spin, s.tilt)?;
+            writeln!(ask.out, "{},{},{},{}", s.t, s.turn, s.spin, s.tilt)?;
         }
-        out.flush()?;
-        return Ok(missed);
+        ask.out.flush()?;
+        return Ok(ran.missed);
     }
     let y = result.state;
     let pose = problem.pose(&y);
     let e0 = result.energy_initial;
     let report = Report {
-        head: super::Head::new(
-            preset,
-            (*problem.params(), *problem.start()),
-            resolved,
-            auto,
-            |a| a.choice,
-        ),
+        head: ask.head((*problem.params(), *problem.start()), ran.auto),
         t_end: spec.t_end,
         skew_degrees: problem.params().skew().to_degrees(),
         final_: FinalOut {
@@ -232,14 +193,8 @@ pub fn simulate_to(
         },
         events: EventsOut {
             spin_initial: celt::spin(&problem.initial_state()),
-            reversals: Times {
-                count: result.reversal_count,
-                times: result.reversals.clone(),
-            },
-            crossings: Times {
-                count: result.crossing_count,
-                times: result.crossings.clone(),
-            },
+            reversals: Times::of(&result.reversals, result.reversal_count),
+            crossings: Times::of(&result.crossings, result.crossing_count),
             band: problem.band(),
         },
         energy: EnergyOut {
@@ -253,12 +208,10 @@ pub fn simulate_to(
             quat_norm_error: result.quat_norm_error,
             contact_height_max: result.contact_height_max,
         },
-        stats: StatsOut::of(&result.stats, wall_seconds),
+        stats: StatsOut::of(&result.stats, ran.wall_seconds),
     };
-    let text = super::render::text(format, &report, || table(&report));
-    out.write_all(text.as_bytes())?;
-    out.flush()?;
-    Ok(missed)
+    ask.write(&report, table)?;
+    Ok(ran.missed)
 }
 
 fn triple(v: &[f64]) -> String {
@@ -292,17 +245,7 @@ fn table(r: &Report) -> String {
         "start         roll {}, pitch {}, yaw {} rad; omega = ({}, {}, {}) rad/s",
         s.roll, s.pitch, s.yaw, s.omega[0], s.omega[1], s.omega[2]
     );
-    super::render::method_lines(
-        &mut o,
-        (r.head.method, r.head.tolerance, None),
-        &compact(r.t_end),
-        r.head.auto.as_ref().map(|a| super::render::Choice {
-            method: a.choice,
-            reason: &a.reason,
-            error_estimate: a.error_estimate,
-            met: a.met,
-        }),
-    );
+    r.head.method_lines(&mut o, None, &compact(r.t_end));
     let f = &r.final_;
     let _ = writeln!(o);
     let _ = writeln!(

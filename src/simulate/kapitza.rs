@@ -5,19 +5,16 @@
 
 use crate::physics::method::Asked;
 use std::fmt::Write as _;
-use std::time::Instant;
 
 use serde::Serialize;
 
 use super::render::StatsOut;
-use super::{Failure, Format, Missed, Resolved, compact, times};
+use super::{Failure, Format, Missed, Resolved, Times, compact, times};
 use crate::physics::Method;
 use crate::physics::StepError;
 use crate::physics::kapitza::limit::Limit;
 use crate::physics::kapitza::run::{self, RunResult, RunSpec};
 use crate::physics::kapitza::{self, Problem, plan};
-use crate::physics::plan::Shortfall;
-use crate::scenario::Preset;
 
 /// Predicted seconds of the run `spec` asks for (the pendulum's cost model,
 /// [`kapitza::budget`]).
@@ -53,27 +50,13 @@ struct Report {
     stats: StatsOut,
 }
 
+/// `auto`'s account, with the limit's predicted model error over the run.
+type AutoOut = super::PlannedOut<ModelErrorOut>;
+
 #[derive(Serialize)]
-struct AutoOut {
-    choice: Method,
-    reason: String,
-    /// The tolerance the chosen method was run at.
-    tolerance: f64,
+struct ModelErrorOut {
     /// The limit's predicted model error over the run.
     predicted_model_error: f64,
-    /// The error the chosen run is expected to stay within.
-    error_estimate: f64,
-    /// Whether `error_estimate` meets the requested tolerance.
-    met: bool,
-    /// Why not, when not (as the celt's).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    shortfall: Option<Shortfall>,
-}
-
-impl super::Account for AutoOut {
-    fn account(&self) -> (bool, f64, Option<Shortfall>) {
-        (self.met, self.error_estimate, self.shortfall)
-    }
 }
 
 #[derive(Serialize)]
@@ -81,12 +64,6 @@ struct FinalOut {
     t: f64,
     theta: f64,
     theta_dot: f64,
-}
-
-#[derive(Serialize)]
-struct Times {
-    count: usize,
-    times: Vec<f64>,
 }
 
 #[derive(Serialize)]
@@ -138,45 +115,38 @@ struct EquilibriumOut {
     stable: bool,
 }
 
-fn times_of(list: &[f64], count: usize) -> Times {
-    Times {
-        count,
-        times: list.to_vec(),
-    }
-}
-
 impl super::Finite for RunResult {
-    fn named_numbers(&self) -> Vec<(&'static str, f64)> {
-        vec![
+    fn named_numbers(&self) -> (f64, Vec<(&'static str, f64)>) {
+        let numbers = vec![
             ("theta", self.theta),
             ("theta_dot", self.theta_dot),
             ("the energy", self.energy_final),
             ("the energy", self.max_energy_drift),
-        ]
-    }
-
-    fn reached(&self) -> f64 {
-        self.t
+        ];
+        (self.t, numbers)
     }
 }
 
-/// The concrete method and tolerance of `resolved`, with `auto`'s account.
-fn plan_of(
-    problem: &Problem,
-    resolved: &Resolved,
-    progress: &mut dyn FnMut(f64) -> bool,
-) -> Result<(RunSpec, Option<AutoOut>), StepError> {
+/// The run `resolved` asks for (`auto` still to be resolved by [`plan_auto`]).
+fn requested(resolved: &Resolved) -> RunSpec {
     let spec = resolved.spec;
-    let mut run = RunSpec {
+    RunSpec {
         method: spec.method,
         tolerance: spec.tolerance,
         step: spec.step,
         t_end: spec.t_end,
         samples: spec.samples,
-    };
-    if spec.method != Method::Auto {
-        return Ok((run, None));
     }
+}
+
+/// Resolves `auto` into the concrete method and tolerance of `run`, and gives its account.
+fn plan_auto(
+    problem: &Problem,
+    resolved: &Resolved,
+    run: &mut RunSpec,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<AutoOut, StepError> {
+    let spec = resolved.spec;
     let c = plan::verified(
         problem,
         spec.tolerance,
@@ -209,42 +179,32 @@ fn plan_of(
             c.settings.tolerance, c.estimate, c.predicted_model_error
         ),
     };
-    Ok((
-        run,
-        Some(AutoOut {
-            choice: c.method,
-            reason,
-            tolerance: c.settings.tolerance,
+    Ok(AutoOut {
+        choice: c.method,
+        reason,
+        tolerance: c.settings.tolerance,
+        extra: ModelErrorOut {
             predicted_model_error: c.predicted_model_error,
-            error_estimate: c.estimate,
-            met: c.met,
-            shortfall: c.shortfall,
-        }),
-    ))
+        },
+        error_estimate: c.estimate,
+        met: c.met,
+        shortfall: c.shortfall,
+    })
 }
 
 /// Runs the pendulum's preset and writes the report.
 ///
 /// # Errors
 /// As [`super::simulate_to`].
-pub fn simulate_to(
-    preset: &Preset,
+pub(super) fn simulate_to(
     problem: &Problem,
-    resolved: &Resolved,
-    format: Format,
-    out: &mut dyn std::io::Write,
-    progress: &mut dyn FnMut(f64) -> bool,
+    mut ask: super::Ask<'_>,
 ) -> Result<Option<Missed>, Failure> {
-    let (spec, auto) = plan_of(problem, resolved, progress)?;
-    let missed = auto
-        .as_ref()
-        .and_then(|a| super::Account::missed(a, resolved.spec.tolerance));
-    let clock = Instant::now();
-    let result = run::run(problem, &spec, progress).and_then(super::Finite::finite)?;
-    let wall_seconds = clock.elapsed().as_secs_f64();
-    if format == Format::Csv {
-        let head = super::csv_head(preset, resolved, spec.method, spec.t_end);
-        return write_csv(problem, &head, &result, out).map(|()| missed);
+    let ran = ask.plan_and_run((problem, requested(ask.resolved)), plan_auto, run::run)?;
+    let (spec, result) = (ran.spec, ran.result);
+    if ask.format == Format::Csv {
+        let head = ask.csv_head(spec.method, spec.t_end);
+        return write_csv(problem, &head, &result, ask.out).map(|()| ran.missed);
     }
     let limit_spec = RunSpec {
         method: Method::Effective,
@@ -253,11 +213,11 @@ pub fn simulate_to(
         t_end: spec.t_end,
         samples: 0,
     };
-    let limit_run = run::run(problem, &limit_spec, progress).and_then(super::Finite::finite);
+    let limit_run = run::run(problem, &limit_spec, ask.progress).and_then(super::Finite::finite);
     let p = problem.params();
     let s = problem.start();
     let report = Report {
-        head: super::Head::new(preset, (*p, *s), resolved, auto, |a| a.choice),
+        head: ask.head((*p, *s), ran.auto),
         step: spec.method.is_fixed_step().then(|| {
             spec.step.unwrap_or_else(|| {
                 kapitza::flows::default_step(spec.method, problem, spec.tolerance, spec.t_end)
@@ -270,8 +230,8 @@ pub fn simulate_to(
             theta_dot: result.theta_dot,
         },
         events: EventsOut {
-            swings: times_of(&result.events.swings, result.events.swing_count),
-            falls: times_of(&result.events.falls, result.events.fall_count),
+            swings: Times::of(&result.events.swings, result.events.swing_count),
+            falls: Times::of(&result.events.falls, result.events.fall_count),
         },
         energy: EnergyOut {
             initial: result.energy_initial,
@@ -279,12 +239,10 @@ pub fn simulate_to(
             max_drift: result.max_energy_drift,
         },
         effective: effective_out(problem, &limit_run),
-        stats: StatsOut::of(&result.stats, wall_seconds),
+        stats: StatsOut::of(&result.stats, ran.wall_seconds),
     };
-    let text = super::render::text(format, &report, || table(&report));
-    out.write_all(text.as_bytes())?;
-    out.flush()?;
-    Ok(missed)
+    ask.write(&report, table)?;
+    Ok(ran.missed)
 }
 
 /// The limit's account of the start, and its own run (`limit_run`) to `t_end`.
@@ -315,11 +273,11 @@ fn effective_out(problem: &Problem, limit_run: &Result<RunResult, StepError>) ->
         separatrices: limit.separatrices(),
         swings: limit_run.as_ref().map_or_else(
             |_| empty(()),
-            |r| times_of(&r.events.swings, r.events.swing_count),
+            |r| Times::of(&r.events.swings, r.events.swing_count),
         ),
         falls: limit_run.as_ref().map_or_else(
             |_| empty(()),
-            |r| times_of(&r.events.falls, r.events.fall_count),
+            |r| Times::of(&r.events.falls, r.events.fall_count),
         ),
     }
 }
@@ -365,17 +323,7 @@ fn table(r: &Report) -> String {
         "start         theta = {}, theta_dot = {}",
         r.head.initial.theta, r.head.initial.theta_dot
     );
-    super::render::method_lines(
-        &mut o,
-        (r.head.method, r.head.tolerance, r.step),
-        &compact(r.t_end),
-        r.head.auto.as_ref().map(|a| super::render::Choice {
-            method: a.choice,
-            reason: &a.reason,
-            error_estimate: a.error_estimate,
-            met: a.met,
-        }),
-    );
+    r.head.method_lines(&mut o, r.step, &compact(r.t_end));
     super::render::compare_rows(
         &mut o,
         "limit (ε → 0)",

@@ -175,15 +175,13 @@ struct Head<P, S, A> {
     tolerance: f64,
 }
 
-impl<P, S, A> Head<P, S, A> {
-    /// The head of `preset`'s report, asked as `resolved` says; `choice` reads the method `auto`
-    /// chose from its account.
+impl<P, S, A: Account> Head<P, S, A> {
+    /// The head of `preset`'s report, asked as `resolved` says, with `auto`'s account.
     fn new(
         preset: &Preset,
         (params, initial): (P, S),
         resolved: &Resolved,
         auto: Option<A>,
-        choice: impl Fn(&A) -> Method,
     ) -> Self {
         Self {
             schema_version: SCHEMA_VERSION,
@@ -192,30 +190,105 @@ impl<P, S, A> Head<P, S, A> {
             params,
             initial,
             method: resolved.spec.method,
-            auto_choice: auto.as_ref().map(choice),
+            auto_choice: auto.as_ref().map(|a| a.choice().method),
             auto,
             tolerance: resolved.spec.tolerance,
         }
+    }
+
+    /// The table's method line and, for `auto`, the line saying what it chose.
+    fn method_lines(&self, o: &mut String, step: Option<f64>, t_end: &str) {
+        render::method_lines(
+            o,
+            (self.method, self.tolerance, step),
+            t_end,
+            self.auto.as_ref().map(Account::choice),
+        );
+    }
+}
+
+/// What a scene's planned run gives its report: the run that was made and `auto`'s account
+/// (none for another method), the shortfall, the result and its wall time.
+struct Ran<S, A, R> {
+    spec: S,
+    auto: Option<A>,
+    missed: Option<Missed>,
+    result: R,
+    wall_seconds: f64,
+}
+
+/// A report asked of a scene: its preset as `resolved` says, in `format`, to `out`, with
+/// `progress` called as the runs go (and cancelling them when it returns `false`).
+struct Ask<'a> {
+    preset: &'a Preset,
+    resolved: &'a Resolved,
+    format: Format,
+    out: &'a mut dyn std::io::Write,
+    progress: &'a mut dyn FnMut(f64) -> bool,
+}
+
+impl Ask<'_> {
+    /// Runs `problem` as `spec` says, `auto` first resolved by `plan` (which makes `spec`
+    /// concrete and gives its account), and checks that every number of the result is
+    /// finite.
+    fn plan_and_run<P, S, A: Account, R: Finite>(
+        &mut self,
+        (problem, mut spec): (&P, S),
+        plan: impl FnOnce(&P, &Resolved, &mut S, &mut dyn FnMut(f64) -> bool) -> Result<A, StepError>,
+        run: impl FnOnce(&P, &S, &mut dyn FnMut(f64) -> bool) -> Result<R, StepError>,
+    ) -> Result<Ran<S, A, R>, Failure> {
+        let auto = if self.resolved.spec.method == Method::Auto {
+            Some(plan(problem, self.resolved, &mut spec, self.progress)?)
+        } else {
+            None
+        };
+        let missed = auto
+            .as_ref()
+            .and_then(|a| a.missed(self.resolved.spec.tolerance));
+        let clock = Instant::now();
+        let result = run(problem, &spec, self.progress).and_then(Finite::finite)?;
+        Ok(Ran {
+            spec,
+            auto,
+            missed,
+            result,
+            wall_seconds: clock.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// The report's head: the scene's parameters and start, and `auto`'s account.
+    fn head<P, S, A: Account>(&self, params_start: (P, S), auto: Option<A>) -> Head<P, S, A> {
+        Head::new(self.preset, params_start, self.resolved, auto)
+    }
+
+    /// The CSV's metadata lines for a run by `ran` to `t_end`.
+    fn csv_head(&self, ran: Method, t_end: f64) -> String {
+        csv_head(self.preset, self.resolved, ran, t_end)
+    }
+
+    /// Writes `report` in the asked format (`table` renders it for people) and flushes.
+    fn write<T: Serialize>(
+        &mut self,
+        report: &T,
+        table: impl FnOnce(&T) -> String,
+    ) -> Result<(), Failure> {
+        let text = render::text(self.format, report, || table(report));
+        self.out.write_all(text.as_bytes())?;
+        self.out.flush()?;
+        Ok(())
     }
 }
 
 /// A run's result, which holds only finite numbers before it is reported.
 trait Finite: Sized {
-    /// Its numbers, each with the name an error gives it, in the order they are checked.
-    fn named_numbers(&self) -> Vec<(&'static str, f64)>;
-    /// The time the run reached.
-    fn reached(&self) -> f64;
+    /// The time the run reached, and its numbers, each with the name an error gives it, in
+    /// the order they are checked.
+    fn named_numbers(&self) -> (f64, Vec<(&'static str, f64)>);
     /// `self`, or the error naming its first number that is not finite.
     fn finite(self) -> Result<Self, StepError> {
-        let bad = self
-            .named_numbers()
-            .into_iter()
-            .find(|(_, x)| !x.is_finite());
-        match bad {
-            Some((what, _)) => Err(StepError::NotFinite {
-                what,
-                t: self.reached(),
-            }),
+        let (t, numbers) = self.named_numbers();
+        match numbers.into_iter().find(|(_, x)| !x.is_finite()) {
+            Some((what, _)) => Err(StepError::NotFinite { what, t }),
             None => Ok(self),
         }
     }
@@ -229,7 +302,7 @@ struct Report {
     t_end: f64,
     #[serde(rename = "final")]
     final_: FinalOut,
-    reversals: Reversals,
+    reversals: Times,
     energy: EnergyOut,
     effective: EffectiveOut,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -287,13 +360,48 @@ impl AveragedOut {
     }
 }
 
-impl AutoOut {
-    fn missed(&self, tolerance: f64) -> Option<Missed> {
-        self.shortfall.map(|why| Missed {
-            estimate: self.error_estimate,
-            tolerance,
-            why,
-        })
+impl Account for AutoOut {
+    /// Met exactly when there is no shortfall.
+    fn account(&self) -> (bool, f64, Option<Shortfall>) {
+        (
+            self.shortfall.is_none(),
+            self.error_estimate,
+            self.shortfall,
+        )
+    }
+
+    fn choice(&self) -> render::Choice<'_> {
+        render::Choice::new(self.choice, &self.reason, self.error_estimate, self.met)
+    }
+}
+
+/// `auto`'s account in the report of a scene planned by [`crate::physics::plan`] (the pendulum
+/// and the celt; the rattleback's has fields and an order of its own): `extra` holds the
+/// scene's own fields, between the tolerance and the estimate.
+#[derive(Serialize)]
+struct PlannedOut<X> {
+    choice: Method,
+    reason: String,
+    /// The tolerance the chosen run was integrated at.
+    tolerance: f64,
+    #[serde(flatten)]
+    extra: X,
+    /// The error the chosen run is expected to stay within.
+    error_estimate: f64,
+    /// Whether `error_estimate` meets the requested tolerance.
+    met: bool,
+    /// Why not, when not.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    shortfall: Option<Shortfall>,
+}
+
+impl<X> Account for PlannedOut<X> {
+    fn account(&self) -> (bool, f64, Option<Shortfall>) {
+        (self.met, self.error_estimate, self.shortfall)
+    }
+
+    fn choice(&self) -> render::Choice<'_> {
+        render::Choice::new(self.choice, &self.reason, self.error_estimate, self.met)
     }
 }
 
@@ -312,6 +420,9 @@ pub struct Missed {
 trait Account {
     /// Whether it met the tolerance, its estimate, and why not.
     fn account(&self) -> (bool, f64, Option<Shortfall>);
+
+    /// What it chose and why, for the table (and the report's `auto_choice`).
+    fn choice(&self) -> render::Choice<'_>;
 
     /// The shortfall unless it met `tolerance` (`why` defaults to the round-off floor).
     fn missed(&self, tolerance: f64) -> Option<Missed> {
@@ -353,17 +464,19 @@ struct FinalOut {
     alpha_dot: f64,
 }
 
+/// Events in a report: `times` holds the first ones (as many as the run kept), `count` all.
 #[derive(Serialize)]
-struct Reversals {
+struct Times {
     count: usize,
     times: Vec<f64>,
 }
 
-impl Reversals {
-    /// `times` holds the first reversals (at most `physics::rattleback::run::MAX_REVERSAL_TIMES`), `count`
-    /// all of them.
-    fn of(times: Vec<f64>, count: usize) -> Self {
-        Self { count, times }
+impl Times {
+    fn of(times: &[f64], count: usize) -> Self {
+        Self {
+            count,
+            times: times.to_vec(),
+        }
     }
 }
 
@@ -426,7 +539,7 @@ struct EffectiveOut {
     half_period: Option<f64>,
     turning_points: Option<(f64, f64)>,
     tapping_acceleration: f64,
-    reversals: Reversals,
+    reversals: Times,
 }
 
 /// Runs `preset` as `resolved` says and renders the report in `format` (CSV included: this
@@ -465,37 +578,35 @@ pub fn simulate_to(
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Option<Missed>, Failure> {
     within_budget(preset, resolved, format)?;
+    let ask = Ask {
+        preset,
+        resolved,
+        format,
+        out,
+        progress,
+    };
     match &preset.model {
-        crate::physics::Model::Rattleback(p) => {
-            rattleback_to(preset, p, resolved, format, out, progress)
-        }
-        crate::physics::Model::Kapitza(p) => {
-            kapitza::simulate_to(preset, p, resolved, format, out, progress)
-        }
-        crate::physics::Model::Celt(p) => {
-            celt::simulate_to(preset, p, resolved, format, out, progress)
-        }
+        crate::physics::Model::Rattleback(p) => rattleback_to(p, ask),
+        crate::physics::Model::Kapitza(p) => kapitza::simulate_to(p, ask),
+        crate::physics::Model::Celt(p) => celt::simulate_to(p, ask),
     }
 }
 
 /// The rattleback's report (see [`simulate_to`]).
 fn rattleback_to(
-    preset: &Preset,
     problem: &crate::physics::rattleback::Problem,
-    resolved: &Resolved,
-    format: Format,
-    out: &mut dyn std::io::Write,
-    progress: &mut dyn FnMut(f64) -> bool,
+    mut ask: Ask<'_>,
 ) -> Result<Option<Missed>, Failure> {
+    let (preset, resolved) = (ask.preset, ask.resolved);
     let spec = resolved.spec;
     let clock = Instant::now();
-    if format == Format::Csv {
-        let (result, shortfall) = csv(preset, problem, resolved, out, progress)?;
+    if ask.format == Format::Csv {
+        let (result, shortfall) = csv(preset, problem, resolved, ask.out, ask.progress)?;
         result.finite()?;
-        out.flush()?;
+        ask.out.flush()?;
         return Ok(shortfall);
     }
-    let (result, auto) = requested_run(problem, resolved, progress)?;
+    let (result, auto) = requested_run(problem, resolved, ask.progress)?;
     let result = result.finite()?;
     let wall_seconds = clock.elapsed().as_secs_f64();
     // The limit's own trajectory at t_end, for comparison (cheap: cost independent of k).
@@ -508,7 +619,7 @@ fn rattleback_to(
         ..spec
     };
     // A failure of this extra comparison does not discard the requested run: it is reported.
-    let eff_run = run_cancellable(problem, &eff_spec, progress).and_then(Finite::finite);
+    let eff_run = run_cancellable(problem, &eff_spec, ask.progress).and_then(Finite::finite);
     let eff = Effective::new(problem);
     let p = problem.params();
     let y = result.final_state;
@@ -524,9 +635,7 @@ fn rattleback_to(
         k: p.k,
     };
     let report = Report {
-        head: Head::new(preset, (params, *problem.start()), resolved, auto, |a| {
-            a.choice
-        }),
+        head: ask.head((params, *problem.start()), auto),
         step,
         t_end: spec.t_end,
         final_: FinalOut {
@@ -536,7 +645,7 @@ fn rattleback_to(
             gamma_dot: y[GAMMA_DOT],
             alpha_dot: y[ALPHA_DOT],
         },
-        reversals: Reversals::of(result.reversals.clone(), result.reversal_count),
+        reversals: Times::of(&result.reversals, result.reversal_count),
         energy: EnergyOut::of(&result, spec.tolerance),
         effective: EffectiveOut {
             theta: eff.theta(),
@@ -550,8 +659,8 @@ fn rattleback_to(
             half_period: eff.half_period(),
             turning_points: eff.turning_points(),
             tapping_acceleration: tapping_acceleration(problem),
-            reversals: Reversals::of(
-                eff.reversal_times(spec.t_end),
+            reversals: Times::of(
+                &eff.reversal_times(spec.t_end),
                 eff.reversal_count(spec.t_end),
             ),
         },
@@ -559,9 +668,7 @@ fn rattleback_to(
         stats: StatsOut::of(&result.stats, wall_seconds),
     };
     warn_energy(&report.energy, spec.tolerance);
-    let text = render::text(format, &report, || table(&report));
-    out.write_all(text.as_bytes())?;
-    out.flush()?;
+    ask.write(&report, table)?;
     Ok(shortfall)
 }
 
@@ -790,17 +897,7 @@ fn table(r: &Report) -> String {
         r.head.initial.gamma_dot,
         r.head.initial.alpha_dot
     );
-    render::method_lines(
-        &mut o,
-        (r.head.method, r.head.tolerance, r.step),
-        &r.t_end.to_string(),
-        r.head.auto.as_ref().map(|a| render::Choice {
-            method: a.choice,
-            reason: &a.reason,
-            error_estimate: a.error_estimate,
-            met: a.met,
-        }),
-    );
+    r.head.method_lines(&mut o, r.step, &r.t_end.to_string());
     render::compare_rows(
         &mut o,
         "effective (k → ∞)",
@@ -840,16 +937,12 @@ fn table(r: &Report) -> String {
 const STATE_NAMES: [&str; 4] = ["gamma", "alpha", "gamma_dot", "alpha_dot"];
 
 impl Finite for RunResult {
-    fn named_numbers(&self) -> Vec<(&'static str, f64)> {
+    fn named_numbers(&self) -> (f64, Vec<(&'static str, f64)>) {
         let state = STATE_NAMES
             .into_iter()
             .zip(self.final_state.iter().copied());
         let energy = [self.energy_final, self.max_relative_energy_error].map(|e| ("the energy", e));
         let reversals = self.reversals.iter().map(|&t| ("a reversal time", t));
-        state.chain(energy).chain(reversals).collect()
-    }
-
-    fn reached(&self) -> f64 {
-        self.t
+        (self.t, state.chain(energy).chain(reversals).collect())
     }
 }

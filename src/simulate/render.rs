@@ -58,6 +58,18 @@ pub(crate) struct Choice<'a> {
     pub met: bool,
 }
 
+impl<'a> Choice<'a> {
+    /// `method`, chosen for `reason`, with its estimate and whether that met the tolerance.
+    pub fn new(method: Method, reason: &'a str, error_estimate: f64, met: bool) -> Self {
+        Self {
+            method,
+            reason,
+            error_estimate,
+            met,
+        }
+    }
+}
+
 /// The method line and, for `auto`, the line saying what it chose.
 pub(crate) fn method_lines(
     o: &mut String,
