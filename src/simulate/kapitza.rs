@@ -166,6 +166,10 @@ fn plan_auto(
             "the limit with its ripple: its predicted model error {:.1e} is above the tolerance, but a resolved run's rounding ({:.1e}) would be worse",
             c.predicted_model_error, c.estimate
         ),
+        (Method::Averaged3, _) => format!(
+            "the third-order averaged model: its error, checked against the second-order model and a run 16x looser, is {:.1e}; cost independent of epsilon",
+            c.estimate
+        ),
         (Method::Averaged2, _) => format!(
             "the second-order averaged model: its error, checked against the limit with its ripple and a run 16x looser, is {:.1e}; cost independent of epsilon",
             c.estimate

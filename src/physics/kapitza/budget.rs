@@ -52,7 +52,7 @@ pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
     };
     let per_tol = tolerance.max(1e-16).powf(-0.125);
     let evaluations = match method {
-        Method::Effective | Method::EffectiveCorrected | Method::Averaged2 => {
+        Method::Effective | Method::EffectiveCorrected | Method::Averaged2 | Method::Averaged3 => {
             12.0 * t_end * slow_rate(problem) * per_tol
         }
         Method::Dop853 => 7.2 * fastest_rate(problem) * t_end * per_tol,

@@ -31,7 +31,7 @@ use crate::physics::numerics::dop853::{Dop853, Field};
 use crate::physics::numerics::roots::find_root;
 
 /// The methods this model offers (`auto` resolves to one of them).
-pub const METHODS: [Method; 11] = [
+pub const METHODS: [Method; 12] = [
     Method::Auto,
     Method::Rk4,
     Method::Dop853,
@@ -43,6 +43,7 @@ pub const METHODS: [Method; 11] = [
     Method::Effective,
     Method::EffectiveCorrected,
     Method::Averaged2,
+    Method::Averaged3,
 ];
 
 /// Whether this model offers `method`.
@@ -104,6 +105,7 @@ pub fn build(problem: &Problem, ask: &Asked) -> Result<Box<dyn Flow>, StepError>
             Order::Corrected,
         )),
         Method::Averaged2 => Box::new(LimitDop853::new(problem, settings.tolerance, Order::Second)),
+        Method::Averaged3 => Box::new(LimitDop853::new(problem, settings.tolerance, Order::Third)),
         other => {
             return Err(StepError::NotOffered {
                 method: other.name(),
@@ -414,19 +416,26 @@ impl Flow for Fixed {
     }
 }
 
-/// The limit's field on `(Θ, Θ̇)`, with (`second`) the averaged model's `ε² F2` term.
+/// The limit's field on `(Θ, Θ̇)`, with the averaged models' `ε² F2` (and `ε⁴ F4`) terms.
 #[derive(Clone)]
 struct LimitField {
     limit: Limit,
-    second: Option<Params>,
+    params: Params,
+    order: Order,
 }
 
 impl Field<2> for LimitField {
     #[inline]
     fn eval(&self, y: &Vector2<f64>) -> Vector2<f64> {
         let mut acceleration = self.limit.acceleration(y[0]);
-        if let Some(p) = &self.second {
-            acceleration += p.epsilon * p.epsilon * averaged::f2(p, y[0], y[1]);
+        let (p, e2) = (&self.params, self.params.epsilon * self.params.epsilon);
+        match self.order {
+            Order::Limit | Order::Corrected => {}
+            Order::Second => acceleration += e2 * averaged::f2(p, y[0], y[1]),
+            Order::Third => {
+                acceleration +=
+                    e2 * (averaged::f2(p, y[0], y[1]) + e2 * averaged::f4(p, y[0], y[1]));
+            }
         }
         Vector2::new(y[1], acceleration)
     }
@@ -445,9 +454,11 @@ pub enum Order {
     /// `averaged2`: the averaged equation to O(ε²) from the averaged start, with the ripple
     /// to O(ε⁴) (`averaged`).
     Second,
+    /// `averaged3`: the averaged equation to O(ε⁴), with the ripple to O(ε⁶).
+    Third,
 }
 
-/// `effective`, `effective-corrected` and `averaged2`: DOP853 on the slow motion.
+/// `effective`, `effective-corrected`, `averaged2` and `averaged3`: DOP853 on the slow motion.
 #[derive(Clone)]
 pub struct LimitDop853 {
     params: Params,
@@ -474,11 +485,13 @@ impl LimitDop853 {
             Order::Limit => (s.theta, s.theta_dot),
             Order::Corrected => averaged_start(problem),
             Order::Second => averaged::to_slow(&p, 0.0, (s.theta, s.theta_dot)),
+            Order::Third => averaged::to_slow3(&p, 0.0, (s.theta, s.theta_dot)),
         };
         let limit = Limit::new(&p);
         let field = LimitField {
             limit,
-            second: (order == Order::Second).then_some(p),
+            params: p,
+            order,
         };
         Self {
             params: p,
@@ -501,6 +514,7 @@ impl LimitDop853 {
             Order::Limit => (y[0], y[1]),
             Order::Corrected => limit::to_full(&self.params, t, (y[0], y[1])),
             Order::Second => averaged::to_full(&self.params, t, (y[0], y[1])),
+            Order::Third => averaged::to_full3(&self.params, t, (y[0], y[1])),
         }
     }
 }
@@ -512,6 +526,7 @@ impl Flow for LimitDop853 {
             Order::Limit => Method::Effective,
             Order::Corrected => Method::EffectiveCorrected,
             Order::Second => Method::Averaged2,
+            Order::Third => Method::Averaged3,
         }
     }
     fn sample(&mut self, t: f64) -> Sample {

@@ -16,6 +16,8 @@
 //! no code outside this folder indexes it.
 
 pub mod averaged;
+#[rustfmt::skip]
+mod averaged3_terms;
 pub mod budget;
 pub mod flows;
 pub mod limit;

@@ -167,8 +167,20 @@ pub fn averaged_expected(problem: &Problem, tolerance: f64, t_end: f64) -> bool 
 /// documentation: measured at most 0.72 of it).
 pub const SECOND_ORDER_MARGIN: f64 = 2.0;
 
-/// `averaged2` checked a posteriori (see the module's documentation): its choice when the
-/// estimate meets `tolerance`, else `None`.
+/// How much the model part of `averaged3`'s estimate widens `|averaged3 − averaged2| (ε s)²`:
+/// over the Taylor-series references where `ε s ≤` [`THIRD_ORDER_MAX_EPS_S`] and the error
+/// stands above the integration floor (ε = 1e-2), the ratio of the measured error to that is
+/// 0.12–3.3 (`tests/it/kapitza.rs`, `the_third_order_averaged_model_is_sixth_order`).
+pub const THIRD_ORDER_MARGIN: f64 = 8.0;
+/// Largest `ε s` (`s = b² + |a| + 1`) where `averaged3` is considered: beyond, the expansion's
+/// terms shrink too slowly for its gap to `averaged2` to measure its error (at ε s = 0.6 the
+/// ratio above reaches 8.7).
+pub const THIRD_ORDER_MAX_EPS_S: f64 = 0.1;
+
+/// The averaged models checked a posteriori (see the module's documentation): `averaged2`'s
+/// choice when its estimate meets `tolerance`; else `averaged3`'s when its does, its model
+/// error measured by its gap to `averaged2` times `(ε s)²` (the ratio of their orders); else
+/// `None`. `averaged3` is not run where `ε s` > [`THIRD_ORDER_MAX_EPS_S`].
 ///
 /// # Errors
 /// A failed or cancelled run.
@@ -187,18 +199,11 @@ pub fn averaged_checked(
         t_end,
         samples: SAMPLES,
     };
-    let second = run(problem, &spec(Method::Averaged2, local), go_on)?;
-    let companion = run(
-        problem,
-        &spec(Method::Averaged2, (local * COMPANION_LOOSER).min(1e-3)),
-        go_on,
-    )?;
-    let first = run(problem, &spec(Method::EffectiveCorrected, local), go_on)?;
-    let model =
-        SECOND_ORDER_MARGIN * difference(&second, &first) * (p.epsilon * scale(problem)).powi(2);
-    let estimate = model + difference(&second, &companion) + phase_rounding(problem, t_end);
-    Ok((estimate <= tolerance).then_some(Choice {
-        method: Method::Averaged2,
+    let companion_tolerance = (local * COMPANION_LOOSER).min(1e-3);
+    let es2 = (p.epsilon * scale(problem)).powi(2);
+    let rounding = phase_rounding(problem, t_end);
+    let choice = |method, model, estimate| Choice {
+        method,
         settings: Settings {
             tolerance: local,
             step: None,
@@ -207,7 +212,49 @@ pub fn averaged_checked(
         estimate,
         met: true,
         shortfall: None,
-    }))
+    };
+    let second = run(problem, &spec(Method::Averaged2, local), go_on)?;
+    let companion = run(
+        problem,
+        &spec(Method::Averaged2, companion_tolerance),
+        go_on,
+    )?;
+    let first = run(problem, &spec(Method::EffectiveCorrected, local), go_on)?;
+    let model = SECOND_ORDER_MARGIN * difference(&second, &first) * es2;
+    let estimate = model + difference(&second, &companion) + rounding;
+    if estimate <= tolerance {
+        return Ok(Some(choice(Method::Averaged2, model, estimate)));
+    }
+    if es2 > THIRD_ORDER_MAX_EPS_S.powi(2) {
+        return Ok(None);
+    }
+    let third = run(problem, &spec(Method::Averaged3, local), go_on)?;
+    let companion = run(
+        problem,
+        &spec(Method::Averaged3, companion_tolerance),
+        go_on,
+    )?;
+    let model = THIRD_ORDER_MARGIN * difference(&third, &second) * es2;
+    let estimate = model + difference(&third, &companion) + rounding;
+    Ok((estimate <= tolerance).then(|| choice(Method::Averaged3, model, estimate)))
+}
+
+/// `|averaged3 − averaged2|` over `[0, t_end]`, both at the tightest tolerance: what
+/// [`averaged_checked`] scales into `averaged3`'s model error (for its calibration).
+///
+/// # Errors
+/// A failed run.
+pub fn averaged3_gap(problem: &Problem, t_end: f64) -> Result<f64, StepError> {
+    let spec = |method| RunSpec {
+        method,
+        tolerance: TIGHTEST,
+        step: None,
+        t_end,
+        samples: SAMPLES,
+    };
+    let third = run(problem, &spec(Method::Averaged3), &mut |_| true)?;
+    let second = run(problem, &spec(Method::Averaged2), &mut |_| true)?;
+    Ok(difference(&third, &second))
 }
 
 /// How much looser the companion of a resolved run is.
