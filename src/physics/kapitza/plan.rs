@@ -213,12 +213,14 @@ pub fn averaged_checked(
         met: true,
         shortfall: None,
     };
-    let second = run(problem, &spec(Method::Averaged2, local), go_on)?;
-    let companion = run(
-        problem,
-        &spec(Method::Averaged2, companion_tolerance),
-        go_on,
-    )?;
+    // A model's run and its companion, 16× looser.
+    let pair = |method, go_on: &mut dyn FnMut(f64) -> bool| -> Result<_, StepError> {
+        Ok((
+            run(problem, &spec(method, local), go_on)?,
+            run(problem, &spec(method, companion_tolerance), go_on)?,
+        ))
+    };
+    let (second, companion) = pair(Method::Averaged2, go_on)?;
     let first = run(problem, &spec(Method::EffectiveCorrected, local), go_on)?;
     let model = SECOND_ORDER_MARGIN * difference(&second, &first) * es2;
     let estimate = model + difference(&second, &companion) + rounding;
@@ -228,12 +230,7 @@ pub fn averaged_checked(
     if es2 > THIRD_ORDER_MAX_EPS_S.powi(2) {
         return Ok(None);
     }
-    let third = run(problem, &spec(Method::Averaged3, local), go_on)?;
-    let companion = run(
-        problem,
-        &spec(Method::Averaged3, companion_tolerance),
-        go_on,
-    )?;
+    let (third, companion) = pair(Method::Averaged3, go_on)?;
     let model = THIRD_ORDER_MARGIN * difference(&third, &second) * es2;
     let estimate = model + difference(&third, &companion) + rounding;
     Ok((estimate <= tolerance).then(|| choice(Method::Averaged3, model, estimate)))
