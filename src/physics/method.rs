@@ -34,8 +34,9 @@ pub enum Method {
     /// pendulum; cost independent of the small parameter (docs/physics.md §4c,
     /// `physics::rattleback::averaged`, `physics::kapitza::averaged`).
     Averaged2,
-    /// The rattleback's third-order averaged model: error O(k⁻³), the cost of `averaged2`
-    /// (`physics::rattleback::averaged3`).
+    /// The third-order averaged model of the rattleback (error O(k⁻³)) and of the pendulum
+    /// (O(ε⁶)), at about twice `averaged2`'s cost and independent of the small parameter
+    /// (`physics::rattleback::averaged3`, `physics::kapitza::averaged`).
     Averaged3,
     /// DOP853 with the state projected back onto its constraints after every step (the celt's
     /// unit quaternion, with the up vector taken from it).

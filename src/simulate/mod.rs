@@ -814,17 +814,7 @@ fn csv(
         spec.step = plan.step;
     }
     let p = problem.params();
-    out.write_all(
-        csv_metadata_of(
-            &preset.name,
-            &preset.model,
-            resolved.spec.method,
-            Some(spec.method),
-            resolved.spec.tolerance,
-            spec.t_end,
-        )
-        .as_bytes(),
-    )?;
+    out.write_all(csv_head(preset, resolved, spec.method, spec.t_end).as_bytes())?;
     out.write_all(b"t,gamma,alpha,gamma_dot,alpha_dot,energy\n")?;
     let mut failure: Option<Failure> = None;
     let result = run_streaming(problem, &spec, progress, &mut |s| {

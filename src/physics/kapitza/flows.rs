@@ -433,8 +433,8 @@ impl Field<2> for LimitField {
             Order::Limit | Order::Corrected => {}
             Order::Second => acceleration += e2 * averaged::f2(p, y[0], y[1]),
             Order::Third => {
-                acceleration +=
-                    e2 * (averaged::f2(p, y[0], y[1]) + e2 * averaged::f4(p, y[0], y[1]));
+                let (f2, f4) = averaged::f2_f4(p, y[0], y[1]);
+                acceleration += e2 * (f2 + e2 * f4);
             }
         }
         Vector2::new(y[1], acceleration)

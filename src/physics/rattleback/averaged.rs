@@ -216,24 +216,13 @@ impl Averaged2 {
     #[must_use]
     pub fn to_full_state(&self, y: &SlowState) -> State {
         let (alpha, alpha_dot, fast) = self.reconstruct_parts(y);
-        let p = &self.params;
-        let g = p.g(alpha);
-        let omega = (p.k / g).sqrt();
-        let (s, c) = fast.phase.sin_cos();
-        let action = fast.action.max(0.0);
-        State::new(
-            (2.0 * action / (g * omega)).sqrt() * s,
-            alpha,
-            (2.0 * action * omega / g).sqrt() * c,
-            alpha_dot,
-        )
+        full_state(&self.params, alpha, alpha_dot, fast.action, fast.phase)
     }
 
     /// `V̄_max = Ī √(k / min(ix, iy))` (the `c²` term vanishes where `g' = 0`).
     #[must_use]
     pub fn potential_max(&self) -> f64 {
-        let p = &self.params;
-        self.ibar * (p.k / p.ix.min(p.iy)).sqrt()
+        potential_max(&self.params, self.ibar)
     }
 
     /// The regime of the averaged motion started at `y0`: trapped when `K̄ < V̄_max`.
@@ -302,6 +291,28 @@ pub const HALF_PERIOD_ACCURACY: f64 = 1e-6;
 /// Largest [`expansion_parameter`] for which `averaged2` runs at all (its error at 0.2 is
 /// already 1e-3 … 1e-5 on the note's starts, k = 1e2; past 0.5 the slow motion is not slow).
 pub const VALIDITY_LIMIT: f64 = 0.5;
+
+/// `V̄_max = Ī √(k / min(ix, iy))` of an averaged model with fast action `ibar` (either order).
+#[must_use]
+pub fn potential_max(p: &Params, ibar: f64) -> f64 {
+    ibar * (p.k / p.ix.min(p.iy)).sqrt()
+}
+
+/// The full-model state `(γ, α, γ̇, α̇)` of a reconstructed `(α, α̇)` with the fast motion's
+/// action and phase (a negative action, a rounding artefact, counts as none).
+#[must_use]
+pub fn full_state(p: &Params, alpha: f64, alpha_dot: f64, action: f64, phase: f64) -> State {
+    let g = p.g(alpha);
+    let omega = (p.k / g).sqrt();
+    let (s, c) = phase.sin_cos();
+    let action = action.max(0.0);
+    State::new(
+        (2.0 * action / (g * omega)).sqrt() * s,
+        alpha,
+        (2.0 * action * omega / g).sqrt() * c,
+        alpha_dot,
+    )
+}
 
 /// The largest of the averaging's small parameters for a start (note §4.3, "Validity"):
 /// `v = |α̇|max (1 + c_max) / ω_min`, the spin against the slowest fast frequency, and

@@ -167,17 +167,7 @@ impl Averaged3 {
     #[must_use]
     pub fn to_full_state(&self, y: &SlowState) -> State {
         let [alpha, alpha_dot, action, phase] = self.reconstruct_parts(y);
-        let p = &self.params;
-        let g = p.g(alpha);
-        let omega = (p.k / g).sqrt();
-        let (s, c) = phase.sin_cos();
-        let action = action.max(0.0);
-        State::new(
-            (2.0 * action / (g * omega)).sqrt() * s,
-            alpha,
-            (2.0 * action * omega / g).sqrt() * c,
-            alpha_dot,
-        )
+        super::averaged::full_state(&self.params, alpha, alpha_dot, action, phase)
     }
 }
 

@@ -70,14 +70,15 @@ pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
         Method::Dop853 | Method::Dop853Projected | Method::Auto => {
             dop853_evaluations(tolerance, periods(nu)) * NS_DOP853_EVAL
         }
-        Method::Effective | Method::EffectiveCorrected | Method::Averaged2 => {
-            (dop853_evaluations(tolerance, periods(slow_rate(problem).max(1e-3)))
-                * NS_EFFECTIVE_EVAL)
+        Method::Effective | Method::EffectiveCorrected | Method::Averaged2 | Method::Averaged3 => {
+            let per_eval = if method == Method::Averaged3 {
+                NS_AVERAGED3_EVAL
+            } else {
+                NS_EFFECTIVE_EVAL
+            };
+            (dop853_evaluations(tolerance, periods(slow_rate(problem).max(1e-3))) * per_eval)
                 .max(NS_EFFECTIVE_PER_TIME * t_end * 0.1)
         }
-        Method::Averaged3 => (dop853_evaluations(tolerance, periods(slow_rate(problem).max(1e-3)))
-            * NS_AVERAGED3_EVAL)
-            .max(NS_EFFECTIVE_PER_TIME * t_end * 0.1),
         Method::Rk4 => 4.0 * NS_DOP853_EVAL * t_end / h(),
         Method::Strang | Method::Locked => NS_FAST_FLOW * t_end / h(),
         Method::Yoshida4 => 3.0 * NS_FAST_FLOW * t_end / h(),

@@ -128,9 +128,9 @@ pub const ROUND_OFF_GAIN: f64 = 5.0;
 /// the runs it compares).
 pub const NUDGE: f64 = 1e-10;
 /// Largest expansion parameter ([`super::averaged::expansion_parameter`]) at which a resolved
-/// plan's condition numbers are measured on the averaged model instead of the full one: its model error there is at most about `6 x⁶ ≈ 6e-6` over T = 30
-/// (docs/averaging/third-order.md), far below what moves a sensitivity measured with nudges
-/// of 1e-10.
+/// plan's condition numbers are measured on the averaged model instead of the full one: its
+/// model error there is at most about `6 x⁶ ≈ 6e-6` over T = 30 (docs/averaging/third-order.md),
+/// far below what moves a sensitivity measured with nudges of 1e-10.
 pub const CONDITIONING_AVERAGED_LIMIT: f64 = 0.1;
 /// Condition number above which a measurement on the averaged model
 /// ([`CONDITIONING_AVERAGED_LIMIT`]) is repeated on the plan's own method: below it the
@@ -652,14 +652,7 @@ pub fn run_auto_cancellable(
         mut model_error,
         ..
     } = plan_cancellable(problem, tolerance, t_end, go_on)?;
-    // Priced as the full measurement (the averaged model's, when it serves, costs less).
-    let measure = conditioning_spec(problem, t_end, &plan, false);
-    spent += plan.predicted_seconds
-        + 3.0
-            * cost_seconds(
-                problem,
-                &Asked::new(plan.method, measure.tolerance, measure.step, t_end),
-            );
+    spent += plan.predicted_seconds + conditioning_cost(problem, t_end, &plan);
     over_budget(
         &format!("auto's run and verification with {}", plan.method),
         spent,
@@ -738,12 +731,7 @@ pub fn run_auto_cancellable(
         if plan.method == AVERAGED && next.method != AVERAGED {
             // The start's conditioning was measured on the averaged model: the full motion that
             // now runs is measured on its own method, as a first resolved plan would be.
-            let measure = conditioning_spec(problem, t_end, &next, false);
-            spent += 3.0
-                * cost_seconds(
-                    problem,
-                    &Asked::new(next.method, measure.tolerance, measure.step, t_end),
-                );
+            spent += conditioning_cost(problem, t_end, &next);
             kappa = conditioning(problem, t_end, &next, go_on)?;
         }
         plan = next;
@@ -886,6 +874,16 @@ pub fn conditioning(
         );
     }
     Ok(cheap)
+}
+
+/// Predicted seconds of [`conditioning`] for `plan`, priced as the measurement on the plan's
+/// own method (the averaged model's, when it serves, costs less).
+fn conditioning_cost(problem: &Problem, t_end: f64, plan: &Plan) -> f64 {
+    let measure = conditioning_spec(problem, t_end, plan, false);
+    3.0 * cost_seconds(
+        problem,
+        &Asked::new(measure.method, measure.tolerance, measure.step, t_end),
+    )
 }
 
 /// [`conditioning`]'s three runs with `spec`.

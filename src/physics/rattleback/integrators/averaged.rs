@@ -105,9 +105,8 @@ impl<M: SlowModel> AveragedDop853<M> {
     pub fn new(problem: &Problem, tol: f64) -> Self {
         let (model, y0) = M::start(problem);
         let p = problem.params();
-        // P̄ moves on the scale of iz·α̇ and of the potential's force, whichever is larger
-        // (`V̄_max = Ī √(k / min(ix, iy))`).
-        let potential_max = model.ibar() * (p.k / p.ix.min(p.iy)).sqrt();
+        // P̄ moves on the scale of iz·α̇ and of the potential's force, whichever is larger.
+        let potential_max = crate::physics::rattleback::averaged::potential_max(p, model.ibar());
         let momentum_unit = (p.iz * problem.start().alpha_dot.abs())
             .max((p.iz * potential_max).sqrt())
             .max(f64::MIN_POSITIVE);
