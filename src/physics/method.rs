@@ -317,6 +317,39 @@ impl TimeSum {
     }
 }
 
+/// The arithmetic rules that changed between session formats: a replay of an old file follows
+/// the ones it was recorded with, so its bits come back (`crate::record::plan_book`); everything
+/// else runs the current ones, [`Arithmetic::default`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Arithmetic {
+    /// How fixed-step methods add their steps to the time (the rattleback's; the pendulum's take
+    /// the time from the step count).
+    pub time_sum: TimeSum,
+    /// How the pendulum's lifts take the fast phase `t/ε`.
+    pub fast_phase: crate::physics::kapitza::FastPhase,
+}
+
+impl Arithmetic {
+    /// The rules session files of format `version` were recorded with: the plain sum of the
+    /// time up to format 5, the rounded fast phase up to format 7.
+    #[must_use]
+    pub fn of_format(version: u32) -> Self {
+        use crate::physics::kapitza::FastPhase;
+        Self {
+            time_sum: if version < 6 {
+                TimeSum::Plain
+            } else {
+                TimeSum::Compensated
+            },
+            fast_phase: if version < 8 {
+                FastPhase::Rounded
+            } else {
+                FastPhase::Exact
+            },
+        }
+    }
+}
+
 /// The member of `all` whose `name_of` is `name` (any case; surrounding spaces ignored).
 pub(crate) fn named<T: Copy>(all: &[T], name_of: fn(T) -> &'static str, name: &str) -> Option<T> {
     all.iter()

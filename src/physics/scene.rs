@@ -14,8 +14,8 @@ use super::method::{Method, StepError};
 use super::params::ParamSpec;
 use super::plan::{PlanRequest, Resolution};
 use crate::physics::flow::GoOn;
+use crate::physics::method::Arithmetic;
 use crate::physics::method::Asked;
-use crate::physics::method::TimeSum;
 
 /// What resolving a plan gives.
 pub type Planned = Result<Resolution, StepError>;
@@ -209,13 +209,12 @@ pub trait Posed {
     /// The body's profile for the side and end views (the celt's ellipsoidal bottom), or
     /// `None` for a model whose body pane draws it from above only.
     fn side_view(&self) -> Option<SideView>;
-    /// Builds a concrete method's integration at `t = 0`; `time_sum` is how fixed-step
-    /// methods add their steps to the time (a model without such methods has nothing to add
-    /// differently).
+    /// Builds a concrete method's integration at `t = 0`, following `arithmetic` (a replay of
+    /// an old file: the rules it was recorded with; each model follows the rules it has).
     ///
     /// # Errors
     /// `auto`, or a problem the method cannot represent.
-    fn build(&self, ask: &Asked, time_sum: TimeSum) -> Result<Box<dyn Flow>, StepError>;
+    fn build(&self, ask: &Asked, arithmetic: Arithmetic) -> Result<Box<dyn Flow>, StepError>;
     /// Resolves `method` (the model's own `auto`).
     ///
     /// # Errors

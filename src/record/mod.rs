@@ -35,8 +35,11 @@ pub const FORMAT: &str = "rattleback-session";
 /// `crossings` (the celt's) and `compare` (the partner shown). 6: nothing new in the lines;
 /// fixed-step runs add their steps to the time with a compensated sum
 /// ([`crate::physics::method::TimeSum`]), so a file of 5 or older replays with the plain sum it
-/// was recorded with.
-pub const VERSION: u32 = 7;
+/// was recorded with. 7: `window` lines (the weak-* pane's averaging window). 8: nothing new
+/// in the lines; the pendulum's lifts carry the fast phase
+/// `t/ε` exactly ([`crate::physics::kapitza::FastPhase`]), so a file of 7 or older replays with
+/// the rounded phase it was recorded with ([`crate::physics::method::Arithmetic::of_format`]).
+pub const VERSION: u32 = 8;
 
 /// First line of a session file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]

@@ -6,7 +6,7 @@ use super::{RecordError, Recording};
 use crate::app::effects::commands;
 use crate::app::journal::{Event, state_hash};
 use crate::app::{App, Effect, Options};
-use crate::physics::method::TimeSum;
+use crate::physics::method::Arithmetic;
 use crate::physics::plan::AutoPolicy;
 use crate::scenario::Preset;
 use crate::sim::{Command, Engine, PlanBook, SimEvent, drive};
@@ -93,12 +93,9 @@ pub fn plan_book(rec: &Recording) -> PlanBook {
         // what was shown): a budget, and ten times the recording's own length.
         total: crate::physics::budget::BUDGET_SECONDS
             + 10.0 * rec.lines.last().map_or(0.0, |(_, l)| l.wall),
-        // Files of format 5 and older were recorded with the plain sum of the time.
-        time_sum: if rec.header.version < 6 {
-            TimeSum::Plain
-        } else {
-            TimeSum::Compensated
-        },
+        // The rules the file was recorded with (format 5 and older: the plain sum of the time;
+        // 7 and older: the rounded fast phase).
+        arithmetic: Arithmetic::of_format(rec.header.version),
         ..PlanBook::default()
     }
 }

@@ -3,8 +3,8 @@
 //! `work` does a bounded slice of what is pending (planning `auto`, integrating towards the
 //! target, checkpoints, the overlay's catch-up).
 
+use crate::physics::method::Arithmetic;
 use crate::physics::method::Asked;
-use crate::physics::method::TimeSum;
 use std::collections::VecDeque;
 
 use serde::{Deserialize, Serialize};
@@ -104,9 +104,10 @@ pub struct PlanBook {
     /// Budget of all the runs together, in predicted seconds (a replayed session: its own
     /// length and a margin; unbounded in the explorer, whose user restarts at will).
     pub total: f64,
-    /// How fixed-step runs add their steps to the time: compensated, as `simulate` does,
-    /// except in a replay of a file of format 5 or older, recorded with the plain sum.
-    pub time_sum: TimeSum,
+    /// The arithmetic the runs follow: the current rules, as `simulate` does, except in a
+    /// replay of an old file, which follows the rules it was recorded with
+    /// ([`Arithmetic::of_format`]).
+    pub arithmetic: Arithmetic,
 }
 
 impl Default for PlanBook {
@@ -117,7 +118,7 @@ impl Default for PlanBook {
             estimates: Vec::new(),
             budget: crate::physics::budget::BUDGET_SECONDS,
             total: f64::INFINITY,
-            time_sum: TimeSum::default(),
+            arithmetic: Arithmetic::default(),
         }
     }
 }
@@ -465,7 +466,7 @@ impl Planner {
         go_on: &mut dyn FnMut(f64) -> bool,
     ) -> Result<(Session, Option<f64>), StepError> {
         let (plan, estimate) = self.resolve(spec, go_on)?;
-        Session::new(generation, *spec, plan, self.book.time_sum).map(|s| (s, estimate))
+        Session::new(generation, *spec, plan, self.book.arithmetic).map(|s| (s, estimate))
     }
 }
 

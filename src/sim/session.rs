@@ -4,7 +4,7 @@
 //! The grid (`i · sample_dt`, and `t_end` exactly) depends on the dynamics only, never on the
 //! playback speed or the frame rate, so the trail at ×1024 is the same curve as at ×1.
 
-use crate::physics::method::{Asked, TimeSum};
+use crate::physics::method::{Arithmetic, Asked};
 use std::collections::VecDeque;
 
 use serde::{Deserialize, Serialize};
@@ -172,10 +172,10 @@ impl Track {
         method: Method,
         settings: Settings,
         t_end: f64,
-        time_sum: TimeSum,
+        arithmetic: Arithmetic,
     ) -> Result<Self, StepError> {
         let ask = Asked::new(method, settings.tolerance, settings.step, t_end);
-        let integrator = model.build(&ask, time_sum)?;
+        let integrator = model.build(&ask, arithmetic)?;
         let e0 = integrator.energy();
         let cap = crate::physics::method::StepCap::of(model.predicted_seconds(&ask));
         Ok(Self {
@@ -266,7 +266,7 @@ pub struct Session {
 
 impl Session {
     /// Starts a run of the resolved `plan` at `t = 0`, its fixed steps added to the time by
-    /// `time_sum` (a replay of an old file: as it was recorded).
+    /// `arithmetic` (a replay of an old file: as it was recorded).
     ///
     /// # Errors
     /// [`StepError::Unplanned`] when `plan` is still `auto`.
@@ -274,7 +274,7 @@ impl Session {
         generation: u64,
         mut spec: SessionSpec,
         plan: Resolved,
-        time_sum: TimeSum,
+        arithmetic: Arithmetic,
     ) -> Result<Self, StepError> {
         spec.sample_dt = grid_spacing(spec.sample_dt, spec.t_end);
         let full = Track::new(
@@ -282,7 +282,7 @@ impl Session {
             plan.method,
             plan.settings(),
             spec.t_end,
-            time_sum,
+            arithmetic,
         )?;
         Ok(Self {
             spec,
@@ -357,8 +357,8 @@ impl Session {
                     step: None,
                 },
                 self.spec.t_end,
-                // Adaptive: the rule does not apply.
-                TimeSum::default(),
+                // Adaptive, and without a ripple to add back: no rule applies.
+                Arithmetic::default(),
             )
             .ok()
         } else {

@@ -14,7 +14,7 @@ use crate::physics::Method;
 use crate::physics::StepError;
 use crate::physics::kapitza::limit::Limit;
 use crate::physics::kapitza::run::{self, RunResult, RunSpec};
-use crate::physics::kapitza::{self, Problem, plan};
+use crate::physics::kapitza::{self, FastPhase, Problem, plan};
 
 /// Predicted seconds of the run `spec` asks for (the pendulum's cost model,
 /// [`kapitza::budget`]).
@@ -298,8 +298,12 @@ fn write_csv(
     out.write_all(b"t,theta,theta_dot,energy\n")?;
     let limit = Limit::new(problem.params());
     for s in &result.samples {
-        let (th, thd) =
-            crate::physics::kapitza::limit::to_slow(problem.params(), s.t, (s.theta, s.theta_dot));
+        let (th, thd) = crate::physics::kapitza::limit::to_slow(
+            problem.params(),
+            FastPhase::default(),
+            s.t,
+            (s.theta, s.theta_dot),
+        );
         writeln!(
             out,
             "{},{},{},{}",

@@ -13,6 +13,8 @@ struct Case {
     t_end: f64,
     theta: Vec<f64>,
     theta_dot: Vec<f64>,
+    /// The reference's own accuracy (its run against a refined one).
+    accuracy: f64,
 }
 
 fn cases() -> Vec<Case> {
@@ -49,13 +51,15 @@ fn cases_in(file: &str) -> Vec<Case> {
                 theta: num(c, "theta0"),
                 theta_dot: num(c, "theta_dot0"),
             };
-            assert!(num(c, "accuracy") < 1e-11, "{name}: reference not accurate");
+            // Rounding over the 1e7 steps at ε = 1e-6 leaves up to 2.2e-11.
+            assert!(num(c, "accuracy") < 3e-11, "{name}: reference not accurate");
             Case {
                 name: name.clone(),
                 problem: Problem::new(params, start).unwrap(),
                 t_end: num(c, "t_end"),
                 theta: list(c, "theta"),
                 theta_dot: list(c, "theta_dot"),
+                accuracy: num(c, "accuracy"),
             }
         })
         .collect()
@@ -141,8 +145,9 @@ fn the_limit_converges_at_first_order_and_with_its_ripple_at_second() {
             "{}: raw {raw:e}",
             case.name
         );
-        // O(ε²) with it, in θ and in θ̇, and within what auto predicts.
-        let floor = 1e-12;
+        // O(ε²) with it, in θ and in θ̇, and within what auto predicts (above the reference's
+        // own accuracy: 2.2e-11 at ε = 1e-6 on the falling start).
+        let floor = 1e-12 + 2.0 * case.accuracy;
         assert!(
             corr_t < 0.3 * predicted + floor,
             "{}: {corr_t:e} vs {predicted:e}",
@@ -246,8 +251,11 @@ fn the_third_order_averaged_model_is_sixth_order() {
 
 /// Issue 27: below ε = 1e-6, where the full model cannot be resolved, `auto` as `simulate` runs
 /// it (planned and verified) stays within its estimate against the 30-digit references
-/// (`kapitza_small_eps.toml`), and says `met` only where its error is within the tolerance;
-/// where the fast phase's rounding alone exceeds the tolerance it says so (`met = false`).
+/// (`kapitza_small_eps.toml`), and says `met` only where its error is within the tolerance.
+/// The lifts carry the fast phase exactly (`FastPhase::Exact`), so it meets 1e-8 there, with
+/// an estimate within 100× of the error (it is the limit's a-priori integration allowance);
+/// the phase as the lifts rounded it before (`b ε_mach t/ε`, 2.2e-8 … 2.2e-6 here) no longer
+/// sets a floor.
 #[test]
 fn auto_is_honest_where_the_full_model_cannot_be_resolved() {
     let cases = cases_in("kapitza_small_eps.toml");
@@ -263,11 +271,15 @@ fn auto_is_honest_where_the_full_model_cannot_be_resolved() {
             );
             assert!(error <= c.estimate, "{} at {tol:e}", case.name);
             assert!(!c.met || error <= tol, "{} at {tol:e}", case.name);
-            let floor = plan::phase_rounding(&case.problem, case.t_end);
             assert_eq!(c.met, c.estimate <= tol, "{}", case.name);
-            if floor > tol {
-                assert!(!c.met, "{}: the phase's rounding {floor:e}", case.name);
-            }
+            assert!(c.met, "{} at {tol:e}: {:e}", case.name, c.estimate);
+            let rounded_phase = plan::phase_rounding(&case.problem, case.t_end);
+            assert!(
+                c.estimate < rounded_phase,
+                "{}: the estimate {:e} is not below the old floor {rounded_phase:e}",
+                case.name,
+                c.estimate
+            );
         }
     }
 }

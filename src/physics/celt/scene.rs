@@ -11,8 +11,8 @@ use super::run::RunSpec;
 use super::{Params, Problem, Start, TILT_MAX};
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
+use crate::physics::method::Arithmetic;
 use crate::physics::method::Asked;
-use crate::physics::method::TimeSum;
 use crate::physics::method::{Method, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, PlanRequest};
@@ -273,7 +273,7 @@ impl Posed for Problem {
         })
     }
     // Adaptive methods only: they add few steps, plainly (no time sum).
-    fn build(&self, ask: &Asked, _: TimeSum) -> Result<Box<dyn Flow>, StepError> {
+    fn build(&self, ask: &Asked, _: Arithmetic) -> Result<Box<dyn Flow>, StepError> {
         Ok(Box::new(super::flows::build(
             self,
             ask.method,

@@ -20,8 +20,8 @@
 //! **Accuracy**, against resolved DOP853 at 1e-13: `tests/it/kapitza.rs`
 //! (`the_second_order_averaged_model_is_fourth_order`) measures the error fall like ε⁴.
 
-use super::Params;
 use super::averaged3_terms;
+use super::{FastPhase, Params};
 
 /// `F2(Θ, Θ̇)`: the averaged equation's `ε²` term (`Θ̈ = F0 + ε² F2`).
 #[must_use]
@@ -48,15 +48,11 @@ fn f2_of(params: &Params, st: f64, ct: f64, p: f64) -> f64 {
 /// O(ε³) inclusive (generated; see the module's documentation).
 #[must_use]
 #[allow(clippy::many_single_char_names, clippy::unreadable_literal)]
-pub fn to_full(params: &Params, t: f64, slow: (f64, f64)) -> (f64, f64) {
+pub fn to_full(params: &Params, phase: FastPhase, t: f64, slow: (f64, f64)) -> (f64, f64) {
     let (theta_s, p) = slow;
     let (a, b, epsilon) = (params.a, params.b, params.epsilon);
     let (st, ct) = theta_s.sin_cos();
-    let phase = t / epsilon;
-    let (s1, c1) = phase.sin_cos();
-    let (s2, c2) = (2.0 * phase).sin_cos();
-    let (s3, c3) = (3.0 * phase).sin_cos();
-    let (s4, c4) = (4.0 * phase).sin_cos();
+    let [(s1, c1), (s2, c2), (s3, c3), (s4, c4)] = phase.harmonics(t, epsilon);
     let x0 = b * st;
     let x1 = c1 * x0;
     let x2 = epsilon.powi(2);
@@ -150,9 +146,9 @@ pub fn to_full(params: &Params, t: f64, slow: (f64, f64)) -> (f64, f64) {
 /// which contracts when `ε b` is small; at most 50 rounds, stopping when a round changes
 /// nothing.
 #[must_use]
-pub fn to_slow(params: &Params, t: f64, full: (f64, f64)) -> (f64, f64) {
-    let first = super::limit::to_slow(params, t, full);
-    invert(|slow| to_full(params, t, slow), full, first)
+pub fn to_slow(params: &Params, phase: FastPhase, t: f64, full: (f64, f64)) -> (f64, f64) {
+    let first = super::limit::to_slow(params, phase, t, full);
+    invert(|slow| to_full(params, phase, t, slow), full, first)
 }
 
 /// The `slow` state that `lift` takes to `full`, by Gauss–Seidel iteration from `slow`.
@@ -189,10 +185,9 @@ pub fn f2_f4(params: &Params, theta_s: f64, p: f64) -> (f64, f64) {
 /// `averaged3`'s lift: the full state `(θ, θ̇)` of the averaged state `(Θ, Θ̇)` at time `t`,
 /// `θ` to O(ε⁶) and `θ̇` to O(ε⁵) inclusive.
 #[must_use]
-pub fn to_full3(params: &Params, t: f64, slow: (f64, f64)) -> (f64, f64) {
+pub fn to_full3(params: &Params, phase: FastPhase, t: f64, slow: (f64, f64)) -> (f64, f64) {
     let (theta_s, p) = slow;
     let (st, ct) = theta_s.sin_cos();
-    let phase = t / params.epsilon;
     averaged3_terms::lift(
         params.a,
         params.b,
@@ -201,18 +196,18 @@ pub fn to_full3(params: &Params, t: f64, slow: (f64, f64)) -> (f64, f64) {
         st,
         ct,
         p,
-        phase,
+        &phase.harmonics(t, params.epsilon),
     )
 }
 
 /// The averaged state of `averaged3` of a full state at time `t`: [`to_full3`] inverted as
 /// [`to_slow`] inverts [`to_full`], starting from `averaged2`'s.
 #[must_use]
-pub fn to_slow3(params: &Params, t: f64, full: (f64, f64)) -> (f64, f64) {
+pub fn to_slow3(params: &Params, phase: FastPhase, t: f64, full: (f64, f64)) -> (f64, f64) {
     invert(
-        |slow| to_full3(params, t, slow),
+        |slow| to_full3(params, phase, t, slow),
         full,
-        to_slow(params, t, full),
+        to_slow(params, phase, t, full),
     )
 }
 
@@ -221,10 +216,10 @@ mod tests {
     use super::*;
 
     /// A lift or its inverse.
-    type Map = fn(&Params, f64, (f64, f64)) -> (f64, f64);
+    type Map = fn(&Params, FastPhase, f64, (f64, f64)) -> (f64, f64);
 
     /// Exactly (to rounding), unlike `limit::to_slow`, which inverts its ripple to its order:
-    /// over a grid of phases, angles and rates, for both orders.
+    /// over a grid of phases, angles and rates, for both orders and both rules of the phase.
     #[test]
     fn to_slow_inverts_to_full_to_rounding() {
         let p = Params {
@@ -238,9 +233,11 @@ mod tests {
                 let t = 0.0137 * f64::from(i);
                 for j in -3..=3 {
                     let slow = (0.9 * f64::from(j), 0.4 * f64::from(3 - i));
-                    let back = invert(&p, t, lift(&p, t, slow));
-                    assert!((back.0 - slow.0).abs() < 1e-14, "{slow:?} {back:?}");
-                    assert!((back.1 - slow.1).abs() < 1e-13, "{slow:?} {back:?}");
+                    for phase in [FastPhase::Exact, FastPhase::Rounded] {
+                        let back = invert(&p, phase, t, lift(&p, phase, t, slow));
+                        assert!((back.0 - slow.0).abs() < 1e-14, "{slow:?} {back:?}");
+                        assert!((back.1 - slow.1).abs() < 1e-13, "{slow:?} {back:?}");
+                    }
                 }
             }
         }
@@ -264,7 +261,11 @@ mod tests {
                     epsilon: e,
                 };
                 for (t, th, thd) in [(0.0, 0.3, 0.0), (0.123, -1.2, 0.7), (5.0, 2.9, -1.5)] {
-                    let (x, y) = (upper(&p, t, (th, thd)), lower(&p, t, (th, thd)));
+                    let phase = FastPhase::default();
+                    let (x, y) = (
+                        upper(&p, phase, t, (th, thd)),
+                        lower(&p, phase, t, (th, thd)),
+                    );
                     assert!((x.0 - y.0).abs() < c * e.powi(n), "{e}: {x:?} {y:?}");
                     assert!((x.1 - y.1).abs() < c * e.powi(n - 1), "{e}: {x:?} {y:?}");
                     if e >= 1e-2 && t > 0.0 {

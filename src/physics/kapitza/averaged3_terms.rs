@@ -24,15 +24,10 @@ pub(super) fn f4(a: f64, b: f64, st: f64, ct: f64, p: f64) -> f64 {
 }
 
 /// `(θ, θ̇)` of the averaged state `(Θ, Θ̇)` (`st`, `ct`: `sin Θ`, `cos Θ`; `p`: `Θ̇`) at the
-/// fast phase `phase = t/ε`.
+/// fast phase `τ = t/ε`, given as its harmonics `(sin kτ, cos kτ)`, `k = 1 … 6`.
 #[must_use]
-pub(super) fn lift(a: f64, b: f64, epsilon: f64, theta_s: f64, st: f64, ct: f64, p: f64, phase: f64) -> (f64, f64) {
-    let (s1, c1) = phase.sin_cos();
-    let (s2, c2) = (2.0 * phase).sin_cos();
-    let (s3, c3) = (3.0 * phase).sin_cos();
-    let (s4, c4) = (4.0 * phase).sin_cos();
-    let (s5, c5) = (5.0 * phase).sin_cos();
-    let (s6, c6) = (6.0 * phase).sin_cos();
+pub(super) fn lift(a: f64, b: f64, epsilon: f64, theta_s: f64, st: f64, ct: f64, p: f64, harmonics: &[(f64, f64); 6]) -> (f64, f64) {
+    let [(s1, c1), (s2, c2), (s3, c3), (s4, c4), (s5, c5), (s6, c6)] = *harmonics;
     let x0 = b*st;
     let x1 = c1*x0;
     let x2 = epsilon.powi(2);

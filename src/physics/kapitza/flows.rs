@@ -22,7 +22,7 @@ use nalgebra::Vector2;
 
 use super::averaged;
 use super::limit::{self, Limit};
-use super::{Params, Problem};
+use super::{FastPhase, Params, Problem};
 use crate::physics::flow::{Flow, Sample};
 use crate::physics::method::{Asked, DEFAULT_STEP_BUDGET, Method, StepError};
 use crate::physics::numerics::compositions::{Composition, Split};
@@ -75,20 +75,21 @@ pub fn default_step(method: Method, problem: &Problem, tolerance: f64, t_end: f6
     (c * tolerance.powf(1.0 / order) / rate(problem)).max(t_end / DEFAULT_STEP_BUDGET)
 }
 
-/// Builds a ready-to-step integrator at `t = 0`.
+/// Builds a ready-to-step integrator at `t = 0`, its lifts taking the fast phase as `phase`
+/// says.
 ///
 /// # Errors
 /// [`StepError::Unplanned`] for `auto` (resolved by [`super::plan`]), and
 /// [`StepError::NotOffered`] for a method of another model.
-pub fn build(problem: &Problem, ask: &Asked) -> Result<Box<dyn Flow>, StepError> {
+pub fn build(problem: &Problem, ask: &Asked, phase: FastPhase) -> Result<Box<dyn Flow>, StepError> {
     let (method, settings, t_end) = (ask.method, ask.settings(), ask.t_end);
     let step = settings
         .step
         .unwrap_or_else(|| default_step(method, problem, settings.tolerance, t_end));
     Ok(match method {
         Method::Auto => return Err(StepError::Unplanned),
-        Method::Dop853 => Box::new(FullDop853::new(problem, settings.tolerance)),
-        Method::Rk4 => Box::new(Fixed::new(problem, Scheme::Rk4, step)),
+        Method::Dop853 => Box::new(FullDop853::new(problem, settings.tolerance).with_phase(phase)),
+        Method::Rk4 => Box::new(Fixed::new(problem, Scheme::Rk4, step, phase)),
         Method::Strang
         | Method::Yoshida4
         | Method::BlanesMoan4
@@ -97,15 +98,32 @@ pub fn build(problem: &Problem, ask: &Asked) -> Result<Box<dyn Flow>, StepError>
             problem,
             Scheme::Split(Composition::of(method)),
             step,
+            phase,
         )),
-        Method::Effective => Box::new(LimitDop853::new(problem, settings.tolerance, Order::Limit)),
+        Method::Effective => Box::new(LimitDop853::new(
+            problem,
+            settings.tolerance,
+            Order::Limit,
+            phase,
+        )),
         Method::EffectiveCorrected => Box::new(LimitDop853::new(
             problem,
             settings.tolerance,
             Order::Corrected,
+            phase,
         )),
-        Method::Averaged2 => Box::new(LimitDop853::new(problem, settings.tolerance, Order::Second)),
-        Method::Averaged3 => Box::new(LimitDop853::new(problem, settings.tolerance, Order::Third)),
+        Method::Averaged2 => Box::new(LimitDop853::new(
+            problem,
+            settings.tolerance,
+            Order::Second,
+            phase,
+        )),
+        Method::Averaged3 => Box::new(LimitDop853::new(
+            problem,
+            settings.tolerance,
+            Order::Third,
+            phase,
+        )),
         other => {
             return Err(StepError::NotOffered {
                 method: other.name(),
@@ -123,8 +141,8 @@ fn hysteresis(p: &Params) -> f64 {
     (4.0 * (p.epsilon * scale).powi(2)).min(0.02)
 }
 
-fn slow_sample(p: &Params, t: f64, theta: f64, theta_dot: f64) -> Sample {
-    let (slow, _) = limit::to_slow(p, t, (theta, theta_dot));
+fn slow_sample(p: &Params, phase: FastPhase, t: f64, theta: f64, theta_dot: f64) -> Sample {
+    let (slow, _) = limit::to_slow(p, phase, t, (theta, theta_dot));
     Sample {
         q: theta,
         q_dot: theta_dot,
@@ -154,6 +172,7 @@ impl Field<2> for FullField {
 #[derive(Clone)]
 pub struct FullDop853 {
     params: Params,
+    phase: FastPhase,
     limit: Limit,
     core: Dop853<2, FullField>,
 }
@@ -166,9 +185,16 @@ impl FullDop853 {
         let s = problem.start();
         Self {
             params: p,
+            phase: FastPhase::default(),
             limit: Limit::new(&p),
             core: Dop853::new(FullField(p), 0.0, Vector2::new(s.theta, s.theta_dot), tol),
         }
+    }
+
+    /// The same, its averaged rate (events, energy) taken with the fast phase as `phase` says.
+    #[must_use]
+    pub fn with_phase(self, phase: FastPhase) -> Self {
+        Self { phase, ..self }
     }
 
     fn at(&mut self, t: f64) -> Vector2<f64> {
@@ -187,7 +213,7 @@ impl Flow for FullDop853 {
     }
     fn sample(&mut self, t: f64) -> Sample {
         let y = self.at(t);
-        slow_sample(&self.params, t, y[0], y[1])
+        slow_sample(&self.params, self.phase, t, y[0], y[1])
     }
     fn state_at(&mut self, t: f64) -> Vec<f64> {
         let y = self.at(t);
@@ -195,15 +221,15 @@ impl Flow for FullDop853 {
     }
     fn event_value(&self) -> f64 {
         let y = self.core.state();
-        limit::to_slow(&self.params, self.core.time(), (y[0], y[1])).1
+        limit::to_slow(&self.params, self.phase, self.core.time(), (y[0], y[1])).1
     }
     fn locate_event(&mut self) -> f64 {
         let (a, b) = (self.core.time_prev(), self.core.time());
-        let p = self.params;
+        let (p, phase) = (self.params, self.phase);
         find_root(
             |t| {
                 let y = self.core.interpolate(t);
-                limit::to_slow(&p, t, (y[0], y[1])).1
+                limit::to_slow(&p, phase, t, (y[0], y[1])).1
             },
             a,
             b,
@@ -214,7 +240,7 @@ impl Flow for FullDop853 {
     }
     fn energy(&self) -> f64 {
         let y = self.core.state();
-        let (th, thd) = limit::to_slow(&self.params, self.core.time(), (y[0], y[1]));
+        let (th, thd) = limit::to_slow(&self.params, self.phase, self.core.time(), (y[0], y[1]));
         self.limit.energy_of(th, thd)
     }
 }
@@ -251,6 +277,7 @@ enum Scheme {
 #[derive(Clone)]
 pub struct Fixed {
     params: Params,
+    phase: FastPhase,
     limit: Limit,
     scheme: Scheme,
     h: f64,
@@ -265,11 +292,12 @@ pub struct Fixed {
 }
 
 impl Fixed {
-    fn new(problem: &Problem, scheme: Scheme, h: f64) -> Self {
+    fn new(problem: &Problem, scheme: Scheme, h: f64, phase: FastPhase) -> Self {
         let p = *problem.params();
         let s = problem.start();
         Self {
             params: p,
+            phase,
             limit: Limit::new(&p),
             scheme,
             h,
@@ -391,24 +419,28 @@ impl Flow for Fixed {
     }
     fn sample(&mut self, t: f64) -> Sample {
         let (th, thd) = self.at(t);
-        slow_sample(&self.params, t, th, thd)
+        slow_sample(&self.params, self.phase, t, th, thd)
     }
     fn state_at(&mut self, t: f64) -> Vec<f64> {
         let (th, thd) = self.at(t);
         vec![th, thd]
     }
     fn event_value(&self) -> f64 {
-        limit::to_slow(&self.params, self.t, self.y).1
+        limit::to_slow(&self.params, self.phase, self.t, self.y).1
     }
     fn locate_event(&mut self) -> f64 {
-        let p = self.params;
-        find_root(|t| limit::to_slow(&p, t, self.at(t)).1, self.t_prev, self.t)
+        let (p, phase) = (self.params, self.phase);
+        find_root(
+            |t| limit::to_slow(&p, phase, t, self.at(t)).1,
+            self.t_prev,
+            self.t,
+        )
     }
     fn event_hysteresis(&self) -> f64 {
         hysteresis(&self.params)
     }
     fn energy(&self) -> f64 {
-        let (th, thd) = limit::to_slow(&self.params, self.t, self.y);
+        let (th, thd) = limit::to_slow(&self.params, self.phase, self.t, self.y);
         self.limit.energy_of(th, thd)
     }
     fn stats(&self) -> Stats {
@@ -462,6 +494,7 @@ pub enum Order {
 #[derive(Clone)]
 pub struct LimitDop853 {
     params: Params,
+    phase: FastPhase,
     limit: Limit,
     order: Order,
     core: Dop853<2, LimitField>,
@@ -471,21 +504,27 @@ pub struct LimitDop853 {
 #[must_use]
 pub fn averaged_start(problem: &Problem) -> (f64, f64) {
     let s = problem.start();
-    limit::to_slow(problem.params(), 0.0, (s.theta, s.theta_dot))
+    // At t = 0 the phase is 0 either way.
+    limit::to_slow(
+        problem.params(),
+        FastPhase::default(),
+        0.0,
+        (s.theta, s.theta_dot),
+    )
 }
 
 impl LimitDop853 {
     /// Starts the slow motion of `order` (see [`Order`]); the ripple it keeps is added back to
-    /// what it reports.
+    /// what it reports, at the fast phase taken as `phase` says.
     #[must_use]
-    pub fn new(problem: &Problem, tol: f64, order: Order) -> Self {
+    pub fn new(problem: &Problem, tol: f64, order: Order, phase: FastPhase) -> Self {
         let p = *problem.params();
         let s = problem.start();
         let (th, thd) = match order {
             Order::Limit => (s.theta, s.theta_dot),
             Order::Corrected => averaged_start(problem),
-            Order::Second => averaged::to_slow(&p, 0.0, (s.theta, s.theta_dot)),
-            Order::Third => averaged::to_slow3(&p, 0.0, (s.theta, s.theta_dot)),
+            Order::Second => averaged::to_slow(&p, phase, 0.0, (s.theta, s.theta_dot)),
+            Order::Third => averaged::to_slow3(&p, phase, 0.0, (s.theta, s.theta_dot)),
         };
         let limit = Limit::new(&p);
         let field = LimitField {
@@ -495,6 +534,7 @@ impl LimitDop853 {
         };
         Self {
             params: p,
+            phase,
             limit,
             order,
             core: Dop853::new(field, 0.0, Vector2::new(th, thd), tol),
@@ -512,9 +552,9 @@ impl LimitDop853 {
     fn lift(&self, t: f64, y: &Vector2<f64>) -> (f64, f64) {
         match self.order {
             Order::Limit => (y[0], y[1]),
-            Order::Corrected => limit::to_full(&self.params, t, (y[0], y[1])),
-            Order::Second => averaged::to_full(&self.params, t, (y[0], y[1])),
-            Order::Third => averaged::to_full3(&self.params, t, (y[0], y[1])),
+            Order::Corrected => limit::to_full(&self.params, self.phase, t, (y[0], y[1])),
+            Order::Second => averaged::to_full(&self.params, self.phase, t, (y[0], y[1])),
+            Order::Third => averaged::to_full3(&self.params, self.phase, t, (y[0], y[1])),
         }
     }
 }

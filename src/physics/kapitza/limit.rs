@@ -21,7 +21,7 @@
 
 use std::f64::consts::PI;
 
-use super::Params;
+use super::{FastPhase, Params};
 
 /// The limit of one pendulum.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -132,14 +132,14 @@ impl Limit {
     }
 }
 
-/// The full state `(θ, θ̇)` of the averaged state `(Θ, Θ̇)` at time `t` (the ripple above).
+/// The full state `(θ, θ̇)` of the averaged state `(Θ, Θ̇)` at time `t` (the ripple above),
+/// the fast phase taken as `phase` says.
 #[must_use]
 #[inline]
-pub fn to_full(p: &Params, t: f64, slow: (f64, f64)) -> (f64, f64) {
+pub fn to_full(p: &Params, phase: FastPhase, t: f64, slow: (f64, f64)) -> (f64, f64) {
     let (theta, theta_dot) = slow;
     let (e, b) = (p.epsilon, p.b);
-    let (s, c) = (t / p.epsilon).sin_cos();
-    let (s2, c2) = (2.0 * t / p.epsilon).sin_cos();
+    let [(s, c), (s2, c2)] = phase.harmonics(t, p.epsilon);
     let (st, ct) = theta.sin_cos();
     let sin2 = 2.0 * st * ct;
     let xi2 = b * b / 16.0 * c2 * sin2 + 2.0 * b * s * ct * theta_dot;
@@ -153,11 +153,10 @@ pub fn to_full(p: &Params, t: f64, slow: (f64, f64)) -> (f64, f64) {
 /// same order, by fixed-point iteration (a contraction when `ε b < 1`).
 #[must_use]
 #[inline]
-pub fn to_slow(p: &Params, t: f64, full: (f64, f64)) -> (f64, f64) {
+pub fn to_slow(p: &Params, phase: FastPhase, t: f64, full: (f64, f64)) -> (f64, f64) {
     let (theta, theta_dot) = full;
     let (e, b) = (p.epsilon, p.b);
-    let (s, c) = (t / p.epsilon).sin_cos();
-    let (s2, c2) = (2.0 * t / p.epsilon).sin_cos();
+    let [(s, c), (s2, c2)] = phase.harmonics(t, p.epsilon);
     let mut slow = (theta, theta_dot - b * s * theta.sin());
     for _ in 0..3 {
         let (st, ct) = slow.0.sin_cos();
@@ -221,7 +220,8 @@ mod tests {
             epsilon: 0.01,
         };
         for (t, th, thd) in [(0.0, 0.3, 0.0), (0.123, -1.2, 0.7), (5.0, 2.9, -1.5)] {
-            let back = to_slow(&p, t, to_full(&p, t, (th, thd)));
+            let phase = FastPhase::default();
+            let back = to_slow(&p, phase, t, to_full(&p, phase, t, (th, thd)));
             // The inverse holds to the order kept: (εb)² = 4e-4.
             assert!((back.0 - th).abs() < 4e-4, "{back:?}");
             assert!((back.1 - thd).abs() < 4e-4 * 5.0, "{back:?}");

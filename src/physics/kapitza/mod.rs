@@ -21,10 +21,13 @@ mod averaged3_terms;
 pub mod budget;
 pub mod flows;
 pub mod limit;
+pub mod phase;
 pub mod plan;
 pub mod run;
 pub mod scene;
 pub mod weak;
+
+pub use phase::FastPhase;
 
 use serde::Serialize;
 

@@ -10,8 +10,8 @@
 use crate::physics::method::Asked;
 use serde::Serialize;
 
-use super::Problem;
 use super::flows::build;
+use super::{FastPhase, Problem};
 use crate::physics::drive::{Counted, Course, Drift, Watch, drive};
 use crate::physics::flow::{Flow, GoOn};
 use crate::physics::method::{Method, StepError};
@@ -92,7 +92,7 @@ pub struct RunResult {
 /// the model does not offer, and [`StepError::Cancelled`] when `go_on` says stop.
 pub fn run(problem: &Problem, spec: &RunSpec, go_on: GoOn) -> Result<RunResult, StepError> {
     let ask = Asked::new(spec.method, spec.tolerance, spec.step, spec.t_end);
-    let mut flow = build(problem, &ask)?;
+    let mut flow = build(problem, &ask, FastPhase::default())?;
     let cost = super::budget::cost_seconds(problem, &ask);
     let course = Course::of(flow.as_ref(), spec.t_end, spec.samples, cost);
     let mut watch = Watched {

@@ -7,8 +7,8 @@ use super::run::RunSpec;
 use super::{EPSILON_MAX, EPSILON_MIN, Params, Problem, Start};
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
+use crate::physics::method::Arithmetic;
 use crate::physics::method::Asked;
-use crate::physics::method::TimeSum;
 use crate::physics::method::{Method, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, PlanRequest, Resolution, Resolved};
@@ -144,9 +144,9 @@ impl Posed for Problem {
         None
     }
     // Its fixed-step methods take the time from the step count, (n + 1) h (flows.rs): no sum to
-    // compensate.
-    fn build(&self, ask: &Asked, _: TimeSum) -> Result<Box<dyn Flow>, StepError> {
-        super::flows::build(self, ask)
+    // compensate; its lifts take the fast phase as the rules say.
+    fn build(&self, ask: &Asked, arithmetic: Arithmetic) -> Result<Box<dyn Flow>, StepError> {
+        super::flows::build(self, ask, arithmetic.fast_phase)
     }
     fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
         // The pendulum's `auto`: the limit from its predicted model error, or a resolved run

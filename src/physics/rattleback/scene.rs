@@ -9,8 +9,8 @@ use super::params::{Params, Problem, Start};
 use super::run::RunSpec;
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
+use crate::physics::method::Arithmetic;
 use crate::physics::method::Asked;
-use crate::physics::method::TimeSum;
 use crate::physics::method::{Method, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::PlanRequest;
@@ -181,8 +181,8 @@ impl Posed for Problem {
         // The paper's body has no shape beyond its inertia; its tilt is the cross bar above.
         None
     }
-    fn build(&self, ask: &Asked, time_sum: TimeSum) -> Result<Box<dyn Flow>, StepError> {
-        integrators::build(self, ask, time_sum)
+    fn build(&self, ask: &Asked, arithmetic: Arithmetic) -> Result<Box<dyn Flow>, StepError> {
+        integrators::build(self, ask, arithmetic.time_sum)
     }
     fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
         let PlanRequest {
