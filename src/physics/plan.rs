@@ -65,7 +65,9 @@ pub enum AutoPolicy {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Shortfall {
-    /// A refinement no longer halved the estimate: round-off, or an ill-conditioned start.
+    /// The round-off floor: rounding alone is above the tolerance (said after the first run
+    /// where a scene measures it), or a refinement no longer halved the estimate (round-off,
+    /// or an ill-conditioned start).
     Floor,
     /// The adaptive tolerance reached its clamp (1e-14) and no other method is predicted to do
     /// better.
@@ -85,7 +87,7 @@ impl Shortfall {
     pub fn describe(self) -> &'static str {
         match self {
             Self::Floor => {
-                "the estimate stopped falling (round-off floor or an ill-conditioned start)"
+                "the round-off floor: an ill-conditioned start, or rounding over many steps; a refinement would not lower the estimate"
             }
             Self::Clamped => "the tolerance cannot be tightened further (1e-14)",
             Self::Refinements => "the refinements ran out",
@@ -107,4 +109,7 @@ pub struct Resolution {
     pub estimate: Option<f64>,
     /// Why `auto`'s estimate misses the tolerance, when it does.
     pub shortfall: Option<Shortfall>,
+    /// The part of the estimate that rounding alone sets, where the scene measures it (the
+    /// rattleback's verified `auto`).
+    pub floor: Option<f64>,
 }

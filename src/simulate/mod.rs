@@ -330,6 +330,9 @@ struct AutoOut {
     /// The start's condition numbers (`rate`: per relative change of the spin rate; `angle`:
     /// per radian of the spin angle) that scale the round-off floor in `error_estimate`.
     condition: crate::physics::rattleback::auto::Conditioning,
+    /// The part of `error_estimate` that rounding alone sets (no refinement lowers it; above
+    /// the tolerance, `auto` stops after its first run with `shortfall = floor`).
+    round_off_floor: f64,
 }
 
 /// The averaged model's own account of the start (method `averaged2` or `averaged3`, or `auto`
@@ -373,6 +376,10 @@ impl Account for AutoOut {
     fn choice(&self) -> render::Choice<'_> {
         render::Choice::new(self.choice, &self.reason, self.error_estimate, self.met)
     }
+
+    fn floor(&self) -> Option<f64> {
+        Some(self.round_off_floor)
+    }
 }
 
 /// `auto`'s account in the report of a scene planned by [`crate::physics::plan`] (the pendulum
@@ -414,6 +421,8 @@ pub struct Missed {
     pub tolerance: f64,
     /// Why.
     pub why: Shortfall,
+    /// The part of the estimate that rounding alone sets, where the scene measures it.
+    pub floor: Option<f64>,
 }
 
 /// A scene's account of `auto` in its report, as far as a shortfall is concerned.
@@ -424,6 +433,11 @@ trait Account {
     /// What it chose and why, for the table (and the report's `auto_choice`).
     fn choice(&self) -> render::Choice<'_>;
 
+    /// The part of the estimate that rounding alone sets, where the scene measures it.
+    fn floor(&self) -> Option<f64> {
+        None
+    }
+
     /// The shortfall unless it met `tolerance` (`why` defaults to the round-off floor).
     fn missed(&self, tolerance: f64) -> Option<Missed> {
         let (met, estimate, why) = self.account();
@@ -431,6 +445,7 @@ trait Account {
             estimate,
             tolerance,
             why: why.unwrap_or(Shortfall::Floor),
+            floor: self.floor(),
         })
     }
 }
@@ -439,11 +454,17 @@ impl std::fmt::Display for Missed {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "auto could not meet the tolerance {:e}: its error estimate is {:.1e} ({})",
+            "auto could not meet the tolerance {:e}: its error estimate is {:.1e} ({}",
             self.tolerance,
             self.estimate,
             self.why.describe()
-        )
+        )?;
+        match self.floor {
+            Some(floor) if self.why == Shortfall::Floor => {
+                write!(f, "; rounding alone accounts for {floor:.1e} of it)")
+            }
+            _ => write!(f, ")"),
+        }
     }
 }
 
@@ -714,6 +735,7 @@ fn requested_run(
         model_error: v.model_error,
         refinements: v.refinements,
         condition: v.condition,
+        round_off_floor: v.round_off_floor,
     };
     Ok((v.result, Some(auto)))
 }
@@ -807,6 +829,7 @@ fn csv(
             estimate: resolution.estimate.unwrap_or(f64::NAN),
             tolerance: spec.tolerance,
             why,
+            floor: resolution.floor,
         });
         let plan = resolution.plan;
         spec.method = plan.method;

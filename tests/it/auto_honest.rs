@@ -196,6 +196,45 @@ fn a_miss_is_in_the_json_warned_on_stderr_and_fatal_with_strict() {
 }
 
 #[test]
+fn a_floor_above_the_tolerance_is_said_after_the_first_run_with_its_size() {
+    // Issue 27, item 5: `just-below` at 1e-10 measures κ ≈ 1.4e4; over its 1e5 steps rounding
+    // alone sets about 1e-8, a hundred times the tolerance. No refinement can lower that (it
+    // only adds steps), so `auto` stops after its first run and says how much is rounding, in
+    // the JSON, the table's warning and the CSV's.
+    let base = ["simulate", "--preset", "just-below", "--tolerance", "1e-10"];
+    let (code, out, err) = common::bin(&[&base[..], &["--format", "json"]].concat());
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    let auto = &v["auto"];
+    let floor = auto["round_off_floor"]
+        .as_f64()
+        .expect("the floor is reported");
+    let estimate = auto["error_estimate"].as_f64().unwrap();
+    assert!(floor > 1e-10 && floor <= estimate, "{auto}");
+    assert_eq!(auto["shortfall"], "floor", "{auto}");
+    assert_eq!(
+        auto["refinements"], 0,
+        "stopped after its first run: {auto}"
+    );
+    let said = format!("rounding alone accounts for {floor:.1e} of it");
+    assert!(err.contains(&said), "{err}");
+    for format in ["table", "csv"] {
+        let (code, _, err) = common::bin(&[&base[..], &["--format", format]].concat());
+        assert_eq!(code, 0, "{err}");
+        assert!(err.contains(&said), "{format}: {err}");
+    }
+    // Where the floor is far below the tolerance, it is reported and `auto` meets it.
+    let (_, out, _) = common::bin(&["simulate", "--format", "json"]);
+    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    let tolerance = v["tolerance"].as_f64().unwrap();
+    assert!(
+        v["auto"]["round_off_floor"].as_f64().unwrap() < 0.01 * tolerance,
+        "{out}"
+    );
+    assert_eq!(v["auto"]["met"], true);
+}
+
+#[test]
 fn the_limits_values_are_accurate_whatever_the_tolerance() {
     // The audit: effective.alpha/alpha_dot came from the limit integrated at the user's
     // tolerance (errors 2e-6 at 1e-8). Now they are good to about 1e-12 at any tolerance:

@@ -75,6 +75,7 @@ pub fn resolve(
             },
             estimate: None,
             shortfall: None,
+            floor: None,
         });
     }
     let spec = |tolerance: f64| RunSpec {
@@ -97,6 +98,7 @@ pub fn resolve(
             },
             estimate: None,
             shortfall: None,
+            floor: None,
         });
     }
     let mut spent = 0.0;
@@ -151,5 +153,6 @@ fn done(local: f64, estimate: Option<f64>, shortfall: Option<Shortfall>) -> Reso
         },
         estimate: Some(estimate.unwrap_or(f64::INFINITY)),
         shortfall,
+        floor: None,
     }
 }

@@ -172,6 +172,7 @@ impl Posed for Problem {
             plan,
             estimate: estimate.map(|(e, _)| e),
             shortfall: estimate.and_then(|(_, s)| s),
+            floor: None,
         })
     }
     fn predicted_seconds(&self, ask: &Asked) -> f64 {

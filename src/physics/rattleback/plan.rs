@@ -38,6 +38,7 @@ pub fn resolve(
             },
             estimate: None,
             shortfall: None,
+            floor: None,
         });
     }
     match policy {
@@ -51,6 +52,7 @@ pub fn resolve(
                 },
                 estimate: None,
                 shortfall: None,
+                floor: None,
             })
         }
         AutoPolicy::Verified => {
@@ -75,6 +77,7 @@ pub fn resolve(
                 },
                 estimate: Some(v.error_estimate),
                 shortfall: v.shortfall,
+                floor: Some(v.round_off_floor),
             })
         }
     }

@@ -601,6 +601,10 @@ pub struct Verified {
     /// The start's measured condition numbers, which scale the round-off floor in the
     /// estimate.
     pub condition: Conditioning,
+    /// The round-off floors in `error_estimate` (the phase's and the start's conditioned
+    /// one): where they alone pass the tolerance, `auto` says `met = false` after its first
+    /// run, with [`Shortfall::Floor`].
+    pub round_off_floor: f64,
     /// The settings of the returned run: integrating `plan.method` with these gives `result`
     /// bit for bit, which is how the explorer shows exactly what `simulate` reports.
     pub run_settings: Settings,
@@ -673,12 +677,14 @@ pub fn run_auto_cancellable(
     let mut previous: Option<f64> = None;
     let mut best_so_far: Option<Verified> = None;
     loop {
-        let (result, estimate) = run_and_check(problem, spec, &plan, model_error, kappa, go_on)?;
+        let (result, Checked { estimate, floor }) =
+            run_and_check(problem, spec, &plan, model_error, kappa, go_on)?;
         let shortfall = if estimate <= tolerance {
             None
-        } else if previous.is_some_and(|p| estimate >= 0.5 * p) {
-            // Not halved (or still infinite: the run and its companion still disagree on the
-            // number of reversals).
+        } else if floor > tolerance || previous.is_some_and(|p| estimate >= 0.5 * p) {
+            // Rounding alone is above the tolerance (a refinement only adds steps to it: said at
+            // once, issue 27), or a refinement did not halve the estimate (or it is still
+            // infinite: the run and its companion still disagree on the number of reversals).
             Some(Shortfall::Floor)
         } else if refinements == MAX_REFINEMENTS {
             Some(Shortfall::Refinements)
@@ -708,6 +714,7 @@ pub fn run_auto_cancellable(
             model_error,
             refinements,
             condition: kappa,
+            round_off_floor: floor,
         };
         if estimate <= tolerance {
             return Ok(verified);
@@ -749,7 +756,7 @@ pub fn run_auto_cancellable(
 
 /// Runs `plan` as `spec` asks (samples, energy) and its coarser companion; the run and its
 /// error estimate (their difference, the model error, the round-off floors, the second
-/// conditioned by `kappa`).
+/// conditioned by `kappa`), with the floors' part.
 fn run_and_check(
     problem: &Problem,
     spec: &RunSpec,
@@ -757,7 +764,7 @@ fn run_and_check(
     model_error: f64,
     kappa: Conditioning,
     go_on: &mut dyn FnMut(f64) -> bool,
-) -> Result<(RunResult, f64), StepError> {
+) -> Result<(RunResult, Checked), StepError> {
     let run_spec = RunSpec {
         method: plan.method,
         tolerance: plan.tolerance,
@@ -778,11 +785,19 @@ fn run_and_check(
         go_on,
     )?;
     let steps = result.stats.steps as f64;
-    let estimate = difference(&result, &check)
-        + model_error
-        + phase_round_off(problem, plan, steps, spec.t_end)
+    let floor = phase_round_off(problem, plan, steps, spec.t_end)
         + conditioned_round_off(steps, kappa.of_run(problem, &result));
-    Ok((result, estimate))
+    let estimate = difference(&result, &check) + model_error + floor;
+    Ok((result, Checked { estimate, floor }))
+}
+
+/// A run's estimate, and the part of it that rounding alone sets.
+#[derive(Clone, Copy, Debug)]
+struct Checked {
+    estimate: f64,
+    /// The round-off floors in `estimate` (the phase's and the start's conditioned one): no
+    /// refinement lowers them, since a refinement takes more steps.
+    floor: f64,
 }
 
 /// The settings of [`conditioning`]'s three runs: the plan's method at a coarse setting (its
