@@ -90,13 +90,14 @@ fn met_means_met_at_a_tight_tolerance() {
 #[test]
 fn auto_chooses_the_averaged_model_at_large_k_and_it_agrees_with_the_notes_code() {
     // k = 1e10, 1e12: the note's own (scipy) implementation of the averaged model, whose model
-    // error there is below 1e-18, is the reference.
+    // error there is below 1e-18, is the reference. There `averaged2`'s probed error is far
+    // below a tenth of the tolerance and it costs half of `averaged3`: `auto` runs it.
     for case in averaged_cases()
         .iter()
         .filter(|c| c.source == "note-averaged-model")
     {
         let v = check(case, 1e-8);
-        assert_eq!(v.plan.method, Method::Averaged3, "{}", case.name);
+        assert_eq!(v.plan.method, Method::Averaged2, "{}", case.name);
         assert!(v.met);
         assert!(true_error(&v, case) < 1e-9, "{}", case.name);
     }
@@ -272,7 +273,7 @@ fn averaged_runs_report_the_averaged_model() {
         common::bin(&["simulate", "--preset", "stiff-spring", "--format", "json"]);
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-    assert_eq!(v["auto"]["choice"], "averaged3", "{out}");
+    assert_eq!(v["auto"]["choice"], "averaged2", "{out}");
     let a = &v["averaged"];
     assert_eq!(a["regime"], "trapped");
     let theta = v["effective"]["theta"].as_f64().unwrap();
@@ -285,7 +286,7 @@ fn averaged_runs_report_the_averaged_model() {
     let kbar = a["kbar"].as_f64().unwrap();
     assert!(
         (v["energy"]["initial"].as_f64().unwrap() - kbar).abs() < 1e-12 * kbar,
-        "the energy diagnostic of averaged3 is K̄"
+        "the energy diagnostic of the averaged model is K̄"
     );
     let h = a["half_period"].as_f64().unwrap();
     let h_eff = v["effective"]["half_period"].as_f64().unwrap();
@@ -302,9 +303,8 @@ fn probes_are_measured_once_and_reading_them_changes_nothing() {
     let at = |k| common::problem(0.8123, 1.27, 1.0, k, [0.0, 0.0, 1.0, 0.35]);
     let t_end = 10.0;
     let first = run_auto(&at(1e7), 1e-8, t_end, 0, false).unwrap();
-    assert_eq!(
-        first.plan.method,
-        Method::Averaged3,
+    assert!(
+        rattleback::physics::rattleback::auto::is_averaged(first.plan.method),
         "{}",
         first.plan.reason
     );

@@ -127,7 +127,9 @@ fn auto_meets_its_tolerance_and_changes_method_with_k() {
         }
     }
     let stiff = common::problem(2.0, 1.0, 1.0, 1e12, [0.0, 0.0, 1.0, 0.5]);
-    assert_eq!(plan(&stiff, 1e-8, 20.0).method, Method::Averaged3);
+    // At k = 1e12 the second-order model's O(k⁻²) error is far below the tolerance, and it is
+    // the cheaper averaged model.
+    assert_eq!(plan(&stiff, 1e-8, 20.0).method, Method::Averaged2);
     let soft = common::problem(2.0, 1.0, 1.0, 1e2, [0.0, 0.0, 1.0, 0.5]);
     assert!(!plan(&soft, 1e-8, 20.0).method.is_effective());
 }

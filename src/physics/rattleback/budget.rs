@@ -30,6 +30,11 @@ pub const NS_EFFECTIVE_EVAL: f64 = 200.0;
 /// averaging note at k = 4e2 and 1e8, tolerances 1e-9 and 1e-12, T = 30): `auto` weighs its
 /// probes against resolving with it.
 pub const NS_AVERAGED3_EVAL: f64 = 180.0;
+/// The same for `averaged2`, priced as [`NS_AVERAGED3_EVAL`] is against what it measures: a whole
+/// run takes 47 ns per evaluation (the trapped start at k = 1e8, tolerance 2.4e-12: 1 629
+/// evaluations in 76 µs) against `averaged3`'s 108 (175 µs), driver and reversal location
+/// included. `auto` weighs it against `averaged3` at large `k` (issue 27).
+pub const NS_AVERAGED2_EVAL: f64 = 80.0;
 
 /// The slow rate of the problem: `sqrt(2E / min I)`, how fast the body turns on its energy.
 #[must_use]
@@ -71,10 +76,10 @@ pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
             dop853_evaluations(tolerance, periods(nu)) * NS_DOP853_EVAL
         }
         Method::Effective | Method::EffectiveCorrected | Method::Averaged2 | Method::Averaged3 => {
-            let per_eval = if method == Method::Averaged3 {
-                NS_AVERAGED3_EVAL
-            } else {
-                NS_EFFECTIVE_EVAL
+            let per_eval = match method {
+                Method::Averaged3 => NS_AVERAGED3_EVAL,
+                Method::Averaged2 => NS_AVERAGED2_EVAL,
+                _ => NS_EFFECTIVE_EVAL,
             };
             (dop853_evaluations(tolerance, periods(slow_rate(problem).max(1e-3))) * per_eval)
                 .max(NS_EFFECTIVE_PER_TIME * t_end * 0.1)

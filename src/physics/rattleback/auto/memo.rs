@@ -1,6 +1,6 @@
 //! The probes' answers, kept for the life of the process.
 //!
-//! A probe's gap (the resolved full model against the averaged model over `[0, T]`) depends
+//! A probe's gaps (the resolved full model against `averaged3` and `averaged2` over `[0, T]`) depend
 //! only on the probe problem (the body at the probe stiffness and the start of the averaging's
 //! family, [`super::probe_problem`]) and on `T`: not on the `k` that asked for it. Where the
 //! start's tilt is zero (every shipped preset) or scales with the family, the probes of one body
@@ -22,9 +22,12 @@ pub const CAPACITY: usize = 256;
 /// A probe problem and horizon, as the bits of its numbers.
 type Key = [u64; 9];
 
+/// A probe's gaps: the full model against `averaged3`, and against `averaged2`.
+pub type Gaps = [f64; 2];
+
 struct Entry {
     key: Key,
-    gap: f64,
+    gaps: Gaps,
     reads: u64,
 }
 
@@ -54,17 +57,17 @@ fn kept() -> std::sync::MutexGuard<'static, Vec<Entry>> {
         .unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
-/// The kept gap of `key`, if any (counting the read).
+/// The kept gaps of `key`, if any (counting the read).
 #[must_use]
-pub fn read(key: &Key) -> Option<f64> {
+pub fn read(key: &Key) -> Option<Gaps> {
     let mut list = kept();
     let entry = list.iter_mut().find(|e| e.key == *key)?;
     entry.reads += 1;
-    Some(entry.gap)
+    Some(entry.gaps)
 }
 
-/// Keeps `gap` as the answer of `key`.
-pub fn keep(key: Key, gap: f64) {
+/// Keeps `gaps` as the answer of `key`.
+pub fn keep(key: Key, gaps: Gaps) {
     let mut list = kept();
     if list.iter().any(|e| e.key == key) {
         return;
@@ -72,7 +75,11 @@ pub fn keep(key: Key, gap: f64) {
     if list.len() == CAPACITY {
         list.remove(0);
     }
-    list.push(Entry { key, gap, reads: 0 });
+    list.push(Entry {
+        key,
+        gaps,
+        reads: 0,
+    });
 }
 
 /// How many times the answer of `key` was read instead of computed (`None`: not kept).

@@ -19,13 +19,18 @@
 //!   `[0.5, 3]` (3 is the theory's; a pre-asymptotic start decays slower and is extrapolated
 //!   with its own, smaller slope). Where the model is exact (`ix = iy`, or no fast action) no
 //!   probe runs. The slow flow then runs at a local tolerance such that its companion at `16 L`
-//!   meets the rest of the tolerance.
+//!   meets the rest of the tolerance;
+//! - `averaged2`, the O(k⁻²) model, measured by the same probes against the same full runs and
+//!   extrapolated the same way (slope clamped to `[0.5, 2]`), where its predicted model error is
+//!   at most [`SECOND_ORDER_MODEL_SHARE`] of the tolerance and it is predicted cheaper (a run
+//!   costs half of `averaged3`'s): the large stiffnesses.
 //!
 //! **Verification.** Every plan runs twice: the run that is returned, and a *coarser*
 //! companion (step `2h`, or tolerance `16 L`) that costs 0.5–0.7× as much and is never
 //! identical to it. The estimate is their difference in `α(T)`, `α̇(T)` and the reversal
 //! times (infinite when the reversal counts differ), plus the probed model error for
-//! the averaged model, plus a round-off floor of `ε · steps · max(1, |α(T)|)`. The difference bounds
+//! the averaged model, plus the round-off floors (the phase's, and the start's rounding scaled by
+//! its measured condition numbers, [`conditioning`]). The difference bounds
 //! the returned run's error whenever the companion's error is at least twice the run's, which
 //! holds with a wide margin where the method converges (the companion's is 16× for a 4th-order
 //! step, ~14× for a 16× looser tolerance) and fails only at the round-off floor, which the
@@ -35,7 +40,8 @@
 //! factor the estimate asks for; an averaged model whose error is too large gives way to the
 //! best resolving method. It stops, and says so with `met = false`, when the estimate stops
 //! falling (less than halved by a refinement: the round-off floor or an ill-conditioned start;
-//! the estimate reached is reported as the floor), when an adaptive tolerance reaches its
+//! the estimate reached is reported as the floor), at once when the round-off floors alone pass
+//! the tolerance (a refinement only adds steps to them), when an adaptive tolerance reaches its
 //! 1e-14 clamp, after [`MAX_REFINEMENTS`], or before a refinement predicted to take the total
 //! past [`AUTO_SECONDS`] (or the caller's smaller budget).
 //!
@@ -82,6 +88,18 @@ pub const TIGHTEST: f64 = 1e-14;
 /// The averaged model `auto` plans with (probes, plans and refines): `averaged3`, whose
 /// O(k⁻³) error reaches into the middle stiffnesses `averaged2` could not serve.
 pub const AVERAGED: Method = Method::Averaged3;
+/// `averaged2` runs instead of [`AVERAGED`] where its probed model error is at most this share
+/// of the tolerance (issue 27): at large `k` its O(k⁻²) error is far below any tolerance, and a
+/// run costs half of `averaged3`'s (12 against 34 ns per evaluation), so `auto`'s run and
+/// companion do too. Within a tenth, the integration still gets most of the tolerance, as with
+/// `averaged3`.
+pub const SECOND_ORDER_MODEL_SHARE: f64 = 0.1;
+
+/// Whether `method` is one of the averaged models `auto` runs.
+#[must_use]
+pub fn is_averaged(method: Method) -> bool {
+    matches!(method, Method::Averaged2 | Method::Averaged3)
+}
 /// The order in `1/k` of [`AVERAGED`]'s model error (the theory's; a probe's slope is clamped
 /// to it).
 pub const MODEL_ORDER: f64 = 3.0;
@@ -206,13 +224,16 @@ fn companion_of(tolerance: f64, step: Option<f64>) -> Settings {
     }
 }
 
-/// The averaged model's error as measured by the probes.
+/// The averaged models' errors as measured by the probes.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct ModelProbe {
     /// The two probe stiffnesses.
     pub k: [f64; 2],
-    /// The largest difference, full model against averaged model, at each.
+    /// The largest difference, full model against [`AVERAGED`] (`averaged3`), at each.
     pub gap: [f64; 2],
+    /// The same against `averaged2`, from the same full runs: at large `k` its O(k⁻²) error is
+    /// far below any tolerance, and it costs half as much ([`SECOND_ORDER_MODEL_SHARE`]).
+    pub gap2: [f64; 2],
 }
 
 impl ModelProbe {
@@ -245,6 +266,32 @@ impl ModelProbe {
             return f64::INFINITY;
         }
         PROBE_SAFETY * self.gap[1] * (self.k[1] / k).min(1.0).powf(self.slope())
+    }
+
+    /// `averaged2`'s measured slope, clamped to `[0.5, 2]` (its order; 2 where the gaps are at
+    /// the floor).
+    #[must_use]
+    pub fn slope2(&self) -> f64 {
+        let [lo, hi] = self.gap2;
+        if hi < 1e-12 {
+            return 2.0;
+        }
+        let s = (lo / hi).ln() / (self.k[1] / self.k[0]).ln();
+        if s.is_finite() {
+            s.clamp(0.5, 2.0)
+        } else {
+            0.5
+        }
+    }
+
+    /// `averaged2`'s model error predicted at `k ≥ k_hi` as [`ModelProbe::predict`] predicts
+    /// `averaged3`'s, with [`ModelProbe::slope2`].
+    #[must_use]
+    pub fn predict2(&self, k: f64) -> f64 {
+        if !self.gap2[1].is_finite() {
+            return f64::INFINITY;
+        }
+        PROBE_SAFETY * self.gap2[1] * (self.k[1] / k).min(1.0).powf(self.slope2())
     }
 }
 
@@ -282,6 +329,10 @@ pub fn probes_cost(problem: &Problem, t_end: f64) -> f64 {
                 &probe,
                 &Asked::new(Method::Dop853, PROBE_FULL_TOLERANCE, None, t_end),
             ) + cost_seconds(&probe, &Asked::new(AVERAGED, PROBE_TOLERANCE, None, t_end))
+                + cost_seconds(
+                    &probe,
+                    &Asked::new(Method::Averaged2, PROBE_TOLERANCE, None, t_end),
+                )
         })
         .sum()
 }
@@ -322,11 +373,11 @@ pub fn probe_averaged(
     let mut k = probe_stiffnesses(problem);
     let mut rung = 0;
     loop {
-        let mut gap = [0.0; 2];
-        for (g, &kp) in gap.iter_mut().zip(&k) {
-            *g = probe_gap(problem, kp, t_end, go_on)?;
+        let (mut gap, mut gap2) = ([0.0; 2], [0.0; 2]);
+        for (i, &kp) in k.iter().enumerate() {
+            [gap[i], gap2[i]] = probe_gap(problem, kp, t_end, go_on)?;
         }
-        let probe = ModelProbe { k, gap };
+        let probe = ModelProbe { k, gap, gap2 };
         let settled = gap[1].is_finite() && (gap[1] < 1e-12 || probe.raw_slope() >= 1.0);
         rung += 1;
         if settled || rung == PROBE_RUNGS || problem.params().k < AVERAGED_MIN_RATIO * 16.0 * k[1] {
@@ -357,16 +408,17 @@ pub fn probe_problem(problem: &Problem, k: f64) -> Problem {
     .expect("probe k is valid")
 }
 
+/// The gaps of `averaged3` and `averaged2` to the full model at the probe stiffness `k`.
 fn probe_gap(
     problem: &Problem,
     k: f64,
     t_end: f64,
     go_on: &mut dyn FnMut(f64) -> bool,
-) -> Result<f64, StepError> {
+) -> Result<memo::Gaps, StepError> {
     let probe = probe_problem(problem, k);
     let key = memo::key(&probe, t_end);
-    if let Some(gap) = memo::read(&key) {
-        return Ok(gap);
+    if let Some(gaps) = memo::read(&key) {
+        return Ok(gaps);
     }
     let spec = |method, tolerance| RunSpec {
         method,
@@ -376,25 +428,31 @@ fn probe_gap(
         samples: PROBE_SAMPLES,
         monitor_energy: false,
     };
-    let full = run_cancellable(&probe, &spec(Method::Dop853, PROBE_FULL_TOLERANCE), go_on);
-    let averaged = run_cancellable(&probe, &spec(AVERAGED, PROBE_TOLERANCE), go_on);
-    let gap = match (full, averaged) {
-        (Err(e @ StepError::Cancelled { .. }), _) | (_, Err(e @ StepError::Cancelled { .. })) => {
-            return Err(e);
-        }
-        (Ok(a), Ok(b)) => {
-            let mut d = difference(&a, &b);
-            for (x, y) in a.samples.iter().zip(&b.samples) {
-                d = d
-                    .max((x.state[1] - y.state[1]).abs())
-                    .max((x.state[3] - y.state[3]).abs());
-            }
-            d
-        }
-        _ => f64::INFINITY,
+    let full = match run_cancellable(&probe, &spec(Method::Dop853, PROBE_FULL_TOLERANCE), go_on) {
+        Err(e @ StepError::Cancelled { .. }) => return Err(e),
+        full => full.ok(),
     };
-    memo::keep(key, gap);
-    Ok(gap)
+    let mut gap_of = |method| -> Result<f64, StepError> {
+        let averaged = match run_cancellable(&probe, &spec(method, PROBE_TOLERANCE), go_on) {
+            Err(e @ StepError::Cancelled { .. }) => return Err(e),
+            averaged => averaged.ok(),
+        };
+        Ok(match (&full, averaged) {
+            (Some(a), Some(b)) => {
+                let mut d = difference(a, &b);
+                for (x, y) in a.samples.iter().zip(&b.samples) {
+                    d = d
+                        .max((x.state[1] - y.state[1]).abs())
+                        .max((x.state[3] - y.state[3]).abs());
+                }
+                d
+            }
+            _ => f64::INFINITY,
+        })
+    };
+    let gaps = [gap_of(AVERAGED)?, gap_of(Method::Averaged2)?];
+    memo::keep(key, gaps);
+    Ok(gaps)
 }
 
 /// The cheapest plan that resolves the fast motion (dop853 or blanes-moan4) among those whose
@@ -546,6 +604,39 @@ pub fn plan_cancellable(
             },
         ),
     };
+    // `averaged2` where its model error is a small share of the tolerance, when it is cheaper.
+    let (averaged, model_error) = match probe {
+        Some(probe) => {
+            let error2 = probe.predict2(problem.params().k);
+            let share2 = tolerance - error2;
+            let local2 = averaged_local(share2, t_end);
+            let second = Plan {
+                method: Method::Averaged2,
+                tolerance: local2,
+                step: None,
+                predicted_error: error2 + 0.5 * share2,
+                predicted_seconds: with_companion(
+                    problem,
+                    &Asked::new(Method::Averaged2, local2, None, t_end),
+                ),
+                reason: format!(
+                    "k large enough: the second-order averaged model's error, probed at k = {:.0} \
+                     and {:.0} (slope {:.2}), scales to {error2:.1e}",
+                    probe.k[0],
+                    probe.k[1],
+                    probe.slope2()
+                ),
+            };
+            if error2 <= SECOND_ORDER_MODEL_SHARE * tolerance
+                && second.predicted_seconds < averaged.predicted_seconds
+            {
+                (second, error2)
+            } else {
+                (averaged, model_error)
+            }
+        }
+        None => (averaged, model_error),
+    };
     let meets = |p: &Plan| p.predicted_error <= tolerance;
     let take_averaged = match (meets(&averaged), meets(&resolved)) {
         (true, true) => averaged.predicted_seconds < resolved.predicted_seconds,
@@ -688,7 +779,7 @@ pub fn run_auto_cancellable(
             Some(Shortfall::Floor)
         } else if refinements == MAX_REFINEMENTS {
             Some(Shortfall::Refinements)
-        } else if plan.method == AVERAGED
+        } else if is_averaged(plan.method)
             && plan.tolerance <= TIGHTEST
             && model_error < 0.5 * tolerance
         {
@@ -699,7 +790,7 @@ pub fn run_auto_cancellable(
         let next = (estimate > tolerance && shortfall.is_none())
             .then(|| refine(problem, &plan, model_error, estimate, tolerance, t_end));
         let shortfall = match &next {
-            Some(None) if plan.method == AVERAGED => Some(Shortfall::Model),
+            Some(None) if is_averaged(plan.method) => Some(Shortfall::Model),
             Some(None) => Some(Shortfall::Clamped),
             Some(Some(n)) if spent + n.predicted_seconds > allowance => Some(Shortfall::Time),
             _ => shortfall,
@@ -743,7 +834,7 @@ pub fn run_auto_cancellable(
             None
         };
         spent += next.predicted_seconds;
-        if plan.method == AVERAGED && next.method != AVERAGED {
+        if is_averaged(plan.method) && !is_averaged(next.method) {
             // The start's conditioning was measured on the averaged model: the full motion that
             // now runs is measured on its own method, as a first resolved plan would be.
             spent += conditioning_cost(problem, t_end, &next);
@@ -1022,7 +1113,7 @@ fn refine(
     tolerance: f64,
     t_end: f64,
 ) -> Option<Plan> {
-    if plan.method == AVERAGED && model_error > 0.5 * tolerance {
+    if is_averaged(plan.method) && model_error > 0.5 * tolerance {
         let mut resolved = best_resolved(problem, tolerance, t_end);
         if resolved.predicted_error >= estimate {
             return None;
