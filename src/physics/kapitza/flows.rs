@@ -100,30 +100,15 @@ pub fn build(problem: &Problem, ask: &Asked, phase: FastPhase) -> Result<Box<dyn
             step,
             phase,
         )),
-        Method::Effective => Box::new(LimitDop853::new(
-            problem,
-            settings.tolerance,
-            Order::Limit,
-            phase,
-        )),
-        Method::EffectiveCorrected => Box::new(LimitDop853::new(
-            problem,
-            settings.tolerance,
-            Order::Corrected,
-            phase,
-        )),
-        Method::Averaged2 => Box::new(LimitDop853::new(
-            problem,
-            settings.tolerance,
-            Order::Second,
-            phase,
-        )),
-        Method::Averaged3 => Box::new(LimitDop853::new(
-            problem,
-            settings.tolerance,
-            Order::Third,
-            phase,
-        )),
+        Method::Effective | Method::EffectiveCorrected | Method::Averaged2 | Method::Averaged3 => {
+            let order = match method {
+                Method::Effective => Order::Limit,
+                Method::EffectiveCorrected => Order::Corrected,
+                Method::Averaged2 => Order::Second,
+                _ => Order::Third,
+            };
+            Box::new(LimitDop853::new(problem, settings.tolerance, order, phase))
+        }
         other => {
             return Err(StepError::NotOffered {
                 method: other.name(),
