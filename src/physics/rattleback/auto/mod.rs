@@ -232,7 +232,8 @@ pub struct ModelProbe {
     /// The largest difference, full model against [`AVERAGED`] (`averaged3`), at each.
     pub gap: [f64; 2],
     /// The same against `averaged2`, from the same full runs: at large `k` its O(k⁻²) error is
-    /// far below any tolerance, and it costs half as much ([`SECOND_ORDER_MODEL_SHARE`]).
+    /// far below the tolerance ([`SECOND_ORDER_MODEL_SHARE`]), and a run costs half of
+    /// `averaged3`'s.
     pub gap2: [f64; 2],
 }
 
