@@ -229,12 +229,14 @@ pub fn averaged_checked(
         estimate,
         met: estimate <= tolerance,
         // Short of the tolerance by its model error, or by the slow run's integration at the
-        // tightest tolerance.
-        shortfall: (estimate > tolerance).then_some(if model > tolerance {
-            Shortfall::Model
-        } else {
-            Shortfall::Clamped
-        }),
+        // tightest tolerance (the one retry below).
+        shortfall: (estimate > tolerance).then_some(
+            if model > 0.5 * tolerance || local > TIGHTEST {
+                Shortfall::Model
+            } else {
+                Shortfall::Clamped
+            },
+        ),
     };
     // A model's run at `local` and its companion, 16× looser.
     let pair = |method, local: f64, go_on: &mut dyn FnMut(f64) -> bool| -> Result<_, StepError> {
