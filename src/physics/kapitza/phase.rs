@@ -39,12 +39,9 @@ impl FastPhase {
         let mut out = [(0.0, 0.0); N];
         match self {
             Self::Rounded => {
+                // `1.0 * q` is `q`: the first harmonic is the phase's own, as before.
                 for (k, h) in (1_u32..).zip(out.iter_mut()) {
-                    *h = if k == 1 {
-                        q.sin_cos()
-                    } else {
-                        (f64::from(k) * q).sin_cos()
-                    };
+                    *h = (f64::from(k) * q).sin_cos();
                 }
             }
             Self::Exact => {

@@ -583,16 +583,13 @@ pub fn plan_cancellable(
         Some(probe_averaged(problem, t_end, go_on)?)
     };
     let model_error = probe.map_or(0.0, |p| p.predict(problem.params().k));
-    // The integration gets what the model error leaves of the tolerance, at least half of it.
-    let share = (tolerance - model_error).max(0.5 * tolerance);
-    let local = averaged_local(share, t_end);
-    let averaged = Plan {
-        method: AVERAGED,
-        tolerance: local,
-        step: None,
-        predicted_error: model_error + 0.5 * share,
-        predicted_seconds: with_companion(problem, &Asked::new(AVERAGED, local, None, t_end)),
-        reason: probe.map_or_else(
+    let averaged = averaged_plan(
+        problem,
+        AVERAGED,
+        model_error,
+        tolerance,
+        t_end,
+        probe.map_or_else(
             || "the averaged model is exact here (ix = iy, or no fast action)".to_owned(),
             |probe| {
                 format!(
@@ -604,39 +601,27 @@ pub fn plan_cancellable(
                 )
             },
         ),
-    };
+    );
     // `averaged2` where its model error is a small share of the tolerance, when it is cheaper.
-    let (averaged, model_error) = match probe {
-        Some(probe) => {
-            let error2 = probe.predict2(problem.params().k);
-            let share2 = tolerance - error2;
-            let local2 = averaged_local(share2, t_end);
-            let second = Plan {
-                method: Method::Averaged2,
-                tolerance: local2,
-                step: None,
-                predicted_error: error2 + 0.5 * share2,
-                predicted_seconds: with_companion(
-                    problem,
-                    &Asked::new(Method::Averaged2, local2, None, t_end),
-                ),
-                reason: format!(
-                    "k large enough: the second-order averaged model's error, probed at k = {:.0} \
-                     and {:.0} (slope {:.2}), scales to {error2:.1e}",
-                    probe.k[0],
-                    probe.k[1],
-                    probe.slope2()
-                ),
-            };
-            if error2 <= SECOND_ORDER_MODEL_SHARE * tolerance
-                && second.predicted_seconds < averaged.predicted_seconds
-            {
-                (second, error2)
-            } else {
-                (averaged, model_error)
-            }
+    let second = probe.and_then(|probe| {
+        let error2 = probe.predict2(problem.params().k);
+        (error2 <= SECOND_ORDER_MODEL_SHARE * tolerance).then(|| {
+            let reason = format!(
+                "k large enough: the second-order averaged model's error, probed at k = {:.0} \
+                 and {:.0} (slope {:.2}), scales to {error2:.1e}",
+                probe.k[0],
+                probe.k[1],
+                probe.slope2()
+            );
+            let plan = averaged_plan(problem, Method::Averaged2, error2, tolerance, t_end, reason);
+            (plan, error2)
+        })
+    });
+    let (averaged, model_error) = match second {
+        Some((plan, error2)) if plan.predicted_seconds < averaged.predicted_seconds => {
+            (plan, error2)
         }
-        None => (averaged, model_error),
+        _ => (averaged, model_error),
     };
     let meets = |p: &Plan| p.predicted_error <= tolerance;
     let take_averaged = match (meets(&averaged), meets(&resolved)) {
@@ -663,6 +648,28 @@ pub fn plan_cancellable(
         model_error: 0.0,
         probe,
     })
+}
+
+/// An averaged model's plan with its probed `model_error`: the integration gets what the model
+/// error leaves of the tolerance, at least half of it.
+fn averaged_plan(
+    problem: &Problem,
+    method: Method,
+    model_error: f64,
+    tolerance: f64,
+    t_end: f64,
+    reason: String,
+) -> Plan {
+    let share = (tolerance - model_error).max(0.5 * tolerance);
+    let local = averaged_local(share, t_end);
+    Plan {
+        method,
+        tolerance: local,
+        step: None,
+        predicted_error: model_error + 0.5 * share,
+        predicted_seconds: with_companion(problem, &Asked::new(method, local, None, t_end)),
+        reason,
+    }
 }
 
 /// Chooses the method for `problem` (see [`plan_cancellable`]), never cancelled.
