@@ -149,6 +149,12 @@ impl Method {
             Self::Effective | Self::EffectiveCorrected | Self::Averaged2 | Self::Averaged3
         )
     }
+
+    /// Whether the method is one of the averaged models (`averaged2`, `averaged3`).
+    #[must_use]
+    pub fn is_averaged(self) -> bool {
+        matches!(self, Self::Averaged2 | Self::Averaged3)
+    }
 }
 
 impl std::fmt::Display for Method {

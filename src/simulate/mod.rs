@@ -645,8 +645,7 @@ fn rattleback_to(
     let p = problem.params();
     let y = result.final_state;
     let ran = auto.as_ref().map_or(spec.method, |a| a.choice);
-    let averaged =
-        matches!(ran, Method::Averaged2 | Method::Averaged3).then(|| AveragedOut::of(problem));
+    let averaged = ran.is_averaged().then(|| AveragedOut::of(problem));
     let shortfall = auto.as_ref().and_then(|a| a.missed(spec.tolerance));
     let step = auto.as_ref().map_or(spec.step, |a| a.step);
     let params = ParamsOut {

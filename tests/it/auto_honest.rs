@@ -303,11 +303,7 @@ fn probes_are_measured_once_and_reading_them_changes_nothing() {
     let at = |k| common::problem(0.8123, 1.27, 1.0, k, [0.0, 0.0, 1.0, 0.35]);
     let t_end = 10.0;
     let first = run_auto(&at(1e7), 1e-8, t_end, 0, false).unwrap();
-    assert!(
-        rattleback::physics::rattleback::auto::is_averaged(first.plan.method),
-        "{}",
-        first.plan.reason
-    );
+    assert!(first.plan.method.is_averaged(), "{}", first.plan.reason);
     let keys = probe_stiffnesses(&at(1e7)).map(|k| memo::key(&probe_problem(&at(1e7), k), t_end));
     let before = keys.map(|k| memo::reads(&k).expect("the probes were kept"));
     // Another k of the same body and start asks for the same probes.

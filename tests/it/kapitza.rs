@@ -394,10 +394,7 @@ fn autos_budget_follows_the_averaged_model() {
     // many minutes, would hang this test if it ran).
     let (p, t) = at(20_000.0);
     let c = plan::verified(&p, 1e-8, t, 60.0, &mut |_| true).unwrap();
-    assert!(
-        matches!(c.method, Method::Averaged2 | Method::Averaged3) && !c.met,
-        "{c:?}"
-    );
+    assert!(c.method.is_averaged() && !c.met, "{c:?}");
     assert_eq!(
         c.shortfall,
         Some(rattleback::physics::plan::Shortfall::Clamped),
@@ -426,12 +423,7 @@ fn the_closer_shortfall_is_returned_and_the_averaged_one_at_once() {
             "{:>18} tol {tol:.0e}: {} error {error:.1e} estimate {:.1e} met {} {:?}",
             case.name, c.method, c.estimate, c.met, c.shortfall
         );
-        assert!(
-            matches!(c.method, Method::Averaged2 | Method::Averaged3),
-            "{}: {}",
-            case.name,
-            c.method
-        );
+        assert!(c.method.is_averaged(), "{}: {}", case.name, c.method);
         assert!(error <= c.estimate + 2.0 * case.accuracy, "{}", case.name);
         assert!(
             !c.met || error <= tol + 2.0 * case.accuracy,

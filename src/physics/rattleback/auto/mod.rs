@@ -95,11 +95,6 @@ pub const AVERAGED: Method = Method::Averaged3;
 /// `averaged3`.
 pub const SECOND_ORDER_MODEL_SHARE: f64 = 0.1;
 
-/// Whether `method` is one of the averaged models `auto` runs.
-#[must_use]
-pub fn is_averaged(method: Method) -> bool {
-    matches!(method, Method::Averaged2 | Method::Averaged3)
-}
 /// The order in `1/k` of [`AVERAGED`]'s model error (the theory's; a probe's slope is clamped
 /// to it).
 pub const MODEL_ORDER: f64 = 3.0;
@@ -787,7 +782,7 @@ pub fn run_auto_cancellable(
             Some(Shortfall::Floor)
         } else if refinements == MAX_REFINEMENTS {
             Some(Shortfall::Refinements)
-        } else if is_averaged(plan.method)
+        } else if plan.method.is_averaged()
             && plan.tolerance <= TIGHTEST
             && model_error < 0.5 * tolerance
         {
@@ -798,7 +793,7 @@ pub fn run_auto_cancellable(
         let next = (estimate > tolerance && shortfall.is_none())
             .then(|| refine(problem, &plan, model_error, estimate, tolerance, t_end));
         let shortfall = match &next {
-            Some(None) if is_averaged(plan.method) => Some(Shortfall::Model),
+            Some(None) if plan.method.is_averaged() => Some(Shortfall::Model),
             Some(None) => Some(Shortfall::Clamped),
             Some(Some(n)) if spent + n.predicted_seconds > allowance => Some(Shortfall::Time),
             _ => shortfall,
@@ -842,7 +837,7 @@ pub fn run_auto_cancellable(
             None
         };
         spent += next.predicted_seconds;
-        if is_averaged(plan.method) && !is_averaged(next.method) {
+        if plan.method.is_averaged() && !next.method.is_averaged() {
             // The start's conditioning was measured on the averaged model: the full motion that
             // now runs is measured on its own method, as a first resolved plan would be.
             spent += conditioning_cost(problem, t_end, &next);
@@ -1121,7 +1116,7 @@ fn refine(
     tolerance: f64,
     t_end: f64,
 ) -> Option<Plan> {
-    if is_averaged(plan.method) && model_error > 0.5 * tolerance {
+    if plan.method.is_averaged() && model_error > 0.5 * tolerance {
         let mut resolved = best_resolved(problem, tolerance, t_end);
         if resolved.predicted_error >= estimate {
             return None;
