@@ -496,8 +496,19 @@ impl App {
                 generation,
                 plan,
                 error_estimate,
+                until,
             } if generation == self.run.generation => {
-                self.log_plan(plan, error_estimate);
+                self.log_plan(until, plan, error_estimate);
+                self.run.on_sim(event, self.view.overlay)
+            }
+            SimEvent::Verified {
+                generation,
+                until,
+                plan,
+                error_estimate,
+                ..
+            } if generation == self.run.generation => {
+                self.log_plan(until, plan, error_estimate);
                 self.run.on_sim(event, self.view.overlay)
             }
             SimEvent::Failed {

@@ -1,7 +1,7 @@
 //! Recording on and off, and what the loop reports back after executing an effect.
 
 use super::mode::{Confirm, Picker, PickerRow};
-use super::{App, Effect, Message, Mode, Outcome, PlanState, RecState};
+use super::{App, Effect, Message, Mode, Outcome, RecState};
 use crate::app::journal::Event;
 use crate::scenario::text::clean;
 
@@ -29,9 +29,10 @@ impl App {
             Outcome::Recording(Ok(path)) => {
                 self.journal.state = RecState::On;
                 self.status = Message::info(format!("recording to {path}"));
-                // The plan of the run in progress belongs in the file too.
-                if let PlanState::Running { plan, estimate } = self.run.plan {
-                    self.log_plan(plan, estimate);
+                // The plans of the run in progress belong in the file too (every segment
+                // verified so far).
+                for s in self.run.segments.clone() {
+                    self.log_plan(s.until, s.plan, s.estimate);
                 }
                 // The panes open when the recording starts belong in it too (the header holds
                 // the preset, which says only whether the time series is shown), and the
@@ -124,8 +125,15 @@ impl App {
         Vec::new()
     }
 
-    pub(super) fn log_plan(&mut self, plan: crate::physics::Resolved, estimate: Option<f64>) {
-        let spec = self.scenario.spec(self.view.overlay);
+    /// Journals the plan verified for the horizon `until` of the current run.
+    pub(super) fn log_plan(
+        &mut self,
+        until: f64,
+        plan: crate::physics::Resolved,
+        estimate: Option<f64>,
+    ) {
+        let mut spec = self.scenario.spec(self.view.overlay);
+        spec.t_end = until;
         self.log(Event::Plan {
             key: crate::sim::PlanKey::of(&spec),
             plan,

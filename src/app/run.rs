@@ -139,6 +139,35 @@ pub struct RunState {
     /// never shows a time the lecturer did not).
     pub ceiling: Option<f64>,
     steps_at_tick: u64,
+    /// The verified segments of the run, in order (one, covering the whole run, unless `auto`
+    /// verifies it in segments): `plan` is the one the displayed time lies in.
+    pub segments: Vec<VerifiedSegment>,
+    /// How far the verification ahead has come, while it goes on.
+    pub ahead: Option<AheadProgress>,
+}
+
+/// A segment of the run and the plan `auto` verified for it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VerifiedSegment {
+    /// Shown after this time (0 for the first).
+    pub from: f64,
+    /// Up to this one, inclusive: the horizon its plan was verified for.
+    pub until: f64,
+    /// The plan.
+    pub plan: Resolved,
+    /// `auto`'s error estimate over `[0, until]`.
+    pub estimate: Option<f64>,
+}
+
+/// The verification ahead of the display: the horizon being verified and how far.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AheadProgress {
+    /// The horizon being verified.
+    pub until: f64,
+    /// Which of `auto`'s integrations.
+    pub run: u32,
+    /// In whole percent of the horizon.
+    pub percent: u8,
 }
 
 impl RunState {
@@ -167,6 +196,42 @@ impl RunState {
             rate: 0.0,
             ceiling: None,
             steps_at_tick: 0,
+            segments: Vec::new(),
+            ahead: None,
+        }
+    }
+
+    /// How far the run is verified: the horizon of its last verified segment (0 before its
+    /// plan).
+    #[must_use]
+    pub fn verified(&self) -> f64 {
+        self.segments.last().map_or(0.0, |s| s.until)
+    }
+
+    /// The first segment verified ahead whose estimate misses `tolerance` and which the display
+    /// has not reached: where the run will stop meeting it, known before it is shown.
+    #[must_use]
+    pub fn missed_ahead(&self, tolerance: f64) -> Option<f64> {
+        self.segments
+            .iter()
+            .find(|s| s.from >= self.shown && s.estimate.is_some_and(|e| e > tolerance))
+            .map(|s| s.from)
+    }
+
+    /// The plan of the segment the displayed time lies in.
+    fn follow_segments(&mut self) {
+        let shown = self.shown;
+        if let Some(s) = self
+            .segments
+            .iter()
+            .rev()
+            .find(|s| s.from < shown)
+            .or(self.segments.first())
+        {
+            self.plan = PlanState::Running {
+                plan: s.plan,
+                estimate: s.estimate,
+            };
         }
     }
 
@@ -258,6 +323,9 @@ impl RunState {
         if self.playing && self.finished && self.shown >= self.reached {
             self.playing = false;
         }
+        if self.segments.len() > 1 {
+            self.follow_segments();
+        }
     }
 
     /// Advances the clock by `wall_seconds × speed` while playing; the command asking for more.
@@ -283,9 +351,10 @@ impl RunState {
         vec![self.advance_command()]
     }
 
-    /// Takes a worker event of this run; whether anything visible changed.
-    pub fn on_sim(&mut self, event: SimEvent, overlay: bool) -> bool {
-        match event {
+    /// Takes a worker event about the run's plan (its verification, its segments); whether
+    /// anything visible changed.
+    fn on_plan(&mut self, event: &SimEvent) -> bool {
+        match *event {
             SimEvent::Planning { generation } if generation == self.generation => {
                 self.plan = PlanState::Verifying { run: 0, percent: 0 };
                 true
@@ -304,13 +373,62 @@ impl RunState {
                 generation,
                 plan,
                 error_estimate,
+                until,
             } if generation == self.generation => {
                 self.plan = PlanState::Running {
                     plan,
                     estimate: error_estimate,
                 };
+                self.segments = vec![VerifiedSegment {
+                    from: 0.0,
+                    until,
+                    plan,
+                    estimate: error_estimate,
+                }];
                 true
             }
+            SimEvent::Verified {
+                generation,
+                from,
+                until,
+                plan,
+                error_estimate,
+            } if generation == self.generation => {
+                self.segments.push(VerifiedSegment {
+                    from,
+                    until,
+                    plan,
+                    estimate: error_estimate,
+                });
+                self.ahead = None;
+                self.follow_segments();
+                true
+            }
+            SimEvent::Ahead {
+                generation,
+                until,
+                run,
+                percent,
+            } if generation == self.generation => {
+                self.ahead = Some(AheadProgress {
+                    until,
+                    run,
+                    percent,
+                });
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// Takes a worker event of this run; whether anything visible changed.
+    pub fn on_sim(&mut self, event: SimEvent, overlay: bool) -> bool {
+        match event {
+            e @ (SimEvent::Planning { .. }
+            | SimEvent::PlanProgress { .. }
+            | SimEvent::Started { .. }
+            | SimEvent::Verified { .. }
+            | SimEvent::Ahead { .. }) => self.on_plan(&e),
             SimEvent::Samples {
                 generation,
                 epoch,

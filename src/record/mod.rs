@@ -39,7 +39,10 @@ pub const FORMAT: &str = "rattleback-session";
 /// in the lines; the pendulum's lifts carry the fast phase
 /// `t/ε` exactly ([`crate::physics::kapitza::FastPhase`]), so a file of 7 or older replays with
 /// the rounded phase it was recorded with ([`crate::physics::method::Arithmetic::of_format`]).
-pub const VERSION: u32 = 8;
+/// 9: nothing new in the lines; a run longer than [`crate::sim::segments::FIRST_SEGMENT`] is
+/// verified and shown in segments, each with its own `plan` line (its key's `t_end` is the
+/// segment's horizon), so a file of 8 or older replays its runs in one piece, as shown.
+pub const VERSION: u32 = 9;
 
 /// First line of a session file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]

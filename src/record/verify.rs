@@ -96,6 +96,8 @@ pub fn plan_book(rec: &Recording) -> PlanBook {
         // The rules the file was recorded with (format 5 and older: the plain sum of the time;
         // 7 and older: the rounded fast phase).
         arithmetic: Arithmetic::of_format(rec.header.version),
+        // Runs shown in segments from format 9 on; older files showed them in one piece.
+        segmented: rec.header.version >= 9,
         ..PlanBook::default()
     }
 }

@@ -10,6 +10,7 @@ use std::collections::VecDeque;
 use serde::{Deserialize, Serialize};
 
 use super::jobs::{Job, JobKind, Slice, Work};
+use super::segments::{Ahead, Next, Progress, Report};
 use super::{Command, Session, SessionSpec, SimEvent};
 use crate::physics::Model;
 use crate::physics::plan::{AutoPolicy, Resolved};
@@ -108,6 +109,10 @@ pub struct PlanBook {
     /// replay of an old file, which follows the rules it was recorded with
     /// ([`Arithmetic::of_format`]).
     pub arithmetic: Arithmetic,
+    /// `auto` verifies a long run in segments, drawing once the first is verified
+    /// ([`super::segments`]); a replay of a file older than format 9 shows its runs in one
+    /// piece, as they were shown.
+    pub segmented: bool,
 }
 
 impl Default for PlanBook {
@@ -119,6 +124,7 @@ impl Default for PlanBook {
             budget: crate::physics::budget::BUDGET_SECONDS,
             total: f64::INFINITY,
             arithmetic: Arithmetic::default(),
+            segmented: true,
         }
     }
 }
@@ -142,12 +148,23 @@ impl PlanBook {
         list.iter().find(|(k, _)| *k == key).map(|(_, v)| *v)
     }
 
-    fn estimate(&self, spec: &SessionSpec) -> Option<f64> {
+    pub(super) fn estimate(&self, spec: &SessionSpec) -> Option<f64> {
         Self::find(&self.estimates, spec)
     }
 
-    fn lookup(&self, spec: &SessionSpec) -> Option<Resolved> {
+    pub(super) fn lookup(&self, spec: &SessionSpec) -> Option<Resolved> {
         Self::find(&self.recorded, spec)
+    }
+
+    /// The horizons `spec` is verified over: in segments for `auto` in a segmented book
+    /// ([`super::segments::horizons`]), else its own end.
+    #[must_use]
+    pub fn horizons(&self, spec: &SessionSpec) -> Vec<f64> {
+        if self.segmented && spec.method == Method::Auto {
+            super::segments::horizons(spec.t_end)
+        } else {
+            vec![spec.t_end]
+        }
     }
 }
 
@@ -166,6 +183,11 @@ pub struct Engine {
     epoch: u64,
     /// The panes' computations, at most one of each kind, in the order of their kinds.
     jobs: Vec<Box<dyn Job>>,
+    /// The verification of a run's later segments, while it goes on.
+    ahead: Option<Ahead>,
+    /// The run has reached its verified horizon short of the target, and waits for the next
+    /// segment.
+    blocked: bool,
 }
 
 /// How runs are planned: the book of recorded plans and policy, and the predicted seconds of
@@ -188,6 +210,8 @@ impl Engine {
             checkpoints: VecDeque::new(),
             epoch: 0,
             jobs: Vec::new(),
+            ahead: None,
+            blocked: false,
         }
     }
 
@@ -207,18 +231,112 @@ impl Engine {
         }
     }
 
-    /// Whether `work` has anything to do.
+    /// Whether `work` has anything to do (or a verification ahead is still going on).
     #[must_use]
     pub fn busy(&self) -> bool {
-        self.run_busy() || !self.jobs.is_empty()
+        self.run_busy() || !self.jobs.is_empty() || self.ahead.is_some()
+    }
+
+    /// Whether the only thing left is the verification ahead: `work` would only look at its
+    /// reports ([`Engine::wait`] waits for the next).
+    #[must_use]
+    pub fn waiting(&self) -> bool {
+        self.ahead.is_some() && !self.run_busy() && self.jobs.is_empty()
     }
 
     /// Whether the run itself has work (it goes before the sweep).
     fn run_busy(&self) -> bool {
         self.planning.is_some()
-            || self.pending.is_some()
-            || !self.checkpoints.is_empty()
+            || (!self.blocked && (self.pending.is_some() || !self.checkpoints.is_empty()))
             || self.session.as_ref().is_some_and(Session::effective_behind)
+    }
+
+    /// Takes the verification ahead's waiting reports; `false` means stop.
+    fn poll(&mut self, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
+        loop {
+            let Some(ahead) = self.ahead.as_ref() else {
+                return true;
+            };
+            match ahead.try_next() {
+                Next::Report(report) => {
+                    if !self.take(report, sink) {
+                        return false;
+                    }
+                }
+                Next::Nothing => return true,
+                Next::Ended => {
+                    self.ahead = None;
+                    return true;
+                }
+            }
+        }
+    }
+
+    /// Waits for the verification ahead's next report and takes it; `false` means stop.
+    pub fn wait(&mut self, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
+        if let Some(Some(report)) = self.ahead.as_ref().map(Ahead::next) {
+            self.take(report, sink)
+        } else {
+            self.ahead = None;
+            true
+        }
+    }
+
+    /// Takes one report of the verification ahead.
+    fn take(&mut self, report: Report, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
+        let Some(session) = self.session.as_mut() else {
+            self.ahead = None;
+            return true;
+        };
+        let generation = session.generation();
+        match report {
+            Report::Progress {
+                until,
+                run,
+                percent,
+            } => sink(SimEvent::Ahead {
+                generation,
+                until,
+                run,
+                percent,
+            }),
+            Report::Verified {
+                from,
+                until,
+                plan,
+                estimate,
+            } => {
+                if let Err(e) = self.planner.charge(session.spec(), plan, until) {
+                    self.ahead = None;
+                    return sink(SimEvent::Failed {
+                        generation,
+                        message: format!("beyond t = {from}: {}", refusal(session.spec(), &e)),
+                    });
+                }
+                sink(SimEvent::Verified {
+                    generation,
+                    from,
+                    until,
+                    plan,
+                    error_estimate: estimate,
+                })
+            }
+            Report::Ready(segment) => {
+                session.queue(*segment);
+                self.blocked = false;
+                true
+            }
+            Report::Failed { from, error } => {
+                self.ahead = None;
+                sink(SimEvent::Failed {
+                    generation,
+                    message: format!(
+                        "verifying beyond t = {from}: {}",
+                        refusal(session.spec(), &error)
+                    ),
+                })
+            }
+        }
     }
 
     /// Takes a command; `false` means stop (quit, or nobody listens any more).
@@ -235,11 +353,17 @@ impl Engine {
             }
             Command::Restart { generation, spec } => {
                 self.jobs.retain(|j| !j.kind().ends_with_run());
+                // Dropping the verification ahead cancels it.
+                self.ahead = None;
+                self.blocked = false;
                 self.session = None;
                 self.pending = None;
                 self.checkpoints.clear();
+                // What is verified before anything is shown: the run, or its first segment.
+                let mut first = spec;
+                first.t_end = self.planner.book.horizons(&spec)[0];
                 let needs_planning =
-                    spec.method == Method::Auto && self.planner.book.lookup(&spec).is_none();
+                    spec.method == Method::Auto && self.planner.book.lookup(&first).is_none();
                 self.planning = Some((generation, spec));
                 if needs_planning {
                     return sink(SimEvent::Planning { generation });
@@ -248,11 +372,16 @@ impl Engine {
             Command::AdvanceTo { generation, t } => {
                 if self.generation() == Some(generation) {
                     self.pending = Some((generation, t));
+                    self.blocked = false;
                 }
             }
-            Command::Checkpoint { generation, t } => self.checkpoints.push_back((generation, t)),
+            Command::Checkpoint { generation, t } => {
+                self.checkpoints.push_back((generation, t));
+                self.blocked = false;
+            }
             Command::SetEffective { on, epoch } => {
                 self.epoch = epoch;
+                self.blocked = false;
                 if let Some(spec) = self.planning.as_mut().map(|(_, s)| s) {
                     spec.effective = on;
                 }
@@ -274,14 +403,21 @@ impl Engine {
         let Some((generation, spec)) = self.planning else {
             return true;
         };
-        let mut progress = PlanProgress::new(generation, spec.t_end);
-        let started = self.planner.start(generation, &spec, &mut |t| {
-            if let Some(event) = progress.at(t) {
-                // A closed sink is seen by the next call's `sink` below.
-                sink(event);
-            }
-            go_on(t)
-        });
+        let horizons = self.planner.book.horizons(&spec);
+        let mut progress = Progress::new(horizons[0]);
+        let started = self
+            .planner
+            .start_until(generation, &spec, horizons[0], &mut |t| {
+                if let Some((run, percent)) = progress.at(t) {
+                    // A closed sink is seen by the next call's `sink` below.
+                    sink(SimEvent::PlanProgress {
+                        generation,
+                        run,
+                        percent,
+                    });
+                }
+                go_on(t)
+            });
         let started = match started {
             Err(StepError::Cancelled { .. }) => return true,
             started => started,
@@ -291,11 +427,16 @@ impl Engine {
             Ok((mut session, error_estimate)) => {
                 session.set_effective(spec.effective, self.epoch);
                 let plan = session.plan();
+                let until = session.horizon();
                 self.session = Some(session);
+                if horizons.len() > 1 {
+                    self.ahead = Some(Ahead::spawn(self.planner.book.clone(), spec, &horizons));
+                }
                 sink(SimEvent::Started {
                     generation,
                     plan,
                     error_estimate,
+                    until,
                 })
             }
             Err(e) => {
@@ -317,8 +458,14 @@ impl Engine {
         go_on: &mut dyn FnMut(f64) -> bool,
         sink: &mut dyn FnMut(SimEvent) -> bool,
     ) -> bool {
+        if !self.poll(sink) {
+            return false;
+        }
         if self.planning.is_some() {
             return self.plan(go_on, sink);
+        }
+        if self.waiting() {
+            return true;
         }
         let run_busy = self.run_busy();
         if let Some(i) = self
@@ -361,6 +508,7 @@ impl Engine {
             (None, None) => 0.0,
         };
         let (events, reached) = s.advance(target, max_steps);
+        self.blocked = !reached && s.waits();
         for e in events {
             if !sink(e) {
                 return false;
@@ -404,27 +552,11 @@ impl Planner {
         go_on: &mut dyn FnMut(f64) -> bool,
     ) -> Result<(Resolved, Option<f64>), StepError> {
         let model = &spec.model;
-        let limit_cost = || {
-            model.predicted_seconds(&Asked::new(
-                Method::Effective,
-                model.kind().limit_tolerance(),
-                None,
-                spec.t_end,
-            ))
-        };
-        let auto_cost = || {
-            model.predicted_seconds(&Asked::new(Method::Auto, spec.tolerance, None, spec.t_end))
-                + limit_cost()
-        };
+        let limit_cost = || limit_cost(spec);
         let (mut plan, estimate) = match self.book.lookup(spec) {
             Some(plan) => (plan, self.book.estimate(spec)),
             None if spec.method == Method::Auto => {
-                crate::physics::budget::check(auto_cost(), self.book.budget).map_err(|over| {
-                    StepError::OverBudget {
-                        what: "auto".to_owned(),
-                        over,
-                    }
-                })?;
+                self.check_auto(spec)?;
                 let r = model.resolve(&self.book.request(spec), go_on)?;
                 (r.plan, r.estimate)
             }
@@ -465,9 +597,80 @@ impl Planner {
         spec: &SessionSpec,
         go_on: &mut dyn FnMut(f64) -> bool,
     ) -> Result<(Session, Option<f64>), StepError> {
-        let (plan, estimate) = self.resolve(spec, go_on)?;
-        Session::new(generation, *spec, plan, self.book.arithmetic).map(|s| (s, estimate))
+        self.start_until(generation, spec, spec.t_end, go_on)
     }
+
+    /// [`Planner::start`] on the plan verified for the horizon `until` (the first of a run
+    /// verified in segments; the whole run's verification is priced first, so a run that
+    /// would verify for minutes is refused at once, as in one piece).
+    ///
+    /// # Errors
+    /// As [`Planner::start`].
+    pub fn start_until(
+        &mut self,
+        generation: u64,
+        spec: &SessionSpec,
+        until: f64,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<(Session, Option<f64>), StepError> {
+        let mut first = *spec;
+        if until < spec.t_end {
+            self.check_auto(spec)?;
+            first.t_end = until;
+        }
+        let (plan, estimate) = self.resolve(&first, go_on)?;
+        Session::until(generation, *spec, plan, until, self.book.arithmetic).map(|s| (s, estimate))
+    }
+
+    /// Prices `auto`'s verification of `spec` against the budget (a recorded plan costs
+    /// nothing).
+    fn check_auto(&self, spec: &SessionSpec) -> Result<(), StepError> {
+        if self.book.lookup(spec).is_some() {
+            return Ok(());
+        }
+        let cost = spec.model.predicted_seconds(&Asked::new(
+            Method::Auto,
+            spec.tolerance,
+            None,
+            spec.t_end,
+        )) + limit_cost(spec);
+        crate::physics::budget::check(cost, self.book.budget).map_err(|over| {
+            StepError::OverBudget {
+                what: "auto".to_owned(),
+                over,
+            }
+        })
+    }
+
+    /// Charges the run of a later segment's `plan` (horizon `until`) to the total, as
+    /// [`Planner::resolve`] charges a run.
+    fn charge(&mut self, spec: &SessionSpec, plan: Resolved, until: f64) -> Result<(), StepError> {
+        let predicted = spec.model.predicted_seconds(&Asked::new(
+            plan.method,
+            plan.tolerance,
+            plan.step,
+            until,
+        ));
+        let left = self.book.total - self.spent;
+        crate::physics::budget::check(predicted, self.book.budget.min(left)).map_err(|over| {
+            StepError::OverBudget {
+                what: plan.method.name().to_owned(),
+                over,
+            }
+        })?;
+        self.spent += predicted;
+        Ok(())
+    }
+}
+
+/// Predicted seconds of the limit's overlay over `spec`'s run (it may be turned on at any time).
+fn limit_cost(spec: &SessionSpec) -> f64 {
+    spec.model.predicted_seconds(&Asked::new(
+        Method::Effective,
+        spec.model.kind().limit_tolerance(),
+        None,
+        spec.t_end,
+    ))
 }
 
 /// Why a run was refused or failed before it started, short enough for the parameter panel at
@@ -499,46 +702,10 @@ pub fn drive(engine: &mut Engine, commands: Vec<Command>, on_event: &mut dyn FnM
         engine.handle(&c, &mut sink);
     }
     while engine.busy() {
-        engine.work(usize::MAX, &mut |_| true, &mut sink);
-    }
-}
-
-/// Turns the times `auto`'s integrations report into [`SimEvent::PlanProgress`]: a time below
-/// the last one starts the next integration (each runs from 0).
-struct PlanProgress {
-    generation: u64,
-    t_end: f64,
-    last_t: f64,
-    run: u32,
-    percent: Option<u8>,
-}
-
-impl PlanProgress {
-    fn new(generation: u64, t_end: f64) -> Self {
-        Self {
-            generation,
-            t_end,
-            last_t: f64::INFINITY,
-            run: 0,
-            percent: None,
+        if engine.waiting() {
+            engine.wait(&mut sink);
+        } else {
+            engine.work(usize::MAX, &mut |_| true, &mut sink);
         }
-    }
-
-    /// The event to send for time `t`, when the integration or its whole percent changed.
-    fn at(&mut self, t: f64) -> Option<SimEvent> {
-        if t < self.last_t {
-            self.run += 1;
-            self.percent = None;
-        }
-        self.last_t = t;
-        let percent = (100.0 * t / self.t_end).clamp(0.0, 100.0) as u8;
-        (self.percent != Some(percent)).then(|| {
-            self.percent = Some(percent);
-            SimEvent::PlanProgress {
-                generation: self.generation,
-                run: self.run,
-                percent,
-            }
-        })
     }
 }

@@ -9,12 +9,13 @@
 
 mod engine;
 pub mod jobs;
+pub mod segments;
 mod session;
 mod worker;
 
 pub use engine::{Engine, PlanBook, PlanKey, drive};
 pub use jobs::{JobData, JobKind, JobSpec};
-pub use session::{MAX_GRID_SAMPLES, Point, Session, SessionSpec, grid_spacing};
+pub use session::{MAX_GRID_SAMPLES, Point, Segment, Session, SessionSpec, grid_spacing};
 pub use worker::Worker;
 
 use crate::physics::plan::Resolved;
@@ -93,6 +94,35 @@ pub enum SimEvent {
         plan: Resolved,
         /// `auto`'s error estimate of the run (absent for a concrete or recorded plan).
         error_estimate: Option<f64>,
+        /// The horizon the plan was verified for: the run's end, or the end of its first
+        /// segment when `auto` verifies it in segments ([`segments`]).
+        until: f64,
+    },
+    /// `auto` verified, ahead of the display, the plan of the next segment of a run verified in
+    /// segments: it is shown after `from`, and covers `[0, until]`.
+    Verified {
+        /// Run stamp.
+        generation: u64,
+        /// Where its segment starts.
+        from: f64,
+        /// Its horizon.
+        until: f64,
+        /// The plan.
+        plan: Resolved,
+        /// `auto`'s error estimate over `[0, until]`.
+        error_estimate: Option<f64>,
+    },
+    /// How far the verification ahead has come: its `run`-th integration for the horizon
+    /// `until` has reached `percent` of it.
+    Ahead {
+        /// Run stamp.
+        generation: u64,
+        /// The horizon being verified.
+        until: f64,
+        /// Which of `auto`'s integrations.
+        run: u32,
+        /// How far it has reached, in whole percent of the horizon.
+        percent: u8,
     },
     /// New samples of the full (and, if enabled, effective) motion.
     Samples {

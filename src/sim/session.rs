@@ -262,6 +262,107 @@ pub struct Session {
     epoch: u64,
     finished: bool,
     failed: bool,
+    /// The horizon the integrating plan was verified for, where its steps end: the run's end,
+    /// except in a run verified in segments ([`super::segments`]), whose plans take over one
+    /// another at their horizons.
+    horizon: f64,
+    /// Added to the integrating track's own count of reversals: the count shown at the last
+    /// switch, less the new track's own count there (they agree but for an event within the
+    /// tolerance of the switch).
+    offset: i64,
+    /// Segments verified ahead, waiting for the run to reach their start.
+    queued: VecDeque<Segment>,
+    /// Earlier segments, kept for checkpoints at times behind the last switch.
+    past: VecDeque<Past>,
+}
+
+/// A segment that was integrated, kept for the exact states behind the switch that ended it.
+struct Past {
+    until: f64,
+    track: Track,
+    rewind: Rewind,
+    offset: i64,
+}
+
+/// The plan of a longer horizon, integrated from `t = 0` (without being shown) to the start of
+/// its segment, ready to take over from the run there: what a run verified in segments shows
+/// after `from`. Prepared on the verifying thread, so the display never waits for its catch-up.
+pub struct Segment {
+    from: f64,
+    until: f64,
+    plan: Resolved,
+    track: Track,
+    rewind: Rewind,
+    /// Its own count of reversals at `from`.
+    at_from: usize,
+    /// Events of its last catch-up step that lie after `from` (shown after the switch).
+    late_reversal: Option<f64>,
+    late_marks: Vec<f64>,
+}
+
+impl Segment {
+    /// `plan` (verified for the horizon `until`) integrated from `t = 0` to the first step end
+    /// at or after `from`; `go_on` is asked every few hundred steps.
+    ///
+    /// # Errors
+    /// When the plan cannot be built, a step fails, or `go_on` says stop
+    /// ([`StepError::Cancelled`]).
+    pub fn prepare(
+        spec: &SessionSpec,
+        plan: Resolved,
+        from: f64,
+        until: f64,
+        arithmetic: Arithmetic,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<Self, StepError> {
+        let mut track = Track::new(&spec.model, plan.method, plan.settings(), until, arithmetic)?;
+        let mut rewind = Rewind::new(&track);
+        let mut last = Vec::new();
+        let mut steps = 0_u64;
+        while track.integrator.time() < from {
+            rewind.before_step(&track);
+            last = track.step(until, 0, 0, false)?;
+            steps += 1;
+            if steps.is_multiple_of(256) && !go_on(track.integrator.time()) {
+                return Err(StepError::Cancelled {
+                    t: track.integrator.time(),
+                });
+            }
+        }
+        let mut late_reversal = None;
+        let mut late_marks = Vec::new();
+        for e in last {
+            match e {
+                SimEvent::Reversal { t, .. } if t > from => late_reversal = Some(t),
+                SimEvent::Mark { t, .. } if t > from => late_marks.push(t),
+                _ => {}
+            }
+        }
+        let at_from = track.reversals - usize::from(late_reversal.is_some());
+        rewind.forget_before(from);
+        Ok(Self {
+            from,
+            until,
+            plan,
+            track,
+            rewind,
+            at_from,
+            late_reversal,
+            late_marks,
+        })
+    }
+
+    /// Where it takes over.
+    #[must_use]
+    pub fn from(&self) -> f64 {
+        self.from
+    }
+
+    /// The horizon its plan was verified for.
+    #[must_use]
+    pub fn until(&self) -> f64 {
+        self.until
+    }
 }
 
 impl Session {
@@ -272,16 +373,33 @@ impl Session {
     /// [`StepError::Unplanned`] when `plan` is still `auto`.
     pub fn new(
         generation: u64,
-        mut spec: SessionSpec,
+        spec: SessionSpec,
         plan: Resolved,
         arithmetic: Arithmetic,
     ) -> Result<Self, StepError> {
+        Self::until(generation, spec, plan, spec.t_end, arithmetic)
+    }
+
+    /// [`Session::new`] for a run verified in segments: `plan` was verified for the horizon
+    /// `until` only, and integrates as `auto` verified it (its steps end there); the run goes
+    /// past `until` once the next segment is [queued](Session::queue).
+    ///
+    /// # Errors
+    /// As [`Session::new`].
+    pub fn until(
+        generation: u64,
+        mut spec: SessionSpec,
+        plan: Resolved,
+        until: f64,
+        arithmetic: Arithmetic,
+    ) -> Result<Self, StepError> {
         spec.sample_dt = grid_spacing(spec.sample_dt, spec.t_end);
+        let horizon = until.min(spec.t_end);
         let full = Track::new(
             &spec.model,
             plan.method,
             plan.settings(),
-            spec.t_end,
+            horizon,
             arithmetic,
         )?;
         Ok(Self {
@@ -294,7 +412,71 @@ impl Session {
             epoch: 0,
             finished: false,
             failed: false,
+            horizon,
+            offset: 0,
+            queued: VecDeque::new(),
+            past: VecDeque::new(),
         })
+    }
+
+    /// What it runs.
+    #[must_use]
+    pub fn spec(&self) -> &SessionSpec {
+        &self.spec
+    }
+
+    /// The horizon the integrating plan was verified for (the run's end, unless verified in
+    /// segments).
+    #[must_use]
+    pub fn horizon(&self) -> f64 {
+        self.horizon
+    }
+
+    /// Queues the next segment of a run verified in segments: it takes over when the run
+    /// reaches its start.
+    pub fn queue(&mut self, segment: Segment) {
+        self.queued.push_back(segment);
+    }
+
+    /// Whether the run has reached its verified horizon, short of its end, with no segment
+    /// queued to go on: it waits for the verification ahead.
+    #[must_use]
+    pub fn waits(&self) -> bool {
+        self.horizon < self.spec.t_end
+            && self.full.integrator.time() >= self.horizon
+            && self.queued.is_empty()
+    }
+
+    /// The queued segment takes over at the horizon the run has reached: its samples and events
+    /// after its start are the run's from now on.
+    fn switch(&mut self, segment: Segment, events: &mut Vec<SimEvent>) {
+        let shown = counted(self.full.reversals, self.offset);
+        let next = self.full.next;
+        let track = std::mem::replace(&mut self.full, segment.track);
+        let rewind = std::mem::replace(&mut self.rewind, segment.rewind);
+        self.past.push_back(Past {
+            until: self.horizon,
+            track,
+            rewind,
+            offset: self.offset,
+        });
+        self.full.next = next;
+        self.offset = wide(shown) - wide(segment.at_from);
+        self.horizon = segment.until.min(self.spec.t_end);
+        self.plan = segment.plan;
+        let generation = self.generation;
+        events.extend(
+            segment
+                .late_marks
+                .iter()
+                .map(|&t| SimEvent::Mark { generation, t }),
+        );
+        events.extend(segment.late_reversal.map(|t| SimEvent::Reversal {
+            generation,
+            epoch: self.epoch,
+            t,
+            effective: false,
+        }));
     }
 
     /// Time the full integrator has reached.
@@ -315,19 +497,17 @@ impl Session {
     /// the displayed time, the same bits a run stopped there gives). `None` beyond the run.
     /// Times before `t` are forgotten: checkpoints come in order.
     pub fn checkpoint(&mut self, t: f64) -> Option<(Vec<f64>, usize)> {
-        let i = &self.full.integrator;
-        // Exactly the end of the last step: its state, not an interpolation.
-        #[allow(clippy::float_cmp)]
-        let at_end = t == i.time();
-        let out = if at_end || (t >= i.time_prev() && t < i.time()) {
-            Some(self.full.state_in_last_step(t))
-        } else if t < i.time_prev() {
-            self.rewind.state_at(t, self.spec.t_end)
-        } else {
-            None
-        };
-        self.rewind.forget_before(t);
-        out
+        // Behind the last switch: the segment that showed `t` (a segment shows up to its
+        // horizon, inclusive).
+        while self.past.front().is_some_and(|p| p.until < t) {
+            self.past.pop_front();
+        }
+        if let Some(p) = self.past.front_mut() {
+            return state_of(&mut p.track, &mut p.rewind, t, p.until)
+                .map(|(y, n)| (y, counted(n, p.offset)));
+        }
+        state_of(&mut self.full, &mut self.rewind, t, self.horizon)
+            .map(|(y, n)| (y, counted(n, self.offset)))
     }
 
     /// The run's stamp.
@@ -400,14 +580,21 @@ impl Session {
             if self.full.integrator.time() >= target {
                 break true;
             }
+            if self.full.integrator.time() >= self.horizon {
+                // The end of a verified segment: the next one takes over, or the run waits.
+                match self.queued.pop_front() {
+                    Some(segment) => {
+                        self.switch(segment, &mut events);
+                        continue;
+                    }
+                    None => break false,
+                }
+            }
             if steps >= max_steps {
                 break false;
             }
             self.rewind.before_step(&self.full);
-            match self
-                .full
-                .step(self.spec.t_end, generation, self.epoch, false)
-            {
+            match self.full.step(self.horizon, generation, self.epoch, false) {
                 Ok(reversal) => events.extend(reversal),
                 Err(e) => {
                     events.push(SimEvent::Failed {
@@ -485,6 +672,40 @@ impl Session {
             .as_ref()
             .is_some_and(|e| e.next < self.full.next)
     }
+}
+
+/// The exact state of `track` at `t` and its own count of reversals up to `t`: inside its last
+/// step from the method's interpolant, behind it by integrating again from a snapshot of
+/// `rewind` (steps end at `horizon`). Snapshots before `t` are forgotten.
+fn state_of(
+    track: &mut Track,
+    rewind: &mut Rewind,
+    t: f64,
+    horizon: f64,
+) -> Option<(Vec<f64>, usize)> {
+    let i = &track.integrator;
+    // Exactly the end of the last step: its state, not an interpolation.
+    #[allow(clippy::float_cmp)]
+    let at_end = t == i.time();
+    let out = if at_end || (t >= i.time_prev() && t < i.time()) {
+        Some(track.state_in_last_step(t))
+    } else if t < i.time_prev() {
+        rewind.state_at(t, horizon)
+    } else {
+        None
+    };
+    rewind.forget_before(t);
+    out
+}
+
+/// A track's own count shifted by the offset of its switch (never below zero).
+fn counted(own: usize, offset: i64) -> usize {
+    usize::try_from(wide(own).saturating_add(offset)).unwrap_or(0)
+}
+
+/// A count as a signed number (counts never come near `i64::MAX`).
+fn wide(n: usize) -> i64 {
+    i64::try_from(n).unwrap_or(i64::MAX)
 }
 
 /// Most samples of a run's grid: memory and the work of drawing stay bounded whatever the

@@ -6,7 +6,7 @@
 
 use std::cell::RefCell;
 use std::collections::VecDeque;
-use std::sync::mpsc::{self, Receiver, Sender, TryRecvError};
+use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender, TryRecvError};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -16,6 +16,8 @@ use super::{Command, Engine, PlanBook, SimEvent};
 const CHUNK_STEPS: usize = 256;
 /// Longest slice of work between two sends.
 const SLICE: Duration = Duration::from_millis(8);
+/// How long an idle worker waits for a command before looking at the verification ahead.
+const WAIT: Duration = Duration::from_millis(5);
 
 /// A running worker; dropping it without [`Worker::join`] leaves the thread to stop by itself
 /// when its sink closes.
@@ -140,7 +142,15 @@ fn run(rx: &Receiver<Command>, mut engine: Engine, mut sink: impl FnMut(SimEvent
         let mut queue_now = shared.borrow_mut();
         let queue = &mut *queue_now;
         if queue.is_empty() {
-            if engine.busy() {
+            if engine.waiting() {
+                // Only the verification ahead is going on: look at its reports a few times a
+                // frame, and at commands as they come.
+                match rx.recv_timeout(WAIT) {
+                    Ok(c) => queue.push_back(c),
+                    Err(RecvTimeoutError::Timeout) => {}
+                    Err(RecvTimeoutError::Disconnected) => return,
+                }
+            } else if engine.busy() {
                 drain(rx, queue);
             } else {
                 match rx.recv() {
@@ -180,6 +190,9 @@ fn run(rx: &Receiver<Command>, mut engine: Engine, mut sink: impl FnMut(SimEvent
             while engine.busy() {
                 if !engine.work(CHUNK_STEPS, &mut go_on, &mut collect) {
                     stop = true;
+                    break;
+                }
+                if engine.waiting() {
                     break;
                 }
                 if Instant::now() >= end {

@@ -24,6 +24,15 @@ pub struct StatusBar<'a> {
     pub overlay: bool,
 }
 
+/// A segment's horizon: whole as a whole number, else to the hundredth as the time is shown.
+fn horizon(t: f64) -> String {
+    if t.fract() == 0.0 && t.abs() < 1e15 {
+        format!("{t:.0}")
+    } else {
+        format!("{t:.2}")
+    }
+}
+
 /// A field of the status bar and its priority (0 is kept first).
 struct Field {
     text: String,
@@ -43,11 +52,23 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
         out.push(field("● REC".to_owned(), 0));
     }
     out.push(field(format!("t {:.2}/{}", run.shown, s.t_end), 0));
+    let verified = run.verified();
+    // The display has caught up with the verification ahead and waits for it.
+    let waits = !run.segments.is_empty()
+        && verified < s.t_end
+        && run.shown >= run.reached
+        && run.reached + run.sample_dt > verified;
     let state = match run.plan {
         _ if run.failed.is_some() => "failed".to_owned(),
         PlanState::Verifying { run: 0, .. } => "verifying auto…".to_owned(),
         PlanState::Verifying { run, percent } => format!("verifying auto… run {run} at {percent}%"),
         _ if run.done() => "done".to_owned(),
+        _ if waits && run.playing => match run.ahead {
+            Some(a) if a.run > 0 => {
+                format!("verifying ahead… run {} at {}%", a.run, a.percent)
+            }
+            _ => "verifying ahead…".to_owned(),
+        },
         _ if run.playing => "▶".to_owned(),
         _ => "paused".to_owned(),
     };
@@ -115,6 +136,13 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
         } else {
             out.push(field(format!("est {e:.0e} ✗ tol missed"), 1));
         }
+    }
+    if !run.segments.is_empty() && verified < s.t_end && run.failed.is_none() {
+        out.push(field(format!("verified to {}", horizon(verified)), 2));
+    }
+    if let Some(from) = run.missed_ahead(s.tolerance) {
+        // Known before it is shown: said at once.
+        out.push(field(format!("✗ tol missed after t {}", horizon(from)), 1));
     }
     out.push(field(format!("{} steps/s", human(run.rate)), 5));
     out

@@ -945,7 +945,13 @@ fn hiding_the_map_takes_back_its_hint() {
 fn a_long_verification_reports_its_progress_as_it_goes() {
     // Unbounded: the test reads only some of the worker's events.
     let (tx, rx) = mpsc::channel();
-    let worker = Worker::spawn(move |e| tx.send(e).is_ok());
+    // In one piece, as a replay of a file older than format 9 verifies it (the explorer now
+    // draws after the first segment: `segments::the_explorer_draws_after_the_first_segment`).
+    let book = rattleback::sim::PlanBook {
+        segmented: false,
+        ..rattleback::sim::PlanBook::default()
+    };
+    let worker = Worker::spawn_with(book, move |e| tx.send(e).is_ok());
     let preset = resolve("subcritical", &[]).unwrap();
     // The case: the default preset to t = 1000 (about 9 s of verification).
     let long = SessionSpec {

@@ -26,7 +26,8 @@ const REPLAY_FRAME: f64 = 0.0005;
 fn temp(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("rattleback-lecture-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let p = dir.join(name);
+    // A preset given by its path names its files after the path.
+    let p = dir.join(name.replace(std::path::MAIN_SEPARATOR, "_"));
     let _ = std::fs::remove_file(&p);
     p
 }
@@ -502,6 +503,38 @@ fn check_with(preset: &str, field: &str, compare: bool) {
 #[test]
 fn a_rattleback_lecture_replays_and_follows_frame_for_frame() {
     check("subcritical", "k");
+}
+
+/// Issue 27: a run longer than the first segment is verified and shown in segments (each
+/// segment's plan recorded); its lecture replays, follows and casts frame for frame too.
+#[test]
+fn a_lecture_verified_in_segments_replays_and_follows_frame_for_frame() {
+    let src =
+        include_str!("../../presets/subcritical.toml").replace("t_end = 30.0", "t_end = 100.0");
+    assert!(src.contains("t_end = 100.0"));
+    let path =
+        std::env::temp_dir().join(format!("rattleback-segmented-{}.toml", std::process::id()));
+    std::fs::write(&path, src).unwrap();
+    let preset = path.to_str().unwrap();
+    check(preset, "k");
+    // Each run of the lecture recorded the plans of both its segments.
+    let lecture = lecture(preset, 1024.0, "k");
+    let horizons: Vec<f64> = lecture
+        .lines
+        .iter()
+        .filter_map(|l| match &l.event {
+            Event::Plan {
+                key: rattleback::sim::PlanKey::Rattleback { t_end, .. },
+                ..
+            } => Some(*t_end),
+            _ => None,
+        })
+        .collect();
+    assert!(
+        horizons.contains(&50.0) && horizons.contains(&100.0),
+        "{horizons:?}"
+    );
+    let _ = std::fs::remove_file(&path);
 }
 
 #[test]

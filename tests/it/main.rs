@@ -39,6 +39,7 @@ mod reference_cases;
 mod scenes;
 mod schema_walk;
 mod schemas;
+mod segments;
 mod session_format;
 mod signals;
 mod special_solutions;

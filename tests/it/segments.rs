@@ -1,0 +1,365 @@
+//! Issue 27, item 4: verification in segments. A run longer than the first segment is verified
+//! over nested horizons; the explorer draws once the first is verified and verifies the others
+//! ahead of the display; what it shows ends where the run in one piece (`simulate`'s) ends.
+
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use rattleback::physics::rattleback::integrators::Method;
+use rattleback::scenario::shipped::resolve;
+use rattleback::sim::segments::{FIRST_SEGMENT, horizons};
+use rattleback::sim::{Command, Engine, PlanBook, SessionSpec, SimEvent, Worker, drive};
+use rattleback::ui::{self, Cache, UiOptions};
+
+fn long(t_end: f64) -> SessionSpec {
+    let preset = resolve("subcritical", &[]).unwrap();
+    SessionSpec {
+        model: (*preset.problem().unwrap()).into(),
+        method: Method::Auto,
+        tolerance: 1e-8,
+        t_end,
+        effective: false,
+        sample_dt: 0.1,
+        step: None,
+    }
+}
+
+fn one_piece() -> PlanBook {
+    PlanBook {
+        segmented: false,
+        ..PlanBook::default()
+    }
+}
+
+/// Runs `commands` on a fresh engine of `book`, returning its events.
+fn events(book: PlanBook, commands: Vec<Command>) -> (Engine, Vec<SimEvent>) {
+    let mut engine = Engine::new(book);
+    let mut out = Vec::new();
+    drive(&mut engine, commands, &mut |e| out.push(e));
+    (engine, out)
+}
+
+fn checkpoints(events: &[SimEvent]) -> Vec<(f64, Vec<f64>, usize)> {
+    events
+        .iter()
+        .filter_map(|e| match e {
+            SimEvent::Checkpoint {
+                t,
+                state,
+                reversals,
+                ..
+            } => Some((*t, state.clone(), *reversals)),
+            _ => None,
+        })
+        .collect()
+}
+
+fn bits(v: &[f64]) -> Vec<u64> {
+    v.iter().map(|x| x.to_bits()).collect()
+}
+
+#[test]
+fn a_long_run_is_shown_in_segments_and_ends_where_the_run_in_one_piece_ends() {
+    let t_end = 200.0;
+    assert_eq!(horizons(t_end), vec![50.0, 100.0, 200.0]);
+    let spec = long(t_end);
+    let run = |book| {
+        events(
+            book,
+            vec![
+                Command::Restart {
+                    generation: 1,
+                    spec,
+                },
+                Command::AdvanceTo {
+                    generation: 1,
+                    t: t_end,
+                },
+                Command::Checkpoint {
+                    generation: 1,
+                    t: t_end,
+                },
+            ],
+        )
+        .1
+    };
+    let segmented = run(PlanBook::default());
+    let whole = run(one_piece());
+
+    // The first plan covers the first segment only; the others come verified, in order.
+    let started: Vec<f64> = segmented
+        .iter()
+        .filter_map(|e| match e {
+            SimEvent::Started { until, .. } => Some(*until),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(started, vec![50.0]);
+    let verified: Vec<(f64, f64)> = segmented
+        .iter()
+        .filter_map(|e| match e {
+            SimEvent::Verified { from, until, .. } => Some((*from, *until)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(verified, vec![(50.0, 100.0), (100.0, 200.0)]);
+    assert!(
+        whole
+            .iter()
+            .all(|e| !matches!(e, SimEvent::Verified { .. })),
+        "in one piece, nothing is verified ahead"
+    );
+
+    // The samples run on one grid, each time once, to the end.
+    let times: Vec<f64> = segmented
+        .iter()
+        .filter_map(|e| match e {
+            SimEvent::Samples { full, .. } => Some(full.iter().map(|p| p.t).collect::<Vec<_>>()),
+            _ => None,
+        })
+        .flatten()
+        .collect();
+    assert!(
+        times.windows(2).all(|w| w[1] > w[0]),
+        "each time once, in order"
+    );
+    assert_eq!(times.last().map(|t| t.to_bits()), Some(t_end.to_bits()));
+    assert_eq!(times.len(), (t_end / 0.1).round() as usize + 1);
+
+    // The last segment is the run in one piece: the same plan, the same end, bit for bit.
+    let last_plan = segmented.iter().rev().find_map(|e| match e {
+        SimEvent::Verified { plan, .. } => Some(*plan),
+        _ => None,
+    });
+    let whole_plan = whole.iter().find_map(|e| match e {
+        SimEvent::Started { plan, .. } => Some(*plan),
+        _ => None,
+    });
+    assert_eq!(last_plan, whole_plan);
+    let (a, b) = (checkpoints(&segmented), checkpoints(&whole));
+    assert_eq!(a.len(), 1);
+    assert_eq!(bits(&a[0].1), bits(&b[0].1), "the end state");
+    assert_eq!(a[0].2, b[0].2, "the reversals");
+    // And the samples shown after the last switch are the run's in one piece.
+    let after = |events: &[SimEvent]| -> Vec<(u64, u64)> {
+        events
+            .iter()
+            .filter_map(|e| match e {
+                SimEvent::Samples { full, .. } => Some(full.clone()),
+                _ => None,
+            })
+            .flatten()
+            .filter(|p| p.t > 100.0)
+            .map(|p| (p.alpha.to_bits(), p.alpha_dot.to_bits()))
+            .collect()
+    };
+    assert_eq!(after(&segmented), after(&whole));
+}
+
+#[test]
+fn a_checkpoint_behind_a_switch_is_the_state_its_segment_showed() {
+    let spec = long(200.0);
+    // The first segment alone, stopped at t = 40: what the display showed there.
+    let (_, first) = events(
+        PlanBook::default(),
+        vec![
+            Command::Restart {
+                generation: 1,
+                spec,
+            },
+            Command::AdvanceTo {
+                generation: 1,
+                t: 40.0,
+            },
+            Command::Checkpoint {
+                generation: 1,
+                t: 40.0,
+            },
+        ],
+    );
+    // The worker ran past both switches before the pause at t = 40 was checkpointed (it
+    // computes ahead of the display), and a pause at t = 150 after that.
+    let (mut engine, _) = events(
+        PlanBook::default(),
+        vec![
+            Command::Restart {
+                generation: 1,
+                spec,
+            },
+            Command::AdvanceTo {
+                generation: 1,
+                t: 200.0,
+            },
+        ],
+    );
+    let mut late = Vec::new();
+    drive(
+        &mut engine,
+        vec![
+            Command::Checkpoint {
+                generation: 1,
+                t: 40.0,
+            },
+            Command::Checkpoint {
+                generation: 1,
+                t: 150.0,
+            },
+        ],
+        &mut |e| late.push(e),
+    );
+    let (a, b) = (checkpoints(&first), checkpoints(&late));
+    assert_eq!(b.len(), 2);
+    assert_eq!(bits(&a[0].1), bits(&b[0].1), "t = 40, behind two switches");
+    assert_eq!(a[0].2, b[0].2);
+    // t = 150 lies in the last segment: the run in one piece's state there.
+    let (_, whole) = events(
+        one_piece(),
+        vec![
+            Command::Restart {
+                generation: 1,
+                spec,
+            },
+            Command::AdvanceTo {
+                generation: 1,
+                t: 150.0,
+            },
+            Command::Checkpoint {
+                generation: 1,
+                t: 150.0,
+            },
+        ],
+    );
+    let c = checkpoints(&whole);
+    assert_eq!(bits(&c[0].1), bits(&b[1].1), "t = 150");
+    assert_eq!(c[0].2, b[1].2);
+}
+
+/// The explorer's worker draws the start of a long run while `auto` still verifies the rest:
+/// samples come before the last segment is verified, and the verification ahead reports its
+/// progress.
+#[test]
+fn the_explorer_draws_after_the_first_segment() {
+    let (tx, rx) = mpsc::channel();
+    let worker = Worker::spawn(move |e| tx.send(e).is_ok());
+    // The issue's case: the default preset to t = 1000 at a tight tolerance (about 9 s in one
+    // piece before this issue).
+    let mut spec = long(1000.0);
+    spec.tolerance = 1e-9;
+    worker.send(Command::Restart {
+        generation: 1,
+        spec,
+    });
+    worker.send(Command::AdvanceTo {
+        generation: 1,
+        t: 20.0,
+    });
+    let start = Instant::now();
+    let mut seen = Vec::new();
+    let mut drawn_at = None;
+    loop {
+        let e = rx
+            .recv_timeout(Duration::from_secs(120))
+            .expect("the worker answers");
+        if let SimEvent::Samples { full, .. } = &e
+            && !full.is_empty()
+            && drawn_at.is_none()
+        {
+            drawn_at = Some(seen.len());
+        }
+        let last = matches!(e, SimEvent::Verified { until, .. } if until.to_bits() == 1000.0_f64.to_bits());
+        seen.push(e);
+        if last || start.elapsed() > Duration::from_secs(120) {
+            break;
+        }
+    }
+    let drawn_at = drawn_at.expect("samples came");
+    let verified_at = seen.len() - 1;
+    assert!(
+        drawn_at < verified_at,
+        "the display had samples before the whole run was verified"
+    );
+    assert!(
+        seen[drawn_at..]
+            .iter()
+            .any(|e| matches!(e, SimEvent::Ahead { until, .. } if *until > FIRST_SEGMENT)),
+        "the verification ahead reports its progress"
+    );
+    worker.send(Command::Quit);
+    worker.join();
+}
+
+fn status_row(app: &mut rattleback::app::App, width: u16) -> String {
+    let mut terminal = Terminal::new(TestBackend::new(width, 24)).unwrap();
+    terminal
+        .draw(|f| ui::draw(f, app, &UiOptions::default(), &mut Cache::default()))
+        .unwrap();
+    let b = terminal.backend().buffer();
+    (0..width).map(|x| b[(x, 22)].symbol().to_owned()).collect()
+}
+
+/// What the status bar says while the run is verified ahead: how far, that the display waits
+/// at the frontier, and a missed tolerance as soon as a segment ahead is known to miss it.
+#[test]
+fn the_status_bar_says_how_far_the_run_is_verified() {
+    let mut preset = resolve("subcritical", &[]).unwrap();
+    preset.run.t_end = 200.0;
+    let (mut app, _) = rattleback::app::App::new(&preset, rattleback::app::Options::at(30.0));
+    let generation = app.run.generation;
+    let plan = rattleback::physics::Resolved {
+        method: Method::Dop853,
+        tolerance: 1e-10,
+        step: None,
+    };
+    app.on_sim(SimEvent::Started {
+        generation,
+        plan,
+        error_estimate: Some(2e-10),
+        until: 50.0,
+    });
+    let row = status_row(&mut app, 120);
+    assert!(row.contains("verified to 50"), "{row}");
+    // The display reaches the frontier while playing: it waits for the verification ahead.
+    app.on_sim(SimEvent::Samples {
+        generation,
+        epoch: 0,
+        full: vec![rattleback::sim::Point {
+            t: 50.0,
+            alpha: 0.0,
+            alpha_dot: 0.0,
+            energy_error: 0.0,
+            gamma: 0.0,
+            lean: None,
+        }],
+        effective: Vec::new(),
+        t: Some(50.0),
+        steps: 10,
+    });
+    app.on_sim(SimEvent::Ahead {
+        generation,
+        until: 100.0,
+        run: 3,
+        percent: 42,
+    });
+    app.run.playing = true;
+    let _ = app.tick(100.0);
+    assert_eq!(app.run.shown.to_bits(), 50.0_f64.to_bits());
+    let row = status_row(&mut app, 120);
+    assert!(row.contains("verifying ahead… run 3 at 42%"), "{row}");
+    // A segment ahead misses the tolerance: said before it is shown, at 80 columns too.
+    app.on_sim(SimEvent::Verified {
+        generation,
+        from: 50.0,
+        until: 100.0,
+        plan,
+        error_estimate: Some(3e-7),
+    });
+    app.run.playing = false;
+    let row = status_row(&mut app, 80);
+    assert!(row.contains("✗ tol missed after t 50"), "{row}");
+    assert!(
+        row.contains("est 2e-10 ✓") || !row.contains("est"),
+        "the shown segment's estimate: {row}"
+    );
+}
