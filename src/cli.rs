@@ -415,6 +415,9 @@ pub enum BenchPart {
     Celt,
     /// The stability report (`stability.csv`).
     Stability,
+    /// Long runs verified in segments: the wait before the first frame against the whole
+    /// verification (`segments.csv`).
+    Segments,
 }
 
 /// Arguments of `replay`.

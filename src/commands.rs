@@ -402,6 +402,7 @@ fn bench_refuses_old_files(args: &crate::cli::BenchArgs) -> Outcome {
         (crate::cli::BenchPart::Kapitza, &["kapitza.csv"]),
         (crate::cli::BenchPart::Celt, &["celt.csv"]),
         (crate::cli::BenchPart::Stability, &["stability.csv"]),
+        (crate::cli::BenchPart::Segments, &["segments.csv"]),
     ];
     if !args.force
         && let Some(existing) = files
@@ -491,6 +492,16 @@ pub fn bench(args: &crate::cli::BenchArgs) -> Outcome {
         scene(heading, bench::celt::table(&rows), "celt.csv", &|p| {
             bench::celt::write_csv(&rows, p)
         })?;
+    }
+    if part(crate::cli::BenchPart::Segments) {
+        let rows = bench::segments::study(config.quick, &mut |line| say_err!("{line}"));
+        let heading = "Long runs verified in segments: the wait before the first frame (first) against the run verified in one piece (whole), and all the horizons together (nested, on the second core)";
+        scene(
+            heading,
+            bench::segments::table(&rows),
+            "segments.csv",
+            &|p| bench::segments::write_csv(&rows, p),
+        )?;
     }
     wrote.extend(curves);
     if part(crate::cli::BenchPart::Stability) {

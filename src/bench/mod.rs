@@ -8,6 +8,7 @@ pub mod celt;
 pub mod implicit;
 pub mod kapitza;
 pub mod plot;
+pub mod segments;
 mod stability;
 
 use crate::physics::rattleback::model::{ALPHA, ALPHA_DOT};

@@ -8,8 +8,9 @@
 //! covered by a verified plan, and the last segment is `simulate`'s own run, so the end of the
 //! run is the state `simulate` reports, bit for bit. The first plan is verified before anything
 //! is drawn; the others on a thread of their own ([`Ahead`]), each integrated from `t = 0` to
-//! its start there too, so the display never waits for a catch-up. Nested horizons cost at most
-//! twice one verification of `T`, on the second core.
+//! its start there too, so the display never waits for a catch-up. Nested horizons cost about
+//! twice one verification of `T` (1.5–2.2× measured, `rattleback bench --only segments`), on the
+//! second core.
 //!
 //! The horizons are a function of `T` alone, so a replay or a follower finds the same ones. A
 //! session file of format 9 on is verified in segments; older files replay as they were shown,

@@ -363,3 +363,33 @@ fn the_status_bar_says_how_far_the_run_is_verified() {
         "the shown segment's estimate: {row}"
     );
 }
+
+/// `rattleback bench --only segments` measures the wait before the first frame of long runs
+/// (the numbers are in docs/benchmarks.md; here the table's shape and the horizons).
+#[test]
+fn the_bench_measures_the_first_segment_against_the_whole() {
+    let dir = std::env::temp_dir().join(format!("rattleback-bench-seg-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let (code, out, err) = crate::common::bin(&[
+        "bench",
+        "--quick",
+        "--only",
+        "segments",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("whole/1st"), "{out}");
+    let csv = std::fs::read_to_string(dir.join("segments.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(rows.len(), 2, "{csv}");
+    let cells: Vec<&str> = rows[1].split(',').collect();
+    assert_eq!(&cells[..2], ["subcritical", "1000"]);
+    assert_eq!(cells[3], "5", "five horizons");
+    assert_eq!(cells[4], "62.5", "the first");
+    for c in &cells[5..8] {
+        let seconds: f64 = c.parse().unwrap();
+        assert!(seconds > 0.0 && seconds.is_finite(), "{c}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
