@@ -393,3 +393,39 @@ fn the_bench_measures_the_first_segment_against_the_whole() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// What the explorer shows at the end of a run verified in segments (played through the worker
+/// at top speed, as a user would) is what `simulate` reports for the same horizon, bit for bit:
+/// the rattleback and the pendulum.
+#[test]
+fn the_screen_ends_where_simulate_ends() {
+    for (name, slow) in [
+        ("subcritical", ["alpha", "alpha_dot"]),
+        ("kapitza-falls", ["theta", "theta_dot"]),
+    ] {
+        let mut preset = resolve(name, &[]).unwrap();
+        preset.run.t_end = 200.0;
+        let mut h = crate::common::Headless::of(&preset);
+        h.play_until(f64::INFINITY, 1024.0);
+        assert!(h.app.run.done(), "{name}: not done");
+        assert!(
+            h.app.run.segments.len() > 1,
+            "{name}: shown in segments ({:?})",
+            h.app.run.segments
+        );
+        let shown = *h.app.run.current().expect("a point at the end");
+        let json = crate::common::simulate_json(&["--preset", name, "--set", "run.t_end=200"]);
+        let end = &json["final"];
+        assert_eq!(
+            [shown.alpha.to_bits(), shown.alpha_dot.to_bits()],
+            [
+                end[slow[0]].as_f64().unwrap().to_bits(),
+                end[slow[1]].as_f64().unwrap().to_bits()
+            ],
+            "{name}: the screen and simulate differ"
+        );
+        if let Some(n) = json["reversals"]["count"].as_u64() {
+            assert_eq!(h.app.run.reversals_shown() as u64, n, "{name}: reversals");
+        }
+    }
+}
