@@ -306,7 +306,7 @@ impl Engine {
                 plan,
                 estimate,
             } => {
-                if let Err(e) = self.planner.charge(session.spec(), plan, until) {
+                if let Err(e) = self.planner.charge_segment(session.spec(), plan, until) {
                     self.ahead = None;
                     return sink(SimEvent::Failed {
                         generation,
@@ -575,14 +575,7 @@ impl Planner {
             plan.step,
             spec.t_end,
         )) + limit_cost();
-        let left = self.book.total - self.spent;
-        crate::physics::budget::check(predicted, self.book.budget.min(left)).map_err(|over| {
-            StepError::OverBudget {
-                what: plan.method.name().to_owned(),
-                over,
-            }
-        })?;
-        self.spent += predicted;
+        self.charge(plan, predicted)?;
         Ok((plan, estimate))
     }
 
@@ -644,13 +637,24 @@ impl Planner {
 
     /// Charges the run of a later segment's `plan` (horizon `until`) to the total, as
     /// [`Planner::resolve`] charges a run.
-    fn charge(&mut self, spec: &SessionSpec, plan: Resolved, until: f64) -> Result<(), StepError> {
+    fn charge_segment(
+        &mut self,
+        spec: &SessionSpec,
+        plan: Resolved,
+        until: f64,
+    ) -> Result<(), StepError> {
         let predicted = spec.model.predicted_seconds(&Asked::new(
             plan.method,
             plan.tolerance,
             plan.step,
             until,
         ));
+        self.charge(plan, predicted)
+    }
+
+    /// Charges `predicted` seconds of `plan`'s run to the total: refused over the budget, or
+    /// over what is left of the total.
+    fn charge(&mut self, plan: Resolved, predicted: f64) -> Result<(), StepError> {
         let left = self.book.total - self.spent;
         crate::physics::budget::check(predicted, self.book.budget.min(left)).map_err(|over| {
             StepError::OverBudget {

@@ -33,6 +33,18 @@ fn one_piece() -> PlanBook {
     }
 }
 
+/// Starts `spec`, integrates to `t` and asks the exact state there.
+fn to(spec: SessionSpec, t: f64) -> Vec<Command> {
+    vec![
+        Command::Restart {
+            generation: 1,
+            spec,
+        },
+        Command::AdvanceTo { generation: 1, t },
+        Command::Checkpoint { generation: 1, t },
+    ]
+}
+
 /// Runs `commands` on a fresh engine of `book`, returning its events.
 fn events(book: PlanBook, commands: Vec<Command>) -> (Engine, Vec<SimEvent>) {
     let mut engine = Engine::new(book);
@@ -65,26 +77,7 @@ fn a_long_run_is_shown_in_segments_and_ends_where_the_run_in_one_piece_ends() {
     let t_end = 200.0;
     assert_eq!(horizons(t_end), vec![50.0, 100.0, 200.0]);
     let spec = long(t_end);
-    let run = |book| {
-        events(
-            book,
-            vec![
-                Command::Restart {
-                    generation: 1,
-                    spec,
-                },
-                Command::AdvanceTo {
-                    generation: 1,
-                    t: t_end,
-                },
-                Command::Checkpoint {
-                    generation: 1,
-                    t: t_end,
-                },
-            ],
-        )
-        .1
-    };
+    let run = |book| events(book, to(spec, t_end)).1;
     let segmented = run(PlanBook::default());
     let whole = run(one_piece());
 
@@ -162,23 +155,7 @@ fn a_long_run_is_shown_in_segments_and_ends_where_the_run_in_one_piece_ends() {
 fn a_checkpoint_behind_a_switch_is_the_state_its_segment_showed() {
     let spec = long(200.0);
     // The first segment alone, stopped at t = 40: what the display showed there.
-    let (_, first) = events(
-        PlanBook::default(),
-        vec![
-            Command::Restart {
-                generation: 1,
-                spec,
-            },
-            Command::AdvanceTo {
-                generation: 1,
-                t: 40.0,
-            },
-            Command::Checkpoint {
-                generation: 1,
-                t: 40.0,
-            },
-        ],
-    );
+    let (_, first) = events(PlanBook::default(), to(spec, 40.0));
     // The worker ran past both switches before the pause at t = 40 was checkpointed (it
     // computes ahead of the display), and a pause at t = 150 after that.
     let (mut engine, _) = events(
@@ -214,23 +191,7 @@ fn a_checkpoint_behind_a_switch_is_the_state_its_segment_showed() {
     assert_eq!(bits(&a[0].1), bits(&b[0].1), "t = 40, behind two switches");
     assert_eq!(a[0].2, b[0].2);
     // t = 150 lies in the last segment: the run in one piece's state there.
-    let (_, whole) = events(
-        one_piece(),
-        vec![
-            Command::Restart {
-                generation: 1,
-                spec,
-            },
-            Command::AdvanceTo {
-                generation: 1,
-                t: 150.0,
-            },
-            Command::Checkpoint {
-                generation: 1,
-                t: 150.0,
-            },
-        ],
-    );
+    let (_, whole) = events(one_piece(), to(spec, 150.0));
     let c = checkpoints(&whole);
     assert_eq!(bits(&c[0].1), bits(&b[1].1), "t = 150");
     assert_eq!(c[0].2, b[1].2);
