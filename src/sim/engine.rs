@@ -231,13 +231,15 @@ impl Engine {
         }
     }
 
-    /// Whether `work` has anything to do (or a verification ahead is still going on).
+    /// Whether `work` has anything to do, or the run waits for the verification ahead to reach
+    /// a target (a verification ahead that nothing waits for is not work: a replay never waits
+    /// for the segments its lecturer did not show).
     #[must_use]
     pub fn busy(&self) -> bool {
-        self.run_busy() || !self.jobs.is_empty() || self.ahead.is_some()
+        self.run_busy() || !self.jobs.is_empty() || (self.ahead.is_some() && self.blocked)
     }
 
-    /// Whether the only thing left is the verification ahead: `work` would only look at its
+    /// Whether the only thing going on is the verification ahead: `work` would only look at its
     /// reports ([`Engine::wait`] waits for the next).
     #[must_use]
     pub fn waiting(&self) -> bool {
@@ -705,6 +707,7 @@ pub fn drive(engine: &mut Engine, commands: Vec<Command>, on_event: &mut dyn FnM
     for c in commands {
         engine.handle(&c, &mut sink);
     }
+    // Waits for the verification ahead only where the run needs it to reach a target.
     while engine.busy() {
         if engine.waiting() {
             engine.wait(&mut sink);

@@ -187,7 +187,8 @@ fn run(rx: &Receiver<Command>, mut engine: Engine, mut sink: impl FnMut(SimEvent
                 !q.iter()
                     .any(|c| matches!(c, Command::Restart { .. } | Command::Quit))
             };
-            while engine.busy() {
+            // Waiting for the verification ahead: one look at its reports.
+            while engine.busy() || engine.waiting() {
                 if !engine.work(CHUNK_STEPS, &mut go_on, &mut collect) {
                     stop = true;
                     break;

@@ -390,3 +390,19 @@ fn the_screen_ends_where_simulate_ends() {
         }
     }
 }
+
+/// A replay (`drive`) waits for the verification ahead only where the run needs it: a session
+/// that showed the first seconds of a long, heavy run replays them without verifying the rest
+/// (minutes here), which goes on, cancellable, behind it.
+#[test]
+fn a_replay_never_waits_for_segments_it_does_not_show() {
+    let spec = long(1e5);
+    let (engine, out) = events(PlanBook::default(), to(spec, 10.0));
+    assert_eq!(checkpoints(&out).len(), 1, "t = 10 was reached");
+    assert!(
+        engine.waiting(),
+        "the later segments are still being verified, and nothing waited for them"
+    );
+    // Dropping the engine cancels them.
+    drop(engine);
+}
