@@ -519,6 +519,15 @@ impl App {
                 self.status = Message::error(message.clone());
                 self.run.on_sim(event, self.view.overlay)
             }
+            SimEvent::Stops {
+                generation,
+                ref message,
+                ..
+            } if generation == self.run.generation => {
+                // Said at once; the verified part still plays.
+                self.status = Message::info(format!("the run stops {message}"));
+                self.run.on_sim(event, self.view.overlay)
+            }
             SimEvent::Job { stamp, data } => self.on_job(stamp, data),
             other => self.run.on_sim(other, self.view.overlay),
         }

@@ -144,6 +144,8 @@ pub struct RunState {
     pub segments: Vec<VerifiedSegment>,
     /// How far the verification ahead has come, while it goes on.
     pub ahead: Option<AheadProgress>,
+    /// Where the run stops: a later segment could not be verified (it fails there).
+    pub stops: Option<f64>,
 }
 
 /// A segment of the run and the plan `auto` verified for it.
@@ -198,6 +200,7 @@ impl RunState {
             steps_at_tick: 0,
             segments: Vec::new(),
             ahead: None,
+            stops: None,
         }
     }
 
@@ -417,6 +420,11 @@ impl RunState {
                 });
                 true
             }
+            SimEvent::Stops { generation, at, .. } if generation == self.generation => {
+                self.stops = Some(at);
+                self.ahead = None;
+                true
+            }
             _ => false,
         }
     }
@@ -428,7 +436,8 @@ impl RunState {
             | SimEvent::PlanProgress { .. }
             | SimEvent::Started { .. }
             | SimEvent::Verified { .. }
-            | SimEvent::Ahead { .. }) => self.on_plan(&e),
+            | SimEvent::Ahead { .. }
+            | SimEvent::Stops { .. }) => self.on_plan(&e),
             SimEvent::Samples {
                 generation,
                 epoch,

@@ -156,6 +156,27 @@ impl PlanBook {
         Self::find(&self.recorded, spec)
     }
 
+    /// Prices `auto`'s verification of `spec` against the budget (a recorded plan costs
+    /// nothing): over it, `auto` is refused before it computes for minutes.
+    ///
+    /// # Errors
+    /// [`StepError::OverBudget`].
+    pub fn check_auto(&self, spec: &SessionSpec) -> Result<(), StepError> {
+        if self.lookup(spec).is_some() {
+            return Ok(());
+        }
+        let cost = spec.model.predicted_seconds(&Asked::new(
+            Method::Auto,
+            spec.tolerance,
+            None,
+            spec.t_end,
+        )) + limit_cost(spec);
+        crate::physics::budget::check(cost, self.budget).map_err(|over| StepError::OverBudget {
+            what: "auto".to_owned(),
+            over,
+        })
+    }
+
     /// The horizons `spec` is verified over: in segments for `auto` in a segmented book
     /// ([`super::segments::horizons`]), else its own end.
     #[must_use]
@@ -188,6 +209,9 @@ pub struct Engine {
     /// The run has reached its verified horizon short of the target, and waits for the next
     /// segment.
     blocked: bool,
+    /// Where the run stops, and why: a later segment could not be verified (it is said when
+    /// the run reaches its start, the verified part being shown first).
+    stop: Option<(f64, String)>,
 }
 
 /// How runs are planned: the book of recorded plans and policy, and the predicted seconds of
@@ -212,6 +236,7 @@ impl Engine {
             jobs: Vec::new(),
             ahead: None,
             blocked: false,
+            stop: None,
         }
     }
 
@@ -309,11 +334,8 @@ impl Engine {
                 estimate,
             } => {
                 if let Err(e) = self.planner.charge_segment(session.spec(), plan, until) {
-                    self.ahead = None;
-                    return sink(SimEvent::Failed {
-                        generation,
-                        message: format!("beyond t = {from}: {}", refusal(session.spec(), &e)),
-                    });
+                    let message = refusal(session.spec(), &e);
+                    return self.stops(from, &message, sink);
                 }
                 sink(SimEvent::Verified {
                     generation,
@@ -329,16 +351,45 @@ impl Engine {
                 true
             }
             Report::Failed { from, error } => {
-                self.ahead = None;
-                sink(SimEvent::Failed {
-                    generation,
-                    message: format!(
-                        "verifying beyond t = {from}: {}",
-                        refusal(session.spec(), &error)
-                    ),
-                })
+                let message = refusal(session.spec(), &error);
+                self.stops(from, &message, sink)
             }
         }
+    }
+
+    /// The run cannot be verified beyond `from`: said at once (the verified part is still
+    /// shown), and the run fails when it gets there.
+    fn stops(&mut self, from: f64, why: &str, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
+        self.ahead = None;
+        let Some(generation) = self.session.as_ref().map(Session::generation) else {
+            return true;
+        };
+        let message = format!("beyond t = {from}: {why}");
+        self.stop = Some((from, message.clone()));
+        sink(SimEvent::Stops {
+            generation,
+            at: from,
+            message,
+        }) && self.stop_if_reached(sink)
+    }
+
+    /// Fails the run where it stops, once it has got there.
+    fn stop_if_reached(&mut self, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
+        let Some(s) = self.session.as_ref() else {
+            return true;
+        };
+        if !s.waits() || self.stop.as_ref().is_none_or(|(at, _)| s.horizon() < *at) {
+            return true;
+        }
+        let generation = s.generation();
+        let (_, message) = self.stop.take().unwrap_or_default();
+        self.pending = None;
+        self.checkpoints.clear();
+        self.blocked = false;
+        sink(SimEvent::Failed {
+            generation,
+            message,
+        })
     }
 
     /// Takes a command; `false` means stop (quit, or nobody listens any more).
@@ -358,6 +409,7 @@ impl Engine {
                 // Dropping the verification ahead cancels it.
                 self.ahead = None;
                 self.blocked = false;
+                self.stop = None;
                 self.session = None;
                 self.pending = None;
                 self.checkpoints.clear();
@@ -431,15 +483,38 @@ impl Engine {
                 let plan = session.plan();
                 let until = session.horizon();
                 self.session = Some(session);
-                if horizons.len() > 1 {
-                    self.ahead = Some(Ahead::spawn(self.planner.book.clone(), spec, &horizons));
+                // Priced a priori, every horizon: the first over the budget is where the run
+                // stops, known (and said) now; only the horizons before it are verified.
+                let book = &self.planner.book;
+                let over = (1..horizons.len()).find_map(|j| {
+                    let mut asked = spec;
+                    asked.t_end = horizons[j];
+                    book.check_auto(&asked).err().map(|e| (j, e))
+                });
+                let mut verified = horizons.clone();
+                if let Some((j, _)) = &over {
+                    verified.truncate(*j);
                 }
-                sink(SimEvent::Started {
+                if verified.len() > 1 {
+                    self.ahead = Some(Ahead::spawn(book.clone(), spec, &verified));
+                }
+                let started = sink(SimEvent::Started {
                     generation,
                     plan,
                     error_estimate,
                     until,
-                })
+                });
+                match over {
+                    Some((j, e)) if started => {
+                        let why = refusal(&spec, &e);
+                        let ahead = self.ahead.take();
+                        let go_on = self.stops(horizons[j - 1], &why, sink);
+                        // The horizons before the stop are still verified.
+                        self.ahead = ahead;
+                        go_on
+                    }
+                    _ => started,
+                }
             }
             Err(e) => {
                 self.pending = None;
@@ -517,7 +592,7 @@ impl Engine {
             }
         }
         if !reached {
-            return true;
+            return !self.blocked || self.stop_if_reached(sink);
         }
         if let Some(c) = due.filter(|c| *c <= target) {
             self.checkpoints.pop_front();
@@ -608,33 +683,17 @@ impl Planner {
         until: f64,
         go_on: &mut dyn FnMut(f64) -> bool,
     ) -> Result<(Session, Option<f64>), StepError> {
+        // A run verified in segments is priced segment by segment: the first here, the
+        // others on the verifying thread (one over the budget stops the run at its start).
         let mut first = *spec;
-        if until < spec.t_end {
-            self.check_auto(spec)?;
-            first.t_end = until;
-        }
+        first.t_end = until;
         let (plan, estimate) = self.resolve(&first, go_on)?;
         Session::until(generation, *spec, plan, until, self.book.arithmetic).map(|s| (s, estimate))
     }
 
-    /// Prices `auto`'s verification of `spec` against the budget (a recorded plan costs
-    /// nothing).
+    /// Prices `auto`'s verification of `spec` against the budget ([`PlanBook::check_auto`]).
     fn check_auto(&self, spec: &SessionSpec) -> Result<(), StepError> {
-        if self.book.lookup(spec).is_some() {
-            return Ok(());
-        }
-        let cost = spec.model.predicted_seconds(&Asked::new(
-            Method::Auto,
-            spec.tolerance,
-            None,
-            spec.t_end,
-        )) + limit_cost(spec);
-        crate::physics::budget::check(cost, self.book.budget).map_err(|over| {
-            StepError::OverBudget {
-                what: "auto".to_owned(),
-                over,
-            }
-        })
+        self.book.check_auto(spec)
     }
 
     /// Charges the run of a later segment's `plan` (horizon `until`) to the total, as

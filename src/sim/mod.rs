@@ -112,6 +112,16 @@ pub enum SimEvent {
         /// `auto`'s error estimate over `[0, until]`.
         error_estimate: Option<f64>,
     },
+    /// The verification ahead could not verify the run beyond `at` (over the budget, or a
+    /// failed run): what is verified is shown, and the run fails when it gets there.
+    Stops {
+        /// Run stamp.
+        generation: u64,
+        /// Where the run stops.
+        at: f64,
+        /// Why, as the failure will say it.
+        message: String,
+    },
     /// How far the verification ahead has come: its `run`-th integration for the horizon
     /// `until` has reached `percent` of it.
     Ahead {

@@ -167,10 +167,12 @@ fn verify(
         };
         let resolved = match book.lookup(&asked) {
             Some(plan) => Ok((plan, book.estimate(&asked))),
-            None => spec
-                .model
-                .resolve(&book.request(&asked), &mut go_on)
-                .map(|r| (r.plan, r.estimate)),
+            // Priced first, as the first segment is: over the budget, the run stops here.
+            None => book.check_auto(&asked).and_then(|()| {
+                spec.model
+                    .resolve(&book.request(&asked), &mut go_on)
+                    .map(|r| (r.plan, r.estimate))
+            }),
         };
         let (plan, estimate) = match resolved {
             Ok(r) => r,

@@ -137,7 +137,9 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
             out.push(field(format!("est {e:.0e} ✗ tol missed"), 1));
         }
     }
-    if !run.segments.is_empty() && verified < s.t_end && run.failed.is_none() {
+    if let Some(at) = run.stops.filter(|_| run.failed.is_none()) {
+        out.push(field(format!("✗ stops at t {}", horizon(at)), 1));
+    } else if !run.segments.is_empty() && verified < s.t_end && run.failed.is_none() {
         out.push(field(format!("verified to {}", horizon(verified)), 2));
     }
     if let Some(from) = run.missed_ahead(s.tolerance) {

@@ -152,6 +152,10 @@ fn auto_stops_refining_at_its_budget_and_says_so() {
     assert!(r.estimate.expect("auto's estimate") > 1e-12, "{r:?}");
 }
 
+/// Issue 27: a run whose verification would take hours is verified in segments; the explorer
+/// draws its first segment at once and says, at once, where the run stops and what to do (each
+/// horizon priced before anything runs); only the horizons before it are verified, and the run
+/// fails there. One whose first segment alone is over the budget is refused, as before.
 #[test]
 fn the_explorer_refuses_to_verify_auto_for_hours_and_says_what_to_do() {
     let p = preset(
@@ -165,14 +169,34 @@ fn the_explorer_refuses_to_verify_auto_for_hours_and_says_what_to_do() {
     let clock = std::time::Instant::now();
     let h = common::Headless::of(&p);
     let status = h.app.status.as_ref().expect("a message");
-    assert!(status.error, "{}", status.text);
     assert!(
-        status.text.contains("auto needs about")
+        status.text.contains("the run stops beyond t = ")
+            && status.text.contains("auto needs about")
             && status.text.contains("pick a method in the panel"),
         "{}",
         status.text
     );
+    let at = h.app.run.stops.expect("where it stops");
+    assert!(
+        !h.app.run.segments.is_empty() && h.app.run.verified() <= at && at < 1e9,
+        "drawn from its first segment, stops at {at}"
+    );
     assert!(clock.elapsed().as_secs() < 20, "{:?}", clock.elapsed());
+
+    // The first segment alone over the budget: refused at once.
+    let p = preset(
+        "subcritical",
+        &[
+            "run.t_end=1e300".parse().expect("override"),
+            "spring.k=1e8".parse().expect("override"),
+        ],
+    )
+    .expect("ok");
+    let h = common::Headless::of(&p);
+    let status = h.app.status.as_ref().expect("a message");
+    assert!(status.error, "{}", status.text);
+    assert!(status.text.contains("auto needs about"), "{}", status.text);
+    assert!(h.app.run.segments.is_empty());
 }
 
 /// A sink that accepts `limit` bytes and then fails, as a closed pipe does.

@@ -406,3 +406,60 @@ fn a_replay_never_waits_for_segments_it_does_not_show() {
     // Dropping the engine cancels them.
     drop(engine);
 }
+
+/// A later horizon over the budget: the run is shown up to the last horizon within it, the
+/// stop is said at once (`Stops`, before any sample), and the run fails there, with the budget's
+/// words; nothing past it is integrated.
+#[test]
+fn a_run_stops_where_its_verification_would_pass_the_budget() {
+    let spec = long(200.0);
+    let predicted = |t: f64| {
+        let mut s = spec;
+        s.t_end = t;
+        match (PlanBook {
+            budget: 0.0,
+            ..PlanBook::default()
+        })
+        .check_auto(&s)
+        {
+            Err(rattleback::physics::StepError::OverBudget { over, .. }) => over.predicted,
+            other => panic!("{other:?}"),
+        }
+    };
+    let (p100, p200) = (predicted(100.0), predicted(200.0));
+    assert!(p100 < p200);
+    let book = PlanBook {
+        budget: 0.5 * (p100 + p200),
+        ..PlanBook::default()
+    };
+    let (_, out) = events(book, to(spec, 200.0));
+    let stops = out
+        .iter()
+        .position(
+            |e| matches!(e, SimEvent::Stops { at, .. } if at.to_bits() == 100.0_f64.to_bits()),
+        )
+        .expect("the stop said");
+    let first_sample = out
+        .iter()
+        .position(|e| matches!(e, SimEvent::Samples { full, .. } if !full.is_empty()))
+        .expect("samples");
+    assert!(stops < first_sample, "said before anything is shown");
+    let last = out
+        .iter()
+        .filter_map(|e| match e {
+            SimEvent::Samples { full, .. } => full.last().map(|p| p.t),
+            _ => None,
+        })
+        .fold(0.0, f64::max);
+    assert!((99.9..=100.0).contains(&last), "shown to the stop: {last}");
+    let failed = out.iter().find_map(|e| match e {
+        SimEvent::Failed { message, .. } => Some(message.clone()),
+        _ => None,
+    });
+    let failed = failed.expect("the run fails at the stop");
+    assert!(
+        failed.contains("beyond t = 100") && failed.contains("auto needs about"),
+        "{failed}"
+    );
+    assert!(checkpoints(&out).is_empty(), "nothing at t = 200");
+}
