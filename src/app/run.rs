@@ -146,6 +146,9 @@ pub struct RunState {
     pub ahead: Option<AheadProgress>,
     /// Where the run stops: a later segment could not be verified (it fails there).
     pub stops: Option<f64>,
+    /// The failure at that stop, once the worker got there: it takes effect when the display
+    /// has shown everything before it.
+    failing: Option<String>,
 }
 
 /// A segment of the run and the plan `auto` verified for it.
@@ -201,6 +204,7 @@ impl RunState {
             segments: Vec::new(),
             ahead: None,
             stops: None,
+            failing: None,
         }
     }
 
@@ -328,6 +332,10 @@ impl RunState {
         }
         if self.segments.len() > 1 {
             self.follow_segments();
+        }
+        if self.failing.is_some() && self.shown >= self.reached {
+            self.failed = self.failing.take();
+            self.playing = false;
         }
     }
 
@@ -500,8 +508,14 @@ impl RunState {
                 generation,
                 message,
             } if generation == self.generation => {
-                self.failed = Some(message);
-                self.playing = false;
+                if self.stops.is_some() && self.shown < self.reached {
+                    // The worker reached the stop ahead of the display: what it computed
+                    // before it is still shown.
+                    self.failing = Some(message);
+                } else {
+                    self.failed = Some(message);
+                    self.playing = false;
+                }
                 true
             }
             _ => false,

@@ -462,4 +462,34 @@ fn a_run_stops_where_its_verification_would_pass_the_budget() {
         "{failed}"
     );
     assert!(checkpoints(&out).is_empty(), "nothing at t = 200");
+
+    // On screen, played at top speed: everything before the stop is shown, then the run fails
+    // there (the worker gets there first, a lead ahead of the display).
+    let mut preset = resolve("subcritical", &[]).unwrap();
+    preset.run.t_end = 200.0;
+    preset.run.tolerance = Some(spec.tolerance);
+    let (app, effects) = rattleback::app::App::new(&preset, rattleback::app::Options::at(30.0));
+    let mut h = crate::common::Headless {
+        app,
+        engine: Engine::new(PlanBook {
+            budget: 0.5 * (p100 + p200),
+            ..PlanBook::default()
+        }),
+        effects: Vec::new(),
+    };
+    h.exec(effects);
+    assert_eq!(h.app.run.stops, Some(100.0));
+    h.play_until(f64::INFINITY, 1024.0);
+    let failed = h.app.run.failed.clone().expect("failed at the stop");
+    assert!(failed.contains("beyond t = 100"), "{failed}");
+    let run = &h.app.run;
+    assert!(
+        run.shown.to_bits() == run.reached.to_bits()
+            && run.shown <= 100.0
+            && 100.0 - run.shown < run.sample_dt,
+        "shown to the last sample before the stop: {} of {} (grid {})",
+        run.shown,
+        run.reached,
+        run.sample_dt
+    );
 }
