@@ -492,16 +492,14 @@ impl App {
                 }
                 false
             }
+            // A plan the run integrates, the first or a later segment's: in the file too.
             SimEvent::Started {
                 generation,
                 plan,
                 error_estimate,
                 until,
-            } if generation == self.run.generation => {
-                self.log_plan(until, plan, error_estimate);
-                self.run.on_sim(event, self.view.overlay)
             }
-            SimEvent::Verified {
+            | SimEvent::Verified {
                 generation,
                 until,
                 plan,

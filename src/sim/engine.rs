@@ -335,6 +335,7 @@ impl Engine {
             } => {
                 if let Err(e) = self.planner.charge_segment(session.spec(), plan, until) {
                     let message = refusal(session.spec(), &e);
+                    self.ahead = None;
                     return self.stops(from, &message, sink);
                 }
                 sink(SimEvent::Verified {
@@ -352,6 +353,7 @@ impl Engine {
             }
             Report::Failed { from, error } => {
                 let message = refusal(session.spec(), &error);
+                self.ahead = None;
                 self.stops(from, &message, sink)
             }
         }
@@ -360,7 +362,6 @@ impl Engine {
     /// The run cannot be verified beyond `from`: said at once (the verified part is still
     /// shown), and the run fails when it gets there.
     fn stops(&mut self, from: f64, why: &str, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
-        self.ahead = None;
         let Some(generation) = self.session.as_ref().map(Session::generation) else {
             return true;
         };
@@ -505,13 +506,9 @@ impl Engine {
                     until,
                 });
                 match over {
+                    // The horizons before the stop are still verified.
                     Some((j, e)) if started => {
-                        let why = refusal(&spec, &e);
-                        let ahead = self.ahead.take();
-                        let go_on = self.stops(horizons[j - 1], &why, sink);
-                        // The horizons before the stop are still verified.
-                        self.ahead = ahead;
-                        go_on
+                        self.stops(horizons[j - 1], &refusal(&spec, &e), sink)
                     }
                     _ => started,
                 }
@@ -633,7 +630,7 @@ impl Planner {
         let (mut plan, estimate) = match self.book.lookup(spec) {
             Some(plan) => (plan, self.book.estimate(spec)),
             None if spec.method == Method::Auto => {
-                self.check_auto(spec)?;
+                self.book.check_auto(spec)?;
                 let r = model.resolve(&self.book.request(spec), go_on)?;
                 (r.plan, r.estimate)
             }
@@ -671,8 +668,8 @@ impl Planner {
     }
 
     /// [`Planner::start`] on the plan verified for the horizon `until` (the first of a run
-    /// verified in segments; the whole run's verification is priced first, so a run that
-    /// would verify for minutes is refused at once, as in one piece).
+    /// verified in segments, priced alone: the engine prices the later horizons before it
+    /// verifies them, and the run stops before the first over the budget).
     ///
     /// # Errors
     /// As [`Planner::start`].
@@ -683,17 +680,10 @@ impl Planner {
         until: f64,
         go_on: &mut dyn FnMut(f64) -> bool,
     ) -> Result<(Session, Option<f64>), StepError> {
-        // A run verified in segments is priced segment by segment: the first here, the
-        // others on the verifying thread (one over the budget stops the run at its start).
         let mut first = *spec;
         first.t_end = until;
         let (plan, estimate) = self.resolve(&first, go_on)?;
         Session::until(generation, *spec, plan, until, self.book.arithmetic).map(|s| (s, estimate))
-    }
-
-    /// Prices `auto`'s verification of `spec` against the budget ([`PlanBook::check_auto`]).
-    fn check_auto(&self, spec: &SessionSpec) -> Result<(), StepError> {
-        self.book.check_auto(spec)
     }
 
     /// Charges the run of a later segment's `plan` (horizon `until`) to the total, as

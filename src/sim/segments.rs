@@ -99,7 +99,8 @@ pub struct Ahead {
 
 impl Ahead {
     /// Starts verifying the segments of `spec` after the first (`horizons[0]`, already
-    /// verified), in order, with `book`'s recorded plans, policy and arithmetic.
+    /// verified), in order, with `book`'s recorded plans, policy and arithmetic; the horizons
+    /// are those within the budget ([`super::PlanBook::check_auto`]).
     ///
     /// # Panics
     /// When the OS cannot spawn a thread.
@@ -165,14 +166,13 @@ fn verify(
             }
             !cancel.load(Ordering::Relaxed)
         };
+        // Every horizon here was priced within the budget before the thread started.
         let resolved = match book.lookup(&asked) {
             Some(plan) => Ok((plan, book.estimate(&asked))),
-            // Priced first, as the first segment is: over the budget, the run stops here.
-            None => book.check_auto(&asked).and_then(|()| {
-                spec.model
-                    .resolve(&book.request(&asked), &mut go_on)
-                    .map(|r| (r.plan, r.estimate))
-            }),
+            None => spec
+                .model
+                .resolve(&book.request(&asked), &mut go_on)
+                .map(|r| (r.plan, r.estimate)),
         };
         let (plan, estimate) = match resolved {
             Ok(r) => r,

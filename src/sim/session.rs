@@ -285,10 +285,9 @@ struct Past {
 }
 
 /// The plan of a longer horizon, integrated from `t = 0` (without being shown) to the start of
-/// its segment, ready to take over from the run there: what a run verified in segments shows
-/// after `from`. Prepared on the verifying thread, so the display never waits for its catch-up.
+/// its segment (the horizon the run has reached when it takes over), ready to take over from
+/// the run there. Prepared on the verifying thread, so the display never waits for its catch-up.
 pub struct Segment {
-    from: f64,
     until: f64,
     plan: Resolved,
     track: Track,
@@ -341,7 +340,6 @@ impl Segment {
         let at_from = track.reversals - usize::from(late_reversal.is_some());
         rewind.forget_before(from);
         Ok(Self {
-            from,
             until,
             plan,
             track,
@@ -350,18 +348,6 @@ impl Segment {
             late_reversal,
             late_marks,
         })
-    }
-
-    /// Where it takes over.
-    #[must_use]
-    pub fn from(&self) -> f64 {
-        self.from
-    }
-
-    /// The horizon its plan was verified for.
-    #[must_use]
-    pub fn until(&self) -> f64 {
-        self.until
     }
 }
 
