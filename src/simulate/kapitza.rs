@@ -157,30 +157,31 @@ fn plan_auto(
     run.method = c.method;
     run.tolerance = c.settings.tolerance;
     run.step = None;
-    let reason = match (c.method, c.met) {
-        (Method::EffectiveCorrected, true) => format!(
-            "the limit with its ripple: its predicted model error {:.1e} is within the tolerance; cost independent of epsilon",
-            c.predicted_model_error
-        ),
-        (Method::EffectiveCorrected, false) => format!(
-            "the limit with its ripple: its predicted model error {:.1e} is above the tolerance, but a resolved run's rounding ({:.1e}) would be worse",
-            c.predicted_model_error, c.estimate
-        ),
-        (Method::Averaged3, _) => format!(
-            "the third-order averaged model: its error, checked against the second-order model and a run 16x looser, is {:.1e}; cost independent of epsilon",
+    let slow = plan::SLOW_COMPANION_LOOSER;
+    let resolved_looser = plan::COMPANION_LOOSER;
+    let against = plan::checked_against(problem, c.method);
+    let short = if c.met {
+        ""
+    } else {
+        ", above the tolerance, and nothing came closer"
+    };
+    let reason = match c.method {
+        Method::EffectiveCorrected | Method::Averaged2 | Method::Averaged3 => format!(
+            "{}: its error, checked against {against} and a run {slow}x looser, is {:.1e}{short}; cost independent of epsilon",
+            match c.method {
+                Method::EffectiveCorrected => "the limit with its ripple",
+                Method::Averaged2 => "the second-order averaged model",
+                _ => "the third-order averaged model",
+            },
             c.estimate
         ),
-        (Method::Averaged2, _) => format!(
-            "the second-order averaged model: its error, checked against the limit with its ripple and a run 16x looser, is {:.1e}; cost independent of epsilon",
-            c.estimate
-        ),
-        (_, true) => format!(
-            "the full model resolved at local tolerance {:.1e}, verified against a run 16x looser: the limit's predicted model error {:.1e} exceeds the tolerance",
+        _ if c.met => format!(
+            "the full model resolved at local tolerance {:.1e}, verified against a run {resolved_looser}x looser: the slow models cannot meet the tolerance (the limit's predicted model error is {:.1e})",
             c.settings.tolerance, c.predicted_model_error
         ),
-        (_, false) => format!(
-            "the full model resolved at local tolerance {:.1e}, but its error ({:.1e}, against a run 16x looser, with the rounding) stays above the tolerance; the limit's model error {:.1e} is larger still",
-            c.settings.tolerance, c.estimate, c.predicted_model_error
+        _ => format!(
+            "the full model resolved at local tolerance {:.1e}, but its error ({:.1e}, against a run {resolved_looser}x looser, with the rounding) stays above the tolerance; the slow models came no closer",
+            c.settings.tolerance, c.estimate
         ),
     };
     Ok(AutoOut {

@@ -253,7 +253,7 @@ fn the_third_order_averaged_model_is_sixth_order() {
 /// it (planned and verified) stays within its estimate against the 30-digit references
 /// (`kapitza_small_eps.toml`), and says `met` only where its error is within the tolerance.
 /// The lifts carry the fast phase exactly (`FastPhase::Exact`), so it meets 1e-8 there, with
-/// an estimate within 100× of the error (it is the limit's a-priori integration allowance);
+/// a measured estimate (`estimates_lie_within_ten_times_the_errors`);
 /// the phase as the lifts rounded it before (`b ε_mach t/ε`, 2.2e-8 … 2.2e-6 here) no longer
 /// sets a floor.
 #[test]
@@ -438,4 +438,57 @@ fn the_closer_shortfall_is_returned_and_the_averaged_one_at_once() {
         seen += 1;
     }
     assert_eq!(seen, 12, "the references at ε = 1e-3 … 1e-6");
+}
+
+/// Issue 27, item 3: `auto`'s estimates lie close above the true errors. Over every reference
+/// start, ε = 1e-1 … 1e-9, at tolerances 1e-6, 1e-8 and 1e-9, where the error stands clear of
+/// the reference's own accuracy (73 of 81 runs): every error is within its estimate; the
+/// estimates are a median 4× the errors (17× when the limit's was its a-priori allowance), at
+/// least three quarters of them within 10×. The slow models are within 18× (their companions
+/// are 4× looser); resolved runs within 30× (16× looser: 8× looser read 3× under the error of a
+/// held-out start, `honesty::the_pendulum_keeps…`); `averaged3` up to 66× (its model error is
+/// its gap to `averaged2` times `(ε s)²`, with a margin of 8 over a measured spread of
+/// 0.12–3.3).
+#[test]
+fn estimates_lie_within_ten_times_the_errors() {
+    let mut all = cases();
+    all.extend(cases_in("kapitza_small_eps.toml"));
+    let mut ratios = Vec::new();
+    for case in &all {
+        for tol in [1e-6, 1e-8, 1e-9] {
+            let c = plan::verified(&case.problem, tol, case.t_end, 10.0, &mut |_| true).unwrap();
+            let (et, ev) = errors(case, c.method, c.settings.tolerance);
+            let error = et.max(ev);
+            let ratio = c.estimate / error;
+            println!(
+                "{:>22} tol {tol:.0e}: {:>19} error {error:.1e} estimate {:.1e} ratio {ratio:5.1}",
+                case.name,
+                c.method.to_string(),
+                c.estimate
+            );
+            assert!(error <= c.estimate, "{} at {tol:e}", case.name);
+            assert!(c.met, "{} at {tol:e}", case.name);
+            if error < 10.0 * case.accuracy {
+                continue;
+            }
+            let most = match c.method {
+                Method::Averaged3 => 70.0,
+                Method::Dop853 => 30.0,
+                _ => 18.0,
+            };
+            assert!(ratio <= most, "{} at {tol:e}: {ratio}", case.name);
+            ratios.push(ratio);
+        }
+    }
+    ratios.sort_by(f64::total_cmp);
+    let n = ratios.len();
+    let within = ratios.iter().filter(|&&r| r <= 10.0).count();
+    println!(
+        "{n} runs: median {:.1}, {within} within 10x, largest {:.1}",
+        ratios[n / 2],
+        ratios[n - 1]
+    );
+    assert!(n >= 70, "{n}");
+    assert!(ratios[n / 2] <= 6.0, "median {}", ratios[n / 2]);
+    assert!(within * 4 >= 3 * n, "{within} of {n}");
 }

@@ -38,12 +38,15 @@ pub fn slow_rate(problem: &Problem) -> f64 {
 #[must_use]
 pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
     let (method, tolerance, step, t_end) = (ask.method, ask.tolerance, ask.step, ask.t_end);
-    // `auto` as it will likely resolve: the a-priori plan, or `averaged2` (three runs of the
-    // slow motion: it, its companion and the limit) where that is expected to pass its check.
+    // `auto` as it will likely resolve: the limit with its ripple (its check: it, its companion
+    // and `averaged2`; then the run), `averaged2` where that is expected to pass its check
+    // (up to five runs of the slow motion, then the run), or the a-priori resolved plan.
     let (method, tolerance, runs) = if method == Method::Auto {
         let c = plan::resolve(problem, tolerance, t_end);
-        if c.method == Method::Dop853 && plan::averaged_expected(problem, tolerance, t_end) {
-            (Method::Averaged2, (tolerance * 1e-4).max(1e-14), 3.0)
+        if c.method != Method::Dop853 {
+            (c.method, c.settings.tolerance, 4.0)
+        } else if plan::averaged_expected(problem, tolerance, t_end) {
+            (Method::Averaged2, (tolerance * 1e-4).max(1e-14), 6.0)
         } else {
             (c.method, c.settings.tolerance, 1.0)
         }
