@@ -453,7 +453,11 @@ fn the_closer_shortfall_is_returned_and_the_averaged_one_at_once() {
 fn estimates_lie_within_ten_times_the_errors() {
     let mut all = cases();
     all.extend(cases_in("kapitza_small_eps.toml"));
+    // Every run is checked and the summary printed before any assertion, so that the same
+    // command measures another version of `auto` (docs/benchmarks.md's "before" column).
     let mut ratios = Vec::new();
+    let mut ranges = std::collections::BTreeMap::<String, (f64, f64)>::new();
+    let mut broken = Vec::new();
     for case in &all {
         for tol in [1e-6, 1e-8, 1e-9] {
             let c = plan::verified(&case.problem, tol, case.t_end, 10.0, &mut |_| true).unwrap();
@@ -466,8 +470,9 @@ fn estimates_lie_within_ten_times_the_errors() {
                 c.method.to_string(),
                 c.estimate
             );
-            assert!(error <= c.estimate, "{} at {tol:e}", case.name);
-            assert!(c.met, "{} at {tol:e}", case.name);
+            if error > c.estimate || !c.met {
+                broken.push(format!("{} at {tol:e}: met {}, {ratio}", case.name, c.met));
+            }
             if error < 10.0 * case.accuracy {
                 continue;
             }
@@ -476,7 +481,13 @@ fn estimates_lie_within_ten_times_the_errors() {
                 Method::Dop853 => 30.0,
                 _ => 18.0,
             };
-            assert!(ratio <= most, "{} at {tol:e}: {ratio}", case.name);
+            if ratio > most {
+                broken.push(format!("{} at {tol:e}: {} {ratio}", case.name, c.method));
+            }
+            let range = ranges
+                .entry(c.method.to_string())
+                .or_insert((f64::INFINITY, 0.0));
+            *range = (range.0.min(ratio), range.1.max(ratio));
             ratios.push(ratio);
         }
     }
@@ -488,6 +499,10 @@ fn estimates_lie_within_ten_times_the_errors() {
         ratios[n / 2],
         ratios[n - 1]
     );
+    for (method, (lo, hi)) in &ranges {
+        println!("{method}: {lo:.1}-{hi:.1}x");
+    }
+    assert!(broken.is_empty(), "{broken:#?}");
     assert!(n >= 70, "{n}");
     assert!(ratios[n / 2] <= 6.0, "median {}", ratios[n / 2]);
     assert!(within * 4 >= 3 * n, "{within} of {n}");

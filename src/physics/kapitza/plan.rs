@@ -85,10 +85,21 @@ fn scale(problem: &Problem) -> f64 {
     p.b * p.b + p.a.abs() + 1.0
 }
 
+/// The expansion's small parameter `ε s`.
+fn small_parameter(problem: &Problem) -> f64 {
+    problem.params().epsilon * scale(problem)
+}
+
+/// Whether the scales separate enough for each slow model's error to be measured by its
+/// distance from the next order (`ε s` ≤ [`THIRD_ORDER_MAX_EPS_S`]).
+fn separated(problem: &Problem) -> bool {
+    small_parameter(problem) <= THIRD_ORDER_MAX_EPS_S
+}
+
 /// The limit's predicted model error (see the module's documentation).
 #[must_use]
 pub fn model_error(problem: &Problem, t_end: f64) -> f64 {
-    (problem.params().epsilon * scale(problem)).powi(2) * (1.0 + t_end)
+    small_parameter(problem).powi(2) * (1.0 + t_end)
 }
 
 /// The second-order averaged model's (`averaged2`) predicted model error: O(ε⁴), with the
@@ -99,7 +110,7 @@ pub fn model_error(problem: &Problem, t_end: f64) -> f64 {
 /// only to predict its cost ([`averaged_expected`]).
 #[must_use]
 pub fn model_error2(problem: &Problem, t_end: f64) -> f64 {
-    0.5 * (problem.params().epsilon * scale(problem)).powi(4) * (1.0 + t_end)
+    0.5 * small_parameter(problem).powi(4) * (1.0 + t_end)
 }
 
 /// Fast periods over `[0, t_end]`.
@@ -130,8 +141,8 @@ pub fn rounding_floor(problem: &Problem, t_end: f64) -> f64 {
 
 /// Resolves `auto` for `problem` at `tolerance` over `[0, t_end]`, a priori (no run): the limit
 /// with its ripple where its predicted model error and integration allowance (100× its local
-/// tolerance) meet the tolerance, else [`resolve_resolved`]. What the cost model assumes;
-/// [`verified`] measures instead.
+/// tolerance) meet the tolerance, else the full model resolved by `dop853`. What the cost model
+/// assumes; [`verified`] measures instead.
 #[must_use]
 pub fn resolve(problem: &Problem, tolerance: f64, t_end: f64) -> Choice {
     let model = model_error(problem, t_end);
@@ -158,13 +169,12 @@ pub fn resolve(problem: &Problem, tolerance: f64, t_end: f64) -> Choice {
     if floor > tolerance && limit_estimate < floor {
         return limit(false);
     }
-    resolve_resolved(problem, tolerance, t_end)
+    resolved(problem, tolerance, t_end)
 }
 
 /// The full model resolved by `dop853`, a priori: its first local tolerance (see the module's
 /// documentation) and, as its estimate, the tolerance or the rounding floor.
-#[must_use]
-pub fn resolve_resolved(problem: &Problem, tolerance: f64, t_end: f64) -> Choice {
+fn resolved(problem: &Problem, tolerance: f64, t_end: f64) -> Choice {
     let model = model_error(problem, t_end);
     let n = periods(problem, t_end);
     let floor = rounding_floor(problem, t_end);
@@ -235,7 +245,6 @@ pub fn averaged_checked(
     t_end: f64,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Choice, StepError> {
-    let p = problem.params();
     let local = (tolerance * 1e-4).max(TIGHTEST);
     let spec = |method, tolerance| RunSpec {
         method,
@@ -244,7 +253,7 @@ pub fn averaged_checked(
         t_end,
         samples: SAMPLES,
     };
-    let es2 = (p.epsilon * scale(problem)).powi(2);
+    let es2 = small_parameter(problem).powi(2);
     let rounding = lift_phase_rounding(problem);
     let choice = |method, local, model, estimate: f64| Choice {
         method,
@@ -268,26 +277,20 @@ pub fn averaged_checked(
     let companion = |local: f64| (local * SLOW_COMPANION_LOOSER).min(1e-3);
     let mut run_at = |method, local: f64| run(problem, &spec(method, local), go_on);
     let smaller = |a: Choice, b: Choice| if b.estimate < a.estimate { b } else { a };
-    let mut best = if es2 <= THIRD_ORDER_MAX_EPS_S.powi(2) {
+    let best = if separated(problem) {
+        let second = run_at(Method::Averaged2, local)?;
         let mut best: Option<Choice> = None;
-        let mut second = None;
         if model_error(problem, t_end) <= LIMIT_WORTH_TRYING * tolerance {
             let limit = run_at(Method::EffectiveCorrected, local)?;
             let limit_companion = run_at(Method::EffectiveCorrected, companion(local))?;
-            let next = run_at(Method::Averaged2, local)?;
-            let model = NEXT_ORDER_MARGIN * difference(&next, &limit);
+            let model = NEXT_ORDER_MARGIN * difference(&second, &limit);
             let estimate = model + difference(&limit, &limit_companion) + rounding;
             let limit_choice = choice(Method::EffectiveCorrected, local, model, estimate);
             if limit_choice.met {
                 return Ok(limit_choice);
             }
             best = Some(limit_choice);
-            second = Some(next);
         }
-        let second = match second {
-            Some(s) => s,
-            None => run_at(Method::Averaged2, local)?,
-        };
         let second_companion = run_at(Method::Averaged2, companion(local))?;
         let third = run_at(Method::Averaged3, local)?;
         let gap = difference(&third, &second);
@@ -324,8 +327,7 @@ pub fn averaged_checked(
     let tight_companion = run_at(best.method, companion(TIGHTEST))?;
     let estimate = best.predicted_model_error + difference(&tight, &tight_companion) + rounding;
     let tightened = choice(best.method, TIGHTEST, best.predicted_model_error, estimate);
-    best = smaller(best, tightened);
-    Ok(best)
+    Ok(smaller(best, tightened))
 }
 
 /// `|averaged3 − averaged2|` over `[0, t_end]`, both at the tightest tolerance: what
@@ -393,13 +395,12 @@ pub fn verified(
     budget: f64,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Choice, StepError> {
-    let first = resolve_resolved(problem, tolerance, t_end);
+    let first = resolved(problem, tolerance, t_end);
     let floor = rounding_floor(problem, t_end);
     // The slow models first, unless they cannot come near the tolerance (no separation of
     // scales: `ε s` > THIRD_ORDER_MAX_EPS_S and `averaged2` predicted HOPELESS tolerances off)
     // while a resolved run can; then they are checked only if that run misses.
-    let es = problem.params().epsilon * scale(problem);
-    let hopeless = es > THIRD_ORDER_MAX_EPS_S
+    let hopeless = !separated(problem)
         && model_error2(problem, t_end) > HOPELESS * tolerance
         && floor <= tolerance;
     let mut averaged = None;
@@ -499,7 +500,7 @@ pub fn verified(
 /// `simulate`'s reason).
 #[must_use]
 pub fn checked_against(problem: &Problem, method: Method) -> &'static str {
-    let near = problem.params().epsilon * scale(problem) <= THIRD_ORDER_MAX_EPS_S;
+    let near = separated(problem);
     match method {
         Method::EffectiveCorrected => "the second-order averaged model",
         Method::Averaged2 if near => "the third-order averaged model",
