@@ -120,6 +120,7 @@ pub fn study(quick: bool, log: &mut dyn FnMut(&str)) -> Vec<Row> {
             (Method::Auto, 1e-8),
             (Method::Auto, 1e-9),
             (Method::Dop853, 1e-9),
+            (Method::Taylor, 1e-9),
             (Method::Suzuki8, 1e-9),
             (Method::EffectiveCorrected, 1e-10),
             (Method::Averaged2, 1e-10),
@@ -140,7 +141,7 @@ pub fn study(quick: bool, log: &mut dyn FnMut(&str)) -> Vec<Row> {
                 (method, tolerance, None)
             };
             // The resolved methods follow the fast period: about 100 evaluations a period.
-            let resolved = matches!(ran, Method::Dop853 | Method::Suzuki8);
+            let resolved = matches!(ran, Method::Dop853 | Method::Taylor | Method::Suzuki8);
             let predicted = if resolved {
                 100.0 * r.t_end / (2.0 * std::f64::consts::PI * epsilon)
             } else {

@@ -14,6 +14,9 @@ pub enum Method {
     Rk4,
     /// Dormand–Prince 8(5,3), adaptive, order 8.
     Dop853,
+    /// Taylor series of order 20 with the step from its last coefficients: the pendulum's full
+    /// model, its fast forcing expanded exactly (`physics::kapitza::taylor`).
+    Taylor,
     /// Strang splitting with exact sub-flows, order 2, symplectic.
     Strang,
     /// Yoshida's triple-jump composition of Strang, order 4, symplectic.
@@ -47,10 +50,11 @@ pub enum Method {
 
 impl Method {
     /// Every method, in the order tables list them.
-    pub const ALL: [Self; 14] = [
+    pub const ALL: [Self; 15] = [
         Self::Auto,
         Self::Rk4,
         Self::Dop853,
+        Self::Taylor,
         Self::Dop853Projected,
         Self::Strang,
         Self::Yoshida4,
@@ -65,10 +69,10 @@ impl Method {
     ];
 
     /// Every concrete method: [`Method::ALL`] without `auto`, which resolves to one of them.
-    pub const CONCRETE: [Self; 13] = {
-        let mut out = [Self::Rk4; 13];
+    pub const CONCRETE: [Self; 14] = {
+        let mut out = [Self::Rk4; 14];
         let mut i = 0;
-        while i < 13 {
+        while i < 14 {
             out[i] = Self::ALL[i + 1];
             i += 1;
         }
@@ -81,6 +85,7 @@ impl Method {
         match self {
             Self::Rk4 => "rk4",
             Self::Dop853 => "dop853",
+            Self::Taylor => "taylor",
             Self::Strang => "strang",
             Self::Yoshida4 => "yoshida4",
             Self::Yoshida6 => "yoshida6",
@@ -116,6 +121,7 @@ impl Method {
             Self::Auto => 0,
             Self::Rk4 | Self::Yoshida4 | Self::BlanesMoan4 => 4,
             Self::Yoshida6 => 6,
+            Self::Taylor => 20,
             Self::Dop853
             | Self::Dop853Projected
             | Self::Suzuki8
@@ -133,6 +139,7 @@ impl Method {
             self,
             Self::Dop853
                 | Self::Dop853Projected
+                | Self::Taylor
                 | Self::Effective
                 | Self::EffectiveCorrected
                 | Self::Averaged2

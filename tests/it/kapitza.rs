@@ -445,8 +445,8 @@ fn the_closer_shortfall_is_returned_and_the_averaged_one_at_once() {
 /// the reference's own accuracy (73 of 81 runs): every error is within its estimate; the
 /// estimates are a median 4× the errors (17× when the limit's was its a-priori allowance), at
 /// least three quarters of them within 10×. The slow models are within 18× (their companions
-/// are 4× looser); resolved runs within 30× (16× looser: 8× looser read 3× under the error of a
-/// held-out start, `honesty::the_pendulum_keeps…`); `averaged3` up to 66× (its model error is
+/// are 4× looser); resolved runs (the Taylor series, its companion 8× looser) within 35× where
+/// the rounding floor is not half of the estimate; `averaged3` up to 66× (its model error is
 /// its gap to `averaged2` times `(ε s)²`, with a margin of 8 over a measured spread of
 /// 0.12–3.3).
 #[test]
@@ -478,10 +478,15 @@ fn estimates_lie_within_ten_times_the_errors() {
             }
             let most = match c.method {
                 Method::Averaged3 => 70.0,
-                Method::Dop853 => 30.0,
+                Method::Dop853 | Method::Taylor => 35.0,
                 _ => 18.0,
             };
-            if ratio > most {
+            // A resolved run's estimate carries the rounding floor, measured on DOP853 (1e-12 a
+            // fast period); where that floor is half of it, the ratio is the floor's, not the
+            // check's (the Taylor series at ε = 1e-2, tolerance 1e-9: up to 300×).
+            let floored = matches!(c.method, Method::Dop853 | Method::Taylor)
+                && 2.0 * plan::rounding_floor(&case.problem, case.t_end) >= c.estimate;
+            if ratio > most && !floored {
                 broken.push(format!("{} at {tol:e}: {} {ratio}", case.name, c.method));
             }
             let range = ranges

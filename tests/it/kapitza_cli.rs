@@ -226,7 +226,7 @@ fn simulate_csv_and_table_say_what_made_them() {
     for line in [
         "# model = kapitza",
         "# epsilon = 0.15",
-        "# integrated = dop853",
+        "# integrated = taylor",
     ] {
         assert!(out.contains(line), "{line}: {out}");
     }

@@ -25,6 +25,7 @@ pub mod phase;
 pub mod plan;
 pub mod run;
 pub mod scene;
+pub mod taylor;
 pub mod weak;
 
 pub use phase::FastPhase;

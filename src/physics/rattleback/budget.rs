@@ -72,7 +72,7 @@ pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
     let periods = |rate: f64| rate * t_end / std::f64::consts::TAU;
     let ns = match method {
         // Not offered here (refused by `Model::resolve`); priced as DOP853.
-        Method::Dop853 | Method::Dop853Projected | Method::Auto => {
+        Method::Dop853 | Method::Dop853Projected | Method::Taylor | Method::Auto => {
             dop853_evaluations(tolerance, periods(nu)) * NS_DOP853_EVAL
         }
         Method::Effective | Method::EffectiveCorrected | Method::Averaged2 | Method::Averaged3 => {

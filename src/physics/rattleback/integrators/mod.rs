@@ -79,6 +79,7 @@ pub fn default_step(method: Method, problem: &Problem, tolerance: f64, t_end: f6
         Method::Suzuki8 => (1.5, 8.0),
         Method::Dop853
         | Method::Dop853Projected
+        | Method::Taylor
         | Method::Effective
         | Method::EffectiveCorrected
         | Method::Averaged2
@@ -141,7 +142,7 @@ pub fn build(
             }
         }
         Method::Auto => return Err(StepError::Unplanned),
-        Method::Dop853Projected => {
+        Method::Dop853Projected | Method::Taylor => {
             return Err(StepError::NotOffered {
                 method: method.name(),
                 model: "rattleback",

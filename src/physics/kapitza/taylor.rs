@@ -1,0 +1,269 @@
+//! Taylor-series integration of the full pendulum `θ̈ = (a + (b/ε) cos(t/ε)) sin θ` (issue 27,
+//! item 3: the resolved end of `auto`'s cost against ε).
+//!
+//! Each step expands `θ` and `θ̇` about the step's start to order `N` by the recurrences of the
+//! right-hand side's factors (Jorba and Zou's automatic differentiation, 2005):
+//! - the forcing's phase, exactly: `cos` and `sin` of `t0/ε + τ/ε` have the coefficients
+//!   `u_{n+1} = −v_n / ((n+1) ε)`, `v_{n+1} = u_n / ((n+1) ε)` from one `sin_cos` of `t0/ε`;
+//! - `S = sin θ`, `C = cos θ`: `(n+1) S_{n+1} = Σ_{j=1}^{n+1} j θ_j C_{n+1−j}` and
+//!   `(n+1) C_{n+1} = −Σ j θ_j S_{n+1−j}`;
+//! - `θ_{n+1} = θ̇_n / (n+1)` and `θ̇_{n+1} = (F S)_n / (n+1)`, with `F = a + (b/ε) cos`.
+//!
+//! `O(N²)` work a step, and no right-hand side is evaluated at all: the forcing's fast
+//! oscillation, which makes DOP853 take 19–48 steps a period, enters through its exact
+//! coefficients, and a step spans about a radian of the phase. At the tolerances `auto` resolves
+//! with (1e-10 … 1e-14) it takes 4–10 steps a forcing period, and DOP853 costs 2.3–3.1× as much at
+//! equal error (docs/benchmarks.md).
+//!
+//! **Step size** (after Jorba and Zou): with the error scale of each component as DOP853's
+//! (`tol` for the angle `θ`, `tol (1 + |θ̇|)` for the rate), the step is the smallest of
+//! `(1/m_n)^{1/n}` over the last three orders `n = N−2, N−1, N`, `m_n` the largest scaled
+//! coefficient of order `n` (three, not their two: the forcing's coefficients alternate between
+//! its `cos` and `sin`, and a small one read as a wide radius let an occasional step err far
+//! more than the rest). The first neglected term is then about `tol` times the step over the
+//! series' radius. The order is fixed ([`ORDER`]). Between step ends the series itself
+//! interpolates (dense output to the tolerance). No step is rejected; a step lands exactly on
+//! `t_limit` when it would pass it.
+
+use nalgebra::Vector2;
+
+use super::Params;
+use crate::physics::method::StepError;
+use crate::physics::numerics::dop853::Stats;
+
+/// The order of the series, whatever the tolerance: a run and its companion at a looser
+/// tolerance then differ only in their steps, and their errors follow the tolerance (an order
+/// that rose with it, Jorba and Zou's `⌈−ln(tol)/2⌉` plus a few, made the error jump by 25× and
+/// stall by 1.7× between neighbouring tolerances on the references; docs/benchmarks.md).
+pub const ORDER: usize = 20;
+/// Safety factor on the step from the last three coefficients.
+pub const SAFETY: f64 = 1.0;
+
+/// The Taylor integrator of the full pendulum.
+#[derive(Clone)]
+pub struct Taylor {
+    a: f64,
+    b: f64,
+    epsilon: f64,
+    tol: f64,
+    t: f64,
+    y: Vector2<f64>,
+    t_prev: f64,
+    /// Coefficients of `θ` and `θ̇` about `t_prev` (the last step's), orders `0..=ORDER`.
+    theta: [f64; ORDER + 1],
+    theta_dot: [f64; ORDER + 1],
+    stats: Stats,
+}
+
+impl Taylor {
+    /// Starts at `(t0, y0)` with tolerance `tol` (relative and absolute, as DOP853's).
+    #[must_use]
+    pub fn new(params: &Params, t0: f64, y0: Vector2<f64>, tol: f64) -> Self {
+        let mut theta = [0.0; ORDER + 1];
+        let mut theta_dot = [0.0; ORDER + 1];
+        theta[0] = y0[0];
+        theta_dot[0] = y0[1];
+        Self {
+            a: params.a,
+            b: params.b,
+            epsilon: params.epsilon,
+            tol,
+            t: t0,
+            y: y0,
+            t_prev: t0,
+            theta,
+            theta_dot,
+            stats: Stats::default(),
+        }
+    }
+
+    /// Current time.
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// Current state.
+    #[must_use]
+    pub fn state(&self) -> Vector2<f64> {
+        self.y
+    }
+
+    /// Start of the last step.
+    #[must_use]
+    pub fn time_prev(&self) -> f64 {
+        self.t_prev
+    }
+
+    /// Work counters: each step counts [`ORDER`] evaluations (one pass of the recurrences per
+    /// order).
+    #[must_use]
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    /// The series of the last step at `t` in `[time_prev, time]`.
+    #[must_use]
+    pub fn interpolate(&self, t: f64) -> Vector2<f64> {
+        if t >= self.t {
+            return self.y;
+        }
+        let tau = t - self.t_prev;
+        Vector2::new(
+            horner(&self.theta[..=ORDER], tau),
+            horner(&self.theta_dot[..=ORDER], tau),
+        )
+    }
+
+    /// Expands `θ` and `θ̇` about the current point into `self.theta`, `self.theta_dot`.
+    #[allow(clippy::cast_precision_loss, clippy::needless_range_loop)]
+    fn expand(&mut self) {
+        let n_max = ORDER;
+        let eps = self.epsilon;
+        let (mut u, mut v) = ([0.0; ORDER + 1], [0.0; ORDER + 1]);
+        let (sp, cp) = (self.t / eps).sin_cos();
+        u[0] = cp;
+        v[0] = sp;
+        let amplitude = self.b / eps;
+        let mut force = [0.0; ORDER + 1];
+        force[0] = self.a + amplitude * cp;
+        for n in 0..n_max {
+            let m = (n + 1) as f64 * eps;
+            u[n + 1] = -v[n] / m;
+            v[n + 1] = u[n] / m;
+            force[n + 1] = amplitude * u[n + 1];
+        }
+        let (th, om) = (&mut self.theta, &mut self.theta_dot);
+        th[0] = self.y[0];
+        om[0] = self.y[1];
+        let (mut s, mut c) = ([0.0; ORDER + 1], [0.0; ORDER + 1]);
+        (s[0], c[0]) = th[0].sin_cos();
+        // `j θ_j`, kept so each convolution is one pass.
+        let mut jth = [0.0; ORDER + 1];
+        for n in 0..n_max {
+            let mut acc = 0.0;
+            for j in 0..=n {
+                acc += force[j] * s[n - j];
+            }
+            let k = (n + 1) as f64;
+            th[n + 1] = om[n] / k;
+            om[n + 1] = acc / k;
+            jth[n + 1] = k * th[n + 1];
+            let (mut ds, mut dc) = (0.0, 0.0);
+            for j in 1..=n + 1 {
+                ds += jth[j] * c[n + 1 - j];
+                dc += jth[j] * s[n + 1 - j];
+            }
+            s[n + 1] = ds / k;
+            c[n + 1] = -dc / k;
+        }
+    }
+
+    /// The step the series allows (see the module's documentation).
+    #[allow(clippy::cast_precision_loss)]
+    fn natural_step(&self) -> f64 {
+        let scale_theta = self.tol;
+        let scale_rate = self.tol * (1.0 + self.y[1].abs());
+        let size = |n: usize| {
+            (self.theta[n].abs() / scale_theta).max(self.theta_dot[n].abs() / scale_rate)
+        };
+        let n = ORDER;
+        let radius = |n: usize| {
+            let m = size(n);
+            if m == 0.0 {
+                f64::INFINITY
+            } else {
+                m.powf(-1.0 / n as f64)
+            }
+        };
+        SAFETY * radius(n - 2).min(radius(n - 1)).min(radius(n))
+    }
+
+    /// Takes one step, never past `t_limit` (which must exceed the current time).
+    ///
+    /// # Errors
+    /// When the series stops being finite or its step underflows.
+    pub fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
+        self.expand();
+        let natural = self.natural_step();
+        let remaining = t_limit - self.t;
+        let last = natural >= remaining;
+        let h = if last { remaining } else { natural };
+        if h.is_nan() || h <= 0.0 || h.is_infinite() {
+            return Err(StepError::NonFinite { t: self.t });
+        }
+        if h <= 16.0 * f64::EPSILON * self.t.abs() && !last {
+            return Err(StepError::StepTooSmall { t: self.t, h });
+        }
+        let y_new = Vector2::new(
+            horner(&self.theta[..=ORDER], h),
+            horner(&self.theta_dot[..=ORDER], h),
+        );
+        if !y_new.iter().all(|v| v.is_finite()) {
+            return Err(StepError::NonFinite { t: self.t });
+        }
+        self.t_prev = self.t;
+        self.t = if last { t_limit } else { self.t + h };
+        self.y = y_new;
+        self.stats.steps += 1;
+        self.stats.rhs_evaluations += ORDER as u64;
+        Ok(())
+    }
+}
+
+/// `Σ c_n τ^n` by Horner's rule.
+fn horner(c: &[f64], tau: f64) -> f64 {
+    c.iter().rev().fold(0.0, |acc, &x| acc * tau + x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// With `b = 0` and small swings the pendulum `θ̈ = a sin θ`, `a < 0`, is nearly harmonic;
+    /// against DOP853 at 1e-14 on the full nonlinear motion.
+    #[test]
+    fn agrees_with_dop853_on_a_forced_swing() {
+        use crate::physics::flow::Flow;
+        let p = Params {
+            a: -1.0,
+            b: 0.3,
+            epsilon: 0.05,
+        };
+        let y0 = Vector2::new(1.0, 0.2);
+        let mut taylor = Taylor::new(&p, 0.0, y0, 1e-13);
+        let problem = super::super::Problem::new(
+            p,
+            super::super::Start {
+                theta: y0[0],
+                theta_dot: y0[1],
+            },
+        )
+        .unwrap();
+        let mut dop = crate::physics::kapitza::flows::FullDop853::new(&problem, 1e-15);
+        let t_end = 3.0;
+        let mut worst: f64 = 0.0;
+        while taylor.time() < t_end {
+            taylor.step(t_end).unwrap();
+            let mid = 0.5 * (taylor.time_prev() + taylor.time());
+            while dop.time() < mid {
+                dop.step(t_end).unwrap();
+            }
+            let at = dop.state_at(mid);
+            let d = taylor.interpolate(mid) - Vector2::new(at[0], at[1]);
+            worst = worst.max(d.abs().max());
+        }
+        while dop.time() < t_end {
+            dop.step(t_end).unwrap();
+        }
+        let at = dop.state_at(t_end);
+        let d = taylor.state() - Vector2::new(at[0], at[1]);
+        assert!(d.abs().max() < 1e-10, "end {d:?}");
+        assert!(worst < 1e-10, "dense output {worst}");
+        // A few steps a forcing period (2π ε ≈ 0.31), where DOP853 takes about twenty.
+        let periods = t_end / (std::f64::consts::TAU * p.epsilon);
+        #[allow(clippy::cast_precision_loss)]
+        let per_period = taylor.stats().steps as f64 / periods;
+        assert!(per_period < 8.0, "{per_period} steps a period");
+    }
+}
