@@ -241,7 +241,7 @@ pub const LIMIT_WORTH_TRYING: f64 = 30.0;
 /// `averaged3`, and `averaged3` by its gap to `averaged2` times `(ε s)²` (the ratio of their
 /// orders, [`THIRD_ORDER_MARGIN`]). Beyond, `averaged2` alone, by its distance from the limit
 /// times `(ε s)²` ([`SECOND_ORDER_MARGIN`]). Each estimate adds the run's distance from its
-/// companion, [`COMPANION_LOOSER`] times looser (integration), and the lift's rounding. When
+/// companion, [`SLOW_COMPANION_LOOSER`] times looser (integration), and the lift's rounding. When
 /// none meets the tolerance, the one with the smallest estimate, `met = false` (what
 /// [`verified`] returns when a resolved run cannot do better).
 ///
