@@ -21,7 +21,7 @@
 //!   the tolerance and the integration is not (a long horizon), the best is run once more at
 //!   the tightest tolerance.
 //! - **The resolved run** is the full model by its Taylor series (`taylor`, [`RESOLVED`]; DOP853
-//!   until issue 27), about a third of DOP853's cost at equal error. Its tolerance is per step
+//!   until issue 27): DOP853 costs 2.3–3.1× as much at equal error. Its tolerance is per step
 //!   and the global error grows with the number of fast periods `n` (measured on DOP853: 90× the
 //!   tolerance after 80 periods of an unstable start, an error that growing motions amplify),
 //!   so it is first asked for
@@ -80,8 +80,8 @@ pub struct Choice {
     pub shortfall: Option<Shortfall>,
 }
 
-/// The method of a resolved run: the Taylor series ([`super::taylor`]), about a third of
-/// DOP853's cost at equal error (issue 27).
+/// The method of a resolved run: the Taylor series ([`super::taylor`]); DOP853 costs 2.3–3.1× as
+/// much at equal error (issue 27).
 pub const RESOLVED: Method = Method::Taylor;
 
 /// Rounding floor of a resolved run, per fast period.
@@ -481,8 +481,9 @@ pub fn verified(
         let measured = difference(&fine, &coarse) + floor;
         // A refinement that lowered the difference much less than the tolerance (a slope
         // below MIN_CONVERGENCE in log-log) shows rounding, not truncation, setting both runs'
-        // errors: their difference then under-reads either's (the held-out `returns_eps1e-2`
-        // read 8.5e-9 for 1.1e-8 after slopes of 0.57 and 0.64), so it is widened.
+        // errors: their difference then under-reads either's (the held-out `returns_eps1e-2`,
+        // with a companion 16× looser, read 8.5e-9 for 1.1e-8 after slopes of 0.57 and 0.64),
+        // so it is widened.
         let noisy =
             last.is_some_and(|(l, e)| (e / measured).ln() < MIN_CONVERGENCE * (l / local).ln());
         let estimate = if noisy {
