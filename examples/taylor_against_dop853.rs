@@ -1,4 +1,5 @@
-//! The pendulum's full model by the Taylor series (`taylor`) and by DOP853, against the
+//! The pendulum's full model by the Taylor series (`taylor`) and by DOP853 (the flows the
+//! explorer and `simulate` run, `FullTaylor` and `FullDop853`), against the
 //! long-double Taylor-series references: error over the reference's samples, steps and best
 //! wall time of seven, at local tolerances 1e-9 … 1e-14 (docs/benchmarks.md, "The resolved end:
 //! a Taylor series").
@@ -9,57 +10,34 @@
 
 use std::time::Instant;
 
-use nalgebra::Vector2;
-use rattleback::physics::kapitza::Params;
-use rattleback::physics::kapitza::taylor::Taylor;
-use rattleback::physics::numerics::dop853::{Dop853, Field};
-
-#[derive(Clone)]
-struct Full(Params);
-
-impl Field<2> for Full {
-    fn eval(&self, y: &Vector2<f64>) -> Vector2<f64> {
-        self.eval_at(0.0, y)
-    }
-    fn eval_at(&self, t: f64, y: &Vector2<f64>) -> Vector2<f64> {
-        Vector2::new(y[1], self.0.forcing(t) * y[0].sin())
-    }
-    fn is_angle(&self, i: usize) -> bool {
-        i == 0
-    }
-}
+use rattleback::physics::flow::Flow;
+use rattleback::physics::kapitza::flows::{FullDop853, FullTaylor};
+use rattleback::physics::kapitza::{Params, Problem, Start};
 
 struct Case {
-    params: Params,
-    start: Vector2<f64>,
+    problem: Problem,
     t_end: f64,
     theta: Vec<f64>,
     theta_dot: Vec<f64>,
 }
 
 impl Case {
-    /// The largest error over the reference's samples of a run that steps to `t_limit` and
-    /// interpolates inside its last step, and its steps.
-    fn error(
-        &self,
-        step: &mut dyn FnMut(f64),
-        time: &dyn Fn() -> f64,
-        at: &mut dyn FnMut(f64) -> Vector2<f64>,
-    ) -> f64 {
+    /// The largest error of `flow` over the reference's samples, and its steps.
+    fn error(&self, mut flow: impl Flow) -> (f64, u64) {
         let n = self.theta.len();
         let mut worst: f64 = 0.0;
         for i in 1..n {
             #[allow(clippy::cast_precision_loss)]
             let t = self.t_end * i as f64 / (n - 1) as f64;
-            while time() < t {
-                step(self.t_end);
+            while flow.time() < t {
+                flow.step(self.t_end).expect("a step");
             }
-            let y = at(t);
+            let y = flow.state_at(t);
             worst = worst
                 .max((y[0] - self.theta[i]).abs())
                 .max((y[1] - self.theta_dot[i]).abs());
         }
-        worst
+        (worst, flow.stats().steps)
     }
 }
 
@@ -97,42 +75,32 @@ fn main() {
                 .collect()
         };
         let case = Case {
-            params: Params {
-                a: num("a"),
-                b: num("b"),
-                epsilon: num("epsilon"),
-            },
-            start: Vector2::new(num("theta0"), num("theta_dot0")),
+            problem: Problem::new(
+                Params {
+                    a: num("a"),
+                    b: num("b"),
+                    epsilon: num("epsilon"),
+                },
+                Start {
+                    theta: num("theta0"),
+                    theta_dot: num("theta_dot0"),
+                },
+            )
+            .expect("a valid reference case"),
             t_end: num("t_end"),
             theta: list("theta"),
             theta_dot: list("theta_dot"),
         };
-        if case.params.epsilon < 1e-3 {
+        let epsilon = case.problem.params().epsilon;
+        if epsilon < 1e-3 {
             continue;
         }
         for tol in [1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14] {
-            let ((te, ts), tt) = best_of_seven(|| {
-                let run = std::cell::RefCell::new(Taylor::new(&case.params, 0.0, case.start, tol));
-                let e = case.error(
-                    &mut |l| run.borrow_mut().step(l).expect("a step"),
-                    &|| run.borrow().time(),
-                    &mut |t| run.borrow().interpolate(t),
-                );
-                (e, run.borrow().stats().steps)
-            });
-            let ((de, ds), dt) = best_of_seven(|| {
-                let run =
-                    std::cell::RefCell::new(Dop853::new(Full(case.params), 0.0, case.start, tol));
-                let e = case.error(
-                    &mut |l| run.borrow_mut().step(l).expect("a step"),
-                    &|| run.borrow().time(),
-                    &mut |t| run.borrow_mut().interpolate(t),
-                );
-                (e, run.borrow().stats().steps)
-            });
+            let ((te, ts), tt) = best_of_seven(|| case.error(FullTaylor::new(&case.problem, tol)));
+            let ((de, ds), dt) = best_of_seven(|| case.error(FullDop853::new(&case.problem, tol)));
             println!(
                 "| {name} | {:.0e} | {tol:.0e} | {te:.1e} | {ts} | {:.1} | {de:.1e} | {ds} | {:.1} |",
-                case.params.epsilon,
+                epsilon,
                 tt * 1e6,
                 dt * 1e6
             );

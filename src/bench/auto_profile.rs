@@ -336,35 +336,35 @@ pub fn profile_table(rows: &[ProfileRow]) -> String {
 /// # Errors
 /// When the file cannot be written.
 pub fn write_profile_csv(rows: &[ProfileRow], path: &std::path::Path) -> std::io::Result<()> {
-    let mut o = String::from(
-        "start,k,choice,refinements,auto_seconds,error,estimate,met,best_single,best_seconds,peer,peer_seconds,auto_warm_seconds\n",
-    );
-    for r in rows {
-        let (peer, peer_s) = r
-            .peer
-            .as_ref()
-            .map_or((String::new(), String::new()), |(w, s)| {
-                (w.clone(), format!("{s:e}"))
-            });
-        let _ = writeln!(
-            o,
-            "{},{:e},{},{},{:e},{:e},{:e},{},{},{:e},{},{},{:e}",
-            r.start,
-            r.k,
-            r.choice,
-            r.refinements,
-            r.auto_seconds,
-            r.error,
-            r.estimate,
-            r.met,
-            r.best_single,
-            r.best_seconds,
-            peer,
-            peer_s,
-            r.auto_warm_seconds
-        );
-    }
-    crate::scenario::write::write_atomic(path, o.as_bytes(), true)
+    super::write_csv_lines(
+        path,
+        "start,k,choice,refinements,auto_seconds,error,estimate,met,best_single,best_seconds,peer,peer_seconds,auto_warm_seconds",
+        rows,
+        |r| {
+            let (peer, peer_s) = r
+                .peer
+                .as_ref()
+                .map_or((String::new(), String::new()), |(w, s)| {
+                    (w.clone(), format!("{s:e}"))
+                });
+            format!(
+                "{},{:e},{},{},{:e},{:e},{:e},{},{},{:e},{},{},{:e}",
+                r.start,
+                r.k,
+                r.choice,
+                r.refinements,
+                r.auto_seconds,
+                r.error,
+                r.estimate,
+                r.met,
+                r.best_single,
+                r.best_seconds,
+                peer,
+                peer_s,
+                r.auto_warm_seconds
+            )
+        },
+    )
 }
 
 /// The profile's curves: time against `k` for each start (`auto` first and with its probes

@@ -239,26 +239,25 @@ pub fn table(rows: &[Row]) -> String {
 /// # Errors
 /// When the file cannot be written.
 pub fn write_csv(rows: &[Row], path: &std::path::Path) -> std::io::Result<()> {
-    use std::fmt::Write as _;
-    let mut s = String::from(
-        "preset,method,tolerance,ran_at,estimate,met,error,reference_uncertainty,counts_exact,seconds,rhs_evaluations\n",
-    );
-    for r in rows {
-        let estimate = r.estimate.map(|e| format!("{e:e}")).unwrap_or_default();
-        let met = r.met.map(|m| m.to_string()).unwrap_or_default();
-        let _ = writeln!(
-            s,
-            "{},{},{:e},{:e},{estimate},{met},{:e},{:e},{},{:e},{}",
-            r.preset,
-            r.method,
-            r.tolerance,
-            r.ran_at,
-            r.error,
-            r.reference_uncertainty,
-            r.counts_exact,
-            r.seconds,
-            r.rhs_evaluations
-        );
-    }
-    crate::scenario::write::write_atomic(path, s.as_bytes(), true)
+    super::write_csv_lines(
+        path,
+        "preset,method,tolerance,ran_at,estimate,met,error,reference_uncertainty,counts_exact,seconds,rhs_evaluations",
+        rows,
+        |r| {
+            let estimate = r.estimate.map(|e| format!("{e:e}")).unwrap_or_default();
+            let met = r.met.map(|m| m.to_string()).unwrap_or_default();
+            format!(
+                "{},{},{:e},{:e},{estimate},{met},{:e},{:e},{},{:e},{}",
+                r.preset,
+                r.method,
+                r.tolerance,
+                r.ran_at,
+                r.error,
+                r.reference_uncertainty,
+                r.counts_exact,
+                r.seconds,
+                r.rhs_evaluations
+            )
+        },
+    )
 }

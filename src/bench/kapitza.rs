@@ -277,18 +277,18 @@ pub fn span_line(rows: &[Row], tol: f64) -> String {
 /// # Errors
 /// When the file cannot be written.
 pub fn write_csv(rows: &[Row], path: &std::path::Path) -> std::io::Result<()> {
-    use std::fmt::Write as _;
-    let mut s =
-        String::from("epsilon,method,ran,tolerance,estimate,error,seconds,rhs_evaluations\n");
-    for r in rows {
-        let estimate = r.estimate.map(|e| format!("{e:e}")).unwrap_or_default();
-        let _ = writeln!(
-            s,
-            "{:e},{},{},{:e},{estimate},{:e},{:e},{}",
-            r.epsilon, r.method, r.ran, r.tolerance, r.error, r.seconds, r.rhs_evaluations
-        );
-    }
-    crate::scenario::write::write_atomic(path, s.as_bytes(), true)
+    super::write_csv_lines(
+        path,
+        "epsilon,method,ran,tolerance,estimate,error,seconds,rhs_evaluations",
+        rows,
+        |r| {
+            let estimate = r.estimate.map(|e| format!("{e:e}")).unwrap_or_default();
+            format!(
+                "{:e},{},{},{:e},{estimate},{:e},{:e},{}",
+                r.epsilon, r.method, r.ran, r.tolerance, r.error, r.seconds, r.rhs_evaluations
+            )
+        },
+    )
 }
 
 /// The study's curves: time against `ε` for each method and tolerance, as an SVG.

@@ -433,32 +433,51 @@ pub fn table(rows: &[Row]) -> String {
     o
 }
 
+/// Writes `header` and one line per row (`line`) to the CSV file `path`, atomically: what every
+/// part's `write_csv` shares.
+///
+/// # Errors
+/// When the file cannot be written.
+pub(crate) fn write_csv_lines<R>(
+    path: &Path,
+    header: &str,
+    rows: &[R],
+    line: impl Fn(&R) -> String,
+) -> std::io::Result<()> {
+    let mut text = format!("{header}\n");
+    for r in rows {
+        text.push_str(&line(r));
+        text.push('\n');
+    }
+    crate::scenario::write::write_atomic(path, text.as_bytes(), true)
+}
+
 /// Writes `work_precision.csv`.
 ///
 /// # Errors
 /// When the file cannot be written.
 pub fn write_csv(rows: &[Row], path: &Path) -> std::io::Result<()> {
-    let mut o = String::from(
-        "method,k,tolerance,omega_h,error_alpha,error_alpha_dot,error_reversals,seconds,rhs_evaluations,reference\n",
-    );
     let opt = |v: Option<f64>| v.map_or_else(String::new, |x| format!("{x:e}"));
-    for r in rows {
-        let _ = writeln!(
-            o,
-            "{},{:e},{},{},{:e},{:e},{:e},{:e},{},\"{}\"",
-            r.method,
-            r.k,
-            opt(r.tolerance),
-            opt(r.omega_h),
-            r.error_alpha,
-            r.error_alpha_dot,
-            r.error_reversals,
-            r.seconds,
-            r.rhs_evaluations,
-            r.reference
-        );
-    }
-    crate::scenario::write::write_atomic(path, o.as_bytes(), true)
+    write_csv_lines(
+        path,
+        "method,k,tolerance,omega_h,error_alpha,error_alpha_dot,error_reversals,seconds,rhs_evaluations,reference",
+        rows,
+        |r| {
+            format!(
+                "{},{:e},{},{},{:e},{:e},{:e},{:e},{},\"{}\"",
+                r.method,
+                r.k,
+                opt(r.tolerance),
+                opt(r.omega_h),
+                r.error_alpha,
+                r.error_alpha_dot,
+                r.error_reversals,
+                r.seconds,
+                r.rhs_evaluations,
+                r.reference
+            )
+        },
+    )
 }
 
 pub use auto_profile::{ProfileRow, profile, profile_table, write_profile_csv};

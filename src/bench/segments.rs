@@ -140,25 +140,24 @@ pub fn table(rows: &[Row]) -> String {
 /// # Errors
 /// When the file cannot be written.
 pub fn write_csv(rows: &[Row], path: &std::path::Path) -> std::io::Result<()> {
-    use std::fmt::Write as _;
-    let mut s = String::from(
-        "preset,t_end,tolerance,segments,first_horizon,first_seconds,whole_seconds,nested_seconds,method,met\n",
-    );
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "{},{},{:e},{},{},{:e},{:e},{:e},{},{}",
-            r.preset,
-            r.t_end,
-            r.tolerance,
-            r.segments,
-            r.first_horizon,
-            r.first_seconds,
-            r.whole_seconds,
-            r.nested_seconds,
-            r.method,
-            r.met
-        );
-    }
-    crate::scenario::write::write_atomic(path, s.as_bytes(), true)
+    super::write_csv_lines(
+        path,
+        "preset,t_end,tolerance,segments,first_horizon,first_seconds,whole_seconds,nested_seconds,method,met",
+        rows,
+        |r| {
+            format!(
+                "{},{},{:e},{},{},{:e},{:e},{:e},{},{}",
+                r.preset,
+                r.t_end,
+                r.tolerance,
+                r.segments,
+                r.first_horizon,
+                r.first_seconds,
+                r.whole_seconds,
+                r.nested_seconds,
+                r.method,
+                r.met
+            )
+        },
+    )
 }

@@ -154,24 +154,24 @@ pub fn stability(config: Config) -> Vec<StabilityRow> {
 /// # Errors
 /// When the file cannot be written.
 pub fn write_stability_csv(rows: &[StabilityRow], path: &std::path::Path) -> std::io::Result<()> {
-    let mut text = String::from(
-        "case,method,t_end,max_energy_error,action_drift,reversals,expected_reversals,seconds\n",
-    );
-    for r in rows {
-        let _ = writeln!(
-            text,
-            "\"{}\",{},{},{:e},{:e},{},{},{:e}",
-            r.case,
-            r.method,
-            r.t_end,
-            r.max_energy_error,
-            r.action_drift,
-            r.reversals.0,
-            r.reversals.1,
-            r.seconds
-        );
-    }
-    crate::scenario::write::write_atomic(path, text.as_bytes(), true)
+    super::write_csv_lines(
+        path,
+        "case,method,t_end,max_energy_error,action_drift,reversals,expected_reversals,seconds",
+        rows,
+        |r| {
+            format!(
+                "\"{}\",{},{},{:e},{:e},{},{},{:e}",
+                r.case,
+                r.method,
+                r.t_end,
+                r.max_energy_error,
+                r.action_drift,
+                r.reversals.0,
+                r.reversals.1,
+                r.seconds
+            )
+        },
+    )
 }
 
 /// The report for people.

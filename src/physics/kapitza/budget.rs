@@ -61,7 +61,7 @@ pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
             12.0 * t_end * slow_rate(problem) * per_tol
         }
         Method::Dop853 => 7.2 * fastest_rate(problem) * t_end * per_tol,
-        // Measured 27–49 µs over ε = 1e-1, T = 5 (tolerance 1e-9 … 1e-14) and 185–345 µs at
+        // Measured 29–48 µs over ε = 1e-1, T = 5 (tolerance 1e-9 … 1e-14) and 185–344 µs at
         // 1e-2 (`cargo run --release --example taylor_against_dop853`): about 5 evaluations'
         // time per unit of `rate · t` times `tol^(-1/20)` (28–50 µs and 280–500 µs).
         Method::Taylor => 5.0 * fastest_rate(problem) * t_end * tolerance.max(1e-16).powf(-0.05),

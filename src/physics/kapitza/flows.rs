@@ -164,6 +164,8 @@ impl Field<2> for FullField {
 pub trait FullCore: Clone + Send + 'static {
     /// The method it is.
     const METHOD: Method;
+    /// Starts the full model of `params` at `(0, y0)` with tolerance `tol`.
+    fn start(params: &Params, y0: Vector2<f64>, tol: f64) -> Self;
     /// Current time.
     fn time(&self) -> f64;
     /// Start of the last step.
@@ -183,6 +185,9 @@ pub trait FullCore: Clone + Send + 'static {
 
 impl FullCore for Dop853<2, FullField> {
     const METHOD: Method = Method::Dop853;
+    fn start(params: &Params, y0: Vector2<f64>, tol: f64) -> Self {
+        Dop853::new(FullField(*params), 0.0, y0, tol)
+    }
     fn time(&self) -> f64 {
         Dop853::time(self)
     }
@@ -205,6 +210,9 @@ impl FullCore for Dop853<2, FullField> {
 
 impl FullCore for Taylor {
     const METHOD: Method = Method::Taylor;
+    fn start(params: &Params, y0: Vector2<f64>, tol: f64) -> Self {
+        Taylor::new(params, 0.0, y0, tol)
+    }
     fn time(&self) -> f64 {
         Taylor::time(self)
     }
@@ -230,30 +238,6 @@ pub type FullDop853 = Full<Dop853<2, FullField>>;
 /// The full model by `taylor`.
 pub type FullTaylor = Full<Taylor>;
 
-impl FullDop853 {
-    /// Starts at the problem's initial values with tolerance `tol`.
-    #[must_use]
-    pub fn new(problem: &Problem, tol: f64) -> Self {
-        let (p, s) = (*problem.params(), problem.start());
-        Full::on(
-            &p,
-            Dop853::new(FullField(p), 0.0, Vector2::new(s.theta, s.theta_dot), tol),
-        )
-    }
-}
-
-impl FullTaylor {
-    /// Starts at the problem's initial values with tolerance `tol`.
-    #[must_use]
-    pub fn new(problem: &Problem, tol: f64) -> Self {
-        let (p, s) = (*problem.params(), problem.start());
-        Full::on(
-            &p,
-            Taylor::new(&p, 0.0, Vector2::new(s.theta, s.theta_dot), tol),
-        )
-    }
-}
-
 /// The full model on `core`: samples, the averaged rate's events and the energy.
 #[derive(Clone)]
 pub struct Full<C> {
@@ -264,12 +248,15 @@ pub struct Full<C> {
 }
 
 impl<C: FullCore> Full<C> {
-    fn on(p: &Params, core: C) -> Self {
+    /// Starts at the problem's initial values with tolerance `tol`.
+    #[must_use]
+    pub fn new(problem: &Problem, tol: f64) -> Self {
+        let (p, s) = (*problem.params(), problem.start());
         Self {
-            params: *p,
+            params: p,
             phase: FastPhase::default(),
-            limit: Limit::new(p),
-            core,
+            limit: Limit::new(&p),
+            core: C::start(&p, Vector2::new(s.theta, s.theta_dot), tol),
         }
     }
 

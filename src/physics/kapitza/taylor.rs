@@ -220,8 +220,9 @@ fn horner(c: &[f64], tau: f64) -> f64 {
 mod tests {
     use super::*;
 
-    /// With `b = 0` and small swings the pendulum `θ̈ = a sin θ`, `a < 0`, is nearly harmonic;
-    /// against DOP853 at 1e-14 on the full nonlinear motion.
+    /// A forced swing (θ0 = 1 rad about the hanging position, b = 0.3, ε = 0.05) against DOP853
+    /// at 1e-15: the end and the dense output at every step's middle within 1e-10, at a few
+    /// steps a forcing period.
     #[test]
     fn agrees_with_dop853_on_a_forced_swing() {
         use crate::physics::flow::Flow;
