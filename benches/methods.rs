@@ -22,6 +22,8 @@ const CONFIGS: &[(Method, f64, Option<f64>)] = &[
     (Method::Dop853, 1e-10, None),
     (Method::Dop853, 3e-11, None),
     (Method::Dop853, 1e-12, None),
+    (Method::Taylor, 1e-10, None),
+    (Method::Taylor, 1e-12, None),
     (Method::Rk4, 0.0, Some(0.1)),
     (Method::Rk4, 0.0, Some(0.05)),
     (Method::Strang, 0.0, Some(0.8)),

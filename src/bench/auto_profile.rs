@@ -134,6 +134,7 @@ fn singles(problem: &Problem) -> Vec<(Method, f64, Option<f64>)> {
     for i in 0..13 {
         let tol = 1e-8 * 10f64.powf(-0.5 * f64::from(i));
         c.push((Method::Dop853, tol, None));
+        c.push((Method::Taylor, tol, None));
         c.push((Method::Averaged2, tol, None));
         c.push((Method::Averaged3, tol, None));
     }

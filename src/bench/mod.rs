@@ -129,6 +129,7 @@ fn configurations(quick: bool) -> Vec<(Method, f64, Option<f64>)> {
         vec![1e-6, 1e-8, 1e-10, 1e-12]
     } {
         c.push((Method::Dop853, tol, None));
+        c.push((Method::Taylor, tol, None));
     }
     for (m, whs) in [
         (Method::Rk4, vec![0.1, 0.05]),
@@ -171,6 +172,10 @@ fn predicted_work(method: Method, tol: f64, step: Option<f64>, omega: f64, t_end
     let periods = omega * t_end / std::f64::consts::TAU;
     match (method, step) {
         (Method::Dop853, _) => 155.0 * (1e-10 / tol).powf(0.125) * periods,
+        // Twenty orders a step, about six steps a period at 1e-12.
+        (Method::Taylor, _) => {
+            20.0 * crate::physics::rattleback::budget::taylor_steps(tol, periods)
+        }
         (Method::Locked, Some(h)) => t_end / h,
         (m, Some(h)) if m.is_fixed_step() => {
             let stages = match m {

@@ -15,7 +15,8 @@ pub enum Method {
     /// Dormand–Prince 8(5,3), adaptive, order 8.
     Dop853,
     /// Taylor series of order 20 with the step from its last coefficients: the pendulum's full
-    /// model, its fast forcing expanded exactly (`physics::kapitza::taylor`).
+    /// model, its fast forcing expanded exactly (`physics::kapitza::taylor`), and the
+    /// rattleback's (`physics::rattleback::integrators::full_taylor`).
     Taylor,
     /// Strang splitting with exact sub-flows, order 2, symplectic.
     Strang,

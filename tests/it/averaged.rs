@@ -268,3 +268,41 @@ fn averaged3_is_far_below_averaged2_in_the_middle() {
         assert!(e3 < e2 / 20.0, "{name}: {e3:e} against averaged2's {e2:e}");
     }
 }
+
+/// The probes' full model (`auto::PROBE_FULL_METHOD`, the Taylor series) at their tolerance on
+/// every full-model reference of the note's starts up to k = 1e6, in the samples (which the
+/// probes compare), the end and the reversal times: up to k = 1e4, where the probes run, within
+/// 3e-11 and below DOP853's error there, far below the averaged models' gaps of 1e-8 and more
+/// that the probes measure; above, within 1.25× of DOP853's.
+#[test]
+fn the_probes_full_model_is_as_accurate_as_dop853() {
+    use rattleback::physics::rattleback::auto::{PROBE_FULL_METHOD, PROBE_FULL_TOLERANCE};
+    let worst = |e: (f64, f64, f64)| e.0.max(e.1).max(e.2);
+    let mut checked = 0;
+    for case in averaged_cases()
+        .iter()
+        .filter(|c| c.source == "rk8-long-double" && c.k <= 1e6 && c.t_end == 30.0)
+    {
+        let series = worst(errors(case, PROBE_FULL_METHOD, PROBE_FULL_TOLERANCE));
+        let dop = worst(errors(case, Method::Dop853, PROBE_FULL_TOLERANCE));
+        eprintln!(
+            "{}: {PROBE_FULL_METHOD} {series:.1e}, dop853 {dop:.1e}",
+            case.name
+        );
+        if case.k <= 1e4 {
+            assert!(
+                series <= 3e-11 && series <= dop.max(FLOOR),
+                "{}: {series:e} against dop853's {dop:e}",
+                case.name
+            );
+        } else {
+            assert!(
+                series <= 1.25 * dop.max(FLOOR),
+                "{}: {series:e} against dop853's {dop:e}",
+                case.name
+            );
+        }
+        checked += 1;
+    }
+    assert!(checked >= 20, "{checked} cases");
+}

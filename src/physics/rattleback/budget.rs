@@ -16,6 +16,10 @@ use crate::physics::method::Asked;
 
 /// Nanoseconds per right-hand-side evaluation of the full model (DOP853, RK4).
 pub const NS_DOP853_EVAL: f64 = 36.0;
+/// Nanoseconds per step of the Taylor series (order 20: six convolutions an order), measured
+/// 0.50–0.52 µs a step on the averaging note's starts, k = 1e2 … 1e5
+/// (`cargo run --release --example rattleback_taylor cost`).
+pub const NS_TAYLOR_STEP: f64 = 520.0;
 /// Nanoseconds per exact fast sub-flow of a splitting.
 pub const NS_FAST_FLOW: f64 = 70.0;
 /// Nanoseconds per unit of time of the effective models at the shipped presets' slow rates
@@ -62,6 +66,14 @@ pub fn dop853_evaluations(tol: f64, periods: f64) -> f64 {
     155.0 * (1e-10 / tol.max(1e-14)).powf(0.125) * periods.max(1.0)
 }
 
+/// Steps the Taylor series is predicted to take at local tolerance `tol` over `periods`
+/// periods of the fastest rate: 3.6–6.0 a period at 1e-12 (the averaging note's starts,
+/// k = 1e2 … 1e5), its step growing like `tol^{1/20}`.
+#[must_use]
+pub fn taylor_steps(tol: f64, periods: f64) -> f64 {
+    6.0 * (1e-12 / tol.max(1e-16)).powf(0.05) * periods.max(1.0)
+}
+
 /// Predicted seconds of one run of a concrete `method` with these settings over `[0, t_end]`
 /// (`auto` is planned above: [`crate::physics::rattleback::plan::predicted_seconds`]).
 #[must_use]
@@ -71,8 +83,9 @@ pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
     let h = || step.unwrap_or_else(|| default_step(method, problem, tolerance, t_end));
     let periods = |rate: f64| rate * t_end / std::f64::consts::TAU;
     let ns = match method {
-        // Not offered here (refused by `Model::resolve`); priced as DOP853.
-        Method::Dop853 | Method::Dop853Projected | Method::Taylor | Method::Auto => {
+        Method::Taylor => taylor_steps(tolerance, periods(nu)) * NS_TAYLOR_STEP,
+        // `dop853-projected` is not offered here (refused by `Model::resolve`): priced as DOP853.
+        Method::Dop853 | Method::Dop853Projected | Method::Auto => {
             dop853_evaluations(tolerance, periods(nu)) * NS_DOP853_EVAL
         }
         Method::Effective | Method::EffectiveCorrected | Method::Averaged2 | Method::Averaged3 => {

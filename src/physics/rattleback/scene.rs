@@ -77,10 +77,11 @@ pub const PARAMS: [ParamSpec; 8] = [
 ];
 
 /// The methods the rattleback offers, `auto` first: every method but the celt's projected one.
-pub const METHODS: [Method; 13] = [
+pub const METHODS: [Method; 14] = [
     Method::Auto,
     Method::Rk4,
     Method::Dop853,
+    Method::Taylor,
     Method::Strang,
     Method::Yoshida4,
     Method::BlanesMoan4,

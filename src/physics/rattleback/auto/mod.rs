@@ -13,7 +13,7 @@
 //! - `averaged3`, the O(k⁻³) averaged model ([`AVERAGED`]), once `k` is far enough above the
 //!   stiffnesses at which its model error can be *measured* cheaply. Two probes at `k_lo` and
 //!   `k_hi = 4 k_lo` (the smallest `k` where the averaging expansion is valid for this start:
-//!   `|α̇|/ω ≤ 0.2`) compare it with the resolved full model (DOP853 at 1e-12) over `[0, T]`
+//!   `|α̇|/ω ≤ 0.2`) compare it with the resolved full model (`taylor` at 1e-12) over `[0, T]`
 //!   (33 samples of `α`, `α̇`, and the reversal times); the model error at `k` is predicted as
 //!   `2 · gap(k_hi) · (k_hi/k)^p`, with `p` the measured slope between the probes clamped to
 //!   `[0.5, 3]` (3 is the theory's; a pre-asymptotic start decays slower and is extrapolated
@@ -102,9 +102,18 @@ pub const MODEL_ORDER: f64 = 3.0;
 pub const PROBE_SAFETY: f64 = 2.0;
 /// Samples of `α`, `α̇` compared by a probe.
 pub const PROBE_SAMPLES: usize = 33;
-/// Local tolerance of the full model (DOP853) in a probe: its global error at the probe
-/// stiffnesses (≤ 100 fast periods over T = 30) is about 2.5e-10, against the averaged model's
-/// gaps of 1e-8 and more there (docs/averaging/third-order.md).
+/// The method of a probe's full model: the Taylor series (`taylor`). At
+/// [`PROBE_FULL_TOLERANCE`] its error in `α(T)`, `α̇(T)` and the reversal times is at most
+/// DOP853's on every long-double reference of `averaged.toml` and `rattleback_honesty.toml` up
+/// to k = 1e6, and 3–70× below it from k = 1e2 to 1e4, where the probes run (over the samples
+/// too, within 3e-11 there: `averaged::the_probes_full_model_is_as_accurate_as_dop853`), at
+/// 0.3–0.5 of its time (`cargo run --release --example rattleback_taylor probe`;
+/// docs/benchmarks.md, "The middle by a Taylor series").
+pub const PROBE_FULL_METHOD: Method = Method::Taylor;
+/// Local tolerance of the full model in a probe: its global error at the probe stiffnesses (≤ 100
+/// fast periods over T = 30) is at most 1.5e-11 on the references (DOP853's at this tolerance
+/// was about 2.5e-10), against the averaged model's gaps of 1e-8 and more there
+/// (docs/averaging/third-order.md).
 pub const PROBE_FULL_TOLERANCE: f64 = 1e-12;
 /// Local tolerance of the averaged model in a probe (its global error ≈ 1e-10, against gaps
 /// of 1e-8 and more at the probe stiffnesses).
@@ -323,7 +332,7 @@ pub fn probes_cost(problem: &Problem, t_end: f64) -> f64 {
             let probe = probe_problem(problem, k);
             cost_seconds(
                 &probe,
-                &Asked::new(Method::Dop853, PROBE_FULL_TOLERANCE, None, t_end),
+                &Asked::new(PROBE_FULL_METHOD, PROBE_FULL_TOLERANCE, None, t_end),
             ) + cost_seconds(&probe, &Asked::new(AVERAGED, PROBE_TOLERANCE, None, t_end))
                 + cost_seconds(
                     &probe,
@@ -424,7 +433,11 @@ fn probe_gap(
         samples: PROBE_SAMPLES,
         monitor_energy: false,
     };
-    let full = match run_cancellable(&probe, &spec(Method::Dop853, PROBE_FULL_TOLERANCE), go_on) {
+    let full = match run_cancellable(
+        &probe,
+        &spec(PROBE_FULL_METHOD, PROBE_FULL_TOLERANCE),
+        go_on,
+    ) {
         Err(e @ StepError::Cancelled { .. }) => return Err(e),
         full => full.ok(),
     };

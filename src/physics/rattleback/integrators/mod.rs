@@ -8,6 +8,7 @@
 mod averaged;
 mod effective;
 mod full_dop853;
+pub mod full_taylor;
 mod rk4;
 pub mod splitting;
 
@@ -108,6 +109,7 @@ pub fn build(
     Ok(match method {
         Method::Rk4 => Box::new(rk4::Rk4::new(problem, step).with_time_sum(time_sum)),
         Method::Dop853 => Box::new(full_dop853::FullDop853::new(problem, settings.tolerance)),
+        Method::Taylor => Box::new(full_taylor::FullTaylor::new(problem, settings.tolerance)),
         Method::Strang
         | Method::Yoshida4
         | Method::BlanesMoan4
@@ -142,7 +144,7 @@ pub fn build(
             }
         }
         Method::Auto => return Err(StepError::Unplanned),
-        Method::Dop853Projected | Method::Taylor => {
+        Method::Dop853Projected => {
             return Err(StepError::NotOffered {
                 method: method.name(),
                 model: "rattleback",

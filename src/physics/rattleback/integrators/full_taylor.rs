@@ -1,0 +1,331 @@
+//! `taylor` on the full model: the Taylor series of `(γ, α, γ̇, α̇)` about each step's start
+//! (issue 27, items 1–2: the middle stiffnesses, where `auto` still resolves the fast motion).
+//!
+//! At equal error DOP853 costs 1.9–4.5× as much on the averaging note's starts, k = 1e2 … 1e5,
+//! T = 30 (four to six steps a fast period, where DOP853 takes twenty to forty; `cargo run
+//! --release --example rattleback_taylor cost`). `auto` runs its probes' full model with it (its
+//! `PROBE_FULL_METHOD`), but not its resolved runs: its
+//! error does not fall smoothly with the tolerance, so a looser companion does not bound it.
+//! `α̇` carries a ripple at twice the fast frequency, which a step of a fifth of a fast period
+//! samples two or three times a ripple period; each step's truncation error in `α̇` takes the
+//! sign of the ripple's phase there, and the run's error is their sum, a random walk, which
+//! neighbouring tolerances cancel differently (B at k = 1e3: 1.0e-10 at 1e-10, 5.9e-10 at
+//! 3.2e-11). A companion 16× looser read less than the error in 14 of 375 runs on the references
+//! (`… rattleback_taylor companion`; DOP853, whose steps sample the ripple densely and whose
+//! error is systematic, never: docs/benchmarks.md).
+//!
+//! The right-hand side `γ̈ = −(g' α̇ γ̇ + k γ)/g`, `α̈ = g' γ̇² / (2 iz)` is written in the
+//! double angle `β = 2α`: `g = G0 + G1 cos β` with `G0 = (ix + iy)/2`, `G1 = (ix − iy)/2`, and
+//! `g' = (iy − ix) sin β`. With `S = sin β`, `C = cos β`, `w = γ̇`, `v = α̇`, each order `n`
+//! takes six convolutions (Jorba and Zou's automatic differentiation, 2005):
+//! - `P = S w`, then `A = P v` and `B = P w` (`g' α̇ γ̇ = (iy − ix) A`, `g' γ̇² = (iy − ix) B`);
+//! - the quotient `q = (k γ + (iy − ix) A) / g`, `q_n = (N_n − G1 Σ_{j≥1} C_j q_{n−j}) / g_0`;
+//! - `S`, `C` by their recurrences in `β`: `(n+1) S_{n+1} = Σ j β_j C_{n+1−j}`,
+//!   `(n+1) C_{n+1} = −Σ j β_j S_{n+1−j}`;
+//!
+//! and then `γ_{n+1} = w_n/(n+1)`, `α_{n+1} = v_n/(n+1)`, `w_{n+1} = −q_n/(n+1)`,
+//! `v_{n+1} = (iy − ix) B_n / (2 iz (n+1))`. One `sin_cos` a step; no right-hand side is
+//! evaluated.
+//!
+//! **Step size and error scale** as the pendulum's series (`kapitza::taylor`): the smallest
+//! `(1/m_n)^{1/n}` over the last three orders, `m_n` the largest coefficient of order `n` over
+//! its component's error scale, which is DOP853's here (`tol (u + |γ|)` for `γ` with `u = 1/ω_max`,
+//! `tol` for the angle `α`, `tol (1 + |y_i|)` for the rates). The order is fixed ([`ORDER`]);
+//! the series itself is the dense output; no step is rejected.
+
+use super::Method;
+use super::roots::find_root;
+use crate::physics::flow::Flow;
+use crate::physics::method::StepError;
+use crate::physics::numerics::dop853::Stats;
+use crate::physics::rattleback::model::{ALPHA_DOT, State, energy, initial_state};
+use crate::physics::rattleback::params::{Params, Problem};
+
+/// The order of the series, whatever the tolerance (as the pendulum's, for the same reason: a
+/// run and its looser companion then differ only in their steps).
+pub const ORDER: usize = 20;
+
+const N1: usize = ORDER + 1;
+
+/// The Taylor integrator of the full model.
+#[derive(Clone)]
+pub struct TaylorCore {
+    g0: f64,
+    g1: f64,
+    /// `iy − ix`.
+    d: f64,
+    k: f64,
+    two_iz: f64,
+    /// `1/ω_max`, the natural unit of `γ`.
+    unit_gamma: f64,
+    tol: f64,
+    t: f64,
+    y: State,
+    t_prev: f64,
+    /// Coefficients of `γ`, `α`, `γ̇`, `α̇` about `t_prev`, orders `0..=ORDER`.
+    c: [[f64; N1]; 4],
+    stats: Stats,
+}
+
+impl TaylorCore {
+    /// Starts at `(t0, y0)` with tolerance `tol`.
+    #[must_use]
+    pub fn new(params: &Params, t0: f64, y0: State, tol: f64) -> Self {
+        let mut c = [[0.0; N1]; 4];
+        for (i, series) in c.iter_mut().enumerate() {
+            series[0] = y0[i];
+        }
+        Self {
+            g0: 0.5 * (params.ix + params.iy),
+            g1: 0.5 * (params.ix - params.iy),
+            d: params.iy - params.ix,
+            k: params.k,
+            two_iz: 2.0 * params.iz,
+            unit_gamma: 1.0 / params.omega_max(),
+            tol,
+            t: t0,
+            y: y0,
+            t_prev: t0,
+            c,
+            stats: Stats::default(),
+        }
+    }
+
+    /// Current time.
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// Current state.
+    #[must_use]
+    pub fn state(&self) -> State {
+        self.y
+    }
+
+    /// Start of the last step.
+    #[must_use]
+    pub fn time_prev(&self) -> f64 {
+        self.t_prev
+    }
+
+    /// Work counters: each step counts [`ORDER`] evaluations (one pass of the recurrences per
+    /// order).
+    #[must_use]
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    /// The series of the last step at `t` in `[time_prev, time]`.
+    #[must_use]
+    pub fn interpolate(&self, t: f64) -> State {
+        if t >= self.t {
+            return self.y;
+        }
+        let tau = t - self.t_prev;
+        State::from_fn(|i, _| horner(&self.c[i], tau))
+    }
+
+    /// Expands the state about the current point into `self.c`.
+    #[allow(clippy::cast_precision_loss, clippy::needless_range_loop)]
+    fn expand(&mut self) {
+        let [gm, al, w, v] = &mut self.c;
+        gm[0] = self.y[0];
+        al[0] = self.y[1];
+        w[0] = self.y[2];
+        v[0] = self.y[3];
+        let (mut s, mut c) = ([0.0; N1], [0.0; N1]);
+        (s[0], c[0]) = (2.0 * al[0]).sin_cos();
+        let (mut p, mut q) = ([0.0; N1], [0.0; N1]);
+        // `j β_j = 2 j α_j`, kept so the sine and cosine are one pass.
+        let mut jb = [0.0; N1];
+        let g_at0 = self.g0 + self.g1 * c[0];
+        let inv_g0 = 1.0 / g_at0;
+        for n in 0..ORDER {
+            // One pass over `j` for all six convolutions (independent sums, so they overlap):
+            // `P_n = Σ S_j w_{n−j}`; `A_n`, `B_n` = `Σ P_j (v, w)_{n−j}` but for their
+            // `j = n` term, which needs `P_n`; the quotient's `Σ_{j≥1} C_j q_{n−j}`; and the
+            // next order's `Σ j β_j (C, S)_{n+1−j}` but for its `j = n + 1` term, which needs
+            // `α_{n+1}`.
+            let mut pn = s[0] * w[n];
+            let (mut a, mut b, mut qc, mut ds, mut dc) = (0.0, 0.0, 0.0, 0.0, 0.0);
+            for j in 1..=n {
+                pn += s[j] * w[n - j];
+                a += p[j - 1] * v[n + 1 - j];
+                b += p[j - 1] * w[n + 1 - j];
+                qc += c[j] * q[n - j];
+                ds += jb[j] * c[n + 1 - j];
+                dc += jb[j] * s[n + 1 - j];
+            }
+            p[n] = pn;
+            a += pn * v[0];
+            b += pn * w[0];
+            q[n] = (self.k * gm[n] + self.d * a - self.g1 * qc) * inv_g0;
+            let m = (n + 1) as f64;
+            gm[n + 1] = w[n] / m;
+            al[n + 1] = v[n] / m;
+            w[n + 1] = -q[n] / m;
+            v[n + 1] = self.d * b / (self.two_iz * m);
+            jb[n + 1] = 2.0 * v[n];
+            ds += jb[n + 1] * c[0];
+            dc += jb[n + 1] * s[0];
+            s[n + 1] = ds / m;
+            c[n + 1] = -dc / m;
+        }
+    }
+
+    /// The step the series allows (see the module's documentation).
+    #[allow(clippy::cast_precision_loss)]
+    fn natural_step(&self) -> f64 {
+        let tol = self.tol;
+        let scale = [
+            tol * (self.unit_gamma + self.y[0].abs()),
+            tol,
+            tol * (1.0 + self.y[2].abs()),
+            tol * (1.0 + self.y[3].abs()),
+        ];
+        let radius = |n: usize| {
+            let m = (0..4)
+                .map(|i| self.c[i][n].abs() / scale[i])
+                .fold(0.0, f64::max);
+            if m == 0.0 {
+                f64::INFINITY
+            } else {
+                m.powf(-1.0 / n as f64)
+            }
+        };
+        radius(ORDER - 2).min(radius(ORDER - 1)).min(radius(ORDER))
+    }
+
+    /// Takes one step, never past `t_limit` (which must exceed the current time).
+    ///
+    /// # Errors
+    /// When the series stops being finite or its step underflows.
+    pub fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
+        self.expand();
+        let natural = self.natural_step();
+        let remaining = t_limit - self.t;
+        let last = natural >= remaining;
+        let h = if last { remaining } else { natural };
+        if h.is_nan() || h <= 0.0 || h.is_infinite() {
+            return Err(StepError::NonFinite { t: self.t });
+        }
+        if h <= 16.0 * f64::EPSILON * self.t.abs() && !last {
+            return Err(StepError::StepTooSmall { t: self.t, h });
+        }
+        let y_new = State::from_fn(|i, _| horner(&self.c[i], h));
+        if !y_new.iter().all(|x| x.is_finite()) {
+            return Err(StepError::NonFinite { t: self.t });
+        }
+        self.t_prev = self.t;
+        self.t = if last { t_limit } else { self.t + h };
+        self.y = y_new;
+        self.stats.steps += 1;
+        self.stats.rhs_evaluations += ORDER as u64;
+        Ok(())
+    }
+}
+
+/// `Σ c_n τ^n` by Horner's rule.
+fn horner(c: &[f64], tau: f64) -> f64 {
+    c.iter().rev().fold(0.0, |acc, &x| acc * tau + x)
+}
+
+/// `taylor` on `(γ, α, γ̇, α̇)`.
+#[derive(Clone)]
+pub struct FullTaylor {
+    params: Params,
+    core: TaylorCore,
+}
+
+impl FullTaylor {
+    /// Starts at the problem's initial values with tolerance `tol`.
+    #[must_use]
+    pub fn new(problem: &Problem, tol: f64) -> Self {
+        let params = *problem.params();
+        Self {
+            params,
+            core: TaylorCore::new(&params, 0.0, initial_state(problem.start()), tol),
+        }
+    }
+
+    /// The current state `(γ, α, γ̇, α̇)`.
+    #[must_use]
+    pub fn state(&self) -> State {
+        self.core.state()
+    }
+    /// The state at `t` inside the last step.
+    #[must_use]
+    pub fn interpolate(&self, t: f64) -> State {
+        self.core.interpolate(t)
+    }
+}
+
+impl Flow for FullTaylor {
+    crate::physics::flow::on_core!();
+    fn method(&self) -> Method {
+        Method::Taylor
+    }
+    fn locate_event(&mut self) -> f64 {
+        let (a, b) = (self.core.time_prev(), self.core.time());
+        find_root(|t| self.core.interpolate(t)[ALPHA_DOT], a, b)
+    }
+    fn energy(&self) -> f64 {
+        energy(&self.params, &self.state())
+    }
+    fn event_value(&self) -> f64 {
+        self.state()[ALPHA_DOT]
+    }
+    super::drawn_from_state!();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::numerics::dop853::{Dop853, Field};
+    use crate::physics::rattleback::model::rhs;
+
+    struct F(Params);
+    impl Field<4> for F {
+        fn eval(&self, y: &State) -> State {
+            rhs(&self.0, y)
+        }
+    }
+
+    /// The series against DOP853 at 1e-15 on a rotating body at k = 300 (about 100 fast
+    /// periods): the end and the series at every step's middle within 1e-9, at a few steps a
+    /// fast period where DOP853 takes about twenty.
+    #[test]
+    fn agrees_with_dop853_through_the_fast_motion() {
+        let p = Params {
+            ix: 1.3,
+            iy: 0.8,
+            iz: 1.1,
+            k: 300.0,
+        };
+        let y0 = State::new(0.02, 0.4, -0.5, 1.2);
+        let mut taylor = TaylorCore::new(&p, 0.0, y0, 1e-13);
+        let mut dop = Dop853::new(F(p), 0.0, y0, 1e-15);
+        let t_end = 30.0;
+        let mut worst: f64 = 0.0;
+        while taylor.time() < t_end {
+            taylor.step(t_end).unwrap();
+            let mid = 0.5 * (taylor.time_prev() + taylor.time());
+            while dop.time() < mid {
+                dop.step(t_end).unwrap();
+            }
+            let d = taylor.interpolate(mid) - dop.interpolate(mid);
+            worst = worst.max(d.abs().max());
+        }
+        while dop.time() < t_end {
+            dop.step(t_end).unwrap();
+        }
+        let d = taylor.state() - dop.state();
+        assert!(d.abs().max() < 1e-9, "end {d:?}");
+        assert!(worst < 1e-9, "dense output {worst}");
+        let periods = t_end * p.omega_max() / std::f64::consts::TAU;
+        #[allow(clippy::cast_precision_loss)]
+        let per_period = taylor.stats().steps as f64 / periods;
+        assert!(per_period < 8.0, "{per_period} steps a period");
+    }
+}
