@@ -59,10 +59,16 @@ pub struct Report {
     pub signature: Option<String>,
 }
 
-/// How `auto` resolves in a replay of `rec`: the plans it recorded, and for format 1 files
-/// (which recorded none) `auto` as it was then.
+/// How `auto` resolves in a replay of `rec`: the plans it recorded for `auto`, and for format 1
+/// files (which recorded none) `auto` as it was then.
+///
+/// A plan line does not say which method was asked. From format 4 on, `auto`'s lines carry its
+/// estimate and a method asked by name has none, so only lines with an estimate are kept: a
+/// lecture that picked `dop853` in the panel, then went back to `auto`, replays `auto`'s plan for
+/// `auto` (formats 2 and 3 keep every line, as before).
 #[must_use]
 pub fn plan_book(rec: &Recording) -> PlanBook {
+    let auto_only = rec.header.version >= 4;
     PlanBook {
         policy: if rec.header.version < 2 {
             AutoPolicy::Legacy
@@ -73,7 +79,11 @@ pub fn plan_book(rec: &Recording) -> PlanBook {
             .lines
             .iter()
             .filter_map(|(_, l)| match &l.event {
-                Event::Plan { key, plan, .. } => Some((*key, *plan)),
+                Event::Plan {
+                    key,
+                    plan,
+                    estimate,
+                } if estimate.is_some() || !auto_only => Some((*key, *plan)),
                 _ => None,
             })
             .collect(),

@@ -95,7 +95,7 @@ impl PlanKey {
 pub struct PlanBook {
     /// Policy for keys not recorded.
     pub policy: AutoPolicy,
-    /// Recorded plans.
+    /// Recorded plans of `auto` (a method asked by name is its own plan).
     pub recorded: Vec<(PlanKey, Resolved)>,
     /// The error estimates recorded with them (format 4 on), shown again by a replay.
     pub estimates: Vec<(PlanKey, f64)>,
@@ -142,8 +142,15 @@ impl PlanBook {
         }
     }
 
-    /// What was recorded for `spec`'s key, in `list`.
+    /// What was recorded for `spec`'s key, in `list`: `auto`'s plans only. A method asked by
+    /// name is its own plan and never read from the book: a key does not say which method was
+    /// asked, so a lecture that changed the method without changing the key (the panel's method
+    /// field) replayed the first plan of its key, `auto`'s, where the lecturer had picked
+    /// another method (a replay's book keeps `auto`'s lines only: `record::plan_book`).
     fn find<T: Copy>(list: &[(PlanKey, T)], spec: &SessionSpec) -> Option<T> {
+        if spec.method != Method::Auto {
+            return None;
+        }
         let key = PlanKey::of(spec);
         list.iter().find(|(k, _)| *k == key).map(|(_, v)| *v)
     }

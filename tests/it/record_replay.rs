@@ -769,3 +769,76 @@ fn the_weak_window_the_lecturer_chose_is_replayed() {
         replay.app.computed.weak.window
     );
 }
+
+/// A lecture that changes the method in the panel (the key stays the same: body, start,
+/// tolerance, horizon) replays the method the lecturer picked, not `auto`'s plan recorded first
+/// for that key: changed at `t = 0`, twice in one frame, and mid-run after a pause, then back to
+/// `auto`, which replays its own plan. Every checkpoint, bit for bit.
+#[test]
+fn a_method_changed_in_the_panel_replays_the_method_picked() {
+    use rattleback::app::fields::Field;
+    use rattleback::physics::Method;
+    let mut h = Headless::new("subcritical");
+    assert_eq!(h.app.scenario.settings.method, Method::Auto);
+    let header = crate::common::header_of(&h.app);
+    h.app.on_key(Key::Char('R'));
+    h.app
+        .on_outcome(Outcome::Recording(Ok("methods.jsonl".to_owned())));
+    let row = Field::rows(h.app.scenario.settings.model.kind())
+        .iter()
+        .position(|f| *f == Field::Method)
+        .unwrap();
+    while h.app.scenario.selected < row {
+        h.key(Key::Down);
+    }
+    let mut methods = Vec::new();
+    let checkpoint = |h: &mut Headless, methods: &mut Vec<Method>| {
+        let c = vec![h.app.checkpoint()];
+        h.exec(c);
+        methods.push(h.app.scenario.settings.method);
+    };
+    // rk4, then dop853 before anything is drawn.
+    h.key(Key::Right);
+    h.key(Key::Right);
+    checkpoint(&mut h, &mut methods);
+    h.play_until(1.0, 1.0);
+    h.key(Key::Char(' '));
+    checkpoint(&mut h, &mut methods);
+    // taylor mid-run (a restart), played on at ×16.
+    h.key(Key::Right);
+    h.play_until(3.0, 16.0);
+    h.key(Key::Char(' '));
+    checkpoint(&mut h, &mut methods);
+    // Back to auto: its own recorded plan.
+    for _ in 0..3 {
+        h.key(Key::Left);
+    }
+    h.play_until(2.0, 16.0);
+    h.key(Key::Char(' '));
+    checkpoint(&mut h, &mut methods);
+    assert_eq!(
+        methods,
+        [Method::Dop853, Method::Dop853, Method::Taylor, Method::Auto]
+    );
+    let journal = h.app.take_journal();
+    let plans: Vec<Method> = journal
+        .iter()
+        .filter_map(|(_, _, e)| match e {
+            Event::Plan { plan, .. } => Some(plan.method),
+            _ => None,
+        })
+        .collect();
+    assert!(
+        plans.contains(&Method::Dop853) && plans.contains(&Method::Taylor),
+        "{plans:?}"
+    );
+    let checkpoints = journal
+        .iter()
+        .filter(|(_, _, e)| matches!(e, Event::Checkpoint { .. }))
+        .count();
+    assert!(checkpoints >= 4, "{checkpoints}");
+    let back = crate::common::write_session(&temp("methods.jsonl"), &header, journal, 0.5);
+    let report = record::verify(&back, "methods", None)
+        .unwrap_or_else(|e| panic!("a lecture that changed its method: {e}"));
+    assert_eq!(report.checkpoints, checkpoints);
+}
