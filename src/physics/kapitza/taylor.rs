@@ -30,6 +30,7 @@ use nalgebra::Vector2;
 use super::Params;
 use crate::physics::method::StepError;
 use crate::physics::numerics::dop853::Stats;
+use crate::physics::numerics::taylor::{horner, natural_step, towards};
 
 /// The order of the series, whatever the tolerance: a run and its companion at a looser
 /// tolerance then differ only in their steps, and their errors follow the tolerance (an order
@@ -160,23 +161,12 @@ impl Taylor {
     }
 
     /// The step the series allows (see the module's documentation).
-    #[allow(clippy::cast_precision_loss)]
     fn natural_step(&self) -> f64 {
         let scale_theta = self.tol;
         let scale_rate = self.tol * (1.0 + self.y[1].abs());
-        let size = |n: usize| {
+        natural_step(ORDER, |n| {
             (self.theta[n].abs() / scale_theta).max(self.theta_dot[n].abs() / scale_rate)
-        };
-        let n = ORDER;
-        let radius = |n: usize| {
-            let m = size(n);
-            if m == 0.0 {
-                f64::INFINITY
-            } else {
-                m.powf(-1.0 / n as f64)
-            }
-        };
-        SAFETY * radius(n - 2).min(radius(n - 1)).min(radius(n))
+        })
     }
 
     /// Takes one step, never past `t_limit` (which must exceed the current time).
@@ -185,16 +175,7 @@ impl Taylor {
     /// When the series stops being finite or its step underflows.
     pub fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
         self.expand();
-        let natural = self.natural_step();
-        let remaining = t_limit - self.t;
-        let last = natural >= remaining;
-        let h = if last { remaining } else { natural };
-        if h.is_nan() || h <= 0.0 || h.is_infinite() {
-            return Err(StepError::NonFinite { t: self.t });
-        }
-        if h <= 16.0 * f64::EPSILON * self.t.abs() && !last {
-            return Err(StepError::StepTooSmall { t: self.t, h });
-        }
+        let (h, last) = towards(self.t, SAFETY * self.natural_step(), t_limit)?;
         let y_new = Vector2::new(
             horner(&self.theta[..=ORDER], h),
             horner(&self.theta_dot[..=ORDER], h),
@@ -209,11 +190,6 @@ impl Taylor {
         self.stats.rhs_evaluations += ORDER as u64;
         Ok(())
     }
-}
-
-/// `Σ c_n τ^n` by Horner's rule.
-fn horner(c: &[f64], tau: f64) -> f64 {
-    c.iter().rev().fold(0.0, |acc, &x| acc * tau + x)
 }
 
 #[cfg(test)]

@@ -1,10 +1,11 @@
 //! Generic numerics, shared by every model and owned by none: the adaptive DOP853 core (any
 //! dimension, autonomous or forced), the symmetric compositions of two exactly solvable parts
 //! over the [`compositions::Split`] trait, bracketed root finding for events, and Gauss–Legendre
-//! quadrature.
+//! quadrature, and what the Taylor-series integrators share ([`taylor`]).
 
 pub mod compositions;
 pub mod dop853;
 mod dop853_tableau;
 pub mod quadrature;
 pub mod roots;
+pub mod taylor;

@@ -27,19 +27,17 @@
 //! `v_{n+1} = (iy − ix) B_n / (2 iz (n+1))`. One `sin_cos` a step; no right-hand side is
 //! evaluated.
 //!
-//! **Step size and error scale** as the pendulum's series (`kapitza::taylor`): the smallest
+//! **Step size and error scale** as the pendulum's series (`numerics::taylor`): the smallest
 //! `(1/m_n)^{1/n}` over the last three orders, `m_n` the largest coefficient of order `n` over
 //! its component's error scale, which is DOP853's here (`tol (u + |γ|)` for `γ` with `u = 1/ω_max`,
 //! `tol` for the angle `α`, `tol (1 + |y_i|)` for the rates). The order is fixed ([`ORDER`]);
 //! the series itself is the dense output; no step is rejected.
 
-use super::Method;
-use super::roots::find_root;
-use crate::physics::flow::Flow;
 use crate::physics::method::StepError;
 use crate::physics::numerics::dop853::Stats;
-use crate::physics::rattleback::model::{ALPHA_DOT, State, energy, initial_state};
-use crate::physics::rattleback::params::{Params, Problem};
+use crate::physics::numerics::taylor::{horner, natural_step, towards};
+use crate::physics::rattleback::model::State;
+use crate::physics::rattleback::params::Params;
 
 /// The order of the series, whatever the tolerance (as the pendulum's, for the same reason: a
 /// run and its looser companion then differ only in their steps).
@@ -175,7 +173,6 @@ impl TaylorCore {
     }
 
     /// The step the series allows (see the module's documentation).
-    #[allow(clippy::cast_precision_loss)]
     fn natural_step(&self) -> f64 {
         let tol = self.tol;
         let scale = [
@@ -184,17 +181,11 @@ impl TaylorCore {
             tol * (1.0 + self.y[2].abs()),
             tol * (1.0 + self.y[3].abs()),
         ];
-        let radius = |n: usize| {
-            let m = (0..4)
+        natural_step(ORDER, |n| {
+            (0..4)
                 .map(|i| self.c[i][n].abs() / scale[i])
-                .fold(0.0, f64::max);
-            if m == 0.0 {
-                f64::INFINITY
-            } else {
-                m.powf(-1.0 / n as f64)
-            }
-        };
-        radius(ORDER - 2).min(radius(ORDER - 1)).min(radius(ORDER))
+                .fold(0.0, f64::max)
+        })
     }
 
     /// Takes one step, never past `t_limit` (which must exceed the current time).
@@ -203,16 +194,7 @@ impl TaylorCore {
     /// When the series stops being finite or its step underflows.
     pub fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
         self.expand();
-        let natural = self.natural_step();
-        let remaining = t_limit - self.t;
-        let last = natural >= remaining;
-        let h = if last { remaining } else { natural };
-        if h.is_nan() || h <= 0.0 || h.is_infinite() {
-            return Err(StepError::NonFinite { t: self.t });
-        }
-        if h <= 16.0 * f64::EPSILON * self.t.abs() && !last {
-            return Err(StepError::StepTooSmall { t: self.t, h });
-        }
+        let (h, last) = towards(self.t, self.natural_step(), t_limit)?;
         let y_new = State::from_fn(|i, _| horner(&self.c[i], h));
         if !y_new.iter().all(|x| x.is_finite()) {
             return Err(StepError::NonFinite { t: self.t });
@@ -226,71 +208,12 @@ impl TaylorCore {
     }
 }
 
-/// `Σ c_n τ^n` by Horner's rule.
-fn horner(c: &[f64], tau: f64) -> f64 {
-    c.iter().rev().fold(0.0, |acc, &x| acc * tau + x)
-}
-
-/// `taylor` on `(γ, α, γ̇, α̇)`.
-#[derive(Clone)]
-pub struct FullTaylor {
-    params: Params,
-    core: TaylorCore,
-}
-
-impl FullTaylor {
-    /// Starts at the problem's initial values with tolerance `tol`.
-    #[must_use]
-    pub fn new(problem: &Problem, tol: f64) -> Self {
-        let params = *problem.params();
-        Self {
-            params,
-            core: TaylorCore::new(&params, 0.0, initial_state(problem.start()), tol),
-        }
-    }
-
-    /// The current state `(γ, α, γ̇, α̇)`.
-    #[must_use]
-    pub fn state(&self) -> State {
-        self.core.state()
-    }
-    /// The state at `t` inside the last step.
-    #[must_use]
-    pub fn interpolate(&self, t: f64) -> State {
-        self.core.interpolate(t)
-    }
-}
-
-impl Flow for FullTaylor {
-    crate::physics::flow::on_core!();
-    fn method(&self) -> Method {
-        Method::Taylor
-    }
-    fn locate_event(&mut self) -> f64 {
-        let (a, b) = (self.core.time_prev(), self.core.time());
-        find_root(|t| self.core.interpolate(t)[ALPHA_DOT], a, b)
-    }
-    fn energy(&self) -> f64 {
-        energy(&self.params, &self.state())
-    }
-    fn event_value(&self) -> f64 {
-        self.state()[ALPHA_DOT]
-    }
-    super::drawn_from_state!();
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::numerics::dop853::{Dop853, Field};
-    use crate::physics::rattleback::model::rhs;
-
-    struct F(Params);
-    impl Field<4> for F {
-        fn eval(&self, y: &State) -> State {
-            rhs(&self.0, y)
-        }
-    }
+    use crate::physics::flow::Flow;
+    use crate::physics::rattleback::integrators::full::FullDop853;
+    use crate::physics::rattleback::params::{Problem, Start};
 
     /// The series against DOP853 at 1e-15 on a rotating body at k = 300 (about 100 fast
     /// periods): the end and the series at every step's middle within 1e-9, at a few steps a
@@ -304,8 +227,18 @@ mod tests {
             k: 300.0,
         };
         let y0 = State::new(0.02, 0.4, -0.5, 1.2);
+        let problem = Problem::new(
+            p,
+            Start {
+                gamma: y0[0],
+                alpha: y0[1],
+                gamma_dot: y0[2],
+                alpha_dot: y0[3],
+            },
+        )
+        .unwrap();
         let mut taylor = TaylorCore::new(&p, 0.0, y0, 1e-13);
-        let mut dop = Dop853::new(F(p), 0.0, y0, 1e-15);
+        let mut dop = FullDop853::new(&problem, 1e-15);
         let t_end = 30.0;
         let mut worst: f64 = 0.0;
         while taylor.time() < t_end {

@@ -7,7 +7,7 @@
 
 mod averaged;
 mod effective;
-mod full_dop853;
+mod full;
 pub mod full_taylor;
 mod rk4;
 pub mod splitting;
@@ -108,8 +108,8 @@ pub fn build(
         .unwrap_or_else(|| default_step(method, problem, settings.tolerance, t_end));
     Ok(match method {
         Method::Rk4 => Box::new(rk4::Rk4::new(problem, step).with_time_sum(time_sum)),
-        Method::Dop853 => Box::new(full_dop853::FullDop853::new(problem, settings.tolerance)),
-        Method::Taylor => Box::new(full_taylor::FullTaylor::new(problem, settings.tolerance)),
+        Method::Dop853 => Box::new(full::FullDop853::new(problem, settings.tolerance)),
+        Method::Taylor => Box::new(full::FullTaylor::new(problem, settings.tolerance)),
         Method::Strang
         | Method::Yoshida4
         | Method::BlanesMoan4

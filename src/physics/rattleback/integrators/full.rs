@@ -1,0 +1,159 @@
+//! The full model `(γ, α, γ̇, α̇)` behind one [`Flow`], on either core: `dop853` (the generic
+//! core of [`super::dop853`] with the Euler–Lagrange right-hand side; order 8, not symplectic,
+//! 12 evaluations per step) or `taylor` ([`super::full_taylor`]). Samples, reversals and the
+//! energy are the same code for both.
+
+use super::Method;
+use super::dop853::{Dop853, Field, Stats};
+use super::full_taylor::TaylorCore;
+use super::roots::find_root;
+use crate::physics::flow::Flow;
+use crate::physics::method::StepError;
+use crate::physics::rattleback::model::{ALPHA_DOT, State, energy, initial_state, rhs};
+use crate::physics::rattleback::params::{Params, Problem};
+
+/// The Euler–Lagrange field of one parameter set, with `1/ω_max`, the natural unit of `γ`.
+#[derive(Clone)]
+pub struct FullField(Params, f64);
+
+impl Field<4> for FullField {
+    #[inline]
+    fn eval(&self, y: &State) -> State {
+        rhs(&self.0, y)
+    }
+    fn unit(&self, i: usize) -> f64 {
+        if i == crate::physics::rattleback::model::GAMMA {
+            self.1
+        } else {
+            1.0
+        }
+    }
+    fn is_angle(&self, i: usize) -> bool {
+        i == crate::physics::rattleback::model::ALPHA
+    }
+}
+
+/// An integrator of the full model that steps, and interpolates inside its last step.
+pub trait FullCore: Clone + Send + 'static {
+    /// The method it is.
+    const METHOD: Method;
+    /// Starts the full model of `params` at `(0, y0)` with tolerance `tol`.
+    fn start(params: &Params, y0: State, tol: f64) -> Self;
+    /// Current time.
+    fn time(&self) -> f64;
+    /// Start of the last step.
+    fn time_prev(&self) -> f64;
+    /// Current state.
+    fn state(&self) -> State;
+    /// The last step's interpolant at `t` in `[time_prev, time]`.
+    fn interpolate(&mut self, t: f64) -> State;
+    /// One step, never past `t_limit`.
+    ///
+    /// # Errors
+    /// As the integrator's.
+    fn step(&mut self, t_limit: f64) -> Result<(), StepError>;
+    /// Work counters.
+    fn stats(&self) -> Stats;
+}
+
+impl FullCore for Dop853<4, FullField> {
+    const METHOD: Method = Method::Dop853;
+    fn start(params: &Params, y0: State, tol: f64) -> Self {
+        Dop853::new(FullField(*params, 1.0 / params.omega_max()), 0.0, y0, tol)
+    }
+    fn time(&self) -> f64 {
+        Dop853::time(self)
+    }
+    fn time_prev(&self) -> f64 {
+        Dop853::time_prev(self)
+    }
+    fn state(&self) -> State {
+        Dop853::state(self)
+    }
+    fn interpolate(&mut self, t: f64) -> State {
+        Dop853::interpolate(self, t)
+    }
+    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
+        Dop853::step(self, t_limit)
+    }
+    fn stats(&self) -> Stats {
+        Dop853::stats(self)
+    }
+}
+
+impl FullCore for TaylorCore {
+    const METHOD: Method = Method::Taylor;
+    fn start(params: &Params, y0: State, tol: f64) -> Self {
+        TaylorCore::new(params, 0.0, y0, tol)
+    }
+    fn time(&self) -> f64 {
+        TaylorCore::time(self)
+    }
+    fn time_prev(&self) -> f64 {
+        TaylorCore::time_prev(self)
+    }
+    fn state(&self) -> State {
+        TaylorCore::state(self)
+    }
+    fn interpolate(&mut self, t: f64) -> State {
+        TaylorCore::interpolate(self, t)
+    }
+    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
+        TaylorCore::step(self, t_limit)
+    }
+    fn stats(&self) -> Stats {
+        TaylorCore::stats(self)
+    }
+}
+
+/// The full model by `dop853`.
+pub type FullDop853 = Full<Dop853<4, FullField>>;
+/// The full model by `taylor`.
+pub type FullTaylor = Full<TaylorCore>;
+
+/// The full model on `core`.
+#[derive(Clone)]
+pub struct Full<C> {
+    params: Params,
+    core: C,
+}
+
+impl<C: FullCore> Full<C> {
+    /// Starts at the problem's initial values with tolerance `tol`.
+    #[must_use]
+    pub fn new(problem: &Problem, tol: f64) -> Self {
+        let params = *problem.params();
+        Self {
+            params,
+            core: C::start(&params, initial_state(problem.start()), tol),
+        }
+    }
+
+    /// The current state `(γ, α, γ̇, α̇)`.
+    #[must_use]
+    pub fn state(&self) -> State {
+        self.core.state()
+    }
+    /// The state at `t` inside the last step.
+    pub fn interpolate(&mut self, t: f64) -> State {
+        self.core.interpolate(t)
+    }
+}
+
+impl<C: FullCore> Flow for Full<C> {
+    crate::physics::flow::on_core!();
+    fn method(&self) -> Method {
+        C::METHOD
+    }
+    fn locate_event(&mut self) -> f64 {
+        let (a, b) = (self.core.time_prev(), self.core.time());
+        find_root(|t| self.core.interpolate(t)[ALPHA_DOT], a, b)
+    }
+    fn energy(&self) -> f64 {
+        energy(&self.params, &self.state())
+    }
+    fn event_value(&self) -> f64 {
+        self.state()[ALPHA_DOT]
+    }
+    super::drawn_from_state!();
+}
