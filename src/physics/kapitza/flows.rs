@@ -33,6 +33,7 @@ use crate::physics::numerics::compositions::{Composition, Split};
 use crate::physics::numerics::dop853::Stats;
 use crate::physics::numerics::dop853::{Dop853, Field};
 use crate::physics::numerics::roots::find_root;
+use crate::physics::numerics::stepper::Stepper;
 
 /// The methods this model offers (`auto` resolves to one of them).
 pub const METHODS: [Method; 13] = [
@@ -159,28 +160,12 @@ impl Field<2> for FullField {
     }
 }
 
-/// What the full model's flows share: an integrator of `(θ, θ̇)` that steps, interpolates its
-/// last step and counts its work (DOP853, or the Taylor series).
-pub trait FullCore: Clone + Send + 'static {
+/// The integrator of a full-model flow (DOP853, or the Taylor series), and how it starts.
+pub trait FullCore: Stepper<2> {
     /// The method it is.
     const METHOD: Method;
     /// Starts the full model of `params` at `(0, y0)` with tolerance `tol`.
     fn start(params: &Params, y0: Vector2<f64>, tol: f64) -> Self;
-    /// Current time.
-    fn time(&self) -> f64;
-    /// Start of the last step.
-    fn time_prev(&self) -> f64;
-    /// Current state.
-    fn state(&self) -> Vector2<f64>;
-    /// The last step's interpolant at `t` in `[time_prev, time]`.
-    fn interpolate(&mut self, t: f64) -> Vector2<f64>;
-    /// One step, never past `t_limit`.
-    ///
-    /// # Errors
-    /// As the integrator's.
-    fn step(&mut self, t_limit: f64) -> Result<(), StepError>;
-    /// Work counters.
-    fn stats(&self) -> Stats;
 }
 
 impl FullCore for Dop853<2, FullField> {
@@ -188,48 +173,12 @@ impl FullCore for Dop853<2, FullField> {
     fn start(params: &Params, y0: Vector2<f64>, tol: f64) -> Self {
         Dop853::new(FullField(*params), 0.0, y0, tol)
     }
-    fn time(&self) -> f64 {
-        Dop853::time(self)
-    }
-    fn time_prev(&self) -> f64 {
-        Dop853::time_prev(self)
-    }
-    fn state(&self) -> Vector2<f64> {
-        Dop853::state(self)
-    }
-    fn interpolate(&mut self, t: f64) -> Vector2<f64> {
-        Dop853::interpolate(self, t)
-    }
-    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
-        Dop853::step(self, t_limit)
-    }
-    fn stats(&self) -> Stats {
-        Dop853::stats(self)
-    }
 }
 
 impl FullCore for Taylor {
     const METHOD: Method = Method::Taylor;
     fn start(params: &Params, y0: Vector2<f64>, tol: f64) -> Self {
         Taylor::new(params, 0.0, y0, tol)
-    }
-    fn time(&self) -> f64 {
-        Taylor::time(self)
-    }
-    fn time_prev(&self) -> f64 {
-        Taylor::time_prev(self)
-    }
-    fn state(&self) -> Vector2<f64> {
-        Taylor::state(self)
-    }
-    fn interpolate(&mut self, t: f64) -> Vector2<f64> {
-        Taylor::interpolate(self, t)
-    }
-    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
-        Taylor::step(self, t_limit)
-    }
-    fn stats(&self) -> Stats {
-        Taylor::stats(self)
     }
 }
 

@@ -30,6 +30,7 @@ use nalgebra::Vector2;
 use super::Params;
 use crate::physics::method::StepError;
 use crate::physics::numerics::dop853::Stats;
+use crate::physics::numerics::stepper::Stepper;
 use crate::physics::numerics::taylor::{horner, natural_step, towards};
 
 /// The order of the series, whatever the tolerance: a run and its companion at a looser
@@ -76,44 +77,6 @@ impl Taylor {
             theta_dot,
             stats: Stats::default(),
         }
-    }
-
-    /// Current time.
-    #[must_use]
-    pub fn time(&self) -> f64 {
-        self.t
-    }
-
-    /// Current state.
-    #[must_use]
-    pub fn state(&self) -> Vector2<f64> {
-        self.y
-    }
-
-    /// Start of the last step.
-    #[must_use]
-    pub fn time_prev(&self) -> f64 {
-        self.t_prev
-    }
-
-    /// Work counters: each step counts [`ORDER`] evaluations (one pass of the recurrences per
-    /// order).
-    #[must_use]
-    pub fn stats(&self) -> Stats {
-        self.stats
-    }
-
-    /// The series of the last step at `t` in `[time_prev, time]`.
-    #[must_use]
-    pub fn interpolate(&self, t: f64) -> Vector2<f64> {
-        if t >= self.t {
-            return self.y;
-        }
-        let tau = t - self.t_prev;
-        Vector2::new(
-            horner(&self.theta[..=ORDER], tau),
-            horner(&self.theta_dot[..=ORDER], tau),
-        )
     }
 
     /// Expands `θ` and `θ̇` about the current point into `self.theta`, `self.theta_dot`.
@@ -168,12 +131,47 @@ impl Taylor {
             (self.theta[n].abs() / scale_theta).max(self.theta_dot[n].abs() / scale_rate)
         })
     }
+}
+
+impl Stepper<2> for Taylor {
+    /// Current time.
+    fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// Current state.
+    fn state(&self) -> Vector2<f64> {
+        self.y
+    }
+
+    /// Start of the last step.
+    fn time_prev(&self) -> f64 {
+        self.t_prev
+    }
+
+    /// Work counters: each step counts [`ORDER`] evaluations (one pass of the recurrences per
+    /// order).
+    fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    /// The series of the last step at `t` in `[time_prev, time]`.
+    fn interpolate(&mut self, t: f64) -> Vector2<f64> {
+        if t >= self.t {
+            return self.y;
+        }
+        let tau = t - self.t_prev;
+        Vector2::new(
+            horner(&self.theta[..=ORDER], tau),
+            horner(&self.theta_dot[..=ORDER], tau),
+        )
+    }
 
     /// Takes one step, never past `t_limit` (which must exceed the current time).
     ///
     /// # Errors
     /// When the series stops being finite or its step underflows.
-    pub fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
+    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
         self.expand();
         let (h, last) = towards(self.t, SAFETY * self.natural_step(), t_limit)?;
         let y_new = Vector2::new(

@@ -8,4 +8,5 @@ pub mod dop853;
 mod dop853_tableau;
 pub mod quadrature;
 pub mod roots;
+pub mod stepper;
 pub mod taylor;

@@ -4,11 +4,11 @@
 //! energy are the same code for both.
 
 use super::Method;
-use super::dop853::{Dop853, Field, Stats};
+use super::dop853::{Dop853, Field};
 use super::full_taylor::TaylorCore;
 use super::roots::find_root;
 use crate::physics::flow::Flow;
-use crate::physics::method::StepError;
+use crate::physics::numerics::stepper::Stepper;
 use crate::physics::rattleback::model::{ALPHA_DOT, State, energy, initial_state, rhs};
 use crate::physics::rattleback::params::{Params, Problem};
 
@@ -33,27 +33,12 @@ impl Field<4> for FullField {
     }
 }
 
-/// An integrator of the full model that steps, and interpolates inside its last step.
-pub trait FullCore: Clone + Send + 'static {
+/// The integrator of a full-model flow (DOP853, or the Taylor series), and how it starts.
+pub trait FullCore: Stepper<4> {
     /// The method it is.
     const METHOD: Method;
     /// Starts the full model of `params` at `(0, y0)` with tolerance `tol`.
     fn start(params: &Params, y0: State, tol: f64) -> Self;
-    /// Current time.
-    fn time(&self) -> f64;
-    /// Start of the last step.
-    fn time_prev(&self) -> f64;
-    /// Current state.
-    fn state(&self) -> State;
-    /// The last step's interpolant at `t` in `[time_prev, time]`.
-    fn interpolate(&mut self, t: f64) -> State;
-    /// One step, never past `t_limit`.
-    ///
-    /// # Errors
-    /// As the integrator's.
-    fn step(&mut self, t_limit: f64) -> Result<(), StepError>;
-    /// Work counters.
-    fn stats(&self) -> Stats;
 }
 
 impl FullCore for Dop853<4, FullField> {
@@ -61,48 +46,12 @@ impl FullCore for Dop853<4, FullField> {
     fn start(params: &Params, y0: State, tol: f64) -> Self {
         Dop853::new(FullField(*params, 1.0 / params.omega_max()), 0.0, y0, tol)
     }
-    fn time(&self) -> f64 {
-        Dop853::time(self)
-    }
-    fn time_prev(&self) -> f64 {
-        Dop853::time_prev(self)
-    }
-    fn state(&self) -> State {
-        Dop853::state(self)
-    }
-    fn interpolate(&mut self, t: f64) -> State {
-        Dop853::interpolate(self, t)
-    }
-    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
-        Dop853::step(self, t_limit)
-    }
-    fn stats(&self) -> Stats {
-        Dop853::stats(self)
-    }
 }
 
 impl FullCore for TaylorCore {
     const METHOD: Method = Method::Taylor;
     fn start(params: &Params, y0: State, tol: f64) -> Self {
         TaylorCore::new(params, 0.0, y0, tol)
-    }
-    fn time(&self) -> f64 {
-        TaylorCore::time(self)
-    }
-    fn time_prev(&self) -> f64 {
-        TaylorCore::time_prev(self)
-    }
-    fn state(&self) -> State {
-        TaylorCore::state(self)
-    }
-    fn interpolate(&mut self, t: f64) -> State {
-        TaylorCore::interpolate(self, t)
-    }
-    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
-        TaylorCore::step(self, t_limit)
-    }
-    fn stats(&self) -> Stats {
-        TaylorCore::stats(self)
     }
 }
 

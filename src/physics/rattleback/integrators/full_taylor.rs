@@ -35,6 +35,7 @@
 
 use crate::physics::method::StepError;
 use crate::physics::numerics::dop853::Stats;
+use crate::physics::numerics::stepper::Stepper;
 use crate::physics::numerics::taylor::{horner, natural_step, towards};
 use crate::physics::rattleback::model::State;
 use crate::physics::rattleback::params::Params;
@@ -87,41 +88,6 @@ impl TaylorCore {
             c,
             stats: Stats::default(),
         }
-    }
-
-    /// Current time.
-    #[must_use]
-    pub fn time(&self) -> f64 {
-        self.t
-    }
-
-    /// Current state.
-    #[must_use]
-    pub fn state(&self) -> State {
-        self.y
-    }
-
-    /// Start of the last step.
-    #[must_use]
-    pub fn time_prev(&self) -> f64 {
-        self.t_prev
-    }
-
-    /// Work counters: each step counts [`ORDER`] evaluations (one pass of the recurrences per
-    /// order).
-    #[must_use]
-    pub fn stats(&self) -> Stats {
-        self.stats
-    }
-
-    /// The series of the last step at `t` in `[time_prev, time]`.
-    #[must_use]
-    pub fn interpolate(&self, t: f64) -> State {
-        if t >= self.t {
-            return self.y;
-        }
-        let tau = t - self.t_prev;
-        State::from_fn(|i, _| horner(&self.c[i], tau))
     }
 
     /// Expands the state about the current point into `self.c`.
@@ -187,12 +153,44 @@ impl TaylorCore {
                 .fold(0.0, f64::max)
         })
     }
+}
+
+impl Stepper<4> for TaylorCore {
+    /// Current time.
+    fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// Current state.
+    fn state(&self) -> State {
+        self.y
+    }
+
+    /// Start of the last step.
+    fn time_prev(&self) -> f64 {
+        self.t_prev
+    }
+
+    /// Work counters: each step counts [`ORDER`] evaluations (one pass of the recurrences per
+    /// order).
+    fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    /// The series of the last step at `t` in `[time_prev, time]`.
+    fn interpolate(&mut self, t: f64) -> State {
+        if t >= self.t {
+            return self.y;
+        }
+        let tau = t - self.t_prev;
+        State::from_fn(|i, _| horner(&self.c[i], tau))
+    }
 
     /// Takes one step, never past `t_limit` (which must exceed the current time).
     ///
     /// # Errors
     /// When the series stops being finite or its step underflows.
-    pub fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
+    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
         self.expand();
         let (h, last) = towards(self.t, self.natural_step(), t_limit)?;
         let y_new = State::from_fn(|i, _| horner(&self.c[i], h));

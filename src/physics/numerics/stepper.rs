@@ -1,0 +1,48 @@
+//! What a full model's flow needs of its integrator, whichever it is (DOP853 on any field, the
+//! Taylor series of a scene): it steps, interpolates inside its last step and counts its work.
+//! Each scene's `FullCore` adds how to start it on that scene's model.
+
+use nalgebra::SVector;
+
+use super::dop853::{Dop853, Field, Stats};
+use crate::physics::method::StepError;
+
+/// An integrator of an `N`-dimensional state.
+pub trait Stepper<const N: usize>: Clone + Send + 'static {
+    /// Current time.
+    fn time(&self) -> f64;
+    /// Start of the last step.
+    fn time_prev(&self) -> f64;
+    /// Current state.
+    fn state(&self) -> SVector<f64, N>;
+    /// The last step's interpolant at `t` in `[time_prev, time]`.
+    fn interpolate(&mut self, t: f64) -> SVector<f64, N>;
+    /// One step, never past `t_limit`.
+    ///
+    /// # Errors
+    /// As the integrator's.
+    fn step(&mut self, t_limit: f64) -> Result<(), StepError>;
+    /// Work counters.
+    fn stats(&self) -> Stats;
+}
+
+impl<const N: usize, F: Field<N> + Clone + Send + 'static> Stepper<N> for Dop853<N, F> {
+    fn time(&self) -> f64 {
+        Dop853::time(self)
+    }
+    fn time_prev(&self) -> f64 {
+        Dop853::time_prev(self)
+    }
+    fn state(&self) -> SVector<f64, N> {
+        Dop853::state(self)
+    }
+    fn interpolate(&mut self, t: f64) -> SVector<f64, N> {
+        Dop853::interpolate(self, t)
+    }
+    fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
+        Dop853::step(self, t_limit)
+    }
+    fn stats(&self) -> Stats {
+        Dop853::stats(self)
+    }
+}
