@@ -190,6 +190,81 @@ fn companion(method: Method) {
     }
 }
 
+/// A run `ratio` times *tighter* than its companion, the companion at 1e-8 … 1e-12: how often
+/// their difference (plus the floors) reads below the tight run's true error.
+fn tighter() {
+    let ratios_asked = [16.0, 64.0, 256.0, 1024.0];
+    for &ratio in &ratios_asked {
+        let mut found: Vec<(f64, String)> = Vec::new();
+        let (mut hidden, mut hidden_ok) = (0, 0);
+        for case in cases() {
+            for i in 0..9 {
+                let loose = 1e-8 * 10f64.powf(-0.5 * f64::from(i));
+                let tight = (loose / ratio).max(1e-14);
+                let r = case.run(Method::Taylor, tight);
+                let c = case.run(Method::Taylor, loose);
+                let e = case.error(&r);
+                #[allow(clippy::cast_precision_loss)]
+                let steps = r.stats.steps as f64;
+                let floors = round_off(&case.problem, steps, case.t_end)
+                    + conditioned_round_off(steps, case.kappa);
+                let estimate = difference(&r, &c) + floors;
+                if e.is_nan() || e < 10.0 * case.floor {
+                    hidden += 1;
+                    if estimate >= 10.0 * case.floor {
+                        hidden_ok += 1;
+                    }
+                    continue;
+                }
+                found.push((estimate / e, format!("{} at {loose:.1e}", case.name)));
+            }
+        }
+        found.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let below = |x: f64| found.iter().filter(|v| v.0 < x).count();
+        println!(
+            "  run {ratio:>4}x tighter: {} measured; smallest {:.2} ({}), 5th percentile {:.2}, median {:.1}; below 1: {}, below 2: {}; under the references' floor: {hidden} ({hidden_ok} estimated above 10x that floor)",
+            found.len(),
+            found[0].0,
+            found[0].1,
+            found[found.len() / 20].0,
+            found[found.len() / 2].0,
+            below(1.0),
+            below(2.0)
+        );
+    }
+}
+
+/// Global error of a run over its local tolerance and the fast periods of its horizon
+/// (at least 20), at 1e-8 … 1e-12, where the error stands above the reference's own.
+fn growth(method: Method) {
+    let mut worst: Vec<(f64, String)> = Vec::new();
+    for case in cases() {
+        let nu = rattleback::physics::rattleback::budget::fastest_rate(&case.problem);
+        let periods = (nu * case.t_end / std::f64::consts::TAU).max(20.0);
+        for i in 0..9 {
+            let tol = 1e-8 * 10f64.powf(-0.5 * f64::from(i));
+            let e = case.error(&case.run(method, tol));
+            if e.is_nan() || e < 10.0 * case.floor {
+                continue;
+            }
+            worst.push((
+                e / (tol * periods),
+                format!("{} at {tol:.1e}, {periods:.0} periods", case.name),
+            ));
+        }
+    }
+    worst.sort_by(|a, b| b.0.total_cmp(&a.0));
+    println!("{method}: error / (local tolerance x periods), largest first");
+    for (g, name) in worst.iter().filter(|w| !w.1.starts_with("sep_")).take(12) {
+        println!("  {g:.3}  {name}");
+    }
+    println!(
+        "  median {:.3} of {}",
+        worst[worst.len() / 2].0,
+        worst.len()
+    );
+}
+
 fn probe() {
     let (mut worst_taylor, mut worst_dop) = (0.0f64, 0.0f64);
     let mut worst_ratio = (0.0f64, String::new());
@@ -229,6 +304,12 @@ fn main() {
             companion(method);
         }
         Some("probe") => probe(),
+        Some("tighter") => tighter(),
+        Some("growth") => growth(if std::env::var("METHOD").is_ok_and(|m| m == "dop853") {
+            Method::Dop853
+        } else {
+            Method::Taylor
+        }),
         Some("cost") | None => cost(
             args.get(1).map_or("A", String::as_str),
             args.get(2).map(|k| k.parse().expect("a stiffness")),

@@ -80,6 +80,21 @@ pub const BLANES_MOAN_MAX_NU_H: f64 = 0.75;
 pub const COMPANION_LOOSER: f64 = 16.0;
 /// The companion's error over the run's, for an adaptive method (`16^0.95`).
 pub const COMPANION_RATIO: f64 = 14.0;
+/// How much looser the companion of a `taylor` run is. The series' error does not fall
+/// smoothly with its tolerance (a random walk of local errors that take the sign of a ripple's
+/// phase: docs/benchmarks.md, "The middle by a Taylor series"), so a companion a little looser
+/// can land on an error as small as the run's; one 1024× looser cannot, in practice: on every
+/// long-double reference up to k = 1e6, companions at 1e-8 … 1e-12, their difference plus the
+/// round-off floors was at least 27× the run's true error (185 runs measurable above the
+/// references' own error; 5.6× at 256×, 0.53× at 64×, 0.11× at 16×:
+/// `cargo run --release --example rattleback_taylor tighter`). The series' cost grows like
+/// `tol^-0.05`, so the run 1024× tighter than its companion costs only 1.4× as much.
+pub const TAYLOR_COMPANION_LOOSER: f64 = 1024.0;
+/// The series' global error over its local tolerance per fast period of the horizon (at least
+/// 20): median 0.27 on the long-double references up to k = 1e6, a tenth of DOP853's
+/// (`cargo run --release --example rattleback_taylor growth`, and with `METHOD=dop853`), which
+/// is what [`DOP853_GROWTH`] is to DOP853.
+pub const TAYLOR_GROWTH: f64 = 0.25;
 /// DOP853's global error over its local tolerance per fast period of the horizon (measured
 /// 0.6–2.7 on trapped starts, 0.06–0.25 on rotating ones, k = 1e2 … 1e5, T = 30).
 pub const DOP853_GROWTH: f64 = 2.5;
@@ -207,22 +222,28 @@ impl Plan {
         }
     }
 
-    /// The coarser companion that verifies it: twice the step, or a 256× looser tolerance.
+    /// The coarser companion that verifies it: twice the step, or a looser tolerance
+    /// ([`COMPANION_LOOSER`], [`TAYLOR_COMPANION_LOOSER`] for the series).
     #[must_use]
     pub fn companion(&self) -> Settings {
-        companion_of(self.tolerance, self.step)
+        companion_of(self.method, self.tolerance, self.step)
     }
 }
 
-/// The coarser companion of a run with these settings.
-fn companion_of(tolerance: f64, step: Option<f64>) -> Settings {
+/// The coarser companion of a run of `method` with these settings.
+fn companion_of(method: Method, tolerance: f64, step: Option<f64>) -> Settings {
+    let looser = if method == Method::Taylor {
+        TAYLOR_COMPANION_LOOSER
+    } else {
+        COMPANION_LOOSER
+    };
     match step {
         Some(h) => Settings {
             tolerance,
             step: Some(2.0 * h),
         },
         None => Settings {
-            tolerance: (tolerance * COMPANION_LOOSER).min(1e-3),
+            tolerance: (tolerance * looser).min(1e-3),
             step: None,
         },
     }
@@ -484,9 +505,22 @@ pub fn best_resolved(problem: &Problem, tolerance: f64, t_end: f64) -> Plan {
         .clone()
 }
 
-fn resolved_plans(problem: &Problem, tolerance: f64, t_end: f64) -> [Plan; 2] {
+fn resolved_plans(problem: &Problem, tolerance: f64, t_end: f64) -> [Plan; 3] {
     let nu = fastest_rate(problem);
     let periods = nu * t_end / std::f64::consts::TAU;
+    let (taylor_local, taylor_error) = taylor_local(tolerance, periods);
+    let taylor_steps = super::budget::taylor_steps(taylor_local, periods);
+    let taylor = Plan {
+        method: Method::Taylor,
+        tolerance: taylor_local,
+        step: None,
+        predicted_error: taylor_error + round_off(problem, taylor_steps, t_end),
+        predicted_seconds: with_companion(
+            problem,
+            &Asked::new(Method::Taylor, taylor_local, None, t_end),
+        ),
+        reason: "resolved Taylor series, verified by a companion 1024x looser".to_owned(),
+    };
     let (local, dop_error) = dop853_local(tolerance, periods);
     // Accepted steps: 12 evaluations each.
     let dop_steps = dop853_evaluations(local, periods) / 12.0;
@@ -515,7 +549,7 @@ fn resolved_plans(problem: &Problem, tolerance: f64, t_end: f64) -> [Plan; 2] {
         ),
         reason: format!("resolved exact-flow splitting at ν·h = {:.2}", nu * h),
     };
-    [dop, bm]
+    [dop, bm, taylor]
 }
 
 fn blanes_moan_error(problem: &Problem, h: f64, t_end: f64) -> f64 {
@@ -542,6 +576,20 @@ fn dop853_local(tolerance: f64, periods: f64) -> (f64, f64) {
     (local, 0.5 * tolerance * local / wanted)
 }
 
+/// The series' local tolerance for `tolerance` over `periods` fast periods: its companion,
+/// [`TAYLOR_COMPANION_LOOSER`] times looser, should still meet it. With the error the companion
+/// is then predicted to have (what the estimate will read: above `tolerance` when the run's
+/// tolerance would have to go below the clamp).
+fn taylor_local(tolerance: f64, periods: f64) -> (f64, f64) {
+    let growth = TAYLOR_GROWTH * periods.max(20.0);
+    let companion = tolerance / (2.0 * growth);
+    let local = (companion / TAYLOR_COMPANION_LOOSER).max(TIGHTEST);
+    (
+        local,
+        0.5 * tolerance * local * TAYLOR_COMPANION_LOOSER / companion,
+    )
+}
+
 /// The averaged model's local tolerance for the integration share `share` of the tolerance.
 fn averaged_local(share: f64, t_end: f64) -> f64 {
     let growth = AVERAGED_GROWTH * (t_end / 30.0).max(1.0);
@@ -550,7 +598,7 @@ fn averaged_local(share: f64, t_end: f64) -> f64 {
 
 fn with_companion(problem: &Problem, ask: &Asked) -> f64 {
     let (method, tolerance, step, t_end) = (ask.method, ask.tolerance, ask.step, ask.t_end);
-    let c = companion_of(tolerance, step);
+    let c = companion_of(method, tolerance, step);
     cost_seconds(problem, &Asked::new(method, tolerance, step, t_end))
         + cost_seconds(problem, &Asked::new(method, c.tolerance, c.step, t_end))
 }
@@ -778,14 +826,14 @@ pub fn run_auto_cancellable(
         budget,
     )?;
     let allowance = budget.min(AUTO_SECONDS).max(spent);
-    let mut kappa = conditioning(problem, t_end, &plan, go_on)?;
+    let (mut kappa, mut made) = measure_conditioning(problem, t_end, &plan, go_on)?;
     let mut refinements = 0;
     // The estimate before the last refinement of the same method (none after a change).
     let mut previous: Option<f64> = None;
     let mut best_so_far: Option<Verified> = None;
     loop {
         let (result, Checked { estimate, floor }) =
-            run_and_check(problem, spec, &plan, model_error, kappa, go_on)?;
+            run_and_check(problem, spec, &plan, model_error, kappa, made.take(), go_on)?;
         let shortfall = if estimate <= tolerance {
             None
         } else if floor > tolerance || previous.is_some_and(|p| estimate >= 0.5 * p) {
@@ -854,22 +902,23 @@ pub fn run_auto_cancellable(
             // The start's conditioning was measured on the averaged model: the full motion that
             // now runs is measured on its own method, as a first resolved plan would be.
             spent += conditioning_cost(problem, t_end, &next);
-            kappa = conditioning(problem, t_end, &next, go_on)?;
+            (kappa, made) = measure_conditioning(problem, t_end, &next, go_on)?;
         }
         plan = next;
         refinements += 1;
     }
 }
 
-/// Runs `plan` as `spec` asks (samples, energy) and its coarser companion; the run and its
-/// error estimate (their difference, the model error, the round-off floors, the second
-/// conditioned by `kappa`), with the floors' part.
+/// Runs `plan` as `spec` asks (samples, energy) and its coarser companion (or takes it from
+/// `made`, a run of the same spec); the run and its error estimate (their difference, the model
+/// error, the round-off floors, the second conditioned by `kappa`), with the floors' part.
 fn run_and_check(
     problem: &Problem,
     spec: &RunSpec,
     plan: &Plan,
     model_error: f64,
     kappa: Conditioning,
+    made: Option<Made>,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<(RunResult, Checked), StepError> {
     let run_spec = RunSpec {
@@ -880,17 +929,17 @@ fn run_and_check(
     };
     let result = run_cancellable(problem, &run_spec, go_on)?;
     let companion = plan.companion();
-    let check = run_cancellable(
-        problem,
-        &RunSpec {
-            tolerance: companion.tolerance,
-            step: companion.step,
-            samples: 0,
-            monitor_energy: false,
-            ..run_spec
-        },
-        go_on,
-    )?;
+    let check_spec = RunSpec {
+        tolerance: companion.tolerance,
+        step: companion.step,
+        samples: 0,
+        monitor_energy: false,
+        ..run_spec
+    };
+    let check = match made {
+        Some(made) if made.spec == check_spec => made.result,
+        _ => run_cancellable(problem, &check_spec, go_on)?,
+    };
     let steps = result.stats.steps as f64;
     let floor = phase_round_off(problem, plan, steps, spec.t_end)
         + conditioned_round_off(steps, kappa.of_run(problem, &result));
@@ -931,7 +980,15 @@ fn conditioning_spec(problem: &Problem, t_end: f64, plan: &Plan, cheap: bool) ->
     let c = plan.companion();
     RunSpec {
         method: plan.method,
-        tolerance: c.tolerance.max(CONDITIONING_TOLERANCE),
+        // The series' cost hardly depends on its tolerance: measured at its companion's own,
+        // whatever it is, its base run *is* the companion, which the verification then reuses
+        // (one run of five saved). Its truncation errors cancel between the nudged runs at any
+        // tolerance (its step is a smooth function of the state, with no rejections).
+        tolerance: if plan.method == Method::Taylor {
+            c.tolerance
+        } else {
+            c.tolerance.max(CONDITIONING_TOLERANCE)
+        },
         step: c
             .step
             .map(|h| h.max(BLANES_MOAN_MAX_NU_H / fastest_rate(problem))),
@@ -981,17 +1038,38 @@ pub fn conditioning(
     plan: &Plan,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Conditioning, StepError> {
+    measure_conditioning(problem, t_end, plan, go_on).map(|(kappa, _)| kappa)
+}
+
+/// A run already made, which a later run of the same spec reuses: [`conditioning`]'s base run of
+/// a `taylor` plan is its first companion (same method, same tolerance, no samples).
+#[derive(Clone, Debug)]
+struct Made {
+    spec: RunSpec,
+    result: RunResult,
+}
+
+/// [`conditioning`], with the base run it measured from (none at the equilibrium).
+fn measure_conditioning(
+    problem: &Problem,
+    t_end: f64,
+    plan: &Plan,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<(Conditioning, Option<Made>), StepError> {
     let start = *problem.start();
     if start.alpha_dot == 0.0 && start.gamma_dot == 0.0 && start.gamma == 0.0 {
         // The equilibrium: nothing moves, nothing is amplified.
-        return Ok(Conditioning {
-            rate: 0.0,
-            angle: 0.0,
-        });
+        return Ok((
+            Conditioning {
+                rate: 0.0,
+                angle: 0.0,
+            },
+            None,
+        ));
     }
     let spec = conditioning_spec(problem, t_end, plan, true);
     let cheap = condition_numbers(problem, &spec, go_on)?;
-    if spec.method != plan.method && cheap.rate.max(cheap.angle) > CONDITIONING_RECHECK {
+    if spec.method != plan.method && cheap.0.rate.max(cheap.0.angle) > CONDITIONING_RECHECK {
         // An ill-conditioned start: its round-off floor matters, so it is measured as before,
         // on the plan's own method.
         return condition_numbers(
@@ -1004,21 +1082,27 @@ pub fn conditioning(
 }
 
 /// Predicted seconds of [`conditioning`] for `plan`, priced as the measurement on the plan's
-/// own method (the averaged model's, when it serves, costs less).
+/// own method (the averaged model's, when it serves, costs less); two runs for the series, whose
+/// base run is its companion.
 fn conditioning_cost(problem: &Problem, t_end: f64, plan: &Plan) -> f64 {
     let measure = conditioning_spec(problem, t_end, plan, false);
-    3.0 * cost_seconds(
+    let runs = if plan.method == Method::Taylor {
+        2.0
+    } else {
+        3.0
+    };
+    runs * cost_seconds(
         problem,
         &Asked::new(measure.method, measure.tolerance, measure.step, t_end),
     )
 }
 
-/// [`conditioning`]'s three runs with `spec`.
+/// [`conditioning`]'s three runs with `spec`, and the first (the start as it is).
 fn condition_numbers(
     problem: &Problem,
     spec: &RunSpec,
     go_on: &mut dyn FnMut(f64) -> bool,
-) -> Result<Conditioning, StepError> {
+) -> Result<(Conditioning, Option<Made>), StepError> {
     let base = run_cancellable(problem, spec, go_on)?;
     // The energy's first non-zero carrier: the spin rate, else the tilt rate, else the tilt.
     let rate = sensitivity(problem, spec, &base, go_on, |s, nudge| {
@@ -1031,7 +1115,13 @@ fn condition_numbers(
         }
     })?;
     let angle = sensitivity(problem, spec, &base, go_on, |s, nudge| s.alpha += nudge)?;
-    Ok(Conditioning { rate, angle })
+    Ok((
+        Conditioning { rate, angle },
+        Some(Made {
+            spec: *spec,
+            result: base,
+        }),
+    ))
 }
 
 /// How much `base` moves per unit of a nudge that `nudge_start` applies to the start.
@@ -1146,17 +1236,21 @@ fn refine(
     } else {
         16.0
     };
-    if plan.method == Method::Dop853 && plan.tolerance / (2.0 * excess) < TIGHTEST {
-        // DOP853 cannot be tightened that far: the splitting, whose error does not stall at a
-        // tolerance clamp, at the step its model asks for this tolerance, then refined as needed.
-        let [_, mut bm] = resolved_plans(problem, tolerance, t_end);
+    if matches!(plan.method, Method::Dop853 | Method::Taylor)
+        && plan.tolerance / (2.0 * excess) < TIGHTEST
+    {
+        // DOP853 or the series cannot be tightened that far: the splitting, whose error does not
+        // stall at a tolerance clamp, at the step its model asks for this tolerance, then
+        // refined as needed.
+        let [_, mut bm, _] = resolved_plans(problem, tolerance, t_end);
         if bm.predicted_error >= estimate {
             // Its round-off floor over this horizon is no better than what DOP853 reached.
             return None;
         }
         let _ = write!(
             bm.reason,
-            "; dop853 missed ({estimate:.1e}) at its tightest tolerance, resolved by the splitting instead"
+            "; {} missed ({estimate:.1e}) at its tightest tolerance, resolved by the splitting instead",
+            plan.method
         );
         return Some(bm);
     }
