@@ -254,6 +254,75 @@ fn auto_measures_the_conditioning_the_references_report() {
 }
 
 #[test]
+fn the_slow_models_first_reading_of_the_conditioning_sends_every_ill_conditioned_start_back() {
+    // Issue 27: `auto` first measures a start's condition number on `averaged2` at a loose
+    // tolerance wherever the expansion parameter is at most 0.25, and measures again on the
+    // plan's own method where that reads above 100. Away from the separatrix the reading must be
+    // the full model's (here within 1.5×); near it, where the slow model may be off by 300×,
+    // it must read above 100, so that the accurate measurement follows. The full model's κ is
+    // the Taylor series' at 1e-11 (within 5 %.
+    use rattleback::physics::rattleback::auto::{
+        CONDITIONING_AVERAGED_LIMIT, CONDITIONING_LOOSE_TOLERANCE, CONDITIONING_MODEL,
+        CONDITIONING_RECHECK, NUDGE, difference,
+    };
+    use rattleback::physics::rattleback::averaged::expansion_parameter;
+    use rattleback::physics::rattleback::run::{RunSpec, run};
+    let mut cases = common::averaged_cases();
+    cases.extend(common::cases_from("rattleback_honesty.toml"));
+    let mut checked = (0, 0);
+    for case in cases
+        .iter()
+        .filter(|c| c.source == "rk8-long-double" && c.t_end <= 100.0)
+    {
+        if expansion_parameter(&case.problem) > CONDITIONING_AVERAGED_LIMIT {
+            continue;
+        }
+        let kappa = |method, tolerance| {
+            let spec = RunSpec {
+                method,
+                tolerance,
+                step: None,
+                t_end: case.t_end,
+                samples: 0,
+                monitor_energy: false,
+            };
+            let base = run(&case.problem, &spec).unwrap();
+            let mut start = *case.problem.start();
+            start.alpha_dot *= 1.0 + NUDGE;
+            let nudged =
+                rattleback::physics::rattleback::Problem::new(*case.problem.params(), start)
+                    .unwrap();
+            difference(&base, &run(&nudged, &spec).unwrap()) / NUDGE
+        };
+        let slow = kappa(CONDITIONING_MODEL, CONDITIONING_LOOSE_TOLERANCE);
+        let full = kappa(rattleback::physics::Method::Taylor, 1e-11);
+        if let Some(reference) = case.condition {
+            assert!(
+                (full / reference - 1.0).abs() < 0.05,
+                "{}: {full:e}",
+                case.name
+            );
+        }
+        if full > CONDITIONING_RECHECK {
+            checked.0 += 1;
+            assert!(
+                slow > CONDITIONING_RECHECK,
+                "{}: the slow model reads κ = {slow:e}, the full model's is {full:e}",
+                case.name
+            );
+        } else {
+            checked.1 += 1;
+            assert!(
+                slow <= 1.5 * full.max(1.0) && slow >= full / 1.5,
+                "{}: the slow model reads κ = {slow:e}, the full model's is {full:e}",
+                case.name
+            );
+        }
+    }
+    assert!(checked.0 >= 10 && checked.1 >= 20, "{checked:?}");
+}
+
+#[test]
 fn a_fixed_step_run_keeps_its_reversal_times_over_many_steps() {
     // 72 000 steps of blanes-moan4 on a small libration at k = 1e6: summed plainly, the time
     // drifted the last reversal by 4.3e-11 while the state was good to 5e-12; the compensated

@@ -1,0 +1,64 @@
+//! How well `auto`'s first conditioning measurement (the slow model `averaged2` at local
+//! tolerance 1e-7) reads the start's condition number where the expansion parameter is between
+//! 0.1 and 0.3, against the full model by the Taylor series at 1e-11 and the references' own
+//! (`rattleback_honesty.toml`); `auto` re-measures on the plan's own method wherever the first
+//! reading passes 100 (`auto::CONDITIONING_RECHECK`):
+//! `cargo run --release --example conditioning_check`.
+
+use rattleback::physics::rattleback::auto::difference;
+use rattleback::physics::rattleback::averaged::expansion_parameter;
+use rattleback::physics::rattleback::integrators::Method;
+use rattleback::physics::rattleback::run::{RunSpec, run};
+use rattleback::physics::rattleback::{Params, Problem, Start};
+fn main() {
+    for file in ["averaged.toml", "rattleback_honesty.toml"] {
+        let text = std::fs::read_to_string(format!("tests/fixtures/reference/{file}")).unwrap();
+        let table: toml::Table = text.parse().unwrap();
+        for (name, c) in table["case"].as_table().unwrap() {
+            let c = c.as_table().unwrap();
+            let f = |k: &str| c[k].as_float().unwrap();
+            if c["source"].as_str() != Some("rk8-long-double") {
+                continue;
+            }
+            let params = Params {
+                ix: f("ix"),
+                iy: f("iy"),
+                iz: f("iz"),
+                k: f("k"),
+            };
+            let start = Start {
+                gamma: f("gamma0"),
+                alpha: f("alpha0"),
+                gamma_dot: f("gamma_dot0"),
+                alpha_dot: f("alpha_dot0"),
+            };
+            let p = Problem::new(params, start).unwrap();
+            let x = expansion_parameter(&p);
+            if x > 0.3 || x <= 0.1 {
+                continue;
+            }
+            let kref = c.get("condition").and_then(toml::Value::as_float);
+            let t_end = f("t_end");
+            let spec = |m, tol| RunSpec {
+                method: m,
+                tolerance: tol,
+                step: None,
+                t_end,
+                samples: 0,
+                monitor_energy: false,
+            };
+            let kappa = |m, tol| {
+                let base = run(&p, &spec(m, tol)).unwrap();
+                let mut s2 = start;
+                s2.alpha_dot *= 1.0 + 1e-10;
+                let n = run(&Problem::new(params, s2).unwrap(), &spec(m, tol)).unwrap();
+                difference(&base, &n) / 1e-10
+            };
+            println!(
+                "{name:24} x {x:.3} T {t_end}: averaged2 1e-7 {:.3e}, taylor 1e-11 {:.3e}, reference {kref:?}",
+                kappa(Method::Averaged2, 1e-7),
+                kappa(Method::Taylor, 1e-11)
+            );
+        }
+    }
+}
