@@ -3,6 +3,13 @@
 //! knows.
 //!
 //! **Candidates** (costs predicted by [`super::budget`], calibrated on this machine):
+//! - `taylor`, resolving the fast motion by its Taylor series, at a local tolerance `L / 1024`
+//!   where its companion at `L` should still meet the tolerance: the companion's global error
+//!   is about `G L` with `G = 0.25 · max(20, fast periods)` ([`TAYLOR_GROWTH`]). The series'
+//!   error is a random walk that a slightly looser companion can under-read; one
+//!   [`TAYLOR_COMPANION_LOOSER`] = 1024 times looser did not on any reference, and the series'
+//!   cost grows so slowly with its tolerance (`tol^-0.05`) that the tight run costs 1.4× the
+//!   companion. The cheapest resolving candidate at tolerances down to about 1e-9;
 //! - `dop853`, resolving the fast motion, at a local tolerance `L` such that its companion at
 //!   `16 L` should still meet the tolerance: the global error is about `G L` with
 //!   `G = 2.5 · max(20, fast periods)` (measured, [`DOP853_GROWTH`]); a plan whose `L` would
@@ -26,11 +33,13 @@
 //!   costs half of `averaged3`'s): the large stiffnesses.
 //!
 //! **Verification.** Every plan runs twice: the run that is returned, and a *coarser*
-//! companion (step `2h`, or tolerance `16 L`) that costs 0.5–0.7× as much and is never
-//! identical to it. The estimate is their difference in `α(T)`, `α̇(T)` and the reversal
+//! companion (step `2h`, or tolerance `16 L`; `1024 L` for the series) that costs 0.5–0.7× as
+//! much and is never identical to it. The estimate is their difference in `α(T)`, `α̇(T)` and the reversal
 //! times (infinite when the reversal counts differ), plus the probed model error for
 //! the averaged model, plus the round-off floors (the phase's, and the start's rounding scaled by
-//! its measured condition numbers, [`conditioning`]). The difference bounds
+//! its measured condition numbers, [`conditioning`], first read on the slow model at a loose
+//! tolerance and measured again accurately where they pass [`CONDITIONING_RECHECK`]). The
+//! difference bounds
 //! the returned run's error whenever the companion's error is at least twice the run's, which
 //! holds with a wide margin where the method converges (the companion's is 16× for a 4th-order
 //! step, ~14× for a 16× looser tolerance) and fails only at the round-off floor, which the
@@ -497,11 +506,11 @@ fn probe_gap(
     Ok(gaps)
 }
 
-/// The cheapest plan that resolves the fast motion (dop853 or blanes-moan4) among those whose
-/// coarser companion should still meet `tolerance` (or, when neither can, the more accurate).
+/// The cheapest plan that resolves the fast motion (taylor, dop853 or blanes-moan4) among those
+/// whose coarser companion should still meet `tolerance` (or, when none can, the most accurate).
 ///
 /// # Panics
-/// Never: there are always two candidates.
+/// Never: there are always three candidates.
 #[must_use]
 pub fn best_resolved(problem: &Problem, tolerance: f64, t_end: f64) -> Plan {
     let plans = resolved_plans(problem, tolerance, t_end);
@@ -513,7 +522,7 @@ pub fn best_resolved(problem: &Problem, tolerance: f64, t_end: f64) -> Plan {
                 .iter()
                 .min_by(|a, b| a.predicted_error.total_cmp(&b.predicted_error))
         })
-        .expect("two candidates")
+        .expect("three candidates")
         .clone()
 }
 
