@@ -34,8 +34,8 @@
 //!
 //! **Verification.** Every plan runs twice: the run that is returned, and a *coarser*
 //! companion (step `2h`, or tolerance `16 L`; `1024 L` for the series) that costs 0.5–0.7× as
-//! much and is never identical to it. The estimate is their difference in `α(T)`, `α̇(T)` and the reversal
-//! times (infinite when the reversal counts differ), plus the probed model error for
+//! much and is never identical to it. The estimate is their difference in `α(T)`, `α̇(T)` and
+//! the reversal times (infinite when the reversal counts differ), plus the probed model error for
 //! the averaged model, plus the round-off floors (the phase's, and the start's rounding scaled by
 //! its measured condition numbers, [`conditioning`], first read on the slow model at a loose
 //! tolerance and measured again accurately where they pass [`CONDITIONING_RECHECK`]). The
