@@ -13,7 +13,13 @@
 //!   the measured one) to the run's true error, where that error stands above the reference's
 //!   own. `METHOD=dop853` for DOP853;
 //! - `… probe`: both at the probes' full-model tolerance (1e-12) on every reference up to
-//!   k = 1e6.
+//!   k = 1e6;
+//! - `… tighter`: the series' run 16 … 1024 times tighter than its companion (what `auto` now
+//!   verifies it with), how often their difference reads below the run's true error;
+//! - `… growth`: the global error over the local tolerance per fast period (`METHOD=dop853`
+//!   for DOP853);
+//! - `… auto`: `auto` at 1e-5 … 1e-10 on every reference up to k = 1e6, wherever it resolves
+//!   with the series: its estimate against the true error.
 
 use std::time::Instant;
 
@@ -265,6 +271,54 @@ fn growth(method: Method) {
     );
 }
 
+/// `auto` itself at 1e-5 … 1e-10 on every reference up to k = 1e6: where it resolves with the
+/// series, its estimate against the true error.
+fn auto_taylor() {
+    use rattleback::physics::rattleback::auto::run_auto;
+    let (mut plans, mut unmeasurable, mut below) = (0, 0, 0);
+    let mut worst = (f64::INFINITY, String::new());
+    for case in cases() {
+        for tol in [
+            1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8, 1e-8, 3e-9, 1e-9, 3e-10, 1e-10,
+        ] {
+            let Ok(v) = run_auto(&case.problem, tol, case.t_end, 0, false) else {
+                continue;
+            };
+            if v.plan.method != Method::Taylor {
+                continue;
+            }
+            plans += 1;
+            let e = case.error(&v.result);
+            if v.error_estimate < e {
+                below += 1;
+                println!(
+                    "  below: {} at {tol:e}: estimate {:e}, error {e:e}",
+                    case.name, v.error_estimate
+                );
+            }
+            if e < 10.0 * case.floor {
+                unmeasurable += 1;
+                continue;
+            }
+            let ratio = v.error_estimate / e;
+            if ratio < worst.0 {
+                worst = (
+                    ratio,
+                    format!(
+                        "{} at {tol:e}: estimate {:.2e}, error {e:.2e}",
+                        case.name, v.error_estimate
+                    ),
+                );
+            }
+        }
+    }
+    println!(
+        "auto resolved with taylor {plans} times ({unmeasurable} with an error under ten times the reference's own); \
+         estimates below the error: {below}; smallest estimate / error where measurable: {:.1} ({})",
+        worst.0, worst.1
+    );
+}
+
 fn probe() {
     let (mut worst_taylor, mut worst_dop) = (0.0f64, 0.0f64);
     let mut worst_ratio = (0.0f64, String::new());
@@ -305,6 +359,7 @@ fn main() {
         }
         Some("probe") => probe(),
         Some("tighter") => tighter(),
+        Some("auto") => auto_taylor(),
         Some("growth") => growth(if std::env::var("METHOD").is_ok_and(|m| m == "dop853") {
             Method::Dop853
         } else {
@@ -314,6 +369,8 @@ fn main() {
             args.get(1).map_or("A", String::as_str),
             args.get(2).map(|k| k.parse().expect("a stiffness")),
         ),
-        Some(other) => panic!("unknown mode {other}: cost, companion or probe"),
+        Some(other) => {
+            panic!("unknown mode {other}: cost, companion, probe, tighter, growth or auto")
+        }
     }
 }
