@@ -329,6 +329,70 @@ pub fn profile_table(rows: &[ProfileRow]) -> String {
             );
         }
     }
+    o.push_str(&profile_summary(rows));
+    o
+}
+
+/// Issue 27's targets read off the rows, per start: the span of `auto`'s time over `k` (first
+/// and with the probes kept; at most 3×), `auto` (kept) over the best single configuration at
+/// its error (at most 1.5×, where one was found), and the peer over `auto` (kept; above 1 at
+/// every `k` it ran).
+#[must_use]
+pub fn profile_summary(rows: &[ProfileRow]) -> String {
+    let mut o = String::new();
+    let verdict = |ok: bool| if ok { "met" } else { "NOT met" };
+    for start in ["trapped", "rotating"] {
+        let of: Vec<&ProfileRow> = rows.iter().filter(|r| r.start == start).collect();
+        if of.is_empty() {
+            continue;
+        }
+        let span = |f: fn(&ProfileRow) -> f64| {
+            let (lo, hi) = of.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), r| {
+                (lo.min(f(r)), hi.max(f(r)))
+            });
+            hi / lo
+        };
+        let (first, kept) = (span(|r| r.auto_seconds), span(|r| r.auto_warm_seconds));
+        let k_lo = of.iter().map(|r| r.k).fold(f64::INFINITY, f64::min);
+        let k_hi = of.iter().map(|r| r.k).fold(0.0, f64::max);
+        let _ = write!(
+            o,
+            "{start}: span over {} stiffnesses, k = {k_lo:.0e} … {k_hi:.0e}: {first:.1}x first, \
+             {kept:.1}x probes kept (target 3x: {})",
+            of.len(),
+            verdict(kept <= 3.0)
+        );
+        let best: Vec<f64> = of
+            .iter()
+            .filter(|r| r.best_seconds.is_finite())
+            .map(|r| r.auto_warm_seconds / r.best_seconds)
+            .collect();
+        if let (Some(lo), Some(hi)) = (
+            best.iter().copied().reduce(f64::min),
+            best.iter().copied().reduce(f64::max),
+        ) {
+            let _ = write!(
+                o,
+                "; auto / best single {lo:.1}-{hi:.1}x (target 1.5x: {})",
+                verdict(hi <= 1.5)
+            );
+        }
+        let slower: Vec<String> = of
+            .iter()
+            .filter_map(|r| {
+                let (_, peer) = r.peer.as_ref()?;
+                (peer / r.auto_warm_seconds < 1.0).then(|| format!("{:.0e}", r.k))
+            })
+            .collect();
+        if of.iter().any(|r| r.peer.is_some()) {
+            if slower.is_empty() {
+                o.push_str("; faster than the peer at every k it ran");
+            } else {
+                let _ = write!(o, "; the peer is faster at k = {}", slower.join(", "));
+            }
+        }
+        o.push('\n');
+    }
     o
 }
 
@@ -412,4 +476,49 @@ pub fn write_profile_svg(
         &plotters::prelude::SeriesLabelPosition::UpperLeft,
         path,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(start: &'static str, k: f64, first: f64, kept: f64, best: f64, peer: f64) -> ProfileRow {
+        ProfileRow {
+            start,
+            k,
+            choice: "taylor".to_owned(),
+            refinements: 0,
+            auto_seconds: first,
+            auto_warm_seconds: kept,
+            error: 1e-12,
+            estimate: 1e-9,
+            met: true,
+            best_single: "taylor tol=1.0e-12".to_owned(),
+            best_seconds: best,
+            peer: (peer > 0.0).then(|| ("peer".to_owned(), peer)),
+        }
+    }
+
+    #[test]
+    fn the_summary_reads_the_targets_off_the_rows() {
+        let rows = [
+            row("trapped", 1e2, 4.0, 4.0, 2.0, 3.0),
+            row("trapped", 1e8, 8.0, 1.0, 0.8, 100.0),
+            row("rotating", 1e2, 2.0, 2.0, 1.9, 5.0),
+            row("rotating", 1e8, 3.0, 1.0, 0.9, 0.0),
+        ];
+        let s = profile_summary(&rows);
+        let lines: Vec<&str> = s.lines().collect();
+        assert_eq!(
+            lines,
+            [
+                "trapped: span over 2 stiffnesses, k = 1e2 … 1e8: 2.0x first, 4.0x probes kept \
+                 (target 3x: NOT met); \
+                 auto / best single 1.2-2.0x (target 1.5x: NOT met); the peer is faster at k = 1e2",
+                "rotating: span over 2 stiffnesses, k = 1e2 … 1e8: 1.5x first, 2.0x probes kept \
+                 (target 3x: met); \
+                 auto / best single 1.1-1.1x (target 1.5x: met); faster than the peer at every k it ran",
+            ]
+        );
+    }
 }
