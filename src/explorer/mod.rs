@@ -151,6 +151,27 @@ fn follow_thread(
     }))
 }
 
+/// `auto`'s plans among a followed file's new lines (those with an estimate, as
+/// [`crate::record::plan_book`] keeps them), as commands that hand them to the worker, whose
+/// verification ahead waits for them instead of verifying the lecturer's segments again.
+fn forwarded_plans(lines: &[crate::record::Line]) -> Vec<Effect> {
+    lines
+        .iter()
+        .filter_map(|l| match l.event {
+            crate::app::journal::Event::Plan {
+                key,
+                plan,
+                estimate: estimate @ Some(_),
+            } => Some(Effect::Sim(crate::sim::Command::Book {
+                key,
+                plan,
+                estimate,
+            })),
+            _ => None,
+        })
+        .collect()
+}
+
 /// Applies what the followed file did: new lines, a restart from its beginning (truncated or
 /// replaced: a fresh explorer on its header), or its absence.
 fn follow_event(
@@ -168,8 +189,12 @@ fn follow_event(
             let ended = lines
                 .iter()
                 .any(|l| matches!(l.event, crate::app::journal::Event::End { .. }));
-            let effects = r.push(lines, app);
+            // The lecturer's plans go to the worker first: what it waits for, it takes.
+            let mut effects = forwarded_plans(&lines);
+            effects.extend(r.push(lines, app));
             if ended {
+                // Nothing more will come: what is missing is verified here.
+                effects.push(Effect::Sim(crate::sim::Command::Release));
                 app.notice("the lecturer's recording ended; f forks, q quits");
             }
             effects
@@ -191,7 +216,14 @@ fn follow_event(
             let (fresh, mut effects) = App::new_after(&preset, app_options, app);
             *app = fresh;
             let path = options.follow.clone().unwrap_or_default();
-            let lines = recording.lines.iter().map(|(_, l)| l.clone()).collect();
+            let lines: Vec<_> = recording.lines.iter().map(|(_, l)| l.clone()).collect();
+            effects.extend(forwarded_plans(&lines));
+            if lines
+                .last()
+                .is_some_and(|l| matches!(l.event, crate::app::journal::Event::End { .. }))
+            {
+                effects.push(Effect::Sim(crate::sim::Command::Release));
+            }
             let mut fresh_replay = Replayer::live(lines, lecturer_now(&recording, &path));
             effects.extend(fresh_replay.catch_up(app));
             *replay = Some(fresh_replay);
@@ -421,6 +453,13 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
     if options.follow.is_some() {
         // A lecture being followed grows: its runs are bounded one by one, not by its length.
         book.total = f64::INFINITY;
+        // Its later segments are verified by the lecturer at the same moment: wait for the
+        // plans instead of verifying them again, unless the lecture has ended.
+        book.awaits = !options.replay.as_ref().is_some_and(|r| {
+            r.lines
+                .last()
+                .is_some_and(|(_, l)| matches!(l.event, crate::app::journal::Event::End { .. }))
+        });
     }
     let worker = {
         let tx = tx.clone();
@@ -518,6 +557,8 @@ fn handle_event(
         {
             *replay = None;
             app.fork();
+            // On its own now: it verifies what it runs.
+            shell.worker.send(crate::sim::Command::Release);
             Ok(true)
         }
         AppEvent::Follow(event) => {

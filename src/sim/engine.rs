@@ -10,7 +10,7 @@ use std::collections::VecDeque;
 use serde::{Deserialize, Serialize};
 
 use super::jobs::{Job, JobKind, Slice, Work};
-use super::segments::{Ahead, Next, Progress, Report};
+use super::segments::{Ahead, Forward, Next, Progress, Report};
 use super::{Command, Session, SessionSpec, SimEvent};
 use crate::physics::Model;
 use crate::physics::plan::{AutoPolicy, Resolved};
@@ -113,6 +113,11 @@ pub struct PlanBook {
     /// ([`super::segments`]); a replay of a file older than format 9 shows its runs in one
     /// piece, as they were shown.
     pub segmented: bool,
+    /// A follower's book: the verification ahead waits for the lecturer's plans of the later
+    /// segments ([`Command::Book`](super::Command::Book)) instead of verifying them at the
+    /// same moment as the lecturer, for at most [`super::segments::AWAIT_SECONDS`] a segment,
+    /// until [`Command::Release`](super::Command::Release).
+    pub awaits: bool,
 }
 
 impl Default for PlanBook {
@@ -125,6 +130,7 @@ impl Default for PlanBook {
             total: f64::INFINITY,
             arithmetic: Arithmetic::default(),
             segmented: true,
+            awaits: false,
         }
     }
 }
@@ -153,6 +159,17 @@ impl PlanBook {
         }
         let key = PlanKey::of(spec);
         list.iter().find(|(k, _)| *k == key).map(|(_, v)| *v)
+    }
+
+    /// Adds a plan resolved elsewhere (a follower's forwarded line), unless its key is known.
+    pub fn add(&mut self, key: PlanKey, plan: Resolved, estimate: Option<f64>) {
+        if self.recorded.iter().any(|(k, _)| *k == key) {
+            return;
+        }
+        self.recorded.push((key, plan));
+        if let Some(e) = estimate {
+            self.estimates.push((key, e));
+        }
     }
 
     pub(super) fn estimate(&self, spec: &SessionSpec) -> Option<f64> {
@@ -440,6 +457,22 @@ impl Engine {
             Command::Checkpoint { generation, t } => {
                 self.checkpoints.push_back((generation, t));
                 self.blocked = false;
+            }
+            Command::Book {
+                key,
+                plan,
+                estimate,
+            } => {
+                self.planner.book.add(key, plan, estimate);
+                if let Some(ahead) = &self.ahead {
+                    ahead.forward(Forward::Plan(key, plan, estimate));
+                }
+            }
+            Command::Release => {
+                self.planner.book.awaits = false;
+                if let Some(ahead) = &self.ahead {
+                    ahead.forward(Forward::Release);
+                }
             }
             Command::SetEffective { on, epoch } => {
                 self.epoch = epoch;

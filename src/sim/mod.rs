@@ -63,6 +63,21 @@ pub enum Command {
         /// What to compute.
         spec: Option<JobSpec>,
     },
+    /// A plan `auto` resolved elsewhere for `key`: a follower passes on the lecturer's plan
+    /// lines as they are written. Its verification ahead, which waits for them
+    /// ([`PlanBook::awaits`]), takes the plan instead of verifying it again. The same bits come
+    /// out: `auto` is deterministic, and the recording is the lecture.
+    Book {
+        /// What it was resolved for.
+        key: PlanKey,
+        /// The plan.
+        plan: Resolved,
+        /// Its error estimate.
+        estimate: Option<f64>,
+    },
+    /// Stop waiting for plans from elsewhere (the lecture ended, or the follower forked): what
+    /// is not in the book is verified here again.
+    Release,
     /// Stop the worker.
     Quit,
 }

@@ -18,16 +18,32 @@
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{self, Receiver, TryRecvError};
+use std::sync::mpsc::{self, Receiver, Sender, TryRecvError};
 
 use super::session::Segment;
-use super::{PlanBook, SessionSpec};
+use super::{PlanBook, PlanKey, SessionSpec};
 use crate::physics::plan::Resolved;
 use crate::physics::rattleback::integrators::StepError;
 
 /// The longest first segment: a run at most this long is verified in one piece (every shipped
 /// preset is).
 pub const FIRST_SEGMENT: f64 = 64.0;
+
+/// Longest wait, in wall seconds, of a follower's verification ahead for the lecturer's plan of
+/// one segment ([`PlanBook::awaits`]) before it verifies the segment itself: the lecturer
+/// verifies it at the same moment, so the plan normally comes within its verification time
+/// and the file's polling; a lecturer gone without an end line costs this much once (the
+/// follower then verifies the rest itself).
+pub const AWAIT_SECONDS: f64 = 5.0;
+
+/// What a follower's worker passes on to its verification ahead.
+#[derive(Clone, Copy, Debug)]
+pub enum Forward {
+    /// The lecturer's plan of a key.
+    Plan(PlanKey, Resolved, Option<f64>),
+    /// Stop waiting: verify what is not in the book.
+    Release,
+}
 
 /// The most segments of a run (a horizon of `FIRST_SEGMENT · 2^39` and more is cut to this).
 const MOST_SEGMENTS: usize = 40;
@@ -95,6 +111,8 @@ pub enum Next {
 pub struct Ahead {
     reports: Receiver<Report>,
     cancel: Arc<AtomicBool>,
+    /// Plans resolved elsewhere, passed on to the thread ([`Ahead::forward`]).
+    forwarded: Sender<Forward>,
 }
 
 impl Ahead {
@@ -107,16 +125,29 @@ impl Ahead {
     #[must_use]
     pub fn spawn(book: PlanBook, spec: SessionSpec, horizons: &[f64]) -> Self {
         let (tx, reports) = mpsc::channel();
+        let (forwarded, plans) = mpsc::channel();
         let cancel = Arc::new(AtomicBool::new(false));
         let stop = Arc::clone(&cancel);
         let pairs: Vec<(f64, f64)> = horizons.windows(2).map(|w| (w[0], w[1])).collect();
         std::thread::Builder::new()
             .name("rattleback-verify".to_owned())
             .spawn(move || {
-                verify(&book, &spec, &pairs, &stop, &mut |r| tx.send(r).is_ok());
+                let mut book = book;
+                verify(&mut book, &plans, &spec, &pairs, &stop, &mut |r| {
+                    tx.send(r).is_ok()
+                });
             })
             .expect("spawn the verifying thread");
-        Self { reports, cancel }
+        Self {
+            reports,
+            cancel,
+            forwarded,
+        }
+    }
+
+    /// Passes on a plan resolved elsewhere, or the end of the wait for them.
+    pub fn forward(&self, what: Forward) {
+        let _ = self.forwarded.send(what);
     }
 
     /// The next report if one is waiting.
@@ -145,15 +176,44 @@ impl Drop for Ahead {
 /// Verifies the segments `pairs` (`(from, until)`) of `spec` in order, sending what it finds;
 /// stops when cancelled, when `send` fails, or at the first failure.
 fn verify(
-    book: &PlanBook,
+    book: &mut PlanBook,
+    plans: &Receiver<Forward>,
     spec: &SessionSpec,
     pairs: &[(f64, f64)],
     cancel: &AtomicBool,
     send: &mut dyn FnMut(Report) -> bool,
 ) {
+    let take = |book: &mut PlanBook, what: Forward| match what {
+        Forward::Plan(key, plan, estimate) => book.add(key, plan, estimate),
+        Forward::Release => book.awaits = false,
+    };
     for &(from, until) in pairs {
         let mut asked = *spec;
         asked.t_end = until;
+        // A follower waits for the lecturer's plan of this segment (bounded).
+        let waited = std::time::Instant::now();
+        loop {
+            for what in plans.try_iter() {
+                take(book, what);
+            }
+            if cancel.load(Ordering::Relaxed) {
+                return;
+            }
+            if !book.awaits || book.lookup(&asked).is_some() {
+                break;
+            }
+            if waited.elapsed().as_secs_f64() >= AWAIT_SECONDS {
+                // The lecturer is gone or far behind: verify from here on.
+                book.awaits = false;
+                break;
+            }
+            match plans.recv_timeout(std::time::Duration::from_millis(20)) {
+                Ok(what) => take(book, what),
+                Err(mpsc::RecvTimeoutError::Timeout) => {}
+                // The worker is gone: nothing more will come.
+                Err(mpsc::RecvTimeoutError::Disconnected) => book.awaits = false,
+            }
+        }
         let mut progress = Progress::new(until);
         let mut go_on = |t: f64| {
             if let Some((run, percent)) = progress.at(t) {

@@ -493,3 +493,122 @@ fn a_run_stops_where_its_verification_would_pass_the_budget() {
         run.sample_dt
     );
 }
+
+/// The lecturer's plans of every horizon of `spec` after the first, as its worker resolves
+/// them.
+fn lecturers_plans(
+    spec: SessionSpec,
+) -> Vec<(
+    f64,
+    rattleback::sim::PlanKey,
+    rattleback::physics::Resolved,
+    Option<f64>,
+)> {
+    let book = PlanBook::default();
+    horizons(spec.t_end)
+        .into_iter()
+        .skip(1)
+        .map(|t_end| {
+            let mut asked = spec;
+            asked.t_end = t_end;
+            let r = spec
+                .model
+                .resolve(&book.request(&asked), &mut |_| true)
+                .unwrap();
+            (
+                t_end,
+                rattleback::sim::PlanKey::of(&asked),
+                r.plan,
+                r.estimate,
+            )
+        })
+        .collect()
+}
+
+fn awaiting() -> PlanBook {
+    PlanBook {
+        awaits: true,
+        ..PlanBook::default()
+    }
+}
+
+#[test]
+fn a_followers_verification_ahead_waits_for_the_lecturers_plans() {
+    // A follower's worker waits for the lecturer's plans of the later segments instead of
+    // verifying them at the same moment as the lecturer: it verifies nothing, and takes what
+    // it is given. Plans no `auto` would pick (dop853 at 1e-9) show they were taken.
+    use rattleback::physics::Resolved;
+    use rattleback::sim::segments::{Ahead, Forward, Report};
+    let spec = long(200.0);
+    let ahead = Ahead::spawn(awaiting(), spec, &[50.0, 100.0, 200.0]);
+    let given = Resolved {
+        method: Method::Dop853,
+        tolerance: 1e-9,
+        step: None,
+    };
+    for (_, key, _, _) in lecturers_plans(spec) {
+        ahead.forward(Forward::Plan(key, given, Some(1e-9)));
+    }
+    let (mut verified, mut progress) = (Vec::new(), 0);
+    while let Some(report) = ahead.next() {
+        match report {
+            Report::Verified { until, plan, .. } => verified.push((until, plan)),
+            Report::Progress { .. } => progress += 1,
+            _ => {}
+        }
+    }
+    assert_eq!(verified, vec![(100.0, given), (200.0, given)]);
+    assert_eq!(progress, 0, "the follower verified");
+}
+
+#[test]
+fn a_released_follower_verifies_what_it_lacks() {
+    // The lecture ended (or the follower forked): what the book lacks is verified here, and
+    // comes out as the lecturer's worker resolved it.
+    use rattleback::sim::segments::{Ahead, Forward, Report};
+    let spec = long(200.0);
+    let ahead = Ahead::spawn(awaiting(), spec, &[50.0, 100.0, 200.0]);
+    ahead.forward(Forward::Release);
+    let (mut verified, mut progress) = (Vec::new(), 0);
+    while let Some(report) = ahead.next() {
+        match report {
+            Report::Verified { until, plan, .. } => verified.push((until, plan)),
+            Report::Progress { .. } => progress += 1,
+            _ => {}
+        }
+    }
+    let lecturer: Vec<_> = lecturers_plans(spec)
+        .into_iter()
+        .map(|(t, _, plan, _)| (t, plan))
+        .collect();
+    assert_eq!(verified, lecturer);
+    assert!(progress > 0);
+}
+
+#[test]
+fn a_follower_shows_the_lecturers_bits_from_the_plans_it_is_given() {
+    // Through the engine: the lecturer's plan lines handed over as `Book` commands after the
+    // restart they belong to; the run ends on the lecturer's bits without verifying ahead.
+    let t_end = 200.0;
+    let spec = long(t_end);
+    let (_, lecturer) = events(PlanBook::default(), to(spec, t_end));
+    let mut commands = to(spec, t_end);
+    let books = lecturers_plans(spec)
+        .into_iter()
+        .map(|(_, key, plan, estimate)| Command::Book {
+            key,
+            plan,
+            estimate,
+        });
+    commands.splice(1..1, books);
+    let (_, follower) = events(awaiting(), commands);
+    assert!(
+        !follower.iter().any(|e| matches!(e, SimEvent::Ahead { .. })),
+        "the follower verified ahead"
+    );
+    assert!(lecturer.iter().any(|e| matches!(e, SimEvent::Ahead { .. })));
+    let (a, b) = (checkpoints(&lecturer), checkpoints(&follower));
+    assert_eq!(a.len(), 1);
+    assert_eq!(bits(&a[0].1), bits(&b[0].1));
+    assert_eq!(a[0].2, b[0].2);
+}
