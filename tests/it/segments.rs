@@ -525,6 +525,22 @@ fn lecturers_plans(
         .collect()
 }
 
+/// The plans a verification ahead reported, by horizon, and how many progress reports it sent.
+fn reports(
+    ahead: &rattleback::sim::segments::Ahead,
+) -> (Vec<(f64, rattleback::physics::Resolved)>, usize) {
+    use rattleback::sim::segments::Report;
+    let (mut verified, mut progress) = (Vec::new(), 0);
+    while let Some(report) = ahead.next() {
+        match report {
+            Report::Verified { until, plan, .. } => verified.push((until, plan)),
+            Report::Progress { .. } => progress += 1,
+            _ => {}
+        }
+    }
+    (verified, progress)
+}
+
 fn awaiting() -> PlanBook {
     PlanBook {
         awaits: true,
@@ -538,7 +554,7 @@ fn a_followers_verification_ahead_waits_for_the_lecturers_plans() {
     // verifying them at the same moment as the lecturer: it verifies nothing, and takes what
     // it is given. Plans no `auto` would pick (dop853 at 1e-9) show they were taken.
     use rattleback::physics::Resolved;
-    use rattleback::sim::segments::{Ahead, Forward, Report};
+    use rattleback::sim::segments::{Ahead, Forward};
     let spec = long(200.0);
     let ahead = Ahead::spawn(awaiting(), spec, &[50.0, 100.0, 200.0]);
     let given = Resolved {
@@ -549,14 +565,7 @@ fn a_followers_verification_ahead_waits_for_the_lecturers_plans() {
     for (_, key, _, _) in lecturers_plans(spec) {
         ahead.forward(Forward::Plan(key, given, Some(1e-9)));
     }
-    let (mut verified, mut progress) = (Vec::new(), 0);
-    while let Some(report) = ahead.next() {
-        match report {
-            Report::Verified { until, plan, .. } => verified.push((until, plan)),
-            Report::Progress { .. } => progress += 1,
-            _ => {}
-        }
-    }
+    let (verified, progress) = reports(&ahead);
     assert_eq!(verified, vec![(100.0, given), (200.0, given)]);
     assert_eq!(progress, 0, "the follower verified");
 }
@@ -565,18 +574,11 @@ fn a_followers_verification_ahead_waits_for_the_lecturers_plans() {
 fn a_released_follower_verifies_what_it_lacks() {
     // The lecture ended (or the follower forked): what the book lacks is verified here, and
     // comes out as the lecturer's worker resolved it.
-    use rattleback::sim::segments::{Ahead, Forward, Report};
+    use rattleback::sim::segments::{Ahead, Forward};
     let spec = long(200.0);
     let ahead = Ahead::spawn(awaiting(), spec, &[50.0, 100.0, 200.0]);
     ahead.forward(Forward::Release);
-    let (mut verified, mut progress) = (Vec::new(), 0);
-    while let Some(report) = ahead.next() {
-        match report {
-            Report::Verified { until, plan, .. } => verified.push((until, plan)),
-            Report::Progress { .. } => progress += 1,
-            _ => {}
-        }
-    }
+    let (verified, progress) = reports(&ahead);
     let lecturer: Vec<_> = lecturers_plans(spec)
         .into_iter()
         .map(|(t, _, plan, _)| (t, plan))
