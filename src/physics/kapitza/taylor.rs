@@ -31,7 +31,7 @@ use super::Params;
 use crate::physics::method::StepError;
 use crate::physics::numerics::dop853::Stats;
 use crate::physics::numerics::stepper::Stepper;
-use crate::physics::numerics::taylor::{horner, natural_step, towards};
+use crate::physics::numerics::taylor::{advance, horner, natural_step};
 
 /// The order of the series, whatever the tolerance: a run and its companion at a looser
 /// tolerance then differ only in their steps, and their errors follow the tolerance (an order
@@ -173,19 +173,20 @@ impl Stepper<2> for Taylor {
     /// When the series stops being finite or its step underflows.
     fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
         self.expand();
-        let (h, last) = towards(self.t, SAFETY * self.natural_step(), t_limit)?;
-        let y_new = Vector2::new(
-            horner(&self.theta[..=ORDER], h),
-            horner(&self.theta_dot[..=ORDER], h),
-        );
-        if !y_new.iter().all(|v| v.is_finite()) {
-            return Err(StepError::NonFinite { t: self.t });
-        }
-        self.t_prev = self.t;
-        self.t = if last { t_limit } else { self.t + h };
-        self.y = y_new;
-        self.stats.steps += 1;
-        self.stats.rhs_evaluations += ORDER as u64;
+        let natural = SAFETY * self.natural_step();
+        let (theta, theta_dot) = (&self.theta[..=ORDER], &self.theta_dot[..=ORDER]);
+        self.y = advance(
+            &mut self.t,
+            &mut self.t_prev,
+            &mut self.stats,
+            ORDER,
+            natural,
+            t_limit,
+            |h| {
+                let y = Vector2::new(horner(theta, h), horner(theta_dot, h));
+                y.iter().all(|v| v.is_finite()).then_some(y)
+            },
+        )?;
         Ok(())
     }
 }

@@ -10,6 +10,7 @@
 //! the tolerance times the step over the series' radius.
 
 use crate::physics::method::StepError;
+use crate::physics::numerics::dop853::Stats;
 
 /// The step the series of order `order` allows, `size(n)` being the largest coefficient of order
 /// `n` over its component's error scale.
@@ -50,4 +51,28 @@ pub fn towards(t: f64, natural: f64, t_limit: f64) -> Result<(f64, bool), StepEr
 #[must_use]
 pub fn horner(c: &[f64], tau: f64) -> f64 {
     c.iter().rev().fold(0.0, |acc, &x| acc * tau + x)
+}
+
+/// One step of a series of order `order` expanded at `*t`: the step [`towards`] allows from
+/// `natural`, the state `sum` gives at it (`None` when not finite), and the time, the previous
+/// step's start and the counts moved there. Both Taylor cores step with it.
+///
+/// # Errors
+/// [`towards`]'s, or a state that is not finite.
+pub fn advance<S>(
+    t: &mut f64,
+    t_prev: &mut f64,
+    stats: &mut Stats,
+    order: usize,
+    natural: f64,
+    t_limit: f64,
+    sum: impl Fn(f64) -> Option<S>,
+) -> Result<S, StepError> {
+    let (h, last) = towards(*t, natural, t_limit)?;
+    let y = sum(h).ok_or(StepError::NonFinite { t: *t })?;
+    *t_prev = *t;
+    *t = if last { t_limit } else { *t + h };
+    stats.steps += 1;
+    stats.rhs_evaluations += order as u64;
+    Ok(y)
 }

@@ -36,7 +36,7 @@
 use crate::physics::method::StepError;
 use crate::physics::numerics::dop853::Stats;
 use crate::physics::numerics::stepper::Stepper;
-use crate::physics::numerics::taylor::{horner, natural_step, towards};
+use crate::physics::numerics::taylor::{advance, horner, natural_step};
 use crate::physics::rattleback::model::State;
 use crate::physics::rattleback::params::Params;
 
@@ -192,16 +192,20 @@ impl Stepper<4> for TaylorCore {
     /// When the series stops being finite or its step underflows.
     fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
         self.expand();
-        let (h, last) = towards(self.t, self.natural_step(), t_limit)?;
-        let y_new = State::from_fn(|i, _| horner(&self.c[i], h));
-        if !y_new.iter().all(|x| x.is_finite()) {
-            return Err(StepError::NonFinite { t: self.t });
-        }
-        self.t_prev = self.t;
-        self.t = if last { t_limit } else { self.t + h };
-        self.y = y_new;
-        self.stats.steps += 1;
-        self.stats.rhs_evaluations += ORDER as u64;
+        let natural = self.natural_step();
+        let c = &self.c;
+        self.y = advance(
+            &mut self.t,
+            &mut self.t_prev,
+            &mut self.stats,
+            ORDER,
+            natural,
+            t_limit,
+            |h| {
+                let y = State::from_fn(|i, _| horner(&c[i], h));
+                y.iter().all(|x| x.is_finite()).then_some(y)
+            },
+        )?;
         Ok(())
     }
 }
