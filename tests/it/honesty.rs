@@ -260,7 +260,7 @@ fn the_slow_models_first_reading_of_the_conditioning_sends_every_ill_conditioned
     // plan's own method where that reads above 100. Away from the separatrix the reading must be
     // the full model's (here within 1.5×); near it, where the slow model may be off by 300×,
     // it must read above 100, so that the accurate measurement follows. The full model's κ is
-    // the Taylor series' at 1e-11 (within 5 %.
+    // the Taylor series' at 1e-11 (within 5 % of the references' own where they state it).
     use rattleback::physics::rattleback::auto::{
         CONDITIONING_AVERAGED_LIMIT, CONDITIONING_LOOSE_TOLERANCE, CONDITIONING_MODEL,
         CONDITIONING_RECHECK, NUDGE, difference,
@@ -297,9 +297,12 @@ fn the_slow_models_first_reading_of_the_conditioning_sends_every_ill_conditioned
         let slow = kappa(CONDITIONING_MODEL, CONDITIONING_LOOSE_TOLERANCE);
         let full = kappa(rattleback::physics::Method::Taylor, 1e-11);
         if let Some(reference) = case.condition {
+            // Within 5 %, or 0.05 where κ is below 1: the nudged runs' own rounding is an
+            // absolute noise in κ (about 1e-12 over a nudge of 1e-10 where the series takes a
+            // million steps, k = 1e8).
             assert!(
-                (full / reference - 1.0).abs() < 0.05,
-                "{}: {full:e}",
+                (full - reference).abs() < 0.05 * reference.max(1.0),
+                "{}: {full:e}, the reference's {reference:e}",
                 case.name
             );
         }

@@ -46,6 +46,21 @@ pub const ORDER: usize = 20;
 
 const N1: usize = ORDER + 1;
 
+/// `1/m` for `m = 0..=ORDER` (`INVERSE[0]` unused): the recurrences multiply by it, a division
+/// being several times a multiplication's latency on their critical path.
+const INVERSE: [f64; N1] = {
+    let mut r = [0.0; N1];
+    let mut m = 1;
+    while m < N1 {
+        #[allow(clippy::cast_precision_loss)]
+        {
+            r[m] = 1.0 / m as f64;
+        }
+        m += 1;
+    }
+    r
+};
+
 /// The Taylor integrator of the full model.
 #[derive(Clone)]
 pub struct TaylorCore {
@@ -54,7 +69,8 @@ pub struct TaylorCore {
     /// `iy − ix`.
     d: f64,
     k: f64,
-    two_iz: f64,
+    /// `(iy − ix) / (2 iz)`.
+    d_over_two_iz: f64,
     /// `1/ω_max`, the natural unit of `γ`.
     unit_gamma: f64,
     tol: f64,
@@ -79,7 +95,7 @@ impl TaylorCore {
             g1: 0.5 * (params.ix - params.iy),
             d: params.iy - params.ix,
             k: params.k,
-            two_iz: 2.0 * params.iz,
+            d_over_two_iz: (params.iy - params.ix) / (2.0 * params.iz),
             unit_gamma: 1.0 / params.omega_max(),
             tol,
             t: t0,
@@ -91,8 +107,8 @@ impl TaylorCore {
     }
 
     /// Expands the state about the current point into `self.c`.
-    #[allow(clippy::cast_precision_loss, clippy::needless_range_loop)]
     fn expand(&mut self) {
+        const O: usize = ORDER;
         let [gm, al, w, v] = &mut self.c;
         gm[0] = self.y[0];
         al[0] = self.y[1];
@@ -103,38 +119,46 @@ impl TaylorCore {
         let (mut p, mut q) = ([0.0; N1], [0.0; N1]);
         // `j β_j = 2 j α_j`, kept so the sine and cosine are one pass.
         let mut jb = [0.0; N1];
+        // The second factors of the convolutions, stored backwards (`r[ORDER − i]` is order `i`)
+        // so every convolution is a dot product of two contiguous slices.
+        let (mut wr, mut vr, mut qr, mut sr, mut cr) =
+            ([0.0; N1], [0.0; N1], [0.0; N1], [0.0; N1], [0.0; N1]);
+        wr[O] = w[0];
+        vr[O] = v[0];
+        sr[O] = s[0];
+        cr[O] = c[0];
         let g_at0 = self.g0 + self.g1 * c[0];
         let inv_g0 = 1.0 / g_at0;
         for n in 0..ORDER {
-            // One pass over `j` for all six convolutions (independent sums, so they overlap):
-            // `P_n = Σ S_j w_{n−j}`; `A_n`, `B_n` = `Σ P_j (v, w)_{n−j}` but for their
-            // `j = n` term, which needs `P_n`; the quotient's `Σ_{j≥1} C_j q_{n−j}`; and the
-            // next order's `Σ j β_j (C, S)_{n+1−j}` but for its `j = n + 1` term, which needs
+            // `P_n = Σ S_j w_{n−j}`; `A_n`, `B_n` = `Σ P_j (v, w)_{n−j}` but for their `j = n`
+            // term, which needs `P_n`; the quotient's `Σ_{j≥1} C_j q_{n−j}`; and the next
+            // order's `Σ j β_j (C, S)_{n+1−j}` but for its `j = n + 1` term, which needs
             // `α_{n+1}`.
-            let mut pn = s[0] * w[n];
-            let (mut a, mut b, mut qc, mut ds, mut dc) = (0.0, 0.0, 0.0, 0.0, 0.0);
-            for j in 1..=n {
-                pn += s[j] * w[n - j];
-                a += p[j - 1] * v[n + 1 - j];
-                b += p[j - 1] * w[n + 1 - j];
-                qc += c[j] * q[n - j];
-                ds += jb[j] * c[n + 1 - j];
-                dc += jb[j] * s[n + 1 - j];
-            }
+            let pn = s[0] * w[n] + dot(&s[1..=n], &wr[O + 1 - n..]);
+            let mut a = dot(&p[..n], &vr[O - n..O]);
+            let mut b = dot(&p[..n], &wr[O - n..O]);
+            let qc = dot(&c[1..=n], &qr[O + 1 - n..]);
+            let mut ds = dot(&jb[1..=n], &cr[O - n..O]);
+            let mut dc = dot(&jb[1..=n], &sr[O - n..O]);
             p[n] = pn;
             a += pn * v[0];
             b += pn * w[0];
             q[n] = (self.k * gm[n] + self.d * a - self.g1 * qc) * inv_g0;
-            let m = (n + 1) as f64;
-            gm[n + 1] = w[n] / m;
-            al[n + 1] = v[n] / m;
-            w[n + 1] = -q[n] / m;
-            v[n + 1] = self.d * b / (self.two_iz * m);
+            qr[O - n] = q[n];
+            let inv_m = INVERSE[n + 1];
+            gm[n + 1] = w[n] * inv_m;
+            al[n + 1] = v[n] * inv_m;
+            w[n + 1] = -q[n] * inv_m;
+            v[n + 1] = self.d_over_two_iz * b * inv_m;
             jb[n + 1] = 2.0 * v[n];
             ds += jb[n + 1] * c[0];
             dc += jb[n + 1] * s[0];
-            s[n + 1] = ds / m;
-            c[n + 1] = -dc / m;
+            s[n + 1] = ds * inv_m;
+            c[n + 1] = -dc * inv_m;
+            wr[O - n - 1] = w[n + 1];
+            vr[O - n - 1] = v[n + 1];
+            sr[O - n - 1] = s[n + 1];
+            cr[O - n - 1] = c[n + 1];
         }
     }
 
@@ -208,6 +232,26 @@ impl Stepper<4> for TaylorCore {
         )?;
         Ok(())
     }
+}
+
+/// `Σ a_i b_i` over two slices of one length, in four interleaved partial sums (which the
+/// compiler keeps in vector registers).
+#[inline]
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    debug_assert_eq!(a.len(), b.len());
+    let mut acc = [0.0; 4];
+    let (ac, bc) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ar, br) = (ac.remainder(), bc.remainder());
+    for (x, y) in ac.zip(bc) {
+        for i in 0..4 {
+            acc[i] += x[i] * y[i];
+        }
+    }
+    let mut tail = 0.0;
+    for (x, y) in ar.iter().zip(br) {
+        tail += x * y;
+    }
+    (acc[0] + acc[2]) + (acc[1] + acc[3]) + tail
 }
 
 #[cfg(test)]
