@@ -17,15 +17,13 @@ use crate::physics::numerics::dop853::Stats;
 #[must_use]
 #[allow(clippy::cast_precision_loss)]
 pub fn natural_step(order: usize, size: impl Fn(usize) -> f64) -> f64 {
-    let radius = |n: usize| {
-        let m = size(n);
-        if m == 0.0 {
-            f64::INFINITY
-        } else {
-            m.powf(-1.0 / n as f64)
-        }
-    };
-    radius(order - 2).min(radius(order - 1)).min(radius(order))
+    // `min (1/m_n)^{1/n}` as `exp(min −ln(m_n)/n)`: three logarithms and one exponential cost
+    // less than three powers.
+    let exponent = |n: usize| -size(n).ln() / n as f64;
+    exponent(order - 2)
+        .min(exponent(order - 1))
+        .min(exponent(order))
+        .exp()
 }
 
 /// The step to take from `t` towards `t_limit` (which must exceed `t`) when the series allows
@@ -47,10 +45,21 @@ pub fn towards(t: f64, natural: f64, t_limit: f64) -> Result<(f64, bool), StepEr
     Ok((h, last))
 }
 
-/// `Σ c_n τ^n` by Horner's rule.
+/// `Σ c_n τ^n` by Horner's rule in `τ²`, the even and the odd orders apart: two independent
+/// chains of half the length, `Σ c_{2j} τ^{2j} + τ Σ c_{2j+1} τ^{2j}`.
 #[must_use]
 pub fn horner(c: &[f64], tau: f64) -> f64 {
-    c.iter().rev().fold(0.0, |acc, &x| acc * tau + x)
+    let tau2 = tau * tau;
+    let (mut even, mut odd) = (0.0, 0.0);
+    let mut pairs = c.chunks_exact(2);
+    if let [last] = pairs.remainder() {
+        even = *last;
+    }
+    for pair in pairs.by_ref().rev() {
+        even = even * tau2 + pair[0];
+        odd = odd * tau2 + pair[1];
+    }
+    even + tau * odd
 }
 
 /// One step of a series of order `order` expanded at `*t`: the step [`towards`] allows from
@@ -75,4 +84,44 @@ pub fn advance<S>(
     stats.steps += 1;
     stats.rhs_evaluations += order as u64;
     Ok(y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Horner's rule in `τ²` against the plain sum, for odd and even lengths (a missing even or
+    /// odd chain would drop a term).
+    #[test]
+    fn horner_sums_every_order() {
+        for len in 0u8..8 {
+            let c: Vec<f64> = (0..len).map(|n| 1.0 + 0.5 * f64::from(n)).collect();
+            for tau in [0.0f64, 0.3, -1.7] {
+                let plain: f64 = c
+                    .iter()
+                    .enumerate()
+                    .map(|(n, x)| x * tau.powi(i32::try_from(n).unwrap()))
+                    .sum();
+                let got = horner(&c, tau);
+                assert!(
+                    (got - plain).abs() <= 1e-13 * plain.abs().max(1.0),
+                    "len {len}, τ {tau}: {got} against {plain}"
+                );
+            }
+        }
+    }
+
+    /// The step is the smallest radius `(1/m_n)^{1/n}` of the last three orders, infinite
+    /// where they vanish.
+    #[test]
+    fn the_step_is_the_smallest_radius_of_the_last_three_orders() {
+        let sizes = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 3.0, 0.5, 2.0];
+        let expected = 3f64.powf(-1.0 / 8.0).min(2f64.powf(-0.1));
+        let got = natural_step(10, |n| sizes[n]);
+        assert!(
+            (got / expected - 1.0).abs() < 1e-14,
+            "{got} against {expected}"
+        );
+        assert!(natural_step(10, |_| 0.0).is_infinite());
+    }
 }
