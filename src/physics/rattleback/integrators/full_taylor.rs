@@ -1,7 +1,7 @@
 //! `taylor` on the full model: the Taylor series of `(γ, α, γ̇, α̇)` about each step's start
 //! (issue 27, items 1–2: the middle stiffnesses, where `auto` still resolves the fast motion).
 //!
-//! At equal error DOP853 costs 1.9–4.5× as much on the averaging note's starts, k = 1e2 … 1e5,
+//! At equal error DOP853 costs 1.7–6.6× as much on the averaging note's starts, k = 1e2 … 1e5,
 //! T = 30 (four to six steps a fast period, where DOP853 takes twenty to forty; `cargo run
 //! --release --example rattleback_taylor cost`). `auto` runs its probes' full model with it (its
 //! `PROBE_FULL_METHOD`), but not its resolved runs: its
