@@ -126,11 +126,17 @@ impl EventTracker {
 
     /// Checks the step just taken; returns the event time inside it, if any.
     pub fn after_step<F: Flow + ?Sized>(&mut self, flow: &mut F) -> Option<f64> {
-        let v = flow.event_value();
+        let counted = self.after_value(flow.event_value(), flow.event_hysteresis());
+        counted.then(|| flow.locate_event())
+    }
+
+    /// Whether the event function, `v` at the end of the step just taken, changed sign in it
+    /// (with hysteresis `h`): [`EventTracker::after_step`] for a function that is not a
+    /// flow's.
+    pub fn after_value(&mut self, v: f64, h: f64) -> bool {
         let now = sign(v);
-        let h = flow.event_hysteresis();
         if now == 0.0 {
-            return None;
+            return false;
         }
         // Signs are exactly -1, 0 or 1.
         #[allow(clippy::float_cmp)]
@@ -143,7 +149,7 @@ impl EventTracker {
         if v.abs() > h {
             self.armed = true;
         }
-        counted.then(|| flow.locate_event())
+        counted
     }
 }
 

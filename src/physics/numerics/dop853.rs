@@ -74,6 +74,13 @@ pub trait Field<const N: usize> {
         let _ = i;
         false
     }
+
+    /// How many components the error norm averages over: all `N`, unless some are carried
+    /// along uncontrolled (an infinite [`Field::unit`]), as the nudged copies of a start that
+    /// must take the base start's steps.
+    fn controlled(&self) -> usize {
+        N
+    }
 }
 
 impl<const N: usize, F: Fn(&SVector<f64, N>) -> SVector<f64, N>> Field<N> for F {
@@ -140,7 +147,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
             sum += (v[i] / self.scale(&self.y, &self.y, i)).powi(2);
         }
         #[allow(clippy::cast_precision_loss)]
-        let n = N as f64;
+        let n = self.f.controlled() as f64;
         (sum / n).sqrt()
     }
 
@@ -168,6 +175,11 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
     /// Current time.
     pub fn time(&self) -> f64 {
         self.t
+    }
+
+    /// The field it integrates.
+    pub fn field(&self) -> &F {
+        &self.f
     }
 
     /// Current state.
@@ -246,7 +258,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
                 e3 += (err3[i] / sk).powi(2);
             }
             #[allow(clippy::cast_precision_loss)]
-            let n = N as f64;
+            let n = self.f.controlled() as f64;
             let err = if e5 == 0.0 && e3 == 0.0 {
                 0.0
             } else {

@@ -69,9 +69,10 @@ pub use crate::physics::plan::Shortfall;
 
 use super::budget::{cost_seconds, dop853_evaluations, fastest_rate, slow_rate};
 use super::effective::Effective;
-use super::integrators::{Method, Settings, StepError};
+use super::integrators::{Method, Settings, StepError, together};
 use super::params::Problem;
 use super::run::{RunResult, RunSpec, run_cancellable};
+use crate::physics::method::StepCap;
 
 /// Error of `blanes-moan4` per unit time: `C_BM · spin^2.5 · c_max⁴ · h⁴ ν² / g_min`, with
 /// `spin` the largest spin rate of the limit, `c_max = |iy − ix| / (4 min(ix, iy))`, fitted on
@@ -1135,24 +1136,37 @@ fn conditioning_cost(problem: &Problem, t_end: f64, plan: &Plan) -> f64 {
     )
 }
 
-/// [`conditioning`]'s three runs with `spec`, and the first (the start as it is).
+/// Nudges the energy's first non-zero carrier: the spin rate, else the tilt rate, else the tilt.
+fn nudge_rate(s: &mut super::params::Start, nudge: f64) {
+    if s.alpha_dot != 0.0 {
+        s.alpha_dot *= 1.0 + nudge;
+    } else if s.gamma_dot != 0.0 {
+        s.gamma_dot *= 1.0 + nudge;
+    } else {
+        s.gamma *= 1.0 + nudge;
+    }
+}
+
+/// Nudges the spin angle.
+fn nudge_angle(s: &mut super::params::Start, nudge: f64) {
+    s.alpha += nudge;
+}
+
+/// [`conditioning`]'s three runs with `spec`, and the first (the start as it is). On the slow
+/// model the three starts are integrated together, the nudged ones on the first one's steps
+/// ([`together`]): one run, and no truncation error left in their differences.
 fn condition_numbers(
     problem: &Problem,
     spec: &RunSpec,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<(Conditioning, Option<Made>), StepError> {
+    if spec.method.is_averaged() {
+        return slow_condition_numbers(problem, spec.method, spec.tolerance, spec.t_end, go_on)
+            .map(|kappa| (kappa, None));
+    }
     let base = run_cancellable(problem, spec, go_on)?;
-    // The energy's first non-zero carrier: the spin rate, else the tilt rate, else the tilt.
-    let rate = sensitivity(problem, spec, &base, go_on, |s, nudge| {
-        if s.alpha_dot != 0.0 {
-            s.alpha_dot *= 1.0 + nudge;
-        } else if s.gamma_dot != 0.0 {
-            s.gamma_dot *= 1.0 + nudge;
-        } else {
-            s.gamma *= 1.0 + nudge;
-        }
-    })?;
-    let angle = sensitivity(problem, spec, &base, go_on, |s, nudge| s.alpha += nudge)?;
+    let rate = sensitivity(problem, spec, &base, go_on, nudge_rate)?;
+    let angle = sensitivity(problem, spec, &base, go_on, nudge_angle)?;
     Ok((
         Conditioning { rate, angle },
         Some(Made {
@@ -1160,6 +1174,81 @@ fn condition_numbers(
             result: base,
         }),
     ))
+}
+
+/// [`condition_numbers`] on the slow model: the start and its two nudged copies integrated
+/// together. Where a copy counts other reversals than the start (an event at a tangency), the
+/// three are run again with a nudge a thousand times smaller, then the final states alone are
+/// compared, as [`sensitivity`] does. `auto`'s first reading is this on
+/// [`CONDITIONING_MODEL`] at [`CONDITIONING_LOOSE_TOLERANCE`].
+///
+/// # Errors
+/// A failed step, and [`StepError::Cancelled`] when `go_on` says stop.
+///
+/// # Panics
+/// When `method` is not an averaged model.
+pub fn slow_condition_numbers(
+    problem: &Problem,
+    method: Method,
+    tolerance: f64,
+    t_end: f64,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<Conditioning, StepError> {
+    let cap = StepCap::of(3.0 * cost_seconds(problem, &Asked::new(method, tolerance, None, t_end)));
+    // Per copy (rate, angle): its number, once its reversals match the start's; else the
+    // final states' difference at the smaller nudge.
+    let mut found: [Option<f64>; 2] = [None, None];
+    let mut ends_only = [f64::INFINITY; 2];
+    for nudge in [NUDGE, NUDGE * 1e-3] {
+        let moved = |how: fn(&mut super::params::Start, f64)| {
+            let mut start = *problem.start();
+            how(&mut start, nudge);
+            Problem::new(*problem.params(), start).ok()
+        };
+        let (Some(rate), Some(angle)) = (moved(nudge_rate), moved(nudge_angle)) else {
+            return Ok(Conditioning {
+                rate: f64::INFINITY,
+                angle: f64::INFINITY,
+            });
+        };
+        let ends = together(
+            method,
+            &[*problem, rate, angle],
+            t_end,
+            tolerance,
+            cap,
+            go_on,
+        )?;
+        let moved_by = |i: usize| -> Option<f64> {
+            let (a, b) = (&ends[0], &ends[i]);
+            if a.reversals.len() != b.reversals.len() {
+                return None;
+            }
+            let mut d = (a.alpha - b.alpha)
+                .abs()
+                .max((a.alpha_dot - b.alpha_dot).abs());
+            for (x, y) in a.reversals.iter().zip(&b.reversals) {
+                d = d.max((x - y).abs());
+            }
+            Some(d / nudge)
+        };
+        for (i, slot) in found.iter_mut().enumerate() {
+            if slot.is_none() {
+                *slot = moved_by(i + 1);
+                ends_only[i] = (ends[0].alpha - ends[i + 1].alpha)
+                    .abs()
+                    .max((ends[0].alpha_dot - ends[i + 1].alpha_dot).abs())
+                    / nudge;
+            }
+        }
+        if found.iter().all(Option::is_some) {
+            break;
+        }
+    }
+    Ok(Conditioning {
+        rate: found[0].unwrap_or(ends_only[0]),
+        angle: found[1].unwrap_or(ends_only[1]),
+    })
 }
 
 /// How much `base` moves per unit of a nudge that `nudge_start` applies to the start.

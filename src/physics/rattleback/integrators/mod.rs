@@ -15,6 +15,7 @@ pub mod splitting;
 pub use crate::physics::method::{DEFAULT_STEP_BUDGET, Method, Settings, StepError};
 pub use crate::physics::numerics::dop853::{self, Stats};
 pub use crate::physics::numerics::roots;
+pub use averaged::{Ending, together};
 
 use super::model::State;
 use super::params::Problem;
