@@ -3,14 +3,18 @@
 //! 0.1 and 0.3, against the full model by the Taylor series at 1e-11 and the references' own
 //! (`rattleback_honesty.toml`); `auto` re-measures on the plan's own method wherever the first
 //! reading passes 100 (`auto::CONDITIONING_RECHECK`):
-//! `cargo run --release --example conditioning_check`.
+//! `cargo run --release --example conditioning_check`. Since stop 48 `auto` reads it with the
+//! nudged starts side by side on the start's steps (`auto::slow_condition_numbers`), printed
+//! beside the three separate runs at 1e-7 and 1e-9; `… conditioning_check all` takes every
+//! start with expansion parameter up to 0.25 (the slow model's range), not only 0.1 … 0.3.
 
-use rattleback::physics::rattleback::auto::difference;
+use rattleback::physics::rattleback::auto::{difference, slow_condition_numbers};
 use rattleback::physics::rattleback::averaged::expansion_parameter;
 use rattleback::physics::rattleback::integrators::Method;
 use rattleback::physics::rattleback::run::{RunSpec, run};
 use rattleback::physics::rattleback::{Params, Problem, Start};
 fn main() {
+    let all = std::env::args().nth(1).as_deref() == Some("all");
     for file in ["averaged.toml", "rattleback_honesty.toml"] {
         let text = std::fs::read_to_string(format!("tests/fixtures/reference/{file}")).unwrap();
         let table: toml::Table = text.parse().unwrap();
@@ -34,7 +38,7 @@ fn main() {
             };
             let p = Problem::new(params, start).unwrap();
             let x = expansion_parameter(&p);
-            if x > 0.3 || x <= 0.1 {
+            if (all && x > 0.25) || (!all && (x > 0.3 || x <= 0.1)) {
                 continue;
             }
             let kref = c.get("condition").and_then(toml::Value::as_float);
@@ -54,9 +58,14 @@ fn main() {
                 let n = run(&Problem::new(params, s2).unwrap(), &spec(m, tol)).unwrap();
                 difference(&base, &n) / 1e-10
             };
+            let side_by_side =
+                slow_condition_numbers(&p, Method::Averaged2, 1e-7, t_end, &mut |_| true)
+                    .unwrap()
+                    .rate;
             println!(
-                "{name:24} x {x:.3} T {t_end}: averaged2 1e-7 {:.3e}, taylor 1e-11 {:.3e}, reference {kref:?}",
+                "{name:24} x {x:.3} T {t_end}: averaged2 side by side 1e-7 {side_by_side:.3e}, separate 1e-7 {:.3e}, 1e-9 {:.3e}; taylor 1e-11 {:.3e}, reference {kref:?}",
                 kappa(Method::Averaged2, 1e-7),
+                kappa(Method::Averaged2, 1e-9),
                 kappa(Method::Taylor, 1e-11)
             );
         }

@@ -284,7 +284,7 @@ fn peer_within(
             .abs()
             .max((y[ALPHA_DOT] - reference.alpha_dot).abs());
         if e <= target {
-            let t = best_of(repeats.min(2), || {
+            let t = best_of(repeats, || {
                 let _ = std::hint::black_box(peer::run(p, Peer::Dop853, tol, T_END));
             });
             return Some((i, format!("peer-dop853 tol={tol:.1e}"), t));

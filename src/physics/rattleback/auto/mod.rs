@@ -187,7 +187,7 @@ pub const NUDGE: f64 = 1e-10;
 pub const CONDITIONING_AVERAGED_LIMIT: f64 = 0.25;
 /// The model [`conditioning`] measures on below [`CONDITIONING_AVERAGED_LIMIT`]: `averaged2`,
 /// the cheapest slow model with the fast action's back-reaction (12 ns per evaluation against
-/// `averaged3`'s 34: its three runs take 0.14 ms instead of 0.31 ms at k = 1e8 on the trapped
+/// `averaged3`'s 34: its three runs took 0.14 ms instead of 0.31 ms at k = 1e8 on the trapped
 /// start). It replaced `averaged3` here in issue 27: on the held-out starts of
 /// `rattleback_honesty.toml` (k = 1e2 … 1e12) the condition numbers `auto` measures stay within
 /// 0.9–1.7 of the long-double references' (`honesty::auto_measures_the_conditioning_the_references_report`).
@@ -200,12 +200,14 @@ pub const CONDITIONING_MODEL: Method = Method::Averaged2;
 pub const CONDITIONING_RECHECK: f64 = 100.0;
 /// Local tolerance of [`conditioning`]'s runs (at least; the companion's when looser).
 pub const CONDITIONING_TOLERANCE: f64 = 1e-9;
-/// Local tolerance of [`conditioning`]'s first measurement on [`CONDITIONING_MODEL`]: nudged
-/// runs at the same tolerance take the same steps, so their truncation errors cancel and a
-/// loose run measures the sensitivity as well as a tight one where it is small; where it reads
-/// above [`CONDITIONING_RECHECK`] (the floor may matter) the measurement is repeated at
-/// [`CONDITIONING_TOLERANCE`], as before. Half the cost of three runs at 1e-9 (issue 27: they
-/// were half of `auto`'s time at k ≥ 1e5 with the probes kept).
+/// Local tolerance of [`conditioning`]'s first measurement on [`CONDITIONING_MODEL`]: the nudged
+/// starts are integrated side by side with the start, on its steps
+/// ([`slow_condition_numbers`]), so their truncation errors cancel and a loose run measures the
+/// sensitivity as well as a tight one where it is small; where it reads above
+/// [`CONDITIONING_RECHECK`] (the floor may matter) the measurement is repeated at
+/// [`CONDITIONING_TOLERANCE`], as before. Issue 27: three separate runs at 1e-9 were half of
+/// `auto`'s time at k ≥ 1e5 with the probes kept; at 1e-7 side by side they cost 0.06 ms
+/// (trapped start) and 0.10 ms (rotating), a third of that.
 pub const CONDITIONING_LOOSE_TOLERANCE: f64 = 1e-7;
 /// Gain of the conditioned round-off floor `CONDITIONED_GAIN · ε · √steps · κ`: a step rounds
 /// several numbers, so the random walk's step is a few ε. Measured on the held-out starts near
@@ -1065,7 +1067,8 @@ impl Conditioning {
 /// The start's condition numbers ([`Conditioning`]): by how much the largest change of
 /// `α(T)`, `α̇(T)` and the reversal times exceeds a nudge of the start, which is what a
 /// rounding error made early in the run becomes by `T`. Measured with three coarse runs of
-/// `plan`'s method (`conditioning_spec`): as started, with the spin rate scaled by
+/// `plan`'s method (`conditioning_spec`; on the slow model one run of the three side by side,
+/// [`slow_condition_numbers`]): as started, with the spin rate scaled by
 /// `1 + NUDGE` (the tilt rate, or the tilt, for a start at rest in `α̇`, where a nudge of `α̇0`
 /// would add a reversal at `t = 0`), and with the angle moved by `NUDGE` radians. Where two runs count
 /// different reversals (an event at a tangency), a nudge a thousand times smaller is tried,
