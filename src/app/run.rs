@@ -322,6 +322,16 @@ impl RunState {
         self.advance_command()
     }
 
+    /// Sets the latest time the display may show, and shows what it now allows. A replay
+    /// raises it after applying the lines it read; a pause read in that same pass was shown
+    /// under the old ceiling (the last clock line), and a worker already past the pause sends
+    /// nothing that would show it again: the follower showed the clock line's time, not the
+    /// lecturer's pause, until the next line came.
+    pub fn set_ceiling(&mut self, ceiling: Option<f64>) {
+        self.ceiling = ceiling;
+        self.show();
+    }
+
     fn show(&mut self) {
         self.shown = self
             .goal

@@ -318,3 +318,52 @@ fn huge_or_endless_lines_are_skipped_at_bounded_memory() {
     assert_eq!(got.len(), 1);
     assert_eq!(got[0].event, Event::Pause);
 }
+
+/// A follower shows the lecturer's pause at its time at once, even when its worker is already
+/// past it: the replay's ceiling (the last line received) rises with the pause line, and the
+/// display rises with it. It stayed at the clock line before the pause until a later line came
+/// (up to 2 s in tmux: the lecturer paused at 32.73, the follower showed 32.19).
+#[test]
+fn a_follower_shows_a_pause_at_its_time_at_once() {
+    let mut h = Headless::new("soft-spring");
+    let at = |wall: f64, t: f64, event: Event| Line {
+        t,
+        ..line(wall, event)
+    };
+    let mut r = Replayer::live(vec![at(0.0, 0.0, Event::Play)], 0.0);
+    let effects = r.catch_up(&mut h.app);
+    h.exec(effects);
+    // The lecturer's clock lines at ×16, every 50 ms; the follower's worker computes what the
+    // display asks for, and a little ahead.
+    for i in 1..=20 {
+        let wall = 0.05 * f64::from(i);
+        let effects = r.push(vec![at(wall, 0.8 * f64::from(i), Event::Clock)], &mut h.app);
+        h.exec(effects);
+        let effects = r.advance(0.05, &mut h.app);
+        h.exec(effects);
+    }
+    // The worker has computed a little past the display and the last clock line (16.0).
+    let reached = h.app.run.reached;
+    assert!(
+        h.app.run.shown <= 16.0 && reached > 16.2,
+        "reached {reached}"
+    );
+    // The pause, at a time the worker has already reached, read after the follower's clock
+    // passed its stamp (the file is polled): it applies as it arrives.
+    // Nothing the worker sends is needed (a worker already past the time sends nothing).
+    let effects = r.push(vec![at(0.999, 16.2, Event::Pause)], &mut h.app);
+    assert!(!h.app.run.playing);
+    assert!(
+        (h.app.run.shown - 16.2).abs() < 1e-9,
+        "as the pause is read, the follower shows {} where the lecturer paused at 16.2",
+        h.app.run.shown
+    );
+    h.exec(effects);
+    let effects = r.advance(0.05, &mut h.app);
+    h.exec(effects);
+    assert!(
+        (h.app.run.shown - 16.2).abs() < 1e-9,
+        "the follower shows {} where the lecturer paused at 16.2",
+        h.app.run.shown
+    );
+}
