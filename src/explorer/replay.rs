@@ -130,12 +130,13 @@ impl Replayer {
         // following, past the last one received). A next line of a later run (a reset, a
         // change) says nothing of this run's times: this run holds at its last line's.
         let last = self.next.checked_sub(1).map(|i| &self.lines[i]);
-        app.run.set_ceiling(match (self.lines.get(self.next), last) {
-            (Some(next), Some(last)) if next.generation != last.generation => Some(last.t),
-            (Some(next), _) => Some(next.t),
-            (None, last) if self.live == Some(false) => last.map(|l| l.t),
-            (None, _) => None,
-        });
+        app.run
+            .set_ceiling(match (self.lines.get(self.next), last) {
+                (Some(next), Some(last)) if next.generation != last.generation => Some(last.t),
+                (Some(next), _) => Some(next.t),
+                (None, last) if self.live == Some(false) => last.map(|l| l.t),
+                (None, _) => None,
+            });
         app.set_replay(self.info());
         effects
     }
