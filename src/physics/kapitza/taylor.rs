@@ -31,7 +31,7 @@ use super::Params;
 use crate::physics::method::StepError;
 use crate::physics::numerics::dop853::Stats;
 use crate::physics::numerics::stepper::Stepper;
-use crate::physics::numerics::taylor::{advance, horner, natural_step};
+use crate::physics::numerics::taylor::{Clock, horner, natural_step};
 
 /// The order of the series, whatever the tolerance: a run and its companion at a looser
 /// tolerance then differ only in their steps, and their errors follow the tolerance (an order
@@ -48,13 +48,12 @@ pub struct Taylor {
     b: f64,
     epsilon: f64,
     tol: f64,
-    t: f64,
+    /// The time, the last step's start, the counts.
+    clock: Clock,
     y: Vector2<f64>,
-    t_prev: f64,
-    /// Coefficients of `θ` and `θ̇` about `t_prev` (the last step's), orders `0..=ORDER`.
+    /// Coefficients of `θ` and `θ̇` about the last step's start, orders `0..=ORDER`.
     theta: [f64; ORDER + 1],
     theta_dot: [f64; ORDER + 1],
-    stats: Stats,
 }
 
 impl Taylor {
@@ -70,12 +69,10 @@ impl Taylor {
             b: params.b,
             epsilon: params.epsilon,
             tol,
-            t: t0,
+            clock: Clock::at(t0),
             y: y0,
-            t_prev: t0,
             theta,
             theta_dot,
-            stats: Stats::default(),
         }
     }
 
@@ -85,7 +82,7 @@ impl Taylor {
         let n_max = ORDER;
         let eps = self.epsilon;
         let (mut u, mut v) = ([0.0; ORDER + 1], [0.0; ORDER + 1]);
-        let (sp, cp) = (self.t / eps).sin_cos();
+        let (sp, cp) = (self.clock.t / eps).sin_cos();
         u[0] = cp;
         v[0] = sp;
         let amplitude = self.b / eps;
@@ -136,7 +133,7 @@ impl Taylor {
 impl Stepper<2> for Taylor {
     /// Current time.
     fn time(&self) -> f64 {
-        self.t
+        self.clock.t
     }
 
     /// Current state.
@@ -146,21 +143,21 @@ impl Stepper<2> for Taylor {
 
     /// Start of the last step.
     fn time_prev(&self) -> f64 {
-        self.t_prev
+        self.clock.t_prev
     }
 
     /// Work counters: each step counts [`ORDER`] evaluations (one pass of the recurrences per
     /// order).
     fn stats(&self) -> Stats {
-        self.stats
+        self.clock.stats
     }
 
     /// The series of the last step at `t` in `[time_prev, time]`.
     fn interpolate(&mut self, t: f64) -> Vector2<f64> {
-        if t >= self.t {
+        if t >= self.clock.t {
             return self.y;
         }
-        let tau = t - self.t_prev;
+        let tau = t - self.clock.t_prev;
         Vector2::new(
             horner(&self.theta[..=ORDER], tau),
             horner(&self.theta_dot[..=ORDER], tau),
@@ -175,18 +172,9 @@ impl Stepper<2> for Taylor {
         self.expand();
         let natural = SAFETY * self.natural_step();
         let (theta, theta_dot) = (&self.theta[..=ORDER], &self.theta_dot[..=ORDER]);
-        self.y = advance(
-            &mut self.t,
-            &mut self.t_prev,
-            &mut self.stats,
-            ORDER,
-            natural,
-            t_limit,
-            |h| {
-                let y = Vector2::new(horner(theta, h), horner(theta_dot, h));
-                y.iter().all(|v| v.is_finite()).then_some(y)
-            },
-        )?;
+        self.y = self.clock.advance(ORDER, natural, t_limit, |h| {
+            Vector2::new(horner(theta, h), horner(theta_dot, h))
+        })?;
         Ok(())
     }
 }

@@ -9,6 +9,8 @@
 //! let an occasional step err far more than the rest). The first neglected term is then about
 //! the tolerance times the step over the series' radius.
 
+use nalgebra::SVector;
+
 use crate::physics::method::StepError;
 use crate::physics::numerics::dop853::Stats;
 
@@ -62,28 +64,53 @@ pub fn horner(c: &[f64], tau: f64) -> f64 {
     even + tau * odd
 }
 
-/// One step of a series of order `order` expanded at `*t`: the step [`towards`] allows from
-/// `natural`, the state `sum` gives at it (`None` when not finite), and the time, the previous
-/// step's start and the counts moved there. Both Taylor cores step with it.
-///
-/// # Errors
-/// [`towards`]'s, or a state that is not finite.
-pub fn advance<S>(
-    t: &mut f64,
-    t_prev: &mut f64,
-    stats: &mut Stats,
-    order: usize,
-    natural: f64,
-    t_limit: f64,
-    sum: impl Fn(f64) -> Option<S>,
-) -> Result<S, StepError> {
-    let (h, last) = towards(*t, natural, t_limit)?;
-    let y = sum(h).ok_or(StepError::NonFinite { t: *t })?;
-    *t_prev = *t;
-    *t = if last { t_limit } else { *t + h };
-    stats.steps += 1;
-    stats.rhs_evaluations += order as u64;
-    Ok(y)
+/// Where a Taylor-series integration is: the time, the last step's start and the work counted.
+/// Both Taylor cores step with [`Clock::advance`].
+#[derive(Clone, Copy, Debug)]
+pub struct Clock {
+    /// The current time.
+    pub t: f64,
+    /// The start of the last step.
+    pub t_prev: f64,
+    /// Steps and evaluations (each step counts `order` evaluations: one pass of the
+    /// recurrences per order).
+    pub stats: Stats,
+}
+
+impl Clock {
+    /// At `t0`, nothing done.
+    #[must_use]
+    pub fn at(t0: f64) -> Self {
+        Self {
+            t: t0,
+            t_prev: t0,
+            stats: Stats::default(),
+        }
+    }
+
+    /// One step of a series of order `order` expanded at the current time: the step
+    /// [`towards`] allows from `natural`, the state `sum` gives at it, and the clock moved there.
+    ///
+    /// # Errors
+    /// [`towards`]'s, or a state that is not finite.
+    pub fn advance<const N: usize>(
+        &mut self,
+        order: usize,
+        natural: f64,
+        t_limit: f64,
+        sum: impl Fn(f64) -> SVector<f64, N>,
+    ) -> Result<SVector<f64, N>, StepError> {
+        let (h, last) = towards(self.t, natural, t_limit)?;
+        let y = sum(h);
+        if !y.iter().all(|x| x.is_finite()) {
+            return Err(StepError::NonFinite { t: self.t });
+        }
+        self.t_prev = self.t;
+        self.t = if last { t_limit } else { self.t + h };
+        self.stats.steps += 1;
+        self.stats.rhs_evaluations += order as u64;
+        Ok(y)
+    }
 }
 
 #[cfg(test)]

@@ -36,7 +36,7 @@
 use crate::physics::method::StepError;
 use crate::physics::numerics::dop853::Stats;
 use crate::physics::numerics::stepper::Stepper;
-use crate::physics::numerics::taylor::{advance, horner, natural_step};
+use crate::physics::numerics::taylor::{Clock, horner, natural_step};
 use crate::physics::rattleback::model::State;
 use crate::physics::rattleback::params::Params;
 
@@ -74,12 +74,11 @@ pub struct TaylorCore {
     /// `1/ω_max`, the natural unit of `γ`.
     unit_gamma: f64,
     tol: f64,
-    t: f64,
+    /// The time, the last step's start, the counts.
+    clock: Clock,
     y: State,
-    t_prev: f64,
-    /// Coefficients of `γ`, `α`, `γ̇`, `α̇` about `t_prev`, orders `0..=ORDER`.
+    /// Coefficients of `γ`, `α`, `γ̇`, `α̇` about the last step's start, orders `0..=ORDER`.
     c: [[f64; N1]; 4],
-    stats: Stats,
 }
 
 impl TaylorCore {
@@ -98,11 +97,9 @@ impl TaylorCore {
             d_over_two_iz: (params.iy - params.ix) / (2.0 * params.iz),
             unit_gamma: 1.0 / params.omega_max(),
             tol,
-            t: t0,
+            clock: Clock::at(t0),
             y: y0,
-            t_prev: t0,
             c,
-            stats: Stats::default(),
         }
     }
 
@@ -182,7 +179,7 @@ impl TaylorCore {
 impl Stepper<4> for TaylorCore {
     /// Current time.
     fn time(&self) -> f64 {
-        self.t
+        self.clock.t
     }
 
     /// Current state.
@@ -192,21 +189,21 @@ impl Stepper<4> for TaylorCore {
 
     /// Start of the last step.
     fn time_prev(&self) -> f64 {
-        self.t_prev
+        self.clock.t_prev
     }
 
     /// Work counters: each step counts [`ORDER`] evaluations (one pass of the recurrences per
     /// order).
     fn stats(&self) -> Stats {
-        self.stats
+        self.clock.stats
     }
 
     /// The series of the last step at `t` in `[time_prev, time]`.
     fn interpolate(&mut self, t: f64) -> State {
-        if t >= self.t {
+        if t >= self.clock.t {
             return self.y;
         }
-        let tau = t - self.t_prev;
+        let tau = t - self.clock.t_prev;
         State::from_fn(|i, _| horner(&self.c[i], tau))
     }
 
@@ -218,18 +215,9 @@ impl Stepper<4> for TaylorCore {
         self.expand();
         let natural = self.natural_step();
         let c = &self.c;
-        self.y = advance(
-            &mut self.t,
-            &mut self.t_prev,
-            &mut self.stats,
-            ORDER,
-            natural,
-            t_limit,
-            |h| {
-                let y = State::from_fn(|i, _| horner(&c[i], h));
-                y.iter().all(|x| x.is_finite()).then_some(y)
-            },
-        )?;
+        self.y = self.clock.advance(ORDER, natural, t_limit, |h| {
+            State::from_fn(|i, _| horner(&c[i], h))
+        })?;
         Ok(())
     }
 }
