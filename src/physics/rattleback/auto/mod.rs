@@ -206,8 +206,9 @@ pub const CONDITIONING_TOLERANCE: f64 = 1e-9;
 /// sensitivity as well as a tight one where it is small; where it reads above
 /// [`CONDITIONING_RECHECK`] (the floor may matter) the measurement is repeated at
 /// [`CONDITIONING_TOLERANCE`], as before. Issue 27: three separate runs at 1e-9 were half of
-/// `auto`'s time at k ≥ 1e5 with the probes kept; at 1e-7 side by side they cost 0.06 ms
-/// (trapped start) and 0.10 ms (rotating), a third of that.
+/// `auto`'s time at k ≥ 1e5 with the probes kept; at 1e-7 side by side the reading costs
+/// 0.06 ms (trapped start) and 0.10 ms (rotating), against 0.09 and 0.18 ms for three separate
+/// runs at 1e-7 (`cargo run --release --example conditioning_check all`).
 pub const CONDITIONING_LOOSE_TOLERANCE: f64 = 1e-7;
 /// Gain of the conditioned round-off floor `CONDITIONED_GAIN · ε · √steps · κ`: a step rounds
 /// several numbers, so the random walk's step is a few ε. Measured on the held-out starts near
