@@ -17,6 +17,7 @@ pub mod interrupt;
 pub mod manual;
 pub mod outputs;
 pub mod page;
+pub mod parallel;
 pub mod physics;
 pub mod progress;
 pub mod record;

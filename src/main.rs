@@ -29,6 +29,9 @@ macro_rules! say_err {
 fn main() -> ExitCode {
     // A shell asking for completions is answered before anything else, then the process exits.
     commands::answer_completion();
+    // `auto`'s independent computations (a run's companion, the start's conditioning, the
+    // probes) on a second core: same results, bit for bit, in less wall time.
+    rattleback::parallel::install();
     // The one exit decision: every command says why it stopped, `failure` says how that ends.
     failure::exit(run())
 }

@@ -49,6 +49,10 @@ pub struct ProfileRow {
     /// The same with the probes kept from an earlier `auto` on this body and start at another
     /// `k` (the explorer's slider, a sweep's rungs): what every `auto` after the first costs.
     pub auto_warm_seconds: f64,
+    /// The same on one core: every computation one after the other (`auto`'s companion, the
+    /// start's conditioning and the probes otherwise run beside the run on a second core:
+    /// `physics::fork`). What `auto` costs in work rather than in wall time.
+    pub auto_one_core_seconds: f64,
     /// Its true error: the largest of α(T), α̇(T), reversal times.
     pub error: f64,
     /// Its estimate.
@@ -167,13 +171,7 @@ pub fn profile(quick: bool, log: &mut dyn FnMut(&str)) -> Vec<ProfileRow> {
                 log(&format!("{start} k = {k:e}: auto failed"));
                 continue;
             };
-            let auto_warm_seconds = best_of(repeats, || {
-                let _ = std::hint::black_box(run_auto(p, TOLERANCE, T_END, 0, false));
-            });
-            let auto_seconds = best_of(repeats, || {
-                memo::clear();
-                let _ = std::hint::black_box(run_auto(p, TOLERANCE, T_END, 0, false));
-            });
+            let [auto_seconds, auto_warm_seconds, auto_one_core_seconds] = auto_times(p, repeats);
             let achieved = error(&v.result, &reference);
             let (mut best_single, mut best_seconds) = ("none".to_owned(), f64::NAN);
             // The references' own floor: about 2e-12, 3e-11 at k = 1e8 (14 million long-double
@@ -246,6 +244,7 @@ pub fn profile(quick: bool, log: &mut dyn FnMut(&str)) -> Vec<ProfileRow> {
                 refinements: v.refinements,
                 auto_seconds,
                 auto_warm_seconds,
+                auto_one_core_seconds,
                 error: achieved,
                 estimate: v.error_estimate,
                 met: v.met,
@@ -257,6 +256,20 @@ pub fn profile(quick: bool, log: &mut dyn FnMut(&str)) -> Vec<ProfileRow> {
         }
     }
     rows
+}
+
+/// `auto`'s best times on `p`: first (no probe kept), with the probes kept, and so on one core.
+fn auto_times(p: &Problem, repeats: usize) -> [f64; 3] {
+    let once = || {
+        let _ = std::hint::black_box(run_auto(p, TOLERANCE, T_END, 0, false));
+    };
+    let kept = best_of(repeats, once);
+    let one_core = best_of(repeats, || crate::physics::fork::sequentially(once));
+    let first = best_of(repeats, || {
+        memo::clear();
+        once();
+    });
+    [first, kept, one_core]
 }
 
 /// The fastest peer DOP853 whose error in `α(T)` and `α̇(T)` is within `target`: its rtol
@@ -300,7 +313,7 @@ pub fn profile_table(rows: &[ProfileRow]) -> String {
     let mut o = String::new();
     let _ = writeln!(
         o,
-        "{:<9} {:>7} {:<13} {:>9} {:>6} {:>9} {:>9} {:>5} {:<24} {:>9} {:>6} {:>9} {:>6} peer dop853 within 1e-8; at auto's error",
+        "{:<9} {:>7} {:<13} {:>9} {:>6} {:>9} {:>9} {:>5} {:<24} {:>9} {:>6} {:>9} {:>6} {:>9} {:>6} peer dop853 within 1e-8; at auto's error",
         "start",
         "k",
         "auto chose",
@@ -313,6 +326,8 @@ pub fn profile_table(rows: &[ProfileRow]) -> String {
         "ms",
         "ratio",
         "warm ms",
+        "ratio",
+        "1 core ms",
         "ratio",
     );
     for start in ["trapped", "rotating"] {
@@ -348,7 +363,7 @@ pub fn profile_table(rows: &[ProfileRow]) -> String {
                 });
             let _ = writeln!(
                 o,
-                "{:<9} {:>7.0e} {:<13} {:>9.3} {:>6.2} {:>9.1e} {:>9.1e} {:>5} {:<24} {:>9.3} {:>6.2} {:>9.3} {:>6.2} {}{}",
+                "{:<9} {:>7.0e} {:<13} {:>9.3} {:>6.2} {:>9.1e} {:>9.1e} {:>5} {:<24} {:>9.3} {:>6.2} {:>9.3} {:>6.2} {:>9.3} {:>6.2} {}{}",
                 r.start,
                 r.k,
                 format!(
@@ -370,6 +385,8 @@ pub fn profile_table(rows: &[ProfileRow]) -> String {
                 r.auto_seconds / r.best_seconds,
                 r.auto_warm_seconds * 1e3,
                 r.auto_warm_seconds / r.best_seconds,
+                r.auto_one_core_seconds * 1e3,
+                r.auto_one_core_seconds / r.best_seconds,
                 peer,
                 same
             );
@@ -422,6 +439,17 @@ pub fn profile_summary(rows: &[ProfileRow]) -> String {
                 "; auto / best single {lo:.1}-{hi:.1}x (target 1.5x: {})",
                 verdict(hi <= 1.5)
             );
+            let one: Vec<f64> = of
+                .iter()
+                .filter(|r| r.best_seconds.is_finite() && r.auto_one_core_seconds > 0.0)
+                .map(|r| r.auto_one_core_seconds / r.best_seconds)
+                .collect();
+            if let (Some(lo), Some(hi)) = (
+                one.iter().copied().reduce(f64::min),
+                one.iter().copied().reduce(f64::max),
+            ) {
+                let _ = write!(o, ", {lo:.1}-{hi:.1}x on one core");
+            }
         }
         for (which, peer) in [
             (
@@ -450,6 +478,25 @@ pub fn profile_summary(rows: &[ProfileRow]) -> String {
                 if !never.is_empty() {
                     let _ = write!(o, " (it never gets there at k = {})", never.join(", "));
                 }
+                let one_core: Vec<String> = of
+                    .iter()
+                    .filter_map(|r| {
+                        let (_, seconds) = peer(r)?;
+                        (r.auto_one_core_seconds > 0.0 && seconds < r.auto_one_core_seconds)
+                            .then(|| format!("{:.0e}", r.k))
+                    })
+                    .collect();
+                if one_core != slower {
+                    if one_core.is_empty() {
+                        let _ = write!(o, " (on one core at no k)");
+                    } else {
+                        let _ = write!(
+                            o,
+                            " (on one core it is faster at k = {})",
+                            one_core.join(", ")
+                        );
+                    }
+                }
             }
         }
         o.push('\n');
@@ -464,7 +511,7 @@ pub fn profile_summary(rows: &[ProfileRow]) -> String {
 pub fn write_profile_csv(rows: &[ProfileRow], path: &std::path::Path) -> std::io::Result<()> {
     super::write_csv_lines(
         path,
-        "start,k,choice,refinements,auto_seconds,error,estimate,met,best_single,best_seconds,peer,peer_seconds,auto_warm_seconds,peer_same_error,peer_same_error_seconds",
+        "start,k,choice,refinements,auto_seconds,error,estimate,met,best_single,best_seconds,peer,peer_seconds,auto_warm_seconds,peer_same_error,peer_same_error_seconds,auto_one_core_seconds",
         rows,
         |r| {
             let cells = |p: &Option<(String, f64)>| {
@@ -474,7 +521,7 @@ pub fn write_profile_csv(rows: &[ProfileRow], path: &std::path::Path) -> std::io
             };
             let ((peer, peer_s), (same, same_s)) = (cells(&r.peer), cells(&r.peer_same_error));
             format!(
-                "{},{:e},{},{},{:e},{:e},{:e},{},{},{:e},{},{},{:e},{},{}",
+                "{},{:e},{},{},{:e},{:e},{:e},{},{},{:e},{},{},{:e},{},{},{:e}",
                 r.start,
                 r.k,
                 r.choice,
@@ -489,7 +536,8 @@ pub fn write_profile_csv(rows: &[ProfileRow], path: &std::path::Path) -> std::io
                 peer_s,
                 r.auto_warm_seconds,
                 same,
-                same_s
+                same_s,
+                r.auto_one_core_seconds
             )
         },
     )
@@ -520,6 +568,10 @@ pub fn write_profile_svg(
                     (
                         "auto (probes kept)".to_owned(),
                         of(&|r| Some(r.auto_warm_seconds)),
+                    ),
+                    (
+                        "auto (probes kept, one core)".to_owned(),
+                        of(&|r| Some(r.auto_one_core_seconds)),
                     ),
                     (
                         "best single at auto's error".to_owned(),
@@ -569,6 +621,7 @@ mod tests {
             refinements: 0,
             auto_seconds: first,
             auto_warm_seconds: kept,
+            auto_one_core_seconds: 1.5 * kept,
             error: 1e-12,
             estimate: 1e-9,
             met: true,
@@ -594,11 +647,14 @@ mod tests {
             [
                 "trapped: span over 2 stiffnesses, k = 1e2 … 1e8: 2.0x first, 4.0x probes kept \
                  (target 3x: NOT met); \
-                 auto / best single 1.2-2.0x (target 1.5x: NOT met); the peer is faster at k = 1e2; \
-                 faster than the peer at auto's error at every k it ran (it never gets there at k = 1e8)",
+                 auto / best single 1.2-2.0x (target 1.5x: NOT met), 1.9-3.0x on one core; \
+                 the peer is faster at k = 1e2; \
+                 faster than the peer at auto's error at every k it ran (it never gets there at k = 1e8) \
+                 (on one core it is faster at k = 1e2)",
                 "rotating: span over 2 stiffnesses, k = 1e2 … 1e8: 1.5x first, 2.0x probes kept \
                  (target 3x: met); \
-                 auto / best single 1.1-1.1x (target 1.5x: met); faster than the peer at every k it ran; \
+                 auto / best single 1.1-1.1x (target 1.5x: met), 1.6-1.7x on one core; \
+                 faster than the peer at every k it ran; \
                  the peer at auto's error is faster at k = 1e2",
             ]
         );

@@ -25,6 +25,7 @@ pub mod budget;
 pub mod celt;
 pub mod drive;
 pub mod flow;
+pub mod fork;
 pub mod kapitza;
 pub mod method;
 pub mod models;

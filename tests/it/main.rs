@@ -22,6 +22,7 @@ mod energy;
 mod explorer_app;
 mod explorer_ui;
 mod follow;
+mod fork;
 mod honesty;
 mod hostile;
 mod hostile_props;

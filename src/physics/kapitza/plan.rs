@@ -476,8 +476,14 @@ pub fn verified(
             return Ok(closer(at(l, e, Some(Shortfall::Time)), a));
         }
         spent += predicted;
-        let fine = run(problem, &spec(local), go_on)?;
-        let coarse = run(problem, &spec(companion), go_on)?;
+        // The two are independent: side by side where there are two cores.
+        let (there, coarse_spec) = (*problem, spec(companion));
+        let (fine, coarse) = crate::physics::fork::both(
+            go_on,
+            |go_on| run(problem, &spec(local), go_on),
+            move |go_on| run(&there, &coarse_spec, go_on),
+        );
+        let (fine, coarse) = (fine?, coarse?);
         let measured = difference(&fine, &coarse) + floor;
         // A refinement that lowered the difference much less than the tolerance (a slope
         // below MIN_CONVERGENCE in log-log) shows rounding, not truncation, setting both runs'

@@ -72,6 +72,7 @@ use super::effective::Effective;
 use super::integrators::{Method, Settings, StepError, together};
 use super::params::Problem;
 use super::run::{RunResult, RunSpec, run_cancellable};
+use crate::physics::fork;
 use crate::physics::method::StepCap;
 
 /// Error of `blanes-moan4` per unit time: `C_BM · spin^2.5 · c_max⁴ · h⁴ ν² / g_min`, with
@@ -424,10 +425,15 @@ pub fn probe_averaged(
     let mut k = probe_stiffnesses(problem);
     let mut rung = 0;
     loop {
-        let (mut gap, mut gap2) = ([0.0; 2], [0.0; 2]);
-        for (i, &kp) in k.iter().enumerate() {
-            [gap[i], gap2[i]] = probe_gap(problem, kp, t_end, go_on)?;
-        }
+        // The two stiffnesses' probes are independent: side by side where there are two cores.
+        let there = *problem;
+        let (high, low) = fork::both(
+            go_on,
+            |go_on| probe_gap(problem, k[1], t_end, go_on),
+            move |go_on| probe_gap(&there, k[0], t_end, go_on),
+        );
+        let ([gap_lo, gap2_lo], [gap_hi, gap2_hi]) = (low?, high?);
+        let (gap, gap2) = ([gap_lo, gap_hi], [gap2_lo, gap2_hi]);
         let probe = ModelProbe { k, gap, gap2 };
         let settled = gap[1].is_finite() && (gap[1] < 1e-12 || probe.raw_slope() >= 1.0);
         rung += 1;
@@ -851,14 +857,16 @@ pub fn run_auto_cancellable(
         budget,
     )?;
     let allowance = budget.min(AUTO_SECONDS).max(spent);
-    let (mut kappa, mut made) = measure_conditioning(problem, t_end, &plan, go_on)?;
+    // Measured beside the first run (again after a change from the averaged model).
+    let mut measured: Option<Conditioning> = None;
     let mut refinements = 0;
     // The estimate before the last refinement of the same method (none after a change).
     let mut previous: Option<f64> = None;
     let mut best_so_far: Option<Verified> = None;
     loop {
-        let (result, Checked { estimate, floor }) =
-            run_and_check(problem, spec, &plan, model_error, kappa, made.take(), go_on)?;
+        let (result, kappa, Checked { estimate, floor }) =
+            run_and_check(problem, spec, &plan, model_error, measured, go_on)?;
+        measured = Some(kappa);
         let shortfall = if estimate <= tolerance {
             None
         } else if floor > tolerance || previous.is_some_and(|p| estimate >= 0.5 * p) {
@@ -927,32 +935,32 @@ pub fn run_auto_cancellable(
             // The start's conditioning was measured on the averaged model: the full motion that
             // now runs is measured on its own method, as a first resolved plan would be.
             spent += conditioning_cost(problem, t_end, &next);
-            (kappa, made) = measure_conditioning(problem, t_end, &next, go_on)?;
+            measured = None;
         }
         plan = next;
         refinements += 1;
     }
 }
 
-/// Runs `plan` as `spec` asks (samples, energy) and its coarser companion (or takes it from
-/// `made`, a run of the same spec); the run and its error estimate (their difference, the model
-/// error, the round-off floors, the second conditioned by `kappa`), with the floors' part.
+/// Runs `plan` as `spec` asks (samples, energy) and, beside it ([`fork::both`]: on another core
+/// where the program has one), its coarser companion, after the start's condition numbers when
+/// they are not `measured` yet (a series' companion is then the conditioning's base run); the
+/// run, the condition numbers and the run's error estimate (their difference, the model error,
+/// the round-off floors, the second conditioned by `kappa`), with the floors' part.
 fn run_and_check(
     problem: &Problem,
     spec: &RunSpec,
     plan: &Plan,
     model_error: f64,
-    kappa: Conditioning,
-    made: Option<Made>,
+    measured: Option<Conditioning>,
     go_on: &mut dyn FnMut(f64) -> bool,
-) -> Result<(RunResult, Checked), StepError> {
+) -> Result<(RunResult, Conditioning, Checked), StepError> {
     let run_spec = RunSpec {
         method: plan.method,
         tolerance: plan.tolerance,
         step: plan.step,
         ..*spec
     };
-    let result = run_cancellable(problem, &run_spec, go_on)?;
     let companion = plan.companion();
     let check_spec = RunSpec {
         tolerance: companion.tolerance,
@@ -961,15 +969,44 @@ fn run_and_check(
         monitor_energy: false,
         ..run_spec
     };
-    let check = match made {
-        Some(made) if made.spec == check_spec => made.result,
-        _ => run_cancellable(problem, &check_spec, go_on)?,
-    };
+    let price =
+        |s: &RunSpec| cost_seconds(problem, &Asked::new(s.method, s.tolerance, s.step, s.t_end));
+    let verifying = price(&check_spec)
+        + if measured.is_some() {
+            0.0
+        } else {
+            measuring_cost(problem, spec.t_end, plan)
+        };
+    let (here, there, plan_there) = (*problem, *problem, plan.clone());
+    let (result, verification) = fork::dearer_here(
+        go_on,
+        (
+            move |go_on: &mut dyn FnMut(f64) -> bool| run_cancellable(&here, &run_spec, go_on),
+            price(&run_spec),
+        ),
+        (
+            move |go_on: &mut dyn FnMut(f64) -> bool| -> Result<(Conditioning, RunResult), StepError> {
+                let (kappa, made) = match measured {
+                    Some(kappa) => (kappa, None),
+                    None => measure_conditioning(&there, check_spec.t_end, &plan_there, go_on)?,
+                };
+                let check = match made {
+                    Some(made) if made.spec == check_spec => made.result,
+                    _ => run_cancellable(&there, &check_spec, go_on)?,
+                };
+                Ok((kappa, check))
+            },
+            verifying,
+        ),
+    );
+    // The run's failure first (a cancellation stops both), then the verification's.
+    let result = result?;
+    let (kappa, check) = verification?;
     let steps = result.stats.steps as f64;
     let floor = phase_round_off(problem, plan, steps, spec.t_end)
         + conditioned_round_off(steps, kappa.of_run(problem, &result));
     let estimate = difference(&result, &check) + model_error + floor;
-    Ok((result, Checked { estimate, floor }))
+    Ok((result, kappa, Checked { estimate, floor }))
 }
 
 /// A run's estimate, and the part of it that rounding alone sets.
@@ -1138,6 +1175,22 @@ fn conditioning_cost(problem: &Problem, t_end: f64, plan: &Plan) -> f64 {
         problem,
         &Asked::new(measure.method, measure.tolerance, measure.step, t_end),
     )
+}
+
+/// Predicted seconds of [`conditioning`] as it is measured first (what decides which of a run
+/// and its verification waits for a second core, [`fork::dearer_here`]): on the slow model, the
+/// three starts side by side cost about twice one run (0.057 against 0.027 ms, trapped start,
+/// k = 1e6 … 1e12); on the plan's own method, its runs.
+fn measuring_cost(problem: &Problem, t_end: f64, plan: &Plan) -> f64 {
+    let first = conditioning_spec(problem, t_end, plan, Stage::Loose);
+    if first.method.is_averaged() {
+        2.0 * cost_seconds(
+            problem,
+            &Asked::new(first.method, first.tolerance, first.step, t_end),
+        )
+    } else {
+        conditioning_cost(problem, t_end, plan)
+    }
 }
 
 /// Nudges the energy's first non-zero carrier: the spin rate, else the tilt rate, else the tilt.
