@@ -173,7 +173,7 @@ impl App {
 
     /// While recording: the screen a pause, step, chapter or note led to, once the display has
     /// got there (with a checkpoint at the same time), and the displayed time every
-    /// [`CLOCK_EVERY`] wall seconds while it moves.
+    /// [`CLOCK_EVERY`] wall seconds while it moves, and when it reaches the end of the run.
     pub(super) fn journal_tick(&mut self, wall_seconds: f64) -> Vec<Effect> {
         if self.journal.state != RecState::On {
             return Vec::new();
@@ -189,7 +189,11 @@ impl App {
         self.journal.since_clock += wall_seconds;
         #[allow(clippy::float_cmp)]
         let moved = self.run.shown != self.journal.clock_t;
-        if self.run.playing && moved && self.journal.since_clock >= CLOCK_EVERY {
+        // The display reaching the end of the run is said at once: no clock line follows it
+        // (the run no longer plays), and a follower would show the last one until the next
+        // checkpoint, up to two seconds later.
+        let ended = self.run.done() && self.run.failed.is_none();
+        if moved && (ended || self.run.playing && self.journal.since_clock >= CLOCK_EVERY) {
             self.journal.since_clock = 0.0;
             self.journal.clock_t = self.run.shown;
             self.log(Event::Clock);

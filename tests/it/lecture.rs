@@ -179,6 +179,16 @@ fn lecture_with(preset: &str, speed: f64, field: &str, compare: bool) -> Lecture
         assert!(frames < 200_000, "never reached the end");
     }
     l.tick();
+    // The end, when the screen showed it: a clock line at `t_end` (no clock line follows, and a
+    // follower showed the last one until the next checkpoint, up to 2 s later).
+    let t_end = l.h.app.run.t_end;
+    let last_clock = l.lines.iter().rev().find(|x| x.event == Event::Clock);
+    assert_eq!(
+        last_clock.map(|x| x.t.to_bits()),
+        Some(t_end.to_bits()),
+        "{preset} ×{speed}: the last clock line is at {:?}, not the end {t_end}",
+        last_clock.map(|x| x.t)
+    );
     // Play again from the end (the run starts over), then pause a few frames in: a replay
     // must start over too.
     l.key(Key::Char(' '));
