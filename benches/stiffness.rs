@@ -5,6 +5,8 @@
 //! `rattleback bench` (its `auto_profile.csv`), against independent references.
 //! `auto/…` is every `auto` after the first on a body and start (its averaged-model probes kept
 //! for the process, issue 27); `auto-cold/…` forgets them before each run (a first `auto`).
+//! As in the binary, `auto`'s verification runs beside its run on a second core
+//! (`parallel::install`); `auto-one-core/…` is the same under `fork::sequentially`.
 //! Run: `cargo bench --bench stiffness`.
 
 mod common;
@@ -21,6 +23,7 @@ const T_END: f64 = 30.0;
 const TOL: f64 = 1e-8;
 
 fn stiffness(c: &mut Criterion) {
+    rattleback::parallel::install();
     let mut group = c.benchmark_group("stiffness");
     group.sample_size(10);
     group.warm_up_time(Duration::from_millis(300));
@@ -36,6 +39,13 @@ fn stiffness(c: &mut Criterion) {
             );
             group.bench_function(format!("{regime}/auto/k={k:e}"), |b| {
                 b.iter(|| run_auto(black_box(&p), TOL, T_END, 0, false).unwrap());
+            });
+            group.bench_function(format!("{regime}/auto-one-core/k={k:e}"), |b| {
+                b.iter(|| {
+                    rattleback::physics::fork::sequentially(|| {
+                        run_auto(black_box(&p), TOL, T_END, 0, false).unwrap()
+                    })
+                });
             });
             if v.plan.method == Method::Averaged2 {
                 group.bench_function(format!("{regime}/auto-cold/k={k:e}"), |b| {
