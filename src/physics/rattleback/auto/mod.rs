@@ -54,6 +54,13 @@
 //! 1e-14 clamp, after [`MAX_REFINEMENTS`], or before a refinement predicted to take the total
 //! past [`AUTO_SECONDS`] (or the caller's smaller budget).
 //!
+//! **Two cores.** The run, its companion and the condition numbers do not depend on one another,
+//! nor do the two probes: [`fork::both`] runs them side by side where the program installed a
+//! second core (the binary does: `crate::parallel`), the dearer half on the calling thread. The
+//! answer is the same either way, bit for bit; only the wall time differs (issue 27: with the
+//! probes kept, 1.0–1.5× the cheapest single run at `auto`'s error up to k = 1e6, against
+//! 1.9–2.7× on one core).
+//!
 //! The first planner is kept, frozen, in [`legacy`] for the replay of old session files.
 //! Pure: no clock; a caller's `go_on` decides about cancellation.
 
@@ -1233,10 +1240,10 @@ fn condition_numbers(
     ))
 }
 
-/// [`condition_numbers`] on the slow model: the start and its two nudged copies integrated
+/// `condition_numbers` on the slow model: the start and its two nudged copies integrated
 /// together. Where a copy counts other reversals than the start (an event at a tangency), the
 /// three are run again with a nudge a thousand times smaller, then the final states alone are
-/// compared, as [`sensitivity`] does. `auto`'s first reading is this on
+/// compared, as `sensitivity` does. `auto`'s first reading is this on
 /// [`CONDITIONING_MODEL`] at [`CONDITIONING_LOOSE_TOLERANCE`].
 ///
 /// # Errors
