@@ -13,7 +13,6 @@ use std::time::{Duration, Instant};
 use rattleback::physics::fork;
 use rattleback::physics::rattleback::auto::{conditioning, plan, run_auto};
 use rattleback::physics::rattleback::run::{RunSpec, run};
-use rattleback::physics::rattleback::{Params, Problem, Start};
 
 fn best_ms(mut f: impl FnMut()) -> f64 {
     f();
@@ -75,21 +74,8 @@ fn main() {
 
     for (name, alpha_dot) in [("A (trapped)", 0.5), ("B (rotating)", 1.2)] {
         for k in [1e2, 1e3, 1e4, 1e6, 1e8] {
-            let p = Problem::new(
-                Params {
-                    ix: 2.0,
-                    iy: 1.0,
-                    iz: 1.0,
-                    k,
-                },
-                Start {
-                    gamma: 0.0,
-                    alpha: 0.0,
-                    gamma_dot: 1.0,
-                    alpha_dot,
-                },
-            )
-            .expect("a valid problem");
+            // The averaging note's body and start (`ix = 2, iy = 1, iz = 1`, `γ̇0 = 1`).
+            let p = rattleback::bench::case(2.0, 1.0, k, alpha_dot);
             let pl = plan(&p, 1e-8, 30.0);
             let spec = |s: rattleback::physics::method::Settings| RunSpec {
                 method: pl.method,
