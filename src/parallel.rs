@@ -35,7 +35,7 @@ static POOL: Pool = Pool {
     elsewhere: AtomicU64::new(0),
 };
 
-/// Installs the helper as `auto`'s [`Fork`] (once per process; later calls do nothing).
+/// Installs the pool as `auto`'s [`Fork`] (once per process; later calls do nothing).
 pub fn install() {
     crate::physics::fork::install(&POOL);
 }

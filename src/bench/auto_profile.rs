@@ -425,29 +425,23 @@ pub fn profile_summary(rows: &[ProfileRow]) -> String {
             of.len(),
             verdict(kept <= 3.0)
         );
-        let best: Vec<f64> = of
-            .iter()
-            .filter(|r| r.best_seconds.is_finite())
-            .map(|r| r.auto_warm_seconds / r.best_seconds)
-            .collect();
-        if let (Some(lo), Some(hi)) = (
-            best.iter().copied().reduce(f64::min),
-            best.iter().copied().reduce(f64::max),
-        ) {
+        // The range of `auto`'s time (`f`) over the best single configuration's, where both are.
+        let over_best = |f: fn(&ProfileRow) -> f64| {
+            let ratios = of
+                .iter()
+                .filter(|r| r.best_seconds.is_finite() && f(r) > 0.0)
+                .map(|r| f(r) / r.best_seconds);
+            ratios.fold(None, |range: Option<(f64, f64)>, x| {
+                Some(range.map_or((x, x), |(lo, hi)| (lo.min(x), hi.max(x))))
+            })
+        };
+        if let Some((lo, hi)) = over_best(|r| r.auto_warm_seconds) {
             let _ = write!(
                 o,
                 "; auto / best single {lo:.1}-{hi:.1}x (target 1.5x: {})",
                 verdict(hi <= 1.5)
             );
-            let one: Vec<f64> = of
-                .iter()
-                .filter(|r| r.best_seconds.is_finite() && r.auto_one_core_seconds > 0.0)
-                .map(|r| r.auto_one_core_seconds / r.best_seconds)
-                .collect();
-            if let (Some(lo), Some(hi)) = (
-                one.iter().copied().reduce(f64::min),
-                one.iter().copied().reduce(f64::max),
-            ) {
+            if let Some((lo, hi)) = over_best(|r| r.auto_one_core_seconds) {
                 let _ = write!(o, ", {lo:.1}-{hi:.1}x on one core");
             }
         }
@@ -460,15 +454,18 @@ pub fn profile_summary(rows: &[ProfileRow]) -> String {
                 r.peer_same_error.clone()
             }),
         ] {
-            let ks = |keep: &dyn Fn(f64) -> bool| -> Vec<String> {
+            // The stiffnesses where the peer ran and `keep(row, its seconds)`.
+            let ks = |keep: &dyn Fn(&ProfileRow, f64) -> bool| -> Vec<String> {
                 of.iter()
                     .filter_map(|r| {
                         let (_, seconds) = peer(r)?;
-                        keep(seconds / r.auto_warm_seconds).then(|| format!("{:.0e}", r.k))
+                        keep(r, seconds).then(|| format!("{:.0e}", r.k))
                     })
                     .collect()
             };
-            let (slower, never) = (ks(&|ratio| ratio < 1.0), ks(&|ratio| ratio.is_nan()));
+            let slower = ks(&|r, s| s < r.auto_warm_seconds);
+            let never = ks(&|_, s| s.is_nan());
+            let one_core = ks(&|r, s| r.auto_one_core_seconds > 0.0 && s < r.auto_one_core_seconds);
             if of.iter().any(|r| peer(r).is_some()) {
                 if slower.is_empty() {
                     let _ = write!(o, "; faster than {which} at every k it ran");
@@ -478,14 +475,6 @@ pub fn profile_summary(rows: &[ProfileRow]) -> String {
                 if !never.is_empty() {
                     let _ = write!(o, " (it never gets there at k = {})", never.join(", "));
                 }
-                let one_core: Vec<String> = of
-                    .iter()
-                    .filter_map(|r| {
-                        let (_, seconds) = peer(r)?;
-                        (r.auto_one_core_seconds > 0.0 && seconds < r.auto_one_core_seconds)
-                            .then(|| format!("{:.0e}", r.k))
-                    })
-                    .collect();
                 if one_core != slower {
                     if one_core.is_empty() {
                         let _ = write!(o, " (on one core at no k)");

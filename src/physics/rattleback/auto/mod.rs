@@ -988,11 +988,11 @@ fn run_and_check(
     let (result, verification) = fork::dearer_here(
         go_on,
         (
-            move |go_on: &mut dyn FnMut(f64) -> bool| run_cancellable(&here, &run_spec, go_on),
+            move |go_on: fork::GoOn<'_>| run_cancellable(&here, &run_spec, go_on),
             price(&run_spec),
         ),
         (
-            move |go_on: &mut dyn FnMut(f64) -> bool| -> Result<(Conditioning, RunResult), StepError> {
+            move |go_on: fork::GoOn<'_>| -> Result<(Conditioning, RunResult), StepError> {
                 let (kappa, made) = match measured {
                     Some(kappa) => (kappa, None),
                     None => measure_conditioning(&there, check_spec.t_end, &plan_there, go_on)?,
@@ -1283,26 +1283,11 @@ pub fn slow_condition_numbers(
             cap,
             go_on,
         )?;
-        let moved_by = |i: usize| -> Option<f64> {
-            let (a, b) = (&ends[0], &ends[i]);
-            if a.reversals.len() != b.reversals.len() {
-                return None;
-            }
-            let mut d = (a.alpha - b.alpha)
-                .abs()
-                .max((a.alpha_dot - b.alpha_dot).abs());
-            for (x, y) in a.reversals.iter().zip(&b.reversals) {
-                d = d.max((x - y).abs());
-            }
-            Some(d / nudge)
-        };
         for (i, slot) in found.iter_mut().enumerate() {
             if slot.is_none() {
-                *slot = moved_by(i + 1);
-                ends_only[i] = (ends[0].alpha - ends[i + 1].alpha)
-                    .abs()
-                    .max((ends[0].alpha_dot - ends[i + 1].alpha_dot).abs())
-                    / nudge;
+                let d = ends[0].distance(&ends[i + 1]);
+                *slot = d.is_finite().then_some(d / nudge);
+                ends_only[i] = ends[0].end_distance(&ends[i + 1]) / nudge;
             }
         }
         if found.iter().all(Option::is_some) {

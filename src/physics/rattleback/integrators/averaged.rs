@@ -182,6 +182,29 @@ pub struct Ending {
     pub reversals: Vec<f64>,
 }
 
+impl Ending {
+    /// How far apart two endings are in `α(T)` and `α̇(T)`.
+    #[must_use]
+    pub fn end_distance(&self, other: &Self) -> f64 {
+        (self.alpha - other.alpha)
+            .abs()
+            .max((self.alpha_dot - other.alpha_dot).abs())
+    }
+
+    /// How far apart two endings are in `α(T)`, `α̇(T)` and the reversal times; infinite when
+    /// they count different reversals (as `auto` compares two runs).
+    #[must_use]
+    pub fn distance(&self, other: &Self) -> f64 {
+        if self.reversals.len() != other.reversals.len() {
+            return f64::INFINITY;
+        }
+        self.reversals
+            .iter()
+            .zip(&other.reversals)
+            .fold(self.end_distance(other), |d, (x, y)| d.max((x - y).abs()))
+    }
+}
+
 /// The slow flows of three starts side by side, the first one's error alone controlling the
 /// steps.
 struct Three<M> {
@@ -370,15 +393,6 @@ mod tests {
                 &mut |_| true,
             )
             .unwrap();
-            let moved = |a: &Ending, b: &Ending| {
-                let mut d = (a.alpha - b.alpha)
-                    .abs()
-                    .max((a.alpha_dot - b.alpha_dot).abs());
-                for (x, y) in a.reversals.iter().zip(&b.reversals) {
-                    d = d.max((x - y).abs());
-                }
-                d
-            };
             let spec = RunSpec {
                 method: Method::Averaged2,
                 tolerance: 1e-12,
@@ -395,8 +409,8 @@ mod tests {
                     reversals: r.reversals,
                 }
             };
-            let side_by_side = moved(&ends[0], &ends[1]);
-            let separate = moved(&ending(&p), &ending(&q));
+            let side_by_side = ends[0].distance(&ends[1]);
+            let separate = ending(&p).distance(&ending(&q));
             assert!(
                 (side_by_side / separate - 1.0).abs() < 0.01,
                 "α̇0 = {alpha_dot}: {side_by_side:e} side by side, {separate:e} separately"
