@@ -16,7 +16,7 @@ use rattleback::physics::rattleback::run::{RunSpec, run};
 
 fn best_ms(mut f: impl FnMut()) -> f64 {
     f();
-    (0..7)
+    (0..50)
         .map(|_| {
             let t = Instant::now();
             f();

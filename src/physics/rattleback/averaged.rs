@@ -37,6 +37,12 @@ impl CFun {
     #[inline]
     fn at(p: &Params, alpha: f64) -> (f64, Self) {
         let (s2, k2) = (2.0 * alpha).sin_cos();
+        Self::turned(p, s2, k2)
+    }
+
+    /// [`CFun::at`] given `sin 2α`, `cos 2α`.
+    #[inline]
+    fn turned(p: &Params, s2: f64, k2: f64) -> (f64, Self) {
         let d = p.iy - p.ix;
         // g = ix cos²α + iy sin²α = (ix + iy)/2 − (iy − ix)/2 · cos 2α.
         let g = 0.5 * (p.ix + p.iy) - 0.5 * d * k2;
@@ -131,8 +137,15 @@ impl Averaged2 {
     #[inline]
     #[must_use]
     pub fn rhs(&self, y: &SlowState) -> SlowState {
+        self.rhs_turned(y, (2.0 * y[0]).sin_cos())
+    }
+
+    /// [`Averaged2::rhs`] given `(sin 2ᾱ, cos 2ᾱ)` (from a nearby state's, [`turned`]).
+    #[inline]
+    #[must_use]
+    pub fn rhs_turned(&self, y: &SlowState, (s2, k2): (f64, f64)) -> SlowState {
         let p = &self.params;
-        let (g, cf) = CFun::at(p, y[0]);
+        let (g, cf) = CFun::turned(p, s2, k2);
         let omega = (p.k / g).sqrt();
         let (c, c1) = (cf.c, cf.c1);
         let ib = self.ibar;
@@ -292,6 +305,25 @@ pub const HALF_PERIOD_ACCURACY: f64 = 1e-6;
 /// already 1e-3 … 1e-5 on the note's starts, k = 1e2; past 0.5 the slow motion is not slow).
 pub const VALIDITY_LIMIT: f64 = 0.5;
 
+/// `(sin 2α, cos 2α)` from `(sin 2α₀, cos 2α₀)` = `near` for `α` within 5e-3 of `α₀`, by
+/// turning through `2(α − α₀)` with its Taylor series (exact to rounding there): a nudged copy
+/// beside its start ([`crate::physics::rattleback::integrators::together`]) then needs no
+/// trigonometric function of its own, and the rounding of the start's `sin`, `cos` cancels from
+/// their difference. Farther away, `sin_cos` itself.
+#[inline]
+#[must_use]
+pub fn turned(near: (f64, f64), alpha0: f64, alpha: f64) -> (f64, f64) {
+    let d = 2.0 * (alpha - alpha0);
+    if d.abs() > 1e-2 {
+        return (2.0 * alpha).sin_cos();
+    }
+    let d2 = d * d;
+    let sd = d * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0 * (1.0 - d2 / 42.0)));
+    let cd = 1.0 - d2 / 2.0 * (1.0 - d2 / 12.0 * (1.0 - d2 / 30.0));
+    let (s0, c0) = near;
+    (s0 * cd + c0 * sd, c0 * cd - s0 * sd)
+}
+
 /// `V̄_max = Ī √(k / min(ix, iy))` of an averaged model with fast action `ibar` (either order).
 #[must_use]
 pub fn potential_max(p: &Params, ibar: f64) -> f64 {
@@ -367,6 +399,34 @@ mod tests {
             });
             let bound = if k < 1e5 { 1e-7 } else { 1e-10 };
             assert!(worst < bound, "k = {k:e}: round trip off by {worst:e}");
+        }
+    }
+
+    #[test]
+    fn turning_a_nearby_angle_is_its_sine_and_cosine() {
+        // Within 5e-3 the series turns the start's pair to within a few ulps of `sin_cos`; at
+        // the start itself it returns the pair bit for bit (the start's own flow is unchanged
+        // beside its copies); farther away it is `sin_cos`.
+        for alpha0 in [
+            -7.3,
+            -0.4,
+            0.0,
+            1e-12,
+            std::f64::consts::FRAC_PI_4,
+            2.9,
+            41.0,
+        ] {
+            let near = (2.0_f64 * alpha0).sin_cos();
+            assert_eq!(super::turned(near, alpha0, alpha0), near);
+            for d in [-5e-3, -1e-4, -3e-9, 1e-13, 2e-7, 4.9e-3, 6e-3, 0.3] {
+                let alpha = alpha0 + d;
+                let (s, c) = super::turned(near, alpha0, alpha);
+                let (s_ref, c_ref) = (2.0 * alpha).sin_cos();
+                assert!(
+                    (s - s_ref).abs() <= 4e-16 && (c - c_ref).abs() <= 4e-16,
+                    "α0 {alpha0}, d {d}: ({s}, {c}) against ({s_ref}, {c_ref})"
+                );
+            }
         }
     }
 
