@@ -95,8 +95,13 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
                 format!("replay ×{}", r.pace)
             };
             out.push(field(state, 0));
-            out.push(field(format!("{:.0}/{:.0} s", r.at, r.length), 2));
-            out.push(field(format!("chapter {}/{}", r.chapter, r.chapters), 1));
+            // After the verified estimate: at 80 columns with chapters there is room for one.
+            out.push(field(format!("{:.0}/{:.0} s", r.at, r.length), 3));
+            // A session without chapters has nothing to count (and at 80 columns the field
+            // would push out the verified estimate).
+            if r.chapters > 0 {
+                out.push(field(format!("chapter {}/{}", r.chapter, r.chapters), 1));
+            }
         }
         None => out.push(field(format!("×{}", run.speed), 1)),
     }
@@ -116,7 +121,7 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
     }
     if let Some(p) = run.current() {
         let label = kind.words().monitor;
-        out.push(field(format!("{label} {:.1e}", p.energy_error), 2));
+        out.push(field(format!("{label} {:.1e}", p.energy_error), 3));
     }
     let method = match run.plan {
         PlanState::Running { plan, .. } if plan.method != s.method => {
@@ -124,15 +129,17 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
         }
         _ => s.method.to_string(),
     };
-    out.push(field(method, 3));
+    out.push(field(method, 4));
     if let PlanState::Running {
         estimate: Some(e), ..
     } = run.plan
     {
         // A missed tolerance is kept before anything but the time: the numbers on screen are
-        // not as accurate as asked, and the user must see it.
+        // not as accurate as asked, and the user must see it. A met one before the energy
+        // monitor and the method: it says how accurate the numbers on screen are, which the
+        // others only hint at (at 80 columns, recording, there is room for one of the three).
         if e <= s.tolerance {
-            out.push(field(format!("est {e:.0e} ✓"), 4));
+            out.push(field(format!("est {e:.0e} ✓"), 2));
         } else {
             out.push(field(format!("est {e:.0e} ✗ tol missed"), 1));
         }

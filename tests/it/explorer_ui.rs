@@ -562,3 +562,69 @@ fn a_lesson_steps_pane_gets_room_at_80x24() {
         }
     }
 }
+
+/// At 80 columns the status bar has room for one of the verified estimate, the energy monitor
+/// and the method beside the time, the state, the speed and the events: the estimate, which
+/// says how accurate the numbers on screen are, is kept first, recording or not.
+#[test]
+fn at_80_columns_the_verified_estimate_stays_while_recording() {
+    let mut app = app_at(10.0);
+    let bar = |app: &App| {
+        let buffer = render(app, 80, 24);
+        (0..80)
+            .map(|x| buffer[(x, 22)].symbol().to_owned())
+            .collect::<String>()
+    };
+    let PlanState::Running {
+        estimate: Some(e), ..
+    } = app.run.plan
+    else {
+        panic!("auto has verified the run: {:?}", app.run.plan);
+    };
+    let est = format!("est {e:.0e} ✓");
+    let row = bar(&app);
+    assert!(row.contains(&est) && row.contains("ΔE/E"), "{row}");
+    app.journal.state = rattleback::app::RecState::On;
+    let row = bar(&app);
+    assert!(
+        row.contains("● REC") && row.contains(&est) && row.contains("reversals"),
+        "{row}"
+    );
+    // Replayed (playing), the same estimate, beside the replay's own fields (a session without
+    // chapters counts none); followed, the fork's hint comes first at 80 columns, the estimate
+    // beside it from 100.
+    app.journal.state = rattleback::app::RecState::Off;
+    app.run.playing = true;
+    let mut replay = rattleback::app::ReplayInfo {
+        pace: 1.0,
+        paused: false,
+        chapter: 0,
+        chapters: 0,
+        ended: false,
+        at: 4.0,
+        length: 7.0,
+        live: None,
+    };
+    app.replay = Some(replay);
+    let row = bar(&app);
+    assert!(
+        row.contains(&est) && row.contains("replay ×1") && !row.contains("chapter"),
+        "{row}"
+    );
+    replay.chapters = 2;
+    app.replay = Some(replay);
+    let row = bar(&app);
+    assert!(row.contains(&est) && row.contains("chapter 0/2"), "{row}");
+    replay.live = Some(false);
+    app.replay = Some(replay);
+    let row = bar(&app);
+    assert!(
+        row.contains("f forks") && row.contains("reversals"),
+        "{row}"
+    );
+    let buffer = render(&app, 100, 24);
+    let wide: String = (0..100)
+        .map(|x| buffer[(x, 22)].symbol().to_owned())
+        .collect();
+    assert!(wide.contains("f forks") && wide.contains(&est), "{wide}");
+}
