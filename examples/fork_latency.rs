@@ -3,7 +3,7 @@
 //!   back), a fresh `std::thread`, and what spawning one costs the caller;
 //! - the parts of `auto` on the averaging note's starts A (trapped) and B (rotating): the run it
 //!   returns, its companion, the start's conditioning, and `auto` on two cores and on one (best
-//!   of 7, probes kept).
+//!   of 50: best of 7 left 30 % between runs on a busy machine; probes kept).
 //!
 //! Timing belongs here, not in the tests. Run:
 //! `cargo run --release --example fork_latency`
