@@ -33,14 +33,34 @@ fn horizon(t: f64) -> String {
     }
 }
 
-/// A field of the status bar and its priority (0 is kept first).
+/// A field of the status bar and its priority (0 is kept first), with a shorter form for a
+/// narrow bar.
 struct Field {
     text: String,
+    short: Option<String>,
     priority: u8,
 }
 
 fn field(text: String, priority: u8) -> Field {
-    Field { text, priority }
+    Field {
+        text,
+        short: None,
+        priority,
+    }
+}
+
+impl Field {
+    /// The same field, shortened to `short` where the whole text would push out another field.
+    fn or_short(self, short: &str) -> Self {
+        Self {
+            short: Some(short.to_owned()),
+            ..self
+        }
+    }
+
+    fn shortest(&self) -> &str {
+        self.short.as_deref().unwrap_or(&self.text)
+    }
 }
 
 /// The status fields in display order.
@@ -76,14 +96,16 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
     match bar.replay {
         Some(r) if r.live.is_some() => {
             let state = if r.live == Some(true) {
-                "lecturer's recording ended".to_owned()
+                field("lecturer's recording ended".to_owned(), 0).or_short("lecture ended")
             } else if r.paused {
-                "following, paused".to_owned()
+                field("following, paused".to_owned(), 0)
             } else {
-                "● following live".to_owned()
+                field("● following live".to_owned(), 0).or_short("● live")
             };
-            out.push(field(state, 0));
-            out.push(field(format!("{:.0} s", r.at), 2));
+            out.push(state);
+            // The fork's hint, then the verified estimate (the lecturer's, at 80 columns too),
+            // then the lecture's wall time.
+            out.push(field(format!("{:.0} s", r.at), 3));
             out.push(field("f forks".to_owned(), 1));
         }
         Some(r) => {
@@ -157,26 +179,51 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
     out
 }
 
-/// The fields that fit in `width`, in display order.
+/// The highest priority a field is shortened for: a field keeps its whole text rather than make
+/// room for a field of lower priority (the energy error, the method, the rate, positions).
+const SHORTENED_FOR: u8 = 2;
+
+/// The fields that fit in `width`, in display order: the fields of priority up to
+/// [`SHORTENED_FOR`] that fit in their shortest forms, by priority; then each of them in its
+/// whole text where the room left allows; then the others where they fit.
 fn fit(fields: &[Field], width: usize) -> String {
     let sep = " │ ";
-    let mut keep = vec![false; fields.len()];
+    let chars = |s: &str| s.chars().count();
+    let mut keep: Vec<Option<&str>> = vec![None; fields.len()];
     let mut used = 1;
     let mut order: Vec<usize> = (0..fields.len()).collect();
     order.sort_by_key(|&i| (fields[i].priority, i));
-    for i in order {
-        let w = fields[i].text.chars().count() + if used > 1 { sep.chars().count() } else { 0 };
+    let (first, rest): (Vec<usize>, Vec<usize>) = order
+        .into_iter()
+        .partition(|&i| fields[i].priority <= SHORTENED_FOR);
+    for &i in &first {
+        let shortest = fields[i].shortest();
+        let w = chars(shortest) + if used > 1 { chars(sep) } else { 0 };
         if used + w <= width {
-            keep[i] = true;
+            keep[i] = Some(shortest);
             used += w;
         }
     }
-    let kept: Vec<&str> = fields
-        .iter()
-        .zip(keep)
-        .filter(|(_, k)| *k)
-        .map(|(f, _)| f.text.as_str())
-        .collect();
+    for &i in &first {
+        if let Some(shown) = keep[i] {
+            let more = chars(&fields[i].text) - chars(shown);
+            if more > 0 && used + more <= width {
+                keep[i] = Some(&fields[i].text);
+                used += more;
+            }
+        }
+    }
+    for &i in &rest {
+        for text in [fields[i].text.as_str(), fields[i].shortest()] {
+            let w = chars(text) + if used > 1 { chars(sep) } else { 0 };
+            if used + w <= width {
+                keep[i] = Some(text);
+                used += w;
+                break;
+            }
+        }
+    }
+    let kept: Vec<&str> = keep.into_iter().flatten().collect();
     format!(" {}", kept.join(sep))
 }
 
@@ -214,5 +261,19 @@ mod tests {
         let text = fit(&f, 40);
         assert_eq!(text, " t 1.00/30 │ ΔE/E -5.6e-10 │ reversals 2");
         assert!(text.chars().count() <= 40);
+    }
+
+    #[test]
+    fn a_field_is_shortened_before_another_is_dropped() {
+        let f = vec![
+            field("t 1.00/30".to_owned(), 0),
+            field("● following live".to_owned(), 0).or_short("● live"),
+            field("est 5e-11 ✓".to_owned(), 2),
+        ];
+        // Room for all three only with the short form; then for the whole text.
+        assert_eq!(fit(&f, 40), " t 1.00/30 │ ● live │ est 5e-11 ✓");
+        assert_eq!(fit(&f, 50), " t 1.00/30 │ ● following live │ est 5e-11 ✓");
+        // Too narrow for the estimate: the kept field takes its whole text.
+        assert_eq!(fit(&f, 30), " t 1.00/30 │ ● following live");
     }
 }

@@ -567,7 +567,7 @@ fn a_lesson_steps_pane_gets_room_at_80x24() {
 /// and the method beside the time, the state, the speed and the events: the estimate, which
 /// says how accurate the numbers on screen are, is kept first, recording or not.
 #[test]
-fn at_80_columns_the_verified_estimate_stays_while_recording() {
+fn at_80_columns_the_verified_estimate_stays_recorded_replayed_and_followed() {
     let mut app = app_at(10.0);
     let bar = |app: &App| {
         let buffer = render(app, 80, 24);
@@ -591,8 +591,8 @@ fn at_80_columns_the_verified_estimate_stays_while_recording() {
         "{row}"
     );
     // Replayed (playing), the same estimate, beside the replay's own fields (a session without
-    // chapters counts none); followed, the fork's hint comes first at 80 columns, the estimate
-    // beside it from 100.
+    // chapters counts none); followed, beside the fork's hint, the state shortened at 80
+    // columns and whole from 100.
     app.journal.state = rattleback::app::RecState::Off;
     app.run.playing = true;
     let mut replay = rattleback::app::ReplayInfo {
@@ -619,12 +619,29 @@ fn at_80_columns_the_verified_estimate_stays_while_recording() {
     app.replay = Some(replay);
     let row = bar(&app);
     assert!(
-        row.contains("f forks") && row.contains("reversals"),
+        row.contains("● following live │")
+            && row.contains("f forks")
+            && row.contains("reversals")
+            && row.contains(&est),
+        "{row}"
+    );
+    // The lecturer paused: `paused` is five columns longer than `▶`, and the state is
+    // shortened rather than the estimate dropped.
+    app.run.playing = false;
+    let row = bar(&app);
+    assert!(
+        row.contains("paused │ ● live │")
+            && row.contains("f forks")
+            && row.contains("reversals")
+            && row.contains(&est),
         "{row}"
     );
     let buffer = render(&app, 100, 24);
     let wide: String = (0..100)
         .map(|x| buffer[(x, 22)].symbol().to_owned())
         .collect();
-    assert!(wide.contains("f forks") && wide.contains(&est), "{wide}");
+    assert!(
+        wide.contains("● following live") && wide.contains("f forks") && wide.contains(&est),
+        "{wide}"
+    );
 }
