@@ -206,7 +206,7 @@ fn fit(fields: &[Field], width: usize) -> String {
     }
     for &i in &first {
         if let Some(shown) = keep[i] {
-            let more = chars(&fields[i].text) - chars(shown);
+            let more = chars(&fields[i].text).saturating_sub(chars(shown));
             if more > 0 && used + more <= width {
                 keep[i] = Some(&fields[i].text);
                 used += more;
