@@ -569,12 +569,13 @@ fn a_lesson_steps_pane_gets_room_at_80x24() {
 #[test]
 fn at_80_columns_the_verified_estimate_stays_recorded_replayed_and_followed() {
     let mut app = app_at(10.0);
-    let bar = |app: &App| {
-        let buffer = render(app, 80, 24);
-        (0..80)
+    let bar_at = |app: &App, width: u16| {
+        let buffer = render(app, width, 24);
+        (0..width)
             .map(|x| buffer[(x, 22)].symbol().to_owned())
             .collect::<String>()
     };
+    let bar = |app: &App| bar_at(app, 80);
     let PlanState::Running {
         estimate: Some(e), ..
     } = app.run.plan
@@ -617,29 +618,22 @@ fn at_80_columns_the_verified_estimate_stays_recorded_replayed_and_followed() {
     assert!(row.contains(&est) && row.contains("chapter 0/2"), "{row}");
     replay.live = Some(false);
     app.replay = Some(replay);
-    let row = bar(&app);
-    assert!(
-        row.contains("● following live │")
-            && row.contains("f forks")
-            && row.contains("reversals")
-            && row.contains(&est),
-        "{row}"
-    );
-    // The lecturer paused: `paused` is five columns longer than `▶`, and the state is
-    // shortened rather than the estimate dropped.
-    app.run.playing = false;
-    let row = bar(&app);
-    assert!(
-        row.contains("paused │ ● live │")
-            && row.contains("f forks")
-            && row.contains("reversals")
-            && row.contains(&est),
-        "{row}"
-    );
-    let buffer = render(&app, 100, 24);
-    let wide: String = (0..100)
-        .map(|x| buffer[(x, 22)].symbol().to_owned())
-        .collect();
+    // Playing, the whole state fits; the lecturer paused (`paused` is five columns longer than
+    // `▶`), it is shortened rather than the estimate dropped.
+    for (playing, state) in [
+        (true, "▶ │ ● following live │"),
+        (false, "paused │ ● live │"),
+    ] {
+        app.run.playing = playing;
+        let row = bar(&app);
+        assert!(
+            [state, "f forks", "reversals", &est]
+                .iter()
+                .all(|s| row.contains(s)),
+            "{row}"
+        );
+    }
+    let wide = bar_at(&app, 100);
     assert!(
         wide.contains("● following live") && wide.contains("f forks") && wide.contains(&est),
         "{wide}"

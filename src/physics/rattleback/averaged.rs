@@ -37,12 +37,12 @@ impl CFun {
     #[inline]
     fn at(p: &Params, alpha: f64) -> (f64, Self) {
         let (s2, k2) = (2.0 * alpha).sin_cos();
-        Self::turned(p, s2, k2)
+        Self::of_double_angle(p, s2, k2)
     }
 
     /// [`CFun::at`] given `sin 2α`, `cos 2α`.
     #[inline]
-    fn turned(p: &Params, s2: f64, k2: f64) -> (f64, Self) {
+    fn of_double_angle(p: &Params, s2: f64, k2: f64) -> (f64, Self) {
         let d = p.iy - p.ix;
         // g = ix cos²α + iy sin²α = (ix + iy)/2 − (iy − ix)/2 · cos 2α.
         let g = 0.5 * (p.ix + p.iy) - 0.5 * d * k2;
@@ -145,7 +145,7 @@ impl Averaged2 {
     #[must_use]
     pub fn rhs_turned(&self, y: &SlowState, (s2, k2): (f64, f64)) -> SlowState {
         let p = &self.params;
-        let (g, cf) = CFun::turned(p, s2, k2);
+        let (g, cf) = CFun::of_double_angle(p, s2, k2);
         let omega = (p.k / g).sqrt();
         let (c, c1) = (cf.c, cf.c1);
         let ib = self.ibar;

@@ -231,20 +231,16 @@ impl<M: SlowModel> Field<9> for Three<M> {
     #[inline]
     fn eval(&self, y: &SVector<f64, 9>) -> SVector<f64, 9> {
         let mut f = SVector::<f64, 9>::zeros();
-        if M::TURNS {
-            // The copies turn the start's sine and cosine through their small angle apart
-            // (`averaged::turned`): the start's flow is evaluated as its own run's is.
-            let start = slow(y, 0);
-            let turn = (2.0 * start[0]).sin_cos();
-            for (c, model) in self.models.iter().enumerate() {
-                let here = slow(y, c);
-                let d = model.rhs_turned(&here, turned(turn, start[0], here[0]));
-                f.fixed_rows_mut::<3>(3 * c).copy_from(&d);
-            }
-            return f;
-        }
+        // A model that takes them turns the start's sine and cosine through each copy's small
+        // angle apart (`averaged::turned`): the start's flow is evaluated as its own run's is.
+        let start = slow(y, 0);
+        let turn = M::TURNS.then(|| (2.0 * start[0]).sin_cos());
         for (c, model) in self.models.iter().enumerate() {
-            let d = model.rhs(&slow(y, c));
+            let here = slow(y, c);
+            let d = match turn {
+                Some(turn) => model.rhs_turned(&here, turned(turn, start[0], here[0])),
+                None => model.rhs(&here),
+            };
             f.fixed_rows_mut::<3>(3 * c).copy_from(&d);
         }
         f
