@@ -9,6 +9,14 @@
 //! start with expansion parameter up to 0.25 (the slow model's range), not only 0.1 … 0.3.
 //! Each line ends with what the reading costs (best of 7): side by side, and as the three
 //! separate runs at 1e-7 it replaced (the start, its spin rate and its angle nudged).
+//!
+//! `… conditioning_check spread` (issue 27, stop 51) asks whether a start's condition numbers could
+//! be read once and kept for every larger `k`, as the probes are: for each family of reference
+//! starts (the start at every `k`, `auto::probe_problem`), from the smallest power of ten where
+//! its expansion parameter is at most 0.01 up to 1e12 in steps of √10, the largest reading over
+//! the reading at that smallest `k`. They are not: the reversal times cross where the fast ripple
+//! of `α̇` is steep or shallow by turns, and `α̇(T)` takes the ripple's phase, so κ moves by up to
+//! 16× (rate) and 21× (angle) from one `k` to another: `auto` measures it at the `k` it runs.
 
 use rattleback::physics::rattleback::auto::{difference, slow_condition_numbers};
 use rattleback::physics::rattleback::averaged::expansion_parameter;
@@ -16,6 +24,10 @@ use rattleback::physics::rattleback::integrators::Method;
 use rattleback::physics::rattleback::run::{RunSpec, run};
 use rattleback::physics::rattleback::{Params, Problem, Start};
 fn main() {
+    if std::env::args().nth(1).as_deref() == Some("spread") {
+        spread();
+        return;
+    }
     let all = std::env::args().nth(1).as_deref() == Some("all");
     for file in ["averaged.toml", "rattleback_honesty.toml"] {
         let text = std::fs::read_to_string(format!("tests/fixtures/reference/{file}")).unwrap();
@@ -95,4 +107,77 @@ fn main() {
             );
         }
     }
+}
+
+/// Every reference start (both files) with its horizon, one per family (the start at every `k`).
+fn families() -> Vec<(String, Problem, f64)> {
+    let mut seen = std::collections::BTreeSet::new();
+    let mut out = Vec::new();
+    for file in ["averaged.toml", "rattleback_honesty.toml"] {
+        let text = std::fs::read_to_string(format!("tests/fixtures/reference/{file}")).unwrap();
+        let table: toml::Table = text.parse().unwrap();
+        for (name, c) in table["case"].as_table().unwrap() {
+            let c = c.as_table().unwrap();
+            let f = |k: &str| c[k].as_float().unwrap();
+            let family = format!("{} T {}", name.split("_k").next().unwrap(), f("t_end"));
+            if !seen.insert(family.clone()) {
+                continue;
+            }
+            let params = Params {
+                ix: f("ix"),
+                iy: f("iy"),
+                iz: f("iz"),
+                k: f("k"),
+            };
+            let start = Start {
+                gamma: f("gamma0"),
+                alpha: f("alpha0"),
+                gamma_dot: f("gamma_dot0"),
+                alpha_dot: f("alpha_dot0"),
+            };
+            out.push((family, Problem::new(params, start).unwrap(), f("t_end")));
+        }
+    }
+    out
+}
+
+/// How much a start's condition numbers move with `k` above the stiffness where its expansion
+/// parameter is 0.01 (see the module's documentation).
+fn spread() {
+    use rattleback::physics::rattleback::auto::{CONDITIONING_LOOSE_TOLERANCE, probe_problem};
+    let (mut worst_rate, mut worst_angle): (f64, f64) = (0.0, 0.0);
+    for (family, p, t_end) in families() {
+        let Some(lowest) = (2..=12)
+            .map(|n| 10f64.powi(n))
+            .find(|&k| expansion_parameter(&probe_problem(&p, k)) <= 0.01)
+        else {
+            continue;
+        };
+        let read = |k: f64| {
+            slow_condition_numbers(
+                &probe_problem(&p, k),
+                Method::Averaged2,
+                CONDITIONING_LOOSE_TOLERANCE,
+                t_end,
+                &mut |_| true,
+            )
+            .unwrap()
+        };
+        let first = read(lowest);
+        let (mut rate, mut angle): (f64, f64) = (0.0, 0.0);
+        let mut k = lowest;
+        while k <= 1e12 {
+            let here = read(k);
+            rate = rate.max(here.rate / first.rate);
+            angle = angle.max(here.angle / first.angle);
+            k *= 10f64.sqrt();
+        }
+        worst_rate = worst_rate.max(rate);
+        worst_angle = worst_angle.max(angle);
+        println!(
+            "{family:20} from k {lowest:.0e} (κ rate {:.3e}, angle {:.3e}) to 1e12: at most {rate:.2}× (rate), {angle:.2}× (angle)",
+            first.rate, first.angle
+        );
+    }
+    println!("largest: {worst_rate:.2}× (rate), {worst_angle:.2}× (angle)");
 }

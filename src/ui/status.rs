@@ -98,7 +98,9 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
             let state = if r.live == Some(true) {
                 field("lecturer's recording ended".to_owned(), 0).or_short("lecture ended")
             } else if r.paused {
-                field("following, paused".to_owned(), 0)
+                // The follower paused itself (the lecture goes on): shortened where the
+                // estimate would not fit beside it.
+                field("following, paused".to_owned(), 0).or_short("you paused")
             } else {
                 field("● following live".to_owned(), 0).or_short("● live")
             };

@@ -638,4 +638,19 @@ fn at_80_columns_the_verified_estimate_stays_recorded_replayed_and_followed() {
         wide.contains("● following live") && wide.contains("f forks") && wide.contains(&est),
         "{wide}"
     );
+    // The follower paused itself: shortened at 80 columns too, whole at 100.
+    replay.paused = true;
+    app.replay = Some(replay);
+    let row = bar(&app);
+    assert!(
+        ["paused │ you paused │", "f forks", "reversals", &est]
+            .iter()
+            .all(|s| row.contains(s)),
+        "{row}"
+    );
+    let wide = bar_at(&app, 100);
+    assert!(
+        wide.contains("following, paused") && wide.contains(&est),
+        "{wide}"
+    );
 }
