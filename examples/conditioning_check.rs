@@ -17,6 +17,8 @@
 //! the reading at that smallest `k`. They are not: the reversal times cross where the fast ripple
 //! of `α̇` is steep or shallow by turns, and `α̇(T)` takes the ripple's phase, so κ moves by up to
 //! 16× (rate) and 21× (angle) from one `k` to another: `auto` measures it at the `k` it runs.
+//! `… conditioning_check limit` reads each family once on the effective limit (three separate
+//! runs) against `averaged2`'s readings at every `k`: up to 466× apart, and dearer.
 
 use rattleback::physics::rattleback::auto::{difference, slow_condition_numbers};
 use rattleback::physics::rattleback::averaged::expansion_parameter;
@@ -24,6 +26,10 @@ use rattleback::physics::rattleback::integrators::Method;
 use rattleback::physics::rattleback::run::{RunSpec, run};
 use rattleback::physics::rattleback::{Params, Problem, Start};
 fn main() {
+    if std::env::args().nth(1).as_deref() == Some("limit") {
+        limit();
+        return;
+    }
     if std::env::args().nth(1).as_deref() == Some("spread") {
         spread();
         return;
@@ -177,6 +183,81 @@ fn spread() {
         println!(
             "{family:20} from k {lowest:.0e} (κ rate {:.3e}, angle {:.3e}) to 1e12: at most {rate:.2}× (rate), {angle:.2}× (angle)",
             first.rate, first.angle
+        );
+    }
+    println!("largest: {worst_rate:.2}× (rate), {worst_angle:.2}× (angle)");
+}
+
+/// The start's condition numbers on the effective limit (three separate runs), `[rate, angle]`,
+/// and what they cost, ms (best of 7).
+fn on_the_limit(p: &Problem, t_end: f64, tolerance: f64) -> ([f64; 2], f64) {
+    let spec = RunSpec {
+        method: Method::Effective,
+        tolerance,
+        step: None,
+        t_end,
+        samples: 0,
+        monitor_energy: false,
+    };
+    let read = || {
+        let base = run(p, &spec).unwrap();
+        let mut out = [0.0; 2];
+        for (i, slot) in out.iter_mut().enumerate() {
+            let mut s = *p.start();
+            if i == 0 {
+                s.alpha_dot *= 1.0 + 1e-10;
+            } else {
+                s.alpha += 1e-10;
+            }
+            let other = run(&Problem::new(*p.params(), s).unwrap(), &spec).unwrap();
+            *slot = difference(&base, &other) / 1e-10;
+        }
+        out
+    };
+    let kappa = read();
+    let ms = (0..7)
+        .map(|_| {
+            let clock = std::time::Instant::now();
+            let _ = read();
+            clock.elapsed().as_secs_f64() * 1e3
+        })
+        .fold(f64::INFINITY, f64::min);
+    (kappa, ms)
+}
+
+/// `… conditioning_check limit`: the reading on the effective limit against `auto`'s on
+/// `averaged2` at every `k` of each family.
+fn limit() {
+    use rattleback::physics::rattleback::auto::{CONDITIONING_LOOSE_TOLERANCE, probe_problem};
+    let (mut worst_rate, mut worst_angle): (f64, f64) = (0.0, 0.0);
+    for (family, p, t_end) in families() {
+        let Some(lowest) = (2..=12)
+            .map(|n| 10f64.powi(n))
+            .find(|&k| expansion_parameter(&probe_problem(&p, k)) <= 0.25)
+        else {
+            continue;
+        };
+        let (lim, ms) = on_the_limit(&p, t_end, 1e-9);
+        let (mut rate, mut angle): (f64, f64) = (0.0, 0.0);
+        let mut k = lowest;
+        while k <= 1e12 {
+            let here = slow_condition_numbers(
+                &probe_problem(&p, k),
+                Method::Averaged2,
+                CONDITIONING_LOOSE_TOLERANCE,
+                t_end,
+                &mut |_| true,
+            )
+            .unwrap();
+            rate = rate.max(here.rate / lim[0].max(1.0));
+            angle = angle.max(here.angle / lim[1].max(1.0));
+            k *= 10f64.sqrt();
+        }
+        worst_rate = worst_rate.max(rate);
+        worst_angle = worst_angle.max(angle);
+        println!(
+            "{family:20} from k {lowest:.0e}: limit κ rate {:.3e} angle {:.3e} ({ms:.3} ms); averaged2 at most {rate:.2}× (rate), {angle:.2}× (angle) of max(limit, 1)",
+            lim[0], lim[1]
         );
     }
     println!("largest: {worst_rate:.2}× (rate), {worst_angle:.2}× (angle)");

@@ -87,9 +87,10 @@ pub const RESOLVED: Method = Method::Taylor;
 
 /// Gain of the rounding floor of a resolved run, `ROUNDING_GAIN · ε_mach · n^1.5` over `n` fast
 /// periods (a random walk of the energy's rounding, `√n`, moving the phase of a motion whose
-/// period depends on its energy, `n`). On the references the Taylor series at local tolerances
-/// 1e-12 … 1e-14, where truncation no longer sets its error, ends at most 7.5 `ε_mach n^1.5` off
-/// (`hanging_long`; 1.3–5.8 elsewhere, n = 8 … 8 000): 20 keeps a margin of 2.7. It replaced
+/// period depends on its energy, `n`). On the references the Taylor series, where truncation no
+/// longer sets its error, ends at most 5.8 `ε_mach n^1.5` off (`falls_eps1e-4`, 8 000 periods;
+/// 27 runs, n = 8 … 8 000: `tests/it/kapitza.rs`,
+/// `the_rounding_floor_bounds_the_series_at_its_tightest`): 20 keeps a margin of 3.4. It replaced
 /// `1e-12 n` (stop 51), measured on DOP853 at 8 000 periods and 25–300× above the series'
 /// rounding at 8 … 800 periods, where it set most of the estimates of tight tolerances. A start
 /// that keeps returning near the unstable upright amplifies its rounding beyond any such law
