@@ -328,7 +328,9 @@ struct AutoOut {
     model_error: f64,
     refinements: u32,
     /// The start's condition numbers (`rate`: per relative change of the spin rate; `angle`:
-    /// per radian of the spin angle) that scale the round-off floor in `error_estimate`.
+    /// per radian of the spin angle) that scale the round-off floor in `error_estimate`, times
+    /// `margin` (1 where measured at this `k`; 50 where bounded by the start's reading at its
+    /// conditioning stiffness, kept across `k`).
     condition: crate::physics::rattleback::auto::Conditioning,
     /// The part of `error_estimate` that rounding alone sets (no refinement lowers it; above
     /// the tolerance, `auto` stops after its first run with `shortfall = floor`).

@@ -301,10 +301,16 @@ fn averaged_runs_report_the_averaged_model() {
 
 /// Issue 27: the probes of one body and start are measured once per process and read at every
 /// other `k` (the explorer's slider, a sweep's rungs), and what is read is what would be
-/// computed: `auto` at a `k` with the probes kept gives the same bits as with none kept.
+/// computed: `auto` at a `k` with the probes kept gives the same bits as with none kept. So is
+/// (stop 51) the start's conditioning far in, read at its conditioning stiffness: `auto`'s
+/// verification is then its companion alone, the start's condition numbers bounded by that
+/// reading times `CONDITIONING_KEPT_MARGIN`, except where the bound would weigh on the estimate
+/// (a tight tolerance), where they are measured at `k`.
 #[test]
 fn probes_are_measured_once_and_reading_them_changes_nothing() {
-    use rattleback::physics::rattleback::auto::{memo, probe_problem, probe_stiffnesses};
+    use rattleback::physics::rattleback::auto::{
+        CONDITIONING_KEPT_MARGIN, conditioning_stiffness, memo, probe_problem, probe_stiffnesses,
+    };
     // A body no other test uses, so that its probes are this test's alone.
     let at = |k| common::problem(0.8123, 1.27, 1.0, k, [0.0, 0.0, 1.0, 0.35]);
     let t_end = 10.0;
@@ -312,17 +318,42 @@ fn probes_are_measured_once_and_reading_them_changes_nothing() {
     assert!(first.plan.method.is_averaged(), "{}", first.plan.reason);
     let keys = probe_stiffnesses(&at(1e7)).map(|k| memo::key(&probe_problem(&at(1e7), k), t_end));
     let before = keys.map(|k| memo::reads(&k).expect("the probes were kept"));
-    // Another k of the same body and start asks for the same probes.
+    // Another k of the same body and start asks for the same probes, and the same reading of its
+    // conditioning.
     assert_eq!(probe_stiffnesses(&at(1e9)), probe_stiffnesses(&at(1e7)));
+    let k_c = conditioning_stiffness(&at(1e7)).expect("far in");
+    assert!(
+        k_c <= 1e7 && conditioning_stiffness(&at(1e9)) == Some(k_c),
+        "{k_c}"
+    );
+    let reading = memo::conditioning_key(&probe_problem(&at(1e7), k_c), t_end);
+    let read_before = memo::reads(&reading).expect("the reading was kept");
     let warm = run_auto(&at(1e9), 1e-8, t_end, 0, false).unwrap();
     let after = keys.map(|k| memo::reads(&k).unwrap_or(0));
     assert!(
         after[0] > before[0] && after[1] > before[1],
         "the probes were run again: reads {before:?} then {after:?}"
     );
+    assert!(
+        memo::reads(&reading).unwrap_or(0) > read_before,
+        "the conditioning was read again"
+    );
+    assert!(
+        first.condition.margin == CONDITIONING_KEPT_MARGIN
+            && warm.condition.margin == CONDITIONING_KEPT_MARGIN,
+        "the kept bound served: {:?}, {:?}",
+        first.condition,
+        warm.condition
+    );
     memo::clear();
     let cold = run_auto(&at(1e9), 1e-8, t_end, 0, false).unwrap();
-    assert_eq!(warm, cold, "a kept probe changed what auto returns");
+    assert_eq!(
+        warm, cold,
+        "a kept probe or reading changed what auto returns"
+    );
+    // Where the bound would weigh on the estimate, the start is measured at its own k.
+    let tight = run_auto(&at(1e9), 1e-12, t_end, 0, false).unwrap();
+    assert!(tight.condition.margin == 1.0, "{:?}", tight.condition);
 }
 
 /// Issue 27: where the averaged model is the exact motion (`ix = iy`: `c ≡ 0`, uniform spin and

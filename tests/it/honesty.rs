@@ -387,3 +387,73 @@ fn near_the_separatrix_the_estimate_bounds_every_rounding_of_the_start() {
     }
     tally.assert_honest("rattleback, starts 1–3 ulps apart", "1e-8, 1e-10");
 }
+
+/// Issue 27, stop 51: far in (an averaged plan at or above the start's conditioning stiffness,
+/// where its expansion parameter is 0.01), `auto` may bound the start's condition numbers by its
+/// reading at that one stiffness, kept across k, times `CONDITIONING_KEPT_MARGIN`. The bound must
+/// hold at every larger k: for every family of reference starts (the start at every k), from
+/// that stiffness to 1e12 in steps of √10, the reading `auto` takes at k is within the bound, in
+/// rate and in angle, and so is every reference's own κ at or above it (measured: up to 16× and
+/// 21× the reading at the stiffness; the margin is 50).
+#[test]
+fn a_kept_conditioning_bounds_the_start_at_every_larger_k() {
+    use rattleback::physics::rattleback::Problem;
+    use rattleback::physics::rattleback::auto::{
+        CONDITIONING_KEPT_MARGIN, CONDITIONING_LOOSE_TOLERANCE, CONDITIONING_MODEL,
+        conditioning_stiffness, probe_problem, slow_condition_numbers,
+    };
+    let read = |p: &Problem, t_end: f64| {
+        let c = slow_condition_numbers(
+            p,
+            CONDITIONING_MODEL,
+            CONDITIONING_LOOSE_TOLERANCE,
+            t_end,
+            &mut |_| true,
+        )
+        .unwrap();
+        [c.rate, c.angle]
+    };
+    let mut all = common::cases_from("averaged.toml");
+    all.extend(common::cases_from("rattleback_honesty.toml"));
+    let (mut families, mut readings, mut most) = (std::collections::BTreeSet::new(), 0, 0.0f64);
+    for case in &all {
+        let Some(k_c) = conditioning_stiffness(&case.problem) else {
+            continue;
+        };
+        let kept = read(&probe_problem(&case.problem, k_c), case.t_end);
+        let bound = kept.map(|x| CONDITIONING_KEPT_MARGIN * x);
+        if let Some(reference) = case.condition
+            && case.problem.params().k >= k_c
+        {
+            assert!(
+                reference <= bound[0],
+                "{}: the reference's κ {reference:e} above the bound {:e}",
+                case.name,
+                bound[0]
+            );
+        }
+        let family = format!("{} T {}", case.name.split("_k").next().unwrap(), case.t_end);
+        if !families.insert(family.clone()) {
+            continue;
+        }
+        let mut k = k_c;
+        while k <= 1e12 {
+            let here = read(&probe_problem(&case.problem, k), case.t_end);
+            for i in 0..2 {
+                most = most.max(here[i] / kept[i]);
+                assert!(
+                    here[i] <= bound[i],
+                    "{family} at k = {k:e}: {here:?} above the bound {bound:?}"
+                );
+            }
+            readings += 1;
+            k *= 10f64.sqrt();
+        }
+    }
+    eprintln!(
+        "{} families, {readings} readings: at most {most:.1}× the kept reading",
+        families.len()
+    );
+    assert!(families.len() >= 15 && readings >= 150, "{readings}");
+    assert!(most * 2.0 <= CONDITIONING_KEPT_MARGIN, "{most}");
+}

@@ -54,6 +54,14 @@
 //! 1e-14 clamp, after [`MAX_REFINEMENTS`], or before a refinement predicted to take the total
 //! past [`AUTO_SECONDS`] (or the caller's smaller budget).
 //!
+//! **Far in** (an averaged plan at `k` at or above the start's conditioning stiffness, where its
+//! expansion parameter is [`CONDITIONING_KEPT_X`], stop 51), the start's condition numbers are
+//! bounded instead of measured: by its reading at that one stiffness, kept across `k` ([`memo`]),
+//! times [`CONDITIONING_KEPT_MARGIN`] (they move with `k`, by up to 21× on the references),
+//! wherever the floor that bound gives is at most [`CONDITIONING_KEPT_SHARE`] of the tolerance;
+//! elsewhere they are measured at `k`. With the reading kept, the verification is the companion
+//! alone.
+//!
 //! **Two cores.** The run, its companion and the condition numbers do not depend on one another,
 //! nor do the two probes: [`fork::both`] runs them side by side where the program installed a
 //! second core (the binary does: `crate::parallel`), the dearer half on the calling thread. The
@@ -206,6 +214,25 @@ pub const CONDITIONING_MODEL: Method = Method::Averaged2;
 /// for, so the cheap measurement's accuracy does not matter; above it, it does (the shipped
 /// `just-below` start measures κ = 1.4e4 on `averaged3` and 9.1e3 on the full model).
 pub const CONDITIONING_RECHECK: f64 = 100.0;
+/// Expansion parameter ([`super::averaged::expansion_parameter`]) at and below which an averaged
+/// plan's condition numbers may be bounded by the start's reading at one stiffness
+/// ([`conditioning_stiffness`]) instead of measured at its own `k` (issue 27, stop 51): that
+/// reading is kept ([`memo`]) and serves every larger `k` (the explorer's `k` slider, a sweep's
+/// rungs), so `auto`'s verification is its companion alone.
+pub const CONDITIONING_KEPT_X: f64 = 0.01;
+/// How much a reading at the conditioning stiffness is widened into a bound on the start's
+/// condition numbers at a larger `k`: they move with `k` (the fast ripple's phase in `α̇(T)`, and
+/// the reversals crossing where the ripple makes `α̇` steep or shallow by turns), on the reference
+/// families up to 16× (rate) and 21× (angle) above that reading, `k` up to 1e12
+/// (`cargo run --release --example conditioning_check spread`;
+/// `honesty::a_kept_conditioning_bounds_the_start_at_every_larger_k`).
+pub const CONDITIONING_KEPT_MARGIN: f64 = 50.0;
+/// The bound ([`CONDITIONING_KEPT_MARGIN`]) serves only where the conditioned round-off floor it
+/// gives is at most this share of the tolerance: there it can neither cost `met` nor, misread
+/// by less than tenfold, hide an error of the tolerance's size. Elsewhere (tight tolerances,
+/// ill-conditioned starts) the start is measured at its own `k`, as below
+/// [`CONDITIONING_KEPT_X`].
+pub const CONDITIONING_KEPT_SHARE: f64 = 0.1;
 /// Local tolerance of [`conditioning`]'s runs (at least; the companion's when looser).
 pub const CONDITIONING_TOLERANCE: f64 = 1e-9;
 /// Local tolerance of [`conditioning`]'s first measurement on [`CONDITIONING_MODEL`]: the nudged
@@ -978,6 +1005,30 @@ fn run_and_check(
     };
     let price =
         |s: &RunSpec| cost_seconds(problem, &Asked::new(s.method, s.tolerance, s.step, s.t_end));
+    // Far in (an averaged plan at or above the start's conditioning stiffness), the reading of
+    // the start there, kept across k, bounds its condition numbers where the floor it gives is
+    // small: the verification is then the companion alone.
+    let mut measured = measured;
+    let mut family = None;
+    if measured.is_none()
+        && let Some(start) = conditioning_family(problem, plan)
+    {
+        match family_bound(problem, &start, spec.t_end, false, go_on)? {
+            Some(bound) => {
+                let kappa =
+                    bound.margin * (bound.rate + bound.angle * alpha_bound(problem, spec.t_end));
+                if bound_serves(
+                    kappa,
+                    generous_steps(problem, plan, spec.t_end),
+                    spec.tolerance,
+                ) {
+                    measured = Some(bound);
+                }
+            }
+            // Not read yet: read beside the run (and kept), in place of the reading at k.
+            None => family = Some(start),
+        }
+    }
     let verifying = price(&check_spec)
         + if measured.is_some() {
             0.0
@@ -993,9 +1044,15 @@ fn run_and_check(
         ),
         (
             move |go_on: fork::GoOn<'_>| -> Result<(Conditioning, RunResult), StepError> {
-                let (kappa, made) = match measured {
-                    Some(kappa) => (kappa, None),
-                    None => measure_conditioning(&there, check_spec.t_end, &plan_there, go_on)?,
+                let (kappa, made) = match (measured, family) {
+                    (Some(kappa), _) => (kappa, None),
+                    (None, Some(start)) => {
+                        let bound = family_bound(&there, &start, check_spec.t_end, true, go_on)?;
+                        (bound.expect("computed when not kept"), None)
+                    }
+                    (None, None) => {
+                        measure_conditioning(&there, check_spec.t_end, &plan_there, go_on)?
+                    }
                 };
                 let check = match made {
                     Some(made) if made.spec == check_spec => made.result,
@@ -1008,8 +1065,13 @@ fn run_and_check(
     );
     // The run's failure first (a cancellation stops both), then the verification's.
     let result = result?;
-    let (kappa, check) = verification?;
+    let (mut kappa, check) = verification?;
     let steps = result.stats.steps as f64;
+    if kappa.margin > 1.0 && !bound_serves(kappa.of_run(problem, &result), steps, spec.tolerance) {
+        // The bound would weigh on the estimate (more steps than predicted, a rotating start's
+        // angle, a tight tolerance): the start is measured at its own k after all.
+        kappa = measure_conditioning(problem, spec.t_end, plan, go_on)?.0;
+    }
     let floor = phase_round_off(problem, plan, steps, spec.t_end)
         + conditioned_round_off(steps, kappa.of_run(problem, &result));
     let estimate = difference(&result, &check) + model_error + floor;
@@ -1095,6 +1157,10 @@ pub struct Conditioning {
     /// Per radian of the spin angle `α0`: the angle is rounded in absolute terms, `ε |α|`, and
     /// a rotating start takes it to tens of radians.
     pub angle: f64,
+    /// 1 where `rate` and `angle` were measured at the run's own `k`;
+    /// [`CONDITIONING_KEPT_MARGIN`] where they were read at the start's conditioning stiffness
+    /// ([`conditioning_stiffness`]) and bound the start's numbers only once multiplied by it.
+    pub margin: f64,
 }
 
 impl Conditioning {
@@ -1105,7 +1171,16 @@ impl Conditioning {
     #[must_use]
     pub fn of_run(&self, problem: &Problem, result: &RunResult) -> f64 {
         let alpha = problem.start().alpha.abs().max(result.final_state[1].abs());
-        self.rate + self.angle * alpha
+        self.margin * (self.rate + self.angle * alpha)
+    }
+
+    /// Measured at the run's own `k`.
+    fn measured(rate: f64, angle: f64) -> Self {
+        Self {
+            rate,
+            angle,
+            margin: 1.0,
+        }
     }
 }
 
@@ -1148,13 +1223,7 @@ fn measure_conditioning(
     let start = *problem.start();
     if start.alpha_dot == 0.0 && start.gamma_dot == 0.0 && start.gamma == 0.0 {
         // The equilibrium: nothing moves, nothing is amplified.
-        return Ok((
-            Conditioning {
-                rate: 0.0,
-                angle: 0.0,
-            },
-            None,
-        ));
+        return Ok((Conditioning::measured(0.0, 0.0), None));
     }
     let spec = conditioning_spec(problem, t_end, plan, Stage::Loose);
     let cheap = condition_numbers(problem, &spec, go_on)?;
@@ -1200,6 +1269,97 @@ fn measuring_cost(problem: &Problem, t_end: f64, plan: &Plan) -> f64 {
     }
 }
 
+/// The stiffness at which the start of `problem` is read to bound its condition numbers at every
+/// `k` at or above it ([`CONDITIONING_KEPT_X`]): the smallest power of ten from 1e2 on where the
+/// start of the same family ([`probe_problem`]) has an expansion parameter of at most
+/// `CONDITIONING_KEPT_X`. It depends on the body and the start, not on `k` (for a start with
+/// `γ0 = 0`, every shipped preset, the family's start is the start itself), so every `k` above it
+/// asks for the same reading. `None` where no stiffness up to 1e22 is that far in.
+#[must_use]
+pub fn conditioning_stiffness(problem: &Problem) -> Option<f64> {
+    (2..=22).map(|n| 10f64.powi(n)).find(|&k| {
+        super::averaged::expansion_parameter(&probe_problem(problem, k)) <= CONDITIONING_KEPT_X
+    })
+}
+
+/// The start of `problem`'s family at its conditioning stiffness, where an averaged `plan` runs at
+/// or above it (its condition numbers may then be bounded by that start's).
+fn conditioning_family(problem: &Problem, plan: &Plan) -> Option<Problem> {
+    if !plan.method.is_averaged() {
+        return None;
+    }
+    let k = conditioning_stiffness(problem)?;
+    (problem.params().k >= k).then(|| probe_problem(problem, k))
+}
+
+/// The bound on the condition numbers of `problem`, a start of `family`'s family at a `k` at or
+/// above `family`'s: the first reading of `family` (the slow model side by side at
+/// [`CONDITIONING_LOOSE_TOLERANCE`]) with [`CONDITIONING_KEPT_MARGIN`] (none where `problem` is
+/// `family`, or its averaged model exact), read from [`memo`] where kept (`None` when not, and `compute` false), else
+/// measured and kept. What is read is what would be computed.
+fn family_bound(
+    problem: &Problem,
+    family: &Problem,
+    t_end: f64,
+    compute: bool,
+    go_on: &mut dyn FnMut(f64) -> bool,
+) -> Result<Option<Conditioning>, StepError> {
+    let key = memo::conditioning_key(family, t_end);
+    // At the conditioning stiffness itself the reading is the start's own; where the averaged
+    // model is the exact motion (no ripple: uniform spin) the start moves alike at every k.
+    let margin = if family == problem || averaged_is_exact(problem) {
+        1.0
+    } else {
+        CONDITIONING_KEPT_MARGIN
+    };
+    let bound = |[rate, angle]: memo::Gaps| Conditioning {
+        rate,
+        angle,
+        margin,
+    };
+    if let Some(kept) = memo::read(&key) {
+        return Ok(Some(bound(kept)));
+    }
+    if !compute {
+        return Ok(None);
+    }
+    let kappa = slow_condition_numbers(
+        family,
+        CONDITIONING_MODEL,
+        CONDITIONING_LOOSE_TOLERANCE,
+        t_end,
+        go_on,
+    )?;
+    let reading = [kappa.rate, kappa.angle];
+    memo::keep(key, reading);
+    Ok(Some(bound(reading)))
+}
+
+/// Whether the conditioned round-off floor of `kappa` over `steps` steps is small enough, beside
+/// `tolerance`, for a bound to serve ([`CONDITIONING_KEPT_SHARE`]).
+fn bound_serves(kappa: f64, steps: f64, tolerance: f64) -> bool {
+    conditioned_round_off(steps, kappa) <= CONDITIONING_KEPT_SHARE * tolerance
+}
+
+/// The largest `|α|` a start may reach over `[0, t_end]`, a priori: its limit's turning points
+/// (and half a radian for the corrections), or what its spin covers in `t_end` when it rotates.
+/// Only a kept bound's weighing before the run uses it; the run's own `α` decides after it.
+fn alpha_bound(problem: &Problem, t_end: f64) -> f64 {
+    let eff = Effective::new(problem);
+    let start = problem.start().alpha.abs();
+    match eff.turning_points() {
+        Some((low, high)) => start.max(low.abs()).max(high.abs()) + 0.5,
+        None => start + eff.spin_scale() * t_end,
+    }
+}
+
+/// Steps an averaged `plan` is predicted to take, fourfold (where a kept bound is weighed before
+/// the run).
+fn generous_steps(problem: &Problem, plan: &Plan, t_end: f64) -> f64 {
+    let periods = slow_rate(problem).max(1e-3) * t_end / std::f64::consts::TAU;
+    4.0 * dop853_evaluations(plan.tolerance, periods) / 12.0
+}
+
 /// Nudges the energy's first non-zero carrier: the spin rate, else the tilt rate, else the tilt.
 fn nudge_rate(s: &mut super::params::Start, nudge: f64) {
     if s.alpha_dot != 0.0 {
@@ -1232,7 +1392,7 @@ fn condition_numbers(
     let rate = sensitivity(problem, spec, &base, go_on, nudge_rate)?;
     let angle = sensitivity(problem, spec, &base, go_on, nudge_angle)?;
     Ok((
-        Conditioning { rate, angle },
+        Conditioning::measured(rate, angle),
         Some(Made {
             spec: *spec,
             result: base,
@@ -1270,10 +1430,7 @@ pub fn slow_condition_numbers(
             Problem::new(*problem.params(), start).ok()
         };
         let (Some(rate), Some(angle)) = (moved(nudge_rate), moved(nudge_angle)) else {
-            return Ok(Conditioning {
-                rate: f64::INFINITY,
-                angle: f64::INFINITY,
-            });
+            return Ok(Conditioning::measured(f64::INFINITY, f64::INFINITY));
         };
         let ends = together(
             method,
@@ -1294,10 +1451,10 @@ pub fn slow_condition_numbers(
             break;
         }
     }
-    Ok(Conditioning {
-        rate: found[0].unwrap_or(ends_only[0]),
-        angle: found[1].unwrap_or(ends_only[1]),
-    })
+    Ok(Conditioning::measured(
+        found[0].unwrap_or(ends_only[0]),
+        found[1].unwrap_or(ends_only[1]),
+    ))
 }
 
 /// How much `base` moves per unit of a nudge that `nudge_start` applies to the start.
