@@ -54,20 +54,20 @@
 //! 1e-14 clamp, after [`MAX_REFINEMENTS`], or before a refinement predicted to take the total
 //! past [`AUTO_SECONDS`] (or the caller's smaller budget).
 //!
-//! **Far in** (an averaged plan at `k` at or above the start's conditioning stiffness, where its
+//! **Far in** (an averaged plan at `k` above the start's conditioning stiffness, where its
 //! expansion parameter is [`CONDITIONING_KEPT_X`], stop 51), the start's condition numbers are
 //! bounded instead of measured: by its reading at that one stiffness, kept across `k` ([`memo`]),
 //! times [`CONDITIONING_KEPT_MARGIN`] (they move with `k`, by up to 21× on the references),
-//! wherever the floor that bound gives is at most [`CONDITIONING_KEPT_SHARE`] of the tolerance;
-//! elsewhere they are measured at `k`. With the reading kept, the verification is the companion
-//! alone.
+//! wherever that reading is at most [`CONDITIONING_RECHECK`] and the floor the bound gives at
+//! most [`CONDITIONING_KEPT_SHARE`] of the tolerance; elsewhere they are measured at `k`. With
+//! the reading kept, the verification is the companion alone.
 //!
 //! **Two cores.** The run, its companion and the condition numbers do not depend on one another,
 //! nor do the two probes: [`fork::both`] runs them side by side where the program installed a
 //! second core (the binary does: `crate::parallel`), the dearer half on the calling thread. The
 //! answer is the same either way, bit for bit; only the wall time differs (issue 27: with the
-//! probes kept, 1.0–1.5× the cheapest single run at `auto`'s error up to k = 1e6, against
-//! 1.9–2.7× on one core).
+//! probes and the conditioning's reading kept, 0.8–1.5× the cheapest single run at `auto`'s
+//! error, against 1.4–2.5× on one core).
 //!
 //! The first planner is kept, frozen, in [`legacy`] for the replay of old session files.
 //! Pure: no clock; a caller's `go_on` decides about cancellation.
@@ -214,10 +214,10 @@ pub const CONDITIONING_MODEL: Method = Method::Averaged2;
 /// for, so the cheap measurement's accuracy does not matter; above it, it does (the shipped
 /// `just-below` start measures κ = 1.4e4 on `averaged3` and 9.1e3 on the full model).
 pub const CONDITIONING_RECHECK: f64 = 100.0;
-/// Expansion parameter ([`super::averaged::expansion_parameter`]) at and below which an averaged
-/// plan's condition numbers may be bounded by the start's reading at one stiffness
-/// ([`conditioning_stiffness`]) instead of measured at its own `k` (issue 27, stop 51): that
-/// reading is kept ([`memo`]) and serves every larger `k` (the explorer's `k` slider, a sweep's
+/// Expansion parameter ([`super::averaged::expansion_parameter`]) below which (at a `k` above the
+/// start's [`conditioning_stiffness`]) an averaged plan's condition numbers may be bounded by the
+/// start's reading at that one stiffness instead of measured at its own `k` (issue 27, stop 51):
+/// that reading is kept ([`memo`]) and serves every larger `k` (the explorer's `k` slider, a sweep's
 /// rungs), so `auto`'s verification is its companion alone.
 pub const CONDITIONING_KEPT_X: f64 = 0.01;
 /// How much a reading at the conditioning stiffness is widened into a bound on the start's
@@ -1013,11 +1013,12 @@ fn run_and_check(
     if measured.is_none()
         && let Some(start) = conditioning_family(problem, plan)
     {
-        match family_bound(problem, &start, spec.t_end, false, go_on)? {
+        match family_bound(&start, spec.t_end, false, go_on)? {
             Some(bound) => {
                 let kappa =
                     bound.margin * (bound.rate + bound.angle * alpha_bound(problem, spec.t_end));
                 if bound_serves(
+                    &bound,
                     kappa,
                     generous_steps(problem, plan, spec.t_end),
                     spec.tolerance,
@@ -1047,7 +1048,7 @@ fn run_and_check(
                 let (kappa, made) = match (measured, family) {
                     (Some(kappa), _) => (kappa, None),
                     (None, Some(start)) => {
-                        let bound = family_bound(&there, &start, check_spec.t_end, true, go_on)?;
+                        let bound = family_bound(&start, check_spec.t_end, true, go_on)?;
                         (bound.expect("computed when not kept"), None)
                     }
                     (None, None) => {
@@ -1067,9 +1068,17 @@ fn run_and_check(
     let result = result?;
     let (mut kappa, check) = verification?;
     let steps = result.stats.steps as f64;
-    if kappa.margin > 1.0 && !bound_serves(kappa.of_run(problem, &result), steps, spec.tolerance) {
+    if kappa.margin > 1.0
+        && !bound_serves(
+            &kappa,
+            kappa.of_run(problem, &result),
+            steps,
+            spec.tolerance,
+        )
+    {
         // The bound would weigh on the estimate (more steps than predicted, a rotating start's
-        // angle, a tight tolerance): the start is measured at its own k after all.
+        // angle, a tight tolerance), or the start may be ill-conditioned: it is measured at its
+        // own k after all.
         kappa = measure_conditioning(problem, spec.t_end, plan, go_on)?.0;
     }
     let floor = phase_round_off(problem, plan, steps, spec.t_end)
@@ -1282,40 +1291,32 @@ pub fn conditioning_stiffness(problem: &Problem) -> Option<f64> {
     })
 }
 
-/// The start of `problem`'s family at its conditioning stiffness, where an averaged `plan` runs at
-/// or above it (its condition numbers may then be bounded by that start's).
+/// The start of `problem`'s family at its conditioning stiffness, where an averaged `plan` runs
+/// above it (its condition numbers may then be bounded by that start's). None where the averaged
+/// model is the exact motion (`ix = iy`: no ripple, and the start is measured at its own `k`).
 fn conditioning_family(problem: &Problem, plan: &Plan) -> Option<Problem> {
-    if !plan.method.is_averaged() {
+    if !plan.method.is_averaged() || averaged_is_exact(problem) {
         return None;
     }
     let k = conditioning_stiffness(problem)?;
-    (problem.params().k >= k).then(|| probe_problem(problem, k))
+    (problem.params().k > k).then(|| probe_problem(problem, k))
 }
 
-/// The bound on the condition numbers of `problem`, a start of `family`'s family at a `k` at or
-/// above `family`'s: the first reading of `family` (the slow model side by side at
-/// [`CONDITIONING_LOOSE_TOLERANCE`]) with [`CONDITIONING_KEPT_MARGIN`] (none where `problem` is
-/// `family`, or its averaged model exact), read from [`memo`] where kept (`None` when not, and `compute` false), else
-/// measured and kept. What is read is what would be computed.
+/// The bound on the condition numbers of every start of `family`'s family at a larger `k`: the
+/// first reading of `family` (the slow model side by side at [`CONDITIONING_LOOSE_TOLERANCE`])
+/// with [`CONDITIONING_KEPT_MARGIN`], read from [`memo`] where kept (`None` when not, and
+/// `compute` false), else measured and kept. What is read is what would be computed.
 fn family_bound(
-    problem: &Problem,
     family: &Problem,
     t_end: f64,
     compute: bool,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Option<Conditioning>, StepError> {
     let key = memo::conditioning_key(family, t_end);
-    // At the conditioning stiffness itself the reading is the start's own; where the averaged
-    // model is the exact motion (no ripple: uniform spin) the start moves alike at every k.
-    let margin = if family == problem || averaged_is_exact(problem) {
-        1.0
-    } else {
-        CONDITIONING_KEPT_MARGIN
-    };
     let bound = |[rate, angle]: memo::Gaps| Conditioning {
         rate,
         angle,
-        margin,
+        margin: CONDITIONING_KEPT_MARGIN,
     };
     if let Some(kept) = memo::read(&key) {
         return Ok(Some(bound(kept)));
@@ -1335,10 +1336,13 @@ fn family_bound(
     Ok(Some(bound(reading)))
 }
 
-/// Whether the conditioned round-off floor of `kappa` over `steps` steps is small enough, beside
-/// `tolerance`, for a bound to serve ([`CONDITIONING_KEPT_SHARE`]).
-fn bound_serves(kappa: f64, steps: f64, tolerance: f64) -> bool {
-    conditioned_round_off(steps, kappa) <= CONDITIONING_KEPT_SHARE * tolerance
+/// Whether a kept `bound` serves a run of `steps` steps at `tolerance` whose condition number it
+/// bounds by `kappa`: its reading is of a well-conditioned start (at most
+/// [`CONDITIONING_RECHECK`], where the first reading at `k` is also taken as it is), and the
+/// conditioned round-off floor it gives is at most [`CONDITIONING_KEPT_SHARE`] of the tolerance.
+fn bound_serves(bound: &Conditioning, kappa: f64, steps: f64, tolerance: f64) -> bool {
+    bound.rate.max(bound.angle) <= CONDITIONING_RECHECK
+        && conditioned_round_off(steps, kappa) <= CONDITIONING_KEPT_SHARE * tolerance
 }
 
 /// The largest `|α|` a start may reach over `[0, t_end]`, a priori: its limit's turning points
