@@ -8,8 +8,8 @@
 //! and start are the same problems at every `k`, so `auto` at another `k` (the explorer's `k`
 //! slider, a sweep's rungs, a stiffness table) reads them here instead of running them again.
 //!
-//! The start's condition numbers are kept likewise: from [`super::conditioning_stiffness`] on,
-//! `auto` bounds them by their reading at that one stiffness (the start of the same family,
+//! The start's condition numbers are kept likewise: above [`super::conditioning_stiffness`],
+//! `auto` may bound them by their reading at that one stiffness (the start of the same family,
 //! [`super::probe_problem`]), whatever the `k` that asked, kept under [`conditioning_key`].
 //!
 //! The answer read is the answer that would be computed, bit for bit, so nothing `auto` returns
