@@ -1015,8 +1015,7 @@ fn run_and_check(
     {
         match family_bound(&start, spec.t_end, false, go_on)? {
             Some(bound) => {
-                let kappa =
-                    bound.margin * (bound.rate + bound.angle * alpha_bound(problem, spec.t_end));
+                let kappa = bound.at_angle(alpha_bound(problem, spec.t_end));
                 if bound_serves(
                     &bound,
                     kappa,
@@ -1179,7 +1178,11 @@ impl Conditioning {
     /// turning points).
     #[must_use]
     pub fn of_run(&self, problem: &Problem, result: &RunResult) -> f64 {
-        let alpha = problem.start().alpha.abs().max(result.final_state[1].abs());
+        self.at_angle(problem.start().alpha.abs().max(result.final_state[1].abs()))
+    }
+
+    /// The condition number a step's rounding sees where `|α|` reaches `alpha`.
+    fn at_angle(&self, alpha: f64) -> f64 {
         self.margin * (self.rate + self.angle * alpha)
     }
 
