@@ -19,7 +19,9 @@
 //! - `… growth`: the global error over the local tolerance per fast period (`METHOD=dop853`
 //!   for DOP853);
 //! - `… auto`: `auto` at 1e-5 … 1e-10 on every reference up to k = 1e6, wherever it resolves
-//!   with the series: its estimate against the true error.
+//!   with the series: its estimate against the true error;
+//! - `… stall`: the series and its companion on an ill-conditioned reference at local
+//!   tolerances a factor 2 apart, and `auto` there at 1e-5 … 1e-8 (`auto::TAYLOR_STALLS`).
 
 use std::time::Instant;
 
@@ -346,6 +348,52 @@ fn probe() {
     );
 }
 
+/// The series' run and its companion (1024× looser) at local tolerances 1e-9 … 1e-14 in steps
+/// of 2, on the reference `M_k1e03_T100` (κ ≈ 2 300): each one's error against the reference,
+/// and their difference, `auto`'s estimate before its floors. The companion's error does not
+/// fall steadily (`auto::TAYLOR_STALLS`), then `auto` at 1e-5 … 1e-8.
+fn stall() {
+    let case = cases()
+        .into_iter()
+        .find(|c| c.name == "M_k1e03_T100")
+        .expect("the reference M_k1e03_T100");
+    let mut l = 1e-9;
+    while l > 1e-14 {
+        let (run, companion) = (
+            case.run(Method::Taylor, l),
+            case.run(Method::Taylor, 1024.0 * l),
+        );
+        println!(
+            "local {l:.1e}: run's error {:.1e}, companion's {:.1e}, difference {:.1e}",
+            case.error(&run),
+            case.error(&companion),
+            difference(&run, &companion)
+        );
+        l /= 2.0;
+    }
+    for tolerance in [1e-5, 1e-6, 1e-7, 1e-8] {
+        let v = rattleback::physics::rattleback::auto::run_auto(
+            &case.problem,
+            tolerance,
+            case.t_end,
+            0,
+            false,
+        )
+        .expect("auto");
+        println!(
+            "auto at {tolerance:.0e}: {} at {:.1e}, {} refinements, estimate {:.1e} (floor {:.1e}), \
+             error {:.1e}, met {}",
+            v.plan.method,
+            v.plan.tolerance,
+            v.refinements,
+            v.error_estimate,
+            v.round_off_floor,
+            case.error(&v.result),
+            v.met
+        );
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.first().map(String::as_str) {
@@ -360,6 +408,7 @@ fn main() {
         Some("probe") => probe(),
         Some("tighter") => tighter(),
         Some("auto") => auto_taylor(),
+        Some("stall") => stall(),
         Some("growth") => growth(if std::env::var("METHOD").is_ok_and(|m| m == "dop853") {
             Method::Dop853
         } else {
@@ -370,7 +419,7 @@ fn main() {
             args.get(2).map(|k| k.parse().expect("a stiffness")),
         ),
         Some(other) => {
-            panic!("unknown mode {other}: cost, companion, probe, tighter, growth or auto")
+            panic!("unknown mode {other}: cost, companion, probe, tighter, growth, auto or stall")
         }
     }
 }

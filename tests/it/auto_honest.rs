@@ -452,3 +452,33 @@ fn the_series_companion_bounds_its_run_on_every_reference() {
     }
     assert!(measured >= 50, "only {measured} runs measurable");
 }
+
+#[test]
+fn a_looser_tolerance_is_never_missed_where_a_tighter_one_is_met() {
+    // Stop 52: on the ill-conditioned starts `M` and `N` at T = 100 (κ ≈ 2 300) the series'
+    // companion errs erratically, and one refinement that did not halve the estimate was read
+    // as a floor: `M` at k = 1e3 ended `met = false` at 1e-5 and 1e-7 (estimates 2.9e-5 and
+    // 1.9e-7, its floor 4e-10) while it met 1e-6 and 1e-8. A user loosening the tolerance must
+    // not see it missed.
+    let tolerances = [1e-5, 1e-6, 1e-7, 1e-8];
+    let mut checked = 0;
+    for case in averaged_cases()
+        .iter()
+        .filter(|c| c.source == "rk8-long-double" && c.t_end == 100.0 && c.k <= 1e3)
+    {
+        let met: Vec<bool> = tolerances.iter().map(|&t| check(case, t).met).collect();
+        for (i, &tight) in met.iter().enumerate() {
+            for (j, &loose) in met[..i].iter().enumerate() {
+                assert!(
+                    !tight || loose,
+                    "{}: met at {:e}, missed at the looser {:e}",
+                    case.name,
+                    tolerances[i],
+                    tolerances[j]
+                );
+            }
+        }
+        checked += 1;
+    }
+    assert!(checked >= 4, "{checked}");
+}

@@ -172,6 +172,19 @@ pub const PROBE_RUNGS: u32 = 3;
 pub const AVERAGED_MIN_RATIO: f64 = 4.0;
 /// Most refinements before `auto` reports what it has.
 pub const MAX_REFINEMENTS: u32 = 6;
+/// How many refinements of the series in a row may fail to halve its estimate before `auto`
+/// reads a stall (a floor) and stops; one for the other methods. The series' companion, 1024×
+/// looser, errs erratically on an ill-conditioned start: on `M` at k = 1e3, T = 100 (κ ≈ 2 300)
+/// its error moves by up to 4× between local tolerances a factor 2 apart, up as often as down
+/// (`cargo run --release --example rattleback_taylor stall`). With one, that start ended
+/// `met = false` "at its floor" at tolerances 1e-5 and 1e-7 (estimates 2.9e-5, 1.9e-7) while its
+/// floor was 4e-10 and it met 1e-6 and 1e-8 (stop 52).
+pub const TAYLOR_STALLS: u32 = 2;
+/// The least factor by which a refinement tightens the series' local tolerance: its cost grows
+/// like `tol^-0.06` (16× tighter costs about 1.2× as much: `… rattleback_taylor cost`), while
+/// its companion's error, on an ill-conditioned start, moves by up to 4× either way between
+/// tolerances a factor 2 apart ([`TAYLOR_STALLS`]), so a small step may land on a worse one.
+pub const TAYLOR_REFINEMENT: f64 = 16.0;
 /// Predicted seconds (calibration machine) after which `auto` stops refining and reports
 /// `met = false` instead of computing on: it answers within about this time, whatever the
 /// start and tolerance.
@@ -894,18 +907,30 @@ pub fn run_auto_cancellable(
     // Measured beside the first run (again after a change from the averaged model).
     let mut measured: Option<Conditioning> = None;
     let mut refinements = 0;
-    // The estimate before the last refinement of the same method (none after a change).
+    // The estimate before the last refinement of the same method (none after a change), and how
+    // many refinements in a row did not halve it.
     let mut previous: Option<f64> = None;
+    let mut stalls = 0;
     let mut best_so_far: Option<Verified> = None;
     loop {
         let (result, kappa, Checked { estimate, floor }) =
             run_and_check(problem, spec, &plan, model_error, measured, go_on)?;
         measured = Some(kappa);
+        stalls = if previous.is_some_and(|p| estimate >= 0.5 * p) {
+            stalls + 1
+        } else {
+            0
+        };
+        let stalls_allowed = if plan.method == Method::Taylor {
+            TAYLOR_STALLS
+        } else {
+            1
+        };
         let shortfall = if estimate <= tolerance {
             None
-        } else if floor > tolerance || previous.is_some_and(|p| estimate >= 0.5 * p) {
+        } else if floor > tolerance || stalls >= stalls_allowed {
             // Rounding alone is above the tolerance (a refinement only adds steps to it: said at
-            // once, issue 27), or a refinement did not halve the estimate (or it is still
+            // once, issue 27), or refinements did not halve the estimate (or it is still
             // infinite: the run and its companion still disagree on the number of reversals).
             Some(Shortfall::Floor)
         } else if refinements == MAX_REFINEMENTS {
@@ -1600,7 +1625,14 @@ fn refine(
             let p = f64::from(plan.method.order().max(1));
             next.step = Some(h / (1.25 * excess.powf(1.0 / p)));
         }
-        None => next.tolerance = (plan.tolerance / (2.0 * excess)).max(TIGHTEST),
+        None => {
+            let factor = if plan.method == Method::Taylor {
+                (2.0 * excess).max(TAYLOR_REFINEMENT)
+            } else {
+                2.0 * excess
+            };
+            next.tolerance = (plan.tolerance / factor).max(TIGHTEST);
+        }
     }
     next.predicted_seconds = with_companion(
         problem,
