@@ -226,6 +226,45 @@ fn the_celt_keeps_its_claims_on_every_preset() {
 }
 
 #[test]
+fn the_celt_meets_a_looser_tolerance_wherever_it_meets_a_tighter_one() {
+    // Stop 52: one refinement that did not halve the estimate was read as a floor, and
+    // `celt-pitching` ended `met = false` at 1e-4 (estimate 1.1e-4, far above its round-off)
+    // while it met 5e-5 and every tighter tolerance. Every shipped celt preset at every decade
+    // from 1e-4 to 1e-10: honest, and met at every tolerance looser than one it meets.
+    audit("celt", &[1e-4, 1e-5, 1e-7, 1e-9], celt);
+    let tolerances = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
+    let presets: Vec<String> = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/presets"))
+        .expect("the presets")
+        .filter_map(|e| {
+            let name = e.ok()?.file_name().into_string().ok()?;
+            let stem = name.strip_suffix(".toml")?;
+            stem.starts_with("celt-").then(|| stem.to_owned())
+        })
+        .collect();
+    assert!(presets.len() >= 7, "{presets:?}");
+    for preset in &presets {
+        let met: Vec<bool> = tolerances
+            .iter()
+            .map(|t| {
+                with_sets(preset, &[format!("run.tolerance={t}")])["auto"]["met"]
+                    .as_bool()
+                    .expect("auto.met")
+            })
+            .collect();
+        for (i, &tight) in met.iter().enumerate() {
+            for (j, &loose) in met[..i].iter().enumerate() {
+                assert!(
+                    !tight || loose,
+                    "{preset}: met at {:e}, missed at the looser {:e}",
+                    tolerances[i],
+                    tolerances[j]
+                );
+            }
+        }
+    }
+}
+
+#[test]
 fn auto_measures_the_conditioning_the_references_report() {
     // The condition number `auto` folds into its estimate, against the references' own (the
     // long-double model nudged the same way): near the separatrix 1e3 … 2e7, on small
