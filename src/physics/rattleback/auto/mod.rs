@@ -916,19 +916,10 @@ pub fn run_auto_cancellable(
         let (result, kappa, Checked { estimate, floor }) =
             run_and_check(problem, spec, &plan, model_error, measured, go_on)?;
         measured = Some(kappa);
-        stalls = if previous.is_some_and(|p| estimate >= 0.5 * p) {
-            stalls + 1
-        } else {
-            0
-        };
-        let stalls_allowed = if plan.method == Method::Taylor {
-            TAYLOR_STALLS
-        } else {
-            1
-        };
+        stalls = stalls_after(stalls, previous, estimate);
         let shortfall = if estimate <= tolerance {
             None
-        } else if floor > tolerance || stalls >= stalls_allowed {
+        } else if floor > tolerance || stalls >= stalls_allowed(plan.method) {
             // Rounding alone is above the tolerance (a refinement only adds steps to it: said at
             // once, issue 27), or refinements did not halve the estimate (or it is still
             // infinite: the run and its companion still disagree on the number of reversals).
@@ -998,6 +989,25 @@ pub fn run_auto_cancellable(
         }
         plan = next;
         refinements += 1;
+    }
+}
+
+/// Refinements in a row that did not halve the estimate, after one that gave `estimate` where
+/// the one before gave `previous` (none after a change of method).
+fn stalls_after(stalls: u32, previous: Option<f64>, estimate: f64) -> u32 {
+    if previous.is_some_and(|p| estimate >= 0.5 * p) {
+        stalls + 1
+    } else {
+        0
+    }
+}
+
+/// How many stalls in a row read as a floor for `method` ([`TAYLOR_STALLS`]).
+fn stalls_allowed(method: Method) -> u32 {
+    if method == Method::Taylor {
+        TAYLOR_STALLS
+    } else {
+        1
     }
 }
 
@@ -1620,19 +1630,16 @@ fn refine(
         return Some(bm);
     }
     let mut next = plan.clone();
-    match plan.step {
-        Some(h) => {
-            let p = f64::from(plan.method.order().max(1));
-            next.step = Some(h / (1.25 * excess.powf(1.0 / p)));
-        }
-        None => {
-            let factor = if plan.method == Method::Taylor {
-                (2.0 * excess).max(TAYLOR_REFINEMENT)
-            } else {
-                2.0 * excess
-            };
-            next.tolerance = (plan.tolerance / factor).max(TIGHTEST);
-        }
+    if let Some(h) = plan.step {
+        let p = f64::from(plan.method.order().max(1));
+        next.step = Some(h / (1.25 * excess.powf(1.0 / p)));
+    } else {
+        let factor = if plan.method == Method::Taylor {
+            (2.0 * excess).max(TAYLOR_REFINEMENT)
+        } else {
+            2.0 * excess
+        };
+        next.tolerance = (plan.tolerance / factor).max(TIGHTEST);
     }
     next.predicted_seconds = with_companion(
         problem,
