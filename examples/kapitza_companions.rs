@@ -19,12 +19,13 @@ use rattleback::physics::Method;
 use rattleback::physics::kapitza::run::{RunResult, RunSpec, run};
 use rattleback::physics::kapitza::{Params, Problem, Start, plan};
 
+/// A reference start: its problem and horizon, the reference's `(θ, θ̇)` at its sample times,
+/// and the reference's own accuracy.
 struct Case {
     name: String,
     problem: Problem,
     t_end: f64,
-    theta: Vec<f64>,
-    theta_dot: Vec<f64>,
+    reference: Vec<(f64, f64)>,
     accuracy: f64,
 }
 
@@ -60,8 +61,7 @@ fn cases(file: &str) -> Vec<Case> {
             name: name.clone(),
             problem: Problem::new(params, start).expect("a valid case"),
             t_end: num("t_end"),
-            theta: list("theta"),
-            theta_dot: list("theta_dot"),
+            reference: list("theta").into_iter().zip(list("theta_dot")).collect(),
             accuracy: num("accuracy"),
         });
     }
@@ -107,17 +107,12 @@ fn main() {
                 tolerance: l,
                 step: None,
                 t_end: case.t_end,
-                samples: case.theta.len(),
+                samples: case.reference.len(),
             };
             run(&case.problem, &spec, &mut |_| true).expect("a run")
         };
         let floor = plan::rounding_floor(&case.problem, case.t_end);
-        let reference = || {
-            case.theta
-                .iter()
-                .copied()
-                .zip(case.theta_dot.iter().copied())
-        };
+        let reference = || case.reference.iter().copied();
         let mut l = 1e-7;
         while l >= 1e-14 {
             let (f, m, c) = (go(l), go(8.0 * l), go(64.0 * l));
