@@ -13,7 +13,9 @@
 //! - `min(d1, d2/8)` and `min(d1, d2/4)`, `d2` the companion's difference from the third run
 //!   (a run whose companion is unusually far off shows as `d2 < d1`).
 //!
-//! `cargo run --release --example kapitza_companions`
+//! `cargo run --release --example kapitza_companions`; `… kapitza_companions monotone`: `auto`
+//! at every decade from 1e-4 to 1e-10 on every reference, whether it meets every tolerance looser
+//! than one it meets.
 
 use rattleback::physics::Method;
 use rattleback::physics::kapitza::run::{RunResult, RunSpec, run};
@@ -95,10 +97,47 @@ fn summary(name: &str, mut ratios: Vec<f64>) {
     );
 }
 
+/// `auto` at every decade from 1e-4 to 1e-10 on every reference: tolerances met where a looser
+/// one is missed (stop 52).
+fn monotone(all: &[Case]) {
+    let tolerances = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
+    let mut inverted = 0;
+    for case in all {
+        let met: Vec<bool> = tolerances
+            .iter()
+            .map(|&t| {
+                plan::verified(&case.problem, t, case.t_end, 10.0, &mut |_| true)
+                    .expect("auto")
+                    .met
+            })
+            .collect();
+        for (i, &tight) in met.iter().enumerate() {
+            if tight && met[..i].iter().any(|&loose| !loose) {
+                inverted += 1;
+                println!(
+                    "  {}: met at {:e}, missed at a looser tolerance",
+                    case.name, tolerances[i]
+                );
+            }
+        }
+        let marks: String = met.iter().map(|&m| if m { '+' } else { '-' }).collect();
+        println!("{:>22} {marks}", case.name);
+    }
+    println!(
+        "{} references, {} runs: {inverted} tolerances met where a looser one was missed",
+        all.len(),
+        all.len() * tolerances.len()
+    );
+}
+
 fn main() {
     let mut all = cases("kapitza.toml");
     all.extend(cases("kapitza_small_eps.toml"));
     all.extend(cases("kapitza_honesty.toml"));
+    if std::env::args().nth(1).as_deref() == Some("monotone") {
+        monotone(&all);
+        return;
+    }
     let (mut d1s, mut by8, mut by4) = (Vec::new(), Vec::new(), Vec::new());
     for case in all.iter().filter(|c| c.problem.params().epsilon >= 5e-3) {
         let go = |l: f64| {

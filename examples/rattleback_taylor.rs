@@ -21,7 +21,9 @@
 //! - `… auto`: `auto` at 1e-5 … 1e-10 on every reference up to k = 1e6, wherever it resolves
 //!   with the series: its estimate against the true error;
 //! - `… stall`: the series and its companion on an ill-conditioned reference at local
-//!   tolerances a factor 2 apart, and `auto` there at 1e-5 … 1e-8 (`auto::TAYLOR_STALLS`).
+//!   tolerances a factor 2 apart, and `auto` there at 1e-5 … 1e-8 (`auto::TAYLOR_STALLS`);
+//! - `… monotone`: `auto` at every decade from 1e-4 to 1e-10 on every reference of T ≤ 100
+//!   (any method): estimates below the error, and tolerances met where a looser one is missed.
 
 use std::time::Instant;
 
@@ -394,6 +396,47 @@ fn stall() {
     }
 }
 
+/// `auto` at every decade from 1e-4 to 1e-10 on every reference of T ≤ 100: whether its estimate
+/// bounds its error, and whether it meets every tolerance looser than one it meets (stop 52:
+/// `auto_honest::a_looser_tolerance_is_never_missed_where_a_tighter_one_is_met` keeps the cases
+/// that failed).
+fn monotone() {
+    use rattleback::physics::rattleback::auto::run_auto;
+    let tolerances = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
+    let (mut starts, mut runs, mut low, mut inverted) = (0, 0, 0, 0);
+    for case in cases().iter().filter(|c| c.t_end <= 100.0) {
+        // The marks, and whether a looser tolerance was missed so far.
+        let (mut marks, mut missed) = (String::new(), false);
+        for &tol in &tolerances {
+            let v = run_auto(&case.problem, tol, case.t_end, 0, false).expect("auto");
+            let e = case.error(&v.result);
+            if v.error_estimate < e - case.floor {
+                low += 1;
+                println!(
+                    "  below: {} at {tol:e}: estimate {:.1e}, error {e:.1e}",
+                    case.name, v.error_estimate
+                );
+            }
+            if v.met && missed {
+                inverted += 1;
+                println!(
+                    "  {}: met at {tol:e}, missed at a looser tolerance",
+                    case.name
+                );
+            }
+            missed |= !v.met;
+            marks.push(if v.met { '+' } else { '-' });
+            runs += 1;
+        }
+        println!("{:>22} {marks}", case.name);
+        starts += 1;
+    }
+    println!(
+        "{starts} references, {runs} runs: {low} estimates below the error, \
+         {inverted} tolerances met where a looser one was missed"
+    );
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.first().map(String::as_str) {
@@ -409,6 +452,7 @@ fn main() {
         Some("tighter") => tighter(),
         Some("auto") => auto_taylor(),
         Some("stall") => stall(),
+        Some("monotone") => monotone(),
         Some("growth") => growth(if std::env::var("METHOD").is_ok_and(|m| m == "dop853") {
             Method::Dop853
         } else {
@@ -419,7 +463,9 @@ fn main() {
             args.get(2).map(|k| k.parse().expect("a stiffness")),
         ),
         Some(other) => {
-            panic!("unknown mode {other}: cost, companion, probe, tighter, growth, auto or stall")
+            panic!(
+                "unknown mode {other}: cost, companion, probe, tighter, growth, auto, stall or monotone"
+            )
         }
     }
 }
