@@ -471,6 +471,9 @@ fn run_follow(args: &rattleback::cli::FollowArgs) -> Outcome {
     if args.file.as_os_str() == "-" {
         return refuse_stdin("follow -");
     }
+    // Before waiting for the lecturer's file: a follower with nowhere to draw would wait for
+    // nothing.
+    needs_terminal("follow")?;
     // Students often start first: wait for the file (and its header) to appear, saying so.
     let mut said = false;
     while !args
@@ -686,13 +689,17 @@ fn explore(
         follow: setup.follow.clone(),
         sign: setup.sign.clone(),
     };
-    if std::env::var_os("TERM").is_some_and(|t| t == "dumb") {
-        // Checked after the preset and config, which a user wants to hear about first, and
-        // before the terminal is touched: a dumb terminal shows escape codes as text.
-        return Err(Failure::failed(
-            "TERM=dumb cannot show the explorer (it moves the cursor and draws); set TERM to the terminal's name (xterm-256color, screen, linux, …), or use `rattleback simulate` for text",
-        ));
-    }
+    needs_terminal(if setup.follow.is_some() {
+        "follow"
+    } else if options.replay.is_some() {
+        "replay"
+    } else if setup.lesson.is_some() {
+        "lesson"
+    } else if setup.partner.is_some() {
+        "compare"
+    } else {
+        "the explorer"
+    })?;
     match explorer::run(preset, &options) {
         Ok(None) => Ok(()),
         // Ended by a signal: the terminal is restored; exit as the convention says.
@@ -701,6 +708,31 @@ fn explore(
             "the explorer needs an interactive terminal ({e}); for headless runs use `rattleback simulate`"
         ))),
     }
+}
+
+/// An interactive command draws on standard output and reads its keys from standard input: it
+/// refuses in one line (exit 2) when either is not a terminal, before the terminal is touched,
+/// so no escape code lands in a file and no terminal is left raw (issue 54). Checked after
+/// the preset and the configuration, which a user wants to hear about first.
+fn needs_terminal(what: &str) -> Outcome {
+    use std::io::IsTerminal as _;
+    if std::env::var_os("TERM").is_some_and(|t| t == "dumb") {
+        // A dumb terminal shows escape codes as text.
+        return Err(Failure::failed(
+            "TERM=dumb cannot show the explorer (it moves the cursor and draws); set TERM to the terminal's name (xterm-256color, screen, linux, …), or use `rattleback simulate` for text",
+        ));
+    }
+    if !std::io::stdout().is_terminal() {
+        return Err(Failure::input(format!(
+            "{what} draws on a terminal, and standard output is not one (redirected to a file or a pipe); run it without `>` or `|`, or use `rattleback simulate` for a report"
+        )));
+    }
+    if !std::io::stdin().is_terminal() {
+        return Err(Failure::input(format!(
+            "{what} reads its keys from a terminal, and standard input is not one (`<` a file, a pipe, or none); run it from a terminal"
+        )));
+    }
+    Ok(())
 }
 
 /// What this terminal shows: `--ascii`, the locale, `TERM` ([`Charset::detect`]).

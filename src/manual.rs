@@ -114,11 +114,11 @@ pub const EXIT_STATUS: &[(&str, &str)] = &[
     ("0", "success"),
     (
         "1",
-        "a run failed: an integration that could not continue, a recording that did not verify, simulate --strict that missed its tolerance, an output that could not be written, or no interactive terminal for the explorer",
+        "a run failed: an integration that could not continue, a recording that did not verify, simulate --strict that missed its tolerance, an output that could not be written, or a terminal the explorer could not open",
     ),
     (
         "2",
-        "bad input: an unknown flag or value, an invalid preset, theme, lesson, config or session file (every problem is named with its file, line and key), an output file that exists without --force, or work refused as over the budget",
+        "bad input: an unknown flag or value, an invalid preset, theme, lesson, config or session file (every problem is named with its file, line and key), an output file that exists without --force, work refused as over the budget, or an interactive command (the explorer, lesson, compare, replay, follow) whose standard input or output is not a terminal",
     ),
     (
         "128+N",

@@ -1,10 +1,8 @@
 //! One bad preset file per failure mode, run through the real binary: exit code 2, one clear
 //! line naming the file, the line, the key and what is allowed; never a panic.
 
-use std::process::Command;
-
 fn simulate(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rattleback"))
+    let out = crate::common::rattleback()
         .arg("simulate")
         .args(args)
         .output()

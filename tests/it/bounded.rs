@@ -7,7 +7,7 @@
 
 use rattleback::physics::method::Asked;
 use std::io::Write as _;
-use std::process::{Command, Stdio};
+use std::process::Stdio;
 use std::time::{Duration, Instant};
 
 use rattleback::app::journal::Event;
@@ -44,7 +44,7 @@ fn limited(args: &[&str]) -> Outcome {
         cmd.push('\'');
     }
     let start = Instant::now();
-    let mut child = Command::new("sh")
+    let mut child = crate::common::detached("sh")
         .args(["-c", &cmd])
         .env("RATTLEBACK_CONFIG_DIR", dir("config"))
         .stdin(Stdio::null())
@@ -356,7 +356,7 @@ fn an_interrupted_export_leaves_nothing() {
         env!("CARGO_MANIFEST_DIR")
     );
     let out = d.join("big.cast");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_rattleback"))
+    let mut child = crate::common::rattleback()
         .args(["replay", &session, "--export-cast"])
         .arg(&out)
         .args(["--fps", "240", "--cols", "400", "--rows", "200"])
@@ -366,7 +366,10 @@ fn an_interrupted_export_leaves_nothing() {
         .unwrap();
     std::thread::sleep(Duration::from_millis(400));
     let pid = child.id().to_string();
-    let killed = Command::new("kill").args(["-TERM", &pid]).status().unwrap();
+    let killed = crate::common::detached("kill")
+        .args(["-TERM", &pid])
+        .status()
+        .unwrap();
     assert!(killed.success());
     let status = child.wait().unwrap();
     let left: Vec<_> = std::fs::read_dir(&d)
@@ -479,7 +482,7 @@ impl Pty {
             "stty rows 30 cols 100; ulimit -v {MEMORY_KIB}; exec {} {args}",
             env!("CARGO_BIN_EXE_rattleback")
         );
-        let child = Command::new("script")
+        let child = crate::common::detached("script")
             .args(["-qfec", &command])
             .arg(&log)
             .env("RATTLEBACK_CONFIG_DIR", dir("config"))
@@ -497,7 +500,7 @@ impl Pty {
         stdin.flush().unwrap();
     }
     fn explorer_pid(&self) -> Option<u32> {
-        let out = Command::new("pgrep")
+        let out = crate::common::detached("pgrep")
             .args(["-P", &self.child.id().to_string()])
             .output()
             .ok()?;
@@ -575,7 +578,7 @@ fn the_explorer_stays_bounded_and_quits_at_once() {
         pty.keys(b" ");
         std::thread::sleep(Duration::from_millis(500));
         let pid = pty.explorer_pid().expect("the explorer runs").to_string();
-        Command::new("kill")
+        crate::common::detached("kill")
             .args([&format!("-{signal}"), &pid])
             .status()
             .unwrap();

@@ -7,8 +7,6 @@
 use crate::common;
 use rattleback::physics::method::Asked;
 
-use std::process::Command;
-
 use rattleback::physics::budget::BUDGET_SECONDS;
 use rattleback::physics::plan::AutoPolicy;
 use rattleback::physics::rattleback::RunSpec;
@@ -20,7 +18,7 @@ use rattleback::scenario::shipped::{SHIPPED, resolve as preset};
 use rattleback::simulate::{self, Failure, Format, Request};
 
 fn bin(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rattleback"))
+    let out = crate::common::rattleback()
         .args(args)
         .output()
         .expect("runs");

@@ -172,7 +172,7 @@ fn an_exported_cast_is_ascii_with_the_flag() {
 #[test]
 fn doctor_says_what_was_chosen_and_why() {
     let run = |env: &[(&str, &str)], args: &[&str]| -> serde_json::Value {
-        let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"));
+        let mut cmd = crate::common::rattleback();
         cmd.args(["doctor", "--format", "json"]).args(args);
         for name in ["LC_ALL", "LC_CTYPE", "LANG", "TERM", "NO_COLOR", "CLICOLOR"] {
             cmd.env_remove(name);
@@ -208,7 +208,7 @@ fn doctor_says_what_was_chosen_and_why() {
     let dir = std::env::temp_dir().join(format!("rattleback-doctor-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("config.toml"), "fsp = 20\n").unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+    let out = crate::common::rattleback()
         .args(["doctor"])
         .env("RATTLEBACK_CONFIG_DIR", &dir)
         .output()

@@ -136,7 +136,7 @@ fn the_manual_page_is_whole_and_man_has_no_warnings() {
     // man --warnings: silent on this page.
     let page = std::env::temp_dir().join(format!("rattleback-{}.1", std::process::id()));
     std::fs::write(&page, &out).unwrap();
-    let run = std::process::Command::new("man")
+    let run = crate::common::detached("man")
         .args(["--warnings", "-l"])
         .arg(&page)
         .env("MANWIDTH", "80")
@@ -209,7 +209,7 @@ fn a_closed_pipe_ends_printing_commands_quietly() {
         vec!["presets"],
         vec!["lessons"],
     ] {
-        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        let mut child = crate::common::rattleback()
             .args(&args)
             .stdout(std::process::Stdio::piped())
             .stderr(std::process::Stdio::piped())
@@ -230,7 +230,7 @@ fn a_closed_pipe_ends_printing_commands_quietly() {
 fn a_dash_reads_standard_input_where_a_file_is_read_headless() {
     use std::io::Write as _;
     let with_stdin = |args: &[&str], input: &[u8]| -> (i32, String, String) {
-        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        let mut child = crate::common::rattleback()
             .args(args)
             .env("TERM", "xterm")
             .stdin(std::process::Stdio::piped())
@@ -342,7 +342,7 @@ fn every_failure_speaks_in_one_style() {
         );
     }
     // The explorer without a terminal, and under TERM=dumb.
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+    let out = crate::common::rattleback()
         .env("TERM", "dumb")
         .output()
         .unwrap();

@@ -6,12 +6,11 @@
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 const BIN: &str = env!("CARGO_BIN_EXE_rattleback");
 
 fn installed(shell: &str) -> bool {
-    Command::new(shell)
+    crate::common::detached(shell)
         .args(["-c", "exit 0"])
         .output()
         .is_ok_and(|o| o.status.success())
@@ -32,7 +31,7 @@ fn folder(shell: &str) -> (PathBuf, PathBuf) {
 
 /// Runs `script` in `shell` with the user's folder set; its standard output.
 fn run(shell: &str, dir: &Path, script: &str) -> String {
-    let out = Command::new(shell)
+    let out = crate::common::detached(shell)
         .args(if shell == "zsh" {
             vec!["-f", "-c", script]
         } else {

@@ -538,7 +538,7 @@ fn a_dumb_terminal_gets_one_line_from_every_interactive_entry_point() {
         "/tests/fixtures/sessions/lecture.jsonl"
     );
     let run = |args: &[&str]| {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        let out = crate::common::rattleback()
             .args(args)
             .env("RATTLEBACK_CONFIG_DIR", temp("dumb"))
             .env("TERM", "dumb")
@@ -605,7 +605,7 @@ fn colours_follow_the_flag_then_no_color_then_clicolor() {
     let dir = temp("colour-cast");
     let cast = |name: &str, flag: &str, env: &[(&str, &str)]| {
         let out = dir.join(name);
-        let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"));
+        let mut cmd = crate::common::rattleback();
         cmd.args(["replay", session, "--export-cast"])
             .arg(&out)
             .args(["--color", flag])

@@ -1,10 +1,8 @@
 //! Hostile input (issue "Never hang, never clobber, never inject"): escape sequences in files
 //! never reach a terminal, planted links are not followed.
 
-use std::process::Command;
-
 fn bin(args: &[&str], config: &std::path::Path) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rattleback"))
+    let out = crate::common::rattleback()
         .args(args)
         .env("RATTLEBACK_CONFIG_DIR", config)
         .output()
@@ -159,7 +157,10 @@ fn devices_and_fifos_are_refused_without_being_read() {
     let presets = config.join("presets");
     std::fs::create_dir_all(&presets).unwrap();
     let fifo = presets.join("stuck.toml");
-    let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
+    let made = crate::common::detached("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap();
     assert!(made.success());
     let start = std::time::Instant::now();
     let (code, out, err) = bin(&["presets"], &config);
@@ -281,7 +282,7 @@ fn schema_errors_name_a_line_and_describe_what_was_written() {
     // `check` refuses a FIFO instead of blocking on it.
     let fifo = dir.join("fifo.toml");
     assert!(
-        Command::new("mkfifo")
+        crate::common::detached("mkfifo")
             .arg(&fifo)
             .status()
             .unwrap()

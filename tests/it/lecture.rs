@@ -647,7 +647,7 @@ fn edits_downgrades_cuts_and_extra_fields_fail_naming_the_line() {
         Err(record::VerifyError::Incomplete { .. })
     ));
     // And the command says so, with a non-zero exit.
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+    let out = crate::common::rattleback()
         .args(["replay", cut.to_str().unwrap(), "--verify"])
         .output()
         .unwrap();
@@ -706,18 +706,25 @@ fn a_signed_session_verifies_with_its_key_and_fails_with_another() {
 
 /// `follow` of a file that does not exist yet waits for it, saying so (students usually start
 /// first), then reads it once it appears: here a file that is not a session, refused with exit 2
-/// before the terminal is touched.
+/// before the terminal is touched. In a pseudo-terminal of its own (`script`): `follow` refuses
+/// at once where it has no terminal to draw on.
 #[test]
 fn follow_waits_for_a_file_that_does_not_exist_yet() {
-    use std::io::Read as _;
     let path = temp("not-yet.jsonl");
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
-        .args(["follow", path.to_str().unwrap()])
-        .stdin(std::process::Stdio::null())
+    let log = temp("not-yet.pty");
+    let command = format!(
+        "exec {} follow {}",
+        env!("CARGO_BIN_EXE_rattleback"),
+        path.display()
+    );
+    let mut child = crate::common::detached("script")
+        .args(["-qfec", &command])
+        .arg(&log)
+        .stdin(std::process::Stdio::piped())
         .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::null())
         .spawn()
-        .unwrap();
+        .expect("`script` (util-linux) gives follow a pseudo-terminal");
     std::thread::sleep(std::time::Duration::from_millis(700));
     assert!(
         child.try_wait().unwrap().is_none(),
@@ -735,16 +742,14 @@ fn follow_waits_for_a_file_that_does_not_exist_yet() {
         );
         std::thread::sleep(std::time::Duration::from_millis(50));
     };
-    let mut err = String::new();
-    child
-        .stderr
-        .take()
-        .unwrap()
-        .read_to_string(&mut err)
-        .unwrap();
+    let err = String::from_utf8_lossy(&std::fs::read(&log).unwrap()).into_owned();
     assert_eq!(status.code(), Some(2), "{err}");
     assert!(err.contains("waiting for"), "{err}");
     assert!(err.contains("not a session header"), "{err}");
+    assert!(
+        !err.contains("\u{1b}[?1049h"),
+        "the terminal was not touched: {err}"
+    );
 }
 
 /// Two format-4 sessions recorded in the explorer over a real terminal (tmux at 80×24): a
@@ -755,10 +760,7 @@ fn follow_waits_for_a_file_that_does_not_exist_yet() {
 fn checked_in_format_4_sessions_verify_and_the_signed_one_with_its_key() {
     let dir = format!("{}/tests/fixtures/sessions", env!("CARGO_MANIFEST_DIR"));
     let bin = |args: &[&str]| {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
-            .args(args)
-            .output()
-            .unwrap();
+        let out = crate::common::rattleback().args(args).output().unwrap();
         (
             out.status.code(),
             String::from_utf8_lossy(&out.stdout).into_owned(),

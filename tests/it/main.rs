@@ -26,6 +26,7 @@ mod fork;
 mod honesty;
 mod hostile;
 mod hostile_props;
+mod hygiene;
 mod kapitza;
 mod kapitza_cli;
 mod kapitza_explorer;

@@ -1,7 +1,5 @@
 //! Issue 5: shipped presets and themes, `presets`, `check`, themes and `NO_COLOR`, saving.
 
-use std::process::Command;
-
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::style::{Color, Modifier};
@@ -13,7 +11,7 @@ use rattleback::scenario::theme::{SHIPPED_THEMES, ThemeSpec};
 use rattleback::ui::{self, UiOptions};
 
 fn bin(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rattleback"))
+    let out = crate::common::rattleback()
         .args(args)
         .env("RATTLEBACK_CONFIG_DIR", "/nonexistent/rattleback-test")
         .output()

@@ -1,8 +1,6 @@
 //! Issue 6: sessions recorded through the app's update function replay exactly; the checked-in
 //! example verifies; truncated, corrupt, mismatched and tampered files are handled.
 
-use std::process::Command as Process;
-
 use crate::common;
 
 use common::Headless;
@@ -11,10 +9,7 @@ use rattleback::app::{Key, Outcome};
 use rattleback::record::{self, Line, RecordError, Recorder};
 
 fn bin(args: &[&str]) -> (i32, String, String) {
-    let out = Process::new(env!("CARGO_BIN_EXE_rattleback"))
-        .args(args)
-        .output()
-        .unwrap();
+    let out = crate::common::rattleback().args(args).output().unwrap();
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stdout).into_owned(),

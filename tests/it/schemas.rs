@@ -138,7 +138,7 @@ fn every_shipped_preset_reports_the_pinned_bytes() {
             .join("\n")
     };
     for (name, _) in rattleback::scenario::shipped::SHIPPED {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+        let out = crate::common::rattleback()
             .args(["simulate", "--format", "json", "--preset", name])
             .output()
             .unwrap();

@@ -3,7 +3,7 @@
 //! pseudo-terminal (`script`, from util-linux, on every Debian system).
 
 use std::io::Write as _;
-use std::process::{Child, Command, Stdio};
+use std::process::{Child, Stdio};
 use std::time::{Duration, Instant};
 
 const ENTER_ALT: &[u8] = b"\x1b[?1049h";
@@ -48,7 +48,7 @@ impl Explorer {
             env!("CARGO_BIN_EXE_rattleback"),
             args.join(" ")
         );
-        let script = Command::new("script")
+        let script = crate::common::detached("script")
             .args(["-qfec", &command])
             .arg(&log)
             .stdin(Stdio::piped())
@@ -121,7 +121,7 @@ fn last(haystack: &[u8], needle: &[u8]) -> Option<usize> {
 }
 
 fn kill(pid: u32, signal: &str) {
-    let ok = Command::new("kill")
+    let ok = crate::common::detached("kill")
         .args([&format!("-{signal}"), &pid.to_string()])
         .status()
         .unwrap()

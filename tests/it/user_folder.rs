@@ -3,8 +3,6 @@
 //! a preset that breaks between listing and loading shows a dialog and the explorer goes on.
 //! The binary gets the folder through `RATTLEBACK_CONFIG_DIR`; the app through its field.
 
-use std::process::Command;
-
 use rattleback::app::mode::{Confirm, PickerRow};
 use rattleback::app::{App, Key, Mode, Options};
 use rattleback::scenario::shipped::resolve;
@@ -12,7 +10,7 @@ use rattleback::scenario::shipped::resolve;
 const USER: &str = "[preset]\nname = \"My lecture\"\ndescription = \"A user preset.\"\n[body]\nix = 3.0\niy = 1.0\niz = 1.0\n[spring]\nk = 100.0\n[initial]\ngamma_dot = 1.0\nalpha_dot = 0.2\n[run]\nt_end = 5.0\n";
 
 fn bin(config: &std::path::Path, args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rattleback"))
+    let out = crate::common::rattleback()
         .args(args)
         .env("RATTLEBACK_CONFIG_DIR", config)
         .output()

@@ -257,7 +257,7 @@ pub fn bin(args: &[&str]) -> (i32, String, String) {
 
 /// Runs the binary with `config_dir` as its config folder; `(exit code, stdout, stderr)`.
 pub fn bin_in(config_dir: &std::path::Path, args: &[&str]) -> (i32, String, String) {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+    let out = rattleback()
         .args(args)
         .env("RATTLEBACK_CONFIG_DIR", config_dir)
         .output()
@@ -272,7 +272,7 @@ pub fn bin_in(config_dir: &std::path::Path, args: &[&str]) -> (i32, String, Stri
 /// `rattleback simulate --format json` with these arguments (no user folder): its report.
 /// Panics with stderr when the command fails.
 pub fn simulate_json(args: &[&str]) -> serde_json::Value {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rattleback"))
+    let out = rattleback()
         .args(["simulate", "--format", "json"])
         .args(args)
         .env(
@@ -341,4 +341,20 @@ pub fn write_session(
     .unwrap();
     drop(rec);
     rattleback::record::read(path).unwrap()
+}
+
+/// A command for `program` that can never reach the terminal the tests run in: it starts in a
+/// session of its own (`setsid`, util-linux), so it has no controlling terminal and cannot open
+/// `/dev/tty`, put it in raw mode or be stopped by SIGTTOU under `timeout`. Every process a test
+/// starts goes through here (`hygiene::tests_start_processes_only_through_common` checks it);
+/// a test that needs a terminal gives the program a pseudo-terminal of its own (`script`).
+pub fn detached(program: impl AsRef<std::ffi::OsStr>) -> std::process::Command {
+    let mut command = std::process::Command::new("setsid");
+    command.arg(program);
+    command
+}
+
+/// The binary under test, [`detached`].
+pub fn rattleback() -> std::process::Command {
+    detached(env!("CARGO_BIN_EXE_rattleback"))
 }

@@ -1,0 +1,176 @@
+//! Habits of the test suite itself: it runs wherever `cargo test` is typed (a terminal, under
+//! `timeout`, over `ssh -t`, CI) and never touches the terminal it runs in.
+
+/// Every process a test starts goes through `common::detached` (a session of its own, no
+/// controlling terminal): one `Command::new` in the whole suite. A child that reached the
+/// developer's `/dev/tty` once put it in raw mode and waited for keys (issue 54).
+#[test]
+fn tests_start_processes_only_through_common() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut offenders = Vec::new();
+    for dir in ["tests", "benches", "examples"] {
+        for path in rust_files(&root.join(dir)) {
+            if path.ends_with("tests/it/common/mod.rs") || path.ends_with("tests/it/hygiene.rs") {
+                continue;
+            }
+            let text = std::fs::read_to_string(&path).unwrap();
+            for (i, line) in text.lines().enumerate() {
+                let code = line.split("//").next().unwrap_or("");
+                if code.contains("Command::new(") || code.contains("process::Command") {
+                    offenders.push(format!(
+                        "{}:{}: {}",
+                        path.strip_prefix(root).unwrap().display(),
+                        i + 1,
+                        line.trim()
+                    ));
+                }
+            }
+        }
+    }
+    assert!(
+        offenders.is_empty(),
+        "start processes with common::detached or common::rattleback:\n{}",
+        offenders.join("\n")
+    );
+}
+
+/// A child started by a test has no controlling terminal: `/dev/tty` cannot be opened.
+#[test]
+fn a_detached_child_has_no_terminal() {
+    let out = crate::common::detached("sh")
+        .args([
+            "-c",
+            "if true 3</dev/tty 2>/dev/null; then echo reached; else echo none; fi",
+        ])
+        .stdin(std::process::Stdio::null())
+        .output()
+        .unwrap();
+    assert_eq!(
+        String::from_utf8_lossy(&out.stdout).trim(),
+        "none",
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+fn rust_files(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut out = Vec::new();
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return out;
+    };
+    for entry in entries.filter_map(Result::ok) {
+        let path = entry.path();
+        if path.is_dir() {
+            out.extend(rust_files(&path));
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+    out
+}
+
+/// The interactive commands, as a user types them.
+const INTERACTIVE: &[&[&str]] = &[
+    &[],
+    &["--preset", "kapitza-upright"],
+    &["compare", "subcritical", "celt-clockwise"],
+    &["lesson", "first-reversal"],
+    &["replay", "tests/fixtures/sessions/lecture.jsonl"],
+    &["follow", "tests/fixtures/sessions/lecture.jsonl"],
+];
+
+/// Waits at most `limit` for `child`; kills it and fails past that.
+#[track_caller]
+fn finish(mut child: std::process::Child, limit: std::time::Duration, what: &str) -> i32 {
+    let start = std::time::Instant::now();
+    loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            return status.code().unwrap_or(-1);
+        }
+        if start.elapsed() > limit {
+            let _ = child.kill();
+            panic!("{what}: still running after {limit:?}");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+}
+
+/// `rattleback compare A B > out.txt` (and every other interactive command): refused in one line,
+/// exit 2, nothing written into the file, at once (issue 54: 3–11 kB of escape codes and a raw
+/// terminal).
+#[test]
+fn interactive_commands_refuse_a_redirected_output() {
+    let dir = std::env::temp_dir().join(format!("rattleback-redirect-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (i, args) in INTERACTIVE.iter().enumerate() {
+        let out = dir.join(format!("out{i}.txt"));
+        let err = dir.join(format!("err{i}.txt"));
+        let child = crate::common::rattleback()
+            .args(*args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .env("RATTLEBACK_CONFIG_DIR", &dir)
+            .stdin(std::process::Stdio::null())
+            .stdout(std::fs::File::create(&out).unwrap())
+            .stderr(std::fs::File::create(&err).unwrap())
+            .spawn()
+            .unwrap();
+        let code = finish(
+            child,
+            std::time::Duration::from_secs(20),
+            &format!("{args:?}"),
+        );
+        let said = std::fs::read_to_string(&err).unwrap();
+        assert_eq!(code, 2, "{args:?}: {said}");
+        assert_eq!(
+            std::fs::metadata(&out).unwrap().len(),
+            0,
+            "{args:?} wrote into the file"
+        );
+        assert_eq!(said.lines().count(), 1, "{args:?}: {said}");
+        assert!(
+            said.contains("standard output is not one"),
+            "{args:?}: {said}"
+        );
+    }
+}
+
+/// In a terminal of its own (`script`) but with standard input redirected: refused, and the
+/// terminal is never switched to the alternate screen.
+#[test]
+fn interactive_commands_refuse_a_redirected_input() {
+    let dir = std::env::temp_dir().join(format!("rattleback-redirect-in-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (i, args) in INTERACTIVE.iter().enumerate() {
+        let log = dir.join(format!("pty{i}.out"));
+        let command = format!(
+            "exec {} {} < /dev/null",
+            env!("CARGO_BIN_EXE_rattleback"),
+            args.join(" ")
+        );
+        let child = crate::common::detached("script")
+            .args(["-qec", &command])
+            .arg(&log)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .env("RATTLEBACK_CONFIG_DIR", &dir)
+            .stdin(std::process::Stdio::null())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .expect("`script` (util-linux) gives the command a pseudo-terminal");
+        let code = finish(
+            child,
+            std::time::Duration::from_secs(20),
+            &format!("{args:?}"),
+        );
+        let seen = String::from_utf8_lossy(&std::fs::read(&log).unwrap()).into_owned();
+        assert_eq!(code, 2, "{args:?}: {seen}");
+        assert!(
+            seen.contains("standard input is not one"),
+            "{args:?}: {seen}"
+        );
+        assert!(
+            !seen.contains("\u{1b}[?1049h"),
+            "{args:?} entered the alternate screen"
+        );
+    }
+}
