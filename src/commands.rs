@@ -31,7 +31,7 @@ pub fn say_raw(text: &str) {
     if STDOUT_FAILED.get().is_some() {
         return;
     }
-    let text = crate::scenario::text::clean(text);
+    let text = crate::scenario::text::shown(text);
     if let Err(e) = std::io::stdout().lock().write_all(text.as_bytes()) {
         let _ = STDOUT_FAILED.set((e.kind(), e.to_string()));
     }
@@ -51,7 +51,7 @@ pub fn stdout_failure() -> Option<crate::failure::Outcome> {
     })
 }
 macro_rules! say_err {
-    ($($t:tt)*) => { eprintln!("{}", crate::scenario::text::clean(&format!($($t)*))) };
+    ($($t:tt)*) => { eprintln!("{}", crate::scenario::text::shown(&format!($($t)*))) };
 }
 macro_rules! say_raw {
     ($($t:tt)*) => { $crate::commands::say_raw(&format!($($t)*)) };
@@ -280,7 +280,7 @@ pub fn doctor(args: &crate::cli::DoctorArgs) -> Outcome {
     let d = crate::doctor::diagnose(&asked);
     let text = match args.format {
         ListFormat::Json => json_text(&d),
-        ListFormat::Table => crate::scenario::text::clean(&d.table()),
+        ListFormat::Table => crate::scenario::text::shown(&d.table()),
     };
     write_stdout(text.as_bytes())
 }
@@ -631,6 +631,7 @@ fn write_outputs(common: &crate::cli::StudyCommon, files: &[(&str, String)]) -> 
 /// `--out` files are still written), another failure is exit 1.
 fn emit(text: &str) -> Outcome {
     use std::io::Write as _;
+    let text = crate::scenario::text::shown(text);
     let mut out = std::io::stdout().lock();
     match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
         Ok(()) => Ok(()),

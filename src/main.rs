@@ -23,10 +23,15 @@ macro_rules! say {
     ($($t:tt)*) => { rattleback::commands::say(&format!($($t)*)) };
 }
 macro_rules! say_err {
-    ($($t:tt)*) => { eprintln!("{}", rattleback::scenario::text::clean(&format!($($t)*))) };
+    ($($t:tt)*) => { eprintln!("{}", rattleback::scenario::text::shown(&format!($($t)*))) };
 }
 
 fn main() -> ExitCode {
+    // Text is written in ASCII under a locale that is not UTF-8 (`LANG=C`), as the explorer
+    // draws: decided once, before anything is said.
+    rattleback::scenario::text::set_ascii_output(
+        !rattleback::scenario::text::locale(&|name| std::env::var(name).ok()).0,
+    );
     // A shell asking for completions is answered before anything else, then the process exits.
     commands::answer_completion();
     // `auto`'s independent computations (a run's companion, the start's conditioning, the
@@ -48,11 +53,17 @@ fn run() -> Outcome {
                 // The help of a command that needs a subcommand: say so first.
                 text = format!("error: a subcommand is needed\n\n{text}");
             }
-            eprint!("rattleback: {}", rattleback::scenario::text::clean(&text));
+            eprint!("rattleback: {}", rattleback::scenario::text::shown(&text));
             if !text.ends_with('\n') {
                 eprintln!();
             }
             return Err(Failure::said(2));
+        }
+        // --help and --version in ASCII under a locale that is not UTF-8: printed on stdout,
+        // exit 0, as clap does.
+        Err(e) if rattleback::scenario::text::ascii_output() => {
+            commands::say_raw(&e.render().to_string());
+            return Ok(());
         }
         // --help and --version: printed on stdout, exit 0.
         Err(e) => e.exit(),
@@ -826,7 +837,7 @@ fn simulate_to_text(
         &mut |t| progress.tick(t),
     )?;
     progress.finish();
-    let text = rattleback::scenario::text::clean(&String::from_utf8_lossy(&text));
+    let text = rattleback::scenario::text::shown(&String::from_utf8_lossy(&text));
     let mut out = std::io::stdout().lock();
     out.write_all(text.as_bytes())?;
     out.flush()?;

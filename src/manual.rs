@@ -170,6 +170,20 @@ fn wrap(text: &str, width: usize) -> Vec<String> {
 /// # Errors
 /// Writing into `w`.
 pub fn render(cmd: clap::Command, w: &mut dyn std::io::Write) -> std::io::Result<()> {
+    let mut page = Vec::new();
+    render_page(cmd, &mut page)?;
+    w.write_all(roff_safe(&String::from_utf8_lossy(&page)).as_bytes())
+}
+
+/// Roff that `man` shows under any locale: groff names most characters the help uses (Greek
+/// letters, arrows, `×`, `–`) and shows them as `<alpha>`, `->` under `LANG=C`, but has no
+/// name for the ellipsis or a combining dot above (`α̇`), which it drops with a warning
+/// (`man --warnings`, issue 54). Those two are written as roff spells them.
+fn roff_safe(page: &str) -> String {
+    page.replace('…', "...").replace('\u{307}', "\\[a.]")
+}
+
+fn render_page(cmd: clap::Command, w: &mut dyn std::io::Write) -> std::io::Result<()> {
     let cmd = cmd.after_long_help("");
     let man = clap_mangen::Man::new(cmd.clone());
     man.render_title(w)?;

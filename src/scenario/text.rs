@@ -12,8 +12,15 @@ pub fn clean(text: &str) -> String {
             '\u{1b}' => skip_sequence(&mut chars),
             '\n' | '\t' => out.push(c),
             c if c.is_control() => {}
-            // Bidirectional overrides can make a line read backwards.
-            '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}' => {}
+            // Bidirectional overrides, isolates and marks can make a line read backwards;
+            // zero-width characters hide what is there.
+            '\u{202a}'..='\u{202e}'
+            | '\u{2066}'..='\u{2069}'
+            | '\u{200b}'..='\u{200f}'
+            | '\u{061c}'
+            | '\u{feff}' => {}
+            // Line and paragraph separators break a line as a newline does.
+            '\u{2028}' | '\u{2029}' => out.push('\n'),
             c => out.push(c),
         }
     }
@@ -28,12 +35,16 @@ pub fn clean(text: &str) -> String {
 #[must_use]
 pub fn json_safe(json: &str) -> String {
     use std::fmt::Write as _;
+    if ascii_output() {
+        // Under a locale that is not UTF-8, every non-ASCII character is escaped.
+        return json_ascii(json);
+    }
     let mut out = String::with_capacity(json.len());
     for c in json.chars() {
         match c {
             '\u{7f}'..='\u{9f}'
-            | '\u{200e}'
-            | '\u{200f}'
+            | '\u{200b}'..='\u{200f}'
+            | '\u{feff}'
             | '\u{061c}'
             | '\u{2028}'
             | '\u{2029}'
@@ -45,6 +56,165 @@ pub fn json_safe(json: &str) -> String {
         }
     }
     out
+}
+
+/// Non-ASCII characters the program writes and how they are spelled in ASCII, for a locale
+/// that is not UTF-8 (`LANG=C`): headless text (tables, messages, `--help`) and the explorer's
+/// legend read `k -> inf`, `>= 8`, `alpha_dot` there instead of `?` or a lookalike.
+const SPELLING: &[(char, &str)] = &[
+    ('→', "->"),
+    ('←', "<-"),
+    ('↑', "^"),
+    ('↓', "v"),
+    ('⇒', "=>"),
+    ('≥', ">="),
+    ('≤', "<="),
+    ('≠', "!="),
+    ('≈', "~"),
+    ('∼', "~"),
+    ('∞', "inf"),
+    ('…', "..."),
+    ('·', "."),
+    ('•', "*"),
+    ('∙', "*"),
+    ('×', "x"),
+    ('−', "-"),
+    ('–', "-"),
+    ('—', "--"),
+    ('±', "+/-"),
+    ('°', " deg"),
+    ('²', "^2"),
+    ('³', "^3"),
+    ('½', "1/2"),
+    ('√', "sqrt"),
+    ('∘', "o"),
+    ('○', "o"),
+    ('●', "@"),
+    ('▶', ">"),
+    ('✓', "ok"),
+    ('✔', "ok"),
+    ('✗', "x"),
+    ('│', "|"),
+    ('┃', "|"),
+    ('─', "-"),
+    ('━', "-"),
+    ('‘', "'"),
+    ('’', "'"),
+    ('“', "\""),
+    ('”', "\""),
+    ('\u{a0}', " "),
+    ('α', "alpha"),
+    ('β', "beta"),
+    ('γ', "gamma"),
+    ('Γ', "Gamma"),
+    ('δ', "delta"),
+    ('Δ', "d"),
+    ('ε', "eps"),
+    ('ζ', "zeta"),
+    ('η', "eta"),
+    ('θ', "theta"),
+    ('Θ', "Theta"),
+    ('κ', "kappa"),
+    ('λ', "lambda"),
+    ('μ', "mu"),
+    ('ν', "nu"),
+    ('ξ', "xi"),
+    ('π', "pi"),
+    ('ρ', "rho"),
+    ('σ', "sigma"),
+    ('τ', "tau"),
+    ('φ', "phi"),
+    ('χ', "chi"),
+    ('ψ', "psi"),
+    ('ω', "omega"),
+    ('Ω', "Omega"),
+];
+
+/// How `c` is spelled in ASCII: itself when it is ASCII, else [`SPELLING`]'s words, else `?`.
+#[must_use]
+pub fn spell(c: char) -> std::borrow::Cow<'static, str> {
+    if c.is_ascii() {
+        return std::borrow::Cow::Owned(c.to_string());
+    }
+    match SPELLING.iter().find(|(from, _)| *from == c) {
+        Some((_, to)) => std::borrow::Cow::Borrowed(to),
+        None if ('\u{2800}'..='\u{28ff}').contains(&c) => std::borrow::Cow::Borrowed("."),
+        None => std::borrow::Cow::Borrowed("?"),
+    }
+}
+
+/// `text` spelled in ASCII ([`SPELLING`]): `k → ∞` is `k -> inf`, `≥ 8` is `>= 8`; a combining
+/// dot above is `_dot` after its letter (`α̇` is `alpha_dot`), two dots `_ddot`; other
+/// combining marks are dropped; what has no spelling is `?`.
+#[must_use]
+pub fn ascii(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '\u{307}' => out.push_str("_dot"),
+            '\u{308}' => out.push_str("_ddot"),
+            '\u{300}'..='\u{36f}' | '\u{20d0}'..='\u{20ff}' => {}
+            c => out.push_str(&spell(c)),
+        }
+    }
+    out
+}
+
+/// Serialized JSON in ASCII: every non-ASCII character as a `\uXXXX` escape (a surrogate pair
+/// above the basic plane), so a parser reads the same strings. Only valid on JSON text.
+#[must_use]
+pub fn json_ascii(json: &str) -> String {
+    use std::fmt::Write as _;
+    let mut out = String::with_capacity(json.len());
+    for c in json.chars() {
+        if c.is_ascii() {
+            out.push(c);
+        } else {
+            let mut units = [0u16; 2];
+            for unit in c.encode_utf16(&mut units) {
+                let _ = write!(out, "\\u{unit:04x}");
+            }
+        }
+    }
+    out
+}
+
+/// Whether a locale (`LC_ALL`, else `LC_CTYPE`, else `LANG`: the first one set and not empty,
+/// as POSIX orders them) is UTF-8; no locale at all is taken as UTF-8 (containers and CI set
+/// none, and their terminals are the host's). `var` reads the environment. Returns the variable
+/// that decided, when one did.
+#[must_use]
+pub fn locale(var: &dyn Fn(&str) -> Option<String>) -> (bool, Option<(&'static str, String)>) {
+    let found = ["LC_ALL", "LC_CTYPE", "LANG"]
+        .into_iter()
+        .find_map(|name| var(name).filter(|v| !v.is_empty()).map(|v| (name, v)));
+    let utf8 = found.as_ref().is_none_or(|(_, value)| {
+        let v = value.to_ascii_lowercase();
+        v.contains("utf-8") || v.contains("utf8")
+    });
+    (utf8, found)
+}
+
+/// Whether this process writes its text in ASCII: decided once from the locale, by `main`.
+static ASCII_OUTPUT: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+
+/// Decides, once, that this process's text output is ASCII (a locale that is not UTF-8).
+pub fn set_ascii_output(ascii: bool) {
+    let _ = ASCII_OUTPUT.set(ascii);
+}
+
+/// Whether text output is ASCII ([`set_ascii_output`]; UTF-8 when nothing was decided).
+#[must_use]
+pub fn ascii_output() -> bool {
+    ASCII_OUTPUT.get().copied().unwrap_or(false)
+}
+
+/// Text as this process writes it to a terminal or a file: control characters stripped
+/// ([`clean`]), then spelled in ASCII under a locale that is not UTF-8 ([`ascii`]).
+#[must_use]
+pub fn shown(text: &str) -> String {
+    let text = clean(text);
+    if ascii_output() { ascii(&text) } else { text }
 }
 
 fn skip_sequence(chars: &mut std::iter::Peekable<std::str::Chars<'_>>) {
@@ -98,7 +268,34 @@ mod tests {
         assert_eq!(clean("x\u{1b}]52;c;aGk=\u{1b}\\y"), "xy");
         assert_eq!(clean("tab\there\r\u{8}\u{0}"), "tab\there");
         assert_eq!(clean("line\nnext"), "line\nnext");
+        assert_eq!(
+            clean("a\u{200f}b\u{200e}c\u{61c}d\u{200b}e\u{feff}f"),
+            "abcdef"
+        );
+        assert_eq!(clean("a\u{2028}b\u{2029}c"), "a\nb\nc");
         assert_eq!(clean("spin α̇ ≥ 0 ✓"), "spin α̇ ≥ 0 ✓");
+    }
+
+    #[test]
+    fn ascii_spells_what_the_program_writes() {
+        use super::{ascii, json_ascii};
+        assert_eq!(ascii("effective (k → ∞)"), "effective (k -> inf)");
+        assert_eq!(
+            ascii("α̇0²/γ̇0² ≥ 8 … ΔE/E ✓"),
+            "alpha_dot0^2/gamma_dot0^2 >= 8 ... dE/E ok"
+        );
+        assert_eq!(ascii("θ̈ ε → 0"), "theta_ddot eps -> 0");
+        assert_eq!(ascii("漢"), "?");
+        assert!(ascii("δ° ∘ ● ▶ × − ± ½ √ · •").is_ascii());
+        for (c, s) in super::SPELLING {
+            assert!(!c.is_ascii() && s.is_ascii() && !s.is_empty(), "{c}");
+        }
+        assert_eq!(
+            json_ascii("{\"n\":\"é→𝔸\"}"),
+            "{\"n\":\"\\u00e9\\u2192\\ud835\\udd38\"}"
+        );
+        let back: serde_json::Value = serde_json::from_str(&json_ascii("{\"n\":\"é→𝔸\"}")).unwrap();
+        assert_eq!(back["n"], "é→𝔸");
     }
 }
 

@@ -790,7 +790,7 @@ pub(crate) fn metadata_lines(
     numbers: &[(&str, f64)],
 ) -> String {
     use std::fmt::Write as _;
-    let name = crate::scenario::text::clean(preset).replace(['\n', '\r', '\t'], " ");
+    let name = crate::scenario::text::shown(preset).replace(['\n', '\r', '\t'], " ");
     let mut out = format!("# program = rattleback {}\n", env!("CARGO_PKG_VERSION"));
     if let Some(m) = model {
         let _ = writeln!(out, "# model = {m}");

@@ -49,14 +49,9 @@ impl Charset {
         if ascii {
             return found(Self::Ascii, "--ascii".to_owned());
         }
-        let locale = ["LC_ALL", "LC_CTYPE", "LANG"]
-            .into_iter()
-            .find_map(|name| var(name).filter(|v| !v.is_empty()).map(|v| (name, v)));
-        if let Some((name, value)) = &locale {
-            let v = value.to_ascii_lowercase();
-            if !(v.contains("utf-8") || v.contains("utf8")) {
-                return found(Self::Ascii, format!("{name}={value} is not a UTF-8 locale"));
-            }
+        let (utf8, locale) = crate::scenario::text::locale(var);
+        if let (false, Some((name, value))) = (utf8, &locale) {
+            return found(Self::Ascii, format!("{name}={value} is not a UTF-8 locale"));
         }
         let term = var("TERM").unwrap_or_default();
         if term.starts_with("linux") {

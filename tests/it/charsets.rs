@@ -245,3 +245,67 @@ fn the_weak_star_curves_stay_apart_in_ascii() {
         }
     }
 }
+
+/// Under a locale that is not UTF-8 the headless text is ASCII, as the explorer's screen is:
+/// tables, lists, messages, `--help`, the refusals (issue 54: `effective (k → ∞)`, `…`). The
+/// JSON escapes what is not ASCII, so it parses to the same strings.
+#[test]
+fn headless_text_is_ascii_under_a_non_utf8_locale() {
+    let session = "tests/fixtures/sessions/lecture.jsonl";
+    let runs: &[&[&str]] = &[
+        &["--help"],
+        &["simulate", "--help"],
+        &["study", "sweep", "--help"],
+        &["simulate", "--format", "table"],
+        &[
+            "simulate",
+            "--preset",
+            "kapitza-upright",
+            "--format",
+            "table",
+        ],
+        &[
+            "simulate",
+            "--preset",
+            "celt-clockwise",
+            "--format",
+            "table",
+        ],
+        &["simulate", "--format", "csv"],
+        &["study", "sweep"],
+        &["study", "map", "--grid", "8x4"],
+        &["presets"],
+        &["lessons"],
+        &["themes"],
+        &["doctor"],
+        &["replay", session, "--verify"],
+        &["replay", session, "--chapters"],
+        &["simulate", "--preset", "nonesuch"],
+        &["simulate", "--set", "spring.k=-1"],
+        &[],
+    ];
+    for args in runs {
+        for term in ["xterm", "dumb"] {
+            let out = crate::common::rattleback()
+                .args(*args)
+                .current_dir(env!("CARGO_MANIFEST_DIR"))
+                .env("LANG", "C")
+                .env("TERM", term)
+                .output()
+                .unwrap();
+            for (what, bytes) in [("stdout", &out.stdout), ("stderr", &out.stderr)] {
+                let text = String::from_utf8_lossy(bytes);
+                assert!(
+                    bytes.is_ascii(),
+                    "LANG=C TERM={term} {args:?}: {what} is not ASCII:\n{text}"
+                );
+            }
+        }
+    }
+    let out = crate::common::rattleback()
+        .args(["simulate", "--format", "table"])
+        .env("LANG", "C")
+        .output()
+        .unwrap();
+    assert!(String::from_utf8_lossy(&out.stdout).contains("effective (k -> inf)"));
+}

@@ -354,7 +354,12 @@ pub fn detached(program: impl AsRef<std::ffi::OsStr>) -> std::process::Command {
     command
 }
 
-/// The binary under test, [`detached`].
+/// The binary under test, [`detached`], with no locale of the developer's (taken as UTF-8, as
+/// in CI): a test that needs one sets it.
 pub fn rattleback() -> std::process::Command {
-    detached(env!("CARGO_BIN_EXE_rattleback"))
+    let mut command = detached(env!("CARGO_BIN_EXE_rattleback"));
+    for name in ["LC_ALL", "LC_CTYPE", "LANG"] {
+        command.env_remove(name);
+    }
+    command
 }
