@@ -3,7 +3,8 @@
 //! `cargo run --example panic_restore; stty -a | head -2`.
 
 fn main() {
-    let _tty = rattleback::terminal::Tty::enter(false).expect("an interactive terminal");
+    let _tty = rattleback::terminal::Tty::enter(false, rattleback::terminal::Depth::Indexed)
+        .expect("an interactive terminal");
     std::thread::sleep(std::time::Duration::from_millis(300));
     panic!("deliberate panic to check that the terminal is restored");
 }

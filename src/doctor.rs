@@ -68,6 +68,11 @@ pub struct Chosen {
     pub colours: bool,
     /// Why colours are on or off.
     pub colours_because: String,
+    /// The colours the terminal shows: `none`, `8`, `16`, `256` or `24-bit` (every colour code
+    /// is fitted to it).
+    pub colour_depth: &'static str,
+    /// Why that depth (`COLORTERM`, the terminfo entry, or `TERM`'s name).
+    pub colour_depth_because: String,
     /// The canvas marker in effect (`dot` when the characters have no Braille).
     pub marker: String,
     /// The preset `rattleback` opens.
@@ -92,6 +97,8 @@ pub struct Files {
     pub config_dir_variable: Option<String>,
     /// config.toml's path.
     pub config_file: Option<String>,
+    /// The user's presets folder (`presets/` in the configuration folder).
+    pub presets_dir: Option<String>,
     /// `absent`, `valid` or the error.
     pub config_status: String,
     /// User presets, themes, lessons found.
@@ -128,6 +135,15 @@ pub fn diagnose(asked: &Asked) -> Diagnosis {
         Err(e) => (Config::default(), invalid(&e)),
     };
     let detected = Charset::detect(asked.ascii || config.ascii, &var);
+    let depth = crate::terminal::Depth::detect(&var, &crate::terminal::depth::terminfo_colors);
+    let depth = if asked.color_flag == "always" {
+        crate::terminal::depth::Detected {
+            depth: depth.depth.max(crate::terminal::Depth::Sixteen),
+            reason: format!("--color always ({})", depth.reason),
+        }
+    } else {
+        depth
+    };
     let explorer = if var("TERM").as_deref() == Some("dumb") {
         "refused: TERM=dumb".to_owned()
     } else if !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {
@@ -178,8 +194,14 @@ pub fn diagnose(asked: &Asked) -> Diagnosis {
             } else {
                 "ascii = true in config.toml".to_owned()
             },
-            colours: !asked.colours_off,
-            colours_because,
+            colours: !asked.colours_off && depth.depth != crate::terminal::Depth::None,
+            colours_because: if !asked.colours_off && depth.depth == crate::terminal::Depth::None {
+                format!("the terminal shows none ({})", depth.reason)
+            } else {
+                colours_because
+            },
+            colour_depth: depth.depth.name(),
+            colour_depth_because: depth.reason,
             marker,
             preset: config
                 .preset
@@ -194,6 +216,7 @@ pub fn diagnose(asked: &Asked) -> Diagnosis {
             config_dir: config_dir.as_ref().map(|d| d.display().to_string()),
             config_dir_variable: var(shipped::CONFIG_ENV),
             config_file: config::path().map(|p| p.display().to_string()),
+            presets_dir: shipped::user_preset_dir().map(|d| d.display().to_string()),
             config_status,
             user_presets: count(shipped::user_preset_dir()),
             user_themes: count(config_dir.as_ref().map(|d| d.join("themes"))),
@@ -276,6 +299,10 @@ impl Diagnosis {
                     c.colours_because
                 ),
             ),
+            (
+                "colour depth",
+                format!("{} ({})", c.colour_depth, c.colour_depth_because),
+            ),
             ("marker", c.marker.clone()),
             ("preset", c.preset.clone()),
             ("theme", c.theme.clone()),
@@ -294,6 +321,7 @@ impl Diagnosis {
                 "config file",
                 format!("{} ({})", o(&f.config_file), f.config_status),
             ),
+            ("presets folder", o(&f.presets_dir)),
             (
                 "user files",
                 format!(
@@ -308,7 +336,7 @@ impl Diagnosis {
                 if k.is_empty() {
                     "\n".to_owned()
                 } else {
-                    format!("{k:<14}{v}\n")
+                    format!("{k:<16}{v}\n")
                 }
             })
             .collect()

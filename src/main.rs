@@ -15,6 +15,7 @@ use rattleback::record;
 use rattleback::scenario::config::Config;
 use rattleback::scenario::shipped::resolve;
 use rattleback::simulate::{Failure as Stopped, resolve as resolve_run, simulate_to};
+use rattleback::terminal::Depth;
 use rattleback::ui::UiOptions;
 
 /// Untrusted text (names, descriptions, echoed values) never reaches a terminal raw: every line
@@ -686,9 +687,16 @@ fn explore(
     };
     let (all, problems) = rattleback::scenario::theme::themes();
     let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
+    let depth = depth(look.color);
     let options = ExplorerOptions {
         fps: f64::from(look.fps.unwrap_or(30)),
-        ui: UiOptions::new(marker, &theme, &all, no_color(look.color)).with_charset(charset(look)),
+        ui: UiOptions::new(
+            marker,
+            &theme,
+            &all,
+            no_color(look.color) || depth == Depth::None,
+        )
+        .with_charset(charset(look)),
         startup_problems: problems.iter().map(ToString::to_string).collect(),
         record,
         replay,
@@ -699,6 +707,7 @@ fn explore(
         partner: setup.partner.clone(),
         follow: setup.follow.clone(),
         sign: setup.sign.clone(),
+        depth,
     };
     needs_terminal(if setup.follow.is_some() {
         "follow"
@@ -751,6 +760,21 @@ fn needs_terminal(what: &str) -> Outcome {
 /// [`Charset::detect`]: rattleback::ui::glyphs::Charset::detect
 fn charset(look: &LookArgs) -> rattleback::ui::glyphs::Charset {
     rattleback::ui::glyphs::Charset::detect(look.ascii, &|name| std::env::var(name).ok()).charset
+}
+
+/// The colours this terminal shows ([`Depth::detect`]: `COLORTERM`, terminfo, `TERM`);
+/// `--color always` sends at least the sixteen.
+fn depth(choice: rattleback::cli::ColorChoice) -> Depth {
+    let found = Depth::detect(
+        &|name| std::env::var(name).ok(),
+        &rattleback::terminal::depth::terminfo_colors,
+    )
+    .depth;
+    if choice == rattleback::cli::ColorChoice::Always {
+        found.max(Depth::Sixteen)
+    } else {
+        found
+    }
 }
 
 /// Whether colours are off: `--color`, then the environment ([`ColorChoice::colours_off`]).

@@ -301,6 +301,13 @@ pub fn schemas() -> Vec<(&'static str, String)> {
         let mut v = serde_json::to_value(schemars::schema_for!(T)).expect("schema serializes");
         // The version is a constant, so a reader can tell a shape it does not know.
         v["properties"]["schema_version"]["const"] = SCHEMA_VERSION.into();
+        // Every output says its scene, `null` where it is about none: required, second, as
+        // printed (schemars leaves an `Option` out of `required`).
+        if let Some(required) = v["required"].as_array_mut() {
+            required.retain(|k| k != "schema_version" && k != "model");
+            required.insert(0, "model".into());
+            required.insert(0, "schema_version".into());
+        }
         let mut s = serde_json::to_string_pretty(&v).expect("schema serializes");
         s.push('\n');
         s

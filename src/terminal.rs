@@ -22,6 +22,10 @@ use ratatui::crossterm::{cursor, execute, queue};
 
 use crate::app::Key;
 
+pub mod depth;
+
+pub use depth::Depth;
+
 /// Mouse reporting for what the explorer uses, clicks and the wheel: normal tracking (`?1000`)
 /// in SGR coordinates (`?1006`). Crossterm's `EnableMouseCapture` also asks for any-motion
 /// tracking (`?1003`), which sends every move of the mouse over the pane, and over SSH every
@@ -66,7 +70,7 @@ impl Tty {
     ///
     /// # Errors
     /// When stdout is not a terminal or cannot be configured.
-    pub fn enter(mouse: bool) -> io::Result<Self> {
+    pub fn enter(mouse: bool, depth: Depth) -> io::Result<Self> {
         HOOK.call_once(|| {
             let previous = std::panic::take_hook();
             std::panic::set_hook(Box::new(move |info| {
@@ -83,7 +87,7 @@ impl Tty {
             restore();
             return Err(e);
         }
-        let terminal = Terminal::new(CrosstermBackend::new(FrameWriter::default()))
+        let terminal = Terminal::new(CrosstermBackend::new(FrameWriter::new(depth)))
             .inspect_err(|_| restore())?;
         Ok(Self { terminal, mouse })
     }
@@ -178,14 +182,23 @@ impl Drop for Tty {
 const UNDERLINE_RESET: &[u8] = b"\x1b[59m";
 
 /// The terminal's writer: holds a frame's bytes until the flush that ends it, drops the
-/// useless underline-colour resets (5 bytes a frame, ≈ 1.5 % of the bytes over SSH), then
-/// writes the frame in one go.
-#[derive(Default)]
+/// useless underline-colour resets (5 bytes a frame, ≈ 1.5 % of the bytes over SSH), fits the
+/// colour codes to the terminal's depth ([`depth::fit`]), then writes the frame in one go.
 pub struct FrameWriter {
     buf: Vec<u8>,
+    depth: Depth,
 }
 
 impl FrameWriter {
+    /// A writer for a terminal of `depth` colours.
+    #[must_use]
+    pub fn new(depth: Depth) -> Self {
+        Self {
+            buf: Vec::new(),
+            depth,
+        }
+    }
+
     /// `bytes` without the underline-colour resets.
     #[must_use]
     pub fn strip(bytes: &[u8]) -> Vec<u8> {
@@ -210,7 +223,7 @@ impl Write for FrameWriter {
     }
 
     fn flush(&mut self) -> io::Result<()> {
-        let bytes = Self::strip(&std::mem::take(&mut self.buf));
+        let bytes = depth::fit(&Self::strip(&std::mem::take(&mut self.buf)), self.depth);
         let mut out = io::stdout().lock();
         out.write_all(&bytes)?;
         out.flush()
@@ -306,7 +319,7 @@ mod tests {
             b"\x1b[59".to_vec(),
             "a partial one stays"
         );
-        let mut w = FrameWriter::default();
+        let mut w = FrameWriter::new(Depth::Indexed);
         for piece in [&b"\x1b["[..], b"59", b"m"] {
             w.write_all(piece).unwrap();
         }

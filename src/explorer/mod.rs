@@ -77,6 +77,8 @@ pub struct ExplorerOptions {
     pub follow: Option<std::path::PathBuf>,
     /// Sign recordings with this private key (`--sign KEYFILE`; checked at start-up).
     pub sign: Option<std::path::PathBuf>,
+    /// The colours the terminal shows: every frame's colour codes are fitted to it.
+    pub depth: crate::terminal::Depth,
 }
 
 fn input_thread(tx: SyncSender<AppEvent>, stop: Arc<AtomicBool>) -> std::thread::JoinHandle<()> {
@@ -443,7 +445,7 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
         signal_hook::flag::register_usize(n, Arc::clone(&signal), n as usize)?;
     }
     let hangup = &*signal;
-    let tty = Tty::enter(options.mouse)?;
+    let tty = Tty::enter(options.mouse, options.depth)?;
     let (tx, rx) = sync_channel::<AppEvent>(INBOX);
     let mut book = options
         .replay

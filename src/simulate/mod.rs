@@ -161,9 +161,9 @@ pub const SCHEMA_VERSION: u32 = 1;
 struct Head<P, S, A> {
     /// [`SCHEMA_VERSION`]: `docs/schemas/simulate-MODEL.schema.json` describes the report.
     schema_version: u32,
-    preset: String,
-    /// Which scene: `rattleback`, `kapitza` or `celt`.
+    /// Which scene: `rattleback`, `kapitza` or `celt` (second in every JSON output).
     model: &'static str,
+    preset: String,
     params: P,
     initial: S,
     method: Method,
@@ -185,8 +185,8 @@ impl<P, S, A: Account> Head<P, S, A> {
     ) -> Self {
         Self {
             schema_version: SCHEMA_VERSION,
-            preset: preset.name.clone(),
             model: preset.model.kind().name(),
+            preset: preset.name.clone(),
             params,
             initial,
             method: resolved.spec.method,

@@ -53,6 +53,18 @@ fn every_shipped_preset_matches_its_schema() {
             .find(|(n, _)| *n == scene(&r))
             .expect("a schema per scene");
         check(v, name, &r);
+        // `schema_version` then `model` first, as every JSON output begins; `model` required.
+        let (_, text, _) = crate::common::bin(&["simulate", "--preset", name, "--format", "json"]);
+        let keys: Vec<&str> = text
+            .lines()
+            .filter_map(|l| l.trim_start().strip_prefix('"'))
+            .filter_map(|l| l.split('"').next())
+            .take(2)
+            .collect();
+        assert_eq!(keys, ["schema_version", "model"], "{name}");
+        let mut without = r.clone();
+        without.as_object_mut().unwrap().remove("model");
+        assert!(!v.is_valid(&without), "{name}: valid without model");
     }
     // The celt's null: a chaotic run whose companion counts other crossings has no bound.
     let celt = &validators.iter().find(|(n, _)| *n == "celt").unwrap().1;
@@ -377,6 +389,13 @@ fn every_other_json_output_has_its_version_model_and_schema() {
         assert!(
             !validators[schema].is_valid(&bent),
             "{args:?}: accepts a stray field"
+        );
+        // `model` is required everywhere, `null` where the output is about no scene.
+        let mut without = value.clone();
+        without.as_object_mut().unwrap().remove("model");
+        assert!(
+            !validators[schema].is_valid(&without),
+            "{args:?}: accepts a document without model"
         );
     }
     std::fs::remove_dir_all(&config).ok();
