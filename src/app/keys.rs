@@ -28,6 +28,16 @@ pub enum Key {
     Esc,
     /// Backspace.
     Backspace,
+    /// Page up.
+    PageUp,
+    /// Page down.
+    PageDown,
+    /// Home.
+    Home,
+    /// End.
+    End,
+    /// Tab.
+    Tab,
     /// A letter with Ctrl (lower case): Ctrl-C, Ctrl-L, Ctrl-Z…
     Ctrl(char),
     /// A character with Alt (Meta).
@@ -114,6 +124,10 @@ pub enum Action {
     Suspend,
     /// Back to the preset's view: zoom 1, no pan.
     ResetView,
+    /// Bring the next open pane to the front (when the column cannot show them all).
+    CyclePanes,
+    /// Show every message so far, in full.
+    ShowMessages,
 }
 
 /// One row of a keymap.
@@ -308,6 +322,13 @@ const AFTER_PANES: &[Binding<Action>] = &[
         footer: None,
     },
     Binding {
+        keys: &[Key::Tab],
+        label: "Tab",
+        action: Action::CyclePanes,
+        help: "next open pane to the front (when not all fit)",
+        footer: None,
+    },
+    Binding {
         keys: &[Key::Char('c')],
         label: "c",
         action: Action::ClearTrail,
@@ -341,6 +362,13 @@ const AFTER_PANES: &[Binding<Action>] = &[
         action: Action::CopyCommand,
         help: "",
         footer: Some(("y", "copy", 11)),
+    },
+    Binding {
+        keys: &[Key::Char('v')],
+        label: "v",
+        action: Action::ShowMessages,
+        help: "every message so far, in full (a long one is cut)",
+        footer: None,
     },
     Binding {
         keys: &[Key::Char('T')],

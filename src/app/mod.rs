@@ -15,6 +15,7 @@ pub mod keys;
 pub mod lesson;
 pub mod mode;
 mod outcomes;
+mod overlays;
 pub mod panes;
 pub mod portrait;
 mod prompts;
@@ -30,7 +31,7 @@ pub use mode::Mode;
 pub use run::{Events, PlanState, RunState, TRAIL_CAP};
 pub use scenario::{Derived, Scenario};
 pub use state::{
-    Caption, Journal, Message, Options, RecState, ReplayInfo, ViewState, ellipsis, slug,
+    Caption, Journal, Message, MessageLog, Options, RecState, ReplayInfo, ViewState, ellipsis, slug,
 };
 
 use crate::scenario::Preset;
@@ -38,7 +39,7 @@ use crate::scenario::text::clean;
 use crate::sim::SimEvent;
 use fields::Field;
 use journal::Event;
-use mode::{HelpPage, PromptFor};
+use mode::{Help, HelpPage, PromptFor};
 use panes::{Pane, Panes};
 use portrait::{Bounds, View};
 
@@ -61,6 +62,8 @@ pub struct App {
     pub mode: Mode,
     /// The last message.
     pub status: Option<Message>,
+    /// Every message and caption shown, in full (`v` shows them).
+    pub messages: MessageLog,
     /// The current note or chapter.
     pub caption: Option<Caption>,
     /// Set while a session is replayed.
@@ -92,6 +95,7 @@ impl App {
             lesson: None,
             mode: Mode::Normal,
             status: None,
+            messages: MessageLog::default(),
             caption: None,
             replay: None,
             journal: Journal::default(),
@@ -206,6 +210,12 @@ impl App {
 
     /// Handles a key: the open mode first, else the keymap.
     pub fn on_key(&mut self, key: Key) -> Vec<Effect> {
+        let effects = self.key(key);
+        self.remember();
+        effects
+    }
+
+    fn key(&mut self, key: Key) -> Vec<Effect> {
         if key == Key::Ctrl('c') {
             self.quit = true;
             return Vec::new();
@@ -228,15 +238,7 @@ impl App {
                     .map_or_else(Vec::new, |a| self.update(a)),
             },
             Mode::Dialog(_) => Vec::new(),
-            Mode::Help(page) => match self.options.action_for(key) {
-                Some(Action::ToggleHelp) if page == HelpPage::Keys => {
-                    self.mode = Mode::Help(HelpPage::Legend);
-                    Vec::new()
-                }
-                Some(Action::ToggleHelp) | None => Vec::new(),
-                Some(Action::Quit) if key == Key::Esc => Vec::new(),
-                Some(a) => self.update(a),
-            },
+            Mode::Help(help) => self.on_help_key(help, key),
             Mode::Editing(text) => self.on_edit_key(text, key),
             Mode::Prompt(prompt) => self.on_prompt_key(prompt, key),
             Mode::Picker(picker) => self.on_picker_key(picker, key),
@@ -320,7 +322,7 @@ impl App {
                 pan_y: self.view.view.pan_y,
                 wrap: self.view.view.wrap,
             }),
-            Action::ToggleEffective | Action::Toggle(_) => Some(self.layout()),
+            Action::ToggleEffective | Action::Toggle(_) | Action::CyclePanes => Some(self.layout()),
             Action::ClearTrail => Some(Event::ClearTrail),
             Action::WiderWindow | Action::NarrowerWindow => Some(Event::Window {
                 value: self.computed.weak.window,
@@ -338,6 +340,7 @@ impl App {
             | Action::IncreaseCoarse
             | Action::Edit
             | Action::ToggleHelp
+            | Action::ShowMessages
             | Action::OpenPicker
             | Action::Save
             | Action::Export
@@ -419,7 +422,7 @@ impl App {
                 self.status = Message::info("view reset");
             }
             Action::ClearTrail => self.run.clear_trails(),
-            Action::ToggleHelp => self.mode = Mode::Help(HelpPage::Keys),
+            Action::ToggleHelp => self.mode = Mode::Help(Help::at(HelpPage::Keys)),
             Action::OpenPicker => return vec![Effect::ReadCatalogue],
             Action::Save => self.open_prompt(PromptFor::SaveName),
             Action::Note => self.open_prompt(PromptFor::Note),
@@ -438,6 +441,14 @@ impl App {
             Action::Export | Action::CopyCommand => return self.export(action),
             Action::Redraw => return vec![Effect::Redraw],
             Action::Suspend => return vec![Effect::Suspend],
+            Action::CyclePanes => {
+                if !self.view.panes.cycle() {
+                    self.status = Message::info("one pane or none open: nothing to cycle");
+                }
+            }
+            Action::ShowMessages => {
+                self.mode = Mode::Help(Help::at(HelpPage::Messages).scrolled(i32::from(u16::MAX)));
+            }
         }
         Vec::new()
     }
@@ -452,11 +463,20 @@ impl App {
         }
         let text = self.scenario.settings.simulate_command();
         self.status = Message::info(format!("copied: {text}"));
+        // Shown whole: the message line would cut it.
+        self.remember();
+        self.mode = Mode::Help(Help::at(HelpPage::Messages).scrolled(i32::from(u16::MAX)));
         vec![Effect::Copy(text)]
     }
 
     /// Advances the displayed clock by `wall_seconds × speed` while playing.
     pub fn tick(&mut self, wall_seconds: f64) -> Vec<Effect> {
+        let effects = self.advance(wall_seconds);
+        self.remember();
+        effects
+    }
+
+    fn advance(&mut self, wall_seconds: f64) -> Vec<Effect> {
         let mut effects: Vec<Effect> = self
             .run
             .tick(wall_seconds)
@@ -471,6 +491,12 @@ impl App {
     /// Takes an event from the worker (stale runs are ignored); whether anything visible
     /// changed.
     pub fn on_sim(&mut self, event: SimEvent) -> bool {
+        let changed = self.sim(event);
+        self.remember();
+        changed
+    }
+
+    fn sim(&mut self, event: SimEvent) -> bool {
         match event {
             SimEvent::Checkpoint {
                 generation,

@@ -17,10 +17,44 @@ pub enum Mode {
     Picker(Picker),
     /// An error shown until a key is pressed; the explorer keeps running.
     Dialog(String),
-    /// The help: the keys, then the legend.
-    Help(HelpPage),
+    /// The help: the keys, then the legend; it scrolls where it is taller than the screen.
+    Help(Help),
     /// The regime map has the arrows: they move its cursor, Enter loads the cell.
     Map,
+}
+
+/// The help overlay: its page and how far it is scrolled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Help {
+    /// The page shown.
+    pub page: HelpPage,
+    /// The first line shown.
+    pub scroll: u16,
+    /// The last first line that still fills the overlay, as the last frame drew it (the loop
+    /// tells the app with [`crate::app::App::fit_help`]; until then, unbounded).
+    pub max: u16,
+}
+
+impl Help {
+    /// The top of `page`.
+    #[must_use]
+    pub fn at(page: HelpPage) -> Self {
+        Self {
+            page,
+            scroll: 0,
+            max: u16::MAX,
+        }
+    }
+
+    /// Scrolled by `by` lines (negative: up), within `[0, max]`.
+    #[must_use]
+    pub fn scrolled(self, by: i32) -> Self {
+        let scroll = (i32::from(self.scroll) + by).clamp(0, i32::from(self.max));
+        Self {
+            scroll: u16::try_from(scroll).unwrap_or(0),
+            ..self
+        }
+    }
 }
 
 /// A page of the help.
@@ -30,6 +64,8 @@ pub enum HelpPage {
     Keys,
     /// What every colour, mark and status field means.
     Legend,
+    /// Every message shown, in full (`v`).
+    Messages,
 }
 
 /// What a prompt is for.
@@ -112,34 +148,91 @@ pub enum PickerRow {
     },
 }
 
-/// The preset picker (`p`).
+/// The preset picker (`p`): typing filters the rows (by name, scene or title, ignoring case),
+/// the arrows, Home, End and the page keys move among the rows left.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Picker {
     /// Every preset, then every broken user file.
     pub rows: Vec<PickerRow>,
-    /// Highlighted row.
+    /// Highlighted row (an index into `rows`, always among the rows the filter keeps).
     pub selected: usize,
+    /// What has been typed.
+    pub filter: String,
+}
+
+impl PickerRow {
+    /// Whether the row matches `filter` (lower case).
+    fn matches(&self, filter: &str) -> bool {
+        if filter.is_empty() {
+            return true;
+        }
+        let text = match self {
+            Self::Preset(e) => format!("{} {} {}", e.name, e.model.name(), e.title),
+            Self::Broken { name, .. } => name.clone(),
+        };
+        text.to_lowercase().contains(filter)
+    }
 }
 
 impl Picker {
-    /// Moves the selection one row down (`true`) or up, wrapping.
-    pub fn move_by(&mut self, down: bool) {
-        let n = self.rows.len().max(1);
-        self.selected = if down {
-            (self.selected + 1) % n
-        } else {
-            (self.selected + n - 1) % n
-        };
+    /// A picker over `rows` with `selected` highlighted.
+    #[must_use]
+    pub fn new(rows: Vec<PickerRow>, selected: usize) -> Self {
+        Self {
+            rows,
+            selected,
+            filter: String::new(),
+        }
     }
 
-    /// The first row to draw so that the selection is visible in `height` rows.
+    /// The rows the filter keeps, as indices into `rows`.
+    #[must_use]
+    pub fn visible(&self) -> Vec<usize> {
+        let filter = self.filter.to_lowercase();
+        (0..self.rows.len())
+            .filter(|&i| self.rows[i].matches(&filter))
+            .collect()
+    }
+
+    /// The selected row's place among the visible ones.
+    fn place(&self, visible: &[usize]) -> usize {
+        visible
+            .iter()
+            .position(|&i| i == self.selected)
+            .unwrap_or(0)
+    }
+
+    /// Moves the selection by `by` visible rows (clamped at both ends).
+    pub fn move_by(&mut self, by: isize) {
+        let visible = self.visible();
+        if visible.is_empty() {
+            return;
+        }
+        let place = self.place(&visible).cast_signed().saturating_add(by);
+        let last = visible.len().cast_signed() - 1;
+        self.selected = visible[place.clamp(0, last).cast_unsigned()];
+    }
+
+    /// Types `c` into the filter (or, with `None`, deletes its last character); the selection
+    /// stays where it can, else moves to the first row left.
+    pub fn type_char(&mut self, c: Option<char>) {
+        match c {
+            Some(c) => self.filter.push(c),
+            None => {
+                self.filter.pop();
+            }
+        }
+        let visible = self.visible();
+        if !visible.contains(&self.selected) {
+            self.selected = visible.first().copied().unwrap_or(self.selected);
+        }
+    }
+
+    /// The first visible row to draw so that the selection is visible in `height` rows.
     #[must_use]
     pub fn first_visible(&self, height: usize) -> usize {
         let h = height.max(1);
-        if self.selected < h {
-            0
-        } else {
-            self.selected + 1 - h
-        }
+        let place = self.place(&self.visible());
+        if place < h { 0 } else { place + 1 - h }
     }
 }

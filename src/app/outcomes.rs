@@ -25,6 +25,12 @@ impl App {
 
     /// Takes what came of an effect.
     pub fn on_outcome(&mut self, outcome: Outcome) -> Vec<Effect> {
+        let effects = self.outcome(outcome);
+        self.remember();
+        effects
+    }
+
+    fn outcome(&mut self, outcome: Outcome) -> Vec<Effect> {
         match outcome {
             Outcome::Recording(Ok(path)) => {
                 self.journal.state = RecState::On;
@@ -111,7 +117,7 @@ impl App {
                     name: clean(&name),
                     error: clean(&error),
                 }));
-                self.mode = Mode::Picker(Picker { rows, selected });
+                self.mode = Mode::Picker(Picker::new(rows, selected));
             }
             Outcome::Loaded(result) => match *result {
                 Ok(preset) => return self.load(&preset),

@@ -157,7 +157,7 @@ impl Pane {
         match self {
             Self::Params | Self::Portrait | Self::Series | Self::Lesson | Self::Compare => true,
             Self::Sweep => model.small().is_some(),
-            Self::Weak => studies.weak,
+            Self::Weak => studies.weak.is_some(),
             Self::Map => studies.map,
             Self::Body => studies.body,
         }
@@ -196,9 +196,17 @@ impl Pane {
 }
 
 /// The visible panes: one bit per [`Pane`], in a word wide enough for every pane (a new pane
-/// past the width fails to compile, not at run time).
+/// past the width fails to compile, not at run time); and when each was last brought to the
+/// front, so a column too short for every pane shows the most recent ones first and lists the
+/// rest (`Tab` cycles them).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Panes(u32);
+pub struct Panes {
+    shown: u32,
+    /// Per pane, the order it was brought to the front in (higher: more recent).
+    stamp: [u16; Pane::ALL.len()],
+    /// The last stamp given.
+    clock: u16,
+}
 
 const _: () = assert!(
     Pane::ALL.len() <= u32::BITS as usize,
@@ -216,25 +224,51 @@ impl Panes {
         1 << pane as u32
     }
 
-    /// A set of panes.
+    /// A set of panes, brought to the front in the order listed.
     #[must_use]
     pub fn of(panes: &[Pane]) -> Self {
-        Self(panes.iter().fold(0, |m, p| m | Self::bit(*p)))
+        let mut p = Self {
+            shown: 0,
+            stamp: [0; Pane::ALL.len()],
+            clock: 0,
+        };
+        for pane in panes {
+            p.set(*pane, true);
+        }
+        p
     }
 
     /// Whether `pane` is shown.
     #[must_use]
     pub fn shows(self, pane: Pane) -> bool {
-        self.0 & Self::bit(pane) != 0
+        self.shown & Self::bit(pane) != 0
     }
 
-    /// Shows or hides `pane` (only optional panes can be hidden).
+    /// Shows (bringing it to the front) or hides `pane` (only optional panes can be hidden).
     pub fn set(&mut self, pane: Pane, on: bool) {
         if on {
-            self.0 |= Self::bit(pane);
+            if !self.shows(pane) {
+                self.front(pane);
+            }
+            self.shown |= Self::bit(pane);
         } else if pane.optional() {
-            self.0 &= !Self::bit(pane);
+            self.shown &= !Self::bit(pane);
         }
+    }
+
+    /// Brings `pane` to the front (the most recent).
+    fn front(&mut self, pane: Pane) {
+        if self.clock == u16::MAX {
+            // Renumber, keeping the order.
+            let mut order: Vec<usize> = (0..self.stamp.len()).collect();
+            order.sort_by_key(|&i| self.stamp[i]);
+            for (rank, i) in order.into_iter().enumerate() {
+                self.stamp[i] = rank as u16;
+            }
+            self.clock = self.stamp.len() as u16;
+        }
+        self.clock += 1;
+        self.stamp[pane as usize] = self.clock;
     }
 
     /// Toggles `pane`.
@@ -242,16 +276,45 @@ impl Panes {
         self.set(pane, !self.shows(pane));
     }
 
-    /// The shown panes a key toggles, in layout order (what a recorded layout lists).
+    /// The shown panes a key toggles, the most recent last (what a recorded layout lists; a
+    /// replay brings them to the front in that order).
     #[must_use]
     pub fn toggled(self) -> Vec<Pane> {
-        Pane::ALL
+        let mut panes: Vec<Pane> = Pane::ALL
             .into_iter()
             .filter(|p| p.toggle_action().is_some() && self.shows(*p))
-            .collect()
+            .collect();
+        panes.sort_by_key(|p| self.stamp[*p as usize]);
+        panes
     }
 
-    /// The visible panes of the right-hand column, with their weights.
+    /// Brings the shown panes to the front in the order of `recent` (the most recent last), as
+    /// a recorded layout lists them.
+    pub fn order_as(&mut self, recent: &[Pane]) {
+        for pane in recent {
+            if self.shows(*pane) {
+                self.front(*pane);
+            }
+        }
+    }
+
+    /// Sends the most recent optional pane to the back (`Tab`: the next one comes to the
+    /// front); whether there was one to cycle (two or more shown).
+    pub fn cycle(&mut self) -> bool {
+        let mut recent = self.toggled();
+        if recent.len() < 2 {
+            return false;
+        }
+        let Some(last) = recent.pop() else {
+            return false;
+        };
+        // The front goes behind every other: the others keep their order above it.
+        recent.insert(0, last);
+        self.order_as(&recent);
+        true
+    }
+
+    /// The visible panes of the right-hand column, with their weights, in layout order.
     #[must_use]
     pub fn column(self) -> Vec<(Pane, u16)> {
         Pane::ALL
@@ -259,6 +322,12 @@ impl Panes {
             .filter(|p| *p != Pane::Params && self.shows(*p))
             .map(|p| (p, p.weight()))
             .collect()
+    }
+
+    /// How recently `pane` was brought to the front (higher: more recent).
+    #[must_use]
+    pub fn recency(self, pane: Pane) -> u16 {
+        self.stamp[pane as usize]
     }
 }
 
@@ -301,6 +370,37 @@ mod tests {
         }
         assert_eq!(Pane::Compare.key(), "compare");
         assert_eq!(Pane::Series.key(), "series");
+    }
+
+    #[test]
+    fn the_most_recent_pane_is_in_front_and_tab_cycles() {
+        let mut p = Panes::default();
+        p.set(Pane::Series, true);
+        p.set(Pane::Sweep, true);
+        p.set(Pane::Weak, true);
+        assert_eq!(p.toggled(), [Pane::Series, Pane::Sweep, Pane::Weak]);
+        assert!(p.cycle());
+        assert_eq!(p.toggled(), [Pane::Weak, Pane::Series, Pane::Sweep]);
+        assert!(p.cycle());
+        assert!(p.cycle());
+        assert_eq!(
+            p.toggled(),
+            [Pane::Series, Pane::Sweep, Pane::Weak],
+            "round"
+        );
+        // A recorded order is restored.
+        let mut q = Panes::of(&[
+            Pane::Params,
+            Pane::Portrait,
+            Pane::Weak,
+            Pane::Series,
+            Pane::Sweep,
+        ]);
+        q.order_as(&[Pane::Series, Pane::Sweep, Pane::Weak]);
+        assert_eq!(q.toggled(), p.toggled());
+        let mut one = Panes::default();
+        one.set(Pane::Map, true);
+        assert!(!one.cycle(), "one pane: nothing to cycle");
     }
 
     #[test]

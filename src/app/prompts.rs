@@ -128,10 +128,20 @@ impl App {
     }
 
     pub(super) fn on_picker_key(&mut self, mut picker: Picker, key: Key) -> Vec<Effect> {
+        const PAGE: isize = 10;
         match key {
-            Key::Up | Key::Char('k') => picker.move_by(false),
-            Key::Down | Key::Char('j') => picker.move_by(true),
-            Key::Esc | Key::Char('p' | 'q') => return Vec::new(),
+            Key::Up => picker.move_by(-1),
+            Key::Down => picker.move_by(1),
+            Key::PageUp => picker.move_by(-PAGE),
+            Key::PageDown => picker.move_by(PAGE),
+            Key::Home => picker.move_by(-isize::MAX / 2),
+            Key::End => picker.move_by(isize::MAX / 2),
+            // Esc clears what was typed, then closes.
+            Key::Esc if !picker.filter.is_empty() => picker.filter.clear(),
+            Key::Esc => return Vec::new(),
+            Key::Backspace => picker.type_char(None),
+            Key::Char(c) => picker.type_char(Some(c)),
+            Key::Enter if picker.visible().is_empty() => {}
             Key::Enter => match picker.rows.get(picker.selected) {
                 Some(PickerRow::Preset(entry)) => {
                     let source = if entry.source == crate::scenario::shipped::Source::User {

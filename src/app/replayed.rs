@@ -128,6 +128,8 @@ impl App {
                 effects.extend(self.carry_out(action));
             }
         }
+        // Brought to the front as the lecturer had them (the most recent last).
+        self.view.panes.order_as(panes);
         // The replay's keys are its own: the map never takes them.
         if self.mode == Mode::Map {
             self.mode = Mode::Normal;

@@ -80,6 +80,45 @@ impl Message {
     }
 }
 
+/// Every message and caption shown, in full and in order (the message line cuts a long one; `v`
+/// shows them all), at most [`MessageLog::KEPT`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MessageLog {
+    /// The lines, oldest first.
+    pub entries: Vec<Message>,
+    /// The last message and caption noted, so each is noted once.
+    last: (Option<Message>, Option<(bool, String)>),
+}
+
+impl MessageLog {
+    /// How many lines are kept.
+    pub const KEPT: usize = 200;
+
+    /// Notes `status` and `caption` when they differ from the last ones noted.
+    pub fn remember(&mut self, status: Option<&Message>, caption: Option<&Caption>) {
+        if let Some(m) = status
+            && self.last.0.as_ref() != Some(m)
+        {
+            self.entries.push(m.clone());
+        }
+        self.last.0 = status.cloned();
+        let cap = caption.map(|c| (c.chapter, c.text.clone()));
+        if let Some(c) = caption
+            && self.last.1 != cap
+        {
+            let kind = if c.chapter { "chapter" } else { "note" };
+            self.entries.push(Message {
+                text: format!("{kind} (t {:.2}): {}", c.t, c.text),
+                error: false,
+            });
+        }
+        self.last.1 = cap;
+        if self.entries.len() > Self::KEPT {
+            self.entries.drain(..self.entries.len() - Self::KEPT);
+        }
+    }
+}
+
 /// A note or chapter title on screen: it stays until the next one.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Caption {

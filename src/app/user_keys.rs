@@ -49,12 +49,14 @@ const AFTER_PANES: &[(Action, &str)] = &[
     (Action::PanDown, "pan_down"),
     (Action::ToggleWrap, "toggle_wrap"),
     (Action::ResetView, "reset_view"),
+    (Action::CyclePanes, "next_pane"),
     (Action::ClearTrail, "clear_trail"),
     (Action::ToggleHelp, "help"),
     (Action::OpenPicker, "presets"),
     (Action::Save, "save"),
     (Action::Export, "export"),
     (Action::CopyCommand, "copy_command"),
+    (Action::ShowMessages, "messages"),
     (Action::CycleTheme, "next_theme"),
     (Action::Note, "note"),
     (Action::Chapter, "chapter"),
@@ -92,6 +94,11 @@ pub fn parse_key(text: &str) -> Result<Key, String> {
         "enter" | "return" => Some(Key::Enter),
         "esc" | "escape" => Some(Key::Esc),
         "backspace" => Some(Key::Backspace),
+        "pageup" | "pgup" => Some(Key::PageUp),
+        "pagedown" | "pgdn" => Some(Key::PageDown),
+        "home" => Some(Key::Home),
+        "end" => Some(Key::End),
+        "tab" => Some(Key::Tab),
         "up" => Some(Key::Up),
         "down" => Some(Key::Down),
         "left" => Some(Key::Left),
@@ -113,7 +120,7 @@ pub fn parse_key(text: &str) -> Result<Key, String> {
     };
     key.ok_or_else(|| {
         format!(
-            "'{text}' is not a key; allowed: one character, space, enter, esc, backspace, up, down, left, right, shift-ARROW, ctrl-LETTER, alt-KEY"
+            "'{text}' is not a key; allowed: one character, space, enter, esc, backspace, tab, pgup, pgdn, home, end, up, down, left, right, shift-ARROW, ctrl-LETTER, alt-KEY"
         )
     })
 }
@@ -135,6 +142,11 @@ pub fn key_label(key: Key) -> String {
         Key::Enter => "Enter".to_owned(),
         Key::Esc => "Esc".to_owned(),
         Key::Backspace => "Backspace".to_owned(),
+        Key::PageUp => "PgUp".to_owned(),
+        Key::PageDown => "PgDn".to_owned(),
+        Key::Home => "Home".to_owned(),
+        Key::End => "End".to_owned(),
+        Key::Tab => "Tab".to_owned(),
         Key::Ctrl(c) => format!("Ctrl-{}", c.to_ascii_uppercase()),
         Key::Alt(c) => format!("Alt-{c}"),
     }

@@ -681,9 +681,13 @@ fn event_loop(
         }
         dirty |= shell.keep_recording(app)?;
         if dirty && last_frame.elapsed() >= frame {
-            shell
-                .tty
-                .draw(|f| ui::draw(f, app, &options.ui, &mut cache))?;
+            let mut area = ratatui::layout::Rect::default();
+            shell.tty.draw(|f| {
+                area = f.area();
+                ui::draw(f, app, &options.ui, &mut cache);
+            })?;
+            // The help scrolls no further than it fills the overlay.
+            app.fit_help(ui::help::max_scroll(app, area, &options.ui));
             dirty = false;
             last_frame = Instant::now();
         }

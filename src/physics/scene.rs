@@ -39,6 +39,8 @@ pub struct Words {
     pub event: &'static str,
     /// Events.
     pub events: &'static str,
+    /// What one is, for the legend.
+    pub event_meaning: &'static str,
     /// The second kind of event the explorer counts (the pendulum's falls, the celt's
     /// crossings), if any.
     pub second_events: Option<SecondEvents>,
@@ -54,6 +56,8 @@ pub struct Words {
 pub struct SecondEvents {
     /// The name, plural (`falls`, `crossings`).
     pub name: &'static str,
+    /// What one is, for the legend.
+    pub meaning: &'static str,
     /// Where they are found.
     pub found: Found,
 }
@@ -94,8 +98,9 @@ pub struct SmallParameter {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[allow(clippy::struct_excessive_bools)]
 pub struct Studies {
-    /// The weak-* convergence of the fast coordinate's square.
-    pub weak: bool,
+    /// The weak-* convergence of the fast coordinate's square, and its words (`None`: the scene
+    /// has no weak-* pane).
+    pub weak: Option<WeakWords>,
     /// The regime map over the start's ratio and the inertia ratio.
     pub map: bool,
     /// The body seen from above.
@@ -110,6 +115,8 @@ pub struct Studies {
 pub struct SummaryLine {
     /// The label.
     pub label: &'static str,
+    /// What it is, for the legend.
+    pub meaning: &'static str,
     /// The value.
     pub value: Shown,
 }
@@ -160,6 +167,15 @@ pub struct SlowCurve {
     pub method: Method,
     /// `auto`'s error estimate (0 for a concrete method).
     pub estimate: f64,
+}
+
+/// What a scene's weak-* pane shows, in words (its legend).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WeakWords {
+    /// The observable, pointwise.
+    pub observable: &'static str,
+    /// What its averages approach.
+    pub reference: &'static str,
 }
 
 /// The weak-* view of one run: an observable that converges only weakly-* as the small

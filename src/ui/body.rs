@@ -13,9 +13,68 @@ use ratatui::text::Line as TextLine;
 use ratatui::widgets::Widget;
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 
+use super::legend::{Facts, Section, curve, printed};
 use super::{Look, framed};
 use crate::app::RunState;
 use crate::physics::scene::SideView;
+
+/// The tip's trace while the spin is counter-clockwise, and clockwise.
+const COUNTER: char = '+';
+const CLOCKWISE: char = '-';
+/// The long axis's tip.
+const TIP: char = '●';
+/// Where the side view's profile touches the ground.
+const CONTACT: char = '^';
+/// The side view's ground, with one point per cell.
+const GROUND: char = '─';
+
+/// What the pane draws, for the legend (the same marks as the pane).
+pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
+    let t = look.theme;
+    let words = f.kind.words();
+    let mut s = Section::new("body (B), seen from above")
+        .mark(
+            curve(look, '•', "⠢⠤⠔", "▄▄▀"),
+            t.trail,
+            "the outline; its long axis turns with the spin angle",
+        )
+        .mark(
+            curve(look, '•', "⠒⠒⠒", "▀▀▀"),
+            t.effective,
+            format!(
+                "the cross bar: the rocking envelope |{}| (exaggerated)",
+                words.fast
+            ),
+        )
+        .mark(
+            printed(look, COUNTER),
+            t.trail,
+            "the tip's trace while spinning counter-clockwise",
+        )
+        .mark(
+            printed(look, CLOCKWISE),
+            t.reversal,
+            format!(
+                "the tip's trace while spinning clockwise (a {} turns + into -)",
+                words.event
+            ),
+        )
+        .mark(printed(look, TIP), t.current, "the tip of the long axis");
+    if f.side {
+        s = s
+            .mark(
+                curve(look, GROUND, "⠤⠤⠤", "▄▄▄"),
+                t.dim,
+                "side and end views: the ground",
+            )
+            .mark(
+                printed(look, CONTACT),
+                t.reversal,
+                "where the body touches the ground (tilt drawn exaggerated)",
+            );
+    }
+    s
+}
 
 /// Seconds of trace drawn around the body.
 pub const TRACE_SECONDS: f64 = 6.0;
@@ -168,20 +227,13 @@ impl Widget for BodyPane<'_> {
                     color: theme.current,
                 });
                 ctx.layer();
-                for &(x, y, ccw) in &trace {
-                    let (glyph, colour) = if ccw {
-                        ("+", theme.trail)
-                    } else {
-                        ("-", theme.reversal)
-                    };
-                    ctx.print(x, y, TextLine::styled(glyph, Style::default().fg(colour)));
-                }
+                print_trace(ctx, &trace, theme);
                 // The tip of the long axis, bold, where the trace starts.
                 ctx.print(
                     x1,
                     y1,
                     TextLine::styled(
-                        "●",
+                        TIP.to_string(),
                         Style::default()
                             .fg(theme.current)
                             .add_modifier(Modifier::BOLD),
@@ -189,6 +241,26 @@ impl Widget for BodyPane<'_> {
                 );
             })
             .render(inner, buf);
+    }
+}
+
+/// The tip's trace: `+` while the spin is counter-clockwise, `-` while clockwise.
+fn print_trace(
+    ctx: &mut ratatui::widgets::canvas::Context<'_>,
+    trace: &[(f64, f64, bool)],
+    theme: &super::Theme,
+) {
+    for &(x, y, ccw) in trace {
+        let (glyph, colour) = if ccw {
+            (COUNTER, theme.trail)
+        } else {
+            (CLOCKWISE, theme.reversal)
+        };
+        ctx.print(
+            x,
+            y,
+            TextLine::styled(glyph.to_string(), Style::default().fg(colour)),
+        );
     }
 }
 
@@ -314,7 +386,14 @@ impl Widget for Profile<'_> {
             .x_bounds([-half, half])
             .y_bounds([floor, floor + span(half)])
             .paint(|ctx| {
+                if self.look.marker == ratatui::symbols::Marker::Dot {
+                    ctx.marker(ratatui::symbols::Marker::Custom(GROUND));
+                }
                 ctx.draw(&Line::new(-half, 0.0, half, 0.0, theme.dim));
+                ctx.layer();
+                if self.look.marker == ratatui::symbols::Marker::Dot {
+                    ctx.marker(ratatui::symbols::Marker::Dot);
+                }
                 for w in outline.windows(2) {
                     ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, theme.trail));
                 }
@@ -326,7 +405,7 @@ impl Widget for Profile<'_> {
                 ctx.print(
                     contact,
                     0.0,
-                    TextLine::styled("^", Style::default().fg(theme.reversal)),
+                    TextLine::styled(CONTACT.to_string(), Style::default().fg(theme.reversal)),
                 );
                 ctx.print(
                     -half,

@@ -10,12 +10,42 @@ use ratatui::text::{Line as TextLine, Span};
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 use ratatui::widgets::{Paragraph, Widget};
 
+use super::legend::{Facts, Section, curve};
 use super::portrait::{resolution, short, y_labels};
+use super::series::MARKS;
 use super::{Look, framed};
 use crate::app::computed::compare::CompareState;
 use crate::app::{RunState, Scenario, run::upto};
 use crate::physics::scene::Found;
 use crate::sim::Point;
+
+/// What the pane draws, for the legend (the time series' marks, in two lanes).
+pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
+    let t = look.theme;
+    let _ = f;
+    Section::new("compare (C): two lanes on one time axis")
+        .mark(
+            curve(look, MARKS.trace, "⠉⠒⠤⣀", "▀▄▀▄"),
+            t.trail,
+            "A, this run's spin (its own scale)",
+        )
+        .mark(
+            curve(look, MARKS.trace, "⠉⠒⠤⣀", "▀▄▀▄"),
+            t.effective,
+            "B, the partner's spin",
+        )
+        .mark(curve(look, MARKS.axis, "⠤⠤⠤⠤", "▄▄▄▄"), t.contour, "zero")
+        .mark(
+            curve(look, MARKS.tick, "⡇", "█"),
+            t.reversal,
+            "a reversal (tick from the bottom)",
+        )
+        .mark(
+            curve(look, MARKS.second, "⠉", "▀"),
+            t.dim,
+            "a spin crossing (tick from the top: the celt)",
+        )
+}
 
 /// The compare pane: what it shows, borrowed.
 pub struct ComparePane<'a> {
@@ -93,16 +123,15 @@ fn pane(pane: &ComparePane<'_>, area: Rect, buf: &mut Buffer) {
     draw_lane(&own, t, window, a_status, a_plot, look, buf);
     draw_lane(&partner, t, window, b_status, b_plot, look, buf);
     if axis.height > 0 {
-        let [_, x] = Layout::horizontal([Constraint::Length(8), Constraint::Min(0)]).areas(axis);
-        let (left, right) = ("0".to_owned(), format!("t = {}", short(window)));
-        let middle = format!("now {}", short(t));
-        let gap = (x.width as usize).saturating_sub(left.len() + right.len() + middle.len());
-        let text = format!(
-            "{left}{}{middle}{}{right}",
-            " ".repeat(gap / 2),
-            " ".repeat(gap - gap / 2)
+        // Round ticks over the run's whole window, under the plots (8 columns of labels).
+        let row = super::axis::row(
+            0.0,
+            window,
+            8,
+            (axis.width as usize).saturating_sub(8),
+            axis.width as usize,
         );
-        Paragraph::new(TextLine::styled(text, look.dim())).render(x, buf);
+        Paragraph::new(TextLine::styled(row, look.dim())).render(axis, buf);
     }
 }
 
@@ -211,20 +240,33 @@ fn draw_lane(
     let theme = look.theme;
     let (colour, reversals) = (lane.colour, lane.reversals);
     let marks = lane.marks.map_or(&[][..], |(_, m)| m);
+    let one_per_cell = look.marker == ratatui::symbols::Marker::Dot;
     Canvas::default()
         .marker(look.marker)
         .background_color(theme.background)
         .x_bounds([0.0, window])
         .y_bounds([-y, y])
         .paint(move |ctx| {
+            // One point per cell: each curve its own character, as in the time series.
+            let mark = |ctx: &mut ratatui::widgets::canvas::Context<'_>, c: char| {
+                if one_per_cell {
+                    ctx.marker(ratatui::symbols::Marker::Custom(c));
+                }
+            };
+            mark(ctx, MARKS.axis);
             ctx.draw(&Line::new(0.0, 0.0, t.min(window), 0.0, theme.contour));
+            ctx.layer();
+            mark(ctx, MARKS.second);
             for &r in marks {
                 ctx.draw(&Line::new(r, 0.8 * y, r, y, theme.dim));
             }
+            ctx.layer();
+            mark(ctx, MARKS.tick);
             for &r in reversals {
                 ctx.draw(&Line::new(r, -y, r, -0.7 * y, theme.reversal));
             }
             ctx.layer();
+            mark(ctx, MARKS.trace);
             ctx.draw(&Points {
                 coords: &coords,
                 color: colour,

@@ -28,20 +28,33 @@ pub fn picker(frame: &mut Frame<'_>, area: Rect, p: &Picker, look: &Look) {
         area.width.saturating_sub(8).min(100),
         area.height.saturating_sub(4),
     );
-    let block = Block::bordered().title(format!(
-        " presets {}/{}: ↑/↓ choose, Enter load, Esc close ",
-        p.selected + 1,
-        p.rows.len()
-    ));
+    let visible = p.visible();
+    let place = visible
+        .iter()
+        .position(|&i| i == p.selected)
+        .map_or(0, |i| i + 1);
+    let block = Block::bordered()
+        .title(format!(
+            " presets {place}/{}: type to filter, ↑↓ Home End choose, Enter load, Esc close ",
+            visible.len(),
+        ))
+        .title_bottom(format!(" filter: {}▏ ", p.filter));
     let inner = block.inner(popup);
     frame.render_widget(Clear, popup);
     frame.render_widget(block, popup);
-    let [list, detail] = Layout::vertical([Constraint::Min(1), Constraint::Length(5)]).areas(inner);
+    let [list, detail] = Layout::vertical([Constraint::Min(1), Constraint::Length(6)]).areas(inner);
     let height = list.height as usize;
     let first = p.first_visible(height);
     let width = list.width as usize;
     let mut lines = Vec::new();
-    for (i, row) in p.rows.iter().enumerate().skip(first).take(height) {
+    if visible.is_empty() {
+        lines.push(Line::styled(
+            format!(" nothing matches '{}' (Backspace, Esc clears)", p.filter),
+            look.dim(),
+        ));
+    }
+    for i in visible.into_iter().skip(first).take(height) {
+        let row = &p.rows[i];
         let style = if i == p.selected {
             Style::default().add_modifier(Modifier::REVERSED | Modifier::BOLD)
         } else {

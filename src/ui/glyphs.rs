@@ -90,6 +90,37 @@ impl Charset {
         }
     }
 
+    /// `text` as this set shows it, spelled out where the layout allows more than one column
+    /// (the legend, messages): what the set shows stays, the rest is spelled in ASCII
+    /// (`k → ∞` is `k -> inf` in ASCII, `k → inf` on the console).
+    #[must_use]
+    pub fn spell(self, text: &str) -> String {
+        if self == Self::Unicode {
+            return text.to_owned();
+        }
+        let mut out = String::with_capacity(text.len());
+        let mut chars = text.chars().peekable();
+        while let Some(c) = chars.next() {
+            // A letter and its combining mark are spelled together (`α̇` is `alpha_dot`).
+            let combined = chars.peek().is_some_and(|m| is_combining(*m));
+            if self.shows(c) && !combined {
+                out.push(c);
+            } else if is_combining(c) {
+                out.push_str(&crate::scenario::text::ascii(&c.to_string()));
+            } else {
+                out.push_str(&crate::scenario::text::spell(c));
+            }
+        }
+        out
+    }
+
+    /// One cell's mark as this set draws it (the fold of [`Self::fold`], or the mark itself).
+    #[must_use]
+    pub fn mark(self, c: char) -> char {
+        let mut tmp = [0u8; 4];
+        self.fold(c.encode_utf8(&mut tmp)).unwrap_or(c)
+    }
+
     /// `symbol` (one cell's grapheme) as this set shows it: unchanged when it can, else one
     /// ASCII character of the same width (combining marks dropped; `?` for what has no
     /// likeness).
@@ -113,6 +144,7 @@ fn is_combining(c: char) -> bool {
 /// Non-ASCII characters and their ASCII likeness.
 const LIKENESS: &[(&str, char)] = &[
     ("─━═┄┈╌−–—⁻", '-'),
+    ("▏", '_'),
     ("│┃║┆┊╎▌▐", '|'),
     ("┌┐└┘├┤┬┴┼╭╮╰╯╔╗╚╝╠╣╦╩╬✓✔±", '+'),
     ("›▶▸→⟶»≥", '>'),
@@ -128,8 +160,10 @@ const LIKENESS: &[(&str, char)] = &[
     ("²", '2'),
     ("³", '3'),
     ("½", '/'),
-    ("█▓", '#'),
-    ("▒", '%'),
+    // The map's density ramp stays a ramp: `:` `=` `%` `#`.
+    ("█", '#'),
+    ("▓", '%'),
+    ("▒", '='),
     ("░", ':'),
     ("▀▄", '='),
     ("√", 'V'),
@@ -259,5 +293,21 @@ mod tests {
             assert!(!c.is_ascii());
             assert!(likeness(c).is_ascii() && likeness(c) != '?', "{c}");
         }
+    }
+
+    #[test]
+    fn spelling_keeps_what_the_set_shows_and_spells_the_rest() {
+        assert_eq!(
+            Charset::Ascii.spell("k → ∞, ≥ 8, α̇"),
+            "k -> inf, >= 8, alpha_dot"
+        );
+        assert_eq!(
+            Charset::Console.spell("k → ∞, ≥ 8, α̇"),
+            "k → inf, ≥ 8, alpha_dot"
+        );
+        assert_eq!(Charset::Unicode.spell("k → ∞"), "k → ∞");
+        assert_eq!(Charset::Ascii.mark('•'), '*');
+        assert_eq!(Charset::Console.mark('•'), '•');
+        assert_eq!(Charset::Ascii.mark('x'), 'x');
     }
 }

@@ -8,9 +8,11 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
 
 use super::Look;
+use super::legend::{self, Facts};
 use crate::app::keys::{Binding, KEYMAP, REPLAY_KEYMAP};
-use crate::app::mode::HelpPage;
-use crate::app::user_keys::{UserKeys, key_label};
+use crate::app::mode::{Help, HelpPage};
+use crate::app::user_keys::key_label;
+use crate::app::{App, Mode};
 
 /// The rows of a keymap; `extra` gives the user's keys of a row's bindings (a labelled binding
 /// and the unlabelled ones after it), added to its label; `replaced` says which actions lost
@@ -77,56 +79,11 @@ fn key_rows<A: Copy>(
         .collect()
 }
 
-fn legend(look: &Look) -> Vec<Line<'static>> {
-    let t = look.theme;
-    let swatch = |mark: &'static str, colour, what: &'static str| {
-        Line::from(vec![
-            Span::styled(format!(" {mark:<4}"), Style::default().fg(colour)),
-            Span::raw(what),
-        ])
-    };
-    vec![
-        swatch("⣀⣀", t.trail, "full motion at this k (dense dots)"),
-        swatch("∘", t.effective, "the limit k → ∞ (marks), e toggles"),
-        swatch("●", t.current, "the displayed point"),
-        swatch("───", t.separatrix, "separatrix of the limit (solid)"),
-        swatch("- -", t.start_level, "the start's level of E_eff (dashed)"),
-        swatch("· ·", t.contour, "other levels of E_eff (dotted)"),
-        swatch("╷", t.reversal, "reversal ticks (time series)"),
-        swatch(
-            "░▒▓█",
-            t.trail,
-            "map: reversals 1, 2–3, 4–7, ≥ 8; blank none",
-        ),
-        swatch(
-            "┃ +",
-            t.separatrix,
-            "map: critical ratio (paper) · the cursor",
-        ),
-        Line::raw(""),
-        Line::styled(
-            " status bar:",
-            Style::default().add_modifier(Modifier::BOLD),
-        ),
-        Line::raw(" t shown/end · ▶ paused done verifying · ×speed"),
-        Line::raw(" reversals (full) and limit (k → ∞), up to t shown"),
-        Line::raw(" ΔE/E: relative energy error of the full motion"),
-        Line::raw(" method (auto→choice), est: auto's verified error"),
-        Line::raw(" ✓ within the tolerance · steps/s · ● REC recording"),
-        Line::raw(" panel: limit regime; vs critical = (ratio−crit)/crit"),
-        Line::raw(" map (M): ←→↑↓ cell · Enter load · f limit/full · Esc"),
-    ]
-}
-
-pub fn draw(
-    frame: &mut Frame<'_>,
-    area: Rect,
-    (page, replay): (HelpPage, bool),
-    keys: &UserKeys,
-    look: &Look,
-) {
-    let (rows, heading) = match page {
-        HelpPage::Keys if replay => (
+/// The lines of the help's page, and its heading.
+fn content(app: &App, help: Help, look: &Look<'_>) -> (Vec<Line<'static>>, &'static str) {
+    let keys = &app.options.keys;
+    match help.page {
+        HelpPage::Keys if app.replay.is_some() => (
             key_rows(REPLAY_KEYMAP, &|_| Vec::new(), &|_| false),
             " replay keys: ? legend · Esc closes ",
         ),
@@ -134,21 +91,114 @@ pub fn draw(
             key_rows(&KEYMAP, &|a| keys.labels(a), &|a| keys.is_replaced(a)),
             " keys: ? legend · Esc closes ",
         ),
-        HelpPage::Legend => (legend(look), " legend: ? or Esc closes "),
-    };
-    let height = (rows.len() as u16 + 2).min(area.height);
+        HelpPage::Messages => (messages(app, look), " messages, in full: Esc closes "),
+        HelpPage::Legend => {
+            let model = &app.scenario.settings.model;
+            let facts = Facts {
+                kind: model.kind(),
+                limit: &app.scenario.derived.limit,
+                side: model.side_view().is_some(),
+                summary: &app.scenario.derived.summary,
+            };
+            (legend::lines(&facts, look), " legend: ? or Esc closes ")
+        }
+    }
+}
+
+/// Every message and caption shown, in full, wrapped, the newest last.
+fn messages(app: &App, look: &Look<'_>) -> Vec<Line<'static>> {
+    let entries = &app.messages.entries;
+    if entries.is_empty() {
+        return vec![Line::raw(" no message yet")];
+    }
+    let mut out = Vec::new();
+    for m in entries {
+        let style = if m.error {
+            Style::default().fg(look.theme.error)
+        } else {
+            Style::default()
+        };
+        for (i, part) in super::wrap_words(&m.text, 62, usize::MAX)
+            .into_iter()
+            .enumerate()
+        {
+            let lead = if i == 0 { " " } else { "   " };
+            out.push(Line::styled(format!("{lead}{part}"), style));
+        }
+    }
+    out
+}
+
+/// The scene's legend as plain text lines, as the legend page shows them (spelled and folded
+/// for `options.charset`): what the tests read.
+#[must_use]
+pub fn legend_text(app: &App, options: &super::UiOptions) -> Vec<String> {
+    let look = options.look(app.view.theme);
+    let (lines, _) = content(app, Help::at(HelpPage::Legend), &look);
+    lines
+        .iter()
+        .map(|l| {
+            let text: String = l.spans.iter().map(|s| s.content.as_ref()).collect();
+            text.chars().map(|c| options.charset.mark(c)).collect()
+        })
+        .collect()
+}
+
+/// Where the overlay goes for `lines` lines of text on `area`, and how many it shows.
+fn popup(area: Rect, lines: usize) -> (Rect, u16) {
+    let height = (lines as u16).saturating_add(2).min(area.height);
     let width = 66.min(area.width);
-    let popup = Rect {
+    let rect = Rect {
         x: area.x + (area.width - width) / 2,
         y: area.y + (area.height - height) / 2,
         width,
         height,
     };
-    frame.render_widget(Clear, popup);
+    (rect, height.saturating_sub(2))
+}
+
+/// The last first line that still fills the overlay: what [`App::fit_help`] is told after a
+/// frame (0 when the page fits).
+#[must_use]
+pub fn max_scroll(app: &App, area: Rect, options: &super::UiOptions) -> u16 {
+    let Mode::Help(help) = app.mode else {
+        return 0;
+    };
+    let look = options.look(app.view.theme);
+    let (lines, _) = content(app, help, &look);
+    let (_, shown) = popup(area, lines.len());
+    (lines.len() as u16).saturating_sub(shown)
+}
+
+pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, help: Help, look: &Look) {
+    let (lines, heading) = content(app, help, look);
+    let total = lines.len();
+    let (rect, shown) = popup(area, total);
+    let max = (total as u16).saturating_sub(shown);
+    let scroll = help.scroll.min(max);
+    let mut block = Block::bordered().title(heading);
+    if max > 0 {
+        // It scrolls, and says so: where it is and how to move.
+        let last = (usize::from(scroll) + usize::from(shown)).min(total);
+        let more = match (scroll > 0, scroll < max) {
+            (true, true) => "↑↓",
+            (false, true) => "↓",
+            _ => "↑",
+        };
+        block = block.title_bottom(
+            Line::from(format!(
+                " {more} lines {}-{last} of {total} · ↑↓ PgUp PgDn ",
+                scroll + 1
+            ))
+            .right_aligned(),
+        );
+    }
+    frame.render_widget(Clear, rect);
     frame.render_widget(
-        Paragraph::new(rows)
+        Paragraph::new(lines)
             .wrap(Wrap { trim: false })
-            .block(Block::bordered().title(heading)),
-        popup,
+            .scroll((scroll, 0))
+            .block(block),
+        rect,
     );
 }

@@ -11,6 +11,7 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::Line as TextLine;
 use ratatui::widgets::{Paragraph, Widget};
 
+use super::legend::{Facts, Section, printed};
 use super::{Look, framed};
 use crate::app::computed::map::{MapSource, MapState};
 use crate::study::map::Source;
@@ -26,6 +27,37 @@ pub fn glyph(count: Option<usize>) -> char {
         Some(4..=7) => '▓',
         Some(_) => '█',
     }
+}
+
+/// The critical curve's mark, and the cursor's.
+const CRITICAL: char = '┃';
+const CURSOR: char = '+';
+
+/// What the pane draws, for the legend (the same glyphs as [`glyph`]).
+pub fn legend(_: &Facts<'_>, look: &Look<'_>) -> Section {
+    let t = look.theme;
+    let ramp: String = [1, 2, 4, 8]
+        .into_iter()
+        .map(|n| look.charset.mark(glyph(Some(n))))
+        .collect();
+    Section::new("regime map (M)")
+        .mark(
+            ramp,
+            t.trail,
+            "reversals in [0, T]: 1, 2-3, 4-7, 8 or more (blank: none)",
+        )
+        .mark(printed(look, glyph(None)), t.dim, "a cell not computed yet")
+        .mark(
+            printed(look, CRITICAL),
+            t.separatrix,
+            "the critical ratio of the paper's theorems",
+        )
+        .mark(
+            printed(look, CURSOR),
+            t.current,
+            "the cursor (M gives it the arrows, Enter loads the cell)",
+        )
+        .note("across: alpha_dot0^2/gamma_dot0^2; up: iy/ix (log); f: limit or full model")
 }
 
 /// The regime-map pane: what it shows, borrowed.
@@ -104,7 +136,7 @@ impl Widget for MapPane<'_> {
                 let x = (c / g.ratio_max * w as f64).floor();
                 if (0.0..w as f64).contains(&x) {
                     buf[(plot.x + x as u16, plot.y + y as u16)]
-                        .set_char('┃')
+                        .set_char(CRITICAL)
                         .set_style(
                             Style::default()
                                 .fg(theme.separatrix)
@@ -123,7 +155,7 @@ impl Widget for MapPane<'_> {
             cursor = cursor.add_modifier(Modifier::REVERSED);
         }
         buf[(plot.x + cx.min(w - 1) as u16, plot.y + cy.min(h - 1) as u16)]
-            .set_char('+')
+            .set_char(CURSOR)
             .set_style(cursor);
         let rows = y_axis.height as usize;
         let mut labels = vec![TextLine::raw(""); rows];

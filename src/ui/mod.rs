@@ -19,11 +19,13 @@
 //!  footer: key hints from the keymap table (? help and q quit always kept)
 //! ```
 
+mod axis;
 mod body;
 mod compare;
 mod dialogs;
 pub mod glyphs;
-mod help;
+pub mod help;
+pub mod legend;
 mod lesson;
 mod map;
 mod params;
@@ -59,59 +61,214 @@ fn plot_areas(inner: Rect) -> (Rect, Rect, Rect) {
 /// Rows a lesson step's own pane gets at least.
 pub const ASKED_ROWS: u16 = 8;
 
-/// The lesson's rows: what its text needs, up to 60 % of the column. The pane the step is about
-/// gets at least [`ASKED_ROWS`]: on a short column the other panes give way (they leave
-/// `column`), then the lesson's text (it keeps its title and a few rows).
-fn lesson_rows(app: &App, column: &mut Vec<(Pane, u16)>, need: u16, height: u16) -> u16 {
-    let rows = need.min(height * 3 / 5);
+/// Rows a pane needs to be read, its borders included: 8 inside the box for a plot and its axis
+/// (the portrait, the series' trace, energy strip and time axis), more for the body's views
+/// and the comparison's two lanes.
+#[must_use]
+pub fn min_rows(pane: Pane) -> u16 {
+    match pane {
+        Pane::Portrait | Pane::Series | Pane::Sweep | Pane::Weak | Pane::Map => 10,
+        Pane::Body => 13,
+        Pane::Compare => 14,
+        Pane::Lesson | Pane::Params => 0,
+    }
+}
+
+/// Where the right-hand column puts its panes: the panes shown, each with its area, in layout
+/// order; and the line that lists the open panes that did not fit (Tab brings the next).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ColumnLayout {
+    /// The panes drawn.
+    pub panes: Vec<(Pane, Rect)>,
+    /// The line listing the panes open but not drawn, and those panes.
+    pub hidden: Option<(Rect, Vec<Pane>)>,
+}
+
+/// The right-hand column's layout. A lesson takes what its text needs (up to 60 % of the
+/// column), the pane its step asks about first; then the most recently opened pane, the
+/// portrait and the other open panes, most recent first, each while there is room for it to be
+/// read ([`min_rows`]); what does not fit is listed on a line of its own, never squeezed. Every
+/// pane drawn gets its rows, and what is left is shared by weight.
+#[must_use]
+pub fn column_layout(app: &App, right: Rect) -> ColumnLayout {
+    let panes = app.view.panes;
+    let visible: Vec<Pane> = panes.column().into_iter().map(|(p, _)| p).collect();
     let asked = app
         .lesson
         .as_ref()
         .and_then(|s| s.current().pane.as_deref())
         .and_then(Pane::named)
-        .filter(|p| column.iter().any(|(q, _)| q == p));
-    let Some(a) = asked else {
-        return rows;
-    };
-    let others: u32 = column
+        .filter(|p| visible.contains(p));
+    let lesson_rows = app.lesson.as_ref().map_or(0, |state| {
+        let look = UiOptions::default();
+        let look = look.look(0);
+        let need = lesson::LessonPane {
+            lesson: state,
+            missing: app.lesson_missing(),
+            look: &look,
+        }
+        .height(right.width);
+        // The pane the step asks about (else the portrait) keeps its rows.
+        let first = asked.or(visible.contains(&Pane::Portrait).then_some(Pane::Portrait));
+        need.min(right.height * 3 / 5)
+            .min(right.height.saturating_sub(first.map_or(0, min_rows)))
+            .max(3)
+    });
+    // In order of claim: the asked pane, the front pane, the portrait, the others by recency.
+    let mut optional: Vec<Pane> = visible
         .iter()
-        .filter(|(p, _)| *p != Pane::Lesson)
-        .map(|(_, w)| u32::from(*w))
-        .sum();
-    let room = u32::from(height.saturating_sub(rows));
-    if room * u32::from(a.weight()) < u32::from(ASKED_ROWS) * others.max(1) {
-        column.retain(|(p, _)| *p == Pane::Lesson || *p == a);
+        .copied()
+        .filter(|p| !matches!(p, Pane::Portrait | Pane::Lesson) && Some(*p) != asked)
+        .collect();
+    optional.sort_by_key(|p| std::cmp::Reverse(panes.recency(*p)));
+    let mut claims: Vec<Pane> = asked.into_iter().collect();
+    let mut rest = optional.into_iter();
+    if asked.is_none() {
+        claims.extend(rest.next());
     }
-    rows.min(height.saturating_sub(ASKED_ROWS).max(3))
+    if visible.contains(&Pane::Portrait) {
+        claims.push(Pane::Portrait);
+    }
+    claims.extend(rest);
+    let height = right.height.saturating_sub(lesson_rows);
+    let all: u16 = claims.iter().map(|p| min_rows(*p)).sum();
+    let mut kept = Vec::new();
+    let mut hidden = Vec::new();
+    if all <= height {
+        kept = claims;
+    } else {
+        // One line lists what does not fit.
+        // In order of claim, until one does not fit: the rest wait their turn (Tab).
+        let mut room = height.saturating_sub(1);
+        for p in claims {
+            if hidden.is_empty() && (min_rows(p) <= room || kept.is_empty()) {
+                room = room.saturating_sub(min_rows(p));
+                kept.push(p);
+            } else {
+                hidden.push(p);
+            }
+        }
+    }
+    let mut area = right;
+    let mut out = ColumnLayout::default();
+    if !hidden.is_empty() {
+        let [line, below] =
+            Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(area);
+        out.hidden = Some((line, hidden));
+        area = below;
+    }
+    // Layout order; the lesson first with its rows; each pane its rows, the rest by weight.
+    let order: Vec<Pane> = visible
+        .into_iter()
+        .filter(|p| *p == Pane::Lesson && lesson_rows > 0 || kept.contains(p))
+        .collect();
+    out.panes = stack(&order, lesson_rows, area);
+    out
 }
 
-/// The right-hand column: the visible panes, stacked by weight.
-fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, cache: &mut Cache) {
-    let mut column = app.view.panes.column();
-    // On a short terminal the body or the comparison takes the portrait's place (B or C brings
-    // the portrait back).
-    if right.height < 30
-        && (app.view.panes.shows(Pane::Body) || app.view.panes.shows(Pane::Compare))
-    {
-        column.retain(|(p, _)| *p != Pane::Portrait);
+/// `order`'s panes stacked over `area`: each its rows ([`min_rows`], the lesson
+/// `lesson_rows`), what is left shared by weight.
+fn stack(order: &[Pane], lesson_rows: u16, area: Rect) -> Vec<(Pane, Rect)> {
+    let rows = |p: Pane| {
+        if p == Pane::Lesson {
+            lesson_rows
+        } else {
+            min_rows(p)
+        }
+    };
+    let spare = area
+        .height
+        .saturating_sub(order.iter().map(|p| rows(*p)).sum::<u16>());
+    let weights: u32 = order
+        .iter()
+        .filter(|p| **p != Pane::Lesson)
+        .map(|p| u32::from(p.weight()))
+        .sum::<u32>()
+        .max(1);
+    let mut given = 0;
+    let mut y = area.y;
+    let last = order.iter().rposition(|p| *p != Pane::Lesson);
+    let mut out = Vec::new();
+    for (i, p) in order.iter().enumerate() {
+        let extra = if *p == Pane::Lesson {
+            0
+        } else if Some(i) == last {
+            spare - given
+        } else {
+            let e = (u32::from(spare) * u32::from(p.weight()) / weights) as u16;
+            given += e;
+            e
+        };
+        let h = (rows(*p) + extra).min(area.y + area.height - y);
+        out.push((
+            *p,
+            Rect {
+                y,
+                height: h,
+                ..area
+            },
+        ));
+        y += h;
     }
-    let look_ref = look;
-    let lesson_pane = app.lesson.as_ref().map(|state| lesson::LessonPane {
-        lesson: state,
-        missing: app.lesson_missing(),
-        look: look_ref,
-    });
-    let lesson_rows = lesson_pane.as_ref().map_or(0, |p| {
-        lesson_rows(app, &mut column, p.height(right.width), right.height)
-    });
-    let areas = Layout::vertical(column.iter().map(|(p, w)| match p {
-        Pane::Lesson if lesson_pane.is_some() => Constraint::Length(lesson_rows),
-        _ => Constraint::Fill(*w),
-    }))
-    .split(right);
-    for ((pane, _), area) in column.iter().zip(areas.iter()) {
+    out
+}
+
+/// The right-hand column: the panes that fit, and a line naming the others.
+fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, cache: &mut Cache) {
+    let layout = column_layout(app, right);
+    for (pane, area) in &layout.panes {
         draw_pane(frame, app, *pane, *area, look, cache);
     }
+    if let Some((line, hidden)) = layout.hidden {
+        let names: Vec<String> = hidden
+            .iter()
+            .map(|p| match p.binding() {
+                Some(b) => format!("{} {}", p.key(), key_of(&b)),
+                None => p.key(),
+            })
+            .collect();
+        // Tab brings an optional pane to the front; the portrait comes back when one closes.
+        let how = if hidden.iter().any(|p| p.optional()) {
+            "Tab cycles"
+        } else {
+            "close a pane to make room"
+        };
+        let text = format!(" more: {} · {how}", names.join(" · "));
+        frame.render_widget(
+            Paragraph::new(Line::styled(
+                crate::app::ellipsis(&text, line.width as usize),
+                look.dim().add_modifier(Modifier::REVERSED),
+            )),
+            line,
+        );
+    }
+}
+
+/// The key a binding's row shows it with.
+fn key_of(b: &crate::app::keys::Binding<crate::app::Action>) -> String {
+    b.keys
+        .first()
+        .map(|k| crate::app::user_keys::key_label(*k))
+        .unwrap_or_default()
+}
+
+/// What a pane draws, for the legend (each widget's own `legend`, beside its `draw_pane` arm).
+#[must_use]
+pub fn pane_legend(
+    pane: Pane,
+    facts: &legend::Facts<'_>,
+    look: &Look<'_>,
+) -> Option<legend::Section> {
+    Some(match pane {
+        Pane::Series => series::legend(facts, look),
+        Pane::Sweep => sweep::legend(facts, look),
+        Pane::Weak => weak::legend(facts, look),
+        Pane::Map => map::legend(facts, look),
+        Pane::Body => body::legend(facts, look),
+        Pane::Compare => compare::legend(facts, look),
+        Pane::Portrait => portrait::legend(facts, look),
+        Pane::Params | Pane::Lesson => return None,
+    })
 }
 
 /// One pane of the column.
@@ -331,7 +488,9 @@ impl UiOptions {
         self.themes.iter().map(|t| t.name.clone()).collect()
     }
 
-    fn look(&self, theme: usize) -> Look<'_> {
+    /// The marker, theme and characters one frame draws with (`theme`: the index `T` cycles).
+    #[must_use]
+    pub fn look(&self, theme: usize) -> Look<'_> {
         Look {
             // Braille and half blocks need glyphs only the Unicode set has.
             marker: if self.charset == glyphs::Charset::Unicode {
@@ -441,6 +600,69 @@ pub fn draw(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mut C
     glyphs::fold_buffer(frame.buffer_mut(), options.charset);
 }
 
+/// The areas of the screen: the panel, the column, the caption, the message, the status bar and
+/// the footer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Screen {
+    /// The parameter panel.
+    pub left: Rect,
+    /// The column of panes ([`column_layout`]).
+    pub right: Rect,
+    /// The note or chapter line.
+    pub caption: Rect,
+    /// The message's lines.
+    pub message: Rect,
+    /// The status bar.
+    pub status: Rect,
+    /// The key hints.
+    pub footer: Rect,
+}
+
+/// The message's lines (at most [`MESSAGE_LINES`]; a message cut short says `v` shows it
+/// whole) and whether it is an error.
+fn message_lines(app: &App, width: u16) -> Option<(Vec<String>, bool)> {
+    app.status.as_ref().map(|m| {
+        let width = width.saturating_sub(2) as usize;
+        let mut lines = wrap_words(&m.text, width, MESSAGE_LINES);
+        if let Some(last) = lines.last_mut()
+            && last.ends_with('…')
+        {
+            let hint = " (v: whole)";
+            let keep: String = last
+                .chars()
+                .take(width.saturating_sub(hint.chars().count() + 1))
+                .collect();
+            *last = format!("{keep}…{hint}");
+        }
+        (lines, m.error)
+    })
+}
+
+/// Where everything goes on a screen of `area` (at least [`MIN_SIZE`]).
+#[must_use]
+pub fn screen(app: &App, area: Rect) -> Screen {
+    let caption = u16::from(app.caption.is_some());
+    let message_height = message_lines(app, area.width).map_or(0, |(lines, _)| lines.len() as u16);
+    let [main, caption, message, status, footer] = Layout::vertical([
+        Constraint::Min(0),
+        Constraint::Length(caption),
+        Constraint::Length(message_height),
+        Constraint::Length(1),
+        Constraint::Length(1),
+    ])
+    .areas(area);
+    let [left, right] =
+        Layout::horizontal([Constraint::Length(PARAMS_WIDTH), Constraint::Min(0)]).areas(main);
+    Screen {
+        left,
+        right,
+        caption,
+        message,
+        status,
+        footer,
+    }
+}
+
 fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mut Cache) {
     let look = options.look(app.view.theme);
     let area = frame.area();
@@ -460,28 +682,15 @@ fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mu
         frame.render_widget(Paragraph::new(text).wrap(Wrap { trim: true }), area);
         return;
     }
-    let caption = u16::from(app.caption.is_some());
-    let message = app.status.as_ref().map(|m| {
-        (
-            wrap_words(
-                &m.text,
-                area.width.saturating_sub(2) as usize,
-                MESSAGE_LINES,
-            ),
-            m.error,
-        )
-    });
-    let message_height = message.as_ref().map_or(0, |(lines, _)| lines.len() as u16);
-    let [main, caption_area, message_area, status_area, footer] = Layout::vertical([
-        Constraint::Min(0),
-        Constraint::Length(caption),
-        Constraint::Length(message_height),
-        Constraint::Length(1),
-        Constraint::Length(1),
-    ])
-    .areas(area);
-    let [left, right] =
-        Layout::horizontal([Constraint::Length(PARAMS_WIDTH), Constraint::Min(0)]).areas(main);
+    let message = message_lines(app, area.width);
+    let Screen {
+        left,
+        right,
+        caption: caption_area,
+        message: message_area,
+        status: status_area,
+        footer,
+    } = screen(app, area);
     let (editing, prompt) = match &app.mode {
         Mode::Editing(text) => (Some(text.as_str()), None),
         Mode::Prompt(p) => (None, Some(p)),
@@ -530,13 +739,7 @@ fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mu
         draw_footer(frame, footer, &hints, &look);
     }
     match &app.mode {
-        Mode::Help(page) => help::draw(
-            frame,
-            area,
-            (*page, app.replay.is_some()),
-            &app.options.keys,
-            &look,
-        ),
+        Mode::Help(h) => help::draw(frame, area, app, *h, &look),
         Mode::Picker(p) => dialogs::picker(frame, area, p, &look),
         Mode::Dialog(text) => dialogs::error(frame, area, text, &look),
         _ => {}

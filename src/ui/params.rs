@@ -8,6 +8,7 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Widget, Wrap};
 
+use super::legend::{Facts, Section};
 use super::{Look, title};
 use crate::app::Scenario;
 use crate::app::fields::{Field, format_number};
@@ -79,6 +80,19 @@ fn derived_lines(p: &ParamsPanel<'_>, width: usize) -> Vec<Line<'static>> {
     lines
 }
 
+/// What the panel shows, for the legend: the scene's derived lines, each with its meaning.
+pub fn legend(f: &Facts<'_>, _look: &Look<'_>) -> Section {
+    let mut s = Section::new("panel (left): the parameters, then what they give")
+        .note("up and down select, left and right change (H L coarse), Enter types a value");
+    for line in f.summary {
+        s = s.note(format!("{}: {}", line.label, line.meaning));
+    }
+    s.note("an arrow and a count on its border: rows out of sight above or below")
+}
+
+/// The edit cursor after a typed value.
+pub const CURSOR: char = '▏';
+
 fn panel(p: &ParamsPanel<'_>, area: Rect, buf: &mut Buffer) {
     let width = area.width.saturating_sub(2) as usize;
     let mut lines = Vec::new();
@@ -88,7 +102,7 @@ fn panel(p: &ParamsPanel<'_>, area: Rect, buf: &mut Buffer) {
     {
         let selected = i == p.scenario.selected;
         let value = match (p.editing, selected) {
-            (Some(buffer), true) => format!("{buffer}▏"),
+            (Some(buffer), true) => format!("{buffer}{CURSOR}"),
             _ => field.show(&p.scenario.settings),
         };
         let text = row(
@@ -107,12 +121,33 @@ fn panel(p: &ParamsPanel<'_>, area: Rect, buf: &mut Buffer) {
     lines.extend(derived_lines(p, width));
     if let Some(prompt) = p.prompt {
         lines.push(Line::styled(
-            format!("{}: {}▏", prompt.purpose.label(), prompt.text),
+            format!("{}: {}{CURSOR}", prompt.purpose.label(), prompt.text),
             Style::default().add_modifier(Modifier::REVERSED),
         ));
     }
-    let block = Block::bordered().title(title(&p.scenario.name, area.width));
-    Paragraph::new(lines)
+    // Taller than the panel: the selection (or the open prompt) stays in sight, and the border
+    // says how many rows are out of sight above and below.
+    let rows = area.height.saturating_sub(2) as usize;
+    let total = lines.len();
+    let first = if total <= rows {
+        0
+    } else if p.prompt.is_some() {
+        total - rows
+    } else {
+        (p.scenario.selected + 2)
+            .saturating_sub(rows)
+            .min(total - rows)
+    };
+    let mut block = Block::bordered().title(title(&p.scenario.name, area.width));
+    let below = total.saturating_sub(first + rows);
+    if first > 0 {
+        block = block.title(Line::from(format!(" ↑{first} ")).right_aligned());
+    }
+    if below > 0 {
+        block = block.title_bottom(Line::from(format!(" ↓ {below} more ")).right_aligned());
+    }
+    let shown: Vec<Line> = lines.into_iter().skip(first).take(rows.max(1)).collect();
+    Paragraph::new(shown)
         .block(block)
         .wrap(Wrap { trim: false })
         .render(area, buf);

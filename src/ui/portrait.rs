@@ -16,6 +16,7 @@ use ratatui::text::{Line as TextLine, Span};
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 use ratatui::widgets::{Paragraph, StatefulWidget, Widget};
 
+use super::legend::{Facts, Section, curve, printed};
 use super::{Look, framed};
 use crate::app::fields::{Settings, format_number};
 use crate::app::portrait::{
@@ -55,6 +56,70 @@ impl CellMarks {
         }
     }
 }
+
+/// What the portrait draws, for the legend: the same marks as [`pane`], for the scene's limit
+/// (a limit's marks only where there is one; levels only where its potential varies).
+pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
+    let t = look.theme;
+    let words = f.kind.words();
+    let small = f.kind.small();
+    let motion = small.map_or_else(
+        || "the motion".to_owned(),
+        |s| format!("the full motion at this {}", s.symbol),
+    );
+    let mut s = Section::new(format!(
+        "phase portrait: {} across, {} up",
+        words.q, words.q_dot
+    ))
+    .mark(
+        curve(look, CELL_MARKS.trail, "⣀⣤⣀⣤", "▄▄▄▄"),
+        t.trail,
+        format!("{motion} (dense dots)"),
+    );
+    if let Some(small) = small {
+        s = s.mark(
+            printed(look, OVERLAY_MARK),
+            t.effective,
+            format!("the limit {} (marks); e hides it", small.limit),
+        );
+    }
+    s = s.mark(
+        printed(look, CURRENT_MARK),
+        t.current,
+        "the displayed point",
+    );
+    let levels = f.limit.potential_max() > f.limit.potential_min();
+    if !f.limit.separatrices().is_empty() {
+        s = s.mark(
+            curve(look, CELL_MARKS.separatrix, "⠒⠒⠒⠒", "▀▀▀▀"),
+            t.separatrix,
+            "separatrix of the limit (solid)",
+        );
+    }
+    let start = if levels {
+        "the start's level of the limit's energy E_eff (dashed)"
+    } else {
+        "the largest spin the start's energy allows, either sense (dashed)"
+    };
+    s = s.mark(
+        curve(look, CELL_MARKS.start, "⠒ ⠒ ", "▀ ▀ "),
+        t.start_level,
+        start,
+    );
+    if levels {
+        s = s.mark(
+            curve(look, CELL_MARKS.plain, "⠂  ⠂", "▀  ▀"),
+            t.contour,
+            "other levels of E_eff (dotted)",
+        );
+    }
+    s.note("w wraps the angle to one period; z/Z zoom, shift+arrows pan")
+}
+
+/// The limit's mark in the portrait.
+const OVERLAY_MARK: char = '∘';
+/// The displayed point.
+const CURRENT_MARK: char = '●';
 
 /// Canvas cells per terminal cell for a marker.
 pub fn resolution(marker: Marker) -> (usize, usize) {
@@ -192,7 +257,10 @@ fn pane(p: &PortraitPane<'_>, area: Rect, buf: &mut Buffer, cache: &mut Cache) {
                 ctx.print(
                     x,
                     y,
-                    TextLine::styled("∘", Style::default().fg(theme.effective)),
+                    TextLine::styled(
+                        OVERLAY_MARK.to_string(),
+                        Style::default().fg(theme.effective),
+                    ),
                 );
             }
             if let Some((x, y)) = current {
@@ -200,7 +268,7 @@ fn pane(p: &PortraitPane<'_>, area: Rect, buf: &mut Buffer, cache: &mut Cache) {
                     x,
                     y,
                     TextLine::styled(
-                        "●",
+                        CURRENT_MARK.to_string(),
                         Style::default()
                             .fg(theme.current)
                             .add_modifier(Modifier::BOLD),
@@ -245,28 +313,15 @@ fn draw_levels(
 fn draw_axes(buf: &mut Buffer, y_axis: Rect, x_axis: Rect, plot: Rect, b: &Bounds, look: &Look) {
     let dim = look.dim();
     Paragraph::new(y_labels(b.y, y_axis.height as usize, dim)).render(y_axis, buf);
-    // alpha: five ticks across the plot.
-    let width = plot.width as usize;
-    let mut row = vec![' '; x_axis.width as usize];
-    let ticks = 5;
-    for i in 0..ticks {
-        let f = f64::from(i) / f64::from(ticks - 1);
-        let label = short(b.x[0] + f * (b.x[1] - b.x[0]));
-        let col = (plot.x - x_axis.x) as usize + (f * (width.saturating_sub(1)) as f64) as usize;
-        let start = col
-            .saturating_sub(label.len() / 2)
-            .min(row.len().saturating_sub(label.len()));
-        for (j, ch) in label.chars().enumerate() {
-            if let Some(slot) = row.get_mut(start + j) {
-                *slot = ch;
-            }
-        }
-    }
-    Paragraph::new(TextLine::from(Span::styled(
-        row.into_iter().collect::<String>(),
-        dim,
-    )))
-    .render(x_axis, buf);
+    // The angle: round ticks across the plot.
+    let row = super::axis::row(
+        b.x[0],
+        b.x[1],
+        (plot.x - x_axis.x) as usize,
+        plot.width as usize,
+        x_axis.width as usize,
+    );
+    Paragraph::new(TextLine::from(Span::styled(row, dim))).render(x_axis, buf);
 }
 
 /// Labels of a vertical axis `[lo, hi]` over `h` rows: top, middle, bottom.

@@ -1,12 +1,15 @@
 //! The time-series pane (toggle `t`): `alpha_dot(t)` of the full motion and of the limit over a
-//! window that widens with the playback speed, reversal ticks, a y scale, and the energy error
-//! as a plot of `log10 |ΔE/E|`. Not drawn, so not computed, when hidden.
+//! window that widens with the playback speed, reversal ticks, a y scale, the energy error as a
+//! plot of `log10 |ΔE/E|`, and a time axis with round ticks. Not drawn, so not computed, when
+//! hidden. With one point per cell (the console, ASCII, `--marker dot`) the zero axis, the
+//! trace, the ticks and the energy error each have their own character ([`MARKS`]).
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 use ratatui::widgets::{Paragraph, Widget};
 
+use super::legend::{Facts, Section, curve, printed};
 use super::portrait::{resolution, y_labels};
 use super::{Look, framed};
 use crate::app::RunState;
@@ -22,6 +25,68 @@ pub struct SeriesPane<'a> {
     pub model: crate::physics::ModelKind,
     /// Marker and colours.
     pub look: &'a Look<'a>,
+}
+
+/// The characters of the time plots when each cell holds one point: the zero axis, the trace,
+/// an event's tick, the limit's marks and the energy error, apart without colour (folded
+/// further in ASCII: `-`, `*`, `|`, `o`, `.`). The comparison's lanes draw with the same.
+#[derive(Clone, Copy, Debug)]
+pub struct TimeMarks {
+    /// The zero line.
+    pub axis: char,
+    /// The trace of the rate.
+    pub trace: char,
+    /// An event's tick (a reversal, a swing).
+    pub tick: char,
+    /// A second kind of event's tick (the celt's crossings), from the top.
+    pub second: char,
+    /// The limit's marks.
+    pub limit: char,
+    /// The energy error.
+    pub energy: char,
+}
+
+/// The time plots' characters.
+pub const MARKS: TimeMarks = TimeMarks {
+    axis: '─',
+    trace: '•',
+    tick: '│',
+    second: '!',
+    limit: '∘',
+    energy: '·',
+};
+
+/// What the pane draws, for the legend (the same marks as [`pane`]).
+pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
+    let t = look.theme;
+    let words = f.kind.words();
+    let mut s = Section::new(format!("time series (t): {}(t)", words.q_dot)).mark(
+        curve(look, MARKS.trace, "⠉⠒⠤⣀", "▀▄▀▄"),
+        t.trail,
+        format!("{} of the full motion", words.q_dot),
+    );
+    if let Some(small) = f.kind.small() {
+        s = s.mark(
+            printed(look, MARKS.limit),
+            t.effective,
+            format!("the limit {} (marks)", small.limit),
+        );
+    }
+    s.mark(curve(look, MARKS.axis, "⠤⠤⠤⠤", "▄▄▄▄"), t.contour, "zero")
+        .mark(
+            curve(look, MARKS.tick, "⡇", "█"),
+            t.reversal,
+            format!("a {} (tick from the bottom)", words.event),
+        )
+        .mark(
+            curve(look, MARKS.energy, "⠉⠉⠉⠉", "▀▀▀▀"),
+            t.dim,
+            format!(
+                "below: log10 |{}|, the energy monitor of the full motion",
+                words.monitor
+            ),
+        )
+        .note("the time axis at the bottom; the window widens with the speed")
 }
 
 /// Wall seconds of motion the window shows (at least 10 simulated seconds).
@@ -64,11 +129,13 @@ fn pane(pane: &SeriesPane<'_>, area: Rect, buf: &mut Buffer) {
         area,
         buf,
     );
-    let [top, energy_area] =
-        Layout::vertical([Constraint::Min(2), Constraint::Length(3)]).areas(inner);
+    let [top, energy_area, t_axis] = Layout::vertical([
+        Constraint::Min(2),
+        Constraint::Length(3),
+        Constraint::Length(1),
+    ])
+    .areas(inner);
     let [y_axis, plot] = Layout::horizontal([Constraint::Length(8), Constraint::Min(0)]).areas(top);
-    let [e_axis, e_plot] =
-        Layout::horizontal([Constraint::Length(8), Constraint::Min(0)]).areas(energy_area);
     let (t0, t1) = window(run);
     let (rx, _) = resolution(look.marker);
     let cols = plot.width as usize * rx;
@@ -95,17 +162,28 @@ fn pane(pane: &SeriesPane<'_>, area: Rect, buf: &mut Buffer) {
         .copied()
         .filter(|t| *t >= t0)
         .collect();
+    // One point per cell: each curve its own character.
+    let one_per_cell = look.marker == ratatui::symbols::Marker::Dot;
+    let mark = move |ctx: &mut ratatui::widgets::canvas::Context<'_>, c: char| {
+        if one_per_cell {
+            ctx.marker(ratatui::symbols::Marker::Custom(c));
+        }
+    };
     let canvas = Canvas::default()
         .marker(look.marker)
         .background_color(look.theme.background)
         .x_bounds([t0, t1])
         .y_bounds([-y, y])
         .paint(move |ctx| {
+            mark(ctx, MARKS.axis);
             ctx.draw(&Line::new(t0, 0.0, t1, 0.0, theme.contour));
+            ctx.layer();
+            mark(ctx, MARKS.tick);
             for &t in &ticks {
                 ctx.draw(&Line::new(t, -y, t, -0.8 * y, theme.reversal));
             }
             ctx.layer();
+            mark(ctx, MARKS.trace);
             ctx.draw(&Points {
                 coords: &full,
                 color: theme.trail,
@@ -116,7 +194,7 @@ fn pane(pane: &SeriesPane<'_>, area: Rect, buf: &mut Buffer) {
                     x,
                     v,
                     ratatui::text::Line::styled(
-                        "∘",
+                        MARKS.limit.to_string(),
                         ratatui::style::Style::default().fg(theme.effective),
                     ),
                 );
@@ -124,15 +202,43 @@ fn pane(pane: &SeriesPane<'_>, area: Rect, buf: &mut Buffer) {
         });
     canvas.render(plot, buf);
     Paragraph::new(y_labels([-y, y], y_axis.height as usize, look.dim())).render(y_axis, buf);
-    // The energy error, on a log scale from 1e-16 up.
+    energy_strip(run, (t0, t1), cols, energy_area, look, buf);
+    // The time axis: round ticks under the plots.
+    let row = super::axis::row(
+        t0,
+        t1,
+        (plot.x - t_axis.x) as usize,
+        plot.width as usize,
+        t_axis.width as usize,
+    );
+    Paragraph::new(ratatui::text::Line::styled(row, look.dim())).render(t_axis, buf);
+}
+
+/// The energy error under the rate: `log10 |ΔE/E|` from 1e-16 up, over the same window.
+fn energy_strip(
+    run: &RunState,
+    (t0, t1): (f64, f64),
+    cols: usize,
+    area: Rect,
+    look: &Look<'_>,
+    buf: &mut Buffer,
+) {
+    let [e_axis, e_plot] =
+        Layout::horizontal([Constraint::Length(8), Constraint::Min(0)]).areas(area);
     let errors = thin(run.trail_shown(), t0, cols, |p| {
         p.energy_error.abs().max(1e-16).log10()
     });
     let hi = errors.iter().fold(-12.0f64, |m, p| m.max(p.1)).ceil() + 1.0;
     let lo = -16.0;
+    let theme = look.theme;
+    let one_per_cell = look.marker == ratatui::symbols::Marker::Dot;
     Canvas::default()
-        .marker(look.marker)
-        .background_color(look.theme.background)
+        .marker(if one_per_cell {
+            ratatui::symbols::Marker::Custom(MARKS.energy)
+        } else {
+            look.marker
+        })
+        .background_color(theme.background)
         .x_bounds([t0, t1])
         .y_bounds([lo, hi])
         .paint(move |ctx| {

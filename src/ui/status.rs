@@ -7,6 +7,8 @@ use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::widgets::{Paragraph, Widget};
 
+use super::Look;
+use super::legend::{Facts, Section};
 use crate::app::fields::Settings;
 use crate::app::{PlanState, ReplayInfo, RunState};
 
@@ -94,39 +96,7 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
     };
     out.push(field(state, 0));
     match bar.replay {
-        Some(r) if r.live.is_some() => {
-            let state = if r.live == Some(true) {
-                field("lecturer's recording ended".to_owned(), 0).or_short("lecture ended")
-            } else if r.paused {
-                // The follower paused itself (the lecture goes on): shortened where the
-                // estimate would not fit beside it.
-                field("following, paused".to_owned(), 0).or_short("you paused")
-            } else {
-                field("● following live".to_owned(), 0).or_short("● live")
-            };
-            out.push(state);
-            // The fork's hint, then the verified estimate (the lecturer's, at 80 columns too),
-            // then the lecture's wall time.
-            out.push(field(format!("{:.0} s", r.at), 3));
-            out.push(field("f forks".to_owned(), 1));
-        }
-        Some(r) => {
-            let state = if r.ended {
-                "replay ended".to_owned()
-            } else if r.paused {
-                "replay paused".to_owned()
-            } else {
-                format!("replay ×{}", r.pace)
-            };
-            out.push(field(state, 0));
-            // After the verified estimate: at 80 columns with chapters there is room for one.
-            out.push(field(format!("{:.0}/{:.0} s", r.at, r.length), 3));
-            // A session without chapters has nothing to count (and at 80 columns the field
-            // would push out the verified estimate).
-            if r.chapters > 0 {
-                out.push(field(format!("chapter {}/{}", r.chapter, r.chapters), 1));
-            }
-        }
+        Some(r) => out.extend(replay_fields(r)),
         None => out.push(field(format!("×{}", run.speed), 1)),
     }
     let kind = s.model.kind();
@@ -177,7 +147,87 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
         // Known before it is shown: said at once.
         out.push(field(format!("✗ tol missed after t {}", horizon(from)), 1));
     }
-    out.push(field(format!("{} steps/s", human(run.rate)), 5));
+    // The rate only while something runs (paused, it would be a stale number).
+    if run.playing && !run.done() {
+        let rate = human(run.rate);
+        let unit = if rate == "1" { "step/s" } else { "steps/s" };
+        out.push(field(format!("{rate} {unit}"), 5));
+    }
+    out
+}
+
+/// What the bar shows, for the legend: the fields [`fields`] writes, in the scene's words.
+pub fn legend(f: &Facts<'_>, _look: &Look<'_>) -> Section {
+    let words = f.kind.words();
+    let mut s = Section::new("status bar")
+        .note("t shown/end · ▶ playing, paused, done, verifying… · ×speed")
+        .note("replay ×pace, paused, ended · chapter n/N · following live, f forks");
+    let events = match f.kind.small() {
+        Some(small) => format!(
+            "{} N limit M: the full motion's and the limit's ({}), up to t shown; one is {}",
+            words.events, small.limit, words.event_meaning
+        ),
+        None => format!(
+            "{} N: up to t shown; one is {}",
+            words.events, words.event_meaning
+        ),
+    };
+    s = s.note(events);
+    if let Some(second) = words.second_events {
+        s = s.note(format!(
+            "{} N: up to t shown; one is {}",
+            second.name, second.meaning
+        ));
+    }
+    let monitor = if words.monitor_column == "energy_drift" {
+        "the drift of the limit's energy E_eff (the forced motion conserves none)"
+    } else {
+        "the relative error of the conserved energy"
+    };
+    s.note(format!(
+        "{}: {monitor}, at the displayed point",
+        words.monitor
+    ))
+    .note("method, or auto→the method auto chose")
+    .note("est E ✓: auto's verified error, within the tolerance (✗: missed)")
+    .note("N steps/s: the integration rate, while playing · ● REC: recording")
+}
+
+/// A replay's or a follower's fields: its state, the lecture's clock, the chapter or the fork.
+fn replay_fields(r: ReplayInfo) -> Vec<Field> {
+    let mut out = Vec::new();
+    if r.live.is_some() {
+        let state = if r.live == Some(true) {
+            field("lecturer's recording ended".to_owned(), 0).or_short("lecture ended")
+        } else if r.paused {
+            // The follower paused itself (the lecture goes on): shortened where the
+            // estimate would not fit beside it.
+            field("following, paused".to_owned(), 0).or_short("you paused")
+        } else {
+            field("● following live".to_owned(), 0).or_short("● live")
+        };
+        out.push(state);
+        // The fork's hint, then the verified estimate (the lecturer's, at 80 columns too),
+        // then the lecture's wall time.
+        out.push(field(format!("{:.0} s", r.at), 3));
+        out.push(field("f forks".to_owned(), 1));
+    } else {
+        let state = if r.ended {
+            "replay ended".to_owned()
+        } else if r.paused {
+            "replay paused".to_owned()
+        } else {
+            format!("replay ×{}", r.pace)
+        };
+        out.push(field(state, 0));
+        // After the verified estimate: at 80 columns with chapters there is room for one.
+        out.push(field(format!("{:.0}/{:.0} s", r.at, r.length), 3));
+        // A session without chapters has nothing to count (and at 80 columns the field
+        // would push out the verified estimate).
+        if r.chapters > 0 {
+            out.push(field(format!("chapter {}/{}", r.chapter, r.chapters), 1));
+        }
+    }
     out
 }
 

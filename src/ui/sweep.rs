@@ -9,12 +9,38 @@ use ratatui::text::Line as TextLine;
 use ratatui::widgets::canvas::{Canvas, Line};
 use ratatui::widgets::{Paragraph, Widget};
 
+use super::legend::{Facts, Section, curve, printed};
 use super::{Look, framed};
 use crate::app::computed::sweep::SweepState;
 use crate::physics::ModelKind;
 use crate::study::sweep::ladder;
 
 /// The sweep pane: what it shows, borrowed.
+/// A rung's mark.
+const RUNG: char = '●';
+
+/// What the pane draws, for the legend.
+pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
+    let t = look.theme;
+    let Some(small) = f.kind.small() else {
+        return Section::new("sweep (K)");
+    };
+    Section::new(format!("{}-sweep (K)", small.symbol))
+        .mark(
+            printed(look, RUNG),
+            t.current,
+            format!(
+                "one run per rung of {}: {} over [0, T]",
+                small.symbol, small.sup
+            ),
+        )
+        .mark(
+            curve(look, '•', "⠑⠢⠤", "▀▄▄"),
+            t.trail,
+            "the rungs joined; the title's slope is their log-log fit",
+        )
+}
+
 pub struct SweepPane<'a> {
     /// The rungs so far.
     pub sweep: &'a SweepState,
@@ -84,7 +110,10 @@ impl Widget for SweepPane<'_> {
                     ctx.print(
                         x,
                         y,
-                        TextLine::styled("●", ratatui::style::Style::default().fg(theme.current)),
+                        TextLine::styled(
+                            RUNG.to_string(),
+                            ratatui::style::Style::default().fg(theme.current),
+                        ),
                     );
                 }
             })

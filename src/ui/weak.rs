@@ -11,9 +11,40 @@ use ratatui::text::Line as TextLine;
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 use ratatui::widgets::{Paragraph, Widget};
 
+use super::legend::{Facts, Section, curve};
 use super::portrait::resolution;
 use super::{Look, framed};
 use crate::app::computed::weak::WeakState;
+
+/// The weak-* pane's characters with one point per cell: the samples, the dashed reference,
+/// the average.
+const SAMPLE: char = '.';
+const REFERENCE: char = '-';
+const AVERAGE: char = '•';
+
+/// What the pane draws, for the legend.
+pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
+    let t = look.theme;
+    let Some(words) = f.kind.studies().weak else {
+        return Section::new("weak-* (W)");
+    };
+    Section::new("weak-* (W)")
+        .mark(
+            curve(look, SAMPLE, "⠁⠈⠐⠂", "▀ ▄ "),
+            t.contour,
+            words.observable,
+        )
+        .mark(
+            curve(look, AVERAGE, "⠒⠒⠒⠒", "▀▀▀▀"),
+            t.trail,
+            "its moving average over the window w (< > halve or double w)",
+        )
+        .mark(
+            curve(look, REFERENCE, "⠒ ⠒ ", "▀ ▀ "),
+            t.effective,
+            words.reference,
+        )
+}
 
 /// The weak-* pane: what it shows, borrowed.
 pub struct WeakPane<'a> {
@@ -79,13 +110,13 @@ impl Widget for WeakPane<'_> {
             .x_bounds([0.0, t1])
             .y_bounds([bottom, top])
             .paint(|ctx| {
-                mark(ctx, '.');
+                mark(ctx, SAMPLE);
                 ctx.draw(&Points {
                     coords: &dots,
                     color: theme.contour,
                 });
                 ctx.layer();
-                mark(ctx, '-');
+                mark(ctx, REFERENCE);
                 if pendulum {
                     for w in reference.windows(2).step_by(2) {
                         ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, theme.effective));
@@ -99,7 +130,7 @@ impl Widget for WeakPane<'_> {
                     }
                 }
                 ctx.layer();
-                mark(ctx, '•');
+                mark(ctx, AVERAGE);
                 for w in average.windows(2) {
                     ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, theme.trail));
                 }
@@ -111,16 +142,14 @@ impl Widget for WeakPane<'_> {
             "0".to_owned()
         };
         Paragraph::new(y_labels(y_axis.height as usize, top, &low, look)).render(y_axis, buf);
-        let last = format!("t {}", crate::study::svg::tick(t1));
-        let width = x_axis.width as usize;
-        Paragraph::new(TextLine::styled(
-            format!(
-                "0{}{last}",
-                " ".repeat(width.saturating_sub(1 + last.len()))
-            ),
-            look.dim(),
-        ))
-        .render(x_axis, buf);
+        let row = super::axis::row(
+            0.0,
+            t1,
+            (plot.x - x_axis.x) as usize,
+            plot.width as usize,
+            x_axis.width as usize,
+        );
+        Paragraph::new(TextLine::styled(row, look.dim())).render(x_axis, buf);
     }
 }
 

@@ -139,7 +139,10 @@ fn toggles_zoom_wrap_reset_help_and_quit() {
     assert!(
         matches!(
             app.mode,
-            Mode::Help(rattleback::app::mode::HelpPage::Legend)
+            Mode::Help(rattleback::app::mode::Help {
+                page: rattleback::app::mode::HelpPage::Legend,
+                ..
+            })
         ),
         "? again shows the legend"
     );
@@ -148,6 +151,19 @@ fn toggles_zoom_wrap_reset_help_and_quit() {
         app.mode == Mode::Normal && !app.quit,
         "Esc closes the help first"
     );
+    // A key that closes the help does nothing else (issue 54: Down closed it and moved the
+    // selection); the arrows scroll it.
+    let selected = app.scenario.selected;
+    app.on_key(Key::Char('?'));
+    app.on_key(Key::Down);
+    assert!(matches!(app.mode, Mode::Help(_)), "the arrows scroll");
+    app.on_key(Key::Char('h'));
+    assert_eq!(app.mode, Mode::Normal, "another key closes it");
+    assert_eq!(app.scenario.selected, selected, "and does nothing else");
+    app.on_key(Key::Char('?'));
+    app.on_key(Key::Char('q'));
+    assert!(app.quit, "q still quits from the help");
+    app.quit = false;
     app.on_key(Key::Char('T'));
     let m = app.status.clone().expect("T names the theme");
     assert!(m.text.contains("theme"), "{}", m.text);

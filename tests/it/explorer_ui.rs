@@ -92,8 +92,27 @@ fn help_overlay_lists_the_bindings() {
     app.on_key(Key::Char('?'));
     let buffer = render(&app, 80, 24);
     insta::assert_snapshot!("help_80x24", text(&buffer));
+    // The help scrolls at 80×24, and says so; End shows its last row (`q` quits).
+    assert!(
+        text(&buffer).contains("↓ lines 1-22 of"),
+        "{}",
+        text(&buffer)
+    );
+    let options = rattleback::ui::UiOptions::default();
+    let area = ratatui::layout::Rect::new(0, 0, 80, 24);
+    app.fit_help(rattleback::ui::help::max_scroll(&app, area, &options));
+    app.on_key(Key::End);
+    let end = text(&render(&app, 80, 24));
+    assert!(end.contains("q/Ctrl-C") && end.contains("↑ lines"), "{end}");
+    app.on_key(Key::Home);
     app.on_key(Key::Char('?'));
-    let legend = text(&render(&app, 80, 24));
+    // Every page of the legend, scrolled through.
+    let mut legend = String::new();
+    for _ in 0..10 {
+        legend.push_str(&text(&render(&app, 80, 24)));
+        app.fit_help(rattleback::ui::help::max_scroll(&app, area, &options));
+        app.on_key(Key::PageDown);
+    }
     for what in ["separatrix", "limit", "ΔE/E", "vs critical", "REC"] {
         assert!(legend.contains(what), "legend lacks {what}:\n{legend}");
     }

@@ -32,6 +32,7 @@ mod kapitza_cli;
 mod kapitza_explorer;
 mod layering;
 mod lecture;
+mod legend;
 mod lessons;
 mod page;
 mod presets_themes;

@@ -73,7 +73,12 @@ fn every_scene_is_complete_and_agrees_with_itself() {
             // The weak-* view is there exactly when the scene says so (a stopped run answers
             // at once).
             let view = preset.model.weak_view(1.0, &mut |_| false);
-            assert_eq!(view.is_some(), scene.studies.weak, "{}", preset.name);
+            assert_eq!(
+                view.is_some(),
+                scene.studies.weak.is_some(),
+                "{}",
+                preset.name
+            );
         }
         if let Some(small) = scene.small {
             let spec = params

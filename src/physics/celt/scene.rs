@@ -167,8 +167,10 @@ pub static SCENE: Scene = Scene {
         fast_name: "tilt",
         event: "reversal",
         events: "reversals",
+        event_meaning: "the spin changing sign and reaching spin_band with the new sign",
         second_events: Some(SecondEvents {
             name: "crossings",
+            meaning: "any sign change of the spin",
             found: Found::Flow,
         }),
         monitor: "ΔE/E",
@@ -181,7 +183,7 @@ pub static SCENE: Scene = Scene {
     limit_tolerance: 1e-10,
     small: None,
     studies: Studies {
-        weak: false,
+        weak: None,
         map: false,
         body: true,
         counterpart: "subcritical",
@@ -237,14 +239,35 @@ impl Posed for Problem {
     fn summary(&self) -> Vec<SummaryLine> {
         let p = self.params();
         let y0 = self.initial_state();
-        let line = |label, value| SummaryLine { label, value };
+        let line = |label, meaning, value| SummaryLine {
+            label,
+            meaning,
+            value,
+        };
         vec![
-            line("skew δ°", Shown::Number(Some(p.skew().to_degrees()))),
-            line("spin ω·γ", Shown::Number(Some(super::spin(&y0)))),
-            line("energy E", Shown::Number(Some(p.energy(&y0)))),
-            line("rest E", Shown::Number(Some(p.gravity * p.rest_height()))),
+            line(
+                "skew δ°",
+                "the angle between the inertia axes and the bottom's axes",
+                Shown::Number(Some(p.skew().to_degrees())),
+            ),
+            line(
+                "spin ω·γ",
+                "the start's spin about the vertical",
+                Shown::Number(Some(super::spin(&y0))),
+            ),
+            line(
+                "energy E",
+                "the start's energy",
+                Shown::Number(Some(p.energy(&y0))),
+            ),
+            line(
+                "rest E",
+                "the energy at rest, upright",
+                Shown::Number(Some(p.gravity * p.rest_height())),
+            ),
             line(
                 "upright",
+                "whether the upright rest is stable",
                 Shown::Verdict(if self.stable_upright() {
                     "stable at rest"
                 } else {

@@ -14,7 +14,7 @@ use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, PlanRequest, Resolution, Resolved};
 use crate::physics::scene::{
     Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve, SmallParameter,
-    Studies, SummaryLine, WeakView, Words,
+    Studies, SummaryLine, WeakView, WeakWords, Words,
 };
 
 const STRENGTH: Scale = Scale::linear(0.05, 0.5);
@@ -71,8 +71,10 @@ pub static SCENE: Scene = Scene {
         fast_name: "ripple",
         event: "swing",
         events: "swings",
+        event_meaning: "a turning point of the slow motion (the averaged rate changing sign)",
         second_events: Some(SecondEvents {
             name: "falls",
+            meaning: "the slow angle passing the horizontal on its way down",
             found: Found::SlowAngleFalls,
         }),
         monitor: "ΔE_eff",
@@ -93,7 +95,10 @@ pub static SCENE: Scene = Scene {
         ladder: &[1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6],
     }),
     studies: Studies {
-        weak: true,
+        weak: Some(WeakWords {
+            observable: "the full motion's rate, pointwise (its fast ripple)",
+            reference: "the limit's rate, averaged alike (dashed)",
+        }),
         map: false,
         body: false,
         counterpart: "subcritical",
@@ -113,16 +118,30 @@ impl Posed for Problem {
         let p = self.params();
         let limit = Limit::new(p);
         let s = self.start();
-        let line = |label, value| SummaryLine { label, value };
+        let line = |label, meaning, value| SummaryLine {
+            label,
+            meaning,
+            value,
+        };
         vec![
-            line("b^2-2a", Shown::Number(Some(p.threshold()))),
+            line(
+                "b^2-2a",
+                "Kapitza's criterion: positive holds the pendulum upright",
+                Shown::Number(Some(p.threshold())),
+            ),
             line(
                 "limit E",
+                "the limit's energy E_eff at the start",
                 Shown::Number(Some(limit.energy_of(s.theta, s.theta_dot))),
             ),
-            line("separatrix E", Shown::Number(Some(limit.potential_max()))),
+            line(
+                "separatrix E",
+                "the energy of the limit's separatrix",
+                Shown::Number(Some(limit.potential_max())),
+            ),
             line(
                 "upright",
+                "whether the averaged upright is stable",
                 Shown::Verdict(if p.stable_upright() {
                     "stable"
                 } else {

@@ -16,7 +16,7 @@ use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::PlanRequest;
 use crate::physics::scene::{
     Planned, Posed, Scene, Shown, SideView, SlowCurve, SmallParameter, Studies, SummaryLine,
-    WeakView, Words,
+    WeakView, WeakWords, Words,
 };
 
 const INERTIA: Scale = Scale::linear(0.05, 0.5);
@@ -107,6 +107,7 @@ pub static SCENE: Scene = Scene {
         fast_name: "gamma",
         event: "reversal",
         events: "reversals",
+        event_meaning: "a sign change of the spin rate (a spin reversal)",
         second_events: None,
         monitor: "ΔE/E",
         monitor_column: "energy_error",
@@ -128,7 +129,10 @@ pub static SCENE: Scene = Scene {
         ladder: &[1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8],
     }),
     studies: Studies {
-        weak: true,
+        weak: Some(WeakWords {
+            observable: "gamma_dot^2 g^1.5 of the full motion, pointwise (between 0 and 2 theta)",
+            reference: "theta, the adiabatic invariant (dashed)",
+        }),
         map: true,
         body: true,
         counterpart: "celt-clockwise",
@@ -159,13 +163,37 @@ impl Posed for Problem {
             (Some(r), Some(c)) if c != 0.0 => Some((r - c) / c),
             _ => None,
         };
-        let line = |label, value| SummaryLine { label, value };
+        let line = |label, meaning, value| SummaryLine {
+            label,
+            meaning,
+            value,
+        };
         vec![
-            line("limit theta", Shown::Number(Some(e.theta()))),
-            line("ratio", Shown::Number(ratio)),
-            line("critical", Shown::Number(critical)),
-            line("vs critical", Shown::Percent(side)),
-            line("limit regime", Shown::Verdict(e.regime().name())),
+            line(
+                "limit theta",
+                "theta, the fast motion's adiabatic invariant, set by the start",
+                Shown::Number(Some(e.theta())),
+            ),
+            line(
+                "ratio",
+                "the start's alpha_dot0^2/gamma_dot0^2",
+                Shown::Number(ratio),
+            ),
+            line(
+                "critical",
+                "the paper's critical ratio: below it the spin reverses",
+                Shown::Number(critical),
+            ),
+            line(
+                "vs critical",
+                "(ratio - critical)/critical: negative reverses",
+                Shown::Percent(side),
+            ),
+            line(
+                "limit regime",
+                "the limit's motion: trapped (reverses) or rotating (does not)",
+                Shown::Verdict(e.regime().name()),
+            ),
         ]
     }
     fn slow_start(&self) -> (f64, f64) {
