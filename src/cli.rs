@@ -65,8 +65,8 @@ pub struct RecordArgs {
 /// How the explorer (and a replay) draws: frame rate, theme, marker.
 #[derive(Debug, Args, Clone)]
 pub struct LookArgs {
-    /// Frame-rate cap of the explorer (default 30); with `--export-cast`, the cast's frames per
-    /// second (default 10).
+    /// Frame-rate cap of the explorer (default 30); for `replay --export-cast`, the cast's
+    /// frames per second (default 10).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=240))]
     pub fps: Option<u32>,
     /// Colour theme: a shipped name (default, dark, light, high-contrast), a user theme or a
@@ -206,7 +206,8 @@ pub enum Command {
     /// Studies of the limit k → ∞: a stiffness sweep, or the regime map of the theorems.
     #[command(subcommand)]
     Study(StudyCommand),
-    /// Print a shell completion script (preset and theme names included) to stdout.
+    /// Print a shell completion script to stdout; sourced once, it asks the program for the
+    /// preset, theme and lesson names each time, so a preset saved later completes too.
     Completions(CompletionsArgs),
     /// Print the manual page (roff) to stdout: `rattleback man > rattleback.1`.
     Man,
@@ -306,7 +307,7 @@ pub enum StudyCommand {
     /// its α from the limit's over [0, T], against k, with the fitted log–log slope.
     Sweep(SweepArgs),
     /// Reversals in [0, T] over a grid of (α̇0²/γ̇0², iy/ix) with the critical curve, from the
-    /// limit (quadrature) or the full model at `--k`.
+    /// limit (quadrature) or the full model at a stiffness (`map --k`).
     Map(MapArgs),
 }
 
@@ -333,8 +334,8 @@ pub struct StudyCommon {
     #[arg(long)]
     pub force: bool,
     /// Output format on stdout.
-    #[arg(long, value_enum, default_value_t = Format::Table)]
-    pub format: Format,
+    #[arg(long, value_enum, default_value_t = StudyFormat::Table)]
+    pub format: StudyFormat,
 }
 
 /// Arguments of `study sweep`.
@@ -454,7 +455,7 @@ pub struct ReplayArgs {
     /// (exit 2) unless `--force`.
     #[arg(long, value_name = "OUT.html")]
     pub export_html: Option<std::path::PathBuf>,
-    /// Replace an existing `--export-cast` file (never the session itself).
+    /// Replace an existing `--export-cast` or `--export-html` file (never the session itself).
     #[arg(long)]
     pub force: bool,
     /// How the replay (and the exported cast) draws.
@@ -498,13 +499,13 @@ pub struct ListArgs {
     pub format: ListFormat,
 }
 
-/// Output format of `presets`.
+/// Output format of the lists, `check`, `doctor` and `replay --chapters`/`--verify`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ListFormat {
-    /// One object: `schema_version`, `model` (`null` for a list) and the entries (`presets`,
-    /// `themes`, `lessons`), each with `name`, `title`, `source`, `path`…
+    /// One JSON object on stdout: `schema_version`, `model` (`null` where it is about no
+    /// scene), then the command's own fields (each output's schema is in `docs/schemas/`).
     Json,
-    /// For people.
+    /// Text for people.
     Table,
 }
 
@@ -518,6 +519,17 @@ pub struct CheckArgs {
     /// Output format: every problem as text on stderr, or one JSON object on stdout.
     #[arg(long, value_enum, default_value_t = ListFormat::Table)]
     pub format: ListFormat,
+}
+
+/// Output format of a study.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum StudyFormat {
+    /// One JSON object (`docs/schemas/sweep.schema.json`, `map.schema.json`).
+    Json,
+    /// One row per rung (the sweep) or per cell (the map), with a header line.
+    Csv,
+    /// A summary for people.
+    Table,
 }
 
 /// Output format of `simulate`.

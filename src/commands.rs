@@ -57,6 +57,12 @@ macro_rules! say_raw {
     ($($t:tt)*) => { $crate::commands::say_raw(&format!($($t)*)) };
 }
 
+/// The width of a list's name column: its longest name, at least 16 (every row's columns line
+/// up, whatever a user names a file).
+fn name_width<'a>(names: impl Iterator<Item = &'a str>) -> usize {
+    names.map(|n| n.chars().count()).max().unwrap_or(0).max(16)
+}
+
 /// `rattleback presets`.
 pub fn presets(args: &PresetsArgs) -> Outcome {
     if let Some(PresetsAction::Show { name }) = &args.action {
@@ -74,13 +80,15 @@ pub fn presets(args: &PresetsArgs) -> Outcome {
         model: None,
         presets: entries.clone(),
     };
+    let w = name_width(entries.iter().map(|e| e.name.as_str()));
+    let indent = " ".repeat(w + 1);
     print_list(
         &entries,
         &json,
         args.format,
         &|e| {
             format!(
-                "{:<18} {:<10} {:<8} {}\n                   {}\n                   {}\n\n",
+                "{:<w$} {:<10} {:<8} {}\n{indent}{}\n{indent}{}\n\n",
                 e.name,
                 e.model.name(),
                 format!("{:?}", e.source).to_lowercase(),
@@ -126,13 +134,15 @@ pub fn themes(args: &ListArgs) -> Outcome {
         model: None,
         themes: entries,
     };
+    let w = name_width(json.themes.iter().map(|e| e.name.as_str()));
+    let indent = " ".repeat(w + 1);
     print_list(
         &json.themes,
         &json,
         args.format,
         &|e| {
             format!(
-                "{:<16} {:<8} {}\n                 {}\n                 {}\n\n",
+                "{:<w$} {:<8} {}\n{indent}{}\n{indent}{}\n\n",
                 e.name, e.source, e.title, e.path, e.description
             )
         },
@@ -148,13 +158,15 @@ pub fn lessons(args: &ListArgs) -> Outcome {
         model: None,
         lessons: entries,
     };
+    let w = name_width(json.lessons.iter().map(|e| e.name.as_str()));
+    let indent = " ".repeat(w + 1);
     print_list(
         &json.lessons,
         &json,
         args.format,
         &|e| {
             format!(
-                "{:<16} {:<8} {} ({} steps)\n                 {}\n\n",
+                "{:<w$} {:<8} {} ({} steps)\n{indent}{}\n\n",
                 e.name,
                 format!("{:?}", e.source).to_lowercase(),
                 e.title,
@@ -277,7 +289,7 @@ pub fn doctor(args: &crate::cli::DoctorArgs) -> Outcome {
         color_flag: look.color.name(),
         marker: look.marker.map(crate::cli::MarkerChoice::name),
     };
-    let d = crate::doctor::diagnose(&asked);
+    let d = crate::doctor::diagnose(&asked, load_config().map(|(c, _)| c));
     let text = match args.format {
         ListFormat::Json => json_text(&d),
         ListFormat::Table => crate::scenario::text::shown(&d.table()),
@@ -705,7 +717,7 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> Outcome {
         );
     }
     let printed = match args.common.format {
-        crate::cli::Format::Json => {
+        crate::cli::StudyFormat::Json => {
             let ladder = s.stiffness();
             emit(&json_text(&crate::outputs::Sweep {
                 schema_version: crate::outputs::SCHEMA_VERSION,
@@ -721,8 +733,8 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> Outcome {
                 estimates: s.rungs.iter().map(|r| r.estimate).collect(),
             }))
         }
-        crate::cli::Format::Csv => emit(&crate::scenario::text::clean(&csv)),
-        crate::cli::Format::Table => emit(&crate::scenario::text::clean(&sweep_table(
+        crate::cli::StudyFormat::Csv => emit(&crate::scenario::text::clean(&csv)),
+        crate::cli::StudyFormat::Table => emit(&crate::scenario::text::clean(&sweep_table(
             &preset.name,
             t_end,
             tolerance,
@@ -841,13 +853,13 @@ fn study_map(args: &crate::cli::MapArgs) -> Outcome {
         let _ = writeln!(csv, "{},{},{}", c.ratio, c.inertia_ratio, c.reversals);
     }
     let printed = match args.common.format {
-        crate::cli::Format::Json => emit(&json_text(&crate::outputs::Map {
+        crate::cli::StudyFormat::Json => emit(&json_text(&crate::outputs::Map {
             schema_version: crate::outputs::SCHEMA_VERSION,
             model: model.kind(),
             map: map.clone(),
         })),
-        crate::cli::Format::Csv => emit(&csv),
-        crate::cli::Format::Table => emit(&map_table(&grid, &map)),
+        crate::cli::StudyFormat::Csv => emit(&csv),
+        crate::cli::StudyFormat::Table => emit(&map_table(&grid, &map)),
     };
     printed?;
     let svg = match crate::study::svg::map_svg(&map, grid.cols, grid.rows) {

@@ -126,13 +126,14 @@ pub struct Asked {
 
 /// Looks at the environment, the terminal and the configuration.
 #[must_use]
-pub fn diagnose(asked: &Asked) -> Diagnosis {
+/// `loaded` is the configuration as every command reads it (`--config FILE` already in
+/// effect), or every problem it has, as the commands would refuse it.
+pub fn diagnose(asked: &Asked, loaded: Result<Config, Vec<String>>) -> Diagnosis {
     let var = |name: &str| std::env::var(name).ok();
-    // `--config FILE` is already in effect: `load` reads it.
-    let (config, config_status) = match Config::load() {
+    let (config, config_status) = match loaded {
         Ok(c) if c.path.is_some() => (c, "valid".to_owned()),
         Ok(c) => (c, "absent: the defaults".to_owned()),
-        Err(e) => (Config::default(), invalid(&e)),
+        Err(e) => (Config::default(), format!("invalid: {}", e.join("; "))),
     };
     let detected = Charset::detect(asked.ascii || config.ascii, &var);
     let depth = crate::terminal::Depth::detect(&var, &crate::terminal::depth::terminfo_colors);
@@ -224,11 +225,6 @@ pub fn diagnose(asked: &Asked) -> Diagnosis {
             sessions: config.sessions_dir().map(|d| d.display().to_string()),
         },
     }
-}
-
-fn invalid(errors: &[crate::scenario::PresetError]) -> String {
-    let all: Vec<String> = errors.iter().map(ToString::to_string).collect();
-    format!("invalid: {}", all.join("; "))
 }
 
 /// The terminal and its variables.

@@ -49,7 +49,7 @@ fn run() -> Outcome {
         Err(e) if e.use_stderr() => {
             // One error style: `rattleback: error: …`, as every other message (clap's own
             // text begins with `error: `), then its usage hint; exit 2.
-            let mut text = e.render().to_string();
+            let mut text = drop_far_suggestion(&e, e.render().to_string());
             if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
                 // The help of a command that needs a subcommand: say so first.
                 text = format!("error: a subcommand is needed\n\n{text}");
@@ -78,6 +78,21 @@ fn run() -> Outcome {
         }
         rattleback::scenario::config::use_file(file.clone());
     }
+    // Every command reads the configuration the same way: an invalid one is refused with
+    // every problem (file:line), whatever the command; `doctor` reports it instead, and the
+    // manual, the completion scripts and `config path` do not read it.
+    let reads_config = !matches!(
+        cli.command,
+        Some(
+            Command::Doctor(_)
+                | Command::Man
+                | Command::Completions(_)
+                | Command::Config(rattleback::cli::ConfigCommand::Path)
+        )
+    );
+    if reads_config {
+        config_or_exit()?;
+    }
     match cli.command {
         Some(Command::Simulate(args)) => run_simulate(&args),
         Some(Command::Presets(args)) => commands::presets(&args),
@@ -97,6 +112,56 @@ fn run() -> Outcome {
         Some(Command::Study(ref command)) => commands::study(command),
         None => run_explorer(&cli),
     }
+}
+
+/// clap's error text without its "a similar argument exists" tip when that argument is not
+/// close enough to be a typo by the program's own rule ([`closest`]: one edit away, or
+/// Jaro–Winkler ≥ 0.8): `--bogus` is not `--mouse` (issue 54), `--presett` is `--preset`. The
+/// usage line clap built around the suggestion becomes the command's own.
+///
+/// [`closest`]: rattleback::scenario::text::closest
+fn drop_far_suggestion(e: &clap::Error, text: String) -> String {
+    use clap::error::{ContextKind, ContextValue};
+    let (Some(ContextValue::String(asked)), Some(ContextValue::String(suggested))) = (
+        e.get(ContextKind::InvalidArg),
+        e.get(ContextKind::SuggestedArg),
+    ) else {
+        return text;
+    };
+    let suggested = [suggested];
+    let close = suggested.iter().any(|s| {
+        rattleback::scenario::text::closest(
+            asked.trim_start_matches('-'),
+            [s.trim_start_matches('-')],
+        )
+        .is_some()
+    });
+    if close {
+        return text;
+    }
+    let mut out = Vec::new();
+    let mut lines = text.lines().peekable();
+    while let Some(line) = lines.next() {
+        if line
+            .trim_start()
+            .starts_with("tip: a similar argument exists")
+        {
+            // The tip and the blank line after it.
+            if lines.peek().is_some_and(|l| l.trim().is_empty()) {
+                lines.next();
+            }
+            continue;
+        }
+        if let Some(usage) = line.strip_prefix("Usage: ")
+            && let Some(first) = suggested.first()
+            && let Some(at) = usage.find(first.as_str())
+        {
+            out.push(format!("Usage: {}[OPTIONS]", &usage[..at]));
+            continue;
+        }
+        out.push(line.to_owned());
+    }
+    out.join("\n") + "\n"
 }
 
 /// The command line with a leading `--config FILE` (or `--config=FILE`) moved to the end: the

@@ -238,8 +238,18 @@ impl Config {
                 .ok_or_else(|| format!("{value}: allowed true or false"))
         };
         match key {
-            "preset" => self.preset = Some(text()?),
-            "theme" => self.theme = Some(text()?),
+            // Checked here, so a theme or preset that does not exist is said with its line,
+            // in the same run as every other problem.
+            "preset" => {
+                let name = text()?;
+                super::shipped::resolve(&name, &[]).map_err(|e| e.to_string())?;
+                self.preset = Some(name);
+            }
+            "theme" => {
+                let name = text()?;
+                super::theme::theme(&name).map_err(|e| e.to_string())?;
+                self.theme = Some(name);
+            }
             "fps" => {
                 let fps = value
                     .as_integer()
