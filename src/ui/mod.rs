@@ -629,6 +629,7 @@ fn message_lines(app: &App, width: u16) -> Option<(Vec<String>, bool)> {
         {
             let hint = " (v: whole)";
             let keep: String = last
+                .trim_end_matches('…')
                 .chars()
                 .take(width.saturating_sub(hint.chars().count() + 1))
                 .collect();

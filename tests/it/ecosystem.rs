@@ -388,9 +388,14 @@ fn config_path_show_and_a_bad_config_file() {
         "{err}"
     );
     assert!(err.contains("did you mean `fps`?"), "{err}");
-    // Commands that do not use it are not stopped by it.
+    // Every command reads it the same way (issue 54): a headless one is stopped by it too,
+    // with the same message; `doctor` reports it.
     let (code, _, err) = bin_in(&dir, &["simulate", "--t-end", "1"]);
-    assert_eq!(code, 0, "{err}");
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("config.toml:1: fsp"), "{err}");
+    let (code, out, _) = bin_in(&dir, &["doctor"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("invalid"), "{out}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

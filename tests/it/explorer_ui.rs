@@ -673,3 +673,114 @@ fn at_80_columns_the_verified_estimate_stays_recorded_replayed_and_followed() {
         "{wide}"
     );
 }
+
+/// Issue 54, 80×24: `t K W M` no longer stacks five panes into 19 rows. The most recent pane and
+/// the portrait get readable rows (at least 8 inside each box), the others are listed on one
+/// line, and Tab brings the next to the front.
+#[test]
+fn four_panes_at_80x24_are_cycled_not_squeezed() {
+    let mut h = Headless::new("subcritical");
+    h.play_until(10.0, 4.0);
+    h.key(Key::Char(' '));
+    for k in ['t', 'K', 'W', 'M'] {
+        h.key(Key::Char(k));
+    }
+    h.key(Key::Esc);
+    let right = ui::screen(&h.app, ratatui::layout::Rect::new(0, 0, 80, 24)).right;
+    let check = |h: &Headless| {
+        let layout = ui::column_layout(&h.app, right);
+        assert!(layout.panes.len() >= 2, "{:?}", layout.panes);
+        for (p, area) in &layout.panes {
+            assert!(area.height >= 10, "{p:?} squeezed to {} rows", area.height);
+        }
+        let (_, hidden) = layout.hidden.as_ref().expect("the others are listed");
+        assert!(!hidden.is_empty());
+        layout
+    };
+    let first = check(&h);
+    insta::assert_snapshot!("four_panes_80x24", screen_text(&h.app, 80, 24));
+    h.key(Key::Tab);
+    let second = check(&h);
+    assert_ne!(
+        first.panes, second.panes,
+        "Tab brings another pane to the front"
+    );
+    insta::assert_snapshot!("four_panes_80x24_tab", screen_text(&h.app, 80, 24));
+}
+
+/// Issue 54: `y` shows the copied command whole (it was cut with `…`), and `v` shows every
+/// message in full.
+#[test]
+fn the_copied_command_and_every_message_are_shown_whole() {
+    let mut h = Headless::new("just-below");
+    h.key(Key::Char('y'));
+    let copied = match h.effects.last() {
+        Some(rattleback::app::Effect::Copy(text)) => text.clone(),
+        other => panic!("no copy: {other:?}"),
+    };
+    let screen = screen_text(&h.app, 80, 24);
+    insta::assert_snapshot!("copied_command_80x24", screen);
+    // Every word of the command is on the screen (wrapped, never cut).
+    let flat: String = screen.split_whitespace().collect::<Vec<_>>().join(" ");
+    for word in copied.split_whitespace() {
+        assert!(flat.contains(word), "{word} is not on the screen");
+    }
+    h.key(Key::Esc);
+    h.key(Key::Char('v'));
+    let log = screen_text(&h.app, 80, 24);
+    assert!(log.contains("messages, in full"), "{log}");
+    assert!(log.contains("copied: rattleback simulate"), "{log}");
+}
+
+/// Issue 54: the picker filters as you type, Home and End jump, Backspace and Esc clear.
+#[test]
+fn the_picker_filters_as_you_type() {
+    use rattleback::app::Mode;
+    let mut h = Headless::new("subcritical");
+    h.key(Key::Char('p'));
+    let catalogue = rattleback::app::Outcome::Catalogue(
+        rattleback::scenario::shipped::catalogue().0,
+        Vec::new(),
+    );
+    let effects = h.app.on_outcome(catalogue);
+    h.exec(effects);
+    for c in "kap".chars() {
+        h.key(Key::Char(c));
+    }
+    let Mode::Picker(p) = &h.app.mode else {
+        panic!("the picker is open")
+    };
+    let names: Vec<String> = p
+        .visible()
+        .into_iter()
+        .map(|i| match &p.rows[i] {
+            rattleback::app::mode::PickerRow::Preset(e) => e.name.clone(),
+            rattleback::app::mode::PickerRow::Broken { name, .. } => name.clone(),
+        })
+        .collect();
+    assert!(
+        !names.is_empty() && names.iter().all(|n| n.starts_with("kapitza")),
+        "{names:?}"
+    );
+    let screen = screen_text(&h.app, 80, 24);
+    assert!(screen.contains("filter: kap"), "{screen}");
+    h.key(Key::End);
+    let Mode::Picker(p) = &h.app.mode else {
+        panic!()
+    };
+    let last = *p.visible().last().unwrap();
+    assert_eq!(p.selected, last, "End: the last match");
+    h.key(Key::Home);
+    let Mode::Picker(p) = &h.app.mode else {
+        panic!()
+    };
+    assert_eq!(p.selected, p.visible()[0], "Home: the first match");
+    h.key(Key::Backspace);
+    h.key(Key::Esc);
+    let Mode::Picker(p) = &h.app.mode else {
+        panic!("the first Esc clears the filter")
+    };
+    assert!(p.filter.is_empty());
+    h.key(Key::Esc);
+    assert_eq!(h.app.mode, Mode::Normal, "the second closes");
+}
