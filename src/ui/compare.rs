@@ -210,8 +210,12 @@ fn draw_lane(
             spans.push(Span::raw(format!(" │ spin {}", short(p.alpha_dot))));
         }
     }
-    // The preset's name last: on a narrow pane it is what gets cut.
-    spans.push(Span::styled(format!(" · {}", lane.name), look.dim()));
+    // The preset's name last, only where it fits whole (a cut name reads as another).
+    let used: usize = spans.iter().map(|s| s.content.chars().count()).sum();
+    let name = format!(" · {}", lane.name);
+    if used + name.chars().count() <= status.width as usize {
+        spans.push(Span::styled(name, look.dim()));
+    }
     Paragraph::new(TextLine::from(spans)).render(status, buf);
     if plot_area.height == 0 {
         return;
