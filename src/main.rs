@@ -445,6 +445,14 @@ fn print_report(path: &str, r: &record::Report, cut: Option<usize>) {
         r.checkpoints,
         r.screens
     );
+    if r.final_screen {
+        say!("{path}: the last frame, as recorded");
+    } else if cut.is_none() {
+        say!(
+            "{path}: the last frame was not recorded (format {} files ended with q or Ctrl-C have none; format 10 on always does)",
+            r.format
+        );
+    }
     say!("{path}: {}", r.integrity);
     match &r.signature {
         Some(s) => say!("{path}: {s}"),

@@ -157,6 +157,8 @@ pub struct Verification {
     pub checkpoints: usize,
     /// Screens (status-bar values) reproduced.
     pub screens: usize,
+    /// The last frame before the end was recorded and reproduced (always from format 10 on).
+    pub final_screen: bool,
     /// What the integrity check covers, in words (`null` when it did not run).
     pub integrity: Option<String>,
     /// Who signed it and whether it was checked against a key (`null`: not signed).
@@ -239,6 +241,7 @@ impl Verification {
             format: rec.map(|r| r.header.version),
             checkpoints: 0,
             screens: 0,
+            final_screen: false,
             integrity: None,
             signature: None,
             incomplete_through: None,
@@ -253,6 +256,7 @@ impl Verification {
             v.format = Some(r.format);
             v.checkpoints = r.checkpoints;
             v.screens = r.screens;
+            v.final_screen = r.final_screen;
             v.integrity = Some(r.integrity.clone());
             v.signature.clone_from(&r.signature);
         }

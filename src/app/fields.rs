@@ -26,12 +26,20 @@ impl Settings {
     /// These settings as a `rattleback simulate` command line that runs exactly them (every
     /// value as text that parses back to the same bits, whatever preset is the default).
     #[must_use]
-    pub fn simulate_command(&self) -> String {
+    pub fn simulate_command(&self, preset: Option<&str>) -> String {
         use std::fmt::Write as _;
-        let mut cmd = format!(
-            "rattleback simulate --preset {}",
-            crate::scenario::shipped::base_preset(self.model.kind())
-        );
+        let preset =
+            preset.unwrap_or_else(|| crate::scenario::shipped::base_preset(self.model.kind()));
+        // A name with a space or a quote, quoted for the shell.
+        let preset = if preset
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_./".contains(c))
+        {
+            preset.to_owned()
+        } else {
+            format!("'{}'", preset.replace('\'', "'\\''"))
+        };
+        let mut cmd = format!("rattleback simulate --preset {preset}");
         for f in Field::rows(self.model.kind()) {
             let value = f.exact(self);
             let _ = match f {
@@ -369,7 +377,7 @@ mod tests {
             m = Field::Method.nudge(&m, 1.0, false).unwrap();
             assert!(ModelKind::Kapitza.offers(m.method), "{}", m.method);
         }
-        let cmd = s.simulate_command();
+        let cmd = s.simulate_command(None);
         assert!(
             cmd.contains("--preset kapitza-upright --set pendulum.a=1.0"),
             "{cmd}"

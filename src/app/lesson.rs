@@ -129,7 +129,10 @@ impl App {
             effects.extend(self.restart());
         }
         if self.run.playing {
+            // A step opens paused; said in the file, so a replay and a follower pause too
+            // (issue 55: `n` pressed while playing let the replay play the new step alone).
             effects.push(Effect::Sim(self.run.pause()));
+            self.log(Event::Pause);
         }
         // The comparison's partner first: a step about the compare pane opens it with it.
         if let Some(partner) = &step.partner {

@@ -139,6 +139,9 @@ impl App {
     pub fn fork(&mut self) {
         self.replay = None;
         self.caption = None;
+        // The lecture's ceiling goes: the display is the user's own from here (issue 55: `.`
+        // and space did nothing until a restart).
+        self.run.set_ceiling(None);
         self.status = Message::info(format!(
             "forked at t {:.2}: exploring on your own (the lecturer's file is not touched)",
             self.run.shown
@@ -461,7 +464,7 @@ impl App {
                 stem: slug(&self.scenario.name),
             }];
         }
-        let text = self.scenario.settings.simulate_command();
+        let text = self.scenario.simulate_command();
         self.status = Message::info(format!("copied: {text}"));
         // Shown whole: the message line would cut it.
         self.remember();

@@ -14,10 +14,10 @@ impl App {
             }
             RecState::Off => vec![Effect::StartRecording],
             RecState::On => {
-                self.log_screen();
-                self.journal.state = RecState::Stopping;
+                // Closed by the next tick once the last frame is settled (`journal_tick`).
+                self.journal.stop_due = true;
                 self.status = Message::info("closing the recording…");
-                vec![self.checkpoint(), Effect::StopRecording]
+                Vec::new()
             }
             RecState::Stopping => Vec::new(),
         }

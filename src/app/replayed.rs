@@ -181,12 +181,21 @@ impl App {
             return Vec::new();
         }
         let mut effects = Vec::new();
-        let settled = (self.run.playing || self.run.done() || self.run.shown >= self.run.goal)
-            && self.compare_settled();
+        let settled = self.screen_settled();
         if self.journal.screen_due && settled {
             self.journal.screen_due = false;
             self.log_screen();
             effects.push(self.checkpoint());
+        }
+        // `R` closes the recording once its last frame is settled: the frame, a checkpoint at
+        // its time, then the end.
+        if self.journal.stop_due && settled {
+            self.journal.stop_due = false;
+            self.log_screen();
+            self.journal.state = RecState::Stopping;
+            effects.push(self.checkpoint());
+            effects.push(Effect::StopRecording);
+            return effects;
         }
         self.journal.since_clock += wall_seconds;
         #[allow(clippy::float_cmp)]
@@ -203,8 +212,21 @@ impl App {
         effects
     }
 
-    /// Journals the screen now.
-    pub(super) fn log_screen(&mut self) {
+    /// Whether the screen is what a replay will show at the displayed time: the display has got
+    /// where it was going, the run's plan is resolved and its first point has arrived (or the
+    /// run failed), and the comparison's partner is computed. A lesson step's screen waits for
+    /// `auto` to resolve its new preset, as a replay does (issue 55).
+    #[must_use]
+    pub fn screen_settled(&self) -> bool {
+        let run = &self.run;
+        let there = run.playing || run.done() || run.shown >= run.goal;
+        let resolved = run.failed.is_some()
+            || matches!(run.plan, PlanState::Running { .. }) && run.current().is_some();
+        there && resolved && self.compare_settled()
+    }
+
+    /// Journals the screen now (the last frame of a recording the loop ends: `q`, a signal).
+    pub fn log_screen(&mut self) {
         let shown = self.shown();
         self.log(Event::Screen(shown));
     }

@@ -48,6 +48,9 @@ pub struct Scenario {
     pub derived: Derived,
     /// Selected row of the panel.
     pub selected: usize,
+    /// How the preset is named on a command line, when it was loaded by name or path (`y`
+    /// copies it).
+    pub origin: Option<String>,
 }
 
 impl Scenario {
@@ -67,7 +70,16 @@ impl Scenario {
             derived: Derived::of(&settings),
             settings,
             selected: 0,
+            origin: preset.origin.as_ref().map(|o| clean(o)),
         }
+    }
+
+    /// The `simulate` command that reproduces what is shown: the loaded preset by the name (or
+    /// path) it was loaded by, else the scene's base preset, then every parameter and run
+    /// setting as shown.
+    #[must_use]
+    pub fn simulate_command(&self) -> String {
+        self.settings.simulate_command(self.origin.as_deref())
     }
 
     /// Replaces the settings (already validated).
@@ -104,6 +116,7 @@ impl Scenario {
                 tolerance: Some(self.settings.tolerance),
                 step: self.settings.step,
             },
+            origin: self.origin.clone(),
             view: ViewConfig {
                 alpha_range: view.alpha_range,
                 alpha_dot_range: view.alpha_dot_range,

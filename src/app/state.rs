@@ -171,6 +171,8 @@ pub struct Journal {
     pub(super) entries: Vec<(f64, u64, Event)>,
     /// A pause, step, chapter, note or lesson event waits for the screen it leads to.
     pub(super) screen_due: bool,
+    /// `R` asked to close the recording: it closes once its last frame is settled.
+    pub(super) stop_due: bool,
     /// Wall seconds since the last clock line, and the displayed time it stamped.
     pub(super) since_clock: f64,
     pub(super) clock_t: f64,

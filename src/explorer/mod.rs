@@ -387,11 +387,27 @@ fn finish_recording(
     app: &mut App,
     rx: &Receiver<AppEvent>,
 ) {
+    let deadline = Instant::now() + Duration::from_secs(3);
+    // The last frame, once settled (a step's plan resolved), whatever ended the recording:
+    // `q`, Ctrl-C, a signal (issue 55: files ended with `q` had none, so it was never checked).
+    if rec.stopping {
+        // `R` already wrote it.
+    } else {
+        while !app.screen_settled() && Instant::now() < deadline {
+            match rx.recv_timeout(Duration::from_millis(20)) {
+                Ok(AppEvent::Sim(e)) => {
+                    app.on_sim(e);
+                }
+                Ok(_) | Err(RecvTimeoutError::Timeout) => {}
+                Err(RecvTimeoutError::Disconnected) => break,
+            }
+        }
+        app.log_screen();
+    }
     worker.send(match app.checkpoint() {
         Effect::Sim(c) => c,
         _ => return,
     });
-    let deadline = Instant::now() + Duration::from_secs(3);
     while Instant::now() < deadline {
         match rx.recv_timeout(Duration::from_millis(50)) {
             Ok(AppEvent::Sim(e)) => {

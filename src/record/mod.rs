@@ -42,7 +42,7 @@ pub const FORMAT: &str = "rattleback-session";
 /// 9: nothing new in the lines; a run longer than [`crate::sim::segments::FIRST_SEGMENT`] is
 /// verified and shown in segments, each with its own `plan` line (its key's `t_end` is the
 /// segment's horizon), so a file of 8 or older replays its runs in one piece, as shown.
-pub const VERSION: u32 = 9;
+pub const VERSION: u32 = 10;
 
 /// First line of a session file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]

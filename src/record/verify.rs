@@ -53,6 +53,9 @@ pub struct Report {
     pub checkpoints: usize,
     /// Screens (status-bar values) reproduced.
     pub screens: usize,
+    /// The last frame before the end line was recorded, and so checked (always from format 10
+    /// on; a format 9 file ended with `q` has none).
+    pub final_screen: bool,
     /// What the file's integrity check covers, in words.
     pub integrity: String,
     /// "signed by NAME (key FINGERPRINT)", with whether it was checked against a given key.
@@ -477,11 +480,19 @@ pub fn verify_watched(
         format: rec.header.version,
         checkpoints: 0,
         screens: 0,
+        final_screen: false,
         integrity,
         signature,
     };
     for (i, (number, line)) in rec.lines.iter().enumerate() {
         seen(i);
+        // The last frame: a screen line after which only checkpoints, clock lines and the end
+        // come.
+        match &line.event {
+            Event::Screen(_) => report.final_screen = true,
+            Event::Checkpoint { .. } | Event::Clock | Event::End { .. } => {}
+            _ => report.final_screen = false,
+        }
         let mut effects = app.seek(line.t);
         match &line.event {
             Event::Checkpoint {
@@ -535,6 +546,18 @@ pub fn verify_watched(
     if !ended {
         let through = rec.lines.last().map_or(1, |(n, _)| *n);
         return Err(VerifyError::Incomplete { through, report });
+    }
+    if !report.final_screen
+        && rec.header.version >= 10
+        && let Some((number, last)) = rec.lines.last()
+    {
+        // From format 10 on, whatever ended the recording wrote its last frame.
+        return Err(tampered(
+            *number,
+            last.t,
+            "the last frame (a screen line before the end)",
+            "none: the file ends without its last frame",
+        ));
     }
     Ok(report)
 }

@@ -190,7 +190,7 @@ pub struct ViewConfig {
 }
 
 /// A validated scenario.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, Serialize)]
 pub struct Preset {
     /// Display name (defaults to the file stem).
     pub name: String,
@@ -202,6 +202,22 @@ pub struct Preset {
     pub run: RunConfig,
     /// View settings.
     pub view: ViewConfig,
+    /// How to name it again on a command line (`--preset ORIGIN`): the shipped or user
+    /// preset's name, or the file's path, when it was resolved from one
+    /// ([`super::shipped::resolve`]); not part of the scenario (a recording's preset has none).
+    #[serde(skip)]
+    pub origin: Option<String>,
+}
+
+/// Two presets are the same scenario whatever they were read from.
+impl PartialEq for Preset {
+    fn eq(&self, other: &Self) -> bool {
+        self.name == other.name
+            && self.description == other.description
+            && self.model == other.model
+            && self.run == other.run
+            && self.view == other.view
+    }
 }
 
 /// One `--set section.key=value` override.
@@ -703,6 +719,7 @@ impl Preset {
                 .text("preset", "name")
                 .unwrap_or_else(|| fallback_name.to_owned()),
             description: r.text("preset", "description").unwrap_or_default(),
+            origin: None,
             model,
             run: RunConfig {
                 t_end: n("run", "t_end"),

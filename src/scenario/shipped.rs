@@ -281,17 +281,27 @@ fn stem(path: &Path) -> String {
 /// No such file or preset, or an invalid preset.
 pub fn resolve(name_or_path: &str, overrides: &[Override]) -> Result<Preset, PresetError> {
     let path = Path::new(name_or_path);
-    if path.is_file() || super::write::is_stdin(path) {
+    let named = |mut p: Preset, origin: String| {
+        p.origin = Some(origin);
+        p
+    };
+    if super::write::is_stdin(path) {
         return Preset::load(path, overrides);
+    }
+    if path.is_file() {
+        // Named again by its full path, from wherever the command is run.
+        let full = std::fs::canonicalize(path)
+            .map_or_else(|_| name_or_path.to_owned(), |p| p.display().to_string());
+        return Preset::load(path, overrides).map(|p| named(p, full));
     }
     if let Some(user) = user_preset_dir().map(|d| d.join(format!("{name_or_path}.toml")))
         && user.is_file()
     {
-        return Preset::load(&user, overrides);
+        return Preset::load(&user, overrides).map(|p| named(p, name_or_path.to_owned()));
     }
     if let Some((name, src)) = SHIPPED.iter().find(|(n, _)| *n == name_or_path) {
         let label = format!("presets/{name}.toml (shipped)");
-        return Preset::parse(src, &label, name, overrides);
+        return Preset::parse(src, &label, name, overrides).map(|p| named(p, (*name).to_owned()));
     }
     if path.extension().is_some() || name_or_path.contains(std::path::MAIN_SEPARATOR) {
         // Looks like a path: say so, with the system's reason.

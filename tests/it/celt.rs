@@ -380,6 +380,9 @@ fn a_recorded_celt_session_verifies() {
         .collect();
     assert!(pauses.contains(&Some(3)), "{pauses:?}");
     let path = std::env::temp_dir().join(format!("celt-{}.jsonl", std::process::id()));
+    let mut journal = journal;
+    h.stop_recording();
+    journal.extend(h.app.take_journal());
     let back = crate::common::write_session(&path, &header, journal, 0.5);
     assert!(back.header.preset.contains("model = \"celt\""));
     assert!(record::verify(&back, "celt", None).unwrap().checkpoints >= 3);

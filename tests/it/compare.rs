@@ -384,6 +384,9 @@ fn the_two_ways_lesson_is_right_and_its_recording_verifies() {
             == lesson.steps.len()
     );
     let path = std::env::temp_dir().join(format!("two-ways-{}.jsonl", std::process::id()));
+    let mut journal = journal;
+    h.stop_recording();
+    journal.extend(h.app.take_journal());
     let back = crate::common::write_session(&path, &header, journal, 0.1);
     let report = record::verify(&back, "two-ways", None).unwrap();
     assert!(report.screens >= lesson.steps.len(), "{}", report.screens);

@@ -361,6 +361,9 @@ fn a_recorded_pendulum_session_verifies() {
             .iter()
             .any(|(_, _, e)| matches!(e, Event::Set { field, .. } if field == "epsilon"))
     );
+    let mut journal = journal;
+    h.stop_recording();
+    journal.extend(h.app.take_journal());
     let path = temp("pendulum.jsonl");
     let mut rec = Recorder::create(&path, &header, None).unwrap();
     for (i, (t, generation, event)) in journal.into_iter().enumerate() {
@@ -384,10 +387,11 @@ fn a_recorded_pendulum_session_verifies() {
     drop(rec);
     let back = record::read(&path).unwrap();
     assert!(back.header.preset.contains("model = \"kapitza\""));
-    assert_eq!(
-        record::verify(&back, "pendulum", None).unwrap().checkpoints,
-        2
-    );
+    // The two taken while recording, and the two of the last frames (the pause's and the
+    // stop's); the last frame is checked.
+    let report = record::verify(&back, "pendulum", None).unwrap();
+    assert_eq!(report.checkpoints, 4);
+    assert!(report.final_screen);
     // Tampering with the state is caught.
     let text = std::fs::read_to_string(&path).unwrap();
     let tampered = temp("tampered.jsonl");

@@ -89,6 +89,10 @@ fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
         "the resolved plan is recorded"
     );
 
+    // Stopped as `R` stops it: the last frame and its checkpoint (format 10).
+    let mut journal = journal;
+    h.stop_recording();
+    journal.extend(h.app.take_journal());
     let path = temp("recorded.jsonl");
     let mut rec = Recorder::create(&path, &header, None).unwrap();
     let lines: Vec<Line> = journal
@@ -137,10 +141,11 @@ fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
         std::fs::read(&path).unwrap(),
         std::fs::read(&again).unwrap()
     );
-    assert_eq!(
-        record::verify(&back, "recorded", None).unwrap().checkpoints,
-        2
-    );
+    // The two taken while recording, then the two of the last frames (the pause's screen,
+    // pending, and the stop's), each reproduced; the last frame is checked.
+    let report = record::verify(&back, "recorded", None).unwrap();
+    assert_eq!(report.checkpoints, 4);
+    assert!(report.final_screen);
 }
 
 #[test]
@@ -236,13 +241,13 @@ fn corrupt_line_version_and_tampering_are_reported_by_line() {
     assert!(err.contains("corrupt.jsonl:5: bad event"), "{err}");
 
     let mut future = lines.clone();
-    future[0] = future[0].replace("\"version\":1", "\"version\":10");
+    future[0] = future[0].replace("\"version\":1", "\"version\":11");
     let path = temp("future.jsonl");
     std::fs::write(&path, future.join("\n") + "\n").unwrap();
     let (code, _, err) = bin(&["replay", path.to_str().unwrap(), "--verify"]);
     assert_eq!(code, 2);
     assert!(
-        err.contains("future.jsonl:1: format version 10 is not supported"),
+        err.contains("future.jsonl:1: format version 11 is not supported"),
         "{err}"
     );
 
@@ -833,8 +838,13 @@ fn a_method_changed_in_the_panel_replays_the_method_picked() {
         .filter(|(_, _, e)| matches!(e, Event::Checkpoint { .. }))
         .count();
     assert!(checkpoints >= 4, "{checkpoints}");
+    let mut journal = journal;
+    h.stop_recording();
+    journal.extend(h.app.take_journal());
     let back = crate::common::write_session(&temp("methods.jsonl"), &header, journal, 0.5);
     let report = record::verify(&back, "methods", None)
         .unwrap_or_else(|e| panic!("a lecture that changed its method: {e}"));
-    assert_eq!(report.checkpoints, checkpoints);
+    // Those taken while recording, and the last frames'.
+    assert_eq!(report.checkpoints, checkpoints + 2);
+    assert!(report.final_screen);
 }

@@ -104,7 +104,7 @@ fn walk(base: &str, table: &[(&str, &[&str])], schema: &[rattleback::scenario::p
             json["final"][q_dot]
         );
         // The command `y` copies runs the screen again: same final state, bit for bit.
-        let copied = h.app.scenario.settings.simulate_command();
+        let copied = h.app.scenario.simulate_command();
         let words: Vec<&str> = copied.split_whitespace().skip(2).collect();
         let again = simulate_json(&words);
         assert_eq!(
@@ -136,4 +136,77 @@ fn every_rattleback_key_ends_where_simulate_ends() {
 #[test]
 fn every_pendulum_key_ends_where_simulate_ends() {
     walk("kapitza-upright", KAPITZA, &schema(ModelKind::Kapitza));
+}
+
+/// Issue 55: the command `y` copies names the preset that is loaded (`just-below` was copied as
+/// `--preset subcritical --set …`: the numbers reproduced, the story did not), or the file it
+/// came from; run, it reports that preset and ends on the screen's final state, bit for bit.
+#[test]
+fn the_copied_command_names_the_loaded_preset() {
+    let dir = std::env::temp_dir().join(format!("rattleback-copied-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("my start.toml");
+    std::fs::write(
+        &file,
+        include_str!("../../presets/just-below.toml").replace("t_end = 60.0", "t_end = 7.0"),
+    )
+    .unwrap();
+    let mut names: Vec<String> = ["just-below", "kapitza-falls", "celt-stubby", "soft-spring"]
+        .iter()
+        .map(|s| (*s).to_owned())
+        .collect();
+    names.push(file.display().to_string());
+    for name in names {
+        let preset = rattleback::scenario::shipped::resolve(&name, &[]).unwrap();
+        let mut h = Headless::of(&preset);
+        h.play_until(f64::INFINITY, 1024.0);
+        let shown = *h.app.run.current().unwrap();
+        let copied = h.app.scenario.simulate_command();
+        let words = shell_words(&copied);
+        assert_eq!(
+            words[..3],
+            ["rattleback", "simulate", "--preset"],
+            "{copied}"
+        );
+        let named = std::fs::canonicalize(&words[3])
+            .map_or_else(|_| words[3].clone(), |p| p.display().to_string());
+        let want = std::fs::canonicalize(&name).map_or(name.clone(), |p| p.display().to_string());
+        assert_eq!(named, want, "{copied}");
+        let args: Vec<&str> = words[2..].iter().map(String::as_str).collect();
+        let json = simulate_json(&args);
+        assert_eq!(json["preset"], preset.name.as_str(), "{copied}");
+        // The same end as the preset run by its own name (which the screen matches, above).
+        let plain = simulate_json(&["--preset", &name]);
+        assert_eq!(json["final"], plain["final"], "{name}: `{copied}`");
+        assert_eq!(bits(&json["final"]["t"]), shown.t.to_bits(), "{copied}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The words of a command line as a POSIX shell splits them (single quotes only, as the
+/// copied command writes them).
+fn shell_words(line: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut word = String::new();
+    let mut quoted = false;
+    let mut any = false;
+    for c in line.chars() {
+        match c {
+            '\'' => {
+                quoted = !quoted;
+                any = true;
+            }
+            ' ' if !quoted => {
+                if any || !word.is_empty() {
+                    out.push(std::mem::take(&mut word));
+                }
+                any = false;
+            }
+            c => word.push(c),
+        }
+    }
+    if any || !word.is_empty() {
+        out.push(word);
+    }
+    out
 }

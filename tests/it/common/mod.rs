@@ -124,6 +124,21 @@ impl Headless {
         self.exec(effects);
     }
 
+    /// Stops the recording as `R` does: the key, then frames until the last frame is settled
+    /// and journaled with its checkpoint (the explorer then writes the end line).
+    pub fn stop_recording(&mut self) {
+        use rattleback::app::RecState;
+        if self.app.journal.state == RecState::On {
+            self.key(rattleback::app::Key::Char('R'));
+        }
+        let mut frames = 0;
+        while self.app.journal.state == RecState::On {
+            self.tick(0.0);
+            frames += 1;
+            assert!(frames < 1000, "the recording never closed");
+        }
+    }
+
     /// One frame of `wall` seconds.
     pub fn tick(&mut self, wall: f64) {
         let effects = self.app.tick(wall);
