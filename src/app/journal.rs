@@ -112,6 +112,16 @@ pub enum Event {
         /// Its text.
         text: String,
     },
+    /// The answer given to a step's question, before its run (format 10 on: a replay shows
+    /// "your answer" from then, as the lecturer's pane did).
+    Given {
+        /// The step's index.
+        step: usize,
+        /// What the student answered.
+        given: String,
+    },
+    /// The last step's condition held and `n` ended the lesson (format 10 on).
+    LessonDone,
     /// The answer to a step's question, revealed after the run.
     Answer {
         /// The step's index.

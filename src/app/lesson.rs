@@ -88,6 +88,51 @@ impl App {
         self.enter_step(0)
     }
 
+    /// A recorded lesson in a replay (its header's, format 10): the pane shows its steps as the
+    /// recording's lines move through them; nothing is loaded (the lines do that).
+    pub fn replay_lesson(&mut self, lesson: Lesson) {
+        self.lesson = Some(LessonState {
+            lesson,
+            step: 0,
+            given: None,
+            revealed: false,
+            finished: false,
+        });
+        self.view.panes.set(super::panes::Pane::Lesson, true);
+    }
+
+    /// A recorded step, answer or reveal applied to a replay's lesson.
+    pub(super) fn replay_step(
+        &mut self,
+        step: usize,
+        given: Option<&str>,
+        revealed: bool,
+        finished: bool,
+    ) {
+        let Some(state) = self.lesson.as_mut() else {
+            return;
+        };
+        if step >= state.lesson.steps.len() {
+            return;
+        }
+        if step != state.step || given.is_none() && !revealed {
+            state.given = None;
+            state.revealed = false;
+        }
+        state.step = step;
+        state.finished = finished;
+        if let Some(text) = given {
+            state.given = Some(match &state.current().question {
+                Some(Question::Choice { choices, .. }) => choices
+                    .iter()
+                    .position(|c| c == text)
+                    .map_or(Given::Number(f64::NAN), Given::Choice),
+                _ => Given::Number(text.parse().unwrap_or(f64::NAN)),
+            });
+        }
+        state.revealed |= revealed;
+    }
+
     /// Begins step `index`: its preset, its changes, a paused run.
     fn enter_step(&mut self, index: usize) -> Vec<Effect> {
         let Some(state) = self.lesson.as_mut() else {
@@ -126,6 +171,10 @@ impl App {
                 }
             }
             self.scenario.set(s);
+            // A replay moves the highlight to each field set; the lecturer's stays: said.
+            self.log(Event::Select {
+                field: self.field().label().to_owned(),
+            });
             effects.extend(self.restart());
         }
         if self.run.playing {
@@ -180,10 +229,11 @@ impl App {
             parameter,
         } = &state.current().until;
         let mut missing = Vec::new();
+        let written = crate::scenario::lesson::condition_value;
         if let Some(t) = time
             && self.run.shown < *t
         {
-            missing.push(format!("t ≥ {t} (now {:.2})", self.run.shown));
+            missing.push(format!("t ≥ {} (now {:.2})", written(*t), self.run.shown));
         }
         if let Some(n) = reversals {
             let now = self.run.reversals_shown();
@@ -199,23 +249,31 @@ impl App {
                 let high = p.at_most.is_some_and(|hi| v.is_nan() || v > hi);
                 if low || high {
                     let want = match (p.at_least, p.at_most) {
-                        (Some(lo), Some(hi)) => format!("{label} in [{lo}, {hi}]"),
-                        (Some(lo), None) => format!("{label} ≥ {lo}"),
-                        (None, Some(hi)) => format!("{label} ≤ {hi}"),
+                        (Some(lo), Some(hi)) => {
+                            format!("{label} in [{}, {}]", written(lo), written(hi))
+                        }
+                        (Some(lo), None) => format!("{label} ≥ {}", written(lo)),
+                        (None, Some(hi)) => format!("{label} ≤ {}", written(hi)),
                         (None, None) => String::new(),
                     };
                     missing.push(format!("{want} (now {})", f.show(&self.scenario.settings)));
                 }
             }
         }
+        // Before the answer only the answer is asked for: a condition that names a threshold
+        // would give the answer away.
         if state.awaiting_answer() {
-            missing.insert(0, "an answer".to_owned());
+            return Some("an answer".to_owned());
         }
         (!missing.is_empty()).then(|| missing.join(", "))
     }
 
     /// Reveals the answer once the run is over or the step's condition holds; journals it.
     pub(super) fn check_lesson(&mut self) {
+        // A replay reveals what the recording says, when it says it.
+        if self.replay.is_some() {
+            return;
+        }
         let ready = self.run.done() || self.lesson_missing().is_none();
         let Some(state) = self.lesson.as_mut() else {
             return;
@@ -227,6 +285,17 @@ impl App {
         let correct = state.correct().unwrap_or(false);
         let given = state.given_text().unwrap_or_default();
         let step = state.step;
+        let answer = state
+            .current()
+            .question
+            .as_ref()
+            .map(Question::answer_text)
+            .unwrap_or_default();
+        self.status = Message::info(if correct {
+            format!("your answer: {given}, right")
+        } else {
+            format!("your answer: {given}; the answer: {answer}")
+        });
         self.log(Event::Answer {
             step,
             given,
@@ -270,14 +339,17 @@ impl App {
         }
     }
 
-    /// Records an answer (typed numbers arrive through the prompt).
+    /// Records an answer (typed numbers arrive through the prompt); journaled, so a replay
+    /// shows it given from then.
     pub(super) fn answer(&mut self, given: Given) {
         if let Some(state) = self.lesson.as_mut() {
             state.given = Some(given);
             let text = state.given_text().unwrap_or_default();
+            let step = state.step;
             self.status = Message::info(format!(
                 "your answer: {text}; space plays, the answer shows after the run"
             ));
+            self.log(Event::Given { step, given: text });
         }
     }
 
@@ -295,6 +367,7 @@ impl App {
         } else {
             state.finished = true;
             self.status = Message::info(format!("lesson complete: {}", state.lesson.title));
+            self.log(Event::LessonDone);
             Vec::new()
         }
     }

@@ -110,13 +110,13 @@ impl Pane {
         }
     }
 
-    /// The pane a lesson step names (`series`, `sweep`, `weak`, `map`, `body`, `compare`):
-    /// a pane a key shows, by its recorded name.
+    /// The pane a lesson step names (`portrait`, `series`, `sweep`, `weak`, `map`, `body`,
+    /// `compare`): the portrait or a pane a key shows, by its recorded name.
     #[must_use]
     pub fn named(name: &str) -> Option<Self> {
         Self::ALL
             .into_iter()
-            .find(|p| p.toggle_action().is_some() && p.key() == name)
+            .find(|p| (p.toggle_action().is_some() || *p == Self::Portrait) && p.key() == name)
     }
 
     /// Its name in files (a recorded layout, a lesson's `pane`).
@@ -361,9 +361,10 @@ mod tests {
     #[test]
     fn a_pane_a_key_shows_is_named_by_its_key() {
         for p in Pane::ALL {
+            let named = p.toggle_action().is_some() || p == Pane::Portrait;
             assert_eq!(
                 Pane::named(&p.key()),
-                p.toggle_action().map(|_| p),
+                named.then_some(p),
                 "{p:?} as {}",
                 p.key()
             );

@@ -105,8 +105,11 @@ impl App {
                 });
                 Vec::new()
             }
-            Event::LessonStep { .. } | Event::Answer { .. } => {
-                self.caption = lesson_caption(event, self.run.goal);
+            Event::LessonStep { .. }
+            | Event::Given { .. }
+            | Event::Answer { .. }
+            | Event::LessonDone => {
+                self.apply_lesson_event(event);
                 Vec::new()
             }
             Event::Checkpoint { .. }
@@ -114,6 +117,27 @@ impl App {
             | Event::End { .. }
             | Event::Clock
             | Event::Screen(_) => Vec::new(),
+        }
+    }
+
+    /// A lesson's event: a recording that carries its lesson (format 10) shows the lesson's
+    /// pane as the lecturer did; an older one, a caption.
+    fn apply_lesson_event(&mut self, event: &Event) {
+        match event {
+            Event::LessonStep { .. } | Event::Answer { .. } if self.lesson.is_none() => {
+                self.caption = lesson_caption(event, self.run.goal);
+            }
+            Event::LessonStep { step, .. } => self.replay_step(*step, None, false, false),
+            Event::Given { step, given } => self.replay_step(*step, Some(given), false, false),
+            Event::Answer { step, given, .. } => {
+                self.replay_step(*step, Some(given), true, false);
+            }
+            Event::LessonDone => {
+                if let Some(state) = self.lesson.as_mut() {
+                    state.finished = true;
+                }
+            }
+            _ => {}
         }
     }
 

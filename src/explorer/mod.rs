@@ -215,7 +215,15 @@ fn follow_event(
                 }
             };
             let app_options = app.options.clone();
-            let (fresh, mut effects) = App::new_after(&preset, app_options, app);
+            let (mut fresh, mut effects) = App::new_after(&preset, app_options, app);
+            if let Some(lesson) = recording
+                .header
+                .lesson
+                .as_ref()
+                .and_then(crate::scenario::lesson::RecordedLesson::lesson)
+            {
+                fresh.replay_lesson(lesson);
+            }
             *app = fresh;
             let path = options.follow.clone().unwrap_or_default();
             let lines: Vec<_> = recording.lines.iter().map(|(_, l)| l.clone()).collect();
@@ -425,6 +433,25 @@ fn finish_recording(
     let _ = rec.flush(app);
 }
 
+/// The worker's plan book: a replay's recorded plans; a followed lecture's runs bounded one by
+/// one (it grows) and its later segments awaited from the lecturer, unless it has ended.
+fn plan_book(options: &ExplorerOptions) -> crate::sim::PlanBook {
+    let mut book = options
+        .replay
+        .as_ref()
+        .map(crate::record::plan_book)
+        .unwrap_or_default();
+    if options.follow.is_some() {
+        book.total = f64::INFINITY;
+        book.awaits = !options.replay.as_ref().is_some_and(|r| {
+            r.lines
+                .last()
+                .is_some_and(|(_, l)| matches!(l.event, crate::app::journal::Event::End { .. }))
+        });
+    }
+    book
+}
+
 /// Signals that end the explorer: the terminal is restored, then the process exits with
 /// `128 + n`. Every signal whose default action ends the process and that can be caught safely
 /// (not the faults SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGTRAP, SIGSYS, which re-run the faulting
@@ -463,22 +490,7 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
     let hangup = &*signal;
     let tty = Tty::enter(options.mouse, options.depth)?;
     let (tx, rx) = sync_channel::<AppEvent>(INBOX);
-    let mut book = options
-        .replay
-        .as_ref()
-        .map(crate::record::plan_book)
-        .unwrap_or_default();
-    if options.follow.is_some() {
-        // A lecture being followed grows: its runs are bounded one by one, not by its length.
-        book.total = f64::INFINITY;
-        // Its later segments are verified by the lecturer at the same moment: wait for the
-        // plans instead of verifying them again, unless the lecture has ended.
-        book.awaits = !options.replay.as_ref().is_some_and(|r| {
-            r.lines
-                .last()
-                .is_some_and(|(_, l)| matches!(l.event, crate::app::journal::Event::End { .. }))
-        });
-    }
+    let book = plan_book(options);
     let worker = {
         let tx = tx.clone();
         Worker::spawn_with(book, move |e| tx.send(AppEvent::Sim(e)).is_ok())
@@ -503,6 +515,15 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
         user_dir: user_preset_dir(),
     };
     let mut effects = effects;
+    // A recorded lesson's pane, as the lecturer saw it (format 10).
+    let recorded_lesson = options
+        .replay
+        .as_ref()
+        .and_then(|r| r.header.lesson.as_ref())
+        .and_then(crate::scenario::lesson::RecordedLesson::lesson);
+    if let Some(lesson) = &recorded_lesson {
+        app.replay_lesson(lesson.clone());
+    }
     let mut replay = options.replay.as_ref().map(|r| {
         let lines = r.lines.iter().map(|(_, l)| l.clone()).collect();
         let mut replayer = match &options.follow {
@@ -512,7 +533,13 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
         effects.extend(replayer.catch_up(&mut app));
         replayer
     });
-    let rebuild = |old: &App| App::new_after(preset, app_options.clone(), old);
+    let rebuild = |old: &App| {
+        let (mut fresh, effects) = App::new_after(preset, app_options.clone(), old);
+        if let Some(lesson) = &recorded_lesson {
+            fresh.replay_lesson(lesson.clone());
+        }
+        (fresh, effects)
+    };
     if let Some(lesson) = &options.lesson {
         effects.extend(app.start_lesson(lesson.clone()));
     }

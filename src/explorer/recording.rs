@@ -41,6 +41,7 @@ pub fn header(app: &App, size: (u16, u16), fps: f64) -> Header {
                 .unwrap_or_else(|| "default".to_owned()),
         ),
         fps,
+        lesson: app.lesson.as_ref().map(|l| l.lesson.recorded()),
     }
 }
 

@@ -128,14 +128,15 @@ impl Replayer {
         }
         // The display moves between recorded displayed times, never past the next one (while
         // following, past the last one received). A next line of a later run (a reset, a
-        // change) says nothing of this run's times: this run holds at its last line's.
+        // change) says nothing of this run's times: this run holds at its last line's. Past
+        // the last line the recording says nothing more: the display holds there too (issue
+        // 55: a replay played on, alone, after "replay ended").
         let last = self.next.checked_sub(1).map(|i| &self.lines[i]);
         app.run
             .set_ceiling(match (self.lines.get(self.next), last) {
                 (Some(next), Some(last)) if next.generation != last.generation => Some(last.t),
                 (Some(next), _) => Some(next.t),
-                (None, last) if self.live == Some(false) => last.map(|l| l.t),
-                (None, _) => None,
+                (None, last) => last.map(|l| l.t),
             });
         app.set_replay(self.info());
         effects

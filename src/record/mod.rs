@@ -67,6 +67,10 @@ pub struct Header {
     pub theme: ThemeRef,
     /// Frame-rate cap.
     pub fps: f64,
+    /// The lesson being taught, when the recording is of one (format 10 on): a replay shows its
+    /// pane as the lecturer saw it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lesson: Option<crate::scenario::lesson::RecordedLesson>,
 }
 
 /// How a header refers to its theme.
@@ -245,6 +249,14 @@ pub fn check_header(h: &Header) -> Result<(), String> {
             "tolerance {}: must be a finite number > 0",
             h.tolerance
         ));
+    }
+    if let Some(lesson) = &h.lesson {
+        if h.version < 10 {
+            return Err("a lesson in the header (format 10)".to_owned());
+        }
+        if lesson.lesson().is_none() {
+            return Err("lesson: no step, or a choice's answer out of its choices".to_owned());
+        }
     }
     Ok(())
 }

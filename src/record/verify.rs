@@ -131,7 +131,16 @@ pub fn start(rec: &Recording, path: &str) -> Result<(App, Vec<Effect>), RecordEr
         line: 1,
         message: e.to_string(),
     })?;
-    Ok(App::new(&preset, Options::at(rec.header.fps)))
+    let (mut app, effects) = App::new(&preset, Options::at(rec.header.fps));
+    if let Some(lesson) = rec
+        .header
+        .lesson
+        .as_ref()
+        .and_then(crate::scenario::lesson::RecordedLesson::lesson)
+    {
+        app.replay_lesson(lesson);
+    }
+    Ok((app, effects))
 }
 
 fn tampered(
@@ -170,6 +179,9 @@ fn newer_than(version: u32, line: &super::Line) -> Option<&'static str> {
         }
         Event::Plan { .. } if version < 2 => Some("a plan line (format 2)"),
         Event::Window { .. } if version < 7 => Some("a window line (format 7)"),
+        Event::Given { .. } | Event::LessonDone if version < 10 => {
+            Some("a given or lesson-done line (format 10)")
+        }
         Event::Layout { .. } | Event::Partner { .. } if version < 5 => {
             Some("a layout or partner line (format 5)")
         }

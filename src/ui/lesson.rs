@@ -29,7 +29,10 @@ impl LessonPane<'_> {
         let rows: usize = self
             .lines()
             .iter()
-            .map(|l| l.width().div_ceil(inner).max(1))
+            .map(|l| {
+                let text: String = l.spans.iter().map(|s| s.content.as_ref()).collect();
+                super::wrap_words(&text, inner, usize::MAX).len().max(1)
+            })
             .sum();
         u16::try_from(rows + 2).unwrap_or(u16::MAX)
     }
@@ -62,17 +65,19 @@ impl LessonPane<'_> {
                         .collect();
                     lines.push(Line::from(row));
                 }
-                Question::Number { .. } => {
-                    if state.given.is_none() {
-                        lines.push(Line::raw(" a: type a number"));
-                    }
-                }
+                Question::Number { .. } => {}
             }
             let verdict = match (state.given_text(), state.revealed, state.correct()) {
+                (None, _, _) if matches!(q, Question::Number { .. }) => {
+                    "a: type your answer, before you play".to_owned()
+                }
                 (None, _, _) => "answer before you play".to_owned(),
-                (Some(g), false, _) => format!("your answer: {g} (revealed after the run)"),
-                (Some(g), true, Some(true)) => {
-                    format!("your answer: {g}, right ({})", q.answer_text())
+                // The verdict comes after the run (the message line says so).
+                (Some(g), false, _) => format!("your answer: {g}"),
+                (Some(g), true, Some(true)) => format!("your answer: {g}, right"),
+                // A choice given is highlighted above: the verdict need not repeat it.
+                (Some(_), true, _) if matches!(q, Question::Choice { .. }) => {
+                    format!("wrong; the answer: {}", q.answer_text())
                 }
                 (Some(g), true, _) => format!("your answer: {g}; the answer: {}", q.answer_text()),
             };
@@ -102,7 +107,22 @@ impl Widget for LessonPane<'_> {
             ),
             area.width,
         ));
-        Paragraph::new(self.lines())
+        // Too short for everything: the step's text gives way (cut, with `…`), the question,
+        // the answer and what `n` waits for stay whole.
+        let mut lines = self.lines();
+        let inner = usize::from(area.width.saturating_sub(2)).max(1);
+        let rows = |l: &Line<'_>| {
+            let text: String = l.spans.iter().map(|s| s.content.as_ref()).collect();
+            super::wrap_words(&text, inner, usize::MAX).len().max(1)
+        };
+        let room = usize::from(area.height.saturating_sub(2));
+        let tail: usize = lines.iter().skip(1).map(rows).sum();
+        if rows(&lines[0]) + tail > room {
+            let keep = room.saturating_sub(tail).max(1) * inner;
+            let text: String = lines[0].spans.iter().map(|s| s.content.as_ref()).collect();
+            lines[0] = Line::raw(crate::app::ellipsis(&text, keep.saturating_sub(inner / 4)));
+        }
+        Paragraph::new(lines)
             .wrap(Wrap { trim: true })
             .block(block)
             .render(area, buf);

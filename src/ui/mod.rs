@@ -69,18 +69,19 @@ pub fn min_rows(pane: Pane) -> u16 {
     match pane {
         Pane::Portrait | Pane::Series | Pane::Sweep | Pane::Weak | Pane::Map => 10,
         Pane::Body => 13,
-        Pane::Compare => 14,
+        Pane::Compare => 12,
         Pane::Lesson | Pane::Params => 0,
     }
 }
 
 /// Where the right-hand column puts its panes: the panes shown, each with its area, in layout
-/// order; and the line that lists the open panes that did not fit (Tab brings the next).
+/// order; and where the open panes that did not fit are named (on the last pane's bottom
+/// border; Tab brings the next).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct ColumnLayout {
     /// The panes drawn.
     pub panes: Vec<(Pane, Rect)>,
-    /// The line listing the panes open but not drawn, and those panes.
+    /// The border row naming the panes open but not drawn, and those panes.
     pub hidden: Option<(Rect, Vec<Pane>)>,
 }
 
@@ -139,7 +140,7 @@ pub fn column_layout(app: &App, right: Rect) -> ColumnLayout {
     } else {
         // One line lists what does not fit.
         // In order of claim, until one does not fit: the rest wait their turn (Tab).
-        let mut room = height.saturating_sub(1);
+        let mut room = height;
         for p in claims {
             if hidden.is_empty() && (min_rows(p) <= room || kept.is_empty()) {
                 room = room.saturating_sub(min_rows(p));
@@ -149,20 +150,27 @@ pub fn column_layout(app: &App, right: Rect) -> ColumnLayout {
             }
         }
     }
-    let mut area = right;
+    let area = right;
     let mut out = ColumnLayout::default();
-    if !hidden.is_empty() {
-        let [line, below] =
-            Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(area);
-        out.hidden = Some((line, hidden));
-        area = below;
-    }
     // Layout order; the lesson first with its rows; each pane its rows, the rest by weight.
     let order: Vec<Pane> = visible
         .into_iter()
         .filter(|p| *p == Pane::Lesson && lesson_rows > 0 || kept.contains(p))
         .collect();
     out.panes = stack(&order, lesson_rows, area);
+    // The panes that wait are named on the last pane's bottom border: no row is taken.
+    if !hidden.is_empty()
+        && let Some((_, last)) = out.panes.last()
+        && last.height > 0
+    {
+        let line = Rect {
+            x: last.x + 1,
+            y: last.y + last.height - 1,
+            width: last.width.saturating_sub(2),
+            height: 1,
+        };
+        out.hidden = Some((line, hidden));
+    }
     out
 }
 
@@ -233,13 +241,20 @@ fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, c
         } else {
             "close a pane to make room"
         };
-        let text = format!(" more: {} · {how}", names.join(" · "));
+        let text = format!(" more: {} · {how} ", names.join(" · "));
+        let text = crate::app::ellipsis(&text, line.width as usize);
+        let width = text.chars().count() as u16;
+        let at = Rect {
+            x: line.x + line.width.saturating_sub(width),
+            width: width.min(line.width),
+            ..line
+        };
         frame.render_widget(
             Paragraph::new(Line::styled(
-                crate::app::ellipsis(&text, line.width as usize),
+                text,
                 look.dim().add_modifier(Modifier::REVERSED),
             )),
-            line,
+            at,
         );
     }
 }
@@ -643,11 +658,13 @@ fn message_lines(app: &App, width: u16) -> Option<(Vec<String>, bool)> {
 #[must_use]
 pub fn screen(app: &App, area: Rect) -> Screen {
     let caption = u16::from(app.caption.is_some());
-    let message_height = message_lines(app, area.width).map_or(0, |(lines, _)| lines.len() as u16);
+    // The message line is always there, blank when there is no message: a message never moves
+    // the panes (a recording's frames are the same for the lecturer, who sees "recording to
+    // …", and for the follower and the cast, who do not: issue 55).
     let [main, caption, message, status, footer] = Layout::vertical([
         Constraint::Min(0),
         Constraint::Length(caption),
-        Constraint::Length(message_height),
+        Constraint::Length(MESSAGE_LINES as u16),
         Constraint::Length(1),
         Constraint::Length(1),
     ])
@@ -780,8 +797,8 @@ fn draw_message(frame: &mut Frame<'_>, area: Rect, lines: Vec<String>, error: bo
     frame.render_widget(Paragraph::new(text), area);
 }
 
-/// Most rows a message takes above the status bar.
-const MESSAGE_LINES: usize = 3;
+/// Rows a message takes above the status bar (a longer one is cut, and `v` shows it whole).
+const MESSAGE_LINES: usize = 1;
 
 /// `text` wrapped at spaces into at most `most` lines of `width` characters: a word is cut only
 /// when it is longer than a whole line (a long path), and the last line ends in `…` when the text

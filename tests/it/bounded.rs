@@ -236,6 +236,7 @@ fn header(preset: &str) -> Header {
         },
         theme: ThemeRef::Name("default".to_owned()),
         fps: 30.0,
+        lesson: None,
     }
 }
 

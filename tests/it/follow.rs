@@ -35,6 +35,7 @@ fn header() -> Header {
         },
         theme: ThemeRef::Name("Default (16 colours)".to_owned()),
         fps: 30.0,
+        lesson: None,
     }
 }
 

@@ -71,6 +71,16 @@ impl Lecturer {
     fn collect(&mut self) {
         for (t, generation, event) in self.h.app.take_journal() {
             if let Event::Screen(shown) = &event {
+                if std::env::var_os("DEBUG_FRAMES").is_some() {
+                    eprintln!(
+                        "lecturer screen at line {} wall {}: trail {} shown {} last {:?}",
+                        self.lines.len(),
+                        self.wall,
+                        self.h.app.run.trail_shown().len(),
+                        self.h.app.run.shown,
+                        self.h.app.run.trail_shown().last().map(|p| p.t)
+                    );
+                }
                 let f = frame(&mut self.h.app);
                 assert!(
                     shown.difference(&self.h.app.shown()).is_none(),
@@ -203,16 +213,18 @@ fn lecture_with(preset: &str, speed: f64, field: &str, compare: bool) -> Lecture
         "{preset} ×{speed}: playing again did not start over"
     );
     // Stop: the final screen and checkpoint, then the end line.
+    // Stopped as `R` stops it: the last frame once settled, its checkpoint, then the end.
     l.key(Key::Char('R'));
-    while !l
-        .lines
-        .iter()
-        .rev()
-        .take(3)
-        .any(|x| matches!(x.event, Event::Checkpoint { .. }))
-    {
+    while l.h.app.journal.state == rattleback::app::RecState::On {
         l.tick();
     }
+    assert!(
+        matches!(
+            l.lines.last().map(|x| &x.event),
+            Some(Event::Checkpoint { .. })
+        ),
+        "the stop ends with the last frame's checkpoint"
+    );
     // With the comparison, every screen recorded the partner as the pane showed it.
     let with_partner =
         |(_, f, s): &(usize, String, Shown)| s.compare.is_some() && f.contains("compare: spin(t)");
@@ -230,8 +242,20 @@ fn lecture_with(preset: &str, speed: f64, field: &str, compare: bool) -> Lecture
 /// Plays `lines` through a replayer (`live`: pushed as they were written, as `follow` reads
 /// them); at every screen line applied, compares the frame with the lecturer's.
 fn replay_and_compare(preset: &str, lecture: &Lecture, live: bool) -> usize {
-    let preset = rattleback::scenario::shipped::resolve(preset, &[]).unwrap();
+    let _ = preset;
+    // The replay starts from the header, as `replay` and `follow` do (its preset, its lesson).
+    let preset =
+        rattleback::scenario::Preset::parse(&lecture.header.preset, "header", "recorded", &[])
+            .unwrap();
     let mut h = Headless::of(&preset);
+    if let Some(lesson) = lecture
+        .header
+        .lesson
+        .as_ref()
+        .and_then(rattleback::scenario::lesson::RecordedLesson::lesson)
+    {
+        h.app.replay_lesson(lesson);
+    }
     let mut r = if live {
         Replayer::live(Vec::new(), 0.0)
     } else {
@@ -332,7 +356,8 @@ fn cast_screens(cast: &str, lecture: &Lecture) -> usize {
     let mut compared = 0;
     for (i, f, _) in &lecture.frames {
         // The first frame at or after the line: the line is applied there.
-        let at = (lecture.lines[*i].wall * CAST_FPS).ceil() / CAST_FPS + 1e-9;
+        // (The cast's times are rounded to microseconds.)
+        let at = (lecture.lines[*i].wall * CAST_FPS).ceil() / CAST_FPS + 1e-6;
         while next < events.len() && events[next].0 <= at {
             parser.process(events[next].1.as_bytes());
             next += 1;
@@ -783,4 +808,200 @@ fn checked_in_format_4_sessions_verify_and_the_signed_one_with_its_key() {
     let (code, _, err) = bin(&["replay", &signed, "--verify", "--key", &other_pub]);
     assert_eq!(code, Some(1));
     assert!(err.contains("signed by another key"), "{err}");
+}
+
+/// Issue 55: a lesson is a lecture too. Each shipped lesson is recorded as a teacher gives it:
+/// the questions answered (right, or wrong), values typed, a pane toggled, `n` pressed while the
+/// run plays wherever the step's condition allows it, the recording stopped; at ×1 and ×16.
+/// The file then replays and follows line by line with the lecturer's frame at every screen
+/// line, the lesson's pane included; it verifies (its last frame too) and exports as a cast
+/// and a page.
+#[allow(clippy::too_many_lines)] // one lesson, given step by step
+fn lesson_lecture(name: &str, speed: f64, wrong: bool) -> Lecture {
+    use rattleback::scenario::lesson::Question;
+    let lesson = rattleback::scenario::lesson::resolve(name).unwrap();
+    let first = lesson.steps[0]
+        .preset
+        .clone()
+        .unwrap_or_else(|| rattleback::scenario::shipped::resolve("subcritical", &[]).unwrap());
+    let mut l = Lecturer {
+        h: Headless::of(&first),
+        wall: 0.0,
+        lines: Vec::new(),
+        frames: Vec::new(),
+    };
+    let effects = l.h.app.start_lesson(lesson.clone());
+    l.h.exec(effects);
+    let header = rattleback::explorer::recording::header(&l.h.app, (80, 24), 30.0);
+    assert!(header.lesson.is_some(), "the header carries the lesson");
+    let effects =
+        l.h.app
+            .on_outcome(Outcome::Recording(Ok("lesson.jsonl".into())));
+    l.h.exec(effects);
+    l.collect();
+    for (i, step) in lesson.steps.iter().enumerate() {
+        assert_eq!(l.h.app.lesson.as_ref().unwrap().step, i, "{name}");
+        l.tick();
+        // The question: right, or wrong (alternately when `wrong`).
+        let wrong_here = wrong && i % 2 == 0;
+        match &step.question {
+            Some(Question::Choice {
+                choices, answer, ..
+            }) => {
+                let pick = if wrong_here {
+                    (answer + 1) % choices.len()
+                } else {
+                    *answer
+                };
+                l.key(Key::Char(char::from(b'1' + pick as u8)));
+            }
+            Some(Question::Number { answer, .. }) => {
+                let typed = if wrong_here {
+                    answer * 3.0 + 1.0
+                } else {
+                    *answer
+                };
+                l.text('a', &format!("{typed}"));
+            }
+            None => {}
+        }
+        l.tick();
+        // A pane toggled and back (layout lines).
+        l.key(Key::Char('t'));
+        l.tick();
+        l.key(Key::Char('t'));
+        l.tick();
+        // A value typed where the step asks for one.
+        if let Some(p) = &step.until.parameter {
+            let label = p.key.rsplit('.').next().unwrap();
+            while l.h.app.field().label() != label {
+                l.key(Key::Down);
+            }
+            let value = p.at_least.or(p.at_most).unwrap();
+            l.key(Key::Enter);
+            for c in format!("{value}").chars() {
+                l.key(Key::Char(c));
+            }
+            l.key(Key::Enter);
+            l.tick();
+        }
+        while l.h.app.run.speed < speed {
+            l.key(Key::Char('+'));
+        }
+        l.key(Key::Char(' '));
+        // Until the step's condition holds: then `n`, while the run still plays where it does.
+        let mut frames = 0;
+        while l.h.app.lesson_missing().is_some() {
+            l.tick();
+            frames += 1;
+            assert!(frames < 200_000, "{name} step {}: never ready", i + 1);
+            assert!(
+                !l.h.app.run.done() || l.h.app.lesson_missing().is_none(),
+                "{name} step {}: done, still waiting for {:?}",
+                i + 1,
+                l.h.app.lesson_missing()
+            );
+        }
+        l.key(Key::Char('n'));
+        l.tick();
+    }
+    assert!(
+        l.h.app.lesson.as_ref().unwrap().finished,
+        "{name}: finished"
+    );
+    // Stopped as `R` stops it: the last frame once settled, its checkpoint, then the end.
+    l.key(Key::Char('R'));
+    while l.h.app.journal.state == rattleback::app::RecState::On {
+        l.tick();
+    }
+    assert!(
+        matches!(
+            l.lines.last().map(|x| &x.event),
+            Some(Event::Checkpoint { .. })
+        ),
+        "the stop ends with the last frame's checkpoint"
+    );
+    Lecture {
+        header,
+        lines: l.lines,
+        frames: l.frames,
+    }
+}
+
+#[test]
+fn every_shipped_lesson_records_replays_follows_and_verifies_frame_for_frame() {
+    for (name, _) in rattleback::scenario::lesson::SHIPPED_LESSONS {
+        for (speed, wrong) in [(1.0, false), (16.0, true)] {
+            let lecture = lesson_lecture(name, speed, wrong);
+            let screens = lecture.frames.len();
+            // `n` pressed while playing leaves a pause in the file before the next step's screen.
+            let steps = lecture
+                .lines
+                .iter()
+                .filter(|l| matches!(l.event, Event::LessonStep { .. }))
+                .count();
+            assert!(steps >= 3, "{name}: {steps} steps recorded");
+            assert!(
+                lecture
+                    .lines
+                    .iter()
+                    .any(|l| matches!(l.event, Event::Given { .. })),
+                "{name}: the answers given are recorded"
+            );
+            assert!(
+                lecture.lines.iter().any(|l| l.event == Event::LessonDone),
+                "{name}: the end of the lesson is recorded"
+            );
+            assert_eq!(
+                replay_and_compare(name, &lecture, false),
+                screens,
+                "{name} ×{speed}: replay"
+            );
+            assert_eq!(
+                replay_and_compare(name, &lecture, true),
+                screens,
+                "{name} ×{speed}: follow"
+            );
+            let path = write(&lecture, &format!("lesson-{name}-{speed}.jsonl"), None);
+            let rec = record::read(&path).unwrap();
+            let report =
+                record::verify(&rec, name, None).unwrap_or_else(|e| panic!("{name} ×{speed}: {e}"));
+            assert_eq!(report.screens, screens, "{name} ×{speed}");
+            assert!(report.final_screen, "{name} ×{speed}: the last frame");
+            // The binary's own verify, and both exports.
+            let (code, out, err) = common::bin(&["replay", path.to_str().unwrap(), "--verify"]);
+            assert_eq!(code, 0, "{name} ×{speed}: {err}");
+            assert!(out.contains("the last frame, as recorded"), "{out}");
+            let cast = temp(&format!("lesson-{name}-{speed}.cast"));
+            rattleback::cast::export_cast(
+                &rec,
+                "lesson",
+                &cast,
+                &UiOptions::default(),
+                rattleback::cast::CastSize {
+                    fps: CAST_FPS,
+                    ..rattleback::cast::CastSize::default()
+                },
+                true,
+                &mut |_| {},
+            )
+            .unwrap();
+            let text = std::fs::read_to_string(&cast).unwrap();
+            assert_eq!(
+                cast_screens(&text, &lecture),
+                screens,
+                "{name} ×{speed}: cast"
+            );
+            let page = temp(&format!("lesson-{name}-{speed}.html"));
+            let (code, _, err) = common::bin(&[
+                "replay",
+                path.to_str().unwrap(),
+                "--verify",
+                "--export-html",
+                page.to_str().unwrap(),
+            ]);
+            assert_eq!(code, 0, "{name} ×{speed}: {err}");
+            assert!(std::fs::metadata(&page).unwrap().len() > 1000);
+        }
+    }
 }

@@ -257,8 +257,9 @@ fn steps_ask_first_reveal_after_and_wait_for_their_condition() {
     assert_eq!(h.app.run.reversals_shown(), 0);
     h.key(Key::Char('n'));
 
-    // A parameter condition and the run: alpha_dot ≥ 0.911 (just above the threshold 0.910,
-    // where 'vs critical' turns positive), reached by editing it, then t = 30.
+    // A parameter condition and the run: alpha_dot ≥ 0.9102 (just above the threshold
+    // 0.91018, where 'vs critical' turns positive), reached by editing it, then t = 30; the
+    // text says the same number (issue 55: "≥ 0.911" beside a threshold of 0.910).
     assert_eq!(h.app.lesson.as_ref().unwrap().step, 3);
     h.key(Key::Char('n'));
     assert!(
@@ -267,7 +268,17 @@ fn steps_ask_first_reveal_after_and_wait_for_their_condition() {
             .as_ref()
             .unwrap()
             .text
-            .contains("alpha_dot ≥ 0.911")
+            .contains("alpha_dot ≥ 0.9102")
+    );
+    assert!(
+        h.app
+            .lesson
+            .as_ref()
+            .unwrap()
+            .current()
+            .text
+            .contains("0.9102"),
+        "the text prints the condition's number"
     );
     for _ in 0..7 {
         h.key(Key::Down); // to alpha_dot

@@ -95,6 +95,7 @@ fn a_fresh_recording_validates_and_broken_lines_do_not() {
         },
         theme: record::ThemeRef::Name("Default (16 colours)".to_owned()),
         fps: 30.0,
+        lesson: None,
     };
     assert_valid(&v, &serde_json::to_string(&header).unwrap(), "header");
     for bad in [

@@ -320,6 +320,7 @@ pub fn header_of(app: &rattleback::app::App) -> rattleback::record::Header {
         },
         theme: rattleback::record::ThemeRef::Name("Default (16 colours)".to_owned()),
         fps: 30.0,
+        lesson: None,
     }
 }
 
