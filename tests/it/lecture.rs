@@ -1005,3 +1005,55 @@ fn every_shipped_lesson_records_replays_follows_and_verifies_frame_for_frame() {
         }
     }
 }
+
+/// Issue 55: a student's fork is a live explorer at the lecturer's state: after `f` in a
+/// follower paused just before a reversal, `.` steps three times and space plays on, from the
+/// fork's time, in all three scenes (it was frozen until a restart).
+#[test]
+fn a_fork_explores_on_its_own_from_the_lecturers_time() {
+    for (preset, field) in [
+        ("subcritical", "k"),
+        ("kapitza-upright", "b"),
+        ("celt-clockwise", "omega_z"),
+    ] {
+        let lecture = lecture(preset, 8.0, field);
+        // Followed up to the first pause (and its screen), as it was written.
+        let upto = lecture
+            .lines
+            .iter()
+            .position(|l| l.event == Event::Pause)
+            .unwrap()
+            + 2;
+        let start = rattleback::scenario::Preset::parse(&lecture.header.preset, "h", "r", &[])
+            .unwrap();
+        let mut h = Headless::of(&start);
+        let mut r = Replayer::live(Vec::new(), 0.0);
+        let e = r.push(lecture.lines[..upto].to_vec(), &mut h.app);
+        h.exec(e);
+        for _ in 0..200 {
+            let e = r.advance(REPLAY_FRAME * 20.0, &mut h.app);
+            h.exec(e);
+        }
+        let paused_at = h.app.run.shown;
+        assert!(paused_at > 0.0, "{preset}: followed to the pause");
+        // `f`: what the explorer's loop does.
+        h.app.fork();
+        h.exec(vec![rattleback::app::Effect::Sim(rattleback::sim::Command::Release)]);
+        let mut t = paused_at;
+        for i in 0..3 {
+            h.key(Key::Char('.'));
+            assert!(
+                h.app.run.shown > t,
+                "{preset}: `.` {} did not step from t = {t}",
+                i + 1
+            );
+            t = h.app.run.shown;
+        }
+        h.key(Key::Char(' '));
+        assert!(h.app.run.playing, "{preset}: space plays");
+        for _ in 0..10 {
+            h.tick(FRAME);
+        }
+        assert!(h.app.run.shown > t, "{preset}: playing moves the clock on");
+    }
+}
