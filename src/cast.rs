@@ -43,6 +43,50 @@ impl Default for CastSize {
     }
 }
 
+/// The cast's events on the player's clock: each event's time (seconds), each gap between events
+/// cut to the header's `idle_time_limit` as asciinema-player cuts it, and its kind (`"o"` output,
+/// `"m"` marker).
+#[must_use]
+pub fn player_clock(cast: &str) -> Vec<(f64, String)> {
+    let mut lines = cast.lines();
+    let limit = lines
+        .next()
+        .and_then(|h| serde_json::from_str::<serde_json::Value>(h).ok())
+        .and_then(|h| h.get("idle_time_limit").and_then(serde_json::Value::as_f64))
+        .unwrap_or(f64::INFINITY);
+    let (mut previous, mut cut) = (0.0, 0.0);
+    let mut events = Vec::new();
+    for line in lines {
+        let Ok(serde_json::Value::Array(event)) = serde_json::from_str(line) else {
+            continue;
+        };
+        let (Some(t), Some(kind)) = (
+            event.first().and_then(serde_json::Value::as_f64),
+            event.get(1).and_then(serde_json::Value::as_str),
+        ) else {
+            continue;
+        };
+        let idle = t - previous - limit;
+        previous = t;
+        if idle > 0.0 {
+            cut += idle;
+        }
+        events.push((t - cut, kind.to_owned()));
+    }
+    events
+}
+
+/// When the player shows the cast's last frame (seconds on the player's clock): the page's
+/// poster, so the page opens on the session's end.
+#[must_use]
+pub fn last_frame_time(cast: &str) -> f64 {
+    player_clock(cast)
+        .iter()
+        .rev()
+        .find(|(_, kind)| kind == "o")
+        .map_or(0.0, |(t, _)| *t)
+}
+
 /// Whether a frame's bytes print anything: some byte outside escape sequences (CSI, OSC and
 /// two-byte escapes) that is not a control character.
 #[must_use]
@@ -78,12 +122,20 @@ pub fn changes_something(bytes: &[u8]) -> bool {
     false
 }
 
-/// The label of the player's marker an event makes: a chapter's title, `note: TEXT` for a
-/// note (cleaned of control characters); `None` for every other event.
+/// The label of the player's marker an event makes: a chapter's title, a lesson step's
+/// `step N/M: TITLE`, `note: TEXT` for a note (cleaned of control characters); `None` for every
+/// other event.
 #[must_use]
 pub fn marker_label(event: &Event) -> Option<String> {
     match event {
         Event::Chapter { title } => Some(crate::scenario::text::clean(title)),
+        Event::LessonStep {
+            step, steps, title, ..
+        } => Some(format!(
+            "step {}/{steps}: {}",
+            step + 1,
+            crate::scenario::text::clean(title)
+        )),
         Event::Note { text } => Some(format!("note: {}", crate::scenario::text::clean(text))),
         _ => None,
     }
@@ -285,4 +337,25 @@ fn frames_of(
         }
     }
     Ok(frames)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_player_clock_cuts_idle_gaps_as_the_player_does() {
+        let cast = "{\"version\":2,\"width\":80,\"height\":24,\"idle_time_limit\":2.0}\n\
+                    [0.5,\"o\",\"a\"]\n[1.0,\"m\",\"one\"]\n[10.0,\"o\",\"b\"]\n\
+                    [10.5,\"m\",\"two\"]\n[20.0,\"m\",\"end\"]\n";
+        let clock = player_clock(cast);
+        let times: Vec<f64> = clock.iter().map(|(t, _)| *t).collect();
+        assert_eq!(times, [0.5, 1.0, 3.0, 3.5, 5.5]);
+        // The last frame is the last output, not the marker after it.
+        assert!((last_frame_time(cast) - 3.0).abs() < 1e-12);
+        // Without a limit nothing is cut.
+        let uncut = cast.replace(",\"idle_time_limit\":2.0", "");
+        assert!((last_frame_time(&uncut) - 10.0).abs() < 1e-12);
+        assert!(last_frame_time("{}").abs() < 1e-12, "an empty cast");
+    }
 }

@@ -51,7 +51,7 @@ pub fn stdout_failure() -> Option<crate::failure::Outcome> {
     })
 }
 macro_rules! say_err {
-    ($($t:tt)*) => { eprintln!("{}", crate::scenario::text::shown(&format!($($t)*))) };
+    ($($t:tt)*) => { $crate::scenario::text::warn(&format!($($t)*)) };
 }
 macro_rules! say_raw {
     ($($t:tt)*) => { $crate::commands::say_raw(&format!($($t)*)) };

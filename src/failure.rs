@@ -82,7 +82,7 @@ impl Failure {
     #[must_use]
     pub fn exit(self) -> ExitCode {
         for line in &self.lines {
-            eprintln!("rattleback: error: {}", crate::scenario::text::shown(line));
+            crate::scenario::text::warn(&format!("rattleback: error: {line}"));
         }
         ExitCode::from(self.code)
     }

@@ -24,7 +24,7 @@ macro_rules! say {
     ($($t:tt)*) => { rattleback::commands::say(&format!($($t)*)) };
 }
 macro_rules! say_err {
-    ($($t:tt)*) => { eprintln!("{}", rattleback::scenario::text::shown(&format!($($t)*))) };
+    ($($t:tt)*) => { rattleback::scenario::text::warn(&format!($($t)*)) };
 }
 
 fn main() -> ExitCode {
@@ -54,9 +54,9 @@ fn run() -> Outcome {
                 // The help of a command that needs a subcommand: say so first.
                 text = format!("error: a subcommand is needed\n\n{text}");
             }
-            eprint!("rattleback: {}", rattleback::scenario::text::shown(&text));
+            rattleback::scenario::text::warn_raw(&format!("rattleback: {text}"));
             if !text.ends_with('\n') {
-                eprintln!();
+                rattleback::scenario::text::warn_raw("\n");
             }
             return Err(Failure::said(2));
         }

@@ -2,11 +2,12 @@
 //! rendered into an asciicast (as `--export-cast` does: no key footer, no frame that changes
 //! nothing), which the page inlines beside asciinema-player 3.18.0 (vendored from its npm
 //! release with its licence, `assets/asciinema-player/`), so the page needs no network. Chapters
-//! are links that seek to them; chapters and notes are the player's markers.
+//! (and a lesson's steps) are links that seek to them, each with its time; chapters, steps and
+//! notes are the player's markers. The page opens on the session's last frame (its poster) and
+//! plays from the start when clicked.
 
 use std::fmt::Write as _;
 
-use crate::app::journal::Event;
 use crate::record::Recording;
 
 /// The player's script, inlined.
@@ -41,8 +42,8 @@ fn script_json(value: &serde_json::Value) -> String {
         .replace('<', "\\u003c")
 }
 
-/// One chapter link: its number among the cast's markers (chapters and notes, in order) and its
-/// title.
+/// One chapter link (a lecturer's chapter, or a lesson's step): its number among the cast's
+/// markers (chapters, steps and notes, in order) and its title.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Link {
     /// Index of the marker the link seeks to.
@@ -51,7 +52,8 @@ pub struct Link {
     pub title: String,
 }
 
-/// The chapter links of `rec`, indexed as the cast's markers are (a note is a marker too).
+/// The chapter links of `rec` (its chapters and lesson steps), indexed as the cast's markers
+/// are (a note is a marker too).
 #[must_use]
 pub fn links(rec: &Recording) -> Vec<Link> {
     rec.lines
@@ -60,12 +62,27 @@ pub fn links(rec: &Recording) -> Vec<Link> {
             crate::cast::marker_label(&line.event).map(|label| (&line.event, label))
         })
         .enumerate()
-        .filter(|(_, (event, _))| matches!(event, Event::Chapter { .. }))
+        .filter(|(_, (event, _))| event.starts_chapter())
         .map(|(marker, (_, title))| Link {
             marker,
             title: title.replace(['\n', '\t'], " "),
         })
         .collect()
+}
+
+/// The page's poster: the player's frame just after the cast's last output (asciinema-player
+/// draws a poster from the events strictly before its time, so at the last frame's own time it
+/// showed the frame before it), which is the session's last screen.
+#[must_use]
+pub fn poster_time(cast: &str) -> f64 {
+    crate::cast::last_frame_time(cast) + 0.001
+}
+
+/// A time on the player's seek bar, as it shows it: `m:ss`.
+fn clock(seconds: f64) -> String {
+    // Whole seconds of a page's length: far below u64's range.
+    let s = seconds.max(0.0).floor() as u64;
+    format!("{}:{:02}", s / 60, s % 60)
 }
 
 /// Writes the page of `rec` at `out` (replacing an existing file only when `replace`), telling
@@ -98,13 +115,21 @@ pub fn export_html(
 #[must_use]
 pub fn lecture_page(rec: &Recording, title: &str, cast: &str) -> String {
     let title = escape(&crate::scenario::text::clean(title));
+    // Where each marker is on the player's clock (its seek bar), shown beside its chapter.
+    let markers: Vec<f64> = crate::cast::player_clock(cast)
+        .into_iter()
+        .filter(|(_, kind)| kind == "m")
+        .map(|(t, _)| t)
+        .collect();
     let mut chapters = String::new();
     for l in links(rec) {
+        let at = markers.get(l.marker).copied().unwrap_or(0.0);
         let _ = writeln!(
             chapters,
-            "<li><a href=\"#\" data-marker=\"{}\">{}</a></li>",
+            "<li><a href=\"#\" data-marker=\"{}\" data-time=\"{at:.6}\">{}</a> <small>{}</small></li>",
             l.marker,
-            escape(&l.title)
+            escape(&l.title),
+            clock(at)
         );
     }
     let chapters = if chapters.is_empty() {
@@ -145,7 +170,8 @@ nav ol {{ columns: 2; }}
   var player = AsciinemaPlayer.create({{ data: cast }}, document.getElementById("player"), {{
     fit: "width",
     idleTimeLimit: {idle},
-    preload: true
+    preload: true,
+    poster: "npt:{poster:.6}"
   }});
   window.rattlebackPlayer = player;
   var links = document.querySelectorAll("#chapters a");
@@ -166,6 +192,7 @@ nav ol {{ columns: 2; }}
         license = PLAYER_LICENSE.replace("*/", "* /"),
         js = PLAYER_JS,
         idle = crate::cast::IDLE_TIME_LIMIT,
+        poster = poster_time(cast),
     )
 }
 

@@ -48,6 +48,8 @@ impl ratatui::crossterm::Command for EnableClickCapture {
 pub struct Tty {
     terminal: Terminal<CrosstermBackend<FrameWriter>>,
     mouse: bool,
+    /// Set when the terminal is handed back: its writer then writes nothing.
+    released: std::rc::Rc<std::cell::Cell<bool>>,
 }
 
 static HOOK: Once = Once::new();
@@ -87,9 +89,14 @@ impl Tty {
             restore();
             return Err(e);
         }
-        let terminal = Terminal::new(CrosstermBackend::new(FrameWriter::new(depth)))
-            .inspect_err(|_| restore())?;
-        Ok(Self { terminal, mouse })
+        let writer = FrameWriter::new(depth);
+        let released = std::rc::Rc::clone(&writer.released);
+        let terminal = Terminal::new(CrosstermBackend::new(writer)).inspect_err(|_| restore())?;
+        Ok(Self {
+            terminal,
+            mouse,
+            released,
+        })
     }
 
     /// Puts `text` on the terminal's clipboard with OSC 52 (`ESC ] 52 ; c ; BASE64 BEL`), which
@@ -173,6 +180,11 @@ impl Tty {
 impl Drop for Tty {
     fn drop(&mut self) {
         restore();
+        // The terminal is restored (cursor shown): ratatui's own drop writes nothing more. On a
+        // terminal that is gone (a hang-up: SSH dropped, tmux killed) its attempt to show the
+        // cursor failed and it said so with `eprintln!`, which panics when standard error is
+        // that dead terminal: the recording was never finished (issue 55).
+        self.released.set(true);
     }
 }
 
@@ -187,6 +199,9 @@ const UNDERLINE_RESET: &[u8] = b"\x1b[59m";
 pub struct FrameWriter {
     buf: Vec<u8>,
     depth: Depth,
+    /// The terminal has been restored (or is gone): nothing more is written to it. Shared with
+    /// the [`Tty`], which sets it when it hands the terminal back.
+    released: std::rc::Rc<std::cell::Cell<bool>>,
 }
 
 impl FrameWriter {
@@ -196,6 +211,7 @@ impl FrameWriter {
         Self {
             buf: Vec::new(),
             depth,
+            released: std::rc::Rc::default(),
         }
     }
 
@@ -223,6 +239,10 @@ impl Write for FrameWriter {
     }
 
     fn flush(&mut self) -> io::Result<()> {
+        if self.released.get() {
+            self.buf.clear();
+            return Ok(());
+        }
         let bytes = depth::fit(&Self::strip(&std::mem::take(&mut self.buf)), self.depth);
         let mut out = io::stdout().lock();
         out.write_all(&bytes)?;

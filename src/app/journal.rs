@@ -179,6 +179,13 @@ pub enum Event {
 }
 
 impl Event {
+    /// Whether the event opens a chapter of the session: a chapter the lecturer marked, or a
+    /// lesson's step. Replay's `[` and `]` jump between them; the cast and the page mark them.
+    #[must_use]
+    pub fn starts_chapter(&self) -> bool {
+        matches!(self, Self::Chapter { .. } | Self::LessonStep { .. })
+    }
+
     /// The overlay and the panes shown, of a layout line or of an older `panes` line.
     #[must_use]
     pub fn layout(&self) -> Option<(bool, Vec<super::panes::Pane>)> {

@@ -581,7 +581,21 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
     // without returning, and the thread ends with the process anyway. A live terminal's thread
     // sees `stop` within 100 ms.
     drop(input);
-    result
+    why_ended(result, hangup)
+}
+
+/// A terminal that hung up (SSH dropped, tmux killed) fails the next frame, often before the
+/// loop has seen its SIGHUP: the signal, not the failed write, is why the explorer ended.
+fn why_ended(
+    result: std::io::Result<Option<i32>>,
+    signal: &AtomicUsize,
+) -> std::io::Result<Option<i32>> {
+    match (result, signal.load(Ordering::Relaxed)) {
+        (Err(_), n) if ENDING_SIGNALS.iter().any(|&s| s as usize == n) => Ok(Some(
+            i32::try_from(n).unwrap_or(signal_hook::consts::SIGHUP),
+        )),
+        (result, _) => result,
+    }
 }
 
 /// One event from the terminal, the worker or the followed file; whether the screen changed.

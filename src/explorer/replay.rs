@@ -26,7 +26,7 @@ impl Replayer {
     #[must_use]
     pub fn new(lines: Vec<Line>) -> Self {
         let chapters = (0..lines.len())
-            .filter(|&i| matches!(lines[i].event, crate::app::journal::Event::Chapter { .. }))
+            .filter(|&i| lines[i].event.starts_chapter())
             .collect();
         Self {
             lines,
@@ -56,7 +56,7 @@ impl Replayer {
     /// follower fell behind the lecturer: the clock jumps to it (paced to the lecturer's clock).
     pub fn push(&mut self, lines: Vec<Line>, app: &mut App) -> Vec<Effect> {
         for line in lines {
-            if matches!(line.event, crate::app::journal::Event::Chapter { .. }) {
+            if line.event.starts_chapter() {
                 self.chapters.push(self.lines.len());
             }
             if matches!(line.event, crate::app::journal::Event::End { .. }) {

@@ -348,3 +348,15 @@ mod suggestion_tests {
         );
     }
 }
+
+/// Prints [`shown`] text on standard error. A failed write is ignored (`eprintln!` would panic):
+/// standard error may be a terminal that hung up, and the exit status still says what happened.
+pub fn warn_raw(text: &str) {
+    use std::io::Write as _;
+    let _ = std::io::stderr().lock().write_all(shown(text).as_bytes());
+}
+
+/// [`warn_raw`] of one line.
+pub fn warn(text: &str) {
+    warn_raw(&format!("{text}\n"));
+}

@@ -528,11 +528,11 @@ impl EnergyOut {
 /// Says on stderr that a run's energy drifted past [`energy_bound`].
 fn warn_energy(energy: &EnergyOut, tolerance: f64) {
     if energy.exceeds_bound {
-        eprintln!(
+        crate::scenario::text::warn(&format!(
             "rattleback: warning: the energy drifted by {:.1e} (relative), more than the {:.0e} a run at tolerance {tolerance:e} can be trusted with: the result is not accurate (a smaller --step, a tighter --tolerance, or --method auto)",
             energy.max_relative_error,
             energy_bound(tolerance),
-        );
+        ));
     }
 }
 

@@ -362,24 +362,43 @@ fn cast_screens(cast: &str, lecture: &Lecture) -> usize {
             parser.process(events[next].1.as_bytes());
             next += 1;
         }
-        let screen = parser.screen();
-        let mut mine = String::new();
-        for row in 0..22 {
-            for col in 0..80 {
-                let c = screen
-                    .cell(row, col)
-                    .map(|c| c.contents().to_owned())
-                    .unwrap_or_default();
-                mine.push_str(if c.is_empty() { " " } else { &c });
-            }
-            mine.push('\n');
-        }
+        let mine = vt_rows(&parser);
         // The cast shows the lecturer's messages: compare the rows above any message line.
         let strip = |s: &str| s.lines().take(18).collect::<Vec<_>>().join("\n");
         assert_eq!(strip(&mine), strip(f), "line {}: the cast's frame", i + 2);
         compared += 1;
     }
     compared
+}
+
+/// The 80x24 terminal's first 22 rows, as `lecture.frames` holds them.
+fn vt_rows(parser: &vt100::Parser) -> String {
+    let screen = parser.screen();
+    let mut rows = String::new();
+    for row in 0..22 {
+        for col in 0..80 {
+            let c = screen
+                .cell(row, col)
+                .map(|c| c.contents().to_owned())
+                .unwrap_or_default();
+            rows.push_str(if c.is_empty() { " " } else { &c });
+        }
+        rows.push('\n');
+    }
+    rows
+}
+
+/// The screen a cast shows at its end.
+fn cast_last_screen(cast: &str) -> String {
+    let n = |x: u16| std::num::NonZeroU16::new(x).unwrap();
+    let mut parser = vt100::Parser::new(n(24), n(80), 0);
+    for l in cast.lines().skip(1) {
+        let v: serde_json::Value = serde_json::from_str(l).unwrap();
+        if v[1] == "o" {
+            parser.process(v[2].as_str().unwrap().as_bytes());
+        }
+    }
+    vt_rows(&parser)
 }
 
 fn write(
@@ -1001,7 +1020,31 @@ fn every_shipped_lesson_records_replays_follows_and_verifies_frame_for_frame() {
                 page.to_str().unwrap(),
             ]);
             assert_eq!(code, 0, "{name} ×{speed}: {err}");
-            assert!(std::fs::metadata(&page).unwrap().len() > 1000);
+            // The page opens on the last frame: its poster is the inlined cast's last frame,
+            // and that frame is the lecturer's last screen.
+            let html = std::fs::read_to_string(&page).unwrap();
+            let inlined = html
+                .split_once("<script type=\"application/json\" id=\"cast\">")
+                .and_then(|(_, rest)| rest.split_once("</script>"))
+                .map(|(json, _)| serde_json::from_str::<String>(json).unwrap())
+                .expect("the page inlines its cast");
+            let last = rattleback::cast::last_frame_time(&inlined);
+            assert!(last > 0.0, "{name} ×{speed}");
+            let poster = rattleback::page::poster_time(&inlined);
+            assert!(
+                poster > last && poster - last < 0.01,
+                "{name} ×{speed}: the poster ({poster}) is not the last frame ({last})"
+            );
+            assert!(
+                html.contains(&format!("poster: \"npt:{poster:.6}\"")),
+                "{name} ×{speed}: the page's poster is not the last frame"
+            );
+            let strip = |s: &str| s.lines().take(18).collect::<Vec<_>>().join("\n");
+            assert_eq!(
+                strip(&cast_last_screen(&inlined)),
+                strip(&lecture.frames.last().unwrap().1),
+                "{name} ×{speed}: the page's last frame"
+            );
         }
     }
 }
@@ -1024,8 +1067,8 @@ fn a_fork_explores_on_its_own_from_the_lecturers_time() {
             .position(|l| l.event == Event::Pause)
             .unwrap()
             + 2;
-        let start = rattleback::scenario::Preset::parse(&lecture.header.preset, "h", "r", &[])
-            .unwrap();
+        let start =
+            rattleback::scenario::Preset::parse(&lecture.header.preset, "h", "r", &[]).unwrap();
         let mut h = Headless::of(&start);
         let mut r = Replayer::live(Vec::new(), 0.0);
         let e = r.push(lecture.lines[..upto].to_vec(), &mut h.app);
@@ -1038,7 +1081,9 @@ fn a_fork_explores_on_its_own_from_the_lecturers_time() {
         assert!(paused_at > 0.0, "{preset}: followed to the pause");
         // `f`: what the explorer's loop does.
         h.app.fork();
-        h.exec(vec![rattleback::app::Effect::Sim(rattleback::sim::Command::Release)]);
+        h.exec(vec![rattleback::app::Effect::Sim(
+            rattleback::sim::Command::Release,
+        )]);
         let mut t = paused_at;
         for i in 0..3 {
             h.key(Key::Char('.'));

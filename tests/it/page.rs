@@ -11,7 +11,12 @@ const LECTURE: &str = concat!(
 );
 
 fn temp(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("rattleback-page-{}", std::process::id()));
+    // One folder per test (they run in parallel, and each removes its own).
+    let dir = std::env::temp_dir().join(format!(
+        "rattleback-page-{}-{}",
+        std::process::id(),
+        name.replace('.', "-")
+    ));
     std::fs::create_dir_all(&dir).unwrap();
     dir.join(name)
 }
@@ -68,12 +73,30 @@ fn the_exported_page_is_self_contained_with_the_cast_and_chapter_links() {
     let rec = rattleback::record::read(std::path::Path::new(LECTURE)).unwrap();
     let links = rattleback::page::links(&rec);
     assert!(!links.is_empty());
+    // Each link carries its marker's time on the player's clock, and says it.
+    let times: Vec<f64> = rattleback::cast::player_clock(&inlined)
+        .into_iter()
+        .filter(|(_, kind)| kind == "m")
+        .map(|(t, _)| t)
+        .collect();
     for l in &links {
+        let at = times[l.marker];
+        let seconds = at.floor() as u64;
         assert!(
-            page.contains(&format!("data-marker=\"{}\">{}</a>", l.marker, l.title)),
+            page.contains(&format!(
+                "data-marker=\"{}\" data-time=\"{at:.6}\">{}</a> <small>{}:{:02}</small>",
+                l.marker,
+                l.title,
+                seconds / 60,
+                seconds % 60
+            )),
             "{l:?}"
         );
     }
+    // The page opens on the last frame (a poster), and does not play by itself.
+    let poster = rattleback::page::poster_time(&inlined);
+    assert!(page.contains(&format!("poster: \"npt:{poster:.6}\"")));
+    assert!(!page.contains("autoPlay: true"));
     let ev = events(&inlined);
     let markers: Vec<&serde_json::Value> = ev.iter().filter(|e| e[1] == "m").collect();
     assert!(
@@ -108,6 +131,68 @@ fn the_exported_page_is_self_contained_with_the_cast_and_chapter_links() {
         "{err}"
     );
     std::fs::remove_dir_all(html.parent().unwrap()).ok();
+    std::fs::remove_dir_all(cast.parent().unwrap()).ok();
+}
+
+/// Issue 55: a lesson's page lists its steps as chapters, each a marker of the cast, in order;
+/// the replay's `]` jumps to them as to a lecturer's chapters.
+#[test]
+fn a_lessons_steps_are_its_pages_chapters() {
+    let lesson = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/sessions/lesson-kapitza-threshold.jsonl"
+    );
+    let rec = rattleback::record::read(std::path::Path::new(lesson)).unwrap();
+    let titles: Vec<String> = rattleback::page::links(&rec)
+        .into_iter()
+        .map(|l| l.title)
+        .collect();
+    assert_eq!(
+        titles,
+        [
+            "step 1/3: Shaken, but not enough",
+            "step 2/3: Shaken a little harder",
+            "step 3/3: Find the threshold yourself"
+        ]
+    );
+    let html = temp("lesson.html");
+    let (code, _, err) = crate::common::bin(&[
+        "replay",
+        lesson,
+        "--verify",
+        "--export-html",
+        html.to_str().unwrap(),
+        "--force",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let page = std::fs::read_to_string(&html).unwrap();
+    for t in &titles {
+        assert!(page.contains(&format!(">{t}</a>")), "{t}");
+    }
+    std::fs::remove_dir_all(html.parent().unwrap()).ok();
+    // In the replay, `]` goes from step to step, each at its start (t 0, the step's preset).
+    let (app, effects) = rattleback::record::start(&rec, lesson).unwrap();
+    let mut h = crate::common::Headless {
+        app,
+        engine: rattleback::sim::Engine::new(rattleback::record::plan_book(&rec)),
+        effects: Vec::new(),
+    };
+    h.exec(effects);
+    let lines: Vec<_> = rec.lines.iter().map(|(_, l)| l.clone()).collect();
+    let mut r = rattleback::explorer::replay::Replayer::new(lines);
+    let e = r.catch_up(&mut h.app);
+    h.exec(e);
+    let preset = rattleback::scenario::shipped::resolve("kapitza-upright", &[]).unwrap();
+    let rebuild = |old: &rattleback::app::App| {
+        rattleback::app::App::new_after(&preset, rattleback::app::Options::at(30.0), old)
+    };
+    for step in 0..3 {
+        let e = r.key(rattleback::app::Key::Char(']'), &mut h.app, &rebuild);
+        h.exec(e);
+        let state = h.app.lesson.as_ref().expect("the recorded lesson");
+        assert_eq!(state.step, step, "] lands on step {}", step + 1);
+        assert!(h.app.run.shown.abs() < 1e-12, "step {}: t 0", step + 1);
+    }
 }
 
 #[test]

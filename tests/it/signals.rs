@@ -239,3 +239,77 @@ fn quit_and_signals_are_immediate_while_auto_verifies_a_huge_run() {
     }
     let _ = std::fs::remove_file(&preset);
 }
+
+/// Issue 55: whatever ends a recording writes its last frame and checkpoint, so `--verify`
+/// checks the frame the audience last saw: SIGTERM, SIGHUP, SIGINT, `q`, and a terminal that
+/// hangs up (its pseudo-terminal closed under it, as when SSH drops or tmux is killed: the
+/// explorer's next frame failed, `eprintln!` panicked on the dead terminal, and the file had
+/// no end).
+#[test]
+fn every_way_a_recording_ends_writes_and_verifies_its_last_frame() {
+    for how in ["TERM", "HUP", "INT", "q", "hang-up"] {
+        let file = std::env::temp_dir().join(format!(
+            "rattleback-signal-end-{how}-{}.jsonl",
+            std::process::id()
+        ));
+        let _ = std::fs::remove_file(&file);
+        let mut e = Explorer::start_with(
+            &format!("end-{how}"),
+            &[
+                "--preset",
+                "kapitza-upright",
+                "--record",
+                file.to_str().unwrap(),
+            ],
+        );
+        let pid = e.pid();
+        // Playing when it ends: the last frame is not the first.
+        e.script.stdin.as_mut().unwrap().write_all(b" ").unwrap();
+        e.script.stdin.as_mut().unwrap().flush().unwrap();
+        std::thread::sleep(Duration::from_millis(700));
+        match how {
+            "q" => {
+                e.script.stdin.as_mut().unwrap().write_all(b"q").unwrap();
+                e.script.stdin.as_mut().unwrap().flush().unwrap();
+                assert_eq!(e.finish(), 0);
+            }
+            "hang-up" => {
+                // The terminal goes away: `script` (the pseudo-terminal's master) is killed.
+                kill(e.script.id(), "KILL");
+                let _ = e.script.wait();
+                let start = Instant::now();
+                while std::path::Path::new(&format!("/proc/{pid}")).exists() && state(pid) != 'Z' {
+                    assert!(
+                        start.elapsed() < Duration::from_secs(10),
+                        "the explorer lives on after its terminal hung up"
+                    );
+                    std::thread::sleep(Duration::from_millis(20));
+                }
+            }
+            signal => {
+                kill(pid, signal);
+                let n = match signal {
+                    "TERM" => 15,
+                    "HUP" => 1,
+                    _ => 2,
+                };
+                assert_eq!(e.finish(), 128 + n, "SIG{signal}");
+            }
+        }
+        let (code, out, err) = crate::common::bin(&["replay", file.to_str().unwrap(), "--verify"]);
+        assert_eq!(code, 0, "ended by {how}: {err}");
+        assert!(
+            out.contains("the last frame, as recorded"),
+            "ended by {how}: {out}"
+        );
+        let text = std::fs::read_to_string(&file).unwrap();
+        let mut screens = text.lines().filter(|l| l.contains(r#""kind":"screen""#));
+        assert!(
+            screens
+                .next_back()
+                .is_some_and(|l| !l.contains(r#""t":0.0,"#)),
+            "ended by {how}: the last frame is the one at the end, not the start"
+        );
+        let _ = std::fs::remove_file(&file);
+    }
+}
