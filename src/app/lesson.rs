@@ -77,6 +77,12 @@ impl LessonState {
 impl App {
     /// Opens `lesson` at its first step; returns the effects that start it.
     pub fn start_lesson(&mut self, lesson: Lesson) -> Vec<Effect> {
+        self.show_lesson(lesson);
+        self.enter_step(0)
+    }
+
+    /// `lesson` at its first step, its pane open; nothing loaded.
+    fn show_lesson(&mut self, lesson: Lesson) {
         self.lesson = Some(LessonState {
             lesson,
             step: 0,
@@ -85,20 +91,12 @@ impl App {
             finished: false,
         });
         self.view.panes.set(super::panes::Pane::Lesson, true);
-        self.enter_step(0)
     }
 
     /// A recorded lesson in a replay (its header's, format 10): the pane shows its steps as the
     /// recording's lines move through them; nothing is loaded (the lines do that).
     pub fn replay_lesson(&mut self, lesson: Lesson) {
-        self.lesson = Some(LessonState {
-            lesson,
-            step: 0,
-            given: None,
-            revealed: false,
-            finished: false,
-        });
-        self.view.panes.set(super::panes::Pane::Lesson, true);
+        self.show_lesson(lesson);
     }
 
     /// A recorded step, answer or reveal applied to a replay's lesson.

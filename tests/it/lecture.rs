@@ -68,6 +68,21 @@ struct Lecturer {
 }
 
 impl Lecturer {
+    /// Stopped as `R` stops it: the last frame once settled, its checkpoint, then the end.
+    fn stop(&mut self) {
+        self.key(Key::Char('R'));
+        while self.h.app.journal.state == rattleback::app::RecState::On {
+            self.tick();
+        }
+        assert!(
+            matches!(
+                self.lines.last().map(|x| &x.event),
+                Some(Event::Checkpoint { .. })
+            ),
+            "the stop ends with the last frame's checkpoint"
+        );
+    }
+
     fn collect(&mut self) {
         for (t, generation, event) in self.h.app.take_journal() {
             if let Event::Screen(shown) = &event {
@@ -212,19 +227,7 @@ fn lecture_with(preset: &str, speed: f64, field: &str, compare: bool) -> Lecture
         l.h.app.run.shown < l.h.app.run.t_end,
         "{preset} ×{speed}: playing again did not start over"
     );
-    // Stop: the final screen and checkpoint, then the end line.
-    // Stopped as `R` stops it: the last frame once settled, its checkpoint, then the end.
-    l.key(Key::Char('R'));
-    while l.h.app.journal.state == rattleback::app::RecState::On {
-        l.tick();
-    }
-    assert!(
-        matches!(
-            l.lines.last().map(|x| &x.event),
-            Some(Event::Checkpoint { .. })
-        ),
-        "the stop ends with the last frame's checkpoint"
-    );
+    l.stop();
     // With the comparison, every screen recorded the partner as the pane showed it.
     let with_partner =
         |(_, f, s): &(usize, String, Shown)| s.compare.is_some() && f.contains("compare: spin(t)");
@@ -928,18 +931,7 @@ fn lesson_lecture(name: &str, speed: f64, wrong: bool) -> Lecture {
         l.h.app.lesson.as_ref().unwrap().finished,
         "{name}: finished"
     );
-    // Stopped as `R` stops it: the last frame once settled, its checkpoint, then the end.
-    l.key(Key::Char('R'));
-    while l.h.app.journal.state == rattleback::app::RecState::On {
-        l.tick();
-    }
-    assert!(
-        matches!(
-            l.lines.last().map(|x| &x.event),
-            Some(Event::Checkpoint { .. })
-        ),
-        "the stop ends with the last frame's checkpoint"
-    );
+    l.stop();
     Lecture {
         header,
         lines: l.lines,
