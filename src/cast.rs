@@ -252,7 +252,7 @@ fn prepare(rec: &Recording, path: &str, size: CastSize) -> Result<Prepared, Reco
         },
     )
     .map_err(io)?;
-    let mut engine = Engine::new(plan_book(rec));
+    let mut engine = Engine::new(plan_book(rec)).stopping_on(crate::interrupt::not_requested);
     drive(&mut engine, commands(start_effects), &mut |e| {
         app.on_sim(e);
     });

@@ -583,11 +583,8 @@ pub fn check(args: &CheckArgs) -> Outcome {
 /// `rattleback study sweep|map`.
 pub fn study(command: &crate::cli::StudyCommand) -> Outcome {
     use crate::cli::StudyCommand;
-    // Ctrl-C (or SIGTERM) cancels the runs in flight and ends with 128 + the signal, the
-    // progress bar erased and no file written.
-    if let Err(e) = crate::interrupt::install() {
-        return Err(Failure::failed(e));
-    }
+    // Ctrl-C (or any ending signal: `main` installs them) cancels the runs in flight and ends
+    // with 128 + the signal, the progress bar erased and no file written.
     match command {
         StudyCommand::Sweep(args) => study_sweep(args),
         StudyCommand::Map(args) => study_map(args),

@@ -78,6 +78,16 @@ impl Failure {
         self.code
     }
 
+    /// Says the lines and ends the process now with the status: only for a signal the command
+    /// did not answer within the grace of its watchdog (`interrupt`; the temporary files
+    /// removed first). Every other end goes through `main`'s [`exit`].
+    pub fn end_now(self) -> ! {
+        for line in &self.lines {
+            crate::scenario::text::warn(&format!("rattleback: error: {line}"));
+        }
+        std::process::exit(i32::from(self.code))
+    }
+
     /// Prints the lines on standard error and ends with the status: the one exit decision.
     #[must_use]
     pub fn exit(self) -> ExitCode {

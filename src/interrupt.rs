@@ -1,30 +1,92 @@
-//! Ctrl-C, SIGTERM and SIGHUP for the headless commands that write a file: instead of dying
-//! with a half-written temporary file beside the output, they stop at the next frame or step,
-//! the temporary file is removed, and the process exits `128 + n`. Installed by the command
-//! (`install`), asked by the long loops (`requested`).
+//! Signals for the headless commands (every command but the explorer, which restores its
+//! terminal first: `explorer::run`). Every signal whose default action ends the process and that
+//! can be caught ([`ending`]) sets a flag the long loops ask ([`requested`]): they stop at the
+//! next step, frame or cell, the temporary file is removed, and the process exits `128 + n`
+//! saying nothing was written. A watchdog makes that hold whatever the command is doing: when
+//! the process is still there [`GRACE`] after the signal, it removes the temporary files being
+//! written ([`crate::fault::pending`]), says so, and exits `128 + n` itself (issue 56: an export
+//! busy in one frame's run answered SIGTERM 9–19 s late, and USR1, USR2, ALRM or XCPU left its
+//! temporary file). The faults are [`crate::fault`]'s.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Duration;
 
 static SIGNAL: std::sync::OnceLock<Arc<AtomicUsize>> = std::sync::OnceLock::new();
 
-/// The signals that interrupt a headless command.
-pub const SIGNALS: [i32; 3] = [
-    signal_hook::consts::SIGINT,
-    signal_hook::consts::SIGTERM,
-    signal_hook::consts::SIGHUP,
-];
+/// The command is ending on its own (its exit is being said): the watchdog leaves it be.
+static ENDING: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
-/// Catches [`SIGNALS`] from now on (their default action would leave temporary files).
+/// How long the watchdog leaves the command to stop on its own before it ends the process.
+pub const GRACE: Duration = Duration::from_millis(60);
+
+/// Every signal whose default action ends the process and that a handler can take safely
+/// (`signal-hook`'s): the faults are [`crate::fault`]'s, SIGPIPE is ignored (a closed pipe is an
+/// error where it is written: `rattleback presets | head` ends quietly) and SIGABRT is a
+/// program's own `abort()`; the realtime signals (SIGRTMIN to SIGRTMAX) too.
+#[must_use]
+pub fn ending() -> Vec<i32> {
+    use signal_hook::consts::signal as s;
+    let mut all = vec![
+        s::SIGINT,
+        s::SIGTERM,
+        s::SIGHUP,
+        s::SIGQUIT,
+        s::SIGUSR1,
+        s::SIGUSR2,
+        s::SIGALRM,
+        s::SIGVTALRM,
+        s::SIGPROF,
+        s::SIGXCPU,
+        s::SIGXFSZ,
+        s::SIGIO,
+        libc::SIGPWR,
+        libc::SIGSTKFLT,
+    ];
+    all.extend(libc::SIGRTMIN()..=libc::SIGRTMAX());
+    all
+}
+
+/// Catches [`ending`] signals from now on, with the watchdog (once per process), which calls
+/// `end` (the process's end: `Failure::end_now`) when the command has not stopped in time.
 ///
 /// # Errors
 /// When a handler cannot be registered.
-pub fn install() -> std::io::Result<()> {
+pub fn install(end: fn(i32) -> !) -> std::io::Result<()> {
+    static WATCHDOG: std::sync::OnceLock<()> = std::sync::OnceLock::new();
     let flag = SIGNAL.get_or_init(|| Arc::new(AtomicUsize::new(0)));
-    for n in SIGNALS {
+    if WATCHDOG.get().is_some() {
+        return Ok(());
+    }
+    let signals = ending();
+    for &n in &signals {
         signal_hook::flag::register_usize(n, Arc::clone(flag), n as usize)?;
     }
+    let mut arrivals = signal_hook::iterator::Signals::new(&signals)?;
+    std::thread::Builder::new()
+        .name("rattleback-signals".to_owned())
+        .spawn(move || {
+            if let Some(n) = arrivals.forever().next() {
+                std::thread::sleep(GRACE);
+                if ENDING.load(Ordering::SeqCst) {
+                    return;
+                }
+                // Still here: the work did not stop in time. Nothing half-written stays.
+                crate::fault::remove_pending();
+                if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+                    // A progress bar's line, erased.
+                    let _ = std::io::Write::write_all(&mut std::io::stderr(), b"\r\x1b[2K");
+                }
+                end(n);
+            }
+        })?;
+    let _ = WATCHDOG.set(());
     Ok(())
+}
+
+/// The command is ending on its own and says so: the watchdog does not end it meanwhile.
+pub fn ending_now() {
+    ENDING.store(true, Ordering::SeqCst);
 }
 
 /// The signal that arrived, if one did.
@@ -35,6 +97,12 @@ pub fn requested() -> Option<i32> {
         .map(|f| f.load(Ordering::Relaxed))
         .filter(|&n| n != 0)
         .map(|n| i32::try_from(n).unwrap_or(signal_hook::consts::SIGTERM))
+}
+
+/// Whether no signal has come (an engine's [`stopping_on`](crate::sim::Engine::stopping_on)).
+#[must_use]
+pub fn not_requested() -> bool {
+    requested().is_none()
 }
 
 /// An error for a loop that stopped because a signal arrived.

@@ -13,6 +13,7 @@ pub mod doctor;
 pub mod explorer;
 pub mod export;
 pub mod failure;
+pub mod fault;
 pub mod interrupt;
 pub mod manual;
 pub mod outputs;

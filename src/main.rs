@@ -38,12 +38,37 @@ fn main() -> ExitCode {
     // `auto`'s independent computations (a run's companion, the start's conditioning, the
     // probes) on a second core: same results, bit for bit, in less wall time.
     rattleback::parallel::install();
+    // A fault (SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGTRAP, SIGSYS) puts the terminal back, removes
+    // the temporary files and ends the process by its signal, whatever the command.
+    rattleback::fault::install();
     // The one exit decision: every command says why it stopped, `failure` says how that ends.
     failure::exit(run())
 }
 
-/// Parses the command line and runs the command it names.
+/// Whether `command` draws the explorer (its signals are its own: `explorer::run`).
+fn interactive(command: Option<&Command>) -> bool {
+    match command {
+        None | Some(Command::Lesson(_) | Command::Compare(_) | Command::Follow(_)) => true,
+        Some(Command::Replay(args)) => {
+            !(args.verify
+                || args.chapters
+                || args.export_cast.is_some()
+                || args.export_html.is_some())
+        }
+        Some(_) => false,
+    }
+}
+
+/// Parses the command line and runs the command it names; then the command is ending on its
+/// own (a signal's watchdog leaves the exit to `main`).
 fn run() -> Outcome {
+    let outcome = command();
+    rattleback::interrupt::ending_now();
+    outcome
+}
+
+/// Parses the command line and runs the command it names.
+fn command() -> Outcome {
     let cli = match Cli::try_parse_from(config_last(std::env::args_os().collect())) {
         Ok(cli) => cli,
         Err(e) if e.use_stderr() => {
@@ -92,6 +117,14 @@ fn run() -> Outcome {
     );
     if reads_config {
         config_or_exit()?;
+    }
+    // Every headless command stops on any ending signal within a step, a frame or a cell, and
+    // never later than the watchdog's grace (issue 56); the explorer handles its own, to put
+    // the terminal back first.
+    if !interactive(cli.command.as_ref())
+        && let Err(e) = rattleback::interrupt::install(|n| Failure::interrupted(n).end_now())
+    {
+        return Err(Failure::failed(e));
     }
     match cli.command {
         Some(Command::Simulate(args)) => run_simulate(&args),
@@ -260,9 +293,6 @@ fn export_files(
         rows: args.rows,
         fps: f64::from(look.fps.unwrap_or(10)),
     };
-    if let Err(e) = rattleback::interrupt::install() {
-        return Err(Failure::failed(e));
-    }
     let outputs: [(Option<&std::path::Path>, &str, Export); 2] = [
         (
             args.export_cast.as_deref(),

@@ -56,6 +56,7 @@ static HOOK: Once = Once::new();
 
 /// Puts the terminal back: cooked mode, main screen, visible cursor. Safe to call twice.
 pub fn restore() {
+    crate::fault::disarm();
     let _ = disable_raw_mode();
     let _ = execute!(
         io::stdout(),
@@ -80,6 +81,8 @@ impl Tty {
                 previous(info);
             }));
         });
+        // A fault puts the terminal back as it is now.
+        crate::fault::arm();
         enable_raw_mode()?;
         if let Err(e) = execute!(io::stdout(), EnterAlternateScreen, cursor::Hide) {
             restore();
@@ -160,6 +163,7 @@ impl Tty {
         // SIGTSTP's default action stops the process (the explorer also catches SIGTSTP to get
         // here, so the default is emulated); it returns here on SIGCONT.
         signal_hook::low_level::emulate_default_handler(signal_hook::consts::SIGTSTP)?;
+        crate::fault::arm();
         enable_raw_mode()?;
         execute!(io::stdout(), EnterAlternateScreen, cursor::Hide)?;
         if self.mouse {

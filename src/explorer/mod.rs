@@ -454,34 +454,25 @@ fn plan_book(options: &ExplorerOptions) -> crate::sim::PlanBook {
 
 /// Signals that end the explorer: the terminal is restored, then the process exits with
 /// `128 + n`. Every signal whose default action ends the process and that can be caught safely
-/// (not the faults SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGTRAP, SIGSYS, which re-run the faulting
-/// instruction; the panic hook restores the terminal on a fault Rust catches).
-pub const ENDING_SIGNALS: [i32; 14] = [
-    signal_hook::consts::SIGTERM,
-    signal_hook::consts::SIGHUP,
-    signal_hook::consts::SIGINT,
-    signal_hook::consts::SIGQUIT,
-    signal_hook::consts::SIGUSR1,
-    signal_hook::consts::SIGUSR2,
-    signal_hook::consts::SIGALRM,
-    signal_hook::consts::SIGVTALRM,
-    signal_hook::consts::SIGPROF,
-    signal_hook::consts::SIGXCPU,
-    signal_hook::consts::SIGXFSZ,
-    signal_hook::consts::SIGIO,
-    signal_hook::consts::SIGPIPE,
-    signal_hook::consts::SIGABRT,
-];
+/// ([`crate::interrupt::ending`], the realtime ones included), and SIGPIPE and SIGABRT; the
+/// faults (SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGTRAP, SIGSYS) are [`crate::fault`]'s, which
+/// restores the terminal and ends the process by the signal.
+#[must_use]
+pub fn ending_signals() -> Vec<i32> {
+    let mut all = crate::interrupt::ending();
+    all.extend([signal_hook::consts::SIGPIPE, signal_hook::consts::SIGABRT]);
+    all
+}
 
 /// Runs the explorer on `preset` until the user quits (`Ok(None)`) or a signal of
-/// [`ENDING_SIGNALS`] arrives (`Ok(Some(n))`; the terminal is restored either way). A SIGTSTP
+/// [`ending_signals`] arrives (`Ok(Some(n))`; the terminal is restored either way). A SIGTSTP
 /// (`kill -TSTP`, or Ctrl-Z from outside raw mode) suspends like Ctrl-Z.
 ///
 /// # Errors
 /// When the terminal cannot be set up or written to.
 pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option<i32>> {
     let signal = Arc::new(AtomicUsize::new(0));
-    for n in ENDING_SIGNALS
+    for n in ending_signals()
         .into_iter()
         .chain([signal_hook::consts::SIGTSTP])
     {
@@ -591,7 +582,7 @@ fn why_ended(
     signal: &AtomicUsize,
 ) -> std::io::Result<Option<i32>> {
     match (result, signal.load(Ordering::Relaxed)) {
-        (Err(_), n) if ENDING_SIGNALS.iter().any(|&s| s as usize == n) => Ok(Some(
+        (Err(_), n) if ending_signals().iter().any(|&s| s as usize == n) => Ok(Some(
             i32::try_from(n).unwrap_or(signal_hook::consts::SIGHUP),
         )),
         (result, _) => result,

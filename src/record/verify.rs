@@ -485,7 +485,7 @@ pub fn verify_watched(
 ) -> Result<Report, VerifyError> {
     let (integrity, signature, ended) = check_integrity(rec, key)?;
     let (mut app, effects) = start(rec, path)?;
-    let mut engine = Engine::new(plan_book(rec));
+    let mut engine = Engine::new(plan_book(rec)).stopping_on(crate::interrupt::not_requested);
     let mut got = None;
     run(&mut engine, &mut app, effects, &mut got);
     let mut report = Report {

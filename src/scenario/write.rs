@@ -144,6 +144,8 @@ pub fn write_atomic_with<T>(
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
     let mut tmp = builder.tempfile_in(dir)?;
+    // A fault or a signal's watchdog that ends the process removes it (issue 56).
+    let _pending = crate::fault::pending(tmp.path());
     let value = {
         let mut out = io::BufWriter::new(tmp.as_file_mut());
         let value = fill(&mut out)?;

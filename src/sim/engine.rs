@@ -9,7 +9,7 @@ use std::collections::VecDeque;
 
 use serde::{Deserialize, Serialize};
 
-use super::jobs::{Job, JobKind, Slice, Work};
+use super::jobs::{Job, JobKind, Running, Taken};
 use super::segments::{Ahead, Forward, Next, Progress, Report};
 use super::{Command, Session, SessionSpec, SimEvent};
 use crate::physics::Model;
@@ -226,8 +226,8 @@ pub struct Engine {
     checkpoints: VecDeque<(u64, f64)>,
     /// Stamp of the overlay's current life.
     epoch: u64,
-    /// The panes' computations, at most one of each kind, in the order of their kinds.
-    jobs: Vec<Box<dyn Job>>,
+    /// The panes' computations, at most one of each kind, each on a thread of its own.
+    jobs: Vec<Running>,
     /// The verification of a run's later segments, while it goes on.
     ahead: Option<Ahead>,
     /// The run has reached its verified horizon short of the target, and waits for the next
@@ -236,11 +236,15 @@ pub struct Engine {
     /// Where the run stops, and why: a later segment could not be verified (it is said when
     /// the run reaches its start, the verified part being shown first).
     stop: Option<(f64, String)>,
+    /// Whether to go on: asked by [`drive`] between slices and by the panes' jobs (a headless
+    /// command's signal; always yes in the explorer, which has its own).
+    keep_going: fn() -> bool,
 }
 
 /// How runs are planned: the book of recorded plans and policy, and the predicted seconds of
 /// the runs started so far (against [`PlanBook::total`]). The run and the comparison's partner
-/// are planned by the same planner.
+/// are planned by the same rules (a job plans with a copy, and its charge is added when it ends).
+#[derive(Clone)]
 pub struct Planner {
     book: PlanBook,
     spent: f64,
@@ -251,7 +255,7 @@ impl Engine {
     #[must_use]
     pub fn new(book: PlanBook) -> Self {
         Self {
-            planner: Planner { book, spent: 0.0 },
+            planner: Planner::new(book),
             session: None,
             planning: None,
             pending: None,
@@ -261,7 +265,16 @@ impl Engine {
             ahead: None,
             blocked: false,
             stop: None,
+            keep_going: || true,
         }
+    }
+
+    /// This engine, stopping its jobs and [`drive`] as soon as `keep_going` says no (a headless
+    /// command's signal: [`crate::interrupt`]).
+    #[must_use]
+    pub fn stopping_on(mut self, keep_going: fn() -> bool) -> Self {
+        self.keep_going = keep_going;
+        self
     }
 
     fn generation(&self) -> Option<u64> {
@@ -271,28 +284,77 @@ impl Engine {
             .or_else(|| self.session.as_ref().map(Session::generation))
     }
 
-    /// Replaces the job of `kind` by `job` (none: stops it), keeping the kinds' order.
+    /// Replaces the job of `kind` by `job` on a thread of its own (none: stops it); the job
+    /// replaced is cancelled.
     fn set_job(&mut self, kind: JobKind, job: Option<Box<dyn Job>>) {
         self.jobs.retain(|j| j.kind() != kind);
         if let Some(job) = job {
             let at = self.jobs.partition_point(|j| j.kind() < kind);
-            self.jobs.insert(at, job);
+            self.jobs.insert(
+                at,
+                Running::spawn(job, self.planner.clone(), self.keep_going),
+            );
         }
     }
 
     /// Whether `work` has anything to do, or the run waits for the verification ahead to reach
     /// a target (a verification ahead that nothing waits for is not work: a replay never waits
-    /// for the segments its lecturer did not show).
+    /// for the segments its lecturer did not show). The panes' jobs work on their own threads.
     #[must_use]
     pub fn busy(&self) -> bool {
-        self.run_busy() || !self.jobs.is_empty() || (self.ahead.is_some() && self.blocked)
+        self.run_busy() || (self.ahead.is_some() && self.blocked)
     }
 
-    /// Whether the only thing going on is the verification ahead: `work` would only look at its
-    /// reports ([`Engine::wait`] waits for the next).
+    /// Whether only the threads are at work (the verification ahead, the panes' jobs): `work`
+    /// would only look at what they report ([`Engine::wait`] waits for the verification's next
+    /// report).
     #[must_use]
     pub fn waiting(&self) -> bool {
-        self.ahead.is_some() && !self.run_busy() && self.jobs.is_empty()
+        (self.ahead.is_some() || !self.jobs.is_empty()) && !self.run_busy()
+    }
+
+    /// Whether a pane's job is at work.
+    #[must_use]
+    pub fn jobs_running(&self) -> bool {
+        !self.jobs.is_empty()
+    }
+
+    /// Takes what the jobs have sent so far (without waiting) and drops the ones that ended;
+    /// `false` means stop.
+    fn take_jobs(&mut self, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
+        let mut spent = 0.0;
+        let mut open = true;
+        self.jobs
+            .retain(|job| match job.take(None, sink, &mut |s| spent += s) {
+                Taken::Working => true,
+                Taken::Ended => false,
+                Taken::Closed => {
+                    open = false;
+                    true
+                }
+            });
+        self.planner.spent += spent;
+        open
+    }
+
+    /// Waits for every job to end, handing their events to `sink` (the synchronous drive: what
+    /// a pane computes is there before the run's next step, as the recording showed it);
+    /// `false` when the sink closed or `go_on` said stop.
+    pub fn settle_jobs(
+        &mut self,
+        go_on: fn() -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+    ) -> bool {
+        let mut spent = 0.0;
+        let jobs = std::mem::take(&mut self.jobs);
+        let mut settled = true;
+        for job in &jobs {
+            if settled && !job.finish(go_on, sink, &mut |s| spent += s) {
+                settled = false;
+            }
+        }
+        self.planner.spent += spent;
+        settled
     }
 
     /// Whether the run itself has work (it goes before the sweep).
@@ -302,8 +364,11 @@ impl Engine {
             || self.session.as_ref().is_some_and(Session::effective_behind)
     }
 
-    /// Takes the verification ahead's waiting reports; `false` means stop.
+    /// Takes the jobs' events and the verification ahead's waiting reports; `false` means stop.
     fn poll(&mut self, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
+        if !self.take_jobs(sink) {
+            return false;
+        }
         loop {
             let Some(ahead) = self.ahead.as_ref() else {
                 return true;
@@ -323,13 +388,22 @@ impl Engine {
         }
     }
 
-    /// Waits for the verification ahead's next report and takes it; `false` means stop.
+    /// Waits for the verification ahead's next report and takes it; `false` means stop. Gives
+    /// up waiting when [`Engine::stopping_on`]'s question says stop.
     pub fn wait(&mut self, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
-        if let Some(Some(report)) = self.ahead.as_ref().map(Ahead::next) {
-            self.take(report, sink)
-        } else {
-            self.ahead = None;
-            true
+        loop {
+            let Some(ahead) = self.ahead.as_ref() else {
+                return true;
+            };
+            match ahead.next_within(std::time::Duration::from_millis(5)) {
+                Next::Report(report) => return self.take(report, sink),
+                Next::Ended => {
+                    self.ahead = None;
+                    return true;
+                }
+                Next::Nothing if !(self.keep_going)() => return true,
+                Next::Nothing => {}
+            }
         }
     }
 
@@ -581,28 +655,6 @@ impl Engine {
         if self.waiting() {
             return true;
         }
-        let run_busy = self.run_busy();
-        if let Some(i) = self
-            .jobs
-            .iter()
-            .position(|j| j.kind().before_run() || !run_busy)
-        {
-            let mut job = self.jobs.remove(i);
-            let mut work = Work {
-                planner: &mut self.planner,
-                max_steps,
-                go_on,
-                sink,
-            };
-            return match job.slice(&mut work) {
-                Slice::More => {
-                    self.jobs.insert(i, job);
-                    true
-                }
-                Slice::Done => true,
-                Slice::Closed => false,
-            };
-        }
         let Some(s) = self.session.as_mut() else {
             self.pending = None;
             self.checkpoints.clear();
@@ -654,6 +706,18 @@ impl Engine {
 }
 
 impl Planner {
+    /// A planner with `book`, nothing charged yet.
+    #[must_use]
+    pub fn new(book: PlanBook) -> Self {
+        Self { book, spent: 0.0 }
+    }
+
+    /// The predicted seconds of the runs charged so far.
+    #[must_use]
+    pub fn spent(&self) -> f64 {
+        self.spent
+    }
+
     /// The plan `spec` integrates, with `auto`'s estimate: a recorded plan, else `auto` priced
     /// before any probe runs (as `simulate` does: a plan that would verify for minutes is
     /// refused at once) and verified, else the method asked. The scene's cost model is asked
@@ -786,8 +850,15 @@ pub(super) fn refusal(spec: &SessionSpec, e: &StepError) -> String {
     }
 }
 
+/// Most steps of one slice of [`drive`]: a signal is seen between slices (a frame of a cast
+/// whose run computes for seconds stopped only after it, issue 56).
+const DRIVE_STEPS: usize = 4096;
+
 /// Runs commands to completion on `engine`, synchronously, handing the events to `on_event`:
-/// the worker's behaviour without a thread (replay verification, cast export, tests).
+/// the worker's behaviour without a thread (replay verification, cast export, tests). The
+/// panes' jobs are waited for before the run goes on. A signal to a headless command stops it
+/// within a slice ([`Engine::stopping_on`]: what is left undone is left to the caller, who
+/// stops too).
 pub fn drive(engine: &mut Engine, commands: Vec<Command>, on_event: &mut dyn FnMut(SimEvent)) {
     let mut sink = |e| {
         on_event(e);
@@ -796,12 +867,19 @@ pub fn drive(engine: &mut Engine, commands: Vec<Command>, on_event: &mut dyn FnM
     for c in commands {
         engine.handle(&c, &mut sink);
     }
-    // Waits for the verification ahead only where the run needs it to reach a target.
-    while engine.busy() {
+    let keep_going = engine.keep_going;
+    loop {
+        if !engine.settle_jobs(keep_going, &mut sink) || !engine.busy() {
+            return;
+        }
+        // Waits for the verification ahead only where the run needs it to reach a target.
         if engine.waiting() {
             engine.wait(&mut sink);
         } else {
-            engine.work(usize::MAX, &mut |_| true, &mut sink);
+            engine.work(DRIVE_STEPS, &mut |_| keep_going(), &mut sink);
+        }
+        if !keep_going() {
+            return;
         }
     }
 }

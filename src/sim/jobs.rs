@@ -1,11 +1,17 @@
 //! The computations the worker does for panes, behind one [`Job`] interface: the comparison's
 //! partner, the weak-* view, the sweep of the small parameter and the regime map. The engine
-//! keeps at most one job of each [`JobKind`], works them a slice at a time in the kind's order
-//! (the partner before the run's own work, the others after it), drops a finished one, and
-//! stops the ones that belong to the run when it restarts. A pane orders its job with
+//! keeps at most one job of each [`JobKind`], each at work on a thread of its own ([`Running`]:
+//! a pane never starves the run, issue 56), drops a finished one, and stops the ones that
+//! belong to the run when it restarts; a job dropped (its pane closed, its inputs changed) is
+//! cancelled at once, through the flag its `go_on` asks. A pane orders its job with
 //! [`Command::Job`](super::Command::Job) and a [`JobSpec`], and the job answers with
 //! [`SimEvent::Job`] and a [`JobData`]: a new computed pane is a job, a spec and its data here,
 //! and neither the engine nor the worker's commands and events change.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{self, Receiver, RecvTimeoutError, TryRecvError};
+use std::time::Duration;
 
 use super::engine::Planner;
 use super::{Point, Session, SessionSpec, SimEvent};
@@ -15,11 +21,11 @@ use crate::physics::rattleback::integrators::Method;
 use crate::study::map::{Source, cells_in_parallel};
 use crate::study::sweep::{ladder, limit_curve, rung};
 
-/// Which job: one of each at a time, worked in this order.
+/// Which job: one of each at a time.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum JobKind {
-    /// The comparison's partner: before the run's own work (it is short, and what a recording
-    /// shows waits for it); a restart does not stop it (it does not depend on the run).
+    /// The comparison's partner (what a recording shows waits for it); a restart does not stop
+    /// it (it does not depend on the run).
     Partner,
     /// The weak-* view of the run's start.
     Weak,
@@ -30,12 +36,6 @@ pub enum JobKind {
 }
 
 impl JobKind {
-    /// Whether it goes before the run's own work.
-    #[must_use]
-    pub fn before_run(self) -> bool {
-        self == Self::Partner
-    }
-
     /// Whether a restart of the run stops it.
     #[must_use]
     pub fn ends_with_run(self) -> bool {
@@ -525,5 +525,165 @@ impl Job for MapJob {
             data: JobData::MapDone { failed: None },
         };
         Slice::after(sink(done), Slice::Done)
+    }
+}
+
+/// Most steps of a job's slice on its own thread (a cancel is seen between slices, and inside
+/// `auto`'s planning and a map's cells through `go_on`).
+const JOB_STEPS: usize = 4096;
+
+/// What a job's thread sends back.
+enum Message {
+    /// One of its events.
+    Event(SimEvent),
+    /// The predicted seconds its runs were charged (the partner's), when it ends.
+    Spent(f64),
+}
+
+/// Where a job is after [`Running::take`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Taken {
+    /// Still at work.
+    Working,
+    /// It has ended (its last event taken).
+    Ended,
+    /// The sink is closed: nobody listens any more.
+    Closed,
+}
+
+/// A job at work on a thread of its own, so the run never waits for a pane (issue 56: a heavy
+/// comparison partner held the run at "verifying" for a minute). Its events come back over a
+/// channel, taken by [`Running::take`] (without waiting) or [`Running::finish`] (to its end);
+/// dropping it cancels it: the flag its `go_on` asks is set, and its thread ends within a
+/// slice, a planning step or a map cell.
+pub struct Running {
+    kind: JobKind,
+    messages: Receiver<Message>,
+    cancel: Arc<AtomicBool>,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Running {
+    /// Starts `job` on its own thread, planning (the partner) with `planner`; `go_on` is asked
+    /// too (a signal that interrupts a headless command).
+    ///
+    /// # Panics
+    /// When the OS cannot spawn a thread.
+    #[must_use]
+    pub fn spawn(mut job: Box<dyn Job>, mut planner: Planner, go_on: fn() -> bool) -> Self {
+        let kind = job.kind();
+        let (tx, messages) = mpsc::channel();
+        let cancel = Arc::new(AtomicBool::new(false));
+        let stop = Arc::clone(&cancel);
+        let thread = std::thread::Builder::new()
+            .name(format!("rattleback-{kind:?}").to_lowercase())
+            .spawn(move || {
+                let before = planner.spent();
+                let mut keep_on = |_t: f64| !stop.load(Ordering::Relaxed) && go_on();
+                let mut sink = |e| tx.send(Message::Event(e)).is_ok();
+                loop {
+                    let mut work = Work {
+                        planner: &mut planner,
+                        max_steps: JOB_STEPS,
+                        go_on: &mut keep_on,
+                        sink: &mut sink,
+                    };
+                    match job.slice(&mut work) {
+                        Slice::More if !stop.load(Ordering::Relaxed) && go_on() => {}
+                        _ => break,
+                    }
+                }
+                let _ = tx.send(Message::Spent(planner.spent() - before));
+            })
+            .expect("spawn a pane's job");
+        Self {
+            kind,
+            messages,
+            cancel,
+            thread: Some(thread),
+        }
+    }
+
+    /// Cancels the job and waits at most `limit` for its thread to end; whether it did.
+    #[must_use]
+    pub fn cancel_within(mut self, limit: Duration) -> bool {
+        self.cancel.store(true, Ordering::Relaxed);
+        let Some(thread) = self.thread.take() else {
+            return true;
+        };
+        let end = std::time::Instant::now() + limit;
+        while !thread.is_finished() && std::time::Instant::now() < end {
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        thread.is_finished()
+    }
+
+    /// Which job it is.
+    #[must_use]
+    pub fn kind(&self) -> JobKind {
+        self.kind
+    }
+
+    /// Hands the events that have come to `sink` (waiting at most `wait` for the first), and
+    /// the predicted seconds charged to `spent` when it has ended.
+    pub fn take(
+        &self,
+        wait: Option<Duration>,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+        spent: &mut dyn FnMut(f64),
+    ) -> Taken {
+        let mut first = wait;
+        loop {
+            let message = match first.take() {
+                Some(d) => match self.messages.recv_timeout(d) {
+                    Ok(m) => m,
+                    Err(RecvTimeoutError::Timeout) => return Taken::Working,
+                    Err(RecvTimeoutError::Disconnected) => return Taken::Ended,
+                },
+                None => match self.messages.try_recv() {
+                    Ok(m) => m,
+                    Err(TryRecvError::Empty) => return Taken::Working,
+                    Err(TryRecvError::Disconnected) => return Taken::Ended,
+                },
+            };
+            match message {
+                Message::Event(e) => {
+                    if !sink(e) {
+                        return Taken::Closed;
+                    }
+                }
+                Message::Spent(s) => {
+                    spent(s);
+                    return Taken::Ended;
+                }
+            }
+        }
+    }
+
+    /// Hands every event to `sink` until the job has ended (the synchronous drive: replay
+    /// verification, the cast, tests); `false` when the sink is closed or `go_on` says stop.
+    pub fn finish(
+        &self,
+        go_on: fn() -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+        spent: &mut dyn FnMut(f64),
+    ) -> bool {
+        loop {
+            if !go_on() {
+                self.cancel.store(true, Ordering::Relaxed);
+                return false;
+            }
+            match self.take(Some(Duration::from_millis(5)), sink, spent) {
+                Taken::Ended => return true,
+                Taken::Working => {}
+                Taken::Closed => return false,
+            }
+        }
+    }
+}
+
+impl Drop for Running {
+    fn drop(&mut self) {
+        self.cancel.store(true, Ordering::Relaxed);
     }
 }

@@ -13,7 +13,7 @@ pub mod segments;
 mod session;
 mod worker;
 
-pub use engine::{Engine, PlanBook, PlanKey, drive};
+pub use engine::{Engine, PlanBook, PlanKey, Planner, drive};
 pub use jobs::{JobData, JobKind, JobSpec};
 pub use session::{MAX_GRID_SAMPLES, Point, Segment, Session, SessionSpec, grid_spacing};
 pub use worker::Worker;

@@ -165,6 +165,16 @@ impl Ahead {
     pub fn next(&self) -> Option<Report> {
         self.reports.recv().ok()
     }
+
+    /// The next report, waiting for it at most `limit`.
+    #[must_use]
+    pub fn next_within(&self, limit: std::time::Duration) -> Next {
+        match self.reports.recv_timeout(limit) {
+            Ok(r) => Next::Report(r),
+            Err(mpsc::RecvTimeoutError::Timeout) => Next::Nothing,
+            Err(mpsc::RecvTimeoutError::Disconnected) => Next::Ended,
+        }
+    }
 }
 
 impl Drop for Ahead {

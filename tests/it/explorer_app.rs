@@ -888,7 +888,7 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
 }
 
 #[test]
-fn a_restart_cancels_the_maps_row_and_the_map_resumes_where_it_stopped() {
+fn a_map_resumes_where_it_stopped_on_a_thread_of_its_own() {
     use rattleback::sim::jobs::MapSpec;
     use rattleback::sim::{Command, Engine, JobData, JobSpec, PlanBook, SimEvent};
     use rattleback::study::map::{Grid, Source};
@@ -910,12 +910,12 @@ fn a_restart_cancels_the_maps_row_and_the_map_resumes_where_it_stopped() {
         &Command::start_job(7, JobSpec::Map { spec, from: 30 }),
         &mut sink,
     );
-    // Cancelled from the start: nothing is sent, and the slice is redone next time.
-    assert!(engine.work(usize::MAX, &mut |_| false, &mut sink));
-    assert!(events.borrow().is_empty(), "{events:?}");
-    while engine.busy() {
-        engine.work(usize::MAX, &mut |_| true, &mut sink);
-    }
+    // The job works on its own thread: the engine has nothing to do for it but take what it
+    // sends.
+    assert!(engine.jobs_running());
+    assert!(!engine.busy(), "a pane's job is not the run's work");
+    assert!(engine.settle_jobs(|| true, &mut sink));
+    assert!(!engine.jobs_running());
     let events = events.into_inner();
     let cells: Vec<(usize, usize)> = events
         .iter()
@@ -1031,4 +1031,86 @@ fn the_status_bar_shows_autos_progress() {
     let screen = crate::explorer_ui::screen_text(&h.app, 120, 30);
     assert!(screen.contains("verifying auto…"), "{screen}");
     assert!(!screen.contains(" run 0"), "{screen}");
+}
+
+/// Issue 56 (R4, R1): a pane's job is cancelled at once when it is dropped (its pane closed, its
+/// inputs changed): a map of the full model whose cells each verify for seconds ends within a
+/// cell's planning step, not after the row.
+#[test]
+fn a_dropped_job_stops_computing_at_once() {
+    use rattleback::sim::jobs::{MapSpec, Running};
+    use rattleback::sim::{JobSpec, PlanBook, Planner};
+    use rattleback::study::map::{Grid, Source};
+    let spec = MapSpec {
+        grid: Grid::new(8, 4, 2.0, 1.0, 1.0, 3000.0),
+        source: Source::Full {
+            k: 1e8,
+            tolerance: 1e-10,
+        },
+    };
+    let job = JobSpec::Map { spec, from: 0 }.job(1);
+    let running = Running::spawn(job, Planner::new(PlanBook::default()), || true);
+    std::thread::sleep(std::time::Duration::from_millis(50));
+    assert!(
+        running.cancel_within(std::time::Duration::from_millis(500)),
+        "the job's thread went on computing after it was cancelled"
+    );
+}
+
+/// Issue 56 (R4): a heavy comparison partner (the celt spun at ω = 1e5, a minute of `auto`)
+/// held the run at "verifying auto… 88%" for 60 s, then at 0 steps/s: the partner worked before
+/// the run, in the worker's own thread. On its own thread now, the run reaches its target while
+/// the partner still computes.
+#[test]
+fn a_heavy_partner_never_starves_the_run() {
+    use rattleback::sim::{Command, Engine, JobSpec, PlanBook, SessionSpec, SimEvent};
+    let run = rattleback::scenario::shipped::resolve("subcritical", &[]).unwrap();
+    let heavy = rattleback::scenario::shipped::resolve(
+        "celt-clockwise",
+        &["initial.omega_z=-1e5".parse().unwrap()],
+    )
+    .unwrap();
+    let spec = |p: &rattleback::scenario::Preset| -> SessionSpec {
+        App::new(p, rattleback::app::Options::at(30.0))
+            .0
+            .scenario
+            .spec(false)
+    };
+    let mut engine = Engine::new(PlanBook::default());
+    let mut started = false;
+    let mut sink = |e: SimEvent| {
+        started |= matches!(e, SimEvent::Started { .. });
+        true
+    };
+    engine.handle(
+        &Command::start_job(1, JobSpec::Partner(spec(&heavy))),
+        &mut sink,
+    );
+    engine.handle(
+        &Command::Restart {
+            generation: 1,
+            spec: spec(&run),
+        },
+        &mut sink,
+    );
+    engine.handle(
+        &Command::AdvanceTo {
+            generation: 1,
+            t: 5.0,
+        },
+        &mut sink,
+    );
+    let start = std::time::Instant::now();
+    while engine.busy() {
+        assert!(
+            start.elapsed() < std::time::Duration::from_secs(20),
+            "the run did not reach t = 5 beside the partner"
+        );
+        engine.work(256, &mut |_| true, &mut sink);
+    }
+    assert!(started, "the run started");
+    assert!(
+        engine.jobs_running(),
+        "the partner is still computing: the run went on beside it"
+    );
 }

@@ -138,6 +138,19 @@ fn ending_signals_restore_the_terminal_and_exit_128_plus_n() {
         ("USR1", 10),
         ("ALRM", 14),
         ("TERM", 15),
+        // Issue 56 (R10): these left the terminal raw, and SEGV and BUS were swallowed (the
+        // explorer ran on). The faults end the process by their signal after the terminal is
+        // put back: the shell (here `script -e`) sees 128 + n all the same.
+        ("PWR", 30),
+        ("SYS", 31),
+        ("STKFLT", 16),
+        ("34", 34), // SIGRTMIN
+        ("64", 64), // SIGRTMAX
+        ("TRAP", 5),
+        ("FPE", 8),
+        ("ILL", 4),
+        ("SEGV", 11),
+        ("BUS", 7),
     ] {
         let e = Explorer::start(signal);
         let pid = e.pid();
@@ -312,4 +325,98 @@ fn every_way_a_recording_ends_writes_and_verifies_its_last_frame() {
         );
         let _ = std::fs::remove_file(&file);
     }
+}
+
+/// Issue 56 (R3, R11): an export busy in one frame's long run (a recording that loads the celt
+/// at gravity 1e9: seconds a frame) ends on any ending signal at once, not after the frame,
+/// with 128 + n and no temporary file left (USR1, USR2, ALRM and XCPU left one).
+#[test]
+fn an_export_busy_in_a_frame_ends_on_any_signal_without_leaving_a_file() {
+    let dir = std::env::temp_dir().join(format!("rattleback-export-signal-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let root = env!("CARGO_MANIFEST_DIR");
+    let header = std::fs::read_to_string(format!("{root}/tests/fixtures/sessions/kapitza.jsonl"))
+        .unwrap()
+        .lines()
+        .next()
+        .unwrap()
+        .to_owned();
+    let celt: String = std::fs::read_to_string(format!("{root}/presets/celt-clockwise.toml"))
+        .unwrap()
+        .lines()
+        .map(|l| {
+            if l.trim_start().starts_with("gravity") {
+                "gravity = 1e9\n".to_owned()
+            } else {
+                format!("{l}\n")
+            }
+        })
+        .collect();
+    assert!(celt.contains("gravity = 1e9"));
+    let lines = [
+        header,
+        serde_json::json!({"wall": 0.5, "t": 0.0, "generation": 1, "kind": "preset", "toml": celt})
+            .to_string(),
+        r#"{"wall":0.6,"t":0.0,"generation":2,"kind":"speed","value":64.0}"#.to_owned(),
+        r#"{"wall":0.7,"t":0.0,"generation":2,"kind":"play"}"#.to_owned(),
+        r#"{"wall":60.0,"t":0.0,"generation":2,"kind":"pause"}"#.to_owned(),
+    ];
+    let session = dir.join("heavy.jsonl");
+    std::fs::write(&session, lines.join("\n") + "\n").unwrap();
+    for (signal, n) in [
+        ("INT", 2),
+        ("TERM", 15),
+        ("USR1", 10),
+        ("USR2", 12),
+        ("ALRM", 14),
+        ("XCPU", 24),
+    ] {
+        let out = dir.join("x.cast");
+        let mut child = crate::common::rattleback()
+            .arg("replay")
+            .arg(&session)
+            .arg("--export-cast")
+            .arg(&out)
+            .arg("--force")
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // Into the frame's run: its temporary file exists.
+        let start = Instant::now();
+        while !std::fs::read_dir(&dir)
+            .unwrap()
+            .any(|e| e.unwrap().file_name().to_string_lossy().ends_with(".tmp"))
+        {
+            assert!(
+                start.elapsed() < Duration::from_secs(10),
+                "no temporary file"
+            );
+            std::thread::sleep(Duration::from_millis(10));
+        }
+        std::thread::sleep(Duration::from_millis(300));
+        kill(child.id(), signal);
+        let start = Instant::now();
+        let status = loop {
+            if let Some(s) = child.try_wait().unwrap() {
+                break s;
+            }
+            // A bound against a hang (it took 9-19 s, the frame's run): the watchdog's grace is
+            // 60 ms.
+            assert!(
+                start.elapsed() < Duration::from_secs(5),
+                "SIG{signal}: still running"
+            );
+            std::thread::sleep(Duration::from_millis(5));
+        };
+        assert_eq!(status.code(), Some(128 + n), "SIG{signal}");
+        let left: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|f| f != "heavy.jsonl")
+            .collect();
+        assert!(left.is_empty(), "SIG{signal} left {left:?}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -9,6 +9,10 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 use super::model::{State, initial_state, transverse_energy};
 use super::params::{Params, Problem};
+
+/// The most reversals the limit counts (below 2^53, where every count is a float exactly):
+/// more saturate.
+pub const MAX_REVERSALS: f64 = 9e15;
 use crate::physics::numerics::quadrature::integrate_adaptive;
 
 /// Relative closeness of `E_eff` to `V_max` under which a start counts as on the separatrix.
@@ -269,16 +273,22 @@ impl Effective {
             return 0;
         }
         let mut n = ((t_end - first) / half).floor();
+        // Beyond 2^53 reversals `n - 1.0 == n`: the loops below would never end (`study map
+        // --t-end 1e18` spun forever, issue 56). Such a count saturates.
+        if n.is_nan() || n >= MAX_REVERSALS {
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            return MAX_REVERSALS as usize;
+        }
         // Guard the rounding of the division at both ends.
         while n >= 0.0 && first + n * half > t_end {
             n -= 1.0;
         }
-        while first + (n + 1.0) * half <= t_end && n < 9e15 {
+        while first + (n + 1.0) * half <= t_end && n < MAX_REVERSALS {
             n += 1.0;
         }
         let skip = usize::from(first <= 0.0);
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let total = (n + 1.0).min(9e15) as usize;
+        let total = (n + 1.0).min(MAX_REVERSALS) as usize;
         total.saturating_sub(skip)
     }
 
@@ -374,6 +384,30 @@ pub fn tapping_acceleration(problem: &Problem) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue 56 (R1): past 2^53 reversals the rounding guard never moved `n`, and `study map
+    /// --t-end 1e18` (or γ̇0 = 1e16) spun forever. Such counts saturate; exact ones stay exact.
+    #[test]
+    fn a_count_past_two_to_the_53_saturates_at_once() {
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let max = MAX_REVERSALS as usize;
+        assert_eq!(Effective::count_in(0.5, 1.0, 1e18), max);
+        assert_eq!(Effective::count_in(0.5, 1e-300, 1.0), max);
+        assert_eq!(Effective::count_in(0.5, 1.0, f64::MAX), max);
+        assert_eq!(Effective::count_in(0.5, 1.0, 10.0), 10);
+        assert_eq!(Effective::count_in(0.5, 1.0, 9.5), 10);
+        assert_eq!(
+            Effective::count_in(0.0, 1.0, 3.0),
+            3,
+            "t = 0 is not in (0, T]"
+        );
+        assert_eq!(Effective::count_in(0.5, 1.0, 1e15), 1_000_000_000_000_000);
+        // Through the quadratures: a start that reverses, a horizon far past 2^53 periods.
+        let eff = Effective::new(&problem(0.5));
+        assert_eq!(eff.reversal_count(1e18), max);
+        let fast = crate::physics::rattleback::paper_body(1e4, [0.0, 0.0, 1e16, 0.5e16]);
+        assert_eq!(Effective::new(&fast).reversal_count(30.0), max);
+    }
 
     fn problem(alpha_dot: f64) -> Problem {
         crate::physics::rattleback::paper_body(1e4, [0.0, 0.0, 1.0, alpha_dot])
