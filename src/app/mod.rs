@@ -250,6 +250,13 @@ impl App {
     }
 
     fn log(&mut self, event: Event) {
+        // A recording closing after its last frame takes its checkpoint only: what comes after
+        // the last frame (a later segment verified meanwhile) is not part of the lecture, and
+        // would make the frame not the last (a lecture verified in segments failed `--verify`
+        // now and then, issue 55).
+        if self.journal.state == RecState::Stopping && !matches!(event, Event::Checkpoint { .. }) {
+            return;
+        }
         if self.journal.state != RecState::Off {
             self.journal.screen_due |= matches!(
                 event,

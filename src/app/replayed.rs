@@ -215,8 +215,7 @@ impl App {
         // its time, then the end.
         if self.journal.stop_due && settled {
             self.journal.stop_due = false;
-            self.log_screen();
-            self.journal.state = RecState::Stopping;
+            self.log_last_frame();
             effects.push(self.checkpoint());
             effects.push(Effect::StopRecording);
             return effects;
@@ -249,10 +248,19 @@ impl App {
         there && resolved && self.compare_settled()
     }
 
-    /// Journals the screen now (the last frame of a recording the loop ends: `q`, a signal).
+    /// Journals the screen now.
     pub fn log_screen(&mut self) {
         let shown = self.shown();
         self.log(Event::Screen(shown));
+    }
+
+    /// Journals the last frame of the recording and closes its journal: only the checkpoint at
+    /// its time follows (`R`, or whatever else ends it: `q`, a signal).
+    pub fn log_last_frame(&mut self) {
+        self.log_screen();
+        if self.journal.state == RecState::On {
+            self.journal.state = RecState::Stopping;
+        }
     }
 
     /// Moves the displayed clock to a recorded time (replay).

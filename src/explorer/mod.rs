@@ -410,7 +410,7 @@ fn finish_recording(
                 Err(RecvTimeoutError::Disconnected) => break,
             }
         }
-        app.log_screen();
+        app.log_last_frame();
     }
     worker.send(match app.checkpoint() {
         Effect::Sim(c) => c,

@@ -1094,3 +1094,64 @@ fn a_fork_explores_on_its_own_from_the_lecturers_time() {
         assert!(h.app.run.shown > t, "{preset}: playing moves the clock on");
     }
 }
+
+/// Issue 55: a later segment verified while the recording closes (between its last frame and
+/// the checkpoint) wrote its plan line after the last frame, and `--verify` then said the file
+/// had no last frame (a flaky test of a lecture verified in segments). What comes after the last
+/// frame is not part of the lecture: only the checkpoint follows it.
+#[test]
+fn a_segment_verified_while_the_recording_closes_comes_after_nothing() {
+    let mut l = Lecturer {
+        h: Headless::new("subcritical"),
+        wall: 0.0,
+        lines: Vec::new(),
+        frames: Vec::new(),
+    };
+    let effects =
+        l.h.app
+            .on_outcome(Outcome::Recording(Ok("lecture.jsonl".into())));
+    l.h.exec(effects);
+    l.collect();
+    l.key(Key::Char(' '));
+    l.tick();
+    l.key(Key::Char('R'));
+    while l.h.app.journal.state == rattleback::app::RecState::On {
+        l.tick();
+    }
+    assert!(
+        matches!(
+            l.lines
+                .iter()
+                .rev()
+                .find(|x| !matches!(x.event, Event::Checkpoint { .. }))
+                .map(|x| &x.event),
+            Some(Event::Screen(_))
+        ),
+        "the last frame is written"
+    );
+    // A segment verified now, as the verification ahead may report at any moment.
+    let generation = l.h.app.run.generation;
+    let rattleback::app::PlanState::Running { plan, .. } = l.h.app.run.plan else {
+        panic!("the run is planned");
+    };
+    l.h.app.on_sim(rattleback::sim::SimEvent::Verified {
+        generation,
+        from: 30.0,
+        until: 60.0,
+        plan,
+        error_estimate: Some(1e-9),
+    });
+    l.collect();
+    l.tick();
+    let after: Vec<&Event> = l
+        .lines
+        .iter()
+        .rev()
+        .take_while(|x| !matches!(x.event, Event::Screen(_)))
+        .map(|x| &x.event)
+        .collect();
+    assert!(
+        after.iter().all(|e| matches!(e, Event::Checkpoint { .. })),
+        "after the last frame: {after:?}"
+    );
+}
