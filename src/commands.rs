@@ -880,9 +880,22 @@ fn map_source(
         return Ok(Source::Limit);
     };
     // The full model: one verified auto run per cell, predicted before anything runs.
-    let probe = grid
-        .problem(args.ratio_max, args.inertia_min, k)
-        .expect("valid corner");
+    // Every corner is a problem the model accepts (`--k 5e307` overflows the fast frequency):
+    // refused as any preset value would be, by the same validator.
+    let mut probe = None;
+    #[allow(clippy::cast_precision_loss)]
+    let first_column = args.ratio_max / grid.cols.max(1) as f64;
+    for ratio in [first_column, args.ratio_max] {
+        for inertia in [args.inertia_min, args.inertia_max] {
+            let p = grid
+                .params_of(ratio, inertia, k)
+                .map_err(|e| Failure::input(format!("--k {}: {e}", crate::physics::Number(k))))?;
+            if ratio == args.ratio_max && inertia == args.inertia_min {
+                probe = Some(p);
+            }
+        }
+    }
+    let probe = probe.expect("the corner was visited");
     #[allow(clippy::cast_precision_loss)]
     let cells = (grid.cols * grid.rows) as f64;
     let predicted = cells

@@ -133,7 +133,10 @@ pub fn diagnose(asked: &Asked, loaded: Result<Config, Vec<String>>) -> Diagnosis
     let (config, config_status) = match loaded {
         Ok(c) if c.path.is_some() => (c, "valid".to_owned()),
         Ok(c) => (c, "absent: the defaults".to_owned()),
-        Err(e) => (Config::default(), format!("invalid: {}", e.join("; "))),
+        Err(e) => (
+            Config::default(),
+            format!("invalid: {}", crate::scenario::text::bounded(&e).join("; ")),
+        ),
     };
     let detected = Charset::detect(asked.ascii || config.ascii, &var);
     let depth = crate::terminal::Depth::detect(&var, &crate::terminal::depth::terminfo_colors);

@@ -82,7 +82,7 @@ impl Failure {
     /// did not answer within the grace of its watchdog (`interrupt`; the temporary files
     /// removed first). Every other end goes through `main`'s [`exit`].
     pub fn end_now(self) -> ! {
-        for line in &self.lines {
+        for line in self.shown() {
             crate::scenario::text::warn(&format!("rattleback: error: {line}"));
         }
         std::process::exit(i32::from(self.code))
@@ -91,10 +91,18 @@ impl Failure {
     /// Prints the lines on standard error and ends with the status: the one exit decision.
     #[must_use]
     pub fn exit(self) -> ExitCode {
-        for line in &self.lines {
+        for line in self.shown() {
             crate::scenario::text::warn(&format!("rattleback: error: {line}"));
         }
         ExitCode::from(self.code)
+    }
+
+    /// The lines as said: at most a few dozen, each cut to a sane length, and a count of the
+    /// rest (`scenario::text::bounded` a config of a hundred thousand bad keys is not a 12 MB error,
+    /// issue 56).
+    #[must_use]
+    pub fn shown(&self) -> Vec<String> {
+        crate::scenario::text::bounded(&self.lines)
     }
 }
 

@@ -180,7 +180,8 @@ impl Field {
             Self::TEnd => {
                 if !(value.is_finite() && value > 0.0) {
                     return Err(format!(
-                        "t_end = {value} refused; allowed: a finite number > 0"
+                        "t_end = {} refused; allowed: a finite number > 0",
+                        crate::physics::Number(value)
                     ));
                 }
                 n.t_end = value;
@@ -189,7 +190,8 @@ impl Field {
                 let (lo, hi) = TOLERANCE_RANGE;
                 if !(value.is_finite() && (lo..=hi).contains(&value)) {
                     return Err(format!(
-                        "tolerance = {value} refused; allowed: [{lo:e}, {hi:e}]"
+                        "tolerance = {} refused; allowed: [{lo:e}, {hi:e}]",
+                        crate::physics::Number(value)
                     ));
                 }
                 n.tolerance = value;

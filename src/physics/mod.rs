@@ -41,6 +41,22 @@ pub use params::ParamError;
 pub use plan::{DEFAULT_TOLERANCE, Resolved};
 pub use scene::{Posed, Scene, Words};
 
+/// A number as a person reads it: plain between 1e-4 and 1e16, in exponent form outside (never
+/// the 300 digits `{}` gives `1e300`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Number(pub f64);
+
+impl std::fmt::Display for Number {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = self.0;
+        if v == 0.0 || !v.is_finite() || (1e-4..1e16).contains(&v.abs()) {
+            write!(f, "{v}")
+        } else {
+            write!(f, "{v:e}")
+        }
+    }
+}
+
 /// The input farthest from 1 in size (what most likely overflowed a derived quantity).
 #[must_use]
 pub fn extreme(inputs: &[(&'static str, f64)]) -> (&'static str, f64) {

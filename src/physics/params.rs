@@ -6,7 +6,7 @@
 #[non_exhaustive]
 pub enum ParamError {
     /// The value is NaN or infinite.
-    #[error("{field} = {value} is not a finite number; allowed: {allowed}")]
+    #[error("{field} = {} is not a finite number; allowed: {allowed}", super::Number(*.value))]
     NotFinite {
         /// Name of the field, as in presets (`ix`, `k`, `gamma_dot`, ...).
         field: &'static str,
@@ -16,7 +16,7 @@ pub enum ParamError {
         allowed: &'static str,
     },
     /// The value is finite but out of range.
-    #[error("{field} = {value} is out of range; allowed: {allowed}")]
+    #[error("{field} = {} is out of range; allowed: {allowed}", super::Number(*.value))]
     OutOfRange {
         /// Name of the field.
         field: &'static str,

@@ -419,7 +419,12 @@ fn parse_override(kind: Kind, text: &str) -> Value {
 #[must_use]
 pub fn check(src: &str, label: &str) -> Vec<PresetError> {
     match collect(src, label, &[]) {
-        Ok(_) => Vec::new(),
+        // Every key is valid alone: then what `simulate` checks of their combination (a derived
+        // quantity that overflows, a step that cannot advance time), by the same code.
+        Ok(_) => Preset::parse(src, label, label, &[])
+            .err()
+            .into_iter()
+            .collect(),
         Err(problems) => problems,
     }
 }
@@ -678,6 +683,39 @@ impl Preset {
         // A value whose combination with the others is out of range (a derived quantity that
         // overflows) is found only here: it is named at its line too.
         let map = SourceMap::new(src);
+        // Where a combination's problem is: a key given with `--set` is blamed on `--set`, not
+        // on the file's line it replaced; a key of the file made wrong by a `--set` of another
+        // says which (`celt.product` is fine until `--set celt.ix=1e-300`).
+        let located = |section: &str, field: &str, message: String| {
+            let full = format!("{section}.{field}");
+            if overrides.iter().any(|o| o.key == full) {
+                return PresetError::Invalid {
+                    path: "--set".to_owned(),
+                    line: None,
+                    key: Some(full),
+                    message,
+                };
+            }
+            let with = if overrides.is_empty() {
+                String::new()
+            } else {
+                let given: Vec<String> = overrides
+                    .iter()
+                    .map(|o| format!("{}={}", o.key, o.value))
+                    .collect();
+                format!(" (with --set {})", given.join(" --set "))
+            };
+            PresetError::Invalid {
+                path: label.to_owned(),
+                line: (!section.is_empty()).then(|| map.locate(section, field)),
+                key: Some(if section.is_empty() {
+                    field.to_owned()
+                } else {
+                    full
+                }),
+                message: message + &with,
+            }
+        };
         let invalid = |e: crate::physics::ParamError| {
             let field = e.field();
             let section = kind
@@ -685,16 +723,7 @@ impl Preset {
                 .iter()
                 .find(|k| k.key == field)
                 .map_or("", |k| k.section);
-            PresetError::Invalid {
-                path: label.to_owned(),
-                line: (!section.is_empty()).then(|| map.locate(section, field)),
-                key: Some(if section.is_empty() {
-                    field.to_owned()
-                } else {
-                    format!("{section}.{field}")
-                }),
-                message: e.to_string(),
-            }
+            located(section, field, e.to_string())
         };
         let values: Vec<f64> = kind
             .params()
@@ -705,14 +734,8 @@ impl Preset {
         let (x_range, y_range) = range_keys(kind);
         let (t_end, step) = (n("run", "t_end"), r.num("run", "step"));
         if let Some(h) = step {
-            crate::physics::rattleback::run::check_step(h, t_end).map_err(|message| {
-                PresetError::Invalid {
-                    path: label.to_owned(),
-                    line: Some(map.locate("run", "step")),
-                    key: Some("run.step".to_owned()),
-                    message,
-                }
-            })?;
+            crate::physics::rattleback::run::check_step(h, t_end)
+                .map_err(|message| located("run", "step", message))?;
         }
         Ok(Self {
             name: r

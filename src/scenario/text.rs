@@ -360,3 +360,37 @@ pub fn warn_raw(text: &str) {
 pub fn warn(text: &str) {
     warn_raw(&format!("{text}\n"));
 }
+
+/// The most error lines a command says.
+pub const MAX_LINES: usize = 30;
+/// The most characters of one error line (an echoed list of 200,000 numbers is cut).
+pub const MAX_LINE: usize = 400;
+
+/// Problems as said anywhere (an error, `doctor`): at most [`MAX_LINES`], each cut to
+/// [`MAX_LINE`] characters, and a count of the rest.
+#[must_use]
+pub fn bounded<L: AsRef<str>>(lines: &[L]) -> Vec<String> {
+    let mut out: Vec<String> = lines
+        .iter()
+        .take(MAX_LINES)
+        .map(|l| cut(l.as_ref(), MAX_LINE))
+        .collect();
+    let rest = lines.len().saturating_sub(MAX_LINES);
+    if rest > 0 {
+        out.push(format!(
+            "… and {rest} more problem(s) (fix the first ones: the rest are often the same mistake)"
+        ));
+    }
+    out
+}
+
+/// `line` cut to `max` characters, saying how much was left out.
+#[must_use]
+pub fn cut(line: &str, max: usize) -> String {
+    let n = line.chars().count();
+    if n <= max {
+        return line.to_owned();
+    }
+    let kept: String = line.chars().take(max).collect();
+    format!("{kept}… ({} more characters)", n - max)
+}

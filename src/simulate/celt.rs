@@ -165,6 +165,13 @@ pub(super) fn simulate_to(
 ) -> Result<Option<Missed>, Failure> {
     let ran = ask.plan_and_run((problem, requested(ask.resolved)), plan_auto, run::run)?;
     let (spec, result) = (ran.spec, ran.result);
+    // Nothing dissipates: the energy is conserved, and its drift says what the rattleback's
+    // says (issue 56).
+    let drift = result.max_energy_drift / result.energy_initial.abs().max(f64::MIN_POSITIVE);
+    let bound = super::energy_bound(spec.tolerance);
+    if !(drift <= bound) {
+        super::warn_drift("the energy", drift, bound, spec.tolerance);
+    }
     if ask.format == Format::Csv {
         let head = ask.csv_head(spec.method, spec.t_end);
         ask.out.write_all(head.as_bytes())?;

@@ -207,6 +207,7 @@ pub(super) fn simulate_to(
 ) -> Result<Option<Missed>, Failure> {
     let ran = ask.plan_and_run((problem, requested(ask.resolved)), plan_auto, run::run)?;
     let (spec, result) = (ran.spec, ran.result);
+    warn_inaccurate(problem, &result, spec.tolerance);
     if ask.format == Format::Csv {
         let head = ask.csv_head(spec.method, spec.t_end);
         return write_csv(problem, &head, &result, ask.out).map(|()| ran.missed);
@@ -248,6 +249,21 @@ pub(super) fn simulate_to(
     };
     ask.write(&report, table)?;
     Ok(ran.missed)
+}
+
+/// Says on stderr when a run cannot be accurate (a fixed step too long for the fast forcing,
+/// issue 56), as the rattleback does: the limit's energy `E_eff` of the averaged state drifts by
+/// about ε² of itself in an accurate run (the averaging's own error: at most 6ε² on the shipped
+/// presets); a drift more than a hundred times that, and past what the tolerance promises, is
+/// the integration's.
+fn warn_inaccurate(problem: &Problem, result: &RunResult, tolerance: f64) {
+    let eps = problem.params().epsilon;
+    let scale = result.energy_initial.abs().max(1.0);
+    let drift = result.max_energy_drift / scale;
+    let bound = super::energy_bound(tolerance).max(100.0 * eps * eps);
+    if !(drift <= bound) {
+        super::warn_drift("the limit's energy E_eff", drift, bound, tolerance);
+    }
 }
 
 /// The limit's account of the start, and its own run (`limit_run`) to `t_end`.

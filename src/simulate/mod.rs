@@ -528,12 +528,22 @@ impl EnergyOut {
 /// Says on stderr that a run's energy drifted past [`energy_bound`].
 fn warn_energy(energy: &EnergyOut, tolerance: f64) {
     if energy.exceeds_bound {
-        crate::scenario::text::warn(&format!(
-            "rattleback: warning: the energy drifted by {:.1e} (relative), more than the {:.0e} a run at tolerance {tolerance:e} can be trusted with: the result is not accurate (a smaller --step, a tighter --tolerance, or --method auto)",
+        warn_drift(
+            "the energy",
             energy.max_relative_error,
             energy_bound(tolerance),
-        ));
+            tolerance,
+        );
     }
+}
+
+/// The one warning of every scene for a run that cannot be accurate: `what` (a conserved
+/// quantity, relative) drifted by `drift`, more than the `bound` a run at `tolerance` can be
+/// trusted with.
+pub(super) fn warn_drift(what: &str, drift: f64, bound: f64, tolerance: f64) {
+    crate::scenario::text::warn(&format!(
+        "rattleback: warning: {what} drifted by {drift:.1e} (relative), more than the {bound:.0e} a run at tolerance {tolerance:e} can be trusted with: the result is not accurate (a smaller --step, a tighter --tolerance, or --method auto)"
+    ));
 }
 
 /// The largest relative energy error a run at `tolerance` may show and still be trusted: ten

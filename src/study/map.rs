@@ -96,6 +96,23 @@ impl Grid {
     /// # Errors
     /// When the values are not a valid problem.
     pub fn problem(&self, ratio: f64, inertia_ratio: f64, k: f64) -> Result<Problem, StepError> {
+        self.params_of(ratio, inertia_ratio, k)
+            .map_err(|_| StepError::NotFinite {
+                what: "a cell's parameters",
+                t: 0.0,
+            })
+    }
+
+    /// The problem of one cell, or why the model refuses it (the validator presets use).
+    ///
+    /// # Errors
+    /// A value, or a quantity derived from them, out of range.
+    pub fn params_of(
+        &self,
+        ratio: f64,
+        inertia_ratio: f64,
+        k: f64,
+    ) -> Result<Problem, crate::physics::ParamError> {
         Problem::new(
             Params {
                 ix: self.ix,
@@ -110,10 +127,6 @@ impl Grid {
                 alpha_dot: ratio.sqrt() * self.gamma_dot,
             },
         )
-        .map_err(|_| StepError::NotFinite {
-            what: "a cell's parameters",
-            t: 0.0,
-        })
     }
 
     /// The paper's critical ratio at an inertia ratio, `(ix/iz)(√(ix/iy) − 1)` (`None` for

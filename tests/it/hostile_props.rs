@@ -203,3 +203,109 @@ proptest! {
         }
     }
 }
+
+/// Any double: every bit pattern (subnormals, huge, negative zero) and the three non-finite.
+fn any_double() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        any::<u64>().prop_map(f64::from_bits),
+        (-320i32..=308, any::<bool>())
+            .prop_map(|(e, neg)| if neg { -1.0 } else { 1.0 } * 10f64.powi(e)),
+        Just(f64::NAN),
+        Just(f64::INFINITY),
+        Just(f64::NEG_INFINITY),
+        Just(f64::MAX),
+        Just(f64::MIN_POSITIVE),
+        Just(5e-324),
+    ]
+}
+
+/// A double as a user types it in TOML.
+fn typed(v: f64) -> String {
+    if v.is_nan() {
+        "nan".to_owned()
+    } else if v.is_infinite() {
+        if v > 0.0 { "inf" } else { "-inf" }.to_owned()
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// One shipped preset of each model.
+const ONE_OF_EACH: [&str; 3] = ["subcritical", "kapitza-upright", "celt-clockwise"];
+
+fn shipped(name: &str) -> &'static str {
+    SHIPPED.iter().find(|(n, _)| *n == name).unwrap().1
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 600, ..config() })]
+
+    /// One validator (issue 56): whatever double reaches a numeric key, the file, `--set`,
+    /// `check` and the panel give the same verdict, and none panics; what is accepted builds a
+    /// problem whose cost the budget can price.
+    #[test]
+    fn every_numeric_input_has_one_verdict_wherever_it_enters(
+        which in 0usize..3, key in 0usize..64, v in any_double()
+    ) {
+        let name = ONE_OF_EACH[which];
+        let src = shipped(name);
+        let base = Preset::parse(src, name, name, &[]).unwrap();
+        let kind = base.model.kind();
+        let mut keys: Vec<(String, Option<&'static str>)> = kind
+            .params()
+            .iter()
+            .map(|p| (format!("{}.{}", p.section, p.key), Some(p.key)))
+            .collect();
+        keys.extend(["run.t_end", "run.tolerance"].map(|k| (k.to_owned(), None)));
+        let (full, param) = keys[key % keys.len()].clone();
+        let (section, field) = full.split_once('.').unwrap();
+        // The file: the key's line replaced (or added to its section).
+        let mut in_section = false;
+        let mut replaced = false;
+        let mut lines = Vec::new();
+        for l in src.lines() {
+            if l.starts_with('[') {
+                in_section = l == format!("[{section}]");
+            }
+            if in_section && l.split('=').next().is_some_and(|k| k.trim() == field) {
+                lines.push(format!("{field} = {}", typed(v)));
+                replaced = true;
+            } else {
+                lines.push(l.to_owned());
+            }
+            if l == format!("[{section}]") && !src.contains(&format!("\n{field} =")) {
+                lines.push(format!("{field} = {}", typed(v)));
+                replaced = true;
+            }
+        }
+        prop_assume!(replaced);
+        let file = lines.join("\n") + "\n";
+        let set = [format!("{full}={}", typed(v)).parse().unwrap()];
+        let verdicts = std::panic::catch_unwind(|| {
+            let from_file = Preset::parse(&file, "p.toml", "p", &[]);
+            let from_set = Preset::parse(src, name, name, &set);
+            let checked = rattleback::scenario::preset::check(&file, "p.toml");
+            let panel = param.map(|p| base.model.with_value(p, v));
+            (from_file, from_set, checked, panel)
+        });
+        prop_assert!(verdicts.is_ok(), "panic at {full} = {v:e}");
+        let (from_file, from_set, checked, panel) = verdicts.unwrap();
+        prop_assert_eq!(from_file.is_ok(), from_set.is_ok(), "{} = {:e}: file {:?} --set {:?}", full, v, from_file.as_ref().err(), from_set.as_ref().err());
+        prop_assert_eq!(from_file.is_ok(), checked.is_empty(), "{} = {:e}: check {:?}", full, v, checked);
+        if let Some(panel) = panel {
+            prop_assert_eq!(from_file.is_ok(), panel.is_ok(), "{} = {:e}: panel {:?}", full, v, panel.err());
+        }
+        if let Ok(p) = from_file {
+            let ask = rattleback::physics::method::Asked::new(
+                kind.methods()[0],
+                p.run.tolerance.unwrap_or(1e-8),
+                None,
+                p.run.t_end,
+            );
+            let cost = std::panic::catch_unwind(|| p.model.posed().predicted_seconds(&ask));
+            prop_assert!(cost.is_ok(), "the cost model panics at {full} = {v:e}");
+            let cost = cost.unwrap();
+            prop_assert!(!cost.is_nan() && cost >= 0.0, "cost {cost} at {full} = {v:e}");
+        }
+    }
+}

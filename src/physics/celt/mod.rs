@@ -120,6 +120,26 @@ impl Params {
                 allowed: "|product| < sqrt(ix·iy) (a positive definite inertia)",
             });
         }
+        // The principal moments of a real body obey the triangle inequality (each at most the
+        // sum of the other two; equal for a flat one): ix = iy = 1, iz = 100 is no body.
+        let mean = 0.5 * (self.ix + self.iy);
+        let spread = (0.25 * (self.ix - self.iy).powi(2) + self.product * self.product).sqrt();
+        let principal = [mean - spread, mean + spread, self.iz];
+        let total: f64 = principal.iter().sum();
+        if let Some(i) = (0..3).find(|&i| principal[i] > (total - principal[i]) * (1.0 + 1e-12)) {
+            let (field, value) = if i == 2 {
+                ("iz", self.iz)
+            } else if self.ix >= self.iy {
+                ("ix", self.ix)
+            } else {
+                ("iy", self.iy)
+            };
+            return Err(ParamError::OutOfRange {
+                field,
+                value,
+                allowed: "principal moments each at most the sum of the other two (ix + iy ≥ iz and the like: a real body)",
+            });
+        }
         check_derived(
             &[
                 (
@@ -127,6 +147,9 @@ impl Params {
                     self.gravity * (self.c - self.offset),
                 ),
                 ("a²", self.a * self.a),
+                ("1/a²", (self.a * self.a).recip()),
+                ("1/b²", (self.b * self.b).recip()),
+                ("1/c²", (self.c * self.c).recip()),
                 ("ix·iy", self.ix * self.iy),
             ],
             &[
@@ -357,11 +380,29 @@ impl Problem {
         let values = scene::values_of(&params, &start, band);
         crate::physics::params::ParamSpec::check_all(&scene::PARAMS, &values)?;
         params.validate()?;
-        Ok(Self {
+        let problem = Self {
             params,
             start,
             band,
-        })
+        };
+        // What the start makes of the body: its energy and its first derivative must be numbers
+        // (a semi-axis of 1e100 or an offset of -1e300 overflow there, not in any one field).
+        let y0 = problem.initial_state();
+        let f0 = params.field(&y0);
+        let named: Vec<(&'static str, f64)> =
+            scene::PARAMS.iter().map(|s| s.key).zip(values).collect();
+        check_derived(
+            &[
+                ("the energy at the start", params.energy(&y0)),
+                (
+                    "the motion at the start",
+                    // A sum, not a maximum: a NaN anywhere stays a NaN.
+                    f0.iter().map(|x| x.abs()).sum::<f64>(),
+                ),
+            ],
+            &named,
+        )?;
+        Ok(problem)
     }
 
     crate::physics::params::params_and_start!("The body.", "The start.");
