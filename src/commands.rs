@@ -882,20 +882,20 @@ fn map_source(
     // The full model: one verified auto run per cell, predicted before anything runs.
     // Every corner is a problem the model accepts (`--k 5e307` overflows the fast frequency):
     // refused as any preset value would be, by the same validator.
-    let mut probe = None;
     #[allow(clippy::cast_precision_loss)]
     let first_column = args.ratio_max / grid.cols.max(1) as f64;
-    for ratio in [first_column, args.ratio_max] {
-        for inertia in [args.inertia_min, args.inertia_max] {
-            let p = grid
-                .params_of(ratio, inertia, k)
-                .map_err(|e| Failure::input(format!("--k {}: {e}", crate::physics::Number(k))))?;
-            if ratio == args.ratio_max && inertia == args.inertia_min {
-                probe = Some(p);
-            }
-        }
+    let corner = |ratio: f64, inertia: f64| {
+        grid.params_of(ratio, inertia, k)
+            .map_err(|e| Failure::input(format!("--k {}: {e}", crate::physics::Number(k))))
+    };
+    for (ratio, inertia) in [
+        (first_column, args.inertia_min),
+        (first_column, args.inertia_max),
+        (args.ratio_max, args.inertia_max),
+    ] {
+        corner(ratio, inertia)?;
     }
-    let probe = probe.expect("the corner was visited");
+    let probe = corner(args.ratio_max, args.inertia_min)?;
     #[allow(clippy::cast_precision_loss)]
     let cells = (grid.cols * grid.rows) as f64;
     let predicted = cells

@@ -169,7 +169,7 @@ pub(super) fn simulate_to(
     // says (issue 56).
     let drift = result.max_energy_drift / result.energy_initial.abs().max(f64::MIN_POSITIVE);
     let bound = super::energy_bound(spec.tolerance);
-    if !(drift <= bound) {
+    if drift.is_nan() || drift > bound {
         super::warn_drift("the energy", drift, bound, spec.tolerance);
     }
     if ask.format == Format::Csv {

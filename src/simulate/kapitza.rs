@@ -261,7 +261,7 @@ fn warn_inaccurate(problem: &Problem, result: &RunResult, tolerance: f64) {
     let scale = result.energy_initial.abs().max(1.0);
     let drift = result.max_energy_drift / scale;
     let bound = super::energy_bound(tolerance).max(100.0 * eps * eps);
-    if !(drift <= bound) {
+    if drift.is_nan() || drift > bound {
         super::warn_drift("the limit's energy E_eff", drift, bound, tolerance);
     }
 }
