@@ -301,10 +301,9 @@ fn schema_errors_name_a_line_and_describe_what_was_written() {
 fn a_huge_bad_config_is_read_at_once_and_said_in_a_few_lines() {
     let dir = temp("huge-config");
     let keys = dir.join("keys.toml");
-    let mut text = String::from("[keys]\n");
-    for i in 0..100_000 {
-        text.push_str(&format!("k{i}=1\n"));
-    }
+    let text: String = std::iter::once("[keys]\n".to_owned())
+        .chain((0..100_000).map(|i| format!("k{i}=1\n")))
+        .collect();
     std::fs::write(&keys, &text).unwrap();
     let fps = dir.join("fps.toml");
     std::fs::write(&fps, format!("fps = [{}]\n", vec!["1"; 200_000].join(", "))).unwrap();
