@@ -128,15 +128,15 @@ pub fn changes_something(bytes: &[u8]) -> bool {
 #[must_use]
 pub fn marker_label(event: &Event) -> Option<String> {
     match event {
-        Event::Chapter { title } => Some(crate::scenario::text::clean(title)),
+        Event::Chapter { title } => Some(crate::scenario::text::one_line(title)),
         Event::LessonStep {
             step, steps, title, ..
         } => Some(format!(
             "step {}/{steps}: {}",
             step + 1,
-            crate::scenario::text::clean(title)
+            crate::scenario::text::one_line(title)
         )),
-        Event::Note { text } => Some(format!("note: {}", crate::scenario::text::clean(text))),
+        Event::Note { text } => Some(format!("note: {}", crate::scenario::text::one_line(text))),
         _ => None,
     }
 }
@@ -281,7 +281,7 @@ fn frames_of(
         "version": 2,
         "width": area.width,
         "height": area.height,
-        "title": format!("rattleback: {}", app.scenario.name),
+        "title": format!("rattleback: {}", crate::scenario::text::one_line(&app.scenario.name)),
         "idle_time_limit": IDLE_TIME_LIMIT,
         "env": {"TERM": "xterm-256color"},
     });

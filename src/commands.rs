@@ -1,6 +1,7 @@
 //! The small headless commands: `presets` (the catalogue) and `check` (validate files).
 //! Output goes to stdout, problems to stderr; exit 2 on any problem.
 
+use crate::scenario::text::one_line;
 use std::fmt::Write as _;
 
 use crate::failure::{Failure, Outcome};
@@ -92,9 +93,9 @@ pub fn presets(args: &PresetsArgs) -> Outcome {
                 e.name,
                 e.model.name(),
                 format!("{:?}", e.source).to_lowercase(),
-                e.title,
-                e.path,
-                e.description
+                one_line(&e.title),
+                one_line(&e.path),
+                one_line(&e.description)
             )
         },
         &problems,
@@ -143,7 +144,11 @@ pub fn themes(args: &ListArgs) -> Outcome {
         &|e| {
             format!(
                 "{:<w$} {:<8} {}\n{indent}{}\n{indent}{}\n\n",
-                e.name, e.source, e.title, e.path, e.description
+                e.name,
+                e.source,
+                one_line(&e.title),
+                one_line(&e.path),
+                one_line(&e.description)
             )
         },
         &problems,
@@ -169,9 +174,9 @@ pub fn lessons(args: &ListArgs) -> Outcome {
                 "{:<w$} {:<8} {} ({} steps)\n{indent}{}\n\n",
                 e.name,
                 format!("{:?}", e.source).to_lowercase(),
-                e.title,
+                one_line(&e.title),
                 e.steps,
-                e.path
+                one_line(&e.path)
             )
         },
         &problems,
@@ -209,9 +214,7 @@ fn named_or_path(current: &std::ffi::OsStr, names: Vec<(String, String)>) -> Can
     let mut out: Candidates = names
         .into_iter()
         .filter(|(n, _)| n.starts_with(typed.as_ref()))
-        .map(|(n, title)| {
-            CompletionCandidate::new(n).help(Some(crate::scenario::text::clean(&title).into()))
-        })
+        .map(|(n, title)| CompletionCandidate::new(n).help(Some(one_line(&title).into())))
         .collect();
     if typed.contains(['/', '.']) || out.is_empty() {
         out.extend(PathCompleter::file().complete(current));
@@ -761,7 +764,10 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> Outcome {
 }
 
 fn sweep_table(name: &str, t_end: f64, tolerance: f64, s: &crate::study::sweep::Sweep) -> String {
-    let mut o = format!("preset        {name} (T = {t_end}, tolerance {tolerance:e})\n");
+    let mut o = format!(
+        "preset        {} (T = {t_end}, tolerance {tolerance:e})\n",
+        crate::scenario::text::one_line(name)
+    );
     let small = s.small();
     let (parameter, sup) = (small.key, small.sup_short);
     let _ = writeln!(

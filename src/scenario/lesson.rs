@@ -435,7 +435,9 @@ pub fn catalogue() -> (Vec<Entry>, Vec<PresetError>) {
         }
     }
     if let Some(dir) = user_dir() {
-        for path in super::shipped::toml_files(&dir) {
+        let (files, mut odd) = super::shipped::toml_files_and_unnameable(&dir);
+        problems.append(&mut odd);
+        for path in files {
             let name = path
                 .file_stem()
                 .map(|s| s.to_string_lossy().into_owned())

@@ -219,7 +219,9 @@ pub fn catalogue_in(user_dir: Option<&Path>) -> (Vec<Entry>, Vec<PresetError>) {
         }
     }
     if let Some(dir) = user_dir {
-        for path in toml_files(dir) {
+        let (files, mut odd) = toml_files_and_unnameable(dir);
+        problems.append(&mut odd);
+        for path in files {
             let name = stem(&path);
             match Preset::load(&path, &[]) {
                 Ok(p) => {
@@ -256,8 +258,17 @@ pub fn catalogue_in(user_dir: Option<&Path>) -> (Vec<Entry>, Vec<PresetError>) {
 /// The `.toml` files of a folder, sorted (none if it does not exist).
 #[must_use]
 pub fn toml_files(dir: &Path) -> Vec<PathBuf> {
+    let (files, _) = toml_files_and_unnameable(dir);
+    files
+}
+
+/// The `.toml` files of `dir` whose names can be typed, and a problem for each of the others
+/// (a name with a control, bidirectional or separator character: listed, completed or
+/// printed raw it would act on the terminal or split in two; issue 56).
+#[must_use]
+pub fn toml_files_and_unnameable(dir: &Path) -> (Vec<PathBuf>, Vec<PresetError>) {
     let Ok(read) = std::fs::read_dir(dir) else {
-        return Vec::new();
+        return (Vec::new(), Vec::new());
     };
     let mut files: Vec<PathBuf> = read
         .filter_map(Result::ok)
@@ -265,7 +276,19 @@ pub fn toml_files(dir: &Path) -> Vec<PathBuf> {
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
         .collect();
     files.sort();
-    files
+    let (plain, odd): (Vec<PathBuf>, Vec<PathBuf>) = files
+        .into_iter()
+        .partition(|p| super::text::is_plain(&p.to_string_lossy()));
+    let problems = odd
+        .iter()
+        .map(|p| PresetError::Invalid {
+            path: super::text::visible(&p.display().to_string()),
+            line: None,
+            key: None,
+            message: "the file's name has control or invisible characters, so it cannot be shown or typed; rename it".to_owned(),
+        })
+        .collect();
+    (plain, problems)
 }
 
 fn stem(path: &Path) -> String {

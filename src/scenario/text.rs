@@ -1,6 +1,49 @@
 //! Untrusted text (preset names and descriptions, notes, values echoed in errors) made safe for
 //! a terminal: control characters, escape sequences included, never reach it.
 
+/// `text` [`clean`] on one line: newlines, tabs and line separators become spaces (a name in a
+/// table's field, a CSV comment, a chapter list, a cast's title).
+#[must_use]
+pub fn one_line(text: &str) -> String {
+    clean(text).replace(['\n', '\r', '\t'], " ")
+}
+
+/// `text` with what [`clean`] would remove or fold shown as a visible escape (`\u{1b}`,
+/// `\n`): for a name that has such characters, so that a listing says what is there.
+#[must_use]
+pub fn visible(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if plain(c) {
+                c.to_string()
+            } else {
+                c.escape_unicode().to_string()
+            }
+        })
+        .collect()
+}
+
+/// Whether a name can be shown and typed as it is: no control, bidirectional, zero-width or
+/// separator character (a preset file named `x<ESC>]0;…<BEL>.toml` or `a<LF>b.toml` is not).
+#[must_use]
+pub fn is_plain(name: &str) -> bool {
+    name.chars().all(plain)
+}
+
+fn plain(c: char) -> bool {
+    !(c.is_control()
+        || matches!(
+            c,
+            '\u{202a}'..='\u{202e}'
+                | '\u{2066}'..='\u{2069}'
+                | '\u{200b}'..='\u{200f}'
+                | '\u{061c}'
+                | '\u{feff}'
+                | '\u{2028}'
+                | '\u{2029}'
+        ))
+}
+
 /// `text` with every control character removed but newlines and tabs (callers that lay text
 /// out on one line fold those). An ESC starts a sequence that is dropped whole (CSI, OSC, DCS).
 #[must_use]

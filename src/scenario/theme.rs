@@ -6,7 +6,7 @@ use serde::Serialize;
 use toml::Value;
 
 use super::error::{PresetError, SourceMap};
-use super::shipped::{config_dir, toml_files};
+use super::shipped::config_dir;
 
 /// A colour as written in a theme.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -283,7 +283,9 @@ pub fn themes() -> (Vec<(String, ThemeSpec)>, Vec<PresetError>) {
         }
     }
     if let Some(dir) = config_dir().map(|d| d.join("themes")) {
-        for path in toml_files(&dir) {
+        let (files, mut odd) = super::shipped::toml_files_and_unnameable(&dir);
+        problems.append(&mut odd);
+        for path in files {
             let stem = path
                 .file_stem()
                 .map(|s| s.to_string_lossy().into_owned())

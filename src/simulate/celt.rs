@@ -235,7 +235,7 @@ fn table(r: &Report) -> String {
     let _ = writeln!(
         o,
         "preset        {} (classical rattleback, celt)",
-        r.head.preset
+        crate::scenario::text::one_line(&r.head.preset)
     );
     let _ = writeln!(
         o,

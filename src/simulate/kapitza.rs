@@ -337,7 +337,11 @@ fn write_csv(
 fn table(r: &Report) -> String {
     let mut o = String::new();
     let e = &r.effective;
-    let _ = writeln!(o, "preset        {} (Kapitza's pendulum)", r.head.preset);
+    let _ = writeln!(
+        o,
+        "preset        {} (Kapitza's pendulum)",
+        crate::scenario::text::one_line(&r.head.preset)
+    );
     let _ = writeln!(
         o,
         "pendulum      a = {}, b = {}, epsilon = {:e}",

@@ -800,7 +800,7 @@ pub(crate) fn metadata_lines(
     numbers: &[(&str, f64)],
 ) -> String {
     use std::fmt::Write as _;
-    let name = crate::scenario::text::shown(preset).replace(['\n', '\r', '\t'], " ");
+    let name = crate::scenario::text::one_line(&crate::scenario::text::shown(preset));
     let mut out = format!("# program = rattleback {}\n", env!("CARGO_PKG_VERSION"));
     if let Some(m) = model {
         let _ = writeln!(out, "# model = {m}");
@@ -907,7 +907,11 @@ pub(crate) fn times(t: &[f64]) -> String {
 fn table(r: &Report) -> String {
     let mut o = String::new();
     let e = &r.effective;
-    let _ = writeln!(o, "preset        {}", r.head.preset);
+    let _ = writeln!(
+        o,
+        "preset        {}",
+        crate::scenario::text::one_line(&r.head.preset)
+    );
     let _ = writeln!(
         o,
         "body          ix = {}, iy = {}, iz = {}, k = {:e}",

@@ -331,3 +331,57 @@ fn a_huge_bad_config_is_read_at_once_and_said_in_a_few_lines() {
     let (_, _, stderr) = crate::common::bin(&["--config", keys.to_str().unwrap(), "simulate"]);
     assert!(stderr.contains("… and 99970 more problem(s)"), "{stderr}");
 }
+
+/// Issue 56 (R9, R12): file names and TOML strings with control, bidirectional, zero-width and
+/// separator characters reach no completion, listing or table raw; a name with a newline is
+/// not split into two candidates (the file is refused with its name escaped).
+#[test]
+fn names_with_controls_reach_no_completion_listing_or_table() {
+    let dir = temp("odd-names");
+    std::fs::create_dir_all(dir.join("presets")).unwrap();
+    let text = rattleback::scenario::shipped::source_text("subcritical").unwrap();
+    std::fs::write(dir.join("presets/x\u{1b}]0;FN\u{7}.toml"), &text).unwrap();
+    std::fs::write(dir.join("presets/nl\nfile.toml"), &text).unwrap();
+    let evil = text.replace(
+        "name = \"Subcritical start\"",
+        "name = \"Evil\\nline\\u2028sep\\u202Ebidi\\u200Bzw\\uFEFFbom\"",
+    );
+    std::fs::write(dir.join("presets/evil.toml"), &evil).unwrap();
+    let bad = |s: &str| {
+        s.chars().any(|c| {
+            (c.is_control() && c != '\n' && c != '\t')
+                || matches!(
+                    c,
+                    '\u{2028}' | '\u{2029}' | '\u{202e}' | '\u{200b}' | '\u{feff}'
+                )
+        })
+    };
+    for shell in ["bash", "zsh", "fish"] {
+        let out = crate::common::rattleback()
+            .args(["--", "rattleback", "--preset", ""])
+            .env("RATTLEBACK_CONFIG_DIR", &dir)
+            .env("COMPLETE", shell)
+            .env("_CLAP_IFS", "\n")
+            .env("_CLAP_COMPLETE_INDEX", "2")
+            .output()
+            .unwrap();
+        let said = String::from_utf8_lossy(&out.stdout);
+        assert!(!bad(&said), "{shell}: {said:?}");
+        assert!(
+            !said.lines().any(|l| l.starts_with("file")),
+            "{shell}: split: {said:?}"
+        );
+        assert!(said.contains("evil"), "{shell}: {said:?}");
+    }
+    let (_, listing, errors) = bin(&["presets"], &dir);
+    assert!(!bad(&listing) && !bad(&errors), "{listing:?} {errors:?}");
+    assert!(listing.contains("Evil line sep"), "{listing}");
+    assert!(errors.contains("nl\\u{a}file.toml"), "{errors}");
+    let (code, table, _) = bin(&["simulate", "--preset", "evil", "--t-end", "1"], &dir);
+    assert_eq!(code, 0);
+    assert!(!bad(&table), "{table:?}");
+    assert!(
+        table.lines().next().unwrap().contains("Evil line sep"),
+        "{table}"
+    );
+}
