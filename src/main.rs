@@ -326,6 +326,22 @@ fn export_files(
     Ok(())
 }
 
+/// Whether two paths name one file (written alike, or the same file name in the same folder
+/// however the folder is written).
+fn same_place(a: &std::path::Path, b: &std::path::Path) -> bool {
+    let place = |p: &std::path::Path| {
+        let folder = match p.parent() {
+            Some(f) if !f.as_os_str().is_empty() => f.to_path_buf(),
+            _ => std::path::PathBuf::from("."),
+        };
+        (
+            std::fs::canonicalize(&folder).unwrap_or(folder),
+            p.file_name().map(ToOwned::to_owned),
+        )
+    };
+    a == b || place(a) == place(b)
+}
+
 fn run_replay(args: &ReplayArgs) -> Outcome {
     let exporting = args.export_cast.is_some() || args.export_html.is_some();
     if args.file.as_os_str() == "-" && !args.verify && !args.chapters && !exporting {
@@ -343,6 +359,15 @@ fn run_replay(args: &ReplayArgs) -> Outcome {
         && let Err(e) = rattleback::scenario::theme::theme(name)
     {
         return Err(Failure::input(format!("--theme: {e}")));
+    }
+    // One file cannot be both: the page would replace the cast (issue 56).
+    if let (Some(cast), Some(page)) = (&args.export_cast, &args.export_html)
+        && same_place(cast, page)
+    {
+        return Err(Failure::input(format!(
+            "--export-cast and --export-html name the same file ({}); give each its own",
+            rattleback::scenario::write::label(cast)
+        )));
     }
     for (out, flag) in [
         (&args.export_cast, "--export-cast"),

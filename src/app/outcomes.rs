@@ -77,7 +77,12 @@ impl App {
                 }
                 self.log_lesson_step();
             }
-            Outcome::Recording(Err(e)) => self.mode = Mode::Dialog(clean(&e)),
+            Outcome::Recording(Err(e)) => {
+                // Why, and where the folder comes from (issue 56: a `sessions` of /dev/null).
+                self.mode = Mode::Dialog(clean(&format!(
+                    "cannot record: {e}\n\nRecordings go to the folder `sessions` names in config.toml (`rattleback doctor` shows it), or to the file --record names."
+                )));
+            }
             Outcome::RecordingSaved(path) => {
                 self.journal.state = RecState::Off;
                 self.status = Message::info(format!("recording saved to {path}"));

@@ -225,19 +225,8 @@ pub fn read(path: &Path) -> Result<Recording, RecordError> {
             continue;
         }
         match serde_json::from_str::<Line>(row) {
-            Ok(line)
-                if !(line.wall.is_finite() && (0.0..=super::MAX_WALL).contains(&line.wall)) =>
-            {
-                return Err(corrupt(
-                    number,
-                    format!("wall = {}: allowed 0 to {} s", line.wall, super::MAX_WALL),
-                ));
-            }
-            Ok(line) if !line.t.is_finite() => {
-                return Err(corrupt(
-                    number,
-                    format!("t = {}: not a finite time", line.t),
-                ));
+            Ok(line) if let Some(why) = super::impossible(&line) => {
+                return Err(corrupt(number, why));
             }
             Ok(line) => {
                 lines.push((number, line));

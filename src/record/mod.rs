@@ -184,6 +184,27 @@ pub fn chapter_list(rec: &Recording) -> Vec<Chapter> {
     out
 }
 
+/// Why a line's times cannot be (a wall clock outside `[0, MAX_WALL]`, a simulated time that
+/// is not a finite number at or after 0), or `None`: one rule for `replay`, `--verify` and
+/// `follow`.
+#[must_use]
+pub fn impossible(line: &Line) -> Option<String> {
+    use crate::physics::Number;
+    if !(line.wall.is_finite() && (0.0..=MAX_WALL).contains(&line.wall)) {
+        return Some(format!(
+            "wall = {}: allowed 0 to {MAX_WALL} s",
+            Number(line.wall)
+        ));
+    }
+    if !(line.t.is_finite() && line.t >= 0.0) {
+        return Some(format!(
+            "t = {}: not a time of the run (a finite number, at least 0)",
+            Number(line.t)
+        ));
+    }
+    None
+}
+
 /// The chapter list of a recording, one line each: its number, the wall clock of the recording
 /// (`m:ss.s`), the simulated time and the title (cleaned of control characters); lesson steps
 /// count as chapters too.

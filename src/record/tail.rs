@@ -172,7 +172,11 @@ impl Tail {
             }
             // A corrupt line is skipped (a follower shows what it can); the lecturer's
             // `replay --verify` is what judges the file.
-            if let Ok(line) = serde_json::from_str::<Line>(&text) {
+            // So is a line of an impossible time (`t = -5`, `wall = 1e300`): what `replay`
+            // refuses, `follow` never shows (issue 56).
+            if let Ok(line) = serde_json::from_str::<Line>(&text)
+                && super::impossible(&line).is_none()
+            {
                 self.ended |= matches!(line.event, Event::End { .. });
                 lines.push(line);
             }

@@ -1114,3 +1114,21 @@ fn a_heavy_partner_never_starves_the_run() {
         "the partner is still computing: the run went on beside it"
     );
 }
+
+/// Issue 56 (R17): `R` with an unusable sessions folder says why and where the folder comes
+/// from; no recording starts.
+#[test]
+fn a_recording_that_cannot_start_says_why() {
+    let mut h = Headless::new("subcritical");
+    h.key(Key::Char('R'));
+    let effects = h.app.on_outcome(rattleback::app::Outcome::Recording(Err(
+        "/dev/null: File exists (os error 17)".to_owned(),
+    )));
+    h.exec(effects);
+    let Mode::Dialog(text) = &h.app.mode else {
+        panic!("no dialog: {:?}", h.app.mode);
+    };
+    assert!(text.contains("cannot record: /dev/null"), "{text}");
+    assert!(text.contains("`sessions`"), "{text}");
+    assert_eq!(h.app.journal.state, rattleback::app::RecState::Off);
+}

@@ -368,3 +368,41 @@ fn a_follower_shows_a_pause_at_its_time_at_once() {
         h.app.run.shown
     );
 }
+
+/// Issue 56 (R18): a line of an impossible time (`t = -5`, `wall = 1e300`, `wall = -1e300`)
+/// is not shown by `follow`, as `replay` refuses it; the next good line is.
+#[test]
+fn impossible_times_are_never_followed() {
+    use std::io::Write as _;
+    let d = dir("impossible");
+    let path = d.join("s.jsonl");
+    drop(Recorder::create(&path, &header(), None).unwrap());
+    let (mut tail, _) = Tail::open(&path).unwrap();
+    let mut f = std::fs::OpenOptions::new()
+        .append(true)
+        .open(&path)
+        .unwrap();
+    for (wall, t) in [(1e300, 0.0), (-1e300, 0.0), (1.0, -5.0), (1.0, f64::MAX)] {
+        let bad = Line {
+            t,
+            ..line(wall, Event::Pause)
+        };
+        assert!(rattleback::record::impossible(&bad).is_some() || t == f64::MAX);
+        writeln!(f, "{}", serde_json::to_string(&bad).unwrap()).unwrap();
+    }
+    writeln!(
+        f,
+        "{}",
+        serde_json::to_string(&line(2.0, Event::Play)).unwrap()
+    )
+    .unwrap();
+    f.flush().unwrap();
+    let seen = lines_of(&poll_until(&mut tail, &|e| !lines_of(e).is_empty()));
+    assert!(
+        seen.iter()
+            .all(|l| l.t >= 0.0 && (0.0..1e6).contains(&l.wall)),
+        "{seen:?}"
+    );
+    assert_eq!(seen.last().map(|l| &l.event), Some(&Event::Play));
+    let _ = std::fs::remove_dir_all(&d);
+}
