@@ -100,6 +100,23 @@ impl Signer {
     /// Unreadable, not a private key file, or a malformed key.
     pub fn read(path: &Path) -> Result<Self, KeyError> {
         let (name, bytes) = read_key(path, SECRET_KIND)?;
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt as _;
+            if let Ok(meta) = std::fs::metadata(path)
+                && meta.permissions().mode() & 0o077 != 0
+            {
+                // Refused, as ssh refuses such a key: a warning would vanish behind the
+                // explorer's screen (issue 56).
+                return Err(bad(
+                    path,
+                    format!(
+                        "the private key can be read by others (mode {:o}); make it yours alone with `chmod 600` and try again",
+                        meta.permissions().mode() & 0o777
+                    ),
+                ));
+            }
+        }
         Ok(Self {
             name,
             key: SigningKey::from_bytes(&bytes),
@@ -191,6 +208,14 @@ pub fn keygen(stem: &Path) -> Result<(PathBuf, PathBuf), KeyError> {
         .map(|n| n.to_string_lossy().into_owned())
         .filter(|n| !n.is_empty())
         .ok_or_else(|| bad(stem, "give a name for the key files, such as 'lecturer'"))?;
+    // A name is shown and typed: no control, bidirectional or separator character (a name with
+    // an escape sequence was printed as another file's, issue 56).
+    if !crate::scenario::text::is_plain(&name) {
+        return Err(bad(
+            Path::new(&crate::scenario::text::visible(&stem.display().to_string())),
+            "a key's name cannot have control or invisible characters (a newline, an escape); choose letters, digits, - or _",
+        ));
+    }
     let secret_path = stem.with_file_name(format!("{name}.key"));
     let public_path = stem.with_file_name(format!("{name}.pub"));
     let mut seed = [0u8; 32];

@@ -385,3 +385,42 @@ fn names_with_controls_reach_no_completion_listing_or_table() {
         "{table}"
     );
 }
+
+/// Issue 56 (R16): a key's name with an escape sequence or a newline is refused (it was written
+/// under one name and printed as another); a private key others can read is refused by
+/// `--sign`, as ssh refuses it.
+#[test]
+fn keys_are_named_plainly_and_kept_private() {
+    let dir = temp("keys");
+    for name in ["n\u{1b}]0;PWNED\u{7}\u{1b}[2Jm", "a\nb", "x\u{202e}y"] {
+        let stem = dir.join(name);
+        let (code, out, err) = bin(&["keygen", stem.to_str().unwrap()], &dir);
+        assert_eq!(code, 2, "{out}{err}");
+        assert!(
+            err.contains("cannot have control or invisible characters"),
+            "{err}"
+        );
+        assert!(
+            !err.contains('\u{1b}') && err.trim().lines().count() == 1,
+            "{err:?}"
+        );
+    }
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        0,
+        "a file was written"
+    );
+    let stem = dir.join("lecturer");
+    assert_eq!(bin(&["keygen", stem.to_str().unwrap()], &dir).0, 0);
+    let key = dir.join("lecturer.key");
+    assert!(rattleback::record::sign::Signer::read(&key).is_ok());
+    {
+        use std::os::unix::fs::PermissionsExt as _;
+        std::fs::set_permissions(&key, std::fs::Permissions::from_mode(0o644)).unwrap();
+    }
+    let e = rattleback::record::sign::Signer::read(&key)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(e.contains("mode 644") && e.contains("chmod 600"), "{e}");
+}
