@@ -321,10 +321,10 @@ pub struct StudyCommon {
     #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
     pub set: Vec<Override>,
     /// Final time (overrides the preset's `run.t_end`).
-    #[arg(long = "t-end", value_parser = parse_positive)]
+    #[arg(long = "t-end", value_parser = parse_positive, allow_negative_numbers = true)]
     pub t_end: Option<f64>,
     /// `auto`'s tolerance for the full-model runs (overrides the preset's).
-    #[arg(long, value_parser = parse_tolerance)]
+    #[arg(long, value_parser = parse_tolerance, allow_negative_numbers = true)]
     pub tolerance: Option<f64>,
     /// Also write CSV files and an SVG plot into this folder (created if missing; existing
     /// files of the same names are refused unless `--force`).
@@ -344,7 +344,7 @@ pub struct SweepArgs {
     #[command(flatten)]
     pub common: StudyCommon,
     /// The stiffnesses, comma-separated (default: one per decade from 1e1 to 1e8).
-    #[arg(long, value_delimiter = ',', value_parser = parse_positive)]
+    #[arg(long, value_delimiter = ',', value_parser = parse_positive, allow_negative_numbers = true)]
     pub ladder: Vec<f64>,
 }
 
@@ -357,17 +357,17 @@ pub struct MapArgs {
     #[arg(long, value_name = "COLSxROWS", default_value = "200x100", value_parser = parse_grid)]
     pub grid: (usize, usize),
     /// Largest α̇0²/γ̇0² (columns span (0, max]).
-    #[arg(long = "ratio-max", default_value_t = crate::study::map::DEFAULT_RATIO_MAX, value_parser = parse_positive)]
+    #[arg(long = "ratio-max", default_value_t = crate::study::map::DEFAULT_RATIO_MAX, value_parser = parse_positive, allow_negative_numbers = true)]
     pub ratio_max: f64,
     /// Smallest iy/ix (rows are log-spaced).
-    #[arg(long = "inertia-min", default_value_t = crate::study::map::DEFAULT_INERTIA.0, value_parser = parse_positive)]
+    #[arg(long = "inertia-min", default_value_t = crate::study::map::DEFAULT_INERTIA.0, value_parser = parse_positive, allow_negative_numbers = true)]
     pub inertia_min: f64,
     /// Largest iy/ix.
-    #[arg(long = "inertia-max", default_value_t = crate::study::map::DEFAULT_INERTIA.1, value_parser = parse_positive)]
+    #[arg(long = "inertia-max", default_value_t = crate::study::map::DEFAULT_INERTIA.1, value_parser = parse_positive, allow_negative_numbers = true)]
     pub inertia_max: f64,
     /// Compute every cell from the full model at this Hooke constant (through `auto`) instead
     /// of the limit; refused when predicted over the work budget unless `--force`.
-    #[arg(long, value_parser = parse_positive)]
+    #[arg(long, value_parser = parse_positive, allow_negative_numbers = true)]
     pub k: Option<f64>,
 }
 
@@ -582,13 +582,13 @@ pub struct SimulateArgs {
     #[arg(long, value_parser = method_parser(), ignore_case = true)]
     pub method: Option<Method>,
     /// Tolerance: relative and absolute for adaptive methods; picks the step of fixed-step ones.
-    #[arg(long, value_parser = parse_tolerance)]
+    #[arg(long, value_parser = parse_tolerance, allow_negative_numbers = true)]
     pub tolerance: Option<f64>,
     /// Fixed step size for fixed-step methods (overrides the one derived from the tolerance).
-    #[arg(long, value_parser = parse_positive)]
+    #[arg(long, value_parser = parse_positive, allow_negative_numbers = true)]
     pub step: Option<f64>,
     /// Final time (overrides the preset's `run.t_end`).
-    #[arg(long = "t-end", value_parser = parse_positive)]
+    #[arg(long = "t-end", value_parser = parse_positive, allow_negative_numbers = true)]
     pub t_end: Option<f64>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Table)]

@@ -369,7 +369,10 @@ fn check_sha256(
                     number,
                     t,
                     format!("an end line counting {} lines before it", number - 1),
-                    format!("{lines:?}"),
+                    lines.map_or_else(
+                        || "an end line without a count".to_owned(),
+                        |n| format!("one counting {n}"),
+                    ),
                 ));
             }
             signature = check_signature(number, t, &previous, (signer, public_key, sig), key)?;
@@ -377,10 +380,10 @@ fn check_sha256(
         previous = expected;
     }
     if key.is_some() && signature.is_none() && ended {
-        let last = rec.lines.last().map_or(1, |(n, _)| *n);
+        let (last, t) = rec.lines.last().map_or((1, 0.0), |(n, l)| (*n, l.t));
         return Err(tampered(
             last,
-            0.0,
+            t,
             "a session signed with the given key",
             "an unsigned session",
         ));
@@ -518,9 +521,23 @@ pub fn verify_watched(
                 }));
                 got = None;
                 run(&mut engine, &mut app, effects, &mut got);
-                let (got_t, got_state, got_rev) = got
-                    .take()
-                    .unwrap_or_else(|| (line.t, vec![f64::NAN; state.len()], usize::MAX));
+                // No state: the replayed run stopped before this time (refused by the budget,
+                // failed). Said as such, not as a state of NaNs (issue 56).
+                let Some((got_t, got_state, got_rev)) = got.take() else {
+                    let why = app.run.failed.as_deref().map_or_else(
+                        || "it stopped before this time".to_owned(),
+                        crate::scenario::text::one_line,
+                    );
+                    return Err(tampered(
+                        *number,
+                        line.t,
+                        format!("state {state:?}, {reversals} reversals, hash {hash}"),
+                        format!(
+                            "no state: the replayed run did not reach t = {}: {why}",
+                            line.t
+                        ),
+                    ));
+                };
                 let got_hash = state_hash(got_t, &got_state, got_rev);
                 let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
                 if got_hash != *hash || bits(&got_state) != bits(state) || got_rev != *reversals {

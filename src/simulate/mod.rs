@@ -454,11 +454,15 @@ trait Account {
 
 impl std::fmt::Display for Missed {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let estimate = if self.estimate.is_finite() {
+            format!("its error estimate is {:.1e}", self.estimate)
+        } else {
+            "it has no error estimate".to_owned()
+        };
         write!(
             f,
-            "auto could not meet the tolerance {:e}: its error estimate is {:.1e} ({}",
+            "auto could not meet the tolerance {:e}: {estimate} ({}",
             self.tolerance,
-            self.estimate,
             self.why.describe()
         )?;
         match self.floor {

@@ -83,12 +83,17 @@ pub(crate) fn method_lines(
         "method        {method} (tolerance {tolerance:e}{step}), t_end = {t_end}"
     );
     if let Some(a) = auto {
+        // An infinite estimate is no estimate: said in words (issue 56).
+        let estimate = if a.error_estimate.is_finite() {
+            format!("estimated error {:.1e}", a.error_estimate)
+        } else {
+            "no error estimate".to_owned()
+        };
         let _ = writeln!(
             o,
-            "auto chose    {}: {} (estimated error {:.1e}{})",
+            "auto chose    {}: {} ({estimate}{})",
             a.method,
             a.reason,
-            a.error_estimate,
             if a.met { "" } else { ", tolerance NOT met" }
         );
     }

@@ -734,6 +734,30 @@ fn a_signed_session_verifies_with_its_key_and_fails_with_another() {
     // An unsigned session does not pass for a signed one.
     let unsigned = write(&lecture, "unsigned.jsonl", None);
     diverged_at(&unsigned, Some(&key));
+    // Said at the end line's time, not at t = 0 (issue 56).
+    let rec = record::read(&unsigned).unwrap();
+    let last_t = rec.lines.last().unwrap().1.t;
+    match record::verify(&rec, "unsigned", Some(&key)) {
+        Err(record::VerifyError::Diverged(d)) => {
+            assert_eq!(d.t.to_bits(), last_t.to_bits(), "{d:?}");
+        }
+        other => panic!("{other:?}"),
+    }
+    // An end line that counts wrong says its count in words, not as `Some(10)`.
+    let miscounted = edit(&unsigned, "miscounted.jsonl", |_, l| {
+        Some(if l.contains("\"kind\":\"end\"") {
+            let at = l.find("\"lines\":").unwrap() + 8;
+            let digits = l[at..].find(|c: char| !c.is_ascii_digit()).unwrap();
+            format!("{}10{}", &l[..at], &l[at + digits..])
+        } else {
+            l.to_owned()
+        })
+    });
+    let text = match record::verify(&record::read(&miscounted).unwrap(), "m", None) {
+        Err(e) => e.to_string(),
+        Ok(_) => panic!("a wrong count verified"),
+    };
+    assert!(!text.contains("Some("), "{text}");
     // A line edited and the whole chain written again by someone without the key: the chain
     // holds, the signature does not.
     let rec = record::read(&path).unwrap();
