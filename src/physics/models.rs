@@ -224,6 +224,15 @@ impl Model {
         }
     }
 
+    /// The celt's problem, when this is one.
+    #[must_use]
+    pub fn celt(&self) -> Option<&celt::Problem> {
+        match self {
+            Self::Celt(p) => Some(p),
+            Self::Rattleback(_) | Self::Kapitza(_) => None,
+        }
+    }
+
     /// The value of the parameter `key`, if the model has one.
     #[must_use]
     pub fn value(&self, key: &str) -> Option<f64> {
