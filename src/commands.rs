@@ -883,7 +883,8 @@ fn map_source(
 ) -> Result<crate::study::map::Source, Failure> {
     use crate::study::map::Source;
     let Some(k) = args.k else {
-        return Ok(Source::Limit);
+        // The limit's cells cost the same whatever the horizon: asked all the same.
+        return priced(args, grid, Source::Limit);
     };
     // The full model: one verified auto run per cell, predicted before anything runs.
     // Every corner is a problem the model accepts (`--k 5e307` overflows the fast frequency):
@@ -901,32 +902,35 @@ fn map_source(
     ] {
         corner(ratio, inertia)?;
     }
-    let probe = corner(args.ratio_max, args.inertia_min)?;
-    #[allow(clippy::cast_precision_loss)]
-    let cells = (grid.cols * grid.rows) as f64;
-    let predicted = cells
-        * crate::physics::rattleback::plan::predicted_seconds(
-            &probe,
-            &crate::physics::method::Asked::new(
-                crate::physics::Method::Auto,
-                tolerance,
-                None,
-                grid.t_end,
-            ),
-        )
-        / 2.0;
+    corner(args.ratio_max, args.inertia_min)?;
+    priced(args, grid, Source::Full { k, tolerance })
+}
+
+/// `source` when the map's cost model puts it within the work budget (or `--force`).
+fn priced(
+    args: &crate::cli::MapArgs,
+    grid: &crate::study::map::Grid,
+    source: crate::study::map::Source,
+) -> Result<crate::study::map::Source, Failure> {
+    let cells = grid.cols * grid.rows;
+    let predicted = crate::study::map::predicted_seconds(grid, source, cells);
     let budget = if args.common.force {
         f64::INFINITY
     } else {
         crate::physics::budget::BUDGET_SECONDS
     };
     if let Err(over) = crate::physics::budget::check(predicted, budget) {
+        let what = match source {
+            crate::study::map::Source::Limit => "of the limit".to_owned(),
+            crate::study::map::Source::Full { k, .. } => {
+                format!("of the full model at k = {k:e}")
+            }
+        };
         return Err(Failure::input(format!(
-            "this map ({} cells of the full model at k = {k:e}) is {over}; use a smaller --grid, or pass --force",
-            grid.cols * grid.rows
+            "this map ({cells} cells {what}) is {over}; use a smaller --grid, or pass --force"
         )));
     }
-    Ok(Source::Full { k, tolerance })
+    Ok(source)
 }
 
 /// The map in text: at most 60 columns and 20 rows of digits (reversals, `+` for 10 or more,

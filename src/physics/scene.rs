@@ -238,6 +238,12 @@ pub trait Posed {
     fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned;
     /// Predicted seconds of a run (the model's cost model).
     fn predicted_seconds(&self, ask: &Asked) -> f64;
+    /// Predicted seconds of [`Posed::weak_view`] over `t_end` (its cost model, asked before the
+    /// pane's job starts); 0 for a model without one.
+    fn weak_seconds(&self, t_end: f64) -> f64 {
+        let _ = t_end;
+        0.0
+    }
     /// The weak-* view over a bounded horizon within `[0, t_end]` (at most a few thousand fast
     /// periods, whatever the small parameter), or `None` for a model without one
     /// ([`Studies::weak`] false).

@@ -16,6 +16,7 @@ use std::time::Duration;
 use super::engine::Planner;
 use super::{Point, Session, SessionSpec, SimEvent};
 use crate::physics::StepError;
+use crate::physics::method::Asked;
 use crate::physics::plan::Resolved;
 use crate::physics::rattleback::integrators::Method;
 use crate::study::map::{Source, cells_in_parallel};
@@ -83,9 +84,61 @@ impl JobSpec {
         }
     }
 
+    /// Predicted seconds of its work (each pane's cost model): the partner's run as `auto`
+    /// plans it, the weak-* view's bounded run, the sweep's limit and rungs, the map's cells
+    /// still to compute.
+    #[must_use]
+    pub fn predicted_seconds(&self) -> f64 {
+        match self {
+            Self::Partner(spec) => spec.model.predicted_seconds(&Asked::new(
+                spec.method,
+                spec.tolerance,
+                spec.step,
+                spec.t_end,
+            )),
+            Self::Weak(w) => w.model.posed().weak_seconds(w.t_end),
+            Self::Sweep(w) => crate::study::sweep::predicted_seconds(
+                &w.model,
+                ladder(w.model.kind()),
+                w.t_end,
+                w.tolerance,
+            )
+            .unwrap_or(f64::INFINITY),
+            Self::Map { spec, from } => crate::study::map::predicted_seconds(
+                &spec.grid,
+                spec.source,
+                (spec.grid.cols * spec.grid.rows).saturating_sub(*from),
+            ),
+        }
+    }
+
+    /// What it computes, in words.
+    fn what(&self) -> &'static str {
+        match self {
+            Self::Partner(_) => "the partner",
+            Self::Weak(_) => "the weak-* view",
+            Self::Sweep(_) => "the sweep",
+            Self::Map { .. } => "the map",
+        }
+    }
+
     /// The job that computes it, stamped `stamp`.
     #[must_use]
     pub fn job(self, stamp: u64) -> Box<dyn Job> {
+        // The door every pane's job passes (issue 56): its cost model is asked before it
+        // starts, and a job over the budget sends its reason to the pane instead of working.
+        // The partner's runs are priced by the planner, which refuses them with `auto`'s words.
+        let predicted = self.predicted_seconds();
+        if self.kind() != JobKind::Partner
+            && let Err(over) =
+                crate::physics::budget::check(predicted, crate::physics::budget::BUDGET_SECONDS)
+        {
+            return Box::new(Refused {
+                stamp,
+                kind: self.kind(),
+                reason: format!("{} is {over}", self.what()),
+            });
+        }
         match self {
             Self::Partner(spec) => Box::new(PartnerJob::new(stamp, spec)),
             Self::Weak(spec) => Box::new(WeakJob::new(stamp, spec)),
@@ -317,6 +370,40 @@ impl Job for PartnerJob {
         };
         let data = JobData::Partner(outcome);
         Slice::after(sink(SimEvent::Job { stamp: id, data }), Slice::Done)
+    }
+}
+
+/// A job its cost model put over the budget: it sends why to its pane, and ends.
+struct Refused {
+    stamp: u64,
+    kind: JobKind,
+    reason: String,
+}
+
+impl Job for Refused {
+    fn kind(&self) -> JobKind {
+        self.kind
+    }
+
+    fn slice(&mut self, work: &mut Work) -> Slice {
+        let failed = Some(self.reason.clone());
+        let data = match self.kind {
+            JobKind::Partner => JobData::Partner(Err(self.reason.clone())),
+            JobKind::Weak => JobData::Weak {
+                t: Vec::new(),
+                pointwise: Vec::new(),
+                theta: 0.0,
+                reference: Vec::new(),
+                failed,
+            },
+            JobKind::Sweep => JobData::SweepDone { failed },
+            JobKind::Map => JobData::MapDone { failed },
+        };
+        let event = SimEvent::Job {
+            stamp: self.stamp,
+            data,
+        };
+        Slice::after((work.sink)(event), Slice::Done)
     }
 }
 

@@ -1048,7 +1048,10 @@ fn a_dropped_job_stops_computing_at_once() {
             tolerance: 1e-10,
         },
     };
-    let job = JobSpec::Map { spec, from: 0 }.job(1);
+    let map = JobSpec::Map { spec, from: 0 };
+    // A job its cost model lets start (else it would end at once, refused).
+    assert!(map.predicted_seconds() < rattleback::physics::budget::BUDGET_SECONDS);
+    let job = map.job(1);
     let running = Running::spawn(job, Planner::new(PlanBook::default()), || true);
     std::thread::sleep(std::time::Duration::from_millis(50));
     assert!(
@@ -1131,4 +1134,128 @@ fn a_recording_that_cannot_start_says_why() {
     assert!(text.contains("cannot record: /dev/null"), "{text}");
     assert!(text.contains("`sessions`"), "{text}");
     assert_eq!(h.app.journal.state, rattleback::app::RecState::Off);
+}
+
+/// Issue 56, the door: every pane's job has a cost model asked before it starts (the partner,
+/// the weak-* view, the sweep, the map of the limit and of the full model). On the shipped
+/// presets each is priced finite and within the budget; at hostile inputs each is refused with
+/// its reason in its pane's event, at once, without computing.
+#[test]
+fn every_panes_job_is_priced_before_it_starts_and_refused_over_the_budget() {
+    use rattleback::physics::budget::BUDGET_SECONDS;
+    use rattleback::sim::jobs::{JobData, JobKind, MapSpec, Running, SweepSpec, WeakSpec};
+    use rattleback::sim::{JobSpec, PlanBook, Planner, SimEvent};
+    use rattleback::study::map::{Grid, Source};
+    let model = |name: &str, set: &[&str]| {
+        let o: Vec<_> = set.iter().map(|s| s.parse().unwrap()).collect();
+        rattleback::scenario::shipped::resolve(name, &o)
+            .unwrap()
+            .model
+    };
+    let map = |t_end: f64, source| JobSpec::Map {
+        spec: MapSpec {
+            grid: Grid::new(40, 20, 2.0, 1.0, 1.0, t_end),
+            source,
+        },
+        from: 0,
+    };
+    let full = Source::Full {
+        k: 1e4,
+        tolerance: 1e-9,
+    };
+    let partner = |m: rattleback::physics::Model, t_end: f64| {
+        JobSpec::Partner(rattleback::sim::SessionSpec {
+            model: m,
+            method: Method::Auto,
+            tolerance: 1e-8,
+            t_end,
+            effective: false,
+            sample_dt: 0.01,
+            step: None,
+        })
+    };
+    // (kind, within the budget, over it)
+    let cases = [
+        (
+            JobKind::Weak,
+            JobSpec::Weak(WeakSpec {
+                model: model("subcritical", &[]),
+                t_end: 30.0,
+            }),
+            // Bounded by construction (a few thousand fast periods whatever the input): no
+            // weak-* view is over the budget, checked at the extremes below.
+            None,
+        ),
+        (
+            JobKind::Sweep,
+            JobSpec::Sweep(SweepSpec {
+                model: model("subcritical", &[]),
+                t_end: 30.0,
+                tolerance: 1e-8,
+            }),
+            Some(JobSpec::Sweep(SweepSpec {
+                model: model("subcritical", &[]),
+                t_end: 1e12,
+                tolerance: 1e-12,
+            })),
+        ),
+        (JobKind::Map, map(30.0, Source::Limit), Some(map(1e9, full))),
+        (
+            JobKind::Partner,
+            partner(model("celt-clockwise", &[]), 10.0),
+            Some(partner(model("celt-clockwise", &[]), 1e9)),
+        ),
+    ];
+    for (name, set) in [
+        ("kapitza-upright", &["pendulum.epsilon=1e-9"][..]),
+        ("subcritical", &["spring.k=1e12"]),
+        ("stiff-spring", &[]),
+    ] {
+        let weak = JobSpec::Weak(WeakSpec {
+            model: model(name, set),
+            t_end: 1e15,
+        });
+        let p = weak.predicted_seconds();
+        assert!(p.is_finite() && p < BUDGET_SECONDS, "{name} {set:?}: {p}");
+    }
+    for (kind, fine, heavy) in cases {
+        assert_eq!(fine.kind(), kind);
+        let p = fine.predicted_seconds();
+        assert!(
+            p.is_finite() && p > 0.0 && p < BUDGET_SECONDS,
+            "{kind:?}: {p}"
+        );
+        let Some(heavy) = heavy else { continue };
+        let p = heavy.predicted_seconds();
+        assert!(
+            p > BUDGET_SECONDS,
+            "{kind:?}: the hostile case is priced {p}"
+        );
+        let started = Instant::now();
+        let running = Running::spawn(heavy.job(3), Planner::new(PlanBook::default()), || true);
+        let mut reason = None;
+        running.finish(
+            || true,
+            &mut |e| {
+                if let SimEvent::Job { stamp: 3, data } = e {
+                    reason = match data {
+                        JobData::Partner(Err(r)) => Some(r),
+                        JobData::Weak { failed, .. }
+                        | JobData::SweepDone { failed }
+                        | JobData::MapDone { failed } => failed,
+                        _ => reason.take(),
+                    };
+                }
+                true
+            },
+            &mut |_| {},
+        );
+        let reason = reason.unwrap_or_else(|| panic!("{kind:?}: no reason"));
+        assert!(reason.contains("(budget 60 s)"), "{kind:?}: {reason}");
+        assert!(
+            started.elapsed() < Duration::from_secs(5),
+            "{kind:?}: refused only after {:?}",
+            started.elapsed()
+        );
+    }
 }

@@ -197,6 +197,15 @@ impl Posed for Problem {
     fn predicted_seconds(&self, ask: &Asked) -> f64 {
         super::budget::cost_seconds(self, ask)
     }
+    fn weak_seconds(&self, t_end: f64) -> f64 {
+        // `weak::pendulum_pointwise`: DOP853 at 1e-10 and the limit at 1e-12.
+        let horizon = super::weak::pendulum_view_horizon(self, t_end);
+        super::budget::cost_seconds(self, &Asked::new(Method::Dop853, 1e-10, None, horizon))
+            + super::budget::cost_seconds(
+                self,
+                &Asked::new(Method::Effective, 1e-12, None, horizon),
+            )
+    }
     fn weak_view(
         &self,
         t_end: f64,

@@ -226,6 +226,19 @@ impl Posed for Problem {
     fn predicted_seconds(&self, ask: &Asked) -> f64 {
         super::plan::predicted_seconds(self, ask)
     }
+    fn weak_seconds(&self, t_end: f64) -> f64 {
+        // `weak::pointwise`: BlanesMoan4 at a step of half the fastest period over 2π.
+        let omega = self.params().omega_max();
+        super::plan::predicted_seconds(
+            self,
+            &Asked::new(
+                Method::BlanesMoan4,
+                1e-10,
+                Some(0.5 / omega),
+                super::weak::view_horizon(self, t_end),
+            ),
+        )
+    }
     fn weak_view(
         &self,
         t_end: f64,
