@@ -1143,8 +1143,8 @@ fn a_recording_that_cannot_start_says_why() {
 #[test]
 fn every_panes_job_is_priced_before_it_starts_and_refused_over_the_budget() {
     use rattleback::physics::budget::BUDGET_SECONDS;
-    use rattleback::sim::jobs::{JobData, JobKind, MapSpec, Running, SweepSpec, WeakSpec};
-    use rattleback::sim::{JobSpec, PlanBook, Planner, SimEvent};
+    use rattleback::sim::JobSpec;
+    use rattleback::sim::jobs::{JobKind, MapSpec, SweepSpec, WeakSpec};
     use rattleback::study::map::{Grid, Source};
     let model = |name: &str, set: &[&str]| {
         let o: Vec<_> = set.iter().map(|s| s.parse().unwrap()).collect();
@@ -1232,25 +1232,7 @@ fn every_panes_job_is_priced_before_it_starts_and_refused_over_the_budget() {
             "{kind:?}: the hostile case is priced {p}"
         );
         let started = Instant::now();
-        let running = Running::spawn(heavy.job(3), Planner::new(PlanBook::default()), || true);
-        let mut reason = None;
-        running.finish(
-            || true,
-            &mut |e| {
-                if let SimEvent::Job { stamp: 3, data } = e {
-                    reason = match data {
-                        JobData::Partner(Err(r)) => Some(r),
-                        JobData::Weak { failed, .. }
-                        | JobData::SweepDone { failed }
-                        | JobData::MapDone { failed } => failed,
-                        _ => reason.take(),
-                    };
-                }
-                true
-            },
-            &mut |_| {},
-        );
-        let reason = reason.unwrap_or_else(|| panic!("{kind:?}: no reason"));
+        let reason = refusal(heavy);
         assert!(reason.contains("(budget 60 s)"), "{kind:?}: {reason}");
         assert!(
             started.elapsed() < Duration::from_secs(5),
@@ -1258,4 +1240,30 @@ fn every_panes_job_is_priced_before_it_starts_and_refused_over_the_budget() {
             started.elapsed()
         );
     }
+}
+
+/// Why a job refused itself: its failure event, run on a thread as the engine runs it.
+fn refusal(job: rattleback::sim::JobSpec) -> String {
+    use rattleback::sim::jobs::{JobData, Running};
+    use rattleback::sim::{PlanBook, Planner, SimEvent};
+    let kind = job.kind();
+    let running = Running::spawn(job.job(3), Planner::new(PlanBook::default()), || true);
+    let mut reason = None;
+    running.finish(
+        || true,
+        &mut |e| {
+            if let SimEvent::Job { stamp: 3, data } = e {
+                reason = match data {
+                    JobData::Partner(Err(r)) => Some(r),
+                    JobData::Weak { failed, .. }
+                    | JobData::SweepDone { failed }
+                    | JobData::MapDone { failed } => failed,
+                    _ => reason.take(),
+                };
+            }
+            true
+        },
+        &mut |_| {},
+    );
+    reason.unwrap_or_else(|| panic!("{kind:?}: no reason"))
 }
