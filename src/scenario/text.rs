@@ -427,13 +427,17 @@ pub fn bounded<L: AsRef<str>>(lines: &[L]) -> Vec<String> {
     out
 }
 
-/// `line` cut to `max` characters, saying how much was left out.
+/// `line` cut to `max` characters, saying how much was left out: its head and its tail are
+/// kept (an error's end says what to do: `did you mean …?`).
 #[must_use]
 pub fn cut(line: &str, max: usize) -> String {
     let n = line.chars().count();
     if n <= max {
         return line.to_owned();
     }
-    let kept: String = line.chars().take(max).collect();
-    format!("{kept}… ({} more characters)", n - max)
+    let tail = max / 4;
+    let head = max - tail;
+    let first: String = line.chars().take(head).collect();
+    let last: String = line.chars().skip(n - tail).collect();
+    format!("{first} … ({} characters cut) … {last}", n - max)
 }

@@ -312,3 +312,77 @@ fn progress_never_reaches_a_pipe() {
     assert_eq!(code, 0, "{err}");
     assert!(err.is_empty(), "{err:?}");
 }
+
+/// Prints the cost model's prediction beside the measured seconds of `auto` (resolved, then
+/// the chosen run, as `simulate` does) and of one DOP853 run, on the shipped celt presets
+/// and the reliability review's hostile cases (issue 56):
+/// `cargo test --release --test it celt_cost_model -- --ignored --nocapture`.
+#[test]
+#[ignore = "a measurement, run by hand"]
+fn celt_cost_model_prediction_against_measurement() {
+    use rattleback::physics::Method;
+    use rattleback::physics::celt::budget::cost_seconds;
+    use rattleback::physics::celt::run::{RunSpec, run};
+    use rattleback::physics::method::Asked;
+    use rattleback::physics::plan::{AutoPolicy, PlanRequest};
+    let mut cases: Vec<(String, rattleback::scenario::Preset)> =
+        rattleback::scenario::shipped::SHIPPED
+            .iter()
+            .filter(|(n, _)| n.starts_with("celt"))
+            .map(|(n, _)| {
+                (
+                    (*n).to_owned(),
+                    rattleback::scenario::shipped::resolve(n, &[]).unwrap(),
+                )
+            })
+            .collect();
+    for set in [
+        &["run.t_end=1e3"][..],
+        &["celt.gravity=1e7"],
+        &["initial.omega_z=1e4", "run.t_end=10"],
+        &["initial.omega_z=1e6", "run.t_end=0.1"],
+    ] {
+        let o: Vec<rattleback::scenario::preset::Override> =
+            set.iter().map(|s| s.parse().unwrap()).collect();
+        cases.push((
+            set.join(" "),
+            rattleback::scenario::shipped::resolve("celt-clockwise", &o).unwrap(),
+        ));
+    }
+    for (name, preset) in cases {
+        let Some(p) = preset.model.celt() else {
+            continue;
+        };
+        let tol = preset.run.tolerance.unwrap_or(1e-8);
+        let t_end = preset.run.t_end;
+        for method in [Method::Dop853, Method::Auto] {
+            let predicted = cost_seconds(p, &Asked::new(method, tol, None, t_end));
+            let start = std::time::Instant::now();
+            let resolution = rattleback::physics::celt::plan::resolve(
+                p,
+                &PlanRequest {
+                    method,
+                    tolerance: tol,
+                    t_end,
+                    policy: AutoPolicy::Verified,
+                    budget: 60.0,
+                },
+                &mut |_| true,
+            )
+            .unwrap();
+            let spec = RunSpec {
+                method: Method::Dop853,
+                tolerance: resolution.plan.tolerance,
+                t_end,
+                samples: 0,
+            };
+            run(p, &spec, &mut |_| true).unwrap();
+            let measured = start.elapsed().as_secs_f64();
+            println!(
+                "{name:40} {:7} predicted {predicted:9.4} s measured {measured:9.4} s ratio {:5.2}",
+                method.name(),
+                measured / predicted
+            );
+        }
+    }
+}
