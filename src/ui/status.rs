@@ -73,7 +73,10 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
     if bar.recording {
         out.push(field("● REC".to_owned(), 0));
     }
-    out.push(field(format!("t {:.2}/{}", run.shown, s.t_end), 0));
+    out.push(field(
+        format!("t {:.2}/{}", run.shown, crate::physics::Number(s.t_end)),
+        0,
+    ));
     let verified = run.verified();
     // The display has caught up with the verification ahead and waits for it.
     let waits = !run.segments.is_empty()
