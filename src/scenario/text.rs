@@ -31,17 +31,20 @@ pub fn is_plain(name: &str) -> bool {
 }
 
 fn plain(c: char) -> bool {
-    !(c.is_control()
-        || matches!(
-            c,
-            '\u{202a}'..='\u{202e}'
-                | '\u{2066}'..='\u{2069}'
-                | '\u{200b}'..='\u{200f}'
-                | '\u{061c}'
-                | '\u{feff}'
-                | '\u{2028}'
-                | '\u{2029}'
-        ))
+    !(c.is_control() || invisible(c) || matches!(c, '\u{2028}' | '\u{2029}'))
+}
+
+/// Bidirectional overrides, isolates and marks (they can make a line read backwards) and
+/// zero-width characters (they hide what is there).
+fn invisible(c: char) -> bool {
+    matches!(
+        c,
+        '\u{202a}'..='\u{202e}'
+            | '\u{2066}'..='\u{2069}'
+            | '\u{200b}'..='\u{200f}'
+            | '\u{061c}'
+            | '\u{feff}'
+    )
 }
 
 /// `text` with every control character removed but newlines and tabs (callers that lay text
@@ -55,15 +58,9 @@ pub fn clean(text: &str) -> String {
             '\u{1b}' => skip_sequence(&mut chars),
             '\n' | '\t' => out.push(c),
             c if c.is_control() => {}
-            // Bidirectional overrides, isolates and marks can make a line read backwards;
-            // zero-width characters hide what is there.
-            '\u{202a}'..='\u{202e}'
-            | '\u{2066}'..='\u{2069}'
-            | '\u{200b}'..='\u{200f}'
-            | '\u{061c}'
-            | '\u{feff}' => {}
             // Line and paragraph separators break a line as a newline does.
             '\u{2028}' | '\u{2029}' => out.push('\n'),
+            c if invisible(c) => {}
             c => out.push(c),
         }
     }
