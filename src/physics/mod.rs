@@ -34,6 +34,7 @@ pub mod params;
 pub mod plan;
 pub mod rattleback;
 pub mod scene;
+pub mod verify;
 
 pub use method::{Method, StepError};
 pub use models::{LimitView, Model, ModelKind};

@@ -17,7 +17,7 @@ pub const SECONDS_PER_EVALUATION: f64 = 5.4e-8;
 const EVALUATIONS_PER_RADIAN: f64 = 2.0;
 
 /// The rounds `auto` is predicted to take: a run at its first local tolerance and its companion,
-/// refined twice by [`super::plan::REFINE`], then the chosen run again (measured on the shipped
+/// refined twice by [`super::policy::POLICY`]'s `refine`, then the chosen run again (measured on the shipped
 /// presets and the reliability review's hostile cases, issue 56: `auto` refines two to four
 /// times; a prediction of one round was 3–5× short).
 const AUTO_ROUNDS: i32 = 3;
@@ -65,10 +65,11 @@ pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
     match method {
         Method::Dop853 | Method::Dop853Projected => one(tolerance),
         Method::Auto => {
-            let first = tolerance * super::plan::FIRST;
-            let local = |k: i32| first * super::plan::REFINE.powi(k);
+            let policy = super::policy::POLICY;
+            let first = tolerance * super::policy::FIRST;
+            let local = |k: i32| first * policy.refine.powi(k);
             (0..AUTO_ROUNDS)
-                .map(|k| one(local(k)) + one(local(k) * super::plan::COMPANION_LOOSER))
+                .map(|k| one(local(k)) + one(local(k) * policy.companion_looser))
                 .sum::<f64>()
                 + one(local(AUTO_ROUNDS - 1))
         }

@@ -20,12 +20,14 @@
 //! `M ω̇ = f` with `M = I + |r|² 1 − r rᵀ`, where `r(γ)` runs from G to the contact point.
 //!
 //! The folder: parameters and validation, the field and its invariants (here), the integrators
-//! and their events (`flows`), the headless runner (`run`), `auto` (`plan`), the cost model
-//! (`budget`) and what the layers above see (`scene`).
+//! and their events (`flows`), the headless runner (`run`), `auto` (`plan`, verifying by the one
+//! loop `physics::verify` as `policy` says), the cost model (`budget`) and what the layers above
+//! see (`scene`).
 
 pub mod budget;
 pub mod flows;
 pub mod plan;
+pub mod policy;
 pub mod run;
 pub mod scene;
 
