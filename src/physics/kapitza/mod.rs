@@ -23,6 +23,7 @@ pub mod flows;
 pub mod limit;
 pub mod phase;
 pub mod plan;
+pub mod policy;
 pub mod run;
 pub mod scene;
 pub mod taylor;

@@ -58,10 +58,12 @@
 //! false`).
 
 use super::Problem;
+use super::policy::POLICY;
 use super::run::{RunResult, RunSpec, run};
 use crate::physics::method::Asked;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::plan::Shortfall;
+use crate::physics::verify::{Candidate, Verdict, verify};
 
 /// What `auto` chose, and why.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -368,12 +370,8 @@ pub fn averaged3_gap(problem: &Problem, t_end: f64) -> Result<f64, StepError> {
     Ok(difference(&third, &second))
 }
 
-/// How much looser the companion of a resolved run is. The Taylor series' error falls faster
-/// than its tolerance (a slope of 1–1.5 in log-log), so its difference from the run is
-/// 1.1–30× the run's error on the references where rounding does not set it (16× looser, as
-/// for DOP853 before, read up to 100×; 4× looser read 0.6× the error of the held-out
-/// `returns_eps1e-2`, both runs at its rounding floor).
-pub const COMPANION_LOOSER: f64 = 8.0;
+/// How much looser the companion of a resolved run is ([`POLICY`]'s).
+pub const COMPANION_LOOSER: f64 = POLICY.companion_looser;
 /// How much looser the companion of a slow model's run is: their difference is 1.3–3× the
 /// run's integration error (`4^q − 1`, `q` 0.65–1 measured between 1e-10 and 1e-13 on the
 /// references), which keeps the estimates within about 10× of the errors.
@@ -382,10 +380,8 @@ pub const SLOW_COMPANION_LOOSER: f64 = 4.0;
 /// where `ε s` > [`THIRD_ORDER_MAX_EPS_S`], for [`verified`] to try a resolved run before the
 /// slow models (their check would only add runs).
 pub const HOPELESS: f64 = 1e3;
-/// Most refinements of a resolved run.
-pub const MAX_REFINEMENTS: usize = 4;
-/// Tightest local tolerance.
-pub const TIGHTEST: f64 = 1e-14;
+/// Tightest local tolerance ([`POLICY`]'s), of the slow models' runs too.
+pub const TIGHTEST: f64 = POLICY.tightest;
 /// How much a declined run's estimate is widened, and a met one's where rounding shows
 /// ([`MIN_CONVERGENCE`]; see [`verified`]).
 pub const NOISE_MARGIN: f64 = 3.0;
@@ -461,10 +457,10 @@ pub fn verified(
         shortfall,
         ..first
     };
-    let mut local = first.settings.tolerance;
+    let local = first.settings.tolerance;
     // The cost model may have expected `averaged2` (`averaged_expected`): the resolved run it
     // did not count is refused here rather than run past the budget.
-    let first_cost = cost(local) + cost((local * COMPANION_LOOSER).min(1e-3));
+    let first_cost = cost(local) + cost(POLICY.companion(local));
     if let Err(over) = crate::physics::budget::check(first_cost, budget) {
         // Refused, unless the averaged model's shortfall is an answer to give instead.
         let a = slow_fallback(&mut averaged, problem, tolerance, t_end, go_on)?;
@@ -476,68 +472,85 @@ pub fn verified(
             over,
         });
     }
-    let mut spent = 0.0;
-    let mut last: Option<(f64, f64)> = None;
-    for refinement in 0..=MAX_REFINEMENTS {
-        let companion = (local * COMPANION_LOOSER).min(1e-3);
-        let predicted = cost(local) + cost(companion);
-        if let Some((l, e)) = last
-            && spent + predicted > budget
-        {
-            let a = slow_fallback(&mut averaged, problem, tolerance, t_end, go_on)?;
-            return Ok(closer(at(l, e, Some(Shortfall::Time)), a));
-        }
-        spent += predicted;
-        // The two are independent: side by side where there are two cores.
-        let (there, coarse_spec) = (*problem, spec(companion));
+    let mut candidate = Resolved {
+        problem,
+        spec,
+        cost,
+        floor,
+    };
+    Ok(
+        match verify(&POLICY, &mut candidate, local, tolerance, budget, go_on)? {
+            Verdict::Met { local, estimate } => at(local, estimate, None),
+            Verdict::Time { local, measured } => {
+                let a = slow_fallback(&mut averaged, problem, tolerance, t_end, go_on)?;
+                closer(at(local, measured, Some(Shortfall::Time)), a)
+            }
+            // Declined: stalled, clamped or out of refinements. Near the rounding floor the two
+            // runs' difference under-reads either's error (an unstable motion amplifies
+            // round-off in both; measured up to 2.2× on the held-out starts), so the estimate
+            // given is NOISE_MARGIN times the larger of the last two.
+            Verdict::Declined {
+                local,
+                measured,
+                last,
+                why,
+                ..
+            } => {
+                let worst = last.map_or(measured, |(_, e)| e.max(measured));
+                let a = slow_fallback(&mut averaged, problem, tolerance, t_end, go_on)?;
+                closer(at(local, NOISE_MARGIN * worst, Some(why)), a)
+            }
+        },
+    )
+}
+
+/// The pendulum's resolved candidate: the full model by [`RESOLVED`] and its companion, side by
+/// side where there are two cores; their difference plus the rounding floor, widened where the
+/// last refinement showed rounding rather than truncation.
+struct Resolved<'a, S, C> {
+    problem: &'a Problem,
+    spec: S,
+    cost: C,
+    floor: f64,
+}
+
+impl<S: Fn(f64) -> RunSpec, C: Fn(f64) -> f64> Candidate for Resolved<'_, S, C> {
+    type Run = RunResult;
+    fn pair(
+        &mut self,
+        local: f64,
+        companion: f64,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<(RunResult, RunResult), StepError> {
+        let (here, there) = (self.problem, *self.problem);
+        let (fine_spec, coarse_spec) = ((self.spec)(local), (self.spec)(companion));
         let (fine, coarse) = crate::physics::fork::both(
             go_on,
-            |go_on| run(problem, &spec(local), go_on),
+            |go_on| run(here, &fine_spec, go_on),
             move |go_on| run(&there, &coarse_spec, go_on),
         );
-        let (fine, coarse) = (fine?, coarse?);
-        let measured = difference(&fine, &coarse) + floor;
-        // A refinement that lowered the difference much less than the tolerance (a slope
-        // below MIN_CONVERGENCE in log-log) shows rounding, not truncation, setting both runs'
-        // errors: their difference then under-reads either's (the held-out `returns_eps1e-2`,
-        // with a companion 16× looser, read 8.5e-9 for 1.1e-8 after slopes of 0.57 and 0.64),
-        // so it is widened.
+        Ok((fine?, coarse?))
+    }
+    fn measured(&self, fine: &RunResult, coarse: &RunResult) -> f64 {
+        difference(fine, coarse) + self.floor
+    }
+    // A refinement that lowered the difference much less than the tolerance (a slope below
+    // MIN_CONVERGENCE in log-log) shows rounding, not truncation, setting both runs' errors:
+    // their difference then under-reads either's (the held-out `returns_eps1e-2`, with a
+    // companion 16× looser, read 8.5e-9 for 1.1e-8 after slopes of 0.57 and 0.64), so it is
+    // widened.
+    fn estimate(&self, measured: f64, local: f64, last: Option<(f64, f64)>) -> f64 {
         let noisy =
             last.is_some_and(|(l, e)| (e / measured).ln() < MIN_CONVERGENCE * (l / local).ln());
-        let estimate = if noisy {
+        if noisy {
             NOISE_MARGIN * measured
         } else {
             measured
-        };
-        if estimate <= tolerance {
-            return Ok(at(local, estimate, None));
         }
-        // Declined: stalled, clamped or out of refinements. Near the rounding floor the two
-        // runs' difference under-reads either's error (an unstable motion amplifies round-off
-        // in both; measured up to 2.2× on the held-out starts), so the estimate given is
-        // NOISE_MARGIN times the larger of the last two.
-        let stalled = last.is_some_and(|(_, e)| measured > 0.5 * e);
-        if stalled || local <= TIGHTEST || refinement == MAX_REFINEMENTS {
-            let why = if stalled {
-                Shortfall::Floor
-            } else if local <= TIGHTEST {
-                Shortfall::Clamped
-            } else {
-                Shortfall::Refinements
-            };
-            let worst = last.map_or(measured, |(_, e)| e.max(measured));
-            let a = slow_fallback(&mut averaged, problem, tolerance, t_end, go_on)?;
-            return Ok(closer(at(local, NOISE_MARGIN * worst, Some(why)), a));
-        }
-        last = Some((local, measured));
-        let factor = if estimate.is_finite() {
-            (0.5 * tolerance / estimate).min(0.25)
-        } else {
-            1.0 / 16.0
-        };
-        local = (local * factor).max(TIGHTEST);
     }
-    unreachable!("the loop returns at its last refinement")
+    fn cost(&self, local: f64) -> f64 {
+        (self.cost)(local)
+    }
 }
 
 /// What a slow model's error is measured against in [`averaged_checked`], in words (for
