@@ -331,6 +331,16 @@ impl TimeSum {
     }
 }
 
+/// How a fast phase `t/ε` is taken where a slow model is lifted back to the full motion.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FastPhase {
+    /// Carried exactly (what runs now).
+    #[default]
+    Exact,
+    /// Rounded once to double (session files of format 7 and older).
+    Rounded,
+}
+
 /// The arithmetic rules that changed between session formats: a replay of an old file follows
 /// the ones it was recorded with, so its bits come back (`crate::record::plan_book`); everything
 /// else runs the current ones, [`Arithmetic::default`].
@@ -339,8 +349,8 @@ pub struct Arithmetic {
     /// How fixed-step methods add their steps to the time (the rattleback's; the pendulum's take
     /// the time from the step count).
     pub time_sum: TimeSum,
-    /// How the pendulum's lifts take the fast phase `t/ε`.
-    pub fast_phase: crate::physics::kapitza::FastPhase,
+    /// How a lift takes a fast phase `t/ε` (the pendulum's).
+    pub fast_phase: FastPhase,
 }
 
 impl Arithmetic {
@@ -348,7 +358,6 @@ impl Arithmetic {
     /// time up to format 5, the rounded fast phase up to format 7.
     #[must_use]
     pub fn of_format(version: u32) -> Self {
-        use crate::physics::kapitza::FastPhase;
         Self {
             time_sum: if version < 6 {
                 TimeSum::Plain

@@ -210,18 +210,6 @@ impl ParamSpec {
         }
         Ok(())
     }
-
-    /// The values of `problem` in the order of its scene's table, each checked against its row.
-    ///
-    /// # Errors
-    /// The first value outside its range.
-    pub fn checked_values(
-        problem: &impl crate::physics::scene::Posed,
-    ) -> Result<Vec<f64>, ParamError> {
-        let values = problem.values();
-        Self::check_all(problem.scene().params, &values)?;
-        Ok(values)
-    }
 }
 
 /// Refuses a problem whose inputs are finite but whose derived quantities (`derived`, each

@@ -11,7 +11,7 @@
 
 use super::flow::Flow;
 use super::method::{Method, StepError};
-use super::params::ParamSpec;
+use super::params::{ParamError, ParamSpec};
 use super::plan::{PlanRequest, Resolution};
 use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
@@ -213,6 +213,15 @@ pub trait Posed {
     fn scene(&self) -> &'static Scene;
     /// Its parameter values, in the order of [`Scene::params`].
     fn values(&self) -> Vec<f64>;
+    /// Its values, each checked against its row of its scene's table.
+    ///
+    /// # Errors
+    /// The first value outside its range.
+    fn checked_values(&self) -> Result<Vec<f64>, ParamError> {
+        let values = self.values();
+        ParamSpec::check_all(self.scene().params, &values)?;
+        Ok(values)
+    }
     /// The panel's derived lines.
     fn summary(&self) -> Vec<SummaryLine>;
     /// The slow start `(q0, q̇0)`.

@@ -22,7 +22,7 @@ use crate::physics::kapitza::{self, FastPhase, Problem, plan};
 pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::rattleback::RunSpec) -> f64 {
     // The requested run, and the limit's own run the report compares it with (cheap, except
     // when `b` makes the slow motion fast too).
-    kapitza::budget::cost_seconds(
+    kapitza::plan::predicted_seconds(
         problem,
         &Asked::new(spec.method, spec.tolerance, spec.step, spec.t_end),
     ) + kapitza::budget::cost_seconds(

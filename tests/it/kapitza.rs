@@ -413,7 +413,7 @@ fn verified_auto_takes_the_averaged_model_honestly() {
 /// the averaged check tightened, that was a refusal at T = 2000).
 #[test]
 fn autos_budget_follows_the_averaged_model() {
-    use rattleback::physics::kapitza::budget::cost_seconds;
+    use rattleback::physics::kapitza::plan::predicted_seconds as cost_seconds;
     use rattleback::physics::method::Asked;
     let at = |t_end: f64| {
         let p = Problem::new(

@@ -4,7 +4,7 @@
 //! start's `θ̇`, the tolerance and the step. Seconds are on the calibration machine (release
 //! build); `simulate`, the explorer and every replay ask it before a run starts.
 
-use super::{Problem, flows, plan};
+use super::{Problem, flows};
 use crate::physics::method::Asked;
 use crate::physics::method::Method;
 
@@ -34,27 +34,11 @@ pub fn slow_rate(problem: &Problem) -> f64 {
         .max(problem.start().theta_dot.abs())
 }
 
-/// Predicted seconds of a run of `method` (`auto` as it would resolve) over `[0, t_end]`.
+/// Predicted seconds of one run of a concrete `method` over `[0, t_end]` (`auto` is priced by
+/// `plan::predicted_seconds`, which knows what it resolves to).
 #[must_use]
 pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
     let (method, tolerance, step, t_end) = (ask.method, ask.tolerance, ask.step, ask.t_end);
-    // `auto` as it will likely resolve: the limit with its ripple (its check: it, its companion
-    // and `averaged2`; then the run), `averaged2` where that is expected to pass its check
-    // (up to five runs of the slow motion, then the run), or the a-priori resolved plan (it,
-    // its companion, then the run).
-    let (method, tolerance, runs) = if method == Method::Auto {
-        let c = plan::resolve(problem, tolerance, t_end);
-        if c.method != plan::RESOLVED {
-            (c.method, c.settings.tolerance, 4.0)
-        } else if plan::averaged_expected(problem, tolerance, t_end) {
-            (Method::Averaged2, (tolerance * 1e-4).max(1e-14), 6.0)
-        } else {
-            // The resolved run, its companion and the run again.
-            (c.method, c.settings.tolerance, 3.0)
-        }
-    } else {
-        (method, tolerance, 1.0)
-    };
     let per_tol = tolerance.max(1e-16).powf(-0.125);
     let evaluations = match method {
         Method::Effective | Method::EffectiveCorrected | Method::Averaged2 | Method::Averaged3 => {
@@ -77,7 +61,7 @@ pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
             stages * t_end / h
         }
     };
-    runs * evaluations * SECONDS_PER_EVALUATION
+    evaluations * SECONDS_PER_EVALUATION
 }
 
 #[cfg(test)]
@@ -105,7 +89,8 @@ mod tests {
         assert!(cheap < 1.0, "{cheap}");
         for hard in [problem(1.0, 1e6, 1e-3, 0.0), problem(1.0, 2.0, 1e-3, 1e9)] {
             for m in [Method::Dop853, Method::Auto] {
-                let s = cost_seconds(&hard, &Asked::new(m, 1e-8, None, 20.0));
+                let s =
+                    super::super::plan::predicted_seconds(&hard, &Asked::new(m, 1e-8, None, 20.0));
                 assert!(s > 60.0, "{m:?}: {s}");
             }
         }

@@ -33,7 +33,7 @@ pub use phase::FastPhase;
 
 use serde::Serialize;
 
-use super::params::{ParamError, ParamSpec, check_derived};
+use super::params::{ParamError, check_derived};
 
 /// The pendulum: gravity `a`, shaking amplitude `b`, fast period `2π ε`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
@@ -103,7 +103,7 @@ impl Problem {
     /// The first value outside what the model allows.
     pub fn new(params: Params, start: Start) -> Result<Self, ParamError> {
         let problem = Self { params, start };
-        ParamSpec::checked_values(&problem)?;
+        crate::physics::scene::Posed::checked_values(&problem)?;
         let p = &params;
         check_derived(
             &[

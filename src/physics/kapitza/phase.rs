@@ -20,15 +20,9 @@
 //! phase: its runs are resolved only where `t/ε` is small enough for the rounding to sit far
 //! below their tolerance, and their estimates count it (`super::plan::rounding_floor`).
 
-/// How the lifts take the fast phase `t/ε`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum FastPhase {
-    /// Carried exactly (what runs now).
-    #[default]
-    Exact,
-    /// Rounded once to double (session files of format 7 and older).
-    Rounded,
-}
+/// How the lifts take the fast phase `t/ε`: a rule of the arithmetic, declared with the
+/// others (`physics::method`); its harmonics are the pendulum's, here.
+pub use crate::physics::method::FastPhase;
 
 impl FastPhase {
     /// `(sin kτ, cos kτ)` for `k = 1 … N`, `τ = t/ε`.

@@ -392,6 +392,28 @@ pub const MIN_CONVERGENCE: f64 = 0.75;
 /// Samples of `(θ, θ̇)` compared.
 const SAMPLES: usize = 33;
 
+/// Predicted seconds of a run of `method` over `[0, t_end]`, `auto` as it would likely resolve:
+/// the limit with its ripple (its check: it, its companion and `averaged2`; then the run),
+/// `averaged2` where that is expected to pass its check (up to five runs of the slow motion,
+/// then the run), or the a-priori resolved plan (it, its companion, then the run).
+#[must_use]
+pub fn predicted_seconds(problem: &Problem, ask: &Asked) -> f64 {
+    if ask.method != Method::Auto {
+        return super::budget::cost_seconds(problem, ask);
+    }
+    let (tolerance, t_end) = (ask.tolerance, ask.t_end);
+    let c = resolve(problem, tolerance, t_end);
+    let (method, tolerance, runs) = if c.method != RESOLVED {
+        (c.method, c.settings.tolerance, 4.0)
+    } else if averaged_expected(problem, tolerance, t_end) {
+        (Method::Averaged2, (tolerance * 1e-4).max(1e-14), 6.0)
+    } else {
+        // The resolved run, its companion and the run again.
+        (c.method, c.settings.tolerance, 3.0)
+    };
+    runs * super::budget::cost_seconds(problem, &Asked::new(method, tolerance, ask.step, t_end))
+}
+
 /// The difference of two runs over their samples and final states.
 fn difference(a: &RunResult, b: &RunResult) -> f64 {
     let mut d = (a.theta - b.theta)

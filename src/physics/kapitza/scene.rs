@@ -195,7 +195,7 @@ impl Posed for Problem {
         })
     }
     fn predicted_seconds(&self, ask: &Asked) -> f64 {
-        super::budget::cost_seconds(self, ask)
+        super::plan::predicted_seconds(self, ask)
     }
     fn weak_seconds(&self, t_end: f64) -> f64 {
         // `weak::pendulum_pointwise`: DOP853 at 1e-10 and the limit at 1e-12.

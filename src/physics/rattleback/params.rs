@@ -6,7 +6,7 @@
 
 use serde::Serialize;
 
-use crate::physics::params::{ParamError, ParamSpec, check_derived};
+use crate::physics::params::{ParamError, check_derived};
 
 /// Inertia moments and Hooke constant of the body (docs/physics.md §1).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
@@ -78,7 +78,7 @@ impl Problem {
     /// The first field out of its allowed range.
     pub fn new(params: Params, start: Start) -> Result<Self, ParamError> {
         let problem = Self { params, start };
-        let values = ParamSpec::checked_values(&problem)?;
+        let values = crate::physics::scene::Posed::checked_values(&problem)?;
         let p = &params;
         let y0 = super::model::initial_state(&start);
         let inputs: Vec<(&'static str, f64)> = super::scene::PARAMS
