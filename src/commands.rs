@@ -23,34 +23,8 @@ pub fn say(text: &str) {
     say_raw(&format!("{text}\n"));
 }
 
-/// Prints cleaned text on stdout. A reader that went away (`| head`) ends the command quietly
-/// with success, as `simulate`'s streamed output does; any other write error ends it with one
-/// line and exit 1. The first failed write is kept (later ones are skipped) for `main`'s exit
-/// decision ([`crate::failure::exit`] asks [`stdout_failure`]).
-pub fn say_raw(text: &str) {
-    use std::io::Write as _;
-    if STDOUT_FAILED.get().is_some() {
-        return;
-    }
-    let text = crate::scenario::text::shown(text);
-    if let Err(e) = std::io::stdout().lock().write_all(text.as_bytes()) {
-        let _ = STDOUT_FAILED.set((e.kind(), e.to_string()));
-    }
-}
+pub use crate::failure::{say_raw, stdout_failure};
 
-/// The first failed write on stdout through [`say_raw`].
-static STDOUT_FAILED: std::sync::OnceLock<(std::io::ErrorKind, String)> =
-    std::sync::OnceLock::new();
-
-/// How a failed write on stdout ends the command, if one failed: a closed pipe ends it with
-/// success and nothing said; any other error with exit 1.
-#[must_use]
-pub fn stdout_failure() -> Option<crate::failure::Outcome> {
-    STDOUT_FAILED.get().map(|(kind, e)| match kind {
-        std::io::ErrorKind::BrokenPipe => Ok(()),
-        _ => Err(Failure::failed(format!("writing to standard output: {e}"))),
-    })
-}
 macro_rules! say_err {
     ($($t:tt)*) => { $crate::scenario::text::warn(&format!($($t)*)) };
 }
@@ -292,7 +266,11 @@ pub fn doctor(args: &crate::cli::DoctorArgs) -> Outcome {
         color_flag: look.color.name(),
         marker: look.marker.map(crate::cli::MarkerChoice::name),
     };
-    let d = crate::doctor::diagnose(&asked, load_config().map(|(c, _)| c));
+    let d = crate::doctor::diagnose(
+        &asked,
+        load_config().map(|(c, _)| c),
+        crate::outputs::SCHEMA_VERSION,
+    );
     let text = match args.format {
         ListFormat::Json => json_text(&d),
         ListFormat::Table => crate::scenario::text::shown(&d.table()),
@@ -313,7 +291,7 @@ pub fn man() -> Outcome {
 /// Whether work goes on: no signal has come, and standard output still takes what is printed
 /// (a reader gone away, `| head`, ends the work; `main` then exits as [`stdout_failure`] says).
 fn go_on() -> bool {
-    crate::interrupt::requested().is_none() && STDOUT_FAILED.get().is_none()
+    crate::interrupt::requested().is_none() && stdout_failure().is_none()
 }
 
 /// Runs `work` with a progress bar of `total` `unit`s on stderr (a terminal only), counting

@@ -126,9 +126,14 @@ pub struct Asked {
 
 /// Looks at the environment, the terminal and the configuration.
 #[must_use]
-/// `loaded` is the configuration as every command reads it (`--config FILE` already in
+/// `schema_version` is the outputs' (`crate::outputs::SCHEMA_VERSION`, given by the command
+/// layer: the outputs' schemas include this one's). `loaded` is the configuration as every command reads it (`--config FILE` already in
 /// effect), or every problem it has, as the commands would refuse it.
-pub fn diagnose(asked: &Asked, loaded: Result<Config, Vec<String>>) -> Diagnosis {
+pub fn diagnose(
+    asked: &Asked,
+    loaded: Result<Config, Vec<String>>,
+    schema_version: u32,
+) -> Diagnosis {
     let var = |name: &str| std::env::var(name).ok();
     let (config, config_status) = match loaded {
         Ok(c) if c.path.is_some() => (c, "valid".to_owned()),
@@ -186,7 +191,7 @@ pub fn diagnose(asked: &Asked, loaded: Result<Config, Vec<String>>) -> Diagnosis
     };
     let config_dir = shipped::config_dir();
     Diagnosis {
-        schema_version: crate::outputs::SCHEMA_VERSION,
+        schema_version,
         model: None,
         version: format!("rattleback {}", env!("CARGO_PKG_VERSION")),
         platform: format!("{} {}", std::env::consts::OS, std::env::consts::ARCH),

@@ -110,9 +110,38 @@ impl Failure {
 /// output decides first (a closed pipe is success: the reader had what it wanted).
 #[must_use]
 pub fn exit(outcome: Outcome) -> ExitCode {
-    crate::commands::stdout_failure()
+    stdout_failure()
         .unwrap_or(outcome)
         .map_or_else(Failure::exit, |()| ExitCode::SUCCESS)
+}
+
+/// Prints cleaned text on stdout. A reader that went away (`| head`) ends the command quietly
+/// with success, as `simulate`'s streamed output does; any other write error ends it with one
+/// line and exit 1. The first failed write is kept (later ones are skipped) for `main`'s exit
+/// decision ([`exit`] asks [`stdout_failure`]).
+pub fn say_raw(text: &str) {
+    use std::io::Write as _;
+    if STDOUT_FAILED.get().is_some() {
+        return;
+    }
+    let text = crate::scenario::text::shown(text);
+    if let Err(e) = std::io::stdout().lock().write_all(text.as_bytes()) {
+        let _ = STDOUT_FAILED.set((e.kind(), e.to_string()));
+    }
+}
+
+/// The first failed write on stdout through [`say_raw`].
+static STDOUT_FAILED: std::sync::OnceLock<(std::io::ErrorKind, String)> =
+    std::sync::OnceLock::new();
+
+/// How a failed write on stdout ends the command, if one failed: a closed pipe ends it with
+/// success and nothing said; any other error with exit 1.
+#[must_use]
+pub fn stdout_failure() -> Option<Outcome> {
+    STDOUT_FAILED.get().map(|(kind, e)| match kind {
+        std::io::ErrorKind::BrokenPipe => Ok(()),
+        _ => Err(Failure::failed(format!("writing to standard output: {e}"))),
+    })
 }
 
 #[cfg(test)]
