@@ -13,7 +13,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError, TryRecvError};
 use std::time::Duration;
 
-use super::engine::Planner;
+use super::planner::Planner;
 use super::{Point, Session, SessionSpec, SimEvent};
 use crate::physics::StepError;
 use crate::physics::method::Asked;
@@ -324,7 +324,7 @@ impl Job for PartnerJob {
                 Err(e) => Slice::after(
                     sink(SimEvent::Job {
                         stamp: id,
-                        data: JobData::Partner(Err(super::engine::refusal(&spec, &e))),
+                        data: JobData::Partner(Err(super::planner::refusal(&spec, &e))),
                     }),
                     Slice::Done,
                 ),

@@ -9,12 +9,14 @@
 
 mod engine;
 pub mod jobs;
+mod planner;
 pub mod segments;
 mod session;
 mod worker;
 
-pub use engine::{Engine, PlanBook, PlanKey, Planner, drive};
+pub use engine::{Engine, drive};
 pub use jobs::{JobData, JobKind, JobSpec};
+pub use planner::{PlanBook, PlanKey, Planner};
 pub use session::{MAX_GRID_SAMPLES, Point, Segment, Session, SessionSpec, grid_spacing};
 pub use worker::Worker;
 

@@ -315,11 +315,11 @@ fn no_old_paths_and_no_model_reexports() {
 /// Issue 25: each model describes itself once (its folder's `scene.rs`); outside `physics/`
 /// only the files the recipe in docs/architecture.md lists name a model's variant: the report
 /// (`simulate/`, whose JSON sections are a contract) and the recorded plan key
-/// (`sim/engine.rs`). The benchmarks measure one model each and may name it. Tests inside a
+/// (`sim/planner.rs`). The benchmarks measure one model each and may name it. Tests inside a
 /// file (`#[cfg(test)]`) are left out.
 #[test]
 fn a_model_is_dispatched_in_few_places() {
-    let allowed = ["simulate/mod.rs", "simulate/kapitza.rs", "sim/engine.rs"];
+    let allowed = ["simulate/mod.rs", "simulate/kapitza.rs", "sim/planner.rs"];
     let variants = [
         "Model::Rattleback",
         "Model::Kapitza",
