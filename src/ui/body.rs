@@ -13,7 +13,7 @@ use ratatui::text::Line as TextLine;
 use ratatui::widgets::Widget;
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 
-use super::legend::{Facts, Section, curve, printed};
+use super::marks::{Facts, Section, curve, printed};
 use super::{Look, framed};
 use crate::app::RunState;
 use crate::physics::scene::SideView;

@@ -10,7 +10,7 @@ use ratatui::text::{Line as TextLine, Span};
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 use ratatui::widgets::{Paragraph, Widget};
 
-use super::legend::{Facts, Section, curve};
+use super::marks::{Facts, Section, curve};
 use super::portrait::{resolution, short, y_labels};
 use super::series::MARKS;
 use super::{Look, framed};

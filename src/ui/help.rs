@@ -8,7 +8,8 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
 
 use super::Look;
-use super::legend::{self, Facts};
+use super::legend;
+use super::marks::Facts;
 use crate::app::keys::{Binding, KEYMAP, REPLAY_KEYMAP};
 use crate::app::mode::{Help, HelpPage};
 use crate::app::user_keys::key_label;

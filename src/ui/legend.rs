@@ -5,100 +5,12 @@
 //! mark is the character the terminal is sent (Braille samples, or one character per curve on
 //! the console and in ASCII), its text spelled for the character set (`k -> inf` in ASCII).
 
-use ratatui::style::{Color, Modifier, Style};
-use ratatui::symbols::Marker;
+use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 
 use super::Look;
+use super::marks::{Facts, Section};
 use crate::app::panes::Pane;
-use crate::physics::{LimitView, ModelKind};
-
-/// One mark and what it means.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Mark {
-    /// The characters as drawn (already in the character set).
-    pub glyph: String,
-    /// Its colour.
-    pub colour: Color,
-    /// What it means (spelled when the legend is laid out).
-    pub what: String,
-}
-
-/// What one pane (or the status bar) draws.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Section {
-    /// The pane's name and key.
-    pub title: String,
-    /// Its marks.
-    pub marks: Vec<Mark>,
-    /// Lines of text (the status bar's fields, the axes).
-    pub notes: Vec<String>,
-}
-
-impl Section {
-    /// An empty section titled `title`.
-    #[must_use]
-    pub fn new(title: impl Into<String>) -> Self {
-        Self {
-            title: title.into(),
-            marks: Vec::new(),
-            notes: Vec::new(),
-        }
-    }
-
-    /// Adds a mark.
-    #[must_use]
-    pub fn mark(
-        mut self,
-        glyph: impl Into<String>,
-        colour: Color,
-        what: impl Into<String>,
-    ) -> Self {
-        self.marks.push(Mark {
-            glyph: glyph.into(),
-            colour,
-            what: what.into(),
-        });
-        self
-    }
-
-    /// Adds a line of text.
-    #[must_use]
-    pub fn note(mut self, text: impl Into<String>) -> Self {
-        self.notes.push(text.into());
-        self
-    }
-}
-
-/// What a scene's legend depends on.
-#[derive(Clone, Copy, Debug)]
-pub struct Facts<'a> {
-    /// The scene.
-    pub kind: ModelKind,
-    /// What the portrait draws of its limit (the levels and separatrices there are).
-    pub limit: &'a LimitView,
-    /// The body pane draws the body from the side too (the celt).
-    pub side: bool,
-    /// The panel's derived lines.
-    pub summary: &'a [crate::physics::scene::SummaryLine],
-}
-
-/// A curve's mark: with one point per cell, its own character in the set in use; else a sample
-/// of what the marker draws (Braille dots, half blocks) in the given pattern.
-#[must_use]
-pub fn curve(look: &Look<'_>, cell: char, braille: &str, halfblock: &str) -> String {
-    match look.marker {
-        Marker::Braille => braille.to_owned(),
-        Marker::HalfBlock => halfblock.to_owned(),
-        _ => look.charset.mark(cell).to_string(),
-    }
-}
-
-/// A mark printed as text (not a canvas point), in the set in use.
-#[must_use]
-pub fn printed(look: &Look<'_>, c: char) -> String {
-    look.charset.mark(c).to_string()
-}
 
 /// The sections of the scene's legend: the portrait, then every pane the scene offers, then the
 /// status bar.

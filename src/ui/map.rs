@@ -11,7 +11,7 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::Line as TextLine;
 use ratatui::widgets::{Paragraph, Widget};
 
-use super::legend::{Facts, Section, printed};
+use super::marks::{Facts, Section, printed};
 use super::{Look, framed};
 use crate::app::computed::map::{MapSource, MapState};
 use crate::study::map::Source;

@@ -28,6 +28,7 @@ pub mod help;
 pub mod legend;
 mod lesson;
 mod map;
+pub mod marks;
 mod params;
 mod portrait;
 mod series;
@@ -271,9 +272,9 @@ fn key_of(b: &crate::app::keys::Binding<crate::app::Action>) -> String {
 #[must_use]
 pub fn pane_legend(
     pane: Pane,
-    facts: &legend::Facts<'_>,
+    facts: &marks::Facts<'_>,
     look: &Look<'_>,
-) -> Option<legend::Section> {
+) -> Option<marks::Section> {
     Some(match pane {
         Pane::Series => series::legend(facts, look),
         Pane::Sweep => sweep::legend(facts, look),

@@ -8,7 +8,7 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Widget, Wrap};
 
-use super::legend::{Facts, Section};
+use super::marks::{Facts, Section};
 use super::{Look, title};
 use crate::app::Scenario;
 use crate::app::fields::{Field, format_number};

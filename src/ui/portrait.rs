@@ -16,7 +16,7 @@ use ratatui::text::{Line as TextLine, Span};
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 use ratatui::widgets::{Paragraph, StatefulWidget, Widget};
 
-use super::legend::{Facts, Section, curve, printed};
+use super::marks::{Facts, Section, curve, printed};
 use super::{Look, framed};
 use crate::app::fields::{Settings, format_number};
 use crate::app::portrait::{

@@ -9,7 +9,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 use ratatui::widgets::{Paragraph, Widget};
 
-use super::legend::{Facts, Section, curve, printed};
+use super::marks::{Facts, Section, curve, printed};
 use super::portrait::{resolution, y_labels};
 use super::{Look, framed};
 use crate::app::RunState;

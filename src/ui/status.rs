@@ -8,7 +8,7 @@ use ratatui::style::{Modifier, Style};
 use ratatui::widgets::{Paragraph, Widget};
 
 use super::Look;
-use super::legend::{Facts, Section};
+use super::marks::{Facts, Section};
 use crate::app::fields::Settings;
 use crate::app::{PlanState, ReplayInfo, RunState};
 

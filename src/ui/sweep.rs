@@ -9,7 +9,7 @@ use ratatui::text::Line as TextLine;
 use ratatui::widgets::canvas::{Canvas, Line};
 use ratatui::widgets::{Paragraph, Widget};
 
-use super::legend::{Facts, Section, curve, printed};
+use super::marks::{Facts, Section, curve, printed};
 use super::{Look, framed};
 use crate::app::computed::sweep::SweepState;
 use crate::physics::ModelKind;

@@ -11,7 +11,7 @@ use ratatui::text::Line as TextLine;
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 use ratatui::widgets::{Paragraph, Widget};
 
-use super::legend::{Facts, Section, curve};
+use super::marks::{Facts, Section, curve};
 use super::portrait::resolution;
 use super::{Look, framed};
 use crate::app::computed::weak::WeakState;

@@ -135,7 +135,7 @@ fn marks(h: &Headless, pane: Pane, charset: Charset) -> BTreeSet<char> {
     let options = options(charset);
     let look = options.look(0);
     let model = &h.app.scenario.settings.model;
-    let facts = ui::legend::Facts {
+    let facts = ui::marks::Facts {
         kind: model.kind(),
         limit: &h.app.scenario.derived.limit,
         side: model.side_view().is_some(),
