@@ -145,11 +145,43 @@ pub struct Binding<A: 'static> {
     pub footer: Option<(&'static str, &'static str, u8)>,
 }
 
+/// A pane's row in the keymap, when a key shows and hides it (an empty `label` folds the row
+/// into the one above in help).
+#[must_use]
+pub fn pane_binding(pane: Pane) -> Option<Binding<Action>> {
+    let row = |key: &'static [Key], label, help, footer| Binding {
+        keys: key,
+        label,
+        action: Action::Toggle(pane),
+        help,
+        footer: Some(footer),
+    };
+    match pane {
+        Pane::Series => Some(row(&[Key::Char('t')], "", "", ("t", "series", 7))),
+        Pane::Sweep => Some(row(
+            &[Key::Char('K')],
+            "K W M B / < >",
+            "k-sweep / weak-* / map / body panes; < > window",
+            ("K", "sweep", 10),
+        )),
+        Pane::Weak => Some(row(&[Key::Char('W')], "", "", ("W", "weak-*", 10))),
+        Pane::Body => Some(row(&[Key::Char('B')], "", "", ("B", "body", 10))),
+        Pane::Compare => Some(row(
+            &[Key::Char('C')],
+            "C",
+            "compare with a partner on one time axis",
+            ("C", "compare", 9),
+        )),
+        Pane::Map => Some(row(&[Key::Char('M')], "", "", ("M", "map", 10))),
+        Pane::Params | Pane::Portrait | Pane::Lesson => None,
+    }
+}
+
 /// The keymap, in the order help lists it: the panes' toggles (each pane's row is in
-/// [`Pane::binding`]) between the rows before and after them.
+/// [`pane_binding`]) between the rows before and after them.
 pub static KEYMAP: std::sync::LazyLock<Vec<Binding<Action>>> = std::sync::LazyLock::new(|| {
     let mut rows = BEFORE_PANES.to_vec();
-    rows.extend(Pane::KEYED.into_iter().filter_map(Pane::binding));
+    rows.extend(Pane::KEYED.into_iter().filter_map(pane_binding));
     rows.extend_from_slice(AFTER_PANES);
     rows
 });

@@ -1,8 +1,6 @@
 //! The panes of the explorer as a closed set with a visible set: the layout is computed from
 //! the set, so a new pane is one variant, not a new branch per combination.
 
-use super::keys::{Action, Binding, Key};
-
 /// A pane of the main area. Its name in a recorded layout (and a lesson's `pane`) is the
 /// variant's in snake case: a file format, so never rename one.
 #[derive(
@@ -63,38 +61,6 @@ impl Pane {
         Self::Compare,
         Self::Map,
     ];
-
-    /// Its row in the keymap, when a key shows and hides it (an empty `label` folds the row
-    /// into the one above in help).
-    #[must_use]
-    pub fn binding(self) -> Option<Binding<Action>> {
-        let row = |key: &'static [Key], label, help, footer| Binding {
-            keys: key,
-            label,
-            action: Action::Toggle(self),
-            help,
-            footer: Some(footer),
-        };
-        match self {
-            Self::Series => Some(row(&[Key::Char('t')], "", "", ("t", "series", 7))),
-            Self::Sweep => Some(row(
-                &[Key::Char('K')],
-                "K W M B / < >",
-                "k-sweep / weak-* / map / body panes; < > window",
-                ("K", "sweep", 10),
-            )),
-            Self::Weak => Some(row(&[Key::Char('W')], "", "", ("W", "weak-*", 10))),
-            Self::Body => Some(row(&[Key::Char('B')], "", "", ("B", "body", 10))),
-            Self::Compare => Some(row(
-                &[Key::Char('C')],
-                "C",
-                "compare with a partner on one time axis",
-                ("C", "compare", 9),
-            )),
-            Self::Map => Some(row(&[Key::Char('M')], "", "", ("M", "map", 10))),
-            Self::Params | Self::Portrait | Self::Lesson => None,
-        }
-    }
 
     /// Share of the right-hand column's height (the parameter panel has its own column).
     #[must_use]
@@ -338,12 +304,12 @@ mod tests {
     #[test]
     fn a_pane_a_key_shows_has_its_row_its_toggle_name_and_its_place_in_the_keymap() {
         for p in Pane::ALL {
-            let row = p.binding();
+            let row = super::super::keys::pane_binding(p);
             assert_eq!(row.is_some(), p.toggle_name().is_some(), "{p:?}");
             let listed = Pane::KEYED.iter().filter(|k| **k == p).count();
             assert_eq!(listed, usize::from(row.is_some()), "{p:?} in KEYED");
             if let Some(row) = row {
-                assert_eq!(row.action, Action::Toggle(p));
+                assert_eq!(row.action, super::super::keys::Action::Toggle(p));
             }
         }
     }

@@ -231,7 +231,7 @@ fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, c
     if let Some((line, hidden)) = layout.hidden {
         let names: Vec<String> = hidden
             .iter()
-            .map(|p| match p.binding() {
+            .map(|p| match crate::app::keys::pane_binding(*p) {
                 Some(b) => format!("{} {}", p.key(), key_of(&b)),
                 None => p.key(),
             })

@@ -871,7 +871,7 @@ fn every_lesson_step_reads_whole_at_80x24() {
                 .pane
                 .as_deref()
                 .and_then(rattleback::app::panes::Pane::named)
-                && let Some(b) = pane.binding()
+                && let Some(b) = rattleback::app::keys::pane_binding(pane)
             {
                 let key = format!("({})", rattleback::app::user_keys::key_label(b.keys[0]));
                 assert!(
