@@ -245,7 +245,7 @@ pub struct Shown {
     pub crossings: Option<usize>,
     /// What the compare pane showed of its partner, when it was open.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub compare: Option<super::computed::compare::Compared>,
+    pub compare: Option<Compared>,
     /// The displayed point: the slow coordinate, its rate and the energy error (none before the
     /// first sample).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -255,6 +255,23 @@ pub struct Shown {
     /// `auto`'s error estimate shown.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub estimate: Option<f64>,
+}
+
+/// What the compare pane showed of the partner at a displayed time (part of a recorded
+/// screen).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Compared {
+    /// The partner's preset name.
+    pub partner: String,
+    /// Its reversals shown.
+    pub events: usize,
+    /// Its second events shown (the celt's crossings), when its model has them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crossings: Option<usize>,
+    /// Its spin at the displayed time (none before its first sample, or when it failed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spin: Option<f64>,
 }
 
 impl Shown {

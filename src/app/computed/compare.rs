@@ -7,10 +7,8 @@
 //! not) and shown up to the displayed time, so what the pane shows depends on the displayed
 //! time only, never on how far the worker got: a recording and its replay show the same.
 
-use serde::{Deserialize, Serialize};
-
 use super::{ComputedPane, Cx};
-use crate::app::journal::Event;
+use crate::app::journal::{Compared, Event};
 use crate::app::panes::Pane;
 use crate::app::{App, Effect, Message, Scenario};
 use crate::scenario::Preset;
@@ -38,23 +36,6 @@ pub struct CompareState {
     id: u64,
     /// The partner's run, or why it failed; `None` while it is computed.
     pub outcome: Option<Result<Box<PartnerRun>, String>>,
-}
-
-/// What the compare pane showed of the partner at a displayed time (part of a recorded
-/// screen).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct Compared {
-    /// The partner's preset name.
-    pub partner: String,
-    /// Its reversals shown.
-    pub events: usize,
-    /// Its second events shown (the celt's crossings), when its model has them.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub crossings: Option<usize>,
-    /// Its spin at the displayed time (none before its first sample, or when it failed).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub spin: Option<f64>,
 }
 
 impl CompareState {
