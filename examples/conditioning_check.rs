@@ -20,9 +20,9 @@
 //! `… conditioning_check limit` reads each family once on the effective limit (three separate
 //! runs) against `averaged2`'s readings at every `k`: up to 466× apart, and dearer.
 
+use rattleback::physics::method::Method;
 use rattleback::physics::rattleback::auto::{difference, slow_condition_numbers};
 use rattleback::physics::rattleback::averaged::expansion_parameter;
-use rattleback::physics::rattleback::integrators::Method;
 use rattleback::physics::rattleback::run::{RunSpec, run};
 use rattleback::physics::rattleback::{Params, Problem, Start};
 fn main() {

@@ -1,49 +1,7 @@
 //! Keys, actions and the keymap tables (the explorer's and the replay's). The help overlay and
 //! the footers are generated from the tables, so they always list the actual bindings.
 
-/// A key press, independent of the terminal library.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Key {
-    /// A printable character (shifted letters arrive upper-case).
-    Char(char),
-    /// Arrow up.
-    Up,
-    /// Arrow down.
-    Down,
-    /// Arrow left.
-    Left,
-    /// Arrow right.
-    Right,
-    /// Shift + arrow up.
-    ShiftUp,
-    /// Shift + arrow down.
-    ShiftDown,
-    /// Shift + arrow left.
-    ShiftLeft,
-    /// Shift + arrow right.
-    ShiftRight,
-    /// Enter.
-    Enter,
-    /// Escape.
-    Esc,
-    /// Backspace.
-    Backspace,
-    /// Page up.
-    PageUp,
-    /// Page down.
-    PageDown,
-    /// Home.
-    Home,
-    /// End.
-    End,
-    /// Tab.
-    Tab,
-    /// A letter with Ctrl (lower case): Ctrl-C, Ctrl-L, Ctrl-Z…
-    Ctrl(char),
-    /// A character with Alt (Meta).
-    Alt(char),
-}
-
+pub use super::key::{Binding, Key};
 use super::panes::Pane;
 
 /// What a key asks for.
@@ -130,51 +88,16 @@ pub enum Action {
     ShowMessages,
 }
 
-/// One row of a keymap.
-#[derive(Clone, Copy, Debug)]
-pub struct Binding<A: 'static> {
-    /// Keys that trigger it.
-    pub keys: &'static [Key],
-    /// How the keys are written in help.
-    pub label: &'static str,
-    /// The action.
-    pub action: A,
-    /// What it does.
-    pub help: &'static str,
-    /// In the footer: `(keys, word, rank)`; lower ranks are dropped last when it is narrow.
-    pub footer: Option<(&'static str, &'static str, u8)>,
-}
-
-/// A pane's row in the keymap, when a key shows and hides it (an empty `label` folds the row
-/// into the one above in help).
+/// A pane's row in the keymap ([`Pane::binding`]), its action the pane's toggle.
 #[must_use]
 pub fn pane_binding(pane: Pane) -> Option<Binding<Action>> {
-    let row = |key: &'static [Key], label, help, footer| Binding {
-        keys: key,
-        label,
-        action: Action::Toggle(pane),
-        help,
-        footer: Some(footer),
-    };
-    match pane {
-        Pane::Series => Some(row(&[Key::Char('t')], "", "", ("t", "series", 7))),
-        Pane::Sweep => Some(row(
-            &[Key::Char('K')],
-            "K W M B / < >",
-            "k-sweep / weak-* / map / body panes; < > window",
-            ("K", "sweep", 10),
-        )),
-        Pane::Weak => Some(row(&[Key::Char('W')], "", "", ("W", "weak-*", 10))),
-        Pane::Body => Some(row(&[Key::Char('B')], "", "", ("B", "body", 10))),
-        Pane::Compare => Some(row(
-            &[Key::Char('C')],
-            "C",
-            "compare with a partner on one time axis",
-            ("C", "compare", 9),
-        )),
-        Pane::Map => Some(row(&[Key::Char('M')], "", "", ("M", "map", 10))),
-        Pane::Params | Pane::Portrait | Pane::Lesson => None,
-    }
+    pane.binding().map(|b| Binding {
+        keys: b.keys,
+        label: b.label,
+        action: Action::Toggle(b.action),
+        help: b.help,
+        footer: b.footer,
+    })
 }
 
 /// The keymap, in the order help lists it: the panes' toggles (each pane's row is in

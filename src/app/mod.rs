@@ -11,6 +11,7 @@ pub mod computed;
 pub mod effects;
 pub mod fields;
 pub mod journal;
+pub mod key;
 pub mod keys;
 pub mod lesson;
 pub mod mode;

@@ -1,6 +1,8 @@
 //! The panes of the explorer as a closed set with a visible set: the layout is computed from
 //! the set, so a new pane is one variant, not a new branch per combination.
 
+use super::key::{Binding, Key};
+
 /// A pane of the main area. Its name in a recorded layout (and a lesson's `pane`) is the
 /// variant's in snake case: a file format, so never rename one.
 #[derive(
@@ -61,6 +63,39 @@ impl Pane {
         Self::Compare,
         Self::Map,
     ];
+
+    /// Its row in the keymap, when a key shows and hides it (an empty `label` folds the row
+    /// into the one above in help); its action is the pane (the keymap toggles it:
+    /// `keys::pane_binding`).
+    #[must_use]
+    pub fn binding(self) -> Option<Binding<Self>> {
+        let row = |key: &'static [Key], label, help, footer| Binding {
+            keys: key,
+            label,
+            action: self,
+            help,
+            footer: Some(footer),
+        };
+        match self {
+            Self::Series => Some(row(&[Key::Char('t')], "", "", ("t", "series", 7))),
+            Self::Sweep => Some(row(
+                &[Key::Char('K')],
+                "K W M B / < >",
+                "k-sweep / weak-* / map / body panes; < > window",
+                ("K", "sweep", 10),
+            )),
+            Self::Weak => Some(row(&[Key::Char('W')], "", "", ("W", "weak-*", 10))),
+            Self::Body => Some(row(&[Key::Char('B')], "", "", ("B", "body", 10))),
+            Self::Compare => Some(row(
+                &[Key::Char('C')],
+                "C",
+                "compare with a partner on one time axis",
+                ("C", "compare", 9),
+            )),
+            Self::Map => Some(row(&[Key::Char('M')], "", "", ("M", "map", 10))),
+            Self::Params | Self::Portrait | Self::Lesson => None,
+        }
+    }
 
     /// Share of the right-hand column's height (the parameter panel has its own column).
     #[must_use]

@@ -18,8 +18,8 @@ use serde::Serialize;
 
 use super::best_of;
 
+use crate::physics::method::Method;
 use crate::physics::rattleback::auto::{memo, run_auto};
-use crate::physics::rattleback::integrators::Method;
 use crate::physics::rattleback::run::RunResult;
 use crate::physics::rattleback::{Params, Problem, Start, run};
 

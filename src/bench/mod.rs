@@ -18,8 +18,8 @@ use std::time::Instant;
 
 use serde::Serialize;
 
+use crate::physics::method::Method;
 use crate::physics::rattleback::auto::run_auto;
-use crate::physics::rattleback::integrators::Method;
 use crate::physics::rattleback::run::RunResult;
 use crate::physics::rattleback::{Params, Problem, RunSpec, Start, run};
 

@@ -9,8 +9,8 @@ use std::time::Instant;
 
 use serde::Serialize;
 
+use crate::physics::method::Method;
 use crate::physics::plan::{AutoPolicy, PlanRequest};
-use crate::physics::rattleback::integrators::Method;
 use crate::scenario::preset::Override;
 use crate::sim::segments::horizons;
 

@@ -7,9 +7,9 @@ use std::time::Instant;
 use serde::Serialize;
 
 use super::{Config, case};
+use crate::physics::method::Method;
 use crate::physics::rattleback::auto::run_auto;
 use crate::physics::rattleback::effective::Effective;
-use crate::physics::rattleback::integrators::Method;
 use crate::physics::rattleback::model::{initial_state, transverse_energy};
 use crate::physics::rattleback::run::RunResult;
 use crate::physics::rattleback::{Params, Problem, RunSpec, State, run};

@@ -9,8 +9,8 @@ use super::jobs::{Job, JobKind, Running, Taken};
 use super::planner::{PlanBook, Planner, refusal};
 use super::segments::{Ahead, Forward, Next, Progress, Report};
 use super::{Command, Session, SessionSpec, SimEvent};
-use crate::physics::rattleback::integrators::{Method, StepError};
-
+use crate::physics::method::Method;
+use crate::physics::method::StepError;
 /// The worker's state between commands.
 pub struct Engine {
     planner: Planner,

@@ -17,8 +17,8 @@ use super::planner::Planner;
 use super::{Point, Session, SessionSpec, SimEvent};
 use crate::physics::StepError;
 use crate::physics::method::Asked;
+use crate::physics::method::Method;
 use crate::physics::plan::Resolved;
-use crate::physics::rattleback::integrators::Method;
 use crate::study::map::{Source, cells_in_parallel};
 use crate::study::sweep::{ladder, limit_curve, rung};
 

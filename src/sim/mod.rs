@@ -20,9 +20,8 @@ pub use planner::{PlanBook, PlanKey, Planner};
 pub use session::{MAX_GRID_SAMPLES, Point, Segment, Session, SessionSpec, grid_spacing};
 pub use worker::Worker;
 
+use crate::physics::method::Method;
 use crate::physics::plan::Resolved;
-use crate::physics::rattleback::integrators::Method;
-
 /// UI to worker.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Command {

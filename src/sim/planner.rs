@@ -6,9 +6,10 @@ use serde::{Deserialize, Serialize};
 
 use super::{Session, SessionSpec};
 use crate::physics::Model;
+use crate::physics::method::Method;
+use crate::physics::method::StepError;
 use crate::physics::method::{Arithmetic, Asked};
 use crate::physics::plan::{AutoPolicy, Resolved};
-use crate::physics::rattleback::integrators::{Method, StepError};
 use crate::physics::rattleback::{Params, Start};
 use crate::physics::{celt, kapitza};
 

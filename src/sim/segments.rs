@@ -22,9 +22,8 @@ use std::sync::mpsc::{self, Receiver, Sender, TryRecvError};
 
 use super::session::Segment;
 use super::{PlanBook, PlanKey, SessionSpec};
+use crate::physics::method::StepError;
 use crate::physics::plan::Resolved;
-use crate::physics::rattleback::integrators::StepError;
-
 /// The longest first segment: a run at most this long is verified in one piece (every shipped
 /// preset is).
 pub const FIRST_SEGMENT: f64 = 64.0;

@@ -12,9 +12,10 @@ use serde::{Deserialize, Serialize};
 use super::SimEvent;
 use crate::physics::Model;
 use crate::physics::flow::{EventTracker, Flow};
+use crate::physics::method::Method;
+use crate::physics::method::Settings;
+use crate::physics::method::StepError;
 use crate::physics::plan::Resolved;
-use crate::physics::rattleback::integrators::{Method, Settings, StepError};
-
 /// What a session runs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SessionSpec {

@@ -19,12 +19,12 @@ use serde::Serialize;
 
 use crate::physics::StepError;
 use crate::physics::budget::{self, BUDGET_SECONDS};
+use crate::physics::method::Method;
 use crate::physics::rattleback::RunSpec;
 use crate::physics::rattleback::auto::{Shortfall, run_auto_cancellable};
 use crate::physics::rattleback::averaged::Averaged2;
 use crate::physics::rattleback::budget::cost_seconds;
 use crate::physics::rattleback::effective::{Effective, tapping_acceleration};
-use crate::physics::rattleback::integrators::Method;
 use crate::physics::rattleback::model::energy;
 use crate::physics::rattleback::plan;
 use crate::physics::rattleback::run::{RunResult, run_cancellable, run_streaming};

@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
-use rattleback::physics::rattleback::integrators::Method;
+use rattleback::physics::method::Method;
 use rattleback::scenario::shipped::resolve;
 use rattleback::sim::segments::{FIRST_SEGMENT, horizons};
 use rattleback::sim::{Command, Engine, PlanBook, SessionSpec, SimEvent, Worker, drive};

@@ -266,8 +266,7 @@ impl ComputedPane for MapState {
 #[allow(clippy::float_cmp)] // exact values are copied, not computed
 mod tests {
     use super::*;
-    use crate::physics::rattleback::integrators::Method;
-
+    use crate::physics::method::Method;
     fn settings() -> Settings {
         let params = Params {
             ix: 1.0,

@@ -10,9 +10,11 @@
 //! methods within 0.8–3× on every shipped preset; `auto` as planned within 3×, its
 //! refinements are checked one by one as they come). Pure: no clock.
 
-use super::integrators::{Method, default_step};
+use super::integrators::default_step;
+
 use super::params::Problem;
 use crate::physics::method::Asked;
+use crate::physics::method::Method;
 
 /// Nanoseconds per right-hand-side evaluation of the full model (DOP853, RK4).
 pub const NS_DOP853_EVAL: f64 = 36.0;

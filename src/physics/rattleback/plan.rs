@@ -8,10 +8,11 @@
 
 use super::auto;
 use super::budget;
-use super::integrators::{Method, StepError};
 use super::params::Problem;
 use super::run::RunSpec;
 use crate::physics::method::Asked;
+use crate::physics::method::Method;
+use crate::physics::method::StepError;
 use crate::physics::plan::{AutoPolicy, Resolution, Resolved};
 
 /// Resolves `method` for `problem` over `[0, t_end]` at `tolerance`; `go_on(t)` is asked every

@@ -4,11 +4,17 @@
 use crate::physics::method::Asked;
 use serde::Serialize;
 
-use super::integrators::{self, Method, Stats, StepError};
+use super::integrators;
+
+use crate::physics::method::Method;
+
+use crate::physics::numerics::dop853::Stats;
+
 use super::model::State;
 use super::params::Problem;
 use crate::physics::drive::{Course, Drift, Watch, drive};
 use crate::physics::flow::Flow;
+use crate::physics::method::StepError;
 
 /// What to run.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]

@@ -11,11 +11,12 @@
 
 use serde::Serialize;
 
+use crate::physics::method::Method;
+use crate::physics::method::StepError;
 use crate::physics::rattleback::budget::{
     NS_DOP853_EVAL, NS_EFFECTIVE_PER_TIME, NS_FAST_FLOW, dop853_evaluations, fastest_rate,
 };
 use crate::physics::rattleback::effective::Effective;
-use crate::physics::rattleback::integrators::{Method, StepError};
 use crate::physics::rattleback::params::Problem;
 use crate::physics::rattleback::run::{RunSpec, run_cancellable};
 

@@ -84,11 +84,14 @@ pub use crate::physics::plan::Shortfall;
 
 use super::budget::{cost_seconds, dop853_evaluations, fastest_rate, slow_rate};
 use super::effective::Effective;
-use super::integrators::{Method, Settings, StepError, together};
+use super::integrators::together;
 use super::params::Problem;
 use super::run::{RunResult, RunSpec, run_cancellable};
 use crate::physics::fork;
+use crate::physics::method::Method;
+use crate::physics::method::Settings;
 use crate::physics::method::StepCap;
+use crate::physics::method::StepError;
 
 /// Error of `blanes-moan4` per unit time: `C_BM · spin^2.5 · c_max⁴ · h⁴ ν² / g_min`, with
 /// `spin` the largest spin rate of the limit, `c_max = |iy − ix| / (4 min(ix, iy))`, fitted on

@@ -11,11 +11,11 @@
 
 use nalgebra::SVector;
 
-use super::Method;
-use super::dop853::{Dop853, Field};
-use super::roots::{find_root, find_root_near};
 use crate::physics::flow::{CHECK_EVERY, EventTracker, Flow};
+use crate::physics::method::Method;
 use crate::physics::method::{StepCap, StepError};
+use crate::physics::numerics::dop853::{Dop853, Field};
+use crate::physics::numerics::roots::{find_root, find_root_near};
 use crate::physics::rattleback::averaged::{Averaged2, SlowState, turned};
 use crate::physics::rattleback::averaged3::Averaged3;
 use crate::physics::rattleback::model::State;

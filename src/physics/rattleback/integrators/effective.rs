@@ -12,10 +12,10 @@
 
 use nalgebra::Vector3;
 
-use super::Method;
-use super::dop853::{Dop853, Field};
-use super::roots::find_root;
 use crate::physics::flow::Flow;
+use crate::physics::method::Method;
+use crate::physics::numerics::dop853::{Dop853, Field};
+use crate::physics::numerics::roots::find_root;
 use crate::physics::rattleback::effective::Effective;
 use crate::physics::rattleback::model::State;
 use crate::physics::rattleback::params::Problem;

@@ -3,11 +3,11 @@
 //! 12 evaluations per step) or `taylor` ([`super::full_taylor`]). Samples, reversals and the
 //! energy are the same code for both.
 
-use super::Method;
-use super::dop853::{Dop853, Field};
 use super::full_taylor::TaylorCore;
-use super::roots::find_root;
 use crate::physics::flow::Flow;
+use crate::physics::method::Method;
+use crate::physics::numerics::dop853::{Dop853, Field};
+use crate::physics::numerics::roots::find_root;
 use crate::physics::numerics::stepper::Stepper;
 use crate::physics::rattleback::model::{ALPHA_DOT, State, energy, initial_state, rhs};
 use crate::physics::rattleback::params::{Params, Problem};

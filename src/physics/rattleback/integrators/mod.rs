@@ -12,9 +12,7 @@ pub mod full_taylor;
 mod rk4;
 pub mod splitting;
 
-pub use crate::physics::method::{DEFAULT_STEP_BUDGET, Method, Settings, StepError};
-pub use crate::physics::numerics::dop853::{self, Stats};
-pub use crate::physics::numerics::roots;
+use crate::physics::method::{DEFAULT_STEP_BUDGET, Method, StepError};
 pub use averaged::{Ending, together};
 
 use super::model::State;

@@ -5,11 +5,11 @@
 //! cubic Hermite interpolant of the end values and fields (order 3 inside the step), which is
 //! what reversal location uses.
 
-use super::dop853::Stats;
-use super::roots::find_root;
-use super::{Method, StepError};
 use crate::physics::flow::Flow;
 use crate::physics::method::TimeSum;
+use crate::physics::method::{Method, StepError};
+use crate::physics::numerics::dop853::Stats;
+use crate::physics::numerics::roots::find_root;
 use crate::physics::rattleback::model::{ALPHA_DOT, State, energy, initial_state, rhs};
 use crate::physics::rattleback::params::{Params, Problem};
 

@@ -24,13 +24,13 @@
 //! derivative is `g' pγ²/(2g²)`, of fixed sign), so the crossing inside a sub-flow is unique and
 //! is found on the closed form itself.
 
-use super::dop853::Stats;
-use super::roots::find_root;
-use super::{Method, StepError};
 use crate::physics::flow::Flow;
 use crate::physics::method::TimeSum;
+use crate::physics::method::{Method, StepError};
 pub use crate::physics::numerics::compositions::Composition;
 use crate::physics::numerics::compositions::Split;
+use crate::physics::numerics::dop853::Stats;
+use crate::physics::numerics::roots::find_root;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use crate::physics::rattleback::model::{State, initial_state};
