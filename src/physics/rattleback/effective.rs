@@ -10,6 +10,9 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use super::model::{State, initial_state, transverse_energy};
 use super::params::{Params, Problem};
 
+/// The most reversal times a run keeps (its count goes on: a long run at a stiff spring
+/// reverses billions of times).
+pub const MAX_REVERSAL_TIMES: usize = 1_000_000;
 /// The most reversals the limit counts (below 2^53, where every count is a float exactly):
 /// more saturate.
 pub const MAX_REVERSALS: f64 = 9e15;
@@ -242,13 +245,13 @@ impl Effective {
     }
 
     /// Reversal times of the effective motion in `(0, t_end]`: the first
-    /// [`super::run::MAX_REVERSAL_TIMES`] of them ([`Effective::reversal_count`] counts all).
+    /// [`MAX_REVERSAL_TIMES`] of them ([`Effective::reversal_count`] counts all).
     #[must_use]
     pub fn reversal_times(&self, t_end: f64) -> Vec<f64> {
         let Some((first, half)) = self.reversal_schedule() else {
             return Vec::new();
         };
-        let count = Self::count_in(first, half, t_end).min(super::run::MAX_REVERSAL_TIMES);
+        let count = Self::count_in(first, half, t_end).min(MAX_REVERSAL_TIMES);
         (0..count)
             .map(|n| {
                 #[allow(clippy::cast_precision_loss)]
@@ -259,7 +262,7 @@ impl Effective {
     }
 
     /// How many reversals the limit makes in `(0, t_end]` (all of them, where
-    /// [`Effective::reversal_times`] keeps the first [`super::run::MAX_REVERSAL_TIMES`]).
+    /// [`Effective::reversal_times`] keeps the first [`MAX_REVERSAL_TIMES`]).
     #[must_use]
     pub fn reversal_count(&self, t_end: f64) -> usize {
         self.reversal_schedule()

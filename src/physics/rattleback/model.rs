@@ -43,7 +43,7 @@ pub fn rhs(p: &Params, y: &State) -> State {
 #[must_use]
 #[inline]
 pub fn energy(p: &Params, y: &State) -> f64 {
-    0.5 * p.g(y[1]) * y[2] * y[2] + 0.5 * p.iz * y[3] * y[3] + 0.5 * p.k * y[0] * y[0]
+    p.energy(y[0], y[1], y[2], y[3])
 }
 
 /// Energy of the fast oscillation alone, `E⊥ = ½ g(α) γ̇² + ½ k γ²`.

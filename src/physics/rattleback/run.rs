@@ -86,7 +86,7 @@ pub fn check_step(step: f64, t_end: f64) -> Result<(), String> {
 }
 
 /// Most reversal times a run keeps (8 MB); later ones are counted only.
-pub const MAX_REVERSAL_TIMES: usize = 1_000_000;
+pub use super::effective::MAX_REVERSAL_TIMES;
 
 /// Integrates `problem` as `spec` says.
 ///

@@ -12,69 +12,15 @@ use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
 use crate::physics::method::Asked;
 use crate::physics::method::{Method, StepError};
-use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
+use crate::physics::params::ParamError;
 use crate::physics::plan::PlanRequest;
 use crate::physics::scene::{
     Planned, Posed, Scene, Shown, SideView, SlowCurve, SmallParameter, Studies, SummaryLine,
     WeakView, WeakWords, Words,
 };
 
-const INERTIA: Scale = Scale::linear(0.05, 0.5);
-const RATE: Scale = Scale::linear(0.01, 0.1);
-
-/// The rattleback's parameters, in the panel's order. Names are a contract: add, never rename.
-pub const PARAMS: [ParamSpec; 8] = [
-    ParamSpec::required(
-        ("body", "ix"),
-        Allowed::Positive,
-        INERTIA,
-        "inertia moment about the body's x axis",
-    ),
-    ParamSpec::required(
-        ("body", "iy"),
-        Allowed::Positive,
-        INERTIA,
-        "inertia moment about the body's y axis",
-    ),
-    ParamSpec::required(
-        ("body", "iz"),
-        Allowed::Positive,
-        INERTIA,
-        "inertia moment about the vertical (spin) axis",
-    ),
-    ParamSpec::required(
-        ("spring", "k"),
-        Allowed::Positive,
-        Scale::Log,
-        "Hooke constant of the spring holding the tilt",
-    ),
-    ParamSpec::optional(
-        ("initial", "gamma"),
-        Allowed::Finite,
-        0.0,
-        Scale::linear(1e-3, 1e-2),
-        "initial tilt",
-    ),
-    ParamSpec::optional(
-        ("initial", "alpha"),
-        Allowed::Finite,
-        0.0,
-        Scale::linear(0.05, std::f64::consts::FRAC_PI_8),
-        "initial spin angle",
-    ),
-    ParamSpec::required(
-        ("initial", "gamma_dot"),
-        Allowed::Finite,
-        RATE,
-        "initial tilt rate",
-    ),
-    ParamSpec::required(
-        ("initial", "alpha_dot"),
-        Allowed::Finite,
-        RATE,
-        "initial spin rate",
-    ),
-];
+/// The rattleback's parameters (their table lives with them, `params.rs`).
+pub use super::params::PARAMS;
 
 /// The methods the rattleback offers, `auto` first: every method but the celt's projected one.
 pub const METHODS: [Method; 14] = [
