@@ -408,3 +408,108 @@ fn a_computed_pane_is_six_files() {
         "the sweep pane is named outside the recipe's files: {found:?}"
     );
 }
+
+/// The module paths a text names (`crate::physics::celt::plan`, `super::super::kapitza`), with
+/// comments and doc text left out: what is matched is a path's segments, not a substring.
+fn paths(text: &str) -> Vec<Vec<String>> {
+    let mut out = Vec::new();
+    for line in text.lines() {
+        let code = line.split("//").next().unwrap_or_default();
+        let mut segments: Vec<String> = Vec::new();
+        let mut word = String::new();
+        let chars: Vec<char> = code.chars().collect();
+        let mut i = 0;
+        while i <= chars.len() {
+            let c = chars.get(i).copied().unwrap_or(' ');
+            if c.is_alphanumeric() || c == '_' {
+                word.push(c);
+                i += 1;
+                continue;
+            }
+            if !word.is_empty() {
+                segments.push(std::mem::take(&mut word));
+            }
+            if c == ':' && chars.get(i + 1) == Some(&':') {
+                i += 2;
+                continue;
+            }
+            if segments.len() > 1 {
+                out.push(std::mem::take(&mut segments));
+            }
+            segments.clear();
+            i += 1;
+        }
+    }
+    out
+}
+
+/// Issue 57: generated from the list of models (`ModelKind::ALL`), so a fourth model is held to
+/// the same rules without editing this test. A model's folder names no other model (by path:
+/// `physics::kapitza`, `super::kapitza`, `super::super::kapitza`); the shared files of
+/// `physics/` name none, but the one dispatch (`models.rs`) and the module list (`mod.rs`); and
+/// the shared vocabulary is imported from `physics`, never through a model's folder.
+#[test]
+fn every_models_folder_and_the_shared_files_keep_to_themselves() {
+    use rattleback::physics::ModelKind;
+    let models: Vec<&str> = ModelKind::ALL.iter().map(|m| m.name()).collect();
+    // A model's folder is named as the model (`physics/celt` for `celt`).
+    let folder = |m: &str| m.to_owned();
+    let mut found = Vec::new();
+    let names_model = |path: &[String], model: &str| {
+        path.windows(2)
+            .any(|w| (w[0] == "physics" || w[0] == "super") && w[1] == folder(model))
+    };
+    for model in &models {
+        let dir = format!("physics/{}", folder(model));
+        assert!(
+            src().join(&dir).is_dir(),
+            "{dir}: every model has its folder"
+        );
+        for (file, text) in layer(&dir) {
+            let code = text.split("#[cfg(test)]").next().unwrap_or_default();
+            for p in paths(code) {
+                for other in models.iter().filter(|o| *o != model) {
+                    if names_model(&p, other) {
+                        found.push(format!("{}: {}", file.display(), p.join("::")));
+                    }
+                }
+            }
+        }
+    }
+    for entry in std::fs::read_dir(src().join("physics")).unwrap() {
+        let file = entry.unwrap().path();
+        let name = file.file_name().unwrap().to_string_lossy().into_owned();
+        if file.is_dir() || name == "models.rs" || name == "mod.rs" {
+            continue;
+        }
+        let text = std::fs::read_to_string(&file).unwrap();
+        let code = text.split("#[cfg(test)]").next().unwrap_or_default();
+        for p in paths(code) {
+            if models.iter().any(|m| names_model(&p, m)) {
+                found.push(format!("{}: {}", file.display(), p.join("::")));
+            }
+        }
+    }
+    let shared = [
+        "Method",
+        "Settings",
+        "StepError",
+        "Stats",
+        "dop853",
+        "roots",
+    ];
+    for (file, text) in layer("") {
+        for p in paths(&text) {
+            if let Some(i) = p.iter().position(|s| s == "integrators")
+                && p.get(i + 1).is_some_and(|s| shared.contains(&s.as_str()))
+            {
+                found.push(format!("{}: {}", file.display(), p.join("::")));
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "paths across the models' walls:\n{}",
+        found.join("\n")
+    );
+}

@@ -133,3 +133,51 @@ fn the_format_document_names_every_event_and_header_field() {
         );
     }
 }
+
+/// Issue 57: the plan key is read back as the model it was written for, whatever the model. Its
+/// recorded form is untagged (files of every format read as before), so the guard is on the
+/// shapes: no model's required fields may all stand in another model's key, for every model
+/// (the list comes from `ModelKind::ALL`: a fourth model is checked without editing this test),
+/// and every model's key round-trips to its own variant.
+#[test]
+fn every_models_plan_key_reads_back_as_its_own() {
+    use rattleback::physics::ModelKind;
+    use rattleback::sim::PlanKey;
+    let schema = serde_json::to_value(schemars::schema_for!(PlanKey)).unwrap();
+    let variants = schema["anyOf"].as_array().expect("one shape per model");
+    assert_eq!(variants.len(), ModelKind::ALL.len(), "a shape per model");
+    let fields = |v: &serde_json::Value, what: &str| -> std::collections::BTreeSet<String> {
+        v[what]
+            .as_array()
+            .map(|a| a.iter().map(|x| x.as_str().unwrap().to_owned()).collect())
+            .or_else(|| v[what].as_object().map(|o| o.keys().cloned().collect()))
+            .unwrap_or_default()
+    };
+    for (i, a) in variants.iter().enumerate() {
+        for (j, b) in variants.iter().enumerate() {
+            if i != j {
+                let (required, present) = (fields(a, "required"), fields(b, "properties"));
+                assert!(!required.is_empty() && !present.is_empty(), "{a} {b}");
+                assert!(
+                    !required.is_subset(&present),
+                    "the key of shape {i} would read shape {j}'s: {required:?} all in {present:?}"
+                );
+            }
+        }
+    }
+    for kind in ModelKind::ALL {
+        let name = rattleback::scenario::shipped::SHIPPED
+            .iter()
+            .map(|(n, _)| *n)
+            .find(|n| {
+                rattleback::scenario::shipped::resolve(n, &[]).is_ok_and(|p| p.model.kind() == kind)
+            })
+            .expect("a shipped preset of every model");
+        let preset = rattleback::scenario::shipped::resolve(name, &[]).unwrap();
+        let app = rattleback::app::App::new(&preset, rattleback::app::Options::at(30.0)).0;
+        let key = PlanKey::of(&app.scenario.spec(false));
+        let text = serde_json::to_string(&key).unwrap();
+        let back: PlanKey = serde_json::from_str(&text).unwrap();
+        assert_eq!(back, key, "{kind:?}: {text}");
+    }
+}
