@@ -12,7 +12,7 @@ use crate::physics::verify::Policy;
 /// One stall, not the celt's and the series' two, decided by measurement (issue 57): on the 6
 /// held-out starts of `kapitza_honesty.toml` at 1e-8, 1e-9 and 1e-10 (18 runs) and on every
 /// shipped preset, two stalls give the same method, claim, estimate and error on every run and
-/// the same time within 1 ms (best of 3, one `simulate` per process); 5 of the 18 decline, none
+/// the same time within 3 ms (best of 3, one `simulate` per process); 7 of the 18 decline, none
 /// by a stall the second would have undone. The extra round buys nothing here, so the cheaper
 /// rule stays.
 pub const POLICY: Policy = Policy {
