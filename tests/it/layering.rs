@@ -319,7 +319,12 @@ fn no_old_paths_and_no_model_reexports() {
 /// file (`#[cfg(test)]`) are left out.
 #[test]
 fn a_model_is_dispatched_in_few_places() {
-    let allowed = ["simulate/mod.rs", "simulate/kapitza.rs", "sim/planner.rs"];
+    let allowed = [
+        "simulate/mod.rs",
+        "simulate/rattleback.rs",
+        "simulate/kapitza.rs",
+        "sim/planner.rs",
+    ];
     let variants = [
         "Model::Rattleback",
         "Model::Kapitza",
