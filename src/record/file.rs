@@ -225,10 +225,10 @@ pub fn read(path: &Path) -> Result<Recording, RecordError> {
             continue;
         }
         match serde_json::from_str::<Line>(row) {
-            Ok(line) if let Some(why) = super::impossible(&line) => {
-                return Err(corrupt(number, why));
-            }
             Ok(line) => {
+                if let Some(why) = super::impossible(&line) {
+                    return Err(corrupt(number, why));
+                }
                 lines.push((number, line));
                 raw.push(row.trim_end_matches(['\n', '\r']).to_owned());
             }
