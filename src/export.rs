@@ -102,8 +102,7 @@ impl Shown {
         let b = app.bounds();
         let eff = &app.scenario.derived.limit;
         let (wrap, period, centre) = (app.view.view.wrap, eff.period(), wrap_centre(eff));
-        let fold =
-            |p: &crate::sim::Point| (display_alpha(p.alpha, centre, wrap, period), p.alpha_dot);
+        let fold = |p: &crate::sim::Point| (display_alpha(p.slow, centre, wrap, period), p.rate);
         let polylines = |points: &[crate::sim::Point]| -> Vec<Vec<(f64, f64)>> {
             let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
             for p in points.iter().map(fold) {
@@ -321,18 +320,14 @@ pub fn trajectory_csv(app: &App) -> String {
     // Both on one time grid: walk them together.
     let mut j = 0;
     for p in app.run.trail_shown() {
-        let _ = write!(
-            out,
-            "{},{},{},{}",
-            p.t, p.alpha, p.alpha_dot, p.energy_error
-        );
+        let _ = write!(out, "{},{},{},{}", p.t, p.slow, p.rate, p.energy_error);
         while j < limit.len() && limit[j].t < p.t {
             j += 1;
         }
         match limit.get(j) {
             // The same grid point: the same bits.
             Some(q) if q.t.to_bits() == p.t.to_bits() => {
-                let _ = writeln!(out, ",{},{}", q.alpha, q.alpha_dot);
+                let _ = writeln!(out, ",{},{}", q.slow, q.rate);
             }
             _ => out.push_str(",,\n"),
         }

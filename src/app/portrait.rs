@@ -125,10 +125,10 @@ pub fn auto_bounds(
         )
     };
     for p in trail {
-        y_max = y_max.max(p.alpha_dot.abs());
+        y_max = y_max.max(p.rate.abs());
         if !wrap {
-            x_lo = x_lo.min(p.alpha);
-            x_hi = x_hi.max(p.alpha);
+            x_lo = x_lo.min(p.slow);
+            x_hi = x_hi.max(p.slow);
         }
     }
     if !wrap
@@ -138,10 +138,10 @@ pub fn auto_bounds(
         let width = FOLLOW_PERIODS * period;
         // The window trails the motion: the current point sits a sixth from its leading edge.
         let ahead = width / 6.0;
-        (x_lo, x_hi) = if last.alpha_dot >= 0.0 {
-            (last.alpha + ahead - width, last.alpha + ahead)
+        (x_lo, x_hi) = if last.rate >= 0.0 {
+            (last.slow + ahead - width, last.slow + ahead)
         } else {
-            (last.alpha - ahead, last.alpha - ahead + width)
+            (last.slow - ahead, last.slow - ahead + width)
         };
     }
     Bounds {
@@ -159,7 +159,7 @@ pub fn following(trail: &[Point], wrap: bool, period: f64) -> bool {
     let (lo, hi) = trail
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-            (lo.min(p.alpha), hi.max(p.alpha))
+            (lo.min(p.slow), hi.max(p.slow))
         });
     hi - lo > FOLLOW_PERIODS * period
 }

@@ -189,9 +189,7 @@ impl App {
                 .shows(Pane::Compare)
                 .then(|| self.computed.compare.shown(run.shown))
                 .flatten(),
-            point: run
-                .current()
-                .map(|p| [p.alpha, p.alpha_dot, p.energy_error]),
+            point: run.current().map(|p| [p.slow, p.rate, p.energy_error]),
             method,
             estimate,
         }

@@ -469,7 +469,7 @@ impl RunState {
                 }
                 if let Some((Found::SlowAngleFalls, falls)) = self.second.as_mut() {
                     // `Θ = θ − ripple`; a fall is `cos Θ` going from positive to negative.
-                    let up = |p: &Point| (p.alpha - p.gamma).cos();
+                    let up = |p: &Point| (p.slow - p.fast).cos();
                     let mut prev = self.trail.last().copied();
                     for p in &full {
                         if let Some(q) = prev {

@@ -35,22 +35,23 @@ pub struct SessionSpec {
     pub step: Option<f64>,
 }
 
-/// A sample of the motion for drawing, in the model's slow coordinate (the rattleback's `α`,
-/// the pendulum's `θ`; the field names are the rattleback's, the first model).
+/// A sample of the motion for drawing, in the scene's own coordinates: its slow coordinate (the
+/// rattleback's `α`, the pendulum's `θ`, the celt's heading), its rate (`α̇`, `θ̇`, the celt's
+/// spin) and its fast coordinate (issue 57: the names are no one scene's).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Point {
     /// Time.
     pub t: f64,
     /// The slow coordinate.
-    pub alpha: f64,
+    pub slow: f64,
     /// Its rate.
-    pub alpha_dot: f64,
+    pub rate: f64,
     /// Relative error of the conserved quantity at the last step end (for the driven
     /// pendulum: the drift of the limit's energy, relative to its scale).
     pub energy_error: f64,
     /// The fast coordinate (the rattleback's tilt `γ`, whose envelope the body pane draws;
     /// the pendulum's ripple `θ − Θ`).
-    pub gamma: f64,
+    pub fast: f64,
     /// The body's lean (the celt's): see [`crate::physics::flow::Sample::lean`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lean: Option<[f64; 2]>,
@@ -203,10 +204,10 @@ impl Track {
         let y = self.integrator.sample(t);
         Point {
             t,
-            alpha: y.q,
-            alpha_dot: y.q_dot,
+            slow: y.q,
+            rate: y.q_dot,
             energy_error: (self.integrator.energy() - self.e0) / self.scale,
-            gamma: y.fast,
+            fast: y.fast,
             lean: y.lean,
         }
     }

@@ -102,7 +102,7 @@ pub fn envelope(run: &RunState) -> f64 {
     let shown = run.trail_shown();
     shown[shown.len().saturating_sub(ENVELOPE_SAMPLES)..]
         .iter()
-        .map(|p| p.gamma.abs())
+        .map(|p| p.fast.abs())
         .fold(0.0, f64::max)
 }
 
@@ -135,8 +135,8 @@ fn trace(run: &RunState, along_x: bool) -> Vec<(f64, f64, bool)> {
         .take_while(|p| t_now - p.t <= TRACE_SECONDS)
         .step_by(2)
         .map(|p| {
-            let (c, s) = (p.alpha.cos(), p.alpha.sin());
-            (x * c - y * s, x * s + y * c, p.alpha_dot >= 0.0)
+            let (c, s) = (p.slow.cos(), p.slow.sin());
+            (x * c - y * s, x * s + y * c, p.rate >= 0.0)
         })
         .collect()
 }
@@ -145,7 +145,7 @@ impl Widget for BodyPane<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let (run, look) = (self.run, self.look);
         let now = run.current().copied();
-        let (alpha, alpha_dot) = now.map_or((0.0, 0.0), |p| (p.alpha, p.alpha_dot));
+        let (alpha, alpha_dot) = now.map_or((0.0, 0.0), |p| (p.slow, p.rate));
         let rock = envelope(run);
         let mut inner = framed(
             &heading(run, alpha_dot, rock, self.fast, self.side.is_some()),
@@ -192,7 +192,7 @@ impl Widget for BodyPane<'_> {
         let biggest = run
             .trail_shown()
             .iter()
-            .map(|p| p.gamma.abs())
+            .map(|p| p.fast.abs())
             .fold(0.0, f64::max);
         let bar = if biggest > 0.0 {
             0.15 + 0.85 * rock / biggest

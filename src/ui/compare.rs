@@ -207,7 +207,7 @@ fn draw_lane(
             spans.push(Span::raw(format!(" │ {name} {n}")));
         }
         if let Some(p) = lane.samples.last() {
-            spans.push(Span::raw(format!(" │ spin {}", short(p.alpha_dot))));
+            spans.push(Span::raw(format!(" │ spin {}", short(p.rate))));
         }
     }
     // The preset's name last, only where it fits whole (a cut name reads as another).
@@ -238,7 +238,7 @@ fn draw_lane(
         .iter()
         .step_by(step)
         .chain(lane.samples.last())
-        .map(|p| (p.t, p.alpha_dot))
+        .map(|p| (p.t, p.rate))
         .collect();
     let y = coords.iter().fold(1e-3f64, |m, p| m.max(p.1.abs())) * 1.1;
     let theme = look.theme;

@@ -224,7 +224,7 @@ fn pane(p: &PortraitPane<'_>, area: Rect, buf: &mut Buffer, cache: &mut Cache) {
     let theme = look.theme;
     let levels = cache.levels(p.scenario, p.view.view.levels, bounds, cols.max(16));
     let centre = wrap_centre(limit);
-    let to_xy = |p: &crate::sim::Point| (display_alpha(p.alpha, centre, wrap, period), p.alpha_dot);
+    let to_xy = |p: &crate::sim::Point| (display_alpha(p.slow, centre, wrap, period), p.rate);
     let trail = decimate(trail_shown.iter().map(to_xy), &bounds, cols, rows);
     let overlay = if p.view.overlay {
         decimate(

@@ -139,13 +139,13 @@ fn pane(pane: &SeriesPane<'_>, area: Rect, buf: &mut Buffer) {
     let (t0, t1) = window(run);
     let (rx, _) = resolution(look.marker);
     let cols = plot.width as usize * rx;
-    let full = thin(run.trail_shown(), t0, cols, |p| p.alpha_dot);
+    let full = thin(run.trail_shown(), t0, cols, |p| p.rate);
     let limit = if pane.overlay {
         thin(
             run.effective_shown(),
             t0,
             (plot.width as usize / 3).max(1) / 4,
-            |p| p.alpha_dot,
+            |p| p.rate,
         )
     } else {
         Vec::new()

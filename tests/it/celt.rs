@@ -292,7 +292,7 @@ fn every_celt_preset_ends_in_the_explorer_where_simulate_ends() {
                 assert_eq!(shown.t.to_bits(), s.t_end.to_bits(), "{name}");
                 let y = simulated.state;
                 assert_eq!(
-                    [shown.alpha.to_bits(), shown.alpha_dot.to_bits()],
+                    [shown.slow.to_bits(), shown.rate.to_bits()],
                     [
                         y[12].to_bits(),
                         rattleback::physics::celt::spin(&y).to_bits()

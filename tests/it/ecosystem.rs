@@ -79,7 +79,7 @@ fn the_export_writes_a_portrait_and_a_csv_that_says_what_made_it() {
         .map(|v| v.parse().unwrap())
         .collect();
     let shown = h.app.run.trail_shown().last().unwrap();
-    assert_eq!(last[1].to_bits(), shown.alpha.to_bits());
+    assert_eq!(last[1].to_bits(), shown.slow.to_bits());
     assert!(last[4].is_finite(), "the limit's columns are filled");
     // A second export never replaces the first.
     let again = rattleback::export::export(&h.app, &dir, "subcritical-start").unwrap();

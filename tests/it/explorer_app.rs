@@ -236,7 +236,7 @@ fn every_shipped_preset_ends_where_simulate_and_a_tight_reference_end() {
         )
         .unwrap();
         assert_eq!(
-            [shown.alpha.to_bits(), shown.alpha_dot.to_bits()],
+            [shown.slow.to_bits(), shown.rate.to_bits()],
             [
                 simulated.final_state[1].to_bits(),
                 simulated.final_state[3].to_bits()
@@ -260,9 +260,9 @@ fn every_shipped_preset_ends_where_simulate_and_a_tight_reference_end() {
             },
         )
         .unwrap();
-        let err = (shown.alpha - reference.final_state[1])
+        let err = (shown.slow - reference.final_state[1])
             .abs()
-            .max((shown.alpha_dot - reference.final_state[3]).abs());
+            .max((shown.rate - reference.final_state[3]).abs());
         // The tight reference resolves the full motion only where it can (k = 1e10 is past
         // it): there the verified plan's own estimate is the check above.
         if problem.params().k <= 1e6 {
@@ -345,7 +345,7 @@ fn the_trail_does_not_depend_on_the_speed() {
             .run
             .trail
             .iter()
-            .map(|p| [p.t.to_bits(), p.alpha.to_bits(), p.alpha_dot.to_bits()])
+            .map(|p| [p.t.to_bits(), p.slow.to_bits(), p.rate.to_bits()])
             .collect::<Vec<_>>()
     };
     let slow = trail(1.0);
@@ -411,7 +411,7 @@ fn the_view_holds_the_start_and_follows_long_runs() {
         b.x[1] - b.x[0] <= 3.0 * std::f64::consts::PI + 1e-9,
         "crushed: {b:?}"
     );
-    let last = h.app.run.current().unwrap().alpha;
+    let last = h.app.run.current().unwrap().slow;
     assert!(last > b.x[0] && last < b.x[1]);
 }
 
@@ -656,10 +656,10 @@ fn the_trail_has_no_gap_wider_than_two_cells() {
         let mut worst: f64 = 0.0;
         for w in app.run.trail_shown().windows(2) {
             let (x0, x1) = (
-                display_alpha(w[0].alpha, centre, wrap, std::f64::consts::PI),
-                display_alpha(w[1].alpha, centre, wrap, std::f64::consts::PI),
+                display_alpha(w[0].slow, centre, wrap, std::f64::consts::PI),
+                display_alpha(w[1].slow, centre, wrap, std::f64::consts::PI),
             );
-            if !inside(x0, w[0].alpha_dot) || !inside(x1, w[1].alpha_dot) {
+            if !inside(x0, w[0].rate) || !inside(x1, w[1].rate) {
                 continue;
             }
             if wrap && (x1 - x0).abs() > 0.5 * std::f64::consts::PI {
@@ -667,7 +667,7 @@ fn the_trail_has_no_gap_wider_than_two_cells() {
             }
             let gap = ((x1 - x0) / dx)
                 .abs()
-                .max(((w[1].alpha_dot - w[0].alpha_dot) / dy).abs());
+                .max(((w[1].rate - w[0].rate) / dy).abs());
             worst = worst.max(gap);
         }
         assert!(worst <= 2.0, "{name}: a gap of {worst:.2} cells");

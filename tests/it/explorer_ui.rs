@@ -495,7 +495,7 @@ fn the_body_turns_with_alpha_and_the_bar_shows_the_rocking() {
         .run
         .trail_shown()
         .iter()
-        .map(|p| p.gamma.abs())
+        .map(|p| p.fast.abs())
         .fold(0.0, f64::max);
     assert!(rock > 0.0 && rock <= peak, "{rock} {peak}");
     // The rocking of this start is small: the tilt of a stiff spring (k = 1e4).

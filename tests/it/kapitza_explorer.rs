@@ -78,7 +78,7 @@ fn every_pendulum_preset_ends_where_simulate_and_a_tight_reference_end() {
         };
         let simulated = run(&problem, &spec, &mut |_| true).unwrap();
         assert_eq!(
-            [shown.alpha.to_bits(), shown.alpha_dot.to_bits()],
+            [shown.slow.to_bits(), shown.rate.to_bits()],
             [simulated.theta.to_bits(), simulated.theta_dot.to_bits()],
             "{name}: the screen and simulate differ"
         );
@@ -104,9 +104,9 @@ fn every_pendulum_preset_ends_where_simulate_and_a_tight_reference_end() {
             &mut |_| true,
         )
         .unwrap();
-        let err = (shown.alpha - reference.theta)
+        let err = (shown.slow - reference.theta)
             .abs()
-            .max((shown.alpha_dot - reference.theta_dot).abs());
+            .max((shown.rate - reference.theta_dot).abs());
         assert!(
             err <= 100.0 * s.tolerance,
             "{name}: {err:e} from dop853 at 1e-12 (tolerance {:e}, {})",
@@ -207,12 +207,12 @@ fn the_full_trail_is_a_ripple_band_around_the_limit() {
         assert_eq!(f.t.to_bits(), l.t.to_bits(), "one sample grid");
         // The limit from (θ0, θ̇0) drifts from the full motion by O(ε) over the run.
         assert!(
-            (f.alpha - l.alpha).abs() < 4.0 * p.epsilon * p.b + 0.02,
+            (f.slow - l.slow).abs() < 4.0 * p.epsilon * p.b + 0.02,
             "t {}",
             f.t
         );
-        let band = p.b * l.alpha.sin().abs() + 0.05;
-        let d = f.alpha_dot - l.alpha_dot;
+        let band = p.b * l.slow.sin().abs() + 0.05;
+        let d = f.rate - l.rate;
         assert!(d.abs() <= band, "t {}: {d} outside ±{band}", f.t);
         if d > 0.0 {
             above += 1;

@@ -95,11 +95,11 @@ fn walk(base: &str, table: &[(&str, &[&str])], schema: &[rattleback::scenario::p
             "{base} {set}: t"
         );
         assert_eq!(
-            [shown.alpha.to_bits(), shown.alpha_dot.to_bits()],
+            [shown.slow.to_bits(), shown.rate.to_bits()],
             [bits(&json["final"][q]), bits(&json["final"][q_dot])],
             "{base} {set}: the screen at t_end is not simulate's ({} {}) vs ({} {})",
-            shown.alpha,
-            shown.alpha_dot,
+            shown.slow,
+            shown.rate,
             json["final"][q],
             json["final"][q_dot]
         );
@@ -109,7 +109,7 @@ fn walk(base: &str, table: &[(&str, &[&str])], schema: &[rattleback::scenario::p
         let again = simulate_json(&words);
         assert_eq!(
             [bits(&again["final"][q]), bits(&again["final"][q_dot])],
-            [shown.alpha.to_bits(), shown.alpha_dot.to_bits()],
+            [shown.slow.to_bits(), shown.rate.to_bits()],
             "{base} {set}: the copied command `{copied}` does not reproduce the screen"
         );
         // The limit: the overlay's last sample is simulate's `effective`.
@@ -121,7 +121,7 @@ fn walk(base: &str, table: &[(&str, &[&str])], schema: &[rattleback::scenario::p
             .expect("the limit is drawn");
         assert_eq!(limit.t.to_bits(), shown.t.to_bits());
         assert_eq!(
-            [limit.alpha.to_bits(), limit.alpha_dot.to_bits()],
+            [limit.slow.to_bits(), limit.rate.to_bits()],
             [bits(&json["effective"][q]), bits(&json["effective"][q_dot])],
             "{base} {set}: the limit drawn is not simulate's"
         );

@@ -145,7 +145,7 @@ fn a_long_run_is_shown_in_segments_and_ends_where_the_run_in_one_piece_ends() {
             })
             .flatten()
             .filter(|p| p.t > 100.0)
-            .map(|p| (p.alpha.to_bits(), p.alpha_dot.to_bits()))
+            .map(|p| (p.slow.to_bits(), p.rate.to_bits()))
             .collect()
     };
     assert_eq!(after(&segmented), after(&whole));
@@ -287,10 +287,10 @@ fn the_status_bar_says_how_far_the_run_is_verified() {
         epoch: 0,
         full: vec![rattleback::sim::Point {
             t: 50.0,
-            alpha: 0.0,
-            alpha_dot: 0.0,
+            slow: 0.0,
+            rate: 0.0,
             energy_error: 0.0,
-            gamma: 0.0,
+            fast: 0.0,
             lean: None,
         }],
         effective: Vec::new(),
@@ -378,7 +378,7 @@ fn the_screen_ends_where_simulate_ends() {
         let json = crate::common::simulate_json(&["--preset", name, "--set", "run.t_end=200"]);
         let end = &json["final"];
         assert_eq!(
-            [shown.alpha.to_bits(), shown.alpha_dot.to_bits()],
+            [shown.slow.to_bits(), shown.rate.to_bits()],
             [
                 end[slow[0]].as_f64().unwrap().to_bits(),
                 end[slow[1]].as_f64().unwrap().to_bits()

@@ -83,7 +83,7 @@ impl CompareState {
                     crossings: has_marks.then(|| count(&run.marks)),
                     spin: crate::app::run::upto(&run.samples, t)
                         .last()
-                        .map(|p| p.alpha_dot),
+                        .map(|p| p.rate),
                 })
             }
         }
