@@ -153,8 +153,8 @@ impl App {
         let v = &preset.view;
         let view = View {
             wrap: v.wrap.unwrap_or(false),
-            alpha_range: v.alpha_range,
-            alpha_dot_range: v.alpha_dot_range,
+            slow_range: v.slow_range,
+            rate_range: v.rate_range,
             levels: v.contours.unwrap_or(portrait::LEVELS),
             ..View::default()
         };

@@ -18,9 +18,9 @@ pub struct View {
     /// pendulum).
     pub wrap: bool,
     /// Fixed `alpha` range from the preset (else automatic).
-    pub alpha_range: Option<[f64; 2]>,
+    pub slow_range: Option<[f64; 2]>,
     /// Fixed `alpha_dot` range from the preset (else automatic).
-    pub alpha_dot_range: Option<[f64; 2]>,
+    pub rate_range: Option<[f64; 2]>,
     /// Background energy levels drawn.
     pub levels: usize,
 }
@@ -32,8 +32,8 @@ impl Default for View {
             pan_x: 0.0,
             pan_y: 0.0,
             wrap: false,
-            alpha_range: None,
-            alpha_dot_range: None,
+            slow_range: None,
+            rate_range: None,
             levels: LEVELS,
         }
     }
@@ -187,8 +187,8 @@ pub fn sample_spacing(limit: &LimitView) -> f64 {
 #[must_use]
 pub fn apply_view(b: Bounds, view: &View) -> Bounds {
     let b = Bounds {
-        x: view.alpha_range.unwrap_or(b.x),
-        y: view.alpha_dot_range.unwrap_or(b.y),
+        x: view.slow_range.unwrap_or(b.x),
+        y: view.rate_range.unwrap_or(b.y),
     };
     let scale = |[lo, hi]: [f64; 2], pan: f64| {
         let half = 0.5 * (hi - lo) / view.zoom;

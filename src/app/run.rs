@@ -490,7 +490,7 @@ impl RunState {
                 self.show();
                 self.shown > before || self.trail.len() <= 1
             }
-            SimEvent::Reversal {
+            SimEvent::Counted {
                 generation,
                 epoch,
                 t,

@@ -118,8 +118,8 @@ impl Scenario {
             },
             origin: self.origin.clone(),
             view: ViewConfig {
-                alpha_range: view.alpha_range,
-                alpha_dot_range: view.alpha_dot_range,
+                slow_range: view.slow_range,
+                rate_range: view.rate_range,
                 contours: Some(view.levels),
                 effective_overlay: Some(overlay),
                 series: Some(series),

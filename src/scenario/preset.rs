@@ -176,9 +176,11 @@ pub struct RunConfig {
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct ViewConfig {
     /// Fixed range of the slow coordinate (`alpha_range`, `theta_range`; else automatic).
-    pub alpha_range: Option<[f64; 2]>,
+    #[serde(rename = "alpha_range")]
+    pub slow_range: Option<[f64; 2]>,
     /// Fixed range of its rate (`alpha_dot_range`, `theta_dot_range`; else automatic).
-    pub alpha_dot_range: Option<[f64; 2]>,
+    #[serde(rename = "alpha_dot_range")]
+    pub rate_range: Option<[f64; 2]>,
     /// Number of background energy levels.
     pub contours: Option<usize>,
     /// Effective overlay on or off.
@@ -751,8 +753,8 @@ impl Preset {
                 step: r.num("run", "step"),
             },
             view: ViewConfig {
-                alpha_range: r.range("view", x_range),
-                alpha_dot_range: r.range("view", y_range),
+                slow_range: r.range("view", x_range),
+                rate_range: r.range("view", y_range),
                 contours: r
                     .get("view", "contours")
                     .and_then(Value::as_integer)
@@ -813,10 +815,10 @@ impl Preset {
         let v = &self.view;
         let mut view = String::new();
         let (x_range, y_range) = range_keys(kind);
-        if let Some([a, b]) = v.alpha_range {
+        if let Some([a, b]) = v.slow_range {
             let _ = writeln!(view, "{x_range} = [{a:?}, {b:?}]");
         }
-        if let Some([a, b]) = v.alpha_dot_range {
+        if let Some([a, b]) = v.rate_range {
             let _ = writeln!(view, "{y_range} = [{a:?}, {b:?}]");
         }
         if let Some(c) = v.contours {

@@ -349,7 +349,7 @@ impl Job for PartnerJob {
         for e in events {
             match e {
                 SimEvent::Samples { full, .. } => run.samples.extend(full),
-                SimEvent::Reversal {
+                SimEvent::Counted {
                     t,
                     effective: false,
                     ..

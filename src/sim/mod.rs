@@ -165,9 +165,10 @@ pub enum SimEvent {
         /// Steps taken so far by the full integrator.
         steps: u64,
     },
-    /// A spin reversal (possibly ahead of the samples sent: the display counts it when it
-    /// reaches its time).
-    Reversal {
+    /// The scene's counted event: a spin reversal (the rattleback's, the celt's), a swing of the
+    /// pendulum; possibly ahead of the samples sent: the display counts it when it reaches its
+    /// time.
+    Counted {
         /// Run stamp.
         generation: u64,
         /// Overlay stamp (for effective reversals).

@@ -242,7 +242,7 @@ impl Track {
                 .map(|&t| SimEvent::Mark { generation, t })
                 .collect()
         };
-        out.extend(r.map(|t| SimEvent::Reversal {
+        out.extend(r.map(|t| SimEvent::Counted {
             generation,
             epoch,
             t,
@@ -334,7 +334,7 @@ impl Segment {
         let mut late_marks = Vec::new();
         for e in last {
             match e {
-                SimEvent::Reversal { t, .. } if t > from => late_reversal = Some(t),
+                SimEvent::Counted { t, .. } if t > from => late_reversal = Some(t),
                 SimEvent::Mark { t, .. } if t > from => late_marks.push(t),
                 _ => {}
             }
@@ -459,7 +459,7 @@ impl Session {
                 .iter()
                 .map(|&t| SimEvent::Mark { generation, t }),
         );
-        events.extend(segment.late_reversal.map(|t| SimEvent::Reversal {
+        events.extend(segment.late_reversal.map(|t| SimEvent::Counted {
             generation,
             epoch: self.epoch,
             t,

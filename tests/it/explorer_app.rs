@@ -176,7 +176,7 @@ fn stale_events_are_ignored() {
     let (mut app, _) = app();
     let old = app.run.generation;
     app.on_key(Key::Char('r'));
-    let stale = SimEvent::Reversal {
+    let stale = SimEvent::Counted {
         generation: old,
         epoch: 0,
         t: 0.0,
@@ -564,9 +564,7 @@ fn worker_runs_on_command_and_a_restart_cancels_in_flight_work() {
     );
     assert_eq!(events[0].method(), Some(Method::Dop853));
     assert!(
-        events
-            .iter()
-            .any(|e| matches!(e, SimEvent::Reversal { .. })),
+        events.iter().any(|e| matches!(e, SimEvent::Counted { .. })),
         "reversal near t = 2.2 expected"
     );
 
