@@ -21,7 +21,7 @@
 //! - `… auto`: `auto` at 1e-5 … 1e-10 on every reference up to k = 1e6, wherever it resolves
 //!   with the series: its estimate against the true error;
 //! - `… stall`: the series and its companion on an ill-conditioned reference at local
-//!   tolerances a factor 2 apart, and `auto` there at 1e-5 … 1e-8 (`auto::TAYLOR_STALLS`);
+//!   tolerances a factor 2 apart, and `auto` there at 1e-5 … 1e-8 (`policy::TAYLOR.stalls`);
 //! - `… monotone`: `auto` at every decade from 1e-4 to 1e-10 on every reference of T ≤ 100
 //!   (any method): estimates below the error, and tolerances met where a looser one is missed.
 
@@ -353,7 +353,7 @@ fn probe() {
 /// The series' run and its companion (1024× looser) at local tolerances 1e-9 … 1e-14 in steps
 /// of 2, on the reference `M_k1e03_T100` (κ ≈ 2 300): each one's error against the reference,
 /// and their difference, `auto`'s estimate before its floors. The companion's error does not
-/// fall steadily (`auto::TAYLOR_STALLS`), then `auto` at 1e-5 … 1e-8.
+/// fall steadily (`policy::TAYLOR.stalls`), then `auto` at 1e-5 … 1e-8.
 fn stall() {
     let case = cases()
         .into_iter()

@@ -14,9 +14,9 @@ pub enum Method {
     Rk4,
     /// Dormand–Prince 8(5,3), adaptive, order 8.
     Dop853,
-    /// Taylor series of order 20 with the step from its last coefficients: the pendulum's full
-    /// model, its fast forcing expanded exactly (`physics::kapitza::taylor`), and the
-    /// rattleback's (`physics::rattleback::integrators::full_taylor`).
+    /// Taylor series of order 20 with the step from its last coefficients, of a scene's full
+    /// model (a driven model's forcing expanded exactly); each scene that offers it has its
+    /// own series in its folder.
     Taylor,
     /// Strang splitting with exact sub-flows, order 2, symplectic.
     Strang,
@@ -34,18 +34,17 @@ pub enum Method {
     Locked,
     /// The effective model with its first-order correction (the fast ripple of `α̇`).
     EffectiveCorrected,
-    /// The second-order averaged model: error O(k⁻²) for the rattleback, O(ε⁴) for the
-    /// pendulum; cost independent of the small parameter (docs/physics.md §4c,
-    /// `physics::rattleback::averaged`, `physics::kapitza::averaged`).
+    /// The second-order averaged model: error O(δ²) in the scene's small parameter δ (its
+    /// `1/k`, or `ε²`); cost independent of it (docs/physics.md §4c; each scene's `averaged`).
     Averaged2,
-    /// The third-order averaged model of the rattleback (error O(k⁻³)) and of the pendulum
-    /// (O(ε⁶)), at about twice `averaged2`'s cost and independent of the small parameter
-    /// (`physics::rattleback::averaged3`, `physics::kapitza::averaged`).
+    /// The third-order averaged model (error O(δ³)), at about twice `averaged2`'s cost and
+    /// independent of the small parameter (each scene's own expansion).
     Averaged3,
-    /// DOP853 with the state projected back onto its constraints after every step (the celt's
-    /// unit quaternion, with the up vector taken from it).
+    /// DOP853 with the state projected back onto its constraints after every step (a unit
+    /// quaternion, with the up vector taken from it, where a scene has one).
     Dop853Projected,
-    /// Chooses the cheapest method that meets the tolerance (see `physics::rattleback::auto`).
+    /// Chooses the cheapest method that meets the tolerance, verified (`physics::verify`; each
+    /// scene's `auto`).
     Auto,
 }
 
@@ -346,10 +345,10 @@ pub enum FastPhase {
 /// else runs the current ones, [`Arithmetic::default`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Arithmetic {
-    /// How fixed-step methods add their steps to the time (the rattleback's; the pendulum's take
+    /// How fixed-step methods add their steps to the time (where a scene sums them; others take
     /// the time from the step count).
     pub time_sum: TimeSum,
-    /// How a lift takes a fast phase `t/ε` (the pendulum's).
+    /// How a lift takes a fast phase `t/ε` (a driven scene's).
     pub fast_phase: FastPhase,
 }
 

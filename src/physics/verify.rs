@@ -22,6 +22,10 @@ pub struct Policy {
     pub companion_looser: f64,
     /// The loosest local tolerance a companion is given.
     pub companion_cap: f64,
+    /// The companion's global error over the run's where the method converges, as measured
+    /// (what an a-priori plan divides a tolerance by; the difference of the two runs bounds the
+    /// run's error when it is at least 2).
+    pub companion_error: f64,
     /// The least a refinement tightens the local tolerance (a factor below 1).
     pub refine: f64,
     /// The factor of a refinement when the estimate is infinite.
@@ -206,6 +210,7 @@ mod tests {
     const POLICY: Policy = Policy {
         companion_looser: 16.0,
         companion_cap: 1e-2,
+        companion_error: 14.0,
         refine: 0.25,
         blind_refine: 1.0 / 16.0,
         tightest: 1e-14,

@@ -157,8 +157,8 @@ fn plan_auto(
     run.method = c.method;
     run.tolerance = c.settings.tolerance;
     run.step = None;
-    let slow = plan::SLOW_COMPANION_LOOSER;
-    let resolved_looser = plan::COMPANION_LOOSER;
+    let slow = kapitza::policy::SLOW.companion_looser;
+    let resolved_looser = kapitza::policy::POLICY.companion_looser;
     let against = plan::checked_against(problem, c.method);
     let short = if c.met {
         ""

@@ -404,9 +404,9 @@ fn an_exact_averaged_model_needs_no_probe() {
 /// at 0.53×). Each run is compared where its error stands ten times above the reference's own.
 #[test]
 fn the_series_companion_bounds_its_run_on_every_reference() {
-    use rattleback::physics::rattleback::auto::{
-        TAYLOR_COMPANION_LOOSER, conditioned_round_off, difference, round_off,
-    };
+    use rattleback::physics::rattleback::auto::{conditioned_round_off, difference, round_off};
+    const TAYLOR_COMPANION_LOOSER: f64 =
+        rattleback::physics::rattleback::policy::TAYLOR.companion_looser;
     use rattleback::physics::rattleback::run::{RunSpec, run};
 
     let mut cases = averaged_cases();

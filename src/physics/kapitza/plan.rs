@@ -15,7 +15,7 @@
 //!   [`THIRD_ORDER_MARGIN`]. Beyond, `averaged2` alone, by `2 D (ε s)²` with `D` its distance
 //!   from the limit with its ripple ([`SECOND_ORDER_MARGIN`]: the measured error over
 //!   `D (ε s)²` is at most 0.72 on the reference and held-out starts). Each estimate adds the
-//!   run's distance from a companion [`SLOW_COMPANION_LOOSER`] times looser (integration) and
+//!   run's distance from a companion `SLOW.companion_looser` times looser (integration) and
 //!   the fast phase's rounding. The runs are of the slow motion, 10–20 µs each; distances are
 //!   the largest over 33 samples of `(θ, θ̇)` and the end. Where the model error is within half
 //!   the tolerance and the integration is not (a long horizon), the best is run once more at
@@ -43,7 +43,7 @@
 //! **A resolved run is verified** ([`verified`], issue 29): the a-priori tolerance is a guess
 //! that long runs near the unstable upright beat (6.5× over at 1e-8 on a falling start that
 //! keeps returning to the top, T = 50). The run is compared with a companion
-//! [`COMPANION_LOOSER`] times looser on 33 samples of `(θ, θ̇)` and the final state; their
+//! `POLICY.companion_looser` times looser on 33 samples of `(θ, θ̇)` and the final state; their
 //! difference plus the rounding floors is the estimate, widened by [`NOISE_MARGIN`] where the
 //! last refinement lowered it much less than the tolerance ([`MIN_CONVERGENCE`]: rounding, not
 //! truncation, then sets both runs' errors). Above the tolerance the local tolerance
@@ -58,7 +58,7 @@
 //! false`).
 
 use super::Problem;
-use super::policy::POLICY;
+use super::policy::{POLICY, SLOW};
 use super::run::{RunResult, RunSpec, run};
 use crate::physics::method::Asked;
 use crate::physics::method::{Method, Settings, StepError};
@@ -219,7 +219,7 @@ fn resolved(problem: &Problem, tolerance: f64, t_end: f64) -> Choice {
 /// is the a-posteriori check's.
 #[must_use]
 pub fn averaged_expected(problem: &Problem, tolerance: f64, t_end: f64) -> bool {
-    let local = (tolerance * 1e-4).max(TIGHTEST);
+    let local = (tolerance * 1e-4).max(POLICY.tightest);
     model_error2(problem, t_end) + 100.0 * local + lift_phase_rounding(problem) <= tolerance
 }
 
@@ -255,7 +255,7 @@ pub const LIMIT_WORTH_TRYING: f64 = 30.0;
 /// `averaged3`, and `averaged3` by its gap to `averaged2` times `(ε s)²` (the ratio of their
 /// orders, [`THIRD_ORDER_MARGIN`]). Beyond, `averaged2` alone, by its distance from the limit
 /// times `(ε s)²` ([`SECOND_ORDER_MARGIN`]). Each estimate adds the run's distance from its
-/// companion, [`SLOW_COMPANION_LOOSER`] times looser (integration), and the lift's rounding. When
+/// companion, `SLOW.companion_looser` times looser (integration), and the lift's rounding. When
 /// none meets the tolerance, the one with the smallest estimate, `met = false` (what
 /// [`verified`] returns when a resolved run cannot do better).
 ///
@@ -267,7 +267,7 @@ pub fn averaged_checked(
     t_end: f64,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Choice, StepError> {
-    let local = (tolerance * 1e-4).max(TIGHTEST);
+    let local = (tolerance * 1e-4).max(POLICY.tightest);
     let spec = |method, tolerance| RunSpec {
         method,
         tolerance,
@@ -289,14 +289,14 @@ pub fn averaged_checked(
         // Short of the tolerance by its model error, or by the slow run's integration at the
         // tightest tolerance (the one retry below).
         shortfall: (estimate > tolerance).then_some(
-            if model > 0.5 * tolerance || local > TIGHTEST {
+            if model > 0.5 * tolerance || local > POLICY.tightest {
                 Shortfall::Model
             } else {
                 Shortfall::Clamped
             },
         ),
     };
-    let companion = |local: f64| (local * SLOW_COMPANION_LOOSER).min(1e-3);
+    let companion = |local: f64| SLOW.companion(local);
     let mut run_at = |method, local: f64| run(problem, &spec(method, local), go_on);
     let smaller = |a: Choice, b: Choice| if b.estimate < a.estimate { b } else { a };
     let best = if separated(problem) {
@@ -340,15 +340,20 @@ pub fn averaged_checked(
         let estimate = model + difference(&second, &second_companion) + rounding;
         choice(Method::Averaged2, local, model, estimate)
     };
-    if best.met || local <= TIGHTEST || best.predicted_model_error > 0.5 * tolerance {
+    if best.met || local <= POLICY.tightest || best.predicted_model_error > 0.5 * tolerance {
         return Ok(best);
     }
     // The model is within the tolerance and the integration is not (a long horizon): once more
     // at the tightest tolerance.
-    let tight = run_at(best.method, TIGHTEST)?;
-    let tight_companion = run_at(best.method, companion(TIGHTEST))?;
+    let tight = run_at(best.method, POLICY.tightest)?;
+    let tight_companion = run_at(best.method, companion(POLICY.tightest))?;
     let estimate = best.predicted_model_error + difference(&tight, &tight_companion) + rounding;
-    let tightened = choice(best.method, TIGHTEST, best.predicted_model_error, estimate);
+    let tightened = choice(
+        best.method,
+        POLICY.tightest,
+        best.predicted_model_error,
+        estimate,
+    );
     Ok(smaller(best, tightened))
 }
 
@@ -360,7 +365,7 @@ pub fn averaged_checked(
 pub fn averaged3_gap(problem: &Problem, t_end: f64) -> Result<f64, StepError> {
     let spec = |method| RunSpec {
         method,
-        tolerance: TIGHTEST,
+        tolerance: POLICY.tightest,
         step: None,
         t_end,
         samples: SAMPLES,
@@ -370,18 +375,10 @@ pub fn averaged3_gap(problem: &Problem, t_end: f64) -> Result<f64, StepError> {
     Ok(difference(&third, &second))
 }
 
-/// How much looser the companion of a resolved run is ([`POLICY`]'s).
-pub const COMPANION_LOOSER: f64 = POLICY.companion_looser;
-/// How much looser the companion of a slow model's run is: their difference is 1.3–3× the
-/// run's integration error (`4^q − 1`, `q` 0.65–1 measured between 1e-10 and 1e-13 on the
-/// references), which keeps the estimates within about 10× of the errors.
-pub const SLOW_COMPANION_LOOSER: f64 = 4.0;
 /// How far off, in tolerances, `averaged2`'s a-priori model error ([`model_error2`]) must be,
 /// where `ε s` > [`THIRD_ORDER_MAX_EPS_S`], for [`verified`] to try a resolved run before the
 /// slow models (their check would only add runs).
 pub const HOPELESS: f64 = 1e3;
-/// Tightest local tolerance ([`POLICY`]'s), of the slow models' runs too.
-pub const TIGHTEST: f64 = POLICY.tightest;
 /// How much a declined run's estimate is widened, and a met one's where rounding shows
 /// ([`MIN_CONVERGENCE`]; see [`verified`]).
 pub const NOISE_MARGIN: f64 = 3.0;

@@ -15,6 +15,7 @@ pub mod integrators;
 pub mod model;
 pub mod params;
 pub mod plan;
+pub mod policy;
 pub mod run;
 pub mod scene;
 pub mod weak;

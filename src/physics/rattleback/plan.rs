@@ -9,6 +9,7 @@
 use super::auto;
 use super::budget;
 use super::params::Problem;
+use super::policy::POLICY;
 use super::run::RunSpec;
 use crate::physics::method::Asked;
 use crate::physics::method::Method;
@@ -96,8 +97,8 @@ pub fn predicted_seconds(problem: &Problem, ask: &Asked) -> f64 {
     }
     let resolved = auto::best_resolved(problem, tolerance, t_end).predicted_seconds;
     if auto::considers_averaged(problem, tolerance, t_end) {
-        let local =
-            (tolerance / (2.0 * auto::COMPANION_RATIO * auto::AVERAGED_GROWTH)).max(auto::TIGHTEST);
+        let local = (tolerance / (2.0 * POLICY.companion_error * auto::AVERAGED_GROWTH))
+            .max(POLICY.tightest);
         let averaged =
             budget::cost_seconds(problem, &Asked::new(auto::AVERAGED, local, None, t_end))
                 * (1.0 + VERIFY_FRACTION);

@@ -7,7 +7,7 @@
 //!   where its companion at `L` should still meet the tolerance: the companion's global error
 //!   is about `G L` with `G = 0.25 · max(20, fast periods)` ([`TAYLOR_GROWTH`]). The series'
 //!   error is a random walk that a slightly looser companion can under-read; one
-//!   [`TAYLOR_COMPANION_LOOSER`] = 1024 times looser did not on any reference, and the series'
+//!   `TAYLOR.companion_looser` = 1024 times looser did not on any reference, and the series'
 //!   cost grows so slowly with its tolerance (`tol^-0.05`) that the tight run costs 1.4× the
 //!   companion. The cheapest resolving candidate at tolerances down to about 1e-9;
 //! - `dop853`, resolving the fast motion, at a local tolerance `L` such that its companion at
@@ -51,7 +51,7 @@
 //! falling (less than halved by a refinement: the round-off floor or an ill-conditioned start;
 //! the estimate reached is reported as the floor), at once when the round-off floors alone pass
 //! the tolerance (a refinement only adds steps to them), when an adaptive tolerance reaches its
-//! 1e-14 clamp, after [`MAX_REFINEMENTS`], or before a refinement predicted to take the total
+//! 1e-14 clamp, after `POLICY.max_refinements`, or before a refinement predicted to take the total
 //! past [`AUTO_SECONDS`] (or the caller's smaller budget).
 //!
 //! **Far in** (an averaged plan at `k` above the start's conditioning stiffness, where its
@@ -75,6 +75,7 @@
 pub mod legacy;
 pub mod memo;
 
+use super::policy::{POLICY, TAYLOR};
 use crate::physics::method::Asked;
 use std::fmt::Write as _;
 
@@ -104,21 +105,6 @@ pub const C_FAST: f64 = 3e-12;
 /// Largest `ν h` of a `blanes-moan4` run: its companion at `2h` stays where the error still
 /// follows `h⁴` (measured up to `ν h = 1.5`; at 2 it jumps by 10²–10³ on trapped starts).
 pub const BLANES_MOAN_MAX_NU_H: f64 = 0.75;
-/// How much looser the companion of an adaptive run is (its error is then ≈ 14× the run's:
-/// DOP853's global error goes like `tol^0.95` here, docs/benchmarks.md).
-pub const COMPANION_LOOSER: f64 = 16.0;
-/// The companion's error over the run's, for an adaptive method (`16^0.95`).
-pub const COMPANION_RATIO: f64 = 14.0;
-/// How much looser the companion of a `taylor` run is. The series' error does not fall
-/// smoothly with its tolerance (a random walk of local errors that take the sign of a ripple's
-/// phase: docs/benchmarks.md, "The middle by a Taylor series"), so a companion a little looser
-/// can land on an error as small as the run's; one 1024× looser cannot, in practice: on every
-/// long-double reference up to k = 1e6, companions at 1e-8 … 1e-12, their difference plus the
-/// round-off floors was at least 27× the run's true error (185 runs measurable above the
-/// references' own error; 5.6× at 256×, 0.53× at 64×, 0.11× at 16×:
-/// `cargo run --release --example rattleback_taylor tighter`). The series' cost grows like
-/// `tol^-0.05`, so the run 1024× tighter than its companion costs only 1.4× as much.
-pub const TAYLOR_COMPANION_LOOSER: f64 = 1024.0;
 /// The series' global error over its local tolerance per fast period of the horizon (at least
 /// 20): median 0.27 on the long-double references up to k = 1e6, a tenth of DOP853's
 /// (`cargo run --release --example rattleback_taylor growth`, and with `METHOD=dop853`), which
@@ -127,8 +113,6 @@ pub const TAYLOR_GROWTH: f64 = 0.25;
 /// DOP853's global error over its local tolerance per fast period of the horizon (measured
 /// 0.6–2.7 on trapped starts, 0.06–0.25 on rotating ones, k = 1e2 … 1e5, T = 30).
 pub const DOP853_GROWTH: f64 = 2.5;
-/// Tightest local tolerance of the adaptive methods.
-pub const TIGHTEST: f64 = 1e-14;
 /// The averaged model `auto` plans with (probes, plans and refines): `averaged3`, whose
 /// O(k⁻³) error reaches into the middle stiffnesses `averaged2` could not serve.
 pub const AVERAGED: Method = Method::Averaged3;
@@ -173,21 +157,6 @@ pub const PROBE_RUNGS: u32 = 3;
 /// measured slope, which a pre-asymptotic start keeps below the theory's 3, so the prediction
 /// errs high.
 pub const AVERAGED_MIN_RATIO: f64 = 4.0;
-/// Most refinements before `auto` reports what it has.
-pub const MAX_REFINEMENTS: u32 = 6;
-/// How many refinements of the series in a row may fail to halve its estimate before `auto`
-/// reads a stall (a floor) and stops; one for the other methods. The series' companion, 1024×
-/// looser, errs erratically on an ill-conditioned start: on `M` at k = 1e3, T = 100 (κ ≈ 2 300)
-/// its error moves by up to 4× between local tolerances a factor 2 apart, up as often as down
-/// (`cargo run --release --example rattleback_taylor stall`). With one, that start ended
-/// `met = false` "at its floor" at tolerances 1e-5 and 1e-7 (estimates 2.9e-5, 1.9e-7) while its
-/// floor was 4e-10 and it met 1e-6 and 1e-8 (stop 52).
-pub const TAYLOR_STALLS: u32 = 2;
-/// The least factor by which a refinement tightens the series' local tolerance: its cost grows
-/// like `tol^-0.06` (16× tighter costs about 1.2× as much: `… rattleback_taylor cost`), while
-/// its companion's error, on an ill-conditioned start, moves by up to 4× either way between
-/// tolerances a factor 2 apart ([`TAYLOR_STALLS`]), so a small step may land on a worse one.
-pub const TAYLOR_REFINEMENT: f64 = 16.0;
 /// Predicted seconds (calibration machine) after which `auto` stops refining and reports
 /// `met = false` instead of computing on: it answers within about this time, whatever the
 /// start and tolerance.
@@ -299,7 +268,7 @@ impl Plan {
     }
 
     /// The coarser companion that verifies it: twice the step, or a looser tolerance
-    /// ([`COMPANION_LOOSER`], [`TAYLOR_COMPANION_LOOSER`] for the series).
+    /// (`POLICY.companion_looser`, `TAYLOR.companion_looser` for the series).
     #[must_use]
     pub fn companion(&self) -> Settings {
         companion_of(self.method, self.tolerance, self.step)
@@ -309,9 +278,9 @@ impl Plan {
 /// The coarser companion of a run of `method` with these settings.
 fn companion_of(method: Method, tolerance: f64, step: Option<f64>) -> Settings {
     let looser = if method == Method::Taylor {
-        TAYLOR_COMPANION_LOOSER
+        TAYLOR.companion_looser
     } else {
-        COMPANION_LOOSER
+        POLICY.companion_looser
     };
     match step {
         Some(h) => Settings {
@@ -652,29 +621,29 @@ fn blanes_moan_rate(problem: &Problem) -> f64 {
 /// when the local tolerance would have to go below the clamp).
 fn dop853_local(tolerance: f64, periods: f64) -> (f64, f64) {
     let growth = DOP853_GROWTH * periods.max(20.0);
-    let wanted = tolerance / (2.0 * COMPANION_RATIO * growth);
-    let local = wanted.max(TIGHTEST);
+    let wanted = tolerance / (2.0 * POLICY.companion_error * growth);
+    let local = wanted.max(POLICY.tightest);
     (local, 0.5 * tolerance * local / wanted)
 }
 
 /// The series' local tolerance for `tolerance` over `periods` fast periods: its companion,
-/// [`TAYLOR_COMPANION_LOOSER`] times looser, should still meet it. With the error the companion
+/// `TAYLOR.companion_looser` times looser, should still meet it. With the error the companion
 /// is then predicted to have (what the estimate will read: above `tolerance` when the run's
 /// tolerance would have to go below the clamp).
 fn taylor_local(tolerance: f64, periods: f64) -> (f64, f64) {
     let growth = TAYLOR_GROWTH * periods.max(20.0);
     let companion = tolerance / (2.0 * growth);
-    let local = (companion / TAYLOR_COMPANION_LOOSER).max(TIGHTEST);
+    let local = (companion / TAYLOR.companion_looser).max(POLICY.tightest);
     (
         local,
-        0.5 * tolerance * local * TAYLOR_COMPANION_LOOSER / companion,
+        0.5 * tolerance * local * TAYLOR.companion_looser / companion,
     )
 }
 
 /// The averaged model's local tolerance for the integration share `share` of the tolerance.
 fn averaged_local(share: f64, t_end: f64) -> f64 {
     let growth = AVERAGED_GROWTH * (t_end / 30.0).max(1.0);
-    (share / (2.0 * COMPANION_RATIO * growth)).max(TIGHTEST)
+    (share / (2.0 * POLICY.companion_error * growth)).max(POLICY.tightest)
 }
 
 fn with_companion(problem: &Problem, ask: &Asked) -> f64 {
@@ -909,7 +878,7 @@ pub fn run_auto_cancellable(
     let allowance = budget.min(AUTO_SECONDS).max(spent);
     // Measured beside the first run (again after a change from the averaged model).
     let mut measured: Option<Conditioning> = None;
-    let mut refinements = 0;
+    let mut refinements: u32 = 0;
     // The estimate before the last refinement of the same method (none after a change), and how
     // many refinements in a row did not halve it.
     let mut previous: Option<f64> = None;
@@ -927,10 +896,10 @@ pub fn run_auto_cancellable(
             // once, issue 27), or refinements did not halve the estimate (or it is still
             // infinite: the run and its companion still disagree on the number of reversals).
             Some(Shortfall::Floor)
-        } else if refinements == MAX_REFINEMENTS {
+        } else if usize::try_from(refinements) == Ok(POLICY.max_refinements) {
             Some(Shortfall::Refinements)
         } else if plan.method.is_averaged()
-            && plan.tolerance <= TIGHTEST
+            && plan.tolerance <= POLICY.tightest
             && model_error < 0.5 * tolerance
         {
             Some(Shortfall::Clamped)
@@ -997,7 +966,7 @@ pub fn run_auto_cancellable(
 
 /// Refinements in a row that did not halve the estimate, after one that gave `estimate` where
 /// the one before gave `previous` (none after a change of method).
-fn stalls_after(stalls: u32, previous: Option<f64>, estimate: f64) -> u32 {
+fn stalls_after(stalls: usize, previous: Option<f64>, estimate: f64) -> usize {
     if previous.is_some_and(|p| estimate >= 0.5 * p) {
         stalls + 1
     } else {
@@ -1005,12 +974,12 @@ fn stalls_after(stalls: u32, previous: Option<f64>, estimate: f64) -> u32 {
     }
 }
 
-/// How many stalls in a row read as a floor for `method` ([`TAYLOR_STALLS`]).
-fn stalls_allowed(method: Method) -> u32 {
+/// How many stalls in a row read as a floor for `method` (`TAYLOR.stalls`).
+fn stalls_allowed(method: Method) -> usize {
     if method == Method::Taylor {
-        TAYLOR_STALLS
+        TAYLOR.stalls
     } else {
-        1
+        POLICY.stalls
     }
 }
 
@@ -1615,7 +1584,7 @@ fn refine(
         16.0
     };
     if matches!(plan.method, Method::Dop853 | Method::Taylor)
-        && plan.tolerance / (2.0 * excess) < TIGHTEST
+        && plan.tolerance / (2.0 * excess) < POLICY.tightest
     {
         // DOP853 or the series cannot be tightened that far: the splitting, whose error does not
         // stall at a tolerance clamp, at the step its model asks for this tolerance, then
@@ -1638,11 +1607,11 @@ fn refine(
         next.step = Some(h / (1.25 * excess.powf(1.0 / p)));
     } else {
         let factor = if plan.method == Method::Taylor {
-            (2.0 * excess).max(TAYLOR_REFINEMENT)
+            (2.0 * excess).max(TAYLOR.refine.recip())
         } else {
             2.0 * excess
         };
-        next.tolerance = (plan.tolerance / factor).max(TIGHTEST);
+        next.tolerance = (plan.tolerance / factor).max(POLICY.tightest);
     }
     next.predicted_seconds = with_companion(
         problem,
