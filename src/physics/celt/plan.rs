@@ -70,15 +70,6 @@ pub fn resolve(
             floor: None,
         });
     }
-    let spec = |tolerance: f64| RunSpec {
-        method: Method::Dop853,
-        tolerance,
-        t_end: ask.t_end,
-        samples: SAMPLES,
-    };
-    let cost = |l: f64| {
-        super::budget::cost_seconds(problem, &Asked::new(Method::Dop853, l, None, ask.t_end))
-    };
     let local = (ask.tolerance * FIRST).clamp(POLICY.tightest, 1e-3);
     if ask.policy == AutoPolicy::Legacy {
         // No session of format 1 holds a celt; plan as the first step does, unverified.
@@ -95,8 +86,7 @@ pub fn resolve(
     }
     let mut candidate = Dop853 {
         problem,
-        spec,
-        cost,
+        t_end: ask.t_end,
     };
     Ok(
         match verify(
@@ -119,14 +109,25 @@ pub fn resolve(
     )
 }
 
-/// The celt's candidate: DOP853 at a local tolerance, the companion run after it.
-struct Dop853<'a, S, C> {
+/// The celt's candidate: DOP853 at a local tolerance over `[0, t_end]`, the companion run
+/// after it.
+struct Dop853<'a> {
     problem: &'a Problem,
-    spec: S,
-    cost: C,
+    t_end: f64,
 }
 
-impl<S: Fn(f64) -> RunSpec, C: Fn(f64) -> f64> Candidate for Dop853<'_, S, C> {
+impl Dop853<'_> {
+    fn spec(&self, tolerance: f64) -> RunSpec {
+        RunSpec {
+            method: Method::Dop853,
+            tolerance,
+            t_end: self.t_end,
+            samples: SAMPLES,
+        }
+    }
+}
+
+impl Candidate for Dop853<'_> {
     type Run = RunResult;
     fn pair(
         &mut self,
@@ -134,15 +135,18 @@ impl<S: Fn(f64) -> RunSpec, C: Fn(f64) -> f64> Candidate for Dop853<'_, S, C> {
         companion: f64,
         go_on: &mut dyn FnMut(f64) -> bool,
     ) -> Result<(RunResult, RunResult), StepError> {
-        let fine = run(self.problem, &(self.spec)(local), go_on)?;
-        let coarse = run(self.problem, &(self.spec)(companion), go_on)?;
+        let fine = run(self.problem, &self.spec(local), go_on)?;
+        let coarse = run(self.problem, &self.spec(companion), go_on)?;
         Ok((fine, coarse))
     }
     fn measured(&self, fine: &RunResult, coarse: &RunResult) -> f64 {
         difference(fine, coarse) + floor(fine)
     }
     fn cost(&self, local: f64) -> f64 {
-        (self.cost)(local)
+        super::budget::cost_seconds(
+            self.problem,
+            &Asked::new(Method::Dop853, local, None, self.t_end),
+        )
     }
 }
 

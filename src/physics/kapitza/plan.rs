@@ -458,14 +458,11 @@ pub fn verified(
         }
         averaged = Some(a);
     }
-    let spec = |tolerance: f64| RunSpec {
-        method: RESOLVED,
-        tolerance,
-        step: None,
+    let mut candidate = Resolved {
+        problem,
         t_end,
-        samples: SAMPLES,
+        floor,
     };
-    let cost = |l: f64| super::budget::cost_seconds(problem, &Asked::new(RESOLVED, l, None, t_end));
     let at = |local: f64, estimate: f64, shortfall: Option<Shortfall>| Choice {
         settings: Settings {
             tolerance: local,
@@ -479,7 +476,7 @@ pub fn verified(
     let local = first.settings.tolerance;
     // The cost model may have expected `averaged2` (`averaged_expected`): the resolved run it
     // did not count is refused here rather than run past the budget.
-    let first_cost = cost(local) + cost(POLICY.companion(local));
+    let first_cost = candidate.cost(local) + candidate.cost(POLICY.companion(local));
     if let Err(over) = crate::physics::budget::check(first_cost, budget) {
         // Refused, unless the averaged model's shortfall is an answer to give instead.
         let a = slow_fallback(&mut averaged, problem, tolerance, t_end, go_on)?;
@@ -491,12 +488,6 @@ pub fn verified(
             over,
         });
     }
-    let mut candidate = Resolved {
-        problem,
-        spec,
-        cost,
-        floor,
-    };
     Ok(
         match verify(&POLICY, &mut candidate, local, tolerance, budget, go_on)? {
             Verdict::Met { local, estimate } => at(local, estimate, None),
@@ -526,14 +517,25 @@ pub fn verified(
 /// The pendulum's resolved candidate: the full model by [`RESOLVED`] and its companion, side by
 /// side where there are two cores; their difference plus the rounding floor, widened where the
 /// last refinement showed rounding rather than truncation.
-struct Resolved<'a, S, C> {
+struct Resolved<'a> {
     problem: &'a Problem,
-    spec: S,
-    cost: C,
+    t_end: f64,
     floor: f64,
 }
 
-impl<S: Fn(f64) -> RunSpec, C: Fn(f64) -> f64> Candidate for Resolved<'_, S, C> {
+impl Resolved<'_> {
+    fn spec(&self, tolerance: f64) -> RunSpec {
+        RunSpec {
+            method: RESOLVED,
+            tolerance,
+            step: None,
+            t_end: self.t_end,
+            samples: SAMPLES,
+        }
+    }
+}
+
+impl Candidate for Resolved<'_> {
     type Run = RunResult;
     fn pair(
         &mut self,
@@ -542,7 +544,7 @@ impl<S: Fn(f64) -> RunSpec, C: Fn(f64) -> f64> Candidate for Resolved<'_, S, C> 
         go_on: &mut dyn FnMut(f64) -> bool,
     ) -> Result<(RunResult, RunResult), StepError> {
         let (here, there) = (self.problem, *self.problem);
-        let (fine_spec, coarse_spec) = ((self.spec)(local), (self.spec)(companion));
+        let (fine_spec, coarse_spec) = (self.spec(local), self.spec(companion));
         let (fine, coarse) = crate::physics::fork::both(
             go_on,
             |go_on| run(here, &fine_spec, go_on),
@@ -568,7 +570,7 @@ impl<S: Fn(f64) -> RunSpec, C: Fn(f64) -> f64> Candidate for Resolved<'_, S, C> 
         }
     }
     fn cost(&self, local: f64) -> f64 {
-        (self.cost)(local)
+        super::budget::cost_seconds(self.problem, &Asked::new(RESOLVED, local, None, self.t_end))
     }
 }
 
