@@ -1,7 +1,8 @@
 //! A fourth model through the public seam (issue 57), not shipped: a driven harmonic oscillator
 //! `x'' + ω² x = F cos(Ω t)`, whose exact solution is known, with a verified `auto` from the
 //! one loop, `physics::verify`. What a model brings is its [`Policy`] (data) and its candidate
-//! (how it runs, what two runs' difference is, its rounding floor, its cost); the loop is the
+//! (how a round runs, what two runs' difference is, its rounding floor, its cost, how a plan is
+//! refined); the loop is the
 //! library's. `cargo run --example fourth_model` prints each start's choice, estimate and true
 //! error, and fails when a claim is false; `cargo test --example fourth_model` checks the same.
 //! It touches no file of `src/` (docs/architecture.md, "Adding a model").
@@ -9,7 +10,8 @@
 use nalgebra::SVector;
 use rattleback::physics::method::StepError;
 use rattleback::physics::numerics::dop853::Dop853;
-use rattleback::physics::verify::{Candidate, Policy, Verdict, verify};
+use rattleback::physics::plan::Shortfall;
+use rattleback::physics::verify::{Candidate, Outcome, Policy, verify};
 
 type State = SVector<f64, 3>;
 
@@ -75,6 +77,7 @@ const POLICY: Policy = Policy {
     tightest: 1e-14,
     max_refinements: 4,
     stalls: 2,
+    floor_stops: true,
 };
 
 struct Auto {
@@ -82,30 +85,40 @@ struct Auto {
     t_end: f64,
 }
 
-impl Candidate for Auto {
-    type Run = (Vec<(f64, f64)>, u64);
-    fn pair(
-        &mut self,
-        local: f64,
-        companion: f64,
-        _: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<(Self::Run, Self::Run), StepError> {
-        Ok((
-            self.problem.run(local, self.t_end)?,
-            self.problem.run(companion, self.t_end)?,
-        ))
+impl Auto {
+    /// Predicted seconds of one run: about 3 evaluations a radian at tolerance 1,
+    /// `tol^{-1/8}`, 50 ns each.
+    fn run_cost(&self, local: f64) -> f64 {
+        3.0 * self.problem.omega.max(self.problem.drive) * self.t_end * local.powf(-0.125) * 5e-8
     }
-    fn measured(&self, fine: &Self::Run, coarse: &Self::Run) -> f64 {
+}
+
+impl Candidate for Auto {
+    type Plan = f64;
+    type Run = ();
+    fn round(
+        &mut self,
+        local: &f64,
+        _: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<Outcome<()>, StepError> {
+        let fine = self.problem.run(*local, self.t_end)?;
+        let coarse = self.problem.run(POLICY.companion(*local), self.t_end)?;
         let d = fine.0.iter().zip(&coarse.0).fold(0.0_f64, |d, (a, b)| {
             d.max((a.0 - b.0).abs()).max((a.1 - b.1).abs())
         });
         #[allow(clippy::cast_precision_loss)]
         let floor = f64::EPSILON * fine.1 as f64 * (1.0 + self.problem.omega);
-        d + floor
+        Ok(Outcome {
+            run: (),
+            measured: d + floor,
+            floor,
+        })
     }
-    fn cost(&self, local: f64) -> f64 {
-        // About 3 evaluations a radian at tolerance 1, `tol^{-1/8}`, 50 ns each.
-        3.0 * self.problem.omega.max(self.problem.drive) * self.t_end * local.powf(-0.125) * 5e-8
+    fn cost(&self, local: &f64) -> f64 {
+        self.run_cost(*local) + self.run_cost(POLICY.companion(*local))
+    }
+    fn refine(&mut self, local: &f64, estimate: f64, tolerance: f64) -> Result<f64, Shortfall> {
+        POLICY.tighten(*local, estimate, tolerance)
     }
 }
 
@@ -113,17 +126,10 @@ impl Candidate for Auto {
 fn auto(problem: Oscillator, tolerance: f64, t_end: f64) -> Result<(f64, f64, bool), StepError> {
     let mut candidate = Auto { problem, t_end };
     let first = (tolerance * 0.1).clamp(POLICY.tightest, 1e-3);
-    Ok(
-        match verify(&POLICY, &mut candidate, first, tolerance, 60.0, &mut |_| {
-            true
-        })? {
-            Verdict::Met { local, estimate } => (local, estimate, true),
-            Verdict::Declined {
-                local, estimate, ..
-            } => (local, estimate, false),
-            Verdict::Time { local, measured } => (local, measured, false),
-        },
-    )
+    let v = verify(&POLICY, &mut candidate, first, tolerance, 60.0, &mut |_| {
+        true
+    })?;
+    Ok((v.last.plan, v.last.estimate, v.shortfall.is_none()))
 }
 
 /// Every start at every tolerance: `(what, claimed met, estimate, true error)`.

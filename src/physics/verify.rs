@@ -1,16 +1,18 @@
-//! The one verification loop of every scene's `auto` (issue 57): run a candidate at a local
-//! tolerance and a companion some times looser, take their difference (plus the round-off
-//! floors) as the estimate, and refine until the estimate meets the tolerance, stalls, reaches
-//! the tightest local tolerance, runs out of refinements, or the next round would pass the
-//! budget. What differs between scenes is data ([`Policy`]) and what is the model's own
-//! ([`Candidate`]: how it runs, what it compares, its floors, its cost).
+//! The one verification loop of every scene's `auto` (issue 57): run a candidate plan and a
+//! looser companion, take their difference (plus the round-off floors) as the estimate, and
+//! refine until the estimate meets the tolerance or cannot: rounding alone passes it, the
+//! refinements stall, the plan cannot be tightened, the refinements run out, or the next round
+//! would pass the budget. What differs between scenes is data ([`Policy`]) and what is the
+//! model's own ([`Candidate`]: what a plan is, how a round runs and what it measures, how a plan
+//! is refined — a tighter tolerance, a smaller step, another method — and what a round costs).
 //!
-//! Each round is priced before it runs; the first always runs (the caller has priced it).
-//! A refinement tightens the local tolerance by the factor the estimate asks for (half the
-//! tolerance over the estimate), at least [`Policy::refine`], [`Policy::blind_refine`] when the
-//! estimate is infinite (the two runs disagree on a count). A round stalls when what it
-//! measured is more than half the previous round's; [`Policy::stalls`] stalls in a row stop
-//! the loop ([`Shortfall::Floor`]).
+//! Each round is priced before it runs; the first always runs (the caller has priced it). A
+//! round stalls when what it measured is not under half what the round before it measured in
+//! the same sequence (a change of method starts a new one; an infinite difference after an
+//! infinite one stalls); [`Candidate::stalls`] stalls in a row stop the loop
+//! ([`Shortfall::Floor`]), as does, where [`Policy::floor_stops`], a round whose round-off floor
+//! alone passes the tolerance. The loop keeps the round with the lowest estimate: past
+//! the round-off floor a refinement can do worse.
 
 use super::method::StepError;
 use super::plan::Shortfall;
@@ -36,6 +38,10 @@ pub struct Policy {
     pub max_refinements: usize,
     /// How many rounds in a row must fail to halve what was measured for the loop to stop.
     pub stalls: usize,
+    /// Whether a round whose round-off floor alone passes the tolerance stops the loop at once
+    /// (a refinement only adds steps to it). The pendulum's does not: its next round shows
+    /// whether rounding sets both runs' errors, which widens its estimate.
+    pub floor_stops: bool,
 }
 
 impl Policy {
@@ -44,134 +50,197 @@ impl Policy {
     pub fn companion(&self, local: f64) -> f64 {
         (local * self.companion_looser).min(self.companion_cap)
     }
+
+    /// The refinement of a plan that is a local tolerance: tightened by the factor the estimate
+    /// asks for (half the tolerance over the estimate), at least [`Policy::refine`],
+    /// [`Policy::blind_refine`] when the estimate is infinite (the two runs disagree on a
+    /// count), never past [`Policy::tightest`].
+    ///
+    /// # Errors
+    /// [`Shortfall::Clamped`] when `local` is at the tightest already.
+    pub fn tighten(&self, local: f64, estimate: f64, tolerance: f64) -> Result<f64, Shortfall> {
+        if local <= self.tightest {
+            return Err(Shortfall::Clamped);
+        }
+        let factor = if estimate.is_finite() {
+            (0.5 * tolerance / estimate).min(self.refine)
+        } else {
+            self.blind_refine
+        };
+        Ok((local * factor).max(self.tightest))
+    }
+}
+
+/// What one round gave: the run, its difference from the companion plus the round-off floors
+/// (`measured`), and those floors alone.
+#[derive(Clone, Debug)]
+pub struct Outcome<R> {
+    /// What the model keeps of the round.
+    pub run: R,
+    /// The two runs' difference plus the floors.
+    pub measured: f64,
+    /// The round-off floors in `measured`: no refinement lowers them.
+    pub floor: f64,
 }
 
 /// What a model brings to the loop.
 pub trait Candidate {
-    /// A finished run.
+    /// What a round runs: a local tolerance, or a method with its settings.
+    type Plan: Clone;
+    /// What the model keeps of a round.
     type Run;
-    /// The candidate at `local` and its companion at `companion` (side by side where the model
-    /// finds it pays).
+    /// Runs `plan` and its companion (side by side where the model finds it pays).
     ///
     /// # Errors
     /// A failed or cancelled run.
-    fn pair(
+    fn round(
         &mut self,
-        local: f64,
-        companion: f64,
+        plan: &Self::Plan,
         go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<(Self::Run, Self::Run), StepError>;
-    /// Their difference plus the round-off floors.
-    fn measured(&self, fine: &Self::Run, coarse: &Self::Run) -> f64;
-    /// The estimate from what was measured at `local`, knowing the previous round's
-    /// `(local, measured)` (a model may widen it where rounding sets both runs' errors).
-    fn estimate(&self, measured: f64, local: f64, last: Option<(f64, f64)>) -> f64 {
-        let _ = (local, last);
+    ) -> Result<Outcome<Self::Run>, StepError>;
+    /// The estimate from what `plan` measured, knowing the round `before` it in the same
+    /// sequence (a model may widen it where rounding sets both runs' errors).
+    fn estimate(
+        &self,
+        measured: f64,
+        plan: &Self::Plan,
+        before: Option<&(Self::Plan, f64)>,
+    ) -> f64 {
+        let _ = (plan, before);
         measured
     }
-    /// Predicted seconds of one run at `local`.
-    fn cost(&self, local: f64) -> f64;
+    /// Predicted seconds of a round of `plan` (the run and its companion).
+    fn cost(&self, plan: &Self::Plan) -> f64;
+    /// The plan after `plan` missed with `estimate`.
+    ///
+    /// # Errors
+    /// Why there is none.
+    fn refine(
+        &mut self,
+        plan: &Self::Plan,
+        estimate: f64,
+        tolerance: f64,
+    ) -> Result<Self::Plan, Shortfall>;
+    /// Whether `next` goes on `plan`'s sequence (the stall rule compares like with like).
+    fn continues(&self, plan: &Self::Plan, next: &Self::Plan) -> bool {
+        let _ = (plan, next);
+        true
+    }
+    /// How many stalls in a row stop the loop at `plan` (`policy.stalls` unless a method has
+    /// its own).
+    fn stalls(&self, plan: &Self::Plan, policy: &Policy) -> usize {
+        let _ = plan;
+        policy.stalls
+    }
+}
+
+/// A round as read: its plan, what it measured, its estimate and its floors.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reading<P> {
+    /// The plan run.
+    pub plan: P,
+    /// Its difference from the companion plus the floors.
+    pub measured: f64,
+    /// Its estimate.
+    pub estimate: f64,
+    /// The round-off floors in it.
+    pub floor: f64,
 }
 
 /// How the loop ended.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Verdict {
-    /// The estimate met the tolerance at `local`.
-    Met {
-        /// The local tolerance.
-        local: f64,
-        /// Its estimate.
-        estimate: f64,
-    },
-    /// It could not: stalled, clamped or out of refinements, at `local`.
-    Declined {
-        /// The last local tolerance.
-        local: f64,
-        /// What it measured.
-        measured: f64,
-        /// Its estimate.
-        estimate: f64,
-        /// The round before: `(local, measured)`.
-        last: Option<(f64, f64)>,
-        /// Why.
-        why: Shortfall,
-    },
-    /// The next round would pass the budget: the last round's `(local, measured)`.
-    Time {
-        /// The last local tolerance run.
-        local: f64,
-        /// What it measured.
-        measured: f64,
-    },
+#[derive(Clone, Debug)]
+pub struct Verdict<P, R> {
+    /// Why the estimate misses the tolerance (`None`: it met it).
+    pub shortfall: Option<Shortfall>,
+    /// The last round.
+    pub last: Reading<P>,
+    /// The round before the last in its sequence: its plan and what it measured.
+    pub before: Option<(P, f64)>,
+    /// The round with the lowest estimate (the last when it met) and its run.
+    pub best: (Reading<P>, R),
+    /// Refinements after the first round.
+    pub refinements: usize,
 }
 
-/// Verifies `candidate` from the local tolerance `first` until its estimate meets
-/// `tolerance`, as [`Policy`] says, spending at most `budget` predicted seconds after the
-/// first round.
+/// Verifies `candidate` from the plan `first` until its estimate meets `tolerance`, as
+/// `policy` says, the rounds together predicted at most `budget` seconds (the first always
+/// runs).
 ///
 /// # Errors
 /// A failed or cancelled run.
-pub fn verify(
+pub fn verify<C: Candidate>(
     policy: &Policy,
-    candidate: &mut impl Candidate,
-    first: f64,
+    candidate: &mut C,
+    first: C::Plan,
     tolerance: f64,
     budget: f64,
     go_on: &mut dyn FnMut(f64) -> bool,
-) -> Result<Verdict, StepError> {
-    let mut local = first;
-    let mut spent = 0.0;
-    // The last round's `(local, measured)`.
-    let mut last: Option<(f64, f64)> = None;
-    // Rounds in a row that did not halve what was measured.
+) -> Result<Verdict<C::Plan, C::Run>, StepError> {
+    let mut plan = first;
+    let mut spent = candidate.cost(&plan);
+    // The round before this one in its sequence, and rounds in a row that did not halve it.
+    let mut before: Option<(C::Plan, f64)> = None;
     let mut stalls = 0;
+    let mut best: Option<(Reading<C::Plan>, C::Run)> = None;
     for refinement in 0..=policy.max_refinements {
-        let companion = policy.companion(local);
-        let predicted = candidate.cost(local) + candidate.cost(companion);
-        if let Some((l, m)) = last
-            && spent + predicted > budget
-        {
-            return Ok(Verdict::Time {
-                local: l,
-                measured: m,
-            });
-        }
-        spent += predicted;
-        let (fine, coarse) = candidate.pair(local, companion, go_on)?;
-        let measured = candidate.measured(&fine, &coarse);
-        let estimate = candidate.estimate(measured, local, last);
-        if estimate <= tolerance {
-            return Ok(Verdict::Met { local, estimate });
-        }
-        stalls = if last.is_some_and(|(_, m)| measured > 0.5 * m) {
+        let Outcome {
+            run,
+            measured,
+            floor,
+        } = candidate.round(&plan, go_on)?;
+        let estimate = candidate.estimate(measured, &plan, before.as_ref());
+        stalls = if before.as_ref().is_some_and(|(_, m)| measured >= 0.5 * m) {
             stalls + 1
         } else {
             0
         };
-        let stalled = stalls >= policy.stalls;
-        if stalled || local <= policy.tightest || refinement == policy.max_refinements {
-            let why = if stalled {
-                Shortfall::Floor
-            } else if local <= policy.tightest {
-                Shortfall::Clamped
-            } else {
-                Shortfall::Refinements
-            };
-            return Ok(Verdict::Declined {
-                local,
-                measured,
-                estimate,
-                last,
-                why,
-            });
-        }
-        last = Some((local, measured));
-        let factor = if estimate.is_finite() {
-            (0.5 * tolerance / estimate).min(policy.refine)
-        } else {
-            policy.blind_refine
+        let reading = Reading {
+            plan: plan.clone(),
+            measured,
+            estimate,
+            floor,
         };
-        local = (local * factor).max(policy.tightest);
+        let ended = |shortfall, best, before| Verdict {
+            shortfall,
+            last: reading.clone(),
+            before,
+            best,
+            refinements: refinement,
+        };
+        if estimate <= tolerance {
+            return Ok(ended(None, (reading.clone(), run), before));
+        }
+        let best_now = match best.take() {
+            Some(b) if b.0.estimate <= estimate => b,
+            _ => (reading.clone(), run),
+        };
+        let next = if (policy.floor_stops && floor > tolerance)
+            || stalls >= candidate.stalls(&plan, policy)
+        {
+            Err(Shortfall::Floor)
+        } else if refinement == policy.max_refinements {
+            Err(Shortfall::Refinements)
+        } else {
+            candidate.refine(&plan, estimate, tolerance)
+        };
+        let next = next.and_then(|next| {
+            let cost = candidate.cost(&next);
+            if spent + cost > budget {
+                return Err(Shortfall::Time);
+            }
+            spent += cost;
+            Ok(next)
+        });
+        match next {
+            Err(why) => return Ok(ended(Some(why), best_now, before)),
+            Ok(next) => {
+                before = candidate
+                    .continues(&plan, &next)
+                    .then_some((plan, measured));
+                best = Some(best_now);
+                plan = next;
+            }
+        }
     }
     unreachable!("the loop returns at its last refinement")
 }
@@ -181,29 +250,35 @@ mod tests {
     use super::*;
 
     /// A model whose runs err by `c · local` (a method of order one in its tolerance) above a
-    /// rounding floor.
+    /// rounding level `noise` it does not know of, and a floor it does.
     struct Linear {
         c: f64,
+        noise: f64,
         floor: f64,
         rounds: usize,
     }
 
     impl Candidate for Linear {
-        type Run = f64;
-        fn pair(
+        type Plan = f64;
+        type Run = usize;
+        fn round(
             &mut self,
-            local: f64,
-            companion: f64,
+            local: &f64,
             _: &mut dyn FnMut(f64) -> bool,
-        ) -> Result<(f64, f64), StepError> {
+        ) -> Result<Outcome<usize>, StepError> {
             self.rounds += 1;
-            Ok((self.c * local, self.c * companion))
+            let d = self.c * (POLICY.companion(*local) - local);
+            Ok(Outcome {
+                run: self.rounds,
+                measured: d + self.noise + self.floor,
+                floor: self.floor,
+            })
         }
-        fn measured(&self, fine: &f64, coarse: &f64) -> f64 {
-            (coarse - fine).abs() + self.floor
-        }
-        fn cost(&self, local: f64) -> f64 {
+        fn cost(&self, local: &f64) -> f64 {
             local.powf(-0.125) * 1e-3
+        }
+        fn refine(&mut self, local: &f64, estimate: f64, tol: f64) -> Result<f64, Shortfall> {
+            POLICY.tighten(*local, estimate, tol)
         }
     }
 
@@ -216,62 +291,100 @@ mod tests {
         tightest: 1e-14,
         max_refinements: 4,
         stalls: 2,
+        floor_stops: true,
     };
 
+    fn linear(c: f64, noise: f64, floor: f64) -> Linear {
+        Linear {
+            c,
+            noise,
+            floor,
+            rounds: 0,
+        }
+    }
+
     #[test]
-    fn refines_until_met_and_stops_at_a_floor_after_its_stalls() {
-        let mut m = Linear {
-            c: 100.0,
-            floor: 0.0,
-            rounds: 0,
-        };
+    fn refines_until_met_and_stops_at_a_hidden_floor_after_its_stalls() {
+        let mut m = linear(100.0, 0.0, 0.0);
         let v = verify(&POLICY, &mut m, 1e-9, 1e-8, 60.0, &mut |_| true).unwrap();
+        assert_eq!(v.shortfall, None, "{v:?}");
         assert!(
-            matches!(v, Verdict::Met { estimate, .. } if estimate <= 1e-8),
-            "{v:?}"
+            v.best.0.estimate <= 1e-8 && m.rounds >= 2,
+            "it refined: {v:?}"
         );
-        assert!(m.rounds >= 2, "it refined");
-        let mut m = Linear {
-            c: 1.0,
-            floor: 1e-6,
-            rounds: 0,
-        };
+        assert_eq!(v.best.1, m.rounds, "the met round is the one returned");
+        let mut m = linear(1.0, 1e-6, 0.0);
         let v = verify(&POLICY, &mut m, 1e-9, 1e-8, 60.0, &mut |_| true).unwrap();
-        assert!(
-            matches!(
-                v,
-                Verdict::Declined {
-                    why: Shortfall::Floor,
-                    ..
-                }
-            ),
-            "{v:?}"
+        assert_eq!(v.shortfall, Some(Shortfall::Floor), "{v:?}");
+        assert_eq!(
+            v.before.map(|b| b.1 > 0.0),
+            Some(true),
+            "the round before is kept"
         );
         let one = Policy {
             stalls: 1,
             ..POLICY
         };
-        let mut fewer = Linear {
-            c: 1.0,
-            floor: 1e-6,
-            rounds: 0,
-        };
+        let mut fewer = linear(1.0, 1e-6, 0.0);
         verify(&one, &mut fewer, 1e-9, 1e-8, 60.0, &mut |_| true).unwrap();
         assert_eq!(fewer.rounds + 1, m.rounds, "one stall stops a round sooner");
     }
 
     #[test]
+    fn a_floor_above_the_tolerance_stops_it_at_once() {
+        let mut m = linear(1.0, 0.0, 1e-6);
+        let v = verify(&POLICY, &mut m, 1e-9, 1e-8, 60.0, &mut |_| true).unwrap();
+        assert_eq!((v.shortfall, m.rounds), (Some(Shortfall::Floor), 1));
+    }
+
+    #[test]
     fn the_budget_stops_it_after_the_first_round() {
-        let mut m = Linear {
-            c: 1e6,
-            floor: 0.0,
-            rounds: 0,
-        };
+        let mut m = linear(1e6, 0.0, 0.0);
         let v = verify(&POLICY, &mut m, 1e-9, 1e-12, 0.0, &mut |_| true).unwrap();
-        assert!(
-            matches!(v, Verdict::Time { local, .. } if (local - 1e-9).abs() < 1e-24),
-            "{v:?}"
+        assert_eq!(v.shortfall, Some(Shortfall::Time));
+        assert_eq!((v.last.plan, v.refinements, m.rounds), (1e-9, 0, 1));
+    }
+
+    /// Errs by `c · local` until `worse_after` rounds, then by a thousand times more.
+    struct Worsening(Linear, usize);
+
+    impl Candidate for Worsening {
+        type Plan = f64;
+        type Run = usize;
+        fn round(
+            &mut self,
+            local: &f64,
+            go_on: &mut dyn FnMut(f64) -> bool,
+        ) -> Result<Outcome<usize>, StepError> {
+            let mut o = self.0.round(local, go_on)?;
+            if o.run > self.1 {
+                o.measured *= 1e6;
+            }
+            Ok(o)
+        }
+        fn cost(&self, local: &f64) -> f64 {
+            self.0.cost(local)
+        }
+        fn refine(&mut self, local: &f64, _: f64, _: f64) -> Result<f64, Shortfall> {
+            // Its own refinement, and a change of sequence each time: stalls never count.
+            Ok(0.5 * local)
+        }
+        fn continues(&self, _: &f64, _: &f64) -> bool {
+            false
+        }
+    }
+
+    #[test]
+    fn it_returns_the_best_round_and_a_new_sequence_forgets_its_stalls() {
+        let mut m = Worsening(linear(1.0, 0.0, 0.0), 2);
+        let v = verify(&POLICY, &mut m, 1e-6, 1e-16, 60.0, &mut |_| true).unwrap();
+        assert_eq!(v.shortfall, Some(Shortfall::Refinements), "{v:?}");
+        assert_eq!(
+            m.0.rounds,
+            POLICY.max_refinements + 1,
+            "no stall stopped it"
         );
-        assert_eq!(m.rounds, 1);
+        assert_eq!(v.best.1, 2, "the second round measured least");
+        assert!(v.best.0.estimate < v.last.estimate && v.before.is_none());
     }
 }

@@ -21,7 +21,7 @@ use super::run::{RunResult, RunSpec, run};
 use crate::physics::method::Asked;
 use crate::physics::method::{Method, StepError};
 use crate::physics::plan::{AutoPolicy, PlanRequest, Resolution, Resolved, Shortfall};
-use crate::physics::verify::{Candidate, Verdict, verify};
+use crate::physics::verify::{Candidate, Outcome, verify};
 
 /// Times of the spin compared.
 const SAMPLES: usize = 33;
@@ -88,25 +88,15 @@ pub fn resolve(
         problem,
         t_end: ask.t_end,
     };
-    Ok(
-        match verify(
-            &POLICY,
-            &mut candidate,
-            local,
-            ask.tolerance,
-            ask.budget,
-            go_on,
-        )? {
-            Verdict::Met { local, estimate } => done(local, Some(estimate), None),
-            Verdict::Declined {
-                local,
-                estimate,
-                why,
-                ..
-            } => done(local, Some(estimate), Some(why)),
-            Verdict::Time { local, measured } => done(local, Some(measured), Some(Shortfall::Time)),
-        },
-    )
+    let v = verify(
+        &POLICY,
+        &mut candidate,
+        local,
+        ask.tolerance,
+        ask.budget,
+        go_on,
+    )?;
+    Ok(done(v.last.plan, Some(v.last.estimate), v.shortfall))
 }
 
 /// The celt's candidate: DOP853 at a local tolerance over `[0, t_end]`, the companion run
@@ -125,28 +115,36 @@ impl Dop853<'_> {
             samples: SAMPLES,
         }
     }
-}
 
-impl Candidate for Dop853<'_> {
-    type Run = RunResult;
-    fn pair(
-        &mut self,
-        local: f64,
-        companion: f64,
-        go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<(RunResult, RunResult), StepError> {
-        let fine = run(self.problem, &self.spec(local), go_on)?;
-        let coarse = run(self.problem, &self.spec(companion), go_on)?;
-        Ok((fine, coarse))
-    }
-    fn measured(&self, fine: &RunResult, coarse: &RunResult) -> f64 {
-        difference(fine, coarse) + floor(fine)
-    }
-    fn cost(&self, local: f64) -> f64 {
+    fn run_cost(&self, local: f64) -> f64 {
         super::budget::cost_seconds(
             self.problem,
             &Asked::new(Method::Dop853, local, None, self.t_end),
         )
+    }
+}
+
+impl Candidate for Dop853<'_> {
+    type Plan = f64;
+    type Run = ();
+    fn round(
+        &mut self,
+        local: &f64,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<Outcome<()>, StepError> {
+        let fine = run(self.problem, &self.spec(*local), go_on)?;
+        let coarse = run(self.problem, &self.spec(POLICY.companion(*local)), go_on)?;
+        Ok(Outcome {
+            run: (),
+            measured: difference(&fine, &coarse) + floor(&fine),
+            floor: floor(&fine),
+        })
+    }
+    fn cost(&self, local: &f64) -> f64 {
+        self.run_cost(*local) + self.run_cost(POLICY.companion(*local))
+    }
+    fn refine(&mut self, local: &f64, estimate: f64, tolerance: f64) -> Result<f64, Shortfall> {
+        POLICY.tighten(*local, estimate, tolerance)
     }
 }
 

@@ -23,4 +23,5 @@ pub const POLICY: Policy = Policy {
     tightest: 1e-14,
     max_refinements: 4,
     stalls: 2,
+    floor_stops: true,
 };

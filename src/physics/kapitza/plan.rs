@@ -63,7 +63,7 @@ use super::run::{RunResult, RunSpec, run};
 use crate::physics::method::Asked;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::plan::Shortfall;
-use crate::physics::verify::{Candidate, Verdict, verify};
+use crate::physics::verify::{Candidate, Outcome, verify};
 
 /// What `auto` chose, and why.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -476,7 +476,7 @@ pub fn verified(
     let local = first.settings.tolerance;
     // The cost model may have expected `averaged2` (`averaged_expected`): the resolved run it
     // did not count is refused here rather than run past the budget.
-    let first_cost = candidate.cost(local) + candidate.cost(POLICY.companion(local));
+    let first_cost = candidate.cost(&local);
     if let Err(over) = crate::physics::budget::check(first_cost, budget) {
         // Refused, unless the averaged model's shortfall is an answer to give instead.
         let a = slow_fallback(&mut averaged, problem, tolerance, t_end, go_on)?;
@@ -488,30 +488,24 @@ pub fn verified(
             over,
         });
     }
-    Ok(
-        match verify(&POLICY, &mut candidate, local, tolerance, budget, go_on)? {
-            Verdict::Met { local, estimate } => at(local, estimate, None),
-            Verdict::Time { local, measured } => {
-                let a = slow_fallback(&mut averaged, problem, tolerance, t_end, go_on)?;
-                closer(at(local, measured, Some(Shortfall::Time)), a)
-            }
-            // Declined: stalled, clamped or out of refinements. Near the rounding floor the two
-            // runs' difference under-reads either's error (an unstable motion amplifies
-            // round-off in both; measured up to 2.2× on the held-out starts), so the estimate
-            // given is NOISE_MARGIN times the larger of the last two.
-            Verdict::Declined {
-                local,
-                measured,
-                last,
-                why,
-                ..
-            } => {
-                let worst = last.map_or(measured, |(_, e)| e.max(measured));
-                let a = slow_fallback(&mut averaged, problem, tolerance, t_end, go_on)?;
-                closer(at(local, NOISE_MARGIN * worst, Some(why)), a)
-            }
-        },
-    )
+    let v = verify(&POLICY, &mut candidate, local, tolerance, budget, go_on)?;
+    let (local, measured) = (v.last.plan, v.last.measured);
+    Ok(match v.shortfall {
+        None => at(local, v.last.estimate, None),
+        Some(Shortfall::Time) => {
+            let a = slow_fallback(&mut averaged, problem, tolerance, t_end, go_on)?;
+            closer(at(local, measured, Some(Shortfall::Time)), a)
+        }
+        // Declined: rounding, stalled, clamped or out of refinements. Near the rounding floor
+        // the two runs' difference under-reads either's error (an unstable motion amplifies
+        // round-off in both; measured up to 2.2× on the held-out starts), so the estimate given
+        // is NOISE_MARGIN times the larger of the last two.
+        Some(why) => {
+            let worst = v.before.map_or(measured, |(_, e)| e.max(measured));
+            let a = slow_fallback(&mut averaged, problem, tolerance, t_end, go_on)?;
+            closer(at(local, NOISE_MARGIN * worst, Some(why)), a)
+        }
+    })
 }
 
 /// The pendulum's resolved candidate: the full model by [`RESOLVED`] and its companion, side by
@@ -533,44 +527,52 @@ impl Resolved<'_> {
             samples: SAMPLES,
         }
     }
+
+    fn run_cost(&self, local: f64) -> f64 {
+        super::budget::cost_seconds(self.problem, &Asked::new(RESOLVED, local, None, self.t_end))
+    }
 }
 
 impl Candidate for Resolved<'_> {
-    type Run = RunResult;
-    fn pair(
+    type Plan = f64;
+    type Run = ();
+    fn round(
         &mut self,
-        local: f64,
-        companion: f64,
+        local: &f64,
         go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<(RunResult, RunResult), StepError> {
+    ) -> Result<Outcome<()>, StepError> {
         let (here, there) = (self.problem, *self.problem);
-        let (fine_spec, coarse_spec) = (self.spec(local), self.spec(companion));
+        let (fine_spec, coarse_spec) = (self.spec(*local), self.spec(POLICY.companion(*local)));
         let (fine, coarse) = crate::physics::fork::both(
             go_on,
             |go_on| run(here, &fine_spec, go_on),
             move |go_on| run(&there, &coarse_spec, go_on),
         );
-        Ok((fine?, coarse?))
-    }
-    fn measured(&self, fine: &RunResult, coarse: &RunResult) -> f64 {
-        difference(fine, coarse) + self.floor
+        Ok(Outcome {
+            run: (),
+            measured: difference(&fine?, &coarse?) + self.floor,
+            floor: self.floor,
+        })
     }
     // A refinement that lowered the difference much less than the tolerance (a slope below
     // MIN_CONVERGENCE in log-log) shows rounding, not truncation, setting both runs' errors:
     // their difference then under-reads either's (the held-out `returns_eps1e-2`, with a
     // companion 16× looser, read 8.5e-9 for 1.1e-8 after slopes of 0.57 and 0.64), so it is
     // widened.
-    fn estimate(&self, measured: f64, local: f64, last: Option<(f64, f64)>) -> f64 {
+    fn estimate(&self, measured: f64, local: &f64, before: Option<&(f64, f64)>) -> f64 {
         let noisy =
-            last.is_some_and(|(l, e)| (e / measured).ln() < MIN_CONVERGENCE * (l / local).ln());
+            before.is_some_and(|(l, e)| (e / measured).ln() < MIN_CONVERGENCE * (l / local).ln());
         if noisy {
             NOISE_MARGIN * measured
         } else {
             measured
         }
     }
-    fn cost(&self, local: f64) -> f64 {
-        super::budget::cost_seconds(self.problem, &Asked::new(RESOLVED, local, None, self.t_end))
+    fn cost(&self, local: &f64) -> f64 {
+        self.run_cost(*local) + self.run_cost(POLICY.companion(*local))
+    }
+    fn refine(&mut self, local: &f64, estimate: f64, tolerance: f64) -> Result<f64, Shortfall> {
+        POLICY.tighten(*local, estimate, tolerance)
     }
 }
 

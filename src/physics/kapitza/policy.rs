@@ -26,6 +26,7 @@ pub const POLICY: Policy = Policy {
     tightest: 1e-14,
     max_refinements: 4,
     stalls: 1,
+    floor_stops: false,
 };
 
 /// The slow models' check (`plan::averaged_checked`): each run against a companion 4× looser,

@@ -1,6 +1,6 @@
-//! How the rattleback's `auto` verifies: data, in the shape of the one loop's
-//! (`physics::verify::Policy`), read by `auto` and by the plans. Its loop is still its own
-//! (methods change mid-verification, averaged and resolved), issue 57's next step.
+//! How the rattleback's `auto` verifies: data for the one loop, `physics::verify`, read by
+//! `auto` (whose candidate refines a plan by its own rules: a tolerance, a step, or another
+//! method) and by the plans.
 
 use crate::physics::verify::Policy;
 
@@ -25,6 +25,7 @@ pub const POLICY: Policy = Policy {
     tightest: 1e-14,
     max_refinements: 6,
     stalls: 1,
+    floor_stops: true,
 };
 
 /// The Taylor series (`taylor`): its own companion, refinement and stall rule.

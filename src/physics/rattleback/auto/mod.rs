@@ -45,8 +45,9 @@
 //! step, ~14× for a 16× looser tolerance) and fails only at the round-off floor, which the
 //! refinement rule detects.
 //!
-//! **Refinement** until the estimate meets the tolerance: the step or tolerance shrinks by the
-//! factor the estimate asks for; an averaged model whose error is too large gives way to the
+//! **Refinement**, by the one loop (`physics::verify`, as `POLICY` and `TAYLOR` say; the
+//! candidate here is `Auto`), until the estimate meets the tolerance: the step or tolerance
+//! shrinks by the factor the estimate asks for; an averaged model whose error is too large gives way to the
 //! best resolving method. It stops, and says so with `met = false`, when the estimate stops
 //! falling (less than halved by a refinement: the round-off floor or an ill-conditioned start;
 //! the estimate reached is reported as the floor), at once when the round-off floors alone pass
@@ -93,6 +94,7 @@ use crate::physics::method::Method;
 use crate::physics::method::Settings;
 use crate::physics::method::StepCap;
 use crate::physics::method::StepError;
+use crate::physics::verify::{Candidate, Outcome, Policy, verify};
 
 /// Error of `blanes-moan4` per unit time: `C_BM · spin^2.5 · c_max⁴ · h⁴ ν² / g_min`, with
 /// `spin` the largest spin rate of the limit, `c_max = |iy − ix| / (4 min(ix, iy))`, fitted on
@@ -859,127 +861,144 @@ pub fn run_auto_cancellable(
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Verified, StepError> {
     let (tolerance, t_end) = (spec.tolerance, spec.t_end);
-    let mut spent = 0.0;
-    if considers_averaged(problem, tolerance, t_end) {
-        spent += probes_cost(problem, t_end);
-        over_budget("auto's probing of the averaged model", spent, budget)?;
-    }
+    let probes = if considers_averaged(problem, tolerance, t_end) {
+        probes_cost(problem, t_end)
+    } else {
+        0.0
+    };
+    over_budget("auto's probing of the averaged model", probes, budget)?;
     let Decision {
-        mut plan,
-        mut model_error,
-        ..
+        plan, model_error, ..
     } = plan_cancellable(problem, tolerance, t_end, go_on)?;
-    spent += plan.predicted_seconds + conditioning_cost(problem, t_end, &plan);
+    let spent = probes + plan.predicted_seconds + conditioning_cost(problem, t_end, &plan);
     over_budget(
         &format!("auto's run and verification with {}", plan.method),
         spent,
         budget,
     )?;
+    // The rounds may spend what is left of the allowance after the probes.
     let allowance = budget.min(AUTO_SECONDS).max(spent);
-    // Measured beside the first run (again after a change from the averaged model).
-    let mut measured: Option<Conditioning> = None;
-    let mut refinements: u32 = 0;
-    // The estimate before the last refinement of the same method (none after a change), and how
-    // many refinements in a row did not halve it.
-    let mut previous: Option<f64> = None;
-    let mut stalls = 0;
-    let mut best_so_far: Option<Verified> = None;
-    loop {
-        let (result, kappa, Checked { estimate, floor }) =
-            run_and_check(problem, spec, &plan, model_error, measured, go_on)?;
-        measured = Some(kappa);
-        stalls = stalls_after(stalls, previous, estimate);
-        let shortfall = if estimate <= tolerance {
-            None
-        } else if floor > tolerance || stalls >= stalls_allowed(plan.method) {
-            // Rounding alone is above the tolerance (a refinement only adds steps to it: said at
-            // once, issue 27), or refinements did not halve the estimate (or it is still
-            // infinite: the run and its companion still disagree on the number of reversals).
-            Some(Shortfall::Floor)
-        } else if usize::try_from(refinements) == Ok(POLICY.max_refinements) {
-            Some(Shortfall::Refinements)
-        } else if plan.method.is_averaged()
+    let mut candidate = Auto {
+        problem,
+        spec,
+        model_error,
+        measured: None,
+    };
+    let v = verify(
+        &POLICY,
+        &mut candidate,
+        plan,
+        tolerance,
+        allowance - probes,
+        go_on,
+    )?;
+    let (reading, ran) = v.best;
+    Ok(Verified {
+        run_settings: reading.plan.settings(),
+        plan: reading.plan,
+        result: ran.result,
+        error_estimate: reading.estimate,
+        met: v.shortfall.is_none(),
+        shortfall: v.shortfall,
+        model_error: ran.model_error,
+        refinements: u32::try_from(v.refinements).unwrap_or(u32::MAX),
+        condition: ran.condition,
+        round_off_floor: reading.floor,
+    })
+}
+
+/// The rattleback's candidate for [`verify`]: a plan (any method, a tolerance or a step), the
+/// averaged model's probed error it carries, and the start's condition numbers once measured
+/// (again after a change from the averaged model to the full motion).
+struct Auto<'a> {
+    problem: &'a Problem,
+    spec: &'a RunSpec,
+    model_error: f64,
+    measured: Option<Conditioning>,
+}
+
+/// What `auto` keeps of a round.
+struct Ran {
+    result: RunResult,
+    condition: Conditioning,
+    model_error: f64,
+}
+
+impl Candidate for Auto<'_> {
+    type Plan = Plan;
+    type Run = Ran;
+    fn round(
+        &mut self,
+        plan: &Plan,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<Outcome<Ran>, StepError> {
+        let (result, condition, Checked { estimate, floor }) = run_and_check(
+            self.problem,
+            self.spec,
+            plan,
+            self.model_error,
+            self.measured,
+            go_on,
+        )?;
+        self.measured = Some(condition);
+        Ok(Outcome {
+            run: Ran {
+                result,
+                condition,
+                model_error: self.model_error,
+            },
+            measured: estimate,
+            floor,
+        })
+    }
+    fn cost(&self, plan: &Plan) -> f64 {
+        plan.predicted_seconds
+            + if self.measured.is_none() {
+                conditioning_cost(self.problem, self.spec.t_end, plan)
+            } else {
+                0.0
+            }
+    }
+    fn refine(&mut self, plan: &Plan, estimate: f64, tolerance: f64) -> Result<Plan, Shortfall> {
+        if plan.method.is_averaged()
             && plan.tolerance <= POLICY.tightest
-            && model_error < 0.5 * tolerance
+            && self.model_error < 0.5 * tolerance
         {
-            Some(Shortfall::Clamped)
+            return Err(Shortfall::Clamped);
+        }
+        let t_end = self.spec.t_end;
+        let next = refine(
+            self.problem,
+            plan,
+            self.model_error,
+            estimate,
+            tolerance,
+            t_end,
+        )
+        .ok_or(if plan.method.is_averaged() {
+            Shortfall::Model
         } else {
-            None
-        };
-        let next = (estimate > tolerance && shortfall.is_none())
-            .then(|| refine(problem, &plan, model_error, estimate, tolerance, t_end));
-        let shortfall = match &next {
-            Some(None) if plan.method.is_averaged() => Some(Shortfall::Model),
-            Some(None) => Some(Shortfall::Clamped),
-            Some(Some(n)) if spent + n.predicted_seconds > allowance => Some(Shortfall::Time),
-            _ => shortfall,
-        };
-        let verified = Verified {
-            run_settings: plan.settings(),
-            plan: plan.clone(),
-            result,
-            error_estimate: estimate,
-            met: estimate <= tolerance,
-            shortfall,
-            model_error,
-            refinements,
-            condition: kappa,
-            round_off_floor: floor,
-        };
-        if estimate <= tolerance {
-            return Ok(verified);
+            Shortfall::Clamped
+        })?;
+        if next.method != plan.method {
+            // A new method carries no probed model error; leaving the averaged model, the start's
+            // conditioning is measured again on the full motion, as a first resolved plan's is.
+            self.model_error = 0.0;
+            if plan.method.is_averaged() && !next.method.is_averaged() {
+                self.measured = None;
+            }
         }
-        // Keep the best run so far: past the round-off floor a refinement can be worse.
-        let best = match best_so_far.take() {
-            Some(b) if b.error_estimate <= verified.error_estimate => b,
-            _ => verified,
-        };
-        if let Some(why) = shortfall {
-            return Ok(Verified {
-                shortfall: Some(why),
-                refinements,
-                ..best
-            });
-        }
-        best_so_far = Some(best);
-        let next = next
-            .flatten()
-            .expect("a refinement when the estimate misses");
-        // A change of method starts its own sequence: the floor rule compares like with like.
-        previous = if next.method == plan.method {
-            Some(estimate)
+        Ok(next)
+    }
+    fn continues(&self, plan: &Plan, next: &Plan) -> bool {
+        plan.method == next.method
+    }
+    fn stalls(&self, plan: &Plan, policy: &Policy) -> usize {
+        if plan.method == Method::Taylor {
+            TAYLOR.stalls
         } else {
-            model_error = 0.0;
-            None
-        };
-        spent += next.predicted_seconds;
-        if plan.method.is_averaged() && !next.method.is_averaged() {
-            // The start's conditioning was measured on the averaged model: the full motion that
-            // now runs is measured on its own method, as a first resolved plan would be.
-            spent += conditioning_cost(problem, t_end, &next);
-            measured = None;
+            policy.stalls
         }
-        plan = next;
-        refinements += 1;
-    }
-}
-
-/// Refinements in a row that did not halve the estimate, after one that gave `estimate` where
-/// the one before gave `previous` (none after a change of method).
-fn stalls_after(stalls: usize, previous: Option<f64>, estimate: f64) -> usize {
-    if previous.is_some_and(|p| estimate >= 0.5 * p) {
-        stalls + 1
-    } else {
-        0
-    }
-}
-
-/// How many stalls in a row read as a floor for `method` (`TAYLOR.stalls`).
-fn stalls_allowed(method: Method) -> usize {
-    if method == Method::Taylor {
-        TAYLOR.stalls
-    } else {
-        POLICY.stalls
     }
 }
 
