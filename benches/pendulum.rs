@@ -6,8 +6,9 @@
 //! Run: `cargo bench --bench pendulum`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use rattleback::physics::kapitza::run::{RunSpec, run};
+use rattleback::physics::kapitza::run::run;
 use rattleback::physics::kapitza::{Params, Problem, Start, plan};
+use rattleback::physics::method::RunSpec;
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -21,6 +22,7 @@ fn auto(problem: &Problem, tol: f64) -> f64 {
         step: None,
         t_end: T_END,
         samples: 0,
+        monitor_energy: true,
     };
     run(problem, &spec, &mut |_| true).unwrap().theta
 }

@@ -9,9 +9,10 @@ use rattleback::physics::method::Asked;
 use std::time::Instant;
 
 use rattleback::physics::Method;
+use rattleback::physics::method::RunSpec;
 use rattleback::physics::plan::AutoPolicy;
 use rattleback::physics::rattleback::plan::{predicted_seconds, resolve};
-use rattleback::physics::rattleback::{RunSpec, run};
+use rattleback::physics::rattleback::run;
 use rattleback::scenario::preset::Override;
 use rattleback::scenario::shipped::{SHIPPED, resolve as preset};
 

@@ -21,9 +21,10 @@
 //! runs) against `averaged2`'s readings at every `k`: up to 466× apart, and dearer.
 
 use rattleback::physics::method::Method;
+use rattleback::physics::method::RunSpec;
 use rattleback::physics::rattleback::auto::{difference, slow_condition_numbers};
 use rattleback::physics::rattleback::averaged::expansion_parameter;
-use rattleback::physics::rattleback::run::{RunSpec, run};
+use rattleback::physics::rattleback::run::run;
 use rattleback::physics::rattleback::{Params, Problem, Start};
 fn main() {
     if std::env::args().nth(1).as_deref() == Some("limit") {

@@ -11,8 +11,9 @@
 use std::time::{Duration, Instant};
 
 use rattleback::physics::fork;
+use rattleback::physics::method::RunSpec;
 use rattleback::physics::rattleback::auto::{conditioning, plan, run_auto};
-use rattleback::physics::rattleback::run::{RunSpec, run};
+use rattleback::physics::rattleback::run::run;
 
 fn best_ms(mut f: impl FnMut()) -> f64 {
     f();

@@ -18,8 +18,9 @@
 //! than one it meets.
 
 use rattleback::physics::Method;
-use rattleback::physics::kapitza::run::{RunResult, RunSpec, run};
+use rattleback::physics::kapitza::run::{RunResult, run};
 use rattleback::physics::kapitza::{Params, Problem, Start, plan};
+use rattleback::physics::method::RunSpec;
 
 /// A reference start: its problem and horizon, the reference's `(θ, θ̇)` at its sample times,
 /// and the reference's own accuracy.
@@ -147,6 +148,7 @@ fn main() {
                 step: None,
                 t_end: case.t_end,
                 samples: case.reference.len(),
+                monitor_energy: true,
             };
             run(&case.problem, &spec, &mut |_| true).expect("a run")
         };

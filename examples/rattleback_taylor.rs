@@ -28,8 +28,9 @@
 use std::time::Instant;
 
 use rattleback::physics::method::Method;
+use rattleback::physics::method::RunSpec;
 use rattleback::physics::rattleback::auto::{conditioned_round_off, difference, round_off};
-use rattleback::physics::rattleback::run::{RunResult, RunSpec, run};
+use rattleback::physics::rattleback::run::{RunResult, run};
 use rattleback::physics::rattleback::{Params, Problem, Start};
 
 struct Case {

@@ -11,9 +11,10 @@ use serde::Serialize;
 use super::best_of;
 
 use crate::physics::celt::plan::resolve;
-use crate::physics::celt::run::{RunSpec, run};
+use crate::physics::celt::run::run;
 use crate::physics::celt::{Problem, omega};
 use crate::physics::method::Method;
+use crate::physics::method::RunSpec;
 use crate::physics::models::Model;
 use crate::physics::plan::{AutoPolicy, PlanRequest};
 
@@ -132,6 +133,8 @@ fn measure(
         tolerance: resolution.plan.tolerance,
         t_end: r.t_end,
         samples: 0,
+        step: None,
+        monitor_energy: true,
     };
     let result = run(&r.problem, &spec, &mut |_| true)?;
     let w = omega(&result.state);

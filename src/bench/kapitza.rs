@@ -13,8 +13,9 @@ use serde::Serialize;
 use super::best_of;
 
 use crate::physics::Method;
-use crate::physics::kapitza::run::{RunSpec, run};
+use crate::physics::kapitza::run::run;
 use crate::physics::kapitza::{Params, Problem, Start, plan};
+use crate::physics::method::RunSpec;
 
 /// The Taylor-series references (ε = 1e-1 … 1e-6), then the averaged references in 30 digits
 /// where the full model cannot be resolved (ε = 1e-7 … 1e-9).
@@ -159,6 +160,7 @@ pub fn study(quick: bool, log: &mut dyn FnMut(&str)) -> Vec<Row> {
                 step: None,
                 t_end: r.t_end,
                 samples: r.theta.len(),
+                monitor_energy: true,
             };
             let Ok(result) = run(&r.problem, &spec, &mut |_| true) else {
                 log(&format!(

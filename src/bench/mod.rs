@@ -19,9 +19,10 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::physics::method::Method;
+use crate::physics::method::RunSpec;
 use crate::physics::rattleback::auto::run_auto;
 use crate::physics::rattleback::run::RunResult;
-use crate::physics::rattleback::{Params, Problem, RunSpec, Start, run};
+use crate::physics::rattleback::{Params, Problem, Start, run};
 
 /// The best of `repeats` timed calls of `f`, after one untimed call that warms the caches.
 pub(crate) fn best_of(repeats: usize, mut f: impl FnMut()) -> f64 {

@@ -8,11 +8,12 @@ use serde::Serialize;
 
 use super::{Config, case};
 use crate::physics::method::Method;
+use crate::physics::method::RunSpec;
 use crate::physics::rattleback::auto::run_auto;
 use crate::physics::rattleback::effective::Effective;
 use crate::physics::rattleback::model::{initial_state, transverse_energy};
 use crate::physics::rattleback::run::RunResult;
-use crate::physics::rattleback::{Params, Problem, RunSpec, State, run};
+use crate::physics::rattleback::{Params, Problem, State, run};
 
 /// One line of the report.
 #[derive(Clone, Debug, Serialize)]

@@ -394,6 +394,46 @@ pub struct Asked {
     pub t_end: f64,
 }
 
+/// What to run, for every model: a concrete method and its settings over `[0, t_end]`, the
+/// samples to keep, and whether to follow the energy after every step.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct RunSpec {
+    /// The integrator (a concrete method: resolve `auto` first).
+    pub method: Method,
+    /// Tolerance (adaptive methods) or the default step's target (fixed-step methods).
+    pub tolerance: f64,
+    /// Fixed step, for fixed-step methods; `None` derives it from `tolerance`.
+    pub step: Option<f64>,
+    /// Final time.
+    pub t_end: f64,
+    /// Evenly spaced samples over `[0, t_end]` to record (0: none, so none are computed).
+    pub samples: usize,
+    /// Whether to evaluate the energy after every step for its drift (benchmarks turn it off
+    /// to time the integrator alone).
+    pub monitor_energy: bool,
+}
+
+impl RunSpec {
+    /// `asked`, keeping `samples` samples, the energy followed.
+    #[must_use]
+    pub const fn new(asked: Asked, samples: usize) -> Self {
+        Self {
+            method: asked.method,
+            tolerance: asked.tolerance,
+            step: asked.step,
+            t_end: asked.t_end,
+            samples,
+            monitor_energy: true,
+        }
+    }
+
+    /// What a cost model prices.
+    #[must_use]
+    pub const fn asked(&self) -> Asked {
+        Asked::new(self.method, self.tolerance, self.step, self.t_end)
+    }
+}
+
 impl Asked {
     /// `method` at `tolerance` (or with `step`) over `[0, t_end]`.
     #[must_use]

@@ -13,13 +13,14 @@ use serde::Serialize;
 use super::render::StatsOut;
 use super::{Failure, Format, Missed, Resolved, Times, compact, times};
 use crate::physics::Method;
-use crate::physics::celt::run::{self, RunResult, RunSpec};
+use crate::physics::celt::run::{self, RunResult};
 use crate::physics::celt::{self, Problem};
+use crate::physics::method::RunSpec;
 use crate::physics::plan::{AutoPolicy, PlanRequest, Shortfall};
 
 /// Predicted seconds of the run `spec` asks for (the celt's cost model, [`celt::budget`]).
 #[must_use]
-pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::rattleback::RunSpec) -> f64 {
+pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::method::RunSpec) -> f64 {
     celt::budget::cost_seconds(
         problem,
         &Asked::new(spec.method, spec.tolerance, None, spec.t_end),
@@ -109,6 +110,8 @@ fn requested(resolved: &Resolved) -> RunSpec {
         tolerance: spec.tolerance,
         t_end: spec.t_end,
         samples: spec.samples,
+        step: None,
+        monitor_energy: true,
     }
 }
 

@@ -13,27 +13,26 @@ use super::{Failure, Format, Missed, Resolved, Times, compact, times};
 use crate::physics::Method;
 use crate::physics::StepError;
 use crate::physics::kapitza::limit::Limit;
-use crate::physics::kapitza::run::{self, RunResult, RunSpec};
+use crate::physics::kapitza::run::{self, RunResult};
 use crate::physics::kapitza::{self, FastPhase, Problem, plan};
+use crate::physics::method::RunSpec;
 
 /// Predicted seconds of the run `spec` asks for (the pendulum's cost model,
 /// [`kapitza::budget`]).
 #[must_use]
-pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::rattleback::RunSpec) -> f64 {
+pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::method::RunSpec) -> f64 {
     // The requested run, and the limit's own run the report compares it with (cheap, except
     // when `b` makes the slow motion fast too).
-    kapitza::plan::predicted_seconds(
-        problem,
-        &Asked::new(spec.method, spec.tolerance, spec.step, spec.t_end),
-    ) + kapitza::budget::cost_seconds(
-        problem,
-        &Asked::new(
-            Method::Effective,
-            crate::physics::ModelKind::Kapitza.limit_tolerance(),
-            None,
-            spec.t_end,
-        ),
-    )
+    kapitza::plan::predicted_seconds(problem, &spec.asked())
+        + kapitza::budget::cost_seconds(
+            problem,
+            &Asked::new(
+                Method::Effective,
+                crate::physics::ModelKind::Kapitza.limit_tolerance(),
+                None,
+                spec.t_end,
+            ),
+        )
 }
 
 #[derive(Serialize)]
@@ -136,6 +135,7 @@ fn requested(resolved: &Resolved) -> RunSpec {
         step: spec.step,
         t_end: spec.t_end,
         samples: spec.samples,
+        monitor_energy: true,
     }
 }
 
@@ -218,6 +218,7 @@ pub(super) fn simulate_to(
         step: None,
         t_end: spec.t_end,
         samples: 0,
+        monitor_energy: true,
     };
     let limit_run = run::run(problem, &limit_spec, ask.progress).and_then(super::Finite::finite);
     let p = problem.params();

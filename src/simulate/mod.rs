@@ -16,7 +16,7 @@ use serde::Serialize;
 use crate::physics::StepError;
 use crate::physics::budget::{self, BUDGET_SECONDS};
 use crate::physics::method::Method;
-use crate::physics::rattleback::RunSpec;
+use crate::physics::method::RunSpec;
 use crate::physics::rattleback::auto::Shortfall;
 use crate::scenario::Preset;
 

@@ -12,6 +12,7 @@ use super::{
     opt, times, warn_drift,
 };
 use crate::physics::StepError;
+use crate::physics::method::RunSpec;
 use crate::physics::method::{Asked, Method};
 use crate::physics::rattleback::auto::{Shortfall, run_auto_cancellable};
 use crate::physics::rattleback::averaged::Averaged2;
@@ -19,17 +20,14 @@ use crate::physics::rattleback::budget::cost_seconds;
 use crate::physics::rattleback::effective::{Effective, tapping_acceleration};
 use crate::physics::rattleback::model::{ALPHA, ALPHA_DOT, GAMMA, GAMMA_DOT, energy};
 use crate::physics::rattleback::run::{RunResult, run_cancellable, run_streaming};
-use crate::physics::rattleback::{Problem, RunSpec, plan};
+use crate::physics::rattleback::{Problem, plan};
 use crate::scenario::Preset;
 use std::time::Instant;
 
 /// Predicted seconds of the run `spec` asks for, and of the limit's run the report compares it
 /// with (the streamed CSV of `auto` skips its verification's share).
 pub(super) fn predicted_seconds(problem: &Problem, spec: &RunSpec, format: Format) -> f64 {
-    let main = plan::predicted_seconds(
-        problem,
-        &Asked::new(spec.method, spec.tolerance, spec.step, spec.t_end),
-    );
+    let main = plan::predicted_seconds(problem, &spec.asked());
     let extra = match format {
         Format::Csv if spec.method == Method::Auto => main / (1.0 + plan::VERIFY_FRACTION),
         Format::Csv => 0.0,

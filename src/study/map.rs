@@ -12,9 +12,10 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
+use crate::physics::method::RunSpec;
 use crate::physics::rattleback::auto::run_auto_cancellable;
 use crate::physics::rattleback::effective::Effective;
-use crate::physics::rattleback::{Params, Problem, RunSpec, Start};
+use crate::physics::rattleback::{Params, Problem, Start};
 use crate::physics::{Method, StepError};
 
 /// What the map is computed from.

@@ -360,8 +360,9 @@ fn probes_are_measured_once_and_reading_them_changes_nothing() {
 /// a harmonic tilt), `auto` runs it with no probe, and it agrees with a tight resolved run.
 #[test]
 fn an_exact_averaged_model_needs_no_probe() {
+    use rattleback::physics::method::RunSpec;
     use rattleback::physics::rattleback::auto::{averaged_is_exact, plan_cancellable, probes_cost};
-    use rattleback::physics::rattleback::{RunSpec, run};
+    use rattleback::physics::rattleback::run;
     let p = common::problem(1.5, 1.5, 1.0, 1e4, [0.01, 0.2, 1.0, 0.5]);
     assert!(averaged_is_exact(&p));
     assert!(probes_cost(&p, 30.0) == 0.0);
@@ -407,7 +408,8 @@ fn the_series_companion_bounds_its_run_on_every_reference() {
     use rattleback::physics::rattleback::auto::{conditioned_round_off, difference, round_off};
     const TAYLOR_COMPANION_LOOSER: f64 =
         rattleback::physics::rattleback::policy::TAYLOR.companion_looser;
-    use rattleback::physics::rattleback::run::{RunSpec, run};
+    use rattleback::physics::method::RunSpec;
+    use rattleback::physics::rattleback::run::run;
 
     let mut cases = averaged_cases();
     cases.extend(common::cases_from("rattleback_honesty.toml"));

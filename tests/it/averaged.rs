@@ -11,7 +11,8 @@ use crate::common;
 
 use common::{AveragedCase, averaged_cases};
 use rattleback::physics::Method;
-use rattleback::physics::rattleback::{RunSpec, run};
+use rattleback::physics::method::RunSpec;
+use rattleback::physics::rattleback::run;
 
 /// Errors below this are the references' floor (the note's: 2e-11), excluded from fits.
 const FLOOR: f64 = 2e-11;

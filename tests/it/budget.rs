@@ -8,8 +8,8 @@ use crate::common;
 use rattleback::physics::method::Asked;
 
 use rattleback::physics::budget::BUDGET_SECONDS;
+use rattleback::physics::method::RunSpec;
 use rattleback::physics::plan::AutoPolicy;
-use rattleback::physics::rattleback::RunSpec;
 use rattleback::physics::rattleback::effective::Effective;
 use rattleback::physics::rattleback::plan::{predicted_seconds, resolve};
 use rattleback::physics::rattleback::run::MAX_REVERSAL_TIMES;
@@ -322,8 +322,9 @@ fn progress_never_reaches_a_pipe() {
 fn celt_cost_model_prediction_against_measurement() {
     use rattleback::physics::Method;
     use rattleback::physics::celt::budget::cost_seconds;
-    use rattleback::physics::celt::run::{RunSpec, run};
+    use rattleback::physics::celt::run::run;
     use rattleback::physics::method::Asked;
+    use rattleback::physics::method::RunSpec;
     use rattleback::physics::plan::{AutoPolicy, PlanRequest};
     let mut cases: Vec<(String, rattleback::scenario::Preset)> =
         rattleback::scenario::shipped::SHIPPED
@@ -375,6 +376,8 @@ fn celt_cost_model_prediction_against_measurement() {
                 tolerance: resolution.plan.tolerance,
                 t_end,
                 samples: 0,
+                step: None,
+                monitor_energy: true,
             };
             run(p, &spec, &mut |_| true).unwrap();
             let measured = start.elapsed().as_secs_f64();

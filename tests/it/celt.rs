@@ -6,8 +6,9 @@ use proptest::prelude::*;
 use serde_json::Value;
 
 use rattleback::physics::Method;
-use rattleback::physics::celt::run::{RunSpec, run};
+use rattleback::physics::celt::run::run;
 use rattleback::physics::celt::{Params, Problem, Start};
+use rattleback::physics::method::RunSpec;
 use rattleback::scenario::shipped::{SHIPPED, resolve as preset};
 use rattleback::simulate::{self, Format, Request};
 
@@ -179,6 +180,8 @@ fn final_state(p: &Problem, t_end: f64) -> Vec<f64> {
         tolerance: 1e-13,
         t_end,
         samples: 0,
+        step: None,
+        monitor_energy: true,
     };
     run(p, &spec, &mut |_| true)
         .expect("runs")
@@ -283,6 +286,8 @@ fn every_celt_preset_ends_in_the_explorer_where_simulate_ends() {
                     tolerance: plan.tolerance,
                     t_end: shown.t,
                     samples: 0,
+                    step: None,
+                    monitor_energy: true,
                 },
                 &mut |_| true,
             )

@@ -4,7 +4,8 @@
 use crate::common;
 
 use rattleback::physics::Method;
-use rattleback::physics::rattleback::{RunSpec, run};
+use rattleback::physics::method::RunSpec;
+use rattleback::physics::rattleback::run;
 
 fn alpha_at(method: Method, h: f64) -> (f64, f64) {
     // k = 3: fast and slow time scales comparable, every quantity smooth.

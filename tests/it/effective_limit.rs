@@ -5,8 +5,9 @@ use crate::common;
 use std::f64::consts::FRAC_PI_2;
 
 use rattleback::physics::Method;
+use rattleback::physics::method::RunSpec;
 use rattleback::physics::rattleback::effective::{Effective, Regime};
-use rattleback::physics::rattleback::{Problem, RunSpec, run};
+use rattleback::physics::rattleback::{Problem, run};
 
 fn full(
     problem: &Problem,

@@ -6,11 +6,12 @@ use crate::common;
 
 use proptest::prelude::*;
 use rattleback::physics::Method;
+use rattleback::physics::method::RunSpec;
 use rattleback::physics::method::{Asked, TimeSum};
 use rattleback::physics::rattleback::integrators::build;
 use rattleback::physics::rattleback::integrators::splitting::{Canonical, composed_step};
 use rattleback::physics::rattleback::model::{energy, initial_state};
-use rattleback::physics::rattleback::{Problem, RunSpec, run};
+use rattleback::physics::rattleback::{Problem, run};
 
 /// Max relative energy error over the first and the last tenth of `[0, t_end]`.
 fn energy_error_early_and_late(

@@ -12,10 +12,11 @@ use common::Headless;
 use rattleback::app::mode::{Confirm, PromptFor};
 use rattleback::app::{App, Effect, Key, Mode, Options, PlanState};
 use rattleback::physics::Method;
+use rattleback::physics::method::RunSpec;
 use rattleback::physics::plan::AutoPolicy;
 use rattleback::physics::rattleback::effective::Effective;
 use rattleback::physics::rattleback::plan::resolve as resolve_plan;
-use rattleback::physics::rattleback::{RunSpec, run};
+use rattleback::physics::rattleback::run;
 use rattleback::scenario::shipped::{SHIPPED, resolve};
 use rattleback::sim::{Command, SessionSpec, SimEvent, Worker};
 

@@ -137,7 +137,7 @@ fn cancelling_a_two_core_auto_stops_it() {
     let asked = AtomicU32::new(0);
     let r = rattleback::physics::rattleback::auto::run_auto_cancellable(
         &problem,
-        &rattleback::physics::rattleback::run::RunSpec {
+        &rattleback::physics::method::RunSpec {
             method: rattleback::physics::Method::Auto,
             tolerance: 1e-10,
             step: None,

@@ -300,12 +300,13 @@ fn the_slow_models_first_reading_of_the_conditioning_sends_every_ill_conditioned
     // the full model's (here within 1.5×); near it, where the slow model may be off by 300×,
     // it must read above 100, so that the accurate measurement follows. The full model's κ is
     // the Taylor series' at 1e-11 (within 5 % of the references' own where they state it).
+    use rattleback::physics::method::RunSpec;
     use rattleback::physics::rattleback::auto::{
         CONDITIONING_AVERAGED_LIMIT, CONDITIONING_LOOSE_TOLERANCE, CONDITIONING_MODEL,
         CONDITIONING_RECHECK, NUDGE, difference, slow_condition_numbers,
     };
     use rattleback::physics::rattleback::averaged::expansion_parameter;
-    use rattleback::physics::rattleback::run::{RunSpec, run};
+    use rattleback::physics::rattleback::run::run;
     let mut cases = common::averaged_cases();
     cases.extend(common::cases_from("rattleback_honesty.toml"));
     let mut checked = (0, 0);

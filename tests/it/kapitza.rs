@@ -4,8 +4,9 @@
 //! (O(ε) from the raw start, O(ε²) with the ripple), and `auto` to the tolerance it was given.
 
 use rattleback::physics::Method;
-use rattleback::physics::kapitza::run::{RunSpec, run};
+use rattleback::physics::kapitza::run::run;
 use rattleback::physics::kapitza::{Params, Problem, Start, plan};
+use rattleback::physics::method::RunSpec;
 
 struct Case {
     name: String,
@@ -73,6 +74,7 @@ fn errors(case: &Case, method: Method, tolerance: f64) -> (f64, f64) {
         step: None,
         t_end: case.t_end,
         samples: case.theta.len(),
+        monitor_energy: true,
     };
     let r = run(&case.problem, &spec, &mut |_| true).unwrap();
     let mut e = (0.0f64, 0.0f64);

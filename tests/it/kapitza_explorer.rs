@@ -11,7 +11,8 @@ use ratatui::buffer::Buffer;
 use rattleback::app::journal::Event;
 use rattleback::app::panes::Pane;
 use rattleback::app::{App, Key, Outcome, PlanState};
-use rattleback::physics::kapitza::run::{RunSpec, run};
+use rattleback::physics::kapitza::run::run;
+use rattleback::physics::method::RunSpec;
 use rattleback::physics::{Method, Model, ModelKind};
 use rattleback::record::{self, Line, Recorder};
 use rattleback::scenario::shipped::{SHIPPED, resolve};
@@ -75,6 +76,7 @@ fn every_pendulum_preset_ends_where_simulate_and_a_tight_reference_end() {
             step: plan.step,
             t_end: s.t_end,
             samples: 0,
+            monitor_energy: true,
         };
         let simulated = run(&problem, &spec, &mut |_| true).unwrap();
         assert_eq!(
@@ -100,6 +102,7 @@ fn every_pendulum_preset_ends_where_simulate_and_a_tight_reference_end() {
                 step: None,
                 t_end: s.t_end,
                 samples: 0,
+                monitor_energy: true,
             },
             &mut |_| true,
         )

@@ -7,8 +7,9 @@ use crate::common;
 
 use common::{case_problem, num, reference_cases, reference_path, shared_reference_path};
 use rattleback::physics::Method;
+use rattleback::physics::method::RunSpec;
 use rattleback::physics::rattleback::effective::Effective;
-use rattleback::physics::rattleback::{RunSpec, run};
+use rattleback::physics::rattleback::run;
 
 fn times(t: &toml::Table) -> Vec<f64> {
     t.get("reversal_times")

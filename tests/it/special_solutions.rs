@@ -8,8 +8,9 @@ fn rounding(steps: u64, value: f64) -> f64 {
 }
 
 use rattleback::physics::Method;
+use rattleback::physics::method::RunSpec;
 use rattleback::physics::rattleback::effective::tapping_acceleration;
-use rattleback::physics::rattleback::{RunSpec, run};
+use rattleback::physics::rattleback::run;
 
 fn spec(method: Method, t_end: f64) -> RunSpec {
     RunSpec {

@@ -5,8 +5,9 @@
 use crate::common;
 
 use rattleback::physics::Method;
+use rattleback::physics::method::RunSpec;
 use rattleback::physics::rattleback::auto::{plan, run_auto};
-use rattleback::physics::rattleback::{Problem, RunSpec, run};
+use rattleback::physics::rattleback::{Problem, run};
 
 fn run_with(
     problem: &Problem,

@@ -6,9 +6,10 @@
 use crate::common;
 
 use rattleback::physics::Method;
+use rattleback::physics::method::RunSpec;
 use rattleback::physics::rattleback::auto::run_auto;
 use rattleback::physics::rattleback::effective::{Effective, Regime};
-use rattleback::physics::rattleback::{Problem, RunResult, RunSpec, run};
+use rattleback::physics::rattleback::{Problem, RunResult, run};
 
 #[track_caller]
 fn sane(label: &str, r: &RunResult, energy_bound: f64) {

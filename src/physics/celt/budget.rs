@@ -80,8 +80,9 @@ pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::celt::run::{RunSpec, run};
+    use crate::physics::celt::run::run;
     use crate::physics::celt::{Params, Start};
+    use crate::physics::method::RunSpec;
 
     /// Prints the evaluations per radian of the fastest oscillation (the cost model's
     /// constant) on the Kane–Levinson body; seconds per evaluation come from `rattleback bench`.
@@ -105,6 +106,8 @@ mod tests {
                 tolerance: tol,
                 t_end: 10.0,
                 samples: 0,
+                step: None,
+                monitor_energy: true,
             };
             let r = run(&p, &spec, &mut |_| true).unwrap();
             #[allow(clippy::cast_precision_loss)]

@@ -17,8 +17,9 @@
 
 use super::Problem;
 use super::policy::{FIRST, POLICY};
-use super::run::{RunResult, RunSpec, run};
+use super::run::{RunResult, run};
 use crate::physics::method::Asked;
+use crate::physics::method::RunSpec;
 use crate::physics::method::{Method, StepError};
 use crate::physics::plan::{AutoPolicy, PlanRequest, Resolution, Resolved, Shortfall};
 use crate::physics::verify::{Candidate, Outcome, verify};
@@ -113,6 +114,8 @@ impl Dop853<'_> {
             tolerance,
             t_end: self.t_end,
             samples: SAMPLES,
+            step: None,
+            monitor_energy: true,
         }
     }
 

@@ -2,7 +2,7 @@
 //! spin, follow the energy and the constraints, keep optional samples. Used by `simulate`,
 //! `auto`, the tests and the benchmarks; the explorer's worker drives the same [`CeltFlow`].
 
-use crate::physics::method::Asked;
+use crate::physics::method::RunSpec;
 use serde::Serialize;
 
 use super::flows::{CeltFlow, build};
@@ -14,19 +14,6 @@ use crate::physics::numerics::dop853::Stats;
 
 /// Most event times kept of each kind; later ones are counted only.
 pub const MAX_EVENT_TIMES: usize = crate::physics::drive::KEPT;
-
-/// What to run.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct RunSpec {
-    /// A concrete method.
-    pub method: Method,
-    /// Tolerance.
-    pub tolerance: f64,
-    /// Final time (s).
-    pub t_end: f64,
-    /// Evenly spaced samples over `[0, t_end]` to record.
-    pub samples: usize,
-}
 
 /// One recorded point.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -96,7 +83,7 @@ fn contact_height(problem: &Problem, y: &State) -> f64 {
 /// A failed step, `auto` ([`StepError::Unplanned`]), another model's method, the step cap, and
 /// [`StepError::Cancelled`] when `go_on` says stop.
 pub fn run(problem: &Problem, spec: &RunSpec, go_on: GoOn) -> Result<RunResult, StepError> {
-    let ask = Asked::new(spec.method, spec.tolerance, None, spec.t_end);
+    let ask = spec.asked();
     let mut flow: CeltFlow = build(problem, ask.method, ask.settings())?;
     let y0 = flow.state();
     let e0 = problem.params().energy(&y0);
@@ -105,6 +92,7 @@ pub fn run(problem: &Problem, spec: &RunSpec, go_on: GoOn) -> Result<RunResult, 
     let mut watch = Watched {
         problem,
         drift: Drift::new(e0, false),
+        monitor: spec.monitor_energy,
         gamma_norm_error: 0.0,
         quat_norm_error: 0.0,
         contact_height_max: 0.0,
@@ -135,6 +123,8 @@ pub fn run(problem: &Problem, spec: &RunSpec, go_on: GoOn) -> Result<RunResult, 
 struct Watched<'a> {
     problem: &'a Problem,
     drift: Drift,
+    /// Whether the energy's drift is followed (`RunSpec::monitor_energy`).
+    monitor: bool,
     gamma_norm_error: f64,
     quat_norm_error: f64,
     contact_height_max: f64,
@@ -154,7 +144,9 @@ impl Watch<CeltFlow> for Watched<'_> {
     }
     fn stepped(&mut self, flow: &mut CeltFlow) {
         let y = flow.state();
-        self.drift.see(self.problem.params().energy(&y));
+        if self.monitor {
+            self.drift.see(self.problem.params().energy(&y));
+        }
         self.gamma_norm_error = self.gamma_norm_error.max((gamma(&y).norm() - 1.0).abs());
         let qn = (y[6] * y[6] + y[7] * y[7] + y[8] * y[8] + y[9] * y[9]).sqrt();
         self.quat_norm_error = self.quat_norm_error.max((qn - 1.0).abs());

@@ -7,12 +7,12 @@
 //! tilt from upright as the fast coordinate. Events are spin reversals (with the band) and
 //! raw crossings.
 
-use super::run::RunSpec;
 use super::{Params, Problem, Start, TILT_MAX};
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
 use crate::physics::method::Asked;
+use crate::physics::method::RunSpec;
 use crate::physics::method::{Method, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, PlanRequest};
@@ -337,6 +337,8 @@ impl Posed for Problem {
             tolerance: r.plan.tolerance,
             t_end,
             samples,
+            step: None,
+            monitor_energy: true,
         };
         let run = super::run::run(self, &spec, go_on)?;
         let (t, q) = run.samples.iter().map(|s| (s.t, s.turn)).unzip();

@@ -59,8 +59,9 @@
 
 use super::Problem;
 use super::policy::{POLICY, SLOW};
-use super::run::{RunResult, RunSpec, run};
+use super::run::{RunResult, run};
 use crate::physics::method::Asked;
+use crate::physics::method::RunSpec;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::plan::Shortfall;
 use crate::physics::verify::{Candidate, Outcome, verify};
@@ -274,6 +275,7 @@ pub fn averaged_checked(
         step: None,
         t_end,
         samples: SAMPLES,
+        monitor_energy: true,
     };
     let es2 = small_parameter(problem).powi(2);
     let rounding = lift_phase_rounding(problem);
@@ -369,6 +371,7 @@ pub fn averaged3_gap(problem: &Problem, t_end: f64) -> Result<f64, StepError> {
         step: None,
         t_end,
         samples: SAMPLES,
+        monitor_energy: true,
     };
     let third = run(problem, &spec(Method::Averaged3), &mut |_| true)?;
     let second = run(problem, &spec(Method::Averaged2), &mut |_| true)?;
@@ -525,6 +528,7 @@ impl Resolved<'_> {
             step: None,
             t_end: self.t_end,
             samples: SAMPLES,
+            monitor_energy: true,
         }
     }
 

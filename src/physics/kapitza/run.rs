@@ -7,7 +7,7 @@
 //! - **falls**: the slow angle leaving the upper half, `cos Θ` going from positive to negative
 //!   (the pendulum passes the horizontal on its way down).
 
-use crate::physics::method::Asked;
+use crate::physics::method::RunSpec;
 use serde::Serialize;
 
 use super::flows::build;
@@ -20,21 +20,6 @@ use crate::physics::numerics::roots::find_root;
 
 /// Most event times kept of each kind; later ones are counted only.
 pub const MAX_EVENT_TIMES: usize = crate::physics::drive::KEPT;
-
-/// What to run.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct RunSpec {
-    /// A concrete method (resolve `auto` with [`super::plan::resolve`] first).
-    pub method: Method,
-    /// Tolerance or the default step's target.
-    pub tolerance: f64,
-    /// Fixed step, for fixed-step methods.
-    pub step: Option<f64>,
-    /// Final time.
-    pub t_end: f64,
-    /// Evenly spaced samples over `[0, t_end]` to record.
-    pub samples: usize,
-}
 
 /// One recorded point.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -91,12 +76,13 @@ pub struct RunResult {
 /// When the integrator cannot continue, for `auto` ([`StepError::Unplanned`]), for a method
 /// the model does not offer, and [`StepError::Cancelled`] when `go_on` says stop.
 pub fn run(problem: &Problem, spec: &RunSpec, go_on: GoOn) -> Result<RunResult, StepError> {
-    let ask = Asked::new(spec.method, spec.tolerance, spec.step, spec.t_end);
+    let ask = spec.asked();
     let mut flow = build(problem, &ask, FastPhase::default())?;
     let cost = super::budget::cost_seconds(problem, &ask);
     let course = Course::of(flow.as_ref(), spec.t_end, spec.samples, cost);
     let mut watch = Watched {
         drift: Drift::new(flow.energy(), false),
+        monitor: spec.monitor_energy,
         up: slow_up(flow.as_mut(), 0.0),
         falls: Counted::default(),
         samples: Vec::with_capacity(spec.samples.min(1 << 20)),
@@ -132,6 +118,8 @@ fn slow_up(flow: &mut dyn Flow, t: f64) -> f64 {
 /// What the pendulum's run watches: the samples, the falls and the limit's energy drift.
 struct Watched {
     drift: Drift,
+    /// Whether the drift is followed (`RunSpec::monitor_energy`).
+    monitor: bool,
     /// `cos Θ` at the last step's end that was not 0.
     up: f64,
     falls: Counted,
@@ -159,6 +147,8 @@ impl Watch<dyn Flow> for Watched {
         if now != 0.0 {
             self.up = now;
         }
-        self.drift.see(flow.energy());
+        if self.monitor {
+            self.drift.see(flow.energy());
+        }
     }
 }

@@ -3,12 +3,12 @@
 //! outside this folder names a pendulum parameter.
 
 use super::limit::Limit;
-use super::run::RunSpec;
 use super::{EPSILON_MAX, EPSILON_MIN, Params, Problem, Start};
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
 use crate::physics::method::Asked;
+use crate::physics::method::RunSpec;
 use crate::physics::method::{Method, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{AutoPolicy, PlanRequest, Resolution, Resolved};
@@ -239,6 +239,7 @@ impl Posed for Problem {
             step: None,
             t_end,
             samples,
+            monitor_energy: true,
         };
         let r = super::run::run(self, &spec, go_on)?;
         let (t, q) = r.samples.iter().map(|s| (s.t, s.theta)).unzip();

@@ -2,7 +2,8 @@
 //! averaged over a window much longer than the fast period it follows the limit's.
 
 use super::Problem;
-use super::run::{RunSpec, run};
+use super::run::run;
+use crate::physics::method::RunSpec;
 use crate::physics::method::{Method, StepError};
 
 /// Samples per fast period.
@@ -42,6 +43,7 @@ pub fn pendulum_pointwise(
         step: None,
         t_end,
         samples,
+        monitor_energy: true,
     };
     let full = run(problem, &spec(Method::Dop853, 1e-10), go_on)?;
     let limit = run(problem, &spec(Method::Effective, 1e-12), go_on)?;

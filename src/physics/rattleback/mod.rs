@@ -24,4 +24,4 @@ pub use model::State;
 #[cfg(test)]
 pub(crate) use params::paper_body;
 pub use params::{Params, Problem, Start};
-pub use run::{RunResult, RunSpec, run};
+pub use run::{RunResult, run};

@@ -10,9 +10,9 @@ use super::auto;
 use super::budget;
 use super::params::Problem;
 use super::policy::POLICY;
-use super::run::RunSpec;
 use crate::physics::method::Asked;
 use crate::physics::method::Method;
+use crate::physics::method::RunSpec;
 use crate::physics::method::StepError;
 use crate::physics::plan::{AutoPolicy, Resolution, Resolved};
 

@@ -1,12 +1,10 @@
 //! One headless trajectory: integrate to `t_end`, collect reversals, the energy error and
 //! optional samples. Used by `simulate`, the tests and the benchmarks.
 
-use crate::physics::method::Asked;
+use crate::physics::method::RunSpec;
 use serde::Serialize;
 
 use super::integrators;
-
-use crate::physics::method::Method;
 
 use crate::physics::numerics::dop853::Stats;
 
@@ -15,24 +13,6 @@ use super::params::Problem;
 use crate::physics::drive::{Course, Drift, Watch, drive};
 use crate::physics::flow::Flow;
 use crate::physics::method::StepError;
-
-/// What to run.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct RunSpec {
-    /// The integrator.
-    pub method: Method,
-    /// Tolerance (adaptive methods) or the default step's target (fixed-step methods).
-    pub tolerance: f64,
-    /// Fixed step, for fixed-step methods; `None` derives it from `tolerance`.
-    pub step: Option<f64>,
-    /// Final time.
-    pub t_end: f64,
-    /// Evenly spaced samples over `[0, t_end]` to record (0: none, so none are computed).
-    pub samples: usize,
-    /// Whether to evaluate the energy after every step for `max_relative_energy_error`
-    /// (benchmarks turn it off to time the integrator alone).
-    pub monitor_energy: bool,
-}
 
 /// One recorded point of the trajectory.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -129,7 +109,7 @@ pub fn run_streaming(
     go_on: &mut dyn FnMut(f64) -> bool,
     on_sample: &mut dyn FnMut(Sample) -> bool,
 ) -> Result<RunResult, StepError> {
-    let ask = Asked::new(spec.method, spec.tolerance, spec.step, spec.t_end);
+    let ask = spec.asked();
     let mut flow = integrators::build(problem, &ask, crate::physics::method::TimeSum::default())?;
     let cost = super::budget::cost_seconds(problem, &ask);
     let course = Course {

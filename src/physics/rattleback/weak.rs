@@ -5,7 +5,8 @@
 
 use super::model::{ALPHA, GAMMA_DOT};
 use super::params::Problem;
-use super::run::{RunSpec, run_cancellable};
+use super::run::run_cancellable;
+use crate::physics::method::RunSpec;
 use crate::physics::method::{Method, StepError};
 
 /// Samples per fastest fast period.

@@ -12,13 +12,14 @@
 use serde::Serialize;
 
 use crate::physics::method::Method;
+use crate::physics::method::RunSpec;
 use crate::physics::method::StepError;
 use crate::physics::rattleback::budget::{
     NS_DOP853_EVAL, NS_EFFECTIVE_PER_TIME, NS_FAST_FLOW, dop853_evaluations, fastest_rate,
 };
 use crate::physics::rattleback::effective::Effective;
 use crate::physics::rattleback::params::Problem;
-use crate::physics::rattleback::run::{RunSpec, run_cancellable};
+use crate::physics::rattleback::run::run_cancellable;
 
 /// Error of `blanes-moan4` per unit time at `ν h = 1`.
 const C_BLANES_MOAN: f64 = 3e-12;

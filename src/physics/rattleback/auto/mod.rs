@@ -88,9 +88,10 @@ use super::budget::{cost_seconds, dop853_evaluations, fastest_rate, slow_rate};
 use super::effective::Effective;
 use super::integrators::together;
 use super::params::Problem;
-use super::run::{RunResult, RunSpec, run_cancellable};
+use super::run::{RunResult, run_cancellable};
 use crate::physics::fork;
 use crate::physics::method::Method;
+use crate::physics::method::RunSpec;
 use crate::physics::method::Settings;
 use crate::physics::method::StepCap;
 use crate::physics::method::StepError;
@@ -1029,8 +1030,7 @@ fn run_and_check(
         monitor_energy: false,
         ..run_spec
     };
-    let price =
-        |s: &RunSpec| cost_seconds(problem, &Asked::new(s.method, s.tolerance, s.step, s.t_end));
+    let price = |s: &RunSpec| cost_seconds(problem, &s.asked());
     // Far in (an averaged plan at or above the start's conditioning stiffness), the reading of
     // the start there, kept across k, bounds its condition numbers where the floor it gives is
     // small: the verification is then the companion alone.

@@ -361,8 +361,9 @@ fn together_on<M: SlowModel>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::method::RunSpec;
     use crate::physics::rattleback::params::{Params, Start};
-    use crate::physics::rattleback::run::{RunSpec, run};
+    use crate::physics::rattleback::run::run;
 
     fn subcritical(k: f64, alpha_dot: f64) -> Problem {
         Problem::new(
