@@ -1,17 +1,16 @@
 //! A fourth model through the public seam (issue 57), not shipped: a driven harmonic oscillator
 //! `x'' + ω² x = F cos(Ω t)`, whose exact solution is known, with a verified `auto` from the
 //! one loop, `physics::verify`. What a model brings is its [`Policy`] (data) and its candidate
-//! (how a round runs, what two runs' difference is, its rounding floor, its cost, how a plan is
-//! refined); the loop is the
-//! library's. `cargo run --example fourth_model` prints each start's choice, estimate and true
+//! (one method at a local tolerance, `AtTolerance`: a run, two runs' difference, its rounding
+//! floor, the cost of a run); the loop is the library's. `cargo run --example fourth_model` prints each start's choice, estimate and true
 //! error, and fails when a claim is false; `cargo test --example fourth_model` checks the same.
 //! It touches no file of `src/` (docs/architecture.md, "Adding a model").
 
 use nalgebra::SVector;
+use rattleback::physics::fork::GoOn;
 use rattleback::physics::method::StepError;
 use rattleback::physics::numerics::dop853::Dop853;
-use rattleback::physics::plan::Shortfall;
-use rattleback::physics::verify::{Candidate, Outcome, Policy, verify};
+use rattleback::physics::verify::{AtTolerance, Policy, verify};
 
 type State = SVector<f64, 3>;
 
@@ -80,45 +79,33 @@ const POLICY: Policy = Policy {
     floor_stops: true,
 };
 
+#[derive(Clone)]
 struct Auto {
     problem: Oscillator,
     t_end: f64,
 }
 
-impl Auto {
-    /// Predicted seconds of one run: about 3 evaluations a radian at tolerance 1,
-    /// `tol^{-1/8}`, 50 ns each.
-    fn run_cost(&self, local: f64) -> f64 {
-        3.0 * self.problem.omega.max(self.problem.drive) * self.t_end * local.powf(-0.125) * 5e-8
+impl AtTolerance for Auto {
+    type Result = (Vec<(f64, f64)>, u64);
+    fn policy(&self) -> &'static Policy {
+        &POLICY
     }
-}
-
-impl Candidate for Auto {
-    type Plan = f64;
-    type Run = ();
-    fn round(
-        &mut self,
-        local: &f64,
-        _: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<Outcome<()>, StepError> {
-        let fine = self.problem.run(*local, self.t_end)?;
-        let coarse = self.problem.run(POLICY.companion(*local), self.t_end)?;
-        let d = fine.0.iter().zip(&coarse.0).fold(0.0_f64, |d, (a, b)| {
+    fn run(&self, local: f64, _: GoOn<'_>) -> Result<Self::Result, StepError> {
+        self.problem.run(local, self.t_end)
+    }
+    fn difference(&self, fine: &Self::Result, coarse: &Self::Result) -> f64 {
+        fine.0.iter().zip(&coarse.0).fold(0.0_f64, |d, (a, b)| {
             d.max((a.0 - b.0).abs()).max((a.1 - b.1).abs())
-        });
-        #[allow(clippy::cast_precision_loss)]
-        let floor = f64::EPSILON * fine.1 as f64 * (1.0 + self.problem.omega);
-        Ok(Outcome {
-            run: (),
-            measured: d + floor,
-            floor,
         })
     }
-    fn cost(&self, local: &f64) -> f64 {
-        self.run_cost(*local) + self.run_cost(POLICY.companion(*local))
+    fn floor(&self, fine: &Self::Result) -> f64 {
+        #[allow(clippy::cast_precision_loss)]
+        let steps = fine.1 as f64;
+        f64::EPSILON * steps * (1.0 + self.problem.omega)
     }
-    fn refine(&mut self, local: &f64, estimate: f64, tolerance: f64) -> Result<f64, Shortfall> {
-        POLICY.tighten(*local, estimate, tolerance)
+    fn run_cost(&self, local: f64) -> f64 {
+        // About 3 evaluations a radian at tolerance 1, `tol^{-1/8}`, 50 ns each.
+        3.0 * self.problem.omega.max(self.problem.drive) * self.t_end * local.powf(-0.125) * 5e-8
     }
 }
 

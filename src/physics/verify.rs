@@ -14,6 +14,7 @@
 //! alone passes the tolerance. The loop keeps the round with the lowest estimate: past
 //! the round-off floor a refinement can do worse.
 
+use super::fork::{self, GoOn};
 use super::method::StepError;
 use super::plan::Shortfall;
 
@@ -131,6 +132,62 @@ pub trait Candidate {
     fn stalls(&self, plan: &Self::Plan, policy: &Policy) -> usize {
         let _ = plan;
         policy.stalls
+    }
+}
+
+/// A candidate that is one method at a local tolerance (the plan), verified against the
+/// companion its policy names, the two run side by side where the program has two cores: what
+/// a model writes is a run, the difference of two, the rounding floor and the cost of one.
+pub trait AtTolerance: Clone + Send + 'static {
+    /// A finished run.
+    type Result: Send + 'static;
+    /// The policy (its companion and refinement).
+    fn policy(&self) -> &'static Policy;
+    /// A run at `local`.
+    ///
+    /// # Errors
+    /// A failed or cancelled run.
+    fn run(&self, local: f64, go_on: GoOn<'_>) -> Result<Self::Result, StepError>;
+    /// The difference of two runs.
+    fn difference(&self, fine: &Self::Result, coarse: &Self::Result) -> f64;
+    /// The round-off floor of a run.
+    fn floor(&self, fine: &Self::Result) -> f64;
+    /// Predicted seconds of one run at `local`.
+    fn run_cost(&self, local: f64) -> f64;
+    /// As [`Candidate::estimate`].
+    fn estimate(&self, measured: f64, local: f64, before: Option<&(f64, f64)>) -> f64 {
+        let _ = (local, before);
+        measured
+    }
+}
+
+impl<T: AtTolerance> Candidate for T {
+    type Plan = f64;
+    type Run = ();
+    fn round(&mut self, local: &f64, go_on: GoOn<'_>) -> Result<Outcome<()>, StepError> {
+        let (local, companion) = (*local, self.policy().companion(*local));
+        let there = self.clone();
+        let (fine, coarse) = fork::both(
+            go_on,
+            |go_on| self.run(local, go_on),
+            move |go_on| there.run(companion, go_on),
+        );
+        let (fine, coarse) = (fine?, coarse?);
+        let floor = self.floor(&fine);
+        Ok(Outcome {
+            run: (),
+            measured: self.difference(&fine, &coarse) + floor,
+            floor,
+        })
+    }
+    fn estimate(&self, measured: f64, local: &f64, before: Option<&(f64, f64)>) -> f64 {
+        AtTolerance::estimate(self, measured, *local, before)
+    }
+    fn cost(&self, local: &f64) -> f64 {
+        self.run_cost(*local) + self.run_cost(self.policy().companion(*local))
+    }
+    fn refine(&mut self, local: &f64, estimate: f64, tolerance: f64) -> Result<f64, Shortfall> {
+        self.policy().tighten(*local, estimate, tolerance)
     }
 }
 

@@ -18,11 +18,12 @@
 use super::Problem;
 use super::policy::{FIRST, POLICY};
 use super::run::{RunResult, run};
+use crate::physics::fork::GoOn;
 use crate::physics::method::Asked;
 use crate::physics::method::RunSpec;
 use crate::physics::method::{Method, StepError};
 use crate::physics::plan::{AutoPolicy, PlanRequest, Resolution, Resolved, Shortfall};
-use crate::physics::verify::{Candidate, Outcome, verify};
+use crate::physics::verify::{AtTolerance, Policy, verify};
 
 /// Times of the spin compared.
 const SAMPLES: usize = 33;
@@ -86,7 +87,7 @@ pub fn resolve(
         });
     }
     let mut candidate = Dop853 {
-        problem,
+        problem: *problem,
         t_end: ask.t_end,
     };
     let v = verify(
@@ -100,54 +101,36 @@ pub fn resolve(
     Ok(done(v.last.plan, Some(v.last.estimate), v.shortfall))
 }
 
-/// The celt's candidate: DOP853 at a local tolerance over `[0, t_end]`, the companion run
-/// after it.
-struct Dop853<'a> {
-    problem: &'a Problem,
+/// The celt's candidate: DOP853 at a local tolerance over `[0, t_end]`.
+#[derive(Clone)]
+struct Dop853 {
+    problem: Problem,
     t_end: f64,
 }
 
-impl Dop853<'_> {
-    fn spec(&self, tolerance: f64) -> RunSpec {
-        RunSpec {
-            method: Method::Dop853,
-            tolerance,
-            t_end: self.t_end,
-            samples: SAMPLES,
-            step: None,
-            monitor_energy: true,
-        }
+impl AtTolerance for Dop853 {
+    type Result = RunResult;
+    fn policy(&self) -> &'static Policy {
+        &POLICY
     }
-
+    fn run(&self, tolerance: f64, go_on: GoOn<'_>) -> Result<RunResult, StepError> {
+        let spec = RunSpec::new(
+            Asked::new(Method::Dop853, tolerance, None, self.t_end),
+            SAMPLES,
+        );
+        run(&self.problem, &spec, go_on)
+    }
+    fn difference(&self, fine: &RunResult, coarse: &RunResult) -> f64 {
+        difference(fine, coarse)
+    }
+    fn floor(&self, fine: &RunResult) -> f64 {
+        floor(fine)
+    }
     fn run_cost(&self, local: f64) -> f64 {
         super::budget::cost_seconds(
-            self.problem,
+            &self.problem,
             &Asked::new(Method::Dop853, local, None, self.t_end),
         )
-    }
-}
-
-impl Candidate for Dop853<'_> {
-    type Plan = f64;
-    type Run = ();
-    fn round(
-        &mut self,
-        local: &f64,
-        go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<Outcome<()>, StepError> {
-        let fine = run(self.problem, &self.spec(*local), go_on)?;
-        let coarse = run(self.problem, &self.spec(POLICY.companion(*local)), go_on)?;
-        Ok(Outcome {
-            run: (),
-            measured: difference(&fine, &coarse) + floor(&fine),
-            floor: floor(&fine),
-        })
-    }
-    fn cost(&self, local: &f64) -> f64 {
-        self.run_cost(*local) + self.run_cost(POLICY.companion(*local))
-    }
-    fn refine(&mut self, local: &f64, estimate: f64, tolerance: f64) -> Result<f64, Shortfall> {
-        POLICY.tighten(*local, estimate, tolerance)
     }
 }
 

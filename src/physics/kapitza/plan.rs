@@ -60,11 +60,12 @@
 use super::Problem;
 use super::policy::{POLICY, SLOW};
 use super::run::{RunResult, run};
+use crate::physics::fork::GoOn;
 use crate::physics::method::Asked;
 use crate::physics::method::RunSpec;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::plan::Shortfall;
-use crate::physics::verify::{Candidate, Outcome, verify};
+use crate::physics::verify::{AtTolerance, Candidate, Policy, verify};
 
 /// What `auto` chose, and why.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -462,7 +463,7 @@ pub fn verified(
         averaged = Some(a);
     }
     let mut candidate = Resolved {
-        problem,
+        problem: *problem,
         t_end,
         floor,
     };
@@ -514,56 +515,40 @@ pub fn verified(
 /// The pendulum's resolved candidate: the full model by [`RESOLVED`] and its companion, side by
 /// side where there are two cores; their difference plus the rounding floor, widened where the
 /// last refinement showed rounding rather than truncation.
-struct Resolved<'a> {
-    problem: &'a Problem,
+#[derive(Clone)]
+struct Resolved {
+    problem: Problem,
     t_end: f64,
     floor: f64,
 }
 
-impl Resolved<'_> {
-    fn spec(&self, tolerance: f64) -> RunSpec {
-        RunSpec {
-            method: RESOLVED,
-            tolerance,
-            step: None,
-            t_end: self.t_end,
-            samples: SAMPLES,
-            monitor_energy: true,
-        }
+impl AtTolerance for Resolved {
+    type Result = RunResult;
+    fn policy(&self) -> &'static Policy {
+        &POLICY
     }
-
+    fn run(&self, tolerance: f64, go_on: GoOn<'_>) -> Result<RunResult, StepError> {
+        let spec = RunSpec::new(Asked::new(RESOLVED, tolerance, None, self.t_end), SAMPLES);
+        run(&self.problem, &spec, go_on)
+    }
+    fn difference(&self, fine: &RunResult, coarse: &RunResult) -> f64 {
+        difference(fine, coarse)
+    }
+    fn floor(&self, _: &RunResult) -> f64 {
+        self.floor
+    }
     fn run_cost(&self, local: f64) -> f64 {
-        super::budget::cost_seconds(self.problem, &Asked::new(RESOLVED, local, None, self.t_end))
-    }
-}
-
-impl Candidate for Resolved<'_> {
-    type Plan = f64;
-    type Run = ();
-    fn round(
-        &mut self,
-        local: &f64,
-        go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<Outcome<()>, StepError> {
-        let (here, there) = (self.problem, *self.problem);
-        let (fine_spec, coarse_spec) = (self.spec(*local), self.spec(POLICY.companion(*local)));
-        let (fine, coarse) = crate::physics::fork::both(
-            go_on,
-            |go_on| run(here, &fine_spec, go_on),
-            move |go_on| run(&there, &coarse_spec, go_on),
-        );
-        Ok(Outcome {
-            run: (),
-            measured: difference(&fine?, &coarse?) + self.floor,
-            floor: self.floor,
-        })
+        super::budget::cost_seconds(
+            &self.problem,
+            &Asked::new(RESOLVED, local, None, self.t_end),
+        )
     }
     // A refinement that lowered the difference much less than the tolerance (a slope below
     // MIN_CONVERGENCE in log-log) shows rounding, not truncation, setting both runs' errors:
     // their difference then under-reads either's (the held-out `returns_eps1e-2`, with a
     // companion 16× looser, read 8.5e-9 for 1.1e-8 after slopes of 0.57 and 0.64), so it is
     // widened.
-    fn estimate(&self, measured: f64, local: &f64, before: Option<&(f64, f64)>) -> f64 {
+    fn estimate(&self, measured: f64, local: f64, before: Option<&(f64, f64)>) -> f64 {
         let noisy =
             before.is_some_and(|(l, e)| (e / measured).ln() < MIN_CONVERGENCE * (l / local).ln());
         if noisy {
@@ -571,12 +556,6 @@ impl Candidate for Resolved<'_> {
         } else {
             measured
         }
-    }
-    fn cost(&self, local: &f64) -> f64 {
-        self.run_cost(*local) + self.run_cost(POLICY.companion(*local))
-    }
-    fn refine(&mut self, local: &f64, estimate: f64, tolerance: f64) -> Result<f64, Shortfall> {
-        POLICY.tighten(*local, estimate, tolerance)
     }
 }
 
