@@ -160,17 +160,16 @@ pub fn write_stability_csv(rows: &[StabilityRow], path: &std::path::Path) -> std
         "case,method,t_end,max_energy_error,action_drift,reversals,expected_reversals,seconds",
         rows,
         |r| {
-            format!(
-                "\"{}\",{},{},{:e},{:e},{},{},{:e}",
-                r.case,
-                r.method,
-                r.t_end,
-                r.max_energy_error,
-                r.action_drift,
-                r.reversals.0,
-                r.reversals.1,
-                r.seconds
-            )
+            let StabilityRow {
+                case,
+                method,
+                t_end,
+                max_energy_error: de,
+                action_drift: di,
+                reversals: (got, expected),
+                seconds,
+            } = r;
+            format!("\"{case}\",{method},{t_end},{de:e},{di:e},{got},{expected},{seconds:e}")
         },
     )
 }
@@ -185,17 +184,11 @@ pub fn stability_table(rows: &[StabilityRow]) -> String {
         "case", "method", "T", "max ΔE/E", "|ΔI/I|", "reversals", "seconds"
     );
     for r in rows {
+        let (got, expected) = r.reversals;
         let _ = writeln!(
             o,
-            "{:<48} {:<26} {:>7} {:>11.2e} {:>11.2e} {:>5}/{:<5} {:>9.3}",
-            r.case,
-            r.method,
-            r.t_end,
-            r.max_energy_error,
-            r.action_drift,
-            r.reversals.0,
-            r.reversals.1,
-            r.seconds
+            "{:<48} {:<26} {:>7} {:>11.2e} {:>11.2e} {got:>5}/{expected:<5} {:>9.3}",
+            r.case, r.method, r.t_end, r.max_energy_error, r.action_drift, r.seconds
         );
     }
     o

@@ -69,15 +69,34 @@ impl Method {
     ];
 
     /// Every concrete method: [`Method::ALL`] without `auto`, which resolves to one of them.
-    pub const CONCRETE: [Self; 14] = {
-        let mut out = [Self::Rk4; 14];
-        let mut i = 0;
-        while i < 14 {
-            out[i] = Self::ALL[i + 1];
+    pub const CONCRETE: [Self; 14] = Self::all_but(&[Self::Auto]);
+
+    /// [`Method::ALL`] without `skip`, in its order (a model's menu).
+    ///
+    /// # Panics
+    /// When `N` is not how many are left (at compile time in a `const`).
+    #[must_use]
+    pub const fn all_but<const N: usize>(skip: &[Self]) -> [Self; N] {
+        let mut out = [Self::Auto; N];
+        let (mut i, mut n) = (0, 0);
+        while i < Self::ALL.len() {
+            let m = Self::ALL[i];
+            let mut j = 0;
+            let mut kept = true;
+            while j < skip.len() {
+                kept &= skip[j] as u8 != m as u8;
+                j += 1;
+            }
+            if kept {
+                assert!(n < N, "more methods left than the menu holds");
+                out[n] = m;
+                n += 1;
+            }
             i += 1;
         }
+        assert!(n == N, "fewer methods left than the menu holds");
         out
-    };
+    }
 
     /// The name used in presets, on the command line and in JSON.
     #[must_use]

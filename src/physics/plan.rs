@@ -49,6 +49,20 @@ pub struct PlanRequest {
     pub budget: f64,
 }
 
+impl PlanRequest {
+    /// `asked`, verified, within the default budget (what a study asks).
+    #[must_use]
+    pub const fn verified(asked: &super::method::Asked) -> Self {
+        Self {
+            method: asked.method,
+            tolerance: asked.tolerance,
+            t_end: asked.t_end,
+            policy: AutoPolicy::Verified,
+            budget: super::budget::BUDGET_SECONDS,
+        }
+    }
+}
+
 /// How `auto` is resolved.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum AutoPolicy {

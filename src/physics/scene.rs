@@ -121,6 +121,18 @@ pub struct SummaryLine {
     pub value: Shown,
 }
 
+impl SummaryLine {
+    /// A line: its label, its meaning, its value.
+    #[must_use]
+    pub const fn new(label: &'static str, meaning: &'static str, value: Shown) -> Self {
+        Self {
+            label,
+            meaning,
+            value,
+        }
+    }
+}
+
 /// A derived value, as the panel shows it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Shown {
@@ -130,6 +142,14 @@ pub enum Shown {
     Percent(Option<f64>),
     /// A verdict in words, shown in bold.
     Verdict(&'static str),
+}
+
+impl Shown {
+    /// The verdict `yes` when `holds`, else `no`.
+    #[must_use]
+    pub const fn verdict(holds: bool, yes: &'static str, no: &'static str) -> Self {
+        Self::Verdict(if holds { yes } else { no })
+    }
 }
 
 /// A model's fixed facts: one `static` per model, in its folder. A struct, so a model that

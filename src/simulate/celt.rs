@@ -102,19 +102,6 @@ impl super::Finite for RunResult {
     }
 }
 
-/// The run `resolved` asks for (`auto` still to be resolved by [`plan_auto`]).
-fn requested(resolved: &Resolved) -> RunSpec {
-    let spec = resolved.spec;
-    RunSpec {
-        method: spec.method,
-        tolerance: spec.tolerance,
-        t_end: spec.t_end,
-        samples: spec.samples,
-        step: None,
-        monitor_energy: true,
-    }
-}
-
 /// Resolves `auto` into `run`, and gives its account.
 fn plan_auto(
     problem: &Problem,
@@ -166,7 +153,17 @@ pub(super) fn simulate_to(
     problem: &Problem,
     mut ask: super::Ask<'_>,
 ) -> Result<Option<Missed>, Failure> {
-    let ran = ask.plan_and_run((problem, requested(ask.resolved)), plan_auto, run::run)?;
+    let ran = ask.plan_and_run(
+        (
+            problem,
+            RunSpec {
+                step: None,
+                ..ask.resolved.spec
+            },
+        ),
+        plan_auto,
+        run::run,
+    )?;
     let (spec, result) = (ran.spec, ran.result);
     // Nothing dissipates: the energy is conserved, and its drift says what the rattleback's
     // says (issue 56).

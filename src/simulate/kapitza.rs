@@ -126,19 +126,6 @@ impl super::Finite for RunResult {
     }
 }
 
-/// The run `resolved` asks for (`auto` still to be resolved by [`plan_auto`]).
-fn requested(resolved: &Resolved) -> RunSpec {
-    let spec = resolved.spec;
-    RunSpec {
-        method: spec.method,
-        tolerance: spec.tolerance,
-        step: spec.step,
-        t_end: spec.t_end,
-        samples: spec.samples,
-        monitor_energy: true,
-    }
-}
-
 /// Resolves `auto` into the concrete method and tolerance of `run`, and gives its account.
 fn plan_auto(
     problem: &Problem,
@@ -205,7 +192,7 @@ pub(super) fn simulate_to(
     problem: &Problem,
     mut ask: super::Ask<'_>,
 ) -> Result<Option<Missed>, Failure> {
-    let ran = ask.plan_and_run((problem, requested(ask.resolved)), plan_auto, run::run)?;
+    let ran = ask.plan_and_run((problem, ask.resolved.spec), plan_auto, run::run)?;
     let (spec, result) = (ran.spec, ran.result);
     warn_inaccurate(problem, &result, spec.tolerance);
     if ask.format == Format::Csv {

@@ -15,7 +15,7 @@ use crate::physics::method::Asked;
 use crate::physics::method::RunSpec;
 use crate::physics::method::{Method, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
-use crate::physics::plan::{AutoPolicy, PlanRequest};
+use crate::physics::plan::PlanRequest;
 use crate::physics::scene::{
     Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve, Studies, SummaryLine,
     WeakView, Words,
@@ -239,40 +239,31 @@ impl Posed for Problem {
     fn summary(&self) -> Vec<SummaryLine> {
         let p = self.params();
         let y0 = self.initial_state();
-        let line = |label, meaning, value| SummaryLine {
-            label,
-            meaning,
-            value,
-        };
         vec![
-            line(
+            SummaryLine::new(
                 "skew δ°",
                 "the angle between the inertia axes and the bottom's axes",
                 Shown::Number(Some(p.skew().to_degrees())),
             ),
-            line(
+            SummaryLine::new(
                 "spin ω·γ",
                 "the start's spin about the vertical",
                 Shown::Number(Some(super::spin(&y0))),
             ),
-            line(
+            SummaryLine::new(
                 "energy E",
                 "the start's energy",
                 Shown::Number(Some(p.energy(&y0))),
             ),
-            line(
+            SummaryLine::new(
                 "rest E",
                 "the energy at rest, upright",
                 Shown::Number(Some(p.gravity * p.rest_height())),
             ),
-            line(
+            SummaryLine::new(
                 "upright",
                 "whether the upright rest is stable",
-                Shown::Verdict(if self.stable_upright() {
-                    "stable at rest"
-                } else {
-                    "unstable at rest"
-                }),
+                Shown::verdict(self.stable_upright(), "stable at rest", "unstable at rest"),
             ),
         ]
     }
@@ -317,29 +308,15 @@ impl Posed for Problem {
         None
     }
     fn slow_curve(&self, ask: &Asked, samples: usize, go_on: GoOn) -> Result<SlowCurve, StepError> {
-        let (method, tolerance, t_end) = (ask.method, ask.tolerance, ask.t_end);
-        if method == Method::Effective {
+        if ask.method == Method::Effective {
             return Err(StepError::NoStudy {
                 what: "limit",
                 model: "celt",
             });
         }
-        let ask = PlanRequest {
-            method,
-            tolerance,
-            t_end,
-            policy: AutoPolicy::Verified,
-            budget: crate::physics::budget::BUDGET_SECONDS,
-        };
-        let r = self.resolve(&ask, go_on)?;
-        let spec = RunSpec {
-            method: r.plan.method,
-            tolerance: r.plan.tolerance,
-            t_end,
-            samples,
-            step: None,
-            monitor_energy: true,
-        };
+        let r = self.resolve(&PlanRequest::verified(ask), go_on)?;
+        let plan = Asked::new(r.plan.method, r.plan.tolerance, None, ask.t_end);
+        let spec = RunSpec::new(plan, samples);
         let run = super::run::run(self, &spec, go_on)?;
         let (t, q) = run.samples.iter().map(|s| (s.t, s.turn)).unzip();
         Ok(SlowCurve {

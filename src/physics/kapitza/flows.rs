@@ -36,21 +36,7 @@ use crate::physics::numerics::roots::find_root;
 use crate::physics::numerics::stepper::Stepper;
 
 /// The methods this model offers (`auto` resolves to one of them).
-pub const METHODS: [Method; 13] = [
-    Method::Auto,
-    Method::Rk4,
-    Method::Dop853,
-    Method::Taylor,
-    Method::Strang,
-    Method::Yoshida4,
-    Method::BlanesMoan4,
-    Method::Yoshida6,
-    Method::Suzuki8,
-    Method::Effective,
-    Method::EffectiveCorrected,
-    Method::Averaged2,
-    Method::Averaged3,
-];
+pub const METHODS: [Method; 13] = Method::all_but(&[Method::Dop853Projected, Method::Locked]);
 
 /// Whether this model offers `method`.
 #[must_use]

@@ -270,14 +270,8 @@ pub fn averaged_checked(
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Choice, StepError> {
     let local = (tolerance * 1e-4).max(POLICY.tightest);
-    let spec = |method, tolerance| RunSpec {
-        method,
-        tolerance,
-        step: None,
-        t_end,
-        samples: SAMPLES,
-        monitor_energy: true,
-    };
+    let spec =
+        |method, tolerance| RunSpec::new(Asked::new(method, tolerance, None, t_end), SAMPLES);
     let es2 = small_parameter(problem).powi(2);
     let rounding = lift_phase_rounding(problem);
     let choice = |method, local, model, estimate: f64| Choice {
@@ -366,14 +360,7 @@ pub fn averaged_checked(
 /// # Errors
 /// A failed run.
 pub fn averaged3_gap(problem: &Problem, t_end: f64) -> Result<f64, StepError> {
-    let spec = |method| RunSpec {
-        method,
-        tolerance: POLICY.tightest,
-        step: None,
-        t_end,
-        samples: SAMPLES,
-        monitor_energy: true,
-    };
+    let spec = |method| RunSpec::new(Asked::new(method, POLICY.tightest, None, t_end), SAMPLES);
     let third = run(problem, &spec(Method::Averaged3), &mut |_| true)?;
     let second = run(problem, &spec(Method::Averaged2), &mut |_| true)?;
     Ok(difference(&third, &second))

@@ -11,7 +11,7 @@ use crate::physics::method::Asked;
 use crate::physics::method::RunSpec;
 use crate::physics::method::{Method, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
-use crate::physics::plan::{AutoPolicy, PlanRequest, Resolution, Resolved};
+use crate::physics::plan::{PlanRequest, Resolution, Resolved};
 use crate::physics::scene::{
     Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve, SmallParameter,
     Studies, SummaryLine, WeakView, WeakWords, Words,
@@ -118,35 +118,26 @@ impl Posed for Problem {
         let p = self.params();
         let limit = Limit::new(p);
         let s = self.start();
-        let line = |label, meaning, value| SummaryLine {
-            label,
-            meaning,
-            value,
-        };
         vec![
-            line(
+            SummaryLine::new(
                 "b^2-2a",
                 "Kapitza's criterion: positive holds the pendulum upright",
                 Shown::Number(Some(p.threshold())),
             ),
-            line(
+            SummaryLine::new(
                 "limit E",
                 "the limit's energy E_eff at the start",
                 Shown::Number(Some(limit.energy_of(s.theta, s.theta_dot))),
             ),
-            line(
+            SummaryLine::new(
                 "separatrix E",
                 "the energy of the limit's separatrix",
                 Shown::Number(Some(limit.potential_max())),
             ),
-            line(
+            SummaryLine::new(
                 "upright",
                 "whether the averaged upright is stable",
-                Shown::Verdict(if p.stable_upright() {
-                    "stable"
-                } else {
-                    "unstable"
-                }),
+                Shown::verdict(p.stable_upright(), "stable", "unstable"),
             ),
         ]
     }
@@ -222,25 +213,10 @@ impl Posed for Problem {
         ))
     }
     fn slow_curve(&self, ask: &Asked, samples: usize, go_on: GoOn) -> Result<SlowCurve, StepError> {
-        let (method, tolerance, t_end) = (ask.method, ask.tolerance, ask.t_end);
-        let ask = PlanRequest {
-            method,
-            tolerance,
-            t_end,
-            policy: AutoPolicy::Verified,
-            budget: crate::physics::budget::BUDGET_SECONDS,
-        };
-        let r = self.resolve(&ask, go_on)?;
-        let (method, tolerance) = (r.plan.method, r.plan.tolerance);
-        let estimate = r.estimate.unwrap_or(0.0);
-        let spec = RunSpec {
-            method,
-            tolerance,
-            step: None,
-            t_end,
-            samples,
-            monitor_energy: true,
-        };
+        let r = self.resolve(&PlanRequest::verified(ask), go_on)?;
+        let (method, estimate) = (r.plan.method, r.estimate.unwrap_or(0.0));
+        let plan = Asked::new(r.plan.method, r.plan.tolerance, None, ask.t_end);
+        let spec = RunSpec::new(plan, samples);
         let r = super::run::run(self, &spec, go_on)?;
         let (t, q) = r.samples.iter().map(|s| (s.t, s.theta)).unzip();
         Ok(SlowCurve {

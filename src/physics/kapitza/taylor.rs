@@ -188,7 +188,8 @@ mod tests {
     /// steps a forcing period.
     #[test]
     fn agrees_with_dop853_on_a_forced_swing() {
-        use crate::physics::flow::Flow;
+        use crate::physics::kapitza::flows::{FullCore, FullField};
+        use crate::physics::numerics::dop853::Dop853;
         let p = Params {
             a: -1.0,
             b: 0.3,
@@ -196,33 +197,10 @@ mod tests {
         };
         let y0 = Vector2::new(1.0, 0.2);
         let mut taylor = Taylor::new(&p, 0.0, y0, 1e-13);
-        let problem = super::super::Problem::new(
-            p,
-            super::super::Start {
-                theta: y0[0],
-                theta_dot: y0[1],
-            },
-        )
-        .unwrap();
-        let mut dop = crate::physics::kapitza::flows::FullDop853::new(&problem, 1e-15);
+        let mut dop = <Dop853<2, FullField> as FullCore>::start(&p, y0, 1e-15);
         let t_end = 3.0;
-        let mut worst: f64 = 0.0;
-        while taylor.time() < t_end {
-            taylor.step(t_end).unwrap();
-            let mid = 0.5 * (taylor.time_prev() + taylor.time());
-            while dop.time() < mid {
-                dop.step(t_end).unwrap();
-            }
-            let at = dop.state_at(mid);
-            let d = taylor.interpolate(mid) - Vector2::new(at[0], at[1]);
-            worst = worst.max(d.abs().max());
-        }
-        while dop.time() < t_end {
-            dop.step(t_end).unwrap();
-        }
-        let at = dop.state_at(t_end);
-        let d = taylor.state() - Vector2::new(at[0], at[1]);
-        assert!(d.abs().max() < 1e-10, "end {d:?}");
+        let (worst, end) = crate::physics::numerics::stepper::gaps(&mut taylor, &mut dop, t_end);
+        assert!(end < 1e-10, "end {end}");
         assert!(worst < 1e-10, "dense output {worst}");
         // A few steps a forcing period (2π ε ≈ 0.31), where DOP853 takes about twenty.
         let periods = t_end / (std::f64::consts::TAU * p.epsilon);

@@ -3,7 +3,7 @@
 
 use super::Problem;
 use super::run::run;
-use crate::physics::method::RunSpec;
+use crate::physics::method::{Asked, RunSpec};
 use crate::physics::method::{Method, StepError};
 
 /// Samples per fast period.
@@ -37,14 +37,8 @@ pub fn pendulum_pointwise(
     let periods = t_end / (std::f64::consts::TAU * problem.params().epsilon);
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     let samples = ((periods * PER_PERIOD).ceil() as usize).clamp(64, 2_000_000) + 1;
-    let spec = |method, tolerance| RunSpec {
-        method,
-        tolerance,
-        step: None,
-        t_end,
-        samples,
-        monitor_energy: true,
-    };
+    let spec =
+        |method, tolerance| RunSpec::new(Asked::new(method, tolerance, None, t_end), samples);
     let full = run(problem, &spec(Method::Dop853, 1e-10), go_on)?;
     let limit = run(problem, &spec(Method::Effective, 1e-12), go_on)?;
     let t = full.samples.iter().map(|s| s.t).collect();

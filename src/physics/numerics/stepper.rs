@@ -46,3 +46,29 @@ impl<const N: usize, F: Field<N> + Clone + Send + 'static> Stepper<N> for Dop853
         Dop853::stats(self)
     }
 }
+
+/// The largest gap between `a`'s dense output at the midpoints of its steps and `b`'s, and
+/// between their states at `t_end`, both started alike (the scenes' tests of their series).
+///
+/// # Panics
+/// When a step fails.
+#[cfg(test)]
+pub fn gaps<const N: usize>(
+    a: &mut impl Stepper<N>,
+    b: &mut impl Stepper<N>,
+    t_end: f64,
+) -> (f64, f64) {
+    let mut worst: f64 = 0.0;
+    while a.time() < t_end {
+        a.step(t_end).unwrap();
+        let mid = 0.5 * (a.time_prev() + a.time());
+        while b.time() < mid {
+            b.step(t_end).unwrap();
+        }
+        worst = worst.max((a.interpolate(mid) - b.interpolate(mid)).abs().max());
+    }
+    while b.time() < t_end {
+        b.step(t_end).unwrap();
+    }
+    (worst, (a.state() - b.state()).abs().max())
+}

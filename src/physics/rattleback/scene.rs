@@ -23,22 +23,7 @@ use crate::physics::scene::{
 pub use super::params::PARAMS;
 
 /// The methods the rattleback offers, `auto` first: every method but the celt's projected one.
-pub const METHODS: [Method; 14] = [
-    Method::Auto,
-    Method::Rk4,
-    Method::Dop853,
-    Method::Taylor,
-    Method::Strang,
-    Method::Yoshida4,
-    Method::BlanesMoan4,
-    Method::Yoshida6,
-    Method::Suzuki8,
-    Method::Locked,
-    Method::Effective,
-    Method::EffectiveCorrected,
-    Method::Averaged2,
-    Method::Averaged3,
-];
+pub const METHODS: [Method; 14] = Method::all_but(&[Method::Dop853Projected]);
 
 /// The rattleback's scene.
 pub static SCENE: Scene = Scene {
@@ -109,33 +94,28 @@ impl Posed for Problem {
             (Some(r), Some(c)) if c != 0.0 => Some((r - c) / c),
             _ => None,
         };
-        let line = |label, meaning, value| SummaryLine {
-            label,
-            meaning,
-            value,
-        };
         vec![
-            line(
+            SummaryLine::new(
                 "limit theta",
                 "theta, the fast motion's adiabatic invariant, set by the start",
                 Shown::Number(Some(e.theta())),
             ),
-            line(
+            SummaryLine::new(
                 "ratio",
                 "the start's alpha_dot0^2/gamma_dot0^2",
                 Shown::Number(ratio),
             ),
-            line(
+            SummaryLine::new(
                 "critical",
                 "the paper's critical ratio: below it the spin reverses",
                 Shown::Number(critical),
             ),
-            line(
+            SummaryLine::new(
                 "vs critical",
                 "(ratio - critical)/critical: negative reverses",
                 Shown::Percent(side),
             ),
-            line(
+            SummaryLine::new(
                 "limit regime",
                 "the limit's motion: trapped (reverses) or rotating (does not)",
                 Shown::Verdict(e.regime().name()),

@@ -9,8 +9,7 @@
 //! (its O(1/k) error probed at k = 1e4 and 1e5), and take the cheapest predicted to meet the
 //! tolerance.
 
-use serde::Serialize;
-
+use super::Plan;
 use crate::physics::method::Method;
 use crate::physics::method::RunSpec;
 use crate::physics::method::StepError;
@@ -35,23 +34,6 @@ const BLANES_MOAN_MAX_NU_H: f64 = 2.4;
 const K_PROBES: [f64; 2] = [1e4, 1e5];
 /// Safety factor on the probed O(1/k) error coefficient.
 const PROBE_SAFETY: f64 = 2.0;
-
-/// What `auto` decided, and why.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Plan {
-    /// The method chosen.
-    pub method: Method,
-    /// Tolerance handed to it (adaptive methods).
-    pub tolerance: f64,
-    /// Step handed to it (fixed-step methods).
-    pub step: Option<f64>,
-    /// The error the model predicts for `α(T)`, `α̇(T)`.
-    pub predicted_error: f64,
-    /// Predicted run time in seconds on the calibration machine.
-    pub predicted_seconds: f64,
-    /// One sentence on the choice.
-    pub reason: String,
-}
 
 /// The candidates that need no probe (resolved DOP853, resolved Blanes–Moan, and phase-locked
 /// Strang when its steps are long enough), with their predicted errors and costs. Pure and
