@@ -74,6 +74,7 @@ const POLICY: Policy = Policy {
     refine: 0.25,
     blind_refine: 1.0 / 16.0,
     tightest: 1e-14,
+    step_safety: 1.25,
     max_refinements: 4,
     stalls: 2,
     floor_stops: true,

@@ -35,6 +35,10 @@ pub struct Policy {
     pub blind_refine: f64,
     /// The tightest local tolerance.
     pub tightest: f64,
+    /// How much more than its order asks a fixed step shrinks at a refinement (a model whose
+    /// plans have fixed steps: the step for an excess `e` of a method of order `p` is divided by
+    /// `step_safety · e^(1/p)`).
+    pub step_safety: f64,
     /// The most refinements after the first round.
     pub max_refinements: usize,
     /// How many rounds in a row must fail to halve what was measured for the loop to stop.
@@ -346,6 +350,7 @@ mod tests {
         refine: 0.25,
         blind_refine: 1.0 / 16.0,
         tightest: 1e-14,
+        step_safety: 1.25,
         max_refinements: 4,
         stalls: 2,
         floor_stops: true,

@@ -21,6 +21,7 @@ pub const POLICY: Policy = Policy {
     refine: 0.25,
     blind_refine: 0.25 * 0.25,
     tightest: 1e-14,
+    step_safety: 1.25,
     max_refinements: 4,
     stalls: 2,
     floor_stops: true,

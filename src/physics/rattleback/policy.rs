@@ -23,6 +23,7 @@ pub const POLICY: Policy = Policy {
     refine: 0.25,
     blind_refine: 1.0 / 32.0,
     tightest: 1e-14,
+    step_safety: 1.25,
     max_refinements: 6,
     stalls: 1,
     floor_stops: true,

@@ -280,10 +280,10 @@ impl Plan {
 
 /// The coarser companion of a run of `method` with these settings.
 fn companion_of(method: Method, tolerance: f64, step: Option<f64>) -> Settings {
-    let looser = if method == Method::Taylor {
-        TAYLOR.companion_looser
+    let policy = if method == Method::Taylor {
+        &TAYLOR
     } else {
-        POLICY.companion_looser
+        &POLICY
     };
     match step {
         Some(h) => Settings {
@@ -291,7 +291,7 @@ fn companion_of(method: Method, tolerance: f64, step: Option<f64>) -> Settings {
             step: Some(2.0 * h),
         },
         None => Settings {
-            tolerance: (tolerance * looser).min(1e-3),
+            tolerance: policy.companion(tolerance),
             step: None,
         },
     }
@@ -1597,10 +1597,12 @@ fn refine(
         return Some(resolved);
     }
     let share = (tolerance - model_error).max(0.1 * tolerance);
+    // How far the estimate is over what the integration may spend: at least what the policy's
+    // least refinement answers (2: a factor 4), and what its blind one answers when infinite.
     let excess = if estimate.is_finite() {
-        ((estimate - model_error).max(0.0) / share).max(2.0)
+        ((estimate - model_error).max(0.0) / share).max(0.5 / POLICY.refine)
     } else {
-        16.0
+        0.5 / POLICY.blind_refine
     };
     if matches!(plan.method, Method::Dop853 | Method::Taylor)
         && plan.tolerance / (2.0 * excess) < POLICY.tightest
@@ -1623,7 +1625,7 @@ fn refine(
     let mut next = plan.clone();
     if let Some(h) = plan.step {
         let p = f64::from(plan.method.order().max(1));
-        next.step = Some(h / (1.25 * excess.powf(1.0 / p)));
+        next.step = Some(h / (POLICY.step_safety * excess.powf(1.0 / p)));
     } else {
         let factor = if plan.method == Method::Taylor {
             (2.0 * excess).max(TAYLOR.refine.recip())

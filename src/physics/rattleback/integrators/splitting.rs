@@ -423,6 +423,7 @@ impl Flow for Splitting {
 mod tests {
     use super::*;
     use crate::physics::numerics::compositions::{SUZUKI8, YOSHIDA4, YOSHIDA6};
+    use crate::physics::rattleback::params::Start;
 
     #[test]
     fn composition_weights_are_consistent_and_symmetric() {
@@ -447,5 +448,32 @@ mod tests {
             );
             assert!(drifts.iter().eq(drifts.iter().rev()) && kicks.iter().eq(kicks.iter().rev()));
         }
+    }
+
+    proptest::proptest! {
+    /// A symmetric composition is time-reversible: a step forward then back is the identity.
+    /// The tilt is drawn on the energy scale, `γ = a / sqrt(k)` (a tilt energy `½ a²` of order
+    /// one): a fixed `γ` at `k = 1e8` would mean a tilt energy in the thousands, whose huge
+    /// kicks amplify rounding beyond any fixed bound.
+    #[test]
+    fn compositions_are_reversible(
+        ix in 0.1f64..10.0, iy in 0.1f64..10.0, iz in 0.1f64..10.0, k in 1.0f64..1e8,
+        tilt in -1.0f64..1.0, alpha in -3.0f64..3.0, gamma_dot in -2.0f64..2.0,
+        alpha_dot in -2.0f64..2.0, h in 1e-4f64..0.1,
+    ) {
+        let gamma = tilt / k.sqrt();
+        let p = Params { ix, iy, iz, k };
+        let start = Start { gamma, alpha, gamma_dot, alpha_dot };
+        proptest::prop_assume!(Problem::new(p, start).is_ok());
+        let y0 = Canonical::from_state(&p, &initial_state(&start));
+        for w in [&[1.0][..], &[1.351_207_191_959_657_8, -1.702_414_383_919_315_5, 1.351_207_191_959_657_8][..]] {
+            let y1 = composed_step(&p, w, &y0, h);
+            let back = composed_step(&p, w, &y1, -h);
+            let scale = 1.0 + y0.p_gamma.abs() + y0.p_alpha.abs();
+            proptest::prop_assert!((back.alpha - y0.alpha).abs() < 1e-9 * (1.0 + y0.alpha.abs()));
+            proptest::prop_assert!((back.p_alpha - y0.p_alpha).abs() < 1e-9 * scale);
+            proptest::prop_assert!((back.p_gamma - y0.p_gamma).abs() < 1e-9 * scale);
+        }
+    }
     }
 }
