@@ -344,9 +344,9 @@ mod tests {
     }
 
     const POLICY: Policy = Policy {
-        companion_looser: 16.0,
-        companion_cap: 1e-2,
-        companion_error: 14.0,
+        companion_looser: 8.0,
+        companion_cap: 1e-3,
+        companion_error: 7.0,
         refine: 0.25,
         blind_refine: 1.0 / 16.0,
         tightest: 1e-14,
