@@ -127,7 +127,9 @@ fn run_case(case: &common::AveragedCase, alpha_dot: f64, tol: f64) -> (serde_jso
 
 fn rattleback(tol: f64) -> Tally {
     let mut tally = Tally::default();
-    for case in common::cases_from("rattleback_honesty.toml") {
+    let mut cases = common::cases_from("rattleback_honesty.toml");
+    cases.extend(common::cases_from("rattleback_unequal.toml"));
+    for case in cases {
         let started = std::time::Instant::now();
         let (r, err) = run_case(&case, case.problem.start().alpha_dot, tol);
         eprintln!(
@@ -147,6 +149,34 @@ fn rattleback(tol: f64) -> Tally {
 #[test]
 fn the_rattleback_keeps_its_claims_near_the_separatrix_and_at_very_large_k() {
     audit("rattleback", &[1e-6, 1e-8, 1e-10], rattleback);
+}
+
+/// Issue 58, item 7: on a very unequal body near `α = π/2` (`scripts/rattleback_unequal.py`),
+/// a request `auto` cannot meet is declined without a long run (it used to integrate 6.3e7
+/// splitting steps, 20 s, at 1e-10, and end with a larger estimate than at 1e-8), and the
+/// tighter request never ends with the larger estimate.
+#[test]
+fn a_request_below_the_floor_is_declined_without_a_long_run() {
+    for case in common::cases_from("rattleback_unequal.toml") {
+        let alpha_dot = case.problem.start().alpha_dot;
+        let (loose, _) = run_case(&case, alpha_dot, 1e-8);
+        let (tight, err) = run_case(&case, alpha_dot, 1e-10);
+        let steps = tight["stats"]["steps"].as_f64().expect("steps");
+        let estimate = |r: &serde_json::Value| r["auto"]["error_estimate"].as_f64().unwrap();
+        assert!(steps < 1e6, "{}: {steps} steps", case.name);
+        assert!(
+            estimate(&tight) <= estimate(&loose),
+            "{}: {:.1e} at 1e-10 against {:.1e} at 1e-8",
+            case.name,
+            estimate(&tight),
+            estimate(&loose)
+        );
+        assert!(
+            estimate(&tight) >= err - case.uncertainty,
+            "{}: {err:.1e}",
+            case.name
+        );
+    }
 }
 
 fn pendulum(tol: f64) -> Tally {
