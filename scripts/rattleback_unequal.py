@@ -15,13 +15,11 @@ import importlib.util
 import os
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-NOTE = os.path.join(HERE, "..", "docs", "averaging", "averaging2.py")
-spec = importlib.util.spec_from_file_location("averaging2", NOTE)
-av = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(av)
+# The honesty script's helpers (`full`, `gap`, `fl`, `NUDGE`) and the note it loads (`av`).
 spec = importlib.util.spec_from_file_location("honesty", os.path.join(HERE, "rattleback_honesty.py"))
 ho = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(ho)
+av = ho.av
 
 OUT = os.path.join(HERE, "..", "tests", "fixtures", "reference", "rattleback_unequal.toml")
 
