@@ -158,6 +158,11 @@ pub enum Event {
     /// The concrete plan a run integrates (what `auto` resolved to), so replay uses it and no
     /// later change of `auto` can change an old session (format 2 on).
     Plan {
+        /// The key's model, by name (format 11 on): the key is read as the model it names, never
+        /// as another whose fields it happens to have (files before it tell the models apart by
+        /// their keys' fields).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        model: Option<String>,
         /// What it was resolved for.
         key: crate::sim::PlanKey,
         /// The plan.
@@ -176,6 +181,23 @@ pub enum Event {
         /// FNV-1a of the bits of `t`, the state and the count, in hex.
         hash: String,
     },
+}
+
+impl Event {
+    /// The plan line of `key`, naming its model.
+    #[must_use]
+    pub fn plan(
+        key: crate::sim::PlanKey,
+        plan: crate::physics::Resolved,
+        estimate: Option<f64>,
+    ) -> Self {
+        Self::Plan {
+            model: Some(key.model().name().to_owned()),
+            key,
+            plan,
+            estimate,
+        }
+    }
 }
 
 impl Event {

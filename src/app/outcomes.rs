@@ -67,11 +67,8 @@ impl App {
                         .asked()
                         .zip(self.computed.compare.outcome.as_ref())
                     {
-                        let plan = Event::Plan {
-                            key: crate::sim::PlanKey::of(spec),
-                            plan: run.plan,
-                            estimate: run.estimate,
-                        };
+                        let plan =
+                            Event::plan(crate::sim::PlanKey::of(spec), run.plan, run.estimate);
                         self.log(plan);
                     }
                 }
@@ -145,10 +142,6 @@ impl App {
     ) {
         let mut spec = self.scenario.spec(self.view.overlay);
         spec.t_end = until;
-        self.log(Event::Plan {
-            key: crate::sim::PlanKey::of(&spec),
-            plan,
-            estimate,
-        });
+        self.log(Event::plan(crate::sim::PlanKey::of(&spec), plan, estimate));
     }
 }

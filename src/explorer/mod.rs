@@ -164,6 +164,7 @@ fn forwarded_plans(lines: &[crate::record::Line]) -> Vec<Effect> {
                 key,
                 plan,
                 estimate: estimate @ Some(_),
+                ..
             } => Some(Effect::Sim(crate::sim::Command::Book {
                 key,
                 plan,

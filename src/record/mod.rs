@@ -42,7 +42,9 @@ pub const FORMAT: &str = "rattleback-session";
 /// 9: nothing new in the lines; a run longer than [`crate::sim::segments::FIRST_SEGMENT`] is
 /// verified and shown in segments, each with its own `plan` line (its key's `t_end` is the
 /// segment's horizon), so a file of 8 or older replays its runs in one piece, as shown.
-pub const VERSION: u32 = 10;
+/// 10: the lesson in the header, `given` and `lesson_done` lines, the last frame. 11: a `plan`
+/// line names its key's model (`docs/session-format.md`), so no model's key reads as another's.
+pub const VERSION: u32 = 11;
 
 /// First line of a session file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
@@ -200,6 +202,19 @@ pub fn impossible(line: &Line) -> Option<String> {
         return Some(format!(
             "t = {}: not a time of the run (a finite number, at least 0)",
             Number(line.t)
+        ));
+    }
+    if let crate::app::journal::Event::Plan {
+        model: Some(model),
+        key,
+        ..
+    } = &line.event
+        && model != key.model().name()
+    {
+        return Some(format!(
+            "a plan line for the model \"{}\" whose key is the {}'s",
+            crate::scenario::text::one_line(model),
+            key.model().name()
         ));
     }
     None

@@ -86,6 +86,7 @@ pub fn plan_book(rec: &Recording) -> PlanBook {
                     key,
                     plan,
                     estimate,
+                    ..
                 } if estimate.is_some() || !auto_only => Some((*key, *plan)),
                 _ => None,
             })
@@ -178,6 +179,9 @@ fn newer_than(version: u32, line: &super::Line) -> Option<&'static str> {
             Some("a counted or signed end line (format 4)")
         }
         Event::Plan { .. } if version < 2 => Some("a plan line (format 2)"),
+        Event::Plan { model: Some(_), .. } if version < 11 => {
+            Some("a plan line naming its model (format 11)")
+        }
         Event::Window { .. } if version < 7 => Some("a window line (format 7)"),
         Event::Given { .. } | Event::LessonDone if version < 10 => {
             Some("a given or lesson-done line (format 10)")
@@ -215,6 +219,14 @@ fn check_integrity(
                 line.t,
                 format!("a format-{version} file, as its header says"),
                 format!("{what}: the header's version was changed, or the line was added"),
+            ));
+        }
+        if version >= 11 && matches!(line.event, Event::Plan { model: None, .. }) {
+            return Err(tampered(
+                *number,
+                line.t,
+                "a plan line naming its model, as format 11 writes it",
+                "a plan line without its model (the line was edited)",
             ));
         }
     }

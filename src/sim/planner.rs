@@ -56,6 +56,16 @@ pub enum PlanKey {
 }
 
 impl PlanKey {
+    /// The model it is a key of.
+    #[must_use]
+    pub const fn model(&self) -> crate::physics::ModelKind {
+        match self {
+            Self::Rattleback { .. } => crate::physics::ModelKind::Rattleback,
+            Self::Kapitza { .. } => crate::physics::ModelKind::Kapitza,
+            Self::Celt { .. } => crate::physics::ModelKind::Celt,
+        }
+    }
+
     /// The key of a session spec.
     #[must_use]
     pub fn of(spec: &SessionSpec) -> Self {

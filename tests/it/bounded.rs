@@ -287,15 +287,15 @@ fn hostile_sessions(d: &std::path::Path) -> Vec<std::path::PathBuf> {
             "plan-step",
             base.clone(),
             vec![
-                Event::Plan {
-                    key: plan,
-                    plan: rattleback::physics::Resolved {
+                Event::plan(
+                    plan,
+                    rattleback::physics::Resolved {
                         method: rattleback::physics::Method::Rk4,
                         tolerance: 1e-9,
                         step: Some(1e-300),
                     },
-                    estimate: None,
-                },
+                    None,
+                ),
                 Event::Play,
             ],
         ),

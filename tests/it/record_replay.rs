@@ -241,13 +241,13 @@ fn corrupt_line_version_and_tampering_are_reported_by_line() {
     assert!(err.contains("corrupt.jsonl:5: bad event"), "{err}");
 
     let mut future = lines.clone();
-    future[0] = future[0].replace("\"version\":1", "\"version\":11");
+    future[0] = future[0].replace("\"version\":1", "\"version\":12");
     let path = temp("future.jsonl");
     std::fs::write(&path, future.join("\n") + "\n").unwrap();
     let (code, _, err) = bin(&["replay", path.to_str().unwrap(), "--verify"]);
     assert_eq!(code, 2);
     assert!(
-        err.contains("future.jsonl:1: format version 11 is not supported"),
+        err.contains("future.jsonl:1: format version 12 is not supported"),
         "{err}"
     );
 
@@ -847,4 +847,55 @@ fn a_method_changed_in_the_panel_replays_the_method_picked() {
     // Those taken while recording, and the last frames'.
     assert_eq!(report.checkpoints, checkpoints + 2);
     assert!(report.final_screen);
+}
+
+/// Format 11 (issue 57): a plan line names its key's model. A version-11 file whose plan line
+/// lacks it is refused by `--verify`; one that names another model than its key's is refused
+/// on reading, never read as that model; named rightly, the same lecture verifies. Files of
+/// version 10 and older verify as before (the checked-in sessions).
+#[test]
+fn a_format_11_plan_line_names_its_model_and_a_wrong_name_is_refused() {
+    let path = format!(
+        "{}/tests/fixtures/sessions/lesson-kapitza-threshold.jsonl",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let rec = record::read(std::path::Path::new(&path)).unwrap();
+    assert_eq!(rec.header.version, 10);
+    let header = record::Header {
+        version: 11,
+        ..rec.header.clone()
+    };
+    let rewrite = |name: &str, model: &dyn Fn(&rattleback::sim::PlanKey) -> Option<String>| {
+        let tmp = temp(name);
+        let mut out = Recorder::create(&tmp, &header, None).unwrap();
+        for (_, line) in &rec.lines {
+            let mut line = line.clone();
+            if let Event::Plan { model: m, key, .. } = &mut line.event {
+                *m = model(key);
+            }
+            out.write(&line).unwrap();
+        }
+        drop(out);
+        tmp
+    };
+    let untagged = rewrite("v11-untagged.jsonl", &|_| None);
+    match record::verify(&record::read(&untagged).unwrap(), "untagged", None) {
+        Err(record::VerifyError::Diverged(d)) => {
+            assert!(d.got.contains("without its model"), "{d:?}");
+        }
+        other => panic!("{other:?}"),
+    }
+    let tagged = rewrite("v11-tagged.jsonl", &|k| Some(k.model().name().to_owned()));
+    let text = std::fs::read_to_string(&tagged).unwrap();
+    assert!(
+        text.contains(r#""model":"kapitza""#),
+        "the plan lines name the pendulum"
+    );
+    let back = record::read(&tagged).unwrap();
+    assert!(record::verify(&back, "tagged", None).is_ok());
+    let wrong = rewrite("v11-wrong.jsonl", &|_| Some("rattleback".to_owned()));
+    match record::read(&wrong) {
+        Err(e) => assert!(e.to_string().contains("whose key is the kapitza's"), "{e}"),
+        Ok(_) => panic!("a pendulum's key read under the rattleback's name"),
+    }
 }

@@ -203,11 +203,11 @@ impl ComputedPane for CompareState {
             return false;
         }
         if let Ok(run) = &outcome {
-            cx.log.push(Event::Plan {
-                key: crate::sim::PlanKey::of(&spec),
-                plan: run.plan,
-                estimate: run.estimate,
-            });
+            cx.log.push(Event::plan(
+                crate::sim::PlanKey::of(&spec),
+                run.plan,
+                run.estimate,
+            ));
         }
         self.outcome = Some(outcome.map_err(|e| clean(&e)));
         true
