@@ -62,3 +62,13 @@ pub const TAYLOR: Policy = Policy {
     stalls: 2,
     ..POLICY
 };
+
+/// The policy a run of `method` follows: [`TAYLOR`] for the series, [`POLICY`] for the others.
+#[must_use]
+pub fn of(method: crate::physics::method::Method) -> &'static Policy {
+    if method == crate::physics::method::Method::Taylor {
+        &TAYLOR
+    } else {
+        &POLICY
+    }
+}

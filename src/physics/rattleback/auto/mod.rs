@@ -280,18 +280,13 @@ impl Plan {
 
 /// The coarser companion of a run of `method` with these settings.
 fn companion_of(method: Method, tolerance: f64, step: Option<f64>) -> Settings {
-    let policy = if method == Method::Taylor {
-        &TAYLOR
-    } else {
-        &POLICY
-    };
     match step {
         Some(h) => Settings {
             tolerance,
             step: Some(2.0 * h),
         },
         None => Settings {
-            tolerance: policy.companion(tolerance),
+            tolerance: super::policy::of(method).companion(tolerance),
             step: None,
         },
     }
@@ -882,7 +877,13 @@ pub fn run_auto_cancellable(
     let Decision {
         plan, model_error, ..
     } = plan_cancellable(problem, tolerance, t_end, go_on)?;
-    let spent = probes + plan.predicted_seconds + conditioning_cost(problem, t_end, &plan);
+    let mut candidate = Auto {
+        problem,
+        spec,
+        model_error,
+        measured: None,
+    };
+    let spent = probes + candidate.cost(&plan);
     over_budget(
         &format!("auto's run and verification with {}", plan.method),
         spent,
@@ -890,12 +891,6 @@ pub fn run_auto_cancellable(
     )?;
     // The rounds may spend what is left of the allowance after the probes.
     let allowance = budget.min(AUTO_SECONDS).max(spent);
-    let mut candidate = Auto {
-        problem,
-        spec,
-        model_error,
-        measured: None,
-    };
     let v = verify(
         &POLICY,
         &mut candidate,
@@ -1005,12 +1000,8 @@ impl Candidate for Auto<'_> {
     fn continues(&self, plan: &Plan, next: &Plan) -> bool {
         plan.method == next.method
     }
-    fn stalls(&self, plan: &Plan, policy: &Policy) -> usize {
-        if plan.method == Method::Taylor {
-            TAYLOR.stalls
-        } else {
-            policy.stalls
-        }
+    fn stalls(&self, plan: &Plan, _: &Policy) -> usize {
+        super::policy::of(plan.method).stalls
     }
 }
 
@@ -1638,11 +1629,9 @@ fn refine(
         let p = f64::from(plan.method.order().max(1));
         next.step = Some(h / (POLICY.step_safety * excess.powf(1.0 / p)));
     } else {
-        let factor = if plan.method == Method::Taylor {
-            (2.0 * excess).max(TAYLOR.refine.recip())
-        } else {
-            2.0 * excess
-        };
+        // Twice the excess (at least 4: the excess is at least 2), at least the series' least
+        // refinement for the series.
+        let factor = (2.0 * excess).max(super::policy::of(plan.method).refine.recip());
         next.tolerance = (plan.tolerance / factor).max(POLICY.tightest);
     }
     next.predicted_seconds = with_companion(
