@@ -306,9 +306,14 @@ pub enum StudyCommand {
     /// The full motion at a ladder of stiffnesses against the limit: the largest distance of
     /// its α from the limit's over [0, T], against k, with the fitted log–log slope.
     Sweep(SweepArgs),
-    /// Reversals in [0, T] over a grid of (α̇0²/γ̇0², iy/ix) with the critical curve, from the
-    /// limit (quadrature) or the full model at a stiffness (`map --k`).
+    /// The preset's scene charted: the rattleback's reversals over (α̇0²/γ̇0², iy/ix) with the
+    /// critical curve (from the limit, or the full model at `--k`); the pendulum's stability
+    /// over (a, b) at its ε by Floquet theory, with Kapitza's b² = 2a; the celt's reversals over
+    /// (initial `ω_z`, product of inertia) with its linear-stability boundary.
     Map(MapArgs),
+    /// Put the part files of `study map --shard I/N` back together: the same output as the
+    /// unsharded run (refusing parts of different charts, repeated or missing slices).
+    Merge(MergeArgs),
 }
 
 /// What both studies take.
@@ -353,22 +358,98 @@ pub struct SweepArgs {
 pub struct MapArgs {
     #[command(flatten)]
     pub common: StudyCommon,
-    /// Cells: columns (ratio axis) x rows (inertia-ratio axis).
+    /// Cells: columns x rows.
     #[arg(long, value_name = "COLSxROWS", default_value = "200x100", value_parser = parse_grid)]
     pub grid: (usize, usize),
-    /// Largest α̇0²/γ̇0² (columns span (0, max]).
-    #[arg(long = "ratio-max", default_value_t = crate::study::map::DEFAULT_RATIO_MAX, value_parser = parse_positive, allow_negative_numbers = true)]
-    pub ratio_max: f64,
-    /// Smallest iy/ix (rows are log-spaced).
-    #[arg(long = "inertia-min", default_value_t = crate::study::map::DEFAULT_INERTIA.0, value_parser = parse_positive, allow_negative_numbers = true)]
-    pub inertia_min: f64,
-    /// Largest iy/ix.
-    #[arg(long = "inertia-max", default_value_t = crate::study::map::DEFAULT_INERTIA.1, value_parser = parse_positive, allow_negative_numbers = true)]
-    pub inertia_max: f64,
-    /// Compute every cell from the full model at this Hooke constant (through `auto`) instead
-    /// of the limit; refused when predicted over the work budget unless `--force`.
+    /// The rattleback's largest α̇0²/γ̇0² (columns span (0, max]; default 2).
+    #[arg(long = "ratio-max", value_parser = parse_positive, allow_negative_numbers = true)]
+    pub ratio_max: Option<f64>,
+    /// The rattleback's smallest iy/ix (rows are log-spaced; default 0.1).
+    #[arg(long = "inertia-min", value_parser = parse_positive, allow_negative_numbers = true)]
+    pub inertia_min: Option<f64>,
+    /// The rattleback's largest iy/ix (default 10).
+    #[arg(long = "inertia-max", value_parser = parse_positive, allow_negative_numbers = true)]
+    pub inertia_max: Option<f64>,
+    /// The rattleback: compute every cell from the full model at this Hooke constant (through
+    /// `auto`) instead of the limit; refused when predicted over the work budget unless `--force`.
     #[arg(long, value_parser = parse_positive, allow_negative_numbers = true)]
     pub k: Option<f64>,
+    /// The pendulum and the celt: the range across, `MIN,MAX` (the pendulum's `a`, the celt's
+    /// initial `ω_z`).
+    #[arg(long, value_name = "MIN,MAX", value_parser = parse_range, allow_hyphen_values = true)]
+    pub columns: Option<(f64, f64)>,
+    /// The pendulum and the celt: the range up, `MIN,MAX` (the pendulum's `b`, log-spaced, both
+    /// positive; the celt's product of inertia `D`).
+    #[arg(long, value_name = "MIN,MAX", value_parser = parse_range, allow_hyphen_values = true)]
+    pub rows: Option<(f64, f64)>,
+    /// The pendulum: which equilibrium's stability.
+    #[arg(long, value_enum, default_value_t = Position::Upright)]
+    pub position: Position,
+    /// Compute one slice of the cells, `I/N` (1-based: the cells whose index is `I − 1` modulo
+    /// `N`), and print it as a JSON part file for `study merge`.
+    #[arg(long, value_name = "I/N", value_parser = parse_shard)]
+    pub shard: Option<crate::study::chart::Shard>,
+}
+
+/// The pendulum's equilibrium of `study map --position`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Position {
+    /// θ = 0.
+    Upright,
+    /// θ = π.
+    Hanging,
+}
+
+/// Arguments of `study merge`.
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// The part files `study map --shard I/N` wrote, in any order (`-` reads one from stdin).
+    #[arg(required = true, value_name = "PART.json")]
+    pub parts: Vec<std::path::PathBuf>,
+    /// Output format on stdout.
+    #[arg(long, value_enum, default_value_t = StudyFormat::Json)]
+    pub format: StudyFormat,
+    /// Also write `map.csv` and `map.svg` into this folder.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<std::path::PathBuf>,
+    /// Replace existing files in `--out`.
+    #[arg(long)]
+    pub force: bool,
+}
+
+fn parse_range(s: &str) -> Result<(f64, f64), String> {
+    let (a, b) = s
+        .split_once(',')
+        .ok_or_else(|| "expected MIN,MAX, e.g. 0,2".to_owned())?;
+    let n = |v: &str| -> Result<f64, String> {
+        v.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite() && x.abs() <= 1e12)
+            .ok_or_else(|| format!("`{v}`: a finite number of magnitude at most 1e12"))
+    };
+    let (a, b) = (n(a)?, n(b)?);
+    if a >= b {
+        return Err(format!("MIN ({a}) must be below MAX ({b})"));
+    }
+    Ok((a, b))
+}
+
+fn parse_shard(s: &str) -> Result<crate::study::chart::Shard, String> {
+    let (i, n) = s
+        .split_once('/')
+        .ok_or_else(|| "expected I/N, e.g. 2/3 (the second of three slices)".to_owned())?;
+    let n_of = |v: &str| v.trim().parse::<usize>().ok();
+    match (n_of(i), n_of(n)) {
+        (Some(index), Some(count))
+            if (1..=10_000).contains(&count) && (1..=count).contains(&index) =>
+        {
+            Ok(crate::study::chart::Shard { index, count })
+        }
+        _ => Err(format!(
+            "`{s}`: I/N with N from 1 to 10000 and I from 1 to N (1-based)"
+        )),
+    }
 }
 
 fn parse_grid(s: &str) -> Result<(usize, usize), String> {

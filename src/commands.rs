@@ -569,6 +569,7 @@ pub fn study(command: &crate::cli::StudyCommand) -> Outcome {
     match command {
         StudyCommand::Sweep(args) => study_sweep(args),
         StudyCommand::Map(args) => study_map(args),
+        StudyCommand::Merge(args) => study_merge(args),
     }
 }
 
@@ -594,12 +595,17 @@ fn study_setup(
 
 /// Writes `files` (name, contents) into `--out`, refusing to replace without `--force`.
 fn write_outputs(common: &crate::cli::StudyCommon, files: &[(&str, String)]) -> Outcome {
-    let Some(dir) = &common.out else {
-        return Ok(());
-    };
+    match &common.out {
+        Some(dir) => write_files(dir, common.force, files),
+        None => Ok(()),
+    }
+}
+
+/// Writes `files` (name, contents) into `dir`, refusing to replace without `force`.
+fn write_files(dir: &std::path::Path, force: bool, files: &[(&str, String)]) -> Outcome {
     for (name, text) in files {
         let path = dir.join(name);
-        if let Err(e) = crate::scenario::write::write_atomic(&path, text.as_bytes(), common.force) {
+        if let Err(e) = crate::scenario::write::write_atomic(&path, text.as_bytes(), force) {
             if e.kind() == std::io::ErrorKind::AlreadyExists {
                 return Err(Failure::input(format!("{e}; --force replaces it")));
             }
@@ -791,157 +797,145 @@ fn sweep_curves(s: &crate::study::sweep::Sweep) -> String {
 }
 
 fn study_map(args: &crate::cli::MapArgs) -> Outcome {
-    use crate::study::map::{Grid, regime_map};
-    let (_, model, t_end, tolerance) = study_setup(&args.common)?;
-    let Some(problem) = model.rattleback().copied() else {
-        return Err(Failure::input(format!(
-            "{}: the regime map is of the rattleback (reversals over its inertia and start); this is a {} preset",
-            args.common.preset,
-            model.kind().name()
-        )));
-    };
-    if args.inertia_min >= args.inertia_max {
-        return Err(Failure::input(format!(
-            "--inertia-min ({}) must be below --inertia-max ({})",
-            args.inertia_min, args.inertia_max
-        )));
-    }
-    let p = problem.params();
-    let s = problem.start();
-    let grid = Grid {
-        cols: args.grid.0,
-        rows: args.grid.1,
-        ratio_max: args.ratio_max,
-        inertia: (args.inertia_min, args.inertia_max),
-        ix: p.ix,
-        iz: p.iz,
-        gamma_dot: if s.gamma_dot == 0.0 { 1.0 } else { s.gamma_dot },
+    use crate::study::chart;
+    let (preset, model, t_end, tolerance) = study_setup(&args.common)?;
+    let ask = chart::StudyAsk {
+        grid: args.grid,
         t_end,
+        tolerance,
+        asked_tolerance: args.common.tolerance,
+        ratio_max: args.ratio_max,
+        inertia_min: args.inertia_min,
+        inertia_max: args.inertia_max,
+        k: args.k,
+        columns: args.columns,
+        rows: args.rows,
+        hanging: args.position == crate::cli::Position::Hanging,
     };
-    let source = map_source(args, &grid, tolerance)?;
-    // Progress by cells started (each asks at t = 0); Ctrl-C cancels the cells in flight.
-    let mapped = counted("study map", grid.cols * grid.rows, "cells", &|started| {
-        regime_map(&grid, source, &|t| {
-            if t == 0.0 {
-                started();
-            }
-            go_on()
-        })
+    let chart = chart::Chart::for_study(&model, &ask).map_err(Failure::input)?;
+    if args.shard.is_some() && args.common.out.is_some() {
+        return Err(Failure::input(
+            "--out draws the whole chart: give the parts to `study merge --out DIR`".to_owned(),
+        ));
+    }
+    if args.shard.is_some() && args.common.format == crate::cli::StudyFormat::Csv {
+        return Err(Failure::input(
+            "a shard is written as JSON (`study merge --format csv` prints the whole chart as CSV)"
+                .to_owned(),
+        ));
+    }
+    let total = chart.len();
+    let indices: Vec<usize> = match args.shard {
+        Some(s) => chart::shard_cells(total, s),
+        None => (0..total).collect(),
+    };
+    chart_priced(&chart, indices.len(), args.common.force)?;
+    let label = match args.shard {
+        Some(s) => format!("study map {}/{}", s.index, s.count),
+        None => "study map".to_owned(),
+    };
+    // Progress by cells done; Ctrl-C cancels the cells in flight.
+    let mapped = counted(&label, indices.len(), "cells", &|done| {
+        chart.cells(&indices, &|_| go_on(), done)
     });
-    let map = finished(mapped, "study map")?;
-    let mut csv = String::from("ratio,inertia_ratio,reversals\n");
-    for c in &map.cells {
-        let _ = writeln!(csv, "{},{},{}", c.ratio, c.inertia_ratio, c.reversals);
+    let verdicts = finished(mapped, "study map")?;
+    let out = chart.output(
+        &crate::scenario::text::one_line(&preset.name),
+        &indices,
+        &verdicts,
+        args.shard,
+    );
+    if args.shard.is_some() {
+        return emit(&json_text(&out));
     }
-    let printed = match args.common.format {
-        crate::cli::StudyFormat::Json => emit(&json_text(&crate::outputs::Map {
-            schema_version: crate::outputs::SCHEMA_VERSION,
-            model: model.kind(),
-            map: map.clone(),
-        })),
+    print_chart(
+        &out,
+        args.common.format,
+        args.common.out.as_deref(),
+        args.common.force,
+    )
+}
+
+/// Prints a chart in `format` and writes `map.csv` and `map.svg` into `out` when asked.
+fn print_chart(
+    out: &crate::study::chart::ChartOutput,
+    format: crate::cli::StudyFormat,
+    dir: Option<&std::path::Path>,
+    force: bool,
+) -> Outcome {
+    let csv = out.csv();
+    match format {
+        crate::cli::StudyFormat::Json => emit(&json_text(out)),
         crate::cli::StudyFormat::Csv => emit(&csv),
-        crate::cli::StudyFormat::Table => emit(&map_table(&grid, &map)),
-    };
-    printed?;
-    let svg = match crate::study::svg::map_svg(&map, grid.cols, grid.rows) {
+        crate::cli::StudyFormat::Table => emit(&out.table()),
+    }?;
+    let Some(dir) = dir else { return Ok(()) };
+    let svg = match crate::study::svg::chart_svg(out) {
         Ok(svg) => svg,
-        Err(e) => {
-            return Err(Failure::failed(format!("drawing the map: {e}")));
+        Err(e) => return Err(Failure::failed(format!("drawing the map: {e}"))),
+    };
+    write_files(dir, force, &[("map.csv", csv), ("map.svg", svg)])
+}
+
+/// `rattleback study merge PART…`.
+fn study_merge(args: &crate::cli::MergeArgs) -> Outcome {
+    // A part of a 2000×2000 chart is about a gigabyte: the bound.
+    const MAX_PART_BYTES: u64 = 2 << 30;
+    let mut parts = Vec::new();
+    for path in &args.parts {
+        let name = path.display().to_string();
+        let text = if name == "-" {
+            let mut s = String::new();
+            std::io::Read::read_to_string(
+                &mut std::io::Read::take(std::io::stdin(), MAX_PART_BYTES),
+                &mut s,
+            )
+            .map(|_| s)
+            .map_err(|e| Failure::input(format!("stdin: {e}")))?
+        } else {
+            crate::scenario::write::read_bounded(path, MAX_PART_BYTES)
+                .map_err(|e| Failure::input(format!("{name}: {e}")))?
+        };
+        let part: crate::study::chart::ChartOutput = serde_json::from_str(&text).map_err(|e| {
+            Failure::input(format!(
+                "{}: not a part file of `study map --shard` ({})",
+                crate::scenario::text::one_line(&name),
+                crate::scenario::text::one_line(&e.to_string())
+            ))
+        })?;
+        if part.schema_version != crate::outputs::SCHEMA_VERSION {
+            return Err(Failure::input(format!(
+                "{name}: schema_version {} (this build writes and reads {})",
+                part.schema_version,
+                crate::outputs::SCHEMA_VERSION
+            )));
         }
-    };
-    write_outputs(&args.common, &[("map.csv", csv), ("map.svg", svg)])
-}
-
-/// Where a map's counts come from: the limit, or the full model at `--k` when the prediction
-/// is within the work budget (or `--force`).
-fn map_source(
-    args: &crate::cli::MapArgs,
-    grid: &crate::study::map::Grid,
-    tolerance: f64,
-) -> Result<crate::study::map::Source, Failure> {
-    use crate::study::map::Source;
-    let Some(k) = args.k else {
-        // The limit's cells cost the same whatever the horizon: asked all the same.
-        return priced(args, grid, Source::Limit);
-    };
-    // The full model: one verified auto run per cell, predicted before anything runs.
-    // Every corner is a problem the model accepts (`--k 5e307` overflows the fast frequency):
-    // refused as any preset value would be, by the same validator.
-    #[allow(clippy::cast_precision_loss)]
-    let first_column = args.ratio_max / grid.cols.max(1) as f64;
-    let corner = |ratio: f64, inertia: f64| {
-        grid.params_of(ratio, inertia, k)
-            .map_err(|e| Failure::input(format!("--k {}: {e}", crate::physics::Number(k))))
-    };
-    for (ratio, inertia) in [
-        (first_column, args.inertia_min),
-        (first_column, args.inertia_max),
-        (args.ratio_max, args.inertia_max),
-    ] {
-        corner(ratio, inertia)?;
+        parts.push((crate::scenario::text::one_line(&name), part));
     }
-    corner(args.ratio_max, args.inertia_min)?;
-    priced(args, grid, Source::Full { k, tolerance })
+    let merged = crate::study::chart::merge(&parts).map_err(Failure::input)?;
+    if let Some(dir) = &args.out
+        && let Err(e) = std::fs::create_dir_all(dir)
+    {
+        return Err(Failure::input(format!("--out {}: {e}", dir.display())));
+    }
+    print_chart(&merged, args.format, args.out.as_deref(), args.force)
 }
 
-/// `source` when the map's cost model puts it within the work budget (or `--force`).
-fn priced(
-    args: &crate::cli::MapArgs,
-    grid: &crate::study::map::Grid,
-    source: crate::study::map::Source,
-) -> Result<crate::study::map::Source, Failure> {
-    let cells = grid.cols * grid.rows;
-    let predicted = crate::study::map::predicted_seconds(grid, source, cells);
-    let budget = if args.common.force {
+/// The chart's cells when its cost model puts them within the work budget (or `--force`).
+fn chart_priced(chart: &crate::study::chart::Chart, cells: usize, force: bool) -> Outcome {
+    let predicted = chart.predicted_seconds(cells);
+    let budget = if force {
         f64::INFINITY
     } else {
         crate::physics::budget::BUDGET_SECONDS
     };
     if let Err(over) = crate::physics::budget::check(predicted, budget) {
-        let what = match source {
-            crate::study::map::Source::Limit => "of the limit".to_owned(),
-            crate::study::map::Source::Full { k, .. } => {
-                format!("of the full model at k = {k:e}")
-            }
-        };
+        let what = chart.title();
         return Err(Failure::input(format!(
-            "this map ({cells} cells {what}) is {over}; use a smaller --grid, or pass --force"
+            "this {what} ({cells} cells) is {over}; use a smaller --grid or --shard I/N, or pass --force"
         )));
     }
-    Ok(source)
-}
-
-/// The map in text: at most 60 columns and 20 rows of digits (reversals, `+` for 10 or more,
-/// `.` for none), largest inertia ratio on top, `*` where the critical curve crosses a row.
-fn map_table(grid: &crate::study::map::Grid, map: &crate::study::map::RegimeMap) -> String {
-    let (cols, rows) = (grid.cols.min(60), grid.rows.min(20));
-    let mut o = format!(
-        "reversals in (0, {}] over alpha_dot0²/gamma_dot0² (0 … {}) across, iy/ix ({} … {}) up\n",
-        grid.t_end, grid.ratio_max, grid.inertia.0, grid.inertia.1
-    );
-    for r in (0..rows).rev() {
-        let j = r * grid.rows / rows;
-        let critical = grid.critical(grid.inertia_ratio(j));
-        let _ = write!(o, "{:>8.3} ", grid.inertia_ratio(j));
-        for c in 0..cols {
-            let i = c * grid.cols / cols;
-            let cell = &map.cells[j * grid.cols + i];
-            #[allow(clippy::cast_precision_loss)]
-            let width = grid.ratio_max / cols as f64;
-            let ch = if critical.is_some_and(|x| (x - cell.ratio).abs() <= 0.5 * width) {
-                '*'
-            } else {
-                match cell.reversals {
-                    0 => '.',
-                    n @ 1..=9 => char::from_digit(n as u32, 10).unwrap_or('+'),
-                    _ => '+',
-                }
-            };
-            o.push(ch);
-        }
-        o.push('\n');
-    }
-    o
+    Ok(())
 }
 
 /// # Errors

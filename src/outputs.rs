@@ -98,18 +98,9 @@ pub struct Sweep {
     pub estimates: Vec<f64>,
 }
 
-/// `rattleback study map --format json`.
-#[derive(Debug, Serialize, JsonSchema)]
-#[schemars(deny_unknown_fields)]
-pub struct Map {
-    /// The version of this output's shape.
-    pub schema_version: u32,
-    /// The scene (the rattleback).
-    pub model: ModelKind,
-    /// The cells and the critical curve.
-    #[serde(flatten)]
-    pub map: crate::study::map::RegimeMap,
-}
+/// `rattleback study map --format json` (every scene's chart, a shard's part file and `study
+/// merge`'s output; the rattleback's cells keep the fields they had before issue 59).
+pub type Map = crate::study::chart::ChartOutput;
 
 /// `rattleback replay FILE --chapters --format json`.
 #[derive(Debug, Serialize, JsonSchema)]

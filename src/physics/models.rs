@@ -19,7 +19,9 @@ use super::rattleback::effective::Effective;
 use super::scene::{Planned, Posed, Scene, SmallParameter, Studies, Words};
 
 /// Which model: names as in presets (`[preset] model = "kapitza"`; absent means the rattleback).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, schemars::JsonSchema)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum ModelKind {
     /// The holonomic rattleback (a rigid body on a stiff spring).

@@ -101,7 +101,7 @@ pub struct Studies {
     /// The weak-* convergence of the fast coordinate's square, and its words (`None`: the scene
     /// has no weak-* pane).
     pub weak: Option<WeakWords>,
-    /// The regime map over the start's ratio and the inertia ratio.
+    /// A chart in the map pane (`M`; `study map`): every scene has one since issue 59.
     pub map: bool,
     /// The body seen from above.
     pub body: bool,

@@ -19,7 +19,8 @@ use crate::physics::StepError;
 use crate::physics::method::Asked;
 use crate::physics::method::Method;
 use crate::physics::plan::Resolved;
-use crate::study::map::{Source, cells_in_parallel};
+use crate::study::chart::Chart;
+use crate::study::map::Source;
 use crate::study::sweep::{ladder, limit_curve, rung};
 
 /// Which job: one of each at a time.
@@ -66,7 +67,7 @@ pub enum JobSpec {
     /// The regime map, from cell `from` on (grid order: the cells before it are known).
     Map {
         /// What to compute.
-        spec: MapSpec,
+        spec: Box<MapSpec>,
         /// The first cell to compute.
         from: usize,
     },
@@ -104,11 +105,9 @@ impl JobSpec {
                 w.tolerance,
             )
             .unwrap_or(f64::INFINITY),
-            Self::Map { spec, from } => crate::study::map::predicted_seconds(
-                &spec.grid,
-                spec.source,
-                (spec.grid.cols * spec.grid.rows).saturating_sub(*from),
-            ),
+            Self::Map { spec, from } => spec
+                .chart
+                .predicted_seconds(spec.chart.len().saturating_sub(*from)),
         }
     }
 
@@ -143,7 +142,7 @@ impl JobSpec {
             Self::Partner(spec) => Box::new(PartnerJob::new(stamp, spec)),
             Self::Weak(spec) => Box::new(WeakJob::new(stamp, spec)),
             Self::Sweep(spec) => Box::new(SweepJob::new(stamp, spec)),
-            Self::Map { spec, from } => Box::new(MapJob::new(stamp, spec, from)),
+            Self::Map { spec, from } => Box::new(MapJob::new(stamp, *spec, from)),
         }
     }
 }
@@ -180,12 +179,12 @@ pub enum JobData {
         /// Why it stopped short, if it did.
         failed: Option<String>,
     },
-    /// Cells of the regime map, in grid order from `first`.
+    /// Cells of the map, in grid order from `first`.
     MapCells {
         /// Index of the first cell.
         first: usize,
-        /// Reversals in `(0, T]` of each cell.
-        reversals: Vec<usize>,
+        /// The verdict of each cell.
+        verdicts: Vec<crate::study::chart::Verdict>,
     },
     /// The regime map is complete (or could not go on: `failed`).
     MapDone {
@@ -223,13 +222,25 @@ pub struct PartnerRun {
     pub marks: Vec<f64>,
 }
 
-/// The regime map's computation.
+/// The map pane's computation: the scene's chart (issue 59).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MapSpec {
-    /// The grid, body and horizon.
-    pub grid: crate::study::map::Grid,
-    /// From the limit or the full model at a `k`.
-    pub source: crate::study::map::Source,
+    /// The chart: its grid, scene and source.
+    pub chart: crate::study::chart::Chart,
+}
+
+impl MapSpec {
+    /// The rattleback's map of `grid` from `source` (no preset point marked).
+    #[must_use]
+    pub fn rattleback(grid: crate::study::map::Grid, source: Source) -> Self {
+        Self {
+            chart: Chart::Rattleback {
+                grid,
+                source,
+                at: (f64::NAN, f64::NAN),
+            },
+        }
+    }
 }
 
 /// The weak-* view's computation.
@@ -575,13 +586,20 @@ impl Job for MapJob {
     fn slice(&mut self, work: &mut Work) -> Slice {
         let (go_on, sink) = (&mut *work.go_on, &mut *work.sink);
         let (id, spec, next) = (self.id, self.spec, self.next);
-        let total = spec.grid.cols * spec.grid.rows;
-        let chunk = match spec.source {
-            Source::Limit => spec.grid.cols,
-            Source::Full { .. } => rayon::current_num_threads().max(1),
+        let chart = spec.chart;
+        let total = chart.len();
+        // A row of the cheap charts (the rattleback's limit, the pendulum's one-period traces)
+        // a slice; as many cells as the pool has threads of the ones that run the full motion.
+        let chunk = match chart {
+            Chart::Rattleback {
+                source: Source::Limit,
+                ..
+            }
+            | Chart::Kapitza(_) => chart.axes().0.cells,
+            _ => rayon::current_num_threads().max(1),
         };
         let end = (next + chunk).min(total);
-        let reversals = match cells_in_parallel(&spec.grid, spec.source, next..end, go_on) {
+        let verdicts = match chart.cells_polled(next..end, go_on) {
             Err(StepError::Cancelled { .. }) => return Slice::More,
             Err(e) => {
                 let failed = Some(e.to_string());
@@ -591,14 +609,14 @@ impl Job for MapJob {
                 };
                 return Slice::after(sink(done), Slice::Done);
             }
-            Ok(reversals) => reversals,
+            Ok(verdicts) => verdicts,
         };
         self.next = end;
         let cells = SimEvent::Job {
             stamp: id,
             data: JobData::MapCells {
                 first: next,
-                reversals,
+                verdicts,
             },
         };
         if !sink(cells) {

@@ -185,7 +185,7 @@ pub struct Cell {
 }
 
 /// A point of the critical curve.
-#[derive(Clone, Copy, Debug, Serialize, schemars::JsonSchema)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[schemars(deny_unknown_fields)]
 pub struct CriticalPoint {
     /// `iy/ix`.
@@ -237,43 +237,6 @@ pub fn cell_reversals(
             )
         }
     }
-}
-
-/// The reversals of the cells `range` (indices in grid order: row by row), in parallel
-/// (rayon), for a caller whose `go_on` cannot cross threads (the explorer's worker): the cells
-/// run on the pool while the calling thread asks `go_on` every half millisecond and cancels them
-/// when it says stop.
-///
-/// # Errors
-/// The first cell whose run fails, or [`StepError::Cancelled`].
-pub fn cells_in_parallel(
-    grid: &Grid,
-    source: Source,
-    range: std::ops::Range<usize>,
-    go_on: &mut dyn FnMut(f64) -> bool,
-) -> Result<Vec<usize>, StepError> {
-    use std::sync::atomic::{AtomicBool, Ordering};
-    let stop = AtomicBool::new(false);
-    let keep_on = |_t: f64| !stop.load(Ordering::Relaxed);
-    std::thread::scope(|scope| {
-        let cells = scope.spawn(|| {
-            range
-                .into_par_iter()
-                .map(|n| cell_reversals(grid, source, n % grid.cols, n / grid.cols, &keep_on))
-                .collect::<Result<Vec<usize>, StepError>>()
-        });
-        while !cells.is_finished() {
-            if !stop.load(Ordering::Relaxed) && !go_on(0.0) {
-                stop.store(true, Ordering::Relaxed);
-            }
-            std::thread::sleep(std::time::Duration::from_micros(500));
-        }
-        let cells = cells.join().unwrap_or(Err(StepError::Cancelled { t: 0.0 }));
-        if stop.load(Ordering::Relaxed) {
-            return Err(StepError::Cancelled { t: 0.0 });
-        }
-        cells
-    })
 }
 
 /// Computes the map; `go_on` is asked between cells (and inside full runs) whether to go on.

@@ -2,7 +2,7 @@
 
 use plotters::prelude::*;
 
-use super::map::RegimeMap;
+use super::chart::ChartOutput;
 use super::sweep::Sweep;
 
 type Fallible = Result<String, Box<dyn std::error::Error>>;
@@ -150,76 +150,122 @@ pub fn sweep_svg(sweep: &Sweep) -> Fallible {
     Ok(out)
 }
 
-/// The regime map: cells shaded by their number of reversals (white: none), the critical
-/// curve in red.
+/// Any scene's chart (issue 59): a rectangle a cell, coloured by its verdict (reversals:
+/// white for none, deeper blue for more; stability: green stable, white unstable; grey a cell
+/// not decided), the theory's curve in red dots, the preset's cell outlined in black.
 ///
 /// # Errors
 /// When drawing fails.
-pub fn map_svg(map: &RegimeMap, cols: usize, rows: usize) -> Fallible {
-    let mut out = String::new();
+#[allow(clippy::too_many_lines)] // one plot, its four axis kinds spelled out by a macro
+pub fn chart_svg(out: &ChartOutput) -> Fallible {
+    let mut text = String::new();
     {
-        let root = SVGBackend::with_string(&mut out, (900, 600)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut text, (900, 600)).into_drawing_area();
         root.fill(&WHITE)?;
-        let ratio_max = map.cells.iter().map(|c| c.ratio).fold(0.0, f64::max);
-        let (i0, i1) = map.cells.iter().fold((f64::INFINITY, 0.0f64), |(a, b), c| {
-            (a.min(c.inertia_ratio), b.max(c.inertia_ratio))
-        });
-        #[allow(clippy::cast_precision_loss)]
-        let (dr, di) = (
-            ratio_max / (cols as f64 - 0.5).max(0.5),
-            (i1 / i0).max(1.0).ln() / (rows as f64 - 1.0).max(1.0),
-        );
-        let top = map
+        let (x, y) = (out.columns, out.rows);
+        let caption = match &out.position {
+            Some(_) => format!(
+                "stability of the {} (green stable, grey too close to call); red: {}",
+                out.position.as_deref().unwrap_or("upright"),
+                out.curve_meaning
+            ),
+            None => format!(
+                "spin reversals in the window (deeper: more; grey: undecided); red: {}",
+                out.curve_meaning
+            ),
+        };
+        let top = out
             .cells
             .iter()
-            .map(|c| c.reversals)
+            .filter_map(|c| c.reversals)
             .max()
             .unwrap_or(0)
             .max(1);
-        let mut chart = ChartBuilder::on(&root)
-            .caption(
-                "spin reversals in [0, T]; red: the critical ratio",
-                ("sans-serif", 18),
-            )
+        let edge = |a: &super::chart::Axis, i: usize, side: f64| {
+            #[allow(clippy::cast_precision_loss)]
+            let f = (i as f64 + side) / a.cells as f64;
+            if a.log {
+                (a.min.ln() + f * (a.max / a.min).ln()).exp()
+            } else {
+                a.min + f * (a.max - a.min)
+            }
+        };
+        let cell_colour = |c: &super::chart::CellOutput| -> RGBColor {
+            if c.decided == Some(false) {
+                return RGBColor(190, 190, 190);
+            }
+            if let Some(stable) = c.stable {
+                return if stable {
+                    RGBColor(120, 200, 120)
+                } else {
+                    WHITE
+                };
+            }
+            match c.reversals.unwrap_or(0) {
+                0 => WHITE,
+                n => {
+                    #[allow(clippy::cast_precision_loss)]
+                    let f = (n as f64 / top as f64).min(1.0);
+                    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                    let v = (235.0 - 200.0 * f) as u8;
+                    RGBColor(v, v, 255)
+                }
+            }
+        };
+        let mut builder = ChartBuilder::on(&root);
+        builder
+            .caption(caption, ("sans-serif", 16))
             .margin(10)
             .x_label_area_size(35)
-            .y_label_area_size(55)
-            .build_cartesian_2d(
-                0.0..ratio_max + 0.5 * dr,
-                (i0 * (-0.5 * di).exp()..i1 * (0.5 * di).exp()).log_scale(),
-            )?;
-        chart
-            .configure_mesh()
-            .x_desc("alpha_dot0^2 / gamma_dot0^2")
-            .y_desc("iy / ix")
-            .x_label_formatter(&|x| tick(*x))
-            .y_label_formatter(&|y| tick(*y))
-            .draw()?;
-        chart.draw_series(map.cells.iter().map(|c| {
-            #[allow(clippy::cast_precision_loss)]
-            let f = c.reversals as f64 / top as f64;
-            let colour = if c.reversals == 0 {
-                WHITE
-            } else {
-                let v = (235.0 - 200.0 * f) as u8;
-                RGBColor(v, v, 255)
-            };
-            Rectangle::new(
+            .y_label_area_size(60);
+        let cells = out.cells.iter().map(|c| {
+            let (i, j) = (c.index % x.cells, c.index / x.cells);
+            (
                 [
-                    (c.ratio - 0.5 * dr, c.inertia_ratio * (-0.5 * di).exp()),
-                    (c.ratio + 0.5 * dr, c.inertia_ratio * (0.5 * di).exp()),
+                    (edge(&x, i, 0.0), edge(&y, j, 0.0)),
+                    (edge(&x, i, 1.0), edge(&y, j, 1.0)),
                 ],
-                colour.filled(),
+                cell_colour(c),
             )
-        }))?;
-        chart.draw_series(LineSeries::new(
-            map.critical
-                .iter()
-                .filter(|p| p.ratio <= ratio_max + 0.5 * dr)
-                .map(|p| (p.ratio, p.inertia_ratio)),
-            RED.stroke_width(2),
-        ))?;
+        });
+        let preset = out.preset_cell.map(|p| {
+            [
+                (edge(&x, p.column, 0.0), edge(&y, p.row, 0.0)),
+                (edge(&x, p.column, 1.0), edge(&y, p.row, 1.0)),
+            ]
+        });
+        let curve = out.curve.iter().map(|p| (p.x, p.y));
+        macro_rules! draw {
+            ($chart:expr) => {{
+                let mut chart = $chart;
+                chart
+                    .configure_mesh()
+                    .x_desc(x.name)
+                    .y_desc(y.name)
+                    .x_label_formatter(&|v| tick(*v))
+                    .y_label_formatter(&|v| tick(*v))
+                    .draw()?;
+                chart.draw_series(cells.map(|(r, c)| Rectangle::new(r, c.filled())))?;
+                chart.draw_series(curve.map(|p| Circle::new(p, 2, RED.filled())))?;
+                if let Some(r) = preset {
+                    chart.draw_series(std::iter::once(Rectangle::new(r, BLACK.stroke_width(2))))?;
+                }
+            }};
+        }
+        match (x.log, y.log) {
+            (false, false) => draw!(builder.build_cartesian_2d(x.min..x.max, y.min..y.max)?),
+            (false, true) => {
+                draw!(builder.build_cartesian_2d(x.min..x.max, (y.min..y.max).log_scale())?);
+            }
+            (true, false) => {
+                draw!(builder.build_cartesian_2d((x.min..x.max).log_scale(), y.min..y.max)?);
+            }
+            (true, true) => draw!(
+                builder
+                    .build_cartesian_2d((x.min..x.max).log_scale(), (y.min..y.max).log_scale())?
+            ),
+        }
         root.present()?;
     }
-    Ok(out)
+    Ok(text)
 }

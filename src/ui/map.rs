@@ -1,9 +1,13 @@
-//! The regime-map pane (toggle `M`): the reversals in `(0, T]` of the starts `γ0 = α0 = 0`,
-//! `α̇0 = √ratio · γ̇0` over a grid of `(α̇0²/γ̇0², iy/ix)`, one glyph per cell whose density
-//! grows with the count (blank: none; `░` 1, `▒` 2–3, `▓` 4–7, `█` 8 or more; `·` not computed
-//! yet), so it reads without colour; the paper's critical ratio `(ix/iz)(√(ix/iy) − 1)` drawn
-//! over it as `┃`; the cursor `+` (reverse video while the map has the arrows). Rows are
-//! log-spaced in `iy/ix`, the largest at the top.
+//! The map pane (toggle `M`): the scene's chart (issues 12 and 59), one glyph per cell, so it
+//! reads without colour; `·` a cell not computed yet, `×` one not decided at the chart's
+//! tolerance; the theory's curve drawn over it; the cursor `+` (reverse video while the map has
+//! the arrows).
+//!
+//! - the rattleback and the celt: reversals, a density that grows with the count (blank: none;
+//!   `░` 1, `▒` 2–3, `▓` 4–7, `█` 8 or more); the rattleback's critical ratio
+//!   `(ix/iz)(√(ix/iy) − 1)` as `┃`, the celt's linear-theory curve as `┃`;
+//! - the pendulum: `█` where the upright is stable, blank where it is not; Kapitza's
+//!   `b² = 2a` as `┃`.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -14,7 +18,7 @@ use ratatui::widgets::{Paragraph, Widget};
 use super::marks::{Facts, Section, printed};
 use super::{Look, framed};
 use crate::app::computed::map::{MapSource, MapState};
-use crate::study::map::Source;
+use crate::study::chart::{Chart, Verdict};
 
 /// The glyph of a count of reversals (`None`: not computed).
 #[must_use]
@@ -29,38 +33,74 @@ pub fn glyph(count: Option<usize>) -> char {
     }
 }
 
-/// The critical curve's mark, and the cursor's.
+/// The glyph of a cell's verdict (`None`: not computed).
+#[must_use]
+pub fn verdict_glyph(v: Option<Verdict>) -> char {
+    match v {
+        None => glyph(None),
+        Some(v) if !v.decided() => UNDECIDED,
+        Some(Verdict::Reversals { count, .. }) => glyph(Some(count)),
+        Some(Verdict::Stability { stable, .. }) => {
+            if stable {
+                STABLE
+            } else {
+                ' '
+            }
+        }
+    }
+}
+
+/// The curve's mark, the cursor's, a stable cell's and an undecided one's.
 const CRITICAL: char = '┃';
 const CURSOR: char = '+';
+const STABLE: char = '█';
+const UNDECIDED: char = '×';
 
-/// What the pane draws, for the legend (the same glyphs as [`glyph`]).
-pub fn legend(_: &Facts<'_>, look: &Look<'_>) -> Section {
+/// What the pane draws, for the legend: the scene's own glyphs and curve.
+pub fn legend(facts: &Facts<'_>, look: &Look<'_>) -> Section {
     let t = look.theme;
+    let words = crate::study::chart::words(facts.kind);
     let ramp: String = [1, 2, 4, 8]
         .into_iter()
         .map(|n| look.charset.mark(glyph(Some(n))))
         .collect();
-    Section::new("regime map (M)")
-        .mark(
-            ramp,
-            t.trail,
-            "reversals in [0, T]: 1, 2-3, 4-7, 8 or more (blank: none)",
-        )
+    let section = if words.stability {
+        Section::new(words.title)
+            .mark(
+                printed(look, STABLE),
+                t.trail,
+                "stable (|tr M| < 2 over one period; blank: unstable)",
+            )
+            .mark(
+                printed(look, UNDECIDED),
+                t.dim,
+                "too close to call (| |tr| - 2 | within its error)",
+            )
+    } else {
+        Section::new(words.title)
+            .mark(
+                ramp,
+                t.trail,
+                "reversals in [0, T]: 1, 2-3, 4-7, 8 or more (blank: none)",
+            )
+            .mark(
+                printed(look, UNDECIDED),
+                t.dim,
+                "undecided: two tolerances count differently (a chaotic window)",
+            )
+    };
+    section
         .mark(printed(look, glyph(None)), t.dim, "a cell not computed yet")
-        .mark(
-            printed(look, CRITICAL),
-            t.separatrix,
-            "the critical ratio of the paper's theorems",
-        )
+        .mark(printed(look, CRITICAL), t.separatrix, words.curve)
         .mark(
             printed(look, CURSOR),
             t.current,
             "the cursor (M gives it the arrows, Enter loads the cell)",
         )
-        .note("across: alpha_dot0^2/gamma_dot0^2; up: iy/ix (log); f: limit or full model")
+        .note(words.note)
 }
 
-/// The regime-map pane: what it shows, borrowed.
+/// The map pane: what it shows, borrowed.
 pub struct MapPane<'a> {
     /// Cells, cursor and source.
     pub map: &'a MapState,
@@ -70,13 +110,18 @@ pub struct MapPane<'a> {
     pub look: &'a Look<'a>,
 }
 
+fn words_of(chart: &Chart) -> crate::study::chart::ChartWords {
+    crate::study::chart::words(chart.model())
+}
+
 impl MapPane<'_> {
     fn heading(&self) -> String {
         let map = self.map;
-        let source = match map.spec.map(|s| s.source) {
-            Some(Source::Full { k, .. }) => format!("full model, k {}", crate::study::svg::tick(k)),
-            _ if map.source == MapSource::Full => "full model".to_owned(),
-            _ => "limit".to_owned(),
+        let chart = map.spec.map(|s| s.chart);
+        let source = match chart {
+            Some(c) => c.title(),
+            None if map.source == MapSource::Full => "map (full model)".to_owned(),
+            None => "map (limit)".to_owned(),
         };
         let total = map.cells.len();
         let progress = match (&map.failed, map.done) {
@@ -84,18 +129,36 @@ impl MapPane<'_> {
             (None, true) => format!("{total} cells"),
             (None, false) => format!("{}/{total} cells…", map.computed()),
         };
-        let keys = if self.focused { "Enter f Esc" } else { "M" };
-        format!("map ({source}) {progress} │ {keys}")
+        let sources = chart.is_some_and(|c| crate::study::chart::words(c.model()).sources);
+        let keys = match (self.focused, sources) {
+            (true, true) => "Enter f Esc",
+            (true, false) => "Enter Esc",
+            (false, _) => "M",
+        };
+        format!("{source} {progress} │ {keys}")
     }
 
     /// What the cursor's cell is, for the x-axis row.
     fn cursor_text(&self) -> Option<String> {
         let map = self.map;
-        let (r, i) = map.at_cursor()?;
-        let count = map
-            .cell(map.cursor.0, map.cursor.1)
-            .map_or_else(|| "?".to_owned(), |c| c.to_string());
-        Some(format!("+ ratio {r:.3} iy/ix {i:.3}: {count} rev"))
+        let chart = map.spec?.chart;
+        let (vx, vy) = map.at_cursor()?;
+        let (nx, ny) = crate::study::chart::words(chart.model()).axes;
+        let cell = map.cell(map.cursor.0, map.cursor.1);
+        let verdict = match cell {
+            None => "?".to_owned(),
+            Some(v) if !v.decided() => "undecided".to_owned(),
+            Some(Verdict::Reversals { count, .. }) => format!("{count} rev"),
+            Some(Verdict::Stability { stable: true, .. }) => "stable".to_owned(),
+            Some(Verdict::Stability { stable: false, .. }) => "unstable".to_owned(),
+        };
+        let nx = if words_of(&chart).sources {
+            "ratio"
+        } else {
+            nx
+        };
+        let tick = crate::study::svg::tick;
+        Some(format!("+ {nx} {} {ny} {}: {verdict}", tick(vx), tick(vy)))
     }
 }
 
@@ -105,49 +168,52 @@ impl Widget for MapPane<'_> {
         let inner = framed(&self.heading(), area, buf);
         let (y_axis, plot, x_axis) = super::plot_areas(inner);
         let Some(spec) = map.spec else { return };
-        let g = spec.grid;
+        let chart = spec.chart;
+        let (ax, ay) = chart.axes();
+        let (cols, rows) = (ax.cells, ay.cells);
         let (w, h) = (plot.width as usize, plot.height as usize);
         if w == 0 || h == 0 {
             return;
         }
         let theme = look.theme;
         let cell_style = Style::default().fg(theme.trail);
-        let (lo, hi) = g.inertia;
-        // Row `y` of the plot (0 at the top) shows the inertia ratio at its centre.
-        let inertia_at = |y: usize| {
-            let f = 1.0 - (y as f64 + 0.5) / h as f64;
-            (lo.ln() + f * (hi / lo).ln()).exp()
-        };
         for y in 0..h {
-            let j = g.rows - 1 - ((y * g.rows) / h).min(g.rows - 1);
+            let j = rows - 1 - ((y * rows) / h).min(rows - 1);
             for x in 0..w {
-                let i = ((x * g.cols) / w).min(g.cols - 1);
-                let count = map.cell(i, j);
-                let style = if count.is_none() {
+                let i = ((x * cols) / w).min(cols - 1);
+                let verdict = map.cell(i, j);
+                let style = if verdict.is_none_or(|v| !v.decided()) {
                     look.dim()
                 } else {
                     cell_style
                 };
                 buf[(plot.x + x as u16, plot.y + y as u16)]
-                    .set_char(glyph(count))
+                    .set_char(look.charset.mark(verdict_glyph(verdict)))
                     .set_style(style);
             }
-            if let Some(c) = g.critical(inertia_at(y)) {
-                let x = (c / g.ratio_max * w as f64).floor();
-                if (0.0..w as f64).contains(&x) {
-                    buf[(plot.x + x as u16, plot.y + y as u16)]
-                        .set_char(CRITICAL)
-                        .set_style(
-                            Style::default()
-                                .fg(theme.separatrix)
-                                .add_modifier(Modifier::BOLD),
-                        );
-                }
+        }
+        // The theory's curve: a point is drawn on the screen rows that show its grid row (so a
+        // row of the grid drawn on fewer screen rows shows its own points, not its
+        // neighbours'), in the screen column it falls in.
+        let curve_style = Style::default()
+            .fg(theme.separatrix)
+            .add_modifier(Modifier::BOLD);
+        for &(px, py) in &map.curve {
+            let (Some(i), Some(j)) = (ax.cell_of(px), ay.cell_of(py)) else {
+                continue;
+            };
+            // The screen column whose cell holds the curve (the first showing column `i` or
+            // the next one), so that the cells drawn left of it are left of the curve.
+            let x = (0..w).find(|x| (x * cols) / w >= i).unwrap_or(w - 1);
+            for y in (0..h).filter(|y| rows - 1 - ((y * rows) / h).min(rows - 1) == j) {
+                buf[(plot.x + x as u16, plot.y + y as u16)]
+                    .set_char(look.charset.mark(CRITICAL))
+                    .set_style(curve_style);
             }
         }
         // The cursor at its cell's centre.
-        let cx = (((map.cursor.0 as f64 + 0.5) / g.cols as f64) * w as f64) as usize;
-        let cy = (((g.rows - 1 - map.cursor.1) as f64 + 0.5) / g.rows as f64 * h as f64) as usize;
+        let cx = (((map.cursor.0 as f64 + 0.5) / cols as f64) * w as f64) as usize;
+        let cy = (((rows - 1 - map.cursor.1) as f64 + 0.5) / rows as f64 * h as f64) as usize;
         let mut cursor = Style::default()
             .fg(theme.current)
             .add_modifier(Modifier::BOLD);
@@ -157,28 +223,28 @@ impl Widget for MapPane<'_> {
         buf[(plot.x + cx.min(w - 1) as u16, plot.y + cy.min(h - 1) as u16)]
             .set_char(CURSOR)
             .set_style(cursor);
-        let rows = y_axis.height as usize;
-        let mut labels = vec![TextLine::raw(""); rows];
+        let (x_name, y_name) = crate::study::chart::words(chart.model()).axes;
+        let n_rows = y_axis.height as usize;
+        let mut labels = vec![TextLine::raw(""); n_rows];
         let tick = crate::study::svg::tick;
-        if rows >= 2 {
-            labels[0] = TextLine::styled(format!("{:>7} ", tick(hi)), look.dim());
-            labels[rows - 2] = TextLine::styled(format!("{:>7} ", tick(lo)), look.dim());
+        if n_rows >= 2 {
+            labels[0] = TextLine::styled(format!("{:>7} ", tick(ay.max)), look.dim());
+            labels[n_rows - 2] = TextLine::styled(format!("{:>7} ", tick(ay.min)), look.dim());
         }
-        if rows >= 4 {
-            labels[rows / 2 - 1] = TextLine::styled(format!("{:>7} ", "iy/ix"), look.dim());
+        if n_rows >= 4 {
+            labels[n_rows / 2 - 1] = TextLine::styled(format!("{y_name:>7} "), look.dim());
         }
         Paragraph::new(labels).render(y_axis, buf);
-        let right = tick(g.ratio_max);
-        let axis = "alpha_dot0^2/gamma_dot0^2";
+        let (left_end, right) = (tick(ax.min), tick(ax.max));
         let cursor = self.cursor_text().unwrap_or_default();
         let width = x_axis.width as usize;
-        let room = width.saturating_sub(4 + right.len());
-        let middle = [format!("{axis} │ {cursor}"), cursor, axis.to_owned()]
+        let room = width.saturating_sub(3 + left_end.len() + right.len());
+        let middle = [format!("{x_name} │ {cursor}"), cursor, x_name.to_owned()]
             .into_iter()
             .find(|m| m.chars().count() <= room)
             .unwrap_or_default();
         let pad = room.saturating_sub(middle.chars().count()) / 2;
-        let left = format!("0 {}{middle}", " ".repeat(pad + 1));
+        let left = format!("{left_end} {}{middle}", " ".repeat(pad + 1));
         let gap = width.saturating_sub(left.chars().count() + right.len());
         let text = format!("{left}{}{right}", " ".repeat(gap));
         Paragraph::new(TextLine::styled(text, look.dim())).render(x_axis, buf);

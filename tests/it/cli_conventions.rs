@@ -336,7 +336,10 @@ fn every_failure_speaks_in_one_style() {
         (&["replay", j, "--verify"], 2),
         (&["check", bad], 2),
         (&["--config", "/nonexistent.toml", "simulate"], 2),
-        (&["study", "map", "--preset", "kapitza-upright"], 2),
+        (
+            &["study", "map", "--preset", "kapitza-upright", "--k", "1e4"],
+            2,
+        ),
         (&["study"], 2),
         (&["presets", "show", "nonesuch"], 2),
         (&["completions", "tcsh"], 2),

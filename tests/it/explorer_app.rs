@@ -777,6 +777,7 @@ fn shown_ratio(d: &rattleback::app::Derived) -> Option<f64> {
 }
 
 #[test]
+#[allow(clippy::too_many_lines)] // one user path, pane to load to full model, step by step
 fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_cursor() {
     use rattleback::app::Mode;
     use rattleback::app::computed::map::{
@@ -803,7 +804,11 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
         ..Grid::new(cols, rows, p.ix, p.iz, g0, s.t_end)
     };
     let study = regime_map(&grid, Source::Limit, &|_| true).unwrap();
-    let shown: Vec<usize> = m.cells.iter().map(|c| c.unwrap()).collect();
+    let shown: Vec<usize> = m
+        .cells
+        .iter()
+        .map(|c| c.unwrap().count().unwrap())
+        .collect();
     let expected: Vec<usize> = study.cells.iter().map(|c| c.reversals).collect();
     assert_eq!(shown, expected);
     assert!(
@@ -824,7 +829,14 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
         "moving the cursor changes nothing"
     );
     let cell = h.app.computed.map.cursor;
-    let count = h.app.computed.map.cell(cell.0, cell.1).unwrap();
+    let count = h
+        .app
+        .computed
+        .map
+        .cell(cell.0, cell.1)
+        .unwrap()
+        .count()
+        .unwrap();
     let generation = h.app.run.generation;
     h.key(Key::Enter);
     let loaded = h.app.scenario.settings;
@@ -871,7 +883,11 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
         tolerance: loaded.tolerance.max(FULL_TOLERANCE),
     };
     let study = regime_map(&full, source, &|_| true).unwrap();
-    let shown: Vec<usize> = m.cells.iter().map(|c| c.unwrap()).collect();
+    let shown: Vec<usize> = m
+        .cells
+        .iter()
+        .map(|c| c.unwrap().count().unwrap())
+        .collect();
     let expected: Vec<usize> = study.cells.iter().map(|c| c.reversals).collect();
     assert_eq!(shown, expected);
     h.key(Key::Esc);
@@ -892,13 +908,13 @@ fn a_map_resumes_where_it_stopped_on_a_thread_of_its_own() {
     use rattleback::sim::{Command, Engine, JobData, JobSpec, PlanBook, SimEvent};
     use rattleback::study::map::{Grid, Source};
     let grid = Grid::new(8, 4, 2.0, 1.0, 1.0, 30.0);
-    let spec = MapSpec {
+    let spec = MapSpec::rattleback(
         grid,
-        source: Source::Full {
+        Source::Full {
             k: 1e4,
             tolerance: 1e-6,
         },
-    };
+    );
     let mut engine = Engine::new(PlanBook::default());
     let events = std::cell::RefCell::new(Vec::new());
     let mut sink = |e: SimEvent| {
@@ -906,7 +922,13 @@ fn a_map_resumes_where_it_stopped_on_a_thread_of_its_own() {
         true
     };
     engine.handle(
-        &Command::start_job(7, JobSpec::Map { spec, from: 30 }),
+        &Command::start_job(
+            7,
+            JobSpec::Map {
+                spec: Box::new(spec),
+                from: 30,
+            },
+        ),
         &mut sink,
     );
     // The job works on its own thread: the engine has nothing to do for it but take what it
@@ -921,8 +943,8 @@ fn a_map_resumes_where_it_stopped_on_a_thread_of_its_own() {
         .filter_map(|e| match e {
             SimEvent::Job {
                 stamp: 7,
-                data: JobData::MapCells { first, reversals },
-            } => Some((*first, reversals.len())),
+                data: JobData::MapCells { first, verdicts },
+            } => Some((*first, verdicts.len())),
             _ => None,
         })
         .collect();
@@ -1040,14 +1062,17 @@ fn a_dropped_job_stops_computing_at_once() {
     use rattleback::sim::jobs::{MapSpec, Running};
     use rattleback::sim::{JobSpec, PlanBook, Planner};
     use rattleback::study::map::{Grid, Source};
-    let spec = MapSpec {
-        grid: Grid::new(8, 4, 2.0, 1.0, 1.0, 3000.0),
-        source: Source::Full {
+    let spec = MapSpec::rattleback(
+        Grid::new(8, 4, 2.0, 1.0, 1.0, 3000.0),
+        Source::Full {
             k: 1e8,
             tolerance: 1e-10,
         },
+    );
+    let map = JobSpec::Map {
+        spec: Box::new(spec),
+        from: 0,
     };
-    let map = JobSpec::Map { spec, from: 0 };
     // A job its cost model lets start (else it would end at once, refused).
     assert!(map.predicted_seconds() < rattleback::physics::budget::BUDGET_SECONDS);
     let job = map.job(1);
@@ -1152,10 +1177,10 @@ fn every_panes_job_is_priced_before_it_starts_and_refused_over_the_budget() {
             .model
     };
     let map = |t_end: f64, source| JobSpec::Map {
-        spec: MapSpec {
-            grid: Grid::new(40, 20, 2.0, 1.0, 1.0, t_end),
+        spec: Box::new(MapSpec::rattleback(
+            Grid::new(40, 20, 2.0, 1.0, 1.0, t_end),
             source,
-        },
+        )),
         from: 0,
     };
     let full = Source::Full {

@@ -107,8 +107,8 @@ fn bad_pendulum_presets_are_refused_with_file_line_key_and_what_is_allowed() {
         &["--set", "unknown key 'spring.k'", "pendulum.epsilon"],
     );
     rejects(
-        &["study", "map", "--preset", "kapitza-upright"],
-        &["regime map is of the rattleback", "kapitza preset"],
+        &["study", "map", "--preset", "kapitza-upright", "--k", "1e4"],
+        &["--k is the rattleback's map", "--columns MIN,MAX"],
     );
     rejects(
         &[

@@ -231,7 +231,8 @@ fn the_full_trail_is_a_ripple_band_around_the_limit() {
 #[test]
 fn the_rattlebacks_own_panes_are_refused_and_close_with_it() {
     let mut h = Headless::new("kapitza-upright");
-    for (key, pane) in [('M', Pane::Map), ('B', Pane::Body)] {
+    {
+        let (key, pane) = ('B', Pane::Body);
         h.key(Key::Char(key));
         assert!(!h.app.view.panes.shows(pane), "{key}");
         let status = h.app.status.as_ref().expect("a message").text.clone();
@@ -240,15 +241,20 @@ fn the_rattlebacks_own_panes_are_refused_and_close_with_it() {
             "{key}: {status}"
         );
     }
-    // Open on the rattleback, then the pendulum is loaded: they close, the map's arrows too.
+    // Open on the rattleback, then the pendulum is loaded: the body closes; the map stays and
+    // becomes the pendulum's chart (issue 59).
     let mut h = Headless::new("subcritical");
     h.key(Key::Char('M'));
     h.key(Key::Char('B'));
     assert!(h.app.view.panes.shows(Pane::Map) && h.app.view.panes.shows(Pane::Body));
     let effects = h.app.load(&resolve("kapitza-falls", &[]).unwrap());
     h.exec(effects);
-    assert!(!h.app.view.panes.shows(Pane::Map) && !h.app.view.panes.shows(Pane::Body));
-    assert_eq!(h.app.mode, rattleback::app::Mode::Normal);
+    assert!(!h.app.view.panes.shows(Pane::Body));
+    assert!(h.app.view.panes.shows(Pane::Map));
+    assert_eq!(
+        h.app.computed.map.spec.map(|s| s.chart.model()),
+        Some(rattleback::physics::ModelKind::Kapitza)
+    );
     h.play_until(2.0, 8.0);
     assert!(h.app.run.current().is_some());
 }

@@ -324,6 +324,7 @@ fn a_model_is_dispatched_in_few_places() {
         "simulate/rattleback.rs",
         "simulate/kapitza.rs",
         "sim/planner.rs",
+        "study/chart.rs",
     ];
     let variants = [
         "Model::Rattleback",

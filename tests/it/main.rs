@@ -12,6 +12,7 @@ mod bounded;
 mod budget;
 mod celt;
 mod charsets;
+mod charts;
 mod cli_conventions;
 mod compare;
 mod completions;

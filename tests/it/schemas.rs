@@ -299,6 +299,7 @@ fn failed_checks_in_json_say_how_and_validate() {
 /// generated from its type and checked in (`cargo run --example output_schemas`); real outputs
 /// of each command validate, and a bent one does not.
 #[test]
+#[allow(clippy::too_many_lines)] // the table of every command whose JSON is checked
 fn every_other_json_output_has_its_version_model_and_schema() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/schemas");
     let mut validators = std::collections::BTreeMap::new();
@@ -352,6 +353,49 @@ fn every_other_json_output_has_its_version_model_and_schema() {
             "map",
             &[
                 "study", "map", "--format", "json", "--grid", "4x3", "--t-end", "2",
+            ],
+        ),
+        (
+            "map",
+            &[
+                "study",
+                "map",
+                "--preset",
+                "kapitza-coarse",
+                "--format",
+                "json",
+                "--grid",
+                "4x3",
+            ],
+        ),
+        (
+            "map",
+            &[
+                "study",
+                "map",
+                "--preset",
+                "celt-clockwise",
+                "--format",
+                "json",
+                "--grid",
+                "3x2",
+                "--t-end",
+                "4",
+            ],
+        ),
+        (
+            "map",
+            &[
+                "study",
+                "map",
+                "--preset",
+                "kapitza-coarse",
+                "--format",
+                "json",
+                "--grid",
+                "4x3",
+                "--shard",
+                "2/3",
             ],
         ),
         ("doctor", &["doctor", "--format", "json"]),

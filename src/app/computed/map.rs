@@ -1,27 +1,25 @@
-//! The regime-map pane's state (issue 12): the number of spin reversals in `(0, T]` over a grid
-//! of `(α̇0²/γ̇0², iy/ix)` for the current body (`ix`, `iz`), `γ̇0` and horizon, with the paper's
-//! critical curve; computed by the worker row by row (from the limit by quadrature, or from the
-//! full model at the current `k` on request), a cursor over the cells, and Enter loading the
-//! cell under it as the current start (`iy = ix · iy/ix`, `γ0 = α0 = 0`, `α̇0 = √ratio · γ̇0`).
+//! The map pane's state (issues 12 and 59): the scene's chart (`study::chart`), computed by the
+//! worker row by row or a few cells at a time, a cursor over the cells, and Enter loading the
+//! cell under it as the current settings.
+//!
+//! - the rattleback: the reversals in `(0, T]` over `(α̇0²/γ̇0², iy/ix)` for the current body
+//!   (`ix`, `iz`), `γ̇0` and horizon, with the paper's critical curve, from the limit by
+//!   quadrature or (`f`) the full model at the current `k`; a cell loads as `iy = ix · iy/ix`,
+//!   `γ0 = α0 = 0`, `α̇0 = √ratio · γ̇0`;
+//! - the pendulum: the upright's stability over `(a, b)` at the current `ε` (Floquet), with
+//!   Kapitza's `b² = 2a`; a cell loads its `a` and `b`;
+//! - the celt: the reversals in `[0, T]` over the initial `ω_z` (both senses) and the product of
+//!   inertia, with the linear theory's curve; a cell loads its `ω_z` and `D`.
 
 use super::{ComputedPane, Cx};
 use crate::app::fields::Settings;
-use crate::physics::rattleback::{Params, Problem, Start};
 use crate::sim::jobs::MapSpec;
 use crate::sim::{Command, JobData, JobKind, JobSpec};
-use crate::study::map::{Grid, Source};
+use crate::study::chart::{Chart, Verdict};
 
-/// Columns × rows of the map from the limit (two quadratures a cell: instant).
-pub const LIMIT_GRID: (usize, usize) = (48, 24);
-/// Columns × rows of the map from the full model (a verified `auto` run a cell).
-pub const FULL_GRID: (usize, usize) = (24, 12);
-/// The pane's inertia-ratio axis: the critical curve lives below `iy/ix = 1`; the strip above
-/// it shows that nothing reverses there.
-pub const PANE_INERTIA: (f64, f64) = (0.1, 1.25);
-
-/// Loosest tolerance of the full map's runs: a count of reversals needs their times to a
-/// fraction of a half period, not the run's own tolerance.
-pub const FULL_TOLERANCE: f64 = 1e-6;
+pub use crate::study::chart::pane::{
+    CELT_GRID, FULL_GRID, FULL_TOLERANCE, LIMIT_GRID, PANE_INERTIA, PENDULUM_GRID,
+};
 
 /// Where the map's counts come from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -42,44 +40,34 @@ pub struct MapState {
     pub spec: Option<MapSpec>,
     /// Which source the user chose.
     pub source: MapSource,
-    /// Reversals of each cell, row by row from the smallest `iy/ix` (`None`: not computed yet).
-    pub cells: Vec<Option<usize>>,
+    /// The verdict of each cell, row by row from the bottom (`None`: not computed yet).
+    pub cells: Vec<Option<Verdict>>,
+    /// The theory's curve of the chart computed, in its axes' values.
+    pub curve: Vec<(f64, f64)>,
     /// The cursor `(column, row)`.
     pub cursor: (usize, usize),
     /// All cells are in.
     pub done: bool,
+    /// After a loaded cell of the pendulum or the celt: the point the axes were drawn from and
+    /// the point loaded (the axes stay while the settings sit on the loaded point).
+    pub anchor: Option<((f64, f64), (f64, f64))>,
     /// Why the computation stopped short.
     pub failed: Option<String>,
 }
 
 impl MapState {
-    /// The spec of the map for `settings` from the chosen source.
-    /// `None` when the settings are not the rattleback's (the map is of the rattleback).
+    /// The spec of the map for `settings` (the rattleback's from the chosen source).
     #[must_use]
     pub fn spec_for(&self, settings: &Settings) -> Option<MapSpec> {
-        let (cols, rows) = match self.source {
-            MapSource::Limit => LIMIT_GRID,
-            MapSource::Full => FULL_GRID,
-        };
-        let problem = settings.rattleback()?;
-        let (p, s) = (problem.params(), problem.start());
-        let gamma_dot = if s.gamma_dot == 0.0 { 1.0 } else { s.gamma_dot };
-        // The ratio axis spans `(0, ix/iz]`: the critical curve crosses the plot from
-        // `iy/ix = 1/4` (where it equals `ix/iz`) to `iy/ix = 1` (where it is 0). It depends on
-        // `ix` and `iz` only, so loading a cell (which sets `iy`) keeps the axes.
-        let grid = Grid {
-            ratio_max: p.ix / p.iz,
-            inertia: PANE_INERTIA,
-            ..Grid::new(cols, rows, p.ix, p.iz, gamma_dot, settings.t_end)
-        };
-        let source = match self.source {
-            MapSource::Limit => Source::Limit,
-            MapSource::Full => Source::Full {
-                k: p.k,
-                tolerance: settings.tolerance.max(FULL_TOLERANCE),
-            },
-        };
-        Some(MapSpec { grid, source })
+        let here = crate::study::chart::point_of(&settings.model);
+        let chart = Chart::for_pane(
+            &settings.model,
+            settings.t_end,
+            settings.tolerance,
+            self.source == MapSource::Full,
+            self.axes_point(here),
+        );
+        Some(MapSpec { chart })
     }
 
     /// Asks the worker for the map of `settings`: nothing when the map of the same spec is
@@ -90,17 +78,21 @@ impl MapState {
             return None;
         }
         if self.spec != Some(spec) {
-            let g = spec.grid;
-            self.cells = vec![None; g.cols * g.rows];
-            self.cursor = match self.spec {
-                // A first map: the cursor on the current start.
-                None => {
-                    let problem = settings.rattleback()?;
-                    let (p, s) = (problem.params(), problem.start());
-                    let ratio = (s.alpha_dot / g.gamma_dot).powi(2);
-                    nearest_cell(&g, ratio, p.iy / p.ix)
-                }
-                Some(_) => (self.cursor.0.min(g.cols - 1), self.cursor.1.min(g.rows - 1)),
+            let chart = spec.chart;
+            let (x, y) = chart.axes();
+            self.cells = vec![None; chart.len()];
+            self.curve = chart.curve();
+            let same_scene = self
+                .spec
+                .is_some_and(|old| old.chart.model() == chart.model());
+            self.cursor = if same_scene {
+                (
+                    self.cursor.0.min(x.cells - 1),
+                    self.cursor.1.min(y.cells - 1),
+                )
+            } else {
+                // A first map of this scene: the cursor on the current settings.
+                nearest(&chart, chart.preset_point())
             };
         }
         self.spec = Some(spec);
@@ -112,7 +104,13 @@ impl MapState {
             .iter()
             .position(Option::is_none)
             .unwrap_or(self.cells.len());
-        Some(Command::start_job(self.id, JobSpec::Map { spec, from }))
+        Some(Command::start_job(
+            self.id,
+            JobSpec::Map {
+                spec: Box::new(spec),
+                from,
+            },
+        ))
     }
 
     /// Stops the worker's computation (the cells so far are kept).
@@ -128,23 +126,18 @@ impl MapState {
             MapSource::Full => MapSource::Limit,
         };
         // The grids differ: keep the cursor on the same point of the plane.
-        if let (Some(old), Some(new)) = (self.spec, self.spec_for(settings)) {
-            let new = new.grid;
-            let (ratio, inertia) = (
-                old.grid.ratio(self.cursor.0),
-                old.grid.inertia_ratio(self.cursor.1),
-            );
-            self.cursor = nearest_cell(&new, ratio, inertia);
+        if let (Some(point), Some(new)) = (self.at_cursor(), self.spec_for(settings)) {
+            self.cursor = nearest(&new.chart, point);
         }
         self.start(settings)
     }
 
     /// Takes cells of computation `id`; whether they were this map's.
-    pub fn on_cells(&mut self, id: u64, first: usize, reversals: &[usize]) -> bool {
+    pub fn on_cells(&mut self, id: u64, first: usize, verdicts: &[Verdict]) -> bool {
         if id != self.id {
             return false;
         }
-        for (n, r) in reversals.iter().enumerate() {
+        for (n, r) in verdicts.iter().enumerate() {
             if let Some(c) = self.cells.get_mut(first + n) {
                 *c = Some(*r);
             }
@@ -168,75 +161,87 @@ impl MapState {
         self.cells.iter().filter(|c| c.is_some()).count()
     }
 
-    /// The count of cell `(i, j)`, if computed.
+    /// The verdict of cell `(i, j)`, if computed.
     #[must_use]
-    pub fn cell(&self, i: usize, j: usize) -> Option<usize> {
-        let cols = self.spec?.grid.cols;
+    pub fn cell(&self, i: usize, j: usize) -> Option<Verdict> {
+        let cols = self.spec?.chart.axes().0.cells;
         self.cells.get(j * cols + i).copied().flatten()
+    }
+
+    /// The point the axes are drawn from: the anchor's while the settings sit on the cell
+    /// loaded last, `here` otherwise.
+    fn axes_point(&self, here: (f64, f64)) -> (f64, f64) {
+        match self.anchor {
+            Some((from, loaded)) if loaded == here => from,
+            _ => here,
+        }
     }
 
     /// Moves the cursor by `(di, dj)` cells, stopping at the edges (`dj > 0` is up: larger
     /// `iy/ix`).
     pub fn move_cursor(&mut self, di: isize, dj: isize) {
         let Some(spec) = self.spec else { return };
+        let (x, y) = spec.chart.axes();
         let clamp = |v: usize, d: isize, n: usize| v.saturating_add_signed(d).min(n - 1);
         self.cursor = (
-            clamp(self.cursor.0, di, spec.grid.cols),
-            clamp(self.cursor.1, dj, spec.grid.rows),
+            clamp(self.cursor.0, di, x.cells),
+            clamp(self.cursor.1, dj, y.cells),
         );
     }
 
-    /// `(ratio, iy/ix)` at the cursor.
+    /// The axes' values at the cursor (the rattleback's `(ratio, iy/ix)`, the pendulum's
+    /// `(a, b)`, the celt's `(ω_z, D)`).
     #[must_use]
     pub fn at_cursor(&self) -> Option<(f64, f64)> {
-        let g = self.spec?.grid;
-        Some((g.ratio(self.cursor.0), g.inertia_ratio(self.cursor.1)))
+        let (x, y) = self.spec?.chart.axes();
+        Some((x.at(self.cursor.0), y.at(self.cursor.1)))
     }
 
-    /// The settings of the cell under the cursor: `settings` with `iy = ix · iy/ix` and the
-    /// start `(0, 0, γ̇0, √ratio · γ̇0)`.
+    /// The cursor's cell in words, by its axes (the status line's "loaded the cell …").
+    #[must_use]
+    pub fn cursor_words(&self) -> String {
+        let (Some(spec), Some((x, y))) = (self.spec, self.at_cursor()) else {
+            return String::new();
+        };
+        let (nx, ny) = crate::study::chart::words(spec.chart.model()).axes;
+        format!("{nx} {x:.4}, {ny} {y:.4}")
+    }
+
+    /// The settings of the cell under the cursor (`Chart::load`). The axes of the pendulum's
+    /// and the celt's charts stay where they are (the anchor).
     ///
     /// # Errors
-    /// When there is no map yet or the cell is not a valid body.
-    pub fn load(&self, settings: &Settings) -> Result<Settings, String> {
+    /// When there is no map yet or the cell is not a valid problem.
+    pub fn load(&mut self, settings: &Settings) -> Result<Settings, String> {
         let spec = self.spec.ok_or("no map yet")?;
-        let (ratio, inertia) = self.at_cursor().ok_or("no map yet")?;
-        let g = spec.grid;
-        let problem = settings
-            .rattleback()
-            .ok_or("the map is of the rattleback")?;
-        let params = Params {
-            iy: g.ix * inertia,
-            ..*problem.params()
-        };
-        let start = Start {
-            gamma: 0.0,
-            alpha: 0.0,
-            gamma_dot: g.gamma_dot,
-            alpha_dot: ratio.sqrt() * g.gamma_dot,
-        };
-        let problem = Problem::new(params, start).map_err(|e| format!("this cell: {e}"))?;
-        Ok(Settings {
-            model: problem.into(),
-            ..*settings
-        })
+        let point = self.at_cursor().ok_or("no map yet")?;
+        let model = spec.chart.load(&settings.model, point)?;
+        if !crate::study::chart::words(spec.chart.model()).sources {
+            let from = self.axes_point(crate::study::chart::point_of(&settings.model));
+            self.anchor = Some((from, point));
+        }
+        Ok(Settings { model, ..*settings })
     }
 }
 
-/// The cell of `grid` nearest to `(ratio, iy/ix)`.
+/// The cell of `chart` nearest to a point of its axes.
 #[must_use]
-pub fn nearest_cell(grid: &Grid, ratio: f64, inertia: f64) -> (usize, usize) {
-    let i = (ratio / grid.ratio_max * grid.cols as f64).floor();
-    let (lo, hi) = grid.inertia;
-    let j = ((inertia / lo).ln() / (hi / lo).ln() * grid.rows as f64).floor();
-    let clamp = |v: f64, n: usize| {
-        if v.is_finite() {
+pub fn nearest(chart: &Chart, (px, py): (f64, f64)) -> (usize, usize) {
+    let (x, y) = chart.axes();
+    let clamp = |f: f64, n: usize| {
+        if f.is_finite() {
+            #[allow(clippy::cast_precision_loss)]
+            let v = (f * n as f64).floor();
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
             (v.max(0.0) as usize).min(n - 1)
         } else {
             0
         }
     };
-    (clamp(i, grid.cols), clamp(j, grid.rows))
+    (
+        clamp(x.fraction(px), x.cells),
+        clamp(y.fraction(py), y.cells),
+    )
 }
 
 impl ComputedPane for MapState {
@@ -255,7 +260,7 @@ impl ComputedPane for MapState {
     /// Cells, or the end of the map (or why it stopped short).
     fn take(&mut self, stamp: u64, data: JobData, _: &mut Cx) -> bool {
         match data {
-            JobData::MapCells { first, reversals } => self.on_cells(stamp, first, &reversals),
+            JobData::MapCells { first, verdicts } => self.on_cells(stamp, first, &verdicts),
             JobData::MapDone { failed } => self.on_done(stamp, failed),
             _ => false,
         }
@@ -267,6 +272,7 @@ impl ComputedPane for MapState {
 mod tests {
     use super::*;
     use crate::physics::method::Method;
+    use crate::physics::rattleback::{Params, Problem, Start};
     fn settings() -> Settings {
         let params = Params {
             ix: 1.0,
@@ -301,8 +307,17 @@ mod tests {
             panic!("a first map starts at cell 0")
         };
         let id = m.id;
-        assert!(m.on_cells(id, 0, &[1; 48]));
-        assert!(!m.on_cells(id - 1, 48, &[1; 48]), "stale cells are ignored");
+        let one = Verdict::Reversals {
+            count: 1,
+            first: None,
+            decided: true,
+            growth: None,
+        };
+        assert!(m.on_cells(id, 0, &[one; 48]));
+        assert!(
+            !m.on_cells(id - 1, 48, &[one; 48]),
+            "stale cells are ignored"
+        );
         let Some(Command::Job {
             spec: Some(JobSpec::Map { from: 48, .. }),
             ..
@@ -332,7 +347,9 @@ mod tests {
         let mut m = MapState::default();
         m.start(&s);
         m.cursor = (11, 3);
-        let g = m.spec.unwrap().grid;
+        let Chart::Rattleback { grid: g, .. } = m.spec.unwrap().chart else {
+            panic!("the rattleback's map")
+        };
         let loaded = m.load(&s).unwrap();
         let (lp, ls) = (
             loaded.rattleback().unwrap().params(),
@@ -352,7 +369,9 @@ mod tests {
         let s = settings();
         let mut m = MapState::default();
         m.start(&s);
-        let g = m.spec.unwrap().grid;
+        let Chart::Rattleback { grid: g, .. } = m.spec.unwrap().chart else {
+            panic!("the rattleback's map")
+        };
         let (ratio, inertia) = m.at_cursor().unwrap();
         assert!(
             (ratio - 0.36).abs() <= g.ratio_max / g.cols as f64,

@@ -197,7 +197,7 @@ impl App {
             }
             Key::Enter => match self.computed.map.load(&self.scenario.settings) {
                 Ok(s) => {
-                    let (ratio, inertia) = self.computed.map.at_cursor().unwrap_or_default();
+                    let what = self.computed.map.cursor_words();
                     let mut scenario = self.scenario.clone();
                     scenario.set(s);
                     let name = self.scenario.name.clone();
@@ -209,9 +209,7 @@ impl App {
                     );
                     let effects = self.load(&preset);
                     self.mode = Mode::Map;
-                    self.status = Message::info(format!(
-                        "loaded the cell alpha_dot0^2/gamma_dot0^2 {ratio:.3}, iy/ix {inertia:.3}"
-                    ));
+                    self.status = Message::info(format!("loaded the cell {what}"));
                     effects
                 }
                 Err(why) => {
@@ -219,6 +217,12 @@ impl App {
                     Vec::new()
                 }
             },
+            Key::Char('f') if self.scenario.settings.rattleback().is_none() => {
+                self.status = Message::info(
+                    "f switches the rattleback's map between the limit and the full model; this chart has one source",
+                );
+                Vec::new()
+            }
             Key::Char('f') => self
                 .computed
                 .map

@@ -26,8 +26,10 @@
 
 pub mod budget;
 pub mod flows;
+pub mod linear;
 pub mod plan;
 pub mod policy;
+pub mod reversal;
 pub mod run;
 pub mod scene;
 

@@ -184,7 +184,7 @@ pub static SCENE: Scene = Scene {
     small: None,
     studies: Studies {
         weak: None,
-        map: false,
+        map: true,
         body: true,
         counterpart: "subcritical",
     },

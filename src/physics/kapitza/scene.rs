@@ -99,7 +99,7 @@ pub static SCENE: Scene = Scene {
             observable: "the full motion's rate, pointwise (its fast ripple)",
             reference: "the limit's rate, averaged alike (dashed)",
         }),
-        map: false,
+        map: true,
         body: false,
         counterpart: "subcritical",
     },

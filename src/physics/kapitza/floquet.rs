@@ -1,0 +1,248 @@
+//! The pendulum's linear stability by Floquet theory (issue 59; docs/charts.md).
+//!
+//! Linearised about the upright, `θ̈ = (a + (b/ε) cos(t/ε)) θ`; in the fast time `τ = t/ε` this
+//! is Mathieu's equation `θ'' + (δ + q cos τ) θ = 0` with `δ = −ε² a`, `q = ε b` (the sign of `q`
+//! does not matter: a shift of `τ` by `π`). About the hanging position the sign of the whole
+//! coefficient flips: `δ = +ε² a`. The two fundamental solutions, `(θ, θ') = (1, 0)` and
+//! `(0, 1)` at `τ = 0`, integrated over one period `2π`, are the monodromy matrix's columns; its
+//! determinant is 1 (no damping), so its multipliers are the roots of `λ² − tr λ + 1`: the
+//! position is stable when `|tr| < 2`, unstable when `|tr| > 2`.
+//!
+//! The trace is verified by the one loop (`physics::verify`): DOP853 at a local tolerance
+//! against a companion 16× looser, refined until their difference (plus a round-off floor)
+//! meets the tolerance. A cell is *decided* when `||tr| − 2|` exceeds that estimate; otherwise it
+//! is too close to call at this tolerance, and says so.
+//!
+//! Kapitza's criterion `b² > 2a` is the limit `ε → 0` of this chart's lower boundary
+//! `δ = −q²/2 + 7q⁴/32 + …`; at larger `ε b` the resonance tongues (leaving `δ = n²/4`) bring
+//! instability back.
+
+use nalgebra::SVector;
+
+use super::Params;
+use crate::physics::fork::GoOn;
+use crate::physics::method::StepError;
+use crate::physics::numerics::dop853::Dop853;
+use crate::physics::verify::{AtTolerance, Policy, verify};
+
+/// Which equilibrium is linearised.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Position {
+    /// `θ = 0`, the upright (the scene's).
+    #[default]
+    Upright,
+    /// `θ = π`, hanging down.
+    Hanging,
+}
+
+impl Position {
+    /// Its name in outputs and on the command line.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Upright => "upright",
+            Self::Hanging => "hanging",
+        }
+    }
+}
+
+/// Mathieu's equation `θ'' + (δ + q cos τ) θ = 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mathieu {
+    /// `δ`.
+    pub delta: f64,
+    /// `q`.
+    pub q: f64,
+}
+
+impl Mathieu {
+    /// The linearisation of the pendulum `p` about `position`.
+    #[must_use]
+    pub fn of(p: &Params, position: Position) -> Self {
+        let e2a = p.epsilon * p.epsilon * p.a;
+        Self {
+            delta: match position {
+                Position::Upright => -e2a,
+                Position::Hanging => e2a,
+            },
+            q: p.epsilon * p.b,
+        }
+    }
+
+    /// The monodromy matrix's trace at DOP853's local tolerance `local`, with the steps taken.
+    ///
+    /// # Errors
+    /// A failed step (a coefficient so large the solutions overflow).
+    pub fn trace(&self, local: f64) -> Result<(f64, u64), StepError> {
+        type S = SVector<f64, 5>;
+        let (delta, q) = (self.delta, self.q);
+        // (y1, y1', y2, y2', τ): the two fundamental solutions side by side.
+        let field = move |y: &S| {
+            let c = -(delta + q * y[4].cos());
+            S::new(y[1], c * y[0], y[3], c * y[2], 1.0)
+        };
+        let period = 2.0 * std::f64::consts::PI;
+        let mut d = Dop853::new(field, 0.0, S::new(1.0, 0.0, 0.0, 1.0, 0.0), local);
+        while d.time() < period {
+            d.step(period)?;
+        }
+        let y = d.state();
+        let trace = y[0] + y[3];
+        if !trace.is_finite() {
+            return Err(StepError::NotFinite {
+                what: "the monodromy matrix",
+                t: d.time(),
+            });
+        }
+        Ok((trace, d.stats().steps))
+    }
+}
+
+/// The verification of a trace: a companion 16× looser, refined 4× at least (16× when blind),
+/// to 1e-14 at the tightest, five rounds at most, one stall stops it (one period of a smooth
+/// linear equation: DOP853 converges cleanly down to rounding, so a stall is the floor).
+pub const POLICY: Policy = Policy {
+    companion_looser: 16.0,
+    companion_cap: 1e-3,
+    companion_error: 14.0,
+    refine: 0.25,
+    blind_refine: 1.0 / 16.0,
+    tightest: 1e-14,
+    step_safety: 1.25,
+    max_refinements: 4,
+    stalls: 1,
+    floor_stops: true,
+};
+
+/// The estimate is the two runs' difference (plus the floor) times this margin. Measured
+/// (issue 59) against 30-digit traces (`scripts/chart_references.py`) on the 96 cells of two coarse
+/// charts at tolerances 1e-8, 1e-10 and 1e-12: the error over the bare difference reached 2.9
+/// (kapitza-coarse's ε = 0.15 at 1e-10; 0.23 at most on kapitza-upright's ε = 1e-3), where the
+/// two runs' errors happen to nearly cancel; 4 covers it.
+pub const MARGIN: f64 = 4.0;
+
+/// The first local tolerance of a trace verified to `tolerance`.
+const FIRST: f64 = 0.1;
+
+/// A verified trace.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Floquet {
+    /// The monodromy matrix's trace.
+    pub trace: f64,
+    /// Its estimated error (absolute).
+    pub error: f64,
+    /// `|tr| < 2`.
+    pub stable: bool,
+    /// Whether `||tr| − 2|` exceeds the estimate (the verdict is certain at this tolerance).
+    pub decided: bool,
+}
+
+/// The candidate of the loop: DOP853 over one period at a local tolerance. Differences are
+/// relative to `max(1, |tr|/2)` so that a deeply unstable cell (`|tr|` of 1e30) is verified to
+/// the same number of digits as one near the boundary.
+#[derive(Clone, Copy)]
+struct Trace(Mathieu);
+
+/// The scale of a trace's difference.
+fn scale(trace: f64) -> f64 {
+    (0.5 * trace.abs()).max(1.0)
+}
+
+impl AtTolerance for Trace {
+    type Result = (f64, u64);
+    fn policy(&self) -> &'static Policy {
+        &POLICY
+    }
+    fn run(&self, local: f64, _: GoOn<'_>) -> Result<(f64, u64), StepError> {
+        self.0.trace(local)
+    }
+    fn difference(&self, fine: &(f64, u64), coarse: &(f64, u64)) -> f64 {
+        (fine.0 - coarse.0).abs() / scale(fine.0)
+    }
+    fn floor(&self, fine: &(f64, u64)) -> f64 {
+        #[allow(clippy::cast_precision_loss)]
+        let steps = fine.1 as f64;
+        // Each step rounds the four components once or twice: a few units of rounding a step.
+        4.0 * f64::EPSILON * (steps + 1.0)
+    }
+    fn estimate(&self, measured: f64, _: f64, _: Option<&(f64, f64)>) -> f64 {
+        MARGIN * measured
+    }
+    fn run_cost(&self, local: f64) -> f64 {
+        // About 2 µs a step; DOP853's steps grow as local^(-1/8) with the fastest frequency.
+        let w = (self.0.delta.abs() + self.0.q.abs()).sqrt().max(1.0);
+        2e-6 * 8.0 * w * local.powf(-0.125)
+    }
+}
+
+/// The trace of `m`, verified to `tolerance` (relative to `max(1, |tr|/2)`).
+///
+/// # Errors
+/// A failed step.
+pub fn floquet(m: Mathieu, tolerance: f64) -> Result<Floquet, StepError> {
+    let mut candidate = Trace(m);
+    let first = (tolerance * FIRST).clamp(POLICY.tightest, 1e-3);
+    // Its best run again: the loop keeps what it measured, not the trace.
+    let v = verify(
+        &POLICY,
+        &mut candidate,
+        first,
+        tolerance,
+        f64::INFINITY,
+        &mut |_| true,
+    )?;
+    let (trace, _) = m.trace(v.best.0.plan)?;
+    let error = v.best.0.estimate * scale(trace);
+    let margin = (trace.abs() - 2.0).abs();
+    Ok(Floquet {
+        trace,
+        error,
+        stable: trace.abs() < 2.0,
+        decided: margin > error,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constant_coefficients_give_the_closed_form_trace() {
+        // q = 0: θ'' + δθ = 0, tr = 2 cos(2π√δ) for δ > 0 and 2 cosh(2π√−δ) for δ < 0.
+        for delta in [0.1, 0.3, 2.0, -0.05, -0.5] {
+            let f = floquet(Mathieu { delta, q: 0.0 }, 1e-11).unwrap();
+            let exact = if delta > 0.0 {
+                2.0 * (2.0 * std::f64::consts::PI * f64::sqrt(delta)).cos()
+            } else {
+                2.0 * (2.0 * std::f64::consts::PI * f64::sqrt(-delta)).cosh()
+            };
+            assert!(
+                (f.trace - exact).abs() <= f.error.max(1e-13) * 2.0 + 1e-12,
+                "δ {delta}: {} against {exact}, estimate {}",
+                f.trace,
+                f.error
+            );
+            assert_eq!(f.stable, exact.abs() < 2.0);
+            assert!(f.decided);
+        }
+    }
+
+    #[test]
+    fn the_upright_of_a_shaken_pendulum_is_stable_above_kapitzas_threshold() {
+        let p = |b: f64| Params {
+            a: 1.0,
+            b,
+            epsilon: 0.01,
+        };
+        let above = floquet(Mathieu::of(&p(1.6), Position::Upright), 1e-10).unwrap();
+        let below = floquet(Mathieu::of(&p(1.2), Position::Upright), 1e-10).unwrap();
+        assert!(above.stable && above.decided, "{above:?}");
+        assert!(!below.stable && below.decided, "{below:?}");
+        // The hanging position of the same pendulum is stable either way.
+        assert!(
+            floquet(Mathieu::of(&p(1.2), Position::Hanging), 1e-10)
+                .unwrap()
+                .stable
+        );
+    }
+}
