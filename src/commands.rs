@@ -840,6 +840,7 @@ fn study_map(args: &crate::cli::MapArgs) -> Outcome {
     });
     let verdicts = finished(mapped, "study map")?;
     let out = chart.output(
+        crate::outputs::SCHEMA_VERSION,
         &crate::scenario::text::one_line(&preset.name),
         &indices,
         &verdicts,

@@ -546,7 +546,7 @@ impl Chart {
     /// (limit)`, `map (full model, k 1e4)`, `stability (eps 0.001)`, `reversals (T 10)`.
     #[must_use]
     pub fn title(&self) -> String {
-        let tick = super::svg::tick;
+        let tick = super::tick;
         match self {
             Self::Rattleback {
                 source: Source::Full { k, .. },
@@ -838,10 +838,13 @@ impl Chart {
         }
     }
 
-    /// The output of the cells `indices` with their verdicts (`shard` when a slice).
+    /// The output of the cells `indices` with their verdicts (`shard` when a slice), in the
+    /// shape `schema_version` names (the program's outputs' version: this layer does not know
+    /// it).
     #[must_use]
     pub fn output(
         &self,
+        schema_version: u32,
         preset: &str,
         indices: &[usize],
         verdicts: &[Verdict],
@@ -891,7 +894,7 @@ impl Chart {
             _ => None,
         };
         ChartOutput {
-            schema_version: crate::outputs::SCHEMA_VERSION,
+            schema_version,
             model: self.model(),
             preset: preset.to_owned(),
             columns,
@@ -1426,11 +1429,11 @@ impl ChartOutput {
                 _ => "reversals",
             },
             x.name,
-            super::svg::tick(x.min),
-            super::svg::tick(x.max),
+            super::tick(x.min),
+            super::tick(x.max),
             y.name,
-            super::svg::tick(y.min),
-            super::svg::tick(y.max),
+            super::tick(y.min),
+            super::tick(y.max),
             if y.log { ", log" } else { "" },
             self.curve_meaning,
         );
@@ -1449,7 +1452,7 @@ impl ChartOutput {
             .map(|c| (c.column * cols / x.cells, c.row * rows / y.cells));
         for r in (0..rows).rev() {
             let j = r * y.cells / rows;
-            let _ = write!(o, "{:>9} ", super::svg::tick(y.at(j)));
+            let _ = write!(o, "{:>9} ", super::tick(y.at(j)));
             for c in 0..cols {
                 let i = c * x.cells / cols;
                 let ch = if preset == Some((c, r)) {
@@ -1546,6 +1549,7 @@ mod tests {
         let chart = pendulum(7, 5);
         let all: Vec<usize> = (0..chart.len()).collect();
         let whole = chart.output(
+            1,
             "p",
             &all,
             &chart.cells(&all, &|_| true, &|| ()).unwrap(),
@@ -1555,7 +1559,7 @@ mod tests {
             let s = Shard { index: i, count: n };
             let idx = shard_cells(chart.len(), s);
             let v = chart.cells(&idx, &|_| true, &|| ()).unwrap();
-            (format!("part{i}"), chart.output("p", &idx, &v, Some(s)))
+            (format!("part{i}"), chart.output(1, "p", &idx, &v, Some(s)))
         };
         for n in 1..=4 {
             let merged = merge(&(1..=n).rev().map(|i| part(i, n)).collect::<Vec<_>>()).unwrap();
@@ -1573,7 +1577,7 @@ mod tests {
         let v = other.cells(&idx, &|_| true, &|| ()).unwrap();
         let e = merge(&[
             part(1, 2),
-            ("other".into(), other.output("p", &idx, &v, Some(s))),
+            ("other".into(), other.output(1, "p", &idx, &v, Some(s))),
         ])
         .unwrap_err();
         assert!(e.contains("another chart"), "{e}");

@@ -7,19 +7,7 @@ use super::sweep::Sweep;
 
 type Fallible = Result<String, Box<dyn std::error::Error>>;
 
-/// `1e-5`, `0.3`, `30`: short tick labels, never `9.999999999999999e-5`.
-#[must_use]
-pub fn tick(x: f64) -> String {
-    if x == 0.0 {
-        "0".to_owned()
-    } else if (1e-3..1e4).contains(&x.abs()) {
-        let s = format!("{x:.3}");
-        s.trim_end_matches('0').trim_end_matches('.').to_owned()
-    } else {
-        let s = format!("{x:.1e}");
-        s.replace(".0e", "e")
-    }
-}
+pub use super::tick;
 
 /// The sweep: `α_k(t)` of every rung beside the limit, and `sup |α_k − α_eff|` against `k`
 /// (log–log) with the fitted slope.
