@@ -590,13 +590,10 @@ impl Job for MapJob {
         let total = chart.len();
         // A row of the cheap charts (the rattleback's limit, the pendulum's one-period traces)
         // a slice; as many cells as the pool has threads of the ones that run the full motion.
-        let chunk = match chart {
-            Chart::Rattleback {
-                source: Source::Limit,
-                ..
-            }
-            | Chart::Kapitza(_) => chart.axes().0.cells,
-            _ => rayon::current_num_threads().max(1),
+        let chunk = if chart.cheap_cells() {
+            chart.axes().0.cells
+        } else {
+            rayon::current_num_threads().max(1)
         };
         let end = (next + chunk).min(total);
         let verdicts = match chart.cells_polled(next..end, go_on) {

@@ -75,8 +75,9 @@ impl Axis {
         (f.is_finite() && (0.0..1.0).contains(&f)).then(|| (i as usize).min(self.cells - 1))
     }
 
-    fn to_static(name: &str) -> &'static str {
-        // The names an axis can have (a part file is read back into this type).
+    /// The name of an axis a chart has, as `name` spells it (a part file is read back into
+    /// this type).
+    fn known_name(name: &str) -> Option<&'static str> {
         [
             "ratio",
             "inertia_ratio",
@@ -87,7 +88,6 @@ impl Axis {
         ]
         .into_iter()
         .find(|n| *n == name)
-        .unwrap_or("unknown")
     }
 }
 
@@ -558,6 +558,12 @@ impl Chart {
         }
     }
 
+    /// The words of this chart's scene.
+    #[must_use]
+    pub fn words(&self) -> ChartWords {
+        words(self.model())
+    }
+
     /// The scene.
     #[must_use]
     pub fn model(&self) -> ModelKind {
@@ -812,6 +818,19 @@ impl Chart {
         })
     }
 
+    /// Whether a cell is cheap enough (a quadrature, one period's trace) that the explorer's
+    /// worker takes a row a slice; otherwise as many cells as the pool has threads.
+    #[must_use]
+    pub fn cheap_cells(&self) -> bool {
+        matches!(
+            self,
+            Self::Rattleback {
+                source: Source::Limit,
+                ..
+            } | Self::Kapitza(_)
+        )
+    }
+
     /// Predicted seconds of `cells` cells (the cost model asked before a chart starts).
     #[must_use]
     pub fn predicted_seconds(&self, cells: usize) -> f64 {
@@ -856,42 +875,32 @@ impl Chart {
             .zip(verdicts)
             .map(|(&n, v)| self.cell_output(n, v))
             .collect();
-        let critical = match self {
-            Self::Rattleback { .. } => Some(
-                self.curve()
-                    .into_iter()
-                    .map(|(ratio, inertia_ratio)| map::CriticalPoint {
-                        inertia_ratio,
-                        ratio,
-                    })
-                    .collect(),
-            ),
-            _ => None,
-        };
-        let (t_end, tolerance, epsilon, position) = match self {
-            Self::Rattleback { grid, source, .. } => (
-                Some(grid.t_end),
-                match source {
-                    Source::Limit => None,
-                    Source::Full { tolerance, .. } => Some(*tolerance),
-                },
-                None,
-                None,
-            ),
+        // The curve once: the celt's costs an eigenvalue problem a sample.
+        let curve = self.curve();
+        let critical = matches!(self, Self::Rattleback { .. }).then(|| {
+            curve
+                .iter()
+                .map(|&(ratio, inertia_ratio)| map::CriticalPoint {
+                    inertia_ratio,
+                    ratio,
+                })
+                .collect()
+        });
+        let (t_end, tolerance, stiffness, epsilon, position) = match self {
+            Self::Rattleback { grid, source, .. } => match *source {
+                Source::Limit => (Some(grid.t_end), None, None, None, None),
+                Source::Full { k, tolerance } => {
+                    (Some(grid.t_end), Some(tolerance), Some(k), None, None)
+                }
+            },
             Self::Kapitza(c) => (
                 None,
                 Some(c.tolerance),
+                None,
                 Some(c.params.epsilon),
                 Some(c.position.name().to_owned()),
             ),
-            Self::Celt(c) => (Some(c.t_end), Some(c.tolerance), None, None),
-        };
-        let stiffness = match self {
-            Self::Rattleback {
-                source: Source::Full { k, .. },
-                ..
-            } => Some(*k),
-            _ => None,
+            Self::Celt(c) => (Some(c.t_end), Some(c.tolerance), None, None, None),
         };
         ChartOutput {
             schema_version,
@@ -909,8 +918,7 @@ impl Chart {
                 .map(|(column, row)| CellAt { column, row }),
             cells,
             critical,
-            curve: self
-                .curve()
+            curve: curve
                 .into_iter()
                 .map(|(x, y)| CurvePoint { x, y })
                 .collect(),
@@ -1286,8 +1294,7 @@ impl<'de> Deserialize<'de> for Axis {
             log: bool,
         }
         let r = Read::deserialize(d)?;
-        let name = Axis::to_static(&r.name);
-        if name == "unknown" {
+        let Some(name) = Axis::known_name(&r.name) else {
             let shown: String = r
                 .name
                 .chars()
@@ -1297,7 +1304,7 @@ impl<'de> Deserialize<'de> for Axis {
             return Err(serde::de::Error::custom(format!(
                 "an axis named `{shown}`: not one a chart has"
             )));
-        }
+        };
         if r.cells == 0 || r.cells > MAX_CELLS {
             return Err(serde::de::Error::custom(format!(
                 "an axis of {} cells: 1 to {MAX_CELLS}",

@@ -18,7 +18,7 @@ use ratatui::widgets::{Paragraph, Widget};
 use super::marks::{Facts, Section, printed};
 use super::{Look, framed};
 use crate::app::computed::map::{MapSource, MapState};
-use crate::study::chart::{Chart, Verdict};
+use crate::study::chart::Verdict;
 
 /// The glyph of a count of reversals (`None`: not computed).
 #[must_use]
@@ -110,10 +110,6 @@ pub struct MapPane<'a> {
     pub look: &'a Look<'a>,
 }
 
-fn words_of(chart: &Chart) -> crate::study::chart::ChartWords {
-    crate::study::chart::words(chart.model())
-}
-
 impl MapPane<'_> {
     fn heading(&self) -> String {
         let map = self.map;
@@ -129,7 +125,7 @@ impl MapPane<'_> {
             (None, true) => format!("{total} cells"),
             (None, false) => format!("{}/{total} cells…", map.computed()),
         };
-        let sources = chart.is_some_and(|c| crate::study::chart::words(c.model()).sources);
+        let sources = chart.is_some_and(|c| c.words().sources);
         let keys = match (self.focused, sources) {
             (true, true) => "Enter f Esc",
             (true, false) => "Enter Esc",
@@ -143,7 +139,7 @@ impl MapPane<'_> {
         let map = self.map;
         let chart = map.spec?.chart;
         let (vx, vy) = map.at_cursor()?;
-        let (nx, ny) = crate::study::chart::words(chart.model()).axes;
+        let (nx, ny) = chart.words().axes;
         let cell = map.cell(map.cursor.0, map.cursor.1);
         let verdict = match cell {
             None => "?".to_owned(),
@@ -152,11 +148,7 @@ impl MapPane<'_> {
             Some(Verdict::Stability { stable: true, .. }) => "stable".to_owned(),
             Some(Verdict::Stability { stable: false, .. }) => "unstable".to_owned(),
         };
-        let nx = if words_of(&chart).sources {
-            "ratio"
-        } else {
-            nx
-        };
+        let nx = if chart.words().sources { "ratio" } else { nx };
         let tick = crate::study::svg::tick;
         Some(format!("+ {nx} {} {ny} {}: {verdict}", tick(vx), tick(vy)))
     }
@@ -223,7 +215,7 @@ impl Widget for MapPane<'_> {
         buf[(plot.x + cx.min(w - 1) as u16, plot.y + cy.min(h - 1) as u16)]
             .set_char(CURSOR)
             .set_style(cursor);
-        let (x_name, y_name) = crate::study::chart::words(chart.model()).axes;
+        let (x_name, y_name) = chart.words().axes;
         let n_rows = y_axis.height as usize;
         let mut labels = vec![TextLine::raw(""); n_rows];
         let tick = crate::study::svg::tick;

@@ -203,7 +203,7 @@ impl MapState {
         let (Some(spec), Some((x, y))) = (self.spec, self.at_cursor()) else {
             return String::new();
         };
-        let (nx, ny) = crate::study::chart::words(spec.chart.model()).axes;
+        let (nx, ny) = spec.chart.words().axes;
         format!("{nx} {x:.4}, {ny} {y:.4}")
     }
 
@@ -216,7 +216,7 @@ impl MapState {
         let spec = self.spec.ok_or("no map yet")?;
         let point = self.at_cursor().ok_or("no map yet")?;
         let model = spec.chart.load(&settings.model, point)?;
-        if !crate::study::chart::words(spec.chart.model()).sources {
+        if !spec.chart.words().sources {
             let from = self.axes_point(crate::study::chart::point_of(&settings.model));
             self.anchor = Some((from, point));
         }

@@ -118,7 +118,8 @@ pub const POLICY: Policy = Policy {
 /// (issue 59) against 30-digit traces (`scripts/chart_references.py`) on the 96 cells of two coarse
 /// charts at tolerances 1e-8, 1e-10 and 1e-12: the error over the bare difference reached 2.9
 /// (kapitza-coarse's ε = 0.15 at 1e-10; 0.23 at most on kapitza-upright's ε = 1e-3), where the
-/// two runs' errors happen to nearly cancel; 4 covers it.
+/// two runs' errors happen to nearly cancel; 4 covers it (`scripts/floquet_margin.py` measures it
+/// again).
 pub const MARGIN: f64 = 4.0;
 
 /// The first local tolerance of a trace verified to `tolerance`.
