@@ -156,11 +156,16 @@ impl Pane {
     pub fn offered_by(self, model: crate::physics::ModelKind) -> bool {
         let studies = model.studies();
         match self {
-            Self::Params | Self::Portrait | Self::Series | Self::Lesson | Self::Compare => true,
+            // Every scene draws its body (the pendulum on its shaken pivot since issue 59).
+            Self::Params
+            | Self::Portrait
+            | Self::Series
+            | Self::Lesson
+            | Self::Compare
+            | Self::Body => true,
             Self::Sweep => model.small().is_some(),
             Self::Weak => studies.weak.is_some(),
             Self::Map => studies.map,
-            Self::Body => studies.body,
         }
     }
 

@@ -103,8 +103,6 @@ pub struct Studies {
     pub weak: Option<WeakWords>,
     /// A chart in the map pane (`M`; `study map`): every scene has one since issue 59.
     pub map: bool,
-    /// The body seen from above.
-    pub body: bool,
     /// The shipped preset the compare pane sets beside this scene when no partner was chosen
     /// (the paper's contrast: the holonomic rattleback beside the rolling celt).
     pub counterpart: &'static str,
@@ -213,6 +211,49 @@ pub struct WeakView {
     pub reference: Vec<f64>,
 }
 
+/// What the body pane draws of a posed problem.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Drawing {
+    /// A body seen from above: its half-extents along its own x and y axes (any unit: the pane
+    /// draws their ratio), and its profile for side and end views when it has one (the celt's
+    /// ellipsoidal bottom; the paper's rattleback has no shape beyond its inertia).
+    Body {
+        /// Half-extents along the body's x and y axes.
+        plan: [f64; 2],
+        /// The profile, for the side and end views.
+        side: Option<SideView>,
+    },
+    /// A pendulum of unit length on a pivot shaken along the vertical (Kapitza's).
+    Pendulum(Pivot),
+}
+
+impl Drawing {
+    /// Whether the pane draws side and end views too.
+    #[must_use]
+    pub fn has_sides(&self) -> bool {
+        matches!(self, Self::Body { side: Some(_), .. })
+    }
+}
+
+/// A pivot shaken along the vertical: its height above its mean position is
+/// `−stroke · cos(t/ε)` (in rod lengths), so that its acceleration is `(stroke/ε²) cos(t/ε)`,
+/// the pendulum's `(b/ε) cos(t/ε)` when `stroke = b ε`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pivot {
+    /// The half-travel, in rod lengths.
+    pub stroke: f64,
+    /// The fast time scale: the pivot's angular frequency is `1/ε`.
+    pub epsilon: f64,
+}
+
+impl Pivot {
+    /// The pivot's height above its mean position at time `t`, in rod lengths.
+    #[must_use]
+    pub fn height(&self, t: f64) -> f64 {
+        -self.stroke * (t / self.epsilon).cos()
+    }
+}
+
 /// A body's profile seen from the side: a half-ellipsoid, flat on top, its mass centre below
 /// its centre (any unit: the body pane draws the shape to scale).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -248,12 +289,8 @@ pub trait Posed {
     fn slow_start(&self) -> (f64, f64);
     /// Default fixed step of `method` at `tolerance` over `[0, t_end]`.
     fn default_step(&self, method: Method, tolerance: f64, t_end: f64) -> f64;
-    /// The body's half-extents seen from above, along its own x and y axes (any unit: the body
-    /// pane draws their ratio), or `None` for a model without a body to draw.
-    fn plan_view(&self) -> Option<[f64; 2]>;
-    /// The body's profile for the side and end views (the celt's ellipsoidal bottom), or
-    /// `None` for a model whose body pane draws it from above only.
-    fn side_view(&self) -> Option<SideView>;
+    /// What the body pane (`B`) draws of it.
+    fn drawing(&self) -> Drawing;
     /// Builds a concrete method's integration at `t = 0`, following `arithmetic` (a replay of
     /// an old file: the rules it was recorded with; each model follows the rules it has).
     ///

@@ -16,7 +16,7 @@ use ratatui::widgets::canvas::{Canvas, Line, Points};
 use super::marks::{Facts, Section, curve, printed};
 use super::{Look, framed};
 use crate::app::RunState;
-use crate::physics::scene::SideView;
+use crate::physics::scene::{Drawing, SideView};
 
 /// The tip's trace while the spin is counter-clockwise, and clockwise.
 const COUNTER: char = '+';
@@ -30,6 +30,9 @@ const GROUND: char = '─';
 
 /// What the pane draws, for the legend (the same marks as the pane).
 pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
+    if let Drawing::Pendulum(_) = f.drawing {
+        return super::pendulum::legend(f, look);
+    }
     let t = look.theme;
     let words = f.kind.words();
     let mut s = Section::new("body (B), seen from above")
@@ -60,7 +63,7 @@ pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
             ),
         )
         .mark(printed(look, TIP), t.current, "the tip of the long axis");
-    if f.side {
+    if f.drawing.has_sides() {
         s = s
             .mark(
                 curve(look, GROUND, "⠤⠤⠤", "▄▄▄"),
@@ -85,13 +88,11 @@ pub const ENVELOPE_SAMPLES: usize = 96;
 pub struct BodyPane<'a> {
     /// The run (its displayed samples).
     pub run: &'a RunState,
-    /// The body's extent along y over x seen from above: which axis is long (the body is drawn
-    /// longer along x when it is at most 1).
-    pub aspect: f64,
-    /// The fast coordinate's name (`gamma`, `tilt`).
-    pub fast: &'a str,
-    /// The body's profile, when the scene draws it from the side too (the celt).
-    pub side: Option<SideView>,
+    /// What the scene draws: a body (from above, and from the side when it has a profile) or
+    /// the pendulum on its pivot ([`super::pendulum`]).
+    pub drawing: Drawing,
+    /// The scene's words (the fast coordinate's name `gamma`, `tilt`; the event counted).
+    pub words: crate::physics::Words,
     /// Marker and colours.
     pub look: &'a Look<'a>,
 }
@@ -143,12 +144,32 @@ fn trace(run: &RunState, along_x: bool) -> Vec<(f64, f64, bool)> {
 
 impl Widget for BodyPane<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
+        match self.drawing {
+            Drawing::Pendulum(pivot) => super::pendulum::PendulumPane {
+                run: self.run,
+                pivot,
+                events: self.words.events,
+                look: self.look,
+            }
+            .render(area, buf),
+            Drawing::Body { plan, side } => self.body(plan, side, area, buf),
+        }
+    }
+}
+
+impl BodyPane<'_> {
+    /// A body from above (half-extents `plan`), with its side and end views when it has a
+    /// profile.
+    fn body(&self, plan: [f64; 2], side: Option<SideView>, area: Rect, buf: &mut Buffer) {
         let (run, look) = (self.run, self.look);
+        // The body's extent along y over x: the body is drawn longer along x when it is at
+        // most 1.
+        let aspect = plan[1] / plan[0];
         let now = run.current().copied();
         let (alpha, alpha_dot) = now.map_or((0.0, 0.0), |p| (p.slow, p.rate));
         let rock = envelope(run);
         let mut inner = framed(
-            &heading(run, alpha_dot, rock, self.fast, self.side.is_some()),
+            &heading(run, alpha_dot, rock, self.words.fast_name, side.is_some()),
             area,
             buf,
         );
@@ -156,7 +177,7 @@ impl Widget for BodyPane<'_> {
             return;
         }
         // The side and end views take the bottom third, when there is room for them.
-        if let Some(side) = self.side
+        if let Some(side) = side
             && inner.height >= 10
             && inner.width >= 30
         {
@@ -174,7 +195,7 @@ impl Widget for BodyPane<'_> {
         let ratio = f64::from(inner.width) / (2.0 * f64::from(inner.height));
         let (sx, sy) = (1.35 * ratio.max(1.0), 1.35 * (1.0 / ratio).max(1.0));
         // The long axis is the body's x axis when ix > iy (the rattleback's keel).
-        let (a, b) = if self.aspect <= 1.0 {
+        let (a, b) = if aspect <= 1.0 {
             (1.0, 0.42)
         } else {
             (0.42, 1.0)
@@ -304,15 +325,17 @@ pub fn exaggeration(run: &RunState) -> f64 {
         .filter_map(|p| p.lean)
         .map(|[x, y]| x.abs().max(y.abs()))
         .fold(0.0, f64::max);
-    gain_for(biggest)
+    round_gain(biggest, 0.3)
 }
 
-/// The exaggeration that draws a lean of `biggest` (rad) as about 0.3 rad.
-fn gain_for(biggest: f64) -> f64 {
-    if biggest.is_nan() || biggest <= 0.0 || biggest >= 0.3 {
+/// The exaggeration that draws `biggest` as about `drawn`: 1, 2 or 5 times a power of ten,
+/// never below 1 (1 for nothing to draw, or something not a number).
+#[must_use]
+pub fn round_gain(biggest: f64, drawn: f64) -> f64 {
+    if biggest.is_nan() || biggest <= 0.0 || biggest >= drawn {
         return 1.0;
     }
-    let want = 0.3 / biggest;
+    let want = drawn / biggest;
     let decade = 10f64.powf(want.log10().floor());
     [5.0, 2.0, 1.0]
         .into_iter()
@@ -463,7 +486,7 @@ mod tests {
 
     #[test]
     fn the_exaggeration_is_a_round_factor_that_never_shrinks() {
-        let gain = gain_for;
+        let gain = |x| round_gain(x, 0.3);
         assert!((gain(0.005) - 50.0).abs() < 1e-9);
         assert!((gain(0.02) - 10.0).abs() < 1e-9);
         assert!((gain(0.1) - 2.0).abs() < 1e-9);

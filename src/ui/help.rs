@@ -98,7 +98,7 @@ fn content(app: &App, help: Help, look: &Look<'_>) -> (Vec<Line<'static>>, &'sta
             let facts = Facts {
                 kind: model.kind(),
                 limit: &app.scenario.derived.limit,
-                side: model.side_view().is_some(),
+                drawing: model.drawing(),
                 summary: &app.scenario.derived.summary,
             };
             (legend::lines(&facts, look), " legend: ? or Esc closes ")

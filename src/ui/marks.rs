@@ -73,8 +73,8 @@ pub struct Facts<'a> {
     pub kind: ModelKind,
     /// What the portrait draws of its limit (the levels and separatrices there are).
     pub limit: &'a LimitView,
-    /// The body pane draws the body from the side too (the celt).
-    pub side: bool,
+    /// What the body pane draws (the celt's body from the side too; the pendulum).
+    pub drawing: crate::physics::scene::Drawing,
     /// The panel's derived lines.
     pub summary: &'a [crate::physics::scene::SummaryLine],
 }

@@ -30,6 +30,7 @@ mod lesson;
 mod map;
 pub mod marks;
 mod params;
+mod pendulum;
 mod portrait;
 mod series;
 mod status;
@@ -355,14 +356,8 @@ fn draw_pane(
         Pane::Body => frame.render_widget(
             body::BodyPane {
                 run: &app.run,
-                aspect: app
-                    .scenario
-                    .settings
-                    .model
-                    .plan_view()
-                    .map_or(1.0, |[x, y]| y / x),
-                fast: app.scenario.settings.model.kind().words().fast_name,
-                side: app.scenario.settings.model.side_view(),
+                drawing: app.scenario.settings.model.drawing(),
+                words: app.scenario.settings.model.kind().words(),
                 look,
             },
             area,

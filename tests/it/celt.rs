@@ -415,14 +415,6 @@ fn the_celt_body_pane_at_80x24_and_160x48() {
     let large = crate::explorer_ui::screen_text(&h.app, 160, 48);
     assert!(large.contains("rocking |tilt|"), "{large}");
     insta::assert_snapshot!("celt_body_160x48", large);
-    // The pendulum has no body: the key says so.
-    let mut k = crate::common::Headless::new("kapitza-upright");
-    k.key(Key::Char('B'));
-    let screen = crate::explorer_ui::screen_text(&k.app, 80, 24);
-    assert!(
-        screen.contains("the body pane is of the rattleback and the celt"),
-        "{screen}"
-    );
 }
 
 /// The side and end views read the lean of the state on display: at the end of the run, the

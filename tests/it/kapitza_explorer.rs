@@ -228,35 +228,131 @@ fn the_full_trail_is_a_ripple_band_around_the_limit() {
     assert!(widest > 0.7, "the band is filled: {widest}");
 }
 
-#[test]
-fn the_rattlebacks_own_panes_are_refused_and_close_with_it() {
-    let mut h = Headless::new("kapitza-upright");
-    {
-        let (key, pane) = ('B', Pane::Body);
-        h.key(Key::Char(key));
-        assert!(!h.app.view.panes.shows(pane), "{key}");
-        let status = h.app.status.as_ref().expect("a message").text.clone();
-        assert!(
-            status.contains("is of the rattleback") && status.contains("Kapitza"),
-            "{key}: {status}"
-        );
+type Cell = (u16, u16);
+type Inner = (u16, u16, u16, u16);
+
+/// The cell of `c` inside the pane whose title starts with `title`, with the pane's inner
+/// area: `(cell, (left, top, right, bottom))`, the bounds exclusive of the frame.
+fn in_pane(buffer: &Buffer, title: &str, c: &str) -> (Option<Cell>, Inner) {
+    let (x, y) = crate::explorer_ui::find(buffer, title).expect("the pane's title");
+    let left = x - 2;
+    assert_eq!(buffer[(left, y)].symbol(), "┌");
+    let mut right = x;
+    while buffer[(right, y)].symbol() != "┐" {
+        right += 1;
     }
-    // Open on the rattleback, then the pendulum is loaded: the body closes; the map stays and
-    // becomes the pendulum's chart (issue 59).
+    let mut bottom = y;
+    while buffer[(left, bottom)].symbol() != "└" {
+        bottom += 1;
+    }
+    let inner = (left + 1, y + 1, right, bottom);
+    let found = (inner.1..inner.3)
+        .flat_map(|row| (inner.0..inner.2).map(move |col| (col, row)))
+        .find(|&cell| buffer[cell].symbol() == c);
+    (found, inner)
+}
+
+/// Issue 59, item 4: `B` draws the pendulum on its shaken pivot, on every pendulum preset at
+/// ×1 and at top speed, at 80×24 and 160×48: the heading's `θ` and `Θ` are the displayed
+/// sample's; the bob lies where the drawn angle puts it about the pivot (right of it when the
+/// rod leans right, above it while it is above the horizontal); the exaggeration of the pivot's
+/// travel is printed, or "to scale" when it needs none.
+#[test]
+fn the_pendulum_is_drawn_on_its_shaken_pivot() {
+    let mut checked = 0;
+    for name in pendulum_presets() {
+        for (speed, until) in [(1.0, 2.0), (1024.0, f64::INFINITY)] {
+            let mut h = Headless::new(name);
+            h.key(Key::Char('B'));
+            assert!(h.app.view.panes.shows(Pane::Body), "{name}");
+            h.play_until(until, speed);
+            let p = *h.app.run.current().expect("a sample on display");
+            let Model::Kapitza(problem) = h.app.scenario.settings.model else {
+                panic!("{name}: not a pendulum");
+            };
+            let params = problem.params();
+            let stroke = params.b.abs() * params.epsilon;
+            for (w, hgt) in [(80, 24), (160, 48)] {
+                let buffer = render(&h.app, w, hgt);
+                let screen = text(&buffer);
+                let angles = format!("θ {:+.3}, Θ {:+.3}", p.slow, p.slow - p.fast);
+                assert!(
+                    screen.contains(&angles),
+                    "{name} ×{speed} {w}x{hgt}: {angles}\n{screen}"
+                );
+                let (bob, inner) = in_pane(&buffer, "pendulum (B)", "●");
+                let (pivot, _) = in_pane(&buffer, "pendulum (B)", "▲");
+                let (bob, pivot) = (bob.expect("the bob"), pivot.expect("the pivot"));
+                let label = if stroke < 0.15 {
+                    format!("drawn ×{}", gain(stroke))
+                } else {
+                    "to scale".to_owned()
+                };
+                let bottom: String = (inner.0..inner.2)
+                    .map(|x| buffer[(x, inner.3 - 1)].symbol().to_owned())
+                    .collect();
+                assert!(
+                    bottom.contains(&label),
+                    "{name} {w}x{hgt}: {label} in {bottom:?}"
+                );
+                // The drawn angle: the averaged one plus the ripple times the gain.
+                let drawn = (p.slow - p.fast) + gain(stroke) * p.fast;
+                let (dx, dy) = (
+                    i32::from(bob.0) - i32::from(pivot.0),
+                    i32::from(pivot.1) - i32::from(bob.1),
+                );
+                if drawn.sin().abs() > 0.3 {
+                    assert_eq!(
+                        dx.signum(),
+                        drawn.sin().signum() as i32,
+                        "{name} {w}x{hgt}: {drawn}\n{screen}"
+                    );
+                }
+                if drawn.cos().abs() > 0.3 {
+                    assert_eq!(
+                        dy.signum(),
+                        drawn.cos().signum() as i32,
+                        "{name} {w}x{hgt}: {drawn}\n{screen}"
+                    );
+                }
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked >= 20, "{checked}");
+    // Open on the rattleback, then the pendulum is loaded: the body pane stays and draws the
+    // pendulum; the map stays and becomes the pendulum's chart.
     let mut h = Headless::new("subcritical");
     h.key(Key::Char('M'));
     h.key(Key::Char('B'));
-    assert!(h.app.view.panes.shows(Pane::Map) && h.app.view.panes.shows(Pane::Body));
     let effects = h.app.load(&resolve("kapitza-falls", &[]).unwrap());
     h.exec(effects);
-    assert!(!h.app.view.panes.shows(Pane::Body));
-    assert!(h.app.view.panes.shows(Pane::Map));
+    assert!(h.app.view.panes.shows(Pane::Body) && h.app.view.panes.shows(Pane::Map));
     assert_eq!(
         h.app.computed.map.spec.map(|s| s.chart.model()),
-        Some(rattleback::physics::ModelKind::Kapitza)
+        Some(ModelKind::Kapitza)
     );
-    h.play_until(2.0, 8.0);
-    assert!(h.app.run.current().is_some());
+    h.play_until(5.0, 4.0);
+    h.key(Key::Char(' '));
+    h.key(Key::Char('M'));
+    let screen = text(&render(&h.app, 80, 24));
+    assert!(screen.contains("pendulum (B)"), "{screen}");
+    insta::assert_snapshot!("kapitza_body_80x24", screen);
+}
+
+/// The exaggeration the pane states: 1, 2 or 5 times a power of ten, drawing the travel as
+/// about 0.15 of the rod, never below 1 (written again here from its definition).
+fn gain(stroke: f64) -> f64 {
+    if stroke >= 0.15 {
+        return 1.0;
+    }
+    let want = 0.15 / stroke;
+    let decade = 10f64.powi(want.log10().floor() as i32);
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * decade)
+        .find(|&g| g <= want)
+        .unwrap()
 }
 
 #[test]

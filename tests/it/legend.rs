@@ -138,7 +138,7 @@ fn marks(h: &Headless, pane: Pane, charset: Charset) -> BTreeSet<char> {
     let facts = ui::marks::Facts {
         kind: model.kind(),
         limit: &h.app.scenario.derived.limit,
-        side: model.side_view().is_some(),
+        drawing: model.drawing(),
         summary: &h.app.scenario.derived.summary,
     };
     ui::pane_legend(pane, &facts, &look)

@@ -17,8 +17,8 @@ use crate::physics::method::{Method, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::PlanRequest;
 use crate::physics::scene::{
-    Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve, Studies, SummaryLine,
-    WeakView, Words,
+    Drawing, Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve, Studies,
+    SummaryLine, WeakView, Words,
 };
 
 const LENGTH: Scale = Scale::linear(0.1, 1.0);
@@ -185,7 +185,6 @@ pub static SCENE: Scene = Scene {
     studies: Studies {
         weak: None,
         map: true,
-        body: true,
         counterpart: "subcritical",
     },
 };
@@ -274,17 +273,17 @@ impl Posed for Problem {
         // Adaptive methods only; the size of the first step DOP853 would take, about.
         tolerance.clamp(1e-16, 1.0).powf(0.125) / super::budget::fastest_rate(self)
     }
-    fn plan_view(&self) -> Option<[f64; 2]> {
-        Some([self.params().a, self.params().b])
-    }
-    fn side_view(&self) -> Option<SideView> {
+    fn drawing(&self) -> Drawing {
         let p = self.params();
-        Some(SideView {
-            long: p.a,
-            cross: p.b,
-            height: p.c,
-            offset: p.offset,
-        })
+        Drawing::Body {
+            plan: [p.a, p.b],
+            side: Some(SideView {
+                long: p.a,
+                cross: p.b,
+                height: p.c,
+                offset: p.offset,
+            }),
+        }
     }
     // Adaptive methods only: they add few steps, plainly (no time sum).
     fn build(&self, ask: &Asked, _: Arithmetic) -> Result<Box<dyn Flow>, StepError> {

@@ -13,7 +13,7 @@ use crate::physics::method::{Method, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{PlanRequest, Resolution, Resolved};
 use crate::physics::scene::{
-    Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve, SmallParameter,
+    Drawing, Found, Pivot, Planned, Posed, Scene, SecondEvents, Shown, SlowCurve, SmallParameter,
     Studies, SummaryLine, WeakView, WeakWords, Words,
 };
 
@@ -100,7 +100,6 @@ pub static SCENE: Scene = Scene {
             reference: "the limit's rate, averaged alike (dashed)",
         }),
         map: true,
-        body: false,
         counterpart: "subcritical",
     },
 };
@@ -147,11 +146,13 @@ impl Posed for Problem {
     fn default_step(&self, method: Method, tolerance: f64, t_end: f64) -> f64 {
         super::flows::default_step(method, self, tolerance, t_end)
     }
-    fn plan_view(&self) -> Option<[f64; 2]> {
-        None
-    }
-    fn side_view(&self) -> Option<SideView> {
-        None
+    fn drawing(&self) -> Drawing {
+        // The pivot's acceleration is (b/ε) cos(t/ε) in rod lengths: its travel is ±b ε.
+        let p = self.params();
+        Drawing::Pendulum(Pivot {
+            stroke: p.b.abs() * p.epsilon,
+            epsilon: p.epsilon,
+        })
     }
     // Its fixed-step methods take the time from the step count, (n + 1) h (flows.rs): no sum to
     // compensate; its lifts take the fast phase as the rules say.

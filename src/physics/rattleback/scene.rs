@@ -15,7 +15,7 @@ use crate::physics::method::{Method, StepError};
 use crate::physics::params::ParamError;
 use crate::physics::plan::PlanRequest;
 use crate::physics::scene::{
-    Planned, Posed, Scene, Shown, SideView, SlowCurve, SmallParameter, Studies, SummaryLine,
+    Drawing, Planned, Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine,
     WeakView, WeakWords, Words,
 };
 
@@ -65,7 +65,6 @@ pub static SCENE: Scene = Scene {
             reference: "theta, the adiabatic invariant (dashed)",
         }),
         map: true,
-        body: true,
         counterpart: "celt-clockwise",
     },
 };
@@ -128,13 +127,13 @@ impl Posed for Problem {
     fn default_step(&self, method: Method, tolerance: f64, t_end: f64) -> f64 {
         integrators::default_step(method, self, tolerance, t_end)
     }
-    fn plan_view(&self) -> Option<[f64; 2]> {
-        // The long axis is the body's x axis when ix > iy (the keel).
-        Some([self.params().ix, self.params().iy])
-    }
-    fn side_view(&self) -> Option<SideView> {
-        // The paper's body has no shape beyond its inertia; its tilt is the cross bar above.
-        None
+    fn drawing(&self) -> Drawing {
+        // The long axis is the body's x axis when ix > iy (the keel); the paper's body has no
+        // shape beyond its inertia, so no side view (its tilt is the pane's cross bar).
+        Drawing::Body {
+            plan: [self.params().ix, self.params().iy],
+            side: None,
+        }
     }
     fn build(&self, ask: &Asked, arithmetic: Arithmetic) -> Result<Box<dyn Flow>, StepError> {
         integrators::build(self, ask, arithmetic.time_sum)
