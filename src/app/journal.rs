@@ -79,6 +79,17 @@ pub enum Event {
     },
     /// The trail was cleared.
     ClearTrail,
+    /// The map's cursor moved, or the map took or gave back the arrows (format 12): a replay
+    /// draws the cursor where the lecturer had it, and the pane's title as it was (its keys
+    /// while the map had the arrows). Written while the map pane is shown, when either changed.
+    MapCursor {
+        /// The cursor's column (0 is the left).
+        column: usize,
+        /// Its row (0 is the bottom).
+        row: usize,
+        /// Whether the map had the arrows.
+        focused: bool,
+    },
     /// The weak-* pane's averaging window was changed (`<`, `>`; format 7).
     Window {
         /// The window in simulated seconds, as shown.

@@ -528,6 +528,17 @@ pub const MAP_FOOTER: &[Hint] = &[
     ("q", "quit", 0),
 ];
 
+/// The footer while the map has the arrows, for a chart with (`sources`: the rattleback's limit
+/// or full model, switched by `f`) or without a choice of source.
+#[must_use]
+pub fn map_footer(sources: bool) -> Vec<Hint> {
+    MAP_FOOTER
+        .iter()
+        .copied()
+        .filter(|(key, _, _)| sources || *key != "f")
+        .collect()
+}
+
 /// A keymap as a Markdown table (docs/guide.md's key tables are this, checked by a test).
 #[must_use]
 pub fn markdown<A>(map: &[Binding<A>]) -> String {

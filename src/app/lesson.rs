@@ -192,6 +192,12 @@ impl App {
         {
             effects.extend(self.update(action));
         }
+        // A step about the map gives it the arrows, as opening it does (it may be open already).
+        if step.pane.as_deref().and_then(super::panes::Pane::named) == Some(super::panes::Pane::Map)
+            && self.view.panes.shows(super::panes::Pane::Map)
+        {
+            self.mode = Mode::Map;
+        }
         let hint = if step.question.is_some() {
             "answer first, then space plays"
         } else {

@@ -143,6 +143,12 @@ impl App {
         // The lecture's ceiling goes: the display is the user's own from here (issue 55: `.`
         // and space did nothing until a restart).
         self.run.set_ceiling(None);
+        // The lecturer's map had the arrows (its title said so): the user's map takes them.
+        if std::mem::take(&mut self.computed.map.replayed_focus)
+            && self.view.panes.shows(panes::Pane::Map)
+        {
+            self.mode = Mode::Map;
+        }
         self.status = Message::info(format!(
             "forked at t {:.2}: exploring on your own (the lecturer's file is not touched)",
             self.run.shown
@@ -215,8 +221,28 @@ impl App {
     /// Handles a key: the open mode first, else the keymap.
     pub fn on_key(&mut self, key: Key) -> Vec<Effect> {
         let effects = self.key(key);
+        self.journal_map_cursor();
         self.remember();
         effects
+    }
+
+    /// While recording with the map shown: its cursor and whether it has the arrows, when
+    /// either changed since last journaled (a key moved it, a step or a load placed it).
+    fn journal_map_cursor(&mut self) {
+        if self.journal.state != RecState::On || !self.view.panes.shows(panes::Pane::Map) {
+            return;
+        }
+        let now = (self.computed.map.cursor, self.mode == Mode::Map);
+        if self.journal.map_cursor == Some(now) {
+            return;
+        }
+        self.journal.map_cursor = Some(now);
+        let ((column, row), focused) = now;
+        self.log(Event::MapCursor {
+            column,
+            row,
+            focused,
+        });
     }
 
     fn key(&mut self, key: Key) -> Vec<Effect> {
@@ -482,6 +508,7 @@ impl App {
 
     /// Advances the displayed clock by `wall_seconds × speed` while playing.
     pub fn tick(&mut self, wall_seconds: f64) -> Vec<Effect> {
+        self.journal_map_cursor();
         let effects = self.advance(wall_seconds);
         self.remember();
         effects

@@ -120,6 +120,8 @@ pub struct Prompt {
     pub text: String,
     /// What Enter must confirm first.
     pub confirm: Confirm,
+    /// Opened while the map had the arrows: it gets them back when the prompt closes.
+    pub from_map: bool,
 }
 
 impl Prompt {
@@ -130,6 +132,7 @@ impl Prompt {
             purpose,
             text: String::new(),
             confirm: Confirm::No,
+            from_map: false,
         }
     }
 }

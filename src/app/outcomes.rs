@@ -34,6 +34,7 @@ impl App {
         match outcome {
             Outcome::Recording(Ok(path)) => {
                 self.journal.state = RecState::On;
+                self.journal.map_cursor = None;
                 self.status = Message::info(format!("recording to {path}"));
                 // The plans of the run in progress belong in the file too (every segment
                 // verified so far).

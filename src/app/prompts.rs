@@ -38,13 +38,27 @@ impl App {
             }
             Key::Esc => {
                 self.status = Message::info("cancelled");
+                self.back_to_map(prompt.from_map);
                 return Vec::new();
             }
-            Key::Enter => return self.submit(prompt),
+            Key::Enter => {
+                let from_map = prompt.from_map;
+                let effects = self.submit(prompt);
+                self.back_to_map(from_map);
+                return effects;
+            }
             _ => {}
         }
         self.mode = Mode::Prompt(prompt);
         Vec::new()
+    }
+
+    /// A prompt opened from the map closed: the map (still shown) takes the arrows back, unless
+    /// what the prompt did opened a mode of its own.
+    fn back_to_map(&mut self, from_map: bool) {
+        if from_map && self.mode == Mode::Normal && self.view.panes.shows(super::panes::Pane::Map) {
+            self.mode = Mode::Map;
+        }
     }
 
     /// Enter in a prompt.

@@ -85,8 +85,8 @@ impl App {
                 }
             }
             Event::ClearTrail => self.carry_out(Action::ClearTrail),
-            Event::Window { value } => {
-                self.computed.weak.set_window(*value);
+            Event::MapCursor { .. } | Event::Window { .. } => {
+                self.apply_pane_state(event);
                 Vec::new()
             }
             Event::Preset { toml } => match Preset::parse(toml, "recorded preset", "recorded", &[])
@@ -117,6 +117,19 @@ impl App {
             | Event::End { .. }
             | Event::Clock
             | Event::Screen(_) => Vec::new(),
+        }
+    }
+
+    /// A pane's own state as recorded: the weak-* window, the map's cursor and focus.
+    fn apply_pane_state(&mut self, event: &Event) {
+        match event {
+            Event::Window { value } => self.computed.weak.set_window(*value),
+            Event::MapCursor {
+                column,
+                row,
+                focused,
+            } => self.computed.map.replay_cursor((*column, *row), *focused),
+            _ => {}
         }
     }
 

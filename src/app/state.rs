@@ -176,6 +176,8 @@ pub struct Journal {
     /// Wall seconds since the last clock line, and the displayed time it stamped.
     pub(super) since_clock: f64,
     pub(super) clock_t: f64,
+    /// The map's cursor and focus as last journaled (`None`: not yet in this recording).
+    pub(super) map_cursor: Option<((usize, usize), bool)>,
 }
 
 /// A file-name-safe form of `name`: lower-case letters, digits and single dashes.

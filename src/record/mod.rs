@@ -44,7 +44,7 @@ pub const FORMAT: &str = "rattleback-session";
 /// segment's horizon), so a file of 8 or older replays its runs in one piece, as shown.
 /// 10: the lesson in the header, `given` and `lesson_done` lines, the last frame. 11: a `plan`
 /// line names its key's model (`docs/session-format.md`), so no model's key reads as another's.
-pub const VERSION: u32 = 11;
+pub const VERSION: u32 = 12;
 
 /// First line of a session file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]

@@ -183,6 +183,7 @@ fn newer_than(version: u32, line: &super::Line) -> Option<&'static str> {
             Some("a plan line naming its model (format 11)")
         }
         Event::Window { .. } if version < 7 => Some("a window line (format 7)"),
+        Event::MapCursor { .. } if version < 12 => Some("a map cursor line (format 12)"),
         Event::Given { .. } | Event::LessonDone if version < 10 => {
             Some("a given or lesson-done line (format 10)")
         }

@@ -58,6 +58,11 @@ pub const SHIPPED_LESSONS: &[(&str, &str)] = &[
         include_str!("../../lessons/kapitza-ripple.toml"),
     ),
     ("two-ways", include_str!("../../lessons/two-ways.toml")),
+    (
+        "kapitza-chart",
+        include_str!("../../lessons/kapitza-chart.toml"),
+    ),
+    ("celt-chart", include_str!("../../lessons/celt-chart.toml")),
 ];
 
 /// A lesson as a recording carries it in its header (format 10 on), so a replay, a follower and

@@ -1,6 +1,27 @@
 //! Round tick marks for a horizontal axis: a step of 1, 2 or 5 times a power of ten, labels
 //! centred on their columns, never cut at an edge and never touching each other. The time
-//! series, the comparison and the portrait share it, so every axis reads the same way.
+//! series, the comparison and the portrait share it, so every axis reads the same way. The
+//! drawings' exaggerations are round factors too ([`round_gain`]).
+
+/// Seconds of the recent past a drawing of the body traces (the body's ring, the bob's arc).
+pub const TRACE_SECONDS: f64 = 6.0;
+
+/// The exaggeration that draws `biggest` as about `drawn`: 1, 2 or 5 times a power of ten,
+/// never below 1 (1 for nothing to draw, or something not a number).
+#[must_use]
+pub fn round_gain(biggest: f64, drawn: f64) -> f64 {
+    if biggest.is_nan() || biggest <= 0.0 || biggest >= drawn {
+        return 1.0;
+    }
+    let want = drawn / biggest;
+    let decade = 10f64.powf(want.log10().floor());
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * decade)
+        .find(|&g| g <= want)
+        .unwrap_or(1.0)
+        .max(1.0)
+}
 
 /// Round tick values inside `[lo, hi]`: the finest step of 1, 2 or 5 × 10ⁿ that gives at most
 /// `most` ticks, and that step.

@@ -79,8 +79,8 @@ pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
     s
 }
 
-/// Seconds of trace drawn around the body.
-pub const TRACE_SECONDS: f64 = 6.0;
+/// Seconds of trace drawn around the body (the pendulum's pane draws as many).
+pub const TRACE_SECONDS: f64 = super::axis::TRACE_SECONDS;
 /// Samples the rocking envelope is taken over.
 pub const ENVELOPE_SAMPLES: usize = 96;
 
@@ -325,24 +325,7 @@ pub fn exaggeration(run: &RunState) -> f64 {
         .filter_map(|p| p.lean)
         .map(|[x, y]| x.abs().max(y.abs()))
         .fold(0.0, f64::max);
-    round_gain(biggest, 0.3)
-}
-
-/// The exaggeration that draws `biggest` as about `drawn`: 1, 2 or 5 times a power of ten,
-/// never below 1 (1 for nothing to draw, or something not a number).
-#[must_use]
-pub fn round_gain(biggest: f64, drawn: f64) -> f64 {
-    if biggest.is_nan() || biggest <= 0.0 || biggest >= drawn {
-        return 1.0;
-    }
-    let want = drawn / biggest;
-    let decade = 10f64.powf(want.log10().floor());
-    [5.0, 2.0, 1.0]
-        .into_iter()
-        .map(|m| m * decade)
-        .find(|&g| g <= want)
-        .unwrap_or(1.0)
-        .max(1.0)
+    super::axis::round_gain(biggest, 0.3)
 }
 
 /// One profile of the body on the ground, seen from the side (`long`, pitch) or from an end
@@ -486,7 +469,7 @@ mod tests {
 
     #[test]
     fn the_exaggeration_is_a_round_factor_that_never_shrinks() {
-        let gain = |x| round_gain(x, 0.3);
+        let gain = |x| super::super::axis::round_gain(x, 0.3);
         assert!((gain(0.005) - 50.0).abs() < 1e-9);
         assert!((gain(0.02) - 10.0).abs() < 1e-9);
         assert!((gain(0.1) - 2.0).abs() < 1e-9);

@@ -336,7 +336,7 @@ fn draw_pane(
         Pane::Map => frame.render_widget(
             map::MapPane {
                 map: &app.computed.map,
-                focused: app.mode == Mode::Map,
+                focused: app.mode == Mode::Map || app.computed.map.replayed_focus,
                 look,
             },
             area,
@@ -744,7 +744,8 @@ fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mu
     let hints = if app.replay.is_some() {
         owned(keys::footer(REPLAY_KEYMAP))
     } else if app.mode == Mode::Map {
-        owned(keys::MAP_FOOTER.to_vec())
+        let kind = app.scenario.settings.model.kind();
+        owned(keys::map_footer(crate::study::chart::words(kind).sources))
     } else {
         // The user's keys where an action lost its defaults.
         app.options.keys.footer(&KEYMAP)

@@ -40,7 +40,7 @@ const SHRINKING: char = '-';
 /// The pivot's travel as drawn, in rod lengths, when its true travel is smaller.
 pub const DRAWN_STROKE: f64 = 0.15;
 /// Seconds of the bob's trace.
-const TRACE_SECONDS: f64 = super::body::TRACE_SECONDS;
+use super::axis::TRACE_SECONDS;
 /// Dots along the averaged rod.
 const AVERAGED_DOTS: u32 = 7;
 
@@ -90,7 +90,7 @@ pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
 /// power of ten) that draws a travel of `stroke` as about [`DRAWN_STROKE`], never below 1.
 #[must_use]
 pub fn exaggeration(stroke: f64) -> f64 {
-    super::body::round_gain(stroke, DRAWN_STROKE)
+    super::axis::round_gain(stroke, DRAWN_STROKE)
 }
 
 /// The pendulum's pane: what it shows, borrowed.

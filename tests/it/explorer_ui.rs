@@ -572,6 +572,8 @@ fn a_lesson_steps_pane_gets_room_at_80x24() {
                 "series" => "(t): full",
                 "sweep" => "-sweep:",
                 "compare" => "compare: spin(t)",
+                "map" => " cells │",
+                "body" => "(B)",
                 other => panic!("a shipped step asks for {other}: add its title here"),
             };
             assert!(
@@ -899,8 +901,15 @@ fn every_lesson_step_reads_whole_at_80x24() {
             check(&h, "answered");
             if let Some(p) = &step.until.parameter {
                 let label = p.key.rsplit('.').next().unwrap();
+                // The step's map has the arrows: Esc gives them back, as its text says.
+                if h.app.mode == rattleback::app::Mode::Map {
+                    h.key(Key::Esc);
+                }
+                let mut presses = 0;
                 while h.app.field().label() != label {
                     h.key(Key::Down);
+                    presses += 1;
+                    assert!(presses < 100, "{what}: no field {label} under the arrows");
                 }
                 h.key(Key::Enter);
                 for c in format!("{}", p.at_least.or(p.at_most).unwrap()).chars() {

@@ -912,6 +912,22 @@ fn lesson_lecture(name: &str, speed: f64, wrong: bool) -> Lecture {
             None => {}
         }
         l.tick();
+        // The chart read as the step asks (its map has the arrows): the cursor moved up two
+        // cells, a format-12 line each, which the replay, the follower and the cast draw.
+        if step.pane.as_deref() == Some("map") {
+            assert_eq!(
+                l.h.app.mode,
+                rattleback::app::Mode::Map,
+                "{name} step {}",
+                i + 1
+            );
+            let before = l.h.app.computed.map.cursor;
+            l.key(Key::Up);
+            l.tick();
+            l.key(Key::Up);
+            l.tick();
+            assert_eq!(l.h.app.computed.map.cursor.1, before.1 + 2, "{name}");
+        }
         // A pane toggled and back (layout lines).
         l.key(Key::Char('t'));
         l.tick();
@@ -920,8 +936,15 @@ fn lesson_lecture(name: &str, speed: f64, wrong: bool) -> Lecture {
         // A value typed where the step asks for one.
         if let Some(p) = &step.until.parameter {
             let label = p.key.rsplit('.').next().unwrap();
+            // The step's map has the arrows: Esc gives them back, as its text says.
+            if l.h.app.mode == rattleback::app::Mode::Map {
+                l.key(Key::Esc);
+            }
+            let mut presses = 0;
             while l.h.app.field().label() != label {
                 l.key(Key::Down);
+                presses += 1;
+                assert!(presses < 100, "{name}: no field {label} under the arrows");
             }
             let value = p.at_least.or(p.at_most).unwrap();
             l.key(Key::Enter);
@@ -963,6 +986,21 @@ fn lesson_lecture(name: &str, speed: f64, wrong: bool) -> Lecture {
     }
 }
 
+/// A lesson whose steps read the map records its cursor (format 12); one without, none.
+fn map_cursor_lines_are_there(name: &str, lecture: &Lecture) {
+    let maps = lecture
+        .lines
+        .iter()
+        .filter(|l| matches!(l.event, Event::MapCursor { .. }))
+        .count();
+    let asks_map = rattleback::scenario::lesson::resolve(name)
+        .unwrap()
+        .steps
+        .iter()
+        .any(|s| s.pane.as_deref() == Some("map"));
+    assert_eq!(asks_map, maps > 0, "{name}: {maps} map cursor lines");
+}
+
 #[test]
 fn every_shipped_lesson_records_replays_follows_and_verifies_frame_for_frame() {
     for (name, _) in rattleback::scenario::lesson::SHIPPED_LESSONS {
@@ -987,6 +1025,7 @@ fn every_shipped_lesson_records_replays_follows_and_verifies_frame_for_frame() {
                 lecture.lines.iter().any(|l| l.event == Event::LessonDone),
                 "{name}: the end of the lesson is recorded"
             );
+            map_cursor_lines_are_there(name, &lecture);
             assert_eq!(
                 replay_and_compare(name, &lecture, false),
                 screens,

@@ -140,8 +140,15 @@ fn every_shipped_lesson_can_be_walked_to_its_end() {
             if let Some(p) = &step.until.parameter {
                 let label = p.key.rsplit('.').next().unwrap();
                 let value = p.at_least.or(p.at_most).unwrap();
+                // The step's map has the arrows: Esc gives them back, as its text says.
+                if h.app.mode == rattleback::app::Mode::Map {
+                    h.key(Key::Esc);
+                }
+                let mut presses = 0;
                 while h.app.field().label() != label {
                     h.key(Key::Down);
+                    presses += 1;
+                    assert!(presses < 100, "{name}: no field {label} under the arrows");
                 }
                 h.key(Key::Enter);
                 for c in format!("{value:e}").chars() {
@@ -360,4 +367,70 @@ fn step_changes_are_applied_and_the_keys_still_work() {
     let zoom = h.app.view.view.zoom;
     h.key(Key::Char('z'));
     assert!(h.app.view.view.zoom > zoom);
+}
+
+/// Issue 59, item 5: the chart lessons. A step that opens the map gives the map the arrows, and
+/// the lesson still has its keys there: play waits for the answer, `1` answers, `n` waits for
+/// the condition. Each chart is read at 80×24 beside the lesson: its cells all computed, its
+/// legend's heading, the cursor on the step's own problem, the step's text and question whole
+/// (not cut).
+#[test]
+fn the_chart_lessons_answer_and_read_at_80x24_with_the_map_open() {
+    use rattleback::app::Mode;
+    for (name, heading, cursor) in [
+        (
+            "kapitza-chart",
+            "stability (eps 0.001)",
+            "a 1.021 b 2.008: stable",
+        ),
+        ("celt-chart", "reversals (T 10)", "rev"),
+    ] {
+        let mut h = lesson_app(name);
+        assert_eq!(
+            h.app.mode,
+            Mode::Map,
+            "{name}: the step's map has the arrows"
+        );
+        h.key(Key::Char(' '));
+        assert!(!h.app.run.playing, "{name}: played before the answer");
+        let status = h.app.status.as_ref().expect("a message").text.clone();
+        assert!(status.contains("answer first"), "{name}: {status}");
+        h.key(Key::Char('n'));
+        assert_eq!(h.app.lesson.as_ref().unwrap().step, 0, "{name}");
+        h.key(Key::Char('1'));
+        assert!(
+            h.app.lesson.as_ref().unwrap().given.is_some(),
+            "{name}: the answer key reached the lesson"
+        );
+        assert_eq!(h.app.mode, Mode::Map, "{name}: the map keeps the arrows");
+        h.key(Key::Up);
+        h.key(Key::Down);
+        let screen = crate::explorer_ui::screen_text(&h.app, 80, 24);
+        let step = h.app.lesson.as_ref().unwrap().current().clone();
+        assert!(screen.contains(heading), "{name}: {heading}\n{screen}");
+        assert!(screen.contains(cursor), "{name}: {cursor}\n{screen}");
+        // The step's text whole: its last word is on screen, and no line of the lesson's
+        // pane but its title ends cut.
+        let last = step.text.split_whitespace().last().unwrap();
+        assert!(
+            screen.contains(last),
+            "{name}: the step's text is cut\n{screen}"
+        );
+        assert!(
+            screen.lines().skip(1).take(9).all(|l| !l.contains("…")),
+            "{name}: a line of the lesson is cut\n{screen}"
+        );
+        let map = &h.app.computed.map;
+        let spec = map.spec.as_ref().expect("the chart");
+        assert_eq!(
+            spec.chart.model(),
+            h.app.scenario.settings.model.kind(),
+            "{name}"
+        );
+        assert!(
+            map.done && map.cells.iter().all(Option::is_some),
+            "{name}: every cell computed"
+        );
+        insta::assert_snapshot!(format!("lesson_{name}_80x24"), screen);
+    }
 }

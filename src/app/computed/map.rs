@@ -53,6 +53,9 @@ pub struct MapState {
     pub anchor: Option<((f64, f64), (f64, f64))>,
     /// Why the computation stopped short.
     pub failed: Option<String>,
+    /// In a replay: whether the lecturer's map had the arrows (a replay's keys are its own, so
+    /// its map never takes them; its title shows the lecturer's keys from this).
+    pub replayed_focus: bool,
 }
 
 impl MapState {
@@ -82,16 +85,20 @@ impl MapState {
             let (x, y) = chart.axes();
             self.cells = vec![None; chart.len()];
             self.curve = chart.curve();
-            let same_scene = self
-                .spec
-                .is_some_and(|old| old.chart.model() == chart.model());
-            self.cursor = if same_scene {
+            // The rattleback's map keeps its cell when `k` or the start changes (its axes are
+            // the plane of starts and bodies); the pendulum's and the celt's charts are drawn
+            // around the problem, so their cursor goes to its cell: the cell of the problem on
+            // screen (a lesson's next step, a typed value, a loaded cell).
+            let keep = chart.words().sources
+                && self
+                    .spec
+                    .is_some_and(|old| old.chart.model() == chart.model());
+            self.cursor = if keep {
                 (
                     self.cursor.0.min(x.cells - 1),
                     self.cursor.1.min(y.cells - 1),
                 )
             } else {
-                // A first map of this scene: the cursor on the current settings.
                 nearest(&chart, chart.preset_point())
             };
         }
@@ -187,6 +194,18 @@ impl MapState {
             clamp(self.cursor.0, di, x.cells),
             clamp(self.cursor.1, dj, y.cells),
         );
+    }
+
+    /// A recorded cursor and focus (a replay's): the cursor kept inside the chart.
+    pub fn replay_cursor(&mut self, (column, row): (usize, usize), focused: bool) {
+        self.replayed_focus = focused;
+        self.cursor = match self.spec {
+            Some(spec) => {
+                let (x, y) = spec.chart.axes();
+                (column.min(x.cells - 1), row.min(y.cells - 1))
+            }
+            None => (column, row),
+        };
     }
 
     /// The axes' values at the cursor (the rattleback's `(ratio, iy/ix)`, the pendulum's

@@ -171,7 +171,8 @@ impl App {
     }
 
     /// A key while the map has the arrows: they move the cursor, Enter loads the cell, `f`
-    /// changes the source, Esc gives the arrows back; other keys go to the keymap.
+    /// changes the source, Esc gives the arrows back; other keys go to an open lesson, then
+    /// to the keymap.
     pub(in crate::app) fn on_map_key(&mut self, key: Key) -> Vec<Effect> {
         self.mode = Mode::Map;
         let step = |k| match k {
@@ -231,16 +232,30 @@ impl App {
                 .into_iter()
                 .collect(),
             key => {
+                // A lesson's keys first, as in the normal mode: its answers, `n`, and the guard
+                // on play (a step that opens the map gives the map the arrows, not the lesson).
+                if let Some(effects) = self.on_lesson_key(key) {
+                    self.prompt_from_map();
+                    return effects;
+                }
                 let Some(action) = self.options.action_for(key) else {
                     return Vec::new();
                 };
                 let effects = self.update(action);
+                self.prompt_from_map();
                 // `M` hid the map; an action that opened its own mode (help, picker…) keeps it.
                 if action == Action::Toggle(Pane::Map) && self.mode == Mode::Map {
                     self.mode = Mode::Normal;
                 }
                 effects
             }
+        }
+    }
+
+    /// A prompt a key opened from the map (an answer, a note) gives the map its arrows back.
+    fn prompt_from_map(&mut self) {
+        if let Mode::Prompt(p) = &mut self.mode {
+            p.from_map = true;
         }
     }
 
