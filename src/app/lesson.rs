@@ -192,11 +192,15 @@ impl App {
         {
             effects.extend(self.update(action));
         }
-        // A step about the map gives it the arrows, as opening it does (it may be open already).
-        if step.pane.as_deref().and_then(super::panes::Pane::named) == Some(super::panes::Pane::Map)
-            && self.view.panes.shows(super::panes::Pane::Map)
-        {
-            self.mode = Mode::Map;
+        // A step about the map gives it the arrows, as opening it does (it may be open
+        // already); a step about another pane gives them back to the panel (the map, still
+        // open, may have no room left to be drawn).
+        match step.pane.as_deref().and_then(super::panes::Pane::named) {
+            Some(super::panes::Pane::Map) if self.view.panes.shows(super::panes::Pane::Map) => {
+                self.mode = Mode::Map;
+            }
+            Some(_) if self.mode == Mode::Map => self.mode = Mode::Normal,
+            _ => {}
         }
         let hint = if step.question.is_some() {
             "answer first, then space plays"

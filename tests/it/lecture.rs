@@ -912,6 +912,15 @@ fn lesson_lecture(name: &str, speed: f64, wrong: bool) -> Lecture {
             None => {}
         }
         l.tick();
+        // A step about another pane leaves the arrows to the panel, not to a map it may hide.
+        if step.pane.as_deref().is_some_and(|p| p != "map") {
+            assert_ne!(
+                l.h.app.mode,
+                rattleback::app::Mode::Map,
+                "{name} step {}",
+                i + 1
+            );
+        }
         // The chart read as the step asks (its map has the arrows): the cursor moved up two
         // cells, a format-12 line each, which the replay, the follower and the cast draw.
         if step.pane.as_deref() == Some("map") {
