@@ -1,6 +1,6 @@
 //! Issue 11 in the explorer: Kapitza's pendulum through the worker's interpreter and the
-//! `TestBackend`, on every shipped pendulum preset, at ×1 and at top speed; the rattleback's
-//! own panes refused; a recorded session replayed and verified.
+//! `TestBackend`, on every shipped pendulum preset, at ×1 and at top speed; the pendulum drawn
+//! on its shaken pivot (issue 59); a recorded session replayed and verified.
 
 use crate::common;
 
