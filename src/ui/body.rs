@@ -248,7 +248,7 @@ impl BodyPane<'_> {
                     color: theme.current,
                 });
                 ctx.layer();
-                print_trace(ctx, &trace, theme);
+                super::marks::print_signed(ctx, &trace, (COUNTER, CLOCKWISE), theme);
                 // The tip of the long axis, bold, where the trace starts.
                 ctx.print(
                     x1,
@@ -262,26 +262,6 @@ impl BodyPane<'_> {
                 );
             })
             .render(inner, buf);
-    }
-}
-
-/// The tip's trace: `+` while the spin is counter-clockwise, `-` while clockwise.
-fn print_trace(
-    ctx: &mut ratatui::widgets::canvas::Context<'_>,
-    trace: &[(f64, f64, bool)],
-    theme: &super::Theme,
-) {
-    for &(x, y, ccw) in trace {
-        let (glyph, colour) = if ccw {
-            (COUNTER, theme.trail)
-        } else {
-            (CLOCKWISE, theme.reversal)
-        };
-        ctx.print(
-            x,
-            y,
-            TextLine::styled(glyph.to_string(), Style::default().fg(colour)),
-        );
     }
 }
 

@@ -95,3 +95,28 @@ pub fn curve(look: &Look<'_>, cell: char, braille: &str, halfblock: &str) -> Str
 pub fn printed(look: &Look<'_>, c: char) -> String {
     look.charset.mark(c).to_string()
 }
+
+/// A trace of signed points printed on a canvas: `glyphs.0` where the sign is positive (the
+/// trail's colour), `glyphs.1` where it is not (the reversal's), so a change of sign reads as a
+/// change of mark (the body's ring, the pendulum's bob).
+pub fn print_signed(
+    ctx: &mut ratatui::widgets::canvas::Context<'_>,
+    trace: &[(f64, f64, bool)],
+    glyphs: (char, char),
+    theme: &super::Theme,
+) {
+    use ratatui::style::Style;
+    use ratatui::text::Line;
+    for &(x, y, positive) in trace {
+        let (glyph, colour) = if positive {
+            (glyphs.0, theme.trail)
+        } else {
+            (glyphs.1, theme.reversal)
+        };
+        ctx.print(
+            x,
+            y,
+            Line::styled(glyph.to_string(), Style::default().fg(colour)),
+        );
+    }
+}

@@ -226,7 +226,7 @@ impl Widget for PendulumPane<'_> {
                     ctx.draw(&Line::new(0.0, at.pivot, x1, y1, theme.trail));
                 }
                 ctx.layer();
-                print_trace(ctx, &trace, theme);
+                super::marks::print_signed(ctx, &trace, (GROWING, SHRINKING), theme);
                 if let Some(at) = at {
                     let (xa, ya) = tip(at.averaged, 0.0);
                     ctx.print(xa, ya, styled(AVERAGED_BOB, theme.effective, false));
@@ -254,21 +254,6 @@ fn styled(c: char, colour: ratatui::style::Color, bold: bool) -> TextLine<'stati
             style
         },
     )
-}
-
-fn print_trace(ctx: &mut Context<'_>, trace: &[(f64, f64, bool)], theme: &super::Theme) {
-    for &(x, y, growing) in trace {
-        let (glyph, colour) = if growing {
-            (GROWING, theme.trail)
-        } else {
-            (SHRINKING, theme.reversal)
-        };
-        ctx.print(
-            x,
-            y,
-            TextLine::styled(glyph.to_string(), Style::default().fg(colour)),
-        );
-    }
 }
 
 #[cfg(test)]
