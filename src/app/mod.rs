@@ -37,7 +37,6 @@ pub use state::{
 
 use crate::scenario::Preset;
 use crate::scenario::text::clean;
-use crate::sim::SimEvent;
 use fields::Field;
 use journal::Event;
 use mode::{Help, HelpPage, PromptFor};
@@ -229,20 +228,11 @@ impl App {
     /// While recording with the map shown: its cursor and whether it has the arrows, when
     /// either changed since last journaled (a key moved it, a step or a load placed it).
     fn journal_map_cursor(&mut self) {
-        if self.journal.state != RecState::On || !self.view.panes.shows(panes::Pane::Map) {
-            return;
-        }
+        let shown = self.view.panes.shows(panes::Pane::Map);
         let now = (self.computed.map.cursor, self.mode == Mode::Map);
-        if self.journal.map_cursor == Some(now) {
-            return;
+        if let Some(event) = self.journal.map_cursor_changed(shown, now) {
+            self.log(event);
         }
-        self.journal.map_cursor = Some(now);
-        let ((column, row), focused) = now;
-        self.log(Event::MapCursor {
-            column,
-            row,
-            focused,
-        });
     }
 
     fn key(&mut self, key: Key) -> Vec<Effect> {
@@ -277,27 +267,8 @@ impl App {
     }
 
     fn log(&mut self, event: Event) {
-        // A recording closing after its last frame takes its checkpoint only: what comes after
-        // the last frame (a later segment verified meanwhile) is not part of the lecture, and
-        // would make the frame not the last (a lecture verified in segments failed `--verify`
-        // now and then, issue 55).
-        if self.journal.state == RecState::Stopping && !matches!(event, Event::Checkpoint { .. }) {
-            return;
-        }
-        if self.journal.state != RecState::Off {
-            self.journal.screen_due |= matches!(
-                event,
-                Event::Pause
-                    | Event::Step
-                    | Event::Chapter { .. }
-                    | Event::Note { .. }
-                    | Event::LessonStep { .. }
-                    | Event::Answer { .. }
-            );
-            self.journal
-                .entries
-                .push((self.run.shown, self.run.generation, event));
-        }
+        self.journal
+            .push(self.run.shown, self.run.generation, event);
     }
 
     /// Takes the journaled events not yet written.
@@ -524,75 +495,6 @@ impl App {
         self.check_lesson();
         effects.extend(self.journal_tick(wall_seconds));
         effects
-    }
-
-    /// Takes an event from the worker (stale runs are ignored); whether anything visible
-    /// changed.
-    pub fn on_sim(&mut self, event: SimEvent) -> bool {
-        let changed = self.sim(event);
-        self.remember();
-        changed
-    }
-
-    fn sim(&mut self, event: SimEvent) -> bool {
-        match event {
-            SimEvent::Checkpoint {
-                generation,
-                t,
-                state,
-                reversals,
-            } if generation == self.run.generation => {
-                if self.journal.state != RecState::Off {
-                    let hash = journal::state_hash(t, &state, reversals);
-                    self.journal.entries.push((
-                        t,
-                        generation,
-                        Event::Checkpoint {
-                            state,
-                            reversals,
-                            hash,
-                        },
-                    ));
-                }
-                false
-            }
-            // A plan the run integrates, the first or a later segment's: in the file too.
-            SimEvent::Started {
-                generation,
-                plan,
-                error_estimate,
-                until,
-            }
-            | SimEvent::Verified {
-                generation,
-                until,
-                plan,
-                error_estimate,
-                ..
-            } if generation == self.run.generation => {
-                self.log_plan(until, plan, error_estimate);
-                self.run.on_sim(event, self.view.overlay)
-            }
-            SimEvent::Failed {
-                generation,
-                ref message,
-            } if generation == self.run.generation => {
-                // Says what failed: an integration, or a run refused before it started.
-                self.status = Message::error(message.clone());
-                self.run.on_sim(event, self.view.overlay)
-            }
-            SimEvent::Stops {
-                generation,
-                ref message,
-                ..
-            } if generation == self.run.generation => {
-                // Said at once; the verified part still plays.
-                self.status = Message::info(format!("the run stops {message}"));
-                self.run.on_sim(event, self.view.overlay)
-            }
-            SimEvent::Job { stamp, data } => self.on_job(stamp, data),
-            other => self.run.on_sim(other, self.view.overlay),
-        }
     }
 
     /// The portrait's bounds now.

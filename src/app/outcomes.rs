@@ -1,9 +1,11 @@
-//! Recording on and off, and what the loop reports back after executing an effect.
+//! Recording on and off, what the loop reports back after executing an effect, and what the
+//! worker sends.
 
 use super::mode::{Confirm, Picker, PickerRow};
 use super::{App, Effect, Message, Mode, Outcome, RecState};
 use crate::app::journal::Event;
 use crate::scenario::text::clean;
+use crate::sim::SimEvent;
 
 impl App {
     pub(super) fn toggle_recording(&mut self) -> Vec<Effect> {
@@ -144,5 +146,71 @@ impl App {
         let mut spec = self.scenario.spec(self.view.overlay);
         spec.t_end = until;
         self.log(Event::plan(crate::sim::PlanKey::of(&spec), plan, estimate));
+    }
+
+    /// Takes an event from the worker (stale runs are ignored); whether anything visible
+    /// changed.
+    pub fn on_sim(&mut self, event: SimEvent) -> bool {
+        let changed = self.sim(event);
+        self.remember();
+        changed
+    }
+
+    fn sim(&mut self, event: SimEvent) -> bool {
+        match event {
+            SimEvent::Checkpoint {
+                generation,
+                t,
+                state,
+                reversals,
+            } if generation == self.run.generation => {
+                if self.journal.state != RecState::Off {
+                    let hash = crate::app::journal::state_hash(t, &state, reversals);
+                    let checkpoint = Event::Checkpoint {
+                        state,
+                        reversals,
+                        hash,
+                    };
+                    self.journal.push(t, generation, checkpoint);
+                }
+                false
+            }
+            // A plan the run integrates, the first or a later segment's: in the file too.
+            SimEvent::Started {
+                generation,
+                plan,
+                error_estimate,
+                until,
+            }
+            | SimEvent::Verified {
+                generation,
+                until,
+                plan,
+                error_estimate,
+                ..
+            } if generation == self.run.generation => {
+                self.log_plan(until, plan, error_estimate);
+                self.run.on_sim(event, self.view.overlay)
+            }
+            SimEvent::Failed {
+                generation,
+                ref message,
+            } if generation == self.run.generation => {
+                // Says what failed: an integration, or a run refused before it started.
+                self.status = Message::error(message.clone());
+                self.run.on_sim(event, self.view.overlay)
+            }
+            SimEvent::Stops {
+                generation,
+                ref message,
+                ..
+            } if generation == self.run.generation => {
+                // Said at once; the verified part still plays.
+                self.status = Message::info(format!("the run stops {message}"));
+                self.run.on_sim(event, self.view.overlay)
+            }
+            SimEvent::Job { stamp, data } => self.on_job(stamp, data),
+            other => self.run.on_sim(other, self.view.overlay),
+        }
     }
 }

@@ -180,6 +180,50 @@ pub struct Journal {
     pub(super) map_cursor: Option<((usize, usize), bool)>,
 }
 
+impl Journal {
+    /// Journals `event` at displayed time `t` of run `generation`: nothing without a recording,
+    /// and only checkpoints once it is closing after its last frame (what comes after that
+    /// frame, a later segment verified meanwhile, is not part of the lecture and would make the
+    /// frame not the last: a lecture verified in segments failed `--verify` now and then, issue
+    /// 55). A pause, step, chapter, note, lesson step or answer makes a screen due.
+    pub(super) fn push(&mut self, t: f64, generation: u64, event: Event) {
+        if self.state == RecState::Off
+            || self.state == RecState::Stopping && !matches!(event, Event::Checkpoint { .. })
+        {
+            return;
+        }
+        self.screen_due |= matches!(
+            event,
+            Event::Pause
+                | Event::Step
+                | Event::Chapter { .. }
+                | Event::Note { .. }
+                | Event::LessonStep { .. }
+                | Event::Answer { .. }
+        );
+        self.entries.push((t, generation, event));
+    }
+
+    /// The map's line (format 12) when its cursor or focus `now` differs from the last one
+    /// journaled, while recording with the map `shown`.
+    pub(super) fn map_cursor_changed(
+        &mut self,
+        shown: bool,
+        now: ((usize, usize), bool),
+    ) -> Option<Event> {
+        if self.state != RecState::On || !shown || self.map_cursor == Some(now) {
+            return None;
+        }
+        self.map_cursor = Some(now);
+        let ((column, row), focused) = now;
+        Some(Event::MapCursor {
+            column,
+            row,
+            focused,
+        })
+    }
+}
+
 /// A file-name-safe form of `name`: lower-case letters, digits and single dashes.
 #[must_use]
 pub fn slug(name: &str) -> String {

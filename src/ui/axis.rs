@@ -23,6 +23,14 @@ pub fn round_gain(biggest: f64, drawn: f64) -> f64 {
         .max(1.0)
 }
 
+/// A canvas's half-extents `(x, y)` over `area` that keep circles round (a cell is about twice
+/// as tall as wide) and show at least `reach` on either side of the centre both ways.
+#[must_use]
+pub fn round_bounds(area: ratatui::layout::Rect, reach: f64) -> (f64, f64) {
+    let ratio = f64::from(area.width) / (2.0 * f64::from(area.height));
+    (reach * ratio.max(1.0), reach * (1.0 / ratio).max(1.0))
+}
+
 /// Round tick values inside `[lo, hi]`: the finest step of 1, 2 or 5 × 10ⁿ that gives at most
 /// `most` ticks, and that step.
 #[must_use]

@@ -192,8 +192,7 @@ impl BodyPane<'_> {
             sides(side, lean, exaggeration(run), look, below, buf);
         }
         // Cells are about twice as tall as wide: keep circles round.
-        let ratio = f64::from(inner.width) / (2.0 * f64::from(inner.height));
-        let (sx, sy) = (1.35 * ratio.max(1.0), 1.35 * (1.0 / ratio).max(1.0));
+        let (sx, sy) = super::axis::round_bounds(inner, 1.35);
         // The long axis is the body's x axis when ix > iy (the rattleback's keel).
         let (a, b) = if aspect <= 1.0 {
             (1.0, 0.42)

@@ -128,6 +128,20 @@ pub fn pose(pivot: &Pivot, gain: f64, p: &Point) -> Pose {
     }
 }
 
+impl Pose {
+    /// Where the true bob is drawn: the rod's end from the pivot where it is.
+    #[must_use]
+    pub fn bob(&self) -> (f64, f64) {
+        tip(self.drawn, self.pivot)
+    }
+
+    /// Where the averaged bob is drawn: the rod's end from the pivot's mean position.
+    #[must_use]
+    pub fn averaged_bob(&self) -> (f64, f64) {
+        tip(self.averaged, 0.0)
+    }
+}
+
 /// The end of a rod of unit length at angle `theta` from the upright, hung at height `y0`.
 fn tip(theta: f64, y0: f64) -> (f64, f64) {
     (theta.sin(), y0 + theta.cos())
@@ -175,11 +189,9 @@ impl Widget for PendulumPane<'_> {
         }
         // Equal scales (a cell is about twice as tall as wide): the rod and the pivot's travel
         // fit whatever the angle.
-        let reach = 1.0 + gain * pivot.stroke + 0.12;
-        let ratio = f64::from(inner.width) / (2.0 * f64::from(inner.height));
-        let (sx, sy) = (reach * ratio.max(1.0), reach * (1.0 / ratio).max(1.0));
-        let theme = look.theme;
         let travel = gain * pivot.stroke;
+        let (sx, sy) = super::axis::round_bounds(inner, 1.0 + travel + 0.12);
+        let theme = look.theme;
         let label = if gain > 1.0 {
             format!("pivot ±{:.1e} drawn ×{gain}", pivot.stroke)
         } else {
@@ -207,11 +219,11 @@ impl Widget for PendulumPane<'_> {
                 ctx.layer();
                 if let Some(at) = at {
                     // The averaged rod: dots from the pivot's mean position.
+                    let (xa, ya) = at.averaged_bob();
                     let dots: Vec<(f64, f64)> = (1..=AVERAGED_DOTS)
                         .map(|i| {
                             let s = f64::from(i) / f64::from(AVERAGED_DOTS + 1);
-                            let (x, y) = tip(at.averaged, 0.0);
-                            (s * x, s * y)
+                            (s * xa, s * ya)
                         })
                         .collect();
                     part(ctx, DOT);
@@ -221,16 +233,16 @@ impl Widget for PendulumPane<'_> {
                     });
                     ctx.layer();
                     // The true rod, from the pivot where it is.
-                    let (x1, y1) = tip(at.drawn, at.pivot);
+                    let (x1, y1) = at.bob();
                     part(ctx, ROD);
                     ctx.draw(&Line::new(0.0, at.pivot, x1, y1, theme.trail));
                 }
                 ctx.layer();
                 super::marks::print_signed(ctx, &trace, (GROWING, SHRINKING), theme);
                 if let Some(at) = at {
-                    let (xa, ya) = tip(at.averaged, 0.0);
+                    let (xa, ya) = at.averaged_bob();
                     ctx.print(xa, ya, styled(AVERAGED_BOB, theme.effective, false));
-                    let (x1, y1) = tip(at.drawn, at.pivot);
+                    let (x1, y1) = at.bob();
                     ctx.print(x1, y1, styled(BOB, theme.current, true));
                     ctx.print(0.0, at.pivot, styled(PIVOT, theme.current, true));
                 }

@@ -383,7 +383,7 @@ fn the_chart_lessons_answer_and_read_at_80x24_with_the_map_open() {
             "stability (eps 0.001)",
             "a 1.021 b 2.008: stable",
         ),
-        ("celt-chart", "reversals (T 10)", "rev"),
+        ("celt-chart", "reversals (T 10)", "D -0.175: 1 rev"),
     ] {
         let mut h = lesson_app(name);
         assert_eq!(
