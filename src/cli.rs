@@ -406,6 +406,10 @@ pub struct MergeArgs {
     /// The part files `study map --shard I/N` wrote, in any order (`-` reads one from stdin).
     #[arg(required = true, value_name = "PART.json")]
     pub parts: Vec<std::path::PathBuf>,
+    /// Cells of each part recomputed, chosen at random, to catch a part whose values were
+    /// edited (0: none; every part's header and coordinates are checked regardless).
+    #[arg(long, value_name = "N", default_value_t = 3)]
+    pub check: usize,
     /// Output format on stdout.
     #[arg(long, value_enum, default_value_t = StudyFormat::Json)]
     pub format: StudyFormat,

@@ -835,19 +835,24 @@ fn study_map(args: &crate::cli::MapArgs) -> Outcome {
         None => "study map".to_owned(),
     };
     // Progress by cells done; Ctrl-C cancels the cells in flight.
+    let started = std::time::Instant::now();
     let mapped = counted(&label, indices.len(), "cells", &|done| {
         chart.cells(&indices, &|_| go_on(), done)
     });
     let verdicts = finished(mapped, "study map")?;
-    let out = chart.output(
+    let mut out = chart.output(
         crate::outputs::SCHEMA_VERSION,
         &crate::scenario::text::one_line(&preset.name),
         &indices,
         &verdicts,
         args.shard,
     );
+    out.wall_seconds = started.elapsed().as_secs_f64();
     if args.shard.is_some() {
-        return emit(&json_text(&out));
+        // A part proves where it came from (issue 66): the chart's whole description, then a
+        // digest over everything.
+        out.description = Some(crate::study::part::Description::new(preset.to_toml(), &ask));
+        return emit(&json_text(&crate::study::part::sealed(out)));
     }
     print_chart(
         &out,
@@ -878,32 +883,37 @@ fn print_chart(
     write_files(dir, force, &[("map.csv", csv), ("map.svg", svg)])
 }
 
-/// `rattleback study merge PART…`.
+/// `rattleback study merge PART…`: each part read within its slice's size, the chart rebuilt
+/// from the parts' description, every header and cell compared with what that chart writes, a
+/// random sample of each part's cells recomputed (issue 66).
 fn study_merge(args: &crate::cli::MergeArgs) -> Outcome {
-    // A part of a 2000×2000 chart is about a gigabyte: the bound.
-    const MAX_PART_BYTES: u64 = 2 << 30;
+    use crate::study::part;
     let mut parts = Vec::new();
+    if args
+        .parts
+        .iter()
+        .filter(|p| crate::scenario::write::is_stdin(p))
+        .count()
+        > 1
+    {
+        return Err(Failure::input(
+            "`-` given twice: stdin holds one part".to_owned(),
+        ));
+    }
     for path in &args.parts {
-        let name = path.display().to_string();
-        let text = if name == "-" {
-            let mut s = String::new();
-            std::io::Read::read_to_string(
-                &mut std::io::Read::take(std::io::stdin(), MAX_PART_BYTES),
-                &mut s,
-            )
-            .map(|_| s)
-            .map_err(|e| Failure::input(format!("stdin: {e}")))?
+        let name = crate::scenario::text::one_line(&path.display().to_string());
+        let read = if crate::scenario::write::is_stdin(path) {
+            part::read(std::io::stdin().lock())
         } else {
-            crate::scenario::write::read_bounded(path, MAX_PART_BYTES)
-                .map_err(|e| Failure::input(format!("{name}: {e}")))?
+            match std::fs::metadata(path) {
+                Ok(m) if m.is_dir() => Err("a folder, not a part file".to_owned()),
+                Ok(_) => std::fs::File::open(path)
+                    .map_err(|e| e.to_string())
+                    .and_then(part::read),
+                Err(e) => Err(e.to_string()),
+            }
         };
-        let part: crate::study::chart::ChartOutput = serde_json::from_str(&text).map_err(|e| {
-            Failure::input(format!(
-                "{}: not a part file of `study map --shard` ({})",
-                crate::scenario::text::one_line(&name),
-                crate::scenario::text::one_line(&e.to_string())
-            ))
-        })?;
+        let part = read.map_err(|e| Failure::input(format!("{name}: {e}")))?;
         if part.schema_version != crate::outputs::SCHEMA_VERSION {
             return Err(Failure::input(format!(
                 "{name}: schema_version {} (this build writes and reads {})",
@@ -911,9 +921,65 @@ fn study_merge(args: &crate::cli::MergeArgs) -> Outcome {
                 crate::outputs::SCHEMA_VERSION
             )));
         }
-        parts.push((crate::scenario::text::one_line(&name), part));
+        parts.push((name, part));
     }
-    let merged = crate::study::chart::merge(&parts).map_err(Failure::input)?;
+    let (first_name, first) = &parts[0];
+    let Some(description) = &first.description else {
+        return Err(Failure::input(format!(
+            "{first_name}: not a part (no `description`)"
+        )));
+    };
+    // The chart rebuilt from the description alone, its preset read by the preset validator.
+    let rebuilt = || -> Result<crate::study::chart::Chart, String> {
+        let ask = description.ask(crate::scenario::preset::TOLERANCE_RANGE)?;
+        let preset = crate::scenario::Preset::parse(
+            &description.preset,
+            "the part's description",
+            "part",
+            &[],
+        )
+        .map_err(|e| e.to_string())?;
+        crate::study::chart::Chart::for_study(&preset.model, &ask)
+    };
+    let chart = rebuilt().map_err(|e| {
+        Failure::input(format!(
+            "{first_name}: its description is not a chart this program makes: {}",
+            crate::scenario::text::one_line(&e)
+        ))
+    })?;
+    let merged = part::merge(&chart, crate::outputs::SCHEMA_VERSION, &parts)
+        .map_err(|e| Failure::input(crate::scenario::text::one_line(&e)))?;
+    let mut random = || {
+        let mut b = [0u8; 8];
+        // Without the system's randomness, the clock: a forger still cannot pick the cells.
+        if getrandom::fill(&mut b).is_err() {
+            let nanos = std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map_or(0, |d| d.subsec_nanos());
+            b = (u64::from(nanos) ^ 0x9e37_79b9_7f4a_7c15).to_le_bytes();
+        }
+        u64::from_le_bytes(b)
+    };
+    let chosen = part::choose(&parts, args.check, &mut random);
+    let budget = if args.force {
+        f64::INFINITY
+    } else {
+        crate::physics::budget::BUDGET_SECONDS
+    };
+    if let Err(over) = crate::physics::budget::check(chart.predicted_seconds(chosen.len()), budget)
+    {
+        return Err(Failure::input(format!(
+            "recomputing {} cells to check the parts is {over}; give a smaller --check, or pass --force",
+            chosen.len()
+        )));
+    }
+    let checked = counted("study merge: checking", chosen.len(), "cells", &|_| {
+        part::sample(&chart, &parts, &chosen, &|_| go_on())
+    });
+    if let Some(failure) = interrupted() {
+        return Err(failure);
+    }
+    checked.map_err(|e| Failure::input(crate::scenario::text::one_line(&e)))?;
     if let Some(dir) = &args.out
         && let Err(e) = std::fs::create_dir_all(dir)
     {

@@ -257,7 +257,10 @@ impl App {
                     .action_for(key)
                     .map_or_else(Vec::new, |a| self.update(a)),
             },
-            Mode::Dialog(_) => Vec::new(),
+            // Esc and Enter close it; any other key closes it and does what it does (issue 66:
+            // the key after `R` that could not record was lost, so `q` did not quit).
+            Mode::Dialog(_) if matches!(key, Key::Esc | Key::Enter) => Vec::new(),
+            Mode::Dialog(_) => self.key(key),
             Mode::Help(help) => self.on_help_key(help, key),
             Mode::Editing(text) => self.on_edit_key(text, key),
             Mode::Prompt(prompt) => self.on_prompt_key(prompt, key),

@@ -75,6 +75,15 @@ pub enum Allowed {
     },
 }
 
+/// An angle: finite and of magnitude at most 1e6 rad. Beyond it a double resolves an angle to
+/// no better than 1e-10 rad and a start is a turn of the same body modulo 2π anyway; a start of
+/// 1e100 rad passed `check` and then failed its run at t = 0 (issue 66).
+pub const ANGLE: Allowed = Allowed::Between {
+    lo: -1e6,
+    hi: 1e6,
+    text: "an angle of magnitude at most 1e6 rad (a double resolves no finer beyond it; a start is the same modulo 2 pi)",
+};
+
 impl Allowed {
     /// How the range reads in messages.
     #[must_use]

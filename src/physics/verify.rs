@@ -158,6 +158,28 @@ pub trait AtTolerance: Clone + Send + 'static {
     fn floor(&self, fine: &Self::Result) -> f64;
     /// Predicted seconds of one run at `local`.
     fn run_cost(&self, local: f64) -> f64;
+    /// Rounding measured, not modelled (issue 66): where a method's steps may round more than
+    /// its [`AtTolerance::floor`] says, the same run again from a start one rounding away; the
+    /// two differ only by their rounding, so their difference (widened) samples what rounding
+    /// left in `fine`. `None` (the default): the floor alone. Called after the pair; its cost is
+    /// [`AtTolerance::rounding_cost`].
+    ///
+    /// # Errors
+    /// A failed or cancelled run.
+    fn rounding(
+        &self,
+        local: f64,
+        fine: &Self::Result,
+        go_on: GoOn<'_>,
+    ) -> Result<Option<f64>, StepError> {
+        let _ = (local, fine, go_on);
+        Ok(None)
+    }
+    /// Predicted seconds of [`AtTolerance::rounding`] at `local` (0 where it runs nothing).
+    fn rounding_cost(&self, local: f64) -> f64 {
+        let _ = local;
+        0.0
+    }
     /// As [`Candidate::estimate`].
     fn estimate(&self, measured: f64, local: f64, before: Option<&(f64, f64)>) -> f64 {
         let _ = (local, before);
@@ -177,7 +199,7 @@ impl<T: AtTolerance> Candidate for T {
             move |go_on| there.run(companion, go_on),
         );
         let (fine, coarse) = (fine?, coarse?);
-        let floor = self.floor(&fine);
+        let floor = self.floor(&fine) + self.rounding(local, &fine, go_on)?.unwrap_or(0.0);
         Ok(Outcome {
             run: (),
             measured: self.difference(&fine, &coarse) + floor,
@@ -188,7 +210,9 @@ impl<T: AtTolerance> Candidate for T {
         AtTolerance::estimate(self, measured, *local, before)
     }
     fn cost(&self, local: &f64) -> f64 {
-        self.run_cost(*local) + self.run_cost(self.policy().companion(*local))
+        self.run_cost(*local)
+            + self.run_cost(self.policy().companion(*local))
+            + self.rounding_cost(*local)
     }
     fn refine(&mut self, local: &f64, estimate: f64, tolerance: f64) -> Result<f64, Shortfall> {
         self.policy().tighten(*local, estimate, tolerance)

@@ -215,7 +215,7 @@ pub fn read(path: &Path) -> Result<Recording, RecordError> {
     }
     let header: Header =
         serde_json::from_value(probe).map_err(|e| corrupt(1, format!("bad header: {e}")))?;
-    super::check_header(&header).map_err(|e| corrupt(1, e))?;
+    let mut sense = super::Sense::of_header(&header).map_err(|e| corrupt(1, e))?;
     let mut lines = Vec::new();
     let mut raw = Vec::new();
     let mut warnings = Vec::new();
@@ -226,7 +226,7 @@ pub fn read(path: &Path) -> Result<Recording, RecordError> {
         }
         match serde_json::from_str::<Line>(row) {
             Ok(line) => {
-                if let Some(why) = super::impossible(&line) {
+                if let Some(why) = sense.line(&line) {
                     return Err(corrupt(number, why));
                 }
                 lines.push((number, line));

@@ -297,6 +297,101 @@ pub fn check_header(h: &Header) -> Result<(), String> {
     Ok(())
 }
 
+/// What a session file may say, read line by line in order: the one validator of replay,
+/// follow and `--verify` (issue 66). It knows the scene (the header's preset, then each preset
+/// line's), so it refuses what the program never writes: a header whose method is not one of
+/// its scene's or whose theme is an index in a file of format 3 or later, a `set` of a field the
+/// scene has not, a `map_cursor` outside every chart the scene's pane draws, and every line
+/// [`impossible`] refuses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sense {
+    scene: crate::physics::ModelKind,
+}
+
+impl Sense {
+    /// The header checked ([`check_header`], then its preset, method and theme).
+    ///
+    /// # Errors
+    /// What is wrong with it, in words.
+    pub fn of_header(h: &Header) -> Result<Self, String> {
+        check_header(h)?;
+        let scene = preset_scene(&h.preset).map_err(|e| format!("its preset: {e}"))?;
+        let shown =
+            |t: &str| crate::scenario::text::one_line(&t.chars().take(60).collect::<String>());
+        match crate::physics::Method::from_name(&h.method) {
+            Some(m) if scene.methods().contains(&m) => {}
+            _ => {
+                return Err(format!(
+                    "method \"{}\": not one of the {}'s ({})",
+                    shown(&h.method),
+                    scene.title(),
+                    scene.method_names()
+                ));
+            }
+        }
+        if h.version >= 3 && matches!(h.theme, ThemeRef::Index(_)) {
+            return Err(
+                "a theme given as an index: from format 3 on a header names its theme".to_owned(),
+            );
+        }
+        Ok(Self { scene })
+    }
+
+    /// The scene at this point of the file.
+    #[must_use]
+    pub fn scene(&self) -> crate::physics::ModelKind {
+        self.scene
+    }
+
+    /// Why `line` cannot be in a file at this point (`None`: it can); a preset line moves the
+    /// scene on.
+    pub fn line(&mut self, line: &Line) -> Option<String> {
+        use crate::app::journal::Event;
+        if let Some(why) = impossible(line) {
+            return Some(why);
+        }
+        match &line.event {
+            Event::Preset { toml } => match preset_scene(toml) {
+                Ok(scene) => self.scene = scene,
+                Err(e) => return Some(format!("a preset line that is no preset: {e}")),
+            },
+            Event::Set { field, .. } | Event::Select { field }
+                if !crate::app::fields::Field::named(self.scene, field)
+                    .is_some_and(|f| f.belongs_to(self.scene)) =>
+            {
+                return Some(format!(
+                    "a `{}` of the field \"{}\", which the {} has not",
+                    if matches!(line.event, Event::Set { .. }) {
+                        "set"
+                    } else {
+                        "select"
+                    },
+                    crate::scenario::text::one_line(&field.chars().take(60).collect::<String>()),
+                    self.scene.title()
+                ));
+            }
+            Event::MapCursor { column, row, .. } => {
+                let (cols, rows) = crate::study::chart::pane::largest(self.scene);
+                if *column >= cols || *row >= rows {
+                    return Some(format!(
+                        "a map cursor at column {column}, row {row}: the {}'s chart has {cols} columns and {rows} rows",
+                        self.scene.title()
+                    ));
+                }
+            }
+            _ => {}
+        }
+        None
+    }
+}
+
+/// The scene of a preset's TOML, read by the preset validator.
+fn preset_scene(toml: &str) -> Result<crate::physics::ModelKind, String> {
+    crate::scenario::Preset::parse(toml, "inline preset", "recorded", &[])
+        .map(|p| p.model.kind())
+        .map_err(|e| crate::scenario::text::one_line(&e.to_string()))
+}
+
 /// Longest recording replayed or exported, in wall seconds (a week).
 pub const MAX_WALL: f64 = 7.0 * 24.0 * 3600.0;
 

@@ -55,6 +55,8 @@ pub struct Tail {
     ended: bool,
     /// Dropping an over-long line until its newline.
     skipping: bool,
+    /// What the file may say at this point (the scene so far).
+    sense: super::Sense,
 }
 
 /// Longest line kept (a session's lines are small: the largest holds a preset): a longer one,
@@ -80,6 +82,17 @@ impl Tail {
             .lines
             .last()
             .is_some_and(|(_, l)| matches!(l.event, Event::End { .. }));
+        // `read` has checked every line with the same validator: this only finds the scene.
+        let mut sense = super::Sense::of_header(&recording.header).map_err(|message| {
+            super::RecordError::Corrupt {
+                path: path.display().to_string(),
+                line: 1,
+                message,
+            }
+        })?;
+        for (_, l) in &recording.lines {
+            let _ = sense.line(l);
+        }
         let tail = Self {
             path: path.to_path_buf(),
             offset: complete,
@@ -89,6 +102,7 @@ impl Tail {
             missing: false,
             ended,
             skipping: false,
+            sense,
         };
         Ok((tail, recording))
     }
@@ -175,7 +189,7 @@ impl Tail {
             // So is a line of an impossible time (`t = -5`, `wall = 1e300`): what `replay`
             // refuses, `follow` never shows (issue 56).
             if let Ok(line) = serde_json::from_str::<Line>(&text)
-                && super::impossible(&line).is_none()
+                && self.sense.line(&line).is_none()
             {
                 self.ended |= matches!(line.event, Event::End { .. });
                 lines.push(line);

@@ -965,6 +965,16 @@ fn until(u: &toml::Table, path: &str, at: &mut dyn FnMut(&str, String)) -> Until
                     &format!("{path}.parameter"),
                     "give `at_least` or `at_most` (or both)".to_owned(),
                 );
+            } else if let (Some(l), Some(h)) = (lo, hi)
+                && l > h
+            {
+                // No value is both at least `l` and at most `h`: the step could never end.
+                at(
+                    &format!("{path}.at_least"),
+                    format!(
+                        "{l} is above `at_most` ({h}): no value meets both, so the step could never end"
+                    ),
+                );
             } else {
                 out.parameter = Some(ParameterBound {
                     key: key.clone(),

@@ -391,7 +391,11 @@ fn check_value(model: ModelKind, kind: Kind, v: &Value) -> Result<(), String> {
             if ok {
                 Ok(())
             } else {
-                Err(format!("{x} is out of range; allowed: {}", kind.allowed()))
+                Err(format!(
+                    "{} is out of range; allowed: {}",
+                    crate::physics::Number(x),
+                    kind.allowed()
+                ))
             }
         }
     }

@@ -92,7 +92,7 @@ impl Axis {
 }
 
 /// What one cell found.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Verdict {
     /// Spin reversals (the rattleback, the celt).
     Reversals {
@@ -116,6 +116,12 @@ pub enum Verdict {
         /// Whether `||tr| − 2|` exceeds the estimate.
         decided: bool,
     },
+    /// The cell's integration failed (a step size that underflowed, a state no longer finite):
+    /// the chart marks it undecided and says why, instead of failing whole (issue 66, H8).
+    Failed {
+        /// What went wrong, as the run said it.
+        error: String,
+    },
 }
 
 impl Verdict {
@@ -124,7 +130,7 @@ impl Verdict {
     pub fn count(&self) -> Option<usize> {
         match *self {
             Self::Reversals { count, .. } => Some(count),
-            Self::Stability { .. } => None,
+            Self::Stability { .. } | Self::Failed { .. } => None,
         }
     }
 
@@ -133,6 +139,7 @@ impl Verdict {
     pub fn decided(&self) -> bool {
         match *self {
             Self::Reversals { decided, .. } | Self::Stability { decided, .. } => decided,
+            Self::Failed { .. } => false,
         }
     }
 }
@@ -280,6 +287,46 @@ impl CeltChart {
     }
 }
 
+/// Seconds of CPU a pendulum cell takes, about (`scripts/chart_costs.py`).
+pub const PENDULUM_CELL_SECONDS: f64 = 1e-4;
+
+impl CeltChart {
+    /// Predicted seconds of CPU one cell takes: its verification priced by the celt's cost model
+    /// at the fastest corner, as pairs of runs at its first tolerance, more of them the longer
+    /// the window ([`CELT_PAIRS_SHORT`] to [`CELT_PAIRS_LONG`]).
+    #[must_use]
+    pub fn cell_seconds(&self) -> f64 {
+        let x = self.columns;
+        let corner = self.problem(x.cells - 1, 0).unwrap_or(self.problem);
+        let run = |local: f64| {
+            celt::budget::cost_seconds(
+                &corner,
+                &crate::physics::method::Asked::new(
+                    crate::physics::Method::Dop853,
+                    local,
+                    None,
+                    self.t_end,
+                ),
+            )
+        };
+        let first = (self.tolerance * celt::policy::FIRST).clamp(1e-12, 1e-6);
+        let pairs = CELT_PAIRS_SHORT
+            + (CELT_PAIRS_LONG - CELT_PAIRS_SHORT) * (self.t_end / CELT_DECISION_TIME).min(1.0);
+        pairs * (run(first) + run(celt::policy::POLICY.companion(first)))
+    }
+}
+
+/// What a celt cell costs, in pairs of runs at its first tolerance, at a short window: a round
+/// or two decide it. Fitted with `scripts/chart_costs.py` on the seven shipped celt presets at
+/// their window, 10× and 100× (a fit to those 21 charts, not a held-out check): with these three
+/// constants every one is within 2× (wall over predicted 0.5–1.5).
+const CELT_PAIRS_SHORT: f64 = 2.9;
+/// At a long window, where counts grow chaotic and the loop runs to its end with blind
+/// refinements (a prediction of 2.5 runs a cell was 1.7–3.4× short there: issue 66, H3).
+const CELT_PAIRS_LONG: f64 = 11.9;
+/// The window (s) over which a cell goes from one to the other.
+const CELT_DECISION_TIME: f64 = 50.0;
+
 impl CeltChart {
     /// The growth rate (1/s) at which the start's tilt `θ0` reaches a radian within the window:
     /// `ln(1/θ0)/T` (`None` for an upright start, which never tilts).
@@ -412,6 +459,17 @@ pub mod pane {
     /// Loosest tolerance of the full map's runs: a count of reversals needs their times to a
     /// fraction of a half period, not the run's own tolerance.
     pub const FULL_TOLERANCE: f64 = 1e-6;
+
+    /// The largest grid the pane draws for `kind`'s charts (a recorded cursor lies inside it).
+    #[must_use]
+    pub fn largest(kind: crate::physics::ModelKind) -> (usize, usize) {
+        use crate::physics::ModelKind;
+        match kind {
+            ModelKind::Rattleback => (LIMIT_GRID.0.max(FULL_GRID.0), LIMIT_GRID.1.max(FULL_GRID.1)),
+            ModelKind::Kapitza => PENDULUM_GRID,
+            ModelKind::Celt => CELT_GRID,
+        }
+    }
 }
 
 impl Chart {
@@ -780,7 +838,13 @@ impl Chart {
                 if !go_on(0.0) {
                     return Err(StepError::Cancelled { t: 0.0 });
                 }
-                let v = self.cell(n, go_on);
+                let v = match self.cell(n, go_on) {
+                    Err(StepError::Cancelled { t }) => Err(StepError::Cancelled { t }),
+                    Err(e) => Ok(Verdict::Failed {
+                        error: e.to_string(),
+                    }),
+                    Ok(v) => Ok(v),
+                };
                 done();
                 v
             })
@@ -831,32 +895,29 @@ impl Chart {
         )
     }
 
-    /// Predicted seconds of `cells` cells (the cost model asked before a chart starts).
+    /// Predicted wall-clock seconds of `cells` cells on this machine (the cost model asked before
+    /// a chart starts, and what `study map`'s JSON reports beside what they took): the work of
+    /// [`Chart::cpu_seconds`] spread over the threads that share the cells.
     #[must_use]
     pub fn predicted_seconds(&self, cells: usize) -> f64 {
+        #[allow(clippy::cast_precision_loss)]
+        let threads = rayon::current_num_threads().clamp(1, cells.max(1)) as f64;
+        self.cpu_seconds(cells) / threads
+    }
+
+    /// Predicted seconds of one core's work for `cells` cells.
+    #[must_use]
+    pub fn cpu_seconds(&self, cells: usize) -> f64 {
         #[allow(clippy::cast_precision_loss)]
         let n = cells as f64;
         match self {
             Self::Rattleback { grid, source, .. } => map::predicted_seconds(grid, *source, cells),
             // Measured: a 200×100 chart of kapitza-upright in about 2 s of CPU (two to four
-            // one-period runs a cell).
-            Self::Kapitza(_) => n * 1e-4,
-            // Two to four runs a cell, priced by the celt's cost model at the fastest corner.
-            Self::Celt(c) => {
-                let (x, _) = self.axes();
-                let corner = c.problem(x.cells - 1, 0).unwrap_or(c.problem);
-                let local = (c.tolerance * 0.1).clamp(1e-12, 1e-6);
-                let ask = crate::physics::method::Asked::new(
-                    crate::physics::Method::Dop853,
-                    local,
-                    None,
-                    c.t_end,
-                );
-                n * 2.5 * celt::budget::cost_seconds(&corner, &ask)
-            }
+            // one-period runs a cell, each with its second companion: issue 66).
+            Self::Kapitza(_) => n * PENDULUM_CELL_SECONDS,
+            Self::Celt(c) => n * c.cell_seconds(),
         }
     }
-
     /// The output of the cells `indices` with their verdicts (`shard` when a slice), in the
     /// shape `schema_version` names (the program's outputs' version: this layer does not know
     /// it).
@@ -924,10 +985,16 @@ impl Chart {
                 .collect(),
             curve_meaning: self.curve_meaning().to_owned(),
             shard,
+            description: None,
+            predicted_seconds: self.predicted_seconds(indices.len()),
+            wall_seconds: 0.0,
+            digest: None,
         }
     }
 
-    fn cell_output(&self, n: usize, v: &Verdict) -> CellOutput {
+    /// Cell `n`'s output with the verdict `v`.
+    #[must_use]
+    pub fn cell_output(&self, n: usize, v: &Verdict) -> CellOutput {
         let (x, _) = self.axes();
         let (i, j) = (n % x.cells, n / x.cells);
         let mut out = CellOutput {
@@ -964,8 +1031,53 @@ impl Chart {
                 out.trace_error = Some(error);
                 out.decided = Some(decided);
             }
+            Verdict::Failed { ref error } => {
+                out.decided = Some(false);
+                out.error = Some(error.clone());
+            }
         }
         out
+    }
+
+    /// The verdict a cell of this chart's output says, read back (`study merge`): the cell must
+    /// have exactly the fields this scene's cells have, or those of a failed cell.
+    ///
+    /// # Errors
+    /// A field missing, or one this scene's cells do not have.
+    pub fn verdict_of(&self, cell: &CellOutput) -> Result<Verdict, String> {
+        let c = cell;
+        if let Some(error) = &c.error {
+            return Ok(Verdict::Failed {
+                error: error.clone(),
+            });
+        }
+        let missing = || {
+            format!(
+                "cell {}: not the fields of a {} chart's cell",
+                c.index,
+                self.model().name()
+            )
+        };
+        match self {
+            Self::Rattleback { .. } => Ok(Verdict::Reversals {
+                count: c.reversals.ok_or_else(missing)?,
+                first: None,
+                decided: true,
+                growth: None,
+            }),
+            Self::Kapitza(_) => Ok(Verdict::Stability {
+                stable: c.stable.ok_or_else(missing)?,
+                trace: c.trace.ok_or_else(missing)?,
+                error: c.trace_error.ok_or_else(missing)?,
+                decided: c.decided.ok_or_else(missing)?,
+            }),
+            Self::Celt(_) => Ok(Verdict::Reversals {
+                count: c.reversals.ok_or_else(missing)?,
+                first: c.first_reversal.ok_or_else(missing)?,
+                decided: c.decided.ok_or_else(missing)?,
+                growth: c.growth_rate,
+            }),
+        }
     }
 }
 
@@ -1208,9 +1320,13 @@ pub struct CellOutput {
     pub trace_error: Option<f64>,
     /// Whether the verdict is certain at the chart's tolerance (the pendulum: the trace's
     /// distance from ±2 exceeds its error; the celt: two tolerances agree on the count and the
-    /// times).
+    /// times). `false` on a failed cell.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub decided: Option<bool>,
+    /// Why the cell's integration failed (a failed cell has this, `decided: false` and no
+    /// verdict).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
 }
 
 /// `Option<Option<T>>` as absent / `null` / a value.
@@ -1245,6 +1361,14 @@ pub struct ChartOutput {
     pub schema_version: u32,
     /// The scene.
     pub model: ModelKind,
+    /// A part's provenance (`study map --shard`): the chart's whole description, from which
+    /// `study merge` rebuilds the grid and recomputes cells (absent from a whole chart). Written
+    /// before the cells, so a reader knows how large the part can be before it reads them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<super::part::Description>,
+    /// The slice this file holds (absent from a whole chart and a merge).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shard: Option<Shard>,
     /// The preset's name.
     pub preset: String,
     /// Across.
@@ -1277,9 +1401,17 @@ pub struct ChartOutput {
     pub curve: Vec<CurvePoint>,
     /// What the curve is.
     pub curve_meaning: String,
-    /// The slice this file holds (absent from a whole chart and a merge).
+    /// What the cost model predicted these cells would take, wall-clock on this machine's
+    /// threads (s; the budget admits a chart by it).
+    pub predicted_seconds: f64,
+    /// What they took, wall-clock (s; a merge: the parts' sum). The one field that differs
+    /// between runs of the same chart.
+    pub wall_seconds: f64,
+    /// A part's SHA-256 over its every other field, as this program serialises them (hex):
+    /// catches a part cut or changed by accident. Anyone can recompute it, so it proves nothing
+    /// against a forger; `study merge` recomputes cells for that.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub shard: Option<Shard>,
+    pub digest: Option<String>,
 }
 
 impl<'de> Deserialize<'de> for Axis {
@@ -1319,82 +1451,6 @@ impl<'de> Deserialize<'de> for Axis {
             log: r.log,
         })
     }
-}
-
-/// Puts shards back together: the same bytes as the unsharded chart once printed.
-///
-/// # Errors
-/// Parts of different charts (any field but the cells and the slice differs), a slice given
-/// twice, a missing one, a part that is not a slice, or a part whose cells are not its slice's.
-pub fn merge(parts: &[(String, ChartOutput)]) -> Result<ChartOutput, String> {
-    let Some((first_name, first)) = parts.first() else {
-        return Err("no parts given".to_owned());
-    };
-    let Some(first_shard) = first.shard else {
-        return Err(format!("{first_name}: not a shard (no `shard` field)"));
-    };
-    let count = first_shard.count;
-    let total = first.columns.cells * first.rows.cells;
-    let same = |o: &ChartOutput| ChartOutput {
-        cells: Vec::new(),
-        shard: None,
-        ..o.clone()
-    };
-    let reference = same(first);
-    let mut seen: Vec<Option<&str>> = vec![None; count];
-    let mut cells: Vec<Option<CellOutput>> = vec![None; total];
-    for (name, part) in parts {
-        let Some(shard) = part.shard else {
-            return Err(format!("{name}: not a shard (no `shard` field)"));
-        };
-        if shard.count != count {
-            return Err(format!(
-                "{name}: shard {}/{} among shards of {count} ({first_name} is {}/{count})",
-                shard.index, shard.count, first_shard.index
-            ));
-        }
-        if same(part) != reference {
-            return Err(format!(
-                "{name}: another chart than {first_name}'s (preset, axes, tolerance or scene differ)"
-            ));
-        }
-        if shard.index == 0 || shard.index > count {
-            return Err(format!("{name}: shard {}/{count}", shard.index));
-        }
-        if let Some(other) = seen[shard.index - 1] {
-            return Err(format!(
-                "{name}: shard {}/{count} given twice (also {other})",
-                shard.index
-            ));
-        }
-        seen[shard.index - 1] = Some(name);
-        let expected = shard_cells(total, shard);
-        let got: Vec<usize> = part.cells.iter().map(|c| c.index).collect();
-        if got != expected {
-            return Err(format!(
-                "{name}: its cells are not those of shard {}/{count} ({} of {} expected; truncated or edited?)",
-                shard.index,
-                got.len(),
-                expected.len()
-            ));
-        }
-        for c in &part.cells {
-            cells[c.index] = Some(c.clone());
-        }
-    }
-    let missing: Vec<String> = seen
-        .iter()
-        .enumerate()
-        .filter(|(_, s)| s.is_none())
-        .map(|(i, _)| format!("{}/{count}", i + 1))
-        .collect();
-    if !missing.is_empty() {
-        return Err(format!("missing shards: {}", missing.join(", ")));
-    }
-    Ok(ChartOutput {
-        cells: cells.into_iter().flatten().collect(),
-        ..reference
-    })
 }
 
 impl ChartOutput {
@@ -1549,49 +1605,6 @@ mod tests {
             rows,
             tolerance: PENDULUM_TOLERANCE,
         })
-    }
-
-    #[test]
-    fn shards_merge_into_the_whole_and_refuse_what_is_not_a_partition() {
-        let chart = pendulum(7, 5);
-        let all: Vec<usize> = (0..chart.len()).collect();
-        let whole = chart.output(
-            1,
-            "p",
-            &all,
-            &chart.cells(&all, &|_| true, &|| ()).unwrap(),
-            None,
-        );
-        let part = |i: usize, n: usize| {
-            let s = Shard { index: i, count: n };
-            let idx = shard_cells(chart.len(), s);
-            let v = chart.cells(&idx, &|_| true, &|| ()).unwrap();
-            (format!("part{i}"), chart.output(1, "p", &idx, &v, Some(s)))
-        };
-        for n in 1..=4 {
-            let merged = merge(&(1..=n).rev().map(|i| part(i, n)).collect::<Vec<_>>()).unwrap();
-            assert_eq!(merged, whole, "{n} shards");
-        }
-        let e = merge(&[part(1, 3), part(3, 3)]).unwrap_err();
-        assert!(e.contains("missing shards: 2/3"), "{e}");
-        let e = merge(&[part(1, 2), part(1, 2), part(2, 2)]).unwrap_err();
-        assert!(e.contains("given twice"), "{e}");
-        let e = merge(&[part(1, 2), part(2, 3)]).unwrap_err();
-        assert!(e.contains("among shards of 2"), "{e}");
-        let other = pendulum(7, 6);
-        let s = Shard { index: 2, count: 2 };
-        let idx = shard_cells(other.len(), s);
-        let v = other.cells(&idx, &|_| true, &|| ()).unwrap();
-        let e = merge(&[
-            part(1, 2),
-            ("other".into(), other.output(1, "p", &idx, &v, Some(s))),
-        ])
-        .unwrap_err();
-        assert!(e.contains("another chart"), "{e}");
-        let mut cut = part(2, 2);
-        cut.1.cells.pop();
-        let e = merge(&[part(1, 2), cut]).unwrap_err();
-        assert!(e.contains("not those of shard 2/2"), "{e}");
     }
 
     #[test]

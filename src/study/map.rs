@@ -138,9 +138,10 @@ impl Grid {
     }
 }
 
-/// Seconds one cell of the limit takes, about (quadrature of the reversal count; measured:
-/// `study map --grid 1000x1000` in 6.9 s of CPU on this 2-core machine, issue 56).
-pub const LIMIT_CELL_SECONDS: f64 = 7e-6;
+/// Seconds of CPU one cell of the limit takes, about (quadrature of the reversal count;
+/// measured again with `scripts/chart_costs.py`, issue 66: 200×100 charts of every shipped
+/// rattleback preset in 0.10–0.15 s of wall time on two threads).
+pub const LIMIT_CELL_SECONDS: f64 = 1.3e-5;
 
 /// Predicted seconds of `cells` cells of `grid` from `source` (the map's cost model, asked by
 /// `study map` and by the explorer's map pane before they start): the limit's cells cost the
@@ -166,7 +167,9 @@ pub fn predicted_seconds(grid: &Grid, source: Source, cells: usize) -> f64 {
                                 grid.t_end,
                             ),
                         )
-                        / 2.0
+                        // A lone run's prediction prices its probes and conditioning; a chart's
+                        // cell, measured (`scripts/chart_costs.py`, issue 66), takes a fifth.
+                        / 5.0
                 })
         }
     }

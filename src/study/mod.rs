@@ -15,6 +15,7 @@
 
 pub mod chart;
 pub mod map;
+pub mod part;
 pub mod sweep;
 pub mod weak;
 

@@ -35,13 +35,15 @@ pub fn glyph(count: Option<usize>) -> char {
 
 /// The glyph of a cell's verdict (`None`: not computed).
 #[must_use]
-pub fn verdict_glyph(v: Option<Verdict>) -> char {
+pub fn verdict_glyph(v: Option<&Verdict>) -> char {
     match v {
         None => glyph(None),
         Some(v) if !v.decided() => UNDECIDED,
-        Some(Verdict::Reversals { count, .. }) => glyph(Some(count)),
+        Some(Verdict::Reversals { count, .. }) => glyph(Some(*count)),
+        // A failed cell is undecided (caught above).
+        Some(Verdict::Failed { .. }) => UNDECIDED,
         Some(Verdict::Stability { stable, .. }) => {
-            if stable {
+            if *stable {
                 STABLE
             } else {
                 ' '
@@ -143,6 +145,7 @@ impl MapPane<'_> {
         let cell = map.cell(map.cursor.0, map.cursor.1);
         let verdict = match cell {
             None => "?".to_owned(),
+            Some(Verdict::Failed { .. }) => "failed (its run stopped)".to_owned(),
             Some(v) if !v.decided() => "undecided".to_owned(),
             Some(Verdict::Reversals { count, .. }) => format!("{count} rev"),
             Some(Verdict::Stability { stable: true, .. }) => "stable".to_owned(),

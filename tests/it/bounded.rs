@@ -262,7 +262,7 @@ fn hostile_sessions(d: &std::path::Path) -> Vec<std::path::PathBuf> {
     let base = rattleback::scenario::shipped::resolve("subcritical", &[])
         .unwrap()
         .to_toml();
-    let tiny_iz = base.replace("iz = 1.0", "iz = 1e-12");
+    let tiny_iz = base.replace("iz = 1.0", "iz = 2e-12");
     assert_ne!(tiny_iz, base);
     let pendulum = rattleback::scenario::shipped::resolve("kapitza-upright", &[])
         .unwrap()

@@ -807,7 +807,7 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
     let shown: Vec<usize> = m
         .cells
         .iter()
-        .map(|c| c.unwrap().count().unwrap())
+        .map(|c| c.as_ref().unwrap().count().unwrap())
         .collect();
     let expected: Vec<usize> = study.cells.iter().map(|c| c.reversals).collect();
     assert_eq!(shown, expected);
@@ -886,7 +886,7 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
     let shown: Vec<usize> = m
         .cells
         .iter()
-        .map(|c| c.unwrap().count().unwrap())
+        .map(|c| c.as_ref().unwrap().count().unwrap())
         .collect();
     let expected: Vec<usize> = study.cells.iter().map(|c| c.reversals).collect();
     assert_eq!(shown, expected);

@@ -288,6 +288,7 @@ fn no_old_paths_and_no_model_reexports() {
                             "Allowed",
                             "check_derived",
                             "params_and_start",
+                            "ANGLE",
                             "{",
                         ]
                         .iter()

@@ -50,4 +50,5 @@ mod special_solutions;
 mod stiff;
 mod stress;
 mod studies;
+mod trust;
 mod user_folder;

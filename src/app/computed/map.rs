@@ -146,7 +146,7 @@ impl MapState {
         }
         for (n, r) in verdicts.iter().enumerate() {
             if let Some(c) = self.cells.get_mut(first + n) {
-                *c = Some(*r);
+                *c = Some(r.clone());
             }
         }
         true
@@ -170,9 +170,9 @@ impl MapState {
 
     /// The verdict of cell `(i, j)`, if computed.
     #[must_use]
-    pub fn cell(&self, i: usize, j: usize) -> Option<Verdict> {
+    pub fn cell(&self, i: usize, j: usize) -> Option<&Verdict> {
         let cols = self.spec?.chart.axes().0.cells;
-        self.cells.get(j * cols + i).copied().flatten()
+        self.cells.get(j * cols + i)?.as_ref()
     }
 
     /// The point the axes are drawn from: the anchor's while the settings sit on the cell
@@ -332,9 +332,9 @@ mod tests {
             decided: true,
             growth: None,
         };
-        assert!(m.on_cells(id, 0, &[one; 48]));
+        assert!(m.on_cells(id, 0, &vec![one.clone(); 48]));
         assert!(
-            !m.on_cells(id - 1, 48, &[one; 48]),
+            !m.on_cells(id - 1, 48, &vec![one.clone(); 48]),
             "stale cells are ignored"
         );
         let Some(Command::Job {

@@ -126,10 +126,24 @@ impl Params {
         }
         // The principal moments of a real body obey the triangle inequality (each at most the
         // sum of the other two; equal for a flat one): ix = iy = 1, iz = 100 is no body.
+        // `hypot`, not the square root of a sum of squares: `ix = 1e155` squared overflows, and
+        // an infinite spread made every comparison below false (issue 66, H2).
         let mean = 0.5 * (self.ix + self.iy);
-        let spread = (0.25 * (self.ix - self.iy).powi(2) + self.product * self.product).sqrt();
+        let spread = (0.5 * (self.ix - self.iy)).hypot(self.product);
         let principal = [mean - spread, mean + spread, self.iz];
         let total: f64 = principal.iter().sum();
+        check_derived(
+            &[
+                ("the in-plane principal moments' spread", spread),
+                ("the principal moments' sum", total),
+            ],
+            &[
+                ("ix", self.ix),
+                ("iy", self.iy),
+                ("iz", self.iz),
+                ("product", self.product),
+            ],
+        )?;
         if let Some(i) = (0..3).find(|&i| principal[i] > (total - principal[i]) * (1.0 + 1e-12)) {
             let (field, value) = if i == 2 {
                 ("iz", self.iz)

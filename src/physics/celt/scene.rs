@@ -105,7 +105,7 @@ pub const PARAMS: [ParamSpec; 16] = [
     ),
     ParamSpec::optional(
         ("initial", "yaw"),
-        Allowed::Finite,
+        crate::physics::params::ANGLE,
         0.0,
         ANGLE,
         "heading at t = 0 (rad)",

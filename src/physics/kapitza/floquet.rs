@@ -69,11 +69,12 @@ impl Mathieu {
         }
     }
 
-    /// The monodromy matrix's trace at DOP853's local tolerance `local`, with the steps taken.
+    /// The monodromy matrix's trace at DOP853's local tolerance `local`, with the steps taken
+    /// and the largest entry the fundamental matrix reached (its rounding is relative to it).
     ///
     /// # Errors
     /// A failed step (a coefficient so large the solutions overflow).
-    pub fn trace(&self, local: f64) -> Result<(f64, u64), StepError> {
+    pub fn trace(&self, local: f64) -> Result<(f64, u64, f64), StepError> {
         type S = SVector<f64, 5>;
         let (delta, q) = (self.delta, self.q);
         // (y1, y1', y2, y2', τ): the two fundamental solutions side by side.
@@ -83,8 +84,11 @@ impl Mathieu {
         };
         let period = 2.0 * std::f64::consts::PI;
         let mut d = Dop853::new(field, 0.0, S::new(1.0, 0.0, 0.0, 1.0, 0.0), local);
+        let mut size: f64 = 1.0;
         while d.time() < period {
             d.step(period)?;
+            let y = d.state();
+            size = size.max(y[0].abs().max(y[1].abs()).max(y[2].abs()).max(y[3].abs()));
         }
         let y = d.state();
         let trace = y[0] + y[3];
@@ -94,7 +98,7 @@ impl Mathieu {
                 t: d.time(),
             });
         }
-        Ok((trace, d.stats().steps))
+        Ok((trace, d.stats().steps, size))
     }
 }
 
@@ -149,30 +153,45 @@ fn scale(trace: f64) -> f64 {
     (0.5 * trace.abs()).max(1.0)
 }
 
+/// A trace run: the trace, the steps, the largest entry of the matrix, and the trace again at a
+/// tolerance [`SECOND_LOOSER`]× looser.
+type TraceRun = (f64, u64, f64, f64);
+
+/// The second companion's ratio. With one companion 16× looser, a run and its companion that
+/// erred alike cancelled in their difference (issue 66: a trace 5.9e-12 off, estimated 5.6e-12,
+/// while the run 4× looser differs by 5e-11): two companions must both cancel to mislead.
+const SECOND_LOOSER: f64 = 4.0;
+
 impl AtTolerance for Trace {
-    type Result = (f64, u64);
+    type Result = TraceRun;
     fn policy(&self) -> &'static Policy {
         &POLICY
     }
-    fn run(&self, local: f64, _: GoOn<'_>) -> Result<(f64, u64), StepError> {
-        self.0.trace(local)
+    fn run(&self, local: f64, _: GoOn<'_>) -> Result<TraceRun, StepError> {
+        let (trace, steps, size) = self.0.trace(local)?;
+        let (second, _, _) = self.0.trace(local * SECOND_LOOSER)?;
+        Ok((trace, steps, size, second))
     }
-    fn difference(&self, fine: &(f64, u64), coarse: &(f64, u64)) -> f64 {
-        (fine.0 - coarse.0).abs() / scale(fine.0)
+    fn difference(&self, fine: &TraceRun, coarse: &TraceRun) -> f64 {
+        (fine.0 - coarse.0).abs().max((fine.0 - fine.3).abs()) / scale(fine.0)
     }
-    fn floor(&self, fine: &(f64, u64)) -> f64 {
+    fn floor(&self, fine: &TraceRun) -> f64 {
         #[allow(clippy::cast_precision_loss)]
         let steps = fine.1 as f64;
-        // Each step rounds the four components once or twice: a few units of rounding a step.
-        4.0 * f64::EPSILON * (steps + 1.0)
+        // Each step rounds the four components once or twice: a few units of rounding a step,
+        // each relative to the largest entry the matrix reaches, not to the trace (issue 66: near
+        // |tr| = 2 a matrix with entries of 30 rounds 15× more than the trace's size says).
+        4.0 * f64::EPSILON * (steps + 1.0) * fine.2 / scale(fine.0)
     }
     fn estimate(&self, measured: f64, _: f64, _: Option<&(f64, f64)>) -> f64 {
         MARGIN * measured
     }
     fn run_cost(&self, local: f64) -> f64 {
-        // About 2 µs a step; DOP853's steps grow as local^(-1/8) with the fastest frequency.
+        // About 2 µs a step; DOP853's steps grow as local^(-1/8) with the fastest frequency;
+        // the second companion's run beside it.
         let w = (self.0.delta.abs() + self.0.q.abs()).sqrt().max(1.0);
-        2e-6 * 8.0 * w * local.powf(-0.125)
+        let one = |l: f64| 2e-6 * 8.0 * w * l.powf(-0.125);
+        one(local) + one(local * SECOND_LOOSER)
     }
 }
 
@@ -192,7 +211,8 @@ pub fn floquet(m: Mathieu, tolerance: f64) -> Result<Floquet, StepError> {
         f64::INFINITY,
         &mut |_| true,
     )?;
-    let (trace, _) = m.trace(v.best.0.plan)?;
+    let plan = v.best.0.plan;
+    let (trace, _, _) = m.trace(plan)?;
     let error = v.best.0.estimate * scale(trace);
     let margin = (trace.abs() - 2.0).abs();
     Ok(Floquet {

@@ -45,7 +45,7 @@ pub const PARAMS: [ParamSpec; 5] = [
     ),
     ParamSpec::required(
         ("initial", "theta"),
-        Allowed::Finite,
+        crate::physics::params::ANGLE,
         Scale::linear(0.05, std::f64::consts::FRAC_PI_8),
         "initial angle from the upright",
     ),

@@ -105,14 +105,14 @@ pub const PARAMS: [ParamSpec; 8] = [
     ),
     ParamSpec::optional(
         ("initial", "gamma"),
-        Allowed::Finite,
+        crate::physics::params::ANGLE,
         0.0,
         Scale::linear(1e-3, 1e-2),
         "initial tilt",
     ),
     ParamSpec::optional(
         ("initial", "alpha"),
-        Allowed::Finite,
+        crate::physics::params::ANGLE,
         0.0,
         Scale::linear(0.05, std::f64::consts::FRAC_PI_8),
         "initial spin angle",
@@ -162,6 +162,21 @@ impl Problem {
             ],
             &inputs,
         )?;
+        // Inertias twelve orders of magnitude apart are no body the runs can hold: `iy = 1e20`
+        // beside `ix = 2` passed the field checks and failed its run at t = 0 (issue 66).
+        let named = [("ix", p.ix), ("iy", p.iy), ("iz", p.iz)];
+        let mut sorted = named;
+        sorted.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let [lo, mid, hi] = sorted;
+        if hi.1 > 1e12 * lo.1 {
+            // The one farthest from the middle one is the odd one out.
+            let (field, value) = if hi.1 / mid.1 >= mid.1 / lo.1 { hi } else { lo };
+            return Err(ParamError::OutOfRange {
+                field,
+                value,
+                allowed: "inertias within a factor 1e12 of each other (the largest over the smallest)",
+            });
+        }
         Ok(problem)
     }
 

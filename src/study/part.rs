@@ -1,0 +1,805 @@
+//! A chart in parts that prove where they came from (issue 66).
+//!
+//! `study map --shard I/N` writes, before its cells, the chart's whole [`Description`]: the
+//! preset's values (as TOML), every flag that shapes the chart, the program's version. After the
+//! cells comes a SHA-256 [digest](digest_of) over everything else. `study merge`:
+//!
+//! - reads each part with a size cap that the description sets before any cell is read
+//!   ([`read`]): a part can be no larger than its slice's cells can print;
+//! - rebuilds the chart from the description (the caller parses the preset with the same
+//!   validator as a preset file) and refuses a part whose header, cells' coordinates or cells'
+//!   fields are not what that chart writes ([`merge`]);
+//! - recomputes a random sample of each part's cells and refuses a part whose verdicts differ
+//!   ([`sample`]), which catches a part edited and re-digested.
+//!
+//! The digest catches accidents (a part cut short, a changed byte); anyone can recompute it, so
+//! against a forger only the recomputation counts, and it is a sample: a part edited in one cell
+//! of many passes with the probability that the sample misses that cell. `--check` sets its size.
+
+use std::cell::Cell;
+use std::io::Read;
+
+use serde::de::{DeserializeSeed, Error as _, MapAccess, SeqAccess, Visitor};
+use serde::{Deserialize, Serialize};
+
+use super::chart::{CellOutput, Chart, ChartOutput, MAX_CELLS, Shard, StudyAsk, shard_cells};
+
+/// The program and version that writes parts; a part of another is refused (its cells could
+/// differ in their last bits, and the recomputation would call it edited).
+pub const PROGRAM: &str = concat!("rattleback ", env!("CARGO_PKG_VERSION"));
+
+/// Bytes a part may have before its description is read (the header, the description with its
+/// preset, the axes).
+pub const HEADER_BYTES: u64 = 256 * 1024;
+
+/// The largest preset text a description may carry (a preset file's own cap is 1 MiB; one this
+/// program writes is under 2 KiB).
+pub const PRESET_BYTES: usize = 64 * 1024;
+
+/// Everything that shapes a chart: `study merge` rebuilds the chart from this alone.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+#[serde(deny_unknown_fields)]
+pub struct Description {
+    /// The program and version that wrote the part (`rattleback 0.1.0`).
+    pub program: String,
+    /// The preset's values after `--set`, as a preset file (TOML).
+    pub preset: String,
+    /// Cells across and up.
+    pub grid: [usize; 2],
+    /// The window (the preset's `run.t_end` or `--t-end`).
+    pub t_end: f64,
+    /// The full model's tolerance (the preset's or `--tolerance`).
+    pub tolerance: f64,
+    /// `--tolerance` as given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub asked_tolerance: Option<f64>,
+    /// `--ratio-max`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ratio_max: Option<f64>,
+    /// `--inertia-min`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inertia_min: Option<f64>,
+    /// `--inertia-max`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inertia_max: Option<f64>,
+    /// `--k`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub k: Option<f64>,
+    /// `--columns`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub columns: Option<[f64; 2]>,
+    /// `--rows`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rows: Option<[f64; 2]>,
+    /// `--position`: `upright` or `hanging`.
+    pub position: String,
+}
+
+impl Description {
+    /// The description of the chart `ask` makes of the preset written as `preset`.
+    #[must_use]
+    pub fn new(preset: String, ask: &StudyAsk) -> Self {
+        Self {
+            program: PROGRAM.to_owned(),
+            preset,
+            grid: [ask.grid.0, ask.grid.1],
+            t_end: ask.t_end,
+            tolerance: ask.tolerance,
+            asked_tolerance: ask.asked_tolerance,
+            ratio_max: ask.ratio_max,
+            inertia_min: ask.inertia_min,
+            inertia_max: ask.inertia_max,
+            k: ask.k,
+            columns: ask.columns.map(|(a, b)| [a, b]),
+            rows: ask.rows.map(|(a, b)| [a, b]),
+            position: if ask.hanging { "hanging" } else { "upright" }.to_owned(),
+        }
+    }
+
+    /// The flags back, each checked as the command line checks it.
+    ///
+    /// # Errors
+    /// Another program's part, or a value no command line could give.
+    pub fn ask(&self, tolerance_range: (f64, f64)) -> Result<StudyAsk, String> {
+        if self.program != PROGRAM {
+            return Err(format!(
+                "written by `{}`, not by this {PROGRAM}: run every shard with one build",
+                printable(&self.program)
+            ));
+        }
+        if self.preset.len() > PRESET_BYTES {
+            return Err(format!(
+                "its preset is {} bytes (at most {PRESET_BYTES})",
+                self.preset.len()
+            ));
+        }
+        let [cols, rows] = self.grid;
+        if !(1..=MAX_CELLS).contains(&cols) || !(1..=MAX_CELLS).contains(&rows) {
+            return Err(format!(
+                "grid {cols}x{rows}: each side a whole number from 1 to {MAX_CELLS}"
+            ));
+        }
+        let positive = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(v)
+            } else {
+                Err(format!("{name} {v}: a finite number > 0"))
+            }
+        };
+        let (lo, hi) = tolerance_range;
+        let tolerance = |name: &str, v: f64| {
+            if (lo..=hi).contains(&v) {
+                Ok(v)
+            } else {
+                Err(format!("{name} {v}: a number in [{lo:e}, {hi:e}]"))
+            }
+        };
+        let range = |name: &str, r: Option<[f64; 2]>| -> Result<Option<(f64, f64)>, String> {
+            match r {
+                None => Ok(None),
+                Some([a, b])
+                    if a.is_finite()
+                        && b.is_finite()
+                        && a.abs() <= 1e12
+                        && b.abs() <= 1e12
+                        && a < b =>
+                {
+                    Ok(Some((a, b)))
+                }
+                Some([a, b]) => Err(format!(
+                    "{name} {a},{b}: finite numbers of magnitude at most 1e12, MIN below MAX"
+                )),
+            }
+        };
+        let hanging = match self.position.as_str() {
+            "upright" => false,
+            "hanging" => true,
+            _ => return Err("position: `upright` or `hanging`".to_owned()),
+        };
+        let optional = |name: &str, v: Option<f64>| v.map(|v| positive(name, v)).transpose();
+        Ok(StudyAsk {
+            grid: (cols, rows),
+            t_end: positive("t_end", self.t_end)?,
+            tolerance: tolerance("tolerance", self.tolerance)?,
+            asked_tolerance: self
+                .asked_tolerance
+                .map(|t| tolerance("asked_tolerance", t))
+                .transpose()?,
+            ratio_max: optional("ratio_max", self.ratio_max)?,
+            inertia_min: optional("inertia_min", self.inertia_min)?,
+            inertia_max: optional("inertia_max", self.inertia_max)?,
+            k: optional("k", self.k)?,
+            columns: range("columns", self.columns)?,
+            rows: range("rows", self.rows)?,
+            hanging,
+        })
+    }
+}
+
+/// Text from a file, shown: control characters dropped, at most 200 characters.
+fn printable(text: &str) -> String {
+    text.chars().filter(|c| !c.is_control()).take(200).collect()
+}
+
+/// A SHA-256 that JSON is written into.
+struct Hasher(sha2::Sha256);
+
+impl std::io::Write for Hasher {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        sha2::Digest::update(&mut self.0, buf);
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// The digest of `part`: SHA-256 (hex) of its compact JSON without the `digest` field.
+#[must_use]
+pub fn digest_of(part: &mut ChartOutput) -> String {
+    let kept = part.digest.take();
+    let mut h = Hasher(sha2::Sha256::default());
+    // Plain data: serialising it cannot fail.
+    let _ = serde_json::to_writer(&mut h, &*part);
+    part.digest = kept;
+    hex::encode(sha2::Digest::finalize(h.0))
+}
+
+/// `part` with its digest set.
+#[must_use]
+pub fn sealed(mut part: ChartOutput) -> ChartOutput {
+    part.digest = Some(digest_of(&mut part));
+    part
+}
+
+/// The most bytes a part of a `cols`×`rows` chart holding `slice` cells can take as this program
+/// prints it (pretty JSON; a generous bound: a cell prints in under 700 bytes, a curve point in
+/// under 100).
+#[must_use]
+pub fn part_bytes_cap(cols: usize, rows: usize, slice: usize) -> u64 {
+    let points = 4 * cols as u64 + 4 * rows as u64 + 8;
+    HEADER_BYTES + 2048 * slice as u64 + 512 * points
+}
+
+/// A reader that gives end of file past `cap` bytes (a cap that may be raised while reading).
+struct Capped<'a, R> {
+    inner: R,
+    cap: &'a Cell<u64>,
+    read: u64,
+    hit: bool,
+}
+
+impl<R: Read> Read for Capped<'_, R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let left = self.cap.get().saturating_sub(self.read);
+        if left == 0 {
+            self.hit = true;
+            return Ok(0);
+        }
+        let want = buf.len().min(usize::try_from(left).unwrap_or(usize::MAX));
+        let n = self.inner.read(&mut buf[..want])?;
+        self.read += n as u64;
+        Ok(n)
+    }
+}
+
+/// Reads one part from `source`, streamed: at most [`HEADER_BYTES`] until its description and
+/// shard are read, then at most what its slice can print ([`part_bytes_cap`]); the cells are
+/// refused past the slice's count. Stdin is read the same way.
+///
+/// # Errors
+/// What is wrong, in words (the caller names the file).
+pub fn read(source: impl Read) -> Result<ChartOutput, String> {
+    let cap = Cell::new(HEADER_BYTES);
+    let mut capped = Capped {
+        inner: std::io::BufReader::new(source),
+        cap: &cap,
+        read: 0,
+        hit: false,
+    };
+    let parsed = {
+        let mut de = serde_json::Deserializer::from_reader(&mut capped);
+        let part = serde::Deserializer::deserialize_map(&mut de, PartVisitor { cap: &cap });
+        part.and_then(|p| de.end().map(|()| p))
+    };
+    let over = || {
+        format!(
+            "larger than a part of this chart can be (read {} bytes, at most {} for its description and slice)",
+            capped.read,
+            cap.get()
+        )
+    };
+    match parsed {
+        Err(e) if capped.hit => Err(format!("{}; {}", over(), printable(&e.to_string()))),
+        Err(e) => Err(format!(
+            "not a part file of `study map --shard` ({})",
+            printable(&e.to_string())
+        )),
+        Ok(part) => {
+            // Valid JSON up to the cap with more behind it is still too large.
+            if capped.hit && capped.inner.read(&mut [0u8; 1]).map_or(true, |n| n > 0) {
+                return Err(over());
+            }
+            Ok(part)
+        }
+    }
+}
+
+struct PartVisitor<'a> {
+    cap: &'a Cell<u64>,
+}
+
+impl<'de> Visitor<'de> for PartVisitor<'_> {
+    type Value = ChartOutput;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a part file: a JSON object")
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<ChartOutput, A::Error> {
+        let mut rest = serde_json::Map::new();
+        let mut description: Option<Description> = None;
+        let mut shard: Option<Shard> = None;
+        let mut cells: Option<Vec<CellOutput>> = None;
+        while let Some(key) = map.next_key::<String>()? {
+            let twice = || A::Error::custom(format!("the field `{key}` twice"));
+            match key.as_str() {
+                "description" => {
+                    if description.is_some() {
+                        return Err(twice());
+                    }
+                    description = Some(map.next_value()?);
+                }
+                "shard" => {
+                    if shard.is_some() {
+                        return Err(twice());
+                    }
+                    shard = Some(map.next_value()?);
+                }
+                "cells" => {
+                    if cells.is_some() {
+                        return Err(twice());
+                    }
+                    let (Some(d), Some(s)) = (&description, shard) else {
+                        return Err(A::Error::custom(
+                            "cells before a `description` and a `shard`: a whole chart, a part written by an older build (re-run that shard with this one), or an edited file",
+                        ));
+                    };
+                    let [cols, rows] = d.grid;
+                    if !(1..=MAX_CELLS).contains(&cols) || !(1..=MAX_CELLS).contains(&rows) {
+                        return Err(A::Error::custom(format!(
+                            "grid {cols}x{rows}: each side from 1 to {MAX_CELLS}"
+                        )));
+                    }
+                    if s.index == 0 || s.index > s.count {
+                        return Err(A::Error::custom(format!(
+                            "shard {}/{}: I from 1 to N",
+                            s.index, s.count
+                        )));
+                    }
+                    let total = cols * rows;
+                    let slice = total / s.count + usize::from(s.index <= total % s.count);
+                    self.cap.set(part_bytes_cap(cols, rows, slice));
+                    cells = Some(map.next_value_seed(Cells { max: slice })?);
+                }
+                _ => {
+                    if rest.contains_key(&key) {
+                        return Err(twice());
+                    }
+                    let value: serde_json::Value = map.next_value()?;
+                    rest.insert(key, value);
+                }
+            }
+        }
+        let Some(cells) = cells else {
+            return Err(A::Error::custom("no `cells`"));
+        };
+        rest.insert("cells".to_owned(), serde_json::Value::Array(Vec::new()));
+        let mut out: ChartOutput =
+            serde_json::from_value(serde_json::Value::Object(rest)).map_err(A::Error::custom)?;
+        out.description = description;
+        out.shard = shard;
+        out.cells = cells;
+        Ok(out)
+    }
+}
+
+/// A part's cells, at most `max` of them.
+struct Cells {
+    max: usize,
+}
+
+impl<'de> DeserializeSeed<'de> for Cells {
+    type Value = Vec<CellOutput>;
+    fn deserialize<D: serde::Deserializer<'de>>(self, d: D) -> Result<Self::Value, D::Error> {
+        d.deserialize_seq(self)
+    }
+}
+
+impl<'de> Visitor<'de> for Cells {
+    type Value = Vec<CellOutput>;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        write!(f, "at most {} cells", self.max)
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+        let mut out = Vec::with_capacity(self.max.min(4096));
+        while let Some(cell) = seq.next_element::<CellOutput>()? {
+            if out.len() == self.max {
+                return Err(A::Error::custom(format!(
+                    "more cells than its shard has ({})",
+                    self.max
+                )));
+            }
+            out.push(cell);
+        }
+        Ok(out)
+    }
+}
+
+/// The first top-level field where two outputs differ (for a refusal that names it).
+fn first_difference(a: &ChartOutput, b: &ChartOutput) -> String {
+    let (Ok(serde_json::Value::Object(a)), Ok(serde_json::Value::Object(b))) =
+        (serde_json::to_value(a), serde_json::to_value(b))
+    else {
+        return "?".to_owned();
+    };
+    a.keys()
+        .chain(b.keys())
+        .find(|k| a.get(*k) != b.get(*k))
+        .cloned()
+        .unwrap_or_else(|| "?".to_owned())
+}
+
+/// Puts the parts of `chart` (rebuilt from their common `description`) back together: the same
+/// output as the unsharded run, but `wall_seconds` (the parts' sum).
+///
+/// # Errors
+/// A part of another description, a digest that does not match, a slice given twice or
+/// missing, a header or a cell that is not what the chart writes.
+pub fn merge(
+    chart: &Chart,
+    schema_version: u32,
+    parts: &[(String, ChartOutput)],
+) -> Result<ChartOutput, String> {
+    let Some((first_name, first)) = parts.first() else {
+        return Err("no parts given".to_owned());
+    };
+    let (Some(description), Some(first_shard)) = (&first.description, first.shard) else {
+        return Err(format!(
+            "{first_name}: not a part (no `description` or `shard`)"
+        ));
+    };
+    let count = first_shard.count;
+    let total = chart.len();
+    let mut seen: Vec<Option<&str>> = vec![None; count];
+    let mut verdicts = vec![None; total];
+    let mut wall = 0.0;
+    for (name, part) in parts {
+        let (Some(d), Some(shard)) = (&part.description, part.shard) else {
+            return Err(format!("{name}: not a part (no `description` or `shard`)"));
+        };
+        if d != description {
+            return Err(format!(
+                "{name}: another chart than {first_name}'s (their descriptions differ)"
+            ));
+        }
+        let mut copy = part.clone();
+        if part.digest.as_deref() != Some(digest_of(&mut copy).as_str()) {
+            return Err(format!(
+                "{name}: its digest does not match its content (cut short or edited)"
+            ));
+        }
+        if shard.count != count {
+            return Err(format!(
+                "{name}: shard {}/{} among shards of {count} ({first_name} is {}/{count})",
+                shard.index, shard.count, first_shard.index
+            ));
+        }
+        if shard.index == 0 || shard.index > count {
+            return Err(format!("{name}: shard {}/{count}", shard.index));
+        }
+        if let Some(other) = seen[shard.index - 1] {
+            return Err(format!(
+                "{name}: shard {}/{count} given twice (also {other})",
+                shard.index
+            ));
+        }
+        seen[shard.index - 1] = Some(name);
+        let (expected, read) = check_part(chart, schema_version, name, part, shard)?;
+        for (&n, v) in expected.iter().zip(read) {
+            verdicts[n] = Some(v);
+        }
+        wall += part.wall_seconds;
+    }
+    let missing: Vec<String> = seen
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.is_none())
+        .map(|(i, _)| format!("{}/{count}", i + 1))
+        .collect();
+    if !missing.is_empty() {
+        return Err(format!("missing shards: {}", missing.join(", ")));
+    }
+    let all: Vec<usize> = (0..total).collect();
+    let verdicts: Vec<_> = verdicts.into_iter().flatten().collect();
+    let mut out = chart.output(schema_version, &first.preset, &all, &verdicts, None);
+    out.wall_seconds = wall;
+    Ok(out)
+}
+
+/// One part against the chart its description gives: its cells those of its slice, each read
+/// back into its verdict, and the header and cells exactly what the chart writes with them.
+fn check_part(
+    chart: &Chart,
+    schema_version: u32,
+    name: &str,
+    part: &ChartOutput,
+    shard: Shard,
+) -> Result<(Vec<usize>, Vec<super::chart::Verdict>), String> {
+    let expected = shard_cells(chart.len(), shard);
+    let got: Vec<usize> = part.cells.iter().map(|c| c.index).collect();
+    if got != expected {
+        return Err(format!(
+            "{name}: its cells are not those of shard {}/{} ({} of {} expected; truncated or edited?)",
+            shard.index,
+            shard.count,
+            got.len(),
+            expected.len()
+        ));
+    }
+    let read: Vec<_> = part
+        .cells
+        .iter()
+        .map(|c| chart.verdict_of(c))
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("{name}: {e}"))?;
+    if !(part.wall_seconds.is_finite() && part.wall_seconds >= 0.0) {
+        return Err(format!(
+            "{name}: wall_seconds {}: a time",
+            part.wall_seconds
+        ));
+    }
+    let mut written = chart.output(schema_version, &part.preset, &expected, &read, Some(shard));
+    written.description.clone_from(&part.description);
+    written.wall_seconds = part.wall_seconds;
+    written.digest.clone_from(&part.digest);
+    if written.cells != part.cells {
+        let (w, p) = written
+            .cells
+            .iter()
+            .zip(&part.cells)
+            .find(|(w, p)| w != p)
+            .unwrap_or((&written.cells[0], &part.cells[0]));
+        let field = first_cell_difference(w, p);
+        return Err(format!(
+            "{name}: cell {} is not one this chart writes (its `{field}` differs from the description's grid and scene)",
+            p.index
+        ));
+    }
+    if written != *part {
+        return Err(format!(
+            "{name}: its `{}` is not what its description gives",
+            first_difference(&written, part)
+        ));
+    }
+    Ok((expected, read))
+}
+
+fn first_cell_difference(a: &CellOutput, b: &CellOutput) -> String {
+    let (Ok(serde_json::Value::Object(a)), Ok(serde_json::Value::Object(b))) =
+        (serde_json::to_value(a), serde_json::to_value(b))
+    else {
+        return "?".to_owned();
+    };
+    a.keys()
+        .chain(b.keys())
+        .find(|k| a.get(*k) != b.get(*k))
+        .cloned()
+        .unwrap_or_else(|| "?".to_owned())
+}
+
+/// Which cells of each part [`sample`] recomputes: `n` of each (all when fewer), chosen by
+/// `random` (a source the forger cannot predict; tests pass a fixed one).
+#[must_use]
+pub fn choose(
+    parts: &[(String, ChartOutput)],
+    n: usize,
+    random: &mut dyn FnMut() -> u64,
+) -> Vec<(usize, usize)> {
+    let mut chosen = Vec::new();
+    for (p, (_, part)) in parts.iter().enumerate() {
+        let len = part.cells.len();
+        let mut picks: Vec<usize> = (0..len).collect();
+        // A partial Fisher–Yates shuffle: the first `n` are a uniform sample.
+        for k in 0..n.min(len) {
+            let j = k + (random() % (len - k) as u64) as usize;
+            picks.swap(k, j);
+            chosen.push((p, picks[k]));
+        }
+    }
+    chosen
+}
+
+/// Recomputes the cells `chosen` (part, position in its cells) and compares them with what the
+/// parts hold, bit for bit.
+///
+/// # Errors
+/// The first cell that differs (named by part and index), or a cancelled run.
+pub fn sample(
+    chart: &Chart,
+    parts: &[(String, ChartOutput)],
+    chosen: &[(usize, usize)],
+    go_on: &(dyn Fn(f64) -> bool + Sync),
+) -> Result<(), String> {
+    let indices: Vec<usize> = chosen
+        .iter()
+        .map(|&(p, k)| parts[p].1.cells[k].index)
+        .collect();
+    let verdicts = chart
+        .cells(&indices, go_on, &|| ())
+        .map_err(|e| format!("recomputing cells: {e}"))?;
+    for (&(p, k), v) in chosen.iter().zip(&verdicts) {
+        let (name, part) = &parts[p];
+        let given = &part.cells[k];
+        let fresh = chart.cell_output(given.index, v);
+        if fresh != *given {
+            return Err(format!(
+                "{name}: cell {} recomputed gives another `{}` than the part holds (edited, or written by another build)",
+                given.index,
+                first_cell_difference(&fresh, given)
+            ));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::kapitza;
+    use crate::physics::kapitza::floquet::Position;
+    use crate::study::chart::{PENDULUM_TOLERANCE, PendulumChart};
+
+    fn pendulum(cols: usize, rows: usize) -> Chart {
+        let params = kapitza::Params {
+            a: 1.0,
+            b: 2.0,
+            epsilon: 0.1,
+        };
+        let (columns, rows) = PendulumChart::default_axes(&params, cols, rows);
+        Chart::Kapitza(PendulumChart {
+            params,
+            position: Position::Upright,
+            columns,
+            rows,
+            tolerance: PENDULUM_TOLERANCE,
+        })
+    }
+
+    fn description(cols: usize, rows: usize) -> Description {
+        Description::new(
+            "[preset]\nname = \"p\"\n".to_owned(),
+            &StudyAsk {
+                grid: (cols, rows),
+                t_end: 1.0,
+                tolerance: 1e-8,
+                ..StudyAsk::default()
+            },
+        )
+    }
+
+    fn part(chart: &Chart, d: &Description, i: usize, n: usize) -> (String, ChartOutput) {
+        let s = Shard { index: i, count: n };
+        let idx = shard_cells(chart.len(), s);
+        let v = chart.cells(&idx, &|_| true, &|| ()).unwrap();
+        let mut out = chart.output(1, "p", &idx, &v, Some(s));
+        out.description = Some(d.clone());
+        (format!("part{i}"), sealed(out))
+    }
+
+    fn printed(p: &ChartOutput) -> Vec<u8> {
+        serde_json::to_vec_pretty(p).unwrap()
+    }
+
+    #[test]
+    fn shards_merge_into_the_whole_and_refuse_what_is_not_a_partition() {
+        let chart = pendulum(7, 5);
+        let d = description(7, 5);
+        let all: Vec<usize> = (0..chart.len()).collect();
+        let whole = chart.output(
+            1,
+            "p",
+            &all,
+            &chart.cells(&all, &|_| true, &|| ()).unwrap(),
+            None,
+        );
+        for n in 1..=4 {
+            let parts: Vec<_> = (1..=n).rev().map(|i| part(&chart, &d, i, n)).collect();
+            let mut merged = merge(&chart, 1, &parts).unwrap();
+            merged.wall_seconds = 0.0;
+            assert_eq!(merged, whole, "{n} shards");
+        }
+        let e = merge(&chart, 1, &[part(&chart, &d, 1, 3), part(&chart, &d, 3, 3)]).unwrap_err();
+        assert!(e.contains("missing shards: 2/3"), "{e}");
+        let e = merge(
+            &chart,
+            1,
+            &[
+                part(&chart, &d, 1, 2),
+                part(&chart, &d, 1, 2),
+                part(&chart, &d, 2, 2),
+            ],
+        )
+        .unwrap_err();
+        assert!(e.contains("given twice"), "{e}");
+        let e = merge(&chart, 1, &[part(&chart, &d, 1, 2), part(&chart, &d, 2, 3)]).unwrap_err();
+        assert!(e.contains("among shards of 2"), "{e}");
+        let other = pendulum(7, 6);
+        let e = merge(
+            &chart,
+            1,
+            &[
+                part(&chart, &d, 1, 2),
+                part(&other, &description(7, 6), 2, 2),
+            ],
+        )
+        .unwrap_err();
+        assert!(e.contains("another chart"), "{e}");
+        let (name, mut cut) = part(&chart, &d, 2, 2);
+        cut.cells.pop();
+        let e = merge(
+            &chart,
+            1,
+            &[part(&chart, &d, 1, 2), (name.clone(), cut.clone())],
+        )
+        .unwrap_err();
+        assert!(e.contains("digest does not match"), "{e}");
+        let e = merge(&chart, 1, &[part(&chart, &d, 1, 2), (name, sealed(cut))]).unwrap_err();
+        assert!(e.contains("not those of shard 2/2"), "{e}");
+    }
+
+    #[test]
+    fn an_edited_part_is_refused_even_when_re_digested() {
+        let chart = pendulum(6, 4);
+        let d = description(6, 4);
+        let good = || vec![part(&chart, &d, 1, 2), part(&chart, &d, 2, 2)];
+        // A coordinate moved: the grid says otherwise.
+        let mut parts = good();
+        parts[0].1.cells[0]
+            .coords
+            .insert("pendulum.a".into(), 123.0);
+        parts[0].1 = sealed(parts[0].1.clone());
+        let e = merge(&chart, 1, &parts).unwrap_err();
+        assert!(
+            e.contains("cell 0 is not one this chart writes") && e.contains("coords"),
+            "{e}"
+        );
+        // Relabelled as another scene.
+        let mut parts = good();
+        parts[1].1.model = crate::physics::ModelKind::Celt;
+        parts[1].1 = sealed(parts[1].1.clone());
+        let e = merge(&chart, 1, &parts).unwrap_err();
+        assert!(e.contains("`model`"), "{e}");
+        // A reversed axis.
+        let mut parts = good();
+        let columns = &mut parts[0].1.columns;
+        (columns.min, columns.max) = (columns.max, columns.min);
+        parts[0].1 = sealed(parts[0].1.clone());
+        let e = merge(&chart, 1, &parts).unwrap_err();
+        assert!(e.contains("`columns`"), "{e}");
+        // A field of another scene's cells.
+        let mut parts = good();
+        parts[0].1.cells[1].reversals = Some(3);
+        parts[0].1 = sealed(parts[0].1.clone());
+        let e = merge(&chart, 1, &parts).unwrap_err();
+        assert!(e.contains("cell 2") && e.contains("reversals"), "{e}");
+        // A flipped verdict passes the structure but not the recomputation of that cell.
+        let mut parts = good();
+        let flipped = parts[1].1.cells[2].stable.map(|s| !s);
+        parts[1].1.cells[2].stable = flipped;
+        parts[1].1 = sealed(parts[1].1.clone());
+        merge(&chart, 1, &parts).unwrap();
+        let every = choose(&parts, usize::MAX, &mut || 7);
+        let e = sample(&chart, &parts, &every, &|_| true).unwrap_err();
+        assert!(
+            e.contains("part2: cell 5 recomputed") && e.contains("stable"),
+            "{e}"
+        );
+        sample(&chart, &good(), &every, &|_| true).unwrap();
+    }
+
+    #[test]
+    fn a_part_is_read_within_its_slices_size() {
+        let chart = pendulum(6, 4);
+        let d = description(6, 4);
+        let (_, p) = part(&chart, &d, 1, 3);
+        let bytes = printed(&p);
+        assert_eq!(read(&bytes[..]).unwrap(), p);
+        // Whitespace without end, before and after the description.
+        let e = read(std::io::repeat(b' ')).unwrap_err();
+        assert!(e.contains("larger than a part"), "{e}");
+        let mut padded = bytes.clone();
+        padded.extend(std::iter::repeat_n(b' ', 3 << 20));
+        let e = read(&padded[..]).unwrap_err();
+        assert!(e.contains("larger than a part"), "{e}");
+        // More cells than the slice has.
+        let mut big = p.clone();
+        big.cells.extend(p.cells.iter().cloned());
+        let e = read(&printed(&big)[..]).unwrap_err();
+        assert!(e.contains("more cells than its shard has"), "{e}");
+        // A whole chart is not a part.
+        let all: Vec<usize> = (0..chart.len()).collect();
+        let whole = chart.output(
+            1,
+            "p",
+            &all,
+            &chart.cells(&all, &|_| true, &|| ()).unwrap(),
+            None,
+        );
+        let e = read(&printed(&whole)[..]).unwrap_err();
+        assert!(e.contains("not a part"), "{e}");
+    }
+}
