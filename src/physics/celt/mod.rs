@@ -144,8 +144,16 @@ impl Params {
                 ("product", self.product),
             ],
         )?;
-        if let Some(i) = (0..3).find(|&i| principal[i] > (total - principal[i]) * (1.0 + 1e-12)) {
-            let (field, value) = if i == 2 {
+        let violated = |principal: [f64; 3], total: f64| {
+            (0..3).find(|&i| principal[i] > (total - principal[i]) * (1.0 + 1e-12))
+        };
+        if let Some(i) = violated(principal, total) {
+            // Without the product the moments are ix, iy, iz: if those hold, the product is
+            // what breaks it (a chart's corner D = -5 blamed iy = 16, issue 66).
+            let plain = [self.ix.min(self.iy), self.ix.max(self.iy), self.iz];
+            let (field, value) = if violated(plain, plain.iter().sum()).is_none() {
+                ("product", self.product)
+            } else if i == 2 {
                 ("iz", self.iz)
             } else if self.ix >= self.iy {
                 ("ix", self.ix)
