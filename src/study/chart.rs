@@ -20,6 +20,7 @@ use std::collections::BTreeMap;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use super::ask::{MAX_CELLS, StudyAsk};
 use super::map::{self, Grid, Source};
 use crate::physics::celt;
 use crate::physics::kapitza;
@@ -199,9 +200,6 @@ pub const PENDULUM_TOLERANCE: f64 = 1e-10;
 /// small fraction of a wobble (tenths of a second), not a trajectory's tolerance.
 pub const CELT_TOLERANCE: f64 = 1e-4;
 
-/// The largest cells per side.
-pub const MAX_CELLS: usize = 2000;
-
 impl PendulumChart {
     /// The default axes for `params`: `a` over `[0, 2a]` (or `[2a, 0]`, `[0, 2]` when `a = 0`),
     /// `b` log-spaced from a tenth of Kapitza's threshold at the largest `a` to well past where
@@ -335,33 +333,6 @@ impl CeltChart {
         let tilt = celt::tilt(&self.problem.initial_state());
         (tilt > 0.0 && tilt < 1.0).then(|| (1.0 / tilt).ln() / self.t_end)
     }
-}
-
-/// What `study map` asks of a chart, whatever the scene (the flags, read).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct StudyAsk {
-    /// Cells across and up.
-    pub grid: (usize, usize),
-    /// The window (the preset's or `--t-end`).
-    pub t_end: f64,
-    /// The tolerance (the preset's or `--tolerance`): the rattleback's full-model runs.
-    pub tolerance: f64,
-    /// `--tolerance` as given (the pendulum's and the celt's cells have their own default).
-    pub asked_tolerance: Option<f64>,
-    /// The rattleback's `--ratio-max`, `--inertia-min`, `--inertia-max`, `--k`.
-    pub ratio_max: Option<f64>,
-    /// `--inertia-min`.
-    pub inertia_min: Option<f64>,
-    /// `--inertia-max`.
-    pub inertia_max: Option<f64>,
-    /// `--k`.
-    pub k: Option<f64>,
-    /// The pendulum's and the celt's `--columns` and `--rows`.
-    pub columns: Option<(f64, f64)>,
-    /// `--rows`.
-    pub rows: Option<(f64, f64)>,
-    /// The pendulum's `--position hanging`.
-    pub hanging: bool,
 }
 
 /// The words of a scene's chart, for the map pane's legend and heading.
@@ -1365,7 +1336,7 @@ pub struct ChartOutput {
     /// `study merge` rebuilds the grid and recomputes cells (absent from a whole chart). Written
     /// before the cells, so a reader knows how large the part can be before it reads them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub description: Option<super::part::Description>,
+    pub description: Option<super::ask::Description>,
     /// The slice this file holds (absent from a whole chart and a merge).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shard: Option<Shard>,
@@ -1588,10 +1559,11 @@ impl ChartOutput {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn pendulum(cols: usize, rows: usize) -> Chart {
+    /// A pendulum chart for tests (this module's and `part`'s).
+    pub(crate) fn pendulum(cols: usize, rows: usize) -> Chart {
         let params = kapitza::Params {
             a: 1.0,
             b: 2.0,

@@ -13,6 +13,7 @@
 //! rayon) and below the commands and the explorer; it never draws on a terminal. Every
 //! computation is deterministic: parallel cells are independent and collected in order.
 
+pub mod ask;
 pub mod chart;
 pub mod map;
 pub mod part;

@@ -19,168 +19,16 @@
 use std::cell::Cell;
 use std::io::Read;
 
+use serde::Serialize;
 use serde::de::{DeserializeSeed, Error as _, MapAccess, SeqAccess, Visitor};
-use serde::{Deserialize, Serialize};
 
-use super::chart::{CellOutput, Chart, ChartOutput, MAX_CELLS, Shard, StudyAsk, shard_cells};
-
-/// The program and version that writes parts; a part of another is refused (its cells could
-/// differ in their last bits, and the recomputation would call it edited).
-pub const PROGRAM: &str = concat!("rattleback ", env!("CARGO_PKG_VERSION"));
+pub use super::ask::Description;
+use super::ask::{MAX_CELLS, printable};
+use super::chart::{CellOutput, Chart, ChartOutput, Shard, shard_cells};
 
 /// Bytes a part may have before its description is read (the header, the description with its
 /// preset, the axes).
 pub const HEADER_BYTES: u64 = 256 * 1024;
-
-/// The largest preset text a description may carry (a preset file's own cap is 1 MiB; one this
-/// program writes is under 2 KiB).
-pub const PRESET_BYTES: usize = 64 * 1024;
-
-/// Everything that shapes a chart: `study merge` rebuilds the chart from this alone.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
-#[schemars(deny_unknown_fields)]
-#[serde(deny_unknown_fields)]
-pub struct Description {
-    /// The program and version that wrote the part (`rattleback 0.1.0`).
-    pub program: String,
-    /// The preset's values after `--set`, as a preset file (TOML).
-    pub preset: String,
-    /// Cells across and up.
-    pub grid: [usize; 2],
-    /// The window (the preset's `run.t_end` or `--t-end`).
-    pub t_end: f64,
-    /// The full model's tolerance (the preset's or `--tolerance`).
-    pub tolerance: f64,
-    /// `--tolerance` as given.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub asked_tolerance: Option<f64>,
-    /// `--ratio-max`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub ratio_max: Option<f64>,
-    /// `--inertia-min`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub inertia_min: Option<f64>,
-    /// `--inertia-max`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub inertia_max: Option<f64>,
-    /// `--k`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub k: Option<f64>,
-    /// `--columns`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub columns: Option<[f64; 2]>,
-    /// `--rows`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub rows: Option<[f64; 2]>,
-    /// `--position`: `upright` or `hanging`.
-    pub position: String,
-}
-
-impl Description {
-    /// The description of the chart `ask` makes of the preset written as `preset`.
-    #[must_use]
-    pub fn new(preset: String, ask: &StudyAsk) -> Self {
-        Self {
-            program: PROGRAM.to_owned(),
-            preset,
-            grid: [ask.grid.0, ask.grid.1],
-            t_end: ask.t_end,
-            tolerance: ask.tolerance,
-            asked_tolerance: ask.asked_tolerance,
-            ratio_max: ask.ratio_max,
-            inertia_min: ask.inertia_min,
-            inertia_max: ask.inertia_max,
-            k: ask.k,
-            columns: ask.columns.map(|(a, b)| [a, b]),
-            rows: ask.rows.map(|(a, b)| [a, b]),
-            position: if ask.hanging { "hanging" } else { "upright" }.to_owned(),
-        }
-    }
-
-    /// The flags back, each checked as the command line checks it.
-    ///
-    /// # Errors
-    /// Another program's part, or a value no command line could give.
-    pub fn ask(&self, tolerance_range: (f64, f64)) -> Result<StudyAsk, String> {
-        if self.program != PROGRAM {
-            return Err(format!(
-                "written by `{}`, not by this {PROGRAM}: run every shard with one build",
-                printable(&self.program)
-            ));
-        }
-        if self.preset.len() > PRESET_BYTES {
-            return Err(format!(
-                "its preset is {} bytes (at most {PRESET_BYTES})",
-                self.preset.len()
-            ));
-        }
-        let [cols, rows] = self.grid;
-        if !(1..=MAX_CELLS).contains(&cols) || !(1..=MAX_CELLS).contains(&rows) {
-            return Err(format!(
-                "grid {cols}x{rows}: each side a whole number from 1 to {MAX_CELLS}"
-            ));
-        }
-        let positive = |name: &str, v: f64| {
-            if v.is_finite() && v > 0.0 {
-                Ok(v)
-            } else {
-                Err(format!("{name} {v}: a finite number > 0"))
-            }
-        };
-        let (lo, hi) = tolerance_range;
-        let tolerance = |name: &str, v: f64| {
-            if (lo..=hi).contains(&v) {
-                Ok(v)
-            } else {
-                Err(format!("{name} {v}: a number in [{lo:e}, {hi:e}]"))
-            }
-        };
-        let range = |name: &str, r: Option<[f64; 2]>| -> Result<Option<(f64, f64)>, String> {
-            match r {
-                None => Ok(None),
-                Some([a, b])
-                    if a.is_finite()
-                        && b.is_finite()
-                        && a.abs() <= 1e12
-                        && b.abs() <= 1e12
-                        && a < b =>
-                {
-                    Ok(Some((a, b)))
-                }
-                Some([a, b]) => Err(format!(
-                    "{name} {a},{b}: finite numbers of magnitude at most 1e12, MIN below MAX"
-                )),
-            }
-        };
-        let hanging = match self.position.as_str() {
-            "upright" => false,
-            "hanging" => true,
-            _ => return Err("position: `upright` or `hanging`".to_owned()),
-        };
-        let optional = |name: &str, v: Option<f64>| v.map(|v| positive(name, v)).transpose();
-        Ok(StudyAsk {
-            grid: (cols, rows),
-            t_end: positive("t_end", self.t_end)?,
-            tolerance: tolerance("tolerance", self.tolerance)?,
-            asked_tolerance: self
-                .asked_tolerance
-                .map(|t| tolerance("asked_tolerance", t))
-                .transpose()?,
-            ratio_max: optional("ratio_max", self.ratio_max)?,
-            inertia_min: optional("inertia_min", self.inertia_min)?,
-            inertia_max: optional("inertia_max", self.inertia_max)?,
-            k: optional("k", self.k)?,
-            columns: range("columns", self.columns)?,
-            rows: range("rows", self.rows)?,
-            hanging,
-        })
-    }
-}
-
-/// Text from a file, shown: control characters dropped, at most 200 characters.
-fn printable(text: &str) -> String {
-    text.chars().filter(|c| !c.is_control()).take(200).collect()
-}
 
 /// A SHA-256 that JSON is written into.
 struct Hasher(sha2::Sha256);
@@ -399,8 +247,8 @@ impl<'de> Visitor<'de> for Cells {
     }
 }
 
-/// The first top-level field where two outputs differ (for a refusal that names it).
-fn first_difference(a: &ChartOutput, b: &ChartOutput) -> String {
+/// The first field where two outputs (a part, a cell) differ, for a refusal that names it.
+fn first_difference<T: Serialize>(a: &T, b: &T) -> String {
     let (Ok(serde_json::Value::Object(a)), Ok(serde_json::Value::Object(b))) =
         (serde_json::to_value(a), serde_json::to_value(b))
     else {
@@ -533,7 +381,7 @@ fn check_part(
             .zip(&part.cells)
             .find(|(w, p)| w != p)
             .unwrap_or((&written.cells[0], &part.cells[0]));
-        let field = first_cell_difference(w, p);
+        let field = first_difference(w, p);
         return Err(format!(
             "{name}: cell {} is not one this chart writes (its `{field}` differs from the description's grid and scene)",
             p.index
@@ -546,19 +394,6 @@ fn check_part(
         ));
     }
     Ok((expected, read))
-}
-
-fn first_cell_difference(a: &CellOutput, b: &CellOutput) -> String {
-    let (Ok(serde_json::Value::Object(a)), Ok(serde_json::Value::Object(b))) =
-        (serde_json::to_value(a), serde_json::to_value(b))
-    else {
-        return "?".to_owned();
-    };
-    a.keys()
-        .chain(b.keys())
-        .find(|k| a.get(*k) != b.get(*k))
-        .cloned()
-        .unwrap_or_else(|| "?".to_owned())
 }
 
 /// Which cells of each part [`sample`] recomputes: `n` of each (all when fewer), chosen by
@@ -609,7 +444,7 @@ pub fn sample(
             return Err(format!(
                 "{name}: cell {} recomputed gives another `{}` than the part holds (edited, or written by another build)",
                 given.index,
-                first_cell_difference(&fresh, given)
+                first_difference(&fresh, given)
             ));
         }
     }
@@ -619,25 +454,9 @@ pub fn sample(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::kapitza;
-    use crate::physics::kapitza::floquet::Position;
-    use crate::study::chart::{PENDULUM_TOLERANCE, PendulumChart};
 
-    fn pendulum(cols: usize, rows: usize) -> Chart {
-        let params = kapitza::Params {
-            a: 1.0,
-            b: 2.0,
-            epsilon: 0.1,
-        };
-        let (columns, rows) = PendulumChart::default_axes(&params, cols, rows);
-        Chart::Kapitza(PendulumChart {
-            params,
-            position: Position::Upright,
-            columns,
-            rows,
-            tolerance: PENDULUM_TOLERANCE,
-        })
-    }
+    use crate::study::ask::StudyAsk;
+    use crate::study::chart::tests::pendulum;
 
     fn description(cols: usize, rows: usize) -> Description {
         Description::new(

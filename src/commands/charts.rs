@@ -1,0 +1,217 @@
+//! `study map` and `study merge`: a chart computed, priced and printed, or put back together
+//! from its parts (issue 59; provenance, issue 66). The command layer's helpers (`emit`,
+//! `counted`, the budget's refusal) are the parent's.
+
+use super::{
+    Failure, Outcome, counted, emit, finished, go_on, interrupted, json_text, study_setup,
+    write_files,
+};
+
+pub(super) fn study_map(args: &crate::cli::MapArgs) -> Outcome {
+    use crate::study::chart;
+    let (preset, model, t_end, tolerance) = study_setup(&args.common)?;
+    let ask = crate::study::ask::StudyAsk {
+        grid: args.grid,
+        t_end,
+        tolerance,
+        asked_tolerance: args.common.tolerance,
+        ratio_max: args.ratio_max,
+        inertia_min: args.inertia_min,
+        inertia_max: args.inertia_max,
+        k: args.k,
+        columns: args.columns,
+        rows: args.rows,
+        hanging: args.position == crate::cli::Position::Hanging,
+    };
+    let chart = chart::Chart::for_study(&model, &ask).map_err(Failure::input)?;
+    if args.shard.is_some() && args.common.out.is_some() {
+        return Err(Failure::input(
+            "--out draws the whole chart: give the parts to `study merge --out DIR`".to_owned(),
+        ));
+    }
+    if args.shard.is_some() && args.common.format == crate::cli::StudyFormat::Csv {
+        return Err(Failure::input(
+            "a shard is written as JSON (`study merge --format csv` prints the whole chart as CSV)"
+                .to_owned(),
+        ));
+    }
+    let total = chart.len();
+    let indices: Vec<usize> = match args.shard {
+        Some(s) => chart::shard_cells(total, s),
+        None => (0..total).collect(),
+    };
+    chart_priced(&chart, indices.len(), args.common.force)?;
+    let label = match args.shard {
+        Some(s) => format!("study map {}/{}", s.index, s.count),
+        None => "study map".to_owned(),
+    };
+    // Progress by cells done; Ctrl-C cancels the cells in flight.
+    let started = std::time::Instant::now();
+    let mapped = counted(&label, indices.len(), "cells", &|done| {
+        chart.cells(&indices, &|_| go_on(), done)
+    });
+    let verdicts = finished(mapped, "study map")?;
+    let mut out = chart.output(
+        crate::outputs::SCHEMA_VERSION,
+        &crate::scenario::text::one_line(&preset.name),
+        &indices,
+        &verdicts,
+        args.shard,
+    );
+    out.wall_seconds = started.elapsed().as_secs_f64();
+    if args.shard.is_some() {
+        // A part proves where it came from (issue 66): the chart's whole description, then a
+        // digest over everything.
+        out.description = Some(crate::study::part::Description::new(preset.to_toml(), &ask));
+        return emit(&json_text(&crate::study::part::sealed(out)));
+    }
+    print_chart(
+        &out,
+        args.common.format,
+        args.common.out.as_deref(),
+        args.common.force,
+    )
+}
+
+/// Prints a chart in `format` and writes `map.csv` and `map.svg` into `out` when asked.
+fn print_chart(
+    out: &crate::study::chart::ChartOutput,
+    format: crate::cli::StudyFormat,
+    dir: Option<&std::path::Path>,
+    force: bool,
+) -> Outcome {
+    let csv = out.csv();
+    match format {
+        crate::cli::StudyFormat::Json => emit(&json_text(out)),
+        crate::cli::StudyFormat::Csv => emit(&csv),
+        crate::cli::StudyFormat::Table => emit(&out.table()),
+    }?;
+    let Some(dir) = dir else { return Ok(()) };
+    let svg = match crate::study::svg::chart_svg(out) {
+        Ok(svg) => svg,
+        Err(e) => return Err(Failure::failed(format!("drawing the map: {e}"))),
+    };
+    write_files(dir, force, &[("map.csv", csv), ("map.svg", svg)])
+}
+
+/// `rattleback study merge PART…`: each part read within its slice's size, the chart rebuilt
+/// from the parts' description, every header and cell compared with what that chart writes, a
+/// random sample of each part's cells recomputed (issue 66).
+pub(super) fn study_merge(args: &crate::cli::MergeArgs) -> Outcome {
+    use crate::study::part;
+    let mut parts = Vec::new();
+    if args
+        .parts
+        .iter()
+        .filter(|p| crate::scenario::write::is_stdin(p))
+        .count()
+        > 1
+    {
+        return Err(Failure::input(
+            "`-` given twice: stdin holds one part".to_owned(),
+        ));
+    }
+    for path in &args.parts {
+        let name = crate::scenario::text::one_line(&path.display().to_string());
+        let read = if crate::scenario::write::is_stdin(path) {
+            part::read(std::io::stdin().lock())
+        } else {
+            match std::fs::metadata(path) {
+                Ok(m) if m.is_dir() => Err("a folder, not a part file".to_owned()),
+                Ok(_) => std::fs::File::open(path)
+                    .map_err(|e| e.to_string())
+                    .and_then(part::read),
+                Err(e) => Err(e.to_string()),
+            }
+        };
+        let part = read.map_err(|e| Failure::input(format!("{name}: {e}")))?;
+        if part.schema_version != crate::outputs::SCHEMA_VERSION {
+            return Err(Failure::input(format!(
+                "{name}: schema_version {} (this build writes and reads {})",
+                part.schema_version,
+                crate::outputs::SCHEMA_VERSION
+            )));
+        }
+        parts.push((name, part));
+    }
+    let (first_name, first) = &parts[0];
+    let Some(description) = &first.description else {
+        return Err(Failure::input(format!(
+            "{first_name}: not a part (no `description`)"
+        )));
+    };
+    // The chart rebuilt from the description alone, its preset read by the preset validator.
+    let rebuilt = || -> Result<crate::study::chart::Chart, String> {
+        let ask = description.ask(crate::scenario::preset::TOLERANCE_RANGE)?;
+        let preset = crate::scenario::Preset::parse(
+            &description.preset,
+            "the part's description",
+            "part",
+            &[],
+        )
+        .map_err(|e| e.to_string())?;
+        crate::study::chart::Chart::for_study(&preset.model, &ask)
+    };
+    let chart = rebuilt().map_err(|e| {
+        Failure::input(format!(
+            "{first_name}: its description is not a chart this program makes: {}",
+            crate::scenario::text::one_line(&e)
+        ))
+    })?;
+    let merged = part::merge(&chart, crate::outputs::SCHEMA_VERSION, &parts)
+        .map_err(|e| Failure::input(crate::scenario::text::one_line(&e)))?;
+    let mut random = || {
+        let mut b = [0u8; 8];
+        // Without the system's randomness, the clock: a forger still cannot pick the cells.
+        if getrandom::fill(&mut b).is_err() {
+            let nanos = std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map_or(0, |d| d.subsec_nanos());
+            b = (u64::from(nanos) ^ 0x9e37_79b9_7f4a_7c15).to_le_bytes();
+        }
+        u64::from_le_bytes(b)
+    };
+    let chosen = part::choose(&parts, args.check, &mut random);
+    let budget = if args.force {
+        f64::INFINITY
+    } else {
+        crate::physics::budget::BUDGET_SECONDS
+    };
+    if let Err(over) = crate::physics::budget::check(chart.predicted_seconds(chosen.len()), budget)
+    {
+        return Err(Failure::input(format!(
+            "recomputing {} cells to check the parts is {over}; give a smaller --check, or pass --force",
+            chosen.len()
+        )));
+    }
+    let checked = counted("study merge: checking", chosen.len(), "cells", &|_| {
+        part::sample(&chart, &parts, &chosen, &|_| go_on())
+    });
+    if let Some(failure) = interrupted() {
+        return Err(failure);
+    }
+    checked.map_err(|e| Failure::input(crate::scenario::text::one_line(&e)))?;
+    if let Some(dir) = &args.out
+        && let Err(e) = std::fs::create_dir_all(dir)
+    {
+        return Err(Failure::input(format!("--out {}: {e}", dir.display())));
+    }
+    print_chart(&merged, args.format, args.out.as_deref(), args.force)
+}
+
+/// The chart's cells when its cost model puts them within the work budget (or `--force`).
+fn chart_priced(chart: &crate::study::chart::Chart, cells: usize, force: bool) -> Outcome {
+    let predicted = chart.predicted_seconds(cells);
+    let budget = if force {
+        f64::INFINITY
+    } else {
+        crate::physics::budget::BUDGET_SECONDS
+    };
+    if let Err(over) = crate::physics::budget::check(predicted, budget) {
+        let what = chart.title();
+        return Err(Failure::input(format!(
+            "this {what} ({cells} cells) is {over}; use a smaller --grid or --shard I/N, or pass --force"
+        )));
+    }
+    Ok(())
+}

@@ -1,0 +1,189 @@
+//! What a chart is asked (issue 66): the flags of `study map` ([`StudyAsk`]) and the whole
+//! description a part carries ([`Description`]), from which `study merge` rebuilds the chart.
+//! Below `chart` and `part`, importing neither.
+
+use serde::{Deserialize, Serialize};
+
+/// The largest cells per side.
+pub const MAX_CELLS: usize = 2000;
+
+/// What `study map` asks of a chart, whatever the scene (the flags, read).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StudyAsk {
+    /// Cells across and up.
+    pub grid: (usize, usize),
+    /// The window (the preset's or `--t-end`).
+    pub t_end: f64,
+    /// The tolerance (the preset's or `--tolerance`): the rattleback's full-model runs.
+    pub tolerance: f64,
+    /// `--tolerance` as given (the pendulum's and the celt's cells have their own default).
+    pub asked_tolerance: Option<f64>,
+    /// The rattleback's `--ratio-max`, `--inertia-min`, `--inertia-max`, `--k`.
+    pub ratio_max: Option<f64>,
+    /// `--inertia-min`.
+    pub inertia_min: Option<f64>,
+    /// `--inertia-max`.
+    pub inertia_max: Option<f64>,
+    /// `--k`.
+    pub k: Option<f64>,
+    /// The pendulum's and the celt's `--columns` and `--rows`.
+    pub columns: Option<(f64, f64)>,
+    /// `--rows`.
+    pub rows: Option<(f64, f64)>,
+    /// The pendulum's `--position hanging`.
+    pub hanging: bool,
+}
+
+/// The program and version that writes parts; a part of another is refused (its cells could
+/// differ in their last bits, and the recomputation would call it edited).
+pub const PROGRAM: &str = concat!("rattleback ", env!("CARGO_PKG_VERSION"));
+
+/// The largest preset text a description may carry (a preset file's own cap is 1 MiB; one this
+/// program writes is under 2 KiB).
+pub const PRESET_BYTES: usize = 64 * 1024;
+
+/// Everything that shapes a chart: `study merge` rebuilds the chart from this alone.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+#[serde(deny_unknown_fields)]
+pub struct Description {
+    /// The program and version that wrote the part (`rattleback 0.1.0`).
+    pub program: String,
+    /// The preset's values after `--set`, as a preset file (TOML).
+    pub preset: String,
+    /// Cells across and up.
+    pub grid: [usize; 2],
+    /// The window (the preset's `run.t_end` or `--t-end`).
+    pub t_end: f64,
+    /// The full model's tolerance (the preset's or `--tolerance`).
+    pub tolerance: f64,
+    /// `--tolerance` as given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub asked_tolerance: Option<f64>,
+    /// `--ratio-max`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ratio_max: Option<f64>,
+    /// `--inertia-min`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inertia_min: Option<f64>,
+    /// `--inertia-max`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inertia_max: Option<f64>,
+    /// `--k`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub k: Option<f64>,
+    /// `--columns`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub columns: Option<[f64; 2]>,
+    /// `--rows`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rows: Option<[f64; 2]>,
+    /// `--position`: `upright` or `hanging`.
+    pub position: String,
+}
+
+impl Description {
+    /// The description of the chart `ask` makes of the preset written as `preset`.
+    #[must_use]
+    pub fn new(preset: String, ask: &StudyAsk) -> Self {
+        Self {
+            program: PROGRAM.to_owned(),
+            preset,
+            grid: [ask.grid.0, ask.grid.1],
+            t_end: ask.t_end,
+            tolerance: ask.tolerance,
+            asked_tolerance: ask.asked_tolerance,
+            ratio_max: ask.ratio_max,
+            inertia_min: ask.inertia_min,
+            inertia_max: ask.inertia_max,
+            k: ask.k,
+            columns: ask.columns.map(|(a, b)| [a, b]),
+            rows: ask.rows.map(|(a, b)| [a, b]),
+            position: if ask.hanging { "hanging" } else { "upright" }.to_owned(),
+        }
+    }
+
+    /// The flags back, each checked as the command line checks it.
+    ///
+    /// # Errors
+    /// Another program's part, or a value no command line could give.
+    pub fn ask(&self, tolerance_range: (f64, f64)) -> Result<StudyAsk, String> {
+        if self.program != PROGRAM {
+            return Err(format!(
+                "written by `{}`, not by this {PROGRAM}: run every shard with one build",
+                printable(&self.program)
+            ));
+        }
+        if self.preset.len() > PRESET_BYTES {
+            return Err(format!(
+                "its preset is {} bytes (at most {PRESET_BYTES})",
+                self.preset.len()
+            ));
+        }
+        let [cols, rows] = self.grid;
+        if !(1..=MAX_CELLS).contains(&cols) || !(1..=MAX_CELLS).contains(&rows) {
+            return Err(format!(
+                "grid {cols}x{rows}: each side a whole number from 1 to {MAX_CELLS}"
+            ));
+        }
+        let positive = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(v)
+            } else {
+                Err(format!("{name} {v}: a finite number > 0"))
+            }
+        };
+        let (lo, hi) = tolerance_range;
+        let tolerance = |name: &str, v: f64| {
+            if (lo..=hi).contains(&v) {
+                Ok(v)
+            } else {
+                Err(format!("{name} {v}: a number in [{lo:e}, {hi:e}]"))
+            }
+        };
+        let range = |name: &str, r: Option<[f64; 2]>| -> Result<Option<(f64, f64)>, String> {
+            match r {
+                None => Ok(None),
+                Some([a, b])
+                    if a.is_finite()
+                        && b.is_finite()
+                        && a.abs() <= 1e12
+                        && b.abs() <= 1e12
+                        && a < b =>
+                {
+                    Ok(Some((a, b)))
+                }
+                Some([a, b]) => Err(format!(
+                    "{name} {a},{b}: finite numbers of magnitude at most 1e12, MIN below MAX"
+                )),
+            }
+        };
+        let hanging = match self.position.as_str() {
+            "upright" => false,
+            "hanging" => true,
+            _ => return Err("position: `upright` or `hanging`".to_owned()),
+        };
+        let optional = |name: &str, v: Option<f64>| v.map(|v| positive(name, v)).transpose();
+        Ok(StudyAsk {
+            grid: (cols, rows),
+            t_end: positive("t_end", self.t_end)?,
+            tolerance: tolerance("tolerance", self.tolerance)?,
+            asked_tolerance: self
+                .asked_tolerance
+                .map(|t| tolerance("asked_tolerance", t))
+                .transpose()?,
+            ratio_max: optional("ratio_max", self.ratio_max)?,
+            inertia_min: optional("inertia_min", self.inertia_min)?,
+            inertia_max: optional("inertia_max", self.inertia_max)?,
+            k: optional("k", self.k)?,
+            columns: range("columns", self.columns)?,
+            rows: range("rows", self.rows)?,
+            hanging,
+        })
+    }
+}
+
+/// Text from a file, shown: control characters dropped, at most 200 characters.
+pub(super) fn printable(text: &str) -> String {
+    text.chars().filter(|c| !c.is_control()).take(200).collect()
+}
