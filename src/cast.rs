@@ -281,7 +281,7 @@ fn frames_of(
         "version": 2,
         "width": area.width,
         "height": area.height,
-        "title": format!("rattleback: {}", crate::scenario::text::one_line(&app.scenario.name)),
+        "title": crate::record::title(rec, &app.scenario.name),
         "idle_time_limit": IDLE_TIME_LIMIT,
         "env": {"TERM": "xterm-256color"},
     });

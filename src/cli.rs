@@ -186,7 +186,8 @@ pub enum Command {
     /// List every colour theme (shipped and the user's), like `presets`.
     Themes(ListArgs),
     /// Open a lesson in the explorer: its steps, questions and conditions (`lessons` lists
-    /// them).
+    /// them); `lesson new NAME` writes a commented lesson to edit into your lessons folder.
+    #[command(subcommand_negates_reqs = true, args_conflicts_with_subcommands = true)]
     Lesson(LessonArgs),
     /// List every lesson (shipped and the user's): name, title, steps, source, path.
     Lessons(ListArgs),
@@ -254,15 +255,40 @@ pub enum ConfigCommand {
 /// Arguments of `lesson`.
 #[derive(Debug, Args)]
 pub struct LessonArgs {
+    /// Write a new lesson instead of opening one.
+    #[command(subcommand)]
+    pub new: Option<LessonCommand>,
     /// A lesson: a shipped name (`rattleback lessons` lists them), a user lesson or a path.
-    #[arg(value_name = "NAME|PATH")]
-    pub lesson: String,
+    #[arg(value_name = "NAME|PATH", required = true)]
+    pub lesson: Option<String>,
     /// How the explorer draws.
     #[command(flatten)]
     pub look: LookArgs,
     /// Recording.
     #[command(flatten)]
     pub rec: RecordArgs,
+}
+
+/// What `lesson` does besides opening one.
+#[derive(Debug, Subcommand)]
+pub enum LessonCommand {
+    /// Write a commented lesson skeleton, every key in use, to `<config>/lessons/NAME.toml`
+    /// (or elsewhere); it passes `rattleback check` as written.
+    New(LessonNewArgs),
+}
+
+/// Arguments of `lesson new`.
+#[derive(Debug, Args)]
+pub struct LessonNewArgs {
+    /// The lesson's name (`rattleback lesson NAME` opens it): letters, digits, `-` and `_`.
+    #[arg(value_name = "NAME")]
+    pub name: String,
+    /// Write here instead of the user's lessons folder.
+    #[arg(long, value_name = "PATH")]
+    pub out: Option<std::path::PathBuf>,
+    /// Replace an existing file.
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// Arguments of `compare`.

@@ -146,8 +146,13 @@ pub fn lessons(args: &ListArgs) -> Outcome {
         &json,
         args.format,
         &|e| {
+            let about = if e.description.is_empty() {
+                String::new()
+            } else {
+                format!("{indent}{}\n", one_line(&e.description))
+            };
             format!(
-                "{:<w$} {:<8} {} ({} steps)\n{indent}{}\n\n",
+                "{:<w$} {:<8} {} ({} steps)\n{about}{indent}{}\n\n",
                 e.name,
                 format!("{:?}", e.source).to_lowercase(),
                 one_line(&e.title),
@@ -517,6 +522,58 @@ pub fn bench(args: &crate::cli::BenchArgs) -> Outcome {
     Ok(())
 }
 
+/// `rattleback lesson new NAME`: the commented skeleton, in the user's lessons folder (or
+/// `--out`), never over a file without `--force`.
+pub fn lesson_new(args: &crate::cli::LessonNewArgs) -> Outcome {
+    let name = &args.name;
+    let valid = (1..=64).contains(&name.chars().count())
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_')
+        && !name.starts_with('-');
+    if !valid {
+        return Err(Failure::input(format!(
+            "lesson new {}: a name is 1 to 64 letters, digits, `-` and `_` (not first): `rattleback lesson NAME` opens it",
+            crate::scenario::text::one_line(name)
+        )));
+    }
+    let path = match (&args.out, crate::scenario::lesson::user_dir()) {
+        (Some(p), _) => p.clone(),
+        (None, Some(dir)) => {
+            if let Err(e) = std::fs::create_dir_all(&dir) {
+                return Err(Failure::failed(format!("{}: {e}", dir.display())));
+            }
+            dir.join(format!("{name}.toml"))
+        }
+        (None, None) => {
+            return Err(Failure::input(
+                "no lessons folder (no home folder): give --out PATH, or set RATTLEBACK_CONFIG_DIR",
+            ));
+        }
+    };
+    let text = crate::scenario::lesson::SKELETON
+        .replace("@NAME@", name)
+        .replace("@TITLE@", &name.replace(['-', '_'], " "))
+        .replace("@PATH@", &path.display().to_string());
+    if let Err(e) = crate::scenario::write::write_atomic(&path, text.as_bytes(), args.force) {
+        if e.kind() == std::io::ErrorKind::AlreadyExists {
+            return Err(Failure::input(format!("{e}; --force replaces it")));
+        }
+        return Err(Failure::failed(format!("{}: {e}", path.display())));
+    }
+    say!(
+        "wrote {}: edit it, check it with `rattleback check {}`, open it with `rattleback lesson {}`",
+        path.display(),
+        path.display(),
+        if args.out.is_some() {
+            path.display().to_string()
+        } else {
+            name.clone()
+        }
+    );
+    Ok(())
+}
+
 /// `rattleback check FILE...`.
 pub fn check(args: &CheckArgs) -> Outcome {
     let mut problems = Vec::new();
@@ -527,8 +584,24 @@ pub fn check(args: &CheckArgs) -> Outcome {
         match PresetError::read(path) {
             Err(e) => problems.push(e),
             Ok(src) if crate::scenario::lesson::is_lesson(&src) => {
-                if let Err(mut e) = crate::scenario::lesson::Lesson::parse(&src, &label, &label) {
-                    problems.append(&mut e);
+                match crate::scenario::lesson::Lesson::parse(&src, &label, &label) {
+                    Err(mut e) => problems.append(&mut e),
+                    // Read as a student meets it, step by step at 80×24.
+                    Ok(lesson) => {
+                        problems.extend(crate::explorer::review::review(&lesson).into_iter().map(
+                            |f| PresetError::Invalid {
+                                path: label.clone(),
+                                line: crate::scenario::lesson::step_line(&src, f.step),
+                                key: Some(format!("step.{}", f.step)),
+                                message: format!(
+                                    "step {} (\"{}\"): {}",
+                                    f.step + 1,
+                                    lesson.steps[f.step].title,
+                                    f.message
+                                ),
+                            },
+                        ));
+                    }
                 }
             }
             Ok(src) if is_theme(&src) => {

@@ -495,12 +495,25 @@ fn run_verify(args: &ReplayArgs, rec: &record::Recording, path: &str) -> Outcome
 
 /// What `replay --verify` checked; `cut` is the last intact line of a file cut short.
 fn print_report(path: &str, r: &record::Report, cut: Option<usize>) {
-    say!(
-        "{path}: {} checkpoint(s) reproduced bit for bit, {} screen(s) as recorded",
-        r.checkpoints,
-        r.screens
-    );
-    if r.final_screen {
+    // A file cut short fails first, and what it reproduced is said of its intact part only:
+    // nothing claims a last frame the cut removed (issue 67).
+    if let Some(n) = cut {
+        say_err!(
+            "rattleback: error: {path}: incomplete: intact up to line {n}, but there is no end line (the recording was cut short, or its tail deleted)"
+        );
+        say!(
+            "{path}: in its intact lines 1-{n}: {} checkpoint(s) reproduced bit for bit, {} screen(s) as recorded; its last frame is not in the file",
+            r.checkpoints,
+            r.screens
+        );
+    } else {
+        say!(
+            "{path}: {} checkpoint(s) reproduced bit for bit, {} screen(s) as recorded",
+            r.checkpoints,
+            r.screens
+        );
+    }
+    if cut.is_none() && r.final_screen {
         say!("{path}: the last frame, as recorded");
     } else if cut.is_none() {
         say!(
@@ -515,11 +528,6 @@ fn print_report(path: &str, r: &record::Report, cut: Option<usize>) {
             "{path}: not signed (anyone can write a valid chain: only a signature says who made the file)"
         ),
         None => {}
-    }
-    if let Some(n) = cut {
-        say_err!(
-            "rattleback: error: {path}: incomplete: intact up to line {n}, but there is no end line (the recording was cut short, or its tail deleted)"
-        );
     }
 }
 
@@ -674,10 +682,18 @@ fn run_follow(args: &rattleback::cli::FollowArgs) -> Outcome {
 }
 
 fn run_lesson(args: &rattleback::cli::LessonArgs) -> Outcome {
-    if args.lesson == "-" {
+    if let Some(rattleback::cli::LessonCommand::New(new)) = &args.new {
+        return commands::lesson_new(new);
+    }
+    let Some(name) = args.lesson.as_deref() else {
+        return Err(Failure::input(
+            "lesson: give a lesson's NAME or PATH (`rattleback lessons` lists them), or `lesson new NAME`",
+        ));
+    };
+    if name == "-" {
         return refuse_stdin("lesson -");
     }
-    let lesson = match rattleback::scenario::lesson::resolve(&args.lesson) {
+    let lesson = match rattleback::scenario::lesson::resolve(name) {
         Ok(l) => l,
         Err(e) => {
             return Err(Failure::input(e));

@@ -101,7 +101,7 @@ pub fn export_html(
 ) -> Result<usize, crate::record::RecordError> {
     let (cast, frames) = crate::cast::cast_text(rec, path, options, size, seen)?;
     let name = crate::outputs::recorded_preset(rec).map_or_else(|| path.to_owned(), |p| p.name);
-    let page = lecture_page(rec, &format!("rattleback: {name}"), &cast);
+    let page = lecture_page(rec, &crate::record::title(rec, &name), &cast);
     crate::scenario::write::write_atomic(out, page.as_bytes(), replace).map_err(|source| {
         crate::record::RecordError::Io {
             path: out.display().to_string(),
@@ -137,6 +137,18 @@ pub fn lecture_page(rec: &Recording, title: &str, cast: &str) -> String {
     } else {
         format!("<nav><h2>Chapters</h2>\n<ol id=\"chapters\">\n{chapters}</ol></nav>\n")
     };
+    // A lesson's description under its title, as `lessons` and its first step show it.
+    let description = rec
+        .header
+        .lesson
+        .as_ref()
+        .filter(|l| !l.description.is_empty())
+        .map_or_else(String::new, |l| {
+            format!(
+                "<p class=\"description\">{}</p>\n",
+                escape(&crate::scenario::text::clean(&l.description))
+            )
+        });
     let cast_json = script_json(&serde_json::Value::String(cast.to_owned()));
     format!(
         r##"<!DOCTYPE html>
@@ -154,7 +166,7 @@ nav ol {{ columns: 2; }}
 </head>
 <body>
 <h1>{title}</h1>
-<div id="player"></div>
+{description}<div id="player"></div>
 {chapters}<p><small>Recorded with rattleback {version}; played by asciinema-player 3.18.0
 (Apache License 2.0, inlined below).</small></p>
 <script type="application/json" id="cast">{cast_json}</script>

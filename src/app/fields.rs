@@ -134,6 +134,16 @@ impl Field {
             .find(|f| f.label() == name)
     }
 
+    /// The field `section.key` (as `--set` and a lesson's condition name it) of `model`'s
+    /// panel; `None` for a key it has not (another scene's parameter of the same name too).
+    #[must_use]
+    pub fn keyed(model: ModelKind, key: &str) -> Option<Self> {
+        let (section, name) = key.split_once('.')?;
+        Self::rows(model)
+            .into_iter()
+            .find(|f| f.section() == section && f.label() == name)
+    }
+
     /// The current value as shown.
     #[must_use]
     pub fn show(self, s: &Settings) -> String {
@@ -282,20 +292,7 @@ impl Field {
     }
 }
 
-/// A compact number: up to 6 significant digits, no trailing zeros.
-#[must_use]
-pub fn format_number(v: f64) -> String {
-    if v != 0.0 && (v.abs() < 1e-3 || v.abs() >= 1e6) {
-        return format!("{v:.4e}");
-    }
-    let s = format!("{v:.6}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".to_owned()
-    } else {
-        s.to_owned()
-    }
-}
+pub use crate::scenario::text::format_number;
 
 #[cfg(test)]
 mod tests {

@@ -10,6 +10,9 @@ use super::mode::{Prompt, PromptFor};
 use super::{App, Effect, Key, Message, Mode};
 use crate::scenario::lesson::{Lesson, Question, Until};
 
+/// How a refused `n` begins (the message is taken back once the condition holds).
+const NOT_YET: &str = "not yet: ";
+
 /// An answer given.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Given {
@@ -72,6 +75,54 @@ impl LessonState {
     pub fn awaiting_answer(&self) -> bool {
         self.current().question.is_some() && self.given.is_none()
     }
+
+    /// Whether the step's answer is still to be found: a question asked and not yet revealed.
+    /// Until then the panel's predictions (`b^2-2a`, `vs critical`, the regime) and the
+    /// condition's counts and bounds are shown without their values, which could state it. (A
+    /// pane the step opens on purpose, as the sweep and its slope, is the lecturer's to
+    /// choose: `rattleback check` says when it gives the answer away.)
+    #[must_use]
+    pub fn answer_hidden(&self) -> bool {
+        self.current().question.is_some() && !self.revealed && !self.finished
+    }
+
+    /// How far a wrong number is from the answer (`None`: a choice, or right).
+    #[must_use]
+    pub fn off_by(&self) -> Option<f64> {
+        match (&self.current().question, self.given?) {
+            (Some(Question::Number { answer, .. }), Given::Number(x))
+                if self.correct() == Some(false) =>
+            {
+                Some(x - answer)
+            }
+            _ => None,
+        }
+    }
+
+    /// The verdict on a number, as the message and the pane write it.
+    #[must_use]
+    pub fn verdict_text(&self) -> Option<String> {
+        let given = self.given_text()?;
+        let answer = self.current().question.as_ref()?.answer_text();
+        Some(match (self.correct()?, self.off_by()) {
+            (true, _) => format!("your answer: {given}, right"),
+            (false, Some(d)) => format!(
+                "your answer: {given}, wrong: {} by {}; the answer: {answer}",
+                if d > 0.0 { "too high" } else { "too low" },
+                crate::scenario::lesson::condition_value(round_sig(d.abs(), 3))
+            ),
+            (false, None) => format!("your answer: {given}, wrong; the answer: {answer}"),
+        })
+    }
+}
+
+/// `x` to `digits` significant digits (how far a wrong answer is, without rounding noise).
+fn round_sig(x: f64, digits: i32) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let scale = 10f64.powi(digits - 1 - x.abs().log10().floor() as i32);
+    (x * scale).round() / scale
 }
 
 impl App {
@@ -147,33 +198,7 @@ impl App {
             effects.extend(self.load(preset));
         }
         if !step.set.is_empty() {
-            let mut s = self.scenario.settings;
-            for o in &step.set {
-                let field = o
-                    .key
-                    .rsplit('.')
-                    .next()
-                    .and_then(|name| Field::named(s.model.kind(), name));
-                match field.map(|f| f.with_text(&s, &o.value)) {
-                    Some(Ok(next)) => {
-                        s = next;
-                        self.log(Event::Set {
-                            field: o.key.rsplit('.').next().unwrap_or_default().to_owned(),
-                            value: o.value.clone(),
-                        });
-                    }
-                    Some(Err(e)) => self.status = Message::error(format!("{}: {e}", o.key)),
-                    None => {
-                        self.status = Message::error(format!("{}: not a parameter here", o.key));
-                    }
-                }
-            }
-            self.scenario.set(s);
-            // A replay moves the highlight to each field set; the lecturer's stays: said.
-            self.log(Event::Select {
-                field: self.field().label().to_owned(),
-            });
-            effects.extend(self.restart());
+            effects.extend(self.apply_set(&step.set));
         }
         if self.run.playing {
             // A step opens paused; said in the file, so a replay and a follower pause too
@@ -211,6 +236,40 @@ impl App {
         effects
     }
 
+    /// Applies `set` (`section.key=value` changes, as a step's `set` and `--set` write them)
+    /// to the scenario, each journaled, and restarts the run: how a step's changes are made,
+    /// and how `rattleback check` meets a step's parameter condition.
+    pub fn apply_set(&mut self, set: &[crate::scenario::preset::Override]) -> Vec<Effect> {
+        let mut s = self.scenario.settings;
+        for o in set {
+            let field = Field::keyed(s.model.kind(), &o.key).or_else(|| {
+                o.key
+                    .rsplit('.')
+                    .next()
+                    .and_then(|name| Field::named(s.model.kind(), name))
+            });
+            match field.map(|f| f.with_text(&s, &o.value)) {
+                Some(Ok(next)) => {
+                    s = next;
+                    self.log(Event::Set {
+                        field: o.key.rsplit('.').next().unwrap_or_default().to_owned(),
+                        value: o.value.clone(),
+                    });
+                }
+                Some(Err(e)) => self.status = Message::error(format!("{}: {e}", o.key)),
+                None => {
+                    self.status = Message::error(format!("{}: not a parameter here", o.key));
+                }
+            }
+        }
+        self.scenario.set(s);
+        // A replay moves the highlight to each field set; the lecturer's stays: said.
+        self.log(Event::Select {
+            field: self.field().label().to_owned(),
+        });
+        self.restart()
+    }
+
     /// Journals the current step (when it begins, and when a recording starts mid-lesson).
     pub(super) fn log_lesson_step(&mut self) {
         let Some(state) = self.lesson.as_ref() else {
@@ -238,6 +297,9 @@ impl App {
         } = &state.current().until;
         let mut missing = Vec::new();
         let written = crate::scenario::lesson::condition_value;
+        // While the answer is to be found, a count or a bound could state it (two ways, step
+        // 4: "2 reversals" right after the answer "how many reversals?"): said without it.
+        let hidden = state.answer_hidden();
         if let Some(t) = time
             && self.run.shown < *t
         {
@@ -246,17 +308,28 @@ impl App {
         if let Some(n) = reversals {
             let now = self.run.reversals_shown();
             if now < *n {
-                missing.push(format!("{n} reversals (now {now})"));
+                missing.push(if hidden {
+                    format!(
+                        "more {} (now {now})",
+                        self.scenario.settings.model.kind().words().events
+                    )
+                } else {
+                    format!(
+                        "{n} {} (now {now})",
+                        self.scenario.settings.model.kind().words().events
+                    )
+                });
             }
         }
         if let Some(p) = parameter {
             let label = p.key.rsplit('.').next().unwrap_or_default();
-            if let Some(f) = Field::named(self.scenario.settings.model.kind(), label) {
+            if let Some(f) = Field::keyed(self.scenario.settings.model.kind(), &p.key) {
                 let v: f64 = f.exact(&self.scenario.settings).parse().unwrap_or(f64::NAN);
                 let low = p.at_least.is_some_and(|lo| v.is_nan() || v < lo);
                 let high = p.at_most.is_some_and(|hi| v.is_nan() || v > hi);
                 if low || high {
                     let want = match (p.at_least, p.at_most) {
+                        _ if hidden => format!("{label} where you find it"),
                         (Some(lo), Some(hi)) => {
                             format!("{label} in [{}, {}]", written(lo), written(hi))
                         }
@@ -283,6 +356,15 @@ impl App {
             return;
         }
         let ready = self.run.done() || self.lesson_missing().is_none();
+        // A "not yet" that no longer holds is taken back (it stayed under "n: finish").
+        if self.lesson_missing().is_none()
+            && self
+                .status
+                .as_ref()
+                .is_some_and(|m| m.error && m.text.starts_with(NOT_YET))
+        {
+            self.status = Message::info("the step's condition holds: n moves on");
+        }
         let Some(state) = self.lesson.as_mut() else {
             return;
         };
@@ -293,17 +375,12 @@ impl App {
         let correct = state.correct().unwrap_or(false);
         let given = state.given_text().unwrap_or_default();
         let step = state.step;
-        let answer = state
-            .current()
-            .question
-            .as_ref()
-            .map(Question::answer_text)
-            .unwrap_or_default();
-        self.status = Message::info(if correct {
-            format!("your answer: {given}, right")
+        let verdict = state.verdict_text().unwrap_or_default();
+        self.status = if correct {
+            Message::info(verdict)
         } else {
-            format!("your answer: {given}; the answer: {answer}")
-        });
+            Message::error(verdict)
+        };
         self.log(Event::Answer {
             step,
             given,
@@ -363,7 +440,7 @@ impl App {
 
     fn next_step(&mut self) -> Vec<Effect> {
         if let Some(missing) = self.lesson_missing() {
-            self.status = Message::error(format!("not yet: {missing}"));
+            self.status = Message::error(format!("{NOT_YET}{missing}"));
             return Vec::new();
         }
         let Some(state) = self.lesson.as_mut() else {

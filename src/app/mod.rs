@@ -476,7 +476,11 @@ impl App {
         self.status = Message::info(format!("copied: {text}"));
         // Shown whole: the message line would cut it.
         self.remember();
-        self.mode = Mode::Help(Help::at(HelpPage::Messages).scrolled(i32::from(u16::MAX)));
+        self.mode = Mode::Help(
+            Help::at(HelpPage::Messages)
+                .scrolled(i32::from(u16::MAX))
+                .passing_on(),
+        );
         vec![Effect::Copy(text)]
     }
 

@@ -33,6 +33,10 @@ pub struct Help {
     /// The last first line that still fills the overlay, as the last frame drew it (the loop
     /// tells the app with [`crate::app::App::fit_help`]; until then, unbounded).
     pub max: u16,
+    /// Opened by the program, not asked for (`y` shows the copied command whole): a key other
+    /// than Esc, Enter and the page keys closes it and does what it does (issue 67: the key
+    /// after `y` was lost).
+    pub passes_on: bool,
 }
 
 impl Help {
@@ -43,6 +47,16 @@ impl Help {
             page,
             scroll: 0,
             max: u16::MAX,
+            passes_on: false,
+        }
+    }
+
+    /// The same view, passing on the key that closes it ([`Self::passes_on`]).
+    #[must_use]
+    pub fn passing_on(self) -> Self {
+        Self {
+            passes_on: true,
+            ..self
         }
     }
 

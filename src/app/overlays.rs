@@ -8,9 +8,24 @@ use super::{App, Effect};
 impl App {
     /// A key while the help is open: the arrows, `j` `k`, page up and down, Home and End scroll it; `?`
     /// turns to the legend, then closes; `q` and Ctrl-C quit; any other key only closes it (a
-    /// key that closes the help does nothing else).
+    /// key that closes the help does nothing else). A view the program opened itself
+    /// ([`Help::passes_on`]) scrolls by page only, and passes any other key on but Esc and Enter.
     pub(super) fn on_help_key(&mut self, help: Help, key: Key) -> Vec<Effect> {
         const PAGE: i32 = 10;
+        if help.passes_on {
+            return match key {
+                Key::PageDown => {
+                    self.mode = Mode::Help(help.scrolled(PAGE));
+                    Vec::new()
+                }
+                Key::PageUp => {
+                    self.mode = Mode::Help(help.scrolled(-PAGE));
+                    Vec::new()
+                }
+                Key::Esc | Key::Enter => Vec::new(),
+                _ => self.key(key),
+            };
+        }
         let by = match key {
             Key::Down | Key::Char('j') => Some(1),
             Key::Up | Key::Char('k') => Some(-1),

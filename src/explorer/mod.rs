@@ -6,6 +6,7 @@
 
 pub mod recording;
 pub mod replay;
+pub mod review;
 
 use std::collections::VecDeque;
 use std::sync::Arc;

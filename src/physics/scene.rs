@@ -117,6 +117,9 @@ pub struct SummaryLine {
     pub meaning: &'static str,
     /// The value.
     pub value: Shown,
+    /// It predicts the run (a criterion, a regime): a lesson hides its value while a question
+    /// is open, so the panel does not answer it.
+    pub predicts: bool,
 }
 
 impl SummaryLine {
@@ -127,7 +130,15 @@ impl SummaryLine {
             label,
             meaning,
             value,
+            predicts: false,
         }
+    }
+
+    /// The same line, marked as predicting the run ([`Self::predicts`]).
+    #[must_use]
+    pub const fn prediction(mut self) -> Self {
+        self.predicts = true;
+        self
     }
 }
 

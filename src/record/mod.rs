@@ -44,7 +44,7 @@ pub const FORMAT: &str = "rattleback-session";
 /// segment's horizon), so a file of 8 or older replays its runs in one piece, as shown.
 /// 10: the lesson in the header, `given` and `lesson_done` lines, the last frame. 11: a `plan`
 /// line names its key's model (`docs/session-format.md`), so no model's key reads as another's.
-pub const VERSION: u32 = 12;
+pub const VERSION: u32 = 13;
 
 /// First line of a session file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
@@ -164,7 +164,7 @@ pub struct Chapter {
 #[must_use]
 pub fn chapter_list(rec: &Recording) -> Vec<Chapter> {
     let mut out = Vec::new();
-    for (_, line) in &rec.lines {
+    for (i, (_, line)) in rec.lines.iter().enumerate() {
         let title = match &line.event {
             Event::Chapter { title } => title.clone(),
             Event::LessonStep {
@@ -179,11 +179,44 @@ pub fn chapter_list(rec: &Recording) -> Vec<Chapter> {
         out.push(Chapter {
             number: out.len() + 1,
             wall: line.wall,
-            t: line.t,
+            t: step_start(rec, i),
             title: crate::scenario::text::clean(&title).replace(['\n', '\t'], " "),
         });
     }
     out
+}
+
+/// What an exported page and a cast call a recording: its lesson's title (issue 67: they named
+/// the lesson's first preset), else `preset`'s name.
+#[must_use]
+pub fn title(rec: &Recording, preset: &str) -> String {
+    let name = rec
+        .header
+        .lesson
+        .as_ref()
+        .map_or(preset, |l| l.title.as_str());
+    format!("rattleback: {}", crate::scenario::text::one_line(name))
+}
+
+/// The simulated time a chapter starts at: its line's, but a lesson step's is its own run's
+/// first (the step line is written at the previous step's last time; its preset and changes
+/// then start a new run: issue 67, `--chapters` listed each step at the one before's end).
+fn step_start(rec: &Recording, index: usize) -> f64 {
+    let (_, line) = &rec.lines[index];
+    if !matches!(line.event, Event::LessonStep { .. }) {
+        return line.t;
+    }
+    rec.lines[index + 1..]
+        .iter()
+        .map(|(_, l)| l)
+        .find(|l| {
+            !matches!(
+                l.event,
+                Event::Preset { .. } | Event::Set { .. } | Event::Select { .. }
+            )
+        })
+        .filter(|l| l.generation != line.generation)
+        .map_or(line.t, |l| l.t)
 }
 
 /// Why a line's times cannot be (a wall clock outside `[0, MAX_WALL]`, a simulated time that
@@ -289,6 +322,9 @@ pub fn check_header(h: &Header) -> Result<(), String> {
     if let Some(lesson) = &h.lesson {
         if h.version < 10 {
             return Err("a lesson in the header (format 10)".to_owned());
+        }
+        if h.version < 13 && !lesson.description.is_empty() {
+            return Err("a lesson description in the header (format 13)".to_owned());
         }
         if lesson.lesson().is_none() {
             return Err("lesson: no step, or a choice's answer out of its choices".to_owned());

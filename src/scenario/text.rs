@@ -438,3 +438,18 @@ pub fn cut(line: &str, max: usize) -> String {
     let last: String = line.chars().skip(n - tail).collect();
     format!("{first} … ({} characters cut) … {last}", n - max)
 }
+
+/// A compact number: up to 6 significant digits, no trailing zeros.
+#[must_use]
+pub fn format_number(v: f64) -> String {
+    if v != 0.0 && (v.abs() < 1e-3 || v.abs() >= 1e6) {
+        return format!("{v:.4e}");
+    }
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".to_owned()
+    } else {
+        s.to_owned()
+    }
+}

@@ -43,6 +43,13 @@ impl LessonPane<'_> {
         let count = state.lesson.steps.len();
         let bold = Style::default().add_modifier(Modifier::BOLD);
         let mut lines = vec![Line::raw(step.text.clone())];
+        // The lesson's description opens its first step (dim, above the step's words).
+        if state.step == 0 && !state.lesson.description.is_empty() {
+            lines.insert(
+                0,
+                Line::styled(state.lesson.description.clone(), look.dim()),
+            );
+        }
         if let Some(q) = &step.question {
             lines.push(Line::styled(format!("? {}", q.prompt()), bold));
             match q {
@@ -74,12 +81,11 @@ impl LessonPane<'_> {
                 (None, _, _) => "answer before you play".to_owned(),
                 // The verdict comes after the run (the message line says so).
                 (Some(g), false, _) => format!("your answer: {g}"),
-                (Some(g), true, Some(true)) => format!("your answer: {g}, right"),
                 // A choice given is highlighted above: the verdict need not repeat it.
-                (Some(_), true, _) if matches!(q, Question::Choice { .. }) => {
+                (Some(_), true, Some(false)) if matches!(q, Question::Choice { .. }) => {
                     format!("wrong; the answer: {}", q.answer_text())
                 }
-                (Some(g), true, _) => format!("your answer: {g}; the answer: {}", q.answer_text()),
+                (Some(_), true, _) => state.verdict_text().unwrap_or_default(),
             };
             lines.push(Line::styled(verdict, look.dim()));
         }
@@ -116,6 +122,13 @@ impl Widget for LessonPane<'_> {
             super::wrap_words(&text, inner, usize::MAX).len().max(1)
         };
         let room = usize::from(area.height.saturating_sub(2));
+        // The description gives way first (it is in `lessons` and on the exported page too).
+        if state.step == 0
+            && !state.lesson.description.is_empty()
+            && lines.iter().map(rows).sum::<usize>() > room
+        {
+            lines.remove(0);
+        }
         let tail: usize = lines.iter().skip(1).map(rows).sum();
         if rows(&lines[0]) + tail > room {
             let keep = room.saturating_sub(tail).max(1) * inner;

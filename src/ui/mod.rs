@@ -45,11 +45,13 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Wrap};
 
 use crate::app::keys::{self, Hint, KEYMAP, REPLAY_KEYMAP};
+use crate::app::lesson::LessonState;
 use crate::app::panes::Pane;
 use crate::app::{App, Mode};
 use crate::scenario::theme::{Colour, ThemeSpec};
 
 pub use body::envelope as body_envelope;
+pub use params::HIDDEN;
 pub use portrait::Cache;
 
 /// A plot's areas inside a pane: the y labels (8 columns), the plot, the x labels (one row).
@@ -715,6 +717,7 @@ fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mu
             scenario: &app.scenario,
             editing,
             prompt,
+            hide_predictions: app.lesson.as_ref().is_some_and(LessonState::answer_hidden),
             look: &look,
         },
         left,

@@ -23,9 +23,14 @@ pub struct ParamsPanel<'a> {
     pub editing: Option<&'a str>,
     /// The open prompt, if any.
     pub prompt: Option<&'a Prompt>,
+    /// A lesson's question is open: the predictions are shown without their values.
+    pub hide_predictions: bool,
     /// Marker and colours.
     pub look: &'a Look<'a>,
 }
+
+/// What a prediction shows while a lesson's question is open.
+pub const HIDDEN: &str = "?";
 
 fn opt(v: Option<f64>) -> String {
     v.map_or_else(|| "-".to_owned(), format_number)
@@ -68,6 +73,10 @@ fn derived_lines(p: &ParamsPanel<'_>, width: usize) -> Vec<Line<'static>> {
         ])
     };
     for line in &d.summary {
+        if line.predicts && p.hide_predictions {
+            lines.push(Line::styled(row("  ", line.label, HIDDEN, width), dim));
+            continue;
+        }
         lines.push(match line.value {
             Shown::Number(v) => Line::styled(row("  ", line.label, &opt(v), width), dim),
             Shown::Percent(v) => {

@@ -341,6 +341,15 @@ fn the_two_ways_lesson_is_right_and_its_recording_verifies() {
         if step.partner.is_some() {
             assert!(h.app.view.panes.shows(Pane::Compare), "step {}", i + 1);
         }
+        // A threshold step: the parameter set where the condition asks (issue 67).
+        if let Some(p) = &step.until.parameter {
+            let value = p.at_least.or(p.at_most).unwrap();
+            let e = h.app.apply_set(&[rattleback::scenario::preset::Override {
+                key: p.key.clone(),
+                value: format!("{value:?}"),
+            }]);
+            h.exec(e);
+        }
         h.play_until(step.until.time.unwrap(), 64.0);
         for _ in 0..3 {
             h.tick(1.0 / 30.0);

@@ -704,6 +704,11 @@ fn edits_downgrades_cuts_and_extra_fields_fail_naming_the_line() {
         err.contains(&format!("intact up to line {}", total - 4)),
         "{err}"
     );
+    // Nothing claims the last frame the cut removed (issue 67: "the last frame, as recorded"
+    // was printed before the failure).
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(!said.contains("the last frame, as recorded"), "{said}");
+    assert!(said.contains("its last frame is not in the file"), "{said}");
 }
 
 #[test]
@@ -1010,9 +1015,46 @@ fn map_cursor_lines_are_there(name: &str, lecture: &Lecture) {
     assert_eq!(asks_map, maps > 0, "{name}: {maps} map cursor lines");
 }
 
+/// One test per shipped lesson (they run side by side: one test of all eight took four
+/// minutes alone); a lesson shipped without its test fails
+/// `every_shipped_lesson_has_its_lecture_test`.
+macro_rules! lesson_lectures {
+    ($($test:ident: $name:literal,)*) => {
+        $(
+            #[test]
+            fn $test() {
+                a_shipped_lesson_records_replays_follows_and_verifies_frame_for_frame($name);
+            }
+        )*
+        const LECTURED: &[&str] = &[$($name),*];
+    };
+}
+
+lesson_lectures! {
+    lecture_first_reversal: "first-reversal",
+    lecture_stiff_limit: "stiff-limit",
+    lecture_tapping: "tapping",
+    lecture_kapitza_threshold: "kapitza-threshold",
+    lecture_kapitza_ripple: "kapitza-ripple",
+    lecture_two_ways: "two-ways",
+    lecture_kapitza_chart: "kapitza-chart",
+    lecture_celt_chart: "celt-chart",
+}
+
 #[test]
-fn every_shipped_lesson_records_replays_follows_and_verifies_frame_for_frame() {
-    for (name, _) in rattleback::scenario::lesson::SHIPPED_LESSONS {
+fn every_shipped_lesson_has_its_lecture_test() {
+    let shipped: Vec<&str> = rattleback::scenario::lesson::SHIPPED_LESSONS
+        .iter()
+        .map(|(n, _)| *n)
+        .collect();
+    assert_eq!(shipped, LECTURED);
+}
+
+/// A shipped lesson recorded as a lecturer gives it (at ×1 and ×16, answers right and wrong),
+/// replayed, followed, verified and exported, frame for frame.
+#[allow(clippy::too_many_lines)] // every way the lecture is read back, one after the other
+fn a_shipped_lesson_records_replays_follows_and_verifies_frame_for_frame(name: &str) {
+    {
         for (speed, wrong) in [(1.0, false), (16.0, true)] {
             let lecture = lesson_lecture(name, speed, wrong);
             let screens = lecture.frames.len();
@@ -1103,6 +1145,46 @@ fn every_shipped_lesson_records_replays_follows_and_verifies_frame_for_frame() {
                 html.contains(&format!("poster: \"npt:{poster:.6}\"")),
                 "{name} ×{speed}: the page's poster is not the last frame"
             );
+            // Titled by the lesson, not its first preset; its description under the title;
+            // each step's chapter at the step's own start (issue 67).
+            let title = &lecture.header.lesson.as_ref().unwrap().title;
+            assert!(
+                html.contains(&format!(
+                    "<h1>rattleback: {}</h1>",
+                    title
+                        .replace('&', "&amp;")
+                        .replace('<', "&lt;")
+                        .replace('>', "&gt;")
+                        .replace('\'', "&#39;")
+                )),
+                "{name}: the page's title"
+            );
+            assert!(html.contains("<p class=\"description\">"), "{name}");
+            let header: serde_json::Value =
+                serde_json::from_str(text.lines().next().unwrap()).unwrap();
+            assert_eq!(
+                header["title"],
+                format!("rattleback: {title}"),
+                "{name}: cast"
+            );
+            let steps_with_preset: Vec<bool> = rattleback::scenario::lesson::resolve(name)
+                .unwrap()
+                .steps
+                .iter()
+                .map(|s| s.preset.is_some())
+                .collect();
+            let chapters = record::chapter_list(&rec);
+            assert_eq!(chapters.len(), steps_with_preset.len(), "{name}");
+            for (c, fresh) in chapters.iter().zip(steps_with_preset) {
+                if fresh {
+                    assert!(
+                        c.t.abs() < f64::MIN_POSITIVE,
+                        "{name}: {} starts its own run at 0 (t {})",
+                        c.title,
+                        c.t
+                    );
+                }
+            }
             let strip = |s: &str| s.lines().take(18).collect::<Vec<_>>().join("\n");
             assert_eq!(
                 strip(&cast_last_screen(&inlined)),

@@ -30,7 +30,13 @@ fn the_shipped_lessons_parse_and_are_listed() {
     let first = &list["lessons"][0];
     assert_eq!(first["name"], "first-reversal");
     assert_eq!(first["source"], "shipped");
-    assert_eq!(first["steps"], 4);
+    assert_eq!(first["steps"], 5);
+    assert!(
+        first["description"]
+            .as_str()
+            .is_some_and(|d| d.contains("critical ratio")),
+        "{first}"
+    );
     for key in ["title", "path"] {
         assert!(first[key].is_string(), "{key}");
     }
@@ -264,29 +270,21 @@ fn steps_ask_first_reveal_after_and_wait_for_their_condition() {
     assert_eq!(h.app.run.reversals_shown(), 0);
     h.key(Key::Char('n'));
 
-    // A parameter condition and the run: alpha_dot ≥ 0.9102 (just above the threshold
-    // 0.91018, where 'vs critical' turns positive), reached by editing it, then t = 30; the
-    // text says the same number (issue 55: "≥ 0.911" beside a threshold of 0.910).
+    // Find the threshold: a number asked first, then a parameter condition and the run. Until
+    // the answer is revealed neither the text nor what `n` waits for states the bound (issue
+    // 67: "to 0.9102 or more" was printed), and the panel's predictions show `?`.
     assert_eq!(h.app.lesson.as_ref().unwrap().step, 3);
+    let text = h.app.lesson.as_ref().unwrap().current().text.clone();
+    assert!(!text.contains("0.91"), "{text}");
+    h.key(Key::Char('a'));
+    for c in "0.8".chars() {
+        h.key(Key::Char(c));
+    }
+    h.key(Key::Enter);
     h.key(Key::Char('n'));
-    assert!(
-        h.app
-            .status
-            .as_ref()
-            .unwrap()
-            .text
-            .contains("alpha_dot ≥ 0.9102")
-    );
-    assert!(
-        h.app
-            .lesson
-            .as_ref()
-            .unwrap()
-            .current()
-            .text
-            .contains("0.9102"),
-        "the text prints the condition's number"
-    );
+    let status = h.app.status.as_ref().unwrap().text.clone();
+    assert!(status.contains("alpha_dot where you find it"), "{status}");
+    assert!(!status.contains("0.91"), "{status}");
     for _ in 0..7 {
         h.key(Key::Down); // to alpha_dot
     }
@@ -301,11 +299,23 @@ fn steps_ask_first_reveal_after_and_wait_for_their_condition() {
         h.app.lesson_missing()
     );
     h.play_until(30.0, 64.0);
+    let state = h.app.lesson.as_ref().unwrap();
+    assert!(state.revealed);
+    assert_eq!(state.correct(), Some(false), "0.8 is not 0.91 ± 0.01");
+    // A wrong number says it is wrong, which way and how far (issue 67).
+    let said = h.app.status.as_ref().unwrap().text.clone();
+    assert!(
+        said.contains("wrong: too low by 0.11; the answer: 0.91 (± 0.01)"),
+        "{said}"
+    );
     assert!(
         h.app.lesson_missing().is_none(),
         "{:?}",
         h.app.lesson_missing()
     );
+    h.key(Key::Char('n'));
+    assert_eq!(h.app.lesson.as_ref().unwrap().step, 4);
+    h.play_until(30.0, 64.0);
     h.key(Key::Char('n'));
     assert!(h.app.lesson.as_ref().unwrap().finished);
 
@@ -318,7 +328,7 @@ fn steps_ask_first_reveal_after_and_wait_for_their_condition() {
             _ => None,
         })
         .collect();
-    assert_eq!(steps, [0, 1, 2, 3]);
+    assert_eq!(steps, [0, 1, 2, 3, 4]);
     let answers: Vec<(usize, String, bool)> = journal
         .iter()
         .filter_map(|(_, _, e)| match e {
@@ -335,7 +345,8 @@ fn steps_ask_first_reveal_after_and_wait_for_their_condition() {
         [
             (0, "yes".to_owned(), true),
             (1, "5".to_owned(), false),
-            (2, "no, never".to_owned(), true)
+            (2, "no, never".to_owned(), true),
+            (3, "0.8".to_owned(), false)
         ]
     );
 }

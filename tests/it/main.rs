@@ -34,6 +34,7 @@ mod kapitza_explorer;
 mod layering;
 mod lecture;
 mod legend;
+mod lesson_review;
 mod lessons;
 mod page;
 mod presets_themes;

@@ -122,7 +122,8 @@ impl Posed for Problem {
                 "b^2-2a",
                 "Kapitza's criterion: positive holds the pendulum upright",
                 Shown::Number(Some(p.threshold())),
-            ),
+            )
+            .prediction(),
             SummaryLine::new(
                 "limit E",
                 "the limit's energy E_eff at the start",
@@ -137,7 +138,8 @@ impl Posed for Problem {
                 "upright",
                 "whether the averaged upright is stable",
                 Shown::verdict(p.stable_upright(), "stable", "unstable"),
-            ),
+            )
+            .prediction(),
         ]
     }
     fn slow_start(&self) -> (f64, f64) {

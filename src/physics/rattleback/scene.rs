@@ -113,12 +113,14 @@ impl Posed for Problem {
                 "vs critical",
                 "(ratio - critical)/critical: negative reverses",
                 Shown::Percent(side),
-            ),
+            )
+            .prediction(),
             SummaryLine::new(
                 "limit regime",
                 "the limit's motion: trapped (reverses) or rotating (does not)",
                 Shown::Verdict(e.regime().name()),
-            ),
+            )
+            .prediction(),
         ]
     }
     fn slow_start(&self) -> (f64, f64) {

@@ -1,34 +1,43 @@
 //! Lessons: a TOML file of steps the explorer walks a student through (`rattleback lesson NAME`).
+//! Every key, placeholder, pane and condition is documented with an example in docs/guide.md
+//! ("Writing a lesson"), and `docs/schemas/lesson.schema.json` describes the file; in short:
 //!
 //! ```toml
 //! [lesson]
 //! title = "The first reversal"
-//! description = "What the spin does below the critical ratio"   # optional
+//! description = "What the spin does below the critical ratio"   # optional, shown at step 1
 //!
 //! [[step]]
 //! title = "A body that turns back"
-//! text = "Press space and watch the spin angle."
+//! text = "k = {spring.k}: press space and watch the spin angle."   # placeholders: below
 //! preset = "subcritical"             # optional: loaded when the step begins
 //! set = ["spring.k=1e6"]             # optional: then these changes, as `--set`
-//! pane = "series"                    # optional: the pane the step is about (series, sweep,
-//!                                    # weak, map, body, compare): opened, given room on screen
+//! pane = "series"                    # optional: the pane the step is about (portrait, series,
+//!                                    # sweep, weak, map, body, compare): shown, given room
 //! partner = "celt-clockwise"         # optional: drawn beside the step's run (compare pane)
 //!
 //! [step.question]                    # optional: asked before the run
-//! prompt = "Will the spin reverse before t = 30?"
+//! prompt = "Will the spin reverse before t = {time}?"
 //! choices = ["yes", "no"]            # a choice (keys 1, 2…) …
 //! answer = "yes"
 //! # … or a number (key a, then type it): answer = 7, tolerance = 0.5
 //!
 //! [step.until]                       # optional: what `n` waits for (all that are given)
 //! time = 10.0                        # the displayed time reached
-//! reversals = 2                      # reversals of the full motion counted
-//! parameter = "spring.k"             # a parameter …
-//! at_least = 1e6                     # … at or above (and/or `at_most`)
+//! reversals = 2                      # reversals (the celt: reversals) of the run shown
+//! parameter = "spring.k"             # any parameter `--set` takes, of the step's scene …
+//! at_least = 1e6                     # … at or above (and/or `at_most`, not below it)
 //! ```
 //!
+//! Placeholders in a step's text and prompt are written by the program, so the number a
+//! student reads is the one the step uses: `{time}`, `{reversals}`, `{at_least}`, `{at_most}`
+//! from the step's condition, `{section.key}` (`{spring.k}`, `{initial.omega_z}`…) from the
+//! step's scenario (its preset and changes, else the one before), `{panel.LABEL}` (a number of
+//! the panel: `{panel.critical}`, `{panel.b^2-2a}`) as the panel writes it.
+//!
 //! Every problem is reported with the file, the line and the key, like presets (`rattleback
-//! check FILE` validates lessons too).
+//! check FILE` validates lessons too, and reads each step as a student meets it:
+//! `crate::explorer::review`).
 
 use std::path::{Path, PathBuf};
 
@@ -38,200 +47,42 @@ use toml::Value;
 use super::error::{PresetError, SourceMap};
 use super::preset::{Override, Preset};
 
+pub mod file;
+mod recorded;
+mod skeleton;
+
+pub use recorded::{RecordedLesson, RecordedQuestion, RecordedStep};
+pub use skeleton::SKELETON;
+
 /// The environment-independent folder of the shipped lessons, and their text.
 pub const SHIPPED_LESSONS: &[(&str, &str)] = &[
     (
         "first-reversal",
-        include_str!("../../lessons/first-reversal.toml"),
+        include_str!("../../../lessons/first-reversal.toml"),
     ),
     (
         "stiff-limit",
-        include_str!("../../lessons/stiff-limit.toml"),
+        include_str!("../../../lessons/stiff-limit.toml"),
     ),
-    ("tapping", include_str!("../../lessons/tapping.toml")),
+    ("tapping", include_str!("../../../lessons/tapping.toml")),
     (
         "kapitza-threshold",
-        include_str!("../../lessons/kapitza-threshold.toml"),
+        include_str!("../../../lessons/kapitza-threshold.toml"),
     ),
     (
         "kapitza-ripple",
-        include_str!("../../lessons/kapitza-ripple.toml"),
+        include_str!("../../../lessons/kapitza-ripple.toml"),
     ),
-    ("two-ways", include_str!("../../lessons/two-ways.toml")),
+    ("two-ways", include_str!("../../../lessons/two-ways.toml")),
     (
         "kapitza-chart",
-        include_str!("../../lessons/kapitza-chart.toml"),
+        include_str!("../../../lessons/kapitza-chart.toml"),
     ),
-    ("celt-chart", include_str!("../../lessons/celt-chart.toml")),
+    (
+        "celt-chart",
+        include_str!("../../../lessons/celt-chart.toml"),
+    ),
 ];
-
-/// A lesson as a recording carries it in its header (format 10 on), so a replay, a follower and
-/// the cast show the lesson's pane as the lecturer saw it: each step's words, its question and
-/// its condition. The presets and changes a step applies are in the recording's own lines.
-#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct RecordedLesson {
-    /// The lesson's title.
-    pub title: String,
-    /// Its steps.
-    pub steps: Vec<RecordedStep>,
-}
-
-/// A step as recorded (see [`RecordedLesson`]).
-#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct RecordedStep {
-    /// Its title.
-    pub title: String,
-    /// Its text, as shown (placeholders written).
-    pub text: String,
-    /// Its question: `{"choices": [...], "answer": index}` or `{"answer": x, "tolerance": t}`
-    /// with a `prompt`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub question: Option<RecordedQuestion>,
-    /// Its condition's time.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub time: Option<f64>,
-    /// Its condition's count of reversals.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub reversals: Option<usize>,
-    /// Its condition's parameter (`section.key`), with `at_least` and `at_most`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub parameter: Option<String>,
-    /// The parameter's lower bound.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub at_least: Option<f64>,
-    /// The parameter's upper bound.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub at_most: Option<f64>,
-    /// The pane it opens.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub pane: Option<String>,
-}
-
-/// A question as recorded.
-#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct RecordedQuestion {
-    /// The question.
-    pub prompt: String,
-    /// The choices (a choice question), else empty.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub choices: Vec<String>,
-    /// The right choice's index, or the right number.
-    pub answer: f64,
-    /// How far from a number still counts (a number question).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub tolerance: Option<f64>,
-}
-
-impl Lesson {
-    /// The lesson as a recording carries it.
-    #[must_use]
-    pub fn recorded(&self) -> RecordedLesson {
-        RecordedLesson {
-            title: self.title.clone(),
-            steps: self
-                .steps
-                .iter()
-                .map(|s| RecordedStep {
-                    title: s.title.clone(),
-                    text: s.text.clone(),
-                    question: s.question.as_ref().map(|q| match q {
-                        Question::Choice {
-                            prompt,
-                            choices,
-                            answer,
-                        } => RecordedQuestion {
-                            prompt: prompt.clone(),
-                            choices: choices.clone(),
-                            answer: *answer as f64,
-                            tolerance: None,
-                        },
-                        Question::Number {
-                            prompt,
-                            answer,
-                            tolerance,
-                        } => RecordedQuestion {
-                            prompt: prompt.clone(),
-                            choices: Vec::new(),
-                            answer: *answer,
-                            tolerance: Some(*tolerance),
-                        },
-                    }),
-                    time: s.until.time,
-                    reversals: s.until.reversals,
-                    parameter: s.until.parameter.as_ref().map(|p| p.key.clone()),
-                    at_least: s.until.parameter.as_ref().and_then(|p| p.at_least),
-                    at_most: s.until.parameter.as_ref().and_then(|p| p.at_most),
-                    pane: s.pane.clone(),
-                })
-                .collect(),
-        }
-    }
-}
-
-impl RecordedLesson {
-    /// The lesson a replay shows: every step's words, question and condition, no preset (the
-    /// recording's lines load them). `None` when a step is not a step any more (an answer out
-    /// of its choices, no step at all).
-    #[must_use]
-    pub fn lesson(&self) -> Option<Lesson> {
-        if self.steps.is_empty() {
-            return None;
-        }
-        let steps = self
-            .steps
-            .iter()
-            .map(|s| {
-                let question = match &s.question {
-                    None => None,
-                    Some(q) if !q.choices.is_empty() => {
-                        let answer = q.answer;
-                        (answer >= 0.0
-                            && answer.fract() == 0.0
-                            && (answer as usize) < q.choices.len())
-                        .then(|| Question::Choice {
-                            prompt: q.prompt.clone(),
-                            choices: q.choices.clone(),
-                            answer: answer as usize,
-                        })
-                        .map(Some)?
-                    }
-                    Some(q) => Some(Question::Number {
-                        prompt: q.prompt.clone(),
-                        answer: q.answer,
-                        tolerance: q.tolerance.unwrap_or(0.0),
-                    }),
-                };
-                Some(Step {
-                    title: s.title.clone(),
-                    text: s.text.clone(),
-                    preset: None,
-                    set: Vec::new(),
-                    question,
-                    until: Until {
-                        time: s.time,
-                        reversals: s.reversals,
-                        parameter: s.parameter.as_ref().map(|key| ParameterBound {
-                            key: key.clone(),
-                            at_least: s.at_least,
-                            at_most: s.at_most,
-                        }),
-                    },
-                    pane: s.pane.clone(),
-                    partner: None,
-                })
-            })
-            .collect::<Option<Vec<Step>>>()?;
-        Some(Lesson {
-            name: String::new(),
-            title: self.title.clone(),
-            description: String::new(),
-            steps,
-        })
-    }
-}
 
 /// A prediction asked before a step's run; the answer is revealed after it.
 #[derive(Clone, Debug, PartialEq)]
@@ -306,40 +157,122 @@ pub struct ParameterBound {
 /// so the two never disagree (issue 55: "≥ 0.911" beside a threshold of 0.910).
 #[must_use]
 pub fn condition_value(v: f64) -> String {
-    format!("{v}")
+    // Every digit the value has (the threshold a student must pass is exactly it), in
+    // exponent form when long (`1e10`, not `10000000000`).
+    if v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-3) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
 }
 
-/// The step's text with `{at_least}`, `{at_most}`, `{time}` and `{reversals}` written from its
-/// condition ([`condition_value`]); a placeholder without its condition is a problem.
-fn with_condition(
+/// The step's text (or prompt) with its placeholders written: `{at_least}`, `{at_most}`,
+/// `{time}` and `{reversals}` from its condition, `{section.key}` from its scenario
+/// ([`condition_value`] writes both); a placeholder without its value is a problem.
+fn with_placeholders(
     text: &str,
     until: &Until,
+    scene: Option<&Preset>,
     path: &str,
     at: &mut dyn FnMut(&str, String),
 ) -> String {
     let bound = until.parameter.as_ref();
-    let values = [
-        ("{at_least}", bound.and_then(|b| b.at_least)),
-        ("{at_most}", bound.and_then(|b| b.at_most)),
-        ("{time}", until.time),
-        ("{reversals}", until.reversals.map(|n| n as f64)),
-    ];
-    let mut out = text.to_owned();
-    for (name, value) in values {
-        if !out.contains(name) {
-            continue;
-        }
-        match value {
-            Some(v) => out = out.replace(name, &condition_value(v)),
-            None => at(
-                path,
-                format!(
-                    "{name} is written in the text, but the step's [step.until] has no such value"
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(open) = rest.find('{') {
+        out.push_str(&rest[..open]);
+        let Some(close) = rest[open..].find('}').map(|c| open + c) else {
+            out.push_str(&rest[open..]);
+            rest = "";
+            break;
+        };
+        let name = &rest[open + 1..close];
+        let value = match name {
+            "at_least" => bound.and_then(|b| b.at_least),
+            "at_most" => bound.and_then(|b| b.at_most),
+            "time" => until.time,
+            "reversals" => until.reversals.map(|n| n as f64),
+            key if key.starts_with("panel.") => {
+                // What the panel's row shows, written as the panel writes it.
+                if let Some(v) = scene.and_then(|p| panel_value(p, &key["panel.".len()..])) {
+                    out.push_str(&v);
+                    rest = &rest[close + 1..];
+                    continue;
+                }
+                None
+            }
+            key if key.contains('.') => scene.and_then(|p| scene_value(p, key)),
+            _ => None,
+        };
+        if let Some(v) = value {
+            out.push_str(&condition_value(v));
+        } else {
+            let why = match name {
+                "at_least" | "at_most" | "time" | "reversals" => {
+                    "the step's [step.until] has no such value".to_owned()
+                }
+                key if key.starts_with("panel.") => format!(
+                    "the panel of the step's scene has no number `{}`; it has {}",
+                    &key["panel.".len()..],
+                    scene.map_or_else(String::new, |p| p
+                        .model
+                        .summary()
+                        .iter()
+                        .filter(|l| matches!(l.value, crate::physics::scene::Shown::Number(_)))
+                        .map(|l| format!("{{panel.{}}}", l.label))
+                        .collect::<Vec<_>>()
+                        .join(", "))
                 ),
-            ),
+                key if key.contains('.') => format!(
+                    "the step's scene ({}) has no parameter `{key}`",
+                    scene.map_or("none", |p| p.model.kind().name())
+                ),
+                _ => "allowed: {time}, {reversals}, {at_least}, {at_most}, {section.key} \
+                          (a parameter of the step's scene, as `--set` names it), {panel.LABEL} \
+                          (a number the panel shows)"
+                    .to_owned(),
+            };
+            at(
+                path,
+                format!("{{{name}}} is written in the text, but {why}"),
+            );
+            out.push_str(&rest[open..=close]);
+        }
+        rest = &rest[close + 1..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// The panel's number `label` for `preset` (`critical`, `b^2-2a`, `skew δ°`), as the panel
+/// writes it.
+fn panel_value(preset: &Preset, label: &str) -> Option<String> {
+    preset
+        .model
+        .summary()
+        .into_iter()
+        .find(|l| l.label == label)
+        .and_then(|l| match l.value {
+            crate::physics::scene::Shown::Number(Some(v)) => Some(super::text::format_number(v)),
+            _ => None,
+        })
+}
+
+/// The value of `section.key` in `preset` (a model parameter or `run.t_end`/`run.tolerance`).
+fn scene_value(preset: &Preset, key: &str) -> Option<f64> {
+    match key {
+        "run.t_end" => Some(preset.run.t_end),
+        "run.tolerance" => preset.run.tolerance,
+        _ => {
+            let (section, name) = key.split_once('.')?;
+            let kind = preset.model.kind();
+            kind.params()
+                .iter()
+                .any(|p| p.section == section && p.key == name)
+                .then(|| preset.model.value(name))
+                .flatten()
         }
     }
-    out
 }
 
 /// One step.
@@ -400,6 +333,8 @@ pub struct Entry {
     pub name: String,
     /// The lesson's title.
     pub title: String,
+    /// What it is about (empty when the file has no `description`).
+    pub description: String,
     /// Its number of steps.
     pub steps: usize,
     /// Shipped or user.
@@ -432,6 +367,7 @@ pub fn catalogue() -> (Vec<Entry>, Vec<PresetError>) {
             Ok(l) => entries.push(Entry {
                 name: (*name).to_owned(),
                 title: l.title,
+                description: l.description,
                 steps: l.steps.len(),
                 source: Source::Shipped,
                 path: format!("lessons/{name}.toml"),
@@ -453,6 +389,7 @@ pub fn catalogue() -> (Vec<Entry>, Vec<PresetError>) {
                     entries.push(Entry {
                         name,
                         title: l.title,
+                        description: l.description,
                         steps: l.steps.len(),
                         source: Source::User,
                         path: path.display().to_string(),
@@ -489,6 +426,12 @@ pub fn resolve(name_or_path: &str) -> Result<Lesson, PresetError> {
         name: name_or_path.to_owned(),
         available: available.join(", "),
     })
+}
+
+/// The line of step `index` (0-based) in a lesson's text, for a finding's location.
+#[must_use]
+pub fn step_line(src: &str, index: usize) -> Option<usize> {
+    SourceMap::new(src).find_path(&format!("step.{index}"))
 }
 
 impl Lesson {
@@ -573,7 +516,10 @@ impl Lesson {
             Some(Value::Array(items)) if !items.is_empty() => items
                 .iter()
                 .enumerate()
-                .filter_map(|(i, item)| step(item, &format!("step.{i}"), &mut at))
+                .scan(None, |scene, (i, item)| {
+                    Some(step(item, &format!("step.{i}"), scene, &mut at))
+                })
+                .flatten()
                 .collect(),
             Some(_) => {
                 at("step", "expected [[step]] tables, at least one".to_owned());
@@ -611,26 +557,32 @@ fn number(v: &Value) -> Option<f64> {
     }
 }
 
-/// The parameters a condition may watch.
-pub const WATCHABLE: [&str; 15] = [
-    "pendulum.a",
-    "pendulum.b",
-    "pendulum.epsilon",
-    "initial.theta",
-    "initial.theta_dot",
-    "body.ix",
-    "body.iy",
-    "body.iz",
-    "spring.k",
-    "initial.gamma",
-    "initial.alpha",
-    "initial.gamma_dot",
-    "initial.alpha_dot",
-    "run.t_end",
-    "run.tolerance",
-];
+/// The parameters a condition may watch: every parameter of every scene, as `--set` names
+/// it (`section.key`), and the run's `t_end` and `tolerance`.
+#[must_use]
+pub fn watchable() -> Vec<String> {
+    let mut keys: Vec<String> = Vec::new();
+    for kind in crate::physics::ModelKind::ALL {
+        for p in kind.params() {
+            let key = format!("{}.{}", p.section, p.key);
+            if !keys.contains(&key) {
+                keys.push(key);
+            }
+        }
+    }
+    keys.extend(["run.t_end".to_owned(), "run.tolerance".to_owned()]);
+    keys
+}
 
-fn step(item: &Value, path: &str, at: &mut dyn FnMut(&str, String)) -> Option<Step> {
+/// Step `path` of a lesson; `scene` is the scenario the step before left (its preset and
+/// changes), and becomes this step's.
+#[allow(clippy::too_many_lines)] // one step's keys, each checked in the file's order
+fn step(
+    item: &Value,
+    path: &str,
+    scene: &mut Option<Preset>,
+    at: &mut dyn FnMut(&str, String),
+) -> Option<Step> {
     let Value::Table(t) = item else {
         at(path, "expected a [[step]] table".to_owned());
         return None;
@@ -699,13 +651,31 @@ fn step(item: &Value, path: &str, at: &mut dyn FnMut(&str, String)) -> Option<St
         }
     };
     let pane = step_pane(t.get("pane"), path, at);
-    if let Some(p) = preset
-        .as_ref()
-        .and_then(|p| Preset::parse(&p.to_toml(), "the step's preset", "step", &set).ok())
+    // The step's scenario: its preset (else the one before, else the default) with its changes.
+    let base = preset
+        .clone()
+        .or_else(|| scene.clone())
+        .or_else(|| super::shipped::resolve(super::shipped::DEFAULT_PRESET, &[]).ok());
+    if let Some(p) =
+        base.and_then(|p| Preset::parse(&p.to_toml(), "the step's preset", "step", &set).ok())
     {
         impossible(&until, &p, &format!("{path}.until"), at);
+        *scene = Some(p);
     }
-    let text = with_condition(&text, &until, &format!("{path}.text"), at);
+    let text = with_placeholders(&text, &until, scene.as_ref(), &format!("{path}.text"), at);
+    let question = question.map(|mut q| {
+        let written = with_placeholders(
+            q.prompt(),
+            &until,
+            scene.as_ref(),
+            &format!("{path}.question.prompt"),
+            at,
+        );
+        match &mut q {
+            Question::Choice { prompt, .. } | Question::Number { prompt, .. } => *prompt = written,
+        }
+        q
+    });
     Some(Step {
         title: title.unwrap_or_default(),
         text,
@@ -951,13 +921,14 @@ fn until(u: &toml::Table, path: &str, at: &mut dyn FnMut(&str, String)) -> Until
     let (lo, hi) = (bound("at_least", at), bound("at_most", at));
     match u.get("parameter") {
         Some(Value::String(key)) => {
-            if !WATCHABLE.contains(&key.as_str()) {
+            let watchable = watchable();
+            if !watchable.contains(key) {
                 at(
                     &format!("{path}.parameter"),
                     format!(
                         "'{key}' is not a parameter; allowed: {}{}",
-                        WATCHABLE.join(", "),
-                        super::text::did_you_mean(key, WATCHABLE)
+                        watchable.join(", "),
+                        super::text::did_you_mean(key, watchable.iter().map(String::as_str))
                     ),
                 );
             } else if lo.is_none() && hi.is_none() {
@@ -975,13 +946,14 @@ fn until(u: &toml::Table, path: &str, at: &mut dyn FnMut(&str, String)) -> Until
                         "{l} is above `at_most` ({h}): no value meets both, so the step could never end"
                     ),
                 );
-            } else {
-                out.parameter = Some(ParameterBound {
-                    key: key.clone(),
-                    at_least: lo,
-                    at_most: hi,
-                });
             }
+            // Kept even when refused: the text's placeholders are written from the bounds
+            // given, so one problem is reported once (the lesson is refused anyway).
+            out.parameter = Some(ParameterBound {
+                key: key.clone(),
+                at_least: lo,
+                at_most: hi,
+            });
         }
         Some(_) => at(
             &format!("{path}.parameter"),
