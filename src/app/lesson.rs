@@ -192,6 +192,9 @@ impl App {
         state.revealed = false;
         let step = state.current().clone();
         let count = state.lesson.steps.len();
+        // The lesson's description opens it on the message line too (the pane's first rows
+        // go to the step at 80×24; `v` shows it whole).
+        let about = Some(state.lesson.description.clone()).filter(|d| index == 0 && !d.is_empty());
         self.log_lesson_step();
         let mut effects = Vec::new();
         if let Some(preset) = &step.preset {
@@ -232,7 +235,10 @@ impl App {
         } else {
             "space plays; n moves on"
         };
-        self.status = Message::info(format!("step {}/{count}: {hint}", index + 1));
+        self.status = Message::info(match about {
+            Some(about) => format!("step 1/{count}: {about}"),
+            None => format!("step {}/{count}: {hint}", index + 1),
+        });
         effects
     }
 
