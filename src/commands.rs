@@ -34,6 +34,9 @@ macro_rules! say_raw {
     ($($t:tt)*) => { $crate::commands::say_raw(&format!($($t)*)) };
 }
 
+mod verify;
+pub use verify::replay_verify;
+
 /// The width of a list's name column: its longest name, at least 16 (every row's columns line
 /// up, whatever a user names a file).
 fn name_width<'a>(names: impl Iterator<Item = &'a str>) -> usize {
