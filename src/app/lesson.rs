@@ -361,9 +361,10 @@ impl App {
         if self.replay.is_some() {
             return;
         }
-        let ready = self.run.done() || self.lesson_missing().is_none();
+        let holds = self.lesson_missing().is_none();
+        let ready = self.run.done() || holds;
         // A "not yet" that no longer holds is taken back (it stayed under "n: finish").
-        if self.lesson_missing().is_none()
+        if holds
             && self
                 .status
                 .as_ref()

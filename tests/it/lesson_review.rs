@@ -284,24 +284,24 @@ fn every_shipped_lesson_fits_the_lesson_schema() {
     }
 }
 
-fn reversals(args: &[&str]) -> usize {
+/// The reversals `simulate` reports (the rattleback's at the top, the celt's under `events`).
+fn reversal_events(args: &[&str]) -> serde_json::Value {
     let v = simulate_json(args);
-    let events = if v["reversals"].is_object() {
-        &v["reversals"]
+    if v["reversals"].is_object() {
+        v["reversals"].clone()
     } else {
-        &v["events"]["reversals"]
-    };
-    events["count"].as_u64().unwrap() as usize
+        v["events"]["reversals"].clone()
+    }
+}
+
+fn reversals(args: &[&str]) -> usize {
+    reversal_events(args)["count"].as_u64().unwrap() as usize
 }
 
 fn first_reversal(args: &[&str]) -> f64 {
-    let v = simulate_json(args);
-    let events = if v["reversals"].is_object() {
-        &v["reversals"]
-    } else {
-        &v["events"]["reversals"]
-    };
-    events["times"][0].as_f64().unwrap_or(f64::INFINITY)
+    reversal_events(args)["times"][0]
+        .as_f64()
+        .unwrap_or(f64::INFINITY)
 }
 
 fn falls(args: &[&str]) -> usize {
