@@ -14,8 +14,10 @@
 //! computation is deterministic: parallel cells are independent and collected in order.
 
 pub mod ask;
+pub mod cells;
 pub mod chart;
 pub mod map;
+pub mod output;
 pub mod part;
 pub mod sweep;
 pub mod weak;
