@@ -15,49 +15,96 @@ use crate::scenario::shipped::DEFAULT_PRESET;
 #[command(
     name = "rattleback",
     version,
-    about,
+    about = "Explore the holonomic rattleback, Kapitza's pendulum and the celt",
     long_about = None,
     args_conflicts_with_subcommands = true,
-    after_long_help = crate::manual::after_help()
+    after_help = crate::manual::after_help()
 )]
 pub struct Cli {
     /// What to do; without a command, the explorer opens.
     #[command(subcommand)]
     pub command: Option<Command>,
-    /// Preset to open: a shipped name or a path to a TOML file (default: `preset` in
-    /// config.toml, else `subcritical`).
+    /// Preset: a name (`rattleback presets`) or a file
     #[arg(long, value_name = "NAME|PATH")]
     pub preset: Option<String>,
     /// How the explorer draws.
     #[command(flatten)]
     pub look: LookArgs,
-    /// Mouse on: a click in the portrait sets the start (`alpha`, `alpha_dot`), the wheel zooms
-    /// (also `mouse = true` in config.toml). Off by default: the terminal keeps its own
-    /// selection and scrolling.
+    /// Mouse on: a click sets the start, the wheel zooms
     #[arg(long)]
     pub mouse: bool,
     /// Recording.
     #[command(flatten)]
     pub rec: RecordArgs,
-    /// Read this configuration file instead of `config.toml` in the config folder (`rattleback
-    /// config path`); it must exist. Goes before or after any command.
+    /// Use FILE as config.toml (before or after a command)
     #[arg(long, global = true, value_name = "FILE")]
     pub config: Option<std::path::PathBuf>,
+}
+
+/// The command line's grammar: [`Cli`] with each subcommand's examples at the end of its help
+/// (as ripgrep and fd show theirs); the parser, the manual and the completions all read it.
+#[must_use]
+pub fn command() -> clap::Command {
+    use clap::CommandFactory as _;
+    let mut cmd = Cli::command();
+    for (name, examples) in crate::manual::SUBCOMMAND_EXAMPLES {
+        cmd = cmd.mut_subcommand(*name, |sub| {
+            sub.after_help(crate::manual::examples_text(examples))
+        });
+    }
+    cmd
+}
+
+/// Parses `args` (the program's name first) with [`command`].
+pub fn parse_from<I, T>(args: I) -> Result<Cli, clap::Error>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    use clap::FromArgMatches as _;
+    let mut cmd = command();
+    let matches = cmd.try_get_matches_from_mut(args)?;
+    Cli::from_arg_matches(&matches).map_err(|e| e.format(&mut cmd))
+}
+
+/// For `rattleback --preset X simulate …`, refused because a subcommand takes its own flags:
+/// the same words with the flags moved after the command's name
+/// (`rattleback simulate --preset X …`). `None` when no flag comes before a command.
+#[must_use]
+pub fn flags_after_command(args: &[std::ffi::OsString]) -> Option<String> {
+    let words: Vec<String> = args
+        .iter()
+        .skip(1)
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
+    let cmd = command();
+    let at = words
+        .iter()
+        .position(|w| cmd.get_subcommands().any(|s| s.get_name() == w))?;
+    if at == 0 || !words[0].starts_with('-') {
+        return None;
+    }
+    let mut out = vec!["rattleback".to_owned(), words[at].clone()];
+    out.extend(words[..at].iter().cloned());
+    out.extend(words[at + 1..].iter().cloned());
+    Some(
+        out.iter()
+            .map(|w| crate::scenario::text::shell_word(w))
+            .collect::<Vec<_>>()
+            .join(" "),
+    )
 }
 
 /// How the explorer records: `--record FILE [--force] [--sign KEYFILE]`.
 #[derive(Debug, Args, Clone)]
 pub struct RecordArgs {
-    /// Record the session into this file (a key, R, also starts and stops recording; a
-    /// lesson's steps and answers and a comparison are recorded too). An existing file is
-    /// refused (exit 2) unless `--force`.
+    /// Record the session into FILE (R in the explorer too)
     #[arg(long, value_name = "FILE")]
     pub record: Option<std::path::PathBuf>,
-    /// Replace an existing `--record` file.
+    /// Replace an existing --record file
     #[arg(long)]
     pub force: bool,
-    /// Sign recordings with this private key (`rattleback keygen NAME` makes one): the end
-    /// line carries an ed25519 signature that `replay --verify --key NAME.pub` checks.
+    /// Sign recordings with KEYFILE (`rattleback keygen`)
     #[arg(long, value_name = "KEYFILE")]
     pub sign: Option<std::path::PathBuf>,
 }
@@ -65,28 +112,19 @@ pub struct RecordArgs {
 /// How the explorer (and a replay) draws: frame rate, theme, marker.
 #[derive(Debug, Args, Clone)]
 pub struct LookArgs {
-    /// Frame-rate cap of the explorer (default 30); for `replay --export-cast`, the cast's
-    /// frames per second (default 10).
+    /// Frames per second at most [default: 30]
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=240))]
     pub fps: Option<u32>,
-    /// Colour theme: a shipped name (default, dark, light, high-contrast), a user theme or a
-    /// path (`rattleback themes` lists them); by default `default`, and for a replay the theme
-    /// it was recorded with when this machine has it. `NO_COLOR` turns colours off whatever the
-    /// theme.
+    /// Colour theme: a name (`rattleback themes`) or a file
     #[arg(long, value_name = "NAME|PATH")]
     pub theme: Option<String>,
-    /// Canvas marker, for fonts without Braille (default: `marker` in config.toml, else
-    /// braille).
-    #[arg(long, value_enum)]
+    /// Curves: braille, halfblock or dot (no Braille font)
+    #[arg(long, value_enum, hide_possible_values = true)]
     pub marker: Option<MarkerChoice>,
-    /// Colours: `auto` (the default) draws in colour unless `NO_COLOR` is set and non-empty, or
-    /// `CLICOLOR=0` without `CLICOLOR_FORCE`; `always` and `never` decide whatever the
-    /// environment says.
-    #[arg(long, value_enum, default_value_t = ColorChoice::Auto)]
+    /// Colours: auto (see `NO_COLOR`), always or never
+    #[arg(long, value_enum, default_value_t = ColorChoice::Auto, hide_possible_values = true, hide_default_value = true)]
     pub color: ColorChoice,
-    /// ASCII only: borders, symbols and curves drawn with ASCII characters, one point per cell,
-    /// each curve its own character. Chosen by itself under a locale that is not UTF-8
-    /// (`LANG=C`); the Linux console (`TERM=linux`) gets the characters its fonts have.
+    /// ASCII only (chosen under a locale that is not UTF-8)
     #[arg(long)]
     pub ascii: bool,
 }
@@ -180,44 +218,63 @@ pub enum MarkerChoice {
 pub enum Command {
     /// Run one trajectory headless and print the result.
     Simulate(SimulateArgs),
-    /// List every preset (shipped and the user's) with its source, path and description, or
-    /// print one (`presets show NAME`).
+    /// List the presets, or print one (`presets show NAME`).
+    ///
+    /// Every preset, shipped and the user's, with its scene, source and description.
     Presets(PresetsArgs),
-    /// List every colour theme (shipped and the user's), like `presets`.
+    /// List the colour themes, shipped and the user's.
     Themes(ListArgs),
-    /// Open a lesson in the explorer: its steps, questions and conditions (`lessons` lists
-    /// them); `lesson new NAME` writes a commented lesson to edit into your lessons folder.
+    /// Open a lesson in the explorer, or write one (`lesson new NAME`).
+    ///
+    /// A lesson's steps, questions and conditions in the explorer (`lessons` lists them);
+    /// `lesson new NAME` writes a commented lesson to edit into your lessons folder.
     #[command(subcommand_negates_reqs = true, args_conflicts_with_subcommands = true)]
     Lesson(LessonArgs),
-    /// List every lesson (shipped and the user's): name, title, steps, source, path.
+    /// List the lessons, shipped and the user's.
     Lessons(ListArgs),
-    /// Open the explorer on preset A with preset B beside it on one time axis (the compare
-    /// pane, key C): e.g. `compare subcritical celt-clockwise`, the holonomic rattleback
-    /// beside the rolling celt. B runs over A's window.
+    /// Two presets on one time axis, in the explorer.
+    ///
+    /// The explorer on preset A with preset B beside it on one time axis (the compare pane,
+    /// key C): e.g. `compare subcritical celt-clockwise`, the holonomic rattleback beside the
+    /// rolling celt. B runs over A's window.
     Compare(CompareArgs),
-    /// Follow, read-only, a session that is still being recorded: show what the lecturer sees,
-    /// paced to the lecturer's clock; `f` forks and explores on its own from there.
+    /// Follow a recording live, read-only, as the lecturer sees it.
+    ///
+    /// Follows a session that is still being recorded: what the lecturer sees, paced to the
+    /// lecturer's clock; `f` forks and explores on its own from there.
     Follow(FollowArgs),
-    /// Validate preset or theme files and report every problem (exit 2 if any).
+    /// Report every problem of preset, theme or lesson files.
+    ///
+    /// Every problem with its file, line and key (exit 2 if any); a lesson is also read step
+    /// by step as a student meets it at 80×24.
     Check(CheckArgs),
-    /// Replay a recorded session in the explorer, check it, or export it.
+    /// Replay a recording, verify it, or export it (cast, page).
     Replay(ReplayArgs),
-    /// Work–precision study of every method over k = 1e2 … 1e12, and a stability report.
+    /// Run time against error of every method, and a stability report.
+    ///
+    /// The work–precision study of every method over k = 1e2 … 1e12, each scene's own, and a
+    /// stability report.
     Bench(BenchArgs),
-    /// Studies of the limit k → ∞: a stiffness sweep, or the regime map of the theorems.
+    /// The sweep towards the limit, and each scene's chart (map).
     #[command(subcommand)]
     Study(StudyCommand),
-    /// Print a shell completion script to stdout; sourced once, it asks the program for the
-    /// preset, theme and lesson names each time, so a preset saved later completes too.
+    /// Print a shell completion script.
+    ///
+    /// Sourced once, it asks the program for the preset, theme and lesson names each time, so
+    /// a preset saved later completes too.
     Completions(CompletionsArgs),
-    /// Print the manual page (roff) to stdout: `rattleback man > rattleback.1`.
+    /// Print the manual page: `rattleback man > rattleback.1`.
     Man,
-    /// Make a signing key for recordings: writes `NAME.key` (private, mode 0600) and
-    /// `NAME.pub` (give it to whoever verifies); never replaces a file.
+    /// Make a key that signs recordings.
+    ///
+    /// Writes `NAME.key` (private, mode 0600) and `NAME.pub` (give it to whoever verifies);
+    /// never replaces a file.
     Keygen(KeygenArgs),
-    /// Where the configuration file is (`config path`) or what it sets (`config show`).
+    /// Where the configuration is, and what it sets.
     #[command(subcommand)]
     Config(ConfigCommand),
+    /// What the program sees here and would choose, with why.
+    ///
     /// What this terminal and machine look like to the program and what the explorer would
     /// choose here (characters, colours, marker, preset, theme, folders), each with why: paste
     /// it into a bug report. Takes the explorer's look flags to show their effect.

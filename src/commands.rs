@@ -73,12 +73,27 @@ pub fn presets(args: &PresetsArgs) -> Outcome {
                 e.model.name(),
                 format!("{:?}", e.source).to_lowercase(),
                 one_line(&e.title),
-                one_line(&e.path),
+                found_at(
+                    e.source == crate::scenario::shipped::Source::Shipped,
+                    &e.path,
+                    &format!("rattleback presets show {}", e.name)
+                ),
                 one_line(&e.description)
             )
         },
         &problems,
     )
+}
+
+/// Where a listed file is, as its text line says it: a user's file by its path; a shipped one
+/// is built into the program (its path in the source tree is not on an installed machine), so
+/// the line says how to see it instead.
+fn found_at(shipped: bool, path: &str, show: &str) -> String {
+    if shipped {
+        format!("built in ({show})")
+    } else {
+        one_line(path)
+    }
 }
 
 /// `rattleback themes`: every theme, like `presets`.
@@ -126,7 +141,11 @@ pub fn themes(args: &ListArgs) -> Outcome {
                 e.name,
                 e.source,
                 one_line(&e.title),
-                one_line(&e.path),
+                found_at(
+                    e.source == "shipped",
+                    &e.path,
+                    "rattleback themes --format json"
+                ),
                 one_line(&e.description)
             )
         },
@@ -160,7 +179,11 @@ pub fn lessons(args: &ListArgs) -> Outcome {
                 format!("{:?}", e.source).to_lowercase(),
                 one_line(&e.title),
                 e.steps,
-                one_line(&e.path)
+                found_at(
+                    format!("{:?}", e.source).eq_ignore_ascii_case("shipped"),
+                    &e.path,
+                    &format!("rattleback lesson {}", e.name)
+                )
             )
         },
         &problems,
@@ -172,7 +195,7 @@ pub fn lessons(args: &ListArgs) -> Outcome {
 /// script was sourced completes too; a value that looks like a path completes as a path.
 #[must_use]
 pub fn command_with_completers() -> clap::Command {
-    attach_completers(<crate::cli::Cli as clap::CommandFactory>::command())
+    attach_completers(crate::cli::command())
 }
 
 fn attach_completers(cmd: clap::Command) -> clap::Command {
@@ -290,7 +313,7 @@ pub fn doctor(args: &crate::cli::DoctorArgs) -> Outcome {
 
 /// `rattleback man`.
 pub fn man() -> Outcome {
-    let cmd = <crate::cli::Cli as clap::CommandFactory>::command();
+    let cmd = crate::cli::command();
     let mut out = Vec::new();
     if let Err(e) = crate::manual::render(cmd, &mut out) {
         return Err(Failure::failed(format!("rendering the manual: {e}")));

@@ -27,7 +27,9 @@ pub struct Failure {
 impl Failure {
     /// The input is wrong (a flag, a file, a value): exit 2.
     pub fn input(message: impl Display) -> Self {
-        Self::inputs([message])
+        // Several problems in one message (a preset's, issue 68) are several lines, each
+        // bounded alone, as `check` says them.
+        Self::inputs(message.to_string().lines())
     }
 
     /// Several things are wrong with the input, each said on its own line: exit 2.

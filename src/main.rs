@@ -4,7 +4,6 @@
 use std::io::Write as _;
 use std::process::ExitCode;
 
-use clap::Parser;
 use rattleback::app::user_keys::UserKeys;
 use rattleback::cli::{Cli, Command, LookArgs, MarkerChoice, RecordArgs, ReplayArgs, SimulateArgs};
 use rattleback::commands;
@@ -69,12 +68,22 @@ fn run() -> Outcome {
 
 /// Parses the command line and runs the command it names.
 fn command() -> Outcome {
-    let cli = match Cli::try_parse_from(config_last(std::env::args_os().collect())) {
+    let args = config_last(std::env::args_os().collect());
+    let cli = match rattleback::cli::parse_from(args.clone()) {
         Ok(cli) => cli,
         Err(e) if e.use_stderr() => {
             // One error style: `rattleback: error: …`, as every other message (clap's own
             // text begins with `error: `), then its usage hint; exit 2.
             let mut text = drop_far_suggestion(&e, e.render().to_string());
+            if e.kind() == clap::error::ErrorKind::ArgumentConflict
+                && let Some(fix) = rattleback::cli::flags_after_command(&args)
+            {
+                // `rattleback --preset X simulate`: each command takes its own flags.
+                text = format!(
+                    "{}\n\n  tip: a command's flags go after its name: `{fix}`\n",
+                    text.trim_end()
+                );
+            }
             if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
                 // The help of a command that needs a subcommand: say so first.
                 text = format!("error: a subcommand is needed\n\n{text}");
@@ -802,12 +811,24 @@ fn needs_terminal(what: &str) -> Outcome {
             "TERM=dumb cannot show the explorer (it moves the cursor and draws); set TERM to the terminal's name (xterm-256color, screen, linux, …), or use `rattleback simulate` for text",
         ));
     }
-    if !std::io::stdout().is_terminal() {
+    // Over ssh without `-t` neither is a terminal: the fix is ssh's flag, not a redirection.
+    let over_ssh = std::env::var_os("SSH_CONNECTION").is_some_and(|v| !v.is_empty())
+        || std::env::var_os("SSH_CLIENT").is_some_and(|v| !v.is_empty());
+    let (stdout, stdin) = (
+        std::io::stdout().is_terminal(),
+        std::io::stdin().is_terminal(),
+    );
+    if over_ssh && !(stdout && stdin) {
+        return Err(Failure::input(format!(
+            "{what} draws on a terminal, and ssh gave it none: ask for one with `ssh -t HOST rattleback …` (or `RequestTTY yes` in ~/.ssh/config); `rattleback simulate` prints a report without one"
+        )));
+    }
+    if !stdout {
         return Err(Failure::input(format!(
             "{what} draws on a terminal, and standard output is not one (redirected to a file or a pipe); run it without `>` or `|`, or use `rattleback simulate` for a report"
         )));
     }
-    if !std::io::stdin().is_terminal() {
+    if !stdin {
         return Err(Failure::input(format!(
             "{what} reads its keys from a terminal, and standard input is not one (`<` a file, a pipe, or none); run it from a terminal"
         )));

@@ -8,53 +8,198 @@ use clap_mangen::roff::{Roff, bold, italic, roman};
 
 use crate::app::keys::{KEYMAP, MAP_KEYS, REPLAY_KEYMAP};
 
-/// `(command line, what it does)`.
+/// `(command line, what it does)`: `--help`'s examples, and the manual's.
 pub const EXAMPLES: &[(&str, &str)] = &[
     (
-        "rattleback",
-        "open the explorer on the default preset (subcritical); ? lists the keys",
-    ),
-    (
         "rattleback --preset celt-clockwise",
-        "open it on another preset (rattleback presets lists them)",
+        "the explorer on a preset; ? keys",
     ),
     (
-        "rattleback simulate --preset supercritical --format json",
-        "run one trajectory headless; the report as JSON",
+        "rattleback simulate --format json",
+        "one run headless, a JSON report",
     ),
     (
         "rattleback --record lecture.jsonl",
-        "record a session while exploring",
+        "record while exploring",
     ),
     (
         "rattleback follow lecture.jsonl",
-        "in a second terminal: follow it live, read-only",
+        "follow it live, read-only",
+    ),
+    ("rattleback lesson first-reversal", "a guided lesson"),
+];
+
+/// Each subcommand's examples, shown at the end of its `--help` and in the manual.
+pub const SUBCOMMAND_EXAMPLES: &[(&str, &[(&str, &str)])] = &[
+    (
+        "simulate",
+        &[
+            ("rattleback simulate", "the default preset, a table"),
+            (
+                "rattleback simulate --preset supercritical --format json",
+                "a report for scripts",
+            ),
+            (
+                "rattleback simulate --set spring.k=1e6 --method auto --tolerance 1e-10",
+                "another k, tighter",
+            ),
+            (
+                "rattleback simulate --preset kapitza-upright --format csv > run.csv",
+                "the samples",
+            ),
+        ],
     ),
     (
-        "rattleback replay lecture.jsonl --verify",
-        "check a recording bit for bit against a fresh run",
+        "presets",
+        &[
+            ("rattleback presets", "every preset, shipped and yours"),
+            (
+                "rattleback presets show just-below > mine.toml",
+                "a preset to edit",
+            ),
+        ],
     ),
     (
-        "rattleback replay lecture.jsonl --export-cast lecture.cast",
-        "turn it into an asciinema cast",
+        "themes",
+        &[("rattleback themes --format json", "every theme, as JSON")],
     ),
     (
-        "rattleback compare subcritical celt-clockwise",
-        "the holonomic rattleback beside the rolling celt",
+        "lesson",
+        &[
+            ("rattleback lesson first-reversal", "a shipped lesson"),
+            (
+                "rattleback lesson kapitza-threshold --record class.jsonl",
+                "recorded",
+            ),
+            ("rattleback lesson new mine", "a commented lesson to edit"),
+        ],
     ),
     (
-        "rattleback study sweep --preset subcritical",
-        "the distance to the limit against k, with its slope",
+        "lessons",
+        &[("rattleback lessons", "every lesson, shipped and yours")],
     ),
     (
-        "LANG=C rattleback --preset kapitza-just-above",
-        "ASCII only, for a terminal without UTF-8 (as --ascii)",
+        "compare",
+        &[(
+            "rattleback compare subcritical celt-clockwise",
+            "holonomic beside rolling",
+        )],
     ),
     (
-        "source <(rattleback completions bash)",
-        "complete commands, flags, presets, themes and lessons in bash (the program is asked each time)",
+        "follow",
+        &[(
+            "rattleback follow lecture.jsonl",
+            "while the lecturer records it",
+        )],
+    ),
+    (
+        "check",
+        &[
+            (
+                "rattleback check mine.toml",
+                "every problem, with line and key",
+            ),
+            (
+                "rattleback check lessons/*.toml --format json",
+                "for scripts",
+            ),
+        ],
+    ),
+    (
+        "replay",
+        &[
+            (
+                "rattleback replay lecture.jsonl",
+                "in the explorer, at its pace",
+            ),
+            (
+                "rattleback replay lecture.jsonl --verify --key me.pub",
+                "bit for bit, signed",
+            ),
+            (
+                "rattleback replay lecture.jsonl --export-html lecture.html",
+                "one page",
+            ),
+            (
+                "rattleback replay lecture.jsonl --chapters",
+                "the chapter list",
+            ),
+        ],
+    ),
+    (
+        "bench",
+        &[
+            ("rattleback bench --quick", "a shorter study"),
+            ("rattleback bench --only kapitza", "one scene"),
+        ],
+    ),
+    (
+        "study",
+        &[
+            (
+                "rattleback study sweep",
+                "the distance to the limit against k",
+            ),
+            (
+                "rattleback study map --preset kapitza-upright",
+                "the stability chart",
+            ),
+            (
+                "rattleback study map --grid 60x12 --format table",
+                "a small map as text",
+            ),
+        ],
+    ),
+    (
+        "completions",
+        &[("source <(rattleback completions bash)", "in ~/.bashrc")],
+    ),
+    (
+        "man",
+        &[(
+            "rattleback man > rattleback.1 && man -l rattleback.1",
+            "read it",
+        )],
+    ),
+    (
+        "keygen",
+        &[("rattleback keygen me", "me.key (private) and me.pub")],
+    ),
+    (
+        "config",
+        &[
+            ("rattleback config path", "where config.toml is"),
+            (
+                "rattleback config show > config.toml",
+                "a file to start from",
+            ),
+        ],
+    ),
+    (
+        "doctor",
+        &[("rattleback doctor --format json", "for a bug report")],
     ),
 ];
+
+/// `rows` under an `Examples:` heading, one line each (command, then what it does) where both
+/// fit in 80 columns, else the words under the command.
+#[must_use]
+pub fn examples_text(rows: &[(&str, &str)]) -> String {
+    let width = rows
+        .iter()
+        .map(|(c, _)| c.chars().count())
+        .max()
+        .unwrap_or(0);
+    let mut out = String::from("Examples:\n");
+    for (cmd, what) in rows {
+        if 2 + width + 2 + what.chars().count() <= 80 {
+            let _ = writeln!(out, "  {cmd:<width$}  {what}");
+        } else {
+            let _ = writeln!(out, "  {cmd}\n      {what}");
+        }
+    }
+    out.trim_end().to_owned()
+}
 
 /// `(variable, what it does)`.
 pub const ENVIRONMENT: &[(&str, &str)] = &[
@@ -126,42 +271,11 @@ pub const EXIT_STATUS: &[(&str, &str)] = &[
     ),
 ];
 
-/// The text `--help` prints after the options.
+/// The text `--help` prints after the options: the examples, and where the rest is.
 #[must_use]
 pub fn after_help() -> String {
-    let mut out = String::new();
-    let section = |out: &mut String, title: &str, rows: &[(&str, &str)]| {
-        let _ = writeln!(out, "{title}:");
-        for (what, why) in rows {
-            let _ = writeln!(out, "  {what}");
-            for line in wrap(why, 78) {
-                let _ = writeln!(out, "          {line}");
-            }
-        }
-        out.push('\n');
-    };
-    section(&mut out, "Examples", EXAMPLES);
-    section(&mut out, "Environment", ENVIRONMENT);
-    section(&mut out, "Exit status", EXIT_STATUS);
-    out += "Keys: ? in the explorer, or `rattleback man`. The guide: docs/guide.md.";
-    out
-}
-
-/// `text` in lines of at most `width` characters, broken at spaces.
-fn wrap(text: &str, width: usize) -> Vec<String> {
-    let mut lines = vec![String::new()];
-    for word in text.split_whitespace() {
-        let last = lines.last_mut().expect("one line");
-        if !last.is_empty() && last.chars().count() + 1 + word.chars().count() > width {
-            lines.push(word.to_owned());
-        } else {
-            if !last.is_empty() {
-                last.push(' ');
-            }
-            last.push_str(word);
-        }
-    }
-    lines
+    examples_text(EXAMPLES)
+        + "\n\nMore: rattleback COMMAND --help; keys, environment, exit status: rattleback man"
 }
 
 /// The whole manual page: clap's title, name, synopsis, description and options, then every
@@ -184,7 +298,7 @@ fn roff_safe(page: &str) -> String {
 }
 
 fn render_page(cmd: clap::Command, w: &mut dyn std::io::Write) -> std::io::Result<()> {
-    let cmd = cmd.after_long_help("");
+    let cmd = cmd.after_help("").after_long_help("");
     let man = clap_mangen::Man::new(cmd.clone());
     man.render_title(w)?;
     man.render_name_section(w)?;
@@ -291,6 +405,18 @@ fn command(roff: &mut Roff, parents: &[&str], cmd: &clap::Command) {
     roff.text(usage);
     roff.control("PP", []);
     roff.text([roman(about)]);
+    if let Some((_, rows)) = SUBCOMMAND_EXAMPLES
+        .iter()
+        .find(|(name, _)| parents.len() == 1 && *name == cmd.get_name())
+    {
+        roff.control("PP", []);
+        roff.text([roman("Examples:")]);
+        for (line, what) in *rows {
+            roff.control("TP", []);
+            roff.text([bold(*line)]);
+            roff.text([roman(*what)]);
+        }
+    }
     for arg in cmd.get_arguments().filter(|a| !a.is_hide_set()) {
         let id = arg.get_id().as_str();
         if id == "help" || id == "version" {

@@ -279,6 +279,14 @@ impl Problem {
             } => (Some(path.clone()), *line, key.clone()),
             PresetError::Unreadable { path, .. } => (Some(path.clone()), None, None),
             PresetError::NotFound { .. } => (None, None, None),
+            // `check` lists a file's problems one by one, never as one.
+            PresetError::Several(all) => match all.first() {
+                Some(first) => {
+                    let p = Self::of(first);
+                    (p.path, p.line, p.key)
+                }
+                None => (None, None, None),
+            },
         };
         Self {
             path,

@@ -60,6 +60,16 @@ pub enum Outcome {
     Loaded(Box<Result<Preset, String>>),
     /// The files written by an export, or why not.
     Exported(Result<Vec<PathBuf>, String>),
+    /// Where `y` put the command: `text` was sent as OSC 52 (no terminal answers it); `tmux`
+    /// when tmux's buffer took it too; else the file it was saved to, or why not.
+    Copied {
+        /// The command.
+        text: String,
+        /// tmux's `load-buffer` took it.
+        tmux: bool,
+        /// The file beside the sessions, when tmux did not take it.
+        file: Option<Result<PathBuf, String>>,
+    },
 }
 
 /// The worker commands among `effects` (what headless drivers execute).

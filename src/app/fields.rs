@@ -31,14 +31,7 @@ impl Settings {
         let preset =
             preset.unwrap_or_else(|| crate::scenario::shipped::base_preset(self.model.kind()));
         // A name with a space or a quote, quoted for the shell.
-        let preset = if preset
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || "-_./".contains(c))
-        {
-            preset.to_owned()
-        } else {
-            format!("'{}'", preset.replace('\'', "'\\''"))
-        };
+        let preset = crate::scenario::text::shell_word(preset);
         let mut cmd = format!("rattleback simulate --preset {preset}");
         for f in Field::rows(self.model.kind()) {
             let value = f.exact(self);

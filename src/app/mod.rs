@@ -114,6 +114,7 @@ impl App {
         let (mut app, _) = Self::new(preset, options);
         app.run.generation = old.run.generation;
         app.run.epoch = old.run.epoch + 1;
+        app.messages.written.clone_from(&old.messages.written);
         let mut effects = vec![Effect::Sim(app.run.set_overlay(app.view.overlay))];
         effects.extend(app.restart());
         (app, effects)
@@ -454,7 +455,8 @@ impl App {
             Action::Suspend => return vec![Effect::Suspend],
             Action::CyclePanes => {
                 if !self.view.panes.cycle() {
-                    self.status = Message::info("one pane or none open: nothing to cycle");
+                    self.status =
+                        Message::info("no pane open beside the portrait: nothing to cycle");
                 }
             }
             Action::ShowMessages => {
@@ -473,9 +475,8 @@ impl App {
             }];
         }
         let text = self.scenario.simulate_command();
-        self.status = Message::info(format!("copied: {text}"));
-        // Shown whole: the message line would cut it.
-        self.remember();
+        // Said whole, with where it went, once the shell has put it there (`Outcome::Copied`);
+        // the messages view shows it whole.
         self.mode = Mode::Help(
             Help::at(HelpPage::Messages)
                 .scrolled(i32::from(u16::MAX))

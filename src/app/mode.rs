@@ -87,11 +87,6 @@ pub enum HelpPage {
 pub enum PromptFor {
     /// The name of a user preset to save (`s`).
     SaveName,
-    /// Its description, once named.
-    SaveDescription {
-        /// The name chosen.
-        name: String,
-    },
     /// A note in the recording (`n`).
     Note,
     /// A chapter marker in the recording (`m`).
@@ -106,7 +101,6 @@ impl PromptFor {
     pub fn label(&self) -> &'static str {
         match self {
             Self::SaveName => "save as",
-            Self::SaveDescription { .. } => "description",
             Self::Note => "note",
             Self::Chapter => "chapter",
             Self::Answer => "answer",

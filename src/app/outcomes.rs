@@ -85,7 +85,7 @@ impl App {
             }
             Outcome::RecordingSaved(path) => {
                 self.journal.state = RecState::Off;
-                self.status = Message::info(format!("recording saved to {path}"));
+                self.status = self.noted(format!("recording saved to {path}"));
             }
             Outcome::RecordingFailed(e) => {
                 self.journal.state = RecState::Off;
@@ -93,6 +93,9 @@ impl App {
             }
             Outcome::Saved(Ok(path)) => {
                 self.mode = Mode::Normal;
+                self.messages
+                    .written
+                    .push(clean(&format!("preset saved to {}", path.display())));
                 self.status = Message::info(format!("saved {}", path.display()));
             }
             Outcome::Saved(Err(crate::scenario::store::SaveError::Exists(path))) => {
@@ -107,8 +110,9 @@ impl App {
             Outcome::Saved(Err(e)) => self.mode = Mode::Dialog(clean(&e.to_string())),
             Outcome::Exported(Ok(paths)) => {
                 let names: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
-                self.status = Message::info(format!("wrote {}", names.join(" and ")));
+                self.status = self.noted(format!("wrote {}", names.join(" and ")));
             }
+            Outcome::Copied { text, tmux, file } => self.copied(&text, tmux, file),
             Outcome::Exported(Err(e)) => {
                 self.status = Message::error(format!("export failed: {e}"));
             }
@@ -212,5 +216,40 @@ impl App {
             SimEvent::Job { stamp, data } => self.on_job(stamp, data),
             other => self.run.on_sim(other, self.view.overlay),
         }
+    }
+}
+
+impl App {
+    /// `said` on the message line, and noted among what the session wrote (printed when the
+    /// explorer ends).
+    fn noted(&mut self, said: String) -> Option<Message> {
+        self.messages.written.push(clean(&said));
+        Message::info(said)
+    }
+
+    /// Where `y` put the command, said first (the message line shows its start); a file is
+    /// also noted among what the session wrote.
+    fn copied(&mut self, text: &str, tmux: bool, file: Option<Result<std::path::PathBuf, String>>) {
+        let said = match (tmux, file) {
+            (true, _) => {
+                format!("command in tmux's buffer (prefix ] pastes; also sent as OSC 52): {text}")
+            }
+            (false, Some(Ok(path))) => {
+                self.messages
+                    .written
+                    .push(clean(&format!("command saved to {}", path.display())));
+                format!(
+                    "command saved to {} (also sent as OSC 52, for a terminal that allows it): {text}",
+                    path.display()
+                )
+            }
+            (false, Some(Err(e))) => format!(
+                "command sent as OSC 52 only (a terminal that allows it has it); not saved: {e}: {text}"
+            ),
+            (false, None) => {
+                format!("command sent as OSC 52 only (a terminal that allows it has it): {text}")
+            }
+        };
+        self.status = Message::info(said);
     }
 }

@@ -294,6 +294,22 @@ impl Panes {
         panes
     }
 
+    /// The order a recording keeps: the panes a key toggles and, once Tab has brought it in
+    /// front of one of them, the portrait; least recent first. (A portrait behind every other
+    /// says nothing, and is left out as files before issue 68 had it.)
+    #[must_use]
+    pub fn ordered(self) -> Vec<Pane> {
+        let mut panes = self.toggled();
+        if self.shows(Pane::Portrait) {
+            panes.push(Pane::Portrait);
+            panes.sort_by_key(|p| self.stamp[*p as usize]);
+            if panes.first() == Some(&Pane::Portrait) {
+                panes.remove(0);
+            }
+        }
+        panes
+    }
+
     /// Brings the shown panes to the front in the order of `recent` (the most recent last), as
     /// a recorded layout lists them.
     pub fn order_as(&mut self, recent: &[Pane]) {
@@ -307,7 +323,13 @@ impl Panes {
     /// Sends the most recent optional pane to the back (`Tab`: the next one comes to the
     /// front); whether there was one to cycle (two or more shown).
     pub fn cycle(&mut self) -> bool {
+        // The portrait takes its turn too: at 80×24 a pane opened beside it (B) takes its
+        // place, and Tab gives it back (issue 68).
         let mut recent = self.toggled();
+        if self.shows(Pane::Portrait) {
+            recent.push(Pane::Portrait);
+            recent.sort_by_key(|p| self.stamp[*p as usize]);
+        }
         if recent.len() < 2 {
             return false;
         }
@@ -386,12 +408,21 @@ mod tests {
         p.set(Pane::Sweep, true);
         p.set(Pane::Weak, true);
         assert_eq!(p.toggled(), [Pane::Series, Pane::Sweep, Pane::Weak]);
+        // The portrait behind every other is left out of the recorded order.
+        assert_eq!(p.ordered(), [Pane::Series, Pane::Sweep, Pane::Weak]);
         assert!(p.cycle());
         assert_eq!(p.toggled(), [Pane::Weak, Pane::Series, Pane::Sweep]);
+        assert_eq!(
+            p.ordered(),
+            [Pane::Weak, Pane::Portrait, Pane::Series, Pane::Sweep]
+        );
         assert!(p.cycle());
+        assert!(p.cycle());
+        // The portrait's turn (issue 68): in front of every other.
+        assert_eq!(p.ordered().last(), Some(&Pane::Portrait));
         assert!(p.cycle());
         assert_eq!(
-            p.toggled(),
+            p.ordered(),
             [Pane::Series, Pane::Sweep, Pane::Weak],
             "round"
         );
@@ -406,8 +437,12 @@ mod tests {
         q.order_as(&[Pane::Series, Pane::Sweep, Pane::Weak]);
         assert_eq!(q.toggled(), p.toggled());
         let mut one = Panes::default();
+        assert!(!one.cycle(), "the portrait alone: nothing to cycle");
         one.set(Pane::Map, true);
-        assert!(!one.cycle(), "one pane: nothing to cycle");
+        assert!(one.cycle(), "a pane and the portrait take turns");
+        assert_eq!(one.ordered(), [Pane::Map, Pane::Portrait]);
+        let mut none = Panes::of(&[Pane::Params]);
+        assert!(!none.cycle(), "no pane: nothing to cycle");
     }
 
     #[test]

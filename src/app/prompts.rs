@@ -2,7 +2,7 @@
 //! description, with the confirmations a shipped or existing name needs), notes and chapters.
 
 use super::mode::{Confirm, Picker, PickerRow, Prompt, PromptFor};
-use super::{App, Caption, Effect, Key, Message, Mode, RecState, ellipsis};
+use super::{App, Caption, Effect, Key, Message, Mode, RecState};
 use crate::app::journal::Event;
 use crate::scenario::text::clean;
 
@@ -74,6 +74,12 @@ impl App {
                 } else {
                     Event::Note { text: text.clone() }
                 });
+                // The prompt's hint is over: say what was done.
+                self.status = Message::info(format!(
+                    "{} marked at t {:.2}",
+                    if chapter { "chapter" } else { "note" },
+                    self.run.shown
+                ));
                 self.caption = Some(Caption {
                     chapter,
                     text,
@@ -94,16 +100,22 @@ impl App {
                 Vec::new()
             }
             PromptFor::SaveName => {
-                if !crate::scenario::store::valid_name(&text) {
+                // `name` or `name: description`, one prompt: a second one took the keys a user
+                // typed next (issue 68).
+                let (name, description) = match text.split_once(':') {
+                    Some((name, words)) => (name.trim().to_owned(), words.trim().to_owned()),
+                    None => (text.clone(), String::new()),
+                };
+                if !crate::scenario::store::valid_name(&name) {
                     self.status = Message::error(format!(
-                        "'{text}' cannot be a preset name: letters, digits, - and _"
+                        "'{name}' cannot be a preset name: letters, digits, - and _ (then `: words` to describe it)"
                     ));
                     self.mode = Mode::Prompt(prompt);
                     return Vec::new();
                 }
-                if prompt.confirm == Confirm::No && crate::scenario::shipped::is_shipped(&text) {
+                if prompt.confirm == Confirm::No && crate::scenario::shipped::is_shipped(&name) {
                     self.status = Message::error(format!(
-                        "'{text}' is a shipped preset: your copy would replace it in every later run. Enter: save anyway, Esc: cancel"
+                        "'{name}' is a shipped preset: your copy would replace it in every later run. Enter: save anyway, Esc: cancel"
                     ));
                     self.mode = Mode::Prompt(Prompt {
                         confirm: Confirm::Shipped,
@@ -111,27 +123,19 @@ impl App {
                     });
                     return Vec::new();
                 }
-                self.status = Message::info(format!(
-                    "describe it (Enter with nothing keeps \"{}\", marked as a copy)",
-                    ellipsis(&self.scenario.description, 40)
-                ));
-                self.mode = Mode::Prompt(Prompt::new(PromptFor::SaveDescription { name: text }));
-                Vec::new()
-            }
-            PromptFor::SaveDescription { ref name } => {
-                let description = if text.is_empty() {
+                let description = if description.is_empty() {
                     format!(
                         "Saved from the explorer as {name}, from \"{}\": {}",
                         self.scenario.name, self.scenario.description
                     )
                 } else {
-                    text
+                    description
                 };
-                let mut preset = self.to_preset(name);
+                let mut preset = self.to_preset(&name);
                 preset.description = description;
                 let overwrite = prompt.confirm == Confirm::Overwrite;
                 let effect = Effect::SavePreset {
-                    name: name.clone(),
+                    name,
                     text: preset.to_toml(),
                     overwrite,
                 };
@@ -188,7 +192,9 @@ impl App {
             return;
         }
         self.status = Message::info(match purpose {
-            PromptFor::SaveName => "name the preset (letters, digits, - and _), Enter, Esc cancels",
+            PromptFor::SaveName => {
+                "name the preset (letters, digits, - and _), then `: words` to describe it if you like; Enter saves, Esc cancels"
+            }
             _ => "type it, Enter marks, Esc cancels",
         });
         self.mode = Mode::Prompt(Prompt::new(purpose));

@@ -88,6 +88,9 @@ pub struct MessageLog {
     pub entries: Vec<Message>,
     /// The last message and caption noted, so each is noted once.
     last: (Option<Message>, Option<(bool, String)>),
+    /// What this session wrote, one line each (`recording saved to …`): the explorer prints
+    /// them when it ends, so the files are found after the screen has gone.
+    pub written: Vec<String>,
 }
 
 impl MessageLog {

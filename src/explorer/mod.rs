@@ -311,7 +311,7 @@ impl Shell<'_> {
                 })),
                 Effect::Copy(text) => {
                     self.tty.copy(&text)?;
-                    None
+                    Some(copied(text, self.options.sessions_dir.as_deref()))
                 }
                 Effect::Redraw => {
                     self.tty.clear()?;
@@ -432,7 +432,9 @@ fn finish_recording(
         }
     }
     rec.stopping = true;
-    let _ = rec.flush(app);
+    if let Ok(Some(outcome)) = rec.flush(app) {
+        app.on_outcome(outcome);
+    }
 }
 
 /// The worker's plan book: a replay's recorded plans; a followed lecture's runs bounded one by
@@ -567,6 +569,11 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
     if let Some(rec) = recording {
         finish_recording(rec, &worker, &mut app, &rx);
     }
+    // Where the files went, on the terminal the screen has given back (a terminal that hung
+    // up takes nothing, and a failed write is no reason to panic).
+    for line in &app.messages.written {
+        crate::scenario::text::warn(&format!("rattleback: {line}"));
+    }
     drop(rx);
     // Never wait on a worker stuck in a long step: the process ends with it.
     worker.join_within(Duration::from_millis(100));
@@ -575,6 +582,45 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
     // sees `stop` within 100 ms.
     drop(input);
     why_ended(result, hangup)
+}
+
+/// Where `y`'s command went besides OSC 52, which no terminal acknowledges: inside tmux, its
+/// buffer (`tmux load-buffer -`, the text on its standard input, no shell; tmux ignores OSC 52
+/// under its default `set-clipboard external`); else a file beside the sessions,
+/// `last-command.sh`, so the command is never only on a clipboard that may not exist.
+fn copied(text: String, sessions: Option<&std::path::Path>) -> Outcome {
+    use std::io::Write as _;
+    let tmux = std::env::var_os("TMUX").is_some_and(|v| !v.is_empty())
+        && std::process::Command::new("tmux")
+            .args(["load-buffer", "-"])
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .and_then(|mut child| {
+                if let Some(mut stdin) = child.stdin.take() {
+                    stdin.write_all(text.as_bytes())?;
+                }
+                child.wait()
+            })
+            .is_ok_and(|status| status.success());
+    let file = (!tmux).then(|| match sessions {
+        Some(dir) => {
+            let path = dir.join("last-command.sh");
+            std::fs::create_dir_all(dir)
+                .and_then(|()| {
+                    crate::scenario::write::write_atomic(
+                        &path,
+                        format!("{text}\n").as_bytes(),
+                        true,
+                    )
+                })
+                .map(|()| path)
+                .map_err(|e| e.to_string())
+        }
+        None => Err("no sessions folder (no home folder)".to_owned()),
+    });
+    Outcome::Copied { text, tmux, file }
 }
 
 /// A terminal that hung up (SSH dropped, tmux killed) fails the next frame, often before the

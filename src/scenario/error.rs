@@ -36,6 +36,10 @@ pub enum PresetError {
         /// What is wrong and what is allowed.
         message: String,
     },
+    /// Every problem of one file, one a line, as `check` lists them (issue 68: `simulate`
+    /// said only the first).
+    #[error("{}", crate::scenario::text::bounded(&.0.iter().map(ToString::to_string).collect::<Vec<_>>()).join("\n"))]
+    Several(Vec<PresetError>),
 }
 
 struct Located<'a>(
@@ -95,7 +99,8 @@ impl PresetError {
     pub fn file_name(&self) -> String {
         let path = match self {
             Self::Unreadable { path, .. } | Self::Invalid { path, .. } => path.as_str(),
-            _ => "",
+            Self::Several(all) => return all.first().map(Self::file_name).unwrap_or_default(),
+            Self::NotFound { .. } => "",
         };
         let name = std::path::Path::new(path)
             .file_stem()
@@ -108,6 +113,7 @@ impl PresetError {
     pub fn key(&self) -> Option<&str> {
         match self {
             Self::Invalid { key, .. } => key.as_deref(),
+            Self::Several(all) => all.first().and_then(Self::key),
             _ => None,
         }
     }
@@ -117,6 +123,7 @@ impl PresetError {
     pub fn line(&self) -> Option<usize> {
         match self {
             Self::Invalid { line, .. } => *line,
+            Self::Several(all) => all.first().and_then(Self::line),
             _ => None,
         }
     }

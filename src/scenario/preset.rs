@@ -683,7 +683,13 @@ impl Preset {
         fallback_name: &str,
         overrides: &[Override],
     ) -> Result<Self, PresetError> {
-        let (table, kind) = collect(src, label, overrides).map_err(|mut p| p.swap_remove(0))?;
+        let (table, kind) = collect(src, label, overrides).map_err(|mut p| {
+            if p.len() == 1 {
+                p.swap_remove(0)
+            } else {
+                PresetError::Several(p)
+            }
+        })?;
         let r = Reader(&table);
         let n = |s: &str, k: &str| r.num(s, k).unwrap_or(0.0);
         // A value whose combination with the others is out of range (a derived quantity that

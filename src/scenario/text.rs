@@ -432,11 +432,42 @@ pub fn cut(line: &str, max: usize) -> String {
     if n <= max {
         return line.to_owned();
     }
+    let chars: Vec<char> = line.chars().collect();
     let tail = max / 4;
-    let head = max - tail;
-    let first: String = line.chars().take(head).collect();
-    let last: String = line.chars().skip(n - tail).collect();
-    format!("{first} … ({} characters cut) … {last}", n - max)
+    let mut head = max - tail;
+    let mut from = n - tail;
+    // At word boundaries, so no name in a list is cut in two (`celt-anti … …`).
+    let gap = |c: char| c.is_whitespace() || c == ',';
+    if let Some(i) = (head / 2..head).rev().find(|&i| gap(chars[i])) {
+        head = i;
+    }
+    if let Some(i) = (from..n - tail / 2).find(|&i| gap(chars[i])) {
+        from = i + 1;
+    }
+    let first: String = chars[..head].iter().collect();
+    let last: String = chars[from..].iter().collect();
+    format!(
+        "{} … ({} characters cut) … {}",
+        first.trim_end_matches([',', ' ']),
+        from - head,
+        last.trim_start()
+    )
+}
+
+/// `word` in at most `max` characters (at least 12): its head and its longer tail kept around
+/// a `…`, so a path keeps its file's name.
+#[must_use]
+pub fn middle(word: &str, max: usize) -> String {
+    let chars: Vec<char> = word.chars().collect();
+    let max = max.max(12);
+    if chars.len() <= max {
+        return word.to_owned();
+    }
+    let head = (max - 1) / 3;
+    let tail = max - 1 - head;
+    let first: String = chars[..head].iter().collect();
+    let last: String = chars[chars.len() - tail..].iter().collect();
+    format!("{first}…{last}")
 }
 
 /// A compact number: up to 6 significant digits, no trailing zeros.
@@ -451,5 +482,20 @@ pub fn format_number(v: f64) -> String {
         "0".to_owned()
     } else {
         s.to_owned()
+    }
+}
+
+/// `word` as the shell reads it back: as is when it holds only letters, digits and `-_./=:,@+`,
+/// else in single quotes (a quote inside written `'\''`).
+#[must_use]
+pub fn shell_word(word: &str) -> String {
+    if !word.is_empty()
+        && word
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_./=:,@+".contains(c))
+    {
+        word.to_owned()
+    } else {
+        format!("'{}'", word.replace('\'', "'\\''"))
     }
 }

@@ -354,13 +354,13 @@ fn table(r: &Report) -> String {
         "swings        {:>16}    {:>16}",
         r.events.swings.count, e.swings.count
     );
-    let _ = writeln!(o, "  full at      {}", times(&r.events.swings.times));
+    event_times(&mut o, &r.events.swings.times, &e.swings.times);
     let _ = writeln!(
         o,
         "falls         {:>16}    {:>16}",
         r.events.falls.count, e.falls.count
     );
-    let _ = writeln!(o, "  full at      {}", times(&r.events.falls.times));
+    event_times(&mut o, &r.events.falls.times, &e.falls.times);
     let _ = writeln!(o);
     let _ = writeln!(
         o,
@@ -379,4 +379,15 @@ fn table(r: &Report) -> String {
     );
     super::render::work_line(&mut o, &r.stats);
     o
+}
+
+/// The `full at` and `limit at` lines of a count, each only when it has a time (issue 68: an
+/// empty `full at` line said nothing).
+fn event_times(o: &mut String, full: &[f64], limit: &[f64]) {
+    if !full.is_empty() {
+        let _ = writeln!(o, "  full at      {}", times(full));
+    }
+    if !limit.is_empty() {
+        let _ = writeln!(o, "  limit at     {}", times(limit));
+    }
 }

@@ -483,7 +483,8 @@ pub fn csv_metadata_of(
     numbers.extend(kind.params().iter().map(|p| p.key).zip(model.values()));
     metadata_lines(
         preset,
-        kind.scene().model_required.then(|| kind.name()),
+        // Every scene's CSV names its model, the rattleback's too (issue 68).
+        Some(kind.name()),
         method,
         ran,
         &numbers,
@@ -502,8 +503,7 @@ fn csv_head(preset: &Preset, resolved: &Resolved, ran: Method, t_end: f64) -> St
     )
 }
 
-/// The `# key = value` lines every model's CSV starts with: the program, the model (absent for
-/// the rattleback, the first), the preset's name cleaned to one line, the method asked and the
+/// The `# key = value` lines every model's CSV starts with: the program, the model, the preset's name cleaned to one line, the method asked and the
 /// one that ran, then `numbers` as text that parses back to the same bits.
 pub(crate) fn metadata_lines(
     preset: &str,

@@ -34,9 +34,12 @@ pub fn picker(frame: &mut Frame<'_>, area: Rect, p: &Picker, look: &Look) {
         .position(|&i| i == p.selected)
         .map_or(0, |i| i + 1);
     let block = Block::bordered()
-        .title(format!(
-            " presets {place}/{}: type to filter, ↑↓ Home End choose, Enter load, Esc close ",
-            visible.len(),
+        .title(super::title_middle(
+            &format!(
+                "presets {place}/{}: type to filter, ↑↓ Home End choose, Enter loads, Esc closes",
+                visible.len(),
+            ),
+            popup.width,
         ))
         .title_bottom(format!(" filter: {}▏ ", p.filter));
     let inner = block.inner(popup);

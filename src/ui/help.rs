@@ -119,7 +119,9 @@ fn messages(app: &App, look: &Look<'_>) -> Vec<Line<'static>> {
         } else {
             Style::default()
         };
-        for (i, part) in super::wrap_words(&m.text, 62, usize::MAX)
+        // 60 columns, so a continuation line with its indent still fits the popup (a long
+        // path was wrapped again with a lone character, issue 68).
+        for (i, part) in super::wrap_words(&m.text, 60, usize::MAX)
             .into_iter()
             .enumerate()
         {

@@ -7,7 +7,7 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Widget, Wrap};
 
-use super::{Look, title};
+use super::Look;
 use crate::app::lesson::LessonState;
 use crate::scenario::lesson::Question;
 
@@ -103,16 +103,26 @@ impl LessonPane<'_> {
 impl Widget for LessonPane<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let state = self.lesson;
-        let block = Block::bordered().title(title(
-            &format!(
-                "lesson: {} │ step {}/{}: {}",
-                state.lesson.title,
-                state.step + 1,
-                state.lesson.steps.len(),
-                state.current().title
-            ),
-            area.width,
-        ));
+        // The step (its number and title) is what a student needs: the lesson's title gives
+        // way first, shortened in its middle.
+        let step = format!(
+            " │ step {}/{}: {}",
+            state.step + 1,
+            state.lesson.steps.len(),
+            state.current().title
+        );
+        let room = usize::from(area.width.saturating_sub(4))
+            .saturating_sub(step.chars().count() + "lesson: ".len());
+        let heading = if room >= 16 {
+            format!(
+                "lesson: {}{step}",
+                super::middle_words(&state.lesson.title, room)
+            )
+        } else {
+            // No room for the lesson's title (`v` and the help show it): the step alone.
+            step.trim_start_matches(" │ ").to_owned()
+        };
+        let block = Block::bordered().title(super::title_middle(&heading, area.width));
         // Too short for everything: the step's text gives way (cut, with `…`), the question,
         // the answer and what `n` waits for stay whole.
         let mut lines = self.lines();

@@ -90,6 +90,17 @@ pub fn curve(look: &Look<'_>, cell: char, braille: &str, halfblock: &str) -> Str
     }
 }
 
+/// ` (how)`, the pattern a curve's words name (`dense dots`, `solid`, `dashed`), where the
+/// marker draws patterns; nothing where each curve is one character (ASCII, the Linux console:
+/// issue 68, the legend said "dense dots" beside a `*`).
+#[must_use]
+pub fn pattern(look: &Look<'_>, how: &str) -> String {
+    match look.marker {
+        Marker::Braille | Marker::HalfBlock => format!(" ({how})"),
+        _ => String::new(),
+    }
+}
+
 /// A mark printed as text (not a canvas point), in the set in use.
 #[must_use]
 pub fn printed(look: &Look<'_>, c: char) -> String {

@@ -128,11 +128,15 @@ pub fn column_layout(app: &App, right: Rect) -> ColumnLayout {
     optional.sort_by_key(|p| std::cmp::Reverse(panes.recency(*p)));
     let mut claims: Vec<Pane> = asked.into_iter().collect();
     let mut rest = optional.into_iter();
-    if asked.is_none() {
-        claims.extend(rest.next());
-    }
-    if visible.contains(&Pane::Portrait) {
-        claims.push(Pane::Portrait);
+    let front = if asked.is_none() { rest.next() } else { None };
+    let portrait = visible.contains(&Pane::Portrait).then_some(Pane::Portrait);
+    // The portrait claims before the front pane once Tab has brought it forward.
+    if front.is_some_and(|f| panes.recency(Pane::Portrait) > panes.recency(f)) {
+        claims.extend(portrait);
+        claims.extend(front);
+    } else {
+        claims.extend(front);
+        claims.extend(portrait);
     }
     claims.extend(rest);
     let height = right.height.saturating_sub(lesson_rows);
@@ -239,13 +243,8 @@ fn draw_column(frame: &mut Frame<'_>, app: &App, right: Rect, look: &Look<'_>, c
                 None => p.key(),
             })
             .collect();
-        // Tab brings an optional pane to the front; the portrait comes back when one closes.
-        let how = if hidden.iter().any(|p| p.optional()) {
-            "Tab cycles"
-        } else {
-            "close a pane to make room"
-        };
-        let text = format!(" more: {} · {how} ", names.join(" · "));
+        // Tab brings the next pane to the front, the portrait included (issue 68).
+        let text = format!(" more: {} · Tab cycles ", names.join(" · "));
         let text = crate::app::ellipsis(&text, line.width as usize);
         let width = text.chars().count() as u16;
         let at = Rect {
@@ -636,7 +635,7 @@ pub struct Screen {
 fn message_lines(app: &App, width: u16) -> Option<(Vec<String>, bool)> {
     app.status.as_ref().map(|m| {
         let width = width.saturating_sub(2) as usize;
-        let mut lines = wrap_words(&m.text, width, MESSAGE_LINES);
+        let mut lines = wrap_words(&fit_long_words(&m.text, width), width, MESSAGE_LINES);
         if let Some(last) = lines.last_mut()
             && last.ends_with('…')
         {
@@ -750,8 +749,15 @@ fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mu
         let kind = app.scenario.settings.model.kind();
         owned(keys::map_footer(crate::study::chart::words(kind).sources))
     } else {
-        // The user's keys where an action lost its defaults.
-        app.options.keys.footer(&KEYMAP)
+        // The user's keys where an action lost its defaults; the words say what a key does
+        // now (`space pause` while playing).
+        let mut hints = app.options.keys.footer(&KEYMAP);
+        for hint in &mut hints {
+            if hint.1 == "play" && app.run.playing {
+                hint.1 = "pause";
+            }
+        }
+        hints
     };
     if options.footer {
         draw_footer(frame, footer, &hints, &look);
@@ -795,6 +801,34 @@ fn draw_message(frame: &mut Frame<'_>, area: Rect, lines: Vec<String>, error: bo
         .map(|l| Line::styled(format!(" {l}"), style))
         .collect();
     frame.render_widget(Paragraph::new(text), area);
+}
+
+/// `text` with its longest word (a path, a command) shortened in the middle so that the whole
+/// fits in `width` columns: `recording to /home/…/subcritical-2026-11-28-101500.jsonl`, not
+/// `recording to…`. Text that fits, or whose other words alone do not, is left as it is.
+#[must_use]
+pub fn fit_long_words(text: &str, width: usize) -> String {
+    let n = text.chars().count();
+    if n <= width {
+        return text.to_owned();
+    }
+    let Some(longest) = text.split(' ').max_by_key(|w| w.chars().count()) else {
+        return text.to_owned();
+    };
+    let len = longest.chars().count();
+    if len < 24 {
+        return text.to_owned();
+    }
+    // Room to show everything; else room for the word on the first line, before the `…
+    // (v: whole)` that ends a message cut short.
+    let whole = len.saturating_sub(n - width);
+    let before = text[..text.find(longest).unwrap_or(0)].chars().count();
+    let on_line = width.saturating_sub(before + 14);
+    let room = if whole >= 16 { whole } else { on_line };
+    if room < 16 || room >= len {
+        return text.to_owned();
+    }
+    text.replacen(longest, &crate::scenario::text::middle(longest, room), 1)
 }
 
 /// Rows a message takes above the status bar (a longer one is cut, and `v` shows it whole).
@@ -907,10 +941,60 @@ fn framed(text: &str, area: Rect, buf: &mut ratatui::buffer::Buffer) -> Rect {
     inner
 }
 
-/// A block title cut to fit `width` columns, ending in `…` when cut.
+/// A block title cut to fit `width` columns, ending in `…` when cut: a pane's title says its
+/// numbers first (`weak-*: average over w = 1 within 1.34 %`).
 fn title(text: &str, width: u16) -> String {
     format!(
         " {} ",
         crate::app::ellipsis(text, (width as usize).saturating_sub(4))
     )
+}
+
+/// A block title whose two ends both matter (a preset's name, the picker's keys, the time
+/// series' two plots, a lesson's step) shortened to fit `width` columns: whole words taken out
+/// of its middle and a `…` in their place (issue 68).
+fn title_middle(text: &str, width: u16) -> String {
+    format!(
+        " {} ",
+        middle_words(text, (width as usize).saturating_sub(4))
+    )
+}
+
+/// [`framed`] with a [`title_middle`].
+fn framed_middle(text: &str, area: Rect, buf: &mut ratatui::buffer::Buffer) -> Rect {
+    let block = Block::bordered().title(title_middle(text, area.width));
+    let inner = block.inner(area);
+    ratatui::widgets::Widget::render(block, area, buf);
+    inner
+}
+
+/// `text` in at most `max` characters, words taken out of its middle (then characters, for a
+/// text of one or two long words).
+#[must_use]
+pub fn middle_words(text: &str, max: usize) -> String {
+    // Its length once joined, with `… ` in it when words were taken out.
+    let len = |w: &[&str], cut: bool| {
+        w.iter().map(|w| w.chars().count()).sum::<usize>()
+            + w.len().saturating_sub(1)
+            + if cut { 2 } else { 0 }
+    };
+    let mut words: Vec<&str> = text.split(' ').collect();
+    if text.chars().count() <= max {
+        return text.to_owned();
+    }
+    let mut cut = false;
+    while words.len() > 2 && len(&words, cut) > max {
+        words.remove(words.len() / 2);
+        cut = true;
+    }
+    if cut {
+        let at = words.len().div_ceil(2);
+        words.insert(at, "…");
+    }
+    let joined = words.join(" ");
+    if joined.chars().count() <= max {
+        joined
+    } else {
+        crate::app::ellipsis(&crate::scenario::text::middle(text, max), max)
+    }
 }

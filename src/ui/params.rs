@@ -8,8 +8,8 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Widget, Wrap};
 
+use super::Look;
 use super::marks::{Facts, Section};
-use super::{Look, title};
 use crate::app::Scenario;
 use crate::app::fields::{Field, format_number};
 use crate::app::mode::Prompt;
@@ -96,7 +96,7 @@ pub fn legend(f: &Facts<'_>, _look: &Look<'_>) -> Section {
     for line in f.summary {
         s = s.note(format!("{}: {}", line.label, line.meaning));
     }
-    s.note("an arrow and a count on its border: rows out of sight above or below")
+    s.note("an arrow and a count on its border: rows out of sight above or below; selecting the last parameter (↑ from the first) brings the rows below it into sight")
 }
 
 /// The edit cursor after a typed value.
@@ -142,12 +142,16 @@ fn panel(p: &ParamsPanel<'_>, area: Rect, buf: &mut Buffer) {
         0
     } else if p.prompt.is_some() {
         total - rows
+    } else if p.scenario.selected + 1 == Field::rows(p.scenario.settings.model.kind()).len() {
+        // The last parameter selected: the rows below it come into sight (at 80×24 the celt's
+        // derived rows, issue 68), so ↑ from the first row shows them.
+        total - rows
     } else {
         (p.scenario.selected + 2)
             .saturating_sub(rows)
             .min(total - rows)
     };
-    let mut block = Block::bordered().title(title(&p.scenario.name, area.width));
+    let mut block = Block::bordered().title(super::title_middle(&p.scenario.name, area.width));
     let below = total.saturating_sub(first + rows);
     if first > 0 {
         block = block.title(Line::from(format!(" ↑{first} ")).right_aligned());

@@ -16,7 +16,7 @@ use ratatui::text::{Line as TextLine, Span};
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 use ratatui::widgets::{Paragraph, StatefulWidget, Widget};
 
-use super::marks::{Facts, Section, curve, printed};
+use super::marks::{Facts, Section, curve, pattern, printed};
 use super::{Look, framed};
 use crate::app::fields::{Settings, format_number};
 use crate::app::portrait::{
@@ -74,7 +74,7 @@ pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
     .mark(
         curve(look, CELL_MARKS.trail, "⣀⣤⣀⣤", "▄▄▄▄"),
         t.trail,
-        format!("{motion} (dense dots)"),
+        format!("{motion}{}", pattern(look, "dense dots")),
     );
     if let Some(small) = small {
         s = s.mark(
@@ -93,13 +93,19 @@ pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
         s = s.mark(
             curve(look, CELL_MARKS.separatrix, "⠒⠒⠒⠒", "▀▀▀▀"),
             t.separatrix,
-            "separatrix of the limit (solid)",
+            format!("separatrix of the limit{}", pattern(look, "solid")),
         );
     }
     let start = if levels {
-        "the start's level of the limit's energy E_eff (dashed)"
+        format!(
+            "the start's level of the limit's energy E_eff{}",
+            pattern(look, "dashed")
+        )
     } else {
-        "the largest spin the start's energy allows, either sense (dashed)"
+        format!(
+            "the largest spin the start's energy allows, either sense{}",
+            pattern(look, "dashed")
+        )
     };
     s = s.mark(
         curve(look, CELL_MARKS.start, "⠒ ⠒ ", "▀ ▀ "),

@@ -9,9 +9,9 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::widgets::canvas::{Canvas, Line, Points};
 use ratatui::widgets::{Paragraph, Widget};
 
+use super::Look;
 use super::marks::{Facts, Section, curve, printed};
 use super::portrait::{resolution, y_labels};
-use super::{Look, framed};
 use crate::app::RunState;
 use crate::sim::Point;
 
@@ -121,7 +121,7 @@ fn pane(pane: &SeriesPane<'_>, area: Rect, buf: &mut Buffer) {
     } else {
         "full"
     };
-    let inner = framed(
+    let inner = super::framed_middle(
         &format!(
             "{}(t): {limit}, {} │ log10|ΔE/E|",
             words.q_dot_name, words.events

@@ -456,3 +456,32 @@ fn the_side_and_end_views_show_the_reference_lean_at_the_end() {
         );
     }
 }
+
+/// Issue 68: at 80×24 the celt's panel is taller than its pane; the border says how many rows
+/// are out of sight, and selecting the last parameter (↑ from the first) scrolls them in.
+#[test]
+fn the_celt_panel_scrolls_its_hidden_rows_into_sight_at_80x24() {
+    use rattleback::app::Key;
+    let mut h = crate::common::Headless::new("celt-clockwise");
+    let top = crate::explorer_ui::screen_text(&h.app, 80, 24);
+    let hidden = top
+        .lines()
+        .find_map(|l| l.split("↓ ").nth(1).and_then(|r| r.split(" more").next()))
+        .unwrap_or_else(|| panic!("no marker of hidden rows: {top}"));
+    let hidden: usize = hidden.trim().parse().unwrap();
+    assert!(hidden > 0, "{top}");
+    h.key(Key::Up);
+    let bottom = crate::explorer_ui::screen_text(&h.app, 80, 24);
+    assert!(bottom.contains(&format!(" ↑{hidden} ")), "{bottom}");
+    assert!(!bottom.contains(" more ┘"), "{bottom}");
+    let panel = |screen: &str| -> Vec<String> {
+        screen
+            .lines()
+            .map(|l| l.chars().take(30).collect::<String>())
+            .collect()
+    };
+    // Rows that were out of sight are on the screen now.
+    let before = panel(&top);
+    let after = panel(&bottom);
+    assert!(after.iter().any(|l| !before.contains(l)), "{bottom}");
+}

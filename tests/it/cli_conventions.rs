@@ -122,17 +122,31 @@ fn the_manual_page_is_whole_and_man_has_no_warnings() {
     for (var, _) in rattleback::manual::ENVIRONMENT {
         assert!(out.contains(var), "{var} missing");
     }
-    // `--help` carries the same examples, environment and exit codes.
+    // `--help` carries the same examples, and says the manual has the environment and the
+    // exit codes (issue 68: two screens at 80 columns).
     let (code, help, _) = bin(&["--help"]);
     assert_eq!(code, 0);
-    for (line, _) in rattleback::manual::EXAMPLES
+    for (line, _) in rattleback::manual::EXAMPLES {
+        assert!(help.contains(line), "--help lacks {line}");
+        // roff escapes `-` as `\-`.
+        assert!(
+            out.replace("\\-", "-").contains(line),
+            "the manual lacks {line}"
+        );
+    }
+    assert!(
+        help.contains("environment, exit status: rattleback man"),
+        "{help}"
+    );
+    for (line, _) in rattleback::manual::ENVIRONMENT
         .iter()
-        .chain(rattleback::manual::ENVIRONMENT)
         .chain(rattleback::manual::EXIT_STATUS)
     {
-        assert!(help.contains(line), "--help lacks {line}");
+        assert!(
+            out.replace("\\-", "-").contains(line),
+            "the manual lacks {line}"
+        );
     }
-    assert!(help.contains("Exit status:") && help.contains("Environment:"));
     // man --warnings: silent on this page.
     let page = std::env::temp_dir().join(format!("rattleback-{}.1", std::process::id()));
     std::fs::write(&page, &out).unwrap();
@@ -370,8 +384,7 @@ fn every_failure_speaks_in_one_style() {
 /// and succeed.
 #[test]
 fn every_help_text_is_true() {
-    use clap::CommandFactory as _;
-    let root = rattleback::cli::Cli::command();
+    let root = rattleback::cli::command();
     // (path, command) for every command and subcommand.
     let mut all = vec![(Vec::<String>::new(), root.clone())];
     let mut i = 0;
@@ -396,7 +409,8 @@ fn every_help_text_is_true() {
     };
     let mut wrong = Vec::new();
     for (path, cmd) in &all {
-        let mut cmd = cmd.clone();
+        // Unwrapped (a wrapped line would part a flag from the command it belongs to).
+        let mut cmd = cmd.clone().term_width(0);
         let help = cmd.render_long_help().to_string();
         let own = longs(&cmd);
         for line in help.lines() {
@@ -537,5 +551,218 @@ fn list_columns_line_up() {
             .map(|l| l.find(" shipped").or_else(|| l.find(" user")).unwrap_or(0))
             .collect();
         assert_eq!(columns.len(), 1, "{list}: the source column moves:\n{out}");
+    }
+}
+
+/// Issue 68: a global flag before its command is refused with the order that works, written
+/// out to copy.
+#[test]
+fn a_flag_before_its_command_is_told_the_order_that_works() {
+    let (code, _, err) = bin(&["--preset", "supercritical", "simulate", "--format", "json"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("tip: a command's flags go after its name: `rattleback simulate --preset supercritical --format json`"),
+        "{err}"
+    );
+    // What the tip says runs.
+    let (code, _, err) = bin(&["simulate", "--preset", "supercritical", "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    // A word with a space is quoted for the shell.
+    let (_, _, err) = bin(&["--preset", "my preset.toml", "simulate"]);
+    assert!(
+        err.contains("`rattleback simulate --preset 'my preset.toml'`"),
+        "{err}"
+    );
+}
+
+/// Issue 68: `--help` wraps to the terminal (clap's `wrap_help`, `COLUMNS` as a terminal sets
+/// it): at 80 columns no line is longer, the top level fits in two screens, and every
+/// subcommand ends with examples that parse.
+#[test]
+fn help_fits_80_columns_and_ends_with_examples() {
+    let help = |args: &[&str]| {
+        let out = common::rattleback()
+            .args(args)
+            .env("COLUMNS", "80")
+            .env("LINES", "24")
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{args:?}");
+        String::from_utf8(out.stdout).unwrap()
+    };
+    for flag in ["--help", "-h"] {
+        let text = help(&[flag]);
+        let long: Vec<&str> = text.lines().filter(|l| l.chars().count() > 80).collect();
+        assert!(
+            long.is_empty(),
+            "rattleback {flag}: over 80 columns: {long:?}"
+        );
+        let n = text.lines().count();
+        assert!(
+            n <= 48,
+            "rattleback {flag} is {n} lines, more than two 24-line screens"
+        );
+        assert!(text.contains("Examples:"), "{text}");
+    }
+    let root = rattleback::cli::command();
+    for sub in root.get_subcommands().filter(|s| s.get_name() != "help") {
+        let name = sub.get_name();
+        let text = help(&[name, "--help"]);
+        let long: Vec<&str> = text.lines().filter(|l| l.chars().count() > 80).collect();
+        assert!(
+            long.is_empty(),
+            "rattleback {name} --help: over 80 columns: {long:?}"
+        );
+        let examples = text
+            .split("Examples:\n")
+            .nth(1)
+            .unwrap_or_else(|| panic!("rattleback {name} --help has no examples:\n{text}"));
+        assert!(
+            examples.contains(&format!("rattleback {name}")),
+            "{name}: {examples}"
+        );
+    }
+    // Every example is a command the parser takes.
+    let all = rattleback::manual::EXAMPLES.iter().chain(
+        rattleback::manual::SUBCOMMAND_EXAMPLES
+            .iter()
+            .flat_map(|(_, rows)| rows.iter()),
+    );
+    for (line, _) in all {
+        let words: Vec<&str> = line
+            .trim_start_matches("source <(")
+            .trim_end_matches(')')
+            .split(" > ")
+            .next()
+            .unwrap()
+            .split(" && ")
+            .next()
+            .unwrap()
+            .split_whitespace()
+            .collect();
+        assert_eq!(words[0], "rattleback", "{line}");
+        if let Err(e) = rattleback::cli::parse_from(&words) {
+            assert!(
+                matches!(e.kind(), clap::error::ErrorKind::DisplayHelp),
+                "the example `{line}` does not parse: {e}"
+            );
+        }
+    }
+}
+
+/// Issue 68: a preset with several problems is refused by `simulate` with every one, as
+/// `check` lists them, each on its own line.
+#[test]
+fn simulate_says_every_problem_of_a_preset_as_check_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("bad.toml");
+    std::fs::write(
+        &file,
+        "[preset]\nname = \"x\"\n[body]\nix = -1\niy = \"a\"\nfoo = 1\n",
+    )
+    .unwrap();
+    let path = file.to_str().unwrap();
+    let (code, _, simulate) = bin(&["simulate", "--preset", path]);
+    assert_eq!(code, 2);
+    let (code, _, check) = bin(&["check", path]);
+    assert_eq!(code, 2);
+    let lines = |text: &str| -> Vec<String> {
+        text.lines()
+            .map(|l| l.trim_start_matches("rattleback: error: ").to_owned())
+            .collect()
+    };
+    assert!(lines(&simulate).len() >= 4, "{simulate}");
+    assert_eq!(
+        lines(&simulate),
+        lines(&check),
+        "simulate:\n{simulate}\ncheck:\n{check}"
+    );
+    // A list in an error is cut between names, never inside one.
+    let (_, _, err) = bin(&["simulate", "--preset", "subcritcal"]);
+    let names: Vec<String> = rattleback::scenario::shipped::SHIPPED
+        .iter()
+        .map(|(n, _)| (*n).to_owned())
+        .collect();
+    let list = err
+        .split("available: ")
+        .nth(1)
+        .unwrap()
+        .split("; did you mean")
+        .next()
+        .unwrap();
+    let list: String = match (list.find(" … ("), list.rfind(") … ")) {
+        (Some(a), Some(b)) => format!("{}, {}", &list[..a], &list[b + 5..]),
+        _ => list.to_owned(),
+    };
+    for word in list.split([',', ' ']).filter(|w| {
+        w.len() > 3 && !w.contains('…') && w.chars().all(|c| c.is_ascii_lowercase() || c == '-')
+    }) {
+        assert!(
+            names.iter().any(|n| n == word),
+            "`{word}` is not a whole name: {err}"
+        );
+    }
+}
+
+/// Issue 68: every scene's CSV names its model (the rattleback's had no `# model` line), and
+/// the pendulum's table prints an event's times only when there are some.
+#[test]
+fn every_csv_names_its_model_and_no_table_line_is_empty() {
+    for (preset, model) in [
+        ("subcritical", "rattleback"),
+        ("kapitza-upright", "kapitza"),
+        ("celt-clockwise", "celt"),
+    ] {
+        let (code, out, err) = bin(&[
+            "simulate",
+            "--preset",
+            preset,
+            "--format",
+            "csv",
+            "--samples",
+            "3",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        assert!(
+            out.lines().any(|l| l == format!("# model = {model}")),
+            "{preset}: {out}"
+        );
+        let (_, table, _) = bin(&["simulate", "--preset", preset]);
+        for line in table.lines() {
+            assert!(
+                !(line.trim_start().ends_with("at") && line.contains(" at")),
+                "{preset}: an empty line of times: `{line}`\n{table}"
+            );
+        }
+    }
+}
+
+/// Issue 68: the lists say a shipped file is built in, and how to see it, instead of a path in
+/// the source tree that an installed binary does not have.
+#[test]
+fn lists_say_shipped_files_are_built_in() {
+    for (args, show) in [
+        (
+            &["presets"][..],
+            "built in (rattleback presets show subcritical)",
+        ),
+        (
+            &["lessons"][..],
+            "built in (rattleback lesson first-reversal)",
+        ),
+        (
+            &["themes"][..],
+            "built in (rattleback themes --format json)",
+        ),
+    ] {
+        let (code, out, err) = bin(args);
+        assert_eq!(code, 0, "{err}");
+        assert!(out.contains(show), "{args:?}: {out}");
+        for dir in ["presets/", "lessons/", "themes/"] {
+            assert!(
+                !out.lines().any(|l| l.trim_start().starts_with(dir)),
+                "{args:?} prints a source-tree path: {out}"
+            );
+        }
     }
 }

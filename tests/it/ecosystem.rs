@@ -212,6 +212,12 @@ fn the_copied_command_line_runs_exactly_the_explorers_settings() {
     let [Effect::Copy(text)] = effects.as_slice() else {
         panic!("{effects:?}")
     };
+    // Said whole once the shell says where it went (issue 68).
+    h.app.on_outcome(rattleback::app::Outcome::Copied {
+        text: text.clone(),
+        tmux: true,
+        file: None,
+    });
     assert!(h.app.status.as_ref().unwrap().text.contains(text.as_str()));
     let args: Vec<&str> = text.split_whitespace().collect();
     let cli = <rattleback::cli::Cli as clap::Parser>::try_parse_from(&args).unwrap();

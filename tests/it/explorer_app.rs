@@ -438,11 +438,7 @@ fn saving_asks_what_it_must() {
     };
     assert_eq!(p.confirm, Confirm::Shipped);
     assert!(app.status.as_ref().unwrap().text.contains("shipped"));
-    app.on_key(Key::Enter);
-    let Mode::Prompt(p) = &app.mode else {
-        panic!("no description prompt")
-    };
-    assert_eq!(p.purpose.label(), "description");
+    // Saved at once (no second prompt to take the next keys), described as a copy.
     let effects = app.on_key(Key::Enter);
     let [Effect::SavePreset { name, text, .. }] = effects.as_slice() else {
         panic!("{effects:?}")
@@ -465,6 +461,14 @@ fn saving_asks_what_it_must() {
     };
     assert_eq!(p.purpose, PromptFor::Note);
     assert_eq!(p.purpose.label(), "note");
+    // Once entered, the hint gives way to what was done (issue 68).
+    for c in "first reversal".chars() {
+        app.on_key(Key::Char(c));
+    }
+    app.on_key(Key::Enter);
+    assert_eq!(app.mode, Mode::Normal);
+    let said = &app.status.as_ref().unwrap().text;
+    assert!(said.starts_with("note marked at t "), "{said}");
 }
 
 #[test]
@@ -1290,4 +1294,49 @@ fn refusal(job: rattleback::sim::JobSpec) -> String {
         &mut |_| {},
     );
     reason.unwrap_or_else(|| panic!("{kind:?}: no reason"))
+}
+
+/// Issue 68: `y` says where the command went: tmux's buffer when tmux took it, else the file
+/// it was saved to beside the sessions (OSC 52 is never acknowledged), whole on the messages.
+#[test]
+fn y_says_where_the_command_went() {
+    let (mut app, _) = app();
+    let effects = app.on_key(Key::Char('y'));
+    let Some(Effect::Copy(text)) = effects.iter().find(|e| matches!(e, Effect::Copy(_))) else {
+        panic!("{effects:?}")
+    };
+    let text = text.clone();
+    assert!(
+        text.starts_with("rattleback simulate --preset subcritical"),
+        "{text}"
+    );
+    app.on_outcome(rattleback::app::Outcome::Copied {
+        text: text.clone(),
+        tmux: true,
+        file: None,
+    });
+    let said = app.status.as_ref().unwrap().text.clone();
+    assert!(
+        said.starts_with("command in tmux's buffer") && said.ends_with(&text),
+        "{said}"
+    );
+    let file = std::path::PathBuf::from("/tmp/sessions/last-command.sh");
+    app.on_outcome(rattleback::app::Outcome::Copied {
+        text: text.clone(),
+        tmux: false,
+        file: Some(Ok(file.clone())),
+    });
+    let said = app.status.as_ref().unwrap().text.clone();
+    assert!(
+        said.starts_with("command saved to /tmp/sessions/last-command.sh"),
+        "{said}"
+    );
+    assert!(
+        app.messages
+            .written
+            .iter()
+            .any(|l| l == "command saved to /tmp/sessions/last-command.sh"),
+        "{:?}",
+        app.messages.written
+    );
 }

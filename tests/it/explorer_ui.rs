@@ -514,7 +514,11 @@ fn lesson_pane_at_80x24() {
     h.exec(effects);
     h.key(Key::Char('1'));
     let screen = text(&render(&h.app, 80, 24));
-    assert!(screen.contains("lesson: The first reversal"), "{screen}");
+    // The step's number and title, whole; the lesson's title where there is room (issue 68).
+    assert!(
+        screen.contains("step 1/5: A body that turns back"),
+        "{screen}"
+    );
     assert!(screen.contains("1 yes"), "{screen}");
     assert!(
         screen.contains("your answer: yes") && !screen.contains("your answer: yes, right"),
@@ -721,8 +725,17 @@ fn the_copied_command_and_every_message_are_shown_whole() {
         Some(rattleback::app::Effect::Copy(text)) => text.clone(),
         other => panic!("no copy: {other:?}"),
     };
+    // As the explorer's shell answers outside tmux: the command saved beside the sessions.
+    h.app.on_outcome(rattleback::app::Outcome::Copied {
+        text: copied.clone(),
+        tmux: false,
+        file: Some(Ok(
+            "/home/me/.local/share/rattleback/sessions/last-command.sh".into(),
+        )),
+    });
     let screen = screen_text(&h.app, 80, 24);
     insta::assert_snapshot!("copied_command_80x24", screen);
+    assert!(screen.contains("last-command.sh"), "{screen}");
     // Every word of the command is on the screen (wrapped, never cut).
     let flat: String = screen.split_whitespace().collect::<Vec<_>>().join(" ");
     for word in copied.split_whitespace() {
@@ -732,7 +745,10 @@ fn the_copied_command_and_every_message_are_shown_whole() {
     h.key(Key::Char('v'));
     let log = screen_text(&h.app, 80, 24);
     assert!(log.contains("messages, in full"), "{log}");
-    assert!(log.contains("copied: rattleback simulate"), "{log}");
+    assert!(
+        log.contains("last-command.sh") && log.contains("rattleback simulate"),
+        "{log}"
+    );
 }
 
 /// Issue 54: the picker filters as you type, Home and End jump, Backspace and Esc clear.
@@ -947,4 +963,116 @@ fn quoted(text: &str) -> Vec<String> {
         i += 1;
     }
     out
+}
+
+/// Issue 68: at 80×24 the body pane (B) takes the portrait's place, and Tab gives the
+/// portrait back (then the body again); the line naming what waits says Tab cycles.
+#[test]
+fn tab_brings_the_portrait_back_beside_the_body_at_80x24() {
+    let mut h = Headless::new("subcritical");
+    h.key(Key::Char('B'));
+    let with_body = text(&render(&h.app, 80, 24));
+    assert!(with_body.contains("body from above (B)"), "{with_body}");
+    assert!(!with_body.contains("phase portrait"), "{with_body}");
+    assert!(
+        with_body.contains("more: portrait · Tab cycles"),
+        "{with_body}"
+    );
+    h.key(Key::Tab);
+    let portrait = text(&render(&h.app, 80, 24));
+    assert!(portrait.contains("phase portrait"), "{portrait}");
+    assert!(!portrait.contains("body from above (B)"), "{portrait}");
+    assert!(portrait.contains("Tab cycles"), "{portrait}");
+    h.key(Key::Tab);
+    let again = text(&render(&h.app, 80, 24));
+    assert!(again.contains("body from above (B)"), "{again}");
+    // At 160×48 both fit: Tab changes nothing that is shown.
+    let big = text(&render(&h.app, 160, 48));
+    assert!(big.contains("phase portrait") && big.contains("body from above (B)"));
+}
+
+/// Issue 68: the footer says what `space` does now: `play` when paused, `pause` when playing.
+#[test]
+fn the_footer_follows_the_state() {
+    let mut h = Headless::new("subcritical");
+    let paused = text(&render(&h.app, 80, 24));
+    let footer = paused.lines().last().unwrap().to_owned();
+    assert!(footer.contains("space play"), "{footer}");
+    h.key(Key::Char(' '));
+    let playing = text(&render(&h.app, 80, 24));
+    let footer = playing.lines().last().unwrap().to_owned();
+    assert!(footer.contains("space pause"), "{footer}");
+    assert!(!footer.contains("space play"), "{footer}");
+}
+
+/// Issue 68: a message that names a file shows the file's name whole at 80 columns (its
+/// folders shortened in the middle), never `recording to… (v: whole)`.
+#[test]
+fn a_recordings_file_name_is_shown_whole_at_80_columns() {
+    let (mut app, _) = App::new(
+        &resolve("subcritical", &[]).unwrap(),
+        rattleback::app::Options::at(30.0),
+    );
+    let path = "/home/a-lecturer/.local/share/rattleback/sessions/subcritical-start-2026-11-27-193208.jsonl";
+    app.on_outcome(rattleback::app::Outcome::Recording(Ok(path.to_owned())));
+    let screen = text(&render(&app, 80, 24));
+    let line = screen
+        .lines()
+        .find(|l| l.contains("recording to"))
+        .unwrap_or_else(|| panic!("{screen}"));
+    assert!(
+        line.contains("subcritical-start-2026-11-27-193208.jsonl"),
+        "{line}"
+    );
+    assert!(line.contains('…') && !line.contains("v: whole"), "{line}");
+    assert!(
+        line.trim_start().starts_with("recording to /home/"),
+        "{line}"
+    );
+    // `v` shows it whole: the path in pieces, none of them wrapped again (a lone character on
+    // a line of its own, before).
+    app.on_key(Key::Char('v'));
+    let log = text(&render(&app, 80, 24));
+    // The popup is 66 columns wide, centred: its inside is columns 8 to 71.
+    let pieces: Vec<String> = log
+        .lines()
+        .map(|l| l.chars().collect::<Vec<char>>())
+        .filter(|c| c.len() >= 73 && c[7] == '│' && c[72] == '│')
+        .map(|c| c[8..72].iter().collect::<String>().trim().to_owned())
+        .filter(|l| !l.is_empty())
+        .collect();
+    let joined: String = pieces.concat();
+    assert!(joined.contains(path), "{log}");
+    assert!(pieces.iter().all(|p| p.chars().count() > 3), "{log}");
+}
+
+/// Issue 68: titles too long for their pane lose words from the middle, so both ends stay
+/// (the picker's `Esc closes`).
+#[test]
+fn long_titles_are_shortened_in_the_middle() {
+    assert_eq!(
+        ui::middle_words(
+            "presets 1/23: type to filter, ↑↓ Home End choose, Enter loads, Esc closes",
+            60
+        ),
+        "presets 1/23: type to filter, … Enter loads, Esc closes"
+    );
+    assert_eq!(ui::middle_words("short", 60), "short");
+    let cut = ui::middle_words("Kapitza: upright and stable", 24);
+    assert!(
+        cut.chars().count() <= 24 && cut.starts_with("Kapitza:") && cut.ends_with("stable"),
+        "{cut}"
+    );
+    let (mut app, _) = App::new(
+        &resolve("subcritical", &[]).unwrap(),
+        rattleback::app::Options::at(30.0),
+    );
+    let catalogue =
+        rattleback::explorer::file_outcome(&rattleback::app::Effect::ReadCatalogue, None).unwrap();
+    app.on_outcome(catalogue);
+    let screen = text(&render(&app, 80, 24));
+    assert!(
+        screen.contains("presets 1/") && screen.contains("Esc closes"),
+        "{screen}"
+    );
 }

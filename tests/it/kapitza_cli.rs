@@ -16,7 +16,14 @@ fn rejects(args: &[&str], needles: &[&str]) {
     assert_eq!(code, 2, "{args:?}: exit {code}: {stderr}");
     assert!(stdout.is_empty(), "{args:?}: printed {stdout}");
     assert!(!stderr.contains("panicked"), "{stderr}");
-    assert_eq!(stderr.trim().lines().count(), 1, "not one line: {stderr}");
+    // One line per problem, each in the one style (issue 68: every problem, as `check`).
+    assert!(
+        stderr
+            .trim()
+            .lines()
+            .all(|l| l.starts_with("rattleback: error: ")),
+        "not one line per problem: {stderr}"
+    );
     for n in needles {
         assert!(stderr.contains(n), "{args:?}: lacks '{n}': {stderr}");
     }

@@ -17,6 +17,7 @@ mod cli_conventions;
 mod compare;
 mod completions;
 mod convergence_order;
+mod docs_commands;
 mod ecosystem;
 mod effective_limit;
 mod energy;

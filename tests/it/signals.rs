@@ -276,6 +276,7 @@ fn every_way_a_recording_ends_writes_and_verifies_its_last_frame() {
             ],
         );
         let pid = e.pid();
+        let log = e.log.clone();
         // Playing when it ends: the last frame is not the first.
         e.script.stdin.as_mut().unwrap().write_all(b" ").unwrap();
         e.script.stdin.as_mut().unwrap().flush().unwrap();
@@ -308,6 +309,19 @@ fn every_way_a_recording_ends_writes_and_verifies_its_last_frame() {
                 };
                 assert_eq!(e.finish(), 128 + n, "SIG{signal}");
             }
+        }
+        // Issue 68: where the file went is said on the terminal once the screen is given back
+        // (a terminal that hung up hears nothing).
+        if how != "hang-up" {
+            let said =
+                String::from_utf8_lossy(&std::fs::read(&log).unwrap_or_default()).into_owned();
+            assert!(
+                said.contains(&format!(
+                    "rattleback: recording saved to {}",
+                    file.display()
+                )),
+                "ended by {how}: {said}"
+            );
         }
         let (code, out, err) = crate::common::bin(&["replay", file.to_str().unwrap(), "--verify"]);
         assert_eq!(code, 0, "ended by {how}: {err}");

@@ -86,9 +86,7 @@ fn user_folder_end_to_end() {
         }
     };
     press(&mut app, Key::Char('s'));
-    type_in(&mut app, "saved-one");
-    press(&mut app, Key::Enter);
-    type_in(&mut app, "for the lecture");
+    type_in(&mut app, "saved-one: for the lecture");
     press(&mut app, Key::Enter);
     let saved = std::fs::read_to_string(presets.join("saved-one.toml"))
         .unwrap_or_else(|e| panic!("{e}: {:?}", app.status));
@@ -96,7 +94,6 @@ fn user_folder_end_to_end() {
     // Saving again under the same name asks first.
     press(&mut app, Key::Char('s'));
     type_in(&mut app, "saved-one");
-    press(&mut app, Key::Enter);
     press(&mut app, Key::Enter);
     assert!(
         matches!(&app.mode, Mode::Prompt(p) if p.confirm == Confirm::Overwrite),

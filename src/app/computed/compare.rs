@@ -129,7 +129,7 @@ impl App {
     pub(in crate::app) fn layout(&self) -> Event {
         Event::Layout {
             effective: self.view.overlay,
-            panes: self.view.panes.toggled(),
+            panes: self.view.panes.ordered(),
         }
     }
 

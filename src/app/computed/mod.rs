@@ -34,7 +34,7 @@ pub struct Computed {
 }
 
 /// What the status line says while the map has the arrows.
-const MAP_HINT: &str = "map: arrows move, Enter loads the cell, Esc";
+const MAP_HINT: &str = "map: arrows move, Enter loads the cell, Esc gives the arrows back";
 
 impl Computed {
     /// The state of `pane` when the worker computes for it; none for a pane drawn from what

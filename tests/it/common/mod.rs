@@ -367,6 +367,16 @@ pub fn write_session(
 pub fn detached(program: impl AsRef<std::ffi::OsStr>) -> std::process::Command {
     let mut command = std::process::Command::new("setsid");
     command.arg(program);
+    // Not over ssh, whatever the developer's shell is: a test that wants ssh sets these.
+    for name in [
+        "SSH_CONNECTION",
+        "SSH_CLIENT",
+        "SSH_TTY",
+        "TMUX",
+        "TMUX_PANE",
+    ] {
+        command.env_remove(name);
+    }
     command
 }
 
