@@ -248,34 +248,33 @@ fn finish_child(child: &mut std::process::Child, limit: std::time::Duration) -> 
 /// names ssh's flag, the fix, rather than a redirection the user did not make.
 #[test]
 fn over_ssh_without_a_terminal_the_refusal_names_ssh_t() {
-    for args in [
-        &[][..],
-        &["lesson", "first-reversal"][..],
-        &["compare", "subcritical", "celt-clockwise"][..],
-    ] {
-        let out = crate::common::rattleback()
+    let run = |args: &[&str], ssh: bool| {
+        let mut command = crate::common::rattleback();
+        if ssh {
+            command.env("SSH_CONNECTION", "10.0.0.2 50000 10.0.0.1 22");
+        }
+        command
             .args(args)
-            .env("SSH_CONNECTION", "10.0.0.2 50000 10.0.0.1 22")
             .env(
                 "RATTLEBACK_CONFIG_DIR",
                 std::env::temp_dir().join("rattleback-no-user-folder"),
             )
             .stdin(std::process::Stdio::null())
             .output()
-            .unwrap();
+            .unwrap()
+    };
+    for args in [
+        &[][..],
+        &["lesson", "first-reversal"][..],
+        &["compare", "subcritical", "celt-clockwise"][..],
+    ] {
+        let out = run(args, true);
         let said = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{args:?}: {said}");
         assert!(said.contains("ssh -t HOST rattleback"), "{args:?}: {said}");
         assert!(out.stdout.is_empty(), "{args:?}");
     }
     // Without ssh the same run is told about its redirection.
-    let out = crate::common::rattleback()
-        .env(
-            "RATTLEBACK_CONFIG_DIR",
-            std::env::temp_dir().join("rattleback-no-user-folder"),
-        )
-        .stdin(std::process::Stdio::null())
-        .output()
-        .unwrap();
+    let out = run(&[], false);
     assert!(!String::from_utf8_lossy(&out.stderr).contains("ssh"));
 }
