@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 features() {
-  cargo tree --quiet -e "$1" --prefix none -f '{p} {f}' --target all \
+  cargo tree --quiet "${@:2}" -e "$1" --prefix none -f '{p} {f}' --target all \
     | awk '$2 ~ /^v[0-9]/ {
         key = $1 " " $2
         seen[key] = 1
@@ -23,8 +23,10 @@ features() {
         echo "$key:$(tr ' ' '\n' <<< "$rest" | sed '/^$/d' | sort | tr '\n' ' ')"
       done | sort
 }
-program=$(features features,normal,build)
-tests=$(features features,normal,build,dev)
+# The program alone (`cargo run --release` builds the package `rattleback`), then everything
+# `cargo test --release` builds: both packages of the workspace with their tests' dependencies.
+program=$(features features,normal,build -p rattleback)
+tests=$(features features,normal,build,dev --workspace)
 drift=$(join -t: <(echo "$program") <(echo "$tests") | awk -F: '$2 != $3')
 if [ -n "$drift" ]; then
   echo "features the tests add to the program's dependencies (name version: program's, with tests'):"

@@ -156,16 +156,17 @@ impl Pane {
     pub fn offered_by(self, model: crate::physics::ModelKind) -> bool {
         let studies = model.studies();
         match self {
-            // Every scene draws its body (the pendulum on its shaken pivot since issue 59).
+            // Every scene draws its body (the pendulum on its shaken pivot since issue 59) and
+            // has a chart (`study::chart::Chart`), so `Studies` has no flag for either.
             Self::Params
             | Self::Portrait
             | Self::Series
             | Self::Lesson
             | Self::Compare
-            | Self::Body => true,
+            | Self::Body
+            | Self::Map => true,
             Self::Sweep => model.small().is_some(),
             Self::Weak => studies.weak.is_some(),
-            Self::Map => studies.map,
         }
     }
 

@@ -96,13 +96,10 @@ pub struct SmallParameter {
 
 /// The studies a model offers (what the panes and `study` commands may ask of it).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[allow(clippy::struct_excessive_bools)]
 pub struct Studies {
     /// The weak-* convergence of the fast coordinate's square, and its words (`None`: the scene
     /// has no weak-* pane).
     pub weak: Option<WeakWords>,
-    /// A chart in the map pane (`M`; `study map`): every scene has one since issue 59.
-    pub map: bool,
     /// The shipped preset the compare pane sets beside this scene when no partner was chosen
     /// (the paper's contrast: the holonomic rattleback beside the rolling celt).
     pub counterpart: &'static str,
@@ -279,6 +276,19 @@ pub struct SideView {
     pub offset: f64,
 }
 
+/// A scene's weak-* pane (`W`): what it costs and what it computes ([`Posed::weak`]).
+pub trait WeakStudy {
+    /// Predicted seconds of [`WeakStudy::view`] over `t_end` (its cost model, asked before the
+    /// pane's job starts).
+    fn seconds(&self, t_end: f64) -> f64;
+    /// The weak-* view over a bounded horizon within `[0, t_end]` (at most a few thousand fast
+    /// periods, whatever the small parameter).
+    ///
+    /// # Errors
+    /// A failed or stopped integration.
+    fn view(&self, t_end: f64, go_on: &mut dyn FnMut(f64) -> bool) -> Result<WeakView, StepError>;
+}
+
 /// The facts of one validated problem of a model.
 pub trait Posed {
     /// Its scene.
@@ -315,23 +325,10 @@ pub trait Posed {
     fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned;
     /// Predicted seconds of a run (the model's cost model).
     fn predicted_seconds(&self, ask: &Asked) -> f64;
-    /// Predicted seconds of [`Posed::weak_view`] over `t_end` (its cost model, asked before the
-    /// pane's job starts); 0 for a model without one.
-    fn weak_seconds(&self, t_end: f64) -> f64 {
-        let _ = t_end;
-        0.0
-    }
-    /// The weak-* view over a bounded horizon within `[0, t_end]` (at most a few thousand fast
-    /// periods, whatever the small parameter), or `None` for a model without one
-    /// ([`Studies::weak`] false).
-    ///
-    /// # Errors
-    /// A failed or stopped integration.
-    fn weak_view(
-        &self,
-        t_end: f64,
-        go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Option<Result<WeakView, StepError>>;
+    /// The scene's weak-* study (its cost and its computation), or `None` for a scene without
+    /// one, whose [`Studies::weak`] is `None` too (`tests/it/scenes.rs` checks that both agree
+    /// on every shipped preset). No default: a new scene says which it is (issue 69).
+    fn weak(&self) -> Option<&dyn WeakStudy>;
     /// The slow coordinate on `samples` points of `[0, t_end]`: `auto` as the model plans it,
     /// `Method::Effective` the limit at [`Scene::limit_tolerance`].
     ///

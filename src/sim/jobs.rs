@@ -97,7 +97,11 @@ impl JobSpec {
                 spec.step,
                 spec.t_end,
             )),
-            Self::Weak(w) => w.model.posed().weak_seconds(w.t_end),
+            Self::Weak(w) => w
+                .model
+                .posed()
+                .weak()
+                .map_or(0.0, |weak| weak.seconds(w.t_end)),
             Self::Sweep(w) => crate::study::sweep::predicted_seconds(
                 &w.model,
                 ladder(w.model.kind()),
@@ -440,13 +444,15 @@ impl Job for WeakJob {
     fn slice(&mut self, work: &mut Work) -> Slice {
         let (go_on, sink) = (&mut *work.go_on, &mut *work.sink);
         let (generation, spec) = (self.generation, self.spec);
-        let data = spec
-            .model
-            .weak_view(spec.t_end, go_on)
-            .unwrap_or(Err(StepError::NoStudy {
-                what: "weak-* view",
-                model: spec.model.kind().name(),
-            }));
+        let data = spec.model.weak().map_or_else(
+            || {
+                Err(StepError::NoStudy {
+                    what: "weak-* view",
+                    model: spec.model.kind().name(),
+                })
+            },
+            |weak| weak.view(spec.t_end, go_on),
+        );
         let event = match data {
             Err(StepError::Cancelled { .. }) => return Slice::More,
             Err(e) => JobData::Weak {

@@ -230,7 +230,11 @@ impl Chart {
             (Self::Celt(_), Model::Celt(problem)) => Ok(Model::Celt(
                 with_spin_and_product(problem, x, y).map_err(bad)?,
             )),
-            _ => Err("the map is of another scene".to_owned()),
+            // Each chart with another scene's model (each chart is named: a new one must say
+            // what it loads; issue 69).
+            (Self::Rattleback { .. } | Self::Kapitza(_) | Self::Celt(_), _) => {
+                Err("the map is of another scene".to_owned())
+            }
         }
     }
 
@@ -539,13 +543,11 @@ impl Chart {
     /// worker takes a row a slice; otherwise as many cells as the pool has threads.
     #[must_use]
     pub fn cheap_cells(&self) -> bool {
-        matches!(
-            self,
-            Self::Rattleback {
-                source: Source::Limit,
-                ..
-            } | Self::Kapitza(_)
-        )
+        match self {
+            Self::Rattleback { source, .. } => matches!(source, Source::Limit),
+            Self::Kapitza(_) => true,
+            Self::Celt(_) => false,
+        }
     }
 
     /// Predicted wall-clock seconds of `cells` cells on this machine (the cost model asked before
@@ -591,7 +593,11 @@ impl Chart {
             .collect();
         // The curve once: the celt's costs an eigenvalue problem a sample.
         let curve = self.curve();
-        let critical = matches!(self, Self::Rattleback { .. }).then(|| {
+        let has_critical = match self {
+            Self::Rattleback { .. } => true,
+            Self::Kapitza(_) | Self::Celt(_) => false,
+        };
+        let critical = has_critical.then(|| {
             curve
                 .iter()
                 .map(|&(ratio, inertia_ratio)| map::CriticalPoint {
@@ -655,9 +661,16 @@ impl Chart {
             coords: self.coords(n),
             ..CellOutput::default()
         };
-        if let Self::Rattleback { grid, .. } = self {
-            out.ratio = Some(grid.ratio(i));
-            out.inertia_ratio = Some(grid.inertia_ratio(j));
+        // The fields only some scenes' cells have, each scene named (issue 69: an `if let`
+        // dropped a new chart's fields silently).
+        let (axes_named, reversal_details) = match self {
+            Self::Rattleback { grid, .. } => (Some((grid.ratio(i), grid.inertia_ratio(j))), false),
+            Self::Kapitza(_) => (None, false),
+            Self::Celt(_) => (None, true),
+        };
+        if let Some((ratio, inertia_ratio)) = axes_named {
+            out.ratio = Some(ratio);
+            out.inertia_ratio = Some(inertia_ratio);
         }
         match *v {
             Verdict::Reversals {
@@ -667,7 +680,7 @@ impl Chart {
                 growth,
             } => {
                 out.reversals = Some(count);
-                if let Self::Celt(_) = self {
+                if reversal_details {
                     out.first_reversal = Some(first);
                     out.decided = Some(decided);
                     out.growth_rate = growth;

@@ -320,13 +320,15 @@ impl ChartOutput {
             self.cells.iter().map(|c| (c.index, c)).collect();
         let key = match self.model {
             ModelKind::Kapitza => "# stable, . unstable, ? too close to call",
-            _ => ". none, 1-9 reversals, + 10 or more, ? two tolerances disagree",
+            ModelKind::Rattleback | ModelKind::Celt => {
+                ". none, 1-9 reversals, + 10 or more, ? two tolerances disagree"
+            }
         };
         let mut o = format!(
             "{} over {} ({} … {}) across, {} ({} … {}{}) up\n{key}; * {}; @ the preset\n",
             match self.model {
                 ModelKind::Kapitza => "stability of the pendulum",
-                _ => "reversals",
+                ModelKind::Rattleback | ModelKind::Celt => "reversals",
             },
             x.name,
             super::tick(x.min),

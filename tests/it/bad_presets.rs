@@ -16,7 +16,7 @@ fn simulate(args: &[&str]) -> (i32, String, String) {
 
 #[track_caller]
 fn rejects(file: &str, needles: &[&str]) {
-    let path = format!("{}/tests/fixtures/bad/{file}", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/tests/fixtures/bad/{file}", root!());
     let (code, stdout, stderr) = simulate(&["--preset", &path]);
     assert_eq!(code, 2, "{file}: exit code {code}, stderr: {stderr}");
     assert!(stdout.is_empty(), "{file}: printed a result: {stdout}");

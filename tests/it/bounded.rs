@@ -36,7 +36,7 @@ fn dir(name: &str) -> std::path::PathBuf {
 fn limited(args: &[&str]) -> Outcome {
     let mut cmd = format!(
         "ulimit -v {MEMORY_KIB}; exec '{}'",
-        env!("CARGO_BIN_EXE_rattleback")
+        crate::common::program()
     );
     for a in args {
         cmd.push_str(" '");
@@ -352,10 +352,7 @@ fn hostile_sessions_verify_and_export_within_their_bounds() {
 #[test]
 fn an_interrupted_export_leaves_nothing() {
     let d = dir("interrupt");
-    let session = format!(
-        "{}/tests/fixtures/sessions/lesson.jsonl",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let session = format!("{}/tests/fixtures/sessions/lesson.jsonl", root!());
     let out = d.join("big.cast");
     let mut child = crate::common::rattleback()
         .args(["replay", &session, "--export-cast"])
@@ -454,11 +451,8 @@ fn messages_name_the_right_thing() {
     assert_eq!(o.code, Some(2));
     assert!(o.err.contains("unbalanced"), "{}", o.err);
     let d = dir("bom");
-    let session = std::fs::read(format!(
-        "{}/tests/fixtures/sessions/lesson.jsonl",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap();
+    let session =
+        std::fs::read(format!("{}/tests/fixtures/sessions/lesson.jsonl", root!())).unwrap();
     let path = d.join("bom.jsonl");
     let mut f = std::fs::File::create(&path).unwrap();
     f.write_all("\u{feff}".as_bytes()).unwrap();
@@ -481,7 +475,7 @@ impl Pty {
         let log = dir(name).join("pty.out");
         let command = format!(
             "stty rows 30 cols 100; ulimit -v {MEMORY_KIB}; exec {} {args}",
-            env!("CARGO_BIN_EXE_rattleback")
+            crate::common::program()
         );
         let child = crate::common::detached("script")
             .args(["-qfec", &command])

@@ -39,8 +39,7 @@ fn text(buffer: &Buffer) -> String {
 
 /// The code points every console font has, from the fixture.
 fn console_fonts() -> BTreeSet<char> {
-    let path =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/console/glyphs.txt");
+    let path = std::path::Path::new(root!()).join("tests/fixtures/console/glyphs.txt");
     std::fs::read_to_string(path)
         .unwrap()
         .lines()
@@ -151,10 +150,7 @@ fn the_portraits_curves_stay_apart_in_ascii_and_on_the_console() {
 fn an_exported_cast_is_ascii_with_the_flag() {
     let dir = std::env::temp_dir().join(format!("rattleback-charsets-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let session = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/fixtures/sessions/subcritical.jsonl"
-    );
+    let session = concat!(root!(), "/tests/fixtures/sessions/subcritical.jsonl");
     for (flag, ascii) in [(Some("--ascii"), true), (None, false)] {
         let cast = dir.join(format!("{ascii}.cast"));
         let (s, p) = (session, cast.to_str().unwrap());
@@ -288,7 +284,7 @@ fn headless_text_is_ascii_under_a_non_utf8_locale() {
         for term in ["xterm", "dumb"] {
             let out = crate::common::rattleback()
                 .args(*args)
-                .current_dir(env!("CARGO_MANIFEST_DIR"))
+                .current_dir(root!())
                 .env("LANG", "C")
                 .env("TERM", term)
                 .output()

@@ -11,8 +11,7 @@ use crate::common::bin;
 
 fn references() -> toml::Table {
     let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("tests/fixtures/reference/charts.toml"),
+        std::path::Path::new(root!()).join("tests/fixtures/reference/charts.toml"),
     )
     .unwrap();
     text.parse().unwrap()

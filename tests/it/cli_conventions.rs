@@ -21,10 +21,7 @@ fn an_explorer_flag_before_a_subcommand_is_refused_not_ignored() {
 
 #[test]
 fn replay_takes_the_look_flags() {
-    let session = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/fixtures/sessions/subcritical.jsonl"
-    );
+    let session = concat!(root!(), "/tests/fixtures/sessions/subcritical.jsonl");
     let (code, out, err) = bin(&["replay", session, "--theme", "light", "--verify"]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("reproduced bit for bit"), "{out}");
@@ -60,10 +57,7 @@ fn completions_for_every_shell_register_the_program() {
         let (code, out, err) = bin(&["completions", shell]);
         assert_eq!(code, 0, "{shell}: {err}");
         assert!(out.contains("COMPLETE"), "{shell}: {out}");
-        assert!(
-            out.contains(env!("CARGO_BIN_EXE_rattleback")),
-            "{shell}: {out}"
-        );
+        assert!(out.contains(crate::common::program()), "{shell}: {out}");
         assert!(
             !out.contains("subcritical"),
             "{shell}: names are asked, not frozen"
@@ -223,10 +217,7 @@ fn presets_show_prints_a_preset_to_copy_and_themes_lists_themes() {
 /// The read end is closed right after the start, long before the first line is written.
 #[test]
 fn a_closed_pipe_ends_printing_commands_quietly() {
-    let session = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/fixtures/sessions/lecture.jsonl"
-    );
+    let session = concat!(root!(), "/tests/fixtures/sessions/lecture.jsonl");
     for args in [
         vec!["replay", session, "--verify"],
         vec!["presets"],
@@ -291,7 +282,7 @@ fn a_dash_reads_standard_input_where_a_file_is_read_headless() {
     assert_eq!(code, 2);
     assert!(err.contains("stdin:4: spring.k"), "{err}");
     let session = std::fs::read(concat!(
-        env!("CARGO_MANIFEST_DIR"),
+        root!(),
         "/tests/fixtures/sessions/subcritical.jsonl"
     ))
     .unwrap();
@@ -326,10 +317,7 @@ fn every_failure_speaks_in_one_style() {
     let junk = std::env::temp_dir().join(format!("rattleback-style-{}.jsonl", std::process::id()));
     std::fs::write(&junk, "not a session\n").unwrap();
     let j = junk.to_str().unwrap();
-    let bad = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/fixtures/bad/k-zero.toml"
-    );
+    let bad = concat!(root!(), "/tests/fixtures/bad/k-zero.toml");
     let cases: &[(&[&str], i32)] = &[
         (&["--frob"], 2),
         (&["simulate", "--method", "nope"], 2),

@@ -7,8 +7,6 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-const BIN: &str = env!("CARGO_BIN_EXE_rattleback");
-
 fn installed(shell: &str) -> bool {
     crate::common::detached(shell)
         .args(["-c", "exit 0"])
@@ -38,10 +36,7 @@ fn run(shell: &str, dir: &Path, script: &str) -> String {
             vec!["-c", script]
         })
         .env("RATTLEBACK_CONFIG_DIR", dir)
-        .current_dir(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/tests/fixtures/sessions"
-        ))
+        .current_dir(concat!(root!(), "/tests/fixtures/sessions"))
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&out.stdout).into_owned();
@@ -62,14 +57,15 @@ fn script(shell: &str, later: &Path, dir: &Path, lines: &[&str]) -> String {
         later.display(),
         dir.join("presets/mine-later.toml").display()
     );
+    let bin = crate::common::program();
     let mut s = match shell {
-        "bash" => format!("source <('{BIN}' completions bash)\n{copy}\n"),
+        "bash" => format!("source <('{bin}' completions bash)\n{copy}\n"),
         // compinit is interactive machinery: stand in for compdef and _describe, print what
         // the completer would offer.
         "zsh" => format!(
-            "compdef() {{ : }}\n_describe() {{ print -l -- ${{(P)${{@[-1]}}}} }}\nsource <('{BIN}' completions zsh)\n{copy}\n"
+            "compdef() {{ : }}\n_describe() {{ print -l -- ${{(P)${{@[-1]}}}} }}\nsource <('{bin}' completions zsh)\n{copy}\n"
         ),
-        _ => format!("'{BIN}' completions fish | source\n{copy}\n"),
+        _ => format!("'{bin}' completions fish | source\n{copy}\n"),
     };
     for line in lines {
         let words: Vec<&str> = line.split(' ').collect();

@@ -17,7 +17,7 @@
 use std::path::{Path, PathBuf};
 
 fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
+    Path::new(root!())
 }
 
 /// README.md and every page under docs/ (the changelog is history: it keeps old commands).

@@ -544,10 +544,7 @@ fn a_dumb_terminal_gets_one_line_from_every_interactive_entry_point() {
     // Issue 28: with TERM=dumb the program used to draw a full screen of escape codes. Every
     // command that opens the explorer refuses it in one line (after the preset is checked);
     // the headless commands do not care.
-    let session = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/fixtures/sessions/lecture.jsonl"
-    );
+    let session = concat!(root!(), "/tests/fixtures/sessions/lecture.jsonl");
     let run = |args: &[&str]| {
         let out = crate::common::rattleback()
             .args(args)
@@ -609,10 +606,7 @@ fn colours_follow_the_flag_then_no_color_then_clicolor() {
     }
     // End to end, through what a user can see: a cast exported with CLICOLOR=0, or with
     // --color never, has no colour in it; --color always overrides NO_COLOR.
-    let session = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/fixtures/sessions/subcritical.jsonl"
-    );
+    let session = concat!(root!(), "/tests/fixtures/sessions/subcritical.jsonl");
     let dir = temp("colour-cast");
     let cast = |name: &str, flag: &str, env: &[(&str, &str)]| {
         let out = dir.join(name);

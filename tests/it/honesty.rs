@@ -294,7 +294,7 @@ fn the_celt_meets_a_looser_tolerance_wherever_it_meets_a_tighter_one() {
     // from 1e-4 to 1e-10: honest, and met at every tolerance looser than one it meets.
     audit("celt", &[1e-4, 1e-5, 1e-7, 1e-9], celt);
     let tolerances = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
-    let presets: Vec<String> = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/presets"))
+    let presets: Vec<String> = std::fs::read_dir(concat!(root!(), "/presets"))
         .expect("the presets")
         .filter_map(|e| {
             let name = e.ok()?.file_name().into_string().ok()?;

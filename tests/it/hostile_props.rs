@@ -161,7 +161,7 @@ proptest! {
     ) {
         // Both scenes and formats 2 to 4 (the last one signed).
         let name = ["lesson", "kapitza", "lecture", "kapitza-signed"][which];
-        let path = format!("{}/tests/fixtures/sessions/{name}.jsonl", env!("CARGO_MANIFEST_DIR"));
+        let path = format!("{}/tests/fixtures/sessions/{name}.jsonl", root!());
         let text = std::fs::read_to_string(&path).unwrap();
         let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
         let n = lines.len();

@@ -24,10 +24,7 @@ fn cases() -> Vec<Case> {
 
 /// The cases of `tests/fixtures/reference/FILE`.
 fn cases_in(file: &str) -> Vec<Case> {
-    let path = format!(
-        "{}/tests/fixtures/reference/{file}",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let path = format!("{}/tests/fixtures/reference/{file}", root!());
     let table: toml::Table = std::fs::read_to_string(path).unwrap().parse().unwrap();
     let num = |t: &toml::Table, k: &str| t[k].as_float().unwrap();
     let list = |t: &toml::Table, k: &str| -> Vec<f64> {

@@ -7,7 +7,7 @@ use crate::common;
 use common::bin;
 
 fn bad(file: &str) -> String {
-    format!("{}/tests/fixtures/bad/{file}", env!("CARGO_MANIFEST_DIR"))
+    format!("{}/tests/fixtures/bad/{file}", root!())
 }
 
 #[track_caller]

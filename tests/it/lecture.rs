@@ -790,7 +790,7 @@ fn follow_waits_for_a_file_that_does_not_exist_yet() {
     let log = temp("not-yet.pty");
     let command = format!(
         "exec {} follow {}",
-        env!("CARGO_BIN_EXE_rattleback"),
+        crate::common::program(),
         path.display()
     );
     let mut child = crate::common::detached("script")
@@ -834,7 +834,7 @@ fn follow_waits_for_a_file_that_does_not_exist_yet() {
 /// signed one with its key and not with another.
 #[test]
 fn checked_in_format_4_sessions_verify_and_the_signed_one_with_its_key() {
-    let dir = format!("{}/tests/fixtures/sessions", env!("CARGO_MANIFEST_DIR"));
+    let dir = format!("{}/tests/fixtures/sessions", root!());
     let bin = |args: &[&str]| {
         let out = crate::common::rattleback().args(args).output().unwrap();
         (

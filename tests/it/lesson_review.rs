@@ -7,10 +7,7 @@ use rattleback::app::Key;
 use rattleback::scenario::lesson::{Lesson, SHIPPED_LESSONS, resolve};
 
 fn fixture(name: &str) -> String {
-    format!(
-        "{}/tests/fixtures/lessons-before-67/{name}",
-        env!("CARGO_MANIFEST_DIR")
-    )
+    format!("{}/tests/fixtures/lessons-before-67/{name}", root!())
 }
 
 fn scratch(name: &str) -> std::path::PathBuf {
@@ -213,11 +210,8 @@ fn a_lecturer_writes_a_lesson_from_the_skeleton() {
     // Opened as `rattleback lesson mine` opens it, and walked to its end.
     let lesson = Lesson::load(&path).unwrap();
     assert!(rattleback::explorer::review::review(&lesson).is_empty());
-    let schema = std::fs::read_to_string(format!(
-        "{}/docs/schemas/lesson.schema.json",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap();
+    let schema =
+        std::fs::read_to_string(format!("{}/docs/schemas/lesson.schema.json", root!())).unwrap();
     let validator = jsonschema::draft202012::new(&serde_json::from_str(&schema).unwrap()).unwrap();
     let value: serde_json::Value = toml::from_str(&text).unwrap();
     assert!(validator.is_valid(&value), "the skeleton fits the schema");
@@ -227,10 +221,7 @@ fn a_lecturer_writes_a_lesson_from_the_skeleton() {
 /// takes, and every shipped lesson fits it; a typo does not.
 #[test]
 fn every_shipped_lesson_fits_the_lesson_schema() {
-    let path = format!(
-        "{}/docs/schemas/lesson.schema.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let path = format!("{}/docs/schemas/lesson.schema.json", root!());
     let on_disk = std::fs::read_to_string(&path).unwrap();
     assert_eq!(
         on_disk,

@@ -10,10 +10,7 @@ use rattleback::app::journal::Event;
 use rattleback::scenario::lesson::{Lesson, SHIPPED_LESSONS, resolve};
 
 fn fixture(name: &str) -> String {
-    format!(
-        "{}/tests/fixtures/lessons/{name}",
-        env!("CARGO_MANIFEST_DIR")
-    )
+    format!("{}/tests/fixtures/lessons/{name}", root!())
 }
 
 #[test]
@@ -42,7 +39,7 @@ fn the_shipped_lessons_parse_and_are_listed() {
     }
     let files: Vec<String> = SHIPPED_LESSONS
         .iter()
-        .map(|(n, _)| format!("{}/lessons/{n}.toml", env!("CARGO_MANIFEST_DIR")))
+        .map(|(n, _)| format!("{}/lessons/{n}.toml", root!()))
         .collect();
     let mut args = vec!["check"];
     args.extend(files.iter().map(String::as_str));

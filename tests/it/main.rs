@@ -1,6 +1,18 @@
 //! The integration tests, as modules of one test binary: the library is linked once, not once
 //! per file (issue 25; the first `cargo test` before and after is in docs/benchmarks.md). Run one
 //! group with `cargo test --test it GROUP::` (for example `cargo test --test it bounded::`).
+//!
+//! They are the package `rattleback-it` (`tests/it/Cargo.toml`), beside the program's in one
+//! workspace, so that their dependencies are none of the program's (issue 68); they run the
+//! program's binary from the same target folder (`common::bin`).
+
+/// The repository's root, where the presets, docs, fixtures and `src/` are: this package
+/// lives in `tests/it` (issue 68). A macro, so that `concat!` and `include_str!` take it.
+macro_rules! root {
+    () => {
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../..")
+    };
+}
 
 mod common;
 

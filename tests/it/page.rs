@@ -5,10 +5,7 @@
 //! (`.ci/run` also opens the page in headless Chromium and checks the player's last frame:
 //! `scripts/check_page.mjs`.)
 
-const LECTURE: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/tests/fixtures/sessions/lecture.jsonl"
-);
+const LECTURE: &str = concat!(root!(), "/tests/fixtures/sessions/lecture.jsonl");
 
 fn temp(name: &str) -> std::path::PathBuf {
     // One folder per test (they run in parallel, and each removes its own).
@@ -139,7 +136,7 @@ fn the_exported_page_is_self_contained_with_the_cast_and_chapter_links() {
 #[test]
 fn a_lessons_steps_are_its_pages_chapters() {
     let lesson = concat!(
-        env!("CARGO_MANIFEST_DIR"),
+        root!(),
         "/tests/fixtures/sessions/lesson-kapitza-threshold.jsonl"
     );
     let rec = rattleback::record::read(std::path::Path::new(lesson)).unwrap();

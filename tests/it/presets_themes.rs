@@ -24,7 +24,7 @@ fn bin(args: &[&str]) -> (i32, String, String) {
 }
 
 fn fixture(name: &str) -> String {
-    format!("{}/tests/fixtures/{name}", env!("CARGO_MANIFEST_DIR"))
+    format!("{}/tests/fixtures/{name}", root!())
 }
 
 #[test]
@@ -37,11 +37,7 @@ fn every_shipped_preset_and_theme_is_valid_and_described() {
             "{name} needs a description of what to look for"
         );
         // The file on disk is the one embedded.
-        let disk = std::fs::read_to_string(format!(
-            "{}/presets/{name}.toml",
-            env!("CARGO_MANIFEST_DIR")
-        ))
-        .unwrap();
+        let disk = std::fs::read_to_string(format!("{}/presets/{name}.toml", root!())).unwrap();
         assert_eq!(&disk, src);
         // Saving and reading back gives the same preset.
         let again = Preset::parse(&p.to_toml(), "roundtrip", name, &[]).unwrap();
@@ -86,7 +82,7 @@ fn check_reports_every_problem_with_line_and_key() {
     }
     let shipped: Vec<String> = SHIPPED
         .iter()
-        .map(|(n, _)| format!("{}/presets/{n}.toml", env!("CARGO_MANIFEST_DIR")))
+        .map(|(n, _)| format!("{}/presets/{n}.toml", root!()))
         .collect();
     let mut args = vec!["check"];
     args.extend(shipped.iter().map(String::as_str));

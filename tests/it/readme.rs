@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use rattleback::app::keys::{KEYMAP, REPLAY_KEYMAP, map_markdown, markdown};
 
 fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
+    Path::new(root!())
 }
 
 fn read(path: &str) -> String {

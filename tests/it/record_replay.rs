@@ -18,10 +18,7 @@ fn bin(args: &[&str]) -> (i32, String, String) {
 }
 
 fn example() -> String {
-    format!(
-        "{}/tests/fixtures/sessions/subcritical.jsonl",
-        env!("CARGO_MANIFEST_DIR")
-    )
+    format!("{}/tests/fixtures/sessions/subcritical.jsonl", root!())
 }
 
 fn temp(name: &str) -> std::path::PathBuf {
@@ -162,10 +159,7 @@ fn checked_in_example_verifies() {
 /// the speed): its checkpoints are `(θ, θ̇)` and verify bit for bit.
 #[test]
 fn checked_in_pendulum_session_verifies() {
-    let path = format!(
-        "{}/tests/fixtures/sessions/kapitza.jsonl",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let path = format!("{}/tests/fixtures/sessions/kapitza.jsonl", root!());
     let (code, out, err) = bin(&["replay", &path, "--verify"]);
     assert_eq!(code, 0, "{err}");
     assert!(
@@ -178,10 +172,7 @@ fn checked_in_pendulum_session_verifies() {
 /// it records the plans `auto` resolved to, and verifies with them.
 #[test]
 fn checked_in_lesson_of_format_2_verifies_with_its_recorded_plans() {
-    let path = format!(
-        "{}/tests/fixtures/sessions/lesson.jsonl",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let path = format!("{}/tests/fixtures/sessions/lesson.jsonl", root!());
     let rec = record::read(std::path::Path::new(&path)).unwrap();
     assert_eq!(rec.header.version, 2);
     let book = record::plan_book(&rec);
@@ -540,10 +531,7 @@ fn resolve_header(h: &Headless) -> rattleback::scenario::Preset {
 /// checkpoint and a changed header field are all found, named by line.
 #[test]
 fn verify_checks_every_line_through_the_hash_chain() {
-    let path = format!(
-        "{}/tests/fixtures/sessions/lesson.jsonl",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let path = format!("{}/tests/fixtures/sessions/lesson.jsonl", root!());
     let text = std::fs::read_to_string(&path).unwrap();
     let lines: Vec<&str> = text.lines().collect();
     let check = |name: &str, edited: Vec<String>, want_line: usize| {
@@ -697,10 +685,7 @@ fn panes_and_a_map_cell_loaded_are_recorded_and_replayed() {
 /// Issue 14, item 4: a lecturer's view of the session file.
 #[test]
 fn replay_chapters_lists_the_chapters_with_their_times() {
-    let lesson = format!(
-        "{}/tests/fixtures/sessions/lesson.jsonl",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let lesson = format!("{}/tests/fixtures/sessions/lesson.jsonl", root!());
     let (code, out, err) = bin(&["replay", &lesson, "--chapters"]);
     assert_eq!(code, 0, "{err}");
     let lines: Vec<&str> = out.lines().collect();
@@ -857,7 +842,7 @@ fn a_method_changed_in_the_panel_replays_the_method_picked() {
 fn a_format_11_plan_line_names_its_model_and_a_wrong_name_is_refused() {
     let path = format!(
         "{}/tests/fixtures/sessions/lesson-kapitza-threshold.jsonl",
-        env!("CARGO_MANIFEST_DIR")
+        root!()
     );
     let rec = record::read(std::path::Path::new(&path)).unwrap();
     assert_eq!(rec.header.version, 10);

@@ -72,13 +72,24 @@ fn every_scene_is_complete_and_agrees_with_itself() {
             }
             // The weak-* view is there exactly when the scene says so (a stopped run answers
             // at once).
-            let view = preset.model.weak_view(1.0, &mut |_| false);
+            let weak = preset.model.weak();
             assert_eq!(
-                view.is_some(),
+                weak.is_some(),
                 scene.studies.weak.is_some(),
                 "{}",
                 preset.name
             );
+            if let Some(weak) = weak {
+                // Its price is a real one (a job is admitted by it), and a stopped view answers
+                // at once.
+                let seconds = weak.seconds(preset.run.t_end);
+                assert!(
+                    seconds.is_finite() && seconds > 0.0,
+                    "{}: {seconds}",
+                    preset.name
+                );
+                drop(weak.view(1.0, &mut |_| false));
+            }
         }
         if let Some(small) = scene.small {
             let spec = params

@@ -8,10 +8,7 @@ use rattleback::physics::ModelKind;
 use serde_json::Value;
 
 fn schema(name: &str) -> jsonschema::Validator {
-    let path = format!(
-        "{}/docs/schemas/simulate-{name}.schema.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let path = format!("{}/docs/schemas/simulate-{name}.schema.json", root!());
     let text = std::fs::read_to_string(&path).unwrap();
     let value: Value = serde_json::from_str(&text).unwrap();
     assert_eq!(
@@ -155,10 +152,7 @@ fn every_shipped_preset_reports_the_pinned_bytes() {
             .output()
             .unwrap();
         let got = wall(&String::from_utf8(out.stdout).unwrap());
-        let path = format!(
-            "{}/tests/fixtures/golden/{name}.json",
-            env!("CARGO_MANIFEST_DIR")
-        );
+        let path = format!("{}/tests/fixtures/golden/{name}.json", root!());
         let want = std::fs::read_to_string(&path).unwrap();
         assert_eq!(
             got.trim_end(),
@@ -178,10 +172,7 @@ fn every_shipped_preset_writes_the_pinned_toml() {
     for (name, text) in rattleback::scenario::shipped::SHIPPED {
         let preset = Preset::parse(text, name, name, &[]).unwrap();
         let toml = preset.to_toml();
-        let path = format!(
-            "{}/tests/fixtures/golden/{name}.toml",
-            env!("CARGO_MANIFEST_DIR")
-        );
+        let path = format!("{}/tests/fixtures/golden/{name}.toml", root!());
         if std::env::var_os("UPDATE_GOLDEN").is_some() {
             std::fs::write(&path, &toml).unwrap();
         }
@@ -196,7 +187,7 @@ fn every_shipped_preset_writes_the_pinned_toml() {
 #[test]
 fn the_preset_reference_is_generated_from_the_tables() {
     let text = rattleback::scenario::preset::reference();
-    let path = format!("{}/docs/reference/presets.md", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/docs/reference/presets.md", root!());
     if std::env::var_os("UPDATE_GOLDEN").is_some() {
         std::fs::write(&path, &text).unwrap();
     }
@@ -215,11 +206,8 @@ fn the_preset_reference_is_generated_from_the_tables() {
     }
 }
 
-const LECTURE: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/tests/fixtures/sessions/lecture.jsonl"
-);
-const LECTURE_PRESET: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/presets/subcritical.toml");
+const LECTURE: &str = concat!(root!(), "/tests/fixtures/sessions/lecture.jsonl");
+const LECTURE_PRESET: &str = concat!(root!(), "/presets/subcritical.toml");
 
 /// Issue 28: `--format json` where a check fails says how, in the same shape: a session that
 /// diverges (exit 1), one cut short (exit 1), one that cannot be read (exit 2), files with
@@ -272,10 +260,7 @@ fn failed_checks_in_json_say_how_and_validate() {
         assert!(!v[field].is_null(), "{name}: {field} is null: {v}");
         check(&verify, name, &v);
     }
-    let bad = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/fixtures/bad/many-problems.toml"
-    );
+    let bad = concat!(root!(), "/tests/fixtures/bad/many-problems.toml");
     let (code, out, _) = crate::common::bin(&["check", bad, "--format", "json"]);
     assert_eq!(code, 2);
     let v: Value = serde_json::from_str(&out).unwrap();
@@ -301,7 +286,7 @@ fn failed_checks_in_json_say_how_and_validate() {
 #[test]
 #[allow(clippy::too_many_lines)] // the table of every command whose JSON is checked
 fn every_other_json_output_has_its_version_model_and_schema() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/schemas");
+    let dir = std::path::Path::new(root!()).join("docs/schemas");
     let mut validators = std::collections::BTreeMap::new();
     for (name, text) in rattleback::outputs::schemas() {
         let path = dir.join(format!("{name}.schema.json"));

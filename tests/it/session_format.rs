@@ -9,7 +9,7 @@ use rattleback::app::{Key, Outcome};
 use rattleback::record::{self, Line, session_schema};
 
 fn schema_path() -> String {
-    format!("{}/docs/session.schema.json", env!("CARGO_MANIFEST_DIR"))
+    format!("{}/docs/session.schema.json", root!())
 }
 
 fn validator() -> jsonschema::Validator {
@@ -38,10 +38,7 @@ fn the_checked_in_schema_is_generated_from_the_types() {
 fn the_checked_in_sessions_validate_line_by_line() {
     let v = validator();
     for name in ["subcritical.jsonl", "lesson.jsonl", "kapitza.jsonl"] {
-        let path = format!(
-            "{}/tests/fixtures/sessions/{name}",
-            env!("CARGO_MANIFEST_DIR")
-        );
+        let path = format!("{}/tests/fixtures/sessions/{name}", root!());
         let text = std::fs::read_to_string(&path).unwrap();
         for (i, line) in text.lines().enumerate() {
             assert_valid(&v, line, &format!("{name}:{}", i + 1));
@@ -112,11 +109,7 @@ fn a_fresh_recording_validates_and_broken_lines_do_not() {
 
 #[test]
 fn the_format_document_names_every_event_and_header_field() {
-    let doc = std::fs::read_to_string(format!(
-        "{}/docs/session-format.md",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap();
+    let doc = std::fs::read_to_string(format!("{}/docs/session-format.md", root!())).unwrap();
     let schema: serde_json::Value = serde_json::from_str(&session_schema()).unwrap();
     let header = schema["$defs"]["Header"]["properties"].as_object().unwrap();
     for field in header.keys() {

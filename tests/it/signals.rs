@@ -45,7 +45,7 @@ impl Explorer {
         // A 100×30 pseudo-terminal from the start (nobody answers a cursor query here).
         let command = format!(
             "stty rows 30 cols 100; exec {} {}",
-            env!("CARGO_BIN_EXE_rattleback"),
+            crate::common::program(),
             args.join(" ")
         );
         let script = crate::common::detached("script")
@@ -349,7 +349,7 @@ fn an_export_busy_in_a_frame_ends_on_any_signal_without_leaving_a_file() {
     let dir = std::env::temp_dir().join(format!("rattleback-export-signal-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    let root = env!("CARGO_MANIFEST_DIR");
+    let root = root!();
     let header = std::fs::read_to_string(format!("{root}/tests/fixtures/sessions/kapitza.jsonl"))
         .unwrap()
         .lines()

@@ -8,10 +8,7 @@ use rattleback::app::journal::Event;
 use rattleback::record::{Line, Recorder};
 
 fn fixture(name: &str) -> String {
-    format!(
-        "{}/tests/fixtures/hostile5/{name}",
-        env!("CARGO_MANIFEST_DIR")
-    )
+    format!("{}/tests/fixtures/hostile5/{name}", root!())
 }
 
 #[track_caller]

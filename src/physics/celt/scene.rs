@@ -18,7 +18,7 @@ use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::PlanRequest;
 use crate::physics::scene::{
     Drawing, Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve, Studies,
-    SummaryLine, WeakView, Words,
+    SummaryLine, WeakStudy, Words,
 };
 
 const LENGTH: Scale = Scale::linear(0.1, 1.0);
@@ -184,7 +184,6 @@ pub static SCENE: Scene = Scene {
     small: None,
     studies: Studies {
         weak: None,
-        map: true,
         counterpart: "subcritical",
     },
 };
@@ -299,11 +298,8 @@ impl Posed for Problem {
     fn predicted_seconds(&self, ask: &Asked) -> f64 {
         super::budget::cost_seconds(self, ask)
     }
-    fn weak_view(
-        &self,
-        _t_end: f64,
-        _go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Option<Result<WeakView, StepError>> {
+    fn weak(&self) -> Option<&dyn WeakStudy> {
+        // The rolling rattleback has no fast coordinate whose square converges weakly.
         None
     }
     fn slow_curve(&self, ask: &Asked, samples: usize, go_on: GoOn) -> Result<SlowCurve, StepError> {

@@ -14,7 +14,7 @@ use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{PlanRequest, Resolution, Resolved};
 use crate::physics::scene::{
     Drawing, Found, Pivot, Planned, Posed, Scene, SecondEvents, Shown, SlowCurve, SmallParameter,
-    Studies, SummaryLine, WeakView, WeakWords, Words,
+    Studies, SummaryLine, WeakStudy, WeakView, WeakWords, Words,
 };
 
 const STRENGTH: Scale = Scale::linear(0.05, 0.5);
@@ -99,7 +99,6 @@ pub static SCENE: Scene = Scene {
             observable: "the full motion's rate, pointwise (its fast ripple)",
             reference: "the limit's rate, averaged alike (dashed)",
         }),
-        map: true,
         counterpart: "subcritical",
     },
 };
@@ -191,29 +190,8 @@ impl Posed for Problem {
     fn predicted_seconds(&self, ask: &Asked) -> f64 {
         super::plan::predicted_seconds(self, ask)
     }
-    fn weak_seconds(&self, t_end: f64) -> f64 {
-        // `weak::pendulum_pointwise`: DOP853 at 1e-10 and the limit at 1e-12.
-        let horizon = super::weak::pendulum_view_horizon(self, t_end);
-        super::budget::cost_seconds(self, &Asked::new(Method::Dop853, 1e-10, None, horizon))
-            + super::budget::cost_seconds(
-                self,
-                &Asked::new(Method::Effective, 1e-12, None, horizon),
-            )
-    }
-    fn weak_view(
-        &self,
-        t_end: f64,
-        go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Option<Result<WeakView, StepError>> {
-        let horizon = super::weak::pendulum_view_horizon(self, t_end);
-        Some(super::weak::pendulum_pointwise(self, horizon, go_on).map(
-            |(t, pointwise, reference)| WeakView {
-                t,
-                pointwise,
-                level: 0.0,
-                reference,
-            },
-        ))
+    fn weak(&self) -> Option<&dyn WeakStudy> {
+        Some(self)
     }
     fn slow_curve(&self, ask: &Asked, samples: usize, go_on: GoOn) -> Result<SlowCurve, StepError> {
         let r = self.resolve(&PlanRequest::verified(ask), go_on)?;
@@ -227,6 +205,31 @@ impl Posed for Problem {
             q,
             method,
             estimate,
+        })
+    }
+}
+
+/// The pendulum's weak-* pane: the pointwise square of the fast phase against the
+/// averaged reference.
+impl WeakStudy for Problem {
+    fn seconds(&self, t_end: f64) -> f64 {
+        // `weak::pendulum_pointwise`: DOP853 at 1e-10 and the limit at 1e-12.
+        let horizon = super::weak::pendulum_view_horizon(self, t_end);
+        super::budget::cost_seconds(self, &Asked::new(Method::Dop853, 1e-10, None, horizon))
+            + super::budget::cost_seconds(
+                self,
+                &Asked::new(Method::Effective, 1e-12, None, horizon),
+            )
+    }
+    fn view(&self, t_end: f64, go_on: &mut dyn FnMut(f64) -> bool) -> Result<WeakView, StepError> {
+        let horizon = super::weak::pendulum_view_horizon(self, t_end);
+        super::weak::pendulum_pointwise(self, horizon, go_on).map(|(t, pointwise, reference)| {
+            WeakView {
+                t,
+                pointwise,
+                level: 0.0,
+                reference,
+            }
         })
     }
 }

@@ -16,7 +16,7 @@ use crate::physics::params::ParamError;
 use crate::physics::plan::PlanRequest;
 use crate::physics::scene::{
     Drawing, Planned, Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine,
-    WeakView, WeakWords, Words,
+    WeakStudy, WeakView, WeakWords, Words,
 };
 
 /// The rattleback's parameters (their table lives with them, `params.rs`).
@@ -64,7 +64,6 @@ pub static SCENE: Scene = Scene {
             observable: "gamma_dot^2 g^1.5 of the full motion, pointwise (between 0 and 2 theta)",
             reference: "theta, the adiabatic invariant (dashed)",
         }),
-        map: true,
         counterpart: "celt-clockwise",
     },
 };
@@ -153,33 +152,8 @@ impl Posed for Problem {
     fn predicted_seconds(&self, ask: &Asked) -> f64 {
         super::plan::predicted_seconds(self, ask)
     }
-    fn weak_seconds(&self, t_end: f64) -> f64 {
-        // `weak::pointwise`: BlanesMoan4 at a step of half the fastest period over 2π.
-        let omega = self.params().omega_max();
-        super::plan::predicted_seconds(
-            self,
-            &Asked::new(
-                Method::BlanesMoan4,
-                1e-10,
-                Some(0.5 / omega),
-                super::weak::view_horizon(self, t_end),
-            ),
-        )
-    }
-    fn weak_view(
-        &self,
-        t_end: f64,
-        go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Option<Result<WeakView, StepError>> {
-        let horizon = super::weak::view_horizon(self, t_end);
-        Some(
-            super::weak::pointwise(self, horizon, go_on).map(|(t, pointwise)| WeakView {
-                t,
-                pointwise,
-                level: Effective::new(self).theta(),
-                reference: Vec::new(),
-            }),
-        )
+    fn weak(&self) -> Option<&dyn WeakStudy> {
+        Some(self)
     }
     fn slow_curve(&self, ask: &Asked, samples: usize, go_on: GoOn) -> Result<SlowCurve, StepError> {
         let (method, tolerance, t_end) = (ask.method, ask.tolerance, ask.t_end);
@@ -212,6 +186,33 @@ impl Posed for Problem {
             q,
             method,
             estimate,
+        })
+    }
+}
+
+/// The rattleback's weak-* pane: the pointwise square of the fast coordinate against the
+/// limit's level.
+impl WeakStudy for Problem {
+    fn seconds(&self, t_end: f64) -> f64 {
+        // `weak::pointwise`: BlanesMoan4 at a step of half the fastest period over 2π.
+        let omega = self.params().omega_max();
+        super::plan::predicted_seconds(
+            self,
+            &Asked::new(
+                Method::BlanesMoan4,
+                1e-10,
+                Some(0.5 / omega),
+                super::weak::view_horizon(self, t_end),
+            ),
+        )
+    }
+    fn view(&self, t_end: f64, go_on: &mut dyn FnMut(f64) -> bool) -> Result<WeakView, StepError> {
+        let horizon = super::weak::view_horizon(self, t_end);
+        super::weak::pointwise(self, horizon, go_on).map(|(t, pointwise)| WeakView {
+            t,
+            pointwise,
+            level: Effective::new(self).theta(),
+            reference: Vec::new(),
         })
     }
 }

@@ -2,22 +2,82 @@
 #![allow(dead_code)]
 
 use rattleback::physics::rattleback::{Params, Problem, Start};
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+/// The program's binary the tests drive: `rattleback` in the target folder this test binary
+/// was built in (`target/PROFILE/deps/it-HASH` → `target/PROFILE/rattleback`). The tests are a
+/// package of their own (issue 68), so cargo does not hand them `CARGO_BIN_EXE_rattleback`;
+/// the program's package names its own integration test `it` too (`tests/built.rs`), so that
+/// `cargo test` and `cargo test --test it ...` build the binary first. A binary older than any
+/// source file is refused with the command that builds it, never driven stale.
+pub fn program() -> &'static str {
+    static BIN: OnceLock<String> = OnceLock::new();
+    BIN.get_or_init(|| {
+        let exe = std::env::current_exe().expect("the test binary's path");
+        let dir = exe
+            .parent()
+            .and_then(Path::parent)
+            .expect("the test binary lives in target/PROFILE/deps");
+        let bin = dir.join(format!("rattleback{}", std::env::consts::EXE_SUFFIX));
+        let built = std::fs::metadata(&bin)
+            .and_then(|m| m.modified())
+            .unwrap_or_else(|e| {
+                panic!(
+                    "{}: {e}; build it with `cargo test` from the repository's root \
+                     (or `cargo build` in the same profile)",
+                    bin.display()
+                )
+            });
+        if let Some((source, _)) = newest_source().filter(|(_, t)| *t > built) {
+            let source = source.strip_prefix(root!()).unwrap_or(&source).to_owned();
+            panic!(
+                "{} is older than {}: build it with `cargo test` from the repository's root \
+                 (or `cargo build` in the same profile); a stale binary is never tested",
+                bin.display(),
+                source.display()
+            );
+        }
+        bin.to_string_lossy().into_owned()
+    })
+}
+
+/// The most recently modified source file of the program (`src/**/*.rs`; cargo rebuilds the
+/// binary after any of them changes, not after every change to `Cargo.toml`).
+fn newest_source() -> Option<(PathBuf, std::time::SystemTime)> {
+    fn walk(dir: &Path, best: &mut Option<(PathBuf, std::time::SystemTime)>) {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return;
+        };
+        for entry in entries.flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                walk(&path, best);
+            } else if path.extension().is_some_and(|e| e == "rs")
+                && let Ok(t) = entry.metadata().and_then(|m| m.modified())
+                && best.as_ref().is_none_or(|(_, b)| t > *b)
+            {
+                *best = Some((path, t));
+            }
+        }
+    }
+    let mut best = None;
+    walk(&Path::new(root!()).join("src"), &mut best);
+    best
+}
 
 /// Path of the reference cases: the copy carried in `tests/fixtures/reference/cases.toml`
 /// (from `../shared/reference/cases.toml`), overridable with `RATTLEBACK_REFERENCE`.
 pub fn reference_path() -> std::path::PathBuf {
     std::env::var_os("RATTLEBACK_REFERENCE").map_or_else(
-        || {
-            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-                .join("tests/fixtures/reference/cases.toml")
-        },
+        || std::path::Path::new(root!()).join("tests/fixtures/reference/cases.toml"),
         Into::into,
     )
 }
 
 /// The shared original of the carried reference cases, when a `../shared` is beside the clone.
 pub fn shared_reference_path() -> Option<std::path::PathBuf> {
-    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/reference/cases.toml");
+    let p = std::path::Path::new(root!()).join("../shared/reference/cases.toml");
     p.is_file().then_some(p)
 }
 
@@ -205,7 +265,7 @@ pub fn averaged_cases() -> Vec<AveragedCase> {
 /// format (`averaged.toml`, `rattleback_honesty.toml`).
 #[track_caller]
 pub fn cases_from(file: &str) -> Vec<AveragedCase> {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+    let path = std::path::Path::new(root!())
         .join("tests/fixtures/reference")
         .join(file);
     let text = std::fs::read_to_string(&path)
@@ -383,7 +443,7 @@ pub fn detached(program: impl AsRef<std::ffi::OsStr>) -> std::process::Command {
 /// The binary under test, [`detached`], with no locale of the developer's (taken as UTF-8, as
 /// in CI): a test that needs one sets it.
 pub fn rattleback() -> std::process::Command {
-    let mut command = detached(env!("CARGO_BIN_EXE_rattleback"));
+    let mut command = detached(crate::common::program());
     for name in ["LC_ALL", "LC_CTYPE", "LANG"] {
         command.env_remove(name);
     }
