@@ -10,7 +10,7 @@ use std::time::Instant;
 
 use rattleback::physics::Method;
 use rattleback::physics::method::RunSpec;
-use rattleback::physics::plan::AutoPolicy;
+use rattleback::physics::plan::AutoRules;
 use rattleback::physics::rattleback::plan::{predicted_seconds, resolve};
 use rattleback::physics::rattleback::run;
 use rattleback::scenario::preset::Override;
@@ -71,7 +71,7 @@ fn main() {
                     method,
                     tol,
                     t_end,
-                    AutoPolicy::Verified,
+                    AutoRules::Verified,
                     f64::INFINITY,
                     &mut |_| true,
                 )

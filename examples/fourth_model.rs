@@ -10,7 +10,7 @@ use nalgebra::SVector;
 use rattleback::physics::fork::GoOn;
 use rattleback::physics::method::StepError;
 use rattleback::physics::numerics::dop853::Dop853;
-use rattleback::physics::verify::{AtTolerance, Policy, verify};
+use rattleback::physics::verify::{AtTolerance, Policy, Rounds, verify};
 
 type State = SVector<f64, 3>;
 
@@ -114,9 +114,12 @@ impl AtTolerance for Auto {
 fn auto(problem: Oscillator, tolerance: f64, t_end: f64) -> Result<(f64, f64, bool), StepError> {
     let mut candidate = Auto { problem, t_end };
     let first = (tolerance * 0.1).clamp(POLICY.tightest, 1e-3);
-    let v = verify(&POLICY, &mut candidate, first, tolerance, 60.0, &mut |_| {
-        true
-    })?;
+    let ask = Rounds {
+        first,
+        tolerance,
+        budget: 60.0,
+    };
+    let v = verify(&mut candidate, ask, &mut |_| true)?;
     Ok((v.last.plan, v.last.estimate, v.shortfall.is_none()))
 }
 

@@ -5,7 +5,7 @@
 
 fn main() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/schemas");
-    for (name, text) in rattleback::outputs::schemas() {
+    for (name, text) in rattleback::commands::outputs::schemas() {
         let path = dir.join(format!("{name}.schema.json"));
         std::fs::write(&path, text).expect("docs/schemas is writable");
         println!("{}", path.display());

@@ -5,10 +5,12 @@ use std::io::Write as _;
 use std::process::ExitCode;
 
 use rattleback::app::user_keys::UserKeys;
-use rattleback::cli::{Cli, Command, LookArgs, MarkerChoice, RecordArgs, ReplayArgs, SimulateArgs};
 use rattleback::commands;
+use rattleback::commands::cli::{
+    Cli, Command, LookArgs, MarkerChoice, RecordArgs, ReplayArgs, SimulateArgs,
+};
+use rattleback::commands::failure::{self, Failure, Outcome};
 use rattleback::explorer::{self, ExplorerOptions};
-use rattleback::failure::{self, Failure, Outcome};
 use rattleback::physics::StepError;
 use rattleback::record;
 use rattleback::scenario::config::Config;
@@ -69,14 +71,14 @@ fn run() -> Outcome {
 /// Parses the command line and runs the command it names.
 fn command() -> Outcome {
     let args = config_last(std::env::args_os().collect());
-    let cli = match rattleback::cli::parse_from(args.clone()) {
+    let cli = match rattleback::commands::cli::parse_from(args.clone()) {
         Ok(cli) => cli,
         Err(e) if e.use_stderr() => {
             // One error style: `rattleback: error: …`, as every other message (clap's own
             // text begins with `error: `), then its usage hint; exit 2.
             let mut text = drop_far_suggestion(&e, e.render().to_string());
             if e.kind() == clap::error::ErrorKind::ArgumentConflict
-                && let Some(fix) = rattleback::cli::flags_after_command(&args)
+                && let Some(fix) = rattleback::commands::cli::flags_after_command(&args)
             {
                 // `rattleback --preset X simulate`: each command takes its own flags.
                 text = format!(
@@ -121,7 +123,7 @@ fn command() -> Outcome {
             Command::Doctor(_)
                 | Command::Man
                 | Command::Completions(_)
-                | Command::Config(rattleback::cli::ConfigCommand::Path)
+                | Command::Config(rattleback::commands::cli::ConfigCommand::Path)
         )
     );
     if reads_config {
@@ -311,12 +313,13 @@ fn export_files(
         (
             args.export_html.as_deref(),
             "export-html",
-            rattleback::page::export_html,
+            rattleback::commands::page::export_html,
         ),
     ];
     for (out, what, export) in outputs {
         let Some(out) = out else { continue };
-        let mut progress = rattleback::progress::Progress::count(what, rec.lines.len(), "lines");
+        let mut progress =
+            rattleback::commands::progress::Progress::count(what, rec.lines.len(), "lines");
         let written = export(rec, path, out, &options, size, args.force, &mut |n| {
             progress.tick(n as f64);
         });
@@ -357,7 +360,7 @@ fn run_replay(args: &ReplayArgs) -> Outcome {
         return refuse_stdin("replay -");
     }
     let path = rattleback::scenario::write::label(&args.file);
-    let json = args.format == rattleback::cli::ListFormat::Json;
+    let json = args.format == rattleback::commands::cli::ListFormat::Json;
     if json && (args.chapters == args.verify || exporting) {
         return Err(Failure::input(
             "--format json goes with one of --chapters or --verify (and not --export-cast or --export-html)",
@@ -394,7 +397,7 @@ fn run_replay(args: &ReplayArgs) -> Outcome {
             let failure = Failure::input(&e);
             if json && args.verify {
                 let failed = record::VerifyError::Record(e);
-                let v = rattleback::outputs::Verification::of(None, &path, Err(&failed));
+                let v = rattleback::commands::outputs::Verification::of(None, &path, Err(&failed));
                 print!("{}", commands::json_text(&v));
             }
             return Err(failure);
@@ -406,7 +409,7 @@ fn run_replay(args: &ReplayArgs) -> Outcome {
     if json && args.chapters {
         print!(
             "{}",
-            commands::json_text(&rattleback::outputs::Chapters::of(&rec, &path))
+            commands::json_text(&rattleback::commands::outputs::Chapters::of(&rec, &path))
         );
         return Ok(());
     }
@@ -456,7 +459,7 @@ fn run_replay(args: &ReplayArgs) -> Outcome {
     explore(&setup, &preset, None, Some(rec))
 }
 
-fn keygen(args: &rattleback::cli::KeygenArgs) -> Outcome {
+fn keygen(args: &rattleback::commands::cli::KeygenArgs) -> Outcome {
     match record::sign::keygen(&args.name) {
         Ok((secret, public)) => {
             say!(
@@ -540,7 +543,7 @@ fn prepare_record(out: Option<&std::path::Path>, force: bool) -> Outcome {
     Ok(())
 }
 
-fn run_follow(args: &rattleback::cli::FollowArgs) -> Outcome {
+fn run_follow(args: &rattleback::commands::cli::FollowArgs) -> Outcome {
     if args.file.as_os_str() == "-" {
         return refuse_stdin("follow -");
     }
@@ -606,8 +609,8 @@ fn run_follow(args: &rattleback::cli::FollowArgs) -> Outcome {
     explore(&setup, &preset, None, Some(rec))
 }
 
-fn run_lesson(args: &rattleback::cli::LessonArgs) -> Outcome {
-    if let Some(rattleback::cli::LessonCommand::New(new)) = &args.new {
+fn run_lesson(args: &rattleback::commands::cli::LessonArgs) -> Outcome {
+    if let Some(rattleback::commands::cli::LessonCommand::New(new)) = &args.new {
         return commands::lesson_new(new);
     }
     let Some(name) = args.lesson.as_deref() else {
@@ -640,7 +643,7 @@ fn run_lesson(args: &rattleback::cli::LessonArgs) -> Outcome {
 }
 
 /// `compare A B`: the explorer on `A` with `B` beside it on one time axis.
-fn run_compare(args: &rattleback::cli::CompareArgs) -> Outcome {
+fn run_compare(args: &rattleback::commands::cli::CompareArgs) -> Outcome {
     if args.a == "-" || args.b == "-" {
         return refuse_stdin("compare -");
     }
@@ -806,8 +809,9 @@ fn explore(
 fn needs_terminal(what: &str) -> Outcome {
     use std::io::IsTerminal as _;
     if std::env::var_os("TERM").is_some_and(|t| t == "dumb") {
-        // A dumb terminal shows escape codes as text.
-        return Err(Failure::failed(
+        // A dumb terminal shows escape codes as text. Exit 2, as every refusal of a terminal
+        // that cannot draw (before issue 68's review: 1).
+        return Err(Failure::input(
             "TERM=dumb cannot show the explorer (it moves the cursor and draws); set TERM to the terminal's name (xterm-256color, screen, linux, …), or use `rattleback simulate` for text",
         ));
     }
@@ -845,13 +849,13 @@ fn charset(look: &LookArgs) -> rattleback::ui::glyphs::Charset {
 
 /// The colours this terminal shows ([`Depth::detect`]: `COLORTERM`, terminfo, `TERM`);
 /// `--color always` sends at least the sixteen.
-fn depth(choice: rattleback::cli::ColorChoice) -> Depth {
+fn depth(choice: rattleback::commands::cli::ColorChoice) -> Depth {
     let found = Depth::detect(
         &|name| std::env::var(name).ok(),
         &rattleback::terminal::depth::terminfo_colors,
     )
     .depth;
-    if choice == rattleback::cli::ColorChoice::Always {
+    if choice == rattleback::commands::cli::ColorChoice::Always {
         found.max(Depth::Sixteen)
     } else {
         found
@@ -859,8 +863,8 @@ fn depth(choice: rattleback::cli::ColorChoice) -> Depth {
 }
 
 /// Whether colours are off: `--color`, then the environment ([`ColorChoice::colours_off`]).
-fn no_color(choice: rattleback::cli::ColorChoice) -> bool {
-    if choice == rattleback::cli::ColorChoice::Always {
+fn no_color(choice: rattleback::commands::cli::ColorChoice) -> bool {
+    if choice == rattleback::commands::cli::ColorChoice::Always {
         // crossterm itself leaves colours out under NO_COLOR unless told otherwise.
         ratatui::crossterm::style::force_color_output(true);
     }
@@ -887,12 +891,13 @@ fn run_simulate(args: &SimulateArgs) -> Outcome {
         )));
     }
     if let Some(h) = resolved.spec.step
-        && let Err(e) = rattleback::physics::rattleback::run::check_step(h, resolved.spec.t_end)
+        && let Err(e) = rattleback::physics::method::check_step(h, resolved.spec.t_end)
     {
         return Err(Failure::input(format!("--step: {e}")));
     }
     let format = request.format;
-    let mut progress = rattleback::progress::Progress::stderr("simulate", resolved.spec.t_end);
+    let mut progress =
+        rattleback::commands::progress::Progress::stderr("simulate", resolved.spec.t_end);
     let outcome = if format == rattleback::simulate::Format::Table {
         // The table holds the preset's own text: cleaned of control characters first.
         simulate_to_text(&preset, &resolved, &mut progress)
@@ -931,7 +936,7 @@ fn run_simulate(args: &SimulateArgs) -> Outcome {
 fn simulate_to_text(
     preset: &rattleback::scenario::Preset,
     resolved: &rattleback::simulate::Resolved,
-    progress: &mut rattleback::progress::Progress,
+    progress: &mut rattleback::commands::progress::Progress,
 ) -> Result<Option<rattleback::simulate::Missed>, Stopped> {
     let mut text = Vec::new();
     let missed = simulate_to(

@@ -16,7 +16,7 @@ use crate::physics::celt::{Problem, omega};
 use crate::physics::method::Method;
 use crate::physics::method::RunSpec;
 use crate::physics::models::Model;
-use crate::physics::plan::{AutoPolicy, PlanRequest};
+use crate::physics::plan::{AutoRules, PlanRequest};
 
 const REFERENCES: &str = include_str!("../../tests/fixtures/celt/references.json");
 
@@ -123,7 +123,7 @@ fn measure(
         method,
         tolerance,
         t_end: r.t_end,
-        policy: AutoPolicy::Verified,
+        policy: AutoRules::Verified,
         budget: f64::INFINITY,
     };
     let plan = |go: &mut dyn FnMut(f64) -> bool| resolve(&r.problem, &ask, go);

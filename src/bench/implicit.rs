@@ -12,7 +12,7 @@ use crate::physics::rattleback::{Problem, State};
 
 /// What backward Euler did.
 #[derive(Clone, Copy, Debug)]
-pub struct Outcome {
+pub struct EulerRun {
     /// Final state.
     pub state: State,
     /// Sign changes of `alpha_dot` at step ends.
@@ -23,7 +23,7 @@ pub struct Outcome {
 
 /// Backward Euler with step `h` to `t_end`.
 #[must_use]
-pub fn backward_euler(problem: &Problem, h: f64, t_end: f64) -> Outcome {
+pub fn backward_euler(problem: &Problem, h: f64, t_end: f64) -> EulerRun {
     let p = problem.params();
     let mut y = initial_state(problem.start());
     let e0 = transverse_energy(p, &y);
@@ -62,7 +62,7 @@ pub fn backward_euler(problem: &Problem, h: f64, t_end: f64) -> Outcome {
             last_sign = s;
         }
     }
-    Outcome {
+    EulerRun {
         state: y,
         reversals,
         fast_energy_ratio: transverse_energy(p, &y) / e0,

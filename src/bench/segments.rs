@@ -10,7 +10,7 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::physics::method::Method;
-use crate::physics::plan::{AutoPolicy, PlanRequest};
+use crate::physics::plan::{AutoRules, PlanRequest};
 use crate::scenario::preset::Override;
 use crate::sim::segments::horizons;
 
@@ -73,7 +73,7 @@ pub fn study(quick: bool, log: &mut dyn FnMut(&str)) -> Vec<Row> {
                 method: Method::Auto,
                 tolerance,
                 t_end: h,
-                policy: AutoPolicy::Verified,
+                policy: AutoRules::Verified,
                 budget: f64::INFINITY,
             };
             let start = Instant::now();

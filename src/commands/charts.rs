@@ -7,7 +7,7 @@ use super::{
     write_files,
 };
 
-pub(super) fn study_map(args: &crate::cli::MapArgs) -> Outcome {
+pub(super) fn study_map(args: &crate::commands::cli::MapArgs) -> Outcome {
     use crate::study::chart;
     let (preset, model, t_end, tolerance) = study_setup(&args.common)?;
     let ask = crate::study::ask::StudyAsk {
@@ -21,7 +21,7 @@ pub(super) fn study_map(args: &crate::cli::MapArgs) -> Outcome {
         k: args.k,
         columns: args.columns,
         rows: args.rows,
-        hanging: args.position == crate::cli::Position::Hanging,
+        hanging: args.position == crate::commands::cli::Position::Hanging,
     };
     let chart = chart::Chart::for_study(&model, &ask).map_err(Failure::input)?;
     if args.shard.is_some() && args.common.out.is_some() {
@@ -29,7 +29,7 @@ pub(super) fn study_map(args: &crate::cli::MapArgs) -> Outcome {
             "--out draws the whole chart: give the parts to `study merge --out DIR`".to_owned(),
         ));
     }
-    if args.shard.is_some() && args.common.format == crate::cli::StudyFormat::Csv {
+    if args.shard.is_some() && args.common.format == crate::commands::cli::StudyFormat::Csv {
         return Err(Failure::input(
             "a shard is written as JSON (`study merge --format csv` prints the whole chart as CSV)"
                 .to_owned(),
@@ -52,7 +52,7 @@ pub(super) fn study_map(args: &crate::cli::MapArgs) -> Outcome {
     });
     let verdicts = finished(mapped, "study map")?;
     let mut out = chart.output(
-        crate::outputs::SCHEMA_VERSION,
+        crate::commands::outputs::SCHEMA_VERSION,
         &crate::scenario::text::one_line(&preset.name),
         &indices,
         &verdicts,
@@ -76,15 +76,15 @@ pub(super) fn study_map(args: &crate::cli::MapArgs) -> Outcome {
 /// Prints a chart in `format` and writes `map.csv` and `map.svg` into `out` when asked.
 fn print_chart(
     out: &crate::study::chart::ChartOutput,
-    format: crate::cli::StudyFormat,
+    format: crate::commands::cli::StudyFormat,
     dir: Option<&std::path::Path>,
     force: bool,
 ) -> Outcome {
     let csv = out.csv();
     match format {
-        crate::cli::StudyFormat::Json => emit(&json_text(out)),
-        crate::cli::StudyFormat::Csv => emit(&csv),
-        crate::cli::StudyFormat::Table => emit(&out.table()),
+        crate::commands::cli::StudyFormat::Json => emit(&json_text(out)),
+        crate::commands::cli::StudyFormat::Csv => emit(&csv),
+        crate::commands::cli::StudyFormat::Table => emit(&out.table()),
     }?;
     let Some(dir) = dir else { return Ok(()) };
     let svg = match crate::study::svg::chart_svg(out) {
@@ -97,7 +97,7 @@ fn print_chart(
 /// `rattleback study merge PART…`: each part read within its slice's size, the chart rebuilt
 /// from the parts' description, every header and cell compared with what that chart writes, a
 /// random sample of each part's cells recomputed (issue 66).
-pub(super) fn study_merge(args: &crate::cli::MergeArgs) -> Outcome {
+pub(super) fn study_merge(args: &crate::commands::cli::MergeArgs) -> Outcome {
     use crate::study::part;
     let mut parts = Vec::new();
     if args
@@ -125,11 +125,11 @@ pub(super) fn study_merge(args: &crate::cli::MergeArgs) -> Outcome {
             }
         };
         let part = read.map_err(|e| Failure::input(format!("{name}: {e}")))?;
-        if part.schema_version != crate::outputs::SCHEMA_VERSION {
+        if part.schema_version != crate::commands::outputs::SCHEMA_VERSION {
             return Err(Failure::input(format!(
                 "{name}: schema_version {} (this build writes and reads {})",
                 part.schema_version,
-                crate::outputs::SCHEMA_VERSION
+                crate::commands::outputs::SCHEMA_VERSION
             )));
         }
         parts.push((name, part));
@@ -158,7 +158,7 @@ pub(super) fn study_merge(args: &crate::cli::MergeArgs) -> Outcome {
             crate::scenario::text::one_line(&e)
         ))
     })?;
-    let merged = part::merge(&chart, crate::outputs::SCHEMA_VERSION, &parts)
+    let merged = part::merge(&chart, crate::commands::outputs::SCHEMA_VERSION, &parts)
         .map_err(|e| Failure::input(crate::scenario::text::one_line(&e)))?;
     let mut random = || {
         let mut b = [0u8; 8];

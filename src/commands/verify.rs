@@ -1,8 +1,8 @@
 //! `replay --verify`: the file checked by its format's rules and re-run headless, and the
 //! report of what reproduced (what a cut file reproduced is said of its intact part only).
 
-use crate::cli::ReplayArgs;
-use crate::failure::{Failure, Outcome};
+use crate::commands::cli::ReplayArgs;
+use crate::commands::failure::{Failure, Outcome};
 use crate::record;
 
 /// `replay --verify`: the report on stdout; `Err` with the exit code when it did not verify.
@@ -18,13 +18,14 @@ pub fn replay_verify(args: &ReplayArgs, rec: &record::Recording, path: &str) -> 
             return Err(Failure::input(format!("--key: {e}")));
         }
     };
-    let mut progress = crate::progress::Progress::count("verify", rec.lines.len(), "lines");
+    let mut progress =
+        crate::commands::progress::Progress::count("verify", rec.lines.len(), "lines");
     let verified = record::verify_watched(rec, path, key.as_ref(), &mut |n| {
         progress.tick(n as f64);
     });
     progress.finish();
-    if args.format == crate::cli::ListFormat::Json {
-        let v = crate::outputs::Verification::of(Some(rec), path, verified.as_ref());
+    if args.format == crate::commands::cli::ListFormat::Json {
+        let v = crate::commands::outputs::Verification::of(Some(rec), path, verified.as_ref());
         say_raw!("{}", super::json_text(&v));
         return match verified {
             Ok(_) => Ok(()),

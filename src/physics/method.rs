@@ -487,6 +487,24 @@ pub struct Settings {
 /// Most steps a default step may lead to over the horizon; an explicit step is not capped.
 pub const DEFAULT_STEP_BUDGET: f64 = 2e6;
 
+/// Checks that a fixed step advances time all the way to `t_end` (a step below `t_end · 2⁻⁵²`
+/// leaves `t + h == t` and would never finish). The one rule for every scene's `step` (issue
+/// 69: it lived in the rattleback's folder).
+///
+/// # Errors
+/// What is wrong and the smallest step allowed.
+pub fn check_step(step: f64, t_end: f64) -> Result<(), String> {
+    let smallest = t_end * f64::EPSILON * 4.0;
+    if step.is_finite() && step > 0.0 && step >= smallest {
+        Ok(())
+    } else {
+        Err(format!(
+            "a step of {step:e} cannot advance time to t_end = {t_end} (t + h == t); allowed: \
+             at least {smallest:.1e}"
+        ))
+    }
+}
+
 #[cfg(test)]
 mod step_cap_tests {
     use super::*;

@@ -44,7 +44,7 @@ pub struct PlanRequest {
     /// The horizon.
     pub t_end: f64,
     /// How `auto` is resolved.
-    pub policy: AutoPolicy,
+    pub policy: AutoRules,
     /// The work budget of `auto`'s probes and verification.
     pub budget: f64,
 }
@@ -57,7 +57,7 @@ impl PlanRequest {
             method: asked.method,
             tolerance: asked.tolerance,
             t_end: asked.t_end,
-            policy: AutoPolicy::Verified,
+            policy: AutoRules::Verified,
             budget: super::budget::BUDGET_SECONDS,
         }
     }
@@ -65,7 +65,7 @@ impl PlanRequest {
 
 /// How `auto` is resolved.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum AutoPolicy {
+pub enum AutoRules {
     /// Plan, run, verify against a finer companion and refine until the estimate meets the
     /// tolerance; the finer run's settings are returned (what `simulate` reports).
     #[default]

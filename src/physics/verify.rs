@@ -79,7 +79,7 @@ impl Policy {
 /// What one round gave: the run, its difference from the companion plus the round-off floors
 /// (`measured`), and those floors alone.
 #[derive(Clone, Debug)]
-pub struct Outcome<R> {
+pub struct Round<R> {
     /// What the model keeps of the round.
     pub run: R,
     /// The two runs' difference plus the floors.
@@ -94,6 +94,9 @@ pub trait Candidate {
     type Plan: Clone;
     /// What the model keeps of a round.
     type Run;
+    /// The scene's policy: the loop's data (its refinements, stalls and floor rule), read by
+    /// [`verify`] from here alone (issue 69: it was an argument too, and the two could differ).
+    fn policy(&self) -> &'static Policy;
     /// Runs `plan` and its companion (side by side where the model finds it pays).
     ///
     /// # Errors
@@ -102,7 +105,7 @@ pub trait Candidate {
         &mut self,
         plan: &Self::Plan,
         go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<Outcome<Self::Run>, StepError>;
+    ) -> Result<Round<Self::Run>, StepError>;
     /// The estimate from what `plan` measured, knowing the round `before` it in the same
     /// sequence (a model may widen it where rounding sets both runs' errors).
     fn estimate(
@@ -131,11 +134,11 @@ pub trait Candidate {
         let _ = (plan, next);
         true
     }
-    /// How many stalls in a row stop the loop at `plan` (`policy.stalls` unless a method has
-    /// its own).
-    fn stalls(&self, plan: &Self::Plan, policy: &Policy) -> usize {
+    /// How many stalls in a row stop the loop at `plan` (the policy's `stalls` unless a method
+    /// has its own).
+    fn stalls(&self, plan: &Self::Plan) -> usize {
         let _ = plan;
-        policy.stalls
+        self.policy().stalls
     }
 }
 
@@ -190,8 +193,11 @@ pub trait AtTolerance: Clone + Send + 'static {
 impl<T: AtTolerance> Candidate for T {
     type Plan = f64;
     type Run = ();
-    fn round(&mut self, local: &f64, go_on: GoOn<'_>) -> Result<Outcome<()>, StepError> {
-        let (local, companion) = (*local, self.policy().companion(*local));
+    fn policy(&self) -> &'static Policy {
+        AtTolerance::policy(self)
+    }
+    fn round(&mut self, local: &f64, go_on: GoOn<'_>) -> Result<Round<()>, StepError> {
+        let (local, companion) = (*local, AtTolerance::policy(self).companion(*local));
         let there = self.clone();
         let (fine, coarse) = fork::both(
             go_on,
@@ -200,7 +206,7 @@ impl<T: AtTolerance> Candidate for T {
         );
         let (fine, coarse) = (fine?, coarse?);
         let floor = self.floor(&fine) + self.rounding(local, &fine, go_on)?.unwrap_or(0.0);
-        Ok(Outcome {
+        Ok(Round {
             run: (),
             measured: self.difference(&fine, &coarse) + floor,
             floor,
@@ -211,11 +217,11 @@ impl<T: AtTolerance> Candidate for T {
     }
     fn cost(&self, local: &f64) -> f64 {
         self.run_cost(*local)
-            + self.run_cost(self.policy().companion(*local))
+            + self.run_cost(AtTolerance::policy(self).companion(*local))
             + self.rounding_cost(*local)
     }
     fn refine(&mut self, local: &f64, estimate: f64, tolerance: f64) -> Result<f64, Shortfall> {
-        self.policy().tighten(*local, estimate, tolerance)
+        AtTolerance::policy(self).tighten(*local, estimate, tolerance)
     }
 }
 
@@ -234,7 +240,7 @@ pub struct Reading<P> {
 
 /// How the loop ended.
 #[derive(Clone, Debug)]
-pub struct Verdict<P, R> {
+pub struct Conclusion<P, R> {
     /// Why the estimate misses the tolerance (`None`: it met it).
     pub shortfall: Option<Shortfall>,
     /// The last round.
@@ -247,20 +253,35 @@ pub struct Verdict<P, R> {
     pub refinements: usize,
 }
 
-/// Verifies `candidate` from the plan `first` until its estimate meets `tolerance`, as
-/// `policy` says, the rounds together predicted at most `budget` seconds (the first always
-/// runs).
+/// What the loop is asked: where it starts and what it must meet, within what.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rounds<P> {
+    /// The first round's plan.
+    pub first: P,
+    /// The tolerance the estimate must meet.
+    pub tolerance: f64,
+    /// Predicted seconds the rounds may spend together (the first always runs: the caller has
+    /// priced it).
+    pub budget: f64,
+}
+
+/// Verifies `candidate` from the plan `ask.first` until its estimate meets `ask.tolerance`, as
+/// the candidate's policy says, the rounds together predicted at most `ask.budget` seconds (the
+/// first always runs).
 ///
 /// # Errors
 /// A failed or cancelled run.
 pub fn verify<C: Candidate>(
-    policy: &Policy,
     candidate: &mut C,
-    first: C::Plan,
-    tolerance: f64,
-    budget: f64,
+    ask: Rounds<C::Plan>,
     go_on: &mut dyn FnMut(f64) -> bool,
-) -> Result<Verdict<C::Plan, C::Run>, StepError> {
+) -> Result<Conclusion<C::Plan, C::Run>, StepError> {
+    let Rounds {
+        first,
+        tolerance,
+        budget,
+    } = ask;
+    let policy = candidate.policy();
     let mut plan = first;
     let mut spent = candidate.cost(&plan);
     // The round before this one in its sequence, and rounds in a row that did not halve it.
@@ -268,7 +289,7 @@ pub fn verify<C: Candidate>(
     let mut stalls = 0;
     let mut best: Option<(Reading<C::Plan>, C::Run)> = None;
     for refinement in 0..=policy.max_refinements {
-        let Outcome {
+        let Round {
             run,
             measured,
             floor,
@@ -285,7 +306,7 @@ pub fn verify<C: Candidate>(
             estimate,
             floor,
         };
-        let ended = |shortfall, best, before| Verdict {
+        let ended = |shortfall, best, before| Conclusion {
             shortfall,
             last: reading.clone(),
             before,
@@ -299,8 +320,7 @@ pub fn verify<C: Candidate>(
             Some(b) if b.0.estimate <= estimate => b,
             _ => (reading.clone(), run),
         };
-        let next = if (policy.floor_stops && floor > tolerance)
-            || stalls >= candidate.stalls(&plan, policy)
+        let next = if (policy.floor_stops && floor > tolerance) || stalls >= candidate.stalls(&plan)
         {
             Err(Shortfall::Floor)
         } else if refinement == policy.max_refinements {
@@ -341,19 +361,23 @@ mod tests {
         noise: f64,
         floor: f64,
         rounds: usize,
+        policy: &'static Policy,
     }
 
     impl Candidate for Linear {
         type Plan = f64;
         type Run = usize;
+        fn policy(&self) -> &'static Policy {
+            self.policy
+        }
         fn round(
             &mut self,
             local: &f64,
             _: &mut dyn FnMut(f64) -> bool,
-        ) -> Result<Outcome<usize>, StepError> {
+        ) -> Result<Round<usize>, StepError> {
             self.rounds += 1;
-            let d = self.c * (POLICY.companion(*local) - local);
-            Ok(Outcome {
+            let d = self.c * (self.policy.companion(*local) - local);
+            Ok(Round {
                 run: self.rounds,
                 measured: d + self.noise + self.floor,
                 floor: self.floor,
@@ -363,7 +387,7 @@ mod tests {
             local.powf(-0.125) * 1e-3
         }
         fn refine(&mut self, local: &f64, estimate: f64, tol: f64) -> Result<f64, Shortfall> {
-            POLICY.tighten(*local, estimate, tol)
+            self.policy.tighten(*local, estimate, tol)
         }
     }
 
@@ -380,19 +404,34 @@ mod tests {
         floor_stops: true,
     };
 
+    /// The same policy, stopped by one stall.
+    const ONE_STALL: Policy = Policy {
+        stalls: 1,
+        ..POLICY
+    };
+
     fn linear(c: f64, noise: f64, floor: f64) -> Linear {
         Linear {
             c,
             noise,
             floor,
             rounds: 0,
+            policy: &POLICY,
+        }
+    }
+
+    fn rounds(first: f64, tolerance: f64, budget: f64) -> Rounds<f64> {
+        Rounds {
+            first,
+            tolerance,
+            budget,
         }
     }
 
     #[test]
     fn refines_until_met_and_stops_at_a_hidden_floor_after_its_stalls() {
         let mut m = linear(100.0, 0.0, 0.0);
-        let v = verify(&POLICY, &mut m, 1e-9, 1e-8, 60.0, &mut |_| true).unwrap();
+        let v = verify(&mut m, rounds(1e-9, 1e-8, 60.0), &mut |_| true).unwrap();
         assert_eq!(v.shortfall, None, "{v:?}");
         assert!(
             v.best.0.estimate <= 1e-8 && m.rounds >= 2,
@@ -400,33 +439,32 @@ mod tests {
         );
         assert_eq!(v.best.1, m.rounds, "the met round is the one returned");
         let mut m = linear(1.0, 1e-6, 0.0);
-        let v = verify(&POLICY, &mut m, 1e-9, 1e-8, 60.0, &mut |_| true).unwrap();
+        let v = verify(&mut m, rounds(1e-9, 1e-8, 60.0), &mut |_| true).unwrap();
         assert_eq!(v.shortfall, Some(Shortfall::Floor), "{v:?}");
         assert_eq!(
             v.before.map(|b| b.1 > 0.0),
             Some(true),
             "the round before is kept"
         );
-        let one = Policy {
-            stalls: 1,
-            ..POLICY
+        let mut fewer = Linear {
+            policy: &ONE_STALL,
+            ..linear(1.0, 1e-6, 0.0)
         };
-        let mut fewer = linear(1.0, 1e-6, 0.0);
-        verify(&one, &mut fewer, 1e-9, 1e-8, 60.0, &mut |_| true).unwrap();
+        verify(&mut fewer, rounds(1e-9, 1e-8, 60.0), &mut |_| true).unwrap();
         assert_eq!(fewer.rounds + 1, m.rounds, "one stall stops a round sooner");
     }
 
     #[test]
     fn a_floor_above_the_tolerance_stops_it_at_once() {
         let mut m = linear(1.0, 0.0, 1e-6);
-        let v = verify(&POLICY, &mut m, 1e-9, 1e-8, 60.0, &mut |_| true).unwrap();
+        let v = verify(&mut m, rounds(1e-9, 1e-8, 60.0), &mut |_| true).unwrap();
         assert_eq!((v.shortfall, m.rounds), (Some(Shortfall::Floor), 1));
     }
 
     #[test]
     fn the_budget_stops_it_after_the_first_round() {
         let mut m = linear(1e6, 0.0, 0.0);
-        let v = verify(&POLICY, &mut m, 1e-9, 1e-12, 0.0, &mut |_| true).unwrap();
+        let v = verify(&mut m, rounds(1e-9, 1e-12, 0.0), &mut |_| true).unwrap();
         assert_eq!(v.shortfall, Some(Shortfall::Time));
         assert_eq!((v.last.plan, v.refinements, m.rounds), (1e-9, 0, 1));
     }
@@ -437,11 +475,14 @@ mod tests {
     impl Candidate for Worsening {
         type Plan = f64;
         type Run = usize;
+        fn policy(&self) -> &'static Policy {
+            self.0.policy
+        }
         fn round(
             &mut self,
             local: &f64,
             go_on: &mut dyn FnMut(f64) -> bool,
-        ) -> Result<Outcome<usize>, StepError> {
+        ) -> Result<Round<usize>, StepError> {
             let mut o = self.0.round(local, go_on)?;
             if o.run > self.1 {
                 o.measured *= 1e6;
@@ -463,7 +504,7 @@ mod tests {
     #[test]
     fn it_returns_the_best_round_and_a_new_sequence_forgets_its_stalls() {
         let mut m = Worsening(linear(1.0, 0.0, 0.0), 2);
-        let v = verify(&POLICY, &mut m, 1e-6, 1e-16, 60.0, &mut |_| true).unwrap();
+        let v = verify(&mut m, rounds(1e-6, 1e-16, 60.0), &mut |_| true).unwrap();
         assert_eq!(v.shortfall, Some(Shortfall::Refinements), "{v:?}");
         assert_eq!(
             m.0.rounds,

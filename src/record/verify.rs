@@ -7,7 +7,7 @@ use crate::app::effects::commands;
 use crate::app::journal::{Event, state_hash};
 use crate::app::{App, Effect, Options};
 use crate::physics::method::Arithmetic;
-use crate::physics::plan::AutoPolicy;
+use crate::physics::plan::AutoRules;
 use crate::scenario::Preset;
 use crate::sim::{Command, Engine, PlanBook, SimEvent, drive};
 
@@ -74,9 +74,9 @@ pub fn plan_book(rec: &Recording) -> PlanBook {
     let auto_only = rec.header.version >= 4;
     PlanBook {
         policy: if rec.header.version < 2 {
-            AutoPolicy::Legacy
+            AutoRules::Legacy
         } else {
-            AutoPolicy::Verified
+            AutoRules::Verified
         },
         recorded: rec
             .lines

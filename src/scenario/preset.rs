@@ -746,7 +746,7 @@ impl Preset {
         let (x_range, y_range) = range_keys(kind);
         let (t_end, step) = (n("run", "t_end"), r.num("run", "step"));
         if let Some(h) = step {
-            crate::physics::rattleback::run::check_step(h, t_end)
+            crate::physics::method::check_step(h, t_end)
                 .map_err(|message| located("run", "step", message))?;
         }
         Ok(Self {

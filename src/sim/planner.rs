@@ -9,7 +9,7 @@ use crate::physics::Model;
 use crate::physics::method::Method;
 use crate::physics::method::StepError;
 use crate::physics::method::{Arithmetic, Asked};
-use crate::physics::plan::{AutoPolicy, Resolved};
+use crate::physics::plan::{AutoRules, Resolved};
 use crate::physics::rattleback::{Params, Start};
 use crate::physics::{celt, kapitza};
 
@@ -99,7 +99,7 @@ impl PlanKey {
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlanBook {
     /// Policy for keys not recorded.
-    pub policy: AutoPolicy,
+    pub policy: AutoRules,
     /// Recorded plans of `auto` (a method asked by name is its own plan).
     pub recorded: Vec<(PlanKey, Resolved)>,
     /// The error estimates recorded with them (format 4 on), shown again by a replay.
@@ -128,7 +128,7 @@ pub struct PlanBook {
 impl Default for PlanBook {
     fn default() -> Self {
         Self {
-            policy: AutoPolicy::default(),
+            policy: AutoRules::default(),
             recorded: Vec::new(),
             estimates: Vec::new(),
             budget: crate::physics::budget::BUDGET_SECONDS,

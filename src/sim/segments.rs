@@ -132,7 +132,7 @@ impl Ahead {
             .name("rattleback-verify".to_owned())
             .spawn(move || {
                 let mut book = book;
-                verify(&mut book, &plans, &spec, &pairs, &stop, &mut |r| {
+                check_segments(&mut book, &plans, &spec, &pairs, &stop, &mut |r| {
                     tx.send(r).is_ok()
                 });
             })
@@ -184,7 +184,7 @@ impl Drop for Ahead {
 
 /// Verifies the segments `pairs` (`(from, until)`) of `spec` in order, sending what it finds;
 /// stops when cancelled, when `send` fails, or at the first failure.
-fn verify(
+fn check_segments(
     book: &mut PlanBook,
     plans: &Receiver<Forward>,
     spec: &SessionSpec,

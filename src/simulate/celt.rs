@@ -16,7 +16,7 @@ use crate::physics::Method;
 use crate::physics::celt::run::{self, RunResult};
 use crate::physics::celt::{self, Problem};
 use crate::physics::method::RunSpec;
-use crate::physics::plan::{AutoPolicy, PlanRequest, Shortfall};
+use crate::physics::plan::{AutoRules, PlanRequest, Shortfall};
 
 /// Predicted seconds of the run `spec` asks for (the celt's cost model, [`celt::budget`]).
 #[must_use]
@@ -114,7 +114,7 @@ fn plan_auto(
         method: Method::Auto,
         tolerance: spec.tolerance,
         t_end: spec.t_end,
-        policy: AutoPolicy::Verified,
+        policy: AutoRules::Verified,
         budget: resolved.budget,
     };
     let r = celt::plan::resolve(problem, &ask, progress)?;

@@ -324,7 +324,7 @@ fn csv(
             spec.method,
             spec.tolerance,
             spec.t_end,
-            crate::physics::plan::AutoPolicy::Verified,
+            crate::physics::plan::AutoRules::Verified,
             resolved.budget,
             progress,
         )?;

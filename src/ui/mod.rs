@@ -743,8 +743,19 @@ fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mu
             .map(|(k, w, r)| (k.to_owned(), w, r))
             .collect()
     };
-    let hints = if app.replay.is_some() {
-        owned(keys::footer(REPLAY_KEYMAP))
+    let hints = if let Some(replay) = app.replay {
+        // What `space` does now: pause, resume, or nothing once the recording has ended.
+        let mut hints = owned(keys::footer(REPLAY_KEYMAP));
+        if replay.ended {
+            hints.retain(|hint| hint.1 != "pause");
+        } else if replay.paused {
+            for hint in &mut hints {
+                if hint.1 == "pause" {
+                    hint.1 = "resume";
+                }
+            }
+        }
+        hints
     } else if app.mode == Mode::Map {
         let kind = app.scenario.settings.model.kind();
         owned(keys::map_footer(crate::study::chart::words(kind).sources))

@@ -9,7 +9,7 @@ use rattleback::physics::method::Asked;
 
 use rattleback::physics::budget::BUDGET_SECONDS;
 use rattleback::physics::method::RunSpec;
-use rattleback::physics::plan::AutoPolicy;
+use rattleback::physics::plan::AutoRules;
 use rattleback::physics::rattleback::effective::Effective;
 use rattleback::physics::rattleback::plan::{predicted_seconds, resolve};
 use rattleback::physics::rattleback::run::MAX_REVERSAL_TIMES;
@@ -141,7 +141,7 @@ fn auto_stops_refining_at_its_budget_and_says_so() {
         Method::Auto,
         1e-12,
         1000.0,
-        AutoPolicy::Verified,
+        AutoRules::Verified,
         10.0,
         &mut |_| true,
     )
@@ -325,7 +325,7 @@ fn celt_cost_model_prediction_against_measurement() {
     use rattleback::physics::celt::run::run;
     use rattleback::physics::method::Asked;
     use rattleback::physics::method::RunSpec;
-    use rattleback::physics::plan::{AutoPolicy, PlanRequest};
+    use rattleback::physics::plan::{AutoRules, PlanRequest};
     let mut cases: Vec<(String, rattleback::scenario::Preset)> =
         rattleback::scenario::shipped::SHIPPED
             .iter()
@@ -365,7 +365,7 @@ fn celt_cost_model_prediction_against_measurement() {
                     method,
                     tolerance: tol,
                     t_end,
-                    policy: AutoPolicy::Verified,
+                    policy: AutoRules::Verified,
                     budget: 60.0,
                 },
                 &mut |_| true,

@@ -92,7 +92,7 @@ fn the_manual_page_is_whole_and_man_has_no_warnings() {
     // No page it names is missing: it names none but itself.
     assert!(!out.contains("(1)"), "refers to other pages");
     // Every subcommand has its subsection, the nested ones too.
-    let cmd = <rattleback::cli::Cli as clap::CommandFactory>::command();
+    let cmd = <rattleback::commands::cli::Cli as clap::CommandFactory>::command();
     for sub in cmd.get_subcommands().filter(|s| s.get_name() != "help") {
         let name = format!(".SS \"rattleback {}\"", sub.get_name());
         assert!(out.contains(&name), "{name} missing");
@@ -113,14 +113,14 @@ fn the_manual_page_is_whole_and_man_has_no_warnings() {
         let help = b.help.replace('-', "\\-");
         assert!(out.contains(&help), "key help {:?} missing", b.help);
     }
-    for (var, _) in rattleback::manual::ENVIRONMENT {
+    for (var, _) in rattleback::commands::manual::ENVIRONMENT {
         assert!(out.contains(var), "{var} missing");
     }
     // `--help` carries the same examples, and says the manual has the environment and the
     // exit codes (issue 68: two screens at 80 columns).
     let (code, help, _) = bin(&["--help"]);
     assert_eq!(code, 0);
-    for (line, _) in rattleback::manual::EXAMPLES {
+    for (line, _) in rattleback::commands::manual::EXAMPLES {
         assert!(help.contains(line), "--help lacks {line}");
         // roff escapes `-` as `\-`.
         assert!(
@@ -132,9 +132,9 @@ fn the_manual_page_is_whole_and_man_has_no_warnings() {
         help.contains("environment, exit status: rattleback man"),
         "{help}"
     );
-    for (line, _) in rattleback::manual::ENVIRONMENT
+    for (line, _) in rattleback::commands::manual::ENVIRONMENT
         .iter()
-        .chain(rattleback::manual::EXIT_STATUS)
+        .chain(rattleback::commands::manual::EXIT_STATUS)
     {
         assert!(
             out.replace("\\-", "-").contains(line),
@@ -372,7 +372,7 @@ fn every_failure_speaks_in_one_style() {
 /// and succeed.
 #[test]
 fn every_help_text_is_true() {
-    let root = rattleback::cli::command();
+    let root = rattleback::commands::cli::command();
     // (path, command) for every command and subcommand.
     let mut all = vec![(Vec::<String>::new(), root.clone())];
     let mut i = 0;
@@ -438,7 +438,7 @@ fn every_help_text_is_true() {
     // Every example parses; the headless ones run.
     let dir = std::env::temp_dir().join(format!("rattleback-examples-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    for (line, _) in rattleback::manual::EXAMPLES {
+    for (line, _) in rattleback::commands::manual::EXAMPLES {
         let words: Vec<&str> = line.split_whitespace().collect();
         let Some(at) = words.iter().position(|w| w.ends_with("rattleback")) else {
             continue;
@@ -447,7 +447,7 @@ fn every_help_text_is_true() {
             .iter()
             .map(|w| w.trim_end_matches(')'))
             .collect();
-        let parsed = <rattleback::cli::Cli as clap::Parser>::try_parse_from(&args);
+        let parsed = <rattleback::commands::cli::Cli as clap::Parser>::try_parse_from(&args);
         assert!(
             parsed.is_ok(),
             "{line}: {:?}",
@@ -592,7 +592,7 @@ fn help_fits_80_columns_and_ends_with_examples() {
         );
         assert!(text.contains("Examples:"), "{text}");
     }
-    let root = rattleback::cli::command();
+    let root = rattleback::commands::cli::command();
     for sub in root.get_subcommands().filter(|s| s.get_name() != "help") {
         let name = sub.get_name();
         let text = help(&[name, "--help"]);
@@ -611,8 +611,8 @@ fn help_fits_80_columns_and_ends_with_examples() {
         );
     }
     // Every example is a command the parser takes.
-    let all = rattleback::manual::EXAMPLES.iter().chain(
-        rattleback::manual::SUBCOMMAND_EXAMPLES
+    let all = rattleback::commands::manual::EXAMPLES.iter().chain(
+        rattleback::commands::manual::SUBCOMMAND_EXAMPLES
             .iter()
             .flat_map(|(_, rows)| rows.iter()),
     );
@@ -629,7 +629,7 @@ fn help_fits_80_columns_and_ends_with_examples() {
             .split_whitespace()
             .collect();
         assert_eq!(words[0], "rattleback", "{line}");
-        if let Err(e) = rattleback::cli::parse_from(&words) {
+        if let Err(e) = rattleback::commands::cli::parse_from(&words) {
             assert!(
                 matches!(e.kind(), clap::error::ErrorKind::DisplayHelp),
                 "the example `{line}` does not parse: {e}"

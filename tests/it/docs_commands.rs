@@ -462,7 +462,7 @@ impl Checker {
 
 /// Whether the program's parser takes `args` (`rattleback` first).
 fn parse(args: &[String]) -> Result<(), String> {
-    match rattleback::cli::parse_from(args) {
+    match rattleback::commands::cli::parse_from(args) {
         Ok(_) => Ok(()),
         Err(e)
             if matches!(

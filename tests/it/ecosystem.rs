@@ -220,8 +220,8 @@ fn the_copied_command_line_runs_exactly_the_explorers_settings() {
     });
     assert!(h.app.status.as_ref().unwrap().text.contains(text.as_str()));
     let args: Vec<&str> = text.split_whitespace().collect();
-    let cli = <rattleback::cli::Cli as clap::Parser>::try_parse_from(&args).unwrap();
-    let Some(rattleback::cli::Command::Simulate(sim)) = cli.command else {
+    let cli = <rattleback::commands::cli::Cli as clap::Parser>::try_parse_from(&args).unwrap();
+    let Some(rattleback::commands::cli::Command::Simulate(sim)) = cli.command else {
         panic!("not simulate: {text}")
     };
     let preset = rattleback::scenario::shipped::resolve(&sim.preset, &sim.set).unwrap();
@@ -567,7 +567,8 @@ fn a_dumb_terminal_gets_one_line_from_every_interactive_entry_point() {
         &["lesson", "first-reversal"],
     ] {
         let (code, out, err) = run(args);
-        assert_eq!(code, 1, "{args:?}: {err}");
+        // Exit 2, as the other refusals of a terminal (a redirection, ssh without -t).
+        assert_eq!(code, 2, "{args:?}: {err}");
         assert!(out.is_empty(), "{args:?}: {out}");
         assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
         assert!(err.contains("TERM=dumb"), "{args:?}: {err}");
@@ -583,7 +584,7 @@ fn a_dumb_terminal_gets_one_line_from_every_interactive_entry_point() {
 
 #[test]
 fn colours_follow_the_flag_then_no_color_then_clicolor() {
-    use rattleback::cli::ColorChoice::{Always, Auto, Never};
+    use rattleback::commands::cli::ColorChoice::{Always, Auto, Never};
     // (choice, NO_COLOR, CLICOLOR, CLICOLOR_FORCE) → colours off?
     let cases = [
         (Auto, None, None, None, false),

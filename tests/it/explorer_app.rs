@@ -13,7 +13,7 @@ use rattleback::app::mode::{Confirm, PromptFor};
 use rattleback::app::{App, Effect, Key, Mode, Options, PlanState};
 use rattleback::physics::Method;
 use rattleback::physics::method::RunSpec;
-use rattleback::physics::plan::AutoPolicy;
+use rattleback::physics::plan::AutoRules;
 use rattleback::physics::rattleback::effective::Effective;
 use rattleback::physics::rattleback::plan::resolve as resolve_plan;
 use rattleback::physics::rattleback::run;
@@ -216,7 +216,7 @@ fn every_shipped_preset_ends_where_simulate_and_a_tight_reference_end() {
             s.method,
             s.tolerance,
             s.t_end,
-            AutoPolicy::Verified,
+            AutoRules::Verified,
             f64::INFINITY,
             &mut |_| true,
         )

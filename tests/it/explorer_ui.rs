@@ -1005,6 +1005,40 @@ fn the_footer_follows_the_state() {
     assert!(!footer.contains("space play"), "{footer}");
 }
 
+/// Issue 68: a replay's footer says what `space` does too: `pause` while it plays, `resume`
+/// when paused, nothing once the recording has ended.
+#[test]
+fn the_replays_footer_follows_the_replay() {
+    let mut h = Headless::new("subcritical");
+    let mut replay = rattleback::app::ReplayInfo {
+        pace: 1.0,
+        paused: false,
+        chapter: 0,
+        chapters: 0,
+        ended: false,
+        at: 4.0,
+        length: 7.0,
+        live: None,
+    };
+    let mut footer = |replay| {
+        h.app.replay = Some(replay);
+        let screen = text(&render(&h.app, 80, 24));
+        screen.lines().last().unwrap().to_owned()
+    };
+    let playing = footer(replay);
+    assert!(playing.contains("space pause"), "{playing}");
+    replay.paused = true;
+    let paused = footer(replay);
+    assert!(
+        paused.contains("space resume") && !paused.contains("pause"),
+        "{paused}"
+    );
+    replay.ended = true;
+    let ended = footer(replay);
+    assert!(!ended.contains("space"), "{ended}");
+    assert!(ended.contains("+/- pace"), "{ended}");
+}
+
 /// Issue 68: a message that names a file shows the file's name whole at 80 columns (its
 /// folders shortened in the middle), never `recording to… (v: whole)`.
 #[test]

@@ -1136,7 +1136,7 @@ fn a_shipped_lesson_records_replays_follows_and_verifies_frame_for_frame(name: &
                 .expect("the page inlines its cast");
             let last = rattleback::cast::last_frame_time(&inlined);
             assert!(last > 0.0, "{name} ×{speed}");
-            let poster = rattleback::page::poster_time(&inlined);
+            let poster = rattleback::commands::page::poster_time(&inlined);
             assert!(
                 poster > last && poster - last < 0.01,
                 "{name} ×{speed}: the poster ({poster}) is not the last frame ({last})"

@@ -68,7 +68,7 @@ fn the_exported_page_is_self_contained_with_the_cast_and_chapter_links() {
     );
     // Chapters: a link per chapter, seeking to its marker; the cast has the markers.
     let rec = rattleback::record::read(std::path::Path::new(LECTURE)).unwrap();
-    let links = rattleback::page::links(&rec);
+    let links = rattleback::commands::page::links(&rec);
     assert!(!links.is_empty());
     // Each link carries its marker's time on the player's clock, and says it.
     let times: Vec<f64> = rattleback::cast::player_clock(&inlined)
@@ -91,7 +91,7 @@ fn the_exported_page_is_self_contained_with_the_cast_and_chapter_links() {
         );
     }
     // The page opens on the last frame (a poster), and does not play by itself.
-    let poster = rattleback::page::poster_time(&inlined);
+    let poster = rattleback::commands::page::poster_time(&inlined);
     assert!(page.contains(&format!("poster: \"npt:{poster:.6}\"")));
     assert!(!page.contains("autoPlay: true"));
     let ev = events(&inlined);
@@ -140,7 +140,7 @@ fn a_lessons_steps_are_its_pages_chapters() {
         "/tests/fixtures/sessions/lesson-kapitza-threshold.jsonl"
     );
     let rec = rattleback::record::read(std::path::Path::new(lesson)).unwrap();
-    let titles: Vec<String> = rattleback::page::links(&rec)
+    let titles: Vec<String> = rattleback::commands::page::links(&rec)
         .into_iter()
         .map(|l| l.title)
         .collect();

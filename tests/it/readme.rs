@@ -254,3 +254,102 @@ fn the_architecture_page_is_true() {
         );
     }
 }
+
+/// The code map of docs/architecture.md, as entries: a line at the margin opens one (`src/app/`,
+/// `src/cast.rs`), a line indented by two opens one inside it (`src/physics/` + `scene.rs`), and
+/// deeper lines continue the entry above. Each entry's key and its whole text.
+fn code_map() -> Vec<(String, String)> {
+    let page = read("docs/architecture.md");
+    let section = page
+        .split("## Code map")
+        .nth(1)
+        .and_then(|rest| rest.split("```").nth(1))
+        .expect("docs/architecture.md has a code map in a fenced block");
+    let mut entries: Vec<(String, String)> = Vec::new();
+    let mut parent = String::new();
+    for line in section.lines().skip(1) {
+        let Some(first) = line.split_whitespace().next() else {
+            continue;
+        };
+        let indent = line.len() - line.trim_start().len();
+        if indent == 0 {
+            first.clone_into(&mut parent);
+            entries.push((parent.clone(), line.to_owned()));
+        } else if indent == 2 {
+            entries.push((format!("{parent}{first}"), line.to_owned()));
+        } else if let Some((_, text)) = entries.last_mut() {
+            text.push(' ');
+            text.push_str(line.trim());
+        }
+    }
+    entries
+}
+
+/// Issue 69: the code map names every source file: by its path, or by its name in the entry
+/// of the folder it is in (a folder's `mod.rs` by the folder's entry or `folder/`). A file
+/// added without a line on the map fails here, with the files to add.
+#[test]
+fn the_code_map_names_every_source_file() {
+    let entries = code_map();
+    let block: String = entries.iter().map(|(_, t)| t.as_str()).collect();
+    let mut files = Vec::new();
+    walk_all(&root().join("src"), &mut files);
+    let mut unnamed = Vec::new();
+    for file in files
+        .iter()
+        .filter(|f| f.extension().is_some_and(|e| e == "rs"))
+    {
+        let path = file
+            .strip_prefix(root())
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        let rel = path.trim_start_matches("src/");
+        let name = path.rsplit('/').next().unwrap();
+        let folder = &path[..path.len() - name.len()];
+        let stem = name.trim_end_matches(".rs");
+        let named_by_path = block.contains(&path)
+            || block.contains(rel)
+            || entries.iter().any(|(key, _)| *key == path);
+        // The deepest folder above the file that has an entry, and the file's place under it.
+        let by_folder = entries
+            .iter()
+            .filter(|(key, _)| key.ends_with('/') && folder.starts_with(key.as_str()))
+            .max_by_key(|(key, _)| key.len())
+            .is_some_and(|(key, _)| {
+                // The folder's entry with the entries inside it.
+                let text = entries
+                    .iter()
+                    .filter(|(k, _)| k.starts_with(key.as_str()))
+                    .map(|(_, t)| t.as_str())
+                    .collect::<Vec<_>>()
+                    .join(" ");
+                let below = &folder[key.len()..];
+                let words = |w: &str| {
+                    text.split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                        .any(|t| t == w)
+                };
+                if below.is_empty() {
+                    name == "mod.rs" || text.contains(name) || words(stem)
+                } else {
+                    let sub = below.trim_end_matches('/').rsplit('/').next().unwrap();
+                    text.contains(&format!("{sub}/")) && (name == "mod.rs" || text.contains(name))
+                }
+            });
+        if !(named_by_path || by_folder) {
+            unnamed.push(path);
+        }
+    }
+    assert!(
+        files.len() > 150,
+        "the walk found {} files under src/",
+        files.len()
+    );
+    unnamed.sort();
+    assert!(
+        unnamed.is_empty(),
+        "docs/architecture.md's code map does not name {} source files:\n{}",
+        unnamed.len(),
+        unnamed.join("\n")
+    );
+}

@@ -215,7 +215,7 @@ const LECTURE_PRESET: &str = concat!(root!(), "/presets/subcritical.toml");
 #[test]
 fn failed_checks_in_json_say_how_and_validate() {
     let load = |name: &str| {
-        let text = rattleback::outputs::schemas()
+        let text = rattleback::commands::outputs::schemas()
             .into_iter()
             .find(|(n, _)| *n == name)
             .unwrap()
@@ -288,7 +288,7 @@ fn failed_checks_in_json_say_how_and_validate() {
 fn every_other_json_output_has_its_version_model_and_schema() {
     let dir = std::path::Path::new(root!()).join("docs/schemas");
     let mut validators = std::collections::BTreeMap::new();
-    for (name, text) in rattleback::outputs::schemas() {
+    for (name, text) in rattleback::commands::outputs::schemas() {
         let path = dir.join(format!("{name}.schema.json"));
         let on_disk = std::fs::read_to_string(&path).unwrap_or_default();
         assert_eq!(
@@ -410,7 +410,10 @@ fn every_other_json_output_has_its_version_model_and_schema() {
             "{args:?}: begins with {keys:?}"
         );
         let value: Value = serde_json::from_str(&out).unwrap();
-        assert_eq!(value["schema_version"], rattleback::outputs::SCHEMA_VERSION);
+        assert_eq!(
+            value["schema_version"],
+            rattleback::commands::outputs::SCHEMA_VERSION
+        );
         assert!(value.get("model").is_some(), "{args:?}: no model");
         check(&validators[schema], &format!("{args:?}"), &value);
         let mut bent = value.clone();

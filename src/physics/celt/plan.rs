@@ -22,8 +22,8 @@ use crate::physics::fork::GoOn;
 use crate::physics::method::Asked;
 use crate::physics::method::RunSpec;
 use crate::physics::method::{Method, StepError};
-use crate::physics::plan::{AutoPolicy, PlanRequest, Resolution, Resolved, Shortfall};
-use crate::physics::verify::{AtTolerance, Policy, verify};
+use crate::physics::plan::{AutoRules, PlanRequest, Resolution, Resolved, Shortfall};
+use crate::physics::verify::{AtTolerance, Policy, Rounds, verify};
 
 /// Times of the spin compared.
 const SAMPLES: usize = 33;
@@ -73,7 +73,7 @@ pub fn resolve(
         });
     }
     let local = (ask.tolerance * FIRST).clamp(POLICY.tightest, 1e-3);
-    if ask.policy == AutoPolicy::Legacy {
+    if ask.policy == AutoRules::Legacy {
         // No session of format 1 holds a celt; plan as the first step does, unverified.
         return Ok(Resolution {
             plan: Resolved {
@@ -91,11 +91,12 @@ pub fn resolve(
         t_end: ask.t_end,
     };
     let v = verify(
-        &POLICY,
         &mut candidate,
-        local,
-        ask.tolerance,
-        ask.budget,
+        Rounds {
+            first: local,
+            tolerance: ask.tolerance,
+            budget: ask.budget,
+        },
         go_on,
     )?;
     Ok(done(v.last.plan, Some(v.last.estimate), v.shortfall))

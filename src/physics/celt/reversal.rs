@@ -12,7 +12,7 @@ use super::run::{RunResult, run};
 use crate::physics::fork::GoOn;
 use crate::physics::method::{Asked, Method, RunSpec, StepError};
 use crate::physics::plan::Shortfall;
-use crate::physics::verify::{Candidate, Outcome, verify};
+use crate::physics::verify::{Candidate, Policy, Round, Rounds, verify};
 
 /// A cell's count.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,7 +49,10 @@ impl Counted {
 impl Candidate for Counted {
     type Plan = f64;
     type Run = RunResult;
-    fn round(&mut self, local: &f64, go_on: GoOn<'_>) -> Result<Outcome<RunResult>, StepError> {
+    fn policy(&self) -> &'static Policy {
+        &POLICY
+    }
+    fn round(&mut self, local: &f64, go_on: GoOn<'_>) -> Result<Round<RunResult>, StepError> {
         let fine = self.run(*local, go_on)?;
         let coarse = self.run(POLICY.companion(*local), go_on)?;
         let measured = if fine.reversal_count == coarse.reversal_count {
@@ -60,7 +63,7 @@ impl Candidate for Counted {
         } else {
             f64::INFINITY
         };
-        Ok(Outcome {
+        Ok(Round {
             run: fine,
             measured,
             floor: 0.0,
@@ -90,11 +93,12 @@ pub fn reversals(
     };
     let first = (tolerance * FIRST).clamp(1e-12, 1e-6);
     let v = verify(
-        &POLICY,
         &mut candidate,
-        first,
-        tolerance,
-        f64::INFINITY,
+        Rounds {
+            first,
+            tolerance,
+            budget: f64::INFINITY,
+        },
         go_on,
     )?;
     let best = v.best.1;

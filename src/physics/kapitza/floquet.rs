@@ -23,7 +23,7 @@ use super::Params;
 use crate::physics::fork::GoOn;
 use crate::physics::method::StepError;
 use crate::physics::numerics::dop853::Dop853;
-use crate::physics::verify::{AtTolerance, Policy, verify};
+use crate::physics::verify::{AtTolerance, Policy, Rounds, verify};
 
 /// Which equilibrium is linearised.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -204,11 +204,12 @@ pub fn floquet(m: Mathieu, tolerance: f64) -> Result<Floquet, StepError> {
     let first = (tolerance * FIRST).clamp(POLICY.tightest, 1e-3);
     // Its best run again: the loop keeps what it measured, not the trace.
     let v = verify(
-        &POLICY,
         &mut candidate,
-        first,
-        tolerance,
-        f64::INFINITY,
+        Rounds {
+            first,
+            tolerance,
+            budget: f64::INFINITY,
+        },
         &mut |_| true,
     )?;
     let plan = v.best.0.plan;

@@ -65,7 +65,7 @@ use crate::physics::method::Asked;
 use crate::physics::method::RunSpec;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::plan::Shortfall;
-use crate::physics::verify::{AtTolerance, Candidate, Policy, verify};
+use crate::physics::verify::{AtTolerance, Candidate, Policy, Rounds, verify};
 
 /// What `auto` chose, and why.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -479,7 +479,15 @@ pub fn verified(
             over,
         });
     }
-    let v = verify(&POLICY, &mut candidate, local, tolerance, budget, go_on)?;
+    let v = verify(
+        &mut candidate,
+        Rounds {
+            first: local,
+            tolerance,
+            budget,
+        },
+        go_on,
+    )?;
     let (local, measured) = (v.last.plan, v.last.measured);
     Ok(match v.shortfall {
         None => at(local, v.last.estimate, None),

@@ -14,7 +14,7 @@ use crate::physics::method::Asked;
 use crate::physics::method::Method;
 use crate::physics::method::RunSpec;
 use crate::physics::method::StepError;
-use crate::physics::plan::{AutoPolicy, Resolution, Resolved};
+use crate::physics::plan::{AutoRules, Resolution, Resolved};
 
 /// Resolves `method` for `problem` over `[0, t_end]` at `tolerance`; `go_on(t)` is asked every
 /// few hundred steps of `auto`'s probes and verification runs whether to continue, and none of
@@ -27,7 +27,7 @@ pub fn resolve(
     method: Method,
     tolerance: f64,
     t_end: f64,
-    policy: AutoPolicy,
+    policy: AutoRules,
     budget: f64,
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Resolution, StepError> {
@@ -44,7 +44,7 @@ pub fn resolve(
         });
     }
     match policy {
-        AutoPolicy::Legacy => {
+        AutoRules::Legacy => {
             let p = auto::legacy::plan_cancellable(problem, tolerance, t_end, go_on)?;
             Ok(Resolution {
                 plan: Resolved {
@@ -57,7 +57,7 @@ pub fn resolve(
                 floor: None,
             })
         }
-        AutoPolicy::Verified => {
+        AutoRules::Verified => {
             let v = auto::run_auto_cancellable(
                 problem,
                 &RunSpec {

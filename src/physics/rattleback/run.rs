@@ -48,23 +48,6 @@ pub struct RunResult {
     pub samples: Vec<Sample>,
 }
 
-/// Checks that a fixed step advances time all the way to `t_end` (a step below `t_end · 2⁻⁵²`
-/// leaves `t + h == t` and would never finish).
-///
-/// # Errors
-/// What is wrong and the smallest step allowed.
-pub fn check_step(step: f64, t_end: f64) -> Result<(), String> {
-    let smallest = t_end * f64::EPSILON * 4.0;
-    if step.is_finite() && step > 0.0 && step >= smallest {
-        Ok(())
-    } else {
-        Err(format!(
-            "a step of {step:e} cannot advance time to t_end = {t_end} (t + h == t); allowed: \
-             at least {smallest:.1e}"
-        ))
-    }
-}
-
 /// Most reversal times a run keeps (8 MB); later ones are counted only.
 pub use super::effective::MAX_REVERSAL_TIMES;
 

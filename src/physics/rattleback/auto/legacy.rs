@@ -1,6 +1,6 @@
 //! The first `auto` planner (issues 3 and 10), frozen: session files of format 1 recorded the
 //! trajectory of its *first, unverified plan*, so their replay must plan exactly as it did
-//! (`physics::plan::AutoPolicy::Legacy`). Nothing else uses it; the current planner is
+//! (`physics::plan::AutoRules::Legacy`). Nothing else uses it; the current planner is
 //! [`super`]. Do not change a number here: old recordings would stop verifying
 //! (`tests/fixtures/sessions/subcritical.jsonl` checks it).
 //!

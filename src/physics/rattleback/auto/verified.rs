@@ -15,7 +15,7 @@ use crate::physics::method::Method;
 use crate::physics::method::RunSpec;
 use crate::physics::method::Settings;
 use crate::physics::method::StepError;
-use crate::physics::verify::{Candidate, Outcome, Policy, verify};
+use crate::physics::verify::{Candidate, Policy, Round, Rounds, verify};
 
 use super::choice::{Decision, plan_cancellable};
 use super::conditioning::{
@@ -125,11 +125,12 @@ pub fn run_auto_cancellable(
     // The rounds may spend what is left of the allowance after the probes.
     let allowance = budget.min(AUTO_SECONDS).max(spent);
     let v = verify(
-        &POLICY,
         &mut candidate,
-        plan,
-        tolerance,
-        allowance - probes,
+        Rounds {
+            first: plan,
+            tolerance,
+            budget: allowance - probes,
+        },
         go_on,
     )?;
     let (reading, ran) = v.best;
@@ -167,11 +168,14 @@ pub(super) struct Ran {
 impl Candidate for Auto<'_> {
     type Plan = Plan;
     type Run = Ran;
+    fn policy(&self) -> &'static Policy {
+        &POLICY
+    }
     fn round(
         &mut self,
         plan: &Plan,
         go_on: &mut dyn FnMut(f64) -> bool,
-    ) -> Result<Outcome<Ran>, StepError> {
+    ) -> Result<Round<Ran>, StepError> {
         let (result, condition, Checked { estimate, floor }) = run_and_check(
             self.problem,
             self.spec,
@@ -181,7 +185,7 @@ impl Candidate for Auto<'_> {
             go_on,
         )?;
         self.measured = Some(condition);
-        Ok(Outcome {
+        Ok(Round {
             run: Ran {
                 result,
                 condition,
@@ -233,7 +237,7 @@ impl Candidate for Auto<'_> {
     fn continues(&self, plan: &Plan, next: &Plan) -> bool {
         plan.method == next.method
     }
-    fn stalls(&self, plan: &Plan, _: &Policy) -> usize {
+    fn stalls(&self, plan: &Plan) -> usize {
         super::super::policy::of(plan.method).stalls
     }
 }

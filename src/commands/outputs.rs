@@ -321,7 +321,7 @@ pub fn schemas() -> Vec<(&'static str, String)> {
         ("lessons", text::<LessonList>()),
         ("sweep", text::<Sweep>()),
         ("map", text::<Map>()),
-        ("doctor", text::<crate::doctor::Diagnosis>()),
+        ("doctor", text::<crate::commands::doctor::Diagnosis>()),
         ("chapters", text::<Chapters>()),
         ("verify", text::<Verification>()),
         ("check", text::<Check>()),

@@ -263,7 +263,7 @@ pub const EXIT_STATUS: &[(&str, &str)] = &[
     ),
     (
         "2",
-        "bad input: an unknown flag or value, an invalid preset, theme, lesson, config or session file (every problem is named with its file, line and key), an output file that exists without --force, work refused as over the budget, or an interactive command (the explorer, lesson, compare, replay, follow) whose standard input or output is not a terminal",
+        "bad input: an unknown flag or value, an invalid preset, theme, lesson, config or session file (every problem is named with its file, line and key), an output file that exists without --force, work refused as over the budget, or an interactive command (the explorer, lesson, compare, replay, follow) whose standard input or output is not a terminal, or under TERM=dumb",
     ),
     (
         "128+N",

@@ -11,11 +11,11 @@ use std::fmt::Write as _;
 use crate::record::Recording;
 
 /// The player's script, inlined.
-const PLAYER_JS: &str = include_str!("../assets/asciinema-player/asciinema-player.min.js");
+const PLAYER_JS: &str = include_str!("../../assets/asciinema-player/asciinema-player.min.js");
 /// The player's style sheet, inlined.
-const PLAYER_CSS: &str = include_str!("../assets/asciinema-player/asciinema-player.css");
+const PLAYER_CSS: &str = include_str!("../../assets/asciinema-player/asciinema-player.css");
 /// The player's licence, inlined as a comment.
-const PLAYER_LICENSE: &str = include_str!("../assets/asciinema-player/LICENSE");
+const PLAYER_LICENSE: &str = include_str!("../../assets/asciinema-player/LICENSE");
 
 /// Text for HTML content and attributes.
 fn escape(text: &str) -> String {
@@ -100,7 +100,8 @@ pub fn export_html(
     seen: &mut dyn FnMut(usize),
 ) -> Result<usize, crate::record::RecordError> {
     let (cast, frames) = crate::cast::cast_text(rec, path, options, size, seen)?;
-    let name = crate::outputs::recorded_preset(rec).map_or_else(|| path.to_owned(), |p| p.name);
+    let name =
+        crate::commands::outputs::recorded_preset(rec).map_or_else(|| path.to_owned(), |p| p.name);
     let page = lecture_page(rec, &crate::record::title(rec, &name), &cast);
     crate::scenario::write::write_atomic(out, page.as_bytes(), replace).map_err(|source| {
         crate::record::RecordError::Io {

@@ -1,6 +1,6 @@
 //! The command layer's one error: why a command stopped, and so how the process ends.
 //!
-//! Every command (`main.rs`, `commands.rs`) returns an [`Outcome`]; `main` makes the one exit
+//! Every command (`main.rs`, `commands/`) returns an [`Outcome`]; `main` makes the one exit
 //! decision with [`Failure::exit`]: it prints the lines (`rattleback: error: …`, control
 //! characters stripped: the text can come from files) and gives the exit status the manual
 //! lists (`manual::EXIT_STATUS`): 0 done, 1 a run, a write or a verification failed, 2 the

@@ -18,7 +18,7 @@ use crate::scenario::shipped::DEFAULT_PRESET;
     about = "Explore the holonomic rattleback, Kapitza's pendulum and the celt",
     long_about = None,
     args_conflicts_with_subcommands = true,
-    after_help = crate::manual::after_help()
+    after_help = crate::commands::manual::after_help()
 )]
 pub struct Cli {
     /// What to do; without a command, the explorer opens.
@@ -47,9 +47,9 @@ pub struct Cli {
 pub fn command() -> clap::Command {
     use clap::CommandFactory as _;
     let mut cmd = Cli::command();
-    for (name, examples) in crate::manual::SUBCOMMAND_EXAMPLES {
+    for (name, examples) in crate::commands::manual::SUBCOMMAND_EXAMPLES {
         cmd = cmd.mut_subcommand(*name, |sub| {
-            sub.after_help(crate::manual::examples_text(examples))
+            sub.after_help(crate::commands::manual::examples_text(examples))
         });
     }
     cmd

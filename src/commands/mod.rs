@@ -1,14 +1,25 @@
-//! The small headless commands: `presets` (the catalogue) and `check` (validate files).
-//! Output goes to stdout, problems to stderr; exit 2 on any problem.
+//! The command layer (issue 69: its files in a folder of their own): argument parsing
+//! ([`cli`]), the one error and exit decision ([`failure`]), the manual, the outputs, the
+//! progress line, `doctor` and the web page, and here the small headless commands: `presets`
+//! (the catalogue) and `check` (validate files). Output goes to stdout, problems to stderr;
+//! exit 2 on any problem. `src/main.rs` dispatches to them.
+
+pub mod cli;
+pub mod doctor;
+pub mod failure;
+pub mod manual;
+pub mod outputs;
+pub mod page;
+pub mod progress;
 
 mod charts;
 
 use crate::scenario::text::one_line;
 use std::fmt::Write as _;
 
-use crate::failure::{Failure, Outcome};
+use crate::commands::failure::{Failure, Outcome};
 
-use crate::cli::{CheckArgs, ListArgs, ListFormat, PresetsAction, PresetsArgs};
+use crate::commands::cli::{CheckArgs, ListArgs, ListFormat, PresetsAction, PresetsArgs};
 use crate::scenario::PresetError;
 use crate::scenario::preset;
 use crate::scenario::shipped::catalogue;
@@ -25,7 +36,7 @@ pub fn say(text: &str) {
     say_raw(&format!("{text}\n"));
 }
 
-pub use crate::failure::{say_raw, stdout_failure};
+pub use crate::commands::failure::{say_raw, stdout_failure};
 
 macro_rules! say_err {
     ($($t:tt)*) => { $crate::scenario::text::warn(&format!($($t)*)) };
@@ -55,8 +66,8 @@ pub fn presets(args: &PresetsArgs) -> Outcome {
         };
     }
     let (entries, problems) = catalogue();
-    let json = crate::outputs::PresetList {
-        schema_version: crate::outputs::SCHEMA_VERSION,
+    let json = crate::commands::outputs::PresetList {
+        schema_version: crate::commands::outputs::SCHEMA_VERSION,
         model: None,
         presets: entries.clone(),
     };
@@ -101,7 +112,7 @@ pub fn themes(args: &ListArgs) -> Outcome {
     use crate::scenario::theme::{SHIPPED_THEMES, themes};
     let (all, problems) = themes();
     let user_dir = crate::scenario::shipped::config_dir().map(|d| d.join("themes"));
-    let entries: Vec<crate::outputs::ThemeEntry> = all
+    let entries: Vec<crate::commands::outputs::ThemeEntry> = all
         .into_iter()
         .map(|(name, spec)| {
             let user = user_dir
@@ -115,7 +126,7 @@ pub fn themes(args: &ListArgs) -> Outcome {
                 }
                 None => ("user", String::new()),
             };
-            crate::outputs::ThemeEntry {
+            crate::commands::outputs::ThemeEntry {
                 title: spec.name.clone(),
                 description: spec.description.clone(),
                 name,
@@ -124,8 +135,8 @@ pub fn themes(args: &ListArgs) -> Outcome {
             }
         })
         .collect();
-    let json = crate::outputs::ThemeList {
-        schema_version: crate::outputs::SCHEMA_VERSION,
+    let json = crate::commands::outputs::ThemeList {
+        schema_version: crate::commands::outputs::SCHEMA_VERSION,
         model: None,
         themes: entries,
     };
@@ -156,8 +167,8 @@ pub fn themes(args: &ListArgs) -> Outcome {
 /// `rattleback lessons`: every lesson, like `presets`.
 pub fn lessons(args: &ListArgs) -> Outcome {
     let (entries, problems) = crate::scenario::lesson::catalogue();
-    let json = crate::outputs::LessonList {
-        schema_version: crate::outputs::SCHEMA_VERSION,
+    let json = crate::commands::outputs::LessonList {
+        schema_version: crate::commands::outputs::SCHEMA_VERSION,
         model: None,
         lessons: entries,
     };
@@ -195,7 +206,7 @@ pub fn lessons(args: &ListArgs) -> Outcome {
 /// script was sourced completes too; a value that looks like a path completes as a path.
 #[must_use]
 pub fn command_with_completers() -> clap::Command {
-    attach_completers(crate::cli::command())
+    attach_completers(crate::commands::cli::command())
 }
 
 fn attach_completers(cmd: clap::Command) -> clap::Command {
@@ -291,18 +302,18 @@ pub fn completions(shell: clap_complete::Shell) -> Outcome {
 }
 
 /// `rattleback doctor`.
-pub fn doctor(args: &crate::cli::DoctorArgs) -> Outcome {
+pub fn doctor(args: &crate::commands::cli::DoctorArgs) -> Outcome {
     let look = &args.look;
-    let asked = crate::doctor::Asked {
+    let asked = crate::commands::doctor::Asked {
         ascii: look.ascii,
         colours_off: look.color.colours_off_here(),
         color_flag: look.color.name(),
-        marker: look.marker.map(crate::cli::MarkerChoice::name),
+        marker: look.marker.map(crate::commands::cli::MarkerChoice::name),
     };
-    let d = crate::doctor::diagnose(
+    let d = crate::commands::doctor::diagnose(
         &asked,
         load_config().map(|(c, _)| c),
-        crate::outputs::SCHEMA_VERSION,
+        crate::commands::outputs::SCHEMA_VERSION,
     );
     let text = match args.format {
         ListFormat::Json => json_text(&d),
@@ -313,9 +324,9 @@ pub fn doctor(args: &crate::cli::DoctorArgs) -> Outcome {
 
 /// `rattleback man`.
 pub fn man() -> Outcome {
-    let cmd = crate::cli::command();
+    let cmd = crate::commands::cli::command();
     let mut out = Vec::new();
-    if let Err(e) = crate::manual::render(cmd, &mut out) {
+    if let Err(e) = crate::commands::manual::render(cmd, &mut out) {
         return Err(Failure::failed(format!("rendering the manual: {e}")));
     }
     write_stdout(&out)
@@ -335,7 +346,9 @@ fn counted<R>(
     unit: &'static str,
     work: &dyn Fn(&(dyn Fn() + Sync)) -> R,
 ) -> R {
-    let progress = std::sync::Mutex::new(crate::progress::Progress::count(label, total, unit));
+    let progress = std::sync::Mutex::new(crate::commands::progress::Progress::count(
+        label, total, unit,
+    ));
     let count = std::sync::atomic::AtomicUsize::new(0);
     let out = work(&|| {
         let n = count.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
@@ -417,18 +430,21 @@ fn is_theme(src: &str) -> bool {
 }
 
 /// Refused before minutes of work: files of an earlier run are replaced only with `--force`.
-fn bench_refuses_old_files(args: &crate::cli::BenchArgs) -> Outcome {
-    let part = |p: crate::cli::BenchPart| args.only.is_none_or(|o| o == p);
-    let files: &[(crate::cli::BenchPart, &[&str])] = &[
+fn bench_refuses_old_files(args: &crate::commands::cli::BenchArgs) -> Outcome {
+    let part = |p: crate::commands::cli::BenchPart| args.only.is_none_or(|o| o == p);
+    let files: &[(crate::commands::cli::BenchPart, &[&str])] = &[
         (
-            crate::cli::BenchPart::WorkPrecision,
+            crate::commands::cli::BenchPart::WorkPrecision,
             &["work_precision.csv", "work_precision.svg"],
         ),
-        (crate::cli::BenchPart::Auto, &["auto_profile.csv"]),
-        (crate::cli::BenchPart::Kapitza, &["kapitza.csv"]),
-        (crate::cli::BenchPart::Celt, &["celt.csv"]),
-        (crate::cli::BenchPart::Stability, &["stability.csv"]),
-        (crate::cli::BenchPart::Segments, &["segments.csv"]),
+        (crate::commands::cli::BenchPart::Auto, &["auto_profile.csv"]),
+        (crate::commands::cli::BenchPart::Kapitza, &["kapitza.csv"]),
+        (crate::commands::cli::BenchPart::Celt, &["celt.csv"]),
+        (
+            crate::commands::cli::BenchPart::Stability,
+            &["stability.csv"],
+        ),
+        (crate::commands::cli::BenchPart::Segments, &["segments.csv"]),
     ];
     if !args.force
         && let Some(existing) = files
@@ -446,19 +462,19 @@ fn bench_refuses_old_files(args: &crate::cli::BenchArgs) -> Outcome {
 }
 
 /// `rattleback bench`.
-pub fn bench(args: &crate::cli::BenchArgs) -> Outcome {
+pub fn bench(args: &crate::commands::cli::BenchArgs) -> Outcome {
     use crate::bench;
     let config = bench::Config { quick: args.quick };
     if let Err(e) = std::fs::create_dir_all(&args.out) {
         return Err(Failure::input(format!("{}: {e}", args.out.display())));
     }
-    let part = |p: crate::cli::BenchPart| args.only.is_none_or(|o| o == p);
+    let part = |p: crate::commands::cli::BenchPart| args.only.is_none_or(|o| o == p);
     bench_refuses_old_files(args)?;
     let mut wrote = Vec::new();
     let fail = |path: &std::path::Path, e: std::io::Error| {
         Failure::failed(format!("{}: {e}", path.display()))
     };
-    if part(crate::cli::BenchPart::WorkPrecision) {
+    if part(crate::commands::cli::BenchPart::WorkPrecision) {
         let rows = bench::work_precision(config, &mut |line| say_err!("{line}"));
         say_raw!("{}", bench::table(&rows));
         say!("");
@@ -475,7 +491,7 @@ pub fn bench(args: &crate::cli::BenchArgs) -> Outcome {
             .map_err(|e| Failure::failed(format!("{}: {e}", svg.display())))?;
         wrote.extend([csv, svg]);
     }
-    if part(crate::cli::BenchPart::Auto) {
+    if part(crate::commands::cli::BenchPart::Auto) {
         say!(
             "\nauto at every stiffness (T = 30, tolerance 1e-8; errors against tests/fixtures/reference/averaged.toml)"
         );
@@ -501,7 +517,7 @@ pub fn bench(args: &crate::cli::BenchArgs) -> Outcome {
         wrote.push(path);
         Ok::<(), Failure>(())
     };
-    if part(crate::cli::BenchPart::Kapitza) {
+    if part(crate::commands::cli::BenchPart::Kapitza) {
         let rows = bench::kapitza::study(config.quick, &mut |line| say_err!("{line}"));
         let heading = "Kapitza's pendulum: cost against epsilon (T = 5; errors against tests/fixtures/reference/kapitza.toml)";
         scene(heading, bench::kapitza::table(&rows), "kapitza.csv", &|p| {
@@ -512,14 +528,14 @@ pub fn bench(args: &crate::cli::BenchArgs) -> Outcome {
             .map_err(|e| Failure::failed(format!("{}: {e}", svg.display())))?;
         curves.push(svg);
     }
-    if part(crate::cli::BenchPart::Celt) {
+    if part(crate::commands::cli::BenchPart::Celt) {
         let rows = bench::celt::study(config.quick, &mut |line| say_err!("{line}"));
         let heading = "The celt: run time against error (final omega against tests/fixtures/celt/references.json)";
         scene(heading, bench::celt::table(&rows), "celt.csv", &|p| {
             bench::celt::write_csv(&rows, p)
         })?;
     }
-    if part(crate::cli::BenchPart::Segments) {
+    if part(crate::commands::cli::BenchPart::Segments) {
         let rows = bench::segments::study(config.quick, &mut |line| say_err!("{line}"));
         let heading = "Long runs verified in segments: the wait before the first frame (first) against the run verified in one piece (whole), and all the horizons together (nested, on the second core)";
         scene(
@@ -530,7 +546,7 @@ pub fn bench(args: &crate::cli::BenchArgs) -> Outcome {
         )?;
     }
     wrote.extend(curves);
-    if part(crate::cli::BenchPart::Stability) {
+    if part(crate::commands::cli::BenchPart::Stability) {
         let stability = bench::stability(config);
         say!("\nStability\n{}", bench::stability_table(&stability));
         let path = args.out.join("stability.csv");
@@ -550,7 +566,7 @@ pub fn bench(args: &crate::cli::BenchArgs) -> Outcome {
 
 /// `rattleback lesson new NAME`: the commented skeleton, in the user's lessons folder (or
 /// `--out`), never over a file without `--force`.
-pub fn lesson_new(args: &crate::cli::LessonNewArgs) -> Outcome {
+pub fn lesson_new(args: &crate::commands::cli::LessonNewArgs) -> Outcome {
     let name = &args.name;
     let valid = (1..=64).contains(&name.chars().count())
         && name
@@ -639,15 +655,18 @@ pub fn check(args: &CheckArgs) -> Outcome {
         }
     }
     if args.format == ListFormat::Json {
-        let out = crate::outputs::Check {
-            schema_version: crate::outputs::SCHEMA_VERSION,
+        let out = crate::commands::outputs::Check {
+            schema_version: crate::commands::outputs::SCHEMA_VERSION,
             model: None,
             files: args
                 .files
                 .iter()
                 .map(|p| crate::scenario::write::label(p))
                 .collect(),
-            problems: problems.iter().map(crate::outputs::Problem::of).collect(),
+            problems: problems
+                .iter()
+                .map(crate::commands::outputs::Problem::of)
+                .collect(),
         };
         say_raw!("{}", json_text(&out));
         return if problems.is_empty() {
@@ -663,8 +682,8 @@ pub fn check(args: &CheckArgs) -> Outcome {
 }
 
 /// `rattleback study sweep|map`.
-pub fn study(command: &crate::cli::StudyCommand) -> Outcome {
-    use crate::cli::StudyCommand;
+pub fn study(command: &crate::commands::cli::StudyCommand) -> Outcome {
+    use crate::commands::cli::StudyCommand;
     // Ctrl-C (or any ending signal: `main` installs them) cancels the runs in flight and ends
     // with 128 + the signal, the progress bar erased and no file written.
     match command {
@@ -676,7 +695,7 @@ pub fn study(command: &crate::cli::StudyCommand) -> Outcome {
 
 /// The preset, horizon and tolerance of a study, or the exit of a bad input.
 fn study_setup(
-    common: &crate::cli::StudyCommon,
+    common: &crate::commands::cli::StudyCommon,
 ) -> Result<(crate::scenario::Preset, crate::physics::Model, f64, f64), Failure> {
     let preset =
         crate::scenario::shipped::resolve(&common.preset, &common.set).map_err(Failure::input)?;
@@ -695,7 +714,7 @@ fn study_setup(
 }
 
 /// Writes `files` (name, contents) into `--out`, refusing to replace without `--force`.
-fn write_outputs(common: &crate::cli::StudyCommon, files: &[(&str, String)]) -> Outcome {
+fn write_outputs(common: &crate::commands::cli::StudyCommon, files: &[(&str, String)]) -> Outcome {
     match &common.out {
         Some(dir) => write_files(dir, common.force, files),
         None => Ok(()),
@@ -759,7 +778,7 @@ fn sweep_budget(
     }
 }
 
-fn study_sweep(args: &crate::cli::SweepArgs) -> Outcome {
+fn study_sweep(args: &crate::commands::cli::SweepArgs) -> Outcome {
     use crate::study::sweep::{ladder, sweep};
     let (preset, model, t_end, tolerance) = study_setup(&args.common)?;
     let kind = model.kind();
@@ -802,10 +821,10 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> Outcome {
         );
     }
     let printed = match args.common.format {
-        crate::cli::StudyFormat::Json => {
+        crate::commands::cli::StudyFormat::Json => {
             let ladder = s.stiffness();
-            emit(&json_text(&crate::outputs::Sweep {
-                schema_version: crate::outputs::SCHEMA_VERSION,
+            emit(&json_text(&crate::commands::outputs::Sweep {
+                schema_version: crate::commands::outputs::SCHEMA_VERSION,
                 model: model.kind(),
                 preset: preset.name.clone(),
                 t_end,
@@ -818,13 +837,10 @@ fn study_sweep(args: &crate::cli::SweepArgs) -> Outcome {
                 estimates: s.rungs.iter().map(|r| r.estimate).collect(),
             }))
         }
-        crate::cli::StudyFormat::Csv => emit(&crate::scenario::text::clean(&csv)),
-        crate::cli::StudyFormat::Table => emit(&crate::scenario::text::clean(&sweep_table(
-            &preset.name,
-            t_end,
-            tolerance,
-            &s,
-        ))),
+        crate::commands::cli::StudyFormat::Csv => emit(&crate::scenario::text::clean(&csv)),
+        crate::commands::cli::StudyFormat::Table => emit(&crate::scenario::text::clean(
+            &sweep_table(&preset.name, t_end, tolerance, &s),
+        )),
     };
     printed?;
     // The files only when asked for (a scene never computes what it does not need).
@@ -952,8 +968,8 @@ pub fn load_config() -> Result<
 }
 
 /// `rattleback config path|show`.
-pub fn config(command: &crate::cli::ConfigCommand) -> Outcome {
-    use crate::cli::ConfigCommand;
+pub fn config(command: &crate::commands::cli::ConfigCommand) -> Outcome {
+    use crate::commands::cli::ConfigCommand;
     use crate::scenario::config;
     match command {
         ConfigCommand::Path => {

@@ -126,7 +126,7 @@ pub struct Asked {
 
 /// Looks at the environment, the terminal and the configuration.
 #[must_use]
-/// `schema_version` is the outputs' (`crate::outputs::SCHEMA_VERSION`, given by the command
+/// `schema_version` is the outputs' (`crate::commands::outputs::SCHEMA_VERSION`, given by the command
 /// layer: the outputs' schemas include this one's). `loaded` is the configuration as every command reads it (`--config FILE` already in
 /// effect), or every problem it has, as the commands would refuse it.
 pub fn diagnose(
