@@ -227,40 +227,35 @@ impl BodyPane<'_> {
         let long = if a >= b { (a, 0.0) } else { (0.0, b) };
         let trace = trace(run, a >= b);
         let theme = look.theme;
-        Canvas::default()
-            .marker(look.marker)
-            .background_color(theme.background)
-            .x_bounds([-sx, sx])
-            .y_bounds([-sy, sy])
-            .paint(|ctx| {
-                for w in outline.windows(2) {
-                    ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, theme.trail));
-                }
-                let (x0, y0) = rot(-long.0, -long.1);
-                let (x1, y1) = rot(long.0, long.1);
-                ctx.draw(&Line::new(x0, y0, x1, y1, theme.separatrix));
-                let (u0, v0) = rot(-cross.0, -cross.1);
-                let (u1, v1) = rot(cross.0, cross.1);
-                ctx.draw(&Line::new(u0, v0, u1, v1, theme.effective));
-                ctx.draw(&Points {
-                    coords: &[(0.0, 0.0)],
-                    color: theme.current,
-                });
-                ctx.layer();
-                super::marks::print_signed(ctx, &trace, (COUNTER, CLOCKWISE), theme);
-                // The tip of the long axis, bold, where the trace starts.
-                ctx.print(
-                    x1,
-                    y1,
-                    TextLine::styled(
-                        TIP.to_string(),
-                        Style::default()
-                            .fg(theme.current)
-                            .add_modifier(Modifier::BOLD),
-                    ),
-                );
-            })
-            .render(inner, buf);
+        canvas(look, [-sx, sx], [-sy, sy], |ctx| {
+            for w in outline.windows(2) {
+                ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, theme.trail));
+            }
+            let (x0, y0) = rot(-long.0, -long.1);
+            let (x1, y1) = rot(long.0, long.1);
+            ctx.draw(&Line::new(x0, y0, x1, y1, theme.separatrix));
+            let (u0, v0) = rot(-cross.0, -cross.1);
+            let (u1, v1) = rot(cross.0, cross.1);
+            ctx.draw(&Line::new(u0, v0, u1, v1, theme.effective));
+            ctx.draw(&Points {
+                coords: &[(0.0, 0.0)],
+                color: theme.current,
+            });
+            ctx.layer();
+            super::marks::print_signed(ctx, &trace, (COUNTER, CLOCKWISE), theme);
+            // The tip of the long axis, bold, where the trace starts.
+            ctx.print(
+                x1,
+                y1,
+                TextLine::styled(
+                    TIP.to_string(),
+                    Style::default()
+                        .fg(theme.current)
+                        .add_modifier(Modifier::BOLD),
+                ),
+            );
+        })
+        .render(inner, buf);
     }
 }
 
@@ -365,12 +360,11 @@ impl Widget for Profile<'_> {
             String::new()
         };
         let text = format!("{} {:+.3}{gain}", self.label, self.angle);
-        Canvas::default()
-            .marker(self.look.marker)
-            .background_color(theme.background)
-            .x_bounds([-half, half])
-            .y_bounds([floor, floor + span(half)])
-            .paint(|ctx| {
+        canvas(
+            self.look,
+            [-half, half],
+            [floor, floor + span(half)],
+            |ctx| {
                 if self.look.marker == ratatui::symbols::Marker::Dot {
                     ctx.marker(ratatui::symbols::Marker::Custom(GROUND));
                 }
@@ -397,9 +391,26 @@ impl Widget for Profile<'_> {
                     floor + span(half),
                     TextLine::styled(text.clone(), Style::default().fg(theme.dim)),
                 );
-            })
-            .render(area, buf);
+            },
+        )
+        .render(area, buf);
     }
+}
+
+/// A canvas over `x` × `y` in the theme's background, drawn with the terminal's marker: the body
+/// panes' (the rattleback's and the celt's here, the pendulum's in `pendulum.rs`).
+pub(super) fn canvas<'a, F: Fn(&mut ratatui::widgets::canvas::Context<'_>)>(
+    look: &Look,
+    x: [f64; 2],
+    y: [f64; 2],
+    paint: F,
+) -> Canvas<'a, F> {
+    Canvas::default()
+        .marker(look.marker)
+        .background_color(look.theme.background)
+        .x_bounds(x)
+        .y_bounds(y)
+        .paint(paint)
 }
 
 #[cfg(test)]

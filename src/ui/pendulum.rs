@@ -16,7 +16,7 @@ use ratatui::style::{Modifier, Style};
 use ratatui::symbols::Marker;
 use ratatui::text::Line as TextLine;
 use ratatui::widgets::Widget;
-use ratatui::widgets::canvas::{Canvas, Context, Line, Points};
+use ratatui::widgets::canvas::{Context, Line, Points};
 
 use super::marks::{Facts, Section, curve, printed};
 use super::{Look, framed};
@@ -199,60 +199,55 @@ impl Widget for PendulumPane<'_> {
         };
         let label = look.charset.spell(&label);
         let trace = trace(run);
-        Canvas::default()
-            .marker(look.marker)
-            .background_color(theme.background)
-            .x_bounds([-sx, sx])
-            .y_bounds([-sy, sy])
-            .paint(|ctx| {
-                // One point per cell (the console, ASCII): each part its own character, as
-                // the legend shows it; else the marker's dots.
-                let one_per_cell = look.marker == Marker::Dot;
-                let part = |ctx: &mut Context<'_>, c: char| {
-                    if one_per_cell {
-                        ctx.marker(Marker::Custom(c));
-                    }
-                };
-                // The pivot's travel, a short rail.
-                part(ctx, RAIL);
-                ctx.draw(&Line::new(0.0, -travel, 0.0, travel, theme.current));
-                ctx.layer();
-                if let Some(at) = at {
-                    // The averaged rod: dots from the pivot's mean position.
-                    let (xa, ya) = at.averaged_bob();
-                    let dots: Vec<(f64, f64)> = (1..=AVERAGED_DOTS)
-                        .map(|i| {
-                            let s = f64::from(i) / f64::from(AVERAGED_DOTS + 1);
-                            (s * xa, s * ya)
-                        })
-                        .collect();
-                    part(ctx, DOT);
-                    ctx.draw(&Points {
-                        coords: &dots,
-                        color: theme.effective,
-                    });
-                    ctx.layer();
-                    // The true rod, from the pivot where it is.
-                    let (x1, y1) = at.bob();
-                    part(ctx, ROD);
-                    ctx.draw(&Line::new(0.0, at.pivot, x1, y1, theme.trail));
+        super::body::canvas(look, [-sx, sx], [-sy, sy], |ctx| {
+            // One point per cell (the console, ASCII): each part its own character, as
+            // the legend shows it; else the marker's dots.
+            let one_per_cell = look.marker == Marker::Dot;
+            let part = |ctx: &mut Context<'_>, c: char| {
+                if one_per_cell {
+                    ctx.marker(Marker::Custom(c));
                 }
+            };
+            // The pivot's travel, a short rail.
+            part(ctx, RAIL);
+            ctx.draw(&Line::new(0.0, -travel, 0.0, travel, theme.current));
+            ctx.layer();
+            if let Some(at) = at {
+                // The averaged rod: dots from the pivot's mean position.
+                let (xa, ya) = at.averaged_bob();
+                let dots: Vec<(f64, f64)> = (1..=AVERAGED_DOTS)
+                    .map(|i| {
+                        let s = f64::from(i) / f64::from(AVERAGED_DOTS + 1);
+                        (s * xa, s * ya)
+                    })
+                    .collect();
+                part(ctx, DOT);
+                ctx.draw(&Points {
+                    coords: &dots,
+                    color: theme.effective,
+                });
                 ctx.layer();
-                super::marks::print_signed(ctx, &trace, (GROWING, SHRINKING), theme);
-                if let Some(at) = at {
-                    let (xa, ya) = at.averaged_bob();
-                    ctx.print(xa, ya, styled(AVERAGED_BOB, theme.effective, false));
-                    let (x1, y1) = at.bob();
-                    ctx.print(x1, y1, styled(BOB, theme.current, true));
-                    ctx.print(0.0, at.pivot, styled(PIVOT, theme.current, true));
-                }
-                ctx.print(
-                    -sx,
-                    -sy,
-                    TextLine::styled(label.clone(), Style::default().fg(theme.dim)),
-                );
-            })
-            .render(inner, buf);
+                // The true rod, from the pivot where it is.
+                let (x1, y1) = at.bob();
+                part(ctx, ROD);
+                ctx.draw(&Line::new(0.0, at.pivot, x1, y1, theme.trail));
+            }
+            ctx.layer();
+            super::marks::print_signed(ctx, &trace, (GROWING, SHRINKING), theme);
+            if let Some(at) = at {
+                let (xa, ya) = at.averaged_bob();
+                ctx.print(xa, ya, styled(AVERAGED_BOB, theme.effective, false));
+                let (x1, y1) = at.bob();
+                ctx.print(x1, y1, styled(BOB, theme.current, true));
+                ctx.print(0.0, at.pivot, styled(PIVOT, theme.current, true));
+            }
+            ctx.print(
+                -sx,
+                -sy,
+                TextLine::styled(label.clone(), Style::default().fg(theme.dim)),
+            );
+        })
+        .render(inner, buf);
     }
 }
 

@@ -33,7 +33,7 @@ use crate::physics::numerics::compositions::{Composition, Split};
 use crate::physics::numerics::dop853::Stats;
 use crate::physics::numerics::dop853::{Dop853, Field};
 use crate::physics::numerics::roots::find_root;
-use crate::physics::numerics::stepper::Stepper;
+use crate::physics::numerics::stepper::FullCore;
 
 /// The methods this model offers (`auto` resolves to one of them).
 pub const METHODS: [Method; 13] = Method::all_but(&[Method::Dop853Projected, Method::Locked]);
@@ -146,22 +146,18 @@ impl Field<2> for FullField {
     }
 }
 
-/// The integrator of a full-model flow (DOP853, or the Taylor series), and how it starts.
-pub trait FullCore: Stepper<2> {
-    /// The method it is.
-    const METHOD: Method;
-    /// Starts the full model of `params` at `(0, y0)` with tolerance `tol`.
-    fn start(params: &Params, y0: Vector2<f64>, tol: f64) -> Self;
-}
+/// The pendulum's full-model cores: `FullCore<2, Params>`.
+pub trait Core: FullCore<2, Params> {}
+impl<C: FullCore<2, Params>> Core for C {}
 
-impl FullCore for Dop853<2, FullField> {
+impl FullCore<2, Params> for Dop853<2, FullField> {
     const METHOD: Method = Method::Dop853;
     fn start(params: &Params, y0: Vector2<f64>, tol: f64) -> Self {
         Dop853::new(FullField(*params), 0.0, y0, tol)
     }
 }
 
-impl FullCore for Taylor {
+impl FullCore<2, Params> for Taylor {
     const METHOD: Method = Method::Taylor;
     fn start(params: &Params, y0: Vector2<f64>, tol: f64) -> Self {
         Taylor::new(params, 0.0, y0, tol)
@@ -182,7 +178,7 @@ pub struct Full<C> {
     core: C,
 }
 
-impl<C: FullCore> Full<C> {
+impl<C: Core> Full<C> {
     /// Starts at the problem's initial values with tolerance `tol`.
     #[must_use]
     pub fn new(problem: &Problem, tol: f64) -> Self {
@@ -210,7 +206,7 @@ impl<C: FullCore> Full<C> {
     }
 }
 
-impl<C: FullCore> Flow for Full<C> {
+impl<C: Core> Flow for Full<C> {
     crate::physics::flow::on_core!();
     fn method(&self) -> Method {
         C::METHOD

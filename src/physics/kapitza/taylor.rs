@@ -188,8 +188,9 @@ mod tests {
     /// steps a forcing period.
     #[test]
     fn agrees_with_dop853_on_a_forced_swing() {
-        use crate::physics::kapitza::flows::{FullCore, FullField};
+        use crate::physics::kapitza::flows::FullField;
         use crate::physics::numerics::dop853::Dop853;
+        use crate::physics::numerics::stepper::FullCore;
         let p = Params {
             a: -1.0,
             b: 0.3,
@@ -197,7 +198,7 @@ mod tests {
         };
         let y0 = Vector2::new(1.0, 0.2);
         let mut taylor = Taylor::new(&p, 0.0, y0, 1e-13);
-        let mut dop = <Dop853<2, FullField> as FullCore>::start(&p, y0, 1e-15);
+        let mut dop = <Dop853<2, FullField> as FullCore<2, _>>::start(&p, y0, 1e-15);
         let t_end = 3.0;
         let (worst, end) = crate::physics::numerics::stepper::gaps(&mut taylor, &mut dop, t_end);
         assert!(end < 1e-10, "end {end}");

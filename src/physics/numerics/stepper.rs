@@ -1,11 +1,21 @@
 //! What a full model's flow needs of its integrator, whichever it is (DOP853 on any field, the
 //! Taylor series of a scene): it steps, interpolates inside its last step and counts its work.
-//! Each scene's `FullCore` adds how to start it on that scene's model.
+//! [`FullCore`] adds how to start it on a scene's model (one trait for every scene, issue 69:
+//! each scene had its own copy).
 
 use nalgebra::SVector;
 
 use super::dop853::{Dop853, Field, Stats};
-use crate::physics::method::StepError;
+use crate::physics::method::{Method, StepError};
+
+/// The integrator of a scene's full-model flow (DOP853, or the Taylor series) on the scene's
+/// parameters `P`, and how it starts.
+pub trait FullCore<const N: usize, P>: Stepper<N> {
+    /// The method it is.
+    const METHOD: Method;
+    /// Starts the full model of `params` at `(0, y0)` with tolerance `tol`.
+    fn start(params: &P, y0: SVector<f64, N>, tol: f64) -> Self;
+}
 
 /// An integrator of an `N`-dimensional state.
 pub trait Stepper<const N: usize>: Clone + Send + 'static {

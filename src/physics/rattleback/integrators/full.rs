@@ -8,7 +8,7 @@ use crate::physics::flow::Flow;
 use crate::physics::method::Method;
 use crate::physics::numerics::dop853::{Dop853, Field};
 use crate::physics::numerics::roots::find_root;
-use crate::physics::numerics::stepper::Stepper;
+use crate::physics::numerics::stepper::FullCore;
 use crate::physics::rattleback::model::{ALPHA_DOT, State, energy, initial_state, rhs};
 use crate::physics::rattleback::params::{Params, Problem};
 
@@ -33,22 +33,18 @@ impl Field<4> for FullField {
     }
 }
 
-/// The integrator of a full-model flow (DOP853, or the Taylor series), and how it starts.
-pub trait FullCore: Stepper<4> {
-    /// The method it is.
-    const METHOD: Method;
-    /// Starts the full model of `params` at `(0, y0)` with tolerance `tol`.
-    fn start(params: &Params, y0: State, tol: f64) -> Self;
-}
+/// The rattleback's full-model cores: `FullCore<4, Params>`.
+pub trait Core: FullCore<4, Params> {}
+impl<C: FullCore<4, Params>> Core for C {}
 
-impl FullCore for Dop853<4, FullField> {
+impl FullCore<4, Params> for Dop853<4, FullField> {
     const METHOD: Method = Method::Dop853;
     fn start(params: &Params, y0: State, tol: f64) -> Self {
         Dop853::new(FullField(*params, 1.0 / params.omega_max()), 0.0, y0, tol)
     }
 }
 
-impl FullCore for TaylorCore {
+impl FullCore<4, Params> for TaylorCore {
     const METHOD: Method = Method::Taylor;
     fn start(params: &Params, y0: State, tol: f64) -> Self {
         TaylorCore::new(params, 0.0, y0, tol)
@@ -67,7 +63,7 @@ pub struct Full<C> {
     core: C,
 }
 
-impl<C: FullCore> Full<C> {
+impl<C: Core> Full<C> {
     /// Starts at the problem's initial values with tolerance `tol`.
     #[must_use]
     pub fn new(problem: &Problem, tol: f64) -> Self {
@@ -89,7 +85,7 @@ impl<C: FullCore> Full<C> {
     }
 }
 
-impl<C: FullCore> Flow for Full<C> {
+impl<C: Core> Flow for Full<C> {
     crate::physics::flow::on_core!();
     fn method(&self) -> Method {
         C::METHOD

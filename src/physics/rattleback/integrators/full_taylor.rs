@@ -246,7 +246,8 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 mod tests {
     use super::*;
     use crate::physics::numerics::dop853::Dop853;
-    use crate::physics::rattleback::integrators::full::{FullCore, FullField};
+    use crate::physics::numerics::stepper::FullCore;
+    use crate::physics::rattleback::integrators::full::FullField;
 
     /// The series against DOP853 at 1e-15 on a rotating body at k = 300 (about 100 fast
     /// periods): the end and the series at every step's middle within 1e-9, at a few steps a
@@ -261,7 +262,7 @@ mod tests {
         };
         let y0 = State::new(0.02, 0.4, -0.5, 1.2);
         let mut taylor = TaylorCore::new(&p, 0.0, y0, 1e-13);
-        let mut dop = <Dop853<4, FullField> as FullCore>::start(&p, y0, 1e-15);
+        let mut dop = <Dop853<4, FullField> as FullCore<4, _>>::start(&p, y0, 1e-15);
         let t_end = 30.0;
         let (worst, end) = crate::physics::numerics::stepper::gaps(&mut taylor, &mut dop, t_end);
         assert!(end < 1e-9, "end {end}");
