@@ -100,9 +100,29 @@ pub struct Studies {
     /// The weak-* convergence of the fast coordinate's square, and its words (`None`: the scene
     /// has no weak-* pane).
     pub weak: Option<WeakWords>,
+    /// Its chart's words (the map pane `M`, `study map`): every scene has a chart, said here
+    /// in the scene's folder (issue 69: they were a match over the scenes in `study/`).
+    pub chart: ChartWords,
     /// The shipped preset the compare pane sets beside this scene when no partner was chosen
     /// (the paper's contrast: the holonomic rattleback beside the rolling celt).
     pub counterpart: &'static str,
+}
+
+/// The words of a scene's chart, for the map pane's legend and heading.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ChartWords {
+    /// The legend's heading.
+    pub title: &'static str,
+    /// Whether a cell is a stability verdict (else a count of reversals).
+    pub stability: bool,
+    /// What the curve is.
+    pub curve: &'static str,
+    /// The axes, in a line.
+    pub note: &'static str,
+    /// Short names of the axes.
+    pub axes: (&'static str, &'static str),
+    /// Whether `f` switches the source (the rattleback's limit or full model).
+    pub sources: bool,
 }
 
 /// One read-only line the panel shows under a model's parameters.
@@ -325,6 +345,8 @@ pub trait Posed {
     fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned;
     /// Predicted seconds of a run (the model's cost model).
     fn predicted_seconds(&self, ask: &Asked) -> f64;
+    /// Its point on the scene's chart's axes ([`Studies::chart`]'s `axes`).
+    fn chart_point(&self) -> (f64, f64);
     /// The scene's weak-* study (its cost and its computation), or `None` for a scene without
     /// one, whose [`Studies::weak`] is `None` too (`tests/it/scenes.rs` checks that both agree
     /// on every shipped preset). No default: a new scene says which it is (issue 69).

@@ -265,6 +265,19 @@ pub struct Rounds<P> {
     pub budget: f64,
 }
 
+impl<P> Rounds<P> {
+    /// From `first` to `tolerance` with no budget: work whose price was admitted as a whole
+    /// (a chart's cell).
+    #[must_use]
+    pub fn unbudgeted(first: P, tolerance: f64) -> Self {
+        Self {
+            first,
+            tolerance,
+            budget: f64::INFINITY,
+        }
+    }
+}
+
 /// Verifies `candidate` from the plan `ask.first` until its estimate meets `ask.tolerance`, as
 /// the candidate's policy says, the rounds together predicted at most `ask.budget` seconds (the
 /// first always runs).

@@ -76,16 +76,9 @@ struct EventsOut {
     band: f64,
 }
 
-#[derive(Serialize)]
-struct EnergyOut {
-    initial: f64,
-    #[serde(rename = "final")]
-    final_: f64,
-    /// Largest `|E − E(0)|` over accepted steps.
-    max_drift: f64,
-    /// `max_drift / |E(0)|`.
-    rel_drift: f64,
-}
+/// The energy: `max_drift` the largest `|E − E(0)|` over accepted steps, `rel_drift` that over
+/// `|E(0)|`.
+type EnergyOut = super::render::DriftOut;
 
 #[derive(Serialize)]
 struct ConstraintOut {
@@ -208,7 +201,7 @@ pub(super) fn simulate_to(
             initial: e0,
             final_: result.energy_final,
             max_drift: result.max_energy_drift,
-            rel_drift: result.max_energy_drift / e0.abs().max(f64::MIN_POSITIVE),
+            rel_drift: Some(result.max_energy_drift / e0.abs().max(f64::MIN_POSITIVE)),
         },
         constraint: ConstraintOut {
             gamma_norm_error: result.gamma_norm_error,
@@ -279,7 +272,9 @@ fn table(r: &Report) -> String {
     let _ = writeln!(
         o,
         "energy        {:.12} (drift {:.2e}, relative {:.2e})",
-        r.energy.initial, r.energy.max_drift, r.energy.rel_drift
+        r.energy.initial,
+        r.energy.max_drift,
+        r.energy.rel_drift.unwrap_or(f64::NAN)
     );
     let c = &r.constraint;
     let _ = writeln!(

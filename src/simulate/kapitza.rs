@@ -73,16 +73,10 @@ struct EventsOut {
     falls: Times,
 }
 
-#[derive(Serialize)]
-struct EnergyOut {
-    /// `E_eff` of the averaged start.
-    initial: f64,
-    #[serde(rename = "final")]
-    final_: f64,
-    /// Largest `|E_eff − E_eff(0)|` over the run: the limit's energy drift along the full
-    /// motion (O(ε²) for a resolved run; the tolerance for the limit itself).
-    max_drift: f64,
-}
+/// `E_eff` of the averaged start and at the end; `max_drift` the largest `|E_eff − E_eff(0)|`
+/// over the run: the limit's energy drift along the full motion (O(ε²) for a resolved run; the
+/// tolerance for the limit itself). No relative drift.
+type EnergyOut = super::render::DriftOut;
 
 #[derive(Serialize)]
 struct EffectiveOut {
@@ -231,6 +225,7 @@ pub(super) fn simulate_to(
             initial: result.energy_initial,
             final_: result.energy_final,
             max_drift: result.max_energy_drift,
+            rel_drift: None,
         },
         effective: effective_out(problem, &limit_run),
         stats: StatsOut::of(&result.stats, ran.wall_seconds),

@@ -131,3 +131,16 @@ pub(crate) fn work_line(o: &mut String, s: &StatsOut) {
         s.steps, s.rejected, s.rhs_evaluations, s.wall_seconds
     );
 }
+
+/// A report's energy when it is followed as a drift (the pendulum's `E_eff`, the celt's `E`):
+/// both ends, the largest drift over the run, and where the scene says it, that drift relative
+/// to the start (issue 69: one struct, not one per report).
+#[derive(Serialize)]
+pub(super) struct DriftOut {
+    pub initial: f64,
+    #[serde(rename = "final")]
+    pub final_: f64,
+    pub max_drift: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rel_drift: Option<f64>,
+}

@@ -1,7 +1,7 @@
 //! What a chart's cells are: each scene's chart over its two axes (the pendulum's Floquet
-//! chart, the celt's reversal chart), a cell's verdict, and the words the chart is described
-//! with. Below `chart`, which dispatches over the scenes (`words`, `point_of`); above
-//! `output` (the axes).
+//! chart, the celt's reversal chart) and a cell's verdict. The words a chart is described with
+//! and a model's point on it are the scene's own (`Studies::chart`, `Posed::chart_point`).
+//! Below `chart`, which dispatches over the scenes; above `output` (the axes).
 
 use super::output::Axis;
 use crate::physics::celt;
@@ -198,21 +198,9 @@ impl CeltChart {
     pub fn cell_seconds(&self) -> f64 {
         let x = self.columns;
         let corner = self.problem(x.cells - 1, 0).unwrap_or(self.problem);
-        let run = |local: f64| {
-            celt::budget::cost_seconds(
-                &corner,
-                &crate::physics::method::Asked::new(
-                    crate::physics::Method::Dop853,
-                    local,
-                    None,
-                    self.t_end,
-                ),
-            )
-        };
-        let first = (self.tolerance * celt::policy::FIRST).clamp(1e-12, 1e-6);
         let pairs = CELT_PAIRS_SHORT
             + (CELT_PAIRS_LONG - CELT_PAIRS_SHORT) * (self.t_end / CELT_DECISION_TIME).min(1.0);
-        pairs * (run(first) + run(celt::policy::POLICY.companion(first)))
+        pairs * celt::reversal::first_round_seconds(&corner, self.t_end, self.tolerance)
     }
 }
 
@@ -237,22 +225,7 @@ impl CeltChart {
     }
 }
 
-/// The words of a scene's chart, for the map pane's legend and heading.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ChartWords {
-    /// The legend's heading.
-    pub title: &'static str,
-    /// Whether a cell is a stability verdict (else a count of reversals).
-    pub stability: bool,
-    /// What the curve is.
-    pub curve: &'static str,
-    /// The axes, in a line.
-    pub note: &'static str,
-    /// Short names of the axes.
-    pub axes: (&'static str, &'static str),
-    /// Whether `f` switches the source (the rattleback's limit or full model).
-    pub sources: bool,
-}
+pub use crate::physics::scene::ChartWords;
 
 /// The celt's `problem` spun at `omega_z` with the product of inertia `product`.
 ///

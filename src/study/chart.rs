@@ -50,50 +50,17 @@ pub enum Chart {
     Celt(CeltChart),
 }
 
-/// The words of `kind`'s chart.
+/// The words of `kind`'s chart: the scene's own (`Studies::chart`, in its folder).
 #[must_use]
 pub fn words(kind: ModelKind) -> ChartWords {
-    match kind {
-        ModelKind::Rattleback => ChartWords {
-            title: "regime map (M)",
-            stability: false,
-            curve: "the critical ratio of the paper's theorems",
-            note: "across: alpha_dot0^2/gamma_dot0^2; up: iy/ix (log); f: limit or full model",
-            axes: ("alpha_dot0^2/gamma_dot0^2", "iy/ix"),
-            sources: true,
-        },
-        ModelKind::Kapitza => ChartWords {
-            title: "stability chart (M)",
-            stability: true,
-            curve: "Kapitza's criterion b^2 = 2a (the limit eps -> 0)",
-            note: "across: a; up: b (log), at the current eps; Enter loads a and b",
-            axes: ("a", "b"),
-            sources: false,
-        },
-        ModelKind::Celt => ChartWords {
-            title: "reversal chart (M)",
-            stability: false,
-            curve: "linear theory: the tilt reaches 1 rad within T at the steady spin's growth rate",
-            note: "across: initial omega_z (both senses); up: product of inertia",
-            axes: ("omega_z", "D"),
-            sources: false,
-        },
-    }
+    kind.studies().chart
 }
 
 /// A model's point on its chart's axes (the rattleback's `(α̇0²/γ̇0², iy/ix)`, the pendulum's
-/// `(a, b)`, the celt's `(ω_z, D)`).
+/// `(a, b)`, the celt's `(ω_z, D)`): the scene's own (`Posed::chart_point`).
 #[must_use]
 pub fn point_of(model: &Model) -> (f64, f64) {
-    match model {
-        Model::Rattleback(p) => {
-            let (params, s) = (p.params(), p.start());
-            let gamma_dot = if s.gamma_dot == 0.0 { 1.0 } else { s.gamma_dot };
-            ((s.alpha_dot / gamma_dot).powi(2), params.iy / params.ix)
-        }
-        Model::Kapitza(p) => (p.params().a, p.params().b),
-        Model::Celt(p) => (p.start().omega[2], p.params().product),
-    }
+    model.posed().chart_point()
 }
 
 /// The explorer's pane: the cells of each scene's chart there.

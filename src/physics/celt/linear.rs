@@ -95,17 +95,11 @@ pub fn crossings(p: &Params, lo: f64, hi: f64, samples: usize, level: f64) -> Ve
 mod tests {
     use super::*;
 
+    /// The Kane–Levinson body with another product of inertia.
     fn kane_levinson(product: f64) -> Params {
         Params {
-            a: 20.0,
-            b: 3.0,
-            c: 2.0,
-            offset: 1.0,
-            ix: 2.0,
-            iy: 16.0,
-            iz: 17.0,
             product,
-            gravity: 981.0,
+            ..Params::KANE_LEVINSON
         }
     }
 

@@ -77,6 +77,23 @@ impl Candidate for Counted {
     }
 }
 
+/// The first round's local tolerance for reversal times verified to `tolerance` seconds.
+fn first_local(tolerance: f64) -> f64 {
+    (tolerance * FIRST).clamp(1e-12, 1e-6)
+}
+
+/// Predicted seconds of the first round of [`reversals`] (the run and its companion): what a
+/// chart's cell is priced in, asked of the run itself (issue 69: the chart re-derived the first
+/// tolerance, so the two could drift apart).
+#[must_use]
+pub fn first_round_seconds(problem: &Problem, t_end: f64, tolerance: f64) -> f64 {
+    let candidate = Counted {
+        problem: *problem,
+        t_end,
+    };
+    candidate.cost(&first_local(tolerance))
+}
+
 /// The reversals of `problem` in `[0, t_end]`, their times verified to `tolerance` seconds.
 ///
 /// # Errors
@@ -91,16 +108,8 @@ pub fn reversals(
         problem: *problem,
         t_end,
     };
-    let first = (tolerance * FIRST).clamp(1e-12, 1e-6);
-    let v = verify(
-        &mut candidate,
-        Rounds {
-            first,
-            tolerance,
-            budget: f64::INFINITY,
-        },
-        go_on,
-    )?;
+    let first = first_local(tolerance);
+    let v = verify(&mut candidate, Rounds::unbudgeted(first, tolerance), go_on)?;
     let best = v.best.1;
     Ok(Reversals {
         count: best.reversal_count,

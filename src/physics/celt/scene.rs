@@ -17,8 +17,8 @@ use crate::physics::method::{Method, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::PlanRequest;
 use crate::physics::scene::{
-    Drawing, Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve, Studies,
-    SummaryLine, WeakStudy, Words,
+    ChartWords, Drawing, Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve,
+    Studies, SummaryLine, WeakStudy, Words,
 };
 
 const LENGTH: Scale = Scale::linear(0.1, 1.0);
@@ -184,6 +184,14 @@ pub static SCENE: Scene = Scene {
     small: None,
     studies: Studies {
         weak: None,
+        chart: ChartWords {
+            title: "reversal chart (M)",
+            stability: false,
+            curve: "linear theory: the tilt reaches 1 rad within T at the steady spin's growth rate",
+            note: "across: initial omega_z (both senses); up: product of inertia",
+            axes: ("omega_z", "D"),
+            sources: false,
+        },
         counterpart: "subcritical",
     },
 };
@@ -297,6 +305,9 @@ impl Posed for Problem {
     }
     fn predicted_seconds(&self, ask: &Asked) -> f64 {
         super::budget::cost_seconds(self, ask)
+    }
+    fn chart_point(&self) -> (f64, f64) {
+        (self.start().omega[2], self.params().product)
     }
     fn weak(&self) -> Option<&dyn WeakStudy> {
         // The rolling rattleback has no fast coordinate whose square converges weakly.

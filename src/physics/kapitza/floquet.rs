@@ -102,20 +102,15 @@ impl Mathieu {
     }
 }
 
-/// The verification of a trace: a companion 16× looser, refined 4× at least (16× when blind),
-/// to 1e-14 at the tightest, five rounds at most, one stall stops it (one period of a smooth
+/// The verification of a trace: the pendulum's run's policy (refined 4× at least, 16× when
+/// blind, to 1e-14 at the tightest, five rounds at most, one stall stops it) with a companion
+/// 16× looser, and a round-off floor above the tolerance stops it (one period of a smooth
 /// linear equation: DOP853 converges cleanly down to rounding, so a stall is the floor).
 pub const POLICY: Policy = Policy {
     companion_looser: 16.0,
-    companion_cap: 1e-3,
     companion_error: 14.0,
-    refine: 0.25,
-    blind_refine: 1.0 / 16.0,
-    tightest: 1e-14,
-    step_safety: 1.25,
-    max_refinements: 4,
-    stalls: 1,
     floor_stops: true,
+    ..super::policy::POLICY
 };
 
 /// The estimate is the two runs' difference (plus the floor) times this margin. Measured
@@ -205,11 +200,7 @@ pub fn floquet(m: Mathieu, tolerance: f64) -> Result<Floquet, StepError> {
     // Its best run again: the loop keeps what it measured, not the trace.
     let v = verify(
         &mut candidate,
-        Rounds {
-            first,
-            tolerance,
-            budget: f64::INFINITY,
-        },
+        Rounds::unbudgeted(first, tolerance),
         &mut |_| true,
     )?;
     let plan = v.best.0.plan;

@@ -13,8 +13,8 @@ use crate::physics::method::{Method, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{PlanRequest, Resolution, Resolved};
 use crate::physics::scene::{
-    Drawing, Found, Pivot, Planned, Posed, Scene, SecondEvents, Shown, SlowCurve, SmallParameter,
-    Studies, SummaryLine, WeakStudy, WeakView, WeakWords, Words,
+    ChartWords, Drawing, Found, Pivot, Planned, Posed, Scene, SecondEvents, Shown, SlowCurve,
+    SmallParameter, Studies, SummaryLine, WeakStudy, WeakView, WeakWords, Words,
 };
 
 const STRENGTH: Scale = Scale::linear(0.05, 0.5);
@@ -99,6 +99,14 @@ pub static SCENE: Scene = Scene {
             observable: "the full motion's rate, pointwise (its fast ripple)",
             reference: "the limit's rate, averaged alike (dashed)",
         }),
+        chart: ChartWords {
+            title: "stability chart (M)",
+            stability: true,
+            curve: "Kapitza's criterion b^2 = 2a (the limit eps -> 0)",
+            note: "across: a; up: b (log), at the current eps; Enter loads a and b",
+            axes: ("a", "b"),
+            sources: false,
+        },
         counterpart: "subcritical",
     },
 };
@@ -189,6 +197,9 @@ impl Posed for Problem {
     }
     fn predicted_seconds(&self, ask: &Asked) -> f64 {
         super::plan::predicted_seconds(self, ask)
+    }
+    fn chart_point(&self) -> (f64, f64) {
+        (self.params().a, self.params().b)
     }
     fn weak(&self) -> Option<&dyn WeakStudy> {
         Some(self)

@@ -15,8 +15,8 @@ use crate::physics::method::{Method, StepError};
 use crate::physics::params::ParamError;
 use crate::physics::plan::PlanRequest;
 use crate::physics::scene::{
-    Drawing, Planned, Posed, Scene, Shown, SlowCurve, SmallParameter, Studies, SummaryLine,
-    WeakStudy, WeakView, WeakWords, Words,
+    ChartWords, Drawing, Planned, Posed, Scene, Shown, SlowCurve, SmallParameter, Studies,
+    SummaryLine, WeakStudy, WeakView, WeakWords, Words,
 };
 
 /// The rattleback's parameters (their table lives with them, `params.rs`).
@@ -64,6 +64,14 @@ pub static SCENE: Scene = Scene {
             observable: "gamma_dot^2 g^1.5 of the full motion, pointwise (between 0 and 2 theta)",
             reference: "theta, the adiabatic invariant (dashed)",
         }),
+        chart: ChartWords {
+            title: "regime map (M)",
+            stability: false,
+            curve: "the critical ratio of the paper's theorems",
+            note: "across: alpha_dot0^2/gamma_dot0^2; up: iy/ix (log); f: limit or full model",
+            axes: ("alpha_dot0^2/gamma_dot0^2", "iy/ix"),
+            sources: true,
+        },
         counterpart: "celt-clockwise",
     },
 };
@@ -151,6 +159,11 @@ impl Posed for Problem {
     }
     fn predicted_seconds(&self, ask: &Asked) -> f64 {
         super::plan::predicted_seconds(self, ask)
+    }
+    fn chart_point(&self) -> (f64, f64) {
+        let (params, s) = (self.params(), self.start());
+        let gamma_dot = if s.gamma_dot == 0.0 { 1.0 } else { s.gamma_dot };
+        ((s.alpha_dot / gamma_dot).powi(2), params.iy / params.ix)
     }
     fn weak(&self) -> Option<&dyn WeakStudy> {
         Some(self)
