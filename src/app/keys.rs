@@ -559,6 +559,23 @@ pub fn footer<A>(map: &[Binding<A>]) -> Vec<Hint> {
     map.iter().filter_map(|b| b.footer).collect()
 }
 
+/// The replay's footer as `space` acts now: `pause` while it plays, `resume` when paused, and
+/// no `space` once the recording has ended.
+#[must_use]
+pub fn replay_footer(paused: bool, ended: bool) -> Vec<Hint> {
+    let mut hints = footer(REPLAY_KEYMAP);
+    if ended {
+        hints.retain(|hint| hint.1 != "pause");
+    } else if paused {
+        for hint in &mut hints {
+            if hint.1 == "pause" {
+                hint.1 = "resume";
+            }
+        }
+    }
+    hints
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,8 +1,5 @@
-//! The command layer (issue 69: its files in a folder of their own): argument parsing
-//! ([`cli`]), the one error and exit decision ([`failure`]), the manual, the outputs, the
-//! progress line, `doctor` and the web page, and here the small headless commands: `presets`
-//! (the catalogue) and `check` (validate files). Output goes to stdout, problems to stderr;
-//! exit 2 on any problem. `src/main.rs` dispatches to them.
+//! The command layer, in a folder of its own (issue 69; `src/main.rs` dispatches to it), and
+//! here the small headless commands `presets` and `check`: stdout, problems on stderr, exit 2.
 
 pub mod cli;
 pub mod doctor;

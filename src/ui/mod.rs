@@ -44,7 +44,7 @@ use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Wrap};
 
-use crate::app::keys::{self, Hint, KEYMAP, REPLAY_KEYMAP};
+use crate::app::keys::{self, Hint, KEYMAP};
 use crate::app::lesson::LessonState;
 use crate::app::panes::Pane;
 use crate::app::{App, Mode};
@@ -744,18 +744,7 @@ fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mu
             .collect()
     };
     let hints = if let Some(replay) = app.replay {
-        // What `space` does now: pause, resume, or nothing once the recording has ended.
-        let mut hints = owned(keys::footer(REPLAY_KEYMAP));
-        if replay.ended {
-            hints.retain(|hint| hint.1 != "pause");
-        } else if replay.paused {
-            for hint in &mut hints {
-                if hint.1 == "pause" {
-                    hint.1 = "resume";
-                }
-            }
-        }
-        hints
+        owned(keys::replay_footer(replay.paused, replay.ended))
     } else if app.mode == Mode::Map {
         let kind = app.scenario.settings.model.kind();
         owned(keys::map_footer(crate::study::chart::words(kind).sources))
