@@ -11,7 +11,7 @@ use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::Line as TextLine;
 use ratatui::widgets::Widget;
-use ratatui::widgets::canvas::{Canvas, Line, Points};
+use ratatui::widgets::canvas::{Line, Points};
 
 use super::marks::{Facts, Section, curve, printed};
 use super::{Look, framed};
@@ -227,7 +227,7 @@ impl BodyPane<'_> {
         let long = if a >= b { (a, 0.0) } else { (0.0, b) };
         let trace = trace(run, a >= b);
         let theme = look.theme;
-        canvas(look, [-sx, sx], [-sy, sy], |ctx| {
+        super::glyphs::canvas(look, [-sx, sx], [-sy, sy], |ctx| {
             for w in outline.windows(2) {
                 ctx.draw(&Line::new(w[0].0, w[0].1, w[1].0, w[1].1, theme.trail));
             }
@@ -360,7 +360,7 @@ impl Widget for Profile<'_> {
             String::new()
         };
         let text = format!("{} {:+.3}{gain}", self.label, self.angle);
-        canvas(
+        super::glyphs::canvas(
             self.look,
             [-half, half],
             [floor, floor + span(half)],
@@ -395,22 +395,6 @@ impl Widget for Profile<'_> {
         )
         .render(area, buf);
     }
-}
-
-/// A canvas over `x` × `y` in the theme's background, drawn with the terminal's marker: the body
-/// panes' (the rattleback's and the celt's here, the pendulum's in `pendulum.rs`).
-pub(super) fn canvas<'a, F: Fn(&mut ratatui::widgets::canvas::Context<'_>)>(
-    look: &Look,
-    x: [f64; 2],
-    y: [f64; 2],
-    paint: F,
-) -> Canvas<'a, F> {
-    Canvas::default()
-        .marker(look.marker)
-        .background_color(look.theme.background)
-        .x_bounds(x)
-        .y_bounds(y)
-        .paint(paint)
 }
 
 #[cfg(test)]

@@ -212,6 +212,22 @@ pub fn fold_buffer(buf: &mut Buffer, charset: Charset) {
     }
 }
 
+/// A canvas over `x` × `y` in the theme's background, drawn with the terminal's marker (the
+/// body panes': the rattleback's and the celt's in `body.rs`, the pendulum's in `pendulum.rs`).
+pub(super) fn canvas<'a, F: Fn(&mut ratatui::widgets::canvas::Context<'_>)>(
+    look: &super::Look,
+    x: [f64; 2],
+    y: [f64; 2],
+    paint: F,
+) -> ratatui::widgets::canvas::Canvas<'a, F> {
+    ratatui::widgets::canvas::Canvas::default()
+        .marker(look.marker)
+        .background_color(look.theme.background)
+        .x_bounds(x)
+        .y_bounds(y)
+        .paint(paint)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -199,7 +199,7 @@ impl Widget for PendulumPane<'_> {
         };
         let label = look.charset.spell(&label);
         let trace = trace(run);
-        super::body::canvas(look, [-sx, sx], [-sy, sy], |ctx| {
+        super::glyphs::canvas(look, [-sx, sx], [-sy, sy], |ctx| {
             // One point per cell (the console, ASCII): each part its own character, as
             // the legend shows it; else the marker's dots.
             let one_per_cell = look.marker == Marker::Dot;

@@ -10,10 +10,10 @@ use super::super::params::Problem;
 use crate::physics::method::Method;
 use crate::physics::method::StepError;
 
+use super::super::policy::{AVERAGED, SECOND_ORDER_MODEL_SHARE};
 use super::measure::{Plan, averaged_local, with_companion};
 use super::probe::{ModelProbe, averaged_is_exact, considers_averaged, probe_averaged};
 use super::resolved::best_resolved;
-use super::tuning::{AVERAGED, SECOND_ORDER_MODEL_SHARE};
 
 /// What [`plan_cancellable`] decided: the plan, the probed model error it carries (0 for a
 /// resolved plan) and the probes, when they ran.

@@ -16,13 +16,13 @@ use crate::physics::method::RunSpec;
 use crate::physics::method::StepCap;
 use crate::physics::method::StepError;
 
-use super::measure::{Plan, conditioned_round_off, difference, round_off};
-use super::probe::{averaged_is_exact, probe_problem};
-use super::tuning::{
+use super::super::policy::{
     BLANES_MOAN_MAX_NU_H, CONDITIONING_AVERAGED_LIMIT, CONDITIONING_KEPT_MARGIN,
     CONDITIONING_KEPT_SHARE, CONDITIONING_KEPT_X, CONDITIONING_LOOSE_TOLERANCE, CONDITIONING_MODEL,
     CONDITIONING_RECHECK, CONDITIONING_TOLERANCE, NUDGE,
 };
+use super::measure::{Plan, conditioned_round_off, difference, round_off};
+use super::probe::{averaged_is_exact, probe_problem};
 
 /// The settings of [`conditioning`]'s three runs: the plan's method at a coarse setting (its
 /// companion's, loosened to a local tolerance of [`CONDITIONING_TOLERANCE`] or a step of

@@ -15,7 +15,7 @@ use crate::physics::method::Method;
 use crate::physics::method::Settings;
 use crate::physics::method::StepError;
 
-use super::tuning::{
+use super::super::policy::{
     AVERAGED_GROWTH, C_BM, C_FAST, CONDITIONED_GAIN, DOP853_GROWTH, ROUND_OFF_GAIN, TAYLOR_GROWTH,
 };
 

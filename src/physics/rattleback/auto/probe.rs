@@ -15,12 +15,12 @@ use crate::physics::method::Method;
 use crate::physics::method::RunSpec;
 use crate::physics::method::StepError;
 
-use super::measure::difference;
-use super::resolved::best_resolved;
-use super::tuning::{
+use super::super::policy::{
     AVERAGED, AVERAGED_MIN_RATIO, MODEL_ORDER, PROBE_FULL_METHOD, PROBE_FULL_TOLERANCE,
     PROBE_RUNGS, PROBE_SAFETY, PROBE_SAMPLES, PROBE_TOLERANCE, PROBE_VALIDITY,
 };
+use super::measure::difference;
+use super::resolved::best_resolved;
 
 /// The averaged models' errors as measured by the probes.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]

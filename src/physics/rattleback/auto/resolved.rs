@@ -9,11 +9,11 @@ use super::super::budget::{dop853_evaluations, fastest_rate};
 use super::super::params::Problem;
 use crate::physics::method::Method;
 
+use super::super::policy::BLANES_MOAN_MAX_NU_H;
 use super::measure::{
     Plan, blanes_moan_error, blanes_moan_rate, conditioned_round_off, dop853_local, round_off,
     splitting_drift, taylor_local, with_companion,
 };
-use super::tuning::BLANES_MOAN_MAX_NU_H;
 
 /// The cheapest plan that resolves the fast motion (taylor, dop853 or blanes-moan4) among those
 /// whose coarser companion should still meet `tolerance` (or, when none can, the most accurate).

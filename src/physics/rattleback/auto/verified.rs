@@ -17,6 +17,7 @@ use crate::physics::method::Settings;
 use crate::physics::method::StepError;
 use crate::physics::verify::{Candidate, Policy, Round, Rounds, verify};
 
+use super::super::policy::AUTO_SECONDS;
 use super::choice::{Decision, plan_cancellable};
 use super::conditioning::{
     Conditioning, alpha_bound, bound_serves, conditioning_cost, conditioning_family, family_bound,
@@ -25,7 +26,6 @@ use super::conditioning::{
 use super::measure::{Plan, conditioned_round_off, difference, over_budget};
 use super::probe::{considers_averaged, probes_cost};
 use super::resolved::refine;
-use super::tuning::AUTO_SECONDS;
 
 /// A run chosen by `auto`, with its error estimate.
 #[derive(Clone, Debug, PartialEq, Serialize)]
