@@ -622,16 +622,7 @@ fn at_80_columns_the_verified_estimate_stays_recorded_replayed_and_followed() {
     // columns and whole from 100.
     app.journal.state = rattleback::app::RecState::Off;
     app.run.playing = true;
-    let mut replay = rattleback::app::ReplayInfo {
-        pace: 1.0,
-        paused: false,
-        chapter: 0,
-        chapters: 0,
-        ended: false,
-        at: 4.0,
-        length: 7.0,
-        live: None,
-    };
+    let mut replay = replay_at_4_of_7();
     app.replay = Some(replay);
     let row = bar(&app);
     assert!(
@@ -1010,16 +1001,7 @@ fn the_footer_follows_the_state() {
 #[test]
 fn the_replays_footer_follows_the_replay() {
     let mut h = Headless::new("subcritical");
-    let mut replay = rattleback::app::ReplayInfo {
-        pace: 1.0,
-        paused: false,
-        chapter: 0,
-        chapters: 0,
-        ended: false,
-        at: 4.0,
-        length: 7.0,
-        live: None,
-    };
+    let mut replay = replay_at_4_of_7();
     let mut footer = |replay| {
         h.app.replay = Some(replay);
         let screen = text(&render(&h.app, 80, 24));
@@ -1109,4 +1091,18 @@ fn long_titles_are_shortened_in_the_middle() {
         screen.contains("presets 1/") && screen.contains("Esc closes"),
         "{screen}"
     );
+}
+
+/// A replay playing at ×1, 4 s into a 7 s recording without chapters.
+fn replay_at_4_of_7() -> rattleback::app::ReplayInfo {
+    rattleback::app::ReplayInfo {
+        pace: 1.0,
+        paused: false,
+        chapter: 0,
+        chapters: 0,
+        ended: false,
+        at: 4.0,
+        length: 7.0,
+        live: None,
+    }
 }

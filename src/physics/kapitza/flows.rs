@@ -146,10 +146,6 @@ impl Field<2> for FullField {
     }
 }
 
-/// The pendulum's full-model cores: `FullCore<2, Params>`.
-pub trait Core: FullCore<2, Params> {}
-impl<C: FullCore<2, Params>> Core for C {}
-
 impl FullCore<2, Params> for Dop853<2, FullField> {
     const METHOD: Method = Method::Dop853;
     fn start(params: &Params, y0: Vector2<f64>, tol: f64) -> Self {
@@ -178,7 +174,7 @@ pub struct Full<C> {
     core: C,
 }
 
-impl<C: Core> Full<C> {
+impl<C: FullCore<2, Params>> Full<C> {
     /// Starts at the problem's initial values with tolerance `tol`.
     #[must_use]
     pub fn new(problem: &Problem, tol: f64) -> Self {
@@ -206,7 +202,7 @@ impl<C: Core> Full<C> {
     }
 }
 
-impl<C: Core> Flow for Full<C> {
+impl<C: FullCore<2, Params>> Flow for Full<C> {
     crate::physics::flow::on_core!();
     fn method(&self) -> Method {
         C::METHOD

@@ -33,10 +33,6 @@ impl Field<4> for FullField {
     }
 }
 
-/// The rattleback's full-model cores: `FullCore<4, Params>`.
-pub trait Core: FullCore<4, Params> {}
-impl<C: FullCore<4, Params>> Core for C {}
-
 impl FullCore<4, Params> for Dop853<4, FullField> {
     const METHOD: Method = Method::Dop853;
     fn start(params: &Params, y0: State, tol: f64) -> Self {
@@ -63,7 +59,7 @@ pub struct Full<C> {
     core: C,
 }
 
-impl<C: Core> Full<C> {
+impl<C: FullCore<4, Params>> Full<C> {
     /// Starts at the problem's initial values with tolerance `tol`.
     #[must_use]
     pub fn new(problem: &Problem, tol: f64) -> Self {
@@ -85,7 +81,7 @@ impl<C: Core> Full<C> {
     }
 }
 
-impl<C: Core> Flow for Full<C> {
+impl<C: FullCore<4, Params>> Flow for Full<C> {
     crate::physics::flow::on_core!();
     fn method(&self) -> Method {
         C::METHOD
