@@ -294,10 +294,7 @@ mod tests {
 
     fn settings() -> Settings {
         Settings {
-            model: Model::Rattleback(crate::physics::rattleback::paper_body(
-                1e4,
-                [0.0, 0.0, 1.0, 0.5],
-            )),
+            model: crate::physics::rattleback::paper_body(1e4, [0.0, 0.0, 1.0, 0.5]).into(),
             t_end: 30.0,
             method: Method::Auto,
             tolerance: 1e-8,
@@ -316,7 +313,7 @@ mod tests {
             theta_dot: 0.0,
         };
         Settings {
-            model: Model::Kapitza(kapitza::Problem::new(params, start).unwrap()),
+            model: kapitza::Problem::new(params, start).unwrap().into(),
             ..settings()
         }
     }
@@ -324,7 +321,7 @@ mod tests {
     #[test]
     fn invalid_values_are_refused_with_the_reason() {
         let s = settings();
-        let f = |name| Field::named(ModelKind::Rattleback, name).unwrap();
+        let f = |name| Field::named(s.model.kind(), name).unwrap();
         let err = f("iy").with_text(&s, "-1").unwrap_err();
         assert!(
             err.contains("> 0") && err.contains("old value kept"),
@@ -347,8 +344,9 @@ mod tests {
     #[test]
     fn the_pendulum_has_its_own_rows_and_methods() {
         let s = pendulum();
-        let f = |name| Field::named(ModelKind::Kapitza, name).unwrap();
-        assert_eq!(Field::rows(ModelKind::Kapitza)[0].label(), "a");
+        let pendulum = s.model.kind();
+        let f = |name| Field::named(pendulum, name).unwrap();
+        assert_eq!(Field::rows(pendulum)[0].label(), "a");
         let e = f("epsilon").nudge(&s, -1.0, true).unwrap();
         assert!((e.model.kapitza().unwrap().params().epsilon - 1e-4).abs() < 1e-15);
         let err = f("epsilon").with_text(&s, "0").unwrap_err();
@@ -367,7 +365,7 @@ mod tests {
         let mut m = s;
         for _ in 0..20 {
             m = Field::Method.nudge(&m, 1.0, false).unwrap();
-            assert!(ModelKind::Kapitza.offers(m.method), "{}", m.method);
+            assert!(pendulum.offers(m.method), "{}", m.method);
         }
         let cmd = s.simulate_command(None);
         assert!(

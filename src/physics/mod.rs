@@ -23,6 +23,7 @@
 
 pub mod budget;
 pub mod celt;
+pub mod chart;
 pub mod drive;
 pub mod flow;
 pub mod fork;

@@ -7,9 +7,10 @@
 //! [`Model::posed`]), [`ModelKind::problem`] and the [`LimitView`] the portrait draws (the slow
 //! coordinate's effective potential). The recipe is in docs/architecture.md.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::celt;
+use super::chart::{ChartOf, PaneAsk, SceneChart, StudyAsk};
 use super::kapitza;
 use super::method::{Method, StepError};
 use super::params::{ParamError, ParamSpec};
@@ -42,6 +43,182 @@ pub enum Model {
     Kapitza(kapitza::Problem),
     /// The celt: body, start and reversal band.
     Celt(celt::Problem),
+}
+
+/// A chart of one scene: each scene's own type, in its folder (`SCENE/chart.rs`, issue 69),
+/// reached through [`SceneChart`] (this type derefs to it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Chart {
+    /// The rattleback's regime map.
+    Rattleback(super::rattleback::chart::RegimeChart),
+    /// The pendulum's stability chart.
+    Kapitza(kapitza::chart::PendulumChart),
+    /// The celt's reversal chart.
+    Celt(celt::chart::CeltChart),
+}
+
+impl From<super::rattleback::chart::RegimeChart> for Chart {
+    fn from(c: super::rattleback::chart::RegimeChart) -> Self {
+        Self::Rattleback(c)
+    }
+}
+
+impl From<kapitza::chart::PendulumChart> for Chart {
+    fn from(c: kapitza::chart::PendulumChart) -> Self {
+        Self::Kapitza(c)
+    }
+}
+
+impl From<celt::chart::CeltChart> for Chart {
+    fn from(c: celt::chart::CeltChart) -> Self {
+        Self::Celt(c)
+    }
+}
+
+impl std::ops::Deref for Chart {
+    type Target = dyn SceneChart;
+
+    fn deref(&self) -> &Self::Target {
+        match self {
+            Self::Rattleback(c) => c,
+            Self::Kapitza(c) => c,
+            Self::Celt(c) => c,
+        }
+    }
+}
+
+impl Chart {
+    /// The scene.
+    #[must_use]
+    pub fn model(&self) -> ModelKind {
+        match self {
+            Self::Rattleback(_) => ModelKind::Rattleback,
+            Self::Kapitza(_) => ModelKind::Kapitza,
+            Self::Celt(_) => ModelKind::Celt,
+        }
+    }
+
+    /// The explorer's map pane's chart of `model`.
+    #[must_use]
+    pub fn for_pane(model: &Model, ask: PaneAsk) -> Self {
+        match model {
+            Model::Rattleback(p) => Self::Rattleback(ChartOf::for_pane(p, ask)),
+            Model::Kapitza(p) => Self::Kapitza(ChartOf::for_pane(p, ask)),
+            Model::Celt(p) => Self::Celt(ChartOf::for_pane(p, ask)),
+        }
+    }
+
+    /// `study map`'s chart of `model` as `ask` says.
+    ///
+    /// # Errors
+    /// A flag of another scene's chart, a range out of order, or a corner the model refuses.
+    pub fn for_study(model: &Model, ask: &StudyAsk) -> Result<Self, String> {
+        let title = model.kind().title();
+        Ok(match model {
+            Model::Rattleback(p) => Self::Rattleback(ChartOf::for_study(p, ask, title)?),
+            Model::Kapitza(p) => Self::Kapitza(ChartOf::for_study(p, ask, title)?),
+            Model::Celt(p) => Self::Celt(ChartOf::for_study(p, ask, title)?),
+        })
+    }
+
+    /// `model` moved to the point `(x, y)` of this chart's axes (the scene's [`ChartOf::load`]).
+    ///
+    /// # Errors
+    /// When the model is another scene's or the point is not a valid problem.
+    pub fn load(&self, model: &Model, point: (f64, f64)) -> Result<Model, String> {
+        let bad = |e: ParamError| format!("this cell: {e}");
+        match (self, model) {
+            (Self::Rattleback(c), Model::Rattleback(p)) => c.load(p, point).map(Model::from),
+            (Self::Kapitza(c), Model::Kapitza(p)) => c.load(p, point).map(Model::from),
+            (Self::Celt(c), Model::Celt(p)) => c.load(p, point).map(Model::from),
+            // Each chart with another scene's model (each chart named: a new one must say what
+            // it loads).
+            (Self::Rattleback(_) | Self::Kapitza(_) | Self::Celt(_), _) => {
+                return Err("the map is of another scene".to_owned());
+            }
+        }
+        .map_err(bad)
+    }
+}
+
+/// What a plan was resolved for: `auto`'s choice depends on these only. One shape per model
+/// (told apart by their fields, so files written before the pendulum existed read as before).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(untagged)]
+pub enum PlanKey {
+    /// The rattleback's.
+    Rattleback {
+        /// Body and spring.
+        params: super::rattleback::Params,
+        /// Start.
+        start: super::rattleback::Start,
+        /// Tolerance asked.
+        tolerance: f64,
+        /// Horizon.
+        t_end: f64,
+    },
+    /// The pendulum's.
+    Kapitza {
+        /// `a`, `b`, `epsilon`.
+        pendulum: kapitza::Params,
+        /// `theta`, `theta_dot`.
+        initial: kapitza::Start,
+        /// Tolerance asked.
+        tolerance: f64,
+        /// Horizon.
+        t_end: f64,
+    },
+    /// The celt's (field names differ from the others': the untagged form stays unambiguous).
+    Celt {
+        /// The body.
+        celt: celt::Params,
+        /// Attitude and angular velocity.
+        celt_start: celt::Start,
+        /// The reversal band.
+        spin_band: f64,
+        /// Tolerance asked.
+        tolerance: f64,
+        /// Horizon.
+        t_end: f64,
+    },
+}
+
+impl PlanKey {
+    /// The model it is a key of.
+    #[must_use]
+    pub const fn model(&self) -> ModelKind {
+        match self {
+            Self::Rattleback { .. } => ModelKind::Rattleback,
+            Self::Kapitza { .. } => ModelKind::Kapitza,
+            Self::Celt { .. } => ModelKind::Celt,
+        }
+    }
+
+    /// The key of `model` run to `t_end` at `tolerance`.
+    #[must_use]
+    pub fn for_model(model: &Model, tolerance: f64, t_end: f64) -> Self {
+        match model {
+            Model::Rattleback(p) => Self::Rattleback {
+                params: *p.params(),
+                start: *p.start(),
+                tolerance,
+                t_end,
+            },
+            Model::Kapitza(p) => Self::Kapitza {
+                pendulum: *p.params(),
+                initial: *p.start(),
+                tolerance,
+                t_end,
+            },
+            Model::Celt(p) => Self::Celt {
+                celt: *p.params(),
+                celt_start: *p.start(),
+                spin_band: p.band(),
+                tolerance,
+                t_end,
+            },
+        }
+    }
 }
 
 impl From<celt::Problem> for Model {

@@ -123,6 +123,16 @@ pub struct ChartWords {
     pub axes: (&'static str, &'static str),
     /// Whether `f` switches the source (the rattleback's limit or full model).
     pub sources: bool,
+    /// The largest grid the explorer's pane draws (a recorded cursor lies inside it).
+    pub pane: (usize, usize),
+    /// The names of the output's axes (`study map`'s JSON; a part is read back against them).
+    pub axis_keys: [&'static str; 2],
+    /// What the text table is of (its first words).
+    pub heading: &'static str,
+    /// The text table's key to its glyphs.
+    pub legend: &'static str,
+    /// The CSV's columns, in order.
+    pub csv: &'static [super::chart::Column],
 }
 
 /// One read-only line the panel shows under a model's parameters.

@@ -19,7 +19,6 @@ use crate::physics::StepError;
 use crate::physics::method::Asked;
 use crate::physics::method::Method;
 use crate::physics::plan::Resolved;
-use crate::study::chart::Chart;
 use crate::study::map::Source;
 use crate::study::sweep::{ladder, limit_curve, rung};
 
@@ -238,11 +237,12 @@ impl MapSpec {
     #[must_use]
     pub fn rattleback(grid: crate::study::map::Grid, source: Source) -> Self {
         Self {
-            chart: Chart::Rattleback {
+            chart: crate::physics::rattleback::chart::RegimeChart {
                 grid,
                 source,
                 at: (f64::NAN, f64::NAN),
-            },
+            }
+            .into(),
         }
     }
 }

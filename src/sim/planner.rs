@@ -2,95 +2,19 @@
 //! [`Planner`] that resolves and prices every run (the engine's own, and a job's: the
 //! comparison's partner), refusing one over the budget with words for the panel.
 
-use serde::{Deserialize, Serialize};
-
 use super::{Session, SessionSpec};
-use crate::physics::Model;
 use crate::physics::method::Method;
 use crate::physics::method::StepError;
 use crate::physics::method::{Arithmetic, Asked};
 use crate::physics::plan::{AutoRules, Resolved};
-use crate::physics::rattleback::{Params, Start};
-use crate::physics::{celt, kapitza};
 
-/// What a plan was resolved for: `auto`'s choice depends on these only. One shape per model
-/// (told apart by their fields, so files written before the pendulum existed read as before).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
-#[serde(untagged)]
-pub enum PlanKey {
-    /// The rattleback's.
-    Rattleback {
-        /// Body and spring.
-        params: Params,
-        /// Start.
-        start: Start,
-        /// Tolerance asked.
-        tolerance: f64,
-        /// Horizon.
-        t_end: f64,
-    },
-    /// The pendulum's.
-    Kapitza {
-        /// `a`, `b`, `epsilon`.
-        pendulum: kapitza::Params,
-        /// `theta`, `theta_dot`.
-        initial: kapitza::Start,
-        /// Tolerance asked.
-        tolerance: f64,
-        /// Horizon.
-        t_end: f64,
-    },
-    /// The celt's (field names differ from the others': the untagged form stays unambiguous).
-    Celt {
-        /// The body.
-        celt: celt::Params,
-        /// Attitude and angular velocity.
-        celt_start: celt::Start,
-        /// The reversal band.
-        spin_band: f64,
-        /// Tolerance asked.
-        tolerance: f64,
-        /// Horizon.
-        t_end: f64,
-    },
-}
+pub use crate::physics::models::PlanKey;
 
 impl PlanKey {
-    /// The model it is a key of.
-    #[must_use]
-    pub const fn model(&self) -> crate::physics::ModelKind {
-        match self {
-            Self::Rattleback { .. } => crate::physics::ModelKind::Rattleback,
-            Self::Kapitza { .. } => crate::physics::ModelKind::Kapitza,
-            Self::Celt { .. } => crate::physics::ModelKind::Celt,
-        }
-    }
-
     /// The key of a session spec.
     #[must_use]
     pub fn of(spec: &SessionSpec) -> Self {
-        let (tolerance, t_end) = (spec.tolerance, spec.t_end);
-        match &spec.model {
-            Model::Rattleback(p) => Self::Rattleback {
-                params: *p.params(),
-                start: *p.start(),
-                tolerance,
-                t_end,
-            },
-            Model::Kapitza(p) => Self::Kapitza {
-                pendulum: *p.params(),
-                initial: *p.start(),
-                tolerance,
-                t_end,
-            },
-            Model::Celt(p) => Self::Celt {
-                celt: *p.params(),
-                celt_start: *p.start(),
-                spin_band: p.band(),
-                tolerance,
-                t_end,
-            },
-        }
+        Self::for_model(&spec.model, spec.tolerance, spec.t_end)
     }
 }
 

@@ -285,3 +285,13 @@ fn table(r: &Report) -> String {
     super::render::work_line(&mut o, &r.stats);
     o
 }
+
+impl super::Report for Problem {
+    fn predicted_seconds(&self, spec: &RunSpec, _format: Format) -> f64 {
+        predicted_seconds(self, spec)
+    }
+
+    fn simulate_to(&self, ask: super::Ask<'_>) -> Result<Option<Missed>, Failure> {
+        simulate_to(self, ask)
+    }
+}

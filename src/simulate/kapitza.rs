@@ -386,3 +386,13 @@ fn event_times(o: &mut String, full: &[f64], limit: &[f64]) {
         let _ = writeln!(o, "  limit at     {}", times(limit));
     }
 }
+
+impl super::Report for Problem {
+    fn predicted_seconds(&self, spec: &RunSpec, _format: Format) -> f64 {
+        predicted_seconds(self, spec)
+    }
+
+    fn simulate_to(&self, ask: super::Ask<'_>) -> Result<Option<Missed>, Failure> {
+        simulate_to(self, ask)
+    }
+}

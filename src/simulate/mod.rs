@@ -109,11 +109,24 @@ pub fn resolve(preset: &Preset, args: &Request) -> Resolved {
 /// streamed rerun of `auto`'s plan (CSV).
 #[must_use]
 pub fn predicted_seconds(preset: &Preset, resolved: &Resolved, format: Format) -> f64 {
-    let spec = resolved.spec;
-    match &preset.model {
-        crate::physics::Model::Rattleback(p) => rattleback::predicted_seconds(p, &spec, format),
-        crate::physics::Model::Kapitza(p) => kapitza::predicted_seconds(p, &spec),
-        crate::physics::Model::Celt(p) => celt::predicted_seconds(p, &spec),
+    report_of(&preset.model).predicted_seconds(&resolved.spec, format)
+}
+
+/// A scene's `simulate`: its report's sections and their price, each scene's in its file
+/// (`simulate/SCENE.rs`, issue 69). No default: a scene that forgets one does not compile.
+trait Report {
+    /// Predicted seconds of everything the report runs for `spec` in `format`.
+    fn predicted_seconds(&self, spec: &RunSpec, format: Format) -> f64;
+    /// The report, as `ask` says.
+    fn simulate_to(&self, ask: Ask<'_>) -> Result<Option<Missed>, Failure>;
+}
+
+/// The report of `model`'s scene (the one dispatch over the scenes in this layer).
+fn report_of(model: &crate::physics::Model) -> &dyn Report {
+    match model {
+        crate::physics::Model::Rattleback(p) => p,
+        crate::physics::Model::Kapitza(p) => p,
+        crate::physics::Model::Celt(p) => p,
     }
 }
 
@@ -438,11 +451,7 @@ pub fn simulate_to(
         out,
         progress,
     };
-    match &preset.model {
-        crate::physics::Model::Rattleback(p) => rattleback::simulate_to(p, ask),
-        crate::physics::Model::Kapitza(p) => kapitza::simulate_to(p, ask),
-        crate::physics::Model::Celt(p) => celt::simulate_to(p, ask),
-    }
+    report_of(&preset.model).simulate_to(ask)
 }
 
 /// Refuses, before anything runs, work predicted over the budget.

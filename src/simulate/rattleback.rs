@@ -444,3 +444,13 @@ impl Finite for RunResult {
         (self.t, state.chain(energy).chain(reversals).collect())
     }
 }
+
+impl super::Report for Problem {
+    fn predicted_seconds(&self, spec: &RunSpec, format: Format) -> f64 {
+        predicted_seconds(self, spec, format)
+    }
+
+    fn simulate_to(&self, ask: super::Ask<'_>) -> Result<Option<Missed>, Failure> {
+        simulate_to(self, ask)
+    }
+}

@@ -7,32 +7,7 @@ use serde::{Deserialize, Serialize};
 /// The largest cells per side.
 pub const MAX_CELLS: usize = 2000;
 
-/// What `study map` asks of a chart, whatever the scene (the flags, read).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct StudyAsk {
-    /// Cells across and up.
-    pub grid: (usize, usize),
-    /// The window (the preset's or `--t-end`).
-    pub t_end: f64,
-    /// The tolerance (the preset's or `--tolerance`): the rattleback's full-model runs.
-    pub tolerance: f64,
-    /// `--tolerance` as given (the pendulum's and the celt's cells have their own default).
-    pub asked_tolerance: Option<f64>,
-    /// The rattleback's `--ratio-max`, `--inertia-min`, `--inertia-max`, `--k`.
-    pub ratio_max: Option<f64>,
-    /// `--inertia-min`.
-    pub inertia_min: Option<f64>,
-    /// `--inertia-max`.
-    pub inertia_max: Option<f64>,
-    /// `--k`.
-    pub k: Option<f64>,
-    /// The pendulum's and the celt's `--columns` and `--rows`.
-    pub columns: Option<(f64, f64)>,
-    /// `--rows`.
-    pub rows: Option<(f64, f64)>,
-    /// The pendulum's `--position hanging`.
-    pub hanging: bool,
-}
+pub use crate::physics::chart::StudyAsk;
 
 /// The program and version that writes parts; a part of another is refused (its cells could
 /// differ in their last bits, and the recomputation would call it edited).

@@ -14,7 +14,6 @@
 //! computation is deterministic: parallel cells are independent and collected in order.
 
 pub mod ask;
-pub mod cells;
 pub mod chart;
 pub mod map;
 pub mod output;
@@ -24,19 +23,7 @@ pub mod weak;
 
 pub mod svg;
 
-/// `1e-5`, `0.3`, `30`: short tick labels, never `9.999999999999999e-5`.
-#[must_use]
-pub fn tick(x: f64) -> String {
-    if x == 0.0 {
-        "0".to_owned()
-    } else if (1e-3..1e4).contains(&x.abs()) {
-        let s = format!("{x:.3}");
-        s.trim_end_matches('0').trim_end_matches('.').to_owned()
-    } else {
-        let s = format!("{x:.1e}");
-        s.replace(".0e", "e")
-    }
-}
+pub use crate::physics::chart::tick;
 
 /// Least-squares slope of `log10 y` against `log10 x` over the points where both are finite and
 /// positive (`None` with fewer than two).

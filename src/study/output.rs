@@ -10,69 +10,15 @@ use super::ask::MAX_CELLS;
 use super::map;
 use crate::physics::ModelKind;
 
-/// One axis of a chart: cell centres evenly spaced (or log-spaced) over `[min, max]`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, schemars::JsonSchema)]
-#[schemars(deny_unknown_fields)]
-pub struct Axis {
-    /// What is along it: a preset key (`pendulum.a`) or the rattleback's `ratio` / `inertia_ratio`.
-    pub name: &'static str,
-    /// The lower edge.
-    pub min: f64,
-    /// The upper edge.
-    pub max: f64,
-    /// Cells along it.
-    pub cells: usize,
-    /// Log-spaced.
-    pub log: bool,
-}
+pub use crate::physics::chart::{Axis, CellOutput};
 
-impl Axis {
-    /// The value at the centre of cell `i`.
-    #[must_use]
-    pub fn at(&self, i: usize) -> f64 {
-        #[allow(clippy::cast_precision_loss)]
-        let f = (i as f64 + 0.5) / self.cells as f64;
-        if self.log {
-            (self.min.ln() + f * (self.max / self.min).ln()).exp()
-        } else {
-            self.min + f * (self.max - self.min)
-        }
-    }
-
-    /// The fraction of the axis at `x` (0 at `min`, 1 at `max`).
-    #[must_use]
-    pub fn fraction(&self, x: f64) -> f64 {
-        if self.log {
-            (x / self.min).ln() / (self.max / self.min).ln()
-        } else {
-            (x - self.min) / (self.max - self.min)
-        }
-    }
-
-    /// The cell holding `x`, if within the axis.
-    #[must_use]
-    pub fn cell_of(&self, x: f64) -> Option<usize> {
-        let f = self.fraction(x);
-        #[allow(clippy::cast_precision_loss)]
-        let i = (f * self.cells as f64).floor();
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        (f.is_finite() && (0.0..1.0).contains(&f)).then(|| (i as usize).min(self.cells - 1))
-    }
-
-    /// The name of an axis a chart has, as `name` spells it (a part file is read back into
-    /// this type).
-    fn known_name(name: &str) -> Option<&'static str> {
-        [
-            "ratio",
-            "inertia_ratio",
-            "pendulum.a",
-            "pendulum.b",
-            "initial.omega_z",
-            "celt.product",
-        ]
+/// The name of an axis a chart has, as `name` spells it (a part file is read back into [`Axis`]):
+/// every scene's, from the registry.
+fn known_axis(name: &str) -> Option<&'static str> {
+    ModelKind::ALL
         .into_iter()
+        .flat_map(|k| k.studies().chart.axis_keys)
         .find(|n| *n == name)
-    }
 }
 
 /// The cells of shard `index` of `count` (1-based): every cell `n` with `n mod count = index − 1`
@@ -112,81 +58,6 @@ pub struct CurvePoint {
     pub x: f64,
     /// Up.
     pub y: f64,
-}
-
-/// One cell of `study map`'s JSON. Every cell has `index` and `coords`; the verdict's fields
-/// are the scene's (the others are absent).
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
-#[schemars(deny_unknown_fields)]
-#[serde(deny_unknown_fields)]
-pub struct CellOutput {
-    /// The cell's place in the grid, row by row from the bottom-left (`row · columns + column`).
-    pub index: usize,
-    /// The preset keys the cell sets, and their values.
-    pub coords: BTreeMap<String, f64>,
-    /// The rattleback's `α̇0²/γ̇0²`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub ratio: Option<f64>,
-    /// The rattleback's `iy/ix`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub inertia_ratio: Option<f64>,
-    /// Reversals in the window (the rattleback, the celt).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub reversals: Option<usize>,
-    /// The celt's first reversal (s), `null` when none.
-    #[serde(
-        default,
-        skip_serializing_if = "Option::is_none",
-        with = "double_option"
-    )]
-    #[schemars(with = "Option<f64>")]
-    #[allow(clippy::option_option)] // absent (not the celt), `null` (no reversal), a time
-    pub first_reversal: Option<Option<f64>>,
-    /// The celt's growth rate of steady spin at the cell's `ω_z` and `D` (1/s; positive: a small
-    /// tilt grows).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub growth_rate: Option<f64>,
-    /// The pendulum's verdict: `|tr M| < 2`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub stable: Option<bool>,
-    /// The pendulum's monodromy trace.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub trace: Option<f64>,
-    /// Its estimated error.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub trace_error: Option<f64>,
-    /// Whether the verdict is certain at the chart's tolerance (the pendulum: the trace's
-    /// distance from ±2 exceeds its error; the celt: two tolerances agree on the count and the
-    /// times). `false` on a failed cell.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub decided: Option<bool>,
-    /// Why the cell's integration failed (a failed cell has this, `decided: false` and no
-    /// verdict).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub error: Option<String>,
-}
-
-/// `Option<Option<T>>` as absent / `null` / a value.
-#[allow(clippy::option_option)] // the three cases are the JSON's: absent, `null`, a time
-mod double_option {
-    use serde::{Deserialize, Deserializer, Serialize, Serializer};
-
-    #[allow(clippy::ref_option)] // serde's `with` hands a reference to the field
-    pub fn serialize<S: Serializer, T: Serialize>(
-        v: &Option<Option<T>>,
-        s: S,
-    ) -> Result<S::Ok, S::Error> {
-        match v {
-            Some(inner) => inner.serialize(s),
-            None => s.serialize_none(),
-        }
-    }
-
-    pub fn deserialize<'de, D: Deserializer<'de>, T: Deserialize<'de>>(
-        d: D,
-    ) -> Result<Option<Option<T>>, D::Error> {
-        Option::<T>::deserialize(d).map(Some)
-    }
 }
 
 /// `rattleback study map --format json` for every scene (and a shard's part file).
@@ -263,7 +134,7 @@ impl<'de> Deserialize<'de> for Axis {
             log: bool,
         }
         let r = Read::deserialize(d)?;
-        let Some(name) = Axis::known_name(&r.name) else {
+        let Some(name) = known_axis(&r.name) else {
             let shown: String = r
                 .name
                 .chars()
@@ -318,18 +189,11 @@ impl ChartOutput {
         let (cols, rows) = (x.cells.min(60), y.cells.min(20));
         let by_index: BTreeMap<usize, &CellOutput> =
             self.cells.iter().map(|c| (c.index, c)).collect();
-        let key = match self.model {
-            ModelKind::Kapitza => "# stable, . unstable, ? too close to call",
-            ModelKind::Rattleback | ModelKind::Celt => {
-                ". none, 1-9 reversals, + 10 or more, ? two tolerances disagree"
-            }
-        };
+        let words = self.model.studies().chart;
+        let key = words.legend;
         let mut o = format!(
             "{} over {} ({} … {}) across, {} ({} … {}{}) up\n{key}; * {}; @ the preset\n",
-            match self.model {
-                ModelKind::Kapitza => "stability of the pendulum",
-                ModelKind::Rattleback | ModelKind::Celt => "reversals",
-            },
+            words.heading,
             x.name,
             super::tick(x.min),
             super::tick(x.max),
@@ -373,54 +237,26 @@ impl ChartOutput {
         o
     }
 
-    /// The chart in CSV, a row a cell: the rattleback's columns as before issue 59
-    /// (`ratio,inertia_ratio,reversals`); the pendulum's `index`, its two keys, `stable, trace,
-    /// trace_error, decided`; the celt's `index`, its two keys, `reversals, first_reversal,
-    /// growth_rate, decided` (an empty `first_reversal` when none).
+    /// The chart in CSV, a row a cell, in the scene's columns (`ChartWords::csv`): the
+    /// rattleback's as before issue 59 (`ratio,inertia_ratio,reversals`); the pendulum's `index`,
+    /// its two keys, `stable, trace, trace_error, decided`; the celt's `index`, its two keys,
+    /// `reversals, first_reversal, growth_rate, decided` (an empty `first_reversal` when none).
     #[must_use]
     pub fn csv(&self) -> String {
-        use std::fmt::Write as _;
-        let opt = |v: Option<f64>| v.map_or_else(String::new, |v| v.to_string());
+        let columns = self.model.studies().chart.csv;
         let (x, y) = (self.columns.name, self.rows.name);
-        let mut o = match self.model {
-            ModelKind::Rattleback => String::from("ratio,inertia_ratio,reversals\n"),
-            ModelKind::Kapitza => format!("index,{x},{y},stable,trace,trace_error,decided\n"),
-            ModelKind::Celt => {
-                format!("index,{x},{y},reversals,first_reversal,growth_rate,decided\n")
-            }
+        let line = |cell: &dyn Fn(crate::physics::chart::Column) -> String| {
+            let mut l = columns
+                .iter()
+                .map(|&c| cell(c))
+                .collect::<Vec<_>>()
+                .join(",");
+            l.push('\n');
+            l
         };
-        for c in &self.cells {
-            let (cx, cy) = (
-                c.coords.get(x).copied().unwrap_or(f64::NAN),
-                c.coords.get(y).copied().unwrap_or(f64::NAN),
-            );
-            let _ = match self.model {
-                ModelKind::Rattleback => writeln!(
-                    o,
-                    "{},{},{}",
-                    opt(c.ratio),
-                    opt(c.inertia_ratio),
-                    c.reversals.unwrap_or(0)
-                ),
-                ModelKind::Kapitza => writeln!(
-                    o,
-                    "{},{cx},{cy},{},{},{},{}",
-                    c.index,
-                    c.stable.unwrap_or(false),
-                    opt(c.trace),
-                    opt(c.trace_error),
-                    c.decided.unwrap_or(false)
-                ),
-                ModelKind::Celt => writeln!(
-                    o,
-                    "{},{cx},{cy},{},{},{},{}",
-                    c.index,
-                    c.reversals.unwrap_or(0),
-                    opt(c.first_reversal.flatten()),
-                    opt(c.growth_rate),
-                    c.decided.unwrap_or(false)
-                ),
-            };
+        let mut o = line(&|c| c.heading(x, y).to_owned());
+        for cell in &self.cells {
+            o.push_str(&line(&|c| c.value(cell, x, y)));
         }
         o
     }

@@ -456,7 +456,11 @@ mod tests {
     use super::*;
 
     use crate::study::ask::StudyAsk;
-    use crate::study::chart::tests::pendulum;
+
+    /// A pendulum chart for tests.
+    fn pendulum(cols: usize, rows: usize) -> Chart {
+        crate::physics::kapitza::chart::tests::pendulum(cols, rows).into()
+    }
 
     fn description(cols: usize, rows: usize) -> Description {
         Description::new(
@@ -558,7 +562,10 @@ mod tests {
         );
         // Relabelled as another scene.
         let mut parts = good();
-        parts[1].1.model = crate::physics::ModelKind::Celt;
+        parts[1].1.model = crate::physics::ModelKind::ALL
+            .into_iter()
+            .find(|k| *k != chart.model())
+            .unwrap();
         parts[1].1 = sealed(parts[1].1.clone());
         let e = merge(&chart, 1, &parts).unwrap_err();
         assert!(e.contains("`model`"), "{e}");

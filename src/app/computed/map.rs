@@ -65,10 +65,12 @@ impl MapState {
         let here = crate::study::chart::point_of(&settings.model);
         let chart = Chart::for_pane(
             &settings.model,
-            settings.t_end,
-            settings.tolerance,
-            self.source == MapSource::Full,
-            self.axes_point(here),
+            crate::study::chart::PaneAsk {
+                t_end: settings.t_end,
+                tolerance: settings.tolerance,
+                full: self.source == MapSource::Full,
+                axes_from: self.axes_point(here),
+            },
         );
         Some(MapSpec { chart })
     }
@@ -346,7 +348,7 @@ mod tests {
         };
         assert!(m.on_done(m.id, None));
         assert_eq!(m.start(&s), None);
-        let t = crate::app::fields::Field::named(crate::physics::ModelKind::Rattleback, "iz")
+        let t = crate::app::fields::Field::named(s.model.kind(), "iz")
             .unwrap()
             .with_value(&s, 3.0)
             .unwrap();
@@ -366,20 +368,19 @@ mod tests {
         let mut m = MapState::default();
         m.start(&s);
         m.cursor = (11, 3);
-        let Chart::Rattleback { grid: g, .. } = m.spec.unwrap().chart else {
-            panic!("the rattleback's map")
-        };
+        let (x, y) = m.spec.unwrap().chart.axes();
+        let ix = s.model.rattleback().unwrap().params().ix;
         let loaded = m.load(&s).unwrap();
         let (lp, ls) = (
             loaded.rattleback().unwrap().params(),
             loaded.rattleback().unwrap().start(),
         );
-        assert_eq!(lp.iy, g.ix * g.inertia_ratio(3));
+        assert_eq!(lp.iy, ix * y.at(3));
         assert_eq!(ls.gamma, 0.0);
         assert_eq!(ls.alpha, 0.0);
         assert_eq!(ls.gamma_dot, 0.5);
         let ratio = (ls.alpha_dot / ls.gamma_dot).powi(2);
-        assert!((ratio - g.ratio(11)).abs() < 1e-12);
+        assert!((ratio - x.at(11)).abs() < 1e-12);
         assert_eq!(lp.k, 1e4, "k, t_end and the method stay");
     }
 
@@ -388,15 +389,13 @@ mod tests {
         let s = settings();
         let mut m = MapState::default();
         m.start(&s);
-        let Chart::Rattleback { grid: g, .. } = m.spec.unwrap().chart else {
-            panic!("the rattleback's map")
-        };
+        let (x, y) = m.spec.unwrap().chart.axes();
         let (ratio, inertia) = m.at_cursor().unwrap();
         assert!(
-            (ratio - 0.36).abs() <= g.ratio_max / g.cols as f64,
+            (ratio - 0.36).abs() <= x.max / x.cells as f64,
             "on the start: {ratio}"
         );
-        assert!((inertia.ln() - 0.5f64.ln()).abs() <= 2.5f64.ln() / g.rows as f64);
+        assert!((inertia.ln() - 0.5f64.ln()).abs() <= 2.5f64.ln() / y.cells as f64);
         m.move_cursor(-100, -100);
         assert_eq!(m.cursor, (0, 0));
         m.move_cursor(100, 100);

@@ -25,6 +25,7 @@
 //! see (`scene`).
 
 pub mod budget;
+pub mod chart;
 pub mod flows;
 pub mod linear;
 pub mod plan;

@@ -8,6 +8,7 @@
 //! raw crossings.
 
 use super::{Params, Problem, Start, TILT_MAX};
+use crate::physics::chart::Column;
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
@@ -191,6 +192,19 @@ pub static SCENE: Scene = Scene {
             note: "across: initial omega_z (both senses); up: product of inertia",
             axes: ("omega_z", "D"),
             sources: false,
+            pane: super::chart::CELT_GRID,
+            axis_keys: super::chart::AXES,
+            heading: "reversals",
+            legend: ". none, 1-9 reversals, + 10 or more, ? two tolerances disagree",
+            csv: &[
+                Column::Index,
+                Column::X,
+                Column::Y,
+                Column::Reversals,
+                Column::FirstReversal,
+                Column::GrowthRate,
+                Column::Decided,
+            ],
         },
         counterpart: "subcritical",
     },

@@ -19,6 +19,7 @@ pub mod averaged;
 #[rustfmt::skip]
 mod averaged3_terms;
 pub mod budget;
+pub mod chart;
 pub mod floquet;
 pub mod flows;
 pub mod limit;

@@ -4,6 +4,7 @@
 
 use super::limit::Limit;
 use super::{EPSILON_MAX, EPSILON_MIN, Params, Problem, Start};
+use crate::physics::chart::Column;
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
@@ -106,6 +107,19 @@ pub static SCENE: Scene = Scene {
             note: "across: a; up: b (log), at the current eps; Enter loads a and b",
             axes: ("a", "b"),
             sources: false,
+            pane: super::chart::PENDULUM_GRID,
+            axis_keys: super::chart::AXES,
+            heading: "stability of the pendulum",
+            legend: "# stable, . unstable, ? too close to call",
+            csv: &[
+                Column::Index,
+                Column::X,
+                Column::Y,
+                Column::Stable,
+                Column::Trace,
+                Column::TraceError,
+                Column::Decided,
+            ],
         },
         counterpart: "subcritical",
     },

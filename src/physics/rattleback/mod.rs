@@ -10,8 +10,10 @@ pub mod averaged3;
 #[rustfmt::skip]
 mod averaged3_terms;
 pub mod budget;
+pub mod chart;
 pub mod effective;
 pub mod integrators;
+pub mod map;
 pub mod model;
 pub mod params;
 pub mod plan;

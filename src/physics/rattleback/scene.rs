@@ -6,6 +6,7 @@ use super::effective::Effective;
 use super::integrators;
 use super::model::ALPHA;
 use super::params::{Params, Problem, Start};
+use crate::physics::chart::Column;
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
@@ -71,6 +72,11 @@ pub static SCENE: Scene = Scene {
             note: "across: alpha_dot0^2/gamma_dot0^2; up: iy/ix (log); f: limit or full model",
             axes: ("alpha_dot0^2/gamma_dot0^2", "iy/ix"),
             sources: true,
+            pane: super::chart::PANE_LARGEST,
+            axis_keys: super::chart::AXES,
+            heading: "reversals",
+            legend: ". none, 1-9 reversals, + 10 or more, ? two tolerances disagree",
+            csv: &[Column::Ratio, Column::InertiaRatio, Column::Reversals],
         },
         counterpart: "celt-clockwise",
     },

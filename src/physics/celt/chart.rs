@@ -1,0 +1,282 @@
+//! The celt's chart (issue 59; its own since issue 69): reversals in `[0, T]` and the first
+//! one's time over the initial spin `ω_z` (both senses) and the product of inertia `D`, from the
+//! preset's tilt, against the spin rates where steady spin turns from decaying to growing
+//! ([`super::linear`]).
+
+use std::collections::BTreeMap;
+
+use super::{Params, Problem};
+use crate::physics::chart::{
+    Axis, CellOutput, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, refuse_map_flags,
+    tick,
+};
+use crate::physics::{ParamError, StepError};
+
+/// The names of the axes, across and up (preset keys, or the rattleback's two ratios).
+pub const AXES: [&str; 2] = ["initial.omega_z", "celt.product"];
+
+/// The pane's grid (two to four runs of the window a cell).
+pub const CELT_GRID: (usize, usize) = (32, 16);
+/// The celt's reversal-time tolerance when none is asked (s): a count needs its times to a
+/// small fraction of a wobble (tenths of a second), not a trajectory's tolerance.
+pub const CELT_TOLERANCE: f64 = 1e-4;
+
+/// What a celt cell costs, in pairs of runs at its first tolerance, at a short window: a round
+/// or two decide it. Fitted with `scripts/chart_costs.py` on the seven shipped celt presets at
+/// their window, 10× and 100× (a fit to those 21 charts, not a held-out check): with these three
+/// constants every one is within 2× (wall over predicted 0.5–1.5).
+const CELT_PAIRS_SHORT: f64 = 2.9;
+/// At a long window, where counts grow chaotic and the loop runs to its end with blind
+/// refinements (a prediction of 2.5 runs a cell was 1.7–3.4× short there: issue 66, H3).
+const CELT_PAIRS_LONG: f64 = 11.9;
+/// The window (s) over which a cell goes from one to the other.
+const CELT_DECISION_TIME: f64 = 50.0;
+
+/// A celt chart: reversals over `(ω_z, D)` from the preset's body and tilt.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CeltChart {
+    /// The preset's problem (its `ω_z` and `D` are marked).
+    pub problem: Problem,
+    /// `ω_z` across.
+    pub columns: Axis,
+    /// `D` up.
+    pub rows: Axis,
+    /// The window.
+    pub t_end: f64,
+    /// The reversal times' tolerance (s).
+    pub tolerance: f64,
+}
+
+impl CeltChart {
+    /// The default axes for `problem`: `ω_z` over `±2|ω_z|` (both senses; `±10` rad/s for a start
+    /// without spin), `D` over `±2|D|` (`±0.05 √(ix iy)` for a body without skew), kept inside
+    /// the positive-definite range.
+    #[must_use]
+    pub fn default_axes(problem: &Problem, cols: usize, rows: usize) -> (Axis, Axis) {
+        let (p, s) = (problem.params(), problem.start());
+        let w = if s.omega[2] == 0.0 {
+            10.0
+        } else {
+            2.0 * s.omega[2].abs()
+        };
+        let limit = 0.9 * (p.ix * p.iy).sqrt();
+        let d = if p.product == 0.0 {
+            0.05 * (p.ix * p.iy).sqrt()
+        } else {
+            (2.0 * p.product.abs()).min(limit)
+        };
+        (
+            Axis {
+                name: AXES[0],
+                min: -w,
+                max: w,
+                cells: cols,
+                log: false,
+            },
+            Axis {
+                name: AXES[1],
+                min: -d,
+                max: d,
+                cells: rows,
+                log: false,
+            },
+        )
+    }
+
+    /// The problem of cell `(i, j)`.
+    ///
+    /// # Errors
+    /// When the body or start is not valid.
+    pub fn problem(&self, i: usize, j: usize) -> Result<Problem, ParamError> {
+        with_spin_and_product(&self.problem, self.columns.at(i), self.rows.at(j))
+    }
+
+    /// Predicted seconds of CPU one cell takes: its verification priced by the celt's cost model
+    /// at the fastest corner, as pairs of runs at its first tolerance (the run's own,
+    /// [`super::reversal::first_round_seconds`]), more of them the longer the window.
+    #[must_use]
+    pub fn cell_seconds(&self) -> f64 {
+        let x = self.columns;
+        let corner = self.problem(x.cells - 1, 0).unwrap_or(self.problem);
+        let pairs = CELT_PAIRS_SHORT
+            + (CELT_PAIRS_LONG - CELT_PAIRS_SHORT) * (self.t_end / CELT_DECISION_TIME).min(1.0);
+        pairs * super::reversal::first_round_seconds(&corner, self.t_end, self.tolerance)
+    }
+
+    /// The growth rate (1/s) at which the start's tilt `θ0` reaches a radian within the window:
+    /// `ln(1/θ0)/T` (`None` for an upright start, which never tilts).
+    #[must_use]
+    pub fn reversal_growth(&self) -> Option<f64> {
+        let tilt = super::tilt(&self.problem.initial_state());
+        (tilt > 0.0 && tilt < 1.0).then(|| (1.0 / tilt).ln() / self.t_end)
+    }
+}
+
+/// The celt's `problem` spun at `omega_z` with the product of inertia `product`.
+///
+/// # Errors
+/// When the body or start is not valid.
+pub fn with_spin_and_product(
+    problem: &Problem,
+    omega_z: f64,
+    product: f64,
+) -> Result<Problem, ParamError> {
+    let mut params: Params = *problem.params();
+    params.product = product;
+    let mut start = *problem.start();
+    start.omega[2] = omega_z;
+    Problem::new(params, start, problem.band())
+}
+
+impl SceneChart for CeltChart {
+    fn title(&self) -> String {
+        format!("reversals (T {})", tick(self.t_end))
+    }
+
+    fn axes(&self) -> (Axis, Axis) {
+        (self.columns, self.rows)
+    }
+
+    fn preset_point(&self) -> (f64, f64) {
+        (self.problem.start().omega[2], self.problem.params().product)
+    }
+
+    fn coords(&self, n: usize) -> BTreeMap<String, f64> {
+        let (x, y) = (self.columns, self.rows);
+        let (i, j) = (n % x.cells, n / x.cells);
+        BTreeMap::from([(x.name.to_owned(), x.at(i)), (y.name.to_owned(), y.at(j))])
+    }
+
+    fn cell(&self, n: usize, go_on: &(dyn Fn(f64) -> bool + Sync)) -> Result<Verdict, StepError> {
+        let (i, j) = (n % self.columns.cells, n / self.columns.cells);
+        let problem = self.problem(i, j).map_err(|_| StepError::NotFinite {
+            what: "a cell's body",
+            t: 0.0,
+        })?;
+        let r =
+            super::reversal::reversals(&problem, self.t_end, self.tolerance, &mut |t| go_on(t))?;
+        Ok(Verdict::Reversals {
+            count: r.count,
+            first: r.first,
+            decided: r.decided,
+            growth: Some(super::linear::growth_rate(
+                problem.params(),
+                problem.start().omega[2],
+            )),
+        })
+    }
+
+    fn curve(&self) -> Vec<(f64, f64)> {
+        let (x, y) = (self.columns, self.rows);
+        let Some(level) = self.reversal_growth() else {
+            return Vec::new();
+        };
+        (0..y.cells)
+            .flat_map(|j| {
+                let mut p = *self.problem.params();
+                p.product = y.at(j);
+                super::linear::crossings(&p, x.min, x.max, 4 * x.cells + 1, level)
+                    .into_iter()
+                    .map(move |w| (w, y.at(j)))
+            })
+            .collect()
+    }
+
+    fn curve_meaning(&self) -> &'static str {
+        "linear stability: where the steady spin's growth rate lifts the start's tilt to 1 rad within T"
+    }
+
+    fn cheap_cells(&self) -> bool {
+        false
+    }
+
+    fn cpu_seconds(&self, cells: usize) -> f64 {
+        #[allow(clippy::cast_precision_loss)]
+        let n = cells as f64;
+        n * self.cell_seconds()
+    }
+
+    fn header(&self) -> Header {
+        Header {
+            t_end: Some(self.t_end),
+            tolerance: Some(self.tolerance),
+            ..Header::default()
+        }
+    }
+
+    fn fill_cell(&self, _n: usize, v: &Verdict, out: &mut CellOutput) {
+        if let Verdict::Reversals {
+            count,
+            first,
+            decided,
+            growth,
+        } = *v
+        {
+            out.reversals = Some(count);
+            out.first_reversal = Some(first);
+            out.decided = Some(decided);
+            out.growth_rate = growth;
+        }
+    }
+
+    fn read_cell(&self, c: &CellOutput) -> Option<Verdict> {
+        Some(Verdict::Reversals {
+            count: c.reversals?,
+            first: c.first_reversal?,
+            decided: c.decided?,
+            growth: c.growth_rate,
+        })
+    }
+}
+
+impl ChartOf for CeltChart {
+    type Problem = Problem;
+
+    fn for_pane(problem: &Problem, ask: PaneAsk) -> Self {
+        let anchored =
+            with_spin_and_product(problem, ask.axes_from.0, ask.axes_from.1).unwrap_or(*problem);
+        let (columns, rows) = Self::default_axes(&anchored, CELT_GRID.0, CELT_GRID.1);
+        Self {
+            problem: *problem,
+            columns,
+            rows,
+            t_end: ask.t_end,
+            tolerance: CELT_TOLERANCE,
+        }
+    }
+
+    fn for_study(problem: &Problem, ask: &StudyAsk, title: &str) -> Result<Self, String> {
+        refuse_map_flags(ask, title)?;
+        if ask.hanging {
+            return Err(
+                "--position is the pendulum's (which equilibrium); the celt's chart has none"
+                    .to_owned(),
+            );
+        }
+        let (mut columns, mut rows) = Self::default_axes(problem, ask.grid.0, ask.grid.1);
+        if let Some((lo, hi)) = ask.columns {
+            (columns.min, columns.max) = (lo, hi);
+        }
+        if let Some((lo, hi)) = ask.rows {
+            (rows.min, rows.max) = (lo, hi);
+        }
+        // Every corner is a body and start the scene accepts.
+        for w in [columns.min, columns.max] {
+            for d in [rows.min, rows.max] {
+                with_spin_and_product(problem, w, d)
+                    .map_err(|e| format!("the chart's corner omega_z = {w}, product = {d}: {e}"))?;
+            }
+        }
+        Ok(Self {
+            problem: *problem,
+            columns,
+            rows,
+            t_end: ask.t_end,
+            tolerance: ask.asked_tolerance.unwrap_or(CELT_TOLERANCE),
+        })
+    }
+
+    fn load(&self, problem: &Problem, (x, y): (f64, f64)) -> Result<Problem, ParamError> {
+        with_spin_and_product(problem, x, y)
+    }
+}

@@ -1,0 +1,427 @@
+//! What every scene's chart is made of (issue 69): its axes, a cell's verdict and output, what
+//! `study map` asks, and the two traits a scene implements in its own folder
+//! (`rattleback/chart.rs`, `kapitza/chart.rs`, `celt/chart.rs`):
+//!
+//! - [`SceneChart`], a built chart's facts: its title, axes, the cell at an index, the theory's
+//!   curve, its cost, the fields its cells carry out and read back;
+//! - [`ChartOf`], how the scene builds one from its problem (for the explorer's pane or for
+//!   `study map`) and loads a cell back into a problem.
+//!
+//! Neither trait has a default method, so a scene that forgets one does not compile. The
+//! registry (`models.rs`, [`super::models::Chart`]) is the one dispatch to them; what is common
+//! to every chart (the grid's order, shards, the parallel loop, formats, progress) is the
+//! `study` layer's, above this one.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use super::method::StepError;
+use super::params::ParamError;
+
+/// One axis of a chart: cell centres evenly spaced (or log-spaced) over `[min, max]`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct Axis {
+    /// What is along it: a preset key (`pendulum.a`) or the rattleback's `ratio` / `inertia_ratio`.
+    pub name: &'static str,
+    /// The lower edge.
+    pub min: f64,
+    /// The upper edge.
+    pub max: f64,
+    /// Cells along it.
+    pub cells: usize,
+    /// Log-spaced.
+    pub log: bool,
+}
+
+impl Axis {
+    /// The value at the centre of cell `i`.
+    #[must_use]
+    pub fn at(&self, i: usize) -> f64 {
+        #[allow(clippy::cast_precision_loss)]
+        let f = (i as f64 + 0.5) / self.cells as f64;
+        if self.log {
+            (self.min.ln() + f * (self.max / self.min).ln()).exp()
+        } else {
+            self.min + f * (self.max - self.min)
+        }
+    }
+
+    /// The fraction of the axis at `x` (0 at `min`, 1 at `max`).
+    #[must_use]
+    pub fn fraction(&self, x: f64) -> f64 {
+        if self.log {
+            (x / self.min).ln() / (self.max / self.min).ln()
+        } else {
+            (x - self.min) / (self.max - self.min)
+        }
+    }
+
+    /// The cell holding `x`, if within the axis.
+    #[must_use]
+    pub fn cell_of(&self, x: f64) -> Option<usize> {
+        let f = self.fraction(x);
+        #[allow(clippy::cast_precision_loss)]
+        let i = (f * self.cells as f64).floor();
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        (f.is_finite() && (0.0..1.0).contains(&f)).then(|| (i as usize).min(self.cells - 1))
+    }
+}
+
+/// What one cell found.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Verdict {
+    /// Spin reversals (the rattleback, the celt).
+    Reversals {
+        /// How many in the window.
+        count: usize,
+        /// The first one's time (the celt's; `None` for the rattleback's and when none).
+        first: Option<f64>,
+        /// Whether two tolerances agree on it.
+        decided: bool,
+        /// The growth rate of steady spin at the cell (the celt's; 1/s).
+        growth: Option<f64>,
+    },
+    /// The linear stability of an equilibrium (the pendulum).
+    Stability {
+        /// `|tr M| < 2`.
+        stable: bool,
+        /// The monodromy matrix's trace.
+        trace: f64,
+        /// Its estimated error.
+        error: f64,
+        /// Whether `||tr| − 2|` exceeds the estimate.
+        decided: bool,
+    },
+    /// The cell's integration failed (a step size that underflowed, a state no longer finite):
+    /// the chart marks it undecided and says why, instead of failing whole (issue 66, H8).
+    Failed {
+        /// What went wrong, as the run said it.
+        error: String,
+    },
+}
+
+impl Verdict {
+    /// The count of reversals (`None` for a stability verdict).
+    #[must_use]
+    pub fn count(&self) -> Option<usize> {
+        match *self {
+            Self::Reversals { count, .. } => Some(count),
+            Self::Stability { .. } | Self::Failed { .. } => None,
+        }
+    }
+
+    /// Whether the cell's verdict is certain at the chart's tolerance.
+    #[must_use]
+    pub fn decided(&self) -> bool {
+        match *self {
+            Self::Reversals { decided, .. } | Self::Stability { decided, .. } => decided,
+            Self::Failed { .. } => false,
+        }
+    }
+}
+
+/// One cell of `study map`'s JSON. Every cell has `index` and `coords`; the verdict's fields
+/// are the scene's (the others are absent).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+#[serde(deny_unknown_fields)]
+pub struct CellOutput {
+    /// The cell's place in the grid, row by row from the bottom-left (`row · columns + column`).
+    pub index: usize,
+    /// The preset keys the cell sets, and their values.
+    pub coords: BTreeMap<String, f64>,
+    /// The rattleback's `α̇0²/γ̇0²`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ratio: Option<f64>,
+    /// The rattleback's `iy/ix`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inertia_ratio: Option<f64>,
+    /// Reversals in the window (the rattleback, the celt).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reversals: Option<usize>,
+    /// The celt's first reversal (s), `null` when none.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "double_option"
+    )]
+    #[schemars(with = "Option<f64>")]
+    #[allow(clippy::option_option)] // absent (not the celt), `null` (no reversal), a time
+    pub first_reversal: Option<Option<f64>>,
+    /// The celt's growth rate of steady spin at the cell's `ω_z` and `D` (1/s; positive: a small
+    /// tilt grows).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub growth_rate: Option<f64>,
+    /// The pendulum's verdict: `|tr M| < 2`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stable: Option<bool>,
+    /// The pendulum's monodromy trace.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub trace: Option<f64>,
+    /// Its estimated error.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub trace_error: Option<f64>,
+    /// Whether the verdict is certain at the chart's tolerance (the pendulum: the trace's
+    /// distance from ±2 exceeds its error; the celt: two tolerances agree on the count and the
+    /// times). `false` on a failed cell.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub decided: Option<bool>,
+    /// Why the cell's integration failed (a failed cell has this, `decided: false` and no
+    /// verdict).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+/// `Option<Option<T>>` as absent / `null` / a value.
+#[allow(clippy::option_option)] // the three cases are the JSON's: absent, `null`, a time
+mod double_option {
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    #[allow(clippy::ref_option)] // serde's `with` hands a reference to the field
+    pub fn serialize<S: Serializer, T: Serialize>(
+        v: &Option<Option<T>>,
+        s: S,
+    ) -> Result<S::Ok, S::Error> {
+        match v {
+            Some(inner) => inner.serialize(s),
+            None => s.serialize_none(),
+        }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>, T: Deserialize<'de>>(
+        d: D,
+    ) -> Result<Option<Option<T>>, D::Error> {
+        Option::<T>::deserialize(d).map(Some)
+    }
+}
+
+/// A cell read back whose fields are not its scene's (`study merge`): which cell.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("cell {index}: not the fields of a {scene} chart's cell")]
+pub struct NotItsFields {
+    /// The cell's index.
+    pub index: usize,
+    /// The scene's name.
+    pub scene: &'static str,
+}
+
+/// What `study map` asks of a chart: the grid, the window, the tolerance, and each scene's own
+/// flags (a scene refuses another's by name).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StudyAsk {
+    /// Columns and rows.
+    pub grid: (usize, usize),
+    /// The window.
+    pub t_end: f64,
+    /// The full model's tolerance (the rattleback's `--k` cells).
+    pub tolerance: f64,
+    /// `--tolerance` when given (the pendulum's trace, the celt's reversal times).
+    pub asked_tolerance: Option<f64>,
+    /// The rattleback's `--ratio-max`.
+    pub ratio_max: Option<f64>,
+    /// The rattleback's `--inertia-min`.
+    pub inertia_min: Option<f64>,
+    /// The rattleback's `--inertia-max`.
+    pub inertia_max: Option<f64>,
+    /// The rattleback's `--k` (the full model).
+    pub k: Option<f64>,
+    /// `--columns MIN,MAX` (the pendulum's and the celt's).
+    pub columns: Option<(f64, f64)>,
+    /// `--rows MIN,MAX` (the pendulum's and the celt's).
+    pub rows: Option<(f64, f64)>,
+    /// `--position hanging` (the pendulum's).
+    pub hanging: bool,
+}
+
+/// What the explorer's map pane asks of a chart.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PaneAsk {
+    /// The run's horizon.
+    pub t_end: f64,
+    /// The run's tolerance.
+    pub tolerance: f64,
+    /// The rattleback's map from the full model (at its `k`) rather than the limit.
+    pub full: bool,
+    /// The point the axes are drawn around (a loaded cell keeps the axes it was picked from).
+    pub axes_from: (f64, f64),
+}
+
+/// The header fields a chart's output carries beside its cells (absent ones are not the
+/// scene's).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Header {
+    /// The window.
+    pub t_end: Option<f64>,
+    /// The cells' tolerance.
+    pub tolerance: Option<f64>,
+    /// The rattleback's `k` when from the full model.
+    pub stiffness: Option<f64>,
+    /// The pendulum's `ε`.
+    pub epsilon: Option<f64>,
+    /// The pendulum's equilibrium.
+    pub position: Option<&'static str>,
+    /// Whether the curve is also written as the rattleback's `critical` points (its shape since
+    /// issue 59).
+    pub critical: bool,
+}
+
+/// A built chart of one scene: everything `study` needs to compute, draw and write it.
+pub trait SceneChart: std::fmt::Debug + Send + Sync {
+    /// What the chart is, in a few words (the pane's heading; `study map`'s refusal).
+    fn title(&self) -> String;
+    /// The axes, across and up.
+    fn axes(&self) -> (Axis, Axis);
+    /// The preset's point, in the axes' values.
+    fn preset_point(&self) -> (f64, f64);
+    /// The preset keys cell `n` sets, and their values.
+    fn coords(&self, n: usize) -> BTreeMap<String, f64>;
+    /// Cell `n` (row by row from the bottom); `go_on` may cancel it.
+    ///
+    /// # Errors
+    /// A failed run, or [`StepError::Cancelled`].
+    fn cell(&self, n: usize, go_on: &(dyn Fn(f64) -> bool + Sync)) -> Result<Verdict, StepError>;
+    /// The theory's curve in the axes' values, `(x, y)` points.
+    fn curve(&self) -> Vec<(f64, f64)>;
+    /// What the curve is, in words.
+    fn curve_meaning(&self) -> &'static str;
+    /// Whether a cell is cheap enough (a quadrature, one period's trace) that the explorer's
+    /// worker takes a row a slice; otherwise as many cells as the pool has threads.
+    fn cheap_cells(&self) -> bool;
+    /// Predicted seconds of one core's work for `cells` cells.
+    fn cpu_seconds(&self, cells: usize) -> f64;
+    /// The output's header fields.
+    fn header(&self) -> Header;
+    /// Writes the fields of cell `n`'s verdict `v` this scene's cells carry into `out`.
+    fn fill_cell(&self, n: usize, v: &Verdict, out: &mut CellOutput);
+    /// The verdict a (not failed) cell of this chart's output says, read back (`None` when a
+    /// field this scene's cells carry is missing).
+    fn read_cell(&self, cell: &CellOutput) -> Option<Verdict>;
+}
+
+/// How a scene builds its chart from its problem, and loads a cell back.
+pub trait ChartOf: SceneChart + Sized {
+    /// The scene's validated problem.
+    type Problem;
+    /// The explorer's pane chart of `problem`.
+    fn for_pane(problem: &Self::Problem, ask: PaneAsk) -> Self;
+    /// `study map`'s chart of `problem` as `ask` says (`title` the scene's, for refusals).
+    ///
+    /// # Errors
+    /// A flag of another scene's chart, a range out of order, or a corner the scene refuses
+    /// (said as a preset value would be).
+    fn for_study(problem: &Self::Problem, ask: &StudyAsk, title: &str) -> Result<Self, String>;
+    /// `problem` moved to the point `(x, y)` of this chart's axes.
+    ///
+    /// # Errors
+    /// When the point is not a valid problem.
+    fn load(&self, problem: &Self::Problem, point: (f64, f64))
+    -> Result<Self::Problem, ParamError>;
+}
+
+/// A column of a chart's CSV (a scene lists its own, in order: `ChartWords::csv`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Column {
+    /// The cell's index.
+    Index,
+    /// The value across (named after the axis).
+    X,
+    /// The value up (named after the axis).
+    Y,
+    /// The rattleback's `α̇0²/γ̇0²`.
+    Ratio,
+    /// The rattleback's `iy/ix`.
+    InertiaRatio,
+    /// Reversals (0 when absent).
+    Reversals,
+    /// The first reversal (empty when none).
+    FirstReversal,
+    /// The celt's growth rate.
+    GrowthRate,
+    /// The pendulum's verdict (`false` when absent).
+    Stable,
+    /// The monodromy trace.
+    Trace,
+    /// Its estimated error.
+    TraceError,
+    /// Whether decided (`false` when absent).
+    Decided,
+}
+
+impl Column {
+    /// The column's heading on a chart whose axes are named `x` and `y`.
+    #[must_use]
+    pub fn heading<'a>(self, x: &'a str, y: &'a str) -> &'a str {
+        match self {
+            Self::Index => "index",
+            Self::X => x,
+            Self::Y => y,
+            Self::Ratio => "ratio",
+            Self::InertiaRatio => "inertia_ratio",
+            Self::Reversals => "reversals",
+            Self::FirstReversal => "first_reversal",
+            Self::GrowthRate => "growth_rate",
+            Self::Stable => "stable",
+            Self::Trace => "trace",
+            Self::TraceError => "trace_error",
+            Self::Decided => "decided",
+        }
+    }
+
+    /// The column's value in cell `c` of a chart whose axes are named `x` and `y`.
+    #[must_use]
+    pub fn value(self, c: &CellOutput, x: &str, y: &str) -> String {
+        let opt = |v: Option<f64>| v.map_or_else(String::new, |v| v.to_string());
+        let coord = |name: &str| c.coords.get(name).copied().unwrap_or(f64::NAN).to_string();
+        match self {
+            Self::Index => c.index.to_string(),
+            Self::X => coord(x),
+            Self::Y => coord(y),
+            Self::Ratio => opt(c.ratio),
+            Self::InertiaRatio => opt(c.inertia_ratio),
+            Self::Reversals => c.reversals.unwrap_or(0).to_string(),
+            Self::FirstReversal => opt(c.first_reversal.flatten()),
+            Self::GrowthRate => opt(c.growth_rate),
+            Self::Stable => c.stable.unwrap_or(false).to_string(),
+            Self::Trace => opt(c.trace),
+            Self::TraceError => opt(c.trace_error),
+            Self::Decided => c.decided.unwrap_or(false).to_string(),
+        }
+    }
+}
+
+/// `1e-5`, `0.3`, `30`: short tick labels, never `9.999999999999999e-5`.
+#[must_use]
+pub fn tick(x: f64) -> String {
+    if x == 0.0 {
+        "0".to_owned()
+    } else if (1e-3..1e4).contains(&x.abs()) {
+        let s = format!("{x:.3}");
+        s.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        let s = format!("{x:.1e}");
+        s.replace(".0e", "e")
+    }
+}
+
+/// The flags of the rattleback's map, refused on another scene's chart by name (`scene` its
+/// title).
+///
+/// # Errors
+/// The first such flag given.
+pub fn refuse_map_flags(ask: &StudyAsk, scene: &str) -> Result<(), String> {
+    for (given, flag) in [
+        (ask.ratio_max.is_some(), "--ratio-max"),
+        (ask.inertia_min.is_some(), "--inertia-min"),
+        (ask.inertia_max.is_some(), "--inertia-max"),
+        (ask.k.is_some(), "--k"),
+    ] {
+        if given {
+            return Err(format!(
+                "{flag} is the rattleback's map; the {scene}'s chart takes --columns MIN,MAX and --rows MIN,MAX"
+            ));
+        }
+    }
+    Ok(())
+}

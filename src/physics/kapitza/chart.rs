@@ -1,0 +1,303 @@
+//! The pendulum's chart (issue 59; its own since issue 69): the stability of the upright (or the
+//! hanging position) over `(a, b)` at the preset's `ε`, by the monodromy matrix of one forcing
+//! period ([`super::floquet`]), against Kapitza's criterion `b² = 2a`.
+
+use std::collections::BTreeMap;
+
+use super::floquet::{Mathieu, Position, floquet};
+use super::{Params, Problem};
+use crate::physics::chart::{
+    Axis, CellOutput, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, refuse_map_flags,
+    tick,
+};
+use crate::physics::{ParamError, StepError};
+
+/// The names of the axes, across and up (preset keys, or the rattleback's two ratios).
+pub const AXES: [&str; 2] = ["pendulum.a", "pendulum.b"];
+
+/// The pane's grid (one period's trace a cell: instant).
+pub const PENDULUM_GRID: (usize, usize) = (48, 24);
+/// The pendulum's trace tolerance when none is asked: a cell within 1e-10 of `|tr| = 2` is too
+/// close to call.
+pub const PENDULUM_TOLERANCE: f64 = 1e-10;
+/// Seconds of CPU a pendulum cell takes, about (`scripts/chart_costs.py`; a 200×100 chart of
+/// kapitza-upright in about 2 s of CPU: two to four one-period runs a cell, each with its second
+/// companion, issue 66).
+pub const PENDULUM_CELL_SECONDS: f64 = 1e-4;
+
+/// A pendulum chart: the stability of `position` over `(a, b)` at `ε`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PendulumChart {
+    /// The preset's pendulum (its `ε`; its `a`, `b` are marked).
+    pub params: Params,
+    /// Which equilibrium.
+    pub position: Position,
+    /// `a` across.
+    pub columns: Axis,
+    /// `b` up.
+    pub rows: Axis,
+    /// The trace's tolerance.
+    pub tolerance: f64,
+}
+
+impl PendulumChart {
+    /// The default axes for `params`: `a` over `[0, 2a]` (or `[2a, 0]`, `[0, 2]` when `a = 0`),
+    /// `b` log-spaced from a tenth of Kapitza's threshold at the largest `a` to well past where
+    /// the shake destabilises the upright again (`εb ≈ 0.45`), so both edges of the stable band
+    /// show.
+    #[must_use]
+    pub fn default_axes(p: &Params, cols: usize, rows: usize) -> (Axis, Axis) {
+        let (lo, hi) = if p.a > 0.0 {
+            (0.0, 2.0 * p.a)
+        } else if p.a < 0.0 {
+            (2.0 * p.a, 0.0)
+        } else {
+            (0.0, 2.0)
+        };
+        let threshold = (2.0 * hi.abs().max(lo.abs())).sqrt();
+        let b_lo = (0.1 * threshold).min(0.5 * p.b.max(1e-3));
+        let b_hi = (1.0 / p.epsilon).max(4.0 * p.b).max(10.0 * b_lo);
+        (
+            Axis {
+                name: AXES[0],
+                min: lo,
+                max: hi,
+                cells: cols,
+                log: false,
+            },
+            Axis {
+                name: AXES[1],
+                min: b_lo,
+                max: b_hi,
+                cells: rows,
+                log: true,
+            },
+        )
+    }
+
+    /// The pendulum of cell `(i, j)`.
+    #[must_use]
+    pub fn params(&self, i: usize, j: usize) -> Params {
+        Params {
+            a: self.columns.at(i),
+            b: self.rows.at(j),
+            ..self.params
+        }
+    }
+}
+
+impl SceneChart for PendulumChart {
+    fn title(&self) -> String {
+        format!("stability (eps {})", tick(self.params.epsilon))
+    }
+
+    fn axes(&self) -> (Axis, Axis) {
+        (self.columns, self.rows)
+    }
+
+    fn preset_point(&self) -> (f64, f64) {
+        (self.params.a, self.params.b)
+    }
+
+    fn coords(&self, n: usize) -> BTreeMap<String, f64> {
+        let (x, y) = (self.columns, self.rows);
+        let (i, j) = (n % x.cells, n / x.cells);
+        BTreeMap::from([(x.name.to_owned(), x.at(i)), (y.name.to_owned(), y.at(j))])
+    }
+
+    fn cell(&self, n: usize, go_on: &(dyn Fn(f64) -> bool + Sync)) -> Result<Verdict, StepError> {
+        let (i, j) = (n % self.columns.cells, n / self.columns.cells);
+        if !go_on(0.0) {
+            return Err(StepError::Cancelled { t: 0.0 });
+        }
+        let f = crate::physics::fork::sequentially(|| {
+            floquet(
+                Mathieu::of(&self.params(i, j), self.position),
+                self.tolerance,
+            )
+        })?;
+        Ok(Verdict::Stability {
+            stable: f.stable,
+            trace: f.trace,
+            error: f.error,
+            decided: f.decided,
+        })
+    }
+
+    fn curve(&self) -> Vec<(f64, f64)> {
+        let (x, y) = (self.columns, self.rows);
+        if self.position == Position::Hanging {
+            return Vec::new();
+        }
+        // Kapitza's curve sampled finely along a (four points a column).
+        let n = 4 * x.cells;
+        (0..=n)
+            .filter_map(|k| {
+                #[allow(clippy::cast_precision_loss)]
+                let a = x.min + (x.max - x.min) * k as f64 / n as f64;
+                let b = (2.0 * a).sqrt();
+                (a >= 0.0 && y.cell_of(b).is_some()).then_some((a, b))
+            })
+            .collect()
+    }
+
+    fn curve_meaning(&self) -> &'static str {
+        match self.position {
+            Position::Hanging => "none (the hanging position)",
+            Position::Upright => "Kapitza's criterion b^2 = 2a (the limit eps -> 0)",
+        }
+    }
+
+    fn cheap_cells(&self) -> bool {
+        true
+    }
+
+    fn cpu_seconds(&self, cells: usize) -> f64 {
+        #[allow(clippy::cast_precision_loss)]
+        let n = cells as f64;
+        n * PENDULUM_CELL_SECONDS
+    }
+
+    fn header(&self) -> Header {
+        Header {
+            tolerance: Some(self.tolerance),
+            epsilon: Some(self.params.epsilon),
+            position: Some(self.position.name()),
+            ..Header::default()
+        }
+    }
+
+    fn fill_cell(&self, _n: usize, v: &Verdict, out: &mut CellOutput) {
+        if let Verdict::Stability {
+            stable,
+            trace,
+            error,
+            decided,
+        } = *v
+        {
+            out.stable = Some(stable);
+            out.trace = Some(trace);
+            out.trace_error = Some(error);
+            out.decided = Some(decided);
+        }
+    }
+
+    fn read_cell(&self, c: &CellOutput) -> Option<Verdict> {
+        Some(Verdict::Stability {
+            stable: c.stable?,
+            trace: c.trace?,
+            error: c.trace_error?,
+            decided: c.decided?,
+        })
+    }
+}
+
+impl ChartOf for PendulumChart {
+    type Problem = Problem;
+
+    fn for_pane(problem: &Problem, ask: PaneAsk) -> Self {
+        let p = *problem.params();
+        let (a, b) = ask.axes_from;
+        let axes_of = Params { a, b, ..p };
+        let (columns, rows) = Self::default_axes(&axes_of, PENDULUM_GRID.0, PENDULUM_GRID.1);
+        Self {
+            params: p,
+            position: Position::Upright,
+            columns,
+            rows,
+            tolerance: PENDULUM_TOLERANCE,
+        }
+    }
+
+    fn for_study(problem: &Problem, ask: &StudyAsk, title: &str) -> Result<Self, String> {
+        refuse_map_flags(ask, title)?;
+        let params = *problem.params();
+        let (mut columns, mut rows) = Self::default_axes(&params, ask.grid.0, ask.grid.1);
+        if let Some((lo, hi)) = ask.columns {
+            (columns.min, columns.max) = (lo, hi);
+        }
+        if let Some((lo, hi)) = ask.rows {
+            if lo <= 0.0 {
+                return Err(format!(
+                    "--rows {lo},{hi}: the pendulum's b is log-spaced; both ends must be positive"
+                ));
+            }
+            (rows.min, rows.max) = (lo, hi);
+        }
+        // Every corner is a pendulum the scene accepts (the same validator as a preset's).
+        for a in [columns.min, columns.max] {
+            for b in [rows.min, rows.max] {
+                Problem::new(Params { a, b, ..params }, *problem.start())
+                    .map_err(|e| format!("the chart's corner a = {a}, b = {b}: {e}"))?;
+            }
+        }
+        Ok(Self {
+            params,
+            position: if ask.hanging {
+                Position::Hanging
+            } else {
+                Position::Upright
+            },
+            columns,
+            rows,
+            tolerance: ask.asked_tolerance.unwrap_or(PENDULUM_TOLERANCE),
+        })
+    }
+
+    fn load(&self, problem: &Problem, (x, y): (f64, f64)) -> Result<Problem, ParamError> {
+        let params = Params {
+            a: x,
+            b: y,
+            ..*problem.params()
+        };
+        Problem::new(params, *problem.start())
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    /// A pendulum chart for tests (this module's and `study::part`'s).
+    pub(crate) fn pendulum(cols: usize, rows: usize) -> PendulumChart {
+        let params = Params {
+            a: 1.0,
+            b: 2.0,
+            epsilon: 0.1,
+        };
+        let (columns, rows) = PendulumChart::default_axes(&params, cols, rows);
+        PendulumChart {
+            params,
+            position: Position::Upright,
+            columns,
+            rows,
+            tolerance: PENDULUM_TOLERANCE,
+        }
+    }
+
+    #[test]
+    fn a_cell_is_a_function_of_its_coordinates_alone() {
+        // Every cell of two grids equals the trace computed from its coordinates by itself.
+        for c in [pendulum(9, 9), pendulum(4, 7)] {
+            let len = c.columns.cells * c.rows.cells;
+            for n in [0, 5, len - 1] {
+                let coords = c.coords(n);
+                let params = Params {
+                    a: coords["pendulum.a"],
+                    b: coords["pendulum.b"],
+                    ..c.params
+                };
+                let f = floquet(Mathieu::of(&params, Position::Upright), c.tolerance).unwrap();
+                assert_eq!(
+                    c.cell(n, &|_| true).unwrap(),
+                    Verdict::Stability {
+                        stable: f.stable,
+                        trace: f.trace,
+                        error: f.error,
+                        decided: f.decided
+                    }
+                );
+            }
+        }
+    }
+}
