@@ -21,3 +21,6 @@ pub mod simulate;
 pub mod study;
 pub mod terminal;
 pub mod ui;
+
+#[cfg(test)]
+mod scene_contract;

@@ -10,6 +10,9 @@
 use serde::{Deserialize, Serialize};
 
 use super::celt;
+#[cfg(test)]
+#[path = "oscillator/mod.rs"]
+pub mod oscillator;
 use super::chart::{ChartOf, PaneAsk, SceneChart, StudyAsk};
 use super::kapitza;
 use super::method::{Method, StepError};
@@ -31,6 +34,9 @@ pub enum ModelKind {
     Kapitza,
     /// The classical rattleback (an ellipsoidal bottom rolling without slipping).
     Celt,
+    /// The scene contract's oscillator (the library's own tests only).
+    #[cfg(test)]
+    Oscillator,
 }
 
 /// A validated problem of one model.
@@ -43,6 +49,9 @@ pub enum Model {
     Kapitza(kapitza::Problem),
     /// The celt: body, start and reversal band.
     Celt(celt::Problem),
+    /// The scene contract's oscillator.
+    #[cfg(test)]
+    Oscillator(oscillator::Problem),
 }
 
 /// A chart of one scene: each scene's own type, in its folder (`SCENE/chart.rs`, issue 69),
@@ -55,6 +64,9 @@ pub enum Chart {
     Kapitza(kapitza::chart::PendulumChart),
     /// The celt's reversal chart.
     Celt(celt::chart::CeltChart),
+    /// The scene contract's crossing chart.
+    #[cfg(test)]
+    Oscillator(oscillator::chart::CrossingChart),
 }
 
 impl From<super::rattleback::chart::RegimeChart> for Chart {
@@ -75,6 +87,13 @@ impl From<celt::chart::CeltChart> for Chart {
     }
 }
 
+#[cfg(test)]
+impl From<oscillator::chart::CrossingChart> for Chart {
+    fn from(c: oscillator::chart::CrossingChart) -> Self {
+        Self::Oscillator(c)
+    }
+}
+
 impl std::ops::Deref for Chart {
     type Target = dyn SceneChart;
 
@@ -83,6 +102,8 @@ impl std::ops::Deref for Chart {
             Self::Rattleback(c) => c,
             Self::Kapitza(c) => c,
             Self::Celt(c) => c,
+            #[cfg(test)]
+            Self::Oscillator(c) => c,
         }
     }
 }
@@ -95,6 +116,8 @@ impl Chart {
             Self::Rattleback(_) => ModelKind::Rattleback,
             Self::Kapitza(_) => ModelKind::Kapitza,
             Self::Celt(_) => ModelKind::Celt,
+            #[cfg(test)]
+            Self::Oscillator(_) => ModelKind::Oscillator,
         }
     }
 
@@ -105,6 +128,8 @@ impl Chart {
             Model::Rattleback(p) => Self::Rattleback(ChartOf::for_pane(p, ask)),
             Model::Kapitza(p) => Self::Kapitza(ChartOf::for_pane(p, ask)),
             Model::Celt(p) => Self::Celt(ChartOf::for_pane(p, ask)),
+            #[cfg(test)]
+            Model::Oscillator(p) => Self::Oscillator(ChartOf::for_pane(p, ask)),
         }
     }
 
@@ -118,6 +143,8 @@ impl Chart {
             Model::Rattleback(p) => Self::Rattleback(ChartOf::for_study(p, ask, title)?),
             Model::Kapitza(p) => Self::Kapitza(ChartOf::for_study(p, ask, title)?),
             Model::Celt(p) => Self::Celt(ChartOf::for_study(p, ask, title)?),
+            #[cfg(test)]
+            Model::Oscillator(p) => Self::Oscillator(ChartOf::for_study(p, ask, title)?),
         })
     }
 
@@ -131,11 +158,15 @@ impl Chart {
             (Self::Rattleback(c), Model::Rattleback(p)) => c.load(p, point).map(Model::from),
             (Self::Kapitza(c), Model::Kapitza(p)) => c.load(p, point).map(Model::from),
             (Self::Celt(c), Model::Celt(p)) => c.load(p, point).map(Model::from),
+            #[cfg(test)]
+            (Self::Oscillator(c), Model::Oscillator(p)) => c.load(p, point).map(Model::from),
             // Each chart with another scene's model (each chart named: a new one must say what
             // it loads).
             (Self::Rattleback(_) | Self::Kapitza(_) | Self::Celt(_), _) => {
                 return Err("the map is of another scene".to_owned());
             }
+            #[cfg(test)]
+            (Self::Oscillator(_), _) => return Err("the map is of another scene".to_owned()),
         }
         .map_err(bad)
     }
@@ -181,6 +212,18 @@ pub enum PlanKey {
         /// Horizon.
         t_end: f64,
     },
+    /// The scene contract's oscillator's.
+    #[cfg(test)]
+    Oscillator {
+        /// `omega`.
+        oscillator: oscillator::Params,
+        /// `x`, `v`.
+        oscillator_start: oscillator::Start,
+        /// Tolerance asked.
+        tolerance: f64,
+        /// Horizon.
+        t_end: f64,
+    },
 }
 
 impl PlanKey {
@@ -191,6 +234,8 @@ impl PlanKey {
             Self::Rattleback { .. } => ModelKind::Rattleback,
             Self::Kapitza { .. } => ModelKind::Kapitza,
             Self::Celt { .. } => ModelKind::Celt,
+            #[cfg(test)]
+            Self::Oscillator { .. } => ModelKind::Oscillator,
         }
     }
 
@@ -217,6 +262,13 @@ impl PlanKey {
                 tolerance,
                 t_end,
             },
+            #[cfg(test)]
+            Model::Oscillator(p) => Self::Oscillator {
+                oscillator: *p.params(),
+                oscillator_start: *p.start(),
+                tolerance,
+                t_end,
+            },
         }
     }
 }
@@ -224,6 +276,13 @@ impl PlanKey {
 impl From<celt::Problem> for Model {
     fn from(p: celt::Problem) -> Self {
         Self::Celt(p)
+    }
+}
+
+#[cfg(test)]
+impl From<oscillator::Problem> for Model {
+    fn from(p: oscillator::Problem) -> Self {
+        Self::Oscillator(p)
     }
 }
 
@@ -241,7 +300,16 @@ impl From<kapitza::Problem> for Model {
 
 impl ModelKind {
     /// Every model, in the order lists show them.
+    #[cfg(not(test))]
     pub const ALL: [Self; 3] = [Self::Rattleback, Self::Kapitza, Self::Celt];
+    /// Every model, with the scene contract's (the library's own tests).
+    #[cfg(test)]
+    pub const ALL: [Self; 4] = [
+        Self::Rattleback,
+        Self::Kapitza,
+        Self::Celt,
+        Self::Oscillator,
+    ];
 
     /// The model's own description (the one dispatch on the kind).
     #[must_use]
@@ -250,6 +318,8 @@ impl ModelKind {
             Self::Rattleback => &super::rattleback::scene::SCENE,
             Self::Kapitza => &kapitza::scene::SCENE,
             Self::Celt => &celt::scene::SCENE,
+            #[cfg(test)]
+            Self::Oscillator => &oscillator::scene::SCENE,
         }
     }
 
@@ -263,6 +333,8 @@ impl ModelKind {
             Self::Rattleback => Model::Rattleback(Problem::from_values(values)?),
             Self::Kapitza => Model::Kapitza(kapitza::Problem::from_values(values)?),
             Self::Celt => Model::Celt(celt::Problem::from_values(values)?),
+            #[cfg(test)]
+            Self::Oscillator => Model::Oscillator(oscillator::Problem::from_values(values)?),
         })
     }
 
@@ -372,6 +444,8 @@ impl Model {
             Self::Rattleback(p) => p,
             Self::Kapitza(p) => p,
             Self::Celt(p) => p,
+            #[cfg(test)]
+            Self::Oscillator(p) => p,
         }
     }
 
@@ -382,6 +456,8 @@ impl Model {
             Self::Rattleback(_) => ModelKind::Rattleback,
             Self::Kapitza(_) => ModelKind::Kapitza,
             Self::Celt(_) => ModelKind::Celt,
+            #[cfg(test)]
+            Self::Oscillator(_) => ModelKind::Oscillator,
         }
     }
 
@@ -391,6 +467,8 @@ impl Model {
         match self {
             Self::Rattleback(p) => Some(p),
             Self::Kapitza(_) | Self::Celt(_) => None,
+            #[cfg(test)]
+            Self::Oscillator(_) => None,
         }
     }
 
@@ -400,6 +478,8 @@ impl Model {
         match self {
             Self::Kapitza(p) => Some(p),
             Self::Rattleback(_) | Self::Celt(_) => None,
+            #[cfg(test)]
+            Self::Oscillator(_) => None,
         }
     }
 
@@ -409,6 +489,8 @@ impl Model {
         match self {
             Self::Celt(p) => Some(p),
             Self::Rattleback(_) | Self::Kapitza(_) => None,
+            #[cfg(test)]
+            Self::Oscillator(_) => None,
         }
     }
 
@@ -476,6 +558,15 @@ impl Model {
                     mass: params.iz,
                     energy: params.energy(&y0) - params.gravity * params.rest_height(),
                     q_dot0: celt::spin(&y0),
+                }
+            }
+            #[cfg(test)]
+            Self::Oscillator(p) => {
+                let s = p.start();
+                LimitView::Free {
+                    mass: 1.0,
+                    energy: p.energy(s.x, s.v),
+                    q_dot0: s.v,
                 }
             }
         }

@@ -6,6 +6,8 @@
 
 mod celt;
 mod kapitza;
+#[cfg(test)]
+mod oscillator;
 mod rattleback;
 mod render;
 
@@ -127,6 +129,8 @@ fn report_of(model: &crate::physics::Model) -> &dyn Report {
         crate::physics::Model::Rattleback(p) => p,
         crate::physics::Model::Kapitza(p) => p,
         crate::physics::Model::Celt(p) => p,
+        #[cfg(test)]
+        crate::physics::Model::Oscillator(p) => p,
     }
 }
 

@@ -1,0 +1,184 @@
+//! The oscillator's chart: the crossings of `x = 0` in `(0, T]` over `(ω, v0)`, each cell a
+//! DOP853 run, against the exact count's boundaries.
+
+use std::collections::BTreeMap;
+
+use super::{Params, Problem, Start};
+use crate::physics::chart::{
+    Axis, CellOutput, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick,
+};
+use crate::physics::method::{Asked, Method, RunSpec};
+use crate::physics::{ParamError, StepError};
+
+/// The pane's grid.
+pub const GRID: (usize, usize) = (16, 8);
+/// The axes' names.
+pub const AXES: [&str; 2] = ["oscillator.omega", "initial.v"];
+/// A cell's run tolerance.
+const TOLERANCE: f64 = 1e-10;
+
+/// A crossing chart.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CrossingChart {
+    /// The preset's problem.
+    pub problem: Problem,
+    /// `ω` across.
+    pub columns: Axis,
+    /// `v0` up.
+    pub rows: Axis,
+    /// The window.
+    pub t_end: f64,
+}
+
+impl CrossingChart {
+    fn axes_of(problem: &Problem, cols: usize, rows: usize) -> (Axis, Axis) {
+        let w = problem.params().omega;
+        let v = problem.start().v.abs().max(1.0);
+        (
+            Axis {
+                name: AXES[0],
+                min: 0.5 * w,
+                max: 2.0 * w,
+                cells: cols,
+                log: false,
+            },
+            Axis {
+                name: AXES[1],
+                min: -2.0 * v,
+                max: 2.0 * v,
+                cells: rows,
+                log: false,
+            },
+        )
+    }
+
+    fn problem_at(&self, (x, y): (f64, f64)) -> Result<Problem, ParamError> {
+        Problem::new(
+            Params { omega: x },
+            Start {
+                v: y,
+                ..*self.problem.start()
+            },
+        )
+    }
+}
+
+impl SceneChart for CrossingChart {
+    fn title(&self) -> String {
+        format!("crossings (T {})", tick(self.t_end))
+    }
+    fn axes(&self) -> (Axis, Axis) {
+        (self.columns, self.rows)
+    }
+    fn preset_point(&self) -> (f64, f64) {
+        (self.problem.params().omega, self.problem.start().v)
+    }
+    fn coords(&self, n: usize) -> BTreeMap<String, f64> {
+        let (x, y) = (self.columns, self.rows);
+        let (i, j) = (n % x.cells, n / x.cells);
+        BTreeMap::from([(x.name.to_owned(), x.at(i)), (y.name.to_owned(), y.at(j))])
+    }
+    fn cell(&self, n: usize, go_on: &(dyn Fn(f64) -> bool + Sync)) -> Result<Verdict, StepError> {
+        let (x, y) = (self.columns, self.rows);
+        let problem = self
+            .problem_at((x.at(n % x.cells), y.at(n / x.cells)))
+            .map_err(|_| StepError::NotFinite {
+                what: "a cell's oscillator",
+                t: 0.0,
+            })?;
+        let spec = RunSpec::new(Asked::new(Method::Dop853, TOLERANCE, None, self.t_end), 0);
+        let r = super::flows::run(&problem, &spec, &mut |t| go_on(t))?;
+        Ok(Verdict::Reversals {
+            count: r.crossing_count,
+            first: None,
+            decided: true,
+            growth: None,
+        })
+    }
+    fn curve(&self) -> Vec<(f64, f64)> {
+        Vec::new()
+    }
+    fn curve_meaning(&self) -> &'static str {
+        "none"
+    }
+    fn cheap_cells(&self) -> bool {
+        true
+    }
+    fn cpu_seconds(&self, cells: usize) -> f64 {
+        #[allow(clippy::cast_precision_loss)]
+        let n = cells as f64;
+        n * super::flows::cost_seconds(
+            &self.problem,
+            &Asked::new(Method::Dop853, TOLERANCE, None, self.t_end),
+        )
+    }
+    fn header(&self) -> Header {
+        Header {
+            t_end: Some(self.t_end),
+            tolerance: Some(TOLERANCE),
+            ..Header::default()
+        }
+    }
+    fn fill_cell(&self, _n: usize, v: &Verdict, out: &mut CellOutput) {
+        if let Verdict::Reversals { count, .. } = *v {
+            out.reversals = Some(count);
+        }
+    }
+    fn read_cell(&self, c: &CellOutput) -> Option<Verdict> {
+        Some(Verdict::Reversals {
+            count: c.reversals?,
+            first: None,
+            decided: true,
+            growth: None,
+        })
+    }
+}
+
+impl ChartOf for CrossingChart {
+    type Problem = Problem;
+
+    fn for_pane(problem: &Problem, ask: PaneAsk) -> Self {
+        let (columns, rows) = Self::axes_of(problem, GRID.0, GRID.1);
+        Self {
+            problem: *problem,
+            columns,
+            rows,
+            t_end: ask.t_end,
+        }
+    }
+
+    fn for_study(problem: &Problem, ask: &StudyAsk, title: &str) -> Result<Self, String> {
+        crate::physics::chart::refuse_map_flags(ask, title)?;
+        let (mut columns, mut rows) = Self::axes_of(problem, ask.grid.0, ask.grid.1);
+        if let Some((lo, hi)) = ask.columns {
+            (columns.min, columns.max) = (lo, hi);
+        }
+        if let Some((lo, hi)) = ask.rows {
+            (rows.min, rows.max) = (lo, hi);
+        }
+        let chart = Self {
+            problem: *problem,
+            columns,
+            rows,
+            t_end: ask.t_end,
+        };
+        for w in [columns.min, columns.max] {
+            for v in [rows.min, rows.max] {
+                chart
+                    .problem_at((w, v))
+                    .map_err(|e| format!("the chart's corner omega = {w}, v = {v}: {e}"))?;
+            }
+        }
+        Ok(chart)
+    }
+
+    fn load(&self, problem: &Problem, (x, y): (f64, f64)) -> Result<Problem, ParamError> {
+        Problem::new(
+            Params { omega: x },
+            Start {
+                v: y,
+                ..*problem.start()
+            },
+        )
+    }
+}

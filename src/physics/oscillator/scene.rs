@@ -1,0 +1,148 @@
+//! The oscillator as every layer above `physics/` sees it ([`Scene`], [`Posed`]).
+
+use super::{Params, Problem, Start};
+use crate::physics::chart::Column;
+use crate::physics::flow::{Flow, GoOn};
+use crate::physics::method::{Arithmetic, Asked, Method, RunSpec, StepError};
+use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
+use crate::physics::plan::PlanRequest;
+use crate::physics::scene::{
+    ChartWords, Drawing, Planned, Posed, Scene, Shown, SlowCurve, Studies, SummaryLine, WeakStudy,
+    Words,
+};
+
+/// Its parameter table: `[oscillator] omega`, `[initial] x`, `v`.
+pub const PARAMS: [ParamSpec; 3] = [
+    ParamSpec::required(
+        ("oscillator", "omega"),
+        Allowed::Between {
+            lo: 1e-3,
+            hi: 1e3,
+            text: "a number in [0.001, 1000] (rad/s)",
+        },
+        Scale::linear(0.1, 1.0),
+        "the angular frequency (rad/s)",
+    ),
+    ParamSpec::optional(
+        ("initial", "x"),
+        Allowed::Between {
+            lo: -1e6,
+            hi: 1e6,
+            text: "a number of magnitude at most 1e6",
+        },
+        1.0,
+        Scale::linear(0.1, 1.0),
+        "position at t = 0",
+    ),
+    ParamSpec::optional(
+        ("initial", "v"),
+        Allowed::Between {
+            lo: -1e6,
+            hi: 1e6,
+            text: "a number of magnitude at most 1e6",
+        },
+        0.0,
+        Scale::linear(0.1, 1.0),
+        "velocity at t = 0",
+    ),
+];
+
+/// The oscillator's fixed facts.
+pub static SCENE: Scene = Scene {
+    name: "oscillator",
+    title: "harmonic oscillator",
+    words: Words {
+        q_name: "position",
+        q_dot_name: "velocity",
+        q: "x",
+        q_dot: "v",
+        fast: "x",
+        fast_name: "position",
+        event: "crossing",
+        events: "crossings",
+        event_meaning: "the position changing sign",
+        second_events: None,
+        monitor: "ΔE",
+        monitor_column: "energy_error",
+    },
+    params: &PARAMS,
+    model_required: true,
+    methods: &super::flows::METHODS,
+    limit_tolerance: 1e-10,
+    small: None,
+    studies: Studies {
+        weak: None,
+        chart: ChartWords {
+            title: "crossing chart (M)",
+            stability: false,
+            curve: "none",
+            note: "across: omega; up: v0",
+            axes: ("omega", "v0"),
+            sources: false,
+            pane: super::chart::GRID,
+            axis_keys: super::chart::AXES,
+            heading: "crossings",
+            legend: ". none, 1-9 crossings, + 10 or more",
+            csv: &[Column::Index, Column::X, Column::Y, Column::Reversals],
+        },
+        counterpart: "subcritical",
+    },
+};
+
+crate::physics::scene::table_order!(Params { omega }, Start { x, v });
+
+impl Posed for Problem {
+    fn scene(&self) -> &'static Scene {
+        &SCENE
+    }
+    fn values(&self) -> Vec<f64> {
+        self.table_values()
+    }
+    fn summary(&self) -> Vec<SummaryLine> {
+        let s = self.start();
+        vec![SummaryLine::new(
+            "energy E",
+            "the start's energy per unit mass",
+            Shown::Number(Some(self.energy(s.x, s.v))),
+        )]
+    }
+    fn slow_start(&self) -> (f64, f64) {
+        (self.start().x, self.start().v)
+    }
+    fn default_step(&self, _method: Method, tolerance: f64, _t_end: f64) -> f64 {
+        tolerance.clamp(1e-16, 1.0).powf(0.125) / self.params().omega
+    }
+    fn drawing(&self) -> Drawing {
+        Drawing::Body {
+            plan: [1.0, 0.5],
+            side: None,
+        }
+    }
+    fn build(&self, ask: &Asked, _: Arithmetic) -> Result<Box<dyn Flow>, StepError> {
+        Ok(Box::new(super::flows::build(self, ask)?))
+    }
+    fn resolve(&self, ask: &PlanRequest, go_on: &mut dyn FnMut(f64) -> bool) -> Planned {
+        super::flows::resolve(self, ask, go_on)
+    }
+    fn predicted_seconds(&self, ask: &Asked) -> f64 {
+        super::flows::cost_seconds(self, ask)
+    }
+    fn chart_point(&self) -> (f64, f64) {
+        (self.params().omega, self.start().v)
+    }
+    fn weak(&self) -> Option<&dyn WeakStudy> {
+        None
+    }
+    fn slow_curve(&self, ask: &Asked, samples: usize, go_on: GoOn) -> Result<SlowCurve, StepError> {
+        let r = self.resolve(&PlanRequest::verified(ask), go_on)?;
+        let plan = Asked::new(r.plan.method, r.plan.tolerance, None, ask.t_end);
+        let run = super::flows::run(self, &RunSpec::new(plan, samples), go_on)?;
+        let (t, q) = run.samples.iter().map(|s| (s[0], s[1])).unzip();
+        Ok(SlowCurve {
+            t,
+            q,
+            method: r.plan.method,
+            estimate: r.estimate.unwrap_or(0.0),
+        })
+    }
+}
