@@ -23,7 +23,7 @@ const FRAME: f64 = 1.0 / 30.0;
 /// The replay's frames are finer than the lecturer's, so each recorded line is shown alone.
 const REPLAY_FRAME: f64 = 0.0005;
 
-fn temp(name: &str) -> std::path::PathBuf {
+pub(crate) fn temp(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("rattleback-lecture-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     // A preset given by its path names its files after the path.
@@ -54,22 +54,22 @@ fn frame(app: &mut App) -> String {
 }
 
 /// What the lecturer recorded: the lines, and at each `screen` line the frame drawn then.
-struct Lecture {
-    header: record::Header,
-    lines: Vec<Line>,
-    frames: Vec<(usize, String, Shown)>,
+pub(crate) struct Lecture {
+    pub(crate) header: record::Header,
+    pub(crate) lines: Vec<Line>,
+    pub(crate) frames: Vec<(usize, String, Shown)>,
 }
 
-struct Lecturer {
-    h: Headless,
-    wall: f64,
-    lines: Vec<Line>,
-    frames: Vec<(usize, String, Shown)>,
+pub(crate) struct Lecturer {
+    pub(crate) h: Headless,
+    pub(crate) wall: f64,
+    pub(crate) lines: Vec<Line>,
+    pub(crate) frames: Vec<(usize, String, Shown)>,
 }
 
 impl Lecturer {
     /// Stopped as `R` stops it: the last frame once settled, its checkpoint, then the end.
-    fn stop(&mut self) {
+    pub(crate) fn stop(&mut self) {
         self.key(Key::Char('R'));
         while self.h.app.journal.state == rattleback::app::RecState::On {
             self.tick();
@@ -83,7 +83,7 @@ impl Lecturer {
         );
     }
 
-    fn collect(&mut self) {
+    pub(crate) fn collect(&mut self) {
         for (t, generation, event) in self.h.app.take_journal() {
             if let Event::Screen(shown) = &event {
                 if std::env::var_os("DEBUG_FRAMES").is_some() {
@@ -112,18 +112,18 @@ impl Lecturer {
             });
         }
     }
-    fn tick(&mut self) {
+    pub(crate) fn tick(&mut self) {
         self.wall += FRAME;
         self.h.tick(FRAME);
         self.collect();
     }
-    fn key(&mut self, key: Key) {
+    pub(crate) fn key(&mut self, key: Key) {
         // A key comes after the frame before it (the recorder stamps it later).
         self.wall += 0.01;
         self.h.key(key);
         self.collect();
     }
-    fn text(&mut self, key: char, text: &str) {
+    pub(crate) fn text(&mut self, key: char, text: &str) {
         self.key(Key::Char(key));
         for c in text.chars() {
             self.key(Key::Char(c));
@@ -145,7 +145,7 @@ fn first_event(preset: &str) -> f64 {
         .unwrap_or(0.5 * h.app.run.t_end)
 }
 
-fn lecture(preset: &str, speed: f64, field: &str) -> Lecture {
+pub(crate) fn lecture(preset: &str, speed: f64, field: &str) -> Lecture {
     lecture_with(preset, speed, field, false)
 }
 
@@ -244,7 +244,7 @@ fn lecture_with(preset: &str, speed: f64, field: &str, compare: bool) -> Lecture
 
 /// Plays `lines` through a replayer (`live`: pushed as they were written, as `follow` reads
 /// them); at every screen line applied, compares the frame with the lecturer's.
-fn replay_and_compare(preset: &str, lecture: &Lecture, live: bool) -> usize {
+pub(crate) fn replay_and_compare(preset: &str, lecture: &Lecture, live: bool) -> usize {
     let _ = preset;
     // The replay starts from the header, as `replay` and `follow` do (its preset, its lesson).
     let preset =
@@ -340,11 +340,11 @@ fn replay_and_compare(preset: &str, lecture: &Lecture, live: bool) -> usize {
 
 /// Frames per second of the cast checked against the lecturer: fine enough that each recorded
 /// line (ticks 1/30 s apart, keys 10 ms after them) lands in a frame of its own.
-const CAST_FPS: f64 = 240.0;
+pub(crate) const CAST_FPS: f64 = 240.0;
 
 /// Plays the cast's output through a terminal emulator (`vt100`) and, at each screen line's
 /// frame, compares the screen above the status bar with the lecturer's frame; returns how many.
-fn cast_screens(cast: &str, lecture: &Lecture) -> usize {
+pub(crate) fn cast_screens(cast: &str, lecture: &Lecture) -> usize {
     let events: Vec<(f64, String)> = cast
         .lines()
         .skip(1)
@@ -392,7 +392,7 @@ fn vt_rows(parser: &vt100::Parser) -> String {
 }
 
 /// The screen a cast shows at its end.
-fn cast_last_screen(cast: &str) -> String {
+pub(crate) fn cast_last_screen(cast: &str) -> String {
     let n = |x: u16| std::num::NonZeroU16::new(x).unwrap();
     let mut parser = vt100::Parser::new(n(24), n(80), 0);
     for l in cast.lines().skip(1) {
@@ -404,7 +404,7 @@ fn cast_last_screen(cast: &str) -> String {
     vt_rows(&parser)
 }
 
-fn write(
+pub(crate) fn write(
     lecture: &Lecture,
     name: &str,
     signer: Option<record::sign::Signer>,
@@ -605,594 +605,6 @@ fn a_pendulum_lecture_replays_and_follows_frame_for_frame() {
 fn a_comparison_lecture_replays_and_follows_frame_for_frame() {
     check_with("subcritical", "k", true);
     check_with("celt-clockwise", "omega_z", true);
-}
-
-fn one_lecture() -> Lecture {
-    lecture("subcritical", 16.0, "k")
-}
-
-fn line_of(path: &std::path::Path, kind: &str) -> usize {
-    let text = std::fs::read_to_string(path).unwrap();
-    text.lines()
-        .position(|l| l.contains(&format!("\"kind\":\"{kind}\"")))
-        .unwrap()
-}
-
-fn edit(
-    path: &std::path::Path,
-    name: &str,
-    f: impl Fn(usize, &str) -> Option<String>,
-) -> std::path::PathBuf {
-    let text = std::fs::read_to_string(path).unwrap();
-    let out: Vec<String> = text
-        .lines()
-        .enumerate()
-        .filter_map(|(i, l)| f(i, l))
-        .collect();
-    let p = temp(name);
-    std::fs::write(&p, out.join("\n") + "\n").unwrap();
-    p
-}
-
-fn diverged_at(path: &std::path::Path, key: Option<&record::sign::PublicKey>) -> usize {
-    let rec = record::read(path).unwrap();
-    match record::verify(&rec, "edited", key) {
-        Err(record::VerifyError::Diverged(d)) => d.line,
-        other => panic!("{other:?}"),
-    }
-}
-
-#[test]
-fn edits_downgrades_cuts_and_extra_fields_fail_naming_the_line() {
-    let lecture = one_lecture();
-    let path = write(&lecture, "intact.jsonl", None);
-    assert!(record::verify(&record::read(&path).unwrap(), "intact", None).is_ok());
-    // A note's text changed (a forged line, its chain left as it was).
-    let note = line_of(&path, "note");
-    let forged = edit(&path, "forged.jsonl", |i, l| {
-        Some(if i == note {
-            l.replace("watch", "skip")
-        } else {
-            l.to_owned()
-        })
-    });
-    assert_eq!(diverged_at(&forged, None), note + 1);
-    // The header says version 3: its rules refuse format-4 lines.
-    let current = format!("\"version\":{}", record::VERSION);
-    let downgraded = edit(&path, "downgraded.jsonl", |i, l| {
-        Some(if i == 0 {
-            l.replace(&current, "\"version\":3")
-        } else {
-            l.to_owned()
-        })
-    });
-    let first = std::fs::read_to_string(&downgraded).unwrap();
-    assert!(first.starts_with("{\"format\":\"rattleback-session\",\"version\":3"));
-    diverged_at(&downgraded, None);
-    // An extra field: covered by the chain and refused by the format.
-    let extra = edit(&path, "extra.jsonl", |i, l| {
-        Some(if i == note {
-            l.replacen('{', "{\"x\":1,", 1)
-        } else {
-            l.to_owned()
-        })
-    });
-    assert_eq!(diverged_at(&extra, None), note + 1);
-    // The tail deleted (the end line and a few before it): intact but incomplete.
-    let total = std::fs::read_to_string(&path).unwrap().lines().count();
-    let cut = edit(&path, "cut.jsonl", |i, l| {
-        (i + 4 < total).then(|| l.to_owned())
-    });
-    match record::verify(&record::read(&cut).unwrap(), "cut", None) {
-        Err(record::VerifyError::Incomplete { through, .. }) => assert_eq!(through, total - 4),
-        other => panic!("{other:?}"),
-    }
-    // Everything but the header: incomplete too.
-    let bare = edit(&path, "bare.jsonl", |i, l| (i == 0).then(|| l.to_owned()));
-    assert!(matches!(
-        record::verify(&record::read(&bare).unwrap(), "bare", None),
-        Err(record::VerifyError::Incomplete { .. })
-    ));
-    // And the command says so, with a non-zero exit.
-    let out = crate::common::rattleback()
-        .args(["replay", cut.to_str().unwrap(), "--verify"])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        err.contains(&format!("intact up to line {}", total - 4)),
-        "{err}"
-    );
-    // Nothing claims the last frame the cut removed (issue 67: "the last frame, as recorded"
-    // was printed before the failure).
-    let said = String::from_utf8_lossy(&out.stdout);
-    assert!(!said.contains("the last frame, as recorded"), "{said}");
-    assert!(said.contains("its last frame is not in the file"), "{said}");
-}
-
-#[test]
-fn a_signed_session_verifies_with_its_key_and_fails_with_another() {
-    let dir = temp("keys");
-    std::fs::create_dir_all(&dir).unwrap();
-    let (secret, public) = record::sign::keygen(&dir.join("lecturer")).unwrap();
-    let (_, other) = record::sign::keygen(&dir.join("someone-else")).unwrap();
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt as _;
-        let mode = std::fs::metadata(&secret).unwrap().permissions().mode();
-        assert_eq!(mode & 0o777, 0o600, "the private key is private");
-    }
-    assert!(
-        record::sign::keygen(&dir.join("lecturer")).is_err(),
-        "never overwritten"
-    );
-    let lecture = one_lecture();
-    let signer = record::sign::Signer::read(&secret).unwrap();
-    let path = write(&lecture, "signed.jsonl", Some(signer));
-    let key = record::sign::PublicKey::read(&public).unwrap();
-    let report = record::verify(&record::read(&path).unwrap(), "signed", Some(&key)).unwrap();
-    assert!(report.signature.unwrap().starts_with("signed by lecturer"));
-    let other = record::sign::PublicKey::read(&other).unwrap();
-    let end = std::fs::read_to_string(&path).unwrap().lines().count();
-    assert_eq!(diverged_at(&path, Some(&other)), end);
-    // An unsigned session does not pass for a signed one.
-    let unsigned = write(&lecture, "unsigned.jsonl", None);
-    diverged_at(&unsigned, Some(&key));
-    // Said at the end line's time, not at t = 0 (issue 56).
-    let rec = record::read(&unsigned).unwrap();
-    let last_t = rec.lines.last().unwrap().1.t;
-    match record::verify(&rec, "unsigned", Some(&key)) {
-        Err(record::VerifyError::Diverged(d)) => {
-            assert_eq!(d.t.to_bits(), last_t.to_bits(), "{d:?}");
-        }
-        other => panic!("{other:?}"),
-    }
-    // An end line that counts wrong says its count in words, not as `Some(10)`.
-    let miscounted = edit(&unsigned, "miscounted.jsonl", |_, l| {
-        Some(if l.contains("\"kind\":\"end\"") {
-            let at = l.find("\"lines\":").unwrap() + 8;
-            let digits = l[at..].find(|c: char| !c.is_ascii_digit()).unwrap();
-            format!("{}10{}", &l[..at], &l[at + digits..])
-        } else {
-            l.to_owned()
-        })
-    });
-    let text = match record::verify(&record::read(&miscounted).unwrap(), "m", None) {
-        Err(e) => e.to_string(),
-        Ok(_) => panic!("a wrong count verified"),
-    };
-    assert!(!text.contains("Some("), "{text}");
-    // A line edited and the whole chain written again by someone without the key: the chain
-    // holds, the signature does not.
-    let rec = record::read(&path).unwrap();
-    let forged = temp("reforged.jsonl");
-    let mut out = Recorder::create(&forged, &rec.header, None).unwrap();
-    for (_, l) in &rec.lines {
-        let mut l = l.clone();
-        if let Event::Note { text } = &mut l.event {
-            *text = "forged".to_owned();
-        }
-        out.write(&l).unwrap();
-    }
-    drop(out);
-    // Re-chained without a key: the end line is unsigned now, so a key check fails.
-    diverged_at(&forged, Some(&key));
-}
-
-/// `follow` of a file that does not exist yet waits for it, saying so (students usually start
-/// first), then reads it once it appears: here a file that is not a session, refused with exit 2
-/// before the terminal is touched. In a pseudo-terminal of its own (`script`): `follow` refuses
-/// at once where it has no terminal to draw on.
-#[test]
-fn follow_waits_for_a_file_that_does_not_exist_yet() {
-    let path = temp("not-yet.jsonl");
-    let log = temp("not-yet.pty");
-    let command = format!(
-        "exec {} follow {}",
-        crate::common::program(),
-        path.display()
-    );
-    let mut child = crate::common::detached("script")
-        .args(["-qfec", &command])
-        .arg(&log)
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null())
-        .spawn()
-        .expect("`script` (util-linux) gives follow a pseudo-terminal");
-    std::thread::sleep(std::time::Duration::from_millis(700));
-    assert!(
-        child.try_wait().unwrap().is_none(),
-        "it must wait, not exit"
-    );
-    std::fs::write(&path, "not a session\n").unwrap();
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(10);
-    let status = loop {
-        if let Some(s) = child.try_wait().unwrap() {
-            break s;
-        }
-        assert!(
-            std::time::Instant::now() < deadline,
-            "still waiting after the file appeared"
-        );
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    };
-    let err = String::from_utf8_lossy(&std::fs::read(&log).unwrap()).into_owned();
-    assert_eq!(status.code(), Some(2), "{err}");
-    assert!(err.contains("waiting for"), "{err}");
-    assert!(err.contains("not a session header"), "{err}");
-    assert!(
-        !err.contains("\u{1b}[?1049h"),
-        "the terminal was not touched: {err}"
-    );
-}
-
-/// Two format-4 sessions recorded in the explorer over a real terminal (tmux at 80×24): a
-/// rattleback lecture at ×16 (pause, three steps, Esc twice, a chapter, play to the end) and a
-/// pendulum lecture signed with `--sign` (its public key checked in beside it). Both verify, the
-/// signed one with its key and not with another.
-#[test]
-fn checked_in_format_4_sessions_verify_and_the_signed_one_with_its_key() {
-    let dir = format!("{}/tests/fixtures/sessions", root!());
-    let bin = |args: &[&str]| {
-        let out = crate::common::rattleback().args(args).output().unwrap();
-        (
-            out.status.code(),
-            String::from_utf8_lossy(&out.stdout).into_owned(),
-            String::from_utf8_lossy(&out.stderr).into_owned(),
-        )
-    };
-    let lecture = format!("{dir}/lecture.jsonl");
-    let (code, out, err) = bin(&["replay", &lecture, "--verify"]);
-    assert_eq!(code, Some(0), "{err}");
-    assert!(out.contains("6 screen(s) as recorded"), "{out}");
-    assert!(out.contains("format 4: SHA-256"), "{out}");
-    let signed = format!("{dir}/kapitza-signed.jsonl");
-    let key = format!("{dir}/lecturer.pub");
-    let (code, out, err) = bin(&["replay", &signed, "--verify", "--key", &key]);
-    assert_eq!(code, Some(0), "{err}");
-    assert!(out.contains("signed by lecturer"), "{out}");
-    let other = temp("other");
-    record::sign::keygen(&other).unwrap();
-    let other_pub = format!("{}.pub", other.display());
-    let (code, _, err) = bin(&["replay", &signed, "--verify", "--key", &other_pub]);
-    assert_eq!(code, Some(1));
-    assert!(err.contains("signed by another key"), "{err}");
-}
-
-/// Issue 55: a lesson is a lecture too. Each shipped lesson is recorded as a teacher gives it:
-/// the questions answered (right, or wrong), values typed, a pane toggled, `n` pressed while the
-/// run plays wherever the step's condition allows it, the recording stopped; at ×1 and ×16.
-/// The file then replays and follows line by line with the lecturer's frame at every screen
-/// line, the lesson's pane included; it verifies (its last frame too) and exports as a cast
-/// and a page.
-#[allow(clippy::too_many_lines)] // one lesson, given step by step
-fn lesson_lecture(name: &str, speed: f64, wrong: bool) -> Lecture {
-    use rattleback::scenario::lesson::Question;
-    let lesson = rattleback::scenario::lesson::resolve(name).unwrap();
-    let first = lesson.steps[0]
-        .preset
-        .clone()
-        .unwrap_or_else(|| rattleback::scenario::shipped::resolve("subcritical", &[]).unwrap());
-    let mut l = Lecturer {
-        h: Headless::of(&first),
-        wall: 0.0,
-        lines: Vec::new(),
-        frames: Vec::new(),
-    };
-    let effects = l.h.app.start_lesson(lesson.clone());
-    l.h.exec(effects);
-    let header = rattleback::explorer::recording::header(&l.h.app, (80, 24), 30.0);
-    assert!(header.lesson.is_some(), "the header carries the lesson");
-    let effects =
-        l.h.app
-            .on_outcome(Outcome::Recording(Ok("lesson.jsonl".into())));
-    l.h.exec(effects);
-    l.collect();
-    for (i, step) in lesson.steps.iter().enumerate() {
-        assert_eq!(l.h.app.lesson.as_ref().unwrap().step, i, "{name}");
-        l.tick();
-        // The question: right, or wrong (alternately when `wrong`).
-        let wrong_here = wrong && i % 2 == 0;
-        match &step.question {
-            Some(Question::Choice {
-                choices, answer, ..
-            }) => {
-                let pick = if wrong_here {
-                    (answer + 1) % choices.len()
-                } else {
-                    *answer
-                };
-                l.key(Key::Char(char::from(b'1' + pick as u8)));
-            }
-            Some(Question::Number { answer, .. }) => {
-                let typed = if wrong_here {
-                    answer * 3.0 + 1.0
-                } else {
-                    *answer
-                };
-                l.text('a', &format!("{typed}"));
-            }
-            None => {}
-        }
-        l.tick();
-        // A step about another pane leaves the arrows to the panel, not to a map it may hide.
-        if step.pane.as_deref().is_some_and(|p| p != "map") {
-            assert_ne!(
-                l.h.app.mode,
-                rattleback::app::Mode::Map,
-                "{name} step {}",
-                i + 1
-            );
-        }
-        // The chart read as the step asks (its map has the arrows): the cursor moved up two
-        // cells, a format-12 line each, which the replay, the follower and the cast draw.
-        if step.pane.as_deref() == Some("map") {
-            assert_eq!(
-                l.h.app.mode,
-                rattleback::app::Mode::Map,
-                "{name} step {}",
-                i + 1
-            );
-            let before = l.h.app.computed.map.cursor;
-            l.key(Key::Up);
-            l.tick();
-            l.key(Key::Up);
-            l.tick();
-            assert_eq!(l.h.app.computed.map.cursor.1, before.1 + 2, "{name}");
-        }
-        // A pane toggled and back (layout lines).
-        l.key(Key::Char('t'));
-        l.tick();
-        l.key(Key::Char('t'));
-        l.tick();
-        // A value typed where the step asks for one.
-        if let Some(p) = &step.until.parameter {
-            let label = p.key.rsplit('.').next().unwrap();
-            // The step's map has the arrows: Esc gives them back, as its text says.
-            if l.h.app.mode == rattleback::app::Mode::Map {
-                l.key(Key::Esc);
-            }
-            let mut presses = 0;
-            while l.h.app.field().label() != label {
-                l.key(Key::Down);
-                presses += 1;
-                assert!(presses < 100, "{name}: no field {label} under the arrows");
-            }
-            let value = p.at_least.or(p.at_most).unwrap();
-            l.key(Key::Enter);
-            for c in format!("{value}").chars() {
-                l.key(Key::Char(c));
-            }
-            l.key(Key::Enter);
-            l.tick();
-        }
-        while l.h.app.run.speed < speed {
-            l.key(Key::Char('+'));
-        }
-        l.key(Key::Char(' '));
-        // Until the step's condition holds: then `n`, while the run still plays where it does.
-        let mut frames = 0;
-        while l.h.app.lesson_missing().is_some() {
-            l.tick();
-            frames += 1;
-            assert!(frames < 200_000, "{name} step {}: never ready", i + 1);
-            assert!(
-                !l.h.app.run.done() || l.h.app.lesson_missing().is_none(),
-                "{name} step {}: done, still waiting for {:?}",
-                i + 1,
-                l.h.app.lesson_missing()
-            );
-        }
-        l.key(Key::Char('n'));
-        l.tick();
-    }
-    assert!(
-        l.h.app.lesson.as_ref().unwrap().finished,
-        "{name}: finished"
-    );
-    l.stop();
-    Lecture {
-        header,
-        lines: l.lines,
-        frames: l.frames,
-    }
-}
-
-/// A lesson whose steps read the map records its cursor (format 12); one without, none.
-fn map_cursor_lines_are_there(name: &str, lecture: &Lecture) {
-    let maps = lecture
-        .lines
-        .iter()
-        .filter(|l| matches!(l.event, Event::MapCursor { .. }))
-        .count();
-    let asks_map = rattleback::scenario::lesson::resolve(name)
-        .unwrap()
-        .steps
-        .iter()
-        .any(|s| s.pane.as_deref() == Some("map"));
-    assert_eq!(asks_map, maps > 0, "{name}: {maps} map cursor lines");
-}
-
-/// One test per shipped lesson (they run side by side: one test of all eight took four
-/// minutes alone); a lesson shipped without its test fails
-/// `every_shipped_lesson_has_its_lecture_test`.
-macro_rules! lesson_lectures {
-    ($($test:ident: $name:literal,)*) => {
-        $(
-            #[test]
-            fn $test() {
-                a_shipped_lesson_records_replays_follows_and_verifies_frame_for_frame($name);
-            }
-        )*
-        const LECTURED: &[&str] = &[$($name),*];
-    };
-}
-
-lesson_lectures! {
-    lecture_first_reversal: "first-reversal",
-    lecture_stiff_limit: "stiff-limit",
-    lecture_tapping: "tapping",
-    lecture_kapitza_threshold: "kapitza-threshold",
-    lecture_kapitza_ripple: "kapitza-ripple",
-    lecture_two_ways: "two-ways",
-    lecture_kapitza_chart: "kapitza-chart",
-    lecture_celt_chart: "celt-chart",
-}
-
-#[test]
-fn every_shipped_lesson_has_its_lecture_test() {
-    let shipped: Vec<&str> = rattleback::scenario::lesson::SHIPPED_LESSONS
-        .iter()
-        .map(|(n, _)| *n)
-        .collect();
-    assert_eq!(shipped, LECTURED);
-}
-
-/// A shipped lesson recorded as a lecturer gives it (at ×1 and ×16, answers right and wrong),
-/// replayed, followed, verified and exported, frame for frame.
-#[allow(clippy::too_many_lines)] // every way the lecture is read back, one after the other
-fn a_shipped_lesson_records_replays_follows_and_verifies_frame_for_frame(name: &str) {
-    {
-        for (speed, wrong) in [(1.0, false), (16.0, true)] {
-            let lecture = lesson_lecture(name, speed, wrong);
-            let screens = lecture.frames.len();
-            // `n` pressed while playing leaves a pause in the file before the next step's screen.
-            let steps = lecture
-                .lines
-                .iter()
-                .filter(|l| matches!(l.event, Event::LessonStep { .. }))
-                .count();
-            assert!(steps >= 3, "{name}: {steps} steps recorded");
-            assert!(
-                lecture
-                    .lines
-                    .iter()
-                    .any(|l| matches!(l.event, Event::Given { .. })),
-                "{name}: the answers given are recorded"
-            );
-            assert!(
-                lecture.lines.iter().any(|l| l.event == Event::LessonDone),
-                "{name}: the end of the lesson is recorded"
-            );
-            map_cursor_lines_are_there(name, &lecture);
-            assert_eq!(
-                replay_and_compare(name, &lecture, false),
-                screens,
-                "{name} ×{speed}: replay"
-            );
-            assert_eq!(
-                replay_and_compare(name, &lecture, true),
-                screens,
-                "{name} ×{speed}: follow"
-            );
-            let path = write(&lecture, &format!("lesson-{name}-{speed}.jsonl"), None);
-            let rec = record::read(&path).unwrap();
-            let report =
-                record::verify(&rec, name, None).unwrap_or_else(|e| panic!("{name} ×{speed}: {e}"));
-            assert_eq!(report.screens, screens, "{name} ×{speed}");
-            assert!(report.final_screen, "{name} ×{speed}: the last frame");
-            // The binary's own verify, and both exports.
-            let (code, out, err) = common::bin(&["replay", path.to_str().unwrap(), "--verify"]);
-            assert_eq!(code, 0, "{name} ×{speed}: {err}");
-            assert!(out.contains("the last frame, as recorded"), "{out}");
-            let cast = temp(&format!("lesson-{name}-{speed}.cast"));
-            rattleback::cast::export_cast(
-                &rec,
-                "lesson",
-                &cast,
-                &UiOptions::default(),
-                rattleback::cast::CastSize {
-                    fps: CAST_FPS,
-                    ..rattleback::cast::CastSize::default()
-                },
-                true,
-                &mut |_| {},
-            )
-            .unwrap();
-            let text = std::fs::read_to_string(&cast).unwrap();
-            assert_eq!(
-                cast_screens(&text, &lecture),
-                screens,
-                "{name} ×{speed}: cast"
-            );
-            let page = temp(&format!("lesson-{name}-{speed}.html"));
-            let (code, _, err) = common::bin(&[
-                "replay",
-                path.to_str().unwrap(),
-                "--verify",
-                "--export-html",
-                page.to_str().unwrap(),
-            ]);
-            assert_eq!(code, 0, "{name} ×{speed}: {err}");
-            // The page opens on the last frame: its poster is the inlined cast's last frame,
-            // and that frame is the lecturer's last screen.
-            let html = std::fs::read_to_string(&page).unwrap();
-            let inlined = html
-                .split_once("<script type=\"application/json\" id=\"cast\">")
-                .and_then(|(_, rest)| rest.split_once("</script>"))
-                .map(|(json, _)| serde_json::from_str::<String>(json).unwrap())
-                .expect("the page inlines its cast");
-            let last = rattleback::cast::last_frame_time(&inlined);
-            assert!(last > 0.0, "{name} ×{speed}");
-            let poster = rattleback::commands::page::poster_time(&inlined);
-            assert!(
-                poster > last && poster - last < 0.01,
-                "{name} ×{speed}: the poster ({poster}) is not the last frame ({last})"
-            );
-            assert!(
-                html.contains(&format!("poster: \"npt:{poster:.6}\"")),
-                "{name} ×{speed}: the page's poster is not the last frame"
-            );
-            // Titled by the lesson, not its first preset; its description under the title;
-            // each step's chapter at the step's own start (issue 67).
-            let title = &lecture.header.lesson.as_ref().unwrap().title;
-            assert!(
-                html.contains(&format!(
-                    "<h1>rattleback: {}</h1>",
-                    title
-                        .replace('&', "&amp;")
-                        .replace('<', "&lt;")
-                        .replace('>', "&gt;")
-                        .replace('\'', "&#39;")
-                )),
-                "{name}: the page's title"
-            );
-            assert!(html.contains("<p class=\"description\">"), "{name}");
-            let header: serde_json::Value =
-                serde_json::from_str(text.lines().next().unwrap()).unwrap();
-            assert_eq!(
-                header["title"],
-                format!("rattleback: {title}"),
-                "{name}: cast"
-            );
-            let steps_with_preset: Vec<bool> = rattleback::scenario::lesson::resolve(name)
-                .unwrap()
-                .steps
-                .iter()
-                .map(|s| s.preset.is_some())
-                .collect();
-            let chapters = record::chapter_list(&rec);
-            assert_eq!(chapters.len(), steps_with_preset.len(), "{name}");
-            for (c, fresh) in chapters.iter().zip(steps_with_preset) {
-                if fresh {
-                    assert!(
-                        c.t.abs() < f64::MIN_POSITIVE,
-                        "{name}: {} starts its own run at 0 (t {})",
-                        c.title,
-                        c.t
-                    );
-                }
-            }
-            let strip = |s: &str| s.lines().take(18).collect::<Vec<_>>().join("\n");
-            assert_eq!(
-                strip(&cast_last_screen(&inlined)),
-                strip(&lecture.frames.last().unwrap().1),
-                "{name} ×{speed}: the page's last frame"
-            );
-        }
-    }
 }
 
 /// Issue 55: a student's fork is a live explorer at the lecturer's state: after `f` in a
