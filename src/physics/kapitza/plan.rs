@@ -65,7 +65,7 @@ use crate::physics::method::Asked;
 use crate::physics::method::RunSpec;
 use crate::physics::method::{Method, Settings, StepError};
 use crate::physics::plan::Shortfall;
-use crate::physics::verify::{AtTolerance, Candidate, Policy, Rounds, verify};
+use crate::physics::verify::{AtTolerance, Candidate, Policy, Round, Rounds, verify};
 
 /// What `auto` chose, and why.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -270,11 +270,212 @@ pub fn averaged_checked(
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Choice, StepError> {
     let local = (tolerance * 1e-4).max(POLICY.tightest);
-    let spec =
-        |method, tolerance| RunSpec::new(Asked::new(method, tolerance, None, t_end), SAMPLES);
-    let es2 = small_parameter(problem).powi(2);
-    let rounding = lift_phase_rounding(problem);
-    let choice = |method, local, model, estimate: f64| Choice {
+    let separated = separated(problem);
+    let first = if separated && model_error(problem, t_end) <= LIMIT_WORTH_TRYING * tolerance {
+        Slow::Limit
+    } else {
+        Slow::Second
+    };
+    let mut ladder = Ladder {
+        problem,
+        t_end,
+        local,
+        separated,
+        es2: small_parameter(problem).powi(2),
+        rounding: lift_phase_rounding(problem),
+        runs: Vec::new(),
+        read: Vec::new(),
+    };
+    let v = verify(&mut ladder, Rounds::unbudgeted(first, tolerance), go_on)?;
+    let best = v.best.0;
+    let (method, local, model) = ladder.model_of(best.plan);
+    Ok(slow_choice(method, local, model, best.estimate, tolerance))
+}
+
+/// A slow model's place on the ladder the check climbs (`SLOW.max_refinements` rounds after
+/// the first): the limit with its ripple, `averaged2`, `averaged3`, and the best of them once
+/// more at the tightest tolerance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Slow {
+    /// The limit with its ripple, its model error from `averaged2`.
+    Limit,
+    /// `averaged2`, from `averaged3` (separated scales) or the limit.
+    Second,
+    /// `averaged3`, from its gap to `averaged2`.
+    Third,
+    /// This model once more at the tightest tolerance, its model error as measured before.
+    Tight(Method),
+}
+
+/// The slow models' check as a candidate of the one loop ([`verify`]): each round runs a model
+/// and its companion `SLOW.companion_looser` times looser (the runs kept: a model's next order
+/// is the next round's model); a round's estimate is its model error, the integration's
+/// distance and the lift's rounding. The loop keeps the best reading; this candidate says
+/// which round comes next.
+struct Ladder<'a> {
+    problem: &'a Problem,
+    t_end: f64,
+    /// The local tolerance of every round but the tightening one.
+    local: f64,
+    separated: bool,
+    /// `(ε s)²`.
+    es2: f64,
+    rounding: f64,
+    runs: Vec<((Method, u64), RunResult)>,
+    /// Each round read: the plan, its model error and its estimate.
+    read: Vec<(Slow, f64, f64)>,
+}
+
+impl Ladder<'_> {
+    /// `method` at `local`, run once (a later round asks for it again).
+    fn run(
+        &mut self,
+        method: Method,
+        local: f64,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<usize, StepError> {
+        let key = (method, local.to_bits());
+        if let Some(i) = self.runs.iter().position(|(k, _)| *k == key) {
+            return Ok(i);
+        }
+        let spec = RunSpec::new(Asked::new(method, local, None, self.t_end), SAMPLES);
+        let r = run(self.problem, &spec, go_on)?;
+        self.runs.push((key, r));
+        Ok(self.runs.len() - 1)
+    }
+
+    /// The distance of `method` at `local` from `other` at `other_local`.
+    fn distance(
+        &mut self,
+        (method, local): (Method, f64),
+        (other, other_local): (Method, f64),
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<f64, StepError> {
+        let a = self.run(method, local, go_on)?;
+        let b = self.run(other, other_local, go_on)?;
+        Ok(difference(&self.runs[a].1, &self.runs[b].1))
+    }
+
+    /// The method, local tolerance and model error of a plan already read.
+    fn model_of(&self, plan: Slow) -> (Method, f64, f64) {
+        let model = self
+            .read
+            .iter()
+            .find(|(p, _, _)| *p == plan)
+            .map_or(f64::INFINITY, |r| r.1);
+        match plan {
+            Slow::Limit => (Method::EffectiveCorrected, self.local, model),
+            Slow::Second => (Method::Averaged2, self.local, model),
+            Slow::Third => (Method::Averaged3, self.local, model),
+            Slow::Tight(method) => (method, POLICY.tightest, model),
+        }
+    }
+
+    /// The best reading so far (the earlier of two equal ones, as the loop keeps it).
+    fn best(&self) -> Option<(Slow, f64, f64)> {
+        self.read
+            .iter()
+            .copied()
+            .reduce(|a, b| if b.2 < a.2 { b } else { a })
+    }
+}
+
+impl Candidate for Ladder<'_> {
+    type Plan = Slow;
+    type Run = ();
+
+    fn policy(&self) -> &'static Policy {
+        &SLOW
+    }
+
+    fn round(
+        &mut self,
+        plan: &Slow,
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<Round<()>, StepError> {
+        let local = self.local;
+        let companion = SLOW.companion(local);
+        let (limit, second, third) = (
+            Method::EffectiveCorrected,
+            Method::Averaged2,
+            Method::Averaged3,
+        );
+        let (model, integration) = match *plan {
+            Slow::Limit => (
+                NEXT_ORDER_MARGIN * self.distance((second, local), (limit, local), go_on)?,
+                self.distance((limit, local), (limit, companion), go_on)?,
+            ),
+            Slow::Second if self.separated => (
+                NEXT_ORDER_MARGIN * self.distance((third, local), (second, local), go_on)?,
+                self.distance((second, local), (second, companion), go_on)?,
+            ),
+            Slow::Second => (
+                SECOND_ORDER_MARGIN
+                    * self.distance((second, local), (limit, local), go_on)?
+                    * self.es2,
+                self.distance((second, local), (second, companion), go_on)?,
+            ),
+            Slow::Third => (
+                THIRD_ORDER_MARGIN
+                    * self.distance((third, local), (second, local), go_on)?
+                    * self.es2,
+                self.distance((third, local), (third, companion), go_on)?,
+            ),
+            Slow::Tight(method) => {
+                // The best's model error, measured in its own round.
+                let (tight, model) = (POLICY.tightest, self.best().map_or(f64::INFINITY, |b| b.1));
+                (
+                    model,
+                    self.distance((method, tight), (method, SLOW.companion(tight)), go_on)?,
+                )
+            }
+        };
+        let measured = model + integration + self.rounding;
+        self.read.push((*plan, model, measured));
+        Ok(Round {
+            run: (),
+            measured,
+            floor: self.rounding,
+        })
+    }
+
+    fn cost(&self, plan: &Slow) -> f64 {
+        let (method, local, _) = self.model_of(*plan);
+        let price = |tol: f64| {
+            super::budget::cost_seconds(self.problem, &Asked::new(method, tol, None, self.t_end))
+        };
+        price(local) + price(SLOW.companion(local))
+    }
+
+    fn refine(&mut self, plan: &Slow, _: f64, tolerance: f64) -> Result<Slow, Shortfall> {
+        let next = match *plan {
+            Slow::Limit => Some(Slow::Second),
+            Slow::Second if self.separated => Some(Slow::Third),
+            Slow::Second | Slow::Third => None,
+            Slow::Tight(_) => return Err(Shortfall::Refinements),
+        };
+        if let Some(next) = next {
+            return Ok(next);
+        }
+        // The model is within the tolerance and the integration is not (a long horizon): the
+        // best once more at the tightest tolerance.
+        let (best, model, _) = self.best().ok_or(Shortfall::Refinements)?;
+        if self.local <= POLICY.tightest || model > 0.5 * tolerance {
+            return Err(Shortfall::Model);
+        }
+        Ok(Slow::Tight(self.model_of(best).0))
+    }
+
+    /// Each round a model of its own: no stall between them.
+    fn continues(&self, _: &Slow, _: &Slow) -> bool {
+        false
+    }
+}
+
+/// The slow model `method` at `local` with its model error and estimate: met, or short by its
+/// model error, or by the slow run's integration at the tightest tolerance.
+fn slow_choice(method: Method, local: f64, model: f64, estimate: f64, tolerance: f64) -> Choice {
+    Choice {
         method,
         settings: Settings {
             tolerance: local,
@@ -283,8 +484,6 @@ pub fn averaged_checked(
         predicted_model_error: model,
         estimate,
         met: estimate <= tolerance,
-        // Short of the tolerance by its model error, or by the slow run's integration at the
-        // tightest tolerance (the one retry below).
         shortfall: (estimate > tolerance).then_some(
             if model > 0.5 * tolerance || local > POLICY.tightest {
                 Shortfall::Model
@@ -292,66 +491,7 @@ pub fn averaged_checked(
                 Shortfall::Clamped
             },
         ),
-    };
-    let companion = |local: f64| SLOW.companion(local);
-    let mut run_at = |method, local: f64| run(problem, &spec(method, local), go_on);
-    let smaller = |a: Choice, b: Choice| if b.estimate < a.estimate { b } else { a };
-    let best = if separated(problem) {
-        let second = run_at(Method::Averaged2, local)?;
-        let mut best: Option<Choice> = None;
-        if model_error(problem, t_end) <= LIMIT_WORTH_TRYING * tolerance {
-            let limit = run_at(Method::EffectiveCorrected, local)?;
-            let limit_companion = run_at(Method::EffectiveCorrected, companion(local))?;
-            let model = NEXT_ORDER_MARGIN * difference(&second, &limit);
-            let estimate = model + difference(&limit, &limit_companion) + rounding;
-            let limit_choice = choice(Method::EffectiveCorrected, local, model, estimate);
-            if limit_choice.met {
-                return Ok(limit_choice);
-            }
-            best = Some(limit_choice);
-        }
-        let second_companion = run_at(Method::Averaged2, companion(local))?;
-        let third = run_at(Method::Averaged3, local)?;
-        let gap = difference(&third, &second);
-        let model = NEXT_ORDER_MARGIN * gap;
-        let estimate = model + difference(&second, &second_companion) + rounding;
-        let second_choice = choice(Method::Averaged2, local, model, estimate);
-        let best = best.map_or(second_choice, |b| smaller(b, second_choice));
-        if best.met {
-            return Ok(best);
-        }
-        let third_companion = run_at(Method::Averaged3, companion(local))?;
-        let model = THIRD_ORDER_MARGIN * gap * es2;
-        let estimate = model + difference(&third, &third_companion) + rounding;
-        let third_choice = choice(Method::Averaged3, local, model, estimate);
-        if third_choice.met {
-            third_choice
-        } else {
-            smaller(best, third_choice)
-        }
-    } else {
-        let second = run_at(Method::Averaged2, local)?;
-        let second_companion = run_at(Method::Averaged2, companion(local))?;
-        let first = run_at(Method::EffectiveCorrected, local)?;
-        let model = SECOND_ORDER_MARGIN * difference(&second, &first) * es2;
-        let estimate = model + difference(&second, &second_companion) + rounding;
-        choice(Method::Averaged2, local, model, estimate)
-    };
-    if best.met || local <= POLICY.tightest || best.predicted_model_error > 0.5 * tolerance {
-        return Ok(best);
     }
-    // The model is within the tolerance and the integration is not (a long horizon): once more
-    // at the tightest tolerance.
-    let tight = run_at(best.method, POLICY.tightest)?;
-    let tight_companion = run_at(best.method, companion(POLICY.tightest))?;
-    let estimate = best.predicted_model_error + difference(&tight, &tight_companion) + rounding;
-    let tightened = choice(
-        best.method,
-        POLICY.tightest,
-        best.predicted_model_error,
-        estimate,
-    );
-    Ok(smaller(best, tightened))
 }
 
 /// `|averaged3 − averaged2|` over `[0, t_end]`, both at the tightest tolerance: what
