@@ -6,11 +6,10 @@
 //! measured here, not estimated in a review. Its numbers are checked against the exact
 //! solution, not against the code that computed them.
 
-use crate::app::{App, Effect, Key, Options};
+use crate::app::{App, Key};
 use crate::physics::ModelKind;
 use crate::physics::models::oscillator::{Params, Problem, Start};
 use crate::scenario::Preset;
-use crate::sim::{Engine, PlanBook};
 use crate::study::chart::{Chart, StudyAsk};
 
 const PRESET: &str = r#"
@@ -38,68 +37,11 @@ fn problem() -> Problem {
     Problem::new(Params { omega: 2.0 }, Start { x: 1.0, v: 0.5 }).unwrap()
 }
 
-/// A paused explorer on `preset`, its worker run in place (as the integration tests' own).
-struct Headless {
-    app: App,
-    engine: Engine,
-}
+/// The explorer, headless, its worker run in place (the lesson review's walk).
+type Headless = crate::explorer::review::Walk;
 
-impl Headless {
-    fn of(preset: &Preset) -> Self {
-        let (app, effects) = App::new(preset, Options::at(30.0));
-        let mut h = Self {
-            app,
-            engine: Engine::new(PlanBook::default()),
-        };
-        h.exec(effects);
-        h
-    }
-
-    fn exec(&mut self, effects: Vec<Effect>) {
-        for e in effects {
-            if let Effect::Sim(c) = e {
-                let app = &mut self.app;
-                crate::sim::drive(&mut self.engine, vec![c], &mut |ev| {
-                    app.on_sim(ev);
-                });
-            }
-        }
-    }
-
-    fn key(&mut self, key: Key) {
-        let effects = self.app.on_key(key);
-        self.exec(effects);
-    }
-
-    fn tick(&mut self, wall: f64) {
-        let effects = self.app.tick(wall);
-        self.exec(effects);
-    }
-}
-
-fn screen(app: &App, width: u16, height: u16) -> String {
-    use ratatui::Terminal;
-    use ratatui::backend::TestBackend;
-    let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
-    terminal
-        .draw(|f| {
-            crate::ui::draw(
-                f,
-                app,
-                &crate::ui::UiOptions::default(),
-                &mut crate::ui::Cache::default(),
-            );
-        })
-        .unwrap();
-    let buffer = terminal.backend().buffer();
-    let mut out = String::new();
-    for y in 0..buffer.area.height {
-        for x in 0..buffer.area.width {
-            out.push_str(buffer[(x, y)].symbol());
-        }
-        out.push('\n');
-    }
-    out
+fn screen(app: &Headless, width: u16, height: u16) -> String {
+    app.screen_at((width, height)).join("\n")
 }
 
 /// The header a test recording of `app` starts with (80×24, the default theme, 30 fps).
@@ -326,7 +268,7 @@ fn the_explorer_shows_records_and_replays_the_contract_scene() {
         .unwrap()
         .exact_crossings(t);
     assert_eq!(h.app.run.reversals_shown(), exact, "at t = {t}");
-    let text = screen(&h.app, 80, 24);
+    let text = screen(&h, 80, 24);
     // The panel holds the scene's table; the status bar its words (events, monitor).
     assert!(text.contains("Oscillator: the contract's"), "{text}");
     assert!(
@@ -342,7 +284,7 @@ fn the_explorer_shows_records_and_replays_the_contract_scene() {
     for _ in 0..200 {
         h.tick(1.0 / 30.0);
     }
-    let text = screen(&h.app, 120, 40);
+    let text = screen(&h, 120, 40);
     assert!(
         text.contains("crossing chart") || text.contains("crossings (T"),
         "{text}"

@@ -159,7 +159,7 @@ pub(super) fn study_merge(args: &crate::commands::cli::MergeArgs) -> Outcome {
         ))
     })?;
     let merged = part::merge(&chart, crate::commands::outputs::SCHEMA_VERSION, &parts)
-        .map_err(|e| Failure::input(crate::scenario::text::one_line(&e)))?;
+        .map_err(|e| Failure::input(crate::scenario::text::one_line(&e.to_string())))?;
     let mut random = || {
         let mut b = [0u8; 8];
         // Without the system's randomness, the clock: a forger still cannot pick the cells.
@@ -190,7 +190,7 @@ pub(super) fn study_merge(args: &crate::commands::cli::MergeArgs) -> Outcome {
     if let Some(failure) = interrupted() {
         return Err(failure);
     }
-    checked.map_err(|e| Failure::input(crate::scenario::text::one_line(&e)))?;
+    checked.map_err(|e| Failure::input(crate::scenario::text::one_line(&e.to_string())))?;
     if let Some(dir) = &args.out
         && let Err(e) = std::fs::create_dir_all(dir)
     {

@@ -41,14 +41,26 @@ pub struct Finding {
     pub message: String,
 }
 
-/// The explorer, headless, with its worker's interpreter.
-struct Walk {
-    app: App,
+/// The explorer, headless, with its worker's interpreter (the scene contract's test drives it
+/// too).
+pub(crate) struct Walk {
+    pub(crate) app: App,
     engine: Engine,
 }
 
 impl Walk {
-    fn exec(&mut self, effects: Vec<Effect>) {
+    /// A paused explorer on `preset`, started as the real one.
+    pub(crate) fn of(preset: &crate::scenario::Preset) -> Self {
+        let (app, effects) = App::new(preset, Options::at(30.0));
+        let mut walk = Self {
+            app,
+            engine: Engine::new(PlanBook::default()),
+        };
+        walk.exec(effects);
+        walk
+    }
+
+    pub(crate) fn exec(&mut self, effects: Vec<Effect>) {
         for e in effects {
             if let Effect::Sim(c) = e {
                 let app = &mut self.app;
@@ -59,19 +71,24 @@ impl Walk {
         }
     }
 
-    fn key(&mut self, key: Key) {
+    pub(crate) fn key(&mut self, key: Key) {
         let effects = self.app.on_key(key);
         self.exec(effects);
     }
 
-    fn tick(&mut self, wall: f64) {
+    pub(crate) fn tick(&mut self, wall: f64) {
         let effects = self.app.tick(wall);
         self.exec(effects);
     }
 
     /// The screen as a student's 80×24 terminal shows it, one string per row.
     fn screen(&self) -> Vec<String> {
-        let backend = TestBackend::new(SIZE.0, SIZE.1);
+        self.screen_at(SIZE)
+    }
+
+    /// The screen at `width × height`, one string per row.
+    pub(crate) fn screen_at(&self, (width, height): (u16, u16)) -> Vec<String> {
+        let backend = TestBackend::new(width, height);
         let Ok(mut terminal) = Terminal::new(backend);
         let options = UiOptions::default();
         let mut cache = Cache::default();
@@ -119,12 +136,7 @@ pub fn review(lesson: &Lesson) -> Vec<Finding> {
     let Some(preset) = preset else {
         return Vec::new();
     };
-    let (app, effects) = App::new(&preset, Options::at(30.0));
-    let mut walk = Walk {
-        app,
-        engine: Engine::new(PlanBook::default()),
-    };
-    walk.exec(effects);
+    let mut walk = Walk::of(&preset);
     let effects = walk.app.start_lesson(lesson.clone());
     walk.exec(effects);
     let mut findings = Vec::new();

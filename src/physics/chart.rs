@@ -103,6 +103,18 @@ pub enum Verdict {
 }
 
 impl Verdict {
+    /// A count of reversals alone, decided (a cell whose count is exact or verified by its
+    /// run: the rattleback's, the oscillator's).
+    #[must_use]
+    pub const fn counted(count: usize) -> Self {
+        Self::Reversals {
+            count,
+            first: None,
+            decided: true,
+            growth: None,
+        }
+    }
+
     /// The count of reversals (`None` for a stability verdict).
     #[must_use]
     pub fn count(&self) -> Option<usize> {
@@ -233,6 +245,20 @@ pub struct StudyAsk {
     pub rows: Option<(f64, f64)>,
     /// `--position hanging` (the pendulum's).
     pub hanging: bool,
+}
+
+impl StudyAsk {
+    /// `axes` (a scene's default) with `--columns` and `--rows` where given.
+    #[must_use]
+    pub fn ranged(&self, (mut columns, mut rows): (Axis, Axis)) -> (Axis, Axis) {
+        if let Some((lo, hi)) = self.columns {
+            (columns.min, columns.max) = (lo, hi);
+        }
+        if let Some((lo, hi)) = self.rows {
+            (rows.min, rows.max) = (lo, hi);
+        }
+        (columns, rows)
+    }
 }
 
 /// What the explorer's map pane asks of a chart.

@@ -127,3 +127,27 @@ pub struct Resolution {
     /// rattleback's verified `auto`).
     pub floor: Option<f64>,
 }
+
+impl Resolution {
+    /// A plan taken as it is, unverified (a method asked by name, or a frozen rule's plan):
+    /// no estimate, no shortfall.
+    #[must_use]
+    pub const fn unverified(plan: Resolved) -> Self {
+        Self {
+            plan,
+            estimate: None,
+            shortfall: None,
+            floor: None,
+        }
+    }
+
+    /// A method asked by name at `tolerance`: its own plan.
+    #[must_use]
+    pub const fn named(method: Method, tolerance: f64) -> Self {
+        Self::unverified(Resolved {
+            method,
+            tolerance,
+            step: None,
+        })
+    }
+}

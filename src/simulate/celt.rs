@@ -12,11 +12,10 @@ use serde::Serialize;
 
 use super::render::StatsOut;
 use super::{Failure, Format, Missed, Resolved, Times, compact, times};
-use crate::physics::Method;
 use crate::physics::celt::run::{self, RunResult};
 use crate::physics::celt::{self, Problem};
 use crate::physics::method::RunSpec;
-use crate::physics::plan::{AutoRules, PlanRequest, Shortfall};
+use crate::physics::plan::Shortfall;
 
 /// Predicted seconds of the run `spec` asks for (the celt's cost model, [`celt::budget`]).
 #[must_use]
@@ -102,15 +101,7 @@ fn plan_auto(
     run: &mut RunSpec,
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<AutoOut, crate::physics::StepError> {
-    let spec = resolved.spec;
-    let ask = PlanRequest {
-        method: Method::Auto,
-        tolerance: spec.tolerance,
-        t_end: spec.t_end,
-        policy: AutoRules::Verified,
-        budget: resolved.budget,
-    };
-    let r = celt::plan::resolve(problem, &ask, progress)?;
+    let r = celt::plan::resolve(problem, &resolved.auto_request(), progress)?;
     run.method = r.plan.method;
     run.tolerance = r.plan.tolerance;
     let estimate = r.estimate.unwrap_or(f64::INFINITY);

@@ -66,6 +66,20 @@ pub struct Resolved {
     pub budget: f64,
 }
 
+impl Resolved {
+    /// `auto` asked of a scene planned by `physics::plan` as this run says (verified, within
+    /// its budget).
+    fn auto_request(&self) -> crate::physics::plan::PlanRequest {
+        crate::physics::plan::PlanRequest {
+            method: Method::Auto,
+            tolerance: self.spec.tolerance,
+            t_end: self.spec.t_end,
+            policy: crate::physics::plan::AutoRules::Verified,
+            budget: self.budget,
+        }
+    }
+}
+
 /// Combines the preset's `[run]` section with command-line flags (flags win).
 #[must_use]
 pub fn resolve(preset: &Preset, args: &Request) -> Resolved {

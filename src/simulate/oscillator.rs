@@ -8,11 +8,9 @@ use serde::Serialize;
 
 use super::render::StatsOut;
 use super::{Failure, Format, Missed, Resolved, Times};
-use crate::physics::Method;
 use crate::physics::method::{Asked, RunSpec};
 use crate::physics::models::oscillator::flows::{self, RunResult};
 use crate::physics::models::oscillator::{Params, Problem, Start};
-use crate::physics::plan::{AutoRules, PlanRequest};
 
 #[derive(Serialize)]
 struct Report {
@@ -48,15 +46,7 @@ fn plan_auto(
     run: &mut RunSpec,
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<AutoOut, crate::physics::StepError> {
-    let spec = resolved.spec;
-    let ask = PlanRequest {
-        method: Method::Auto,
-        tolerance: spec.tolerance,
-        t_end: spec.t_end,
-        policy: AutoRules::Verified,
-        budget: resolved.budget,
-    };
-    let r = flows::resolve(problem, &ask, progress)?;
+    let r = flows::resolve(problem, &resolved.auto_request(), progress)?;
     run.method = r.plan.method;
     run.tolerance = r.plan.tolerance;
     Ok(AutoOut {

@@ -261,6 +261,146 @@ fn first_difference<T: Serialize>(a: &T, b: &T) -> String {
         .unwrap_or_else(|| "?".to_owned())
 }
 
+/// Why parts do not merge, or a part's cell does not recompute (`study merge`): each refusal
+/// its own variant, so a caller (a script through the exit's words, a test) tells them apart;
+/// the words name the part and the field.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MergeError {
+    /// Nothing to merge.
+    #[error("no parts given")]
+    NoParts,
+    /// A file without a description or a shard.
+    #[error("{part}: not a part (no `description` or `shard`)")]
+    NotAPart {
+        /// The part's name.
+        part: String,
+    },
+    /// Parts of two charts.
+    #[error("{part}: another chart than {first}'s (their descriptions differ)")]
+    OtherChart {
+        /// The part's name.
+        part: String,
+        /// The first part's.
+        first: String,
+    },
+    /// A part cut short or edited by accident.
+    #[error("{part}: its digest does not match its content (cut short or edited)")]
+    Digest {
+        /// The part's name.
+        part: String,
+    },
+    /// A part of another split.
+    #[error(
+        "{part}: shard {index}/{of} among shards of {count} ({first} is {first_index}/{count})"
+    )]
+    OtherSplit {
+        /// The part's name.
+        part: String,
+        /// Its slice.
+        index: usize,
+        /// Its count.
+        of: usize,
+        /// The first part's count.
+        count: usize,
+        /// The first part's name.
+        first: String,
+        /// The first part's slice.
+        first_index: usize,
+    },
+    /// A slice outside `1..=count`.
+    #[error("{part}: shard {index}/{count}")]
+    OutOfRange {
+        /// The part's name.
+        part: String,
+        /// Its slice.
+        index: usize,
+        /// The count.
+        count: usize,
+    },
+    /// A slice given twice.
+    #[error("{part}: shard {index}/{count} given twice (also {other})")]
+    Twice {
+        /// The part's name.
+        part: String,
+        /// Its slice.
+        index: usize,
+        /// The count.
+        count: usize,
+        /// The other part with this slice.
+        other: String,
+    },
+    /// Slices not given, as `I/N`.
+    #[error("missing shards: {}", .0.join(", "))]
+    Missing(Vec<String>),
+    /// A part's cells not its slice's.
+    #[error(
+        "{part}: its cells are not those of shard {index}/{count} ({got} of {expected} expected; truncated or edited?)"
+    )]
+    NotItsSlice {
+        /// The part's name.
+        part: String,
+        /// Its slice.
+        index: usize,
+        /// The count.
+        count: usize,
+        /// Cells it holds.
+        got: usize,
+        /// Cells of its slice.
+        expected: usize,
+    },
+    /// A cell without its scene's fields.
+    #[error("{part}: {fields}")]
+    Fields {
+        /// The part's name.
+        part: String,
+        /// Which cell, which scene.
+        fields: super::chart::NotItsFields,
+    },
+    /// A wall time that is not one.
+    #[error("{part}: wall_seconds {wall}: a time")]
+    Wall {
+        /// The part's name.
+        part: String,
+        /// What it says.
+        wall: f64,
+    },
+    /// A cell that its chart does not write.
+    #[error(
+        "{part}: cell {index} is not one this chart writes (its `{field}` differs from the description's grid and scene)"
+    )]
+    Cell {
+        /// The part's name.
+        part: String,
+        /// The cell.
+        index: usize,
+        /// The first field that differs.
+        field: String,
+    },
+    /// A header field that the description does not give.
+    #[error("{part}: its `{field}` is not what its description gives")]
+    Header {
+        /// The part's name.
+        part: String,
+        /// The first field that differs.
+        field: String,
+    },
+    /// A recomputation that failed or was cancelled.
+    #[error("recomputing cells: {0}")]
+    Recomputing(crate::physics::StepError),
+    /// A cell recomputed to another value.
+    #[error(
+        "{part}: cell {index} recomputed gives another `{field}` than the part holds (edited, or written by another build)"
+    )]
+    Recomputed {
+        /// The part's name.
+        part: String,
+        /// The cell.
+        index: usize,
+        /// The first field that differs.
+        field: String,
+    },
+}
+
 /// Puts the parts of `chart` (rebuilt from their common `description`) back together: the same
 /// output as the unsharded run, but `wall_seconds` (the parts' sum).
 ///
@@ -271,14 +411,14 @@ pub fn merge(
     chart: &Chart,
     schema_version: u32,
     parts: &[(String, ChartOutput)],
-) -> Result<ChartOutput, String> {
+) -> Result<ChartOutput, MergeError> {
     let Some((first_name, first)) = parts.first() else {
-        return Err("no parts given".to_owned());
+        return Err(MergeError::NoParts);
     };
     let (Some(description), Some(first_shard)) = (&first.description, first.shard) else {
-        return Err(format!(
-            "{first_name}: not a part (no `description` or `shard`)"
-        ));
+        return Err(MergeError::NotAPart {
+            part: first_name.clone(),
+        });
     };
     let count = first_shard.count;
     let total = chart.len();
@@ -287,33 +427,42 @@ pub fn merge(
     let mut wall = 0.0;
     for (name, part) in parts {
         let (Some(d), Some(shard)) = (&part.description, part.shard) else {
-            return Err(format!("{name}: not a part (no `description` or `shard`)"));
+            return Err(MergeError::NotAPart { part: name.clone() });
         };
         if d != description {
-            return Err(format!(
-                "{name}: another chart than {first_name}'s (their descriptions differ)"
-            ));
+            return Err(MergeError::OtherChart {
+                part: name.clone(),
+                first: first_name.clone(),
+            });
         }
         let mut copy = part.clone();
         if part.digest.as_deref() != Some(digest_of(&mut copy).as_str()) {
-            return Err(format!(
-                "{name}: its digest does not match its content (cut short or edited)"
-            ));
+            return Err(MergeError::Digest { part: name.clone() });
         }
         if shard.count != count {
-            return Err(format!(
-                "{name}: shard {}/{} among shards of {count} ({first_name} is {}/{count})",
-                shard.index, shard.count, first_shard.index
-            ));
+            return Err(MergeError::OtherSplit {
+                part: name.clone(),
+                index: shard.index,
+                of: shard.count,
+                count,
+                first: first_name.clone(),
+                first_index: first_shard.index,
+            });
         }
         if shard.index == 0 || shard.index > count {
-            return Err(format!("{name}: shard {}/{count}", shard.index));
+            return Err(MergeError::OutOfRange {
+                part: name.clone(),
+                index: shard.index,
+                count,
+            });
         }
         if let Some(other) = seen[shard.index - 1] {
-            return Err(format!(
-                "{name}: shard {}/{count} given twice (also {other})",
-                shard.index
-            ));
+            return Err(MergeError::Twice {
+                part: name.clone(),
+                index: shard.index,
+                count,
+                other: other.to_owned(),
+            });
         }
         seen[shard.index - 1] = Some(name);
         let (expected, read) = check_part(chart, schema_version, name, part, shard)?;
@@ -329,7 +478,7 @@ pub fn merge(
         .map(|(i, _)| format!("{}/{count}", i + 1))
         .collect();
     if !missing.is_empty() {
-        return Err(format!("missing shards: {}", missing.join(", ")));
+        return Err(MergeError::Missing(missing));
     }
     let all: Vec<usize> = (0..total).collect();
     let verdicts: Vec<_> = verdicts.into_iter().flatten().collect();
@@ -346,29 +495,32 @@ fn check_part(
     name: &str,
     part: &ChartOutput,
     shard: Shard,
-) -> Result<(Vec<usize>, Vec<super::chart::Verdict>), String> {
+) -> Result<(Vec<usize>, Vec<super::chart::Verdict>), MergeError> {
     let expected = shard_cells(chart.len(), shard);
     let got: Vec<usize> = part.cells.iter().map(|c| c.index).collect();
     if got != expected {
-        return Err(format!(
-            "{name}: its cells are not those of shard {}/{} ({} of {} expected; truncated or edited?)",
-            shard.index,
-            shard.count,
-            got.len(),
-            expected.len()
-        ));
+        return Err(MergeError::NotItsSlice {
+            part: name.to_owned(),
+            index: shard.index,
+            count: shard.count,
+            got: got.len(),
+            expected: expected.len(),
+        });
     }
     let read: Vec<_> = part
         .cells
         .iter()
         .map(|c| chart.verdict_of(c))
         .collect::<Result<_, _>>()
-        .map_err(|e| format!("{name}: {e}"))?;
+        .map_err(|fields| MergeError::Fields {
+            part: name.to_owned(),
+            fields,
+        })?;
     if !(part.wall_seconds.is_finite() && part.wall_seconds >= 0.0) {
-        return Err(format!(
-            "{name}: wall_seconds {}: a time",
-            part.wall_seconds
-        ));
+        return Err(MergeError::Wall {
+            part: name.to_owned(),
+            wall: part.wall_seconds,
+        });
     }
     let mut written = chart.output(schema_version, &part.preset, &expected, &read, Some(shard));
     written.description.clone_from(&part.description);
@@ -381,17 +533,17 @@ fn check_part(
             .zip(&part.cells)
             .find(|(w, p)| w != p)
             .unwrap_or((&written.cells[0], &part.cells[0]));
-        let field = first_difference(w, p);
-        return Err(format!(
-            "{name}: cell {} is not one this chart writes (its `{field}` differs from the description's grid and scene)",
-            p.index
-        ));
+        return Err(MergeError::Cell {
+            part: name.to_owned(),
+            index: p.index,
+            field: first_difference(w, p),
+        });
     }
     if written != *part {
-        return Err(format!(
-            "{name}: its `{}` is not what its description gives",
-            first_difference(&written, part)
-        ));
+        return Err(MergeError::Header {
+            part: name.to_owned(),
+            field: first_difference(&written, part),
+        });
     }
     Ok((expected, read))
 }
@@ -428,24 +580,24 @@ pub fn sample(
     parts: &[(String, ChartOutput)],
     chosen: &[(usize, usize)],
     go_on: &(dyn Fn(f64) -> bool + Sync),
-) -> Result<(), String> {
+) -> Result<(), MergeError> {
     let indices: Vec<usize> = chosen
         .iter()
         .map(|&(p, k)| parts[p].1.cells[k].index)
         .collect();
     let verdicts = chart
         .cells(&indices, go_on, &|| ())
-        .map_err(|e| format!("recomputing cells: {e}"))?;
+        .map_err(MergeError::Recomputing)?;
     for (&(p, k), v) in chosen.iter().zip(&verdicts) {
         let (name, part) = &parts[p];
         let given = &part.cells[k];
         let fresh = chart.cell_output(given.index, v);
         if fresh != *given {
-            return Err(format!(
-                "{name}: cell {} recomputed gives another `{}` than the part holds (edited, or written by another build)",
-                given.index,
-                first_difference(&fresh, given)
-            ));
+            return Err(MergeError::Recomputed {
+                part: name.clone(),
+                index: given.index,
+                field: first_difference(&fresh, given),
+            });
         }
     }
     Ok(())
@@ -506,7 +658,8 @@ mod tests {
             assert_eq!(merged, whole, "{n} shards");
         }
         let e = merge(&chart, 1, &[part(&chart, &d, 1, 3), part(&chart, &d, 3, 3)]).unwrap_err();
-        assert!(e.contains("missing shards: 2/3"), "{e}");
+        assert_eq!(e, MergeError::Missing(vec!["2/3".to_owned()]));
+        assert_eq!(e.to_string(), "missing shards: 2/3");
         let e = merge(
             &chart,
             1,
@@ -517,9 +670,21 @@ mod tests {
             ],
         )
         .unwrap_err();
-        assert!(e.contains("given twice"), "{e}");
+        assert!(matches!(e, MergeError::Twice { index: 1, .. }), "{e}");
+        assert!(e.to_string().contains("given twice"), "{e}");
         let e = merge(&chart, 1, &[part(&chart, &d, 1, 2), part(&chart, &d, 2, 3)]).unwrap_err();
-        assert!(e.contains("among shards of 2"), "{e}");
+        assert!(
+            matches!(
+                e,
+                MergeError::OtherSplit {
+                    of: 3,
+                    count: 2,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(e.to_string().contains("among shards of 2"), "{e}");
         let other = pendulum(7, 6);
         let e = merge(
             &chart,
@@ -530,7 +695,7 @@ mod tests {
             ],
         )
         .unwrap_err();
-        assert!(e.contains("another chart"), "{e}");
+        assert!(matches!(e, MergeError::OtherChart { .. }), "{e}");
         let (name, mut cut) = part(&chart, &d, 2, 2);
         cut.cells.pop();
         let e = merge(
@@ -539,9 +704,20 @@ mod tests {
             &[part(&chart, &d, 1, 2), (name.clone(), cut.clone())],
         )
         .unwrap_err();
-        assert!(e.contains("digest does not match"), "{e}");
+        assert!(matches!(e, MergeError::Digest { .. }), "{e}");
         let e = merge(&chart, 1, &[part(&chart, &d, 1, 2), (name, sealed(cut))]).unwrap_err();
-        assert!(e.contains("not those of shard 2/2"), "{e}");
+        assert!(
+            matches!(
+                e,
+                MergeError::NotItsSlice {
+                    index: 2,
+                    count: 2,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(e.to_string().contains("not those of shard 2/2"), "{e}");
     }
 
     #[test]
@@ -557,7 +733,12 @@ mod tests {
         parts[0].1 = sealed(parts[0].1.clone());
         let e = merge(&chart, 1, &parts).unwrap_err();
         assert!(
-            e.contains("cell 0 is not one this chart writes") && e.contains("coords"),
+            matches!(e, MergeError::Cell { index: 0, ref field, .. } if field == "coords"),
+            "{e}"
+        );
+        assert!(
+            e.to_string()
+                .contains("cell 0 is not one this chart writes"),
             "{e}"
         );
         // Relabelled as another scene.
@@ -568,20 +749,29 @@ mod tests {
             .unwrap();
         parts[1].1 = sealed(parts[1].1.clone());
         let e = merge(&chart, 1, &parts).unwrap_err();
-        assert!(e.contains("`model`"), "{e}");
+        assert!(
+            matches!(e, MergeError::Header { ref field, .. } if field == "model"),
+            "{e}"
+        );
         // A reversed axis.
         let mut parts = good();
         let columns = &mut parts[0].1.columns;
         (columns.min, columns.max) = (columns.max, columns.min);
         parts[0].1 = sealed(parts[0].1.clone());
         let e = merge(&chart, 1, &parts).unwrap_err();
-        assert!(e.contains("`columns`"), "{e}");
+        assert!(
+            matches!(e, MergeError::Header { ref field, .. } if field == "columns"),
+            "{e}"
+        );
         // A field of another scene's cells.
         let mut parts = good();
         parts[0].1.cells[1].reversals = Some(3);
         parts[0].1 = sealed(parts[0].1.clone());
         let e = merge(&chart, 1, &parts).unwrap_err();
-        assert!(e.contains("cell 2") && e.contains("reversals"), "{e}");
+        assert!(
+            matches!(e, MergeError::Cell { index: 2, ref field, .. } if field == "reversals"),
+            "{e}"
+        );
         // A flipped verdict passes the structure but not the recomputation of that cell.
         let mut parts = good();
         let flipped = parts[1].1.cells[2].stable.map(|s| !s);
@@ -591,7 +781,7 @@ mod tests {
         let every = choose(&parts, usize::MAX, &mut || 7);
         let e = sample(&chart, &parts, &every, &|_| true).unwrap_err();
         assert!(
-            e.contains("part2: cell 5 recomputed") && e.contains("stable"),
+            matches!(e, MergeError::Recomputed { index: 5, ref part, ref field } if part == "part2" && field == "stable"),
             "{e}"
         );
         sample(&chart, &good(), &every, &|_| true).unwrap();

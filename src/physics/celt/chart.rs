@@ -253,13 +253,7 @@ impl ChartOf for CeltChart {
                     .to_owned(),
             );
         }
-        let (mut columns, mut rows) = Self::default_axes(problem, ask.grid.0, ask.grid.1);
-        if let Some((lo, hi)) = ask.columns {
-            (columns.min, columns.max) = (lo, hi);
-        }
-        if let Some((lo, hi)) = ask.rows {
-            (rows.min, rows.max) = (lo, hi);
-        }
+        let (columns, rows) = ask.ranged(Self::default_axes(problem, ask.grid.0, ask.grid.1));
         // Every corner is a body and start the scene accepts.
         for w in [columns.min, columns.max] {
             for d in [rows.min, rows.max] {

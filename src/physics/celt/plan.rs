@@ -61,30 +61,12 @@ pub fn resolve(
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Resolution, StepError> {
     if ask.method != Method::Auto {
-        return Ok(Resolution {
-            plan: Resolved {
-                method: ask.method,
-                tolerance: ask.tolerance,
-                step: None,
-            },
-            estimate: None,
-            shortfall: None,
-            floor: None,
-        });
+        return Ok(Resolution::named(ask.method, ask.tolerance));
     }
     let local = (ask.tolerance * FIRST).clamp(POLICY.tightest, 1e-3);
     if ask.policy == AutoRules::Legacy {
         // No session of format 1 holds a celt; plan as the first step does, unverified.
-        return Ok(Resolution {
-            plan: Resolved {
-                method: Method::Dop853,
-                tolerance: local,
-                step: None,
-            },
-            estimate: None,
-            shortfall: None,
-            floor: None,
-        });
+        return Ok(Resolution::named(Method::Dop853, local));
     }
     let mut candidate = Dop853 {
         problem: *problem,

@@ -212,18 +212,12 @@ impl ChartOf for PendulumChart {
     fn for_study(problem: &Problem, ask: &StudyAsk, title: &str) -> Result<Self, String> {
         refuse_map_flags(ask, title)?;
         let params = *problem.params();
-        let (mut columns, mut rows) = Self::default_axes(&params, ask.grid.0, ask.grid.1);
-        if let Some((lo, hi)) = ask.columns {
-            (columns.min, columns.max) = (lo, hi);
+        if let Some((lo, hi)) = ask.rows.filter(|r| r.0 <= 0.0) {
+            return Err(format!(
+                "--rows {lo},{hi}: the pendulum's b is log-spaced; both ends must be positive"
+            ));
         }
-        if let Some((lo, hi)) = ask.rows {
-            if lo <= 0.0 {
-                return Err(format!(
-                    "--rows {lo},{hi}: the pendulum's b is log-spaced; both ends must be positive"
-                ));
-            }
-            (rows.min, rows.max) = (lo, hi);
-        }
+        let (columns, rows) = ask.ranged(Self::default_axes(&params, ask.grid.0, ask.grid.1));
         // Every corner is a pendulum the scene accepts (the same validator as a preset's).
         for a in [columns.min, columns.max] {
             for b in [rows.min, rows.max] {

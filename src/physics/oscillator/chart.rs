@@ -88,12 +88,7 @@ impl SceneChart for CrossingChart {
             })?;
         let spec = RunSpec::new(Asked::new(Method::Dop853, TOLERANCE, None, self.t_end), 0);
         let r = super::flows::run(&problem, &spec, &mut |t| go_on(t))?;
-        Ok(Verdict::Reversals {
-            count: r.crossing_count,
-            first: None,
-            decided: true,
-            growth: None,
-        })
+        Ok(Verdict::counted(r.crossing_count))
     }
     fn curve(&self) -> Vec<(f64, f64)> {
         Vec::new()
@@ -125,12 +120,7 @@ impl SceneChart for CrossingChart {
         }
     }
     fn read_cell(&self, c: &CellOutput) -> Option<Verdict> {
-        Some(Verdict::Reversals {
-            count: c.reversals?,
-            first: None,
-            decided: true,
-            growth: None,
-        })
+        c.reversals.map(Verdict::counted)
     }
 }
 
@@ -149,13 +139,7 @@ impl ChartOf for CrossingChart {
 
     fn for_study(problem: &Problem, ask: &StudyAsk, title: &str) -> Result<Self, String> {
         crate::physics::chart::refuse_map_flags(ask, title)?;
-        let (mut columns, mut rows) = Self::axes_of(problem, ask.grid.0, ask.grid.1);
-        if let Some((lo, hi)) = ask.columns {
-            (columns.min, columns.max) = (lo, hi);
-        }
-        if let Some((lo, hi)) = ask.rows {
-            (rows.min, rows.max) = (lo, hi);
-        }
+        let (columns, rows) = ask.ranged(Self::axes_of(problem, ask.grid.0, ask.grid.1));
         let chart = Self {
             problem: *problem,
             columns,

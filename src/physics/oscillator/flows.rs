@@ -245,16 +245,7 @@ pub fn resolve(
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Resolution, StepError> {
     if ask.method != Method::Auto {
-        return Ok(Resolution {
-            plan: Resolved {
-                method: ask.method,
-                tolerance: ask.tolerance,
-                step: None,
-            },
-            estimate: None,
-            shortfall: None,
-            floor: None,
-        });
+        return Ok(Resolution::named(ask.method, ask.tolerance));
     }
     let mut candidate = Auto {
         problem: *problem,

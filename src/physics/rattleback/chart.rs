@@ -96,12 +96,7 @@ impl SceneChart for RegimeChart {
     fn cell(&self, n: usize, go_on: &(dyn Fn(f64) -> bool + Sync)) -> Result<Verdict, StepError> {
         let (i, j) = (n % self.grid.cols, n / self.grid.cols);
         let count = map::cell_reversals(&self.grid, self.source, i, j, go_on)?;
-        Ok(Verdict::Reversals {
-            count,
-            first: None,
-            decided: true,
-            growth: None,
-        })
+        Ok(Verdict::counted(count))
     }
 
     fn curve(&self) -> Vec<(f64, f64)> {
@@ -150,12 +145,7 @@ impl SceneChart for RegimeChart {
     }
 
     fn read_cell(&self, c: &CellOutput) -> Option<Verdict> {
-        Some(Verdict::Reversals {
-            count: c.reversals?,
-            first: None,
-            decided: true,
-            growth: None,
-        })
+        c.reversals.map(Verdict::counted)
     }
 }
 

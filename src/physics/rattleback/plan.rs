@@ -32,30 +32,16 @@ pub fn resolve(
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Resolution, StepError> {
     if method != Method::Auto {
-        return Ok(Resolution {
-            plan: Resolved {
-                method,
-                tolerance,
-                step: None,
-            },
-            estimate: None,
-            shortfall: None,
-            floor: None,
-        });
+        return Ok(Resolution::named(method, tolerance));
     }
     match policy {
         AutoRules::Legacy => {
             let p = auto::legacy::plan_cancellable(problem, tolerance, t_end, go_on)?;
-            Ok(Resolution {
-                plan: Resolved {
-                    method: p.method,
-                    tolerance: p.tolerance,
-                    step: p.step,
-                },
-                estimate: None,
-                shortfall: None,
-                floor: None,
-            })
+            Ok(Resolution::unverified(Resolved {
+                method: p.method,
+                tolerance: p.tolerance,
+                step: p.step,
+            }))
         }
         AutoRules::Verified => {
             let v = auto::run_auto_cancellable(
