@@ -319,11 +319,6 @@ pub trait SceneChart: std::fmt::Debug + Send + Sync {
     fn cpu_seconds(&self, cells: usize) -> f64;
     /// The output's header fields.
     fn header(&self) -> Header;
-    /// Writes the fields of cell `n`'s verdict `v` this scene's cells carry into `out`.
-    fn fill_cell(&self, n: usize, v: &Verdict, out: &mut CellOutput);
-    /// The verdict a (not failed) cell of this chart's output says, read back (`None` when a
-    /// field this scene's cells carry is missing).
-    fn read_cell(&self, cell: &CellOutput) -> Option<Verdict>;
 }
 
 /// How a scene builds its chart from its problem, and loads a cell back.
@@ -415,6 +410,89 @@ impl Column {
             Self::Decided => c.decided.unwrap_or(false).to_string(),
         }
     }
+}
+
+/// The preset keys cell `n` of `axes` sets, when the axes are preset keys: each axis's name
+/// and the value at the cell's centre.
+#[must_use]
+pub fn axis_coords((x, y): (Axis, Axis), n: usize) -> BTreeMap<String, f64> {
+    let (i, j) = (n % x.cells, n / x.cells);
+    BTreeMap::from([(x.name.to_owned(), x.at(i)), (y.name.to_owned(), y.at(j))])
+}
+
+/// Writes into `out` the fields of verdict `v` that a scene's cells carry, its `columns`
+/// (`ChartWords::csv`: the JSON cell and the CSV row hold the same fields), the cell's centre
+/// being `at` (the rattleback's ratio and inertia ratio are its axes).
+pub fn fill_cell(columns: &[Column], v: &Verdict, at: (f64, f64), out: &mut CellOutput) {
+    for &column in columns {
+        match (column, v) {
+            (Column::Ratio, _) => out.ratio = Some(at.0),
+            (Column::InertiaRatio, _) => out.inertia_ratio = Some(at.1),
+            (Column::Reversals, &Verdict::Reversals { count, .. }) => out.reversals = Some(count),
+            (Column::FirstReversal, &Verdict::Reversals { first, .. }) => {
+                out.first_reversal = Some(first);
+            }
+            (Column::GrowthRate, &Verdict::Reversals { growth, .. }) => out.growth_rate = growth,
+            (
+                Column::Decided,
+                &(Verdict::Reversals { decided, .. } | Verdict::Stability { decided, .. }),
+            ) => out.decided = Some(decided),
+            (Column::Stable, &Verdict::Stability { stable, .. }) => out.stable = Some(stable),
+            (Column::Trace, &Verdict::Stability { trace, .. }) => out.trace = Some(trace),
+            (Column::TraceError, &Verdict::Stability { error, .. }) => {
+                out.trace_error = Some(error);
+            }
+            // The index and coordinates every cell has; a verdict without the field (a failed
+            // cell's, another kind's): nothing (every column named, so a new one must say).
+            (
+                Column::Index
+                | Column::X
+                | Column::Y
+                | Column::Reversals
+                | Column::FirstReversal
+                | Column::GrowthRate
+                | Column::Decided
+                | Column::Stable
+                | Column::Trace
+                | Column::TraceError,
+                _,
+            ) => {}
+        }
+    }
+}
+
+/// The verdict a (not failed) cell of a scene whose cells carry `columns` says, read back
+/// (`None` when one of them is missing): a stability verdict where the cells carry `stable`,
+/// else a count of reversals with what else they carry.
+#[must_use]
+pub fn read_cell(columns: &[Column], c: &CellOutput) -> Option<Verdict> {
+    let has = |column| columns.contains(&column);
+    if has(Column::Stable) {
+        return Some(Verdict::Stability {
+            stable: c.stable?,
+            trace: c.trace?,
+            error: c.trace_error?,
+            decided: c.decided?,
+        });
+    }
+    Some(Verdict::Reversals {
+        count: c.reversals?,
+        first: if has(Column::FirstReversal) {
+            c.first_reversal?
+        } else {
+            None
+        },
+        decided: if has(Column::Decided) {
+            c.decided?
+        } else {
+            true
+        },
+        growth: if has(Column::GrowthRate) {
+            c.growth_rate
+        } else {
+            None
+        },
+    })
 }
 
 /// `1e-5`, `0.3`, `30`: short tick labels, never `9.999999999999999e-5`.

@@ -659,34 +659,42 @@ impl LimitView {
         }
     }
 
+    /// A fact of the potential: the rattleback's effective one's or the pendulum's limit's
+    /// (the free rotor's is flat, 0).
+    fn of_potential(
+        &self,
+        rattleback: impl Fn(&Effective) -> f64,
+        pendulum: impl Fn(&kapitza::limit::Limit) -> f64,
+    ) -> f64 {
+        match self {
+            Self::Rattleback(e) => rattleback(e),
+            Self::Kapitza { limit, .. } => pendulum(limit),
+            Self::Free { .. } => 0.0,
+        }
+    }
+
     /// `V(q)`.
     #[must_use]
     pub fn potential(&self, q: f64) -> f64 {
-        match self {
-            Self::Rattleback(e) => e.potential(q),
-            Self::Kapitza { limit, .. } => limit.potential(q),
-            Self::Free { .. } => 0.0,
-        }
+        self.of_potential(|e| e.potential(q), |l| l.potential(q))
     }
 
     /// The highest separatrix level.
     #[must_use]
     pub fn potential_max(&self) -> f64 {
-        match self {
-            Self::Rattleback(e) => e.potential_max(),
-            Self::Kapitza { limit, .. } => limit.potential_max(),
-            Self::Free { .. } => 0.0,
-        }
+        self.of_potential(
+            Effective::potential_max,
+            kapitza::limit::Limit::potential_max,
+        )
     }
 
     /// The lowest potential.
     #[must_use]
     pub fn potential_min(&self) -> f64 {
-        match self {
-            Self::Rattleback(e) => e.potential_min(),
-            Self::Kapitza { limit, .. } => limit.potential_min(),
-            Self::Free { .. } => 0.0,
-        }
+        self.of_potential(
+            Effective::potential_min,
+            kapitza::limit::Limit::potential_min,
+        )
     }
 
     /// Every separatrix level (the rattleback has one; the pendulum one per unstable

@@ -207,7 +207,7 @@ impl Chart {
     }
 
     /// Cell `n`'s output with the verdict `v`: its index and coordinates, the fields the
-    /// scene's cells carry ([`SceneChart::fill_cell`]), and a failed cell's error.
+    /// scene's cells carry (its columns, `ChartWords::csv`), and a failed cell's error.
     #[must_use]
     pub fn cell_output(&self, n: usize, v: &Verdict) -> CellOutput {
         let mut out = CellOutput {
@@ -215,7 +215,9 @@ impl Chart {
             coords: self.coords(n),
             ..CellOutput::default()
         };
-        self.fill_cell(n, v, &mut out);
+        let (x, y) = self.axes();
+        let at = (x.at(n % x.cells), y.at(n / x.cells));
+        crate::physics::chart::fill_cell(self.words().csv, v, at, &mut out);
         if let Verdict::Failed { error } = v {
             out.decided = Some(false);
             out.error = Some(error.clone());
@@ -224,7 +226,7 @@ impl Chart {
     }
 
     /// The verdict a cell of this chart's output says, read back (`study merge`): a failed
-    /// cell's, or the scene's ([`SceneChart::read_cell`]).
+    /// cell's, or the scene's (its columns).
     ///
     /// # Errors
     /// A field this scene's cells carry is missing.
@@ -234,7 +236,7 @@ impl Chart {
                 error: error.clone(),
             });
         }
-        self.read_cell(cell).ok_or(NotItsFields {
+        crate::physics::chart::read_cell(self.words().csv, cell).ok_or(NotItsFields {
             index: cell.index,
             scene: self.model().name(),
         })

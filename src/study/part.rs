@@ -725,13 +725,17 @@ mod tests {
         let chart = pendulum(6, 4);
         let d = description(6, 4);
         let good = || vec![part(&chart, &d, 1, 2), part(&chart, &d, 2, 2)];
+        // Part `i` edited by `edit`, its digest recomputed: the merge's refusal.
+        let forged = |i: usize, edit: &dyn Fn(&mut ChartOutput)| {
+            let mut parts = good();
+            edit(&mut parts[i].1);
+            parts[i].1 = sealed(parts[i].1.clone());
+            merge(&chart, 1, &parts).unwrap_err()
+        };
         // A coordinate moved: the grid says otherwise.
-        let mut parts = good();
-        parts[0].1.cells[0]
-            .coords
-            .insert("pendulum.a".into(), 123.0);
-        parts[0].1 = sealed(parts[0].1.clone());
-        let e = merge(&chart, 1, &parts).unwrap_err();
+        let e = forged(0, &|p| {
+            p.cells[0].coords.insert("pendulum.a".into(), 123.0);
+        });
         assert!(
             matches!(e, MergeError::Cell { index: 0, ref field, .. } if field == "coords"),
             "{e}"
@@ -742,32 +746,25 @@ mod tests {
             "{e}"
         );
         // Relabelled as another scene.
-        let mut parts = good();
-        parts[1].1.model = crate::physics::ModelKind::ALL
+        let other = crate::physics::ModelKind::ALL
             .into_iter()
             .find(|k| *k != chart.model())
             .unwrap();
-        parts[1].1 = sealed(parts[1].1.clone());
-        let e = merge(&chart, 1, &parts).unwrap_err();
+        let e = forged(1, &|p| p.model = other);
         assert!(
             matches!(e, MergeError::Header { ref field, .. } if field == "model"),
             "{e}"
         );
         // A reversed axis.
-        let mut parts = good();
-        let columns = &mut parts[0].1.columns;
-        (columns.min, columns.max) = (columns.max, columns.min);
-        parts[0].1 = sealed(parts[0].1.clone());
-        let e = merge(&chart, 1, &parts).unwrap_err();
+        let e = forged(0, &|p| {
+            (p.columns.min, p.columns.max) = (p.columns.max, p.columns.min);
+        });
         assert!(
             matches!(e, MergeError::Header { ref field, .. } if field == "columns"),
             "{e}"
         );
         // A field of another scene's cells.
-        let mut parts = good();
-        parts[0].1.cells[1].reversals = Some(3);
-        parts[0].1 = sealed(parts[0].1.clone());
-        let e = merge(&chart, 1, &parts).unwrap_err();
+        let e = forged(0, &|p| p.cells[1].reversals = Some(3));
         assert!(
             matches!(e, MergeError::Cell { index: 2, ref field, .. } if field == "reversals"),
             "{e}"

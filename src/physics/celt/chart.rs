@@ -7,8 +7,7 @@ use std::collections::BTreeMap;
 
 use super::{Params, Problem};
 use crate::physics::chart::{
-    Axis, CellOutput, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, refuse_map_flags,
-    tick,
+    Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, refuse_map_flags, tick,
 };
 use crate::physics::{ParamError, StepError};
 
@@ -142,9 +141,7 @@ impl SceneChart for CeltChart {
     }
 
     fn coords(&self, n: usize) -> BTreeMap<String, f64> {
-        let (x, y) = (self.columns, self.rows);
-        let (i, j) = (n % x.cells, n / x.cells);
-        BTreeMap::from([(x.name.to_owned(), x.at(i)), (y.name.to_owned(), y.at(j))])
+        crate::physics::chart::axis_coords(self.axes(), n)
     }
 
     fn cell(&self, n: usize, go_on: &(dyn Fn(f64) -> bool + Sync)) -> Result<Verdict, StepError> {
@@ -202,30 +199,6 @@ impl SceneChart for CeltChart {
             tolerance: Some(self.tolerance),
             ..Header::default()
         }
-    }
-
-    fn fill_cell(&self, _n: usize, v: &Verdict, out: &mut CellOutput) {
-        if let Verdict::Reversals {
-            count,
-            first,
-            decided,
-            growth,
-        } = *v
-        {
-            out.reversals = Some(count);
-            out.first_reversal = Some(first);
-            out.decided = Some(decided);
-            out.growth_rate = growth;
-        }
-    }
-
-    fn read_cell(&self, c: &CellOutput) -> Option<Verdict> {
-        Some(Verdict::Reversals {
-            count: c.reversals?,
-            first: c.first_reversal?,
-            decided: c.decided?,
-            growth: c.growth_rate,
-        })
     }
 }
 

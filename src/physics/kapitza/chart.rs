@@ -7,8 +7,7 @@ use std::collections::BTreeMap;
 use super::floquet::{Mathieu, Position, floquet};
 use super::{Params, Problem};
 use crate::physics::chart::{
-    Axis, CellOutput, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, refuse_map_flags,
-    tick,
+    Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, refuse_map_flags, tick,
 };
 use crate::physics::{ParamError, StepError};
 
@@ -100,9 +99,7 @@ impl SceneChart for PendulumChart {
     }
 
     fn coords(&self, n: usize) -> BTreeMap<String, f64> {
-        let (x, y) = (self.columns, self.rows);
-        let (i, j) = (n % x.cells, n / x.cells);
-        BTreeMap::from([(x.name.to_owned(), x.at(i)), (y.name.to_owned(), y.at(j))])
+        crate::physics::chart::axis_coords(self.axes(), n)
     }
 
     fn cell(&self, n: usize, go_on: &(dyn Fn(f64) -> bool + Sync)) -> Result<Verdict, StepError> {
@@ -165,30 +162,6 @@ impl SceneChart for PendulumChart {
             position: Some(self.position.name()),
             ..Header::default()
         }
-    }
-
-    fn fill_cell(&self, _n: usize, v: &Verdict, out: &mut CellOutput) {
-        if let Verdict::Stability {
-            stable,
-            trace,
-            error,
-            decided,
-        } = *v
-        {
-            out.stable = Some(stable);
-            out.trace = Some(trace);
-            out.trace_error = Some(error);
-            out.decided = Some(decided);
-        }
-    }
-
-    fn read_cell(&self, c: &CellOutput) -> Option<Verdict> {
-        Some(Verdict::Stability {
-            stable: c.stable?,
-            trace: c.trace?,
-            error: c.trace_error?,
-            decided: c.decided?,
-        })
     }
 }
 

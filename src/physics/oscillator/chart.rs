@@ -4,9 +4,7 @@
 use std::collections::BTreeMap;
 
 use super::{Params, Problem, Start};
-use crate::physics::chart::{
-    Axis, CellOutput, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick,
-};
+use crate::physics::chart::{Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick};
 use crate::physics::method::{Asked, Method, RunSpec};
 use crate::physics::{ParamError, StepError};
 
@@ -74,9 +72,7 @@ impl SceneChart for CrossingChart {
         (self.problem.params().omega, self.problem.start().v)
     }
     fn coords(&self, n: usize) -> BTreeMap<String, f64> {
-        let (x, y) = (self.columns, self.rows);
-        let (i, j) = (n % x.cells, n / x.cells);
-        BTreeMap::from([(x.name.to_owned(), x.at(i)), (y.name.to_owned(), y.at(j))])
+        crate::physics::chart::axis_coords(self.axes(), n)
     }
     fn cell(&self, n: usize, go_on: &(dyn Fn(f64) -> bool + Sync)) -> Result<Verdict, StepError> {
         let (x, y) = (self.columns, self.rows);
@@ -113,14 +109,6 @@ impl SceneChart for CrossingChart {
             tolerance: Some(TOLERANCE),
             ..Header::default()
         }
-    }
-    fn fill_cell(&self, _n: usize, v: &Verdict, out: &mut CellOutput) {
-        if let Verdict::Reversals { count, .. } = *v {
-            out.reversals = Some(count);
-        }
-    }
-    fn read_cell(&self, c: &CellOutput) -> Option<Verdict> {
-        c.reversals.map(Verdict::counted)
     }
 }
 

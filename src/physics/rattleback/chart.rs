@@ -6,9 +6,7 @@ use std::collections::BTreeMap;
 
 use super::map::{self, DEFAULT_INERTIA, DEFAULT_RATIO_MAX, Grid, Source};
 use super::{Params, Problem, Start};
-use crate::physics::chart::{
-    Axis, CellOutput, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick,
-};
+use crate::physics::chart::{Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick};
 use crate::physics::{ParamError, Posed as _, StepError};
 
 /// The names of the axes, across and up (preset keys, or the rattleback's two ratios).
@@ -133,19 +131,6 @@ impl SceneChart for RegimeChart {
             critical: true,
             ..Header::default()
         }
-    }
-
-    fn fill_cell(&self, n: usize, v: &Verdict, out: &mut CellOutput) {
-        let (i, j) = (n % self.grid.cols, n / self.grid.cols);
-        out.ratio = Some(self.grid.ratio(i));
-        out.inertia_ratio = Some(self.grid.inertia_ratio(j));
-        if let Verdict::Reversals { count, .. } = *v {
-            out.reversals = Some(count);
-        }
-    }
-
-    fn read_cell(&self, c: &CellOutput) -> Option<Verdict> {
-        c.reversals.map(Verdict::counted)
     }
 }
 
