@@ -2,6 +2,7 @@
 //! from its parts (issue 59; provenance, issue 66). The command layer's helpers (`emit`,
 //! `counted`, the budget's refusal) are the parent's.
 
+use super::progress::Progress;
 use super::{
     Failure, Outcome, counted, emit, finished, go_on, interrupted, json_text, study_setup,
     write_files,
@@ -47,9 +48,9 @@ pub(super) fn study_map(args: &crate::commands::cli::MapArgs) -> Outcome {
     };
     // Progress by cells done; Ctrl-C cancels the cells in flight.
     let started = std::time::Instant::now();
-    let mapped = counted(&label, indices.len(), "cells", &|done| {
-        chart.cells(&indices, &|_| go_on(), done)
-    });
+    let progress = Progress::count(&label, indices.len(), "cells")
+        .priced(chart.predicted_seconds(indices.len()));
+    let mapped = counted(progress, &|done| chart.cells(&indices, &|_| go_on(), done));
     let verdicts = finished(mapped, "study map")?;
     let mut out = chart.output(
         crate::commands::outputs::SCHEMA_VERSION,
@@ -184,7 +185,9 @@ pub(super) fn study_merge(args: &crate::commands::cli::MergeArgs) -> Outcome {
             chosen.len()
         )));
     }
-    let checked = counted("study merge: checking", chosen.len(), "cells", &|_| {
+    let progress = Progress::count("study merge: checking", chosen.len(), "cells")
+        .priced(chart.predicted_seconds(chosen.len()));
+    let checked = counted(progress, &|_| {
         part::sample(&chart, &parts, &chosen, &|_| go_on())
     });
     if let Some(failure) = interrupted() {

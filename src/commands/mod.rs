@@ -15,6 +15,7 @@ use crate::scenario::text::one_line;
 use std::fmt::Write as _;
 
 use crate::commands::failure::{Failure, Outcome};
+use crate::commands::progress::Progress;
 
 use crate::commands::cli::{CheckArgs, ListArgs, ListFormat, PresetsAction, PresetsArgs};
 use crate::scenario::PresetError;
@@ -335,17 +336,10 @@ fn go_on() -> bool {
     crate::interrupt::requested().is_none() && stdout_failure().is_none()
 }
 
-/// Runs `work` with a progress bar of `total` `unit`s on stderr (a terminal only), counting
-/// each call of the counter `work` is given (from any thread); the bar is erased at the end.
-fn counted<R>(
-    label: &str,
-    total: usize,
-    unit: &'static str,
-    work: &dyn Fn(&(dyn Fn() + Sync)) -> R,
-) -> R {
-    let progress = std::sync::Mutex::new(crate::commands::progress::Progress::count(
-        label, total, unit,
-    ));
+/// Runs `work` with `progress` (a count, on stderr: a terminal only), counting each call of
+/// the counter `work` is given (from any thread); the bar is erased at the end.
+fn counted<R>(progress: Progress, work: &dyn Fn(&(dyn Fn() + Sync)) -> R) -> R {
+    let progress = std::sync::Mutex::new(progress);
     let count = std::sync::atomic::AtomicUsize::new(0);
     let out = work(&|| {
         let n = count.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
@@ -803,7 +797,8 @@ fn study_sweep(args: &crate::commands::cli::SweepArgs) -> Outcome {
     }
     sweep_budget(&model, &ladder, t_end, tolerance, args.common.force)?;
     // Progress by runs (the limit is one); Ctrl-C cancels the runs in flight.
-    let swept = counted("study sweep", ladder.len() + 1, "runs", &|done| {
+    let runs = Progress::count("study sweep", ladder.len() + 1, "runs");
+    let swept = counted(runs, &|done| {
         sweep(&model, &ladder, t_end, tolerance, &|_| go_on(), done)
     });
     let s = finished(swept, "study sweep")?;

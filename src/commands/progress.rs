@@ -30,6 +30,8 @@ pub struct Progress {
     bar: Option<ProgressBar>,
     /// `Some(what)` for count-based progress (`cells`, `lines`, `frames`).
     unit: Option<&'static str>,
+    /// What the cost model predicted the whole work takes (s): the line says the time left.
+    priced: Option<f64>,
 }
 
 impl Progress {
@@ -61,7 +63,16 @@ impl Progress {
             enabled,
             bar: None,
             unit: None,
+            priced: None,
         }
+    }
+
+    /// The same line, saying the time left: from `predicted_seconds` (the cost model's price of
+    /// the whole work) at first, from the pace measured as the work goes.
+    #[must_use]
+    pub fn priced(mut self, predicted_seconds: f64) -> Self {
+        self.priced = Some(predicted_seconds).filter(|s| s.is_finite() && *s >= 0.0);
+        self
     }
 
     /// The message for `t` (a time, or a count) and the fraction done, or `None` when it is
@@ -83,7 +94,14 @@ impl Progress {
             1.0
         };
         let text = if let Some(unit) = self.unit {
-            format!("{}: {t:.0} of {:.0} {unit}", self.label, self.t_end)
+            let left = self.priced.map_or_else(String::new, |predicted| {
+                let elapsed = now.duration_since(self.started).as_secs_f64();
+                format!(
+                    ", {} left",
+                    duration(time_left(predicted, elapsed, fraction))
+                )
+            });
+            format!("{}: {t:.0} of {:.0} {unit}{left}", self.label, self.t_end)
         } else {
             let run = if self.run > 1 {
                 format!(", run {}", self.run)
@@ -101,11 +119,18 @@ impl Progress {
         if self.enabled
             && let Some((text, fraction)) = self.line(t, Instant::now())
         {
+            let priced = self.priced.is_some();
             let bar = self.bar.get_or_insert_with(|| {
                 let bar = ProgressBar::with_draw_target(Some(STEPS), ProgressDrawTarget::stderr());
-                // ASCII only: right under any locale and font.
+                // ASCII only: right under any locale and font. With the time left in the
+                // message, a shorter bar and no elapsed time, so the line fits 80 columns.
+                let template = if priced {
+                    "{wide_msg} [{bar:16}] {percent:>3}%"
+                } else {
+                    "{msg} [{bar:24}] {percent:>3}% {elapsed}"
+                };
                 bar.set_style(
-                    ProgressStyle::with_template("{msg} [{bar:24}] {percent:>3}% {elapsed}")
+                    ProgressStyle::with_template(template)
                         .unwrap_or_else(|_| ProgressStyle::default_bar())
                         .progress_chars("=> "),
                 );
@@ -123,6 +148,34 @@ impl Progress {
             bar.finish_and_clear();
         }
         self.last = None;
+    }
+}
+
+/// Seconds left of work the cost model priced at `predicted` (s), a `fraction` done in
+/// `elapsed` (s): the model's remainder at first, the measured pace's as the work goes (each
+/// weighted by how much is done).
+#[must_use]
+pub fn time_left(predicted: f64, elapsed: f64, fraction: f64) -> f64 {
+    let f = fraction.clamp(0.0, 1.0);
+    if f <= 0.0 {
+        return predicted;
+    }
+    let modelled = predicted * (1.0 - f);
+    let measured = elapsed * (1.0 - f) / f;
+    ((1.0 - f) * modelled + f * measured).max(0.0)
+}
+
+/// `12 s`, `3 min 05 s`, `2 h 10 min`: a time left, short.
+#[must_use]
+pub fn duration(seconds: f64) -> String {
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let s = seconds.max(0.0).ceil().min(1e9) as u64;
+    if s < 60 {
+        format!("{s} s")
+    } else if s < 3600 {
+        format!("{} min {:02} s", s / 60, s % 60)
+    } else {
+        format!("{} h {:02} min", s / 3600, (s % 3600) / 60)
     }
 }
 
@@ -171,5 +224,36 @@ mod tests {
             .expect("shown");
         assert_eq!(line, "study map: 50 of 200 cells");
         assert!((fraction - 0.25).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_priced_count_says_the_time_left() {
+        let mut p = Progress::new("study map", 200.0, false).priced(40.0);
+        p.unit = Some("cells");
+        // A quarter done in 2 s against a price of 40 s: the model says 30 s left, the pace
+        // 6 s; three quarters of the weight is the model's.
+        let (line, _) = p
+            .line(50.0, p.started + Duration::from_secs(2))
+            .expect("shown");
+        assert_eq!(line, "study map: 50 of 200 cells, 24 s left");
+        // Nearly done: the pace decides.
+        let (line, _) = p
+            .line(190.0, p.started + Duration::from_secs(10))
+            .expect("shown");
+        assert_eq!(line, "study map: 190 of 200 cells, 1 s left");
+    }
+
+    #[test]
+    fn the_time_left_runs_from_the_price_to_the_pace() {
+        assert!((time_left(40.0, 0.0, 0.0) - 40.0).abs() < 1e-12);
+        assert!(time_left(40.0, 9.0, 1.0).abs() < 1e-12);
+        // A model 10 times pessimistic matters less and less.
+        let early = time_left(100.0, 1.0, 0.1);
+        let late = time_left(100.0, 9.0, 0.9);
+        assert!(early > 70.0 && late < 2.0, "{early} {late}");
+        assert_eq!(duration(0.2), "1 s");
+        assert_eq!(duration(185.0), "3 min 05 s");
+        assert_eq!(duration(7800.0), "2 h 10 min");
+        assert_eq!(duration(f64::INFINITY), duration(1e9));
     }
 }

@@ -163,3 +163,41 @@ fn a_long_study_prints_no_progress_into_a_pipe() {
         "the run took {took:.2} s: too short for the bar to show; enlarge it"
     );
 }
+
+/// Issue 70: in a terminal, a chart's progress line says how many cells are done and the time
+/// left, from the cost model at first and the pace as cells finish (seen in tmux at 80×24:
+/// `study map: 1101 of 5000 cells, 12 s left [===>            ]  22%`). Run in a
+/// pseudo-terminal of its own (`script`), with stdout to a file: the line is on stderr.
+#[test]
+fn a_charts_progress_in_a_terminal_says_the_time_left() {
+    let dir = std::env::temp_dir().join(format!("rb-progress-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (log, out) = (dir.join("pty.out"), dir.join("map.json"));
+    let command = format!(
+        "stty rows 24 cols 80; exec {} study map --preset celt-clockwise --grid 60x30 --force --format json > {}",
+        crate::common::program(),
+        out.display()
+    );
+    let status = crate::common::detached("script")
+        .args(["-qfec", &command])
+        .arg(&log)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .status()
+        .expect("`script` (util-linux) gives the study a pseudo-terminal");
+    assert!(status.success());
+    let seen = String::from_utf8_lossy(&std::fs::read(&log).unwrap()).into_owned();
+    let chart: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    let wall = chart["wall_seconds"].as_f64().unwrap();
+    // The check means something only if the bar had time to show (a floor on a shared
+    // machine, never a speed target).
+    assert!(
+        wall > 1.3,
+        "the chart took {wall:.2} s: too short for the bar to show; enlarge it"
+    );
+    assert!(seen.contains(" of 1800 cells, "), "{seen:?}");
+    assert!(seen.contains(" s left"), "{seen:?}");
+    assert!(chart["predicted_seconds"].as_f64().unwrap() > 0.0);
+    let _ = std::fs::remove_dir_all(&dir);
+}

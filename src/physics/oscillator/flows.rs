@@ -100,7 +100,7 @@ pub fn build(problem: &Problem, ask: &Asked) -> Result<OscillatorFlow, StepError
         Method::Auto => Err(StepError::Unplanned),
         other => Err(StepError::NotOffered {
             method: other.name(),
-            model: super::scene::SCENE.name,
+            model: "oscillator",
         }),
     }
 }
