@@ -6,7 +6,7 @@
 //! measured here, not estimated in a review. Its numbers are checked against the exact
 //! solution, not against the code that computed them.
 
-use crate::app::{App, Key};
+use crate::app::Key;
 use crate::physics::ModelKind;
 use crate::physics::models::oscillator::{Params, Problem, Start};
 use crate::scenario::Preset;
@@ -42,26 +42,6 @@ type Headless = crate::explorer::review::Walk;
 
 fn screen(app: &Headless, width: u16, height: u16) -> String {
     app.screen_at((width, height)).join("\n")
-}
-
-/// The header a test recording of `app` starts with (80×24, the default theme, 30 fps).
-fn header_of(app: &App) -> crate::record::Header {
-    use crate::record::{FORMAT, Header, Size, ThemeRef, VERSION};
-    Header {
-        format: FORMAT.to_owned(),
-        version: VERSION,
-        program: "test".to_owned(),
-        preset: app.to_preset(&app.scenario.name).to_toml(),
-        method: app.scenario.settings.method.name().to_owned(),
-        tolerance: app.scenario.settings.tolerance,
-        terminal: Size {
-            width: 80,
-            height: 24,
-        },
-        theme: ThemeRef::Name("Default (16 colours)".to_owned()),
-        fps: 30.0,
-        lesson: None,
-    }
 }
 
 /// `journal` written as a session file at `path`, a line every half second, then its end line;
@@ -249,7 +229,7 @@ fn the_contract_scenes_chart_counts_as_the_exact_solution_and_merges_from_shards
 #[test]
 fn the_explorer_shows_records_and_replays_the_contract_scene() {
     let mut h = Headless::of(&preset());
-    let header = header_of(&h.app);
+    let header = crate::explorer::recording::header(&h.app, (80, 24), 30.0);
     h.app.on_key(Key::Char('R'));
     h.app.on_outcome(crate::app::Outcome::Recording(Ok(
         "oscillator.jsonl".to_owned()

@@ -55,16 +55,9 @@ pub enum Model {
 }
 
 /// A chart of one scene: each scene's own type, in its folder (`SCENE/chart.rs`, issue 69),
-/// reached through [`SceneChart`] (this type derefs to it), with its scene.
+/// reached through [`SceneChart`] (this type derefs to it).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Chart {
-    kind: ModelKind,
-    scene: SceneCharts,
-}
-
-/// Each scene's chart type.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum SceneCharts {
+pub enum Chart {
     /// The rattleback's regime map.
     Rattleback(super::rattleback::chart::RegimeChart),
     /// The pendulum's stability chart.
@@ -78,38 +71,26 @@ enum SceneCharts {
 
 impl From<super::rattleback::chart::RegimeChart> for Chart {
     fn from(c: super::rattleback::chart::RegimeChart) -> Self {
-        Self {
-            kind: ModelKind::Rattleback,
-            scene: SceneCharts::Rattleback(c),
-        }
+        Self::Rattleback(c)
     }
 }
 
 impl From<kapitza::chart::PendulumChart> for Chart {
     fn from(c: kapitza::chart::PendulumChart) -> Self {
-        Self {
-            kind: ModelKind::Kapitza,
-            scene: SceneCharts::Kapitza(c),
-        }
+        Self::Kapitza(c)
     }
 }
 
 impl From<celt::chart::CeltChart> for Chart {
     fn from(c: celt::chart::CeltChart) -> Self {
-        Self {
-            kind: ModelKind::Celt,
-            scene: SceneCharts::Celt(c),
-        }
+        Self::Celt(c)
     }
 }
 
 #[cfg(test)]
 impl From<oscillator::chart::CrossingChart> for Chart {
     fn from(c: oscillator::chart::CrossingChart) -> Self {
-        Self {
-            kind: ModelKind::Oscillator,
-            scene: SceneCharts::Oscillator(c),
-        }
+        Self::Oscillator(c)
     }
 }
 
@@ -117,12 +98,12 @@ impl std::ops::Deref for Chart {
     type Target = dyn SceneChart;
 
     fn deref(&self) -> &Self::Target {
-        match &self.scene {
-            SceneCharts::Rattleback(c) => c,
-            SceneCharts::Kapitza(c) => c,
-            SceneCharts::Celt(c) => c,
+        match self {
+            Self::Rattleback(c) => c,
+            Self::Kapitza(c) => c,
+            Self::Celt(c) => c,
             #[cfg(test)]
-            SceneCharts::Oscillator(c) => c,
+            Self::Oscillator(c) => c,
         }
     }
 }
@@ -131,22 +112,24 @@ impl Chart {
     /// The scene.
     #[must_use]
     pub fn model(&self) -> ModelKind {
-        self.kind
+        match self {
+            Self::Rattleback(_) => ModelKind::Rattleback,
+            Self::Kapitza(_) => ModelKind::Kapitza,
+            Self::Celt(_) => ModelKind::Celt,
+            #[cfg(test)]
+            Self::Oscillator(_) => ModelKind::Oscillator,
+        }
     }
 
     /// The explorer's map pane's chart of `model`.
     #[must_use]
     pub fn for_pane(model: &Model, ask: PaneAsk) -> Self {
-        let scene = match model {
-            Model::Rattleback(p) => SceneCharts::Rattleback(ChartOf::for_pane(p, ask)),
-            Model::Kapitza(p) => SceneCharts::Kapitza(ChartOf::for_pane(p, ask)),
-            Model::Celt(p) => SceneCharts::Celt(ChartOf::for_pane(p, ask)),
+        match model {
+            Model::Rattleback(p) => Self::Rattleback(ChartOf::for_pane(p, ask)),
+            Model::Kapitza(p) => Self::Kapitza(ChartOf::for_pane(p, ask)),
+            Model::Celt(p) => Self::Celt(ChartOf::for_pane(p, ask)),
             #[cfg(test)]
-            Model::Oscillator(p) => SceneCharts::Oscillator(ChartOf::for_pane(p, ask)),
-        };
-        Self {
-            kind: model.kind(),
-            scene,
+            Model::Oscillator(p) => Self::Oscillator(ChartOf::for_pane(p, ask)),
         }
     }
 
@@ -156,16 +139,12 @@ impl Chart {
     /// A flag of another scene's chart, a range out of order, or a corner the model refuses.
     pub fn for_study(model: &Model, ask: &StudyAsk) -> Result<Self, String> {
         let title = model.kind().title();
-        let scene = match model {
-            Model::Rattleback(p) => SceneCharts::Rattleback(ChartOf::for_study(p, ask, title)?),
-            Model::Kapitza(p) => SceneCharts::Kapitza(ChartOf::for_study(p, ask, title)?),
-            Model::Celt(p) => SceneCharts::Celt(ChartOf::for_study(p, ask, title)?),
+        Ok(match model {
+            Model::Rattleback(p) => Self::Rattleback(ChartOf::for_study(p, ask, title)?),
+            Model::Kapitza(p) => Self::Kapitza(ChartOf::for_study(p, ask, title)?),
+            Model::Celt(p) => Self::Celt(ChartOf::for_study(p, ask, title)?),
             #[cfg(test)]
-            Model::Oscillator(p) => SceneCharts::Oscillator(ChartOf::for_study(p, ask, title)?),
-        };
-        Ok(Self {
-            kind: model.kind(),
-            scene,
+            Model::Oscillator(p) => Self::Oscillator(ChartOf::for_study(p, ask, title)?),
         })
     }
 
@@ -175,21 +154,19 @@ impl Chart {
     /// When the model is another scene's or the point is not a valid problem.
     pub fn load(&self, model: &Model, point: (f64, f64)) -> Result<Model, String> {
         let bad = |e: ParamError| format!("this cell: {e}");
-        match (&self.scene, model) {
-            (SceneCharts::Rattleback(c), Model::Rattleback(p)) => c.load(p, point).map(Model::from),
-            (SceneCharts::Kapitza(c), Model::Kapitza(p)) => c.load(p, point).map(Model::from),
-            (SceneCharts::Celt(c), Model::Celt(p)) => c.load(p, point).map(Model::from),
+        match (self, model) {
+            (Self::Rattleback(c), Model::Rattleback(p)) => c.load(p, point).map(Model::from),
+            (Self::Kapitza(c), Model::Kapitza(p)) => c.load(p, point).map(Model::from),
+            (Self::Celt(c), Model::Celt(p)) => c.load(p, point).map(Model::from),
             #[cfg(test)]
-            (SceneCharts::Oscillator(c), Model::Oscillator(p)) => c.load(p, point).map(Model::from),
+            (Self::Oscillator(c), Model::Oscillator(p)) => c.load(p, point).map(Model::from),
             // Each chart with another scene's model (each chart named: a new one must say what
             // it loads).
-            (SceneCharts::Rattleback(_) | SceneCharts::Kapitza(_) | SceneCharts::Celt(_), _) => {
+            (Self::Rattleback(_) | Self::Kapitza(_) | Self::Celt(_), _) => {
                 return Err("the map is of another scene".to_owned());
             }
             #[cfg(test)]
-            (SceneCharts::Oscillator(_), _) => {
-                return Err("the map is of another scene".to_owned());
-            }
+            (Self::Oscillator(_), _) => return Err("the map is of another scene".to_owned()),
         }
         .map_err(bad)
     }

@@ -102,31 +102,18 @@ fn plan_auto(
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<AutoOut, crate::physics::StepError> {
     let r = celt::plan::resolve(problem, &resolved.auto_request(), progress)?;
-    run.method = r.plan.method;
-    run.tolerance = r.plan.tolerance;
-    let estimate = r.estimate.unwrap_or(f64::INFINITY);
-    let met = r.shortfall.is_none();
-    let reason = if met {
-        format!(
-            "dop853 at local tolerance {:.1e}, verified against a run 16x looser",
-            r.plan.tolerance
-        )
-    } else {
-        format!(
-            "dop853 at local tolerance {:.1e}; the tolerance was not reached: {}",
-            r.plan.tolerance,
-            r.shortfall.map_or("", Shortfall::describe)
-        )
+    let local = r.plan.tolerance;
+    let reason = |met: bool| {
+        if met {
+            format!("dop853 at local tolerance {local:.1e}, verified against a run 16x looser")
+        } else {
+            format!(
+                "dop853 at local tolerance {local:.1e}; the tolerance was not reached: {}",
+                r.shortfall.map_or("", Shortfall::describe)
+            )
+        }
     };
-    Ok(AutoOut {
-        choice: r.plan.method,
-        reason,
-        tolerance: r.plan.tolerance,
-        extra: NoExtra {},
-        error_estimate: estimate,
-        met,
-        shortfall: r.shortfall,
-    })
+    Ok(AutoOut::of(&r, run, reason, NoExtra {}))
 }
 
 /// Runs the celt's preset and writes the report.

@@ -322,6 +322,30 @@ struct PlannedOut<X> {
     shortfall: Option<Shortfall>,
 }
 
+impl<X> PlannedOut<X> {
+    /// `auto`'s account of the plan `r` that `physics::plan` resolved, `reason` its words;
+    /// `run` becomes the plan.
+    fn of(
+        r: &crate::physics::plan::Resolution,
+        run: &mut RunSpec,
+        reason: impl FnOnce(bool) -> String,
+        extra: X,
+    ) -> Self {
+        run.method = r.plan.method;
+        run.tolerance = r.plan.tolerance;
+        let met = r.shortfall.is_none();
+        Self {
+            choice: r.plan.method,
+            reason: reason(met),
+            tolerance: r.plan.tolerance,
+            extra,
+            error_estimate: r.estimate.unwrap_or(f64::INFINITY),
+            met,
+            shortfall: r.shortfall,
+        }
+    }
+}
+
 impl<X> Account for PlannedOut<X> {
     fn account(&self) -> (bool, f64, Option<Shortfall>) {
         (self.met, self.error_estimate, self.shortfall)

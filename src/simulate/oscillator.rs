@@ -47,17 +47,8 @@ fn plan_auto(
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<AutoOut, crate::physics::StepError> {
     let r = flows::resolve(problem, &resolved.auto_request(), progress)?;
-    run.method = r.plan.method;
-    run.tolerance = r.plan.tolerance;
-    Ok(AutoOut {
-        choice: r.plan.method,
-        reason: format!("dop853 at local tolerance {:.1e}", r.plan.tolerance),
-        tolerance: r.plan.tolerance,
-        extra: NoExtra {},
-        error_estimate: r.estimate.unwrap_or(f64::INFINITY),
-        met: r.shortfall.is_none(),
-        shortfall: r.shortfall,
-    })
+    let reason = |_| format!("dop853 at local tolerance {:.1e}", r.plan.tolerance);
+    Ok(AutoOut::of(&r, run, reason, NoExtra {}))
 }
 
 fn simulate_to(problem: &Problem, mut ask: super::Ask<'_>) -> Result<Option<Missed>, Failure> {
