@@ -170,9 +170,10 @@ fn the_contract_scenes_chart_counts_as_the_exact_solution_and_merges_from_shards
     };
     let chart = Chart::for_study(&p.model, &ask).unwrap();
     assert_eq!(chart.model(), p.model.kind());
-    let all: Vec<usize> = (0..chart.len()).collect();
-    let verdicts = chart.cells(&all, &|_| true, &|| ()).unwrap();
-    let whole = chart.output(1, &p.name, &all, &verdicts, None);
+    let c = chart
+        .compute(false, None, &|_| true, &crate::study::chart::Tally::QUIET)
+        .unwrap();
+    let whole = chart.output(1, &p.name, &c.indices, &c.verdicts, None, false);
     let (x, y) = chart.axes();
     for cell in &whole.cells {
         let (i, j) = (cell.index % x.cells, cell.index / x.cells);
@@ -198,7 +199,7 @@ fn the_contract_scenes_chart_counts_as_the_exact_solution_and_merges_from_shards
     assert!(whole.table().starts_with("crossings over oscillator.omega"));
     let csv = whole.csv();
     assert!(
-        csv.starts_with("index,oscillator.omega,initial.v,reversals\n"),
+        csv.starts_with("index,oscillator.omega,initial.v,reversals,mark\n"),
         "{csv}"
     );
     assert_eq!(csv.lines().count(), 1 + chart.len());
@@ -207,9 +208,15 @@ fn the_contract_scenes_chart_counts_as_the_exact_solution_and_merges_from_shards
     let parts: Vec<_> = (1..=3)
         .map(|i| {
             let s = crate::study::chart::Shard { index: i, count: 3 };
-            let idx = crate::study::chart::shard_cells(chart.len(), s);
-            let v = chart.cells(&idx, &|_| true, &|| ()).unwrap();
-            let mut out = chart.output(1, &p.name, &idx, &v, Some(s));
+            let c = chart
+                .compute(
+                    false,
+                    Some(s),
+                    &|_| true,
+                    &crate::study::chart::Tally::QUIET,
+                )
+                .unwrap();
+            let mut out = chart.output(1, &p.name, &c.indices, &c.verdicts, Some(s), false);
             out.description = Some(description.clone());
             (format!("part{i}"), crate::study::part::sealed(out))
         })

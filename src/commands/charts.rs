@@ -2,10 +2,9 @@
 //! from its parts (issue 59; provenance, issue 66). The command layer's helpers (`emit`,
 //! `counted`, the budget's refusal) are the parent's.
 
-use super::progress::Progress;
+use super::progress::{Progress, counted, tallied};
 use super::{
-    Failure, Outcome, counted, emit, finished, go_on, interrupted, json_text, study_setup,
-    write_files,
+    Failure, Outcome, emit, finished, go_on, interrupted, json_text, study_setup, write_files,
 };
 
 pub(super) fn study_map(args: &crate::commands::cli::MapArgs) -> Outcome {
@@ -23,6 +22,7 @@ pub(super) fn study_map(args: &crate::commands::cli::MapArgs) -> Outcome {
         columns: args.columns,
         rows: args.rows,
         hanging: args.position == crate::commands::cli::Position::Hanging,
+        exhaustive: args.exhaustive,
     };
     let chart = chart::Chart::for_study(&model, &ask).map_err(Failure::input)?;
     if args.shard.is_some() && args.common.out.is_some() {
@@ -36,28 +36,28 @@ pub(super) fn study_map(args: &crate::commands::cli::MapArgs) -> Outcome {
                 .to_owned(),
         ));
     }
-    let total = chart.len();
-    let indices: Vec<usize> = match args.shard {
-        Some(s) => chart::shard_cells(total, s),
-        None => (0..total).collect(),
-    };
-    chart_priced(&chart, indices.len(), args.common.force)?;
+    let expected = chart.expected_cells(args.exhaustive, args.shard);
+    let price = chart.price(args.exhaustive, args.shard);
+    chart_priced(&chart, expected, price, args.common.force)?;
     let label = match args.shard {
         Some(s) => format!("study map {}/{}", s.index, s.count),
         None => "study map".to_owned(),
     };
-    // Progress by cells done; Ctrl-C cancels the cells in flight.
+    // Progress by cells computed, of those the cost model expects (more when the refinement
+    // finds more to compute); Ctrl-C cancels the cells in flight.
     let started = std::time::Instant::now();
-    let progress = Progress::count(&label, indices.len(), "cells")
-        .priced(chart.predicted_seconds(indices.len()));
-    let mapped = counted(progress, &|done| chart.cells(&indices, &|_| go_on(), done));
-    let verdicts = finished(mapped, "study map")?;
+    let progress = Progress::count(&label, expected, "cells computed").priced(price);
+    let mapped = tallied(progress, &|tally| {
+        chart.compute(args.exhaustive, args.shard, &|_| go_on(), tally)
+    });
+    let computed = finished(mapped, "study map")?;
     let mut out = chart.output(
         crate::commands::outputs::SCHEMA_VERSION,
         &crate::scenario::text::one_line(&preset.name),
-        &indices,
-        &verdicts,
+        &computed.indices,
+        &computed.verdicts,
         args.shard,
+        args.exhaustive,
     );
     out.wall_seconds = started.elapsed().as_secs_f64();
     if args.shard.is_some() {
@@ -202,9 +202,14 @@ pub(super) fn study_merge(args: &crate::commands::cli::MergeArgs) -> Outcome {
     print_chart(&merged, args.format, args.out.as_deref(), args.force)
 }
 
-/// The chart's cells when its cost model puts them within the work budget (or `--force`).
-fn chart_priced(chart: &crate::study::chart::Chart, cells: usize, force: bool) -> Outcome {
-    let predicted = chart.predicted_seconds(cells);
+/// The chart's cells when its cost model puts the `cells` it expects to compute within the work
+/// budget (or `--force`).
+fn chart_priced(
+    chart: &crate::study::chart::Chart,
+    cells: usize,
+    predicted: f64,
+    force: bool,
+) -> Outcome {
     let budget = if force {
         f64::INFINITY
     } else {
@@ -213,7 +218,7 @@ fn chart_priced(chart: &crate::study::chart::Chart, cells: usize, force: bool) -
     if let Err(over) = crate::physics::budget::check(predicted, budget) {
         let what = chart.title();
         return Err(Failure::input(format!(
-            "this {what} ({cells} cells) is {over}; use a smaller --grid or --shard I/N, or pass --force"
+            "this {what} ({cells} cells to compute) is {over}; use a smaller --grid or --shard I/N, or pass --force"
         )));
     }
     Ok(())

@@ -468,7 +468,13 @@ pub struct MapArgs {
     /// The pendulum: which equilibrium's stability.
     #[arg(long, value_enum, default_value_t = Position::Upright)]
     pub position: Position,
-    /// Compute one slice of the cells, `I/N` (1-based: the cells whose index is `I − 1` modulo
+    /// Compute every cell instead of refining (by default a chart computes a coarse lattice,
+    /// then only where neighbouring cells disagree, and infers the rest: each cell's `mark`
+    /// says which).
+    #[arg(long)]
+    pub exhaustive: bool,
+    /// Compute one slice of the cells, `I/N` (1-based: whole blocks of the refinement, block
+    /// `b` in slice `b mod N + 1`; with `--exhaustive`, the cells whose index is `I − 1` modulo
     /// `N`), and print it as a JSON part file for `study merge`.
     #[arg(long, value_name = "I/N", value_parser = parse_shard)]
     pub shard: Option<crate::study::chart::Shard>,

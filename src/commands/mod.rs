@@ -15,7 +15,7 @@ use crate::scenario::text::one_line;
 use std::fmt::Write as _;
 
 use crate::commands::failure::{Failure, Outcome};
-use crate::commands::progress::Progress;
+use crate::commands::progress::{Progress, counted};
 
 use crate::commands::cli::{CheckArgs, ListArgs, ListFormat, PresetsAction, PresetsArgs};
 use crate::scenario::PresetError;
@@ -334,23 +334,6 @@ pub fn man() -> Outcome {
 /// (a reader gone away, `| head`, ends the work; `main` then exits as [`stdout_failure`] says).
 fn go_on() -> bool {
     crate::interrupt::requested().is_none() && stdout_failure().is_none()
-}
-
-/// Runs `work` with `progress` (a count, on stderr: a terminal only), counting each call of
-/// the counter `work` is given (from any thread); the bar is erased at the end.
-fn counted<R>(progress: Progress, work: &dyn Fn(&(dyn Fn() + Sync)) -> R) -> R {
-    let progress = std::sync::Mutex::new(progress);
-    let count = std::sync::atomic::AtomicUsize::new(0);
-    let out = work(&|| {
-        let n = count.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-        if let Ok(mut p) = progress.lock() {
-            p.tick(n as f64);
-        }
-    });
-    if let Ok(mut p) = progress.lock() {
-        p.finish();
-    }
-    out
 }
 
 /// A study's result, or its exit: 128 + the signal that ended it, or 1 when a run failed.

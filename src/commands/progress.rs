@@ -113,6 +113,18 @@ impl Progress {
         Some((text, fraction))
     }
 
+    /// The whole is now `total` (a count that grows as the work finds more to do).
+    pub fn expect(&mut self, total: f64) {
+        if total > self.t_end {
+            if let Some(predicted) = &mut self.priced
+                && self.t_end > 0.0
+            {
+                *predicted *= total / self.t_end;
+            }
+            self.t_end = total;
+        }
+    }
+
     /// Reports `t` (or the count done); always `true` (work is cancelled by Ctrl-C, which
     /// ends it through the interrupt flag).
     pub fn tick(&mut self, t: f64) -> bool {
@@ -149,6 +161,52 @@ impl Progress {
         }
         self.last = None;
     }
+}
+
+/// Runs `work` with `progress` (a count, on stderr: a terminal only), counting each call of
+/// the counter `work` is given (from any thread); the bar is erased at the end.
+pub(super) fn counted<R>(progress: Progress, work: &dyn Fn(&(dyn Fn() + Sync)) -> R) -> R {
+    let progress = std::sync::Mutex::new(progress);
+    let count = std::sync::atomic::AtomicUsize::new(0);
+    let out = work(&|| {
+        let n = count.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        if let Ok(mut p) = progress.lock() {
+            p.tick(n as f64);
+        }
+    });
+    if let Ok(mut p) = progress.lock() {
+        p.finish();
+    }
+    out
+}
+
+/// [`counted`] for work whose length grows as it goes (a refined chart's passes): `tally`
+/// hears each cell done and the cells now expected.
+pub(super) fn tallied<R>(
+    progress: Progress,
+    work: &dyn Fn(&crate::study::chart::Tally<'_>) -> R,
+) -> R {
+    let progress = std::sync::Mutex::new(progress);
+    let count = std::sync::atomic::AtomicUsize::new(0);
+    let done = || {
+        let n = count.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        if let Ok(mut p) = progress.lock() {
+            p.tick(n as f64);
+        }
+    };
+    let expect = |total: usize| {
+        if let Ok(mut p) = progress.lock() {
+            p.expect(total as f64);
+        }
+    };
+    let out = work(&crate::study::chart::Tally {
+        done: &done,
+        expect: &expect,
+    });
+    if let Ok(mut p) = progress.lock() {
+        p.finish();
+    }
+    out
 }
 
 /// Seconds left of work the cost model priced at `predicted` (s), a `fraction` done in

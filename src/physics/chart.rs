@@ -100,6 +100,29 @@ pub enum Verdict {
         /// What went wrong, as the run said it.
         error: String,
     },
+    /// Not computed: its region's corners, edges and samples all gave this answer (issue 70,
+    /// `study::refine`).
+    Inferred(Answer),
+}
+
+/// What a region of a chart is inferred from: a decided cell's answer, compared between
+/// neighbours (a count of reversals, or a stability verdict).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Answer {
+    /// Reversals in the window.
+    Count(usize),
+    /// Whether the equilibrium is stable.
+    Stable(bool),
+}
+
+/// Whether a cell of a chart's output was computed or inferred from its region (issue 70).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum Mark {
+    /// The scene's verified routine ran at this cell.
+    Computed,
+    /// Its region's corners, edges and seeded interior samples all agreed on this answer.
+    Inferred,
 }
 
 impl Verdict {
@@ -119,8 +142,38 @@ impl Verdict {
     #[must_use]
     pub fn count(&self) -> Option<usize> {
         match *self {
-            Self::Reversals { count, .. } => Some(count),
-            Self::Stability { .. } | Self::Failed { .. } => None,
+            Self::Reversals { count, .. } | Self::Inferred(Answer::Count(count)) => Some(count),
+            Self::Stability { .. } | Self::Failed { .. } | Self::Inferred(Answer::Stable(_)) => {
+                None
+            }
+        }
+    }
+
+    /// The answer a decided cell gives (`None`: undecided or failed), computed or inferred.
+    #[must_use]
+    pub fn answer(&self) -> Option<Answer> {
+        match *self {
+            Self::Reversals {
+                count,
+                decided: true,
+                ..
+            } => Some(Answer::Count(count)),
+            Self::Stability {
+                stable,
+                decided: true,
+                ..
+            } => Some(Answer::Stable(stable)),
+            Self::Inferred(answer) => Some(answer),
+            Self::Reversals { .. } | Self::Stability { .. } | Self::Failed { .. } => None,
+        }
+    }
+
+    /// How the cell's verdict was found.
+    #[must_use]
+    pub fn mark(&self) -> Mark {
+        match self {
+            Self::Inferred(_) => Mark::Inferred,
+            Self::Reversals { .. } | Self::Stability { .. } | Self::Failed { .. } => Mark::Computed,
         }
     }
 
@@ -130,6 +183,7 @@ impl Verdict {
         match *self {
             Self::Reversals { decided, .. } | Self::Stability { decided, .. } => decided,
             Self::Failed { .. } => false,
+            Self::Inferred(_) => true,
         }
     }
 }
@@ -184,6 +238,10 @@ pub struct CellOutput {
     /// verdict).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
+    /// `computed` (the scene's routine ran here) or `inferred` (its region agreed: the cell
+    /// carries the answer alone, without the computed cell's times, rates or traces).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mark: Option<Mark>,
 }
 
 /// `Option<Option<T>>` as absent / `null` / a value.
@@ -245,6 +303,9 @@ pub struct StudyAsk {
     pub rows: Option<(f64, f64)>,
     /// `--position hanging` (the pendulum's).
     pub hanging: bool,
+    /// `--exhaustive`: every cell computed, none inferred (the chart is the same; how its
+    /// cells are found is not).
+    pub exhaustive: bool,
 }
 
 impl StudyAsk {
@@ -317,6 +378,10 @@ pub trait SceneChart: std::fmt::Debug + Send + Sync {
     fn cheap_cells(&self) -> bool;
     /// Predicted seconds of one core's work for `cells` cells.
     fn cpu_seconds(&self, cells: usize) -> f64;
+    /// Whether a region whose computed cells all give `answer` may be inferred from them
+    /// (`study::refine`): a scene refuses the answers that lone cells can break inside a
+    /// region (the celt's counts after a first reversal, whose later wobbles are chaotic).
+    fn infers(&self, answer: Answer) -> bool;
     /// The output's header fields.
     fn header(&self) -> Header;
 }
@@ -368,6 +433,8 @@ pub enum Column {
     TraceError,
     /// Whether decided (`false` when absent).
     Decided,
+    /// `computed` or `inferred` (issue 70).
+    Mark,
 }
 
 impl Column {
@@ -387,6 +454,7 @@ impl Column {
             Self::Trace => "trace",
             Self::TraceError => "trace_error",
             Self::Decided => "decided",
+            Self::Mark => "mark",
         }
     }
 
@@ -408,6 +476,11 @@ impl Column {
             Self::Trace => opt(c.trace),
             Self::TraceError => opt(c.trace_error),
             Self::Decided => c.decided.unwrap_or(false).to_string(),
+            Self::Mark => match c.mark {
+                Some(Mark::Computed) => "computed".to_owned(),
+                Some(Mark::Inferred) => "inferred".to_owned(),
+                None => String::new(),
+            },
         }
     }
 }
@@ -442,6 +515,14 @@ pub fn fill_cell(columns: &[Column], v: &Verdict, at: (f64, f64), out: &mut Cell
             (Column::TraceError, &Verdict::Stability { error, .. }) => {
                 out.trace_error = Some(error);
             }
+            (Column::Reversals, &Verdict::Inferred(Answer::Count(count))) => {
+                out.reversals = Some(count);
+            }
+            (Column::Stable, &Verdict::Inferred(Answer::Stable(stable))) => {
+                out.stable = Some(stable);
+            }
+            (Column::Decided, &Verdict::Inferred(_)) => out.decided = Some(true),
+            (Column::Mark, v) => out.mark = Some(v.mark()),
             // The index and coordinates every cell has; a verdict without the field (a failed
             // cell's, another kind's): nothing (every column named, so a new one must say).
             (
@@ -467,6 +548,13 @@ pub fn fill_cell(columns: &[Column], v: &Verdict, at: (f64, f64), out: &mut Cell
 #[must_use]
 pub fn read_cell(columns: &[Column], c: &CellOutput) -> Option<Verdict> {
     let has = |column| columns.contains(&column);
+    if c.mark == Some(Mark::Inferred) {
+        return Some(Verdict::Inferred(if has(Column::Stable) {
+            Answer::Stable(c.stable?)
+        } else {
+            Answer::Count(c.reversals?)
+        }));
+    }
     if has(Column::Stable) {
         return Some(Verdict::Stability {
             stable: c.stable?,

@@ -63,12 +63,12 @@ pub enum JobSpec {
     Weak(WeakSpec),
     /// The sweep of the run's small parameter.
     Sweep(SweepSpec),
-    /// The regime map, from cell `from` on (grid order: the cells before it are known).
+    /// The regime map, refined (`study::refine`) from the cells computed so far.
     Map {
         /// What to compute.
         spec: Box<MapSpec>,
-        /// The first cell to compute.
-        from: usize,
+        /// The cells computed so far (`None` elsewhere; an inferred cell is inferred again).
+        known: Vec<Option<crate::study::chart::Verdict>>,
     },
 }
 
@@ -108,9 +108,12 @@ impl JobSpec {
                 w.tolerance,
             )
             .unwrap_or(f64::INFINITY),
-            Self::Map { spec, from } => spec
-                .chart
-                .predicted_seconds(spec.chart.len().saturating_sub(*from)),
+            Self::Map { spec, known } => spec.chart.price_of(
+                spec.chart
+                    .expected_cells(false, None)
+                    .saturating_sub(known.iter().flatten().count()),
+                spec.chart.refines(),
+            ),
         }
     }
 
@@ -145,7 +148,7 @@ impl JobSpec {
             Self::Partner(spec) => Box::new(PartnerJob::new(stamp, spec)),
             Self::Weak(spec) => Box::new(WeakJob::new(stamp, spec)),
             Self::Sweep(spec) => Box::new(SweepJob::new(stamp, spec)),
-            Self::Map { spec, from } => Box::new(MapJob::new(stamp, *spec, from)),
+            Self::Map { spec, known } => Box::new(MapJob::new(stamp, *spec, known)),
         }
     }
 }
@@ -182,12 +185,10 @@ pub enum JobData {
         /// Why it stopped short, if it did.
         failed: Option<String>,
     },
-    /// Cells of the map, in grid order from `first`.
+    /// Cells of the map, computed or inferred: each cell's index and verdict.
     MapCells {
-        /// Index of the first cell.
-        first: usize,
-        /// The verdict of each cell.
-        verdicts: Vec<crate::study::chart::Verdict>,
+        /// The cells.
+        cells: Vec<(usize, crate::study::chart::Verdict)>,
     },
     /// The regime map is complete (or could not go on: `failed`).
     MapDone {
@@ -564,23 +565,52 @@ impl Job for SweepJob {
     }
 }
 
-/// The regime map stamped `id`, from cell `next` on: a row from the limit (cheap), or as many
-/// cells of the full model as the pool has threads, in parallel, per slice.
+/// The regime map stamped `id`, refined (`study::refine`, as `study map` computes it): each
+/// slice computes a row of the cheap charts' pending cells (the rattleback's limit, the
+/// pendulum's one-period traces) or as many as the pool has threads of the ones that run the
+/// full motion, and sends them with the cells their blocks now infer.
 pub struct MapJob {
     id: u64,
     spec: MapSpec,
-    next: usize,
+    /// The cells computed so far.
+    known: Vec<Option<crate::study::chart::Verdict>>,
+    /// The cells sent (computed or inferred).
+    sent: Vec<bool>,
 }
 
 impl MapJob {
-    /// The map `spec` stamped `id`, from cell `from` (the cells before it are known).
+    /// The map `spec` stamped `id`, the cells `known` computed already.
     #[must_use]
-    pub fn new(id: u64, spec: MapSpec, from: usize) -> Self {
+    pub fn new(
+        id: u64,
+        spec: MapSpec,
+        mut known: Vec<Option<crate::study::chart::Verdict>>,
+    ) -> Self {
+        known.resize(spec.chart.len(), None);
+        let sent = known.iter().map(Option::is_some).collect();
         Self {
             id,
             spec,
-            next: from,
+            known,
+            sent,
         }
+    }
+
+    /// The cells settled and not sent yet, now marked sent.
+    fn unsent(&mut self) -> Vec<(usize, crate::study::chart::Verdict)> {
+        let chart = self.spec.chart;
+        let refine = chart.refine();
+        let settled = refine.settle(&self.known, &refine.blocks(), &|a| chart.infers(a));
+        let mut cells = Vec::new();
+        for (n, v) in settled.into_iter().enumerate() {
+            if let Some(v) = v
+                && !self.sent[n]
+            {
+                self.sent[n] = true;
+                cells.push((n, v));
+            }
+        }
+        cells
     }
 }
 
@@ -591,18 +621,23 @@ impl Job for MapJob {
 
     fn slice(&mut self, work: &mut Work) -> Slice {
         let (go_on, sink) = (&mut *work.go_on, &mut *work.sink);
-        let (id, spec, next) = (self.id, self.spec, self.next);
-        let chart = spec.chart;
-        let total = chart.len();
-        // A row of the cheap charts (the rattleback's limit, the pendulum's one-period traces)
-        // a slice; as many cells as the pool has threads of the ones that run the full motion.
+        let (id, chart) = (self.id, self.spec.chart);
+        let refine = chart.refine();
+        let pending = refine.pending(&self.known, &refine.blocks(), &|a| chart.infers(a));
+        if pending.is_empty() {
+            let done = SimEvent::Job {
+                stamp: id,
+                data: JobData::MapDone { failed: None },
+            };
+            return Slice::after(sink(done), Slice::Done);
+        }
         let chunk = if chart.cheap_cells() {
             chart.axes().0.cells
         } else {
             rayon::current_num_threads().max(1)
         };
-        let end = (next + chunk).min(total);
-        let verdicts = match chart.cells_polled(next..end, go_on) {
+        let batch = &pending[..chunk.min(pending.len())];
+        let verdicts = match chart.cells_polled(batch, go_on) {
             Err(StepError::Cancelled { .. }) => return Slice::More,
             Err(e) => {
                 let failed = Some(e.to_string());
@@ -614,25 +649,20 @@ impl Job for MapJob {
             }
             Ok(verdicts) => verdicts,
         };
-        self.next = end;
+        for (&n, v) in batch.iter().zip(verdicts) {
+            self.known[n] = Some(v);
+        }
         let cells = SimEvent::Job {
             stamp: id,
             data: JobData::MapCells {
-                first: next,
-                verdicts,
+                cells: self.unsent(),
             },
         };
-        if !sink(cells) {
-            return Slice::Closed;
+        if sink(cells) {
+            Slice::More
+        } else {
+            Slice::Closed
         }
-        if end < total {
-            return Slice::More;
-        }
-        let done = SimEvent::Job {
-            stamp: id,
-            data: JobData::MapDone { failed: None },
-        };
-        Slice::after(sink(done), Slice::Done)
     }
 }
 

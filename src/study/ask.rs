@@ -55,6 +55,10 @@ pub struct Description {
     pub rows: Option<[f64; 2]>,
     /// `--position`: `upright` or `hanging`.
     pub position: String,
+    /// `--exhaustive`: every cell computed (a part's cells interleaved, `n mod N`), none
+    /// inferred; absent when refined (a part holds whole blocks, issue 70).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub exhaustive: bool,
 }
 
 impl Description {
@@ -75,6 +79,7 @@ impl Description {
             columns: ask.columns.map(|(a, b)| [a, b]),
             rows: ask.rows.map(|(a, b)| [a, b]),
             position: if ask.hanging { "hanging" } else { "upright" }.to_owned(),
+            exhaustive: ask.exhaustive,
         }
     }
 
@@ -154,6 +159,7 @@ impl Description {
             columns: range("columns", self.columns)?,
             rows: range("rows", self.rows)?,
             hanging,
+            exhaustive: self.exhaustive,
         })
     }
 }

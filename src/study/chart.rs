@@ -14,8 +14,9 @@ use rayon::prelude::*;
 use crate::physics::StepError;
 
 pub use super::output::{CellAt, ChartOutput, CurvePoint, Shard, shard_cells};
+pub use super::refine::Refine;
 pub use crate::physics::chart::{
-    Axis, CellOutput, NotItsFields, PaneAsk, SceneChart, StudyAsk, Verdict,
+    Answer, Axis, CellOutput, Mark, NotItsFields, PaneAsk, SceneChart, StudyAsk, Verdict,
 };
 pub use crate::physics::models::Chart;
 pub use crate::physics::scene::ChartWords;
@@ -45,6 +46,52 @@ pub mod pane {
     #[must_use]
     pub fn largest(kind: crate::physics::ModelKind) -> (usize, usize) {
         kind.studies().chart.pane
+    }
+}
+
+/// What the cost model expects a refined chart to compute, over its first pass: measured on
+/// the shipped presets' default charts (`scripts/refine_costs.sh`; docs/benchmarks.md, issue
+/// 70), whose ratios lie within 2× of it.
+pub const REFINED_OVER_FIRST: f64 = 2.6;
+
+/// What a cell a refined chart computes costs over the chart's average cell: it lies where the
+/// answer changes, where the motion does most (the full model's bands of reversals cost 1.5×
+/// its cells on average, measured on `subcritical --k 1e4 --grid 100x50`: 7.1 ms against
+/// 4.6 ms of CPU).
+pub const REFINED_CELL_COST: f64 = 1.5;
+
+/// What a chart's cells came to: the cells (grid order) and their verdicts, and how many were
+/// computed (the rest inferred).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Computed {
+    /// The cells, in grid order.
+    pub indices: Vec<usize>,
+    /// Their verdicts.
+    pub verdicts: Vec<Verdict>,
+    /// How many cells the scene's routine ran for (a shard's block edges included).
+    pub computed: usize,
+}
+
+/// What a chart's computation tells its progress line.
+pub struct Tally<'a> {
+    /// A cell was computed.
+    pub done: &'a (dyn Fn() + Sync),
+    /// The cells the whole computation is now expected to compute.
+    pub expect: &'a dyn Fn(usize),
+}
+
+impl Tally<'static> {
+    /// A tally that tells nothing (tests, the merge's own runs).
+    pub const QUIET: Self = Self {
+        done: &|| (),
+        expect: &|_| (),
+    };
+}
+
+/// A cell the refinement left without a verdict: never, as its walk covers every cell.
+fn unsettled() -> Verdict {
+    Verdict::Failed {
+        error: "left unsettled by the refinement".to_owned(),
     }
 }
 
@@ -106,6 +153,145 @@ impl Chart {
             .collect()
     }
 
+    /// The refinement of this chart's grid (`study::refine`).
+    #[must_use]
+    pub fn refine(&self) -> Refine {
+        let (x, y) = self.axes();
+        Refine::new(x.cells, y.cells)
+    }
+
+    /// The cells of `shard` (every cell without one), in grid order: each cell when
+    /// `exhaustive` (a shard's cells interleaved, `n mod N`), otherwise the refinement's (a
+    /// shard's whole blocks), computed pass by pass in parallel. `tally` hears of each cell
+    /// computed and, before each pass, how many cells the whole is now expected to compute.
+    ///
+    /// # Errors
+    /// [`StepError::Cancelled`] (a failed cell is a verdict, not an error).
+    pub fn compute(
+        &self,
+        exhaustive: bool,
+        shard: Option<Shard>,
+        go_on: &(dyn Fn(f64) -> bool + Sync),
+        tally: &Tally<'_>,
+    ) -> Result<Computed, StepError> {
+        let total = self.len();
+        if exhaustive || !self.refines() {
+            let indices = match shard {
+                Some(s) => self.shard_indices(exhaustive, s),
+                None => (0..total).collect(),
+            };
+            (tally.expect)(indices.len());
+            let verdicts = self.cells(&indices, go_on, tally.done)?;
+            let computed = indices.len();
+            return Ok(Computed {
+                indices,
+                verdicts,
+                computed,
+            });
+        }
+        let refine = self.refine();
+        let blocks = refine.blocks_of(shard);
+        let infers = |a| self.infers(a);
+        let expected = self.expected_cells(false, shard);
+        let mut known: Vec<Option<Verdict>> = vec![None; total];
+        let mut computed = 0;
+        loop {
+            let pending = refine.pending(&known, &blocks, &infers);
+            if pending.is_empty() {
+                break;
+            }
+            (tally.expect)(expected.max(computed + pending.len()));
+            let verdicts = self.cells(&pending, go_on, tally.done)?;
+            computed += pending.len();
+            for (n, v) in pending.into_iter().zip(verdicts) {
+                known[n] = Some(v);
+            }
+        }
+        let settled = refine.settle(&known, &blocks, &infers);
+        let indices = refine.owned(&blocks);
+        let verdicts = indices
+            .iter()
+            .map(|&n| settled[n].clone().unwrap_or_else(unsettled))
+            .collect();
+        Ok(Computed {
+            indices,
+            verdicts,
+            computed,
+        })
+    }
+
+    /// Whether the scene infers a region of any answer (the celt's infer none: every cell of
+    /// its charts is computed, in one pass).
+    #[must_use]
+    pub fn refines(&self) -> bool {
+        [
+            Answer::Count(0),
+            Answer::Count(1),
+            Answer::Stable(true),
+            Answer::Stable(false),
+        ]
+        .into_iter()
+        .any(|a| self.infers(a))
+    }
+
+    /// The cells a part of `shard` holds: interleaved (`n mod N`) when `exhaustive`, else the
+    /// cells its blocks own.
+    #[must_use]
+    pub fn shard_indices(&self, exhaustive: bool, shard: Shard) -> Vec<usize> {
+        if exhaustive {
+            shard_cells(self.len(), shard)
+        } else {
+            let refine = self.refine();
+            refine.owned(&refine.blocks_of(Some(shard)))
+        }
+    }
+
+    /// How many cells of `shard` (all without one) the cost model expects a run to compute:
+    /// every one when `exhaustive`; else the refinement's first pass (exact) times what the
+    /// passes after it add on the shipped charts ([`REFINED_OVER_FIRST`]), at most every cell.
+    #[must_use]
+    pub fn expected_cells(&self, exhaustive: bool, shard: Option<Shard>) -> usize {
+        let owned = match shard {
+            Some(s) => self.shard_indices(exhaustive, s).len(),
+            None => self.len(),
+        };
+        if exhaustive || !self.refines() {
+            return owned;
+        }
+        let refine = self.refine();
+        let first = refine.first_pass(&refine.blocks_of(shard));
+        #[allow(
+            clippy::cast_precision_loss,
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss
+        )]
+        let expected = (first as f64 * REFINED_OVER_FIRST).ceil() as usize;
+        expected.min(owned).max(first.min(owned))
+    }
+
+    /// Predicted wall-clock seconds of the cells of `shard` (all without one): the cells the
+    /// cost model expects to compute ([`Chart::expected_cells`]), each at
+    /// [`REFINED_CELL_COST`] times the average cell when refined.
+    #[must_use]
+    pub fn price(&self, exhaustive: bool, shard: Option<Shard>) -> f64 {
+        self.price_of(
+            self.expected_cells(exhaustive, shard),
+            !exhaustive && self.refines(),
+        )
+    }
+
+    /// Predicted wall-clock seconds of `cells` cells, computed where the answer changes when
+    /// `refined`.
+    #[must_use]
+    pub fn price_of(&self, cells: usize, refined: bool) -> f64 {
+        let seconds = self.predicted_seconds(cells);
+        if refined {
+            seconds * REFINED_CELL_COST
+        } else {
+            seconds
+        }
+    }
+
     /// The cells `range` for a caller whose `go_on` cannot cross threads (the explorer's
     /// worker): the cells run on the pool while the calling thread asks `go_on` every half
     /// millisecond and cancels them when it says stop.
@@ -114,15 +300,14 @@ impl Chart {
     /// The first cell that fails, or [`StepError::Cancelled`].
     pub fn cells_polled(
         &self,
-        range: std::ops::Range<usize>,
+        indices: &[usize],
         go_on: &mut dyn FnMut(f64) -> bool,
     ) -> Result<Vec<Verdict>, StepError> {
         use std::sync::atomic::{AtomicBool, Ordering};
         let stop = AtomicBool::new(false);
         let keep_on = |_t: f64| !stop.load(Ordering::Relaxed);
-        let indices: Vec<usize> = range.collect();
         std::thread::scope(|scope| {
-            let cells = scope.spawn(|| self.cells(&indices, &keep_on, &|| ()));
+            let cells = scope.spawn(|| self.cells(indices, &keep_on, &|| ()));
             while !cells.is_finished() {
                 if !stop.load(Ordering::Relaxed) && !go_on(0.0) {
                     stop.store(true, Ordering::Relaxed);
@@ -158,6 +343,7 @@ impl Chart {
         indices: &[usize],
         verdicts: &[Verdict],
         shard: Option<Shard>,
+        exhaustive: bool,
     ) -> ChartOutput {
         let (columns, rows) = self.axes();
         let cells = indices
@@ -200,7 +386,7 @@ impl Chart {
             curve_meaning: self.curve_meaning().to_owned(),
             shard,
             description: None,
-            predicted_seconds: self.predicted_seconds(indices.len()),
+            predicted_seconds: self.price(exhaustive, shard),
             wall_seconds: 0.0,
             digest: None,
         }

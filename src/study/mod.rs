@@ -18,6 +18,7 @@ pub mod chart;
 pub mod map;
 pub mod output;
 pub mod part;
+pub mod refine;
 pub mod sweep;
 pub mod weak;
 

@@ -24,7 +24,9 @@ use serde::de::{DeserializeSeed, Error as _, MapAccess, SeqAccess, Visitor};
 
 pub use super::ask::Description;
 use super::ask::{MAX_CELLS, printable};
-use super::chart::{CellOutput, Chart, ChartOutput, Shard, shard_cells};
+#[cfg(test)]
+use super::chart::shard_cells;
+use super::chart::{CellOutput, Chart, ChartOutput, Mark, Shard};
 
 /// Bytes a part may have before its description is read (the header, the description with its
 /// preset, the axes).
@@ -187,7 +189,12 @@ impl<'de> Visitor<'de> for PartVisitor<'_> {
                         )));
                     }
                     let total = cols * rows;
-                    let slice = total / s.count + usize::from(s.index <= total % s.count);
+                    let slice = if d.exhaustive {
+                        total / s.count + usize::from(s.index <= total % s.count)
+                    } else {
+                        let refine = super::refine::Refine::new(cols, rows);
+                        refine.owned(&refine.blocks_of(Some(s))).len()
+                    };
                     self.cap.set(part_bytes_cap(cols, rows, slice));
                     cells = Some(map.next_value_seed(Cells { max: slice })?);
                 }
@@ -384,6 +391,19 @@ pub enum MergeError {
         /// The first field that differs.
         field: String,
     },
+    /// Computed cells that do not settle the chart as its parts say: a cell still to compute,
+    /// or an inferred one its region's computed cells do not give.
+    #[error(
+        "{part}: cell {index} is {what} (a computed cell edited, or an inferred one its region's cells do not give)"
+    )]
+    Unsettled {
+        /// The part's name.
+        part: String,
+        /// The cell.
+        index: usize,
+        /// What is wrong with it.
+        what: &'static str,
+    },
     /// A recomputation that failed or was cancelled.
     #[error("recomputing cells: {0}")]
     Recomputing(crate::physics::StepError),
@@ -422,10 +442,12 @@ pub fn merge(
     };
     let count = first_shard.count;
     let total = chart.len();
+    let exhaustive = description.exhaustive;
+    let mut from = vec![0; total];
     let mut seen: Vec<Option<&str>> = vec![None; count];
     let mut verdicts = vec![None; total];
     let mut wall = 0.0;
-    for (name, part) in parts {
+    for (p, (name, part)) in parts.iter().enumerate() {
         let (Some(d), Some(shard)) = (&part.description, part.shard) else {
             return Err(MergeError::NotAPart { part: name.clone() });
         };
@@ -465,9 +487,10 @@ pub fn merge(
             });
         }
         seen[shard.index - 1] = Some(name);
-        let (expected, read) = check_part(chart, schema_version, name, part, shard)?;
+        let (expected, read) = check_part(chart, schema_version, name, part, shard, exhaustive)?;
         for (&n, v) in expected.iter().zip(read) {
             verdicts[n] = Some(v);
+            from[n] = p;
         }
         wall += part.wall_seconds;
     }
@@ -480,11 +503,53 @@ pub fn merge(
     if !missing.is_empty() {
         return Err(MergeError::Missing(missing));
     }
+    if !exhaustive {
+        settles(chart, &verdicts, &|n| parts[from[n]].0.clone())?;
+    }
     let all: Vec<usize> = (0..total).collect();
     let verdicts: Vec<_> = verdicts.into_iter().flatten().collect();
-    let mut out = chart.output(schema_version, &first.preset, &all, &verdicts, None);
+    let mut out = chart.output(
+        schema_version,
+        &first.preset,
+        &all,
+        &verdicts,
+        None,
+        exhaustive,
+    );
     out.wall_seconds = wall;
     Ok(out)
+}
+
+/// The refinement run again over the parts' computed cells: nothing left to compute, and every
+/// inferred cell what their regions give (`part_of` names a cell's part).
+fn settles(
+    chart: &Chart,
+    verdicts: &[Option<super::chart::Verdict>],
+    part_of: &dyn Fn(usize) -> String,
+) -> Result<(), MergeError> {
+    let known: Vec<_> = verdicts
+        .iter()
+        .map(|v| v.clone().filter(|v| v.mark() == Mark::Computed))
+        .collect();
+    let refine = chart.refine();
+    let blocks = refine.blocks();
+    let infers = |a| chart.infers(a);
+    if let Some(&index) = refine.pending(&known, &blocks, &infers).first() {
+        return Err(MergeError::Unsettled {
+            part: part_of(index),
+            index,
+            what: "one the refinement computes, but inferred",
+        });
+    }
+    let settled = refine.settle(&known, &blocks, &infers);
+    if let Some(index) = (0..verdicts.len()).find(|&n| settled[n] != verdicts[n]) {
+        return Err(MergeError::Unsettled {
+            part: part_of(index),
+            index,
+            what: "inferred where its region's cells disagree, or with another answer",
+        });
+    }
+    Ok(())
 }
 
 /// One part against the chart its description gives: its cells those of its slice, each read
@@ -495,8 +560,9 @@ fn check_part(
     name: &str,
     part: &ChartOutput,
     shard: Shard,
+    exhaustive: bool,
 ) -> Result<(Vec<usize>, Vec<super::chart::Verdict>), MergeError> {
-    let expected = shard_cells(chart.len(), shard);
+    let expected = chart.shard_indices(exhaustive, shard);
     let got: Vec<usize> = part.cells.iter().map(|c| c.index).collect();
     if got != expected {
         return Err(MergeError::NotItsSlice {
@@ -522,7 +588,14 @@ fn check_part(
             wall: part.wall_seconds,
         });
     }
-    let mut written = chart.output(schema_version, &part.preset, &expected, &read, Some(shard));
+    let mut written = chart.output(
+        schema_version,
+        &part.preset,
+        &expected,
+        &read,
+        Some(shard),
+        exhaustive,
+    );
     written.description.clone_from(&part.description);
     written.wall_seconds = part.wall_seconds;
     written.digest.clone_from(&part.digest);
@@ -558,8 +631,11 @@ pub fn choose(
 ) -> Vec<(usize, usize)> {
     let mut chosen = Vec::new();
     for (p, (_, part)) in parts.iter().enumerate() {
-        let len = part.cells.len();
-        let mut picks: Vec<usize> = (0..len).collect();
+        // The computed cells: an inferred one is checked against its region (`settles`).
+        let mut picks: Vec<usize> = (0..part.cells.len())
+            .filter(|&k| part.cells[k].mark != Some(Mark::Inferred))
+            .collect();
+        let len = picks.len();
         // A partial Fisher–Yates shuffle: the first `n` are a uniform sample.
         for k in 0..n.min(len) {
             let j = k + (random() % (len - k) as u64) as usize;
@@ -608,12 +684,14 @@ mod tests {
     use super::*;
 
     use crate::study::ask::StudyAsk;
+    use crate::study::chart::{Answer, Tally, Verdict};
 
     /// A pendulum chart for tests.
     fn pendulum(cols: usize, rows: usize) -> Chart {
         crate::physics::kapitza::chart::tests::pendulum(cols, rows).into()
     }
 
+    /// The description of an exhaustive chart (its parts' cells interleaved, `n mod N`).
     fn description(cols: usize, rows: usize) -> Description {
         Description::new(
             "[preset]\nname = \"p\"\n".to_owned(),
@@ -621,6 +699,7 @@ mod tests {
                 grid: (cols, rows),
                 t_end: 1.0,
                 tolerance: 1e-8,
+                exhaustive: true,
                 ..StudyAsk::default()
             },
         )
@@ -628,11 +707,22 @@ mod tests {
 
     fn part(chart: &Chart, d: &Description, i: usize, n: usize) -> (String, ChartOutput) {
         let s = Shard { index: i, count: n };
-        let idx = shard_cells(chart.len(), s);
-        let v = chart.cells(&idx, &|_| true, &|| ()).unwrap();
-        let mut out = chart.output(1, "p", &idx, &v, Some(s));
+        let c = chart
+            .compute(d.exhaustive, Some(s), &|_| true, &Tally::QUIET)
+            .unwrap();
+        if d.exhaustive {
+            assert_eq!(c.indices, shard_cells(chart.len(), s));
+        }
+        let mut out = chart.output(1, "p", &c.indices, &c.verdicts, Some(s), d.exhaustive);
         out.description = Some(d.clone());
         (format!("part{i}"), sealed(out))
+    }
+
+    fn whole(chart: &Chart, exhaustive: bool) -> ChartOutput {
+        let c = chart
+            .compute(exhaustive, None, &|_| true, &Tally::QUIET)
+            .unwrap();
+        chart.output(1, "p", &c.indices, &c.verdicts, None, exhaustive)
     }
 
     fn printed(p: &ChartOutput) -> Vec<u8> {
@@ -643,14 +733,7 @@ mod tests {
     fn shards_merge_into_the_whole_and_refuse_what_is_not_a_partition() {
         let chart = pendulum(7, 5);
         let d = description(7, 5);
-        let all: Vec<usize> = (0..chart.len()).collect();
-        let whole = chart.output(
-            1,
-            "p",
-            &all,
-            &chart.cells(&all, &|_| true, &|| ()).unwrap(),
-            None,
-        );
+        let whole = whole(&chart, true);
         for n in 1..=4 {
             let parts: Vec<_> = (1..=n).rev().map(|i| part(&chart, &d, i, n)).collect();
             let mut merged = merge(&chart, 1, &parts).unwrap();
@@ -804,15 +887,78 @@ mod tests {
         let e = read(&printed(&big)[..]).unwrap_err();
         assert!(e.contains("more cells than its shard has"), "{e}");
         // A whole chart is not a part.
-        let all: Vec<usize> = (0..chart.len()).collect();
-        let whole = chart.output(
-            1,
-            "p",
-            &all,
-            &chart.cells(&all, &|_| true, &|| ()).unwrap(),
-            None,
-        );
+        let whole = whole(&chart, true);
         let e = read(&printed(&whole)[..]).unwrap_err();
         assert!(e.contains("not a part"), "{e}");
+    }
+
+    #[test]
+    fn refined_parts_merge_into_one_runs_bytes_and_a_forged_inference_is_refused() {
+        // 40×24 cells of the pendulum: a lattice of 8, regions inferred inside it.
+        let chart = pendulum(40, 24);
+        let d = Description {
+            exhaustive: false,
+            ..description(40, 24)
+        };
+        let one = whole(&chart, false);
+        let marks = |o: &ChartOutput, m: Mark| o.cells.iter().filter(|c| c.mark == Some(m)).count();
+        assert!(
+            marks(&one, Mark::Inferred) > 100,
+            "{}",
+            marks(&one, Mark::Inferred)
+        );
+        // The answers are the exhaustive chart's, cell for cell.
+        let every = whole(&chart, true);
+        for (r, e) in one.cells.iter().zip(&every.cells) {
+            assert_eq!(
+                (r.stable, r.decided),
+                (e.stable, e.decided),
+                "cell {}",
+                r.index
+            );
+        }
+        for n in [1, 2, 3, 7] {
+            let parts: Vec<_> = (1..=n).map(|i| part(&chart, &d, i, n)).collect();
+            let mut merged = merge(&chart, 1, &parts).unwrap();
+            merged.wall_seconds = one.wall_seconds;
+            assert_eq!(printed(&merged), printed(&one), "{n} shards");
+        }
+        let good = || vec![part(&chart, &d, 1, 2), part(&chart, &d, 2, 2)];
+        // An inferred cell given another answer, re-digested: its region's cells say otherwise.
+        let mut parts = good();
+        let k = parts[1]
+            .1
+            .cells
+            .iter()
+            .position(|c| c.mark == Some(Mark::Inferred))
+            .unwrap();
+        let flipped = parts[1].1.cells[k].stable.map(|s| !s);
+        parts[1].1.cells[k].stable = flipped;
+        parts[1].1 = sealed(parts[1].1.clone());
+        let e = merge(&chart, 1, &parts).unwrap_err();
+        assert!(
+            matches!(e, MergeError::Unsettled { ref part, .. } if part == "part2"),
+            "{e}"
+        );
+        // A computed cell claimed inferred: the refinement computes it.
+        let mut parts = good();
+        let k = parts[0]
+            .1
+            .cells
+            .iter()
+            .position(|c| c.mark == Some(Mark::Computed) && c.decided == Some(true))
+            .unwrap();
+        let cell = &mut parts[0].1.cells[k];
+        let verdict = Verdict::Inferred(Answer::Stable(cell.stable.unwrap()));
+        *cell = chart.cell_output(cell.index, &verdict);
+        parts[0].1 = sealed(parts[0].1.clone());
+        let e = merge(&chart, 1, &parts).unwrap_err();
+        assert!(matches!(e, MergeError::Unsettled { .. }), "{e}");
+        assert!(e.to_string().contains("the refinement computes"), "{e}");
+        // The recomputation samples computed cells only.
+        let parts = good();
+        for &(p, k) in &choose(&parts, usize::MAX, &mut || 3) {
+            assert_eq!(parts[p].1.cells[k].mark, Some(Mark::Computed));
+        }
     }
 }

@@ -18,7 +18,7 @@ use ratatui::widgets::{Paragraph, Widget};
 use super::marks::{Facts, Section, printed};
 use super::{Look, framed};
 use crate::app::computed::map::{MapSource, MapState};
-use crate::study::chart::Verdict;
+use crate::study::chart::{Answer, Mark, Verdict};
 
 /// The glyph of a count of reversals (`None`: not computed).
 #[must_use]
@@ -36,19 +36,13 @@ pub fn glyph(count: Option<usize>) -> char {
 /// The glyph of a cell's verdict (`None`: not computed).
 #[must_use]
 pub fn verdict_glyph(v: Option<&Verdict>) -> char {
-    match v {
+    // A computed cell and an inferred one are drawn alike: by their answer.
+    match v.map(Verdict::answer) {
         None => glyph(None),
-        Some(v) if !v.decided() => UNDECIDED,
-        Some(Verdict::Reversals { count, .. }) => glyph(Some(*count)),
-        // A failed cell is undecided (caught above).
-        Some(Verdict::Failed { .. }) => UNDECIDED,
-        Some(Verdict::Stability { stable, .. }) => {
-            if *stable {
-                STABLE
-            } else {
-                ' '
-            }
-        }
+        Some(None) => UNDECIDED,
+        Some(Some(Answer::Count(count))) => glyph(Some(count)),
+        Some(Some(Answer::Stable(true))) => STABLE,
+        Some(Some(Answer::Stable(false))) => ' ',
     }
 }
 
@@ -125,7 +119,14 @@ impl MapPane<'_> {
         let progress = match (&map.failed, map.done) {
             (Some(why), _) => format!("stopped: {why}"),
             (None, true) => format!("{total} cells"),
-            (None, false) => format!("{}/{total} cells…", map.computed()),
+            (None, false) => {
+                let left = map.seconds_left().map_or_else(String::new, |s| {
+                    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                    let s = s.ceil().clamp(1.0, 99_999.0) as u64;
+                    format!(" ~{s} s")
+                });
+                format!("{}/{total} cells{left}…", map.computed())
+            }
         };
         let sources = chart.is_some_and(|c| c.words().sources);
         let keys = match (self.focused, sources) {
@@ -146,10 +147,17 @@ impl MapPane<'_> {
         let verdict = match cell {
             None => "?".to_owned(),
             Some(Verdict::Failed { .. }) => "failed (its run stopped)".to_owned(),
-            Some(v) if !v.decided() => "undecided".to_owned(),
-            Some(Verdict::Reversals { count, .. }) => format!("{count} rev"),
-            Some(Verdict::Stability { stable: true, .. }) => "stable".to_owned(),
-            Some(Verdict::Stability { stable: false, .. }) => "unstable".to_owned(),
+            Some(v) => match v.answer() {
+                None => "undecided".to_owned(),
+                Some(Answer::Count(count)) => format!("{count} rev"),
+                Some(Answer::Stable(true)) => "stable".to_owned(),
+                Some(Answer::Stable(false)) => "unstable".to_owned(),
+            },
+        };
+        let verdict = if cell.is_some_and(|v| v.mark() == Mark::Inferred) {
+            format!("{verdict} (inferred)")
+        } else {
+            verdict
         };
         let nx = if chart.words().sources { "ratio" } else { nx };
         let tick = crate::study::svg::tick;
@@ -234,10 +242,17 @@ impl Widget for MapPane<'_> {
         let cursor = self.cursor_text().unwrap_or_default();
         let width = x_axis.width as usize;
         let room = width.saturating_sub(3 + left_end.len() + right.len());
-        let middle = [format!("{x_name} │ {cursor}"), cursor, x_name.to_owned()]
-            .into_iter()
-            .find(|m| m.chars().count() <= room)
-            .unwrap_or_default();
+        // Where the cursor's words do not fit, without saying the cell was inferred first.
+        let plain = cursor.replace(" (inferred)", "");
+        let middle = [
+            format!("{x_name} │ {cursor}"),
+            cursor,
+            plain,
+            x_name.to_owned(),
+        ]
+        .into_iter()
+        .find(|m| m.chars().count() <= room)
+        .unwrap_or_default();
         let pad = room.saturating_sub(middle.chars().count()) / 2;
         let left = format!("{left_end} {}{middle}", " ".repeat(pad + 1));
         let gap = width.saturating_sub(left.chars().count() + right.len());

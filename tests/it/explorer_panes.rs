@@ -235,6 +235,7 @@ fn the_map_pane_shows_what_study_map_computes_and_loads_the_cell_under_the_curso
 fn a_map_resumes_where_it_stopped_on_a_thread_of_its_own() {
     use rattleback::sim::jobs::MapSpec;
     use rattleback::sim::{Command, Engine, JobData, JobSpec, PlanBook, SimEvent};
+    use rattleback::study::chart::Verdict;
     use rattleback::study::map::{Grid, Source};
     let grid = Grid::new(8, 4, 2.0, 1.0, 1.0, 30.0);
     let spec = MapSpec::rattleback(
@@ -255,7 +256,11 @@ fn a_map_resumes_where_it_stopped_on_a_thread_of_its_own() {
             7,
             JobSpec::Map {
                 spec: Box::new(spec),
-                from: 30,
+                // The first 30 cells computed already (an 8×4 grid's refinement computes every
+                // cell: its blocks have one interior cell, their sample).
+                known: (0..32)
+                    .map(|n| (n < 30).then(|| Verdict::counted(0)))
+                    .collect(),
             },
         ),
         &mut sink,
@@ -267,18 +272,18 @@ fn a_map_resumes_where_it_stopped_on_a_thread_of_its_own() {
     assert!(engine.settle_jobs(|| true, &mut sink));
     assert!(!engine.jobs_running());
     let events = events.into_inner();
-    let cells: Vec<(usize, usize)> = events
+    let cells: Vec<usize> = events
         .iter()
         .filter_map(|e| match e {
             SimEvent::Job {
                 stamp: 7,
-                data: JobData::MapCells { first, verdicts },
-            } => Some((*first, verdicts.len())),
+                data: JobData::MapCells { cells },
+            } => Some(cells.iter().map(|c| c.0)),
             _ => None,
         })
+        .flatten()
         .collect();
-    assert_eq!(cells.first().map(|c| c.0), Some(30), "resumes at `from`");
-    assert_eq!(cells.iter().map(|c| c.1).sum::<usize>(), 2);
+    assert_eq!(cells, [30, 31], "resumes with the cells not computed");
     assert!(matches!(
         events.last(),
         Some(SimEvent::Job {
@@ -400,7 +405,7 @@ fn a_dropped_job_stops_computing_at_once() {
     );
     let map = JobSpec::Map {
         spec: Box::new(spec),
-        from: 0,
+        known: Vec::new(),
     };
     // A job its cost model lets start (else it would end at once, refused).
     assert!(map.predicted_seconds() < rattleback::physics::budget::BUDGET_SECONDS);
@@ -510,7 +515,7 @@ fn every_panes_job_is_priced_before_it_starts_and_refused_over_the_budget() {
             Grid::new(40, 20, 2.0, 1.0, 1.0, t_end),
             source,
         )),
-        from: 0,
+        known: Vec::new(),
     };
     let full = Source::Full {
         k: 1e4,
@@ -664,4 +669,41 @@ fn y_says_where_the_command_went() {
         "{:?}",
         app.messages.written
     );
+}
+
+/// The map pane says how long is left while its cells come in (issue 70): the cost model's
+/// price of the cells the refinement still expects to compute, smaller as cells arrive; the
+/// count of cells known; a complete map says its cells alone.
+#[test]
+fn the_map_pane_says_the_time_left_while_its_cells_come_in() {
+    use rattleback::study::chart::Verdict;
+    let mut h = Headless::new("celt-clockwise");
+    h.key(Key::Char('M'));
+    let m = &mut h.app.computed.map;
+    // Back to a map whose cells are still coming: the first 100 computed.
+    let total = m.cells.len();
+    let id = m.id;
+    m.cells = vec![None; total];
+    m.done = false;
+    let left_at_start = m.seconds_left().unwrap();
+    assert!(left_at_start > 0.0);
+    assert!(m.on_cells(id, (0..100).map(|n| (n, Verdict::counted(0))).collect()));
+    let left = m.seconds_left().unwrap();
+    assert!(
+        left < left_at_start,
+        "{left} after 100 cells, {left_at_start} before"
+    );
+    let screen = crate::explorer_ui::screen_text(&h.app, 80, 24);
+    let heading = screen
+        .lines()
+        .find(|l| l.contains("reversals (T"))
+        .unwrap_or_else(|| panic!("{screen}"));
+    assert!(
+        heading.contains(&format!("100/{total} cells ~")) && heading.contains(" s…"),
+        "{heading}"
+    );
+    let m = &mut h.app.computed.map;
+    assert!(m.on_done(id, None));
+    let screen = crate::explorer_ui::screen_text(&h.app, 80, 24);
+    assert!(screen.contains(&format!("{total} cells │")), "{screen}");
 }

@@ -58,6 +58,7 @@ mod presets_themes;
 mod readme;
 mod record_replay;
 mod reference_cases;
+mod refined;
 mod scenes;
 mod schema_walk;
 mod schemas;

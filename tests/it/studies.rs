@@ -196,7 +196,7 @@ fn a_charts_progress_in_a_terminal_says_the_time_left() {
         wall > 1.3,
         "the chart took {wall:.2} s: too short for the bar to show; enlarge it"
     );
-    assert!(seen.contains(" of 1800 cells, "), "{seen:?}");
+    assert!(seen.contains(" of 1800 cells computed, "), "{seen:?}");
     assert!(seen.contains(" s left"), "{seen:?}");
     assert!(chart["predicted_seconds"].as_f64().unwrap() > 0.0);
     let _ = std::fs::remove_dir_all(&dir);

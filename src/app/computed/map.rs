@@ -15,7 +15,7 @@ use super::{ComputedPane, Cx};
 use crate::app::fields::Settings;
 use crate::sim::jobs::MapSpec;
 use crate::sim::{Command, JobData, JobKind, JobSpec};
-use crate::study::chart::{Chart, Verdict};
+use crate::study::chart::{Chart, Mark, Verdict};
 
 pub use crate::study::chart::pane::{
     CELT_GRID, FULL_GRID, FULL_TOLERANCE, LIMIT_GRID, PANE_INERTIA, PENDULUM_GRID,
@@ -108,16 +108,17 @@ impl MapState {
         self.id += 1;
         self.done = false;
         self.failed = None;
-        let from = self
+        // The cells computed so far: the refinement goes on from them and infers again.
+        let known = self
             .cells
             .iter()
-            .position(Option::is_none)
-            .unwrap_or(self.cells.len());
+            .map(|c| c.clone().filter(|v| v.mark() == Mark::Computed))
+            .collect();
         Some(Command::start_job(
             self.id,
             JobSpec::Map {
                 spec: Box::new(spec),
-                from,
+                known,
             },
         ))
     }
@@ -141,14 +142,15 @@ impl MapState {
         self.start(settings)
     }
 
-    /// Takes cells of computation `id`; whether they were this map's.
-    pub fn on_cells(&mut self, id: u64, first: usize, verdicts: &[Verdict]) -> bool {
+    /// Takes cells of computation `id` (each cell's index and verdict, computed or
+    /// inferred); whether they were this map's.
+    pub fn on_cells(&mut self, id: u64, cells: Vec<(usize, Verdict)>) -> bool {
         if id != self.id {
             return false;
         }
-        for (n, r) in verdicts.iter().enumerate() {
-            if let Some(c) = self.cells.get_mut(first + n) {
-                *c = Some(r.clone());
+        for (n, v) in cells {
+            if let Some(c) = self.cells.get_mut(n) {
+                *c = Some(v);
             }
         }
         true
@@ -164,10 +166,27 @@ impl MapState {
         true
     }
 
-    /// Cells computed so far.
+    /// Cells settled so far (computed or inferred).
     #[must_use]
     pub fn computed(&self) -> usize {
         self.cells.iter().filter(|c| c.is_some()).count()
+    }
+
+    /// What the cost model prices the cells still to compute at (s): the cells the
+    /// refinement is expected to compute, less those computed.
+    #[must_use]
+    pub fn seconds_left(&self) -> Option<f64> {
+        let chart = self.spec?.chart;
+        let computed = self
+            .cells
+            .iter()
+            .flatten()
+            .filter(|v| v.mark() == Mark::Computed)
+            .count();
+        Some(chart.price_of(
+            chart.expected_cells(false, None).saturating_sub(computed),
+            chart.refines(),
+        ))
     }
 
     /// The verdict of cell `(i, j)`, if computed.
@@ -281,7 +300,7 @@ impl ComputedPane for MapState {
     /// Cells, or the end of the map (or why it stopped short).
     fn take(&mut self, stamp: u64, data: JobData, _: &mut Cx) -> bool {
         match data {
-            JobData::MapCells { first, verdicts } => self.on_cells(stamp, first, &verdicts),
+            JobData::MapCells { cells } => self.on_cells(stamp, cells),
             JobData::MapDone { failed } => self.on_done(stamp, failed),
             _ => false,
         }
@@ -321,12 +340,13 @@ mod tests {
         let s = settings();
         let mut m = MapState::default();
         let Some(Command::Job {
-            spec: Some(JobSpec::Map { from: 0, .. }),
+            spec: Some(JobSpec::Map { known, .. }),
             ..
         }) = m.start(&s)
         else {
-            panic!("a first map starts at cell 0")
+            panic!("a first map starts")
         };
+        assert!(known.iter().all(Option::is_none), "from nothing");
         let id = m.id;
         let one = Verdict::Reversals {
             count: 1,
@@ -334,31 +354,39 @@ mod tests {
             decided: true,
             growth: None,
         };
-        assert!(m.on_cells(id, 0, &vec![one.clone(); 48]));
+        let first: Vec<_> = (0..48).map(|n| (n, one.clone())).collect();
+        let inferred = (48, Verdict::Inferred(crate::study::chart::Answer::Count(1)));
+        assert!(m.on_cells(id, [first, vec![inferred]].concat()));
         assert!(
-            !m.on_cells(id - 1, 48, &vec![one.clone(); 48]),
+            !m.on_cells(id - 1, (49..96).map(|n| (n, one.clone())).collect()),
             "stale cells are ignored"
         );
         let Some(Command::Job {
-            spec: Some(JobSpec::Map { from: 48, .. }),
+            spec: Some(JobSpec::Map { known, .. }),
             ..
         }) = m.start(&s)
         else {
-            panic!("a partial map resumes where it stopped")
+            panic!("a partial map resumes")
         };
+        assert_eq!(
+            known.iter().flatten().count(),
+            48,
+            "from the cells it computed (an inferred one is inferred again)"
+        );
         assert!(m.on_done(m.id, None));
         assert_eq!(m.start(&s), None);
         let t = crate::app::fields::Field::named(s.model.kind(), "iz")
             .unwrap()
             .with_value(&s, 3.0)
             .unwrap();
-        assert!(matches!(
-            m.start(&t),
-            Some(Command::Job {
-                spec: Some(JobSpec::Map { from: 0, .. }),
-                ..
-            })
-        ));
+        let Some(Command::Job {
+            spec: Some(JobSpec::Map { known, .. }),
+            ..
+        }) = m.start(&t)
+        else {
+            panic!("a new body starts a new map")
+        };
+        assert!(known.iter().all(Option::is_none));
         assert_eq!(m.computed(), 0, "a new body forgets the old counts");
     }
 

@@ -204,6 +204,7 @@ pub static SCENE: Scene = Scene {
                 Column::FirstReversal,
                 Column::GrowthRate,
                 Column::Decided,
+                Column::Mark,
             ],
         },
         counterpart: "subcritical",

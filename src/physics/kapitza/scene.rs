@@ -119,6 +119,7 @@ pub static SCENE: Scene = Scene {
                 Column::Trace,
                 Column::TraceError,
                 Column::Decided,
+                Column::Mark,
             ],
         },
         counterpart: "subcritical",

@@ -4,7 +4,9 @@
 use std::collections::BTreeMap;
 
 use super::{Params, Problem, Start};
-use crate::physics::chart::{Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick};
+use crate::physics::chart::{
+    Answer, Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick,
+};
 use crate::physics::method::{Asked, Method, RunSpec};
 use crate::physics::{ParamError, StepError};
 
@@ -102,6 +104,11 @@ impl SceneChart for CrossingChart {
             &self.problem,
             &Asked::new(Method::Dop853, TOLERANCE, None, self.t_end),
         )
+    }
+
+    /// Every count (the exact count changes along lines of constant `ω T`).
+    fn infers(&self, _: Answer) -> bool {
+        true
     }
     fn header(&self) -> Header {
         Header {

@@ -6,7 +6,9 @@ use std::collections::BTreeMap;
 
 use super::map::{self, DEFAULT_INERTIA, DEFAULT_RATIO_MAX, Grid, Source};
 use super::{Params, Problem, Start};
-use crate::physics::chart::{Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick};
+use crate::physics::chart::{
+    Answer, Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick,
+};
 use crate::physics::{ParamError, Posed as _, StepError};
 
 /// The names of the axes, across and up (preset keys, or the rattleback's two ratios).
@@ -117,6 +119,12 @@ impl SceneChart for RegimeChart {
 
     fn cpu_seconds(&self, cells: usize) -> f64 {
         map::predicted_seconds(&self.grid, self.source, cells)
+    }
+
+    /// Every count: the counts of the limit and of the full model change along curves (the
+    /// critical curve, the bands of equal counts below it).
+    fn infers(&self, _: Answer) -> bool {
+        true
     }
 
     fn header(&self) -> Header {

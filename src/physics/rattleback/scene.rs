@@ -76,7 +76,12 @@ pub static SCENE: Scene = Scene {
             axis_keys: super::chart::AXES,
             heading: "reversals",
             legend: ". none, 1-9 reversals, + 10 or more, ? two tolerances disagree",
-            csv: &[Column::Ratio, Column::InertiaRatio, Column::Reversals],
+            csv: &[
+                Column::Ratio,
+                Column::InertiaRatio,
+                Column::Reversals,
+                Column::Mark,
+            ],
         },
         counterpart: "celt-clockwise",
     },
