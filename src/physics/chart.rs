@@ -378,10 +378,10 @@ pub trait SceneChart: std::fmt::Debug + Send + Sync {
     fn cheap_cells(&self) -> bool;
     /// Predicted seconds of one core's work for `cells` cells.
     fn cpu_seconds(&self, cells: usize) -> f64;
-    /// Whether a region whose computed cells all give `answer` may be inferred from them
-    /// (`study::refine`): a scene refuses the answers that lone cells can break inside a
-    /// region (the celt's counts after a first reversal, whose later wobbles are chaotic).
-    fn infers(&self, answer: Answer) -> bool;
+    /// Whether a region whose computed cells all give one answer may be inferred from them
+    /// (`study::refine`); not where lone cells break a region's answer (the celt's chaotic
+    /// wobbles).
+    fn infers(&self) -> bool;
     /// The output's header fields.
     fn header(&self) -> Header;
 }

@@ -112,7 +112,7 @@ impl JobSpec {
                 spec.chart
                     .expected_cells(false, None)
                     .saturating_sub(known.iter().flatten().count()),
-                spec.chart.refines(),
+                spec.chart.infers(),
             ),
         }
     }
@@ -600,7 +600,7 @@ impl MapJob {
     fn unsent(&mut self) -> Vec<(usize, crate::study::chart::Verdict)> {
         let chart = self.spec.chart;
         let refine = chart.refine();
-        let settled = refine.settle(&self.known, &refine.blocks(), &|a| chart.infers(a));
+        let settled = refine.settle(&self.known, &refine.blocks());
         let mut cells = Vec::new();
         for (n, v) in settled.into_iter().enumerate() {
             if let Some(v) = v
@@ -623,7 +623,7 @@ impl Job for MapJob {
         let (go_on, sink) = (&mut *work.go_on, &mut *work.sink);
         let (id, chart) = (self.id, self.spec.chart);
         let refine = chart.refine();
-        let pending = refine.pending(&self.known, &refine.blocks(), &|a| chart.infers(a));
+        let pending = refine.pending(&self.known, &refine.blocks());
         if pending.is_empty() {
             let done = SimEvent::Job {
                 stamp: id,

@@ -157,7 +157,7 @@ impl Chart {
     #[must_use]
     pub fn refine(&self) -> Refine {
         let (x, y) = self.axes();
-        Refine::new(x.cells, y.cells)
+        Refine::new(x.cells, y.cells).inferring(self.infers())
     }
 
     /// The cells of `shard` (every cell without one), in grid order: each cell when
@@ -175,7 +175,7 @@ impl Chart {
         tally: &Tally<'_>,
     ) -> Result<Computed, StepError> {
         let total = self.len();
-        if exhaustive || !self.refines() {
+        if exhaustive || !self.infers() {
             let indices = match shard {
                 Some(s) => self.shard_indices(exhaustive, s),
                 None => (0..total).collect(),
@@ -191,12 +191,11 @@ impl Chart {
         }
         let refine = self.refine();
         let blocks = refine.blocks_of(shard);
-        let infers = |a| self.infers(a);
         let expected = self.expected_cells(false, shard);
         let mut known: Vec<Option<Verdict>> = vec![None; total];
         let mut computed = 0;
         loop {
-            let pending = refine.pending(&known, &blocks, &infers);
+            let pending = refine.pending(&known, &blocks);
             if pending.is_empty() {
                 break;
             }
@@ -207,7 +206,7 @@ impl Chart {
                 known[n] = Some(v);
             }
         }
-        let settled = refine.settle(&known, &blocks, &infers);
+        let settled = refine.settle(&known, &blocks);
         let indices = refine.owned(&blocks);
         let verdicts = indices
             .iter()
@@ -218,20 +217,6 @@ impl Chart {
             verdicts,
             computed,
         })
-    }
-
-    /// Whether the scene infers a region of any answer (the celt's infer none: every cell of
-    /// its charts is computed, in one pass).
-    #[must_use]
-    pub fn refines(&self) -> bool {
-        [
-            Answer::Count(0),
-            Answer::Count(1),
-            Answer::Stable(true),
-            Answer::Stable(false),
-        ]
-        .into_iter()
-        .any(|a| self.infers(a))
     }
 
     /// The cells a part of `shard` holds: interleaved (`n mod N`) when `exhaustive`, else the
@@ -255,7 +240,7 @@ impl Chart {
             Some(s) => self.shard_indices(exhaustive, s).len(),
             None => self.len(),
         };
-        if exhaustive || !self.refines() {
+        if exhaustive || !self.infers() {
             return owned;
         }
         let refine = self.refine();
@@ -276,7 +261,7 @@ impl Chart {
     pub fn price(&self, exhaustive: bool, shard: Option<Shard>) -> f64 {
         self.price_of(
             self.expected_cells(exhaustive, shard),
-            !exhaustive && self.refines(),
+            !exhaustive && self.infers(),
         )
     }
 

@@ -533,15 +533,14 @@ fn settles(
         .collect();
     let refine = chart.refine();
     let blocks = refine.blocks();
-    let infers = |a| chart.infers(a);
-    if let Some(&index) = refine.pending(&known, &blocks, &infers).first() {
+    if let Some(&index) = refine.pending(&known, &blocks).first() {
         return Err(MergeError::Unsettled {
             part: part_of(index),
             index,
             what: "one the refinement computes, but inferred",
         });
     }
-    let settled = refine.settle(&known, &blocks, &infers);
+    let settled = refine.settle(&known, &blocks);
     if let Some(index) = (0..verdicts.len()).find(|&n| settled[n] != verdicts[n]) {
         return Err(MergeError::Unsettled {
             part: part_of(index),

@@ -4,7 +4,7 @@
 //! last). A block is settled when every cell of its boundary and a few cells of its interior
 //! (chosen at random, seeded by the grid and the block, so the same for every run and every
 //! shard) are computed: when they and every other computed cell of the block give one answer
-//! that its scene infers regions from ([`crate::physics::chart::SceneChart::infers`]), the
+//! and its scene infers regions ([`crate::physics::chart::SceneChart::infers`]), the
 //! rest of its interior is inferred; otherwise it is cut in four at its middle row and column
 //! and each quarter is settled the same way, down to blocks without an interior. An undecided
 //! or failed cell never agrees, so the blocks around it are computed whole.
@@ -55,6 +55,8 @@ pub struct Refine {
     pub stride: usize,
     /// The samples' seed, from the grid.
     seed: u64,
+    /// Whether agreeing regions are inferred (else every cell is computed).
+    infers: bool,
 }
 
 /// A well-mixed 64-bit function (`SplitMix64`'s finaliser): the samples' random numbers.
@@ -95,7 +97,14 @@ impl Refine {
             rows: rows.max(1),
             stride,
             seed: mix(((cols as u64) << 32) ^ rows as u64),
+            infers: true,
         }
+    }
+
+    /// The same refinement, inferring agreeing regions or (`false`) computing every cell.
+    #[must_use]
+    pub const fn inferring(self, infers: bool) -> Self {
+        Self { infers, ..self }
     }
 
     /// The top blocks, row by row from the bottom.
@@ -171,20 +180,18 @@ impl Refine {
     }
 
     /// The answer every computed cell of `block`'s closed rectangle gives, when they give one
-    /// that `infers` accepts.
-    fn agreed(
-        &self,
-        b: Block,
-        known: &[Option<Verdict>],
-        infers: &dyn Fn(Answer) -> bool,
-    ) -> Option<Answer> {
+    /// and regions are inferred.
+    fn agreed(&self, b: Block, known: &[Option<Verdict>]) -> Option<Answer> {
+        if !self.infers {
+            return None;
+        }
         let mut agreed = None;
         for y in b.y0..=b.y1 {
             for v in known[y * self.cols + b.x0..=y * self.cols + b.x1]
                 .iter()
                 .flatten()
             {
-                let a = v.answer().filter(|&a| infers(a))?;
+                let a = v.answer()?;
                 if agreed.is_some_and(|b| b != a) {
                     return None;
                 }
@@ -200,7 +207,6 @@ impl Refine {
         &self,
         b: Block,
         known: &[Option<Verdict>],
-        infers: &dyn Fn(Answer) -> bool,
         pending: &mut BTreeSet<usize>,
         inferred: &mut Vec<(Block, Answer)>,
     ) {
@@ -216,14 +222,14 @@ impl Refine {
         if !b.has_interior() {
             return;
         }
-        if let Some(answer) = self.agreed(b, known, infers) {
+        if let Some(answer) = self.agreed(b, known) {
             inferred.push((b, answer));
             return;
         }
         let (mx, my) = (b.x0.midpoint(b.x1), b.y0.midpoint(b.y1));
         for (x0, x1) in [(b.x0, mx), (mx, b.x1)] {
             for (y0, y1) in [(b.y0, my), (my, b.y1)] {
-                self.walk(Block { x0, x1, y0, y1 }, known, infers, pending, inferred);
+                self.walk(Block { x0, x1, y0, y1 }, known, pending, inferred);
             }
         }
     }
@@ -234,12 +240,11 @@ impl Refine {
         &self,
         known: &[Option<Verdict>],
         blocks: &[Block],
-        infers: &dyn Fn(Answer) -> bool,
     ) -> (BTreeSet<usize>, Vec<(Block, Answer)>) {
         let mut pending = BTreeSet::new();
         let mut inferred = Vec::new();
         for &b in blocks {
-            self.walk(b, known, infers, &mut pending, &mut inferred);
+            self.walk(b, known, &mut pending, &mut inferred);
         }
         (pending, inferred)
     }
@@ -247,26 +252,16 @@ impl Refine {
     /// The cells to compute next for `blocks`, in grid order (none: every cell is settled).
     /// `known` holds the computed cells (`None` elsewhere), indexed by cell.
     #[must_use]
-    pub fn pending(
-        &self,
-        known: &[Option<Verdict>],
-        blocks: &[Block],
-        infers: &dyn Fn(Answer) -> bool,
-    ) -> Vec<usize> {
-        self.walk_all(known, blocks, infers).0.into_iter().collect()
+    pub fn pending(&self, known: &[Option<Verdict>], blocks: &[Block]) -> Vec<usize> {
+        self.walk_all(known, blocks).0.into_iter().collect()
     }
 
     /// Every cell's verdict as far as the computed ones `known` settle `blocks`: the computed
     /// cells', [`Verdict::Inferred`] inside the blocks whose cells agreed, `None` where cells
     /// are still pending.
     #[must_use]
-    pub fn settle(
-        &self,
-        known: &[Option<Verdict>],
-        blocks: &[Block],
-        infers: &dyn Fn(Answer) -> bool,
-    ) -> Vec<Option<Verdict>> {
-        let (_, inferred) = self.walk_all(known, blocks, infers);
+    pub fn settle(&self, known: &[Option<Verdict>], blocks: &[Block]) -> Vec<Option<Verdict>> {
+        let (_, inferred) = self.walk_all(known, blocks);
         let mut cells = known.to_vec();
         for (b, answer) in inferred {
             for y in b.y0 + 1..b.y1 {
@@ -304,11 +299,10 @@ mod tests {
         blocks: &[Block],
         f: &dyn Fn(usize, usize) -> Verdict,
     ) -> (Vec<Option<Verdict>>, usize) {
-        let all = |_| true;
         let mut known = vec![None; r.cols * r.rows];
         let mut computed = 0;
         loop {
-            let pending = r.pending(&known, blocks, &all);
+            let pending = r.pending(&known, blocks);
             if pending.is_empty() {
                 break;
             }
@@ -318,7 +312,7 @@ mod tests {
                 computed += 1;
             }
         }
-        (r.settle(&known, blocks, &all), computed)
+        (r.settle(&known, blocks), computed)
     }
 
     #[test]
@@ -419,5 +413,13 @@ mod tests {
             let (settled, _) = refined(&r, &r.blocks(), &|_, _| Verdict::counted(1));
             assert!(settled.iter().all(Option::is_some), "{cols}x{rows}");
         }
+    }
+
+    #[test]
+    fn a_scene_that_infers_nothing_computes_every_cell() {
+        let r = Refine::new(64, 32).inferring(false);
+        let (cells, computed) = refined(&r, &r.blocks(), &|_, _| Verdict::counted(2));
+        assert_eq!(computed, 64 * 32);
+        assert!(cells.iter().all(|c| *c == Some(Verdict::counted(2))));
     }
 }

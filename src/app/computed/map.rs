@@ -185,7 +185,7 @@ impl MapState {
             .count();
         Some(chart.price_of(
             chart.expected_cells(false, None).saturating_sub(computed),
-            chart.refines(),
+            chart.infers(),
         ))
     }
 

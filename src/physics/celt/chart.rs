@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 
 use super::{Params, Problem};
 use crate::physics::chart::{
-    Answer, Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, refuse_map_flags, tick,
+    Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, refuse_map_flags, tick,
 };
 use crate::physics::{ParamError, StepError};
 
@@ -199,7 +199,7 @@ impl SceneChart for CeltChart {
     /// `celt-fast-spin`'s 24 undecided cells sit alone inside regions without a reversal whose
     /// every computed cell is quiet (as many raw sign changes of the spin as reversals).
     /// Inferring any region would change answers that `--exhaustive` gives.
-    fn infers(&self, _: Answer) -> bool {
+    fn infers(&self) -> bool {
         false
     }
 

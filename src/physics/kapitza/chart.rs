@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use super::floquet::{Mathieu, Position, floquet};
 use super::{Params, Problem};
 use crate::physics::chart::{
-    Answer, Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, refuse_map_flags, tick,
+    Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, refuse_map_flags, tick,
 };
 use crate::physics::{ParamError, StepError};
 
@@ -157,7 +157,7 @@ impl SceneChart for PendulumChart {
 
     /// Every verdict: the pendulum's regions (its tongues, however thin) are bounded by curves
     /// the edges cross.
-    fn infers(&self, _: Answer) -> bool {
+    fn infers(&self) -> bool {
         true
     }
 

@@ -4,9 +4,7 @@
 use std::collections::BTreeMap;
 
 use super::{Params, Problem, Start};
-use crate::physics::chart::{
-    Answer, Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick,
-};
+use crate::physics::chart::{Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick};
 use crate::physics::method::{Asked, Method, RunSpec};
 use crate::physics::{ParamError, StepError};
 
@@ -107,7 +105,7 @@ impl SceneChart for CrossingChart {
     }
 
     /// Every count (the exact count changes along lines of constant `ω T`).
-    fn infers(&self, _: Answer) -> bool {
+    fn infers(&self) -> bool {
         true
     }
     fn header(&self) -> Header {

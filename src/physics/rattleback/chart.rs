@@ -6,9 +6,7 @@ use std::collections::BTreeMap;
 
 use super::map::{self, DEFAULT_INERTIA, DEFAULT_RATIO_MAX, Grid, Source};
 use super::{Params, Problem, Start};
-use crate::physics::chart::{
-    Answer, Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick,
-};
+use crate::physics::chart::{Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick};
 use crate::physics::{ParamError, Posed as _, StepError};
 
 /// The names of the axes, across and up (preset keys, or the rattleback's two ratios).
@@ -123,7 +121,7 @@ impl SceneChart for RegimeChart {
 
     /// Every count: the counts of the limit and of the full model change along curves (the
     /// critical curve, the bands of equal counts below it).
-    fn infers(&self, _: Answer) -> bool {
+    fn infers(&self) -> bool {
         true
     }
 
