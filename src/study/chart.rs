@@ -5,9 +5,11 @@
 //! through [`SceneChart`] and the registry's [`Chart`]); this layer keeps what is common: the
 //! grid's order, the parallel loop, the output, its shards.
 //!
-//! A chart is computed whole or in shards (cells `n` with `n mod N = I − 1`); `study merge`
-//! puts shards back together into exactly what the unsharded run prints. Cells run in parallel
-//! (rayon) and are collected in grid order, so nothing depends on the number of threads.
+//! A chart is computed where its answer changes (issue 70, [`super::refine`]: a lattice, then
+//! the blocks whose cells disagree; `--exhaustive` every cell), whole or in shards (whole
+//! blocks; exhaustive: cells `n` with `n mod N = I − 1`); `study merge` puts shards back
+//! together into exactly what the unsharded run prints. Cells run in parallel (rayon) and are
+//! collected in grid order, so nothing depends on the number of threads.
 
 use rayon::prelude::*;
 
@@ -49,9 +51,9 @@ pub mod pane {
     }
 }
 
-/// What the cost model expects a refined chart to compute, over its first pass: measured on
-/// the shipped presets' default charts (`scripts/refine_costs.sh`; docs/benchmarks.md, issue
-/// 70), whose ratios lie within 2× of it.
+/// What the cost model expects a refined chart to compute, over its first pass: the shipped
+/// presets' default charts compute 1.8 (the pendulum's) to 2.6 (the full model's) times their
+/// first pass, the rattleback's limit maps 2.1 to 2.8 (`scripts/refine_check.py` counts them; docs/benchmarks.md, issue 70).
 pub const REFINED_OVER_FIRST: f64 = 2.6;
 
 /// What a cell a refined chart computes costs over the chart's average cell: it lies where the
@@ -60,16 +62,14 @@ pub const REFINED_OVER_FIRST: f64 = 2.6;
 /// 4.6 ms of CPU).
 pub const REFINED_CELL_COST: f64 = 1.5;
 
-/// What a chart's cells came to: the cells (grid order) and their verdicts, and how many were
-/// computed (the rest inferred).
+/// What a chart's cells came to: the cells (grid order) and their verdicts (each computed or
+/// inferred, [`Verdict::mark`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Computed {
     /// The cells, in grid order.
     pub indices: Vec<usize>,
     /// Their verdicts.
     pub verdicts: Vec<Verdict>,
-    /// How many cells the scene's routine ran for (a shard's block edges included).
-    pub computed: usize,
 }
 
 /// What a chart's computation tells its progress line.
@@ -182,12 +182,7 @@ impl Chart {
             };
             (tally.expect)(indices.len());
             let verdicts = self.cells(&indices, go_on, tally.done)?;
-            let computed = indices.len();
-            return Ok(Computed {
-                indices,
-                verdicts,
-                computed,
-            });
+            return Ok(Computed { indices, verdicts });
         }
         let refine = self.refine();
         let blocks = refine.blocks_of(shard);
@@ -212,11 +207,7 @@ impl Chart {
             .iter()
             .map(|&n| settled[n].clone().unwrap_or_else(unsettled))
             .collect();
-        Ok(Computed {
-            indices,
-            verdicts,
-            computed,
-        })
+        Ok(Computed { indices, verdicts })
     }
 
     /// The cells a part of `shard` holds: interleaved (`n mod N`) when `exhaustive`, else the
