@@ -166,18 +166,7 @@ impl Progress {
 /// Runs `work` with `progress` (a count, on stderr: a terminal only), counting each call of
 /// the counter `work` is given (from any thread); the bar is erased at the end.
 pub(super) fn counted<R>(progress: Progress, work: &dyn Fn(&(dyn Fn() + Sync)) -> R) -> R {
-    let progress = std::sync::Mutex::new(progress);
-    let count = std::sync::atomic::AtomicUsize::new(0);
-    let out = work(&|| {
-        let n = count.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-        if let Ok(mut p) = progress.lock() {
-            p.tick(n as f64);
-        }
-    });
-    if let Ok(mut p) = progress.lock() {
-        p.finish();
-    }
-    out
+    tallied(progress, &|tally| work(tally.done))
 }
 
 /// [`counted`] for work whose length grows as it goes (a refined chart's passes): `tally`

@@ -108,12 +108,7 @@ impl JobSpec {
                 w.tolerance,
             )
             .unwrap_or(f64::INFINITY),
-            Self::Map { spec, known } => spec.chart.price_of(
-                spec.chart
-                    .expected_cells(false, None)
-                    .saturating_sub(known.iter().flatten().count()),
-                spec.chart.infers(),
-            ),
+            Self::Map { spec, known } => spec.chart.price_left(known.iter().flatten().count()),
         }
     }
 
@@ -596,11 +591,11 @@ impl MapJob {
         }
     }
 
-    /// The cells settled and not sent yet, now marked sent.
-    fn unsent(&mut self) -> Vec<(usize, crate::study::chart::Verdict)> {
-        let chart = self.spec.chart;
-        let refine = chart.refine();
-        let settled = refine.settle(&self.known, &refine.blocks());
+    /// The cells of `settled` not sent yet, now marked sent.
+    fn unsent(
+        &mut self,
+        settled: Vec<Option<crate::study::chart::Verdict>>,
+    ) -> Vec<(usize, crate::study::chart::Verdict)> {
         let mut cells = Vec::new();
         for (n, v) in settled.into_iter().enumerate() {
             if let Some(v) = v
@@ -623,7 +618,19 @@ impl Job for MapJob {
         let (go_on, sink) = (&mut *work.go_on, &mut *work.sink);
         let (id, chart) = (self.id, self.spec.chart);
         let refine = chart.refine();
-        let pending = refine.pending(&self.known, &refine.blocks());
+        // One walk: the cells the last batch settled (computed, and those their blocks now
+        // infer) go out, and the next batch is read off the same walk.
+        let (pending, settled) = refine.step(&self.known, &refine.blocks());
+        let cells = self.unsent(settled);
+        if !cells.is_empty() {
+            let cells = SimEvent::Job {
+                stamp: id,
+                data: JobData::MapCells { cells },
+            };
+            if !sink(cells) {
+                return Slice::Closed;
+            }
+        }
         if pending.is_empty() {
             let done = SimEvent::Job {
                 stamp: id,
@@ -652,17 +659,7 @@ impl Job for MapJob {
         for (&n, v) in batch.iter().zip(verdicts) {
             self.known[n] = Some(v);
         }
-        let cells = SimEvent::Job {
-            stamp: id,
-            data: JobData::MapCells {
-                cells: self.unsent(),
-            },
-        };
-        if sink(cells) {
-            Slice::More
-        } else {
-            Slice::Closed
-        }
+        Slice::More
     }
 }
 

@@ -189,10 +189,11 @@ impl Chart {
         let expected = self.expected_cells(false, shard);
         let mut known: Vec<Option<Verdict>> = vec![None; total];
         let mut computed = 0;
-        loop {
-            let pending = refine.pending(&known, &blocks);
+        // Each pass's walk says what to compute next and, at the last, every cell's verdict.
+        let settled = loop {
+            let (pending, settled) = refine.step(&known, &blocks);
             if pending.is_empty() {
-                break;
+                break settled;
             }
             (tally.expect)(expected.max(computed + pending.len()));
             let verdicts = self.cells(&pending, go_on, tally.done)?;
@@ -200,8 +201,7 @@ impl Chart {
             for (n, v) in pending.into_iter().zip(verdicts) {
                 known[n] = Some(v);
             }
-        }
-        let settled = refine.settle(&known, &blocks);
+        };
         let indices = refine.owned(&blocks);
         let verdicts = indices
             .iter()
@@ -256,10 +256,19 @@ impl Chart {
         )
     }
 
+    /// Predicted wall-clock seconds of the whole chart's cells still to compute when `computed`
+    /// are (the explorer's pane: its budget and its time left).
+    #[must_use]
+    pub fn price_left(&self, computed: usize) -> f64 {
+        self.price_of(
+            self.expected_cells(false, None).saturating_sub(computed),
+            self.infers(),
+        )
+    }
+
     /// Predicted wall-clock seconds of `cells` cells, computed where the answer changes when
     /// `refined`.
-    #[must_use]
-    pub fn price_of(&self, cells: usize, refined: bool) -> f64 {
+    fn price_of(&self, cells: usize, refined: bool) -> f64 {
         let seconds = self.predicted_seconds(cells);
         if refined {
             seconds * REFINED_CELL_COST

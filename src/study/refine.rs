@@ -261,7 +261,18 @@ impl Refine {
     /// are still pending.
     #[must_use]
     pub fn settle(&self, known: &[Option<Verdict>], blocks: &[Block]) -> Vec<Option<Verdict>> {
-        let (_, inferred) = self.walk_all(known, blocks);
+        self.step(known, blocks).1
+    }
+
+    /// [`Refine::pending`] and [`Refine::settle`] from one walk of the blocks (the explorer's
+    /// worker asks both after every batch).
+    #[must_use]
+    pub fn step(
+        &self,
+        known: &[Option<Verdict>],
+        blocks: &[Block],
+    ) -> (Vec<usize>, Vec<Option<Verdict>>) {
+        let (pending, inferred) = self.walk_all(known, blocks);
         let mut cells = known.to_vec();
         for (b, answer) in inferred {
             for y in b.y0 + 1..b.y1 {
@@ -273,7 +284,7 @@ impl Refine {
                 }
             }
         }
-        cells
+        (pending.into_iter().collect(), cells)
     }
 
     /// The cells the first pass computes for `blocks` (their boundaries and samples): what

@@ -137,8 +137,8 @@ impl MapPane<'_> {
         format!("{source} {progress} │ {keys}")
     }
 
-    /// What the cursor's cell is, for the x-axis row.
-    fn cursor_text(&self) -> Option<String> {
+    /// What the cursor's cell is, for the x-axis row, and whether it was inferred.
+    fn cursor_text(&self) -> Option<(String, bool)> {
         let map = self.map;
         let chart = map.spec?.chart;
         let (vx, vy) = map.at_cursor()?;
@@ -154,14 +154,11 @@ impl MapPane<'_> {
                 Some(Answer::Stable(false)) => "unstable".to_owned(),
             },
         };
-        let verdict = if cell.is_some_and(|v| v.mark() == Mark::Inferred) {
-            format!("{verdict} (inferred)")
-        } else {
-            verdict
-        };
+        let inferred = cell.is_some_and(|v| v.mark() == Mark::Inferred);
         let nx = if chart.words().sources { "ratio" } else { nx };
         let tick = crate::study::svg::tick;
-        Some(format!("+ {nx} {} {ny} {}: {verdict}", tick(vx), tick(vy)))
+        let text = format!("+ {nx} {} {ny} {}: {verdict}", tick(vx), tick(vy));
+        Some((text, inferred))
     }
 }
 
@@ -239,11 +236,15 @@ impl Widget for MapPane<'_> {
         }
         Paragraph::new(labels).render(y_axis, buf);
         let (left_end, right) = (tick(ax.min), tick(ax.max));
-        let cursor = self.cursor_text().unwrap_or_default();
+        let (plain, inferred) = self.cursor_text().unwrap_or_default();
+        let cursor = if inferred {
+            format!("{plain} (inferred)")
+        } else {
+            plain.clone()
+        };
         let width = x_axis.width as usize;
         let room = width.saturating_sub(3 + left_end.len() + right.len());
         // Where the cursor's words do not fit, without saying the cell was inferred first.
-        let plain = cursor.replace(" (inferred)", "");
         let middle = [
             format!("{x_name} │ {cursor}"),
             cursor,

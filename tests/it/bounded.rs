@@ -477,13 +477,9 @@ impl Pty {
             "stty rows 30 cols 100; ulimit -v {MEMORY_KIB}; exec {} {args}",
             crate::common::program()
         );
-        let child = crate::common::detached("script")
-            .args(["-qfec", &command])
-            .arg(&log)
+        let child = crate::common::in_pty(&command, &log)
             .env("RATTLEBACK_CONFIG_DIR", dir("config"))
             .stdin(Stdio::piped())
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
             .spawn()
             .expect("`script` (util-linux) runs the explorer in a pseudo-terminal");
         std::thread::sleep(Duration::from_millis(800));

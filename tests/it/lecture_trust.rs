@@ -192,12 +192,8 @@ fn follow_waits_for_a_file_that_does_not_exist_yet() {
         crate::common::program(),
         path.display()
     );
-    let mut child = crate::common::detached("script")
-        .args(["-qfec", &command])
-        .arg(&log)
+    let mut child = crate::common::in_pty(&command, &log)
         .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null())
         .spawn()
         .expect("`script` (util-linux) gives follow a pseudo-terminal");
     std::thread::sleep(std::time::Duration::from_millis(700));

@@ -66,7 +66,6 @@ fn equal_to_exhaustive(args: &[&str]) -> usize {
             other => panic!("{args:?}: mark {other:?}"),
         }
     }
-    // The cells' CSV says which, too.
     inferred
 }
 
@@ -187,7 +186,7 @@ fn the_celts_charts_compute_every_cell_and_equal_the_exhaustive_ones() {
 }
 
 #[test]
-fn a_refined_charts_csv_and_table_say_which_cells_were_computed() {
+fn a_refined_charts_csv_says_which_cells_were_computed() {
     let (code, csv, err) = bin(&[
         "study",
         "map",

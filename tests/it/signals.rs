@@ -48,12 +48,8 @@ impl Explorer {
             crate::common::program(),
             args.join(" ")
         );
-        let script = crate::common::detached("script")
-            .args(["-qfec", &command])
-            .arg(&log)
+        let script = crate::common::in_pty(&command, &log)
             .stdin(Stdio::piped())
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
             .spawn()
             .expect("`script` (util-linux) runs the explorer in a pseudo-terminal");
         let me = Self { script, log };

@@ -178,12 +178,8 @@ fn a_charts_progress_in_a_terminal_says_the_time_left() {
         crate::common::program(),
         out.display()
     );
-    let status = crate::common::detached("script")
-        .args(["-qfec", &command])
-        .arg(&log)
+    let status = crate::common::in_pty(&command, &log)
         .stdin(std::process::Stdio::null())
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null())
         .status()
         .expect("`script` (util-linux) gives the study a pseudo-terminal");
     assert!(status.success());

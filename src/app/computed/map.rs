@@ -183,10 +183,7 @@ impl MapState {
             .flatten()
             .filter(|v| v.mark() == Mark::Computed)
             .count();
-        Some(chart.price_of(
-            chart.expected_cells(false, None).saturating_sub(computed),
-            chart.infers(),
-        ))
+        Some(chart.price_left(computed))
     }
 
     /// The verdict of cell `(i, j)`, if computed.

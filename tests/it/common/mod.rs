@@ -440,6 +440,19 @@ pub fn detached(program: impl AsRef<std::ffi::OsStr>) -> std::process::Command {
     command
 }
 
+/// `command` (a shell line) in a pseudo-terminal of its own (util-linux `script`), what it
+/// draws written to `log`, [`detached`], its stdout and stderr to nothing: a test never reaches
+/// the terminal it runs in. The caller says what stdin is.
+pub fn in_pty(command: &str, log: &std::path::Path) -> std::process::Command {
+    let mut script = detached("script");
+    script
+        .args(["-qfec", command])
+        .arg(log)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null());
+    script
+}
+
 /// The binary under test, [`detached`], with no locale of the developer's (taken as UTF-8, as
 /// in CI): a test that needs one sets it.
 pub fn rattleback() -> std::process::Command {
