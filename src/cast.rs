@@ -179,13 +179,13 @@ pub fn export_cast(
         path: out.display().to_string(),
         source,
     };
-    let (mut app, mut engine, mut terminal, screen) = prepare(rec, path, size)?;
+    let (mut app, mut engine, mut screen) = prepare(rec, path, size)?;
     crate::scenario::write::write_atomic_with(out, replace, &mut |cast| {
         frames_of(
             rec,
             &mut app,
             &mut engine,
-            (&mut terminal, &screen),
+            &mut screen,
             (options, size.fps),
             cast,
             seen,
@@ -205,13 +205,13 @@ pub fn cast_text(
     size: CastSize,
     seen: &mut dyn FnMut(usize),
 ) -> Result<(String, usize), RecordError> {
-    let (mut app, mut engine, mut terminal, screen) = prepare(rec, path, size)?;
+    let (mut app, mut engine, mut screen) = prepare(rec, path, size)?;
     let mut cast = Vec::new();
     let frames = frames_of(
         rec,
         &mut app,
         &mut engine,
-        (&mut terminal, &screen),
+        &mut screen,
         (options, size.fps),
         &mut cast,
         seen,
@@ -223,12 +223,77 @@ pub fn cast_text(
     Ok((String::from_utf8_lossy(&cast).into_owned(), frames))
 }
 
-type Prepared = (
-    crate::app::App,
-    Engine,
-    Terminal<CrosstermBackend<Shared>>,
-    Shared,
-);
+/// A terminal that draws into memory: each frame's bytes (what a terminal would receive), and
+/// the whole screen again on demand (for a reader who joins late). The cast, the exported page
+/// and `rattleback serve` draw through it, so all show the same frames.
+pub(crate) struct MemoryScreen {
+    terminal: Terminal<CrosstermBackend<Shared>>,
+    screen: Shared,
+    cache: Cache,
+    /// The last frame drawn, whole.
+    last: ratatui::buffer::Buffer,
+}
+
+impl MemoryScreen {
+    /// A screen of `area`.
+    pub(crate) fn new(area: Rect) -> std::io::Result<Self> {
+        let screen = Shared::default();
+        let terminal = Terminal::with_options(
+            CrosstermBackend::new(screen.clone()),
+            TerminalOptions {
+                viewport: Viewport::Fixed(area),
+            },
+        )?;
+        Ok(Self {
+            terminal,
+            screen,
+            cache: Cache::default(),
+            last: ratatui::buffer::Buffer::empty(area),
+        })
+    }
+
+    /// The screen's size.
+    pub(crate) fn area(&mut self) -> Rect {
+        self.terminal.get_frame().area()
+    }
+
+    /// Draws `app` as the lecturer saw it (no replay status); the bytes a terminal receives,
+    /// or `None` when they change nothing on screen (escape codes alone).
+    pub(crate) fn frame(
+        &mut self,
+        app: &mut crate::app::App,
+        options: &UiOptions,
+    ) -> std::io::Result<Option<Vec<u8>>> {
+        app.replay = None;
+        let cache = &mut self.cache;
+        let done = self.terminal.draw(|f| ui::draw(f, app, options, cache))?;
+        self.last.clone_from(done.buffer);
+        let bytes =
+            crate::terminal::FrameWriter::strip(&std::mem::take(&mut *self.screen.0.borrow_mut()));
+        Ok(changes_something(&bytes).then_some(bytes))
+    }
+
+    /// The last frame drawn.
+    pub(crate) fn last(&self) -> &ratatui::buffer::Buffer {
+        &self.last
+    }
+}
+
+/// The bytes that draw `buffer` on a cleared terminal.
+#[must_use]
+pub fn whole(buffer: &ratatui::buffer::Buffer) -> Vec<u8> {
+    use ratatui::backend::Backend as _;
+    let blank = ratatui::buffer::Buffer::empty(buffer.area);
+    let mut out = b"\x1b[0m\x1b[2J\x1b[H".to_vec();
+    let mut backend = CrosstermBackend::new(&mut out);
+    let _ = backend
+        .draw(blank.diff(buffer).into_iter())
+        .and_then(|()| backend.hide_cursor())
+        .and_then(|()| ratatui::backend::Backend::flush(&mut backend));
+    crate::terminal::FrameWriter::strip(&out)
+}
+
+type Prepared = (crate::app::App, Engine, MemoryScreen);
 
 /// The replay's app at its start, its engine, and a terminal drawing into memory.
 fn prepare(rec: &Recording, path: &str, size: CastSize) -> Result<Prepared, RecordError> {
@@ -244,19 +309,12 @@ fn prepare(rec: &Recording, path: &str, size: CastSize) -> Result<Prepared, Reco
         size.cols.unwrap_or(recorded.width).max(1),
         size.rows.unwrap_or(recorded.height).max(1),
     );
-    let screen = Shared::default();
-    let terminal = Terminal::with_options(
-        CrosstermBackend::new(screen.clone()),
-        TerminalOptions {
-            viewport: Viewport::Fixed(area),
-        },
-    )
-    .map_err(io)?;
+    let screen = MemoryScreen::new(area).map_err(io)?;
     let mut engine = Engine::new(plan_book(rec)).stopping_on(crate::interrupt::not_requested);
     drive(&mut engine, commands(start_effects), &mut |e| {
         app.on_sim(e);
     });
-    Ok((app, engine, terminal, screen))
+    Ok((app, engine, screen))
 }
 
 /// Writes the cast, frame by frame, into `cast` (streamed: nothing is kept but the screen).
@@ -265,18 +323,17 @@ fn frames_of(
     rec: &Recording,
     app: &mut crate::app::App,
     engine: &mut Engine,
-    (terminal, screen): (&mut Terminal<CrosstermBackend<Shared>>, &Shared),
+    screen: &mut MemoryScreen,
     (options, fps): (&UiOptions, f64),
     cast: &mut dyn std::io::Write,
     seen: &mut dyn FnMut(usize),
 ) -> std::io::Result<usize> {
-    let mut cache = Cache::default();
     let run = |effects: Vec<crate::app::Effect>, engine: &mut Engine, app: &mut crate::app::App| {
         drive(engine, commands(effects), &mut |e| {
             app.on_sim(e);
         });
     };
-    let area = terminal.get_frame().area();
+    let area = screen.area();
     let header = serde_json::json!({
         "version": 2,
         "width": area.width,
@@ -317,12 +374,8 @@ fn frames_of(
                 )?;
             }
         }
-        app.replay = None;
-        terminal.draw(|f| ui::draw(f, app, options, &mut cache))?;
-        let bytes =
-            crate::terminal::FrameWriter::strip(&std::mem::take(&mut *screen.0.borrow_mut()));
         // A frame of escape codes alone (cursor moves, resets) changes nothing on screen.
-        if changes_something(&bytes) {
+        if let Some(bytes) = screen.frame(app, options)? {
             let text = String::from_utf8_lossy(&bytes);
             writeln!(cast, "{}", serde_json::json!([micro(clock), "o", text]))?;
             frames += 1;

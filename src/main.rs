@@ -147,6 +147,7 @@ fn command() -> Outcome {
         Some(Command::Lesson(ref args)) => run_lesson(args),
         Some(Command::Compare(ref args)) => run_compare(args),
         Some(Command::Follow(ref args)) => run_follow(args),
+        Some(Command::Serve(ref args)) => run_serve(args),
         Some(Command::Completions(args)) => commands::completions(args.shell),
         Some(Command::Man) => commands::man(),
         Some(Command::Keygen(ref args)) => keygen(args),
@@ -274,6 +275,34 @@ type Export = fn(
     &mut dyn FnMut(usize),
 ) -> Result<usize, record::RecordError>;
 
+/// How a cast, an exported page and `serve` draw: `--theme` or the default, no key footer, and
+/// ASCII only when asked (a cast is played elsewhere, not on this terminal).
+fn cast_options(look: &LookArgs) -> Result<UiOptions, Failure> {
+    let theme = rattleback::scenario::theme::theme(look.theme.as_deref().unwrap_or("default"))
+        .map_err(Failure::input)?;
+    let all: Vec<_> = rattleback::scenario::theme::themes()
+        .0
+        .into_iter()
+        .map(|(_, t)| t)
+        .collect();
+    let charset = if look.ascii {
+        rattleback::ui::glyphs::Charset::Ascii
+    } else {
+        rattleback::ui::glyphs::Charset::Unicode
+    };
+    Ok(
+        UiOptions::new(marker(look.marker), &theme, &all, no_color(look.color))
+            .with_charset(charset)
+            .without_footer(),
+    )
+}
+
+fn run_serve(args: &rattleback::commands::cli::ServeArgs) -> Outcome {
+    // The status bar as the lecturer saw it, recording.
+    let options = cast_options(&args.look)?.as_recorded();
+    commands::serve::serve(args, options)
+}
+
 /// `replay --export-cast` and `--export-html`: the session drawn into an asciicast file and
 /// into a page that plays it, without the key footer.
 fn export_files(
@@ -282,23 +311,7 @@ fn export_files(
     path: &str,
     look: &LookArgs,
 ) -> Outcome {
-    let (theme, all) =
-        match rattleback::scenario::theme::theme(look.theme.as_deref().unwrap_or("default")) {
-            Ok(t) => (t, rattleback::scenario::theme::themes().0),
-            Err(e) => {
-                return Err(Failure::input(e));
-            }
-        };
-    let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
-    // A cast is played elsewhere: ASCII only when asked, not because of this terminal.
-    let charset = if look.ascii {
-        rattleback::ui::glyphs::Charset::Ascii
-    } else {
-        rattleback::ui::glyphs::Charset::Unicode
-    };
-    let options = UiOptions::new(marker(look.marker), &theme, &all, no_color(look.color))
-        .with_charset(charset)
-        .without_footer();
+    let options = cast_options(look)?;
     let size = rattleback::cast::CastSize {
         cols: args.cols,
         rows: args.rows,
@@ -455,6 +468,7 @@ fn run_replay(args: &ReplayArgs) -> Outcome {
         partner: None,
         follow: None,
         sign: None,
+        serve: None,
     };
     explore(&setup, &preset, None, Some(rec))
 }
@@ -605,6 +619,7 @@ fn run_follow(args: &rattleback::commands::cli::FollowArgs) -> Outcome {
         partner: None,
         follow: Some(args.file.clone()),
         sign: None,
+        serve: None,
     };
     explore(&setup, &preset, None, Some(rec))
 }
@@ -721,6 +736,7 @@ fn open_explorer(
         partner: o.partner,
         follow: None,
         sign: o.rec.sign.clone(),
+        serve: o.rec.serve,
     };
     explore(&setup, &preset, o.rec.record.clone(), None)
 }
@@ -735,6 +751,8 @@ struct Setup {
     partner: Option<rattleback::scenario::Preset>,
     follow: Option<std::path::PathBuf>,
     sign: Option<std::path::PathBuf>,
+    /// `--serve`: where the recording is served to browsers as it is written.
+    serve: Option<std::net::SocketAddr>,
 }
 
 fn explore(
@@ -760,7 +778,7 @@ fn explore(
     let (all, problems) = rattleback::scenario::theme::themes();
     let all: Vec<_> = all.into_iter().map(|(_, t)| t).collect();
     let depth = depth(look.color);
-    let options = ExplorerOptions {
+    let mut options = ExplorerOptions {
         fps: f64::from(look.fps.unwrap_or(30)),
         ui: UiOptions::new(
             marker,
@@ -780,6 +798,7 @@ fn explore(
         follow: setup.follow.clone(),
         sign: setup.sign.clone(),
         depth,
+        served: None,
     };
     needs_terminal(if setup.follow.is_some() {
         "follow"
@@ -792,6 +811,12 @@ fn explore(
     } else {
         "the explorer"
     })?;
+    // Started once the terminal is known to draw; stopped when the explorer ends.
+    let beside = match (setup.serve, &options.record) {
+        (Some(listen), Some(file)) => Some(commands::serve::Beside::start(file, listen)?),
+        _ => None,
+    };
+    options.served = beside.as_ref().map(|b| b.url.clone());
     match explorer::run(preset, &options) {
         Ok(None) => Ok(()),
         // Ended by a signal: the terminal is restored; exit as the convention says.

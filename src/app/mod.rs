@@ -125,6 +125,11 @@ impl App {
         self.mode = Mode::Dialog(clean(text));
     }
 
+    /// Shows the address the recording is served at (`--serve`), with its QR code.
+    pub fn show_address(&mut self, url: &str) {
+        self.mode = Mode::Address(clean(url));
+    }
+
     /// The replay's state, for the status bar.
     pub fn set_replay(&mut self, info: ReplayInfo) {
         self.replay = Some(info);
@@ -260,8 +265,10 @@ impl App {
             },
             // Esc and Enter close it; any other key closes it and does what it does (issue 66:
             // the key after `R` that could not record was lost, so `q` did not quit).
-            Mode::Dialog(_) if matches!(key, Key::Esc | Key::Enter) => Vec::new(),
-            Mode::Dialog(_) => self.key(key),
+            Mode::Dialog(_) | Mode::Address(_) if matches!(key, Key::Esc | Key::Enter) => {
+                Vec::new()
+            }
+            Mode::Dialog(_) | Mode::Address(_) => self.key(key),
             Mode::Help(help) => self.on_help_key(help, key),
             Mode::Editing(text) => self.on_edit_key(text, key),
             Mode::Prompt(prompt) => self.on_prompt_key(prompt, key),

@@ -17,6 +17,9 @@ pub enum Mode {
     Picker(Picker),
     /// An error shown until a key is pressed; the explorer keeps running.
     Dialog(String),
+    /// The address `--serve` serves the recording at, with its QR code for a hall to scan,
+    /// until a key is pressed (as a dialog).
+    Address(String),
     /// The help: the keys, then the legend; it scrolls where it is taller than the screen.
     Help(Help),
     /// The regime map has the arrows: they move its cursor, Enter loads the cell.

@@ -18,6 +18,8 @@ use crate::scenario::shipped::DEFAULT_PRESET;
     about = "Explore the holonomic rattleback, Kapitza's pendulum and the celt",
     long_about = None,
     args_conflicts_with_subcommands = true,
+    // One line: the explorer's flags, or a command (they do not mix).
+    override_usage = "rattleback [OPTIONS] | rattleback <COMMAND>",
     after_help = crate::commands::manual::after_help()
 )]
 pub struct Cli {
@@ -107,6 +109,9 @@ pub struct RecordArgs {
     /// Sign recordings with KEYFILE (`rattleback keygen`)
     #[arg(long, value_name = "KEYFILE")]
     pub sign: Option<std::path::PathBuf>,
+    /// Serve it to browsers as it is recorded (`serve`)
+    #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = "127.0.0.1:0", requires = "record")]
+    pub serve: Option<std::net::SocketAddr>,
 }
 
 /// How the explorer (and a replay) draws: frame rate, theme, marker.
@@ -243,6 +248,14 @@ pub enum Command {
     /// Follows a session that is still being recorded: what the lecturer sees, paced to the
     /// lecturer's clock; `f` forks and explores on its own from there.
     Follow(FollowArgs),
+    /// Serve a recording to web browsers, live and read-only.
+    ///
+    /// Serves a session, while it is recorded or after, to browsers: the page shows the
+    /// lecturer's screen as it is drawn (a reader who joins late sees the current screen at
+    /// once), then the whole session with its chapters. The first line on standard output is
+    /// the address to open. On an address other than loopback a random token is required (in
+    /// the address printed); a wrong or missing one gets 403.
+    Serve(ServeArgs),
     /// Report every problem of preset, theme or lesson files.
     ///
     /// Every problem with its file, line and key (exit 2 if any); a lesson is also read step
@@ -373,6 +386,33 @@ pub struct FollowArgs {
     /// How the follower draws.
     #[command(flatten)]
     pub look: LookArgs,
+}
+
+/// Arguments of `serve`.
+#[derive(Debug, Args)]
+pub struct ServeArgs {
+    /// The session file (being recorded by `rattleback --record`, or finished; the page waits
+    /// for it to appear).
+    pub file: std::path::PathBuf,
+    /// Where to listen [default: 127.0.0.1 and a free port]; 0.0.0.0:PORT for a hall's network
+    #[arg(long, value_name = "ADDR:PORT")]
+    pub listen: Option<std::net::SocketAddr>,
+    /// No token: allowed on loopback only (refused elsewhere, exit 2)
+    #[arg(long)]
+    pub no_token: bool,
+    /// A token even on loopback (behind a reverse proxy that has no login of its own)
+    #[arg(long, conflicts_with = "no_token")]
+    pub token: bool,
+    /// Readers of the live stream at most [default: 500]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    pub max_readers: Option<u32>,
+    /// How the frames are drawn (`--fps`: frames a second, default 10).
+    #[command(flatten)]
+    pub look: LookArgs,
+    /// Started by the explorer's `--serve`: stop when standard input closes (the explorer
+    /// ended, however it ended).
+    #[arg(long, hide = true)]
+    pub with_parent: bool,
 }
 
 /// Arguments of `completions`.

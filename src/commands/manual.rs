@@ -86,6 +86,23 @@ pub const SUBCOMMAND_EXAMPLES: &[(&str, &[(&str, &str)])] = &[
         )],
     ),
     (
+        "serve",
+        &[
+            (
+                "rattleback serve lecture.jsonl",
+                "on this machine (an SSH tunnel brings it elsewhere)",
+            ),
+            (
+                "rattleback serve lecture.jsonl --listen 0.0.0.0:8080",
+                "on the hall's network, with a token",
+            ),
+            (
+                "rattleback --record lecture.jsonl --serve 0.0.0.0:8080",
+                "record and serve at once: the address and its QR code on screen",
+            ),
+        ],
+    ),
+    (
         "follow",
         &[(
             "rattleback follow lecture.jsonl",

@@ -8,6 +8,7 @@ pub mod manual;
 pub mod outputs;
 pub mod page;
 pub mod progress;
+pub mod serve;
 
 mod charts;
 

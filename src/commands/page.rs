@@ -115,6 +115,39 @@ pub fn export_html(
 /// The page: `title`, the player with `cast` inlined, and the chapter links of `rec`.
 #[must_use]
 pub fn lecture_page(rec: &Recording, title: &str, cast: &str) -> String {
+    recorded_page(rec, title, cast, false, None)
+}
+
+/// The page `rattleback serve` gives once the lecture ended: [`lecture_page`], saying so, with
+/// a link to the session file (every link carries `token`, when there is one).
+#[must_use]
+pub fn served_page(rec: &Recording, title: &str, cast: &str, token: Option<&str>) -> String {
+    recorded_page(rec, title, cast, true, token)
+}
+
+/// The query every link of a served page carries: the token, if any.
+fn query(token: Option<&str>) -> String {
+    token.map_or_else(String::new, |t| format!("?token={}", escape(t)))
+}
+
+/// The line under a served page's player: the session file so far, to replay or fork.
+fn session_link(token: Option<&str>) -> String {
+    format!(
+        "<p><a href=\"session.jsonl{}\" download=\"session.jsonl\">The session file</a>: \
+         <code>rattleback replay session.jsonl</code> plays it again, <code>--verify</code> \
+         checks it, and <code>f</code> in the replay forks it.</p>\n",
+        query(token)
+    )
+}
+
+/// The page of a whole session; `served` by `rattleback serve` (its links carrying `token`).
+fn recorded_page(
+    rec: &Recording,
+    title: &str,
+    cast: &str,
+    served: bool,
+    token: Option<&str>,
+) -> String {
     let title = escape(&crate::scenario::text::clean(title));
     // Where each marker is on the player's clock (its seek bar), shown beside its chapter.
     let markers: Vec<f64> = crate::cast::player_clock(cast)
@@ -150,35 +183,22 @@ pub fn lecture_page(rec: &Recording, title: &str, cast: &str) -> String {
                 escape(&crate::scenario::text::clean(&l.description))
             )
         });
+    let (state, file) = if served {
+        (
+            "<p id=\"state\">The lecture has ended: this is its recording, to play again chapter by chapter.</p>\n"
+                .to_owned(),
+            session_link(token),
+        )
+    } else {
+        (String::new(), String::new())
+    };
     let cast_json = script_json(&serde_json::Value::String(cast.to_owned()));
-    format!(
-        r##"<!DOCTYPE html>
-<html lang="en">
-<head>
-<meta charset="utf-8">
-<meta name="viewport" content="width=device-width, initial-scale=1">
-<meta name="generator" content="rattleback {version}">
-<title>{title}</title>
-<style>
-{css}
-body {{ font-family: sans-serif; max-width: 1100px; margin: 1em auto; padding: 0 1em; }}
-nav ol {{ columns: 2; }}
-</style>
-</head>
-<body>
-<h1>{title}</h1>
-{description}<div id="player"></div>
-{chapters}<p><small>Recorded with rattleback {version}; played by asciinema-player 3.18.0
-(Apache License 2.0, inlined below).</small></p>
-<script type="application/json" id="cast">{cast_json}</script>
-<script>
-/*
-{license}
-*/
-{js}
-</script>
-<script>
-(function () {{
+    let body = format!(
+        "<h1>{title}</h1>\n{description}{state}<div id=\"player\"></div>\n{chapters}{file}\
+         <script type=\"application/json\" id=\"cast\">{cast_json}</script>\n"
+    );
+    let script = format!(
+        r##"(function () {{
   var cast = JSON.parse(document.getElementById("cast").textContent);
   var player = AsciinemaPlayer.create({{ data: cast }}, document.getElementById("player"), {{
     fit: "width",
@@ -195,17 +215,83 @@ nav ol {{ columns: 2; }}
       player.play();
     }});
   }}
-}})();
+}})();"##,
+        idle = crate::cast::IDLE_TIME_LIMIT,
+        poster = poster_time(cast),
+    );
+    shell(&title, &body, &script)
+}
+
+/// The page `rattleback serve` gives while the lecture is recorded: the player reads the
+/// frames from `events` (Server-Sent Events, asciinema-player's eventsource driver, no
+/// buffering) as they are drawn; when the stream says the recording ended, the page loads
+/// again and is then [`served_page`].
+#[must_use]
+pub fn live_page(title: &str, token: Option<&str>) -> String {
+    let title = escape(&crate::scenario::text::clean(title));
+    let body = format!(
+        "<h1>{title}</h1>\n<p id=\"state\">Live: this page shows the lecturer's screen as it is \
+         recorded.</p>\n<div id=\"player\"></div>\n{}",
+        session_link(token)
+    );
+    let events = script_json(&serde_json::Value::String(format!(
+        "events{}",
+        query(token)
+    )));
+    let script = format!(
+        r#"(function () {{
+  var player = AsciinemaPlayer.create(
+    {{ driver: "eventsource", url: {events}, bufferTime: 0 }},
+    document.getElementById("player"),
+    {{ fit: "width", autoPlay: true }}
+  );
+  window.rattlebackPlayer = player;
+  player.addEventListener("ended", function () {{
+    document.getElementById("state").textContent =
+      "The lecture has ended: loading its recording, to play again chapter by chapter.";
+    setTimeout(function () {{ location.reload(); }}, 500);
+  }});
+}})();"#
+    );
+    shell(&title, &body, &script)
+}
+
+/// A page around `body`, with the player's style and script inlined (no outside request),
+/// then `script`.
+fn shell(title: &str, body: &str, script: &str) -> String {
+    format!(
+        r#"<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<meta name="generator" content="rattleback {version}">
+<title>{title}</title>
+<style>
+{css}
+body {{ font-family: sans-serif; max-width: 1100px; margin: 1em auto; padding: 0 1em; }}
+nav ol {{ columns: 2; }}
+</style>
+</head>
+<body>
+{body}<p><small>Recorded with rattleback {version}; played by asciinema-player 3.18.0
+(Apache License 2.0, inlined below).</small></p>
+<script>
+/*
+{license}
+*/
+{js}
+</script>
+<script>
+{script}
 </script>
 </body>
 </html>
-"##,
+"#,
         version = env!("CARGO_PKG_VERSION"),
         css = PLAYER_CSS,
         license = PLAYER_LICENSE.replace("*/", "* /"),
         js = PLAYER_JS,
-        idle = crate::cast::IDLE_TIME_LIMIT,
-        poster = poster_time(cast),
     )
 }
 

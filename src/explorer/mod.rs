@@ -80,6 +80,9 @@ pub struct ExplorerOptions {
     pub sign: Option<std::path::PathBuf>,
     /// The colours the terminal shows: every frame's colour codes are fitted to it.
     pub depth: crate::terminal::Depth,
+    /// The address the recording is served at (`--serve`): shown at the start, with its QR
+    /// code.
+    pub served: Option<String>,
 }
 
 fn input_thread(tx: SyncSender<AppEvent>, stop: Arc<AtomicBool>) -> std::thread::JoinHandle<()> {
@@ -122,7 +125,8 @@ fn mouse(app: &mut App, cache: &Cache, at: Option<(u16, u16)>, up: bool) -> Vec<
 }
 
 /// The lecturer's clock now: the last line's wall plus the time since the file was written.
-fn lecturer_now(rec: &crate::record::Recording, path: &std::path::Path) -> f64 {
+#[must_use]
+pub fn lecturer_now(rec: &crate::record::Recording, path: &std::path::Path) -> f64 {
     let last = rec.lines.last().map_or(0.0, |(_, l)| l.wall);
     let since = std::fs::metadata(path)
         .and_then(|m| m.modified())
@@ -176,6 +180,25 @@ fn forwarded_plans(lines: &[crate::record::Line]) -> Vec<Effect> {
         .collect()
 }
 
+/// New lines of a followed file, applied (`follow` and `serve` alike): the lecturer's plans go
+/// to the worker first (what it waits for, it takes), then the lines to the replay; once the
+/// `end` line is among them, what is missing is verified here (`true`: the recording ended).
+pub fn follow_lines(
+    lines: Vec<crate::record::Line>,
+    app: &mut App,
+    replay: &mut Replayer,
+) -> (Vec<Effect>, bool) {
+    let ended = lines
+        .iter()
+        .any(|l| matches!(l.event, crate::app::journal::Event::End { .. }));
+    let mut effects = forwarded_plans(&lines);
+    effects.extend(replay.push(lines, app));
+    if ended {
+        effects.push(Effect::Sim(crate::sim::Command::Release));
+    }
+    (effects, ended)
+}
+
 /// Applies what the followed file did: new lines, a restart from its beginning (truncated or
 /// replaced: a fresh explorer on its header), or its absence.
 fn follow_event(
@@ -190,15 +213,8 @@ fn follow_event(
     };
     match event {
         TailEvent::Lines(lines) => {
-            let ended = lines
-                .iter()
-                .any(|l| matches!(l.event, crate::app::journal::Event::End { .. }));
-            // The lecturer's plans go to the worker first: what it waits for, it takes.
-            let mut effects = forwarded_plans(&lines);
-            effects.extend(r.push(lines, app));
+            let (effects, ended) = follow_lines(lines, app, r);
             if ended {
-                // Nothing more will come: what is missing is verified here.
-                effects.push(Effect::Sim(crate::sim::Command::Release));
                 app.notice("the lecturer's recording ended; f forks, q quits");
             }
             effects
@@ -437,22 +453,37 @@ fn finish_recording(
     }
 }
 
+/// What the explorer shows first: the address `--serve` serves at, then (above it) the
+/// problems found at start-up.
+fn startup_dialogs(app: &mut App, options: &ExplorerOptions) {
+    if let Some(url) = &options.served {
+        app.show_address(url);
+    }
+    if !options.startup_problems.is_empty() {
+        app.show_dialog(&options.startup_problems.join("\n"));
+    }
+}
+
 /// The worker's plan book: a replay's recorded plans; a followed lecture's runs bounded one by
 /// one (it grows) and its later segments awaited from the lecturer, unless it has ended.
 fn plan_book(options: &ExplorerOptions) -> crate::sim::PlanBook {
-    let mut book = options
-        .replay
-        .as_ref()
-        .map(crate::record::plan_book)
-        .unwrap_or_default();
-    if options.follow.is_some() {
-        book.total = f64::INFINITY;
-        book.awaits = !options.replay.as_ref().is_some_and(|r| {
-            r.lines
-                .last()
-                .is_some_and(|(_, l)| matches!(l.event, crate::app::journal::Event::End { .. }))
-        });
+    match (&options.replay, &options.follow) {
+        (Some(rec), Some(_)) => follower_book(rec),
+        (Some(rec), None) => crate::record::plan_book(rec),
+        (None, _) => crate::sim::PlanBook::default(),
     }
+}
+
+/// A follower's plan book (`follow` and `serve`): the recording's plans so far, its runs
+/// bounded one by one (it grows), its later segments awaited from the lecturer unless it ended.
+#[must_use]
+pub fn follower_book(rec: &crate::record::Recording) -> crate::sim::PlanBook {
+    let mut book = crate::record::plan_book(rec);
+    book.total = f64::INFINITY;
+    book.awaits = !rec
+        .lines
+        .last()
+        .is_some_and(|(_, l)| matches!(l.event, crate::app::journal::Event::End { .. }));
     book
 }
 
@@ -541,9 +572,7 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
     if let Some(partner) = &options.partner {
         effects.extend(app.set_partner(partner));
     }
-    if !options.startup_problems.is_empty() {
-        app.show_dialog(&options.startup_problems.join("\n"));
-    }
+    startup_dialogs(&mut app, options);
     if options.record.is_some() && replay.is_none() {
         effects.push(Effect::StartRecording);
     }

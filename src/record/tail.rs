@@ -215,7 +215,8 @@ impl Tail {
 
 /// The length of the file's part made of complete lines (up to its last newline), read
 /// backwards a bounded chunk at a time.
-fn complete_prefix(path: &Path, len: u64) -> u64 {
+#[must_use]
+pub fn complete_prefix(path: &Path, len: u64) -> u64 {
     const CHUNK: u64 = 64 << 10;
     let Ok(mut file) = File::open(path) else {
         return len;

@@ -1,5 +1,5 @@
 //! Pop-ups: the preset picker (scrolling; each broken user file on its own row with its own
-//! error) and the error dialog.
+//! error), the error dialog, and the address a recording is served at with its QR code.
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -112,6 +112,39 @@ pub fn error(frame: &mut Frame<'_>, area: Rect, text: &str, look: &Look) {
             .style(Style::default().fg(look.theme.error))
             .wrap(Wrap { trim: true })
             .block(Block::bordered().title(" error (Esc closes; other keys act) ")),
+        popup,
+    );
+}
+
+/// The address a recording is served at (`--serve`) and its QR code, light modules drawn in
+/// white on black whatever the theme (a phone reads it from the projector); the address alone
+/// where the code does not fit.
+pub fn address(frame: &mut Frame<'_>, area: Rect, url: &str, look: &Look) {
+    let ascii = look.charset != crate::ui::glyphs::Charset::Unicode;
+    let code = super::qr::lines(url, ascii).unwrap_or_default();
+    let code_width = code.first().map_or(0, |l| l.chars().count()) as u16;
+    let fits =
+        !code.is_empty() && code_width + 2 <= area.width && code.len() as u16 + 4 <= area.height;
+    let mut lines: Vec<Line<'_>> = Vec::new();
+    if fits {
+        let qr = Style::default()
+            .fg(ratatui::style::Color::White)
+            .bg(ratatui::style::Color::Black);
+        lines.extend(code.into_iter().map(|l| Line::styled(l, qr).centered()));
+    }
+    lines.push(Line::from(url.to_owned()).centered());
+    let title = " served at (any key closes) ";
+    let width = (url.chars().count().max(title.chars().count()) as u16)
+        .max(if fits { code_width } else { 0 })
+        .saturating_add(2)
+        .min(area.width);
+    let height = (lines.len() as u16 + 2).min(area.height);
+    let popup = centred(area, width, height);
+    frame.render_widget(Clear, popup);
+    frame.render_widget(
+        Paragraph::new(lines)
+            .wrap(Wrap { trim: false })
+            .block(Block::bordered().title(title)),
         popup,
     );
 }

@@ -29,9 +29,11 @@ pub mod legend;
 mod lesson;
 mod map;
 pub mod marks;
+mod options;
 mod params;
 mod pendulum;
 mod portrait;
+pub mod qr;
 mod series;
 mod status;
 mod sweep;
@@ -51,6 +53,7 @@ use crate::app::{App, Mode};
 use crate::scenario::theme::{Colour, ThemeSpec};
 
 pub use body::envelope as body_envelope;
+pub use options::UiOptions;
 pub use params::HIDDEN;
 pub use portrait::Cache;
 
@@ -429,94 +432,6 @@ impl Default for Theme {
     }
 }
 
-/// How to draw.
-#[derive(Clone, Debug)]
-pub struct UiOptions {
-    /// Canvas marker (`--marker`).
-    pub marker: Marker,
-    /// The themes `T` cycles through, the starting one first.
-    pub themes: Vec<Theme>,
-    /// `NO_COLOR`: every colour is off; shapes, density and bold tell the curves apart.
-    pub no_color: bool,
-    /// What the terminal can show ([`glyphs::Charset::detect`]); other than Unicode, every
-    /// canvas draws one point per cell and every cell is folded into the set.
-    pub charset: glyphs::Charset,
-    /// The key hints on the last row (off in an exported cast or page: nobody can press them).
-    pub footer: bool,
-}
-
-impl Default for UiOptions {
-    fn default() -> Self {
-        Self {
-            marker: Marker::Braille,
-            themes: vec![Theme::default()],
-            no_color: false,
-            charset: glyphs::Charset::Unicode,
-            footer: true,
-        }
-    }
-}
-
-impl UiOptions {
-    /// Options starting from `first`, then every other theme of `all`; `no_color` (the
-    /// `NO_COLOR` convention) drops every colour, leaving the shapes, bold and reverse-video
-    /// cues that do not depend on it.
-    #[must_use]
-    pub fn new(marker: Marker, first: &ThemeSpec, all: &[ThemeSpec], no_color: bool) -> Self {
-        let mut themes = vec![Theme::from_spec(first, no_color)];
-        for spec in all {
-            let t = Theme::from_spec(spec, no_color);
-            if !themes.iter().any(|x| x.name == t.name) {
-                themes.push(t);
-            }
-        }
-        Self {
-            marker,
-            themes,
-            no_color,
-            charset: glyphs::Charset::Unicode,
-            footer: true,
-        }
-    }
-
-    /// The same options without the key hints (an exported cast or page).
-    #[must_use]
-    pub fn without_footer(self) -> Self {
-        Self {
-            footer: false,
-            ..self
-        }
-    }
-
-    /// The same options for a terminal that shows `charset`.
-    #[must_use]
-    pub fn with_charset(self, charset: glyphs::Charset) -> Self {
-        Self { charset, ..self }
-    }
-
-    /// The theme names, in `T` order.
-    #[must_use]
-    pub fn theme_names(&self) -> Vec<String> {
-        self.themes.iter().map(|t| t.name.clone()).collect()
-    }
-
-    /// The marker, theme and characters one frame draws with (`theme`: the index `T` cycles).
-    #[must_use]
-    pub fn look(&self, theme: usize) -> Look<'_> {
-        Look {
-            // Braille and half blocks need glyphs only the Unicode set has.
-            marker: if self.charset == glyphs::Charset::Unicode {
-                self.marker
-            } else {
-                Marker::Dot
-            },
-            theme: &self.themes[theme % self.themes.len().max(1)],
-            no_color: self.no_color,
-            charset: self.charset,
-        }
-    }
-}
-
 /// The marker and the theme in use for one frame.
 #[derive(Clone, Copy, Debug)]
 pub struct Look<'a> {
@@ -733,7 +648,7 @@ fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mu
             run: &app.run,
             settings: &app.scenario.settings,
             replay: app.replay,
-            recording: app.journal.state != crate::app::RecState::Off,
+            recording: app.journal.state != crate::app::RecState::Off || options.recorded,
             overlay: app.view.overlay,
         },
         status_area,
@@ -766,6 +681,7 @@ fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mu
         Mode::Help(h) => help::draw(frame, area, app, *h, &look),
         Mode::Picker(p) => dialogs::picker(frame, area, p, &look),
         Mode::Dialog(text) => dialogs::error(frame, area, text, &look),
+        Mode::Address(url) => dialogs::address(frame, area, url, &look),
         _ => {}
     }
 }

@@ -63,6 +63,7 @@ mod scenes;
 mod schema_walk;
 mod schemas;
 mod segments;
+mod serve;
 mod session_format;
 mod signals;
 mod special_solutions;
