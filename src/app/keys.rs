@@ -60,6 +60,8 @@ pub enum Action {
     ClearTrail,
     /// Show or hide the help.
     ToggleHelp,
+    /// Show the address `--serve` serves the recording at, with its QR code, again.
+    ShowAddress,
     /// Open the preset picker.
     OpenPicker,
     /// Save the current parameters as a user preset.
@@ -351,6 +353,13 @@ const AFTER_PANES: &[Binding<Action>] = &[
         label: "",
         action: Action::Chapter,
         help: "",
+        footer: None,
+    },
+    Binding {
+        keys: &[Key::Char('U')],
+        label: "U",
+        action: Action::ShowAddress,
+        help: "the address --serve serves at, with its QR code",
         footer: None,
     },
     Binding {

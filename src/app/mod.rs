@@ -359,6 +359,7 @@ impl App {
             | Action::IncreaseCoarse
             | Action::Edit
             | Action::ToggleHelp
+            | Action::ShowAddress
             | Action::ShowMessages
             | Action::OpenPicker
             | Action::Save
@@ -442,6 +443,13 @@ impl App {
             }
             Action::ClearTrail => self.run.clear_trails(),
             Action::ToggleHelp => self.mode = Mode::Help(Help::at(HelpPage::Keys)),
+            Action::ShowAddress => match self.options.served.clone() {
+                Some(url) => self.show_address(&url),
+                None => {
+                    self.status =
+                        Message::info("not served: --record FILE --serve shows an address here");
+                }
+            },
             Action::OpenPicker => return vec![Effect::ReadCatalogue],
             Action::Save => self.open_prompt(PromptFor::SaveName),
             Action::Note => self.open_prompt(PromptFor::Note),

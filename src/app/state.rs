@@ -17,6 +17,8 @@ pub struct Options {
     pub theme_names: Vec<String>,
     /// The user's extra keys (`[keys]` in `config.toml`).
     pub keys: user_keys::UserKeys,
+    /// The address the recording is served at (`--serve`), which `U` shows again.
+    pub served: Option<String>,
 }
 
 impl Options {
@@ -27,6 +29,7 @@ impl Options {
             fps,
             theme_names: vec!["default".to_owned()],
             keys: user_keys::UserKeys::default(),
+            served: None,
         }
     }
 

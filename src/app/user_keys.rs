@@ -52,6 +52,7 @@ const AFTER_PANES: &[(Action, &str)] = &[
     (Action::CyclePanes, "next_pane"),
     (Action::ClearTrail, "clear_trail"),
     (Action::ToggleHelp, "help"),
+    (Action::ShowAddress, "address"),
     (Action::OpenPicker, "presets"),
     (Action::Save, "save"),
     (Action::Export, "export"),

@@ -531,6 +531,7 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
         fps: options.fps,
         theme_names: options.ui.theme_names(),
         keys: options.keys.clone(),
+        served: options.served.clone(),
     };
     let (mut app, effects) = App::new(preset, app_options.clone());
     let mut shell = Shell {

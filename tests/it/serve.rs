@@ -629,7 +629,19 @@ fn the_address_dialog_shows_the_code_where_it_fits_and_the_address_always() {
     assert!(narrow.contains(url), "the address alone: {narrow}");
     assert!(narrow.contains("served at (any key closes)"), "{narrow}");
     let _ = draw(&app, 20, 5, Charset::Unicode);
-    // Any key closes it and acts; Esc only closes.
+    // Any key closes it and acts; Esc only closes; `U` shows it again where it was served.
     app.on_key(rattleback::app::Key::Esc);
     assert!(!draw(&app, 80, 24, Charset::Unicode).contains(url));
+    app.on_key(rattleback::app::Key::Char('U'));
+    let said = draw(&app, 80, 24, Charset::Unicode);
+    assert!(!said.contains(url) && said.contains("not served"), "{said}");
+    let (mut served, _) = rattleback::app::App::new(
+        &rattleback::scenario::shipped::resolve("subcritical", &[]).unwrap(),
+        rattleback::app::Options {
+            served: Some(url.to_owned()),
+            ..rattleback::app::Options::at(30.0)
+        },
+    );
+    served.on_key(rattleback::app::Key::Char('U'));
+    assert!(draw(&served, 80, 24, Charset::Unicode).contains(url));
 }
