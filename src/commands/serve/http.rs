@@ -40,17 +40,6 @@ const CHUNK: usize = 64 * 1024;
 /// File descriptors kept for everything but connections (the file, the runtime, the page).
 const SPARE_FDS: usize = 64;
 
-/// Counts of what the server did, for its closing line and the tests.
-#[derive(Debug, Default)]
-pub struct Counts {
-    /// Connections open now.
-    pub open: AtomicUsize,
-    /// Readers disconnected because they fell behind.
-    pub dropped: AtomicUsize,
-    /// Connections refused because too many were open.
-    pub refused: AtomicUsize,
-}
-
 /// The server's shared state.
 pub struct Server {
     hub: Arc<Hub>,
@@ -58,8 +47,8 @@ pub struct Server {
     readers: Arc<Semaphore>,
     live_page: Bytes,
     max_connections: usize,
-    /// What happened so far.
-    pub counts: Counts,
+    /// Connections open now.
+    open: AtomicUsize,
 }
 
 /// A response's body: a whole text, a stream of events, or a file read chunk by chunk.
@@ -131,32 +120,34 @@ impl hyper::body::Body for Reply {
     }
 }
 
+/// `r` with `headers` set.
+fn with(mut r: Response<Reply>, headers: &[(header::HeaderName, &'static str)]) -> Response<Reply> {
+    for (name, value) in headers {
+        r.headers_mut()
+            .insert(name.clone(), HeaderValue::from_static(value));
+    }
+    r
+}
+
 /// A plain-text response (a refusal says why).
 fn text(status: StatusCode, message: &str) -> Response<Reply> {
     let mut r = Response::new(Reply::Whole(Some(Bytes::from(format!("{message}\n")))));
     *r.status_mut() = status;
-    r.headers_mut().insert(
-        header::CONTENT_TYPE,
-        HeaderValue::from_static("text/plain; charset=utf-8"),
-    );
-    r
+    with(r, &[(header::CONTENT_TYPE, "text/plain; charset=utf-8")])
 }
 
 /// Headers every response carries: nothing cached (the token is in the address), nothing
 /// sniffed, no address sent elsewhere.
-fn guard(mut r: Response<Reply>) -> Response<Reply> {
-    let h = r.headers_mut();
-    h.insert(header::CACHE_CONTROL, HeaderValue::from_static("no-store"));
-    h.insert(
-        header::X_CONTENT_TYPE_OPTIONS,
-        HeaderValue::from_static("nosniff"),
-    );
-    h.insert(
-        header::REFERRER_POLICY,
-        HeaderValue::from_static("no-referrer"),
-    );
-    h.insert(header::X_FRAME_OPTIONS, HeaderValue::from_static("DENY"));
-    r
+fn guard(r: Response<Reply>) -> Response<Reply> {
+    with(
+        r,
+        &[
+            (header::CACHE_CONTROL, "no-store"),
+            (header::X_CONTENT_TYPE_OPTIONS, "nosniff"),
+            (header::REFERRER_POLICY, "no-referrer"),
+            (header::X_FRAME_OPTIONS, "DENY"),
+        ],
+    )
 }
 
 /// Whether `query` carries `token` (compared in constant time).
@@ -205,7 +196,7 @@ impl Server {
             config,
             live_page,
             max_connections,
-            counts: Counts::default(),
+            open: AtomicUsize::new(0),
         }
     }
 
@@ -216,13 +207,13 @@ impl Server {
 
     async fn route(&self, req: &Request<Incoming>, kill: &Arc<Notify>) -> Response<Reply> {
         if req.method() != Method::GET && req.method() != Method::HEAD {
-            let mut r = text(
-                StatusCode::METHOD_NOT_ALLOWED,
-                "read-only: GET and HEAD only",
+            return with(
+                text(
+                    StatusCode::METHOD_NOT_ALLOWED,
+                    "read-only: GET and HEAD only",
+                ),
+                &[(header::ALLOW, "GET, HEAD")],
             );
-            r.headers_mut()
-                .insert(header::ALLOW, HeaderValue::from_static("GET, HEAD"));
-            return r;
         }
         match &self.config.token {
             Some(token) if !has_token(req.uri().query(), token) => {
@@ -254,7 +245,7 @@ impl Server {
 
     /// The page: live, or the whole session's once the recording ended.
     async fn page(&self) -> Response<Reply> {
-        let mut r = match self.hub.finished() {
+        let r = match self.hub.finished() {
             Some(page) => match tokio::fs::File::open(&**page).await {
                 Ok(file) => {
                     let left = file.metadata().await.map_or(0, |m| m.len());
@@ -268,35 +259,33 @@ impl Server {
             },
             None => Response::new(Reply::Whole(Some(self.live_page.clone()))),
         };
-        let h = r.headers_mut();
-        h.insert(
-            header::CONTENT_TYPE,
-            HeaderValue::from_static("text/html; charset=utf-8"),
-        );
-        // Inline script and style only; the stream and the file from this server alone.
-        h.insert(
-            header::CONTENT_SECURITY_POLICY,
-            HeaderValue::from_static(
-                "default-src 'none'; script-src 'unsafe-inline' 'wasm-unsafe-eval'; style-src 'unsafe-inline'; \
-                 connect-src 'self'; img-src data:; font-src data:; base-uri 'none'; form-action 'none'",
-            ),
-        );
-        r
+        with(
+            r,
+            &[
+                (header::CONTENT_TYPE, "text/html; charset=utf-8"),
+                // Inline script and style only; the stream and the file from this server alone.
+                (
+                    header::CONTENT_SECURITY_POLICY,
+                    "default-src 'none'; script-src 'unsafe-inline' 'wasm-unsafe-eval'; style-src 'unsafe-inline'; \
+                     connect-src 'self'; img-src data:; font-src data:; base-uri 'none'; form-action 'none'",
+                ),
+            ],
+        )
     }
 
     /// A reader's stream: the screen now, then every frame, until the recording ends.
     fn events(&self, kill: &Arc<Notify>) -> Response<Reply> {
         let Ok(permit) = Arc::clone(&self.readers).try_acquire_owned() else {
-            let mut r = text(
-                StatusCode::SERVICE_UNAVAILABLE,
-                &format!(
-                    "this lecture has {} readers already (serve --max-readers)",
-                    self.config.max_readers
+            return with(
+                text(
+                    StatusCode::SERVICE_UNAVAILABLE,
+                    &format!(
+                        "this lecture has {} readers already (serve --max-readers)",
+                        self.config.max_readers
+                    ),
                 ),
+                &[(header::RETRY_AFTER, "10")],
             );
-            r.headers_mut()
-                .insert(header::RETRY_AFTER, HeaderValue::from_static("10"));
-            return r;
         };
         let (first, mut frames) = self.hub.join();
         let (tx, rx) = mpsc::channel(READER_QUEUE);
@@ -347,34 +336,34 @@ impl Server {
             tokio::task::spawn_blocking(move || crate::record::tail::complete_prefix(&path, len))
                 .await
                 .unwrap_or(0);
-        let mut r = Response::new(Reply::File {
+        let r = Response::new(Reply::File {
             file,
             left: complete,
             _page: None,
         });
-        let h = r.headers_mut();
-        h.insert(
-            header::CONTENT_TYPE,
-            HeaderValue::from_static("application/x-ndjson; charset=utf-8"),
-        );
-        h.insert(
-            header::CONTENT_DISPOSITION,
-            HeaderValue::from_static("attachment; filename=\"session.jsonl\""),
-        );
-        r
+        with(
+            r,
+            &[
+                (header::CONTENT_TYPE, "application/x-ndjson; charset=utf-8"),
+                (
+                    header::CONTENT_DISPOSITION,
+                    "attachment; filename=\"session.jsonl\"",
+                ),
+            ],
+        )
     }
 }
 
 /// The headers of an event stream.
-fn event_stream(mut r: Response<Reply>) -> Response<Reply> {
-    let h = r.headers_mut();
-    h.insert(
-        header::CONTENT_TYPE,
-        HeaderValue::from_static("text/event-stream"),
-    );
-    // nginx and others pass the stream on at once.
-    h.insert("x-accel-buffering", HeaderValue::from_static("no"));
-    r
+fn event_stream(r: Response<Reply>) -> Response<Reply> {
+    with(
+        r,
+        &[
+            (header::CONTENT_TYPE, "text/event-stream"),
+            // nginx and others pass the stream on at once.
+            (header::HeaderName::from_static("x-accel-buffering"), "no"),
+        ],
+    )
 }
 
 /// One connection, until it ends, is idle too long, or is killed (a reader too far behind).
@@ -399,20 +388,15 @@ async fn connection(server: Arc<Server>, stream: tokio::net::TcpStream) {
     let mut conn = std::pin::pin!(conn);
     let killed = kill.notified();
     let mut killed = std::pin::pin!(killed);
-    let dropped = std::future::poll_fn(|cx| {
-        if conn.as_mut().poll(cx).is_ready() {
-            return Poll::Ready(false);
+    std::future::poll_fn(|cx| {
+        if conn.as_mut().poll(cx).is_ready() || killed.as_mut().poll(cx).is_ready() {
+            Poll::Ready(())
+        } else {
+            Poll::Pending
         }
-        if killed.as_mut().poll(cx).is_ready() {
-            return Poll::Ready(true);
-        }
-        Poll::Pending
     })
     .await;
-    if dropped {
-        server.counts.dropped.fetch_add(1, Ordering::Relaxed);
-    }
-    server.counts.open.fetch_sub(1, Ordering::Relaxed);
+    server.open.fetch_sub(1, Ordering::Relaxed);
 }
 
 /// Connections at most: the file descriptors this process may open (raised to the system's
@@ -457,12 +441,11 @@ pub fn run(
                 // pause, then on.
                 Ok(Err(_)) => tokio::time::sleep(Duration::from_millis(20)).await,
                 Ok(Ok((stream, _))) => {
-                    if server.counts.open.load(Ordering::Relaxed) >= server.max_connections {
-                        server.counts.refused.fetch_add(1, Ordering::Relaxed);
+                    if server.open.load(Ordering::Relaxed) >= server.max_connections {
                         drop(stream);
                         continue;
                     }
-                    server.counts.open.fetch_add(1, Ordering::Relaxed);
+                    server.open.fetch_add(1, Ordering::Relaxed);
                     tokio::spawn(connection(Arc::clone(server), stream));
                 }
             }

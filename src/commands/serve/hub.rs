@@ -12,8 +12,6 @@ use tokio::sync::broadcast;
 
 /// Readers of `/events` at most, unless `--max-readers` says otherwise.
 pub const DEFAULT_MAX_READERS: usize = 500;
-/// The most `--max-readers` allows (each holds a connection).
-pub const MAX_READERS_LIMIT: usize = 10_000;
 /// Frames kept for readers who are behind (then they are dropped and reconnect): about 25 s
 /// at 10 frames a second, a few megabytes at most.
 const RING: usize = 256;
@@ -23,8 +21,6 @@ const RING: usize = 256;
 pub struct Config {
     /// The session file (it may not exist yet: the page waits for it).
     pub file: PathBuf,
-    /// Where to listen.
-    pub listen: SocketAddr,
     /// The token every request must carry (`?token=`), or none (loopback only).
     pub token: Option<String>,
     /// Readers of `/events` at most.
@@ -232,12 +228,6 @@ impl Hub {
             first.extend_from_slice(DONE);
         }
         (Bytes::from(first), self.frames.subscribe())
-    }
-
-    /// Readers subscribed now.
-    #[must_use]
-    pub fn readers(&self) -> usize {
-        self.frames.receiver_count()
     }
 }
 

@@ -140,10 +140,12 @@ fn follow(
     // The lecturer's last screen so far (format 10 on, a recording ends with it): the end is
     // served once the screen drawn here is that one, as `replay --verify` compares them.
     let mut lecturers = last_screen(&lines);
-    let mut ended = lines
+    // When the `end` line arrived (the follower's book awaits no more plans then).
+    let mut ended_at = lines
         .last()
-        .is_some_and(|l| matches!(l.event, crate::app::journal::Event::End { .. }));
-    if ended {
+        .is_some_and(|l| matches!(l.event, crate::app::journal::Event::End { .. }))
+        .then(Instant::now);
+    if ended_at.is_some() {
         effects.push(crate::app::Effect::Sim(crate::sim::Command::Release));
     }
     let mut replay = Replayer::live(lines, crate::explorer::lecturer_now(rec, &config.file));
@@ -151,15 +153,13 @@ fn follow(
     let frame = Duration::from_secs_f64(1.0 / config.fps);
     let mut last = Instant::now();
     let mut last_poll = Instant::now();
-    let mut ended_at: Option<Instant> = ended.then(Instant::now);
+    // The end served; a page that could not be written, tried again a second later.
     let mut finished = false;
+    let mut retry_at: Option<Instant> = None;
     let mut first = true;
     let next = loop {
         if stop.load(Ordering::Relaxed) || crate::interrupt::requested().is_some() {
             break Next::Stop;
-        }
-        for c in commands(std::mem::take(&mut effects)) {
-            worker.send(c);
         }
         while let Ok(e) = events.try_recv() {
             app.on_sim(e);
@@ -171,8 +171,7 @@ fn follow(
                     lecturers = last_screen(&lines).or(lecturers);
                     let (more, end) = crate::explorer::follow_lines(lines, &mut app, &mut replay);
                     effects.extend(more);
-                    if end && !ended {
-                        ended = true;
+                    if end && ended_at.is_none() {
                         ended_at = Some(Instant::now());
                     }
                 }
@@ -199,16 +198,18 @@ fn follow(
         if !finished
             && let Some(at) = ended_at
             && replay.info().ended
+            && retry_at.is_none_or(|t| Instant::now() >= t)
             && (lecturers.as_ref().map_or_else(
                 || app.screen_settled() && !app.run.playing,
                 |s| s.difference(&app.shown()).is_none(),
             ) || at.elapsed() > SETTLE)
         {
-            if let Some(page) = finished_page(config, &config.file) {
-                hub.finish(page);
-                finished = true;
-            } else {
-                ended_at = None;
+            match finished_page(config, &config.file) {
+                Some(page) => {
+                    hub.finish(page);
+                    finished = true;
+                }
+                None => retry_at = Some(Instant::now() + Duration::from_secs(1)),
             }
         }
         std::thread::sleep(frame.saturating_sub(now.elapsed()));

@@ -85,7 +85,6 @@ pub fn serve(args: &ServeArgs, ui: crate::ui::UiOptions) -> Outcome {
         http::bind(listen).map_err(|e| Failure::input(format!("--listen {listen}: {e}")))?;
     let config = Config {
         file: args.file.clone(),
-        listen: local,
         token,
         max_readers: args.max_readers.map_or(DEFAULT_MAX_READERS, |n| n as usize),
         fps: f64::from(fps),
