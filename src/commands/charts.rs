@@ -47,9 +47,21 @@ pub(super) fn study_map(args: &crate::commands::cli::MapArgs) -> Outcome {
     // finds more to compute); Ctrl-C cancels the cells in flight.
     let started = std::time::Instant::now();
     let progress = Progress::count(&label, expected, "cells computed").priced(price);
+    let watch = Watchdog::new(price, args.common.force);
     let mapped = tallied(progress, &|tally| {
-        chart.compute(args.exhaustive, args.shard, &|_| go_on(), tally)
+        chart.compute(
+            args.exhaustive,
+            args.shard,
+            &|_| go_on() && watch.ok(),
+            tally,
+        )
     });
+    if let Some(over) = watch.tripped() {
+        return Err(Failure::input(format!(
+            "study map stopped: this {} ran past twice its price ({over}); nothing was written. The cost model misjudged this window: pass --force to run it to the end, or use a smaller --grid",
+            chart.title()
+        )));
+    }
     let computed = finished(mapped, "study map")?;
     let mut out = chart.output(
         crate::commands::outputs::SCHEMA_VERSION,
@@ -173,20 +185,19 @@ pub(super) fn study_merge(args: &crate::commands::cli::MergeArgs) -> Outcome {
         u64::from_le_bytes(b)
     };
     let chosen = part::choose(&parts, args.check, &mut random);
+    let price = chart.predicted_seconds(&part::indices(&parts, &chosen));
     let budget = if args.force {
         f64::INFINITY
     } else {
         crate::physics::budget::BUDGET_SECONDS
     };
-    if let Err(over) = crate::physics::budget::check(chart.predicted_seconds(chosen.len()), budget)
-    {
+    if let Err(over) = crate::physics::budget::check(price, budget) {
         return Err(Failure::input(format!(
             "recomputing {} cells to check the parts is {over}; give a smaller --check, or pass --force",
             chosen.len()
         )));
     }
-    let progress = Progress::count("study merge: checking", chosen.len(), "cells")
-        .priced(chart.predicted_seconds(chosen.len()));
+    let progress = Progress::count("study merge: checking", chosen.len(), "cells").priced(price);
     let checked = counted(progress, &|_| {
         part::sample(&chart, &parts, &chosen, &|_| go_on())
     });
@@ -204,6 +215,72 @@ pub(super) fn study_merge(args: &crate::commands::cli::MergeArgs) -> Outcome {
 
 /// The chart's cells when its cost model puts the `cells` it expects to compute within the work
 /// budget (or `--force`).
+/// A chart stopped once it has run past twice its price (issue 80: a window the cost model
+/// misjudges runs no longer than that, unless `--force`): measured in the process's CPU time
+/// against the price's CPU (the price is wall time on every thread), with
+/// [`WATCHDOG_SLACK_SECONDS`] besides, so that a chart of a fraction of a second is not stopped
+/// by its threads' start.
+struct Watchdog {
+    start: Option<cpu_time::ProcessTime>,
+    /// The price in CPU seconds.
+    price_cpu: f64,
+    /// CPU seconds after which the chart stops.
+    limit: f64,
+    tripped: std::sync::atomic::AtomicBool,
+}
+
+/// CPU seconds a chart may run beyond twice its price's.
+const WATCHDOG_SLACK_SECONDS: f64 = 2.0;
+
+impl Watchdog {
+    fn new(price: f64, force: bool) -> Self {
+        Self::with_slack(price, force, WATCHDOG_SLACK_SECONDS)
+    }
+
+    fn with_slack(price: f64, force: bool, slack: f64) -> Self {
+        #[allow(clippy::cast_precision_loss)]
+        let threads = rayon::current_num_threads().max(1) as f64;
+        let price_cpu = price * threads;
+        Self {
+            start: (!force)
+                .then(cpu_time::ProcessTime::try_now)
+                .and_then(Result::ok),
+            price_cpu,
+            limit: 2.0 * price_cpu + slack,
+            tripped: std::sync::atomic::AtomicBool::new(false),
+        }
+    }
+
+    /// Whether the chart may go on (and, when it may not, remembers why).
+    fn ok(&self) -> bool {
+        let Some(start) = self.start else {
+            return true;
+        };
+        if self.tripped.load(std::sync::atomic::Ordering::Relaxed) {
+            return false;
+        }
+        let spent = start.try_elapsed().map_or(0.0, |d| d.as_secs_f64());
+        if spent > self.limit {
+            self.tripped
+                .store(true, std::sync::atomic::Ordering::Relaxed);
+            return false;
+        }
+        true
+    }
+
+    /// What was spent against the price when it stopped the chart.
+    fn tripped(&self) -> Option<String> {
+        if !self.tripped.load(std::sync::atomic::Ordering::Relaxed) {
+            return None;
+        }
+        Some(format!(
+            "priced at {} of CPU, stopped after {}",
+            crate::physics::budget::duration(self.price_cpu),
+            crate::physics::budget::duration(self.limit)
+        ))
+    }
+}
+
 fn chart_priced(
     chart: &crate::study::chart::Chart,
     cells: usize,
@@ -222,4 +299,31 @@ fn chart_priced(
         )));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Watchdog;
+
+    #[test]
+    fn the_watchdog_stops_a_chart_past_twice_its_price_unless_forced() {
+        let spin = |w: &Watchdog| {
+            let start = std::time::Instant::now();
+            let mut x = 0u64;
+            while w.ok() && start.elapsed().as_secs_f64() < 5.0 {
+                x = x.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            }
+            std::hint::black_box(x);
+        };
+        let w = Watchdog::with_slack(0.01, false, 0.05);
+        spin(&w);
+        assert!(!w.ok());
+        let said = w.tripped().unwrap();
+        assert!(
+            said.contains("priced at") && said.contains("stopped after"),
+            "{said}"
+        );
+        let forced = Watchdog::with_slack(0.0, true, 0.0);
+        assert!(forced.ok() && forced.tripped().is_none());
+    }
 }

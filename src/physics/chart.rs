@@ -76,8 +76,11 @@ pub enum Verdict {
     Reversals {
         /// How many in the window.
         count: usize,
-        /// The first one's time (the celt's; `None` for the rattleback's and when none).
+        /// The first one's time (`None` when none).
         first: Option<f64>,
+        /// The last one's time in the window (the rattleback's: the certificate of a refined
+        /// chart; `None` when none, or when the scene does not say).
+        last: Option<f64>,
         /// Whether two tolerances agree on it.
         decided: bool,
         /// The growth rate of steady spin at the cell (the celt's; 1/s).
@@ -103,6 +106,19 @@ pub enum Verdict {
     /// Not computed: its region's corners, edges and samples all gave this answer (issue 70,
     /// `study::refine`).
     Inferred(Answer),
+}
+
+/// The continuous quantity behind a decided cell's answer (issue 80): where the cell lies along
+/// it (`value`) and how far it is from changing the answer (`margin`, in the same units). A
+/// region is inferred only where every computed cell's margin exceeds twice the spread of the
+/// values across the region: the answer cannot change between cells that far from its boundary
+/// unless the quantity varies much faster inside than along the edges and samples.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Certainty {
+    /// The quantity at the cell.
+    pub value: f64,
+    /// Its distance from the nearest value where the answer changes (positive).
+    pub margin: f64,
 }
 
 /// What a region of a chart is inferred from: a decided cell's answer, compared between
@@ -133,6 +149,7 @@ impl Verdict {
         Self::Reversals {
             count,
             first: None,
+            last: None,
             decided: true,
             growth: None,
         }
@@ -207,7 +224,7 @@ pub struct CellOutput {
     /// Reversals in the window (the rattleback, the celt).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reversals: Option<usize>,
-    /// The celt's first reversal (s), `null` when none.
+    /// The first reversal (s), `null` when none (the celt's; the rattleback's since issue 80).
     #[serde(
         default,
         skip_serializing_if = "Option::is_none",
@@ -216,6 +233,15 @@ pub struct CellOutput {
     #[schemars(with = "Option<f64>")]
     #[allow(clippy::option_option)] // absent (not the celt), `null` (no reversal), a time
     pub first_reversal: Option<Option<f64>>,
+    /// The last reversal in the window (s), `null` when none (the rattleback's, issue 80).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "double_option"
+    )]
+    #[schemars(with = "Option<f64>")]
+    #[allow(clippy::option_option)] // absent (not the rattleback), `null` (none), a time
+    pub last_reversal: Option<Option<f64>>,
     /// The celt's growth rate of steady spin at the cell's `ω_z` and `D` (1/s; positive: a small
     /// tilt grows).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -376,12 +402,21 @@ pub trait SceneChart: std::fmt::Debug + Send + Sync {
     /// Whether a cell is cheap enough (a quadrature, one period's trace) that the explorer's
     /// worker takes a row a slice; otherwise as many cells as the pool has threads.
     fn cheap_cells(&self) -> bool;
-    /// Predicted seconds of one core's work for `cells` cells.
-    fn cpu_seconds(&self, cells: usize) -> f64;
-    /// Whether a region whose computed cells all give one answer may be inferred from them
-    /// (`study::refine`); not where lone cells break a region's answer (the celt's chaotic
-    /// wobbles).
+    /// Predicted seconds of one core's work for cell `n`, from its own parameters (issue 80: a
+    /// chart is priced from its window, cell by cell).
+    fn cell_seconds(&self, n: usize) -> f64;
+    /// Whether a region may be inferred at all (`study::refine`): only where the scene can
+    /// certify its cells' answers ([`SceneChart::certainty`]); not where lone cells break a
+    /// region's answer (the celt's chaotic wobbles) or every cell is cheaper than certifying.
     fn infers(&self) -> bool;
+    /// The continuous quantity behind computed cell `n`'s verdict `v`, when the scene can say
+    /// how far the cell is from changing its answer (`None`: the cell certifies nothing, and no
+    /// region around it is inferred).
+    fn certainty(&self, n: usize, v: &Verdict) -> Option<Certainty>;
+    /// Columns where the scene's theory puts the root of a thin region (the pendulum's Mathieu
+    /// tongues at `b → 0`): every block computes them whole, so a region thinner than a cell
+    /// is met where it starts.
+    fn lines(&self) -> Vec<usize>;
     /// The output's header fields.
     fn header(&self) -> Header;
 }
@@ -423,6 +458,8 @@ pub enum Column {
     Reversals,
     /// The first reversal (empty when none).
     FirstReversal,
+    /// The last reversal in the window (empty when none).
+    LastReversal,
     /// The celt's growth rate.
     GrowthRate,
     /// The pendulum's verdict (`false` when absent).
@@ -449,6 +486,7 @@ impl Column {
             Self::InertiaRatio => "inertia_ratio",
             Self::Reversals => "reversals",
             Self::FirstReversal => "first_reversal",
+            Self::LastReversal => "last_reversal",
             Self::GrowthRate => "growth_rate",
             Self::Stable => "stable",
             Self::Trace => "trace",
@@ -471,6 +509,7 @@ impl Column {
             Self::InertiaRatio => opt(c.inertia_ratio),
             Self::Reversals => c.reversals.unwrap_or(0).to_string(),
             Self::FirstReversal => opt(c.first_reversal.flatten()),
+            Self::LastReversal => opt(c.last_reversal.flatten()),
             Self::GrowthRate => opt(c.growth_rate),
             Self::Stable => c.stable.unwrap_or(false).to_string(),
             Self::Trace => opt(c.trace),
@@ -505,6 +544,9 @@ pub fn fill_cell(columns: &[Column], v: &Verdict, at: (f64, f64), out: &mut Cell
             (Column::FirstReversal, &Verdict::Reversals { first, .. }) => {
                 out.first_reversal = Some(first);
             }
+            (Column::LastReversal, &Verdict::Reversals { last, .. }) => {
+                out.last_reversal = Some(last);
+            }
             (Column::GrowthRate, &Verdict::Reversals { growth, .. }) => out.growth_rate = growth,
             (
                 Column::Decided,
@@ -531,6 +573,7 @@ pub fn fill_cell(columns: &[Column], v: &Verdict, at: (f64, f64), out: &mut Cell
                 | Column::Y
                 | Column::Reversals
                 | Column::FirstReversal
+                | Column::LastReversal
                 | Column::GrowthRate
                 | Column::Decided
                 | Column::Stable
@@ -567,6 +610,11 @@ pub fn read_cell(columns: &[Column], c: &CellOutput) -> Option<Verdict> {
         count: c.reversals?,
         first: if has(Column::FirstReversal) {
             c.first_reversal?
+        } else {
+            None
+        },
+        last: if has(Column::LastReversal) {
+            c.last_reversal?
         } else {
             None
         },

@@ -62,6 +62,9 @@ pub const REFINED_OVER_FIRST: f64 = 2.6;
 /// 4.6 ms of CPU).
 pub const REFINED_CELL_COST: f64 = 1.5;
 
+/// The most cells a chart's price prices one by one; beyond, an evenly spread sample of them.
+pub const PRICED_CELLS: usize = 4096;
+
 /// What a chart's cells came to: the cells (grid order) and their verdicts (each computed or
 /// inferred, [`Verdict::mark`]).
 #[derive(Clone, Debug, PartialEq)]
@@ -86,6 +89,12 @@ impl Tally<'static> {
         done: &|| (),
         expect: &|_| (),
     };
+}
+
+impl super::refine::Certifies for Chart {
+    fn certainty(&self, n: usize, v: &Verdict) -> Option<crate::physics::chart::Certainty> {
+        SceneChart::certainty(&**self, n, v)
+    }
 }
 
 /// A cell the refinement left without a verdict: never, as its walk covers every cell.
@@ -153,11 +162,17 @@ impl Chart {
             .collect()
     }
 
-    /// The refinement of this chart's grid (`study::refine`).
+    /// The refinement of this chart's grid (`study::refine`): certified by the scene where it
+    /// infers, its lines computed whole.
     #[must_use]
-    pub fn refine(&self) -> Refine {
+    pub fn refine(&self) -> Refine<'_> {
         let (x, y) = self.axes();
-        Refine::new(x.cells, y.cells).inferring(self.infers())
+        Refine::new(x.cells, y.cells)
+            .certified_by(
+                self.infers()
+                    .then_some(self as &dyn super::refine::Certifies),
+            )
+            .with_lines(self.lines())
     }
 
     /// The cells of `shard` (every cell without one), in grid order: each cell when
@@ -246,11 +261,17 @@ impl Chart {
     }
 
     /// Predicted wall-clock seconds of the cells of `shard` (all without one): the cells the
-    /// cost model expects to compute ([`Chart::expected_cells`]), each at
-    /// [`REFINED_CELL_COST`] times the average cell when refined.
+    /// cost model expects to compute ([`Chart::expected_cells`]) at the average price of the
+    /// slice's cells (each priced from its own parameters), times [`REFINED_CELL_COST`] when
+    /// refined.
     #[must_use]
     pub fn price(&self, exhaustive: bool, shard: Option<Shard>) -> f64 {
+        let owned = match shard {
+            Some(s) => self.shard_indices(exhaustive, s),
+            None => (0..self.len()).collect(),
+        };
         self.price_of(
+            &owned,
             self.expected_cells(exhaustive, shard),
             !exhaustive && self.infers(),
         )
@@ -260,16 +281,23 @@ impl Chart {
     /// are (the explorer's pane: its budget and its time left).
     #[must_use]
     pub fn price_left(&self, computed: usize) -> f64 {
+        let all: Vec<usize> = (0..self.len()).collect();
         self.price_of(
+            &all,
             self.expected_cells(false, None).saturating_sub(computed),
             self.infers(),
         )
     }
 
-    /// Predicted wall-clock seconds of `cells` cells, computed where the answer changes when
-    /// `refined`.
-    fn price_of(&self, cells: usize, refined: bool) -> f64 {
-        let seconds = self.predicted_seconds(cells);
+    /// Predicted wall-clock seconds of `count` cells drawn from `cells` at their average price,
+    /// computed where the answer changes when `refined`.
+    fn price_of(&self, cells: &[usize], count: usize, refined: bool) -> f64 {
+        #[allow(clippy::cast_precision_loss)]
+        let mean = self.cpu_seconds(cells) / cells.len().max(1) as f64;
+        #[allow(clippy::cast_precision_loss)]
+        let threads = rayon::current_num_threads().clamp(1, count.max(1)) as f64;
+        #[allow(clippy::cast_precision_loss)]
+        let seconds = mean * count as f64 / threads;
         if refined {
             seconds * REFINED_CELL_COST
         } else {
@@ -307,14 +335,28 @@ impl Chart {
         })
     }
 
-    /// Predicted wall-clock seconds of `cells` cells on this machine (the cost model asked before
-    /// a chart starts, and what `study map`'s JSON reports beside what they took): the work of
-    /// [`Chart::cpu_seconds`] spread over the threads that share the cells.
+    /// Predicted wall-clock seconds of the cells `cells` on this machine: their work
+    /// ([`Chart::cpu_seconds`]) spread over the threads that share them.
     #[must_use]
-    pub fn predicted_seconds(&self, cells: usize) -> f64 {
+    pub fn predicted_seconds(&self, cells: &[usize]) -> f64 {
         #[allow(clippy::cast_precision_loss)]
-        let threads = rayon::current_num_threads().clamp(1, cells.max(1)) as f64;
+        let threads = rayon::current_num_threads().clamp(1, cells.len().max(1)) as f64;
         self.cpu_seconds(cells) / threads
+    }
+
+    /// Seconds of one core's work for the cells `cells`, each priced from its own parameters
+    /// ([`SceneChart::cell_seconds`]): summed, or, past [`PRICED_CELLS`] cells, the sum of an
+    /// evenly spread sample scaled up (a price must cost nothing next to the chart).
+    #[must_use]
+    pub fn cpu_seconds(&self, cells: &[usize]) -> f64 {
+        if cells.len() <= PRICED_CELLS {
+            return cells.iter().map(|&n| self.cell_seconds(n)).sum();
+        }
+        let step = cells.len().div_ceil(PRICED_CELLS);
+        let sampled: Vec<usize> = cells.iter().copied().step_by(step).collect();
+        #[allow(clippy::cast_precision_loss)]
+        let scale = cells.len() as f64 / sampled.len() as f64;
+        sampled.iter().map(|&n| self.cell_seconds(n)).sum::<f64>() * scale
     }
 
     /// The output of the cells `indices` with their verdicts (`shard` when a slice), in the

@@ -51,7 +51,7 @@ pub fn regime_map(
             Ok(Cell {
                 ratio: grid.ratio(i),
                 inertia_ratio: grid.inertia_ratio(j),
-                reversals: cell_reversals(grid, source, i, j, go_on)?,
+                reversals: cell_reversals(grid, source, i, j, go_on)?.count,
             })
         })
         .collect::<Result<Vec<Cell>, StepError>>()?;

@@ -620,6 +620,15 @@ fn check_part(
     Ok((expected, read))
 }
 
+/// The cells' indices of the parts' cells `chosen` (by part and position, as [`choose`] gives).
+#[must_use]
+pub fn indices(parts: &[(String, ChartOutput)], chosen: &[(usize, usize)]) -> Vec<usize> {
+    chosen
+        .iter()
+        .map(|&(p, k)| parts[p].1.cells[k].index)
+        .collect()
+}
+
 /// Which cells of each part [`sample`] recomputes: `n` of each (all when fewer), chosen by
 /// `random` (a source the forger cannot predict; tests pass a fixed one).
 #[must_use]

@@ -5,9 +5,19 @@
 //! (chosen at random, seeded by the grid and the block, so the same for every run and every
 //! shard) are computed: when they and every other computed cell of the block give one answer
 //! and its scene infers regions ([`crate::physics::chart::SceneChart::infers`]), the
-//! rest of its interior is inferred; otherwise it is cut in four at its middle row and column
-//! and each quarter is settled the same way, down to blocks without an interior. An undecided
-//! or failed cell never agrees, so the blocks around it are computed whole.
+//! rest of its interior may be inferred; otherwise it is cut in four at its middle row and
+//! column and each quarter is settled the same way, down to blocks without an interior. An
+//! undecided or failed cell never agrees, so the blocks around it are computed whole.
+//!
+//! Agreement is not enough (issue 80: a thin Mathieu tongue inside a block whose edges all said
+//! "stable" vanished). A block is inferred only when its scene certifies it: every computed cell
+//! of the block carries the continuous quantity behind its answer
+//! ([`crate::physics::chart::Certainty`]: the pendulum's Floquet angle or exponent, the full
+//! rattleback's distance to the critical curve or the phase of its reversals), and the smallest
+//! margin from a change of answer exceeds twice the spread of that quantity over the block. A
+//! scene that cannot certify infers nothing and computes every cell. Columns where the scene's
+//! theory roots a thin region ([`crate::physics::chart::SceneChart::lines`]) are computed whole
+//! in every block that crosses them.
 //!
 //! Everything here is a function of the cells computed so far: [`Refine::pending`] says which
 //! cells to compute next, [`Refine::settle`] the verdict of every cell once none is pending.
@@ -18,7 +28,29 @@
 use std::collections::BTreeSet;
 
 use super::output::Shard;
-use crate::physics::chart::{Answer, Verdict};
+use crate::physics::chart::{Answer, Certainty, Verdict};
+
+/// What certifies a computed cell: a chart (its scene's [`SceneChart::certainty`]), or a
+/// function in tests.
+///
+/// [`SceneChart::certainty`]: crate::physics::chart::SceneChart::certainty
+pub trait Certifies: Sync {
+    /// The certainty of computed cell `n`'s verdict `v` (`None`: it certifies nothing).
+    fn certainty(&self, n: usize, v: &Verdict) -> Option<Certainty>;
+}
+
+impl<F: Fn(usize, &Verdict) -> Option<Certainty> + Sync> Certifies for F {
+    fn certainty(&self, n: usize, v: &Verdict) -> Option<Certainty> {
+        self(n, v)
+    }
+}
+
+/// How a scene certifies a computed cell (`None`: it cannot, and nothing around it is inferred).
+pub type Certify<'a> = &'a dyn Certifies;
+
+/// How far inside its answer every computed cell of an inferred block must be: its margin over
+/// the spread of the certified quantity across the block.
+pub const MARGIN_OVER_SPREAD: f64 = 2.0;
 
 /// The widest a top block is, in cells.
 pub const MAX_STRIDE: usize = 16;
@@ -45,8 +77,8 @@ impl Block {
 }
 
 /// How a chart of `cols × rows` cells is refined.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Refine {
+#[derive(Clone)]
+pub struct Refine<'a> {
     /// Columns.
     pub cols: usize,
     /// Rows.
@@ -55,8 +87,22 @@ pub struct Refine {
     pub stride: usize,
     /// The samples' seed, from the grid.
     seed: u64,
-    /// Whether agreeing regions are inferred (else every cell is computed).
-    infers: bool,
+    /// How cells are certified; `None`: nothing is inferred, every cell is computed.
+    certify: Option<Certify<'a>>,
+    /// Columns every block that crosses them computes whole (sorted).
+    lines: Vec<usize>,
+}
+
+impl std::fmt::Debug for Refine<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Refine")
+            .field("cols", &self.cols)
+            .field("rows", &self.rows)
+            .field("stride", &self.stride)
+            .field("infers", &self.certify.is_some())
+            .field("lines", &self.lines)
+            .finish_non_exhaustive()
+    }
 }
 
 /// A well-mixed 64-bit function (`SplitMix64`'s finaliser): the samples' random numbers.
@@ -85,9 +131,10 @@ fn spans(n: usize, stride: usize) -> Vec<(usize, usize)> {
     points.windows(2).map(|w| (w[0], w[1])).collect()
 }
 
-impl Refine {
+impl<'a> Refine<'a> {
     /// The refinement of a `cols × rows` grid: the lattice as wide as a third of the shorter
-    /// side allows (a power of two, 2 to [`MAX_STRIDE`]).
+    /// side allows (a power of two, 2 to [`MAX_STRIDE`]); nothing inferred until it is given a
+    /// way to certify ([`Refine::certified_by`]).
     #[must_use]
     pub fn new(cols: usize, rows: usize) -> Self {
         let third = (cols.min(rows) / 3).max(2);
@@ -97,14 +144,32 @@ impl Refine {
             rows: rows.max(1),
             stride,
             seed: mix(((cols as u64) << 32) ^ rows as u64),
-            infers: true,
+            certify: None,
+            lines: Vec::new(),
         }
     }
 
-    /// The same refinement, inferring agreeing regions or (`false`) computing every cell.
+    /// The same refinement, inferring the blocks `certify` certifies (`None`: computing every
+    /// cell).
     #[must_use]
-    pub const fn inferring(self, infers: bool) -> Self {
-        Self { infers, ..self }
+    pub fn certified_by(self, certify: Option<Certify<'a>>) -> Self {
+        Self { certify, ..self }
+    }
+
+    /// The same refinement, computing the columns `lines` whole in every block that crosses
+    /// them (those outside the grid are ignored).
+    #[must_use]
+    pub fn with_lines(self, mut lines: Vec<usize>) -> Self {
+        lines.retain(|&x| x < self.cols);
+        lines.sort_unstable();
+        lines.dedup();
+        Self { lines, ..self }
+    }
+
+    /// Whether any block may be inferred.
+    #[must_use]
+    pub fn infers(&self) -> bool {
+        self.certify.is_some()
     }
 
     /// The top blocks, row by row from the bottom.
@@ -175,30 +240,40 @@ impl Refine {
                 let p = (r % area as u64) as usize;
                 cells.push(at(b.x0 + 1 + p % w, b.y0 + 1 + p / w));
             }
+            for &x in self.lines.iter().filter(|&&x| b.x0 < x && x < b.x1) {
+                cells.extend((b.y0 + 1..b.y1).map(|y| at(x, y)));
+            }
         }
         cells
     }
 
     /// The answer every computed cell of `block`'s closed rectangle gives, when they give one
-    /// and regions are inferred.
+    /// and the scene certifies it: each cell's margin from a change of answer exceeds
+    /// [`MARGIN_OVER_SPREAD`] times the spread of the certified quantity over the block.
     fn agreed(&self, b: Block, known: &[Option<Verdict>]) -> Option<Answer> {
-        if !self.infers {
-            return None;
-        }
+        let certify = self.certify?;
         let mut agreed = None;
+        let (mut lo, mut hi, mut margin) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
         for y in b.y0..=b.y1 {
-            for v in known[y * self.cols + b.x0..=y * self.cols + b.x1]
-                .iter()
-                .flatten()
-            {
+            let row = y * self.cols;
+            for (n, v) in (row + b.x0..=row + b.x1).filter_map(|n| Some((n, known[n].as_ref()?))) {
                 let a = v.answer()?;
                 if agreed.is_some_and(|b| b != a) {
                     return None;
                 }
                 agreed = Some(a);
+                let c = certify.certainty(n, v)?;
+                if !(c.value.is_finite() && c.margin.is_finite() && c.margin > 0.0) {
+                    return None;
+                }
+                lo = lo.min(c.value);
+                hi = hi.max(c.value);
+                margin = margin.min(c.margin);
             }
         }
-        agreed
+        (margin > MARGIN_OVER_SPREAD * (hi - lo))
+            .then_some(agreed)
+            .flatten()
     }
 
     /// Walks `block`: its missing cells into `pending`, or its inferred interior into
@@ -303,6 +378,20 @@ impl Refine {
 mod tests {
     use super::*;
 
+    /// A scene that certifies every decided cell at once (a quantity that never varies).
+    #[allow(clippy::unnecessary_wraps)] // a certificate function's shape
+    fn flat(_: usize, _: &Verdict) -> Option<Certainty> {
+        Some(Certainty {
+            value: 0.0,
+            margin: 1.0,
+        })
+    }
+
+    /// The refinement of a `cols × rows` grid certified by [`flat`].
+    fn certified(cols: usize, rows: usize) -> Refine<'static> {
+        Refine::new(cols, rows).certified_by(Some(&flat))
+    }
+
     /// Runs the refinement of a chart whose cell `(x, y)` is `f(x, y)` to its end: the
     /// verdicts and the cells computed.
     fn refined(
@@ -328,7 +417,7 @@ mod tests {
 
     #[test]
     fn a_uniform_chart_computes_its_lattice_and_samples_and_infers_the_rest() {
-        let r = Refine::new(200, 100);
+        let r = certified(200, 100);
         assert_eq!(r.stride, 16);
         let (cells, computed) = refined(&r, &r.blocks(), &|_, _| Verdict::counted(0));
         assert!(
@@ -347,7 +436,7 @@ mod tests {
 
     #[test]
     fn a_line_and_a_lone_sampled_cell_are_found_and_the_rest_stays_exact() {
-        let r = Refine::new(100, 50);
+        let r = certified(100, 50);
         // A thin diagonal line of 1s, and an island of 2s of one cell at a sample.
         let blocks = r.blocks();
         let sample = r.required(blocks[1])[4 * 17];
@@ -376,10 +465,11 @@ mod tests {
 
     #[test]
     fn an_undecided_cell_is_never_inferred_and_is_computed_around() {
-        let r = Refine::new(64, 64);
+        let r = certified(64, 64);
         let undecided = Verdict::Reversals {
             count: 3,
             first: None,
+            last: None,
             decided: false,
             growth: None,
         };
@@ -403,7 +493,7 @@ mod tests {
 
     #[test]
     fn shards_own_every_cell_once_and_settle_as_one_run() {
-        let r = Refine::new(90, 37);
+        let r = certified(90, 37);
         let f = |x: usize, y: usize| Verdict::counted((x * x + 3 * y * y) / 900);
         let (whole, _) = refined(&r, &r.blocks(), &f);
         let mut owners = vec![0; 90 * 37];
@@ -417,7 +507,7 @@ mod tests {
         }
         assert!(owners.iter().all(|&o| o == 1));
         for (cols, rows) in [(1, 1), (1, 7), (7, 1), (2, 3), (17, 5)] {
-            let r = Refine::new(cols, rows);
+            let r = certified(cols, rows);
             let mut cells = r.owned(&r.blocks());
             cells.dedup();
             assert_eq!(cells, (0..cols * rows).collect::<Vec<_>>(), "{cols}x{rows}");
@@ -428,9 +518,101 @@ mod tests {
 
     #[test]
     fn a_scene_that_infers_nothing_computes_every_cell() {
-        let r = Refine::new(64, 32).inferring(false);
+        let r = Refine::new(64, 32);
         let (cells, computed) = refined(&r, &r.blocks(), &|_, _| Verdict::counted(2));
         assert_eq!(computed, 64 * 32);
         assert!(cells.iter().all(|c| *c == Some(Verdict::counted(2))));
+    }
+
+    /// A field whose quantity is `q(x, y)`, its answer `q < 0` (stable) or not, certified by
+    /// the margin `|q|`.
+    fn field(x: usize, y: usize, q: &dyn Fn(usize, usize) -> f64) -> Verdict {
+        let v = q(x, y);
+        Verdict::Stability {
+            stable: v < 0.0,
+            trace: v,
+            error: 0.0,
+            decided: true,
+        }
+    }
+
+    #[test]
+    fn a_thin_region_inside_agreeing_edges_is_found_by_its_margin() {
+        // An island of one stable cell inside a block, on no lattice line and at no sample:
+        // every cell the first pass computes agrees ("not stable"), so agreement alone loses
+        // it; the quantity's margins near it are small against its spread across the block, so
+        // the certified refinement computes around it and finds it.
+        let blind = certified(96, 48);
+        let first: BTreeSet<usize> = blind
+            .blocks()
+            .iter()
+            .flat_map(|&b| blind.required(b))
+            .collect();
+        let (ix, iy) = (33..47)
+            .flat_map(|x| (17..31).map(move |y| (x, y)))
+            .find(|&(x, y)| !first.contains(&(y * 96 + x)))
+            .expect("a cell the first pass does not compute");
+        #[allow(clippy::cast_precision_loss)]
+        let q = |x: usize, y: usize| {
+            let (dx, dy) = (x as f64 - ix as f64, y as f64 - iy as f64);
+            dx * dx + dy * dy - 0.2
+        };
+        let certify = |_: usize, v: &Verdict| match *v {
+            Verdict::Stability { trace, .. } => Some(Certainty {
+                value: trace,
+                margin: trace.abs(),
+            }),
+            _ => None,
+        };
+        let r = Refine::new(96, 48).certified_by(Some(&certify));
+        let (cells, computed) = refined(&r, &r.blocks(), &|x, y| field(x, y, &q));
+        for y in 0..48 {
+            for x in 0..96 {
+                assert_eq!(
+                    cells[y * 96 + x].as_ref().and_then(Verdict::answer),
+                    field(x, y, &q).answer(),
+                    "cell ({x}, {y})"
+                );
+            }
+        }
+        assert!(computed < 96 * 48, "nothing was inferred: {computed}");
+        // Agreement alone (a flat certificate) loses it: else this test would prove nothing.
+        let (lost, _) = refined(&blind, &blind.blocks(), &|x, y| field(x, y, &q));
+        assert_eq!(
+            lost[iy * 96 + ix].as_ref().and_then(Verdict::answer),
+            Some(Answer::Stable(false))
+        );
+    }
+
+    #[test]
+    fn a_line_is_computed_whole_in_every_block_it_crosses() {
+        // A region one column wide, rooted at a known column: with the column as a line, every
+        // cell of it is computed even where the quantity says nothing (a flat certificate).
+        let r = certified(64, 32).with_lines(vec![21, 500]);
+        let f = |x: usize, _y: usize| Verdict::counted(usize::from(x == 21));
+        let (cells, _) = refined(&r, &r.blocks(), &f);
+        for y in 0..32 {
+            assert_eq!(cells[y * 64 + 21], Some(Verdict::counted(1)), "row {y}");
+        }
+    }
+
+    #[test]
+    fn a_cell_without_a_certificate_stops_inference_around_it() {
+        let none = |n: usize, _: &Verdict| {
+            (n != 32 * 64 + 32).then_some(Certainty {
+                value: 0.0,
+                margin: 1.0,
+            })
+        };
+        let r = Refine::new(64, 64).certified_by(Some(&none));
+        let (cells, computed) = refined(&r, &r.blocks(), &|_, _| Verdict::counted(0));
+        assert!(
+            cells
+                .iter()
+                .all(|c| c.as_ref().and_then(Verdict::count) == Some(0))
+        );
+        let full = certified(64, 64);
+        let (_, fewer) = refined(&full, &full.blocks(), &|_, _| Verdict::counted(0));
+        assert!(computed > fewer, "{computed} against {fewer}");
     }
 }

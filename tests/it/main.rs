@@ -55,6 +55,7 @@ mod lesson_review;
 mod lessons;
 mod page;
 mod presets_themes;
+mod prices;
 mod readme;
 mod record_replay;
 mod reference_cases;

@@ -348,6 +348,7 @@ mod tests {
         let one = Verdict::Reversals {
             count: 1,
             first: None,
+            last: None,
             decided: true,
             growth: None,
         };

@@ -90,16 +90,15 @@ impl CeltChart {
         with_spin_and_product(&self.problem, self.columns.at(i), self.rows.at(j))
     }
 
-    /// Predicted seconds of CPU one cell takes: its verification priced by the celt's cost model
-    /// at the fastest corner, as pairs of runs at its first tolerance (the run's own,
-    /// [`super::reversal::first_round_seconds`]), more of them the longer the window.
+    /// Predicted seconds of CPU cell `(i, j)` takes: its verification priced by the celt's cost
+    /// model at the cell's own body and spin, as pairs of runs at its first tolerance (the run's
+    /// own, [`super::reversal::first_round_seconds`]), more of them the longer the window.
     #[must_use]
-    pub fn cell_seconds(&self) -> f64 {
-        let x = self.columns;
-        let corner = self.problem(x.cells - 1, 0).unwrap_or(self.problem);
+    pub fn seconds_of(&self, i: usize, j: usize) -> f64 {
+        let problem = self.problem(i, j).unwrap_or(self.problem);
         let pairs = CELT_PAIRS_SHORT
             + (CELT_PAIRS_LONG - CELT_PAIRS_SHORT) * (self.t_end / CELT_DECISION_TIME).min(1.0);
-        pairs * super::reversal::first_round_seconds(&corner, self.t_end, self.tolerance)
+        pairs * super::reversal::first_round_seconds(&problem, self.t_end, self.tolerance)
     }
 
     /// The growth rate (1/s) at which the start's tilt `θ0` reaches a radian within the window:
@@ -155,6 +154,7 @@ impl SceneChart for CeltChart {
         Ok(Verdict::Reversals {
             count: r.count,
             first: r.first,
+            last: None,
             decided: r.decided,
             growth: Some(super::linear::growth_rate(
                 problem.params(),
@@ -187,10 +187,8 @@ impl SceneChart for CeltChart {
         false
     }
 
-    fn cpu_seconds(&self, cells: usize) -> f64 {
-        #[allow(clippy::cast_precision_loss)]
-        let n = cells as f64;
-        n * self.cell_seconds()
+    fn cell_seconds(&self, n: usize) -> f64 {
+        self.seconds_of(n % self.columns.cells, n / self.columns.cells)
     }
 
     /// None: every cell is computed. The celt's charts hold lone cells that no region's
@@ -201,6 +199,14 @@ impl SceneChart for CeltChart {
     /// Inferring any region would change answers that `--exhaustive` gives.
     fn infers(&self) -> bool {
         false
+    }
+
+    fn certainty(&self, _: usize, _: &Verdict) -> Option<crate::physics::chart::Certainty> {
+        None
+    }
+
+    fn lines(&self) -> Vec<usize> {
+        Vec::new()
     }
 
     fn header(&self) -> Header {

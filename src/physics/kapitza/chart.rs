@@ -19,10 +19,11 @@ pub const PENDULUM_GRID: (usize, usize) = (48, 24);
 /// The pendulum's trace tolerance when none is asked: a cell within 1e-10 of `|tr| = 2` is too
 /// close to call.
 pub const PENDULUM_TOLERANCE: f64 = 1e-10;
-/// Seconds of CPU a pendulum cell takes, about (`scripts/chart_costs.py`; a 200×100 chart of
-/// kapitza-upright in about 2 s of CPU: two to four one-period runs a cell, each with its second
-/// companion, issue 66).
-pub const PENDULUM_CELL_SECONDS: f64 = 1e-4;
+/// Seconds of CPU a DOP853 step of the trace takes (its five components, the cosine, the
+/// tableau), measured over random cells (`cargo run --release --example floquet_price`,
+/// docs/benchmarks.md, issue 80): a cell's price is its predicted steps
+/// ([`super::floquet::Mathieu::price_steps`]) at this rate.
+pub const PENDULUM_STEP_SECONDS: f64 = 6e-7;
 
 /// A pendulum chart: the stability of `position` over `(a, b)` at `ε`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -149,16 +150,63 @@ impl SceneChart for PendulumChart {
         true
     }
 
-    fn cpu_seconds(&self, cells: usize) -> f64 {
-        #[allow(clippy::cast_precision_loss)]
-        let n = cells as f64;
-        n * PENDULUM_CELL_SECONDS
+    fn cell_seconds(&self, n: usize) -> f64 {
+        let (i, j) = (n % self.columns.cells, n / self.columns.cells);
+        PENDULUM_STEP_SECONDS
+            * Mathieu::of(&self.params(i, j), self.position).price_steps(self.tolerance)
     }
 
-    /// Every verdict: the pendulum's regions (its tongues, however thin) are bounded by curves
-    /// the edges cross.
+    /// Every verdict, certified by its trace ([`super::floquet::certainty`]).
     fn infers(&self) -> bool {
         true
+    }
+
+    /// A decided trace: its Floquet angle inside the stable band, its exponent outside
+    /// ([`super::floquet::certainty`]).
+    fn certainty(&self, _: usize, v: &Verdict) -> Option<crate::physics::chart::Certainty> {
+        match *v {
+            Verdict::Stability {
+                trace,
+                decided: true,
+                ..
+            } => super::floquet::certainty(trace),
+            _ => None,
+        }
+    }
+
+    /// The columns where Mathieu's tongues leave the axis `q = 0`, `δ = n²/4` (`n = 0, 1, …`):
+    /// `a = ± n²/(4ε²)`, positive for the hanging position, negative for the upright. A tongue
+    /// there is exponentially thin at small `b` (its width goes as `qⁿ`).
+    fn lines(&self) -> Vec<usize> {
+        let x = self.columns;
+        let e2 = self.params.epsilon * self.params.epsilon;
+        let sign = match self.position {
+            Position::Hanging => 1.0,
+            Position::Upright => -1.0,
+        };
+        let mut lines = Vec::new();
+        for n in 0..=x.cells.max(1) {
+            #[allow(clippy::cast_precision_loss)]
+            let a = sign * (n as f64).powi(2) / (4.0 * e2);
+            let beyond = if sign > 0.0 {
+                a > x.max.max(x.min)
+            } else {
+                a < x.min.min(x.max)
+            };
+            if !a.is_finite() || beyond {
+                break;
+            }
+            // The column holding the root, and its neighbour on the root's other side.
+            if let Some(c) = x.cell_of(a) {
+                lines.push(c);
+                let centre = x.at(c);
+                let other = if a > centre { c + 1 } else { c.wrapping_sub(1) };
+                if other < x.cells {
+                    lines.push(other);
+                }
+            }
+        }
+        lines
     }
 
     fn header(&self) -> Header {

@@ -56,6 +56,21 @@ pub struct Mathieu {
 }
 
 impl Mathieu {
+    /// The DOP853 steps a trace verified to `tolerance` is predicted to take ([`floquet`]'s
+    /// whole work: every round's run and its two companions, and the last run), from the
+    /// coefficients alone: issue 80's chart prices, cell by cell. A run over the period takes
+    /// steps in proportion to the radians of the fastest oscillation, `2π ω`
+    /// (`ω = √(|δ| + |q|)`), times DOP853's `l^(-1/8)` at the first local tolerance `l`; how many
+    /// rounds the loop then takes depends on `ω` and the tolerance as measured
+    /// ([`PRICE_FACTORS`], interpolated).
+    #[must_use]
+    pub fn price_steps(&self, tolerance: f64) -> f64 {
+        let w = (self.delta.abs() + self.q.abs()).sqrt();
+        let first = (tolerance * FIRST).clamp(POLICY.tightest, 1e-3);
+        let radians = 2.0 * std::f64::consts::PI * w * first.powf(-0.125);
+        price_factor(w, tolerance) * (radians + PRICE_FIXED_STEPS)
+    }
+
     /// The linearisation of the pendulum `p` about `position`.
     #[must_use]
     pub fn of(p: &Params, position: Position) -> Self {
@@ -102,6 +117,34 @@ impl Mathieu {
     }
 }
 
+/// The continuous quantity behind a trace's verdict (issue 80, a refined chart's certificate):
+/// inside the stable band (`|tr| < 2`) the Floquet angle `θ = acos(tr/2)` in `(0, π)`, its margin
+/// the distance to the band's edges `0` and `π`; outside, the Floquet exponent
+/// `μ = acosh(|tr|/2)`, signed as the trace (a block holding both signs spans a stable band),
+/// its margin `μ`. Both vanish exactly where the answer changes and vary smoothly elsewhere,
+/// unlike the trace itself (exponentially large outside the band).
+#[must_use]
+pub fn certainty(trace: f64) -> Option<crate::physics::chart::Certainty> {
+    use crate::physics::chart::Certainty;
+    let h = 0.5 * trace;
+    if !h.is_finite() {
+        return None;
+    }
+    Some(if h.abs() < 1.0 {
+        let theta = h.acos();
+        Certainty {
+            value: theta,
+            margin: theta.min(std::f64::consts::PI - theta),
+        }
+    } else {
+        let mu = h.abs().acosh();
+        Certainty {
+            value: mu.copysign(h),
+            margin: mu,
+        }
+    })
+}
+
 /// The verification of a trace: the pendulum's run's policy (refined 4× at least, 16× when
 /// blind, to 1e-14 at the tightest, five rounds at most, one stall stops it) with a companion
 /// 16× looser, and a round-off floor above the tolerance stops it (one period of a smooth
@@ -124,6 +167,43 @@ pub const MARGIN: f64 = 4.0;
 /// The first local tolerance of a trace verified to `tolerance`.
 const FIRST: f64 = 0.1;
 
+/// The steps of a verified trace that do not grow with the frequency (each run's start and end).
+pub const PRICE_FIXED_STEPS: f64 = 40.0;
+
+/// A verified trace's steps over `2π ω l^(-1/8) + 40`, measured (issue 80) as the mean over
+/// 4,500 random cells of the charts `study map` can be asked for (ε from 1e-3 to 0.5, both
+/// positions, `a` and `b` over twelve decades, tolerances 1e-6 to 1e-12:
+/// `cargo run --release --example floquet_price`): rows `log10 ω` = −1, 0, …, 4, columns
+/// `log10 tolerance` = −12, −10, −8, −6. It folds in how many rounds the loop takes: one at
+/// high frequencies and tight tolerances, two or three at middling ones.
+pub const PRICE_FACTORS: [[f64; 4]; 6] = [
+    [1.61, 1.14, 0.83, 0.55],
+    [1.41, 1.36, 1.21, 1.05],
+    [1.01, 1.74, 1.54, 1.60],
+    [0.59, 1.20, 2.06, 1.99],
+    [0.65, 0.65, 2.07, 3.62],
+    [0.67, 0.67, 2.10, 4.00],
+];
+
+/// [`PRICE_FACTORS`] at `ω` and `tolerance`, interpolated linearly in both logarithms (and held
+/// beyond the table's edges).
+fn price_factor(w: f64, tolerance: f64) -> f64 {
+    let at = |x: f64, lo: f64, n: usize| {
+        #[allow(clippy::cast_precision_loss)]
+        let x = (x - lo).clamp(0.0, (n - 1) as f64);
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let i = (x.floor() as usize).min(n - 2);
+        #[allow(clippy::cast_precision_loss)]
+        (i, x - i as f64)
+    };
+    let (i, fi) = at(w.max(1e-300).log10(), -1.0, 6);
+    let (j, fj) = at(0.5 * tolerance.max(1e-300).log10(), -6.0, 4);
+    let f = |i: usize, j: usize| PRICE_FACTORS[i][j];
+    let lo = f(i, j) * (1.0 - fj) + f(i, j + 1) * fj;
+    let hi = f(i + 1, j) * (1.0 - fj) + f(i + 1, j + 1) * fj;
+    lo * (1.0 - fi) + hi * fi
+}
+
 /// A verified trace.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Floquet {
@@ -135,13 +215,18 @@ pub struct Floquet {
     pub stable: bool,
     /// Whether `||tr| − 2|` exceeds the estimate (the verdict is certain at this tolerance).
     pub decided: bool,
+    /// DOP853 steps taken in all (every round's runs and companions, and the last run): the
+    /// work the cost model ([`Mathieu::price_steps`]) predicts.
+    pub steps: u64,
+    /// Rounds of the verification loop after the first.
+    pub refinements: usize,
 }
 
 /// The candidate of the loop: DOP853 over one period at a local tolerance. Differences are
 /// relative to `max(1, |tr|/2)` so that a deeply unstable cell (`|tr|` of 1e30) is verified to
 /// the same number of digits as one near the boundary.
-#[derive(Clone, Copy)]
-struct Trace(Mathieu);
+#[derive(Clone)]
+struct Trace(Mathieu, std::sync::Arc<std::sync::atomic::AtomicU64>);
 
 /// The scale of a trace's difference.
 fn scale(trace: f64) -> f64 {
@@ -164,7 +249,9 @@ impl AtTolerance for Trace {
     }
     fn run(&self, local: f64, _: GoOn<'_>) -> Result<TraceRun, StepError> {
         let (trace, steps, size) = self.0.trace(local)?;
-        let (second, _, _) = self.0.trace(local * SECOND_LOOSER)?;
+        let (second, second_steps, _) = self.0.trace(local * SECOND_LOOSER)?;
+        self.1
+            .fetch_add(steps + second_steps, std::sync::atomic::Ordering::Relaxed);
         Ok((trace, steps, size, second))
     }
     fn difference(&self, fine: &TraceRun, coarse: &TraceRun) -> f64 {
@@ -195,7 +282,7 @@ impl AtTolerance for Trace {
 /// # Errors
 /// A failed step.
 pub fn floquet(m: Mathieu, tolerance: f64) -> Result<Floquet, StepError> {
-    let mut candidate = Trace(m);
+    let mut candidate = Trace(m, std::sync::Arc::default());
     let first = (tolerance * FIRST).clamp(POLICY.tightest, 1e-3);
     // Its best run again: the loop keeps what it measured, not the trace.
     let v = verify(
@@ -204,7 +291,7 @@ pub fn floquet(m: Mathieu, tolerance: f64) -> Result<Floquet, StepError> {
         &mut |_| true,
     )?;
     let plan = v.best.0.plan;
-    let (trace, _, _) = m.trace(plan)?;
+    let (trace, last, _) = m.trace(plan)?;
     let error = v.best.0.estimate * scale(trace);
     let margin = (trace.abs() - 2.0).abs();
     Ok(Floquet {
@@ -212,6 +299,8 @@ pub fn floquet(m: Mathieu, tolerance: f64) -> Result<Floquet, StepError> {
         error,
         stable: trace.abs() < 2.0,
         decided: margin > error,
+        steps: candidate.1.load(std::sync::atomic::Ordering::Relaxed) + last,
+        refinements: v.refinements,
     })
 }
 

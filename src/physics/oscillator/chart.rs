@@ -95,18 +95,45 @@ impl SceneChart for CrossingChart {
     fn cheap_cells(&self) -> bool {
         true
     }
-    fn cpu_seconds(&self, cells: usize) -> f64 {
-        #[allow(clippy::cast_precision_loss)]
-        let n = cells as f64;
-        n * super::flows::cost_seconds(
-            &self.problem,
+    fn cell_seconds(&self, n: usize) -> f64 {
+        let (x, y) = (self.columns, self.rows);
+        let problem = self
+            .problem_at((x.at(n % x.cells), y.at(n / x.cells)))
+            .unwrap_or(self.problem);
+        super::flows::cost_seconds(
+            &problem,
             &Asked::new(Method::Dop853, TOLERANCE, None, self.t_end),
         )
     }
 
-    /// Every count (the exact count changes along lines of constant `ω T`).
+    /// Every count: certified by the exact solution's phase.
     fn infers(&self) -> bool {
         true
+    }
+
+    /// The exact solution `x = A cos(ωt − φ)` crosses zero where `u(t) = (ωt − φ − π/2)/π` is
+    /// a whole number: the count changes only where `u(T)` or `u(0)` does. The quantity is
+    /// `u(T)`, the margin the nearer of the two ends' distances to a whole number.
+    fn certainty(&self, n: usize, v: &Verdict) -> Option<crate::physics::chart::Certainty> {
+        use std::f64::consts::PI;
+        v.answer()?;
+        let (x, y) = (self.columns, self.rows);
+        let problem = self
+            .problem_at((x.at(n % x.cells), y.at(n / x.cells)))
+            .ok()?;
+        let (w, s) = (problem.params().omega, problem.start());
+        let phi = (s.v / w).atan2(s.x);
+        let u0 = (-phi - PI / 2.0) / PI;
+        let ut = u0 + w * self.t_end / PI;
+        let off = |u: f64| (u - u.round()).abs();
+        Some(crate::physics::chart::Certainty {
+            value: ut,
+            margin: off(ut).min(off(u0)),
+        })
+    }
+
+    fn lines(&self) -> Vec<usize> {
+        Vec::new()
     }
     fn header(&self) -> Header {
         Header {

@@ -36,6 +36,11 @@ pub const PANE_LARGEST: (usize, usize) = (
     },
 );
 
+/// How far above the critical curve a cell without a reversal must be, over `ix/iz`, for the
+/// full model's count to be certified by the curve (the full motion departs from the limit's by
+/// an amount that falls with `k`; the block's own computed cells must all agree besides).
+pub const FINITE_K_ALLOWANCE: f64 = 0.05;
+
 /// The rattleback's regime map: the limit, or the full model at a `k`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RegimeChart {
@@ -93,8 +98,14 @@ impl SceneChart for RegimeChart {
 
     fn cell(&self, n: usize, go_on: &(dyn Fn(f64) -> bool + Sync)) -> Result<Verdict, StepError> {
         let (i, j) = (n % self.grid.cols, n / self.grid.cols);
-        let count = map::cell_reversals(&self.grid, self.source, i, j, go_on)?;
-        Ok(Verdict::counted(count))
+        let r = map::cell_reversals(&self.grid, self.source, i, j, go_on)?;
+        Ok(Verdict::Reversals {
+            count: r.count,
+            first: r.first,
+            last: r.last,
+            decided: true,
+            growth: None,
+        })
     }
 
     fn curve(&self) -> Vec<(f64, f64)> {
@@ -115,14 +126,76 @@ impl SceneChart for RegimeChart {
         matches!(self.source, Source::Limit)
     }
 
-    fn cpu_seconds(&self, cells: usize) -> f64 {
-        map::predicted_seconds(&self.grid, self.source, cells)
+    fn cell_seconds(&self, n: usize) -> f64 {
+        map::cell_seconds(
+            &self.grid,
+            self.source,
+            n % self.grid.cols,
+            n / self.grid.cols,
+        )
     }
 
-    /// Every count: the counts of the limit and of the full model change along curves (the
-    /// critical curve, the bands of equal counts below it).
+    /// The full model's counts, certified ([`RegimeChart::certainty`]); the limit's cells are
+    /// two quadratures each, cheaper than any certificate: every one is computed.
     fn infers(&self) -> bool {
-        true
+        matches!(self.source, Source::Full { .. })
+    }
+
+    /// A count of the full model, certified where it cannot change inside a block: none, far
+    /// above the critical curve (the quantity is the distance `α̇0²/γ̇0² − critical` of
+    /// Theorems 1.1–1.2, less an allowance for finite `k`, [`FINITE_K_ALLOWANCE`] of `ix/iz`);
+    /// two or more, by the phase of the window's end between reversals (the quantity is
+    /// `(T − t₁)/h`, `h` the mean spacing of the reversals, the margin the end's distance from
+    /// the last reversal and from the next, in spacings). A single reversal, or none below the
+    /// curve, certifies nothing.
+    fn certainty(&self, n: usize, v: &Verdict) -> Option<crate::physics::chart::Certainty> {
+        use crate::physics::chart::Certainty;
+        if self.source == Source::Limit {
+            return None;
+        }
+        let Verdict::Reversals {
+            count,
+            first,
+            last,
+            decided: true,
+            ..
+        } = *v
+        else {
+            return None;
+        };
+        let g = &self.grid;
+        match count {
+            0 => {
+                let r = g.inertia_ratio(n / g.cols);
+                // The critical ratio continued past iy = ix (negative there: every start
+                // rotates).
+                let critical = g.ix / g.iz * (1.0 / r.sqrt() - 1.0);
+                let d = g.ratio(n % g.cols) - critical;
+                let allowance = FINITE_K_ALLOWANCE * g.ix / g.iz;
+                (d > allowance).then_some(Certainty {
+                    value: d,
+                    margin: d - allowance,
+                })
+            }
+            1 => None,
+            _ => {
+                let (first, last) = (first?, last?);
+                #[allow(clippy::cast_precision_loss)]
+                let h = (last - first) / (count - 1) as f64;
+                if !(h.is_finite() && h > 0.0) {
+                    return None;
+                }
+                let phase = (g.t_end - last) / h;
+                Some(Certainty {
+                    value: (g.t_end - first) / h,
+                    margin: phase.min(1.0 - phase),
+                })
+            }
+        }
+    }
+
+    fn lines(&self) -> Vec<usize> {
+        Vec::new()
     }
 
     fn header(&self) -> Header {

@@ -269,6 +269,25 @@ impl Effective {
             .map_or(0, |(first, half)| Self::count_in(first, half, t_end))
     }
 
+    /// The reversals in `(0, t_end]` with the first one's time and the last one's (`None` when
+    /// there is none), from the schedule `first + n · half` without stepping through it.
+    #[must_use]
+    pub fn reversal_window(&self, t_end: f64) -> (usize, Option<f64>, Option<f64>) {
+        let Some((first, half)) = self.reversal_schedule() else {
+            return (0, None, None);
+        };
+        let count = Self::count_in(first, half, t_end);
+        #[allow(clippy::cast_precision_loss)]
+        if count == 0 || count as f64 >= MAX_REVERSALS {
+            return (count, None, None);
+        }
+        // A reversal at t = 0 is not one of the window's.
+        let skip = f64::from(u8::from(first <= 0.0));
+        #[allow(clippy::cast_precision_loss)]
+        let last = first + (skip + count as f64 - 1.0) * half;
+        (count, Some(first + skip * half), Some(last))
+    }
+
     /// `first + n · half` in `(0, t_end]`, counted without stepping through them (a loop over
     /// `t += half` would never end where `half` is below the spacing of floats near `t`).
     fn count_in(first: f64, half: f64, t_end: f64) -> usize {

@@ -141,37 +141,37 @@ impl Grid {
 /// rattleback preset in 0.10–0.15 s of wall time on two threads).
 pub const LIMIT_CELL_SECONDS: f64 = 1.3e-5;
 
-/// Predicted seconds of `cells` cells of `grid` from `source` (the map's cost model, asked by
-/// `study map` and by the explorer's map pane before they start): the limit's cells cost the
-/// same whatever the horizon (the count is a quotient); the full model's are priced as `auto`
-/// at the corner of the largest ratio and the smallest inertia ratio (the fastest spin), half
-/// of it on average over the grid; infinite when that corner is no problem.
+/// Predicted seconds of CPU cell `(i, j)` of `grid` from `source` takes (the map's cost model,
+/// asked by `study map` and the explorer's map pane before they start, cell by cell, issue 80):
+/// the limit's cells cost the same whatever the horizon (the count is a quotient); a full
+/// model's cell is priced as a lone `auto` run at its own body and start, times
+/// [`FULL_CELL_OVER_RUN`]; infinite when the cell is no problem.
 #[must_use]
-pub fn predicted_seconds(grid: &Grid, source: Source, cells: usize) -> f64 {
-    #[allow(clippy::cast_precision_loss)]
-    let cells = cells as f64;
+pub fn cell_seconds(grid: &Grid, source: Source, i: usize, j: usize) -> f64 {
     match source {
-        Source::Limit => cells * LIMIT_CELL_SECONDS,
-        Source::Full { k, tolerance } => {
-            grid.params_of(grid.ratio_max, grid.inertia.0, k)
-                .map_or(f64::INFINITY, |probe| {
-                    cells
-                        * crate::physics::rattleback::plan::predicted_seconds(
-                            &probe,
-                            &crate::physics::method::Asked::new(
-                                crate::physics::Method::Auto,
-                                tolerance,
-                                None,
-                                grid.t_end,
-                            ),
-                        )
-                        // A lone run's prediction prices its probes and conditioning; a chart's
-                        // cell, measured (`scripts/chart_costs.py`, issue 66), takes a fifth.
-                        / 5.0
-                })
-        }
+        Source::Limit => LIMIT_CELL_SECONDS,
+        Source::Full { k, tolerance } => grid
+            .params_of(grid.ratio(i), grid.inertia_ratio(j), k)
+            .map_or(f64::INFINITY, |cell| {
+                crate::physics::rattleback::plan::predicted_seconds(
+                    &cell,
+                    &crate::physics::method::Asked::new(
+                        crate::physics::Method::Auto,
+                        tolerance,
+                        None,
+                        grid.t_end,
+                    ),
+                ) * FULL_CELL_OVER_RUN
+            }),
     }
 }
+
+/// A full-model chart cell's time over a lone `auto` run's price, the median of 150 random
+/// cells (`k` 1e2–1e6, tolerances 1e-6–1e-10, T 10–100, inertia ratios 1e-3–1e3: `cargo run
+/// --release --example chart_price full`, issue 80). The spread is wide (0.1× to 400× on
+/// ill-conditioned starts, where `auto`'s conditioning and probes dominate): `study map`'s
+/// watchdog stops a chart that runs past twice its price.
+pub const FULL_CELL_OVER_RUN: f64 = 1.3;
 
 /// A point of the critical curve.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
@@ -181,6 +181,18 @@ pub struct CriticalPoint {
     pub inertia_ratio: f64,
     /// The critical `α̇0²/γ̇0²`.
     pub ratio: f64,
+}
+
+/// What a cell of the map found: its reversals in `(0, T]` and the first and last of their times
+/// (the certificate of a refined chart, issue 80).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CellReversals {
+    /// How many.
+    pub count: usize,
+    /// The first one's time (`None`: none).
+    pub first: Option<f64>,
+    /// The last one's time in the window (`None`: none, or more than a run keeps).
+    pub last: Option<f64>,
 }
 
 /// The reversals in `(0, T]` of cell `(i, j)`; `go_on` may cancel a full run.
@@ -193,12 +205,13 @@ pub fn cell_reversals(
     i: usize,
     j: usize,
     go_on: &(dyn Fn(f64) -> bool + Sync),
-) -> Result<usize, StepError> {
+) -> Result<CellReversals, StepError> {
     let (ratio, inertia_ratio) = (grid.ratio(i), grid.inertia_ratio(j));
     match source {
         Source::Limit => {
             let p = grid.problem(ratio, inertia_ratio, 1.0)?;
-            Ok(Effective::new(&p).reversal_count(grid.t_end))
+            let (count, first, last) = Effective::new(&p).reversal_window(grid.t_end);
+            Ok(CellReversals { count, first, last })
         }
         Source::Full { k, tolerance } => {
             let p = grid.problem(ratio, inertia_ratio, k)?;
@@ -210,11 +223,14 @@ pub fn cell_reversals(
                 samples: 0,
                 monitor_energy: false,
             };
-            Ok(
-                run_auto_cancellable(&p, &spec, f64::INFINITY, &mut |t| go_on(t))?
-                    .result
-                    .reversal_count,
-            )
+            let r = run_auto_cancellable(&p, &spec, f64::INFINITY, &mut |t| go_on(t))?.result;
+            // The last time is the window's only when the run kept every time.
+            let whole = r.reversals.len() == r.reversal_count;
+            Ok(CellReversals {
+                count: r.reversal_count,
+                first: r.reversals.first().copied(),
+                last: r.reversals.last().copied().filter(|_| whole),
+            })
         }
     }
 }

@@ -81,6 +81,8 @@ pub static SCENE: Scene = Scene {
                 Column::InertiaRatio,
                 Column::Reversals,
                 Column::Mark,
+                Column::FirstReversal,
+                Column::LastReversal,
             ],
         },
         counterpart: "celt-clockwise",

@@ -462,3 +462,67 @@ pub fn rattleback() -> std::process::Command {
     }
     command
 }
+
+/// A seeded generator for the tests of promises on generated cases (issue 80): the seed is
+/// `RATTLEBACK_SEED` when set (to replay a failure), else the clock's, and every failure
+/// message should carry it (`Seeded::tag`) so that a failing case can be run again.
+pub struct Seeded {
+    /// The seed it started from.
+    pub seed: u64,
+    state: u64,
+}
+
+impl Seeded {
+    /// A generator seeded from `RATTLEBACK_SEED` or the clock; the seed is printed to the test's
+    /// output (shown on failure).
+    #[must_use]
+    pub fn new(what: &str) -> Self {
+        let seed = std::env::var("RATTLEBACK_SEED")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or_else(|| {
+                std::time::SystemTime::now()
+                    .duration_since(std::time::UNIX_EPOCH)
+                    .map_or(1, |d| d.as_nanos() as u64)
+            });
+        println!("{what}: seed {seed} (RATTLEBACK_SEED={seed} replays it)");
+        Self { seed, state: seed }
+    }
+
+    /// The next 64 random bits (`SplitMix64`).
+    pub fn next_u64(&mut self) -> u64 {
+        self.state = self.state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// A number uniform in `[lo, hi)`.
+    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        #[allow(clippy::cast_precision_loss)]
+        let u = (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        lo + (hi - lo) * u
+    }
+
+    /// A number log-uniform in `[lo, hi)` (both positive).
+    pub fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        self.uniform(lo.ln(), hi.ln()).exp()
+    }
+
+    /// A whole number in `lo..=hi`.
+    pub fn int(&mut self, lo: usize, hi: usize) -> usize {
+        lo + (self.next_u64() % (hi - lo + 1) as u64) as usize
+    }
+
+    /// One of `choices`.
+    pub fn pick<'a, T>(&mut self, choices: &'a [T]) -> &'a T {
+        &choices[self.int(0, choices.len() - 1)]
+    }
+
+    /// `RATTLEBACK_SEED=…`, for a failure's message.
+    #[must_use]
+    pub fn tag(&self) -> String {
+        format!("RATTLEBACK_SEED={}", self.seed)
+    }
+}
