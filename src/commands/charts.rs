@@ -21,7 +21,10 @@ pub(super) fn study_map(args: &crate::commands::cli::MapArgs) -> Outcome {
         k: args.k,
         columns: args.columns,
         rows: args.rows,
-        hanging: args.position == crate::commands::cli::Position::Hanging,
+        hanging: args
+            .position
+            .map(|p| p == crate::commands::cli::Position::Hanging),
+        asked_t_end: args.common.t_end,
         exhaustive: args.exhaustive,
     };
     let chart = chart::Chart::for_study(&model, &ask).map_err(Failure::input)?;

@@ -505,9 +505,9 @@ pub struct MapArgs {
     /// positive; the celt's product of inertia `D`).
     #[arg(long, value_name = "MIN,MAX", value_parser = parse_range, allow_hyphen_values = true)]
     pub rows: Option<(f64, f64)>,
-    /// The pendulum: which equilibrium's stability.
-    #[arg(long, value_enum, default_value_t = Position::Upright)]
-    pub position: Position,
+    /// The pendulum: which equilibrium's stability (default: upright).
+    #[arg(long, value_enum)]
+    pub position: Option<Position>,
     /// Compute every cell instead of refining (by default a chart computes a coarse lattice,
     /// then only where neighbouring cells disagree, and infers the rest: each cell's `mark`
     /// says which).

@@ -327,8 +327,11 @@ pub struct StudyAsk {
     pub columns: Option<(f64, f64)>,
     /// `--rows MIN,MAX` (the pendulum's and the celt's).
     pub rows: Option<(f64, f64)>,
-    /// `--position hanging` (the pendulum's).
-    pub hanging: bool,
+    /// `--position`: `Some(true)` hanging, `Some(false)` upright as asked, `None` not asked
+    /// (the pendulum's; upright).
+    pub hanging: Option<bool>,
+    /// `--t-end` when given (the window: the rattleback's and the celt's).
+    pub asked_t_end: Option<f64>,
     /// `--exhaustive`: every cell computed, none inferred (the chart is the same; how its
     /// cells are found is not).
     pub exhaustive: bool,
@@ -645,23 +648,83 @@ pub fn tick(x: f64) -> String {
     }
 }
 
-/// The flags of the rattleback's map, refused on another scene's chart by name (`scene` its
-/// title).
+/// A flag of `study map` that only some scenes' charts take (issue 80: each scene lists its
+/// own in `ChartWords::flags`; any other given is refused in one place, [`refuse_flags`], naming
+/// the scene, never accepted and ignored).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, strum::EnumIter)]
+pub enum MapFlag {
+    /// `--ratio-max` (the rattleback's columns).
+    RatioMax,
+    /// `--inertia-min` (the rattleback's rows).
+    InertiaMin,
+    /// `--inertia-max` (the rattleback's rows).
+    InertiaMax,
+    /// `--k` (the rattleback's full model).
+    K,
+    /// `--columns MIN,MAX`.
+    Columns,
+    /// `--rows MIN,MAX`.
+    Rows,
+    /// `--position` (the pendulum's equilibrium).
+    Position,
+    /// `--t-end` (a window the cells run over).
+    TEnd,
+    /// `--tolerance` (the cells' own).
+    Tolerance,
+}
+
+impl MapFlag {
+    /// The flag as typed.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::RatioMax => "--ratio-max",
+            Self::InertiaMin => "--inertia-min",
+            Self::InertiaMax => "--inertia-max",
+            Self::K => "--k",
+            Self::Columns => "--columns",
+            Self::Rows => "--rows",
+            Self::Position => "--position",
+            Self::TEnd => "--t-end",
+            Self::Tolerance => "--tolerance",
+        }
+    }
+
+    /// Whether `ask` gives it.
+    #[must_use]
+    pub fn given(self, ask: &StudyAsk) -> bool {
+        match self {
+            Self::RatioMax => ask.ratio_max.is_some(),
+            Self::InertiaMin => ask.inertia_min.is_some(),
+            Self::InertiaMax => ask.inertia_max.is_some(),
+            Self::K => ask.k.is_some(),
+            Self::Columns => ask.columns.is_some(),
+            Self::Rows => ask.rows.is_some(),
+            Self::Position => ask.hanging.is_some(),
+            Self::TEnd => ask.asked_t_end.is_some(),
+            Self::Tolerance => ask.asked_tolerance.is_some(),
+        }
+    }
+}
+
+/// The first flag `ask` gives that a scene's chart does not take (it takes `takes`), refused
+/// with the scene's `title` and the flags it does take.
 ///
 /// # Errors
-/// The first such flag given.
-pub fn refuse_map_flags(ask: &StudyAsk, scene: &str) -> Result<(), String> {
-    for (given, flag) in [
-        (ask.ratio_max.is_some(), "--ratio-max"),
-        (ask.inertia_min.is_some(), "--inertia-min"),
-        (ask.inertia_max.is_some(), "--inertia-max"),
-        (ask.k.is_some(), "--k"),
-    ] {
-        if given {
-            return Err(format!(
-                "{flag} is the rattleback's map; the {scene}'s chart takes --columns MIN,MAX and --rows MIN,MAX"
-            ));
-        }
+/// That flag, said.
+pub fn refuse_flags(ask: &StudyAsk, takes: &[MapFlag], title: &str) -> Result<(), String> {
+    use strum::IntoEnumIterator as _;
+    if let Some(flag) = MapFlag::iter().find(|f| f.given(ask) && !takes.contains(f)) {
+        let list: Vec<&str> = takes.iter().map(|f| f.name()).collect();
+        return Err(format!(
+            "{} means nothing to the chart of the {title}, which takes {}",
+            flag.name(),
+            if list.is_empty() {
+                "none of the scenes' flags".to_owned()
+            } else {
+                list.join(", ")
+            }
+        ));
     }
     Ok(())
 }

@@ -139,6 +139,8 @@ impl Chart {
     /// A flag of another scene's chart, a range out of order, or a corner the model refuses.
     pub fn for_study(model: &Model, ask: &StudyAsk) -> Result<Self, String> {
         let title = model.kind().title();
+        // Every flag the scene does not take, refused here for all (issue 80).
+        crate::physics::chart::refuse_flags(ask, model.kind().studies().chart.flags, title)?;
         Ok(match model {
             Model::Rattleback(p) => Self::Rattleback(ChartOf::for_study(p, ask, title)?),
             Model::Kapitza(p) => Self::Kapitza(ChartOf::for_study(p, ask, title)?),

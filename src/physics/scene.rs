@@ -133,6 +133,8 @@ pub struct ChartWords {
     pub legend: &'static str,
     /// The CSV's columns, in order.
     pub csv: &'static [super::chart::Column],
+    /// The `study map` flags its chart takes (every other is refused, naming the scene).
+    pub flags: &'static [super::chart::MapFlag],
 }
 
 /// One read-only line the panel shows under a model's parameters.

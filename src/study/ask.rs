@@ -30,6 +30,9 @@ pub struct Description {
     pub grid: [usize; 2],
     /// The window (the preset's `run.t_end` or `--t-end`).
     pub t_end: f64,
+    /// `--t-end` as given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub asked_t_end: Option<f64>,
     /// The full model's tolerance (the preset's or `--tolerance`).
     pub tolerance: f64,
     /// `--tolerance` as given.
@@ -70,6 +73,7 @@ impl Description {
             preset,
             grid: [ask.grid.0, ask.grid.1],
             t_end: ask.t_end,
+            asked_t_end: ask.asked_t_end,
             tolerance: ask.tolerance,
             asked_tolerance: ask.asked_tolerance,
             ratio_max: ask.ratio_max,
@@ -78,7 +82,12 @@ impl Description {
             k: ask.k,
             columns: ask.columns.map(|(a, b)| [a, b]),
             rows: ask.rows.map(|(a, b)| [a, b]),
-            position: if ask.hanging { "hanging" } else { "upright" }.to_owned(),
+            position: if ask.hanging == Some(true) {
+                "hanging"
+            } else {
+                "upright"
+            }
+            .to_owned(),
             exhaustive: ask.exhaustive,
         }
     }
@@ -138,15 +147,17 @@ impl Description {
                 )),
             }
         };
+        // Upright is the default, as if not asked: a part says its position whatever its scene.
         let hanging = match self.position.as_str() {
-            "upright" => false,
-            "hanging" => true,
+            "upright" => None,
+            "hanging" => Some(true),
             _ => return Err("position: `upright` or `hanging`".to_owned()),
         };
         let optional = |name: &str, v: Option<f64>| v.map(|v| positive(name, v)).transpose();
         Ok(StudyAsk {
             grid: (cols, rows),
             t_end: positive("t_end", self.t_end)?,
+            asked_t_end: optional("asked_t_end", self.asked_t_end)?,
             tolerance: tolerance("tolerance", self.tolerance)?,
             asked_tolerance: self
                 .asked_tolerance

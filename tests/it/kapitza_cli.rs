@@ -115,7 +115,10 @@ fn bad_pendulum_presets_are_refused_with_file_line_key_and_what_is_allowed() {
     );
     rejects(
         &["study", "map", "--preset", "kapitza-upright", "--k", "1e4"],
-        &["--k is the rattleback's map", "--columns MIN,MAX"],
+        &[
+            "--k means nothing to the chart of the Kapitza's pendulum",
+            "--columns, --rows",
+        ],
     );
     rejects(
         &[

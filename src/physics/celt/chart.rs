@@ -6,9 +6,7 @@
 use std::collections::BTreeMap;
 
 use super::{Params, Problem};
-use crate::physics::chart::{
-    Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, refuse_map_flags, tick,
-};
+use crate::physics::chart::{Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick};
 use crate::physics::{ParamError, StepError};
 
 /// The names of the axes, across and up (preset keys, or the rattleback's two ratios).
@@ -234,14 +232,7 @@ impl ChartOf for CeltChart {
         }
     }
 
-    fn for_study(problem: &Problem, ask: &StudyAsk, title: &str) -> Result<Self, String> {
-        refuse_map_flags(ask, title)?;
-        if ask.hanging {
-            return Err(
-                "--position is the pendulum's (which equilibrium); the celt's chart has none"
-                    .to_owned(),
-            );
-        }
+    fn for_study(problem: &Problem, ask: &StudyAsk, _title: &str) -> Result<Self, String> {
         let (columns, rows) = ask.ranged(Self::default_axes(problem, ask.grid.0, ask.grid.1));
         // Every corner is a body and start the scene accepts.
         for w in [columns.min, columns.max] {

@@ -8,7 +8,7 @@
 //! raw crossings.
 
 use super::{Params, Problem, Start, TILT_MAX};
-use crate::physics::chart::Column;
+use crate::physics::chart::{Column, MapFlag};
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
@@ -205,6 +205,12 @@ pub static SCENE: Scene = Scene {
                 Column::GrowthRate,
                 Column::Decided,
                 Column::Mark,
+            ],
+            flags: &[
+                MapFlag::Columns,
+                MapFlag::Rows,
+                MapFlag::TEnd,
+                MapFlag::Tolerance,
             ],
         },
         counterpart: "subcritical",

@@ -6,9 +6,7 @@ use std::collections::BTreeMap;
 
 use super::floquet::{Mathieu, Position, floquet};
 use super::{Params, Problem};
-use crate::physics::chart::{
-    Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, refuse_map_flags, tick,
-};
+use crate::physics::chart::{Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick};
 use crate::physics::{ParamError, StepError};
 
 /// The names of the axes, across and up (preset keys, or the rattleback's two ratios).
@@ -236,8 +234,7 @@ impl ChartOf for PendulumChart {
         }
     }
 
-    fn for_study(problem: &Problem, ask: &StudyAsk, title: &str) -> Result<Self, String> {
-        refuse_map_flags(ask, title)?;
+    fn for_study(problem: &Problem, ask: &StudyAsk, _title: &str) -> Result<Self, String> {
         let params = *problem.params();
         if let Some((lo, hi)) = ask.rows.filter(|r| r.0 <= 0.0) {
             return Err(format!(
@@ -254,7 +251,7 @@ impl ChartOf for PendulumChart {
         }
         Ok(Self {
             params,
-            position: if ask.hanging {
+            position: if ask.hanging == Some(true) {
                 Position::Hanging
             } else {
                 Position::Upright

@@ -4,7 +4,7 @@
 
 use super::limit::Limit;
 use super::{EPSILON_MAX, EPSILON_MIN, Params, Problem, Start};
-use crate::physics::chart::Column;
+use crate::physics::chart::{Column, MapFlag};
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
@@ -120,6 +120,12 @@ pub static SCENE: Scene = Scene {
                 Column::TraceError,
                 Column::Decided,
                 Column::Mark,
+            ],
+            flags: &[
+                MapFlag::Columns,
+                MapFlag::Rows,
+                MapFlag::Position,
+                MapFlag::Tolerance,
             ],
         },
         counterpart: "subcritical",

@@ -157,8 +157,7 @@ impl ChartOf for CrossingChart {
         }
     }
 
-    fn for_study(problem: &Problem, ask: &StudyAsk, title: &str) -> Result<Self, String> {
-        crate::physics::chart::refuse_map_flags(ask, title)?;
+    fn for_study(problem: &Problem, ask: &StudyAsk, _title: &str) -> Result<Self, String> {
         let (columns, rows) = ask.ranged(Self::axes_of(problem, ask.grid.0, ask.grid.1));
         let chart = Self {
             problem: *problem,

@@ -1,7 +1,7 @@
 //! The oscillator as every layer above `physics/` sees it ([`Scene`], [`Posed`]).
 
 use super::{Params, Problem, Start};
-use crate::physics::chart::Column;
+use crate::physics::chart::{Column, MapFlag};
 use crate::physics::flow::{Flow, GoOn};
 use crate::physics::method::{Arithmetic, Asked, Method, RunSpec, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
@@ -90,6 +90,7 @@ pub static SCENE: Scene = Scene {
                 Column::Reversals,
                 Column::Mark,
             ],
+            flags: &[MapFlag::Columns, MapFlag::Rows, MapFlag::TEnd],
         },
         counterpart: "subcritical",
     },

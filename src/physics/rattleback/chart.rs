@@ -244,19 +244,9 @@ impl ChartOf for RegimeChart {
     }
 
     fn for_study(problem: &Problem, ask: &StudyAsk, _title: &str) -> Result<Self, String> {
-        for (given, flag) in [
-            (ask.columns.is_some(), "--columns"),
-            (ask.rows.is_some(), "--rows"),
-        ] {
-            if given {
-                return Err(format!(
-                    "{flag} sets the pendulum's and the celt's axes; the rattleback's are --ratio-max, --inertia-min and --inertia-max"
-                ));
-            }
-        }
-        if ask.hanging {
+        if ask.k.is_none() && ask.asked_tolerance.is_some() {
             return Err(
-                "--position is the pendulum's (which equilibrium); the rattleback's map has none"
+                "--tolerance sets the full model's runs (with --k); the limit's cells are quadratures"
                     .to_owned(),
             );
         }

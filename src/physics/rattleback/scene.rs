@@ -6,7 +6,7 @@ use super::effective::Effective;
 use super::integrators;
 use super::model::ALPHA;
 use super::params::{Params, Problem, Start};
-use crate::physics::chart::Column;
+use crate::physics::chart::{Column, MapFlag};
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
@@ -83,6 +83,14 @@ pub static SCENE: Scene = Scene {
                 Column::Mark,
                 Column::FirstReversal,
                 Column::LastReversal,
+            ],
+            flags: &[
+                MapFlag::RatioMax,
+                MapFlag::InertiaMin,
+                MapFlag::InertiaMax,
+                MapFlag::K,
+                MapFlag::TEnd,
+                MapFlag::Tolerance,
             ],
         },
         counterpart: "celt-clockwise",
