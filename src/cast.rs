@@ -186,7 +186,7 @@ pub fn export_cast(
             &mut app,
             &mut engine,
             &mut screen,
-            (options, size.fps),
+            (options, size),
             cast,
             seen,
         )
@@ -212,7 +212,7 @@ pub fn cast_text(
         &mut app,
         &mut engine,
         &mut screen,
-        (options, size.fps),
+        (options, size),
         &mut cast,
         seen,
     )
@@ -257,6 +257,39 @@ impl MemoryScreen {
         self.terminal.get_frame().area()
     }
 
+    /// Draws from now on into `width × height` at the top left, the rest of the screen
+    /// cleared (the lecturer resized the terminal; format 14): nothing when it is the size
+    /// already. The size is held within `within`.
+    pub(crate) fn resize_to(
+        &mut self,
+        (width, height): (u16, u16),
+        within: Rect,
+    ) -> std::io::Result<()> {
+        let area = Rect::new(
+            0,
+            0,
+            width.clamp(1, within.width.max(1)),
+            height.clamp(1, within.height.max(1)),
+        );
+        if area == self.area() {
+            return Ok(());
+        }
+        // A clear screen, then the whole frame at the new size (a new terminal of that size,
+        // whose last frame is empty: `Terminal::resize` would ask the real terminal its size).
+        self.screen
+            .0
+            .borrow_mut()
+            .extend_from_slice(b"\x1b[0m\x1b[2J\x1b[H");
+        self.terminal = Terminal::with_options(
+            CrosstermBackend::new(self.screen.clone()),
+            TerminalOptions {
+                viewport: Viewport::Fixed(area),
+            },
+        )?;
+        self.last = ratatui::buffer::Buffer::empty(area);
+        Ok(())
+    }
+
     /// Draws `app` as the lecturer saw it (no replay status); the bytes a terminal receives,
     /// or `None` when they change nothing on screen (escape codes alone).
     pub(crate) fn frame(
@@ -295,6 +328,28 @@ pub fn whole(buffer: &ratatui::buffer::Buffer) -> Vec<u8> {
 
 type Prepared = (crate::app::App, Engine, MemoryScreen);
 
+/// The cast's whole screen: `--cols`/`--rows` when given (every frame at that size), else the
+/// largest the lecturer's terminal was (the header's and every `terminal` line's, format 14),
+/// so each moment is drawn at the size the lecturer saw, at the top left.
+#[must_use]
+pub fn canvas(rec: &Recording, size: CastSize) -> Rect {
+    let mut w = rec.header.terminal.width;
+    let mut h = rec.header.terminal.height;
+    for (_, line) in &rec.lines {
+        if let Event::Terminal { width, height } = line.event {
+            w = w.max(width);
+            h = h.max(height);
+        }
+    }
+    let max = crate::record::MAX_TERMINAL;
+    Rect::new(
+        0,
+        0,
+        size.cols.unwrap_or(w).clamp(1, max),
+        size.rows.unwrap_or(h).clamp(1, max),
+    )
+}
+
 /// The replay's app at its start, its engine, and a terminal drawing into memory.
 fn prepare(rec: &Recording, path: &str, size: CastSize) -> Result<Prepared, RecordError> {
     let io = |source| RecordError::Io {
@@ -309,7 +364,10 @@ fn prepare(rec: &Recording, path: &str, size: CastSize) -> Result<Prepared, Reco
         size.cols.unwrap_or(recorded.width).max(1),
         size.rows.unwrap_or(recorded.height).max(1),
     );
-    let screen = MemoryScreen::new(area).map_err(io)?;
+    let mut screen = MemoryScreen::new(canvas(rec, size)).map_err(io)?;
+    screen
+        .resize_to((area.width, area.height), canvas(rec, size))
+        .map_err(io)?;
     let mut engine = Engine::new(plan_book(rec)).stopping_on(crate::interrupt::not_requested);
     drive(&mut engine, commands(start_effects), &mut |e| {
         app.on_sim(e);
@@ -324,16 +382,17 @@ fn frames_of(
     app: &mut crate::app::App,
     engine: &mut Engine,
     screen: &mut MemoryScreen,
-    (options, fps): (&UiOptions, f64),
+    (options, size): (&UiOptions, CastSize),
     cast: &mut dyn std::io::Write,
     seen: &mut dyn FnMut(usize),
 ) -> std::io::Result<usize> {
+    let fps = size.fps;
     let run = |effects: Vec<crate::app::Effect>, engine: &mut Engine, app: &mut crate::app::App| {
         drive(engine, commands(effects), &mut |e| {
             app.on_sim(e);
         });
     };
-    let area = screen.area();
+    let area = canvas(rec, size);
     let header = serde_json::json!({
         "version": 2,
         "width": area.width,
@@ -365,6 +424,10 @@ fn frames_of(
         seen(replay.position());
         shown_until = clock;
         run(c, engine, app);
+        // The lecturer's size at this moment, unless the cast was given one.
+        if let (None, None, Some(now)) = (size.cols, size.rows, app.lecturer_terminal) {
+            screen.resize_to(now, area)?;
+        }
         for (_, line) in &rec.lines[before..replay.position()] {
             if let Some(label) = marker_label(&line.event) {
                 writeln!(

@@ -90,6 +90,15 @@ pub enum Event {
         /// Whether the map had the arrows.
         focused: bool,
     },
+    /// The lecturer's terminal was resized while recording (format 14): the cast, the page and
+    /// `serve` draw from here on at this size, as the lecturer saw it (issue 80: a recording
+    /// begun in a small terminal and then enlarged exported its "terminal too small" alone).
+    Terminal {
+        /// Columns (1 to 1000).
+        width: u16,
+        /// Rows (1 to 1000).
+        height: u16,
+    },
     /// The weak-* pane's averaging window was changed (`<`, `>`; format 7).
     Window {
         /// The window in simulated seconds, as shown.
@@ -178,8 +187,14 @@ pub enum Event {
         key: crate::sim::PlanKey,
         /// The plan.
         plan: crate::physics::Resolved,
-        /// `auto`'s error estimate the status bar showed (format 4 on), so a replay shows it too.
-        #[serde(default, skip_serializing_if = "Option::is_none")]
+        /// `auto`'s error estimate the status bar showed (format 4 on), so a replay shows it too;
+        /// `"inf"` where no bound was found (format 14 on, `physics::json`).
+        #[serde(
+            default,
+            skip_serializing_if = "Option::is_none",
+            with = "crate::physics::json::option"
+        )]
+        #[schemars(with = "Option<crate::physics::json::Number>")]
         estimate: Option<f64>,
     },
     /// The exact state of the run at simulated time `t`.
@@ -281,12 +296,22 @@ pub struct Shown {
     pub compare: Option<Compared>,
     /// The displayed point: the slow coordinate, its rate and the energy error (none before the
     /// first sample).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "crate::physics::json::triple"
+    )]
+    #[schemars(with = "Option<[crate::physics::json::Number; 3]>")]
     pub point: Option<[f64; 3]>,
     /// The method integrating, as the status bar names it.
     pub method: String,
-    /// `auto`'s error estimate shown.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// `auto`'s error estimate shown (`"inf"`: no bound, format 14 on).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "crate::physics::json::option"
+    )]
+    #[schemars(with = "Option<crate::physics::json::Number>")]
     pub estimate: Option<f64>,
 }
 
@@ -303,7 +328,12 @@ pub struct Compared {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub crossings: Option<usize>,
     /// Its spin at the displayed time (none before its first sample, or when it failed).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "crate::physics::json::option"
+    )]
+    #[schemars(with = "Option<crate::physics::json::Number>")]
     pub spin: Option<f64>,
 }
 
@@ -311,7 +341,8 @@ impl Shown {
     /// The first field whose value differs from `other`'s, with both values (bits compared).
     #[must_use]
     pub fn difference(&self, other: &Self) -> Option<String> {
-        let bits = |p: &Option<[f64; 3]>| p.map(|a| a.map(f64::to_bits));
+        use crate::physics::json::bits as key;
+        let bits = |p: &Option<[f64; 3]>| p.map(|a| a.map(key));
         let name = if self.playing != other.playing {
             "playing"
         } else if self.events != other.events {
@@ -330,19 +361,15 @@ impl Shown {
                 .compare
                 .as_ref()
                 .map(|c| (&c.partner, c.events, c.crossings))
-            || self.compare.as_ref().and_then(|c| c.spin).map(f64::to_bits)
-                != other
-                    .compare
-                    .as_ref()
-                    .and_then(|c| c.spin)
-                    .map(f64::to_bits)
+            || self.compare.as_ref().and_then(|c| c.spin).map(key)
+                != other.compare.as_ref().and_then(|c| c.spin).map(key)
         {
             "compared partner"
         } else if bits(&self.point) != bits(&other.point) {
             "displayed point"
         } else if self.method != other.method {
             "method"
-        } else if self.estimate.map(f64::to_bits) != other.estimate.map(f64::to_bits) {
+        } else if self.estimate.map(key) != other.estimate.map(key) {
             "estimate"
         } else {
             return None;

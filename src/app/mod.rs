@@ -68,6 +68,9 @@ pub struct App {
     pub caption: Option<Caption>,
     /// Set while a session is replayed.
     pub replay: Option<ReplayInfo>,
+    /// The lecturer's terminal size at the replayed time, from its last `terminal` line
+    /// (format 14; `None` before one: the header's): the exports draw at it.
+    pub lecturer_terminal: Option<(u16, u16)>,
     /// The recording's journal.
     pub journal: Journal,
     /// Start-up options.
@@ -98,6 +101,7 @@ impl App {
             messages: MessageLog::default(),
             caption: None,
             replay: None,
+            lecturer_terminal: None,
             journal: Journal::default(),
             options,
             quit: false,
@@ -280,6 +284,12 @@ impl App {
     fn log(&mut self, event: Event) {
         self.journal
             .push(self.run.shown, self.run.generation, event);
+    }
+
+    /// The terminal now shows `width × height` cells: journaled while recording (format 14), so
+    /// the exports draw each moment at the size the lecturer saw.
+    pub fn on_resize(&mut self, width: u16, height: u16) {
+        self.log(Event::Terminal { width, height });
     }
 
     /// Takes the journaled events not yet written.

@@ -112,6 +112,10 @@ impl App {
                 self.apply_lesson_event(event);
                 Vec::new()
             }
+            Event::Terminal { width, height } => {
+                self.lecturer_terminal = Some((*width, *height));
+                Vec::new()
+            }
             Event::Checkpoint { .. }
             | Event::Plan { .. }
             | Event::End { .. }

@@ -706,6 +706,13 @@ fn handle_event(
         }
         AppEvent::Resize => {
             shell.tty.autoresize()?;
+            // While recording, the new size is journaled (format 14): the exports draw each
+            // moment at the size the lecturer saw.
+            if replay.is_none()
+                && let Ok((width, height)) = ratatui::crossterm::terminal::size()
+            {
+                app.on_resize(width, height);
+            }
             Ok(true)
         }
         // The mouse drives the explorer, never a replay (the recording does).

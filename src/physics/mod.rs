@@ -27,6 +27,7 @@ pub mod chart;
 pub mod drive;
 pub mod flow;
 pub mod fork;
+pub mod json;
 pub mod kapitza;
 pub mod method;
 pub mod models;

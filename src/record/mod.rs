@@ -44,7 +44,13 @@ pub const FORMAT: &str = "rattleback-session";
 /// segment's horizon), so a file of 8 or older replays its runs in one piece, as shown.
 /// 10: the lesson in the header, `given` and `lesson_done` lines, the last frame. 11: a `plan`
 /// line names its key's model (`docs/session-format.md`), so no model's key reads as another's.
-pub const VERSION: u32 = 13;
+/// 14: `terminal` lines (a resize while recording) and numbers that are not finite written as
+/// the strings `"inf"`, `"-inf"`, `"nan"` (`physics::json`), where 13 wrote `null` and failed
+/// its own `--verify`.
+pub const VERSION: u32 = 14;
+
+/// The largest terminal side a session may say it had (columns or rows).
+pub const MAX_TERMINAL: u16 = 1000;
 
 /// First line of a session file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
@@ -304,7 +310,9 @@ pub fn chain_sha256(previous: &str, text: &str) -> String {
 /// # Errors
 /// Which field is out of range and what is allowed.
 pub fn check_header(h: &Header) -> Result<(), String> {
-    if !(1..=1000).contains(&h.terminal.width) || !(1..=1000).contains(&h.terminal.height) {
+    if !(1..=MAX_TERMINAL).contains(&h.terminal.width)
+        || !(1..=MAX_TERMINAL).contains(&h.terminal.height)
+    {
         return Err(format!(
             "terminal {}x{}: allowed sizes are 1 to 1000 columns and rows",
             h.terminal.width, h.terminal.height
@@ -404,6 +412,13 @@ impl Sense {
                     },
                     crate::scenario::text::one_line(&field.chars().take(60).collect::<String>()),
                     self.scene.title()
+                ));
+            }
+            Event::Terminal { width, height }
+                if !(1..=MAX_TERMINAL).contains(width) || !(1..=MAX_TERMINAL).contains(height) =>
+            {
+                return Some(format!(
+                    "a terminal of {width}x{height}: allowed sizes are 1 to {MAX_TERMINAL}"
                 ));
             }
             Event::MapCursor { column, row, .. } => {

@@ -158,6 +158,78 @@ fn tampered(
     })
 }
 
+/// The replayed state `got` against the recorded one at `t`.
+fn same_state(
+    number: usize,
+    t: f64,
+    (state, reversals, hash): (&[f64], usize, &str),
+    got: Option<(f64, Vec<f64>, usize)>,
+    failed: Option<&str>,
+) -> Result<(), VerifyError> {
+    // No state: the replayed run stopped before this time (refused by the budget, failed).
+    // Said as such, not as a state of NaNs (issue 56).
+    let Some((got_t, got_state, got_rev)) = got else {
+        let why = failed.map_or_else(
+            || "it stopped before this time".to_owned(),
+            crate::scenario::text::one_line,
+        );
+        return Err(tampered(
+            number,
+            t,
+            format!("state {state:?}, {reversals} reversals, hash {hash}"),
+            format!("no state: the replayed run did not reach t = {t}: {why}"),
+        ));
+    };
+    let got_hash = state_hash(got_t, &got_state, got_rev);
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    if got_hash != hash || bits(&got_state) != bits(state) || got_rev != reversals {
+        return Err(tampered(
+            number,
+            t,
+            format!("state {state:?}, {reversals} reversals, hash {hash}"),
+            format!("state {got_state:?}, {got_rev} reversals, hash {got_hash}"),
+        ));
+    }
+    Ok(())
+}
+
+/// Whether `line` comes in order after the line before it (`before`: the replayed app's run
+/// stamp after it, its own stamp, time and wall clock), the replayed app's stamp being `now`:
+/// the wall clock and the run stamps never go down, and the displayed time runs backwards only
+/// where a new run starts (issue 80, N11).
+fn ordered(
+    number: usize,
+    line: &super::Line,
+    (generation, stamp, t, wall): (u64, u64, f64, f64),
+    now: u64,
+) -> Result<(), VerifyError> {
+    if line.generation < stamp {
+        return Err(tampered(
+            number,
+            line.t,
+            format!("a run stamp (generation) of {stamp} or more"),
+            format!("{} (it went down)", line.generation),
+        ));
+    }
+    if line.wall < wall {
+        return Err(tampered(
+            number,
+            line.t,
+            format!("a wall clock at or after {wall}"),
+            format!("{} (it ran backwards)", line.wall),
+        ));
+    }
+    if line.t < t && line.generation == stamp && now == generation {
+        return Err(tampered(
+            number,
+            line.t,
+            format!("a time at or after t = {t} within the run"),
+            format!("t = {} (it ran backwards)", line.t),
+        ));
+    }
+    Ok(())
+}
+
 /// A field a file of format `version` cannot have: the line's kind, if it is one.
 fn newer_than(version: u32, line: &super::Line) -> Option<&'static str> {
     let fnv = |c: &str| c.len() == 16;
@@ -184,6 +256,7 @@ fn newer_than(version: u32, line: &super::Line) -> Option<&'static str> {
         }
         Event::Window { .. } if version < 7 => Some("a window line (format 7)"),
         Event::MapCursor { .. } if version < 12 => Some("a map cursor line (format 12)"),
+        Event::Terminal { .. } if version < 14 => Some("a terminal line (format 14)"),
         Event::Given { .. } | Event::LessonDone if version < 10 => {
             Some("a given or lesson-done line (format 10)")
         }
@@ -512,8 +585,17 @@ pub fn verify_watched(
         integrity,
         signature,
     };
+    // The displayed time runs backwards only where a new run starts (the line's run stamp rose,
+    // or the replayed app's moved), the run stamps and the wall clock never (issue 80, N11: a
+    // clock line moved a second ahead of the next passed a re-chained file).
+    let mut before: Option<(u64, u64, f64, f64)> = None;
     for (i, (number, line)) in rec.lines.iter().enumerate() {
         seen(i);
+        if rec.header.version >= 4
+            && let Some(before) = before
+        {
+            ordered(*number, line, before, app.run.generation)?;
+        }
         // The last frame: a screen line after which only checkpoints, clock lines and the end
         // come.
         match &line.event {
@@ -534,33 +616,8 @@ pub fn verify_watched(
                 }));
                 got = None;
                 run(&mut engine, &mut app, effects, &mut got);
-                // No state: the replayed run stopped before this time (refused by the budget,
-                // failed). Said as such, not as a state of NaNs (issue 56).
-                let Some((got_t, got_state, got_rev)) = got.take() else {
-                    let why = app.run.failed.as_deref().map_or_else(
-                        || "it stopped before this time".to_owned(),
-                        crate::scenario::text::one_line,
-                    );
-                    return Err(tampered(
-                        *number,
-                        line.t,
-                        format!("state {state:?}, {reversals} reversals, hash {hash}"),
-                        format!(
-                            "no state: the replayed run did not reach t = {}: {why}",
-                            line.t
-                        ),
-                    ));
-                };
-                let got_hash = state_hash(got_t, &got_state, got_rev);
-                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-                if got_hash != *hash || bits(&got_state) != bits(state) || got_rev != *reversals {
-                    return Err(tampered(
-                        *number,
-                        line.t,
-                        format!("state {state:?}, {reversals} reversals, hash {hash}"),
-                        format!("state {got_state:?}, {got_rev} reversals, hash {got_hash}"),
-                    ));
-                }
+                let failed = app.run.failed.as_deref();
+                same_state(*number, line.t, (state, *reversals, hash), got.take(), failed)?;
                 report.checkpoints += 1;
             }
             Event::Screen(recorded) => {
@@ -584,6 +641,7 @@ pub fn verify_watched(
                 run(&mut engine, &mut app, effects, &mut got);
             }
         }
+        before = Some((app.run.generation, line.generation, line.t, line.wall));
     }
     if !ended {
         let through = rec.lines.last().map_or(1, |(n, _)| *n);

@@ -417,7 +417,8 @@ pub(crate) fn write(
     rec.write(&Line {
         wall: lecture.lines.last().map_or(0.0, |l| l.wall),
         t: lecture.lines.last().map_or(0.0, |l| l.t),
-        generation: 0,
+        // As the explorer's recorder writes it: the last line's run stamp.
+        generation: lecture.lines.last().map_or(0, |l| l.generation),
         chain: None,
         event: Event::end(),
     })
@@ -719,5 +720,75 @@ fn a_segment_verified_while_the_recording_closes_comes_after_nothing() {
     assert!(
         after.iter().all(|e| matches!(e, Event::Checkpoint { .. })),
         "after the last frame: {after:?}"
+    );
+}
+
+/// shared/docs/reviews/newcomer.md D-1 (issue 80): a recording begun in a terminal too small
+/// for the explorer and then enlarged holds the resize (format 14), and its cast draws each
+/// moment at the size the lecturer saw: the refusal first, then the explorer, on a screen as
+/// large as the largest the lecturer had.
+#[test]
+fn a_recording_begun_small_exports_each_moment_at_the_lecturers_size() {
+    let mut l = Lecturer {
+        h: Headless::new("subcritical"),
+        wall: 0.0,
+        lines: Vec::new(),
+        frames: Vec::new(),
+    };
+    let header = rattleback::explorer::recording::header(&l.h.app, (80, 20), 30.0);
+    let effects =
+        l.h.app
+            .on_outcome(Outcome::Recording(Ok("small.jsonl".into())));
+    l.h.exec(effects);
+    l.collect();
+    l.tick();
+    l.h.app.on_resize(80, 24);
+    l.tick();
+    l.key(Key::Char(' '));
+    for _ in 0..30 {
+        l.tick();
+    }
+    l.key(Key::Char(' '));
+    l.tick();
+    l.stop();
+    let lecture = Lecture {
+        header,
+        lines: l.lines,
+        frames: l.frames,
+    };
+    let path = write(&lecture, "small.jsonl", None);
+    let rec = record::read(&path).unwrap();
+    record::verify(&rec, "small", None).unwrap();
+    let (cast, frames) = rattleback::cast::cast_text(
+        &rec,
+        "small",
+        &UiOptions::default(),
+        rattleback::cast::CastSize::default(),
+        &mut |_| {},
+    )
+    .unwrap();
+    assert!(frames > 5, "{frames} frames");
+    let header: serde_json::Value = serde_json::from_str(cast.lines().next().unwrap()).unwrap();
+    assert_eq!(
+        (header["width"].as_u64(), header["height"].as_u64()),
+        (Some(80), Some(24))
+    );
+    let first = cast.lines().nth(1).unwrap();
+    assert!(first.contains("too") && first.contains("small"), "{first}");
+    let last = cast_last_screen(&cast);
+    assert!(
+        last.contains("phase portrait") && !last.contains("too small"),
+        "{last}"
+    );
+    // A file of format 13 cannot hold a terminal line.
+    let mut older = std::fs::read_to_string(&path).unwrap();
+    older = older.replacen("\"version\":14", "\"version\":13", 1);
+    let older_path = temp("small-13.jsonl");
+    std::fs::write(&older_path, older).unwrap();
+    let (code, _, err) = crate::common::bin(&["replay", older_path.to_str().unwrap(), "--verify"]);
+    assert_ne!(code, 0);
+    assert!(
+        err.contains("format 14") || err.contains("edited") || err.contains("chain"),
+        "{err}"
     );
 }

@@ -31,6 +31,21 @@ fn check(validator: &jsonschema::Validator, what: &str, value: &Value) {
     assert!(errors.is_empty(), "{what}: {errors:#?}");
 }
 
+/// Whether `report` (a `simulate --format json` report of any scene) is valid against its scene's
+/// schema: the errors, said, when not.
+pub(crate) fn valid_report(report: &Value) -> Result<(), String> {
+    let v = schema(scene(report));
+    let errors: Vec<String> = v
+        .iter_errors(report)
+        .map(|e| format!("{} at {}", e, e.instance_path()))
+        .collect();
+    if errors.is_empty() {
+        Ok(())
+    } else {
+        Err(errors.join("; "))
+    }
+}
+
 fn scene(value: &Value) -> &str {
     value["model"]
         .as_str()

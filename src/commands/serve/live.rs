@@ -185,6 +185,15 @@ fn follow(
         for c in commands(std::mem::take(&mut effects)) {
             worker.send(c);
         }
+        // The lecturer's size at this moment (format 14): the hub restarts every reader's
+        // terminal at a new size.
+        if let Some(now) = app.lecturer_terminal
+            && screen
+                .resize_to(now, Rect::new(0, 0, MAX_SIDE, MAX_SIDE))
+                .is_err()
+        {
+            break Next::Again;
+        }
         match screen.frame(&mut app, &config.ui) {
             // The first frame of a lecture sets every reader's terminal (its size may differ).
             Ok(Some(_)) if first => {
