@@ -484,3 +484,38 @@ fn a_looser_tolerance_is_never_missed_where_a_tighter_one_is_met() {
     }
     assert!(checked >= 4, "{checked}");
 }
+
+/// One problem resolved twice in one process gives one answer (issue 80): a start far in
+/// (`k` 1.8e7, an averaged plan) whose conditioning bound was kept after its first resolution
+/// was measured at its own `k` on its second, and its estimate moved (6.2e-12 against 7.7e-12):
+/// a recording of both runs failed its own `--verify`. Found by `generated.rs`'s recordings.
+#[test]
+fn a_problem_resolved_twice_in_a_process_gives_one_answer() {
+    use rattleback::physics::rattleback::{Params, Problem, Start};
+    let problem = Problem::new(
+        Params {
+            ix: 2.0,
+            iy: 0.640_813_394_795_905_6,
+            iz: 1.0,
+            k: 17_855_206.206_385_393,
+        },
+        Start {
+            gamma: -0.001,
+            alpha: 0.0,
+            gamma_dot: 1.0,
+            alpha_dot: 0.724_399_588_002_379_6,
+        },
+    )
+    .unwrap();
+    let (tolerance, t_end) = (2.750_326_003_451_969_5e-11, 8.310_232_320_323_543);
+    let first = run_auto(&problem, tolerance, t_end, 0, false).unwrap();
+    let second = run_auto(&problem, tolerance, t_end, 0, false).unwrap();
+    assert_eq!(first.plan, second.plan);
+    assert_eq!(
+        first.error_estimate.to_bits(),
+        second.error_estimate.to_bits(),
+        "{} then {}",
+        first.error_estimate,
+        second.error_estimate
+    );
+}

@@ -279,19 +279,22 @@ pub(super) fn run_and_check(
         && let Some(start) = conditioning_family(problem, plan)
     {
         match family_bound(&start, spec.t_end, false, go_on)? {
-            Some(bound) => {
-                let kappa = bound.at_angle(alpha_bound(problem, spec.t_end));
+            Some(bound)
                 if bound_serves(
                     &bound,
-                    kappa,
+                    bound.at_angle(alpha_bound(problem, spec.t_end)),
                     generous_steps(problem, plan, spec.t_end),
                     spec.tolerance,
-                ) {
-                    measured = Some(bound);
-                }
+                ) =>
+            {
+                measured = Some(bound);
             }
-            // Not read yet: read beside the run (and kept), in place of the reading at k.
-            None => family = Some(start),
+            // Not read yet, or kept but not known to serve before the run: read beside the run
+            // (and kept) and weighed after it, as when it was not kept. Measuring at k here
+            // instead made a second resolution of one problem in a process estimate otherwise
+            // than its first (issue 80: a recording's two plan lines of one key disagreed, and it
+            // failed its own `--verify`).
+            _ => family = Some(start),
         }
     }
     let verifying = price(&check_spec)
