@@ -55,6 +55,8 @@ fn write_session(
     let _ = std::fs::remove_file(path);
     let mut rec = Recorder::create(path, header, None).unwrap();
     let n = journal.len();
+    // The end line as the explorer's recorder writes it: at the last line's time and run stamp.
+    let last = journal.last().map_or((0.0, 0), |(t, g, _)| (*t, *g));
     #[allow(clippy::cast_precision_loss)]
     for (i, (t, generation, event)) in journal.into_iter().enumerate() {
         rec.write(&Line {
@@ -69,8 +71,8 @@ fn write_session(
     #[allow(clippy::cast_precision_loss)]
     rec.write(&Line {
         wall: n as f64 * 0.5 + 1.0,
-        t: 0.0,
-        generation: 0,
+        t: last.0,
+        generation: last.1,
         chain: None,
         event: crate::app::journal::Event::end(),
     })

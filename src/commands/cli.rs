@@ -406,6 +406,11 @@ pub struct ServeArgs {
     /// Readers of the live stream at most [default: 500]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=10_000))]
     pub max_readers: Option<u32>,
+    /// Readers of the live stream from one address at most [default: 20; loopback, where a
+    /// tunnel's or a proxy's readers all come from, only when given] (a hall behind one NAT
+    /// address raises it).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub max_per_address: Option<u32>,
     /// How the frames are drawn (`--fps`: frames a second, default 10).
     #[command(flatten)]
     pub look: LookArgs,

@@ -163,15 +163,25 @@ pub struct Recording {
 /// # Errors
 /// An unreadable file, a bad header, a version or format mismatch, or a corrupt line.
 pub fn read(path: &Path) -> Result<Recording, RecordError> {
-    /// Largest session file read (an hour of lectures is a few megabytes).
-    const MAX_SESSION_BYTES: u64 = 256 << 20;
+    read_with(path, crate::scenario::write::Links::Follow)
+}
+
+/// Largest session file read (an hour of lectures is a few megabytes).
+pub const MAX_SESSION_BYTES: u64 = 256 << 20;
+
+/// [`read`], a link at `path` followed or refused as `links` says (`serve` refuses them).
+///
+/// # Errors
+/// As [`read`].
+pub fn read_with(
+    path: &Path,
+    links: crate::scenario::write::Links,
+) -> Result<Recording, RecordError> {
     let label = crate::scenario::write::label(path);
-    let bytes =
-        crate::scenario::write::read_bounded_bytes(path, MAX_SESSION_BYTES).map_err(|source| {
-            RecordError::Io {
-                path: label.clone(),
-                source,
-            }
+    let bytes = crate::scenario::write::read_bounded_bytes_with(path, MAX_SESSION_BYTES, links)
+        .map_err(|source| RecordError::Io {
+            path: label.clone(),
+            source,
         })?;
     let text = String::from_utf8(bytes).map_err(|e| {
         let at = e.utf8_error().valid_up_to();

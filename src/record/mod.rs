@@ -19,7 +19,7 @@ pub mod sign;
 pub mod tail;
 mod verify;
 
-pub use file::{Recorder, Recording, read};
+pub use file::{Recorder, Recording, read, read_with};
 pub use verify::{Divergence, Report, VerifyError, plan_book, start, verify, verify_watched};
 
 use serde::{Deserialize, Serialize};

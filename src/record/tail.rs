@@ -4,12 +4,12 @@
 //! or finished (its `end` line arrives among the lines). Polled by a thread a few times a second;
 //! nothing here blocks or writes.
 
-use std::fs::File;
 use std::io::{Read, Seek, SeekFrom};
 use std::path::{Path, PathBuf};
 
-use super::{Line, Recording, read};
+use super::{Line, Recording};
 use crate::app::journal::Event;
+use crate::scenario::write::{Links, open_regular};
 
 /// What a look at the file found.
 #[derive(Debug)]
@@ -44,6 +44,8 @@ fn identity(meta: &std::fs::Metadata) -> (u64, u64) {
 /// A followed file.
 pub struct Tail {
     path: PathBuf,
+    /// Whether a link at the path is followed (`follow`) or refused (`serve`).
+    links: Links,
     /// Bytes consumed (complete lines only).
     offset: u64,
     id: (u64, u64),
@@ -72,12 +74,24 @@ impl Tail {
     /// # Errors
     /// When the file cannot be read as a session.
     pub fn open(path: &Path) -> Result<(Self, Recording), super::RecordError> {
-        let recording = read(path)?;
-        let meta = std::fs::metadata(path).map_err(|source| super::RecordError::Io {
+        Self::open_with(path, Links::Follow)
+    }
+
+    /// [`Tail::open`], a link at `path` followed or refused as `links` says: every later look
+    /// opens the file the same way, only ever a regular file, never blocking (issue 80: a FIFO
+    /// put at the path wedged `serve`).
+    ///
+    /// # Errors
+    /// As [`Tail::open`].
+    pub fn open_with(path: &Path, links: Links) -> Result<(Self, Recording), super::RecordError> {
+        let recording = super::file::read_with(path, links)?;
+        let io = |source| super::RecordError::Io {
             path: path.display().to_string(),
             source,
-        })?;
-        let complete = complete_prefix(path, meta.len());
+        };
+        let mut file = open_regular(path, links).map_err(io)?;
+        let meta = file.metadata().map_err(io)?;
+        let complete = complete_prefix_of(&mut file, meta.len(), 0, 0);
         let ended = recording
             .lines
             .last()
@@ -95,6 +109,7 @@ impl Tail {
         }
         let tail = Self {
             path: path.to_path_buf(),
+            links,
             offset: complete,
             id: identity(&meta),
             partial: Vec::new(),
@@ -122,8 +137,10 @@ impl Tail {
 
     /// Looks at the file once.
     pub fn poll(&mut self) -> Option<TailEvent> {
-        let meta = match std::fs::metadata(&self.path) {
-            Ok(m) => m,
+        let opened =
+            open_regular(&self.path, self.links).and_then(|f| f.metadata().map(|m| (f, m)));
+        let (mut file, meta) = match opened {
+            Ok(x) => x,
             Err(e) => {
                 if self.missing {
                     return None;
@@ -145,7 +162,7 @@ impl Tail {
             } else {
                 "the file was truncated"
             };
-            return Some(match Self::open(&self.path) {
+            return Some(match Self::open_with(&self.path, self.links) {
                 Ok((tail, recording)) => {
                     *self = tail;
                     TailEvent::Restarted {
@@ -162,7 +179,6 @@ impl Tail {
         if meta.len() == self.offset + self.partial.len() as u64 {
             return None;
         }
-        let mut file = File::open(&self.path).ok()?;
         file.seek(SeekFrom::Start(self.offset + self.partial.len() as u64))
             .ok()?;
         let mut fresh = Vec::new();
@@ -214,34 +230,92 @@ impl Tail {
 }
 
 /// The length of the file's part made of complete lines (up to its last newline), read
-/// backwards a bounded chunk at a time.
+/// backwards a bounded chunk at a time; only a regular file is read (never a FIFO).
 #[must_use]
 pub fn complete_prefix(path: &Path, len: u64) -> u64 {
-    const CHUNK: u64 = 64 << 10;
-    let Ok(mut file) = File::open(path) else {
+    let Ok(mut file) = open_regular(path, Links::Follow) else {
         return len;
     };
+    complete_prefix_of(&mut file, len, 0, 0)
+}
+
+/// The end of the last complete line of `file` among its first `len` bytes, knowing that its
+/// first `scanned` bytes were looked at already and their last complete line ends at
+/// `known_end`: only the bytes after `scanned` are read (issue 80, N6: a huge unfinished last
+/// line was scanned again on every request). `known_end` is also what is said when the file
+/// cannot be read.
+pub fn complete_prefix_of<F: Read + Seek>(
+    file: &mut F,
+    len: u64,
+    scanned: u64,
+    known_end: u64,
+) -> u64 {
+    const CHUNK: u64 = 64 << 10;
     let mut end = len;
     let mut buf = Vec::new();
-    while end > 0 {
-        let start = end.saturating_sub(CHUNK);
+    while end > scanned {
+        let start = end.saturating_sub(CHUNK).max(scanned);
         buf.clear();
         if file.seek(SeekFrom::Start(start)).is_err()
-            || (&mut file).take(end - start).read_to_end(&mut buf).is_err()
+            || (&mut *file)
+                .take(end - start)
+                .read_to_end(&mut buf)
+                .is_err()
         {
-            return len;
+            return known_end.min(len);
         }
         if let Some(i) = buf.iter().rposition(|&b| b == b'\n') {
             return start + i as u64 + 1;
         }
         end = start;
     }
-    0
+    known_end.min(len)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A file that counts the bytes read from it.
+    struct Counted(std::io::Cursor<Vec<u8>>, u64);
+
+    impl Read for Counted {
+        fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+            let n = self.0.read(buf)?;
+            self.1 += n as u64;
+            Ok(n)
+        }
+    }
+
+    impl Seek for Counted {
+        fn seek(&mut self, to: SeekFrom) -> std::io::Result<u64> {
+            self.0.seek(to)
+        }
+    }
+
+    #[test]
+    fn only_the_bytes_after_the_known_prefix_are_scanned() {
+        // A session whose last line never ends (issue 80, N6): 3 MB without a newline.
+        let mut bytes = b"{\"header\": 1}\n".to_vec();
+        bytes.extend(std::iter::repeat_n(b'x', 3 << 20));
+        let len = bytes.len() as u64;
+        let mut f = Counted(std::io::Cursor::new(bytes.clone()), 0);
+        let end = complete_prefix_of(&mut f, len, 0, 0);
+        assert_eq!(end, 14);
+        assert!(f.1 >= 3 << 20, "a first look reads it all");
+        // Looked at up to `len`, its last line ending at 14: 100 more bytes, 100 read.
+        bytes.extend([b'y'; 100]);
+        let mut f = Counted(std::io::Cursor::new(bytes.clone()), 0);
+        assert_eq!(complete_prefix_of(&mut f, len + 100, len, 14), 14);
+        assert!(f.1 <= 100, "{} bytes read", f.1);
+        // A newline among them ends a line there.
+        bytes.extend(b"z\n");
+        let mut f = Counted(std::io::Cursor::new(bytes), 0);
+        assert_eq!(
+            complete_prefix_of(&mut f, len + 102, len + 100, 14),
+            len + 102
+        );
+    }
 
     #[test]
     fn the_complete_prefix_stops_at_the_last_newline() {

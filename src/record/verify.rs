@@ -617,7 +617,13 @@ pub fn verify_watched(
                 got = None;
                 run(&mut engine, &mut app, effects, &mut got);
                 let failed = app.run.failed.as_deref();
-                same_state(*number, line.t, (state, *reversals, hash), got.take(), failed)?;
+                same_state(
+                    *number,
+                    line.t,
+                    (state, *reversals, hash),
+                    got.take(),
+                    failed,
+                )?;
                 report.checkpoints += 1;
             }
             Event::Screen(recorded) => {

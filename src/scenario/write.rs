@@ -58,11 +58,94 @@ fn stdin_bytes() -> io::Result<Vec<u8>> {
         .map_err(|e| io::Error::other(format!("standard input: {e}")))
 }
 
+/// Whether a file is reached through a symbolic link at its own name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Links {
+    /// Followed, as any program does (a preset or lesson linked into place).
+    Follow,
+    /// Refused: the file named, never what a link there points to (`serve`, issue 80: a link
+    /// swapped in served `/etc/passwd`).
+    Refuse,
+}
+
+/// Opens `path` for reading, only if it is a regular file, without ever blocking: opened
+/// non-blocking (a FIFO does not wait for a writer) and checked on the open descriptor (no race
+/// between the check and the open); with [`Links::Refuse`] a link at the name is refused.
+///
+/// # Errors
+/// `InvalidInput` for a FIFO, a device, a folder, a socket or (refused) a link, saying which;
+/// else what the system says.
+pub fn open_regular(path: &Path, links: Links) -> io::Result<File> {
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt as _;
+        let nofollow = if links == Links::Refuse {
+            libc::O_NOFOLLOW
+        } else {
+            0
+        };
+        options.custom_flags(libc::O_NONBLOCK | nofollow);
+    }
+    let file = options.open(path).map_err(|e| {
+        #[cfg(unix)]
+        if links == Links::Refuse && e.raw_os_error() == Some(libc::ELOOP) {
+            return io::Error::new(
+                io::ErrorKind::InvalidInput,
+                "a symbolic link: only the file named is read, never what a link points to",
+            );
+        }
+        e
+    })?;
+    let meta = file.metadata()?;
+    if !meta.is_file() {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("not a regular file ({}); skipped", kind_of(&meta)),
+        ));
+    }
+    Ok(file)
+}
+
+/// What a file that is not regular is, in words.
+fn kind_of(meta: &std::fs::Metadata) -> &'static str {
+    let t = meta.file_type();
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt as _;
+        if t.is_fifo() {
+            return "a FIFO";
+        }
+        if t.is_block_device() || t.is_char_device() {
+            return "a device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if t.is_dir() {
+        "a folder"
+    } else if t.is_symlink() {
+        "a symbolic link"
+    } else {
+        "not a regular file"
+    }
+}
+
 /// [`read_bounded`] without the UTF-8 check (callers that locate an encoding error).
 ///
 /// # Errors
 /// As [`read_bounded`].
 pub fn read_bounded_bytes(path: &Path, limit: u64) -> io::Result<Vec<u8>> {
+    read_bounded_bytes_with(path, limit, Links::Follow)
+}
+
+/// [`read_bounded_bytes`], links followed or refused as `links` says.
+///
+/// # Errors
+/// As [`read_bounded`].
+pub fn read_bounded_bytes_with(path: &Path, limit: u64, links: Links) -> io::Result<Vec<u8>> {
     if is_stdin(path) {
         let bytes = stdin_bytes()?;
         if bytes.len() as u64 > limit {
@@ -73,13 +156,8 @@ pub fn read_bounded_bytes(path: &Path, limit: u64) -> io::Result<Vec<u8>> {
         }
         return Ok(bytes);
     }
-    let meta = std::fs::metadata(path)?;
-    if !meta.is_file() {
-        return Err(io::Error::new(
-            io::ErrorKind::InvalidInput,
-            "not a regular file (a FIFO, a device or a folder); skipped",
-        ));
-    }
+    let file = open_regular(path, links)?;
+    let meta = file.metadata()?;
     if meta.len() > limit {
         return Err(io::Error::new(
             io::ErrorKind::InvalidInput,
@@ -87,10 +165,7 @@ pub fn read_bounded_bytes(path: &Path, limit: u64) -> io::Result<Vec<u8>> {
         ));
     }
     let mut bytes = Vec::new();
-    io::Read::read_to_end(
-        &mut io::Read::take(File::open(path)?, limit + 1),
-        &mut bytes,
-    )?;
+    io::Read::read_to_end(&mut io::Read::take(file, limit + 1), &mut bytes)?;
     if bytes.len() as u64 > limit {
         return Err(io::Error::new(
             io::ErrorKind::InvalidInput,

@@ -19,5 +19,8 @@ fn a_session_whose_clock_runs_backwards_is_refused() {
         "--verify",
     ]);
     assert_eq!(code, 1, "{out}{err}");
-    assert!(err.contains(":9:") && err.contains("ran backwards"), "{err}");
+    assert!(
+        err.contains(":9:") && err.contains("ran backwards"),
+        "{err}"
+    );
 }

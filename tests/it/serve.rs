@@ -505,8 +505,10 @@ impl Drop for Killed {
 }
 
 /// The explorer's `--serve`: the server starts beside it, the explorer opens on the address
-/// (with its QR code), the address serves the page, and the server stops with the explorer.
-/// An address it cannot listen at is refused before the terminal is touched.
+/// (with its QR code), the address serves the page; when the explorer quits, a reader gets the
+/// lecture's end (issue 80, L1: the server died with the explorer and the pages spun "Live"),
+/// and the server stops by itself soon after. An address it cannot listen at is refused before
+/// the terminal is touched.
 #[test]
 fn the_explorer_serves_its_recording_and_stops_its_server_when_it_quits() {
     let file = temp("beside.jsonl");
@@ -556,13 +558,26 @@ fn the_explorer_serves_its_recording_and_stops_its_server_when_it_quits() {
         .unwrap_or_else(|e| panic!("{url}: {e}"));
     let addr = SocketAddr::from(([127, 0, 0, 1], port));
     assert_eq!(status(&get(addr, "/")), 200);
+    let hall = std::thread::spawn(move || reader(addr, Duration::from_secs(30)));
+    std::thread::sleep(Duration::from_millis(300));
+    // Esc closes the address; space plays a moment; q quits.
+    keys.write_all(b"\x1b").unwrap();
+    std::thread::sleep(Duration::from_millis(600));
+    keys.write_all(b" ").unwrap();
+    std::thread::sleep(Duration::from_millis(800));
     keys.write_all(b"q").unwrap();
     let _ = child.0.wait();
-    let deadline = Instant::now() + Duration::from_secs(5);
+    let (stream, ended) = hall.join().unwrap();
+    assert!(
+        ended.is_some(),
+        "the reader was not told the lecture ended: {stream}"
+    );
+    // The finished page is served, then the server goes (its grace is a few seconds).
+    let deadline = Instant::now() + Duration::from_secs(20);
     while TcpStream::connect(addr).is_ok() {
         assert!(
             Instant::now() < deadline,
-            "the server outlived the explorer"
+            "the server outlived the explorer by more than its grace"
         );
         std::thread::sleep(Duration::from_millis(100));
     }
@@ -644,4 +659,94 @@ fn the_address_dialog_shows_the_code_where_it_fits_and_the_address_always() {
     );
     served.on_key(rattleback::app::Key::Char('U'));
     assert!(draw(&served, 80, 24, Charset::Unicode).contains(url));
+}
+
+/// shared/docs/reviews/reliability.md N4 and N5 (issue 80): `serve` reads only a regular file,
+/// by its name. A FIFO, a link or a folder is refused at start; one put at the path later is
+/// never opened through (the file is 404), a thread is never parked on it, and the server
+/// answers as before.
+#[test]
+fn only_a_regular_file_is_served_never_a_fifo_a_link_or_a_folder() {
+    let dir = temp("kinds");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let fifo = dir.join("fifo.jsonl");
+    assert!(
+        std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success()
+    );
+    let link = dir.join("link.jsonl");
+    std::os::unix::fs::symlink("/etc/passwd", &link).unwrap();
+    for (path, words) in [
+        (&fifo, "not a regular file"),
+        (&link, "a symbolic link"),
+        (&dir, "a folder"),
+    ] {
+        let (code, _, err) = crate::common::bin(&["serve", path.to_str().unwrap()]);
+        assert_eq!(code, 2, "{path:?}: {err}");
+        assert!(err.contains(words), "{path:?}: {err}");
+    }
+    // Swapped in while served.
+    let file = dir.join("mut.jsonl");
+    std::fs::copy(fixture("lecture.jsonl"), &file).unwrap();
+    let s = Served::start(&file, &[]);
+    assert_eq!(status(&get(s.addr, "/session.jsonl")), 200);
+    std::fs::remove_file(&file).unwrap();
+    std::os::unix::fs::symlink("/etc/passwd", &file).unwrap();
+    let a = get(s.addr, "/session.jsonl");
+    assert_eq!(status(&a), 404, "{a}");
+    assert!(!a.contains("root:"), "{a}");
+    std::fs::remove_file(&file).unwrap();
+    assert!(
+        std::process::Command::new("mkfifo")
+            .arg(&file)
+            .status()
+            .unwrap()
+            .success()
+    );
+    // More requests than tokio's blocking pool has threads (512): none waits on the FIFO.
+    let requests: Vec<_> = (0..600)
+        .map(|_| {
+            let addr = s.addr;
+            std::thread::spawn(move || status(&get(addr, "/session.jsonl")))
+        })
+        .collect();
+    for r in requests {
+        assert_eq!(r.join().unwrap(), 404);
+    }
+    let page = get(s.addr, "/");
+    assert_eq!(status(&page), 200, "the server still answers");
+}
+
+/// N10 (issue 80): one address cannot take every reader's place; the refusal names the flag.
+#[test]
+fn one_address_cannot_take_every_readers_place() {
+    let s = Served::start(&fixture("lecture.jsonl"), &["--max-per-address", "3"]);
+    let mut readers = Vec::new();
+    for _ in 0..3 {
+        let mut r = TcpStream::connect(s.addr).unwrap();
+        r.write_all(b"GET /events HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
+            .unwrap();
+        let mut buf = [0u8; 256];
+        r.set_read_timeout(Some(Duration::from_secs(5))).unwrap();
+        let n = r.read(&mut buf).unwrap();
+        assert!(String::from_utf8_lossy(&buf[..n]).starts_with("HTTP/1.1 200"));
+        readers.push(r);
+    }
+    let fourth = get(s.addr, "/events");
+    assert_eq!(status(&fourth), 503, "{fourth}");
+    assert!(fourth.contains("--max-per-address"), "{fourth}");
+    // A place given back is taken again.
+    drop(readers.pop());
+    std::thread::sleep(Duration::from_millis(300));
+    let mut r = TcpStream::connect(s.addr).unwrap();
+    r.write_all(b"GET /events HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
+        .unwrap();
+    let mut buf = [0u8; 256];
+    r.set_read_timeout(Some(Duration::from_secs(5))).unwrap();
+    let n = r.read(&mut buf).unwrap();
+    assert!(String::from_utf8_lossy(&buf[..n]).starts_with("HTTP/1.1 200"));
 }

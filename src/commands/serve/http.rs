@@ -39,12 +39,45 @@ const KEEPALIVE_EVERY: Duration = Duration::from_secs(15);
 const CHUNK: usize = 64 * 1024;
 /// File descriptors kept for everything but connections (the file, the runtime, the page).
 const SPARE_FDS: usize = 64;
+/// How long opening the session file and finding its complete lines may take (a regular file
+/// only, opened without blocking: this bounds a slow disk).
+const FILE_TIME: Duration = Duration::from_secs(2);
+
+/// Where the session file's complete lines ended when last looked at: the file (device and
+/// inode), its length then, and the end of its last complete line. A request scans only what
+/// was appended since (issue 80, N6: a huge unfinished line was scanned on every request).
+type Prefix = ((u64, u64), u64, u64);
+
+/// A reader's place among its address's readers, given back when its stream ends.
+pub struct Slot {
+    counts: Arc<std::sync::Mutex<std::collections::HashMap<std::net::IpAddr, usize>>>,
+    address: std::net::IpAddr,
+}
+
+impl Drop for Slot {
+    fn drop(&mut self) {
+        let mut counts = self
+            .counts
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        if let Some(n) = counts.get_mut(&self.address) {
+            *n -= 1;
+            if *n == 0 {
+                counts.remove(&self.address);
+            }
+        }
+    }
+}
 
 /// The server's shared state.
 pub struct Server {
     hub: Arc<Hub>,
     config: Config,
     readers: Arc<Semaphore>,
+    /// Readers of `/events` by address.
+    per_address: Arc<std::sync::Mutex<std::collections::HashMap<std::net::IpAddr, usize>>>,
+    /// The session file's complete lines when last looked at.
+    prefix: std::sync::Mutex<Option<Prefix>>,
     live_page: Bytes,
     max_connections: usize,
     /// Connections open now.
@@ -55,8 +88,8 @@ pub struct Server {
 pub enum Reply {
     /// Bytes given at once (`None` once sent).
     Whole(Option<Bytes>),
-    /// A reader's events, and its place among the readers.
-    Events(mpsc::Receiver<Bytes>, OwnedSemaphorePermit),
+    /// A reader's events, and its places among the readers and among its address's.
+    Events(mpsc::Receiver<Bytes>, OwnedSemaphorePermit, Slot),
     /// `left` bytes of a file; `_page` keeps a finished page's file while it is read.
     File {
         /// The file, read from where it is.
@@ -78,7 +111,7 @@ impl hyper::body::Body for Reply {
     ) -> Poll<Option<Result<Frame<Bytes>, std::io::Error>>> {
         match self.get_mut() {
             Reply::Whole(bytes) => Poll::Ready(bytes.take().map(|b| Ok(Frame::data(b)))),
-            Reply::Events(rx, _) => rx.poll_recv(cx).map(|m| m.map(|b| Ok(Frame::data(b)))),
+            Reply::Events(rx, ..) => rx.poll_recv(cx).map(|m| m.map(|b| Ok(Frame::data(b)))),
             Reply::File { file, left, .. } => {
                 if *left == 0 {
                     return Poll::Ready(None);
@@ -192,6 +225,8 @@ impl Server {
         ));
         Self {
             readers: Arc::new(Semaphore::new(config.max_readers)),
+            per_address: Arc::default(),
+            prefix: std::sync::Mutex::new(None),
             hub,
             config,
             live_page,
@@ -200,12 +235,23 @@ impl Server {
         }
     }
 
-    /// The response to `req` (`kill` closes its connection: a reader too far behind).
-    async fn respond(&self, req: Request<Incoming>, kill: &Arc<Notify>) -> Response<Reply> {
-        guard(self.route(&req, kill).await)
+    /// The response to `req` from `peer` (`kill` closes its connection: a reader too far
+    /// behind).
+    async fn respond(
+        &self,
+        req: Request<Incoming>,
+        peer: std::net::IpAddr,
+        kill: &Arc<Notify>,
+    ) -> Response<Reply> {
+        guard(self.route(&req, peer, kill).await)
     }
 
-    async fn route(&self, req: &Request<Incoming>, kill: &Arc<Notify>) -> Response<Reply> {
+    async fn route(
+        &self,
+        req: &Request<Incoming>,
+        peer: std::net::IpAddr,
+        kill: &Arc<Notify>,
+    ) -> Response<Reply> {
         if req.method() != Method::GET && req.method() != Method::HEAD {
             return with(
                 text(
@@ -234,7 +280,7 @@ impl Server {
         match req.uri().path() {
             "/" => self.page().await,
             "/events" if head => event_stream(Response::new(Reply::Whole(None))),
-            "/events" => self.events(kill),
+            "/events" => self.events(peer, kill),
             "/session.jsonl" => self.session().await,
             _ => text(
                 StatusCode::NOT_FOUND,
@@ -273,8 +319,40 @@ impl Server {
         )
     }
 
+    /// A reader's place among `address`'s readers, if it has one left (a loopback reader is
+    /// counted only when `--max-per-address` was given: through a tunnel or a proxy every
+    /// reader comes from there).
+    fn slot(&self, address: std::net::IpAddr) -> Option<Slot> {
+        let (most, asked) = self.config.max_per_address;
+        let mut counts = self
+            .per_address
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        let n = counts.entry(address).or_insert(0);
+        if *n >= most && (asked || !address.is_loopback()) {
+            return None;
+        }
+        *n += 1;
+        Some(Slot {
+            counts: Arc::clone(&self.per_address),
+            address,
+        })
+    }
+
     /// A reader's stream: the screen now, then every frame, until the recording ends.
-    fn events(&self, kill: &Arc<Notify>) -> Response<Reply> {
+    fn events(&self, peer: std::net::IpAddr, kill: &Arc<Notify>) -> Response<Reply> {
+        let Some(slot) = self.slot(peer) else {
+            return with(
+                text(
+                    StatusCode::SERVICE_UNAVAILABLE,
+                    &format!(
+                        "this address has {} readers of this lecture already (serve --max-per-address)",
+                        self.config.max_per_address.0
+                    ),
+                ),
+                &[(header::RETRY_AFTER, "10")],
+            );
+        };
         let Ok(permit) = Arc::clone(&self.readers).try_acquire_owned() else {
             return with(
                 text(
@@ -318,27 +396,36 @@ impl Server {
                 }
             }
         });
-        event_stream(Response::new(Reply::Events(rx, permit)))
+        event_stream(Response::new(Reply::Events(rx, permit, slot)))
     }
 
-    /// The session file's complete lines so far.
+    /// The session file's complete lines so far: only a regular file, by its name, opened
+    /// without blocking and within [`FILE_TIME`] (issue 80, N4: a FIFO at the path parked a
+    /// thread of the shared pool per request, for good).
     async fn session(&self) -> Response<Reply> {
         let path = self.config.file.clone();
-        let opened = tokio::fs::File::open(&path).await;
-        let Ok(file) = opened else {
+        let known = *self
+            .prefix
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        let opened = tokio::time::timeout(
+            FILE_TIME,
+            tokio::task::spawn_blocking(move || complete_lines(&path, known)),
+        )
+        .await;
+        let Ok(Ok(Ok((file, prefix)))) = opened else {
             return text(
                 StatusCode::NOT_FOUND,
                 "the lecturer has not started recording yet",
             );
         };
-        let len = file.metadata().await.map_or(0, |m| m.len());
-        let complete =
-            tokio::task::spawn_blocking(move || crate::record::tail::complete_prefix(&path, len))
-                .await
-                .unwrap_or(0);
+        *self
+            .prefix
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner) = Some(prefix);
         let r = Response::new(Reply::File {
-            file,
-            left: complete,
+            file: tokio::fs::File::from_std(file),
+            left: prefix.2,
             _page: None,
         });
         with(
@@ -352,6 +439,33 @@ impl Server {
             ],
         )
     }
+}
+
+/// The session file at `path` (a regular file, never through a link), opened, and where its
+/// complete lines end, from where they ended when last looked at (`known`, when the same file
+/// has not shrunk since): only the bytes appended since are scanned.
+fn complete_lines(
+    path: &std::path::Path,
+    known: Option<Prefix>,
+) -> std::io::Result<(std::fs::File, Prefix)> {
+    let mut file =
+        crate::scenario::write::open_regular(path, crate::scenario::write::Links::Refuse)?;
+    let meta = file.metadata()?;
+    #[cfg(unix)]
+    let id = {
+        use std::os::unix::fs::MetadataExt as _;
+        (meta.dev(), meta.ino())
+    };
+    #[cfg(not(unix))]
+    let id = (0, 0);
+    let len = meta.len();
+    let (scanned, known_end) = match known {
+        Some((was, was_len, end)) if was == id && was_len <= len => (was_len, end),
+        _ => (0, 0),
+    };
+    let end = crate::record::tail::complete_prefix_of(&mut file, len, scanned, known_end);
+    std::io::Seek::seek(&mut file, std::io::SeekFrom::Start(0))?;
+    Ok((file, (id, len, end)))
 }
 
 /// The headers of an event stream.
@@ -369,6 +483,11 @@ fn event_stream(r: Response<Reply>) -> Response<Reply> {
 /// One connection, until it ends, is idle too long, or is killed (a reader too far behind).
 async fn connection(server: Arc<Server>, stream: tokio::net::TcpStream) {
     let _ = stream.set_nodelay(true);
+    let peer = stream
+        .peer_addr()
+        .map_or(std::net::IpAddr::V4(std::net::Ipv4Addr::UNSPECIFIED), |a| {
+            a.ip()
+        });
     let kill = Arc::new(Notify::new());
     let service = {
         let server = Arc::clone(&server);
@@ -376,7 +495,7 @@ async fn connection(server: Arc<Server>, stream: tokio::net::TcpStream) {
         hyper::service::service_fn(move |req| {
             let server = Arc::clone(&server);
             let kill = Arc::clone(&kill);
-            async move { Ok::<_, Infallible>(server.respond(req, &kill).await) }
+            async move { Ok::<_, Infallible>(server.respond(req, peer, &kill).await) }
         })
     };
     let mut builder = hyper::server::conn::http1::Builder::new();

@@ -12,6 +12,10 @@ use tokio::sync::broadcast;
 
 /// Readers of `/events` at most, unless `--max-readers` says otherwise.
 pub const DEFAULT_MAX_READERS: usize = 500;
+/// Readers of `/events` from one address at most, unless `--max-per-address` says otherwise
+/// (issue 80, N10: one client took every reader's place; a hall behind one NAT address raises
+/// it).
+pub const DEFAULT_MAX_PER_ADDRESS: usize = 20;
 /// Frames kept for readers who are behind (then they are dropped and reconnect): about 25 s
 /// at 10 frames a second, a few megabytes at most.
 const RING: usize = 256;
@@ -25,6 +29,10 @@ pub struct Config {
     pub token: Option<String>,
     /// Readers of `/events` at most.
     pub max_readers: usize,
+    /// Readers of `/events` from one address at most; loopback's too when asked (`Some`): by
+    /// default a loopback peer is not counted, since every reader through an SSH tunnel or a
+    /// reverse proxy comes from 127.0.0.1.
+    pub max_per_address: (usize, bool),
     /// Frames a second drawn for the readers.
     pub fps: f64,
     /// How the frames are drawn (as `--export-cast`: no key footer).

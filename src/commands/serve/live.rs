@@ -24,6 +24,12 @@ const POLL: Duration = Duration::from_millis(40);
 /// end is served anyway (a recording too old to hold its last screen, or one that cannot be
 /// replayed to it).
 const SETTLE: Duration = Duration::from_secs(30);
+/// Once the lecturer's explorer has ended (`--serve`: its pipe closed), how long the screen may
+/// take to reach the lecturer's last before the end is served anyway.
+const GONE_SETTLE: Duration = Duration::from_secs(5);
+/// How long the server goes on after serving the end to a hall whose lecturer has gone: the
+/// pages load the finished lecture from it.
+pub const GRACE: Duration = Duration::from_secs(5);
 /// The largest terminal a recording may say it had (a forged header cannot make the server
 /// draw a screen of billions of cells).
 const MAX_SIDE: u16 = 1000;
@@ -34,17 +40,28 @@ enum Next {
     Again,
     /// `serve` is stopping.
     Stop,
+    /// The lecturer has gone and the end was served.
+    Served,
 }
 
-/// Follows `config.file` until `stop`: each frame to `hub`.
-pub fn run(config: &Config, hub: &Hub, stop: &AtomicBool) {
+/// Follows `config.file` until `stop`: each frame to `hub`. Once `gone` (the explorer that
+/// started this `serve` has ended, however: issue 80, L1), the lecture ends: what the file
+/// holds is the whole lecture, its end is served to every reader (within [`GONE_SETTLE`]),
+/// the server goes on [`GRACE`] more for the pages to load the finished lecture, then `stop`
+/// is set.
+pub fn run(config: &Config, hub: &Hub, stop: &AtomicBool, gone: &AtomicBool) {
+    let started = Instant::now();
     while !stop.load(Ordering::Relaxed) {
-        let opened = if config
-            .file
-            .metadata()
-            .is_ok_and(|m| m.is_file() && m.len() > 0)
+        // Gone before the file held a lecture: nothing to end.
+        if gone.load(Ordering::Relaxed)
+            && !std::fs::symlink_metadata(&config.file).is_ok_and(|m| m.is_file() && m.len() > 0)
+            && started.elapsed() > POLL
         {
-            Tail::open(&config.file)
+            stop.store(true, Ordering::Relaxed);
+            return;
+        }
+        let opened = if std::fs::symlink_metadata(&config.file).is_ok_and(|m| m.len() > 0) {
+            Tail::open_with(&config.file, crate::scenario::write::Links::Refuse)
         } else {
             // The file's name, not its folder (the lecturer's, not the hall's business).
             hub.waiting(&format!(
@@ -58,8 +75,16 @@ pub fn run(config: &Config, hub: &Hub, stop: &AtomicBool) {
             continue;
         };
         match opened {
-            Ok((tail, rec)) => match follow(config, hub, stop, tail, &rec) {
+            Ok((tail, rec)) => match follow(config, hub, (stop, gone), tail, &rec) {
                 Next::Stop => return,
+                Next::Served => {
+                    let end = Instant::now() + GRACE;
+                    while Instant::now() < end && !stop.load(Ordering::Relaxed) {
+                        std::thread::sleep(Duration::from_millis(50));
+                    }
+                    stop.store(true, Ordering::Relaxed);
+                    return;
+                }
                 Next::Again => {}
             },
             Err(e) => {
@@ -84,7 +109,7 @@ fn area_of(rec: &crate::record::Recording) -> Rect {
 /// The page of the whole session in `file` (read again, as `replay --export-html` reads it),
 /// written into a temporary file.
 fn finished_page(config: &Config, file: &Path) -> Option<tempfile::TempPath> {
-    let rec = crate::record::read(file).ok()?;
+    let rec = crate::record::read_with(file, crate::scenario::write::Links::Refuse).ok()?;
     let path = file.display().to_string();
     let size = crate::cast::CastSize {
         cols: None,
@@ -112,11 +137,94 @@ fn last_screen(lines: &[crate::record::Line]) -> Option<crate::app::journal::Sho
     })
 }
 
+/// When a followed lecture's end is served.
+struct Ending {
+    /// The lecturer's last screen so far (format 10 on, a recording ends with it): the end is
+    /// served once the screen drawn here is that one, as `replay --verify` compares them.
+    lecturers: Option<crate::app::journal::Shown>,
+    /// When the `end` line arrived, or the lecturer was seen gone (the follower's book awaits
+    /// no more plans then).
+    ended_at: Option<Instant>,
+    /// When the lecturer's going was seen (`--serve`: the explorer ended).
+    gone_at: Option<Instant>,
+    /// Whether the file was read once after that.
+    read_after_gone: bool,
+    /// The end served.
+    finished: bool,
+    /// A page that could not be written, tried again then.
+    retry_at: Option<Instant>,
+}
+
+impl Ending {
+    fn new(lines: &[crate::record::Line]) -> Self {
+        Self {
+            lecturers: last_screen(lines),
+            ended_at: lines
+                .last()
+                .is_some_and(|l| matches!(l.event, crate::app::journal::Event::End { .. }))
+                .then(Instant::now),
+            gone_at: None,
+            read_after_gone: false,
+            finished: false,
+            retry_at: None,
+        }
+    }
+
+    /// The lecturer's explorer ended: no more lines will come, whatever the file holds is the
+    /// lecture; the effects that say so to the worker.
+    fn lecturer_gone(&mut self) -> Vec<crate::app::Effect> {
+        self.gone_at = Some(Instant::now());
+        if self.ended_at.is_some() {
+            return Vec::new();
+        }
+        self.ended_at = Some(Instant::now());
+        vec![crate::app::Effect::Sim(crate::sim::Command::Release)]
+    }
+
+    /// Whether the file must be read at once (the lecturer has gone since it was last read).
+    fn unread(&self) -> bool {
+        self.gone_at.is_some() && !self.read_after_gone
+    }
+
+    /// Whether the end is to be served now: the recording ended (or its lecturer went, and the
+    /// file was read since), the replay applied every line (`caught_up`), and the screen is
+    /// the lecturer's last, or it has had its time to settle.
+    fn due(&self, caught_up: bool, app: &crate::app::App) -> bool {
+        let settle = if self.gone_at.is_some() {
+            GONE_SETTLE
+        } else {
+            SETTLE
+        };
+        !self.finished
+            && self.ended_at.is_some_and(|at| {
+                caught_up
+                    && (self.gone_at.is_none() || self.read_after_gone)
+                    && self.retry_at.is_none_or(|t| Instant::now() >= t)
+                    && (self.lecturers.as_ref().map_or_else(
+                        || app.screen_settled() && !app.run.playing,
+                        |s| s.difference(&app.shown()).is_none(),
+                    ) || at.elapsed() > settle)
+            })
+    }
+
+    /// Serves the end: the whole session's page (tried again a second later if it cannot be
+    /// written).
+    fn finish(&mut self, config: &Config, hub: &Hub) {
+        match finished_page(config, &config.file) {
+            Some(page) => {
+                hub.finish(page);
+                self.finished = true;
+            }
+            None => self.retry_at = Some(Instant::now() + Duration::from_secs(1)),
+        }
+    }
+}
+
 /// Follows one recording (from its header to its end, or until the file is replaced).
 fn follow(
     config: &Config,
     hub: &Hub,
-    stop: &AtomicBool,
+    (stop, gone): (&AtomicBool, &AtomicBool),
     mut tail: Tail,
     rec: &crate::record::Recording,
 ) -> Next {
@@ -137,15 +245,8 @@ fn follow(
         tx.send(e).is_ok()
     });
     let lines: Vec<_> = rec.lines.iter().map(|(_, l)| l.clone()).collect();
-    // The lecturer's last screen so far (format 10 on, a recording ends with it): the end is
-    // served once the screen drawn here is that one, as `replay --verify` compares them.
-    let mut lecturers = last_screen(&lines);
-    // When the `end` line arrived (the follower's book awaits no more plans then).
-    let mut ended_at = lines
-        .last()
-        .is_some_and(|l| matches!(l.event, crate::app::journal::Event::End { .. }))
-        .then(Instant::now);
-    if ended_at.is_some() {
+    let mut ending = Ending::new(&lines);
+    if ending.ended_at.is_some() {
         effects.push(crate::app::Effect::Sim(crate::sim::Command::Release));
     }
     let mut replay = Replayer::live(lines, crate::explorer::lecturer_now(rec, &config.file));
@@ -153,26 +254,30 @@ fn follow(
     let frame = Duration::from_secs_f64(1.0 / config.fps);
     let mut last = Instant::now();
     let mut last_poll = Instant::now();
-    // The end served; a page that could not be written, tried again a second later.
-    let mut finished = false;
-    let mut retry_at: Option<Instant> = None;
     let mut first = true;
     let next = loop {
         if stop.load(Ordering::Relaxed) || crate::interrupt::requested().is_some() {
             break Next::Stop;
         }
+        if ending.finished && ending.gone_at.is_some() {
+            break Next::Served;
+        }
+        if ending.gone_at.is_none() && gone.load(Ordering::Relaxed) {
+            effects.extend(ending.lecturer_gone());
+        }
         while let Ok(e) = events.try_recv() {
             app.on_sim(e);
         }
-        if last_poll.elapsed() >= POLL {
+        if last_poll.elapsed() >= POLL || ending.unread() {
             last_poll = Instant::now();
+            ending.read_after_gone = ending.gone_at.is_some();
             match tail.poll() {
                 Some(TailEvent::Lines(lines)) => {
-                    lecturers = last_screen(&lines).or(lecturers);
+                    ending.lecturers = last_screen(&lines).or(ending.lecturers.take());
                     let (more, end) = crate::explorer::follow_lines(lines, &mut app, &mut replay);
                     effects.extend(more);
-                    if end && ended_at.is_none() {
-                        ended_at = Some(Instant::now());
+                    if end && ending.ended_at.is_none() {
+                        ending.ended_at = Some(Instant::now());
                     }
                 }
                 Some(TailEvent::Restarted { .. }) => break Next::Again,
@@ -204,22 +309,8 @@ fn follow(
             Ok(None) => {}
             Err(_) => break Next::Again,
         }
-        if !finished
-            && let Some(at) = ended_at
-            && replay.info().ended
-            && retry_at.is_none_or(|t| Instant::now() >= t)
-            && (lecturers.as_ref().map_or_else(
-                || app.screen_settled() && !app.run.playing,
-                |s| s.difference(&app.shown()).is_none(),
-            ) || at.elapsed() > SETTLE)
-        {
-            match finished_page(config, &config.file) {
-                Some(page) => {
-                    hub.finish(page);
-                    finished = true;
-                }
-                None => retry_at = Some(Instant::now() + Duration::from_secs(1)),
-            }
+        if ending.due(replay.info().ended, &app) {
+            ending.finish(config, hub);
         }
         std::thread::sleep(frame.saturating_sub(now.elapsed()));
     };

@@ -17,7 +17,7 @@ pub mod live;
 
 use crate::commands::cli::ServeArgs;
 use crate::commands::failure::{Failure, Outcome};
-use hub::{Config, DEFAULT_MAX_READERS, Hub};
+use hub::{Config, DEFAULT_MAX_PER_ADDRESS, DEFAULT_MAX_READERS, Hub};
 
 /// Frames a second drawn for the readers, unless `--fps` says otherwise (the exported page's).
 pub const DEFAULT_FPS: u32 = 10;
@@ -63,15 +63,28 @@ pub fn serve(args: &ServeArgs, ui: crate::ui::UiOptions) -> Outcome {
             "serve -: serve follows a session file as it grows; give its path",
         ));
     }
-    if args.file.is_dir() {
+    // Only a regular file, by its name (issue 80, N4 and N5: a FIFO wedged the server, a link
+    // served any file the lecturer can read): anything else there is refused now, and at every
+    // open after.
+    if let Ok(meta) = std::fs::symlink_metadata(&args.file)
+        && !meta.is_file()
+    {
+        let what = if meta.is_dir() {
+            "a folder"
+        } else if meta.file_type().is_symlink() {
+            "a symbolic link (serve reads the file named, never what a link points to)"
+        } else {
+            "not a regular file (a FIFO, a device or a socket)"
+        };
         return Err(Failure::input(format!(
-            "{}: a folder, not a session file",
+            "{}: {what}; give the session file itself",
             args.file.display()
         )));
     }
     // A file that is there must be a session now (one that is not yet is waited for).
     if args.file.metadata().is_ok_and(|m| m.len() > 0) {
-        crate::record::tail::Tail::open(&args.file).map_err(Failure::input)?;
+        crate::record::tail::Tail::open_with(&args.file, crate::scenario::write::Links::Refuse)
+            .map_err(Failure::input)?;
     }
     let fps = args.look.fps.unwrap_or(DEFAULT_FPS);
     if fps > MAX_FPS {
@@ -87,6 +100,11 @@ pub fn serve(args: &ServeArgs, ui: crate::ui::UiOptions) -> Outcome {
         file: args.file.clone(),
         token,
         max_readers: args.max_readers.map_or(DEFAULT_MAX_READERS, |n| n as usize),
+        max_per_address: (
+            args.max_per_address
+                .map_or(DEFAULT_MAX_PER_ADDRESS, |n| n as usize),
+            args.max_per_address.is_some(),
+        ),
         fps: f64::from(fps),
         ui,
     };
@@ -102,23 +120,29 @@ pub fn serve(args: &ServeArgs, ui: crate::ui::UiOptions) -> Outcome {
     run(config, listener, args.with_parent)
 }
 
-/// The renderer and the server, until a signal (or, `with_parent`, until standard input
-/// closes).
+/// The renderer and the server, until a signal (or, `with_parent`, until the explorer that
+/// started it has ended, its standard input closed, and the end was served: issue 80, L1).
 fn run(config: Config, listener: std::net::TcpListener, with_parent: bool) -> Outcome {
     let hub = Arc::new(Hub::new());
     let stop = Arc::new(AtomicBool::new(false));
+    let gone = Arc::new(AtomicBool::new(false));
     if with_parent {
-        let stop = Arc::clone(&stop);
+        let gone = Arc::clone(&gone);
         std::thread::spawn(move || {
             let _ = std::io::copy(&mut std::io::stdin().lock(), &mut std::io::sink());
-            stop.store(true, Ordering::Relaxed);
+            gone.store(true, Ordering::Relaxed);
         });
     }
     let renderer = {
-        let (config, hub, stop) = (config.clone(), Arc::clone(&hub), Arc::clone(&stop));
+        let (config, hub, stop, gone) = (
+            config.clone(),
+            Arc::clone(&hub),
+            Arc::clone(&stop),
+            Arc::clone(&gone),
+        );
         std::thread::Builder::new()
             .name("rattleback-live".to_owned())
-            .spawn(move || live::run(&config, &hub, &stop))
+            .spawn(move || live::run(&config, &hub, &stop, &gone))
             .map_err(Failure::failed)?
     };
     let server = Arc::new(http::Server::new(hub, config, http::connection_limit()));
@@ -134,9 +158,11 @@ fn run(config: Config, listener: std::net::TcpListener, with_parent: bool) -> Ou
 }
 
 /// `serve` started beside the explorer (`--record FILE --serve [ADDR:PORT]`): a process of its
-/// own (its own process group: the terminal's signals are the explorer's), which stops when
-/// this is dropped or when the explorer's process ends however it ends (its standard input, a
-/// pipe from here, closes).
+/// own (its own process group: the terminal's signals are the explorer's). When this is
+/// dropped, or the explorer's process ends however it ends (its standard input, a pipe from
+/// here, closes), it serves the lecture's end to every reader, goes on a few seconds for the
+/// pages to load the finished lecture, and exits by itself (issue 80, L1: it was killed with
+/// the explorer, and the pages spun "Live" for ever).
 pub struct Beside {
     child: std::process::Child,
     /// The address it serves at (its first line).
@@ -212,7 +238,9 @@ impl Beside {
 
 impl Drop for Beside {
     fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
+        // Its standard input closes: it ends the lecture in every page and exits by itself
+        // (bounded: `live::GONE_SETTLE` then `live::GRACE`). Not waited for: the lecturer's
+        // terminal is given back at once; the server's own process group outlives this one.
+        drop(self.child.stdin.take());
     }
 }
