@@ -16,8 +16,11 @@
 # `rattleback` on its PATH); the parts come back on stdout. By parallel's design a login line is
 # a command (`ssh -o ProxyCommand=… host` runs the proxy), so this script trusts none: each line
 # must be `[CPUS/][USER@]HOST[:PORT]` of letters, digits, `.`, `-` and `_` (or `:` for this
-# machine), blank lines and `#` comments aside, in a regular file of at most 64 KiB. Anything
-# richer (jump hosts, keys) belongs in ~/.ssh/config under a host alias.
+# machine), blank lines and `#` comments aside, in a regular file of at most 64 KiB. A user or a
+# host begins with a letter or a digit: one beginning with `-` would reach ssh as an option
+# (`-Fevil.conf` reads another configuration, whose ProxyCommand runs; issue 80), and `..`, which
+# parallel reads as "my own ~/.parallel/sshloginfile", is no host. Anything richer (jump hosts,
+# keys) belongs in ~/.ssh/config under a host alias.
 #
 # A shard that fails (killed, a lost machine) is named and the merge refused; re-run it alone with
 # `rattleback study map … --shard I/N > part-I.json` and merge again.
@@ -65,7 +68,7 @@ if [ -n "${RATTLEBACK_SSHLOGINFILE:-}" ]; then
   while IFS= read -r line || [ -n "$line" ]; do
     line_no=$((line_no + 1))
     case $line in '' | '#'*) continue ;; esac
-    if ! [[ $line =~ ^([0-9]+/)?(:|([A-Za-z0-9._-]+@)?[A-Za-z0-9._-]+(:[0-9]+)?)$ ]]; then
+    if ! [[ $line =~ ^([0-9]+/)?(:|([A-Za-z0-9][A-Za-z0-9._-]*@)?[A-Za-z0-9][A-Za-z0-9._-]*(:[0-9]+)?)$ ]]; then
       echo "$0: $logins:$line_no: not a login of the form [CPUS/][USER@]HOST[:PORT] (GNU parallel would run it as a command); put anything richer in ~/.ssh/config under a host alias" >&2
       exit 2
     fi

@@ -261,7 +261,7 @@ fn check_output(
             out.display()
         ));
     }
-    Ok(())
+    rattleback::scenario::write::replaceable(out).map_err(|e| format!("{flag} {e}"))
 }
 
 /// `cast::export_cast` and `page::export_html`: a session written into a file.

@@ -573,10 +573,7 @@ pub fn lesson_new(args: &crate::commands::cli::LessonNewArgs) -> Outcome {
         .replace("@TITLE@", &name.replace(['-', '_'], " "))
         .replace("@PATH@", &path.display().to_string());
     if let Err(e) = crate::scenario::write::write_atomic(&path, text.as_bytes(), args.force) {
-        if e.kind() == std::io::ErrorKind::AlreadyExists {
-            return Err(Failure::input(format!("{e}; --force replaces it")));
-        }
-        return Err(Failure::failed(format!("{}: {e}", path.display())));
+        return Err(not_written(&path, &e));
     }
     say!(
         "wrote {}: edit it, check it with `rattleback check {}`, open it with `rattleback lesson {}`",
@@ -696,15 +693,22 @@ fn write_outputs(common: &crate::commands::cli::StudyCommon, files: &[(&str, Str
     }
 }
 
+/// Why `path` was not written: a file there (`--force` replaces it), something else there that
+/// is never replaced (both input, exit 2), or what the system said (exit 1).
+fn not_written(path: &std::path::Path, e: &std::io::Error) -> Failure {
+    match e.kind() {
+        std::io::ErrorKind::AlreadyExists => Failure::input(format!("{e}; --force replaces it")),
+        std::io::ErrorKind::InvalidInput => Failure::input(e),
+        _ => Failure::failed(format!("{}: {e}", path.display())),
+    }
+}
+
 /// Writes `files` (name, contents) into `dir`, refusing to replace without `force`.
 fn write_files(dir: &std::path::Path, force: bool, files: &[(&str, String)]) -> Outcome {
     for (name, text) in files {
         let path = dir.join(name);
         if let Err(e) = crate::scenario::write::write_atomic(&path, text.as_bytes(), force) {
-            if e.kind() == std::io::ErrorKind::AlreadyExists {
-                return Err(Failure::input(format!("{e}; --force replaces it")));
-            }
-            return Err(Failure::failed(format!("{}: {e}", path.display())));
+            return Err(not_written(&path, &e));
         }
     }
     say_err!(

@@ -108,6 +108,21 @@ pub fn open_regular(path: &Path, links: Links) -> io::Result<File> {
     Ok(file)
 }
 
+/// Whether a writer may replace `path`: nothing is there, or a regular file (issue 80, N8).
+///
+/// # Errors
+/// What is there instead, said.
+pub fn replaceable(path: &Path) -> Result<(), String> {
+    match std::fs::symlink_metadata(path) {
+        Ok(meta) if !meta.is_file() => Err(format!(
+            "{} is {}: only a regular file is ever replaced, even with --force",
+            path.display(),
+            kind_of(&meta)
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// What a file that is not regular is, in words.
 fn kind_of(meta: &std::fs::Metadata) -> &'static str {
     let t = meta.file_type();
@@ -176,7 +191,8 @@ pub fn read_bounded_bytes_with(path: &Path, limit: u64, links: Links) -> io::Res
 }
 
 /// Writes `bytes` to `path` atomically. With `replace = false` an existing `path` (file, link or
-/// anything else) is an `AlreadyExists` error and is left untouched.
+/// anything else) is an `AlreadyExists` error and is left untouched; with `replace = true` only
+/// a regular file there is replaced (anything else is `InvalidInput`, untouched).
 ///
 /// # Errors
 /// `AlreadyExists`, or what the system says; the temporary file is removed on every error.
@@ -201,11 +217,27 @@ pub fn write_atomic_with<T>(
     let name = path
         .file_name()
         .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "not a file name"))?;
-    if !replace && std::fs::symlink_metadata(path).is_ok() {
-        return Err(io::Error::new(
-            io::ErrorKind::AlreadyExists,
-            format!("{} exists", path.display()),
-        ));
+    match std::fs::symlink_metadata(path) {
+        Ok(_) if !replace => {
+            return Err(io::Error::new(
+                io::ErrorKind::AlreadyExists,
+                format!("{} exists", path.display()),
+            ));
+        }
+        // Even when asked to replace, only a regular file is (issue 80, N8: `--force` renamed a
+        // file over the device `/dev/full`): a link, a FIFO, a device, a socket or a folder
+        // at the name is refused, said as what it is.
+        Ok(meta) if !meta.is_file() => {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                format!(
+                    "{} is {}: only a regular file is ever replaced, even with --force",
+                    path.display(),
+                    kind_of(&meta)
+                ),
+            ));
+        }
+        _ => {}
     }
     // A randomly named file created with O_EXCL in the target's folder (tempfile): no planted
     // link can redirect it, and it is removed on every error path when dropped.
@@ -261,20 +293,36 @@ mod tests {
         assert_eq!(std::fs::read(&target).unwrap(), b"one");
         write_atomic(&target, b"two", true).unwrap();
         assert_eq!(std::fs::read(&target).unwrap(), b"two");
-        // A link planted at the target is replaced, not written through.
+        // A link planted at the target is neither written through nor replaced, even when
+        // asked to replace (issue 80: only a regular file is ever replaced).
         let outside = d.join("outside");
         std::fs::write(&outside, b"keep").unwrap();
         let link = d.join("b.toml");
         std::os::unix::fs::symlink(&outside, &link).unwrap();
         assert!(write_atomic(&link, b"x", false).is_err());
-        write_atomic(&link, b"x", true).unwrap();
+        let e = write_atomic(&link, b"x", true).unwrap_err();
+        assert_eq!(e.kind(), io::ErrorKind::InvalidInput);
+        assert!(e.to_string().contains("a symbolic link"), "{e}");
         assert_eq!(std::fs::read(&outside).unwrap(), b"keep");
         assert!(
-            !std::fs::symlink_metadata(&link)
+            std::fs::symlink_metadata(&link)
                 .unwrap()
                 .file_type()
                 .is_symlink()
         );
+        // Nor a FIFO, nor a folder.
+        let fifo = d.join("f.toml");
+        assert!(
+            std::process::Command::new("mkfifo")
+                .arg(&fifo)
+                .status()
+                .unwrap()
+                .success()
+        );
+        let e = write_atomic(&fifo, b"x", true).unwrap_err();
+        assert!(e.to_string().contains("a FIFO"), "{e}");
+        let e = write_atomic(&d, b"x", true).unwrap_err();
+        assert!(e.to_string().contains("a folder"), "{e}");
         // No temporary file is left behind.
         let left: Vec<_> = std::fs::read_dir(&d)
             .unwrap()
