@@ -198,8 +198,22 @@ pub fn review(lesson: &Lesson) -> Vec<Finding> {
             }]);
             walk.exec(effects);
         }
+        // Priced before it is played, as `simulate` prices it (issue 80, N7: a step's run of
+        // 110 CPU-s that `simulate` refuses was played unbudgeted).
+        if let Some(m) = over_budget(&walk.app) {
+            found(m);
+            break;
+        }
         // A student plays the run out (and so sees all it shows before the next step).
         walk.play_to(f64::INFINITY);
+        if let Some(m) = tolerance_missed(&walk.app) {
+            found(m);
+        }
+        if step.until.parameter.is_some()
+            && let Some(m) = window_bound(&mut walk)
+        {
+            found(m);
+        }
         played = Some((walk.app.scenario.settings, walk.app.run.shown));
         if let Some(m) = cut(&walk.app, &walk.screen()) {
             found(format!("{m} (after the run, the answer shown)"));
@@ -214,6 +228,99 @@ pub fn review(lesson: &Lesson) -> Vec<Finding> {
         walk.key(Key::Char('n'));
     }
     findings
+}
+
+/// The step's run as the student's explorer plays it, priced as `simulate` prices a run: over
+/// the work budget, said (the explorer would stop it; `simulate` refuses it).
+fn over_budget(app: &App) -> Option<String> {
+    let s = &app.scenario.settings;
+    let predicted = s
+        .model
+        .predicted_seconds(&crate::physics::method::Asked::new(
+            s.method,
+            s.tolerance,
+            s.step,
+            s.t_end,
+        ));
+    crate::physics::budget::check(predicted, crate::physics::budget::BUDGET_SECONDS)
+        .err()
+        .map(|over| {
+            format!(
+                "the run the step leads to ({} to t = {}, tolerance {}) is {over}: the explorer \
+                 stops it and `simulate` refuses it; shorten its run.t_end or loosen its tolerance",
+                s.method,
+                crate::physics::Number(s.t_end),
+                crate::physics::Number(s.tolerance)
+            )
+        })
+}
+
+/// The step's run, played out, misses its tolerance (`✗ tol missed` in the status bar), or
+/// stops short: said with what it reached.
+fn tolerance_missed(app: &App) -> Option<String> {
+    let s = &app.scenario.settings;
+    if let Some(at) = app.run.stops {
+        return Some(format!(
+            "the run the step leads to stops at t = {} (the work budget): the student sees \
+             `✗ stops at t`; shorten its run.t_end or loosen its tolerance",
+            crate::physics::Number(at)
+        ));
+    }
+    let missed =
+        app.run
+            .segments
+            .iter()
+            .filter_map(|seg| seg.estimate)
+            .chain(match app.run.plan {
+                crate::app::run::PlanState::Running { estimate, .. } => estimate,
+                crate::app::run::PlanState::Pending
+                | crate::app::run::PlanState::Verifying { .. } => None,
+            })
+            .find(|&e| !(e <= s.tolerance))?;
+    Some(format!(
+        "the run the step leads to cannot meet its tolerance {}: auto's estimate is {} (the \
+         student sees `✗ tol missed`); loosen its run.tolerance, or change the values it leads to",
+        crate::physics::Number(s.tolerance),
+        crate::physics::Number(missed)
+    ))
+}
+
+/// A step that asks the student to move a parameter until something stops happening (its
+/// condition a bound), whose run at that bound shows nothing in its window but shows it in a run
+/// twice as long: the "threshold" found is the window's edge, not the physics' (issue 80, L4: a
+/// celt "threshold spin" of 3.45 rad/s was where a 20 s window ended; 3.0 reverses at 20.95 s).
+/// The run is played again to twice its end and put back.
+fn window_bound(walk: &mut Walk) -> Option<String> {
+    let t_end = walk.app.scenario.settings.t_end;
+    if walk.app.shown().events > 0 {
+        return None;
+    }
+    let set = |walk: &mut Walk, t: f64| {
+        let effects = walk.app.apply_set(&[crate::scenario::preset::Override {
+            key: "run.t_end".to_owned(),
+            value: format!("{t:?}"),
+        }]);
+        walk.exec(effects);
+    };
+    set(walk, 2.0 * t_end);
+    let later = if over_budget(&walk.app).is_none() {
+        walk.play_to(f64::INFINITY);
+        (walk.app.shown().events > 0).then_some(walk.app.run.shown)
+    } else {
+        None
+    };
+    set(walk, t_end);
+    walk.play_to(f64::INFINITY);
+    later.map(|_| {
+        let kind = walk.app.scenario.settings.model.kind();
+        format!(
+            "at the bound the step leads to, nothing happens within t = {} but a run twice as long \
+             shows its {}: what the step asks the student to find depends on the window, not on \
+             the physics; ask about the window, or check the claim on a longer run",
+            crate::physics::Number(t_end),
+            kind.words().events
+        )
+    })
 }
 
 /// The lesson pane's words cut short at [`SIZE`] (a `…` below its title).

@@ -140,3 +140,22 @@ fn a_writer_replaces_only_a_regular_file_even_with_force() {
     ]);
     assert_eq!(code, 0, "{err}");
 }
+
+#[test]
+fn check_prices_a_lessons_runs_and_says_what_they_cannot_meet() {
+    // N7: a step's run of 1e6 s was played unbudgeted (110 CPU-s); it is refused by its price.
+    let (code, _, err) = bin(&["check", &fixture("lesson-set-long.toml")]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("predicted to take") && err.contains("budget 60 s"),
+        "{err}"
+    );
+    // L2, L10: a run the step leads to that auto cannot meet at its tolerance is said.
+    let (code, _, err) = bin(&["check", &fixture("lesson-tolerance.toml")]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("cannot meet its tolerance"), "{err}");
+    // L4: a "threshold" that is the window's edge (two-ways' step 3 before issue 80).
+    let (code, _, err) = bin(&["check", &fixture("two-ways-window.toml")]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("depends on the window"), "{err}");
+}

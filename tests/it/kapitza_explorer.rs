@@ -471,6 +471,7 @@ fn a_recorded_pendulum_session_verifies() {
     journal.extend(h.app.take_journal());
     let path = temp("pendulum.jsonl");
     let mut rec = Recorder::create(&path, &header, None).unwrap();
+    let last = journal.last().map_or((0.0, 0), |(t, g, _)| (*t, *g));
     for (i, (t, generation, event)) in journal.into_iter().enumerate() {
         rec.write(&Line {
             wall: i as f64 * 0.5,
@@ -483,8 +484,8 @@ fn a_recorded_pendulum_session_verifies() {
     }
     let end = Line {
         wall: 60.0,
-        t: 0.0,
-        generation: 0,
+        t: last.0,
+        generation: last.1,
         chain: None,
         event: Event::end(),
     };

@@ -29,12 +29,13 @@ fn temp(name: &str) -> std::path::PathBuf {
     p
 }
 
-/// The end line of a recording written by hand (the recorder counts the lines).
-fn end_line() -> Line {
+/// The end line of a recording written by hand after `last` (the recorder counts the lines), at
+/// its time and run stamp as the explorer's recorder writes it.
+fn end_line(last: Option<&Line>) -> Line {
     Line {
         wall: 60.0,
-        t: 0.0,
-        generation: 0,
+        t: last.map_or(0.0, |l| l.t),
+        generation: last.map_or(0, |l| l.generation),
         chain: None,
         event: Event::end(),
     }
@@ -106,7 +107,7 @@ fn recorded_through_update_replays_bit_for_bit_and_bytes_round_trip() {
     for l in &lines {
         rec.write(l).unwrap();
     }
-    rec.write(&end_line()).unwrap();
+    rec.write(&end_line(lines.last())).unwrap();
     drop(rec);
     let back = record::read(&path).unwrap();
     assert!(back.warnings.is_empty());

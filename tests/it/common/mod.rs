@@ -397,6 +397,8 @@ pub fn write_session(
     let _ = std::fs::remove_file(path);
     let mut rec = Recorder::create(path, header, None).unwrap();
     let n = journal.len();
+    // The end line as the explorer's recorder writes it: at the last line's time and run stamp.
+    let last = journal.last().map_or((0.0, 0), |(t, g, _)| (*t, *g));
     for (i, (t, generation, event)) in journal.into_iter().enumerate() {
         rec.write(&Line {
             wall: i as f64 * spacing,
@@ -409,8 +411,8 @@ pub fn write_session(
     }
     rec.write(&Line {
         wall: n as f64 * spacing + 1.0,
-        t: 0.0,
-        generation: 0,
+        t: last.0,
+        generation: last.1,
         chain: None,
         event: Event::end(),
     })
