@@ -244,16 +244,31 @@ pub struct CellOutput {
     pub last_reversal: Option<Option<f64>>,
     /// The celt's growth rate of steady spin at the cell's `ω_z` and `D` (1/s; positive: a small
     /// tilt grows).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "crate::physics::json::option"
+    )]
+    #[schemars(with = "Option<crate::physics::json::Number>")]
     pub growth_rate: Option<f64>,
     /// The pendulum's verdict: `|tr M| < 2`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stable: Option<bool>,
     /// The pendulum's monodromy trace.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "crate::physics::json::option"
+    )]
+    #[schemars(with = "Option<crate::physics::json::Number>")]
     pub trace: Option<f64>,
     /// Its estimated error.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "crate::physics::json::option"
+    )]
+    #[schemars(with = "Option<crate::physics::json::Number>")]
     pub trace_error: Option<f64>,
     /// Whether the verdict is certain at the chart's tolerance (the pendulum: the trace's
     /// distance from ±2 exceeds its error; the celt: two tolerances agree on the count and the
