@@ -178,6 +178,12 @@ pub trait AtTolerance: Clone + Send + 'static {
         let _ = (local, fine, go_on);
         Ok(None)
     }
+    /// The floors of `fine` given the rounding `measured` by [`AtTolerance::rounding`] (`None`:
+    /// not measured): by default the modelled floor plus what was measured. A model whose
+    /// floor's law is a worst case may let a measurement stand in for it.
+    fn floors(&self, fine: &Self::Result, measured: Option<f64>) -> f64 {
+        self.floor(fine) + measured.unwrap_or(0.0)
+    }
     /// Predicted seconds of [`AtTolerance::rounding`] at `local` (0 where it runs nothing).
     fn rounding_cost(&self, local: f64) -> f64 {
         let _ = local;
@@ -205,7 +211,8 @@ impl<T: AtTolerance> Candidate for T {
             move |go_on| there.run(companion, go_on),
         );
         let (fine, coarse) = (fine?, coarse?);
-        let floor = self.floor(&fine) + self.rounding(local, &fine, go_on)?.unwrap_or(0.0);
+        let measured = self.rounding(local, &fine, go_on)?;
+        let floor = self.floors(&fine, measured);
         Ok(Round {
             run: (),
             measured: self.difference(&fine, &coarse) + floor,

@@ -91,10 +91,12 @@ fn saving_never_follows_a_planted_link() {
         rattleback::scenario::store::save(Some(&presets), "linked", &text, false),
         Err(rattleback::scenario::store::SaveError::Exists(_))
     ));
-    rattleback::scenario::store::save(Some(&presets), "linked", &text, true).unwrap();
+    // Even asked to replace, a link is neither written through nor replaced (issue 80: only a
+    // regular file is ever replaced).
+    assert!(rattleback::scenario::store::save(Some(&presets), "linked", &text, true).is_err());
     assert_eq!(std::fs::read_to_string(&outside).unwrap(), "keep");
     assert!(
-        !std::fs::symlink_metadata(presets.join("linked.toml"))
+        std::fs::symlink_metadata(presets.join("linked.toml"))
             .unwrap()
             .file_type()
             .is_symlink()

@@ -38,7 +38,7 @@ fn the_shard_script_refuses_a_login_that_is_an_ssh_option() {
     for line in lines.lines() {
         let logins = dir.join("logins.txt");
         std::fs::write(&logins, format!("{line}\n")).unwrap();
-        let out = std::process::Command::new("bash")
+        let out = crate::common::detached("bash")
             .arg(&script)
             .args([
                 "2",
@@ -77,7 +77,7 @@ fn regex_accepts(line: &str) -> bool {
         .find_map(|l| l.trim().strip_prefix("if ! [[ $line =~ "))
         .and_then(|l| l.strip_suffix(" ]]; then"))
         .expect("the script's login check");
-    std::process::Command::new("bash")
+    crate::common::detached("bash")
         .args(["-c", &format!("[[ $1 =~ {re} ]]"), "check", line])
         .status()
         .unwrap()
@@ -94,7 +94,7 @@ fn a_writer_replaces_only_a_regular_file_even_with_force() {
     std::fs::create_dir_all(&dir).unwrap();
     let fifo = dir.join("fifo");
     assert!(
-        std::process::Command::new("mkfifo")
+        crate::common::detached("mkfifo")
             .arg(&fifo)
             .status()
             .unwrap()

@@ -233,13 +233,16 @@ fn corrupt_line_version_and_tampering_are_reported_by_line() {
     assert!(err.contains("corrupt.jsonl:5: bad event"), "{err}");
 
     let mut future = lines.clone();
-    future[0] = future[0].replace("\"version\":1", "\"version\":14");
+    let next = record::VERSION + 1;
+    future[0] = future[0].replace("\"version\":1", &format!("\"version\":{next}"));
     let path = temp("future.jsonl");
     std::fs::write(&path, future.join("\n") + "\n").unwrap();
     let (code, _, err) = bin(&["replay", path.to_str().unwrap(), "--verify"]);
     assert_eq!(code, 2);
     assert!(
-        err.contains("future.jsonl:1: format version 14 is not supported"),
+        err.contains(&format!(
+            "future.jsonl:1: format version {next} is not supported"
+        )),
         "{err}"
     );
 

@@ -672,7 +672,7 @@ fn only_a_regular_file_is_served_never_a_fifo_a_link_or_a_folder() {
     std::fs::create_dir_all(&dir).unwrap();
     let fifo = dir.join("fifo.jsonl");
     assert!(
-        std::process::Command::new("mkfifo")
+        crate::common::detached("mkfifo")
             .arg(&fifo)
             .status()
             .unwrap()
@@ -701,7 +701,7 @@ fn only_a_regular_file_is_served_never_a_fifo_a_link_or_a_folder() {
     assert!(!a.contains("root:"), "{a}");
     std::fs::remove_file(&file).unwrap();
     assert!(
-        std::process::Command::new("mkfifo")
+        crate::common::detached("mkfifo")
             .arg(&file)
             .status()
             .unwrap()
