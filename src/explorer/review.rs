@@ -276,7 +276,7 @@ fn tolerance_missed(app: &App) -> Option<String> {
                 crate::app::run::PlanState::Pending
                 | crate::app::run::PlanState::Verifying { .. } => None,
             })
-            .find(|&e| !(e <= s.tolerance))?;
+            .find(|&e| e.is_nan() || e > s.tolerance)?;
     Some(format!(
         "the run the step leads to cannot meet its tolerance {}: auto's estimate is {} (the \
          student sees `✗ tol missed`); loosen its run.tolerance, or change the values it leads to",
