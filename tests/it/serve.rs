@@ -750,3 +750,61 @@ fn one_address_cannot_take_every_readers_place() {
     let n = r.read(&mut buf).unwrap();
     assert!(String::from_utf8_lossy(&buf[..n]).starts_with("HTTP/1.1 200"));
 }
+
+/// L1 (issue 80) with a signal: the explorer recording with `--serve` ended by SIGTERM (as a
+/// closing terminal or a session manager ends it); a reader of `/events` still gets the end, and
+/// the server exits by itself.
+#[test]
+fn a_lecture_ended_by_a_signal_still_ends_in_every_page() {
+    let file = temp("signalled.jsonl");
+    let log = temp("signalled.pty");
+    let port = {
+        let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+        l.local_addr().unwrap().port()
+    };
+    let command = format!(
+        "stty rows 24 cols 80; exec {} --record {} --serve 127.0.0.1:{port}",
+        crate::common::program(),
+        file.display()
+    );
+    let mut child = Killed(
+        crate::common::in_pty(&command, &log)
+            .env("TERM", "xterm-256color")
+            .stdin(Stdio::piped())
+            .spawn()
+            .unwrap(),
+    );
+    let mut keys = child.0.stdin.take().unwrap();
+    let addr = SocketAddr::from(([127, 0, 0, 1], port));
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while TcpStream::connect(addr).is_err() {
+        assert!(Instant::now() < deadline, "the server never listened");
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    let hall = std::thread::spawn(move || reader(addr, Duration::from_secs(30)));
+    std::thread::sleep(Duration::from_millis(500));
+    keys.write_all(b"\x1b").unwrap();
+    std::thread::sleep(Duration::from_millis(500));
+    keys.write_all(b" ").unwrap();
+    std::thread::sleep(Duration::from_millis(800));
+    let pattern = format!("record {}", file.display());
+    let killed = crate::common::detached("pkill")
+        .args(["-TERM", "-f", &pattern])
+        .status()
+        .unwrap();
+    assert!(killed.success(), "no explorer to signal");
+    let _ = child.0.wait();
+    let (stream, ended) = hall.join().unwrap();
+    assert!(
+        ended.is_some(),
+        "the reader was not told the lecture ended: {stream}"
+    );
+    let deadline = Instant::now() + Duration::from_secs(20);
+    while TcpStream::connect(addr).is_ok() {
+        assert!(
+            Instant::now() < deadline,
+            "the server did not exit by itself"
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}

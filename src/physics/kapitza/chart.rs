@@ -18,7 +18,7 @@ pub const PENDULUM_GRID: (usize, usize) = (48, 24);
 /// close to call.
 pub const PENDULUM_TOLERANCE: f64 = 1e-10;
 /// Seconds of CPU a DOP853 step of the trace takes (its five components, the cosine, the
-/// tableau), measured over random cells (`cargo run --release --example floquet_price`,
+/// tableau), measured over random cells (`cargo run --release --example chart_price pendulum`,
 /// docs/benchmarks.md, issue 80): a cell's price is its predicted steps
 /// ([`super::floquet::Mathieu::price_steps`]) at this rate.
 pub const PENDULUM_STEP_SECONDS: f64 = 6e-7;

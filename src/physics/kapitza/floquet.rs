@@ -173,7 +173,7 @@ pub const PRICE_FIXED_STEPS: f64 = 40.0;
 /// A verified trace's steps over `2π ω l^(-1/8) + 40`, measured (issue 80) as the mean over
 /// 4,500 random cells of the charts `study map` can be asked for (ε from 1e-3 to 0.5, both
 /// positions, `a` and `b` over twelve decades, tolerances 1e-6 to 1e-12:
-/// `cargo run --release --example floquet_price`): rows `log10 ω` = −1, 0, …, 4, columns
+/// `cargo run --release --example chart_price pendulum`): rows `log10 ω` = −1, 0, …, 4, columns
 /// `log10 tolerance` = −12, −10, −8, −6. It folds in how many rounds the loop takes: one at
 /// high frequencies and tight tolerances, two or three at middling ones.
 pub const PRICE_FACTORS: [[f64; 4]; 6] = [
