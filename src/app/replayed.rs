@@ -236,8 +236,12 @@ impl App {
             return effects;
         }
         self.journal.since_clock += wall_seconds;
+        // Moved since the last clock line, or a new run since (issue 80: a run started over from
+        // its end and ended again at the same `t_end` wrote no clock line, and a replay showed it
+        // still playing at its start).
         #[allow(clippy::float_cmp)]
-        let moved = self.run.shown != self.journal.clock_t;
+        let moved = self.run.shown != self.journal.clock_t
+            || self.run.generation != self.journal.clock_generation;
         // The display reaching the end of the run is said at once: no clock line follows it
         // (the run no longer plays), and a follower would show the last one until the next
         // checkpoint, up to two seconds later.
@@ -245,6 +249,7 @@ impl App {
         if moved && (ended || self.run.playing && self.journal.since_clock >= CLOCK_EVERY) {
             self.journal.since_clock = 0.0;
             self.journal.clock_t = self.run.shown;
+            self.journal.clock_generation = self.run.generation;
             self.log(Event::Clock);
         }
         effects

@@ -179,9 +179,10 @@ pub struct Journal {
     pub(super) screen_due: bool,
     /// `R` asked to close the recording: it closes once its last frame is settled.
     pub(super) stop_due: bool,
-    /// Wall seconds since the last clock line, and the displayed time it stamped.
+    /// Wall seconds since the last clock line, and the displayed time it stamped, of which run.
     pub(super) since_clock: f64,
     pub(super) clock_t: f64,
+    pub(super) clock_generation: u64,
     /// The map's cursor and focus as last journaled (`None`: not yet in this recording).
     pub(super) map_cursor: Option<((usize, usize), bool)>,
 }

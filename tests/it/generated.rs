@@ -185,3 +185,50 @@ fn a_celt_lecture_that_auto_cannot_meet_verifies() {
     let (code, out, err) = bin(&["replay", path.to_str().unwrap(), "--verify"]);
     assert_eq!(code, 0, "{out}{err} {}", g.tag());
 }
+
+/// A run started over from its end (space at the end) that ends again within one frame, then
+/// reset: the end of the second run wrote no clock line (the first run's stood at the same
+/// `t_end`), and a replay showed it still playing. Found by the generated recordings (issue 80).
+#[test]
+fn a_run_started_over_that_ends_again_at_once_replays_as_shown() {
+    let overrides: Vec<Override> = ["initial.omega_z=-1.3235", "run.t_end=10.06"]
+        .iter()
+        .map(|s| s.parse().unwrap())
+        .collect();
+    let preset = rattleback::scenario::shipped::resolve("celt-anticlockwise", &overrides).unwrap();
+    let mut l = Lecturer {
+        h: crate::common::Headless::of(&preset),
+        wall: 0.0,
+        lines: Vec::new(),
+        frames: Vec::new(),
+    };
+    let header = rattleback::explorer::recording::header(&l.h.app, (80, 24), 30.0);
+    let effects =
+        l.h.app
+            .on_outcome(Outcome::Recording(Ok("again.jsonl".into())));
+    l.h.exec(effects);
+    l.collect();
+    while l.h.app.run.speed < 1024.0 {
+        l.key(Key::Char('+'));
+    }
+    l.key(Key::Char(' '));
+    for _ in 0..5 {
+        l.tick();
+    }
+    assert!(l.h.app.run.done());
+    // Started over, done again within the frame, then reset.
+    l.key(Key::Char(' '));
+    l.tick();
+    assert!(l.h.app.run.done());
+    l.key(Key::Char('r'));
+    l.tick();
+    l.stop();
+    let lecture = Lecture {
+        header,
+        lines: l.lines,
+        frames: l.frames,
+    };
+    let path = write(&lecture, "again.jsonl", None);
+    let rec = record::read(&path).unwrap();
+    record::verify(&rec, "again", None).unwrap();
+}
