@@ -141,15 +141,65 @@ impl Drop for Pending {
     }
 }
 
-/// Removes the temporary files being written (a signal's watchdog, before it ends the process).
+/// Removes the temporary files being written (a signal's watchdog, before it ends the process),
+/// then the folders this run made for them when they are left empty ([`made_folder`]; `rmdir`
+/// removes only an empty one).
 pub fn remove_pending() {
     for slot in &PENDING {
-        let p = slot.swap(std::ptr::null_mut(), Ordering::SeqCst);
+        let p = slot.load(Ordering::SeqCst);
         if !p.is_null() {
-            // SAFETY: a pointer stored by `pending`, from a C string never freed.
+            // SAFETY: a pointer stored by `pending`, from a C string never freed. A folder is
+            // not unlinked (EISDIR).
             unsafe {
                 libc::unlink(p);
             }
+        }
+    }
+    for slot in &PENDING {
+        let p = slot.swap(std::ptr::null_mut(), Ordering::SeqCst);
+        if !p.is_null() {
+            // SAFETY: as above; a file already unlinked fails here harmlessly.
+            unsafe {
+                libc::rmdir(p);
+            }
+        }
+    }
+}
+
+/// A folder this run made for its output (`bench`'s, a study's `--out`): removed when the run
+/// ends, however it ends, if it is still empty (issue 81, D-12: an interrupted `bench` said
+/// nothing was written and left an empty folder). A folder that was there before is left alone.
+#[derive(Debug)]
+pub struct MadeFolder {
+    path: Option<std::path::PathBuf>,
+    _mark: Option<Pending>,
+}
+
+/// Makes `path` and its parents (as `create_dir_all`), marked as [`MadeFolder`] when it was not
+/// there.
+///
+/// # Errors
+/// What `create_dir_all` says.
+pub fn made_folder(path: &Path) -> std::io::Result<MadeFolder> {
+    if path.exists() {
+        std::fs::create_dir_all(path)?;
+        return Ok(MadeFolder {
+            path: None,
+            _mark: None,
+        });
+    }
+    std::fs::create_dir_all(path)?;
+    Ok(MadeFolder {
+        path: Some(path.to_path_buf()),
+        _mark: Some(pending(path)),
+    })
+}
+
+impl Drop for MadeFolder {
+    fn drop(&mut self) {
+        if let Some(p) = &self.path {
+            // Only an empty folder goes.
+            let _ = std::fs::remove_dir(p);
         }
     }
 }

@@ -148,7 +148,9 @@ fn command() -> Outcome {
         Some(Command::Compare(ref args)) => run_compare(args),
         Some(Command::Follow(ref args)) => run_follow(args),
         Some(Command::Serve(ref args)) => run_serve(args),
-        Some(Command::Completions(args)) => commands::completions(args.shell),
+        Some(Command::Completions(args)) => {
+            commands::completions(args.shell, args.binary.as_deref())
+        }
         Some(Command::Man) => commands::man(),
         Some(Command::Keygen(ref args)) => keygen(args),
         Some(Command::Config(ref c)) => commands::config(c),
@@ -972,7 +974,9 @@ fn simulate_to_text(
         &mut |t| progress.tick(t),
     )?;
     progress.finish();
-    let text = rattleback::scenario::text::shown(&String::from_utf8_lossy(&text));
+    let text = rattleback::commands::wrap::for_stdout(&rattleback::scenario::text::shown(
+        &String::from_utf8_lossy(&text),
+    ));
     let mut out = std::io::stdout().lock();
     out.write_all(text.as_bytes())?;
     out.flush()?;

@@ -537,6 +537,14 @@ pub const MAP_FOOTER: &[Hint] = &[
     ("q", "quit", 0),
 ];
 
+/// The footer while a value or a prompt is typed: the keys are text then.
+pub const PROMPT_FOOTER: &[Hint] = &[
+    ("type", "text", 1),
+    ("Backspace", "delete", 2),
+    ("Enter", "done", 0),
+    ("Esc", "cancel", 0),
+];
+
 /// The footer while the map has the arrows, for a chart with (`sources`: the rattleback's limit
 /// or full model, switched by `f`) or without a choice of source.
 #[must_use]
@@ -569,10 +577,21 @@ pub fn footer<A>(map: &[Binding<A>]) -> Vec<Hint> {
 }
 
 /// The replay's footer as `space` acts now: `pause` while it plays, `resume` when paused, and
-/// no `space` once the recording has ended.
+/// no `space` once the recording has ended. A follower's (`rattleback follow`) offers `f fork`
+/// too, and `space` until the lecture has ended and been shown to its end (issue 81: caught up
+/// with a live lecture, its footer left out both).
 #[must_use]
-pub fn replay_footer(paused: bool, ended: bool) -> Vec<Hint> {
+pub fn replay_footer(info: crate::app::ReplayInfo) -> Vec<Hint> {
     let mut hints = footer(REPLAY_KEYMAP);
+    let ended = match info.live {
+        Some(lecture_ended) => lecture_ended && info.ended,
+        None => info.ended,
+    };
+    let paused = info.paused;
+    if info.live.is_some() {
+        let at = hints.len().saturating_sub(2);
+        hints.insert(at, ("f", "fork", 1));
+    }
     if ended {
         hints.retain(|hint| hint.1 != "pause");
     } else if paused {

@@ -267,12 +267,10 @@ impl App {
                     .action_for(key)
                     .map_or_else(Vec::new, |a| self.update(a)),
             },
-            // Esc and Enter close it; any other key closes it and does what it does (issue 66:
-            // the key after `R` that could not record was lost, so `q` did not quit).
-            Mode::Dialog(_) | Mode::Address(_) if matches!(key, Key::Esc | Key::Enter) => {
-                Vec::new()
-            }
-            Mode::Dialog(_) | Mode::Address(_) => self.key(key),
+            // A dialog or the address closes on any key, which does nothing else (issue 81:
+            // `q` on the address ended a hall's lecture; the key after an error's dialog used to
+            // act as well, issue 66, and Ctrl-C still quits from either).
+            Mode::Dialog(_) | Mode::Address(_) => Vec::new(),
             Mode::Help(help) => self.on_help_key(help, key),
             Mode::Editing(text) => self.on_edit_key(text, key),
             Mode::Prompt(prompt) => self.on_prompt_key(prompt, key),

@@ -26,8 +26,8 @@ pub enum Mode {
     Map,
 }
 
-/// The help overlay: its page and how far it is scrolled.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// The help overlay: its page, how far it is scrolled, and what was typed to filter it.
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Help {
     /// The page shown.
     pub page: HelpPage,
@@ -40,6 +40,9 @@ pub struct Help {
     /// than Esc, Enter and the page keys closes it and does what it does (issue 67: the key
     /// after `y` was lost).
     pub passes_on: bool,
+    /// What was typed: only the lines holding it are shown (issue 81, lazygit's menus: typing
+    /// in the help filtered nothing, closed it, and the letters acted).
+    pub filter: String,
 }
 
 impl Help {
@@ -51,6 +54,7 @@ impl Help {
             scroll: 0,
             max: u16::MAX,
             passes_on: false,
+            filter: String::new(),
         }
     }
 
@@ -61,6 +65,13 @@ impl Help {
             passes_on: true,
             ..self
         }
+    }
+
+    /// Whether `line` is shown under the filter (every line when nothing was typed; case is
+    /// ignored).
+    #[must_use]
+    pub fn shows(&self, line: &str) -> bool {
+        self.filter.is_empty() || line.to_lowercase().contains(&self.filter.to_lowercase())
     }
 
     /// Scrolled by `by` lines (negative: up), within `[0, max]`.

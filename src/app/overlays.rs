@@ -6,11 +6,13 @@ use super::mode::{Help, HelpPage, Mode};
 use super::{App, Effect};
 
 impl App {
-    /// A key while the help is open: the arrows, `j` `k`, page up and down, Home and End scroll it; `?`
-    /// turns to the legend, then closes; `q` and Ctrl-C quit; any other key only closes it (a
-    /// key that closes the help does nothing else). A view the program opened itself
-    /// ([`Help::passes_on`]) scrolls by page only, and passes any other key on but Esc and Enter.
-    pub(super) fn on_help_key(&mut self, help: Help, key: Key) -> Vec<Effect> {
+    /// A key while the help is open: the arrows, page up and down, Home and End scroll it; `?`
+    /// turns to the legend, then closes; Esc and Enter close it; a printable key is typed into
+    /// its filter (Backspace takes one back), so the help shows only the lines holding what was
+    /// typed; nothing else happens (issue 81: `reset` typed in the help reset the run). Ctrl-C
+    /// quits, as everywhere. A view the program opened itself ([`Help::passes_on`]) scrolls by
+    /// page only, and passes any other key on but Esc and Enter.
+    pub(super) fn on_help_key(&mut self, mut help: Help, key: Key) -> Vec<Effect> {
         const PAGE: i32 = 10;
         if help.passes_on {
             return match key {
@@ -27,9 +29,9 @@ impl App {
             };
         }
         let by = match key {
-            Key::Down | Key::Char('j') => Some(1),
-            Key::Up | Key::Char('k') => Some(-1),
-            Key::PageDown | Key::Char(' ') => Some(PAGE),
+            Key::Down => Some(1),
+            Key::Up => Some(-1),
+            Key::PageDown => Some(PAGE),
             Key::PageUp => Some(-PAGE),
             Key::Home => Some(-i32::from(u16::MAX)),
             Key::End => Some(i32::from(u16::MAX)),
@@ -39,14 +41,31 @@ impl App {
             self.mode = Mode::Help(help.scrolled(by));
             return Vec::new();
         }
-        match self.options.action_for(key) {
-            Some(Action::ToggleHelp) if help.page == HelpPage::Keys => {
-                self.mode = Mode::Help(Help::at(HelpPage::Legend));
+        match key {
+            Key::Esc | Key::Enter => return Vec::new(),
+            Key::Backspace => {
+                help.filter.pop();
+                self.mode = Mode::Help(help.scrolled(-i32::from(u16::MAX)));
+                return Vec::new();
             }
-            Some(Action::Quit) if key != Key::Esc => self.quit = true,
-            // Anything else closes the help and does nothing more.
             _ => {}
         }
+        if self.options.action_for(key) == Some(Action::ToggleHelp) {
+            if help.page == HelpPage::Keys {
+                self.mode = Mode::Help(Help::at(HelpPage::Legend));
+            }
+            return Vec::new();
+        }
+        if let Key::Char(c) = key
+            && !c.is_control()
+        {
+            help.filter.push(c);
+            help.max = u16::MAX;
+            self.mode = Mode::Help(help.scrolled(-i32::from(u16::MAX)));
+            return Vec::new();
+        }
+        // Any other key (Tab, a function key): nothing, the help stays.
+        self.mode = Mode::Help(help);
         Vec::new()
     }
 

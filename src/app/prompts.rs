@@ -193,7 +193,7 @@ impl App {
         }
         self.status = Message::info(match purpose {
             PromptFor::SaveName => {
-                "name the preset (letters, digits, - and _), then `: words` to describe it if you like; Enter saves, Esc cancels"
+                "name it (letters, digits, - and _), then `: words` to describe it if you like"
             }
             _ => "type it, Enter marks, Esc cancels",
         });

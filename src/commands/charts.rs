@@ -9,7 +9,7 @@ use super::{
 
 pub(super) fn study_map(args: &crate::commands::cli::MapArgs) -> Outcome {
     use crate::study::chart;
-    let (preset, model, t_end, tolerance) = study_setup(&args.common)?;
+    let (preset, model, t_end, tolerance, _folder) = study_setup(&args.common)?;
     let ask = crate::study::ask::StudyAsk {
         grid: args.grid,
         t_end,
@@ -298,7 +298,7 @@ fn chart_priced(
     if let Err(over) = crate::physics::budget::check(predicted, budget) {
         let what = chart.title();
         return Err(Failure::input(format!(
-            "this {what} ({cells} cells to compute) is {over}; use a smaller --grid or --shard I/N, or pass --force"
+            "the chart {what}: {cells} cells to compute, {over}; use a smaller --grid or --shard I/N, or pass --force"
         )));
     }
     Ok(())

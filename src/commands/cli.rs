@@ -117,7 +117,7 @@ pub struct RecordArgs {
 /// How the explorer (and a replay) draws: frame rate, theme, marker.
 #[derive(Debug, Args, Clone)]
 pub struct LookArgs {
-    /// Frames per second at most [default: 30]
+    /// Frame rate cap [default: 30; serve, cast: 10]
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=240))]
     pub fps: Option<u32>,
     /// Colour theme: a name (`rattleback themes`) or a file
@@ -227,16 +227,16 @@ pub enum Command {
     ///
     /// Every preset, shipped and the user's, with its scene, source and description.
     Presets(PresetsArgs),
-    /// List the colour themes, shipped and the user's.
-    Themes(ListArgs),
+    /// List the colour themes, or print one (`themes show NAME`).
+    Themes(ThemesArgs),
     /// Open a lesson in the explorer, or write one (`lesson new NAME`).
     ///
     /// A lesson's steps, questions and conditions in the explorer (`lessons` lists them);
     /// `lesson new NAME` writes a commented lesson to edit into your lessons folder.
     #[command(subcommand_negates_reqs = true, args_conflicts_with_subcommands = true)]
     Lesson(LessonArgs),
-    /// List the lessons, shipped and the user's.
-    Lessons(ListArgs),
+    /// List the lessons, or print one (`lessons show NAME`).
+    Lessons(LessonsArgs),
     /// Two presets on one time axis, in the explorer.
     ///
     /// The explorer on preset A with preset B beside it on one time axis (the compare pane,
@@ -426,6 +426,10 @@ pub struct CompletionsArgs {
     /// The shell.
     #[arg(value_enum)]
     pub shell: clap_complete::Shell,
+    /// The program the script asks for completions [default: `rattleback`, found on PATH
+    /// each time]; give a path to complete with a binary that is not on PATH.
+    #[arg(long, value_name = "PATH")]
+    pub binary: Option<std::path::PathBuf>,
 }
 
 /// `study` subcommands.
@@ -710,12 +714,37 @@ pub enum PresetsAction {
     },
 }
 
-/// Arguments of a list (`themes`).
+/// Arguments of `themes`.
 #[derive(Debug, Args)]
-pub struct ListArgs {
-    /// Output format.
+pub struct ThemesArgs {
+    /// Print one theme instead of the list.
+    #[command(subcommand)]
+    pub action: Option<ShowAction>,
+    /// Output format of the list.
     #[arg(long, value_enum, default_value_t = ListFormat::Table)]
     pub format: ListFormat,
+}
+
+/// Arguments of `lessons`.
+#[derive(Debug, Args)]
+pub struct LessonsArgs {
+    /// Print one lesson instead of the list.
+    #[command(subcommand)]
+    pub action: Option<ShowAction>,
+    /// Output format of the list.
+    #[arg(long, value_enum, default_value_t = ListFormat::Table)]
+    pub format: ListFormat,
+}
+
+/// `themes` and `lessons` subcommands.
+#[derive(Debug, Subcommand)]
+pub enum ShowAction {
+    /// Print its TOML (a shipped name, the user's or a path), to copy and edit.
+    Show {
+        /// The theme or lesson.
+        #[arg(value_name = "NAME|PATH")]
+        name: String,
+    },
 }
 
 /// Output format of the lists, `check`, `doctor` and `replay --chapters`/`--verify`.

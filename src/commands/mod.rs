@@ -9,6 +9,7 @@ pub mod outputs;
 pub mod page;
 pub mod progress;
 pub mod serve;
+pub mod wrap;
 
 mod charts;
 
@@ -18,7 +19,7 @@ use std::fmt::Write as _;
 use crate::commands::failure::{Failure, Outcome};
 use crate::commands::progress::{Progress, counted};
 
-use crate::commands::cli::{CheckArgs, ListArgs, ListFormat, PresetsAction, PresetsArgs};
+use crate::commands::cli::{CheckArgs, ListFormat, PresetsAction, PresetsArgs};
 use crate::scenario::PresetError;
 use crate::scenario::preset;
 use crate::scenario::shipped::catalogue;
@@ -106,9 +107,23 @@ fn found_at(shipped: bool, path: &str, show: &str) -> String {
     }
 }
 
-/// `rattleback themes`: every theme, like `presets`.
-pub fn themes(args: &ListArgs) -> Outcome {
+/// Prints a shipped or user file's TOML (`themes show`, `lessons show`).
+fn show(text: Result<String, crate::scenario::PresetError>) -> Outcome {
+    match text {
+        Ok(text) => {
+            say_raw!("{text}");
+            Ok(())
+        }
+        Err(e) => Err(Failure::input(e)),
+    }
+}
+
+/// `rattleback themes`: every theme, like `presets`; or one (`themes show NAME`).
+pub fn themes(args: &crate::commands::cli::ThemesArgs) -> Outcome {
     use crate::scenario::theme::{SHIPPED_THEMES, themes};
+    if let Some(crate::commands::cli::ShowAction::Show { name }) = &args.action {
+        return show(crate::scenario::theme::source_text(name));
+    }
     let (all, problems) = themes();
     let user_dir = crate::scenario::shipped::config_dir().map(|d| d.join("themes"));
     let entries: Vec<crate::commands::outputs::ThemeEntry> = all
@@ -154,7 +169,7 @@ pub fn themes(args: &ListArgs) -> Outcome {
                 found_at(
                     e.source == "shipped",
                     &e.path,
-                    "rattleback themes --format json"
+                    &format!("rattleback themes show {}", e.name)
                 ),
                 one_line(&e.description)
             )
@@ -163,8 +178,11 @@ pub fn themes(args: &ListArgs) -> Outcome {
     )
 }
 
-/// `rattleback lessons`: every lesson, like `presets`.
-pub fn lessons(args: &ListArgs) -> Outcome {
+/// `rattleback lessons`: every lesson, like `presets`; or one (`lessons show NAME`).
+pub fn lessons(args: &crate::commands::cli::LessonsArgs) -> Outcome {
+    if let Some(crate::commands::cli::ShowAction::Show { name }) = &args.action {
+        return show(crate::scenario::lesson::source_text(name));
+    }
     let (entries, problems) = crate::scenario::lesson::catalogue();
     let json = crate::commands::outputs::LessonList {
         schema_version: crate::commands::outputs::SCHEMA_VERSION,
@@ -192,7 +210,7 @@ pub fn lessons(args: &ListArgs) -> Outcome {
                 found_at(
                     format!("{:?}", e.source).eq_ignore_ascii_case("shipped"),
                     &e.path,
-                    &format!("rattleback lesson {}", e.name)
+                    &format!("rattleback lessons show {}", e.name)
                 )
             )
         },
@@ -209,16 +227,25 @@ pub fn command_with_completers() -> clap::Command {
 }
 
 fn attach_completers(cmd: clap::Command) -> clap::Command {
+    attach_completers_under(cmd, "")
+}
+
+/// [`attach_completers`] for a command under `parent` (`show` completes its parent's names).
+fn attach_completers_under(cmd: clap::Command, parent: &str) -> clap::Command {
     use clap_complete::engine::ArgValueCompleter;
-    let is_presets_show = cmd.get_name() == "show";
-    cmd.mut_args(move |a| match a.get_id().as_str() {
-        "preset" | "a" | "b" => a.add(ArgValueCompleter::new(complete_presets)),
-        "name" if is_presets_show => a.add(ArgValueCompleter::new(complete_presets)),
-        "theme" => a.add(ArgValueCompleter::new(complete_themes)),
-        "lesson" => a.add(ArgValueCompleter::new(complete_lessons)),
+    let show = (cmd.get_name() == "show").then(|| parent.to_owned());
+    let name = cmd.get_name().to_owned();
+    cmd.mut_args(move |a| match (a.get_id().as_str(), show.as_deref()) {
+        ("preset" | "a" | "b", _) | ("name", Some("presets")) => {
+            a.add(ArgValueCompleter::new(complete_presets))
+        }
+        ("theme", _) | ("name", Some("themes")) => a.add(ArgValueCompleter::new(complete_themes)),
+        ("lesson", _) | ("name", Some("lessons")) => {
+            a.add(ArgValueCompleter::new(complete_lessons))
+        }
         _ => a,
     })
-    .mut_subcommands(attach_completers)
+    .mut_subcommands(move |c| attach_completers_under(c, &name))
 }
 
 type Candidates = Vec<clap_complete::engine::CompletionCandidate>;
@@ -276,13 +303,18 @@ pub fn answer_completion() {
 
 /// `rattleback completions SHELL`: the script that registers dynamic completion in that shell
 /// (the shell asks the program for every completion, so names are never stale).
-pub fn completions(shell: clap_complete::Shell) -> Outcome {
-    // The program that answers: this binary, by its path when known (a build outside PATH
-    // still completes), else by name.
-    let me = std::env::current_exe()
-        .ok()
-        .and_then(|p| p.to_str().map(str::to_owned))
-        .unwrap_or_else(|| "rattleback".to_owned());
+pub fn completions(shell: clap_complete::Shell, binary: Option<&std::path::Path>) -> Outcome {
+    // The program that answers: `rattleback` by name, found on PATH whenever the shell
+    // completes (issue 81, D-9: the absolute path of the binary that printed the script broke
+    // every Tab once it moved, and a packager's staged binary would be named); a path only when
+    // asked (`--binary`).
+    let me = match binary {
+        None => "rattleback".to_owned(),
+        Some(p) => p
+            .to_str()
+            .map(str::to_owned)
+            .ok_or_else(|| Failure::input(format!("--binary {}: not valid UTF-8", p.display())))?,
+    };
     let shells = clap_complete::env::Shells::builtins();
     let Some(completer) = shells.completer(&shell.to_string()) else {
         return Err(Failure::input(format!(
@@ -316,7 +348,9 @@ pub fn doctor(args: &crate::commands::cli::DoctorArgs) -> Outcome {
     );
     let text = match args.format {
         ListFormat::Json => json_text(&d),
-        ListFormat::Table => crate::scenario::text::shown(&d.table()),
+        ListFormat::Table => {
+            crate::commands::wrap::for_stdout(&crate::scenario::text::shown(&d.table()))
+        }
     };
     write_stdout(text.as_bytes())
 }
@@ -384,7 +418,10 @@ fn print_list<T>(
 ) -> Outcome {
     let out = match format {
         ListFormat::Json => json_text(json),
-        ListFormat::Table => entries.iter().map(row).collect(),
+        // Fitted to the terminal's width when printed on one (issue 81).
+        ListFormat::Table => {
+            crate::commands::wrap::for_stdout(&entries.iter().map(row).collect::<String>())
+        }
     };
     say_raw!("{out}");
     report(problems)
@@ -440,9 +477,9 @@ fn bench_refuses_old_files(args: &crate::commands::cli::BenchArgs) -> Outcome {
 pub fn bench(args: &crate::commands::cli::BenchArgs) -> Outcome {
     use crate::bench;
     let config = bench::Config { quick: args.quick };
-    if let Err(e) = std::fs::create_dir_all(&args.out) {
-        return Err(Failure::input(format!("{}: {e}", args.out.display())));
-    }
+    // Removed again if the run ends (a signal, a failure) with nothing written into it.
+    let _folder = crate::fault::made_folder(&args.out)
+        .map_err(|e| Failure::input(format!("{}: {e}", args.out.display())))?;
     let part = |p: crate::commands::cli::BenchPart| args.only.is_none_or(|o| o == p);
     bench_refuses_old_files(args)?;
     let mut wrote = Vec::new();
@@ -599,19 +636,31 @@ pub fn check(args: &CheckArgs) -> Outcome {
             Err(e) => problems.push(e),
             Ok(src) if crate::scenario::lesson::is_lesson(&src) => {
                 match crate::scenario::lesson::Lesson::parse(&src, &label, &label) {
-                    Err(mut e) => problems.append(&mut e),
+                    Err(mut e) => {
+                        problems.append(&mut e);
+                        // Said, not left to be guessed: the steps were not run.
+                        problems.push(PresetError::Invalid {
+                            path: label.clone(),
+                            line: None,
+                            key: None,
+                            message: "its steps were not walked (each run as a student meets \
+                                      it at 80×24) because of the problems above: fix them and \
+                                      check again"
+                                .to_owned(),
+                        });
+                    }
                     // Read as a student meets it, step by step at 80×24.
                     Ok(lesson) => {
                         problems.extend(crate::explorer::review::review(&lesson).into_iter().map(
                             |f| PresetError::Invalid {
                                 path: label.clone(),
                                 line: crate::scenario::lesson::step_line(&src, f.step),
+                                // Said as the explorer counts it (`step 4: "Title": …`,
+                                // issue 81, L7); JSON keeps the key `step.3`.
                                 key: Some(format!("step.{}", f.step)),
                                 message: format!(
-                                    "step {} (\"{}\"): {}",
-                                    f.step + 1,
-                                    lesson.steps[f.step].title,
-                                    f.message
+                                    "\"{}\": {}",
+                                    lesson.steps[f.step].title, f.message
                                 ),
                             },
                         ));
@@ -668,7 +717,16 @@ pub fn study(command: &crate::commands::cli::StudyCommand) -> Outcome {
 /// The preset, horizon and tolerance of a study, or the exit of a bad input.
 fn study_setup(
     common: &crate::commands::cli::StudyCommon,
-) -> Result<(crate::scenario::Preset, crate::physics::Model, f64, f64), Failure> {
+) -> Result<
+    (
+        crate::scenario::Preset,
+        crate::physics::Model,
+        f64,
+        f64,
+        Option<crate::fault::MadeFolder>,
+    ),
+    Failure,
+> {
     let preset =
         crate::scenario::shipped::resolve(&common.preset, &common.set).map_err(Failure::input)?;
     let model = preset.model;
@@ -677,12 +735,16 @@ fn study_setup(
         .tolerance
         .or(preset.run.tolerance)
         .unwrap_or(crate::physics::DEFAULT_TOLERANCE);
-    if let Some(dir) = &common.out
-        && let Err(e) = std::fs::create_dir_all(dir)
-    {
-        return Err(Failure::input(format!("--out {}: {e}", dir.display())));
-    }
-    Ok((preset, model, t_end, tolerance))
+    // Made now, so that a bad --out is refused before the work; removed again if the run ends
+    // without writing into it.
+    let folder = match &common.out {
+        Some(dir) => Some(
+            crate::fault::made_folder(dir)
+                .map_err(|e| Failure::input(format!("--out {}: {e}", dir.display())))?,
+        ),
+        None => None,
+    };
+    Ok((preset, model, t_end, tolerance, folder))
 }
 
 /// Writes `files` (name, contents) into `--out`, refusing to replace without `--force`.
@@ -759,7 +821,7 @@ fn sweep_budget(
 
 fn study_sweep(args: &crate::commands::cli::SweepArgs) -> Outcome {
     use crate::study::sweep::{ladder, sweep};
-    let (preset, model, t_end, tolerance) = study_setup(&args.common)?;
+    let (preset, model, t_end, tolerance, _folder) = study_setup(&args.common)?;
     let kind = model.kind();
     let Some(small) = kind.small() else {
         return Err(Failure::input(format!(

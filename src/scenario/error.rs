@@ -60,9 +60,28 @@ impl fmt::Display for Located<'_> {
         }
         write!(f, ": ")?;
         if let Some(key) = self.2 {
-            write!(f, "{}: ", clean(key))?;
+            write!(f, "{}: ", counted(&clean(key)))?;
         }
         write!(f, "{}", clean(self.3))
+    }
+}
+
+/// A lesson's key as a person counts its steps: `step.3.until.parameter` is `step 4,
+/// until.parameter` (issue 81, L7: the file's 0-based index stood beside the explorer's
+/// "step 4"); any other key as it is.
+fn counted(key: &str) -> String {
+    let Some(rest) = key.strip_prefix("step.") else {
+        return key.to_owned();
+    };
+    let (index, tail) = rest
+        .split_once('.')
+        .map_or((rest, None), |(i, t)| (i, Some(t)));
+    match index.parse::<usize>() {
+        Ok(i) => match tail {
+            Some(t) => format!("step {}, {t}", i + 1),
+            None => format!("step {}", i + 1),
+        },
+        Err(_) => key.to_owned(),
     }
 }
 

@@ -345,6 +345,23 @@ mod tests {
 /// (≥ 0.8, so `tolerence` finds `tolerance`); case ignored.
 #[must_use]
 pub fn closest<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    let candidates: Vec<&'a str> = candidates.into_iter().collect();
+    // A dotted key whose last part is exactly a candidate's (`celt.omega_z` for
+    // `initial.omega_z`): the section was mistaken, not the name (issue 81, L7: it suggested
+    // `celt.a`).
+    if let Some((_, tail)) = word.rsplit_once('.') {
+        let same_tail: Vec<&str> = candidates
+            .iter()
+            .copied()
+            .filter(|c| {
+                c.rsplit_once('.')
+                    .is_some_and(|(_, t)| t.eq_ignore_ascii_case(tail))
+            })
+            .collect();
+        if let [only] = same_tail[..] {
+            return Some(only);
+        }
+    }
     let word = word.to_lowercase();
     candidates
         .into_iter()
@@ -382,6 +399,14 @@ mod suggestion_tests {
             "one letter suggests nothing"
         );
         assert_eq!(did_you_mean("banana", keys), "");
+        // A mistaken section, the name right (issue 81, L7).
+        assert_eq!(
+            closest(
+                "celt.omega_z",
+                ["celt.a", "celt.b", "initial.omega_x", "initial.omega_z"]
+            ),
+            Some("initial.omega_z")
+        );
         assert_eq!(
             did_you_mean("subcritcal", ["subcritical", "supercritical"]),
             "; did you mean `subcritical`?"

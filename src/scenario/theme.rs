@@ -311,15 +311,41 @@ pub fn themes() -> (Vec<(String, ThemeSpec)>, Vec<PresetError>) {
 /// # Errors
 /// An unknown name or an invalid file (its first problem).
 pub fn theme(name: &str) -> Result<ThemeSpec, PresetError> {
+    theme_with_text(name).map(|(t, _)| t)
+}
+
+/// The text of the theme `name` (a file, a user theme, or a shipped one), to copy and edit
+/// (`rattleback themes show NAME`, issue 81).
+///
+/// # Errors
+/// As [`theme`].
+pub fn source_text(name: &str) -> Result<String, PresetError> {
+    theme_with_text(name).map(|(_, text)| text)
+}
+
+/// [`theme`] and its file's text.
+fn theme_with_text(name: &str) -> Result<(ThemeSpec, String), PresetError> {
     let path = std::path::Path::new(name);
     if path.exists() && !path.is_dir() {
         let label = path.display().to_string();
         let src = PresetError::read(path)?;
-        return ThemeSpec::parse(&src, &label, name).map_err(|mut e| e.swap_remove(0));
+        let spec = ThemeSpec::parse(&src, &label, name).map_err(|mut e| e.swap_remove(0))?;
+        return Ok((spec, src));
     }
     let (all, mut problems) = themes();
     if let Some((_, t)) = all.into_iter().find(|(n, _)| n == name) {
-        return Ok(t);
+        let user = crate::scenario::shipped::config_dir()
+            .map(|d| d.join("themes").join(format!("{name}.toml")))
+            .filter(|p| p.is_file());
+        let text = match user {
+            Some(p) => PresetError::read(&p)?,
+            None => SHIPPED_THEMES
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map(|(_, src)| (*src).to_owned())
+                .unwrap_or_default(),
+        };
+        return Ok((t, text));
     }
     if !problems.is_empty() {
         return Err(problems.swap_remove(0));

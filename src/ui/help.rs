@@ -80,8 +80,39 @@ fn key_rows<A: Copy>(
         .collect()
 }
 
+/// The lines of the help's page, only those its filter shows, and its heading.
+fn content(app: &App, help: &Help, look: &Look<'_>) -> (Vec<Line<'static>>, String) {
+    let (lines, heading) = page(app, help, look);
+    if help.filter.is_empty() {
+        let heading = if help.page == HelpPage::Messages || help.passes_on {
+            heading.to_owned()
+        } else {
+            heading.replacen(": ", ": type to filter · ", 1)
+        };
+        return (lines, heading);
+    }
+    let text = |l: &Line<'_>| {
+        l.spans
+            .iter()
+            .map(|s| s.content.as_ref())
+            .collect::<String>()
+    };
+    let mut kept: Vec<Line<'static>> = lines.into_iter().filter(|l| help.shows(&text(l))).collect();
+    if kept.is_empty() {
+        kept.push(Line::raw(format!(
+            " nothing holds '{}' (Backspace takes a letter back)",
+            help.filter
+        )));
+    }
+    let name = heading.split(':').next().unwrap_or("").trim();
+    (
+        kept,
+        format!(" {name} holding '{}': Backspace · Esc closes ", help.filter),
+    )
+}
+
 /// The lines of the help's page, and its heading.
-fn content(app: &App, help: Help, look: &Look<'_>) -> (Vec<Line<'static>>, &'static str) {
+fn page(app: &App, help: &Help, look: &Look<'_>) -> (Vec<Line<'static>>, &'static str) {
     let keys = &app.options.keys;
     match help.page {
         HelpPage::Keys if app.replay.is_some() => (
@@ -137,7 +168,7 @@ fn messages(app: &App, look: &Look<'_>) -> Vec<Line<'static>> {
 #[must_use]
 pub fn legend_text(app: &App, options: &super::UiOptions) -> Vec<String> {
     let look = options.look(app.view.theme);
-    let (lines, _) = content(app, Help::at(HelpPage::Legend), &look);
+    let (lines, _) = content(app, &Help::at(HelpPage::Legend), &look);
     lines
         .iter()
         .map(|l| {
@@ -164,7 +195,7 @@ fn popup(area: Rect, lines: usize) -> (Rect, u16) {
 /// frame (0 when the page fits).
 #[must_use]
 pub fn max_scroll(app: &App, area: Rect, options: &super::UiOptions) -> u16 {
-    let Mode::Help(help) = app.mode else {
+    let Mode::Help(help) = &app.mode else {
         return 0;
     };
     let look = options.look(app.view.theme);
@@ -173,7 +204,7 @@ pub fn max_scroll(app: &App, area: Rect, options: &super::UiOptions) -> u16 {
     (lines.len() as u16).saturating_sub(shown)
 }
 
-pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, help: Help, look: &Look) {
+pub fn draw(frame: &mut Frame<'_>, area: Rect, app: &App, help: &Help, look: &Look) {
     let (lines, heading) = content(app, help, look);
     let total = lines.len();
     let (rect, shown) = popup(area, total);

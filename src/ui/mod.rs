@@ -554,7 +554,12 @@ fn message_lines(app: &App, width: u16) -> Option<(Vec<String>, bool)> {
         if let Some(last) = lines.last_mut()
             && last.ends_with('…')
         {
-            let hint = " (v: whole)";
+            // While a value or a prompt is typed `v` is text: no key is offered then (issue 81).
+            let hint = if matches!(app.mode, Mode::Editing(_) | Mode::Prompt(_)) {
+                ""
+            } else {
+                " (v: whole)"
+            };
             let keep: String = last
                 .trim_end_matches('…')
                 .chars()
@@ -659,10 +664,13 @@ fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mu
             .collect()
     };
     let hints = if let Some(replay) = app.replay {
-        owned(keys::replay_footer(replay.paused, replay.ended))
+        owned(keys::replay_footer(replay))
     } else if app.mode == Mode::Map {
         let kind = app.scenario.settings.model.kind();
         owned(keys::map_footer(crate::study::chart::words(kind).sources))
+    } else if matches!(app.mode, Mode::Editing(_) | Mode::Prompt(_)) {
+        // Typing: the keys are text; the footer says what ends it (issue 81, D-3).
+        owned(keys::PROMPT_FOOTER.to_vec())
     } else {
         // The user's keys where an action lost its defaults; the words say what a key does
         // now (`space pause` while playing).
@@ -678,7 +686,7 @@ fn draw_screen(frame: &mut Frame<'_>, app: &App, options: &UiOptions, cache: &mu
         draw_footer(frame, footer, &hints, &look);
     }
     match &app.mode {
-        Mode::Help(h) => help::draw(frame, area, app, *h, &look),
+        Mode::Help(h) => help::draw(frame, area, app, h, &look),
         Mode::Picker(p) => dialogs::picker(frame, area, p, &look),
         Mode::Dialog(text) => dialogs::error(frame, area, text, &look),
         Mode::Address(url) => dialogs::address(frame, area, url, &look),
@@ -728,7 +736,30 @@ pub fn fit_long_words(text: &str, width: usize) -> String {
     if n <= width {
         return text.to_owned();
     }
-    let Some(longest) = text.split(' ').max_by_key(|w| w.chars().count()) else {
+    // Two long words (`x`'s "wrote ….svg and ….csv") share the cut, each keeping its name's
+    // end, when each keeps 16 characters at least (issue 81, D-4).
+    let words: Vec<&str> = text.split(' ').collect();
+    let long: Vec<usize> = (0..words.len())
+        .filter(|&i| words[i].chars().count() >= 24)
+        .collect();
+    if long.len() > 1 {
+        let share = (n - width).div_ceil(long.len());
+        if long.iter().all(|&i| words[i].chars().count() >= share + 16) {
+            return words
+                .iter()
+                .enumerate()
+                .map(|(i, w)| {
+                    if long.contains(&i) {
+                        crate::scenario::text::middle(w, w.chars().count() - share)
+                    } else {
+                        (*w).to_owned()
+                    }
+                })
+                .collect::<Vec<_>>()
+                .join(" ");
+        }
+    }
+    let Some(longest) = words.iter().copied().max_by_key(|w| w.chars().count()) else {
         return text.to_owned();
     };
     let len = longest.chars().count();

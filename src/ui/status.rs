@@ -94,6 +94,9 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
             }
             _ => "verifying ahead…".to_owned(),
         },
+        // A replay (or a followed lecture) that has ended moves no more: not `▶` beside
+        // "lecture ended" (issue 81).
+        _ if run.playing && bar.replay.is_some_and(replay_over) => "stopped".to_owned(),
         _ if run.playing => "▶".to_owned(),
         _ => "paused".to_owned(),
     };
@@ -163,7 +166,7 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
 pub fn legend(f: &Facts<'_>, _look: &Look<'_>) -> Section {
     let words = f.kind.words();
     let mut s = Section::new("status bar")
-        .note("t shown/end · ▶ playing, paused, done, verifying… · ×speed")
+        .note("t shown/end · ▶ playing, paused, done, verifying…, stopped (a replay at its end) · ×speed")
         .note("replay ×pace, paused, ended · chapter n/N · following live, f forks");
     let events = match f.kind.small() {
         Some(small) => format!(
@@ -194,6 +197,12 @@ pub fn legend(f: &Facts<'_>, _look: &Look<'_>) -> Section {
     .note("method, or auto→the method auto chose")
     .note("est E ✓: auto's verified error, within the tolerance (✗: missed)")
     .note("N steps/s: the integration rate, while playing · ● REC: recording")
+}
+
+/// Whether a replay has shown all there is: its recording's end, or a followed lecture that has
+/// ended and been shown to its end.
+fn replay_over(r: ReplayInfo) -> bool {
+    r.ended && r.live != Some(false)
 }
 
 /// A replay's or a follower's fields: its state, the lecture's clock, the chapter or the fork.

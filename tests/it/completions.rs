@@ -59,13 +59,13 @@ fn script(shell: &str, later: &Path, dir: &Path, lines: &[&str]) -> String {
     );
     let bin = crate::common::program();
     let mut s = match shell {
-        "bash" => format!("source <('{bin}' completions bash)\n{copy}\n"),
+        "bash" => format!("source <('{bin}' completions bash --binary '{bin}')\n{copy}\n"),
         // compinit is interactive machinery: stand in for compdef and _describe, print what
         // the completer would offer.
         "zsh" => format!(
-            "compdef() {{ : }}\n_describe() {{ print -l -- ${{(P)${{@[-1]}}}} }}\nsource <('{bin}' completions zsh)\n{copy}\n"
+            "compdef() {{ : }}\n_describe() {{ print -l -- ${{(P)${{@[-1]}}}} }}\nsource <('{bin}' completions zsh --binary '{bin}')\n{copy}\n"
         ),
-        _ => format!("'{bin}' completions fish | source\n{copy}\n"),
+        _ => format!("'{bin}' completions fish --binary '{bin}' | source\n{copy}\n"),
     };
     for line in lines {
         let words: Vec<&str> = line.split(' ').collect();
@@ -156,4 +156,21 @@ fn bash_zsh_and_fish_complete_names_made_after_the_script_was_sourced() {
     }
     // bash is part of every CI image; at least it ran.
     assert!(ran >= 1, "no shell to complete in");
+}
+
+/// D-9 (issue 81): the script calls `rattleback` by name unless asked otherwise, so a binary
+/// moved, installed or packaged (its scripts generated from a staged copy) still completes;
+/// `--binary PATH` names one that is not on PATH.
+#[test]
+fn the_scripts_call_the_program_by_name_unless_asked() {
+    let bin = crate::common::program();
+    for shell in ["bash", "zsh", "fish"] {
+        let (code, script, err) = crate::common::bin(&["completions", shell]);
+        assert_eq!(code, 0, "{err}");
+        assert!(!script.contains(bin), "{shell}: the script names {bin}");
+        assert!(script.contains("rattleback"), "{shell}");
+        let (code, named, err) = crate::common::bin(&["completions", shell, "--binary", bin]);
+        assert_eq!(code, 0, "{err}");
+        assert!(named.contains(bin), "{shell}: --binary not used");
+    }
 }

@@ -157,13 +157,23 @@ fn toggles_zoom_wrap_reset_help_and_quit() {
     app.on_key(Key::Char('?'));
     app.on_key(Key::Down);
     assert!(matches!(app.mode, Mode::Help(_)), "the arrows scroll");
+    // Issue 81: a letter is typed into the help's filter and does nothing else; Esc closes.
     app.on_key(Key::Char('h'));
-    assert_eq!(app.mode, Mode::Normal, "another key closes it");
+    assert!(
+        matches!(&app.mode, Mode::Help(h) if h.filter == "h"),
+        "a letter filters the help: {:?}",
+        app.mode
+    );
     assert_eq!(app.scenario.selected, selected, "and does nothing else");
-    app.on_key(Key::Char('?'));
     app.on_key(Key::Char('q'));
-    assert!(app.quit, "q still quits from the help");
+    assert!(!app.quit, "q is typed into the help's filter, not a quit");
+    app.on_key(Key::Esc);
+    assert_eq!(app.mode, Mode::Normal, "Esc closes it");
+    app.on_key(Key::Char('?'));
+    app.on_key(Key::Ctrl('c'));
+    assert!(app.quit, "Ctrl-C still quits from the help");
     app.quit = false;
+    app.on_key(Key::Esc);
     app.on_key(Key::Char('T'));
     let m = app.status.clone().expect("T names the theme");
     assert!(m.text.contains("theme"), "{}", m.text);

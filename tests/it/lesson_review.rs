@@ -31,22 +31,22 @@ fn the_checks_fail_on_the_reviewed_texts_step_by_step() {
     // Step 2: "watch the trail settle" with the series in front, the portrait hidden.
     assert!(
         line(
-            "step.1",
+            "step 2",
             "about the portrait, which is not on screen at 80x24"
         ),
         "{err}"
     );
     // Step 3: the sweep's title states the answer's slope before the answer.
     assert!(
-        line("step.2", "the slope -1.01 on screen gives a tenfold factor"),
+        line("step 3", "the slope -1.01 on screen gives a tenfold factor"),
         "{err}"
     );
-    assert!(line("step.2", "after an answer, before the run"), "{err}");
+    assert!(line("step 3", "after an answer, before the run"), "{err}");
     let (code, _, err) = bin(&["check", &fixture("two-ways.toml")]);
     assert_eq!(code, 2, "{err}");
     // Step 4 asks how many reversals the run step 3 has just shown.
     assert!(
-        err.contains(": step.3: ") && err.contains("has just played to t = 10.00"),
+        err.contains(": step 4: ") && err.contains("has just played to t = 10.00"),
         "{err}"
     );
     // In JSON, each finding is a problem with the file, the step's line and its key.

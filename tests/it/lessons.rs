@@ -62,35 +62,35 @@ fn bad_lessons_are_refused_with_the_line_and_the_key() {
         (
             "typo-step-key.toml",
             10,
-            vec!["step.1.txet", "unknown key `txet`", "did you mean `text`?"],
+            vec!["step 2, txet", "unknown key `txet`", "did you mean `text`?"],
         ),
         (
             "bad-choice.toml",
             11,
-            vec!["step.0.question.answer", "\"yes\", \"no\""],
+            vec!["step 1, question.answer", "\"yes\", \"no\""],
         ),
         (
             "unknown-preset.toml",
             6,
-            vec!["step.0.preset", "did you mean `subcritical`?"],
+            vec!["step 1, preset", "did you mean `subcritical`?"],
         ),
-        ("bad-set.toml", 6, vec!["step.0.set", "spring.kk"]),
+        ("bad-set.toml", 6, vec!["step 1, set", "spring.kk"]),
         (
             "bad-until.toml",
             8,
-            vec!["step.0.until.parameter", "did you mean `spring.k`?"],
+            vec!["step 1, until.parameter", "did you mean `spring.k`?"],
         ),
         ("no-steps.toml", 1, vec!["step", "at least one [[step]]"]),
         (
             "impossible-until.toml",
             9,
-            vec!["step.0.until.time", "after the step's t_end = 30"],
+            vec!["step 1, until.time", "after the step's t_end = 30"],
         ),
         (
             "other-scene-until.toml",
             9,
             vec![
-                "step.0.until.parameter",
+                "step 1, until.parameter",
                 "not a parameter of the step's scene (kapitza)",
             ],
         ),

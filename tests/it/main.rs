@@ -58,6 +58,7 @@ mod lessons;
 mod page;
 mod presets_themes;
 mod prices;
+mod program;
 mod readme;
 mod record_replay;
 mod reference_cases;

@@ -166,6 +166,19 @@ pub fn condition_value(v: f64) -> String {
     }
 }
 
+/// A scene's value as the panel shows it: 6 decimals at most with trailing zeros dropped, or
+/// 7 significant digits in exponent form when very large or small (`1e-7`, `2.5e6`).
+fn shown_value(v: f64) -> String {
+    if v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-3) {
+        let s = format!("{v:.6e}");
+        let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
+        let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+        format!("{mantissa}e{exponent}")
+    } else {
+        super::text::format_number(v)
+    }
+}
+
 /// The step's text (or prompt) with its placeholders written: `{at_least}`, `{at_most}`,
 /// `{time}` and `{reversals}` from its condition, `{section.key}` from its scenario
 /// ([`condition_value`] writes both); a placeholder without its value is a problem.
@@ -201,7 +214,16 @@ fn with_placeholders(
                 }
                 None
             }
-            key if key.contains('.') => scene.and_then(|p| scene_value(p, key)),
+            key if key.contains('.') => {
+                // A scene's value as a student reads it beside the panel: 6 decimals at most,
+                // `1.378405`, not `1.378404875209022` (issue 81, D-11).
+                if let Some(v) = scene.and_then(|p| scene_value(p, key)) {
+                    out.push_str(&shown_value(v));
+                    rest = &rest[close + 1..];
+                    continue;
+                }
+                None
+            }
             _ => None,
         };
         if let Some(v) = value {
@@ -426,6 +448,29 @@ pub fn resolve(name_or_path: &str) -> Result<Lesson, PresetError> {
         name: name_or_path.to_owned(),
         available: available.join(", "),
     })
+}
+
+/// The text of the lesson `name_or_path` (a file, a user lesson, or a shipped one), to copy and
+/// edit (`rattleback lessons show NAME`, issue 81).
+///
+/// # Errors
+/// Not found, or not a valid lesson (its first problem).
+pub fn source_text(name_or_path: &str) -> Result<String, PresetError> {
+    resolve(name_or_path)?;
+    let path = Path::new(name_or_path);
+    if path.is_file() {
+        return PresetError::read(path);
+    }
+    if let Some(user) = user_dir().map(|d| d.join(format!("{name_or_path}.toml")))
+        && user.is_file()
+    {
+        return PresetError::read(&user);
+    }
+    Ok(SHIPPED_LESSONS
+        .iter()
+        .find(|(n, _)| *n == name_or_path)
+        .map(|(_, src)| (*src).to_owned())
+        .unwrap_or_default())
 }
 
 /// The line of step `index` (0-based) in a lesson's text, for a finding's location.
