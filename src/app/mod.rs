@@ -267,10 +267,14 @@ impl App {
                     .action_for(key)
                     .map_or_else(Vec::new, |a| self.update(a)),
             },
-            // A dialog or the address closes on any key, which does nothing else (issue 81:
-            // `q` on the address ended a hall's lecture; the key after an error's dialog used to
-            // act as well, issue 66, and Ctrl-C still quits from either).
-            Mode::Dialog(_) | Mode::Address(_) => Vec::new(),
+            // The address closes on any key, which does nothing else (issue 81: `q` on it
+            // ended a hall's lecture; Ctrl-C still quits).
+            Mode::Address(_) => Vec::new(),
+            // An error's dialog: Esc and Enter close it; any other key closes it and does what
+            // it does (issue 66: the key after `R` that could not record was lost, so `q` did
+            // not quit; its title says so).
+            Mode::Dialog(_) if matches!(key, Key::Esc | Key::Enter) => Vec::new(),
+            Mode::Dialog(_) => self.key(key),
             Mode::Help(help) => self.on_help_key(help, key),
             Mode::Editing(text) => self.on_edit_key(text, key),
             Mode::Prompt(prompt) => self.on_prompt_key(prompt, key),

@@ -111,7 +111,7 @@ pub fn error(frame: &mut Frame<'_>, area: Rect, text: &str, look: &Look) {
         Paragraph::new(text.to_owned())
             .style(Style::default().fg(look.theme.error))
             .wrap(Wrap { trim: true })
-            .block(Block::bordered().title(" error (any key closes) ")),
+            .block(Block::bordered().title(" error (Esc closes; other keys act) ")),
         popup,
     );
 }
