@@ -155,6 +155,7 @@ fn command() -> Outcome {
         Some(Command::Keygen(ref args)) => keygen(args),
         Some(Command::Config(ref c)) => commands::config(c),
         Some(Command::Doctor(ref args)) => commands::doctor(args),
+        Some(Command::Web(ref args)) => commands::web::web(args),
         Some(Command::Bench(ref args)) => commands::bench(args),
         Some(Command::Study(ref command)) => commands::study(command),
         None => run_explorer(&cli),

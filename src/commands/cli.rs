@@ -292,6 +292,24 @@ pub enum Command {
     /// choose here (characters, colours, marker, preset, theme, folders), each with why: paste
     /// it into a bug report. Takes the explorer's look flags to show their effect.
     Doctor(DoctorArgs),
+    /// Write the explorer as a static web site (WebAssembly).
+    ///
+    /// Builds the explorer for the browser (`wasm32-unknown-unknown`, from this program's
+    /// source checkout) and writes `index.html` and `rattleback.wasm` into DIR: any static
+    /// server hosts it (`python3 -m http.server -d DIR`); it asks for nothing else. It opens
+    /// on the default preset; `?preset=NAME` opens another.
+    Web(WebArgs),
+}
+
+/// Arguments of `web`.
+#[derive(Debug, Args)]
+pub struct WebArgs {
+    /// The folder to write the site into (created if missing).
+    #[arg(value_name = "DIR")]
+    pub dir: std::path::PathBuf,
+    /// Replace an existing `index.html` or `rattleback.wasm` there.
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// Arguments of `doctor`.

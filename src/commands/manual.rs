@@ -22,11 +22,8 @@ pub const EXAMPLES: &[(&str, &str)] = &[
         "rattleback --record lecture.jsonl",
         "record while exploring",
     ),
-    (
-        "rattleback follow lecture.jsonl",
-        "follow it live, read-only",
-    ),
     ("rattleback lesson first-reversal", "a guided lesson"),
+    ("rattleback web site", "the explorer as a web page"),
 ];
 
 /// Each subcommand's examples, shown at the end of its `--help` and in the manual.

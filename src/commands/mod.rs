@@ -9,6 +9,7 @@ pub mod outputs;
 pub mod page;
 pub mod progress;
 pub mod serve;
+pub mod web;
 pub mod wrap;
 
 mod charts;

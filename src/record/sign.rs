@@ -5,8 +5,7 @@
 //! signer's name and key, so neither a line nor the end record can change without the signature
 //! failing.
 
-use std::io::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use ed25519_dalek::{Signature, Signer as _, SigningKey, VerifyingKey};
 use serde::{Deserialize, Serialize};
@@ -202,7 +201,8 @@ pub fn check(public_hex: &str, message: &[u8], signature: &str) -> bool {
 ///
 /// # Errors
 /// A file exists, cannot be written, or the system has no randomness.
-pub fn keygen(stem: &Path) -> Result<(PathBuf, PathBuf), KeyError> {
+#[cfg(not(target_arch = "wasm32"))]
+pub fn keygen(stem: &Path) -> Result<(std::path::PathBuf, std::path::PathBuf), KeyError> {
     let name = stem
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -252,7 +252,9 @@ pub fn keygen(stem: &Path) -> Result<(PathBuf, PathBuf), KeyError> {
 }
 
 /// Creates `path` (never replacing a file), private (0600) when asked.
+#[cfg(not(target_arch = "wasm32"))]
 fn write_new(path: &Path, bytes: &[u8], private: bool) -> Result<(), KeyError> {
+    use std::io::Write as _;
     let io = |source: std::io::Error| {
         let source = if source.kind() == std::io::ErrorKind::AlreadyExists {
             std::io::Error::new(

@@ -574,7 +574,11 @@ pub fn verify_watched(
 ) -> Result<Report, VerifyError> {
     let (integrity, signature, ended) = check_integrity(rec, key)?;
     let (mut app, effects) = start(rec, path)?;
+    // A signal stops it natively; in the browser nothing does.
+    #[cfg(not(target_arch = "wasm32"))]
     let mut engine = Engine::new(plan_book(rec)).stopping_on(crate::interrupt::not_requested);
+    #[cfg(target_arch = "wasm32")]
+    let mut engine = Engine::new(plan_book(rec));
     let mut got = None;
     run(&mut engine, &mut app, effects, &mut got);
     let mut report = Report {

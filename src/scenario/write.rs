@@ -75,6 +75,7 @@ pub enum Links {
 /// # Errors
 /// `InvalidInput` for a FIFO, a device, a folder, a socket or (refused) a link, saying which;
 /// else what the system says.
+#[cfg_attr(not(unix), allow(unused_variables))]
 pub fn open_regular(path: &Path, links: Links) -> io::Result<File> {
     let mut options = std::fs::OpenOptions::new();
     options.read(true);
@@ -252,6 +253,7 @@ pub fn write_atomic_with<T>(
     }
     let mut tmp = builder.tempfile_in(dir)?;
     // A fault or a signal's watchdog that ends the process removes it (issue 56).
+    #[cfg(not(target_arch = "wasm32"))]
     let _pending = crate::fault::pending(tmp.path());
     let value = {
         let mut out = io::BufWriter::new(tmp.as_file_mut());

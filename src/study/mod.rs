@@ -22,6 +22,7 @@ pub mod refine;
 pub mod sweep;
 pub mod weak;
 
+#[cfg(not(target_arch = "wasm32"))]
 pub mod svg;
 
 pub use crate::physics::chart::tick;

@@ -156,7 +156,7 @@ impl MapPane<'_> {
         };
         let inferred = cell.is_some_and(|v| v.mark() == Mark::Inferred);
         let nx = if chart.words().sources { "ratio" } else { nx };
-        let tick = crate::study::svg::tick;
+        let tick = crate::study::tick;
         let text = format!("+ {nx} {} {ny} {}: {verdict}", tick(vx), tick(vy));
         Some((text, inferred))
     }
@@ -226,7 +226,7 @@ impl Widget for MapPane<'_> {
         let (x_name, y_name) = chart.words().axes;
         let n_rows = y_axis.height as usize;
         let mut labels = vec![TextLine::raw(""); n_rows];
-        let tick = crate::study::svg::tick;
+        let tick = crate::study::tick;
         if n_rows >= 2 {
             labels[0] = TextLine::styled(format!("{:>7} ", tick(ay.max)), look.dim());
             labels[n_rows - 2] = TextLine::styled(format!("{:>7} ", tick(ay.min)), look.dim());

@@ -186,7 +186,7 @@ fn heading(weak: &WeakState, pendulum: bool) -> String {
         (None, false) => "computing…".to_owned(),
         (None, true) => format!(
             "average over w = {} within {:.2} % of {}",
-            crate::study::svg::tick(weak.window),
+            crate::study::tick(weak.window),
             100.0 * weak.worst_deviation(),
             if pendulum { "the limit's" } else { "theta" }
         ),

@@ -466,3 +466,22 @@ fn check_reports_every_problem_in_a_persons_words() {
     assert!(err.contains("step 2, pane"), "{err}");
     assert!(err.contains("not walked"), "{err}");
 }
+
+/// Issue 82: `rattleback web DIR` refuses to replace an earlier site before any build, naming
+/// the file and `--force`.
+#[test]
+fn web_refuses_to_replace_a_site_before_building() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("index.html"), "mine").unwrap();
+    let (rc, _, err) = common::bin(&["web", dir.path().to_str().unwrap()]);
+    assert_eq!(rc, 2, "{err}");
+    assert!(
+        err.contains("index.html exists; --force replaces it"),
+        "{err}"
+    );
+    assert!(!err.contains("building"), "{err}");
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("index.html")).unwrap(),
+        "mine"
+    );
+}
