@@ -2,7 +2,7 @@
 // static server of this script's own on 127.0.0.1: the default preset played to its end at
 // top speed shows the native explorer's status bar (STATUS, from `cargo run -p rattleback-web
 // --example screen`); `?preset=kapitza-upright` opens the pendulum; the screen is text in the
-// DOM; no page error; no request leaves the site; at 400x800 the screen's text is at least
+// DOM (drawn by a Web Worker that runs the module); no page error; no request leaves the site; at 400x800 the screen's text is at least
 // 10 CSS px high. Prints the module's size and the first screen's time on loopback.
 //   node scripts/check_web.mjs DIR "STATUS LINE"
 import { chromium } from "playwright-core";
@@ -34,7 +34,9 @@ const open = async (query, viewport) => {
   const errors = [], outside = [];
   page.on("pageerror", (e) => errors.push(String(e)));
   page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
-  page.on("request", (r) => { if (!r.url().startsWith(base)) outside.push(r.url()); });
+  // The worker's script is a blob of the page's own origin, not a request that leaves it.
+  const own = (u) => u.startsWith(base) || u.startsWith("blob:" + base.slice(0, -1));
+  page.on("request", (r) => { if (!own(r.url())) outside.push(r.url()); });
   const t0 = Date.now();
   await page.goto(base + query);
   await page.waitForFunction(() => document.getElementById("screen").textContent.includes("t 0.00/"),
@@ -74,13 +76,19 @@ const pendulum = (await lines(b.page)).join("\n");
 if (!/Kapitza|pendulum/i.test(pendulum)) await fail(`?preset=kapitza-upright did not open the pendulum:\n${pendulum}`);
 console.log("check_web: ?preset=kapitza-upright opens the pendulum");
 
+// A lesson by its address.
+const l = await open("?lesson=first-reversal", { width: 1000, height: 800 });
+const step = (await lines(l.page)).join("\n");
+if (!step.includes("step 1/")) await fail(`?lesson=first-reversal did not open the lesson:\n${step}`);
+console.log("check_web: ?lesson=first-reversal opens the lesson at step 1");
+
 // A phone.
 const c = await open("", { width: 400, height: 800 });
 const px = await c.page.evaluate(() => parseFloat(getComputedStyle(document.getElementById("screen")).fontSize));
 if (!(px >= 10)) await fail(`at 400x800 the screen's text is ${px} px`);
 console.log(`check_web: at 400x800 the text is ${px} px (the screen scrolls sideways)`);
 
-for (const v of [a, b, c]) {
+for (const v of [a, b, l, c]) {
   if (v.errors.length) await fail(`page errors: ${v.errors.join("; ")}`);
   if (v.outside.length) await fail(`requests outside the site: ${v.outside.join(", ")}`);
 }

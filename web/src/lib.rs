@@ -42,7 +42,37 @@ impl Explorer {
     pub fn new(preset: &str, width: u16, height: u16) -> Result<Self, String> {
         let preset =
             rattleback::scenario::shipped::resolve(preset, &[]).map_err(|e| e.to_string())?;
-        let (app, effects) = App::new(&preset, Options::at(30.0));
+        Ok(Self::opened(&preset, None, width, height))
+    }
+
+    /// The explorer on a shipped lesson (its first step's preset, else the default), as
+    /// `rattleback lesson NAME` opens it.
+    ///
+    /// # Errors
+    /// No shipped lesson of that name (the message lists them).
+    pub fn lesson(name: &str, width: u16, height: u16) -> Result<Self, String> {
+        let lesson = rattleback::scenario::lesson::resolve(name).map_err(|e| e.to_string())?;
+        let preset = match lesson.steps[0].preset.clone() {
+            Some(p) => p,
+            None => rattleback::scenario::shipped::resolve(
+                rattleback::scenario::shipped::DEFAULT_PRESET,
+                &[],
+            )
+            .map_err(|e| e.to_string())?,
+        };
+        Ok(Self::opened(&preset, Some(lesson), width, height))
+    }
+
+    fn opened(
+        preset: &rattleback::scenario::Preset,
+        lesson: Option<rattleback::scenario::lesson::Lesson>,
+        width: u16,
+        height: u16,
+    ) -> Self {
+        let (mut app, mut effects) = App::new(preset, Options::at(30.0));
+        if let Some(lesson) = lesson {
+            effects.extend(app.start_lesson(lesson));
+        }
         let mut explorer = Self {
             app,
             engine: Engine::new(PlanBook::default()),
@@ -54,7 +84,7 @@ impl Explorer {
         };
         explorer.exec(effects);
         explorer.draw();
-        Ok(explorer)
+        explorer
     }
 
     /// Runs what the app asked: the worker's commands to their end on the interpreter (as
@@ -258,6 +288,16 @@ mod exports {
     /// height`: 1, or 0 with the reason in [`rb_error_char`].
     #[unsafe(no_mangle)]
     pub extern "C" fn rb_start(width: u32, height: u32) -> u32 {
+        start(width, height, false)
+    }
+
+    /// Opens the explorer on the lesson named so far, as [`rb_start`] does a preset.
+    #[unsafe(no_mangle)]
+    pub extern "C" fn rb_start_lesson(width: u32, height: u32) -> u32 {
+        start(width, height, true)
+    }
+
+    fn start(width: u32, height: u32, lesson: bool) -> u32 {
         let name = NAME.with(|n| std::mem::take(&mut *n.borrow_mut()));
         let name = if name.is_empty() {
             "subcritical".to_owned()
@@ -268,7 +308,12 @@ mod exports {
             clamp_u16(width).max(super::MIN_SIZE.0),
             clamp_u16(height).max(super::MIN_SIZE.1),
         );
-        match Explorer::new(&name, w, h) {
+        let opened = if lesson {
+            Explorer::lesson(&name, w, h)
+        } else {
+            Explorer::new(&name, w, h)
+        };
+        match opened {
             Ok(e) => {
                 EXPLORER.with(|x| *x.borrow_mut() = Some(e));
                 1
