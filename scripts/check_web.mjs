@@ -70,6 +70,17 @@ await a.page.waitForFunction(() => document.getElementById("screen").textContent
 console.log("check_web: ? opens the help, and typing filters it");
 await a.page.keyboard.press("Escape");
 
+// The picker lists the shipped presets; R says recording is not in the page yet.
+await a.page.keyboard.press("R");
+await a.page.waitForFunction(() => document.getElementById("screen").textContent.includes("not in the browser yet"),
+  null, { timeout: 10000 }).catch(async () => fail(`R did not say recording is not here yet:\n${(await lines(a.page)).join("\n")}`));
+await a.page.keyboard.press("Escape");
+await a.page.keyboard.press("p");
+await a.page.waitForFunction(() => document.getElementById("screen").textContent.includes("kapitza-upright"),
+  null, { timeout: 10000 }).catch(async () => fail(`p did not list the presets:\n${(await lines(a.page)).join("\n")}`));
+await a.page.keyboard.press("Escape");
+console.log("check_web: p lists the presets; R says recording is not in the page yet");
+
 // Another scene by its address.
 const b = await open("?preset=kapitza-upright", { width: 1000, height: 800 });
 const pendulum = (await lines(b.page)).join("\n");

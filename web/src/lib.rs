@@ -14,7 +14,10 @@ use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
 use ratatui::style::{Color, Modifier};
-use rattleback::app::{App, Effect, Key, Options};
+use rattleback::app::{App, Effect, Key, Options, Outcome};
+
+/// Where what the page cannot do yet is planned.
+const NOT_YET: &str = "issue 82";
 use rattleback::sim::{Engine, PlanBook};
 use rattleback::ui::{self, Cache, UiOptions};
 
@@ -88,14 +91,45 @@ impl Explorer {
     }
 
     /// Runs what the app asked: the worker's commands to their end on the interpreter (as
-    /// `replay --verify` and the headless tests run them); the rest is not in the browser yet.
+    /// `replay --verify` and the headless tests run them); the picker's catalogue and presets
+    /// from what the module carries; for what needs files (recording, exports, saving), the
+    /// app is told that it is not in the browser yet, and says so.
     fn exec(&mut self, effects: Vec<Effect>) {
-        for effect in effects {
-            if let Effect::Sim(command) = effect {
-                let app = &mut self.app;
-                rattleback::sim::drive(&mut self.engine, vec![command], &mut |event| {
-                    app.on_sim(event);
-                });
+        let mut queue: std::collections::VecDeque<Effect> = effects.into();
+        while let Some(effect) = queue.pop_front() {
+            let outcome = match effect {
+                Effect::Sim(command) => {
+                    let app = &mut self.app;
+                    rattleback::sim::drive(&mut self.engine, vec![command], &mut |event| {
+                        app.on_sim(event);
+                    });
+                    None
+                }
+                Effect::ReadCatalogue => {
+                    let (entries, _) = rattleback::scenario::shipped::catalogue_in(None);
+                    Some(Outcome::Catalogue(entries, Vec::new()))
+                }
+                Effect::LoadPreset(name) => Some(Outcome::Loaded(Box::new(
+                    rattleback::scenario::shipped::resolve(&name, &[]).map_err(|e| e.to_string()),
+                ))),
+                Effect::StartRecording => Some(Outcome::Recording(Err(format!(
+                    "recording is not in the browser yet ({NOT_YET}): record in the terminal, rattleback --record FILE"
+                )))),
+                Effect::Export { .. } => Some(Outcome::Exported(Err(format!(
+                    "exporting files is not in the browser yet ({NOT_YET}): the terminal's x writes them"
+                )))),
+                Effect::SavePreset { .. } => Some(Outcome::Saved(Err(
+                    rattleback::scenario::store::SaveError::Io {
+                        path: std::path::PathBuf::from("this page"),
+                        source: std::io::Error::other(format!(
+                            "saving a preset is not in the browser yet ({NOT_YET})"
+                        )),
+                    },
+                ))),
+                _ => None,
+            };
+            if let Some(outcome) = outcome {
+                queue.extend(self.app.on_outcome(outcome));
             }
         }
     }
