@@ -14,6 +14,31 @@ use std::time::Duration;
 
 static SIGNAL: std::sync::OnceLock<Arc<AtomicUsize>> = std::sync::OnceLock::new();
 
+/// The files this command has written whole so far (`bench` writes each part's as it ends):
+/// an interruption names them instead of saying nothing was written (issue 81).
+static WRITTEN: std::sync::Mutex<Vec<String>> = std::sync::Mutex::new(Vec::new());
+
+/// Notes that `path` was written whole.
+pub fn wrote(path: &std::path::Path) {
+    if let Ok(mut w) = WRITTEN.lock() {
+        w.push(path.display().to_string());
+    }
+}
+
+/// What an interruption says: nothing was written, or which files were before it.
+#[must_use]
+pub fn what_was_written() -> String {
+    let written = WRITTEN.lock().map(|w| w.clone()).unwrap_or_default();
+    if written.is_empty() {
+        "interrupted: nothing was written".to_owned()
+    } else {
+        format!(
+            "interrupted: wrote {} before; nothing more was written",
+            written.join(", ")
+        )
+    }
+}
+
 /// The command is ending on its own (its exit is being said): the watchdog leaves it be.
 static ENDING: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
@@ -109,4 +134,22 @@ pub fn not_requested() -> bool {
 #[must_use]
 pub fn error() -> std::io::Error {
     std::io::Error::new(std::io::ErrorKind::Interrupted, "interrupted by a signal")
+}
+
+#[cfg(test)]
+mod tests {
+    /// Issue 81: an interruption after a part was written names it (bench said "nothing was
+    /// written" after writing its first CSV).
+    #[test]
+    fn an_interruption_names_what_was_written() {
+        assert_eq!(
+            super::what_was_written(),
+            "interrupted: nothing was written"
+        );
+        super::wrote(std::path::Path::new("out/work_precision.csv"));
+        assert_eq!(
+            super::what_was_written(),
+            "interrupted: wrote out/work_precision.csv before; nothing more was written"
+        );
+    }
 }

@@ -63,9 +63,10 @@ impl Failure {
         Self::said(u8::try_from(128 + n).unwrap_or(1))
     }
 
-    /// Interrupted by signal `n` before anything was written: `128 + n`.
+    /// Interrupted by signal `n`: `128 + n`, saying that nothing was written, or which files
+    /// were before the signal ([`crate::interrupt::wrote`]).
     pub fn interrupted(n: i32) -> Self {
-        Self::signalled(n).saying("interrupted: nothing was written")
+        Self::signalled(n).saying(crate::interrupt::what_was_written())
     }
 
     /// The same end, saying `line` too.

@@ -474,6 +474,14 @@ fn bench_refuses_old_files(args: &crate::commands::cli::BenchArgs) -> Outcome {
     Ok(())
 }
 
+/// Files written whole, kept for the summary and noted for an interruption's message.
+fn kept(wrote: &mut Vec<std::path::PathBuf>, paths: impl IntoIterator<Item = std::path::PathBuf>) {
+    for p in paths {
+        crate::interrupt::wrote(&p);
+        wrote.push(p);
+    }
+}
+
 /// `rattleback bench`.
 pub fn bench(args: &crate::commands::cli::BenchArgs) -> Outcome {
     use crate::bench;
@@ -502,7 +510,7 @@ pub fn bench(args: &crate::commands::cli::BenchArgs) -> Outcome {
         bench::write_csv(&rows, &csv).map_err(|e| fail(&csv, e))?;
         bench::write_svg(&rows, &svg)
             .map_err(|e| Failure::failed(format!("{}: {e}", svg.display())))?;
-        wrote.extend([csv, svg]);
+        kept(&mut wrote, [csv, svg]);
     }
     if part(crate::commands::cli::BenchPart::Auto) {
         say!(
@@ -515,7 +523,7 @@ pub fn bench(args: &crate::commands::cli::BenchArgs) -> Outcome {
         let profile_svg = args.out.join("auto_profile.svg");
         bench::auto_profile::write_profile_svg(&profile, &profile_svg)
             .map_err(|e| Failure::failed(format!("{}: {e}", profile_svg.display())))?;
-        wrote.extend([profile_csv, profile_svg]);
+        kept(&mut wrote, [profile_csv, profile_svg]);
     }
     // A scene's part: its heading, its table, its CSV (its curves go to `curves`).
     let mut curves = Vec::new();
@@ -527,7 +535,7 @@ pub fn bench(args: &crate::commands::cli::BenchArgs) -> Outcome {
         say_raw!("{table}");
         let path = args.out.join(name);
         write(&path).map_err(|e| fail(&path, e))?;
-        wrote.push(path);
+        kept(&mut wrote, [path]);
         Ok::<(), Failure>(())
     };
     if part(crate::commands::cli::BenchPart::Kapitza) {
@@ -539,6 +547,7 @@ pub fn bench(args: &crate::commands::cli::BenchArgs) -> Outcome {
         let svg = args.out.join("kapitza.svg");
         bench::kapitza::write_svg(&rows, &svg)
             .map_err(|e| Failure::failed(format!("{}: {e}", svg.display())))?;
+        crate::interrupt::wrote(&svg);
         curves.push(svg);
     }
     if part(crate::commands::cli::BenchPart::Celt) {
@@ -564,7 +573,7 @@ pub fn bench(args: &crate::commands::cli::BenchArgs) -> Outcome {
         say!("\nStability\n{}", bench::stability_table(&stability));
         let path = args.out.join("stability.csv");
         bench::write_stability_csv(&stability, &path).map_err(|e| fail(&path, e))?;
-        wrote.push(path);
+        kept(&mut wrote, [path]);
     }
     say!(
         "wrote {}",
