@@ -690,7 +690,7 @@ pub struct ReplayArgs {
     /// file is refused (exit 2) unless `--force`.
     #[arg(long, value_name = "OUT.cast")]
     pub export_cast: Option<std::path::PathBuf>,
-    /// Write one self-contained web page that plays the session (asciinema-player, inlined:
+    /// Write one self-contained HTML page that plays the session (asciinema-player, inlined:
     /// no network needed), with the chapters as links and the chapters and notes as markers.
     /// With `--verify`, written only if the session verifies. An existing file is refused
     /// (exit 2) unless `--force`.

@@ -23,7 +23,6 @@ pub const EXAMPLES: &[(&str, &str)] = &[
         "record while exploring",
     ),
     ("rattleback lesson first-reversal", "a guided lesson"),
-    ("rattleback web site", "the explorer as a web page"),
 ];
 
 /// Each subcommand's examples, shown at the end of its `--help` and in the manual.
@@ -192,6 +191,13 @@ pub const SUBCOMMAND_EXAMPLES: &[(&str, &[(&str, &str)])] = &[
     (
         "doctor",
         &[("rattleback doctor --format json", "for a bug report")],
+    ),
+    (
+        "web",
+        &[(
+            "rattleback web site",
+            "site/index.html and site/rattleback.wasm, for any static server",
+        )],
     ),
 ];
 
