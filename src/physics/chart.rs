@@ -722,24 +722,49 @@ impl MapFlag {
     }
 }
 
+/// A `study map` flag the scene's chart does not take.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{} means nothing to the chart of the {title}, which takes {}", .flag.name(), takes_text(.takes))]
+pub struct RefusedFlag {
+    /// The flag given.
+    pub flag: MapFlag,
+    /// The scene's chart, as titled.
+    pub title: String,
+    /// The flags it does take.
+    pub takes: Vec<MapFlag>,
+}
+
+fn takes_text(takes: &[MapFlag]) -> String {
+    if takes.is_empty() {
+        "none of the scenes' flags".to_owned()
+    } else {
+        takes
+            .iter()
+            .map(|f| f.name())
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+impl From<RefusedFlag> for String {
+    fn from(e: RefusedFlag) -> Self {
+        e.to_string()
+    }
+}
+
 /// The first flag `ask` gives that a scene's chart does not take (it takes `takes`), refused
 /// with the scene's `title` and the flags it does take.
 ///
 /// # Errors
-/// That flag, said.
-pub fn refuse_flags(ask: &StudyAsk, takes: &[MapFlag], title: &str) -> Result<(), String> {
+/// That flag, as a [`RefusedFlag`].
+pub fn refuse_flags(ask: &StudyAsk, takes: &[MapFlag], title: &str) -> Result<(), RefusedFlag> {
     use strum::IntoEnumIterator as _;
-    if let Some(flag) = MapFlag::iter().find(|f| f.given(ask) && !takes.contains(f)) {
-        let list: Vec<&str> = takes.iter().map(|f| f.name()).collect();
-        return Err(format!(
-            "{} means nothing to the chart of the {title}, which takes {}",
-            flag.name(),
-            if list.is_empty() {
-                "none of the scenes' flags".to_owned()
-            } else {
-                list.join(", ")
-            }
-        ));
+    match MapFlag::iter().find(|f| f.given(ask) && !takes.contains(f)) {
+        Some(flag) => Err(RefusedFlag {
+            flag,
+            title: title.to_owned(),
+            takes: takes.to_vec(),
+        }),
+        None => Ok(()),
     }
-    Ok(())
 }

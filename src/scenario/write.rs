@@ -109,16 +109,20 @@ pub fn open_regular(path: &Path, links: Links) -> io::Result<File> {
     Ok(file)
 }
 
-/// Whether a writer may replace `path`: nothing is there, or a regular file (issue 80, N8).
+/// Whether a writer may replace `path`: nothing is there, or a regular file (issue 80, N8:
+/// `--force` renamed a file over the device `/dev/full`). The one check of every writer.
 ///
 /// # Errors
-/// What is there instead, said.
-pub fn replaceable(path: &Path) -> Result<(), String> {
+/// `InvalidInput` saying what is there instead: a link, a FIFO, a device, a socket, a folder.
+pub fn replaceable(path: &Path) -> io::Result<()> {
     match std::fs::symlink_metadata(path) {
-        Ok(meta) if !meta.is_file() => Err(format!(
-            "{} is {}: only a regular file is ever replaced, even with --force",
-            path.display(),
-            kind_of(&meta)
+        Ok(meta) if !meta.is_file() => Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!(
+                "{} is {}: only a regular file is ever replaced, even with --force",
+                path.display(),
+                kind_of(&meta)
+            ),
         )),
         _ => Ok(()),
     }
@@ -218,28 +222,14 @@ pub fn write_atomic_with<T>(
     let name = path
         .file_name()
         .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "not a file name"))?;
-    match std::fs::symlink_metadata(path) {
-        Ok(_) if !replace => {
-            return Err(io::Error::new(
-                io::ErrorKind::AlreadyExists,
-                format!("{} exists", path.display()),
-            ));
-        }
-        // Even when asked to replace, only a regular file is (issue 80, N8: `--force` renamed a
-        // file over the device `/dev/full`): a link, a FIFO, a device, a socket or a folder
-        // at the name is refused, said as what it is.
-        Ok(meta) if !meta.is_file() => {
-            return Err(io::Error::new(
-                io::ErrorKind::InvalidInput,
-                format!(
-                    "{} is {}: only a regular file is ever replaced, even with --force",
-                    path.display(),
-                    kind_of(&meta)
-                ),
-            ));
-        }
-        _ => {}
+    if !replace && std::fs::symlink_metadata(path).is_ok() {
+        return Err(io::Error::new(
+            io::ErrorKind::AlreadyExists,
+            format!("{} exists", path.display()),
+        ));
     }
+    // Even when asked to replace, only a regular file is.
+    replaceable(path)?;
     // A randomly named file created with O_EXCL in the target's folder (tempfile): no planted
     // link can redirect it, and it is removed on every error path when dropped.
     let prefix = format!(".{}.", name.to_string_lossy());
