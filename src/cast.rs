@@ -14,7 +14,7 @@ use ratatui::{Terminal, TerminalOptions, Viewport};
 
 use crate::app::effects::commands;
 use crate::app::journal::Event;
-use crate::explorer::replay::Replayer;
+use crate::record::replayer::{FrameClock, Replayer};
 use crate::record::{RecordError, Recording, plan_book, start};
 use crate::sim::{Engine, drive};
 use crate::ui::{self, Cache, UiOptions};
@@ -409,20 +409,16 @@ fn frames_of(
     let c = replay.catch_up(app);
     run(c, engine, app);
     let mut frames = 0;
-    // The clock is a frame count: no drift from adding 1/fps again and again.
-    let mut frame: u64 = 0;
-    let mut shown_until = 0.0;
-    let at = |frame: u64| frame as f64 / fps;
-    while at(frame) <= end {
+    let mut clock = FrameClock::new(fps);
+    while clock.now() <= end {
         if crate::interrupt::requested().is_some() {
             // The temporary file is removed when the error drops it.
             return Err(crate::interrupt::error());
         }
-        let clock = at(frame);
+        let now = clock.now();
         let before = replay.position();
-        let c = replay.advance(clock - shown_until, app);
+        let c = clock.show(&mut replay, app);
         seen(replay.position());
-        shown_until = clock;
         run(c, engine, app);
         // The lecturer's size at this moment, unless the cast was given one.
         if let (None, None, Some(now)) = (size.cols, size.rows, app.lecturer_terminal) {
@@ -440,17 +436,10 @@ fn frames_of(
         // A frame of escape codes alone (cursor moves, resets) changes nothing on screen.
         if let Some(bytes) = screen.frame(app, options)? {
             let text = String::from_utf8_lossy(&bytes);
-            writeln!(cast, "{}", serde_json::json!([micro(clock), "o", text]))?;
+            writeln!(cast, "{}", serde_json::json!([micro(now), "o", text]))?;
             frames += 1;
         }
-        frame += 1;
-        // Nothing moves until the next event: jump there (on the frame grid).
-        if !app.run.playing
-            && let Some((_, l)) = rec.lines.get(replay.position())
-            && l.wall > at(frame)
-        {
-            frame = ((l.wall * fps).floor() as u64).max(frame);
-        }
+        clock.next(&replay, app);
     }
     Ok(frames)
 }

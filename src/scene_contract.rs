@@ -238,7 +238,7 @@ fn the_contract_scenes_chart_counts_as_the_exact_solution_and_merges_from_shards
 #[test]
 fn the_explorer_shows_records_and_replays_the_contract_scene() {
     let mut h = Headless::of(&preset());
-    let header = crate::explorer::recording::header(&h.app, (80, 24), 30.0);
+    let header = crate::record::active::header(&h.app, (80, 24), 30.0);
     h.app.on_key(Key::Char('R'));
     h.app.on_outcome(crate::app::Outcome::Recording(Ok(
         "oscillator.jsonl".to_owned()

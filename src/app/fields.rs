@@ -1,6 +1,7 @@
 //! The editable parameters of the explorer: how each is shown, nudged and typed, validated by
 //! the same domain types as presets. Each model has its rows ([`Field::rows`]); the run's rows
 //! (`t_end`, `method`, `tolerance`) are shared.
+use crate::physics::numerics::elementary::Elementary;
 
 use crate::physics::params::{ParamSpec, Scale};
 use crate::physics::rattleback::Problem;
@@ -218,7 +219,7 @@ impl Field {
     /// When the nudge would leave the allowed range.
     pub fn nudge(self, s: &Settings, dir: f64, coarse: bool) -> Result<Settings, String> {
         let v = self.value(s);
-        let decades = || 10f64.powf(dir * if coarse { 1.0 } else { 0.1 });
+        let decades = || 10f64.e_powf(dir * if coarse { 1.0 } else { 0.1 });
         let next = match self {
             Self::Method => {
                 let all = s.model.kind().methods();
@@ -240,7 +241,7 @@ impl Field {
             }) => v * decades(),
             Self::TEnd => {
                 v * if coarse {
-                    2f64.powf(dir)
+                    2f64.e_powf(dir)
                 } else {
                     1.0 + 0.1 * dir
                 }

@@ -3,6 +3,7 @@
 //! choice, `a` to type a number) and revealed after it, and `n` moving on once the step's
 //! condition holds. Every other key works as usual (`n` is the next step, not a note, while a
 //! lesson is open). Steps and answers are journaled when recording.
+use crate::physics::numerics::elementary::Elementary;
 
 use super::fields::Field;
 use super::journal::Event;
@@ -121,7 +122,7 @@ fn round_sig(x: f64, digits: i32) -> f64 {
     if x == 0.0 || !x.is_finite() {
         return x;
     }
-    let scale = 10f64.powi(digits - 1 - x.abs().log10().floor() as i32);
+    let scale = 10f64.powi(digits - 1 - x.abs().e_log10().floor() as i32);
     (x * scale).round() / scale
 }
 

@@ -149,6 +149,12 @@ impl App {
     pub fn fork(&mut self) {
         self.replay = None;
         self.caption = None;
+        // Paused, the display holds where it is shown: a replayed step's goal past the
+        // lecture's ceiling is not the user's (issue 82: a fork after the lecturer's `.` jumped
+        // one step further as the ceiling went).
+        if !self.run.playing {
+            self.run.goal = self.run.shown;
+        }
         // The lecture's ceiling goes: the display is the user's own from here (issue 55: `.`
         // and space did nothing until a restart).
         self.run.set_ceiling(None);

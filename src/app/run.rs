@@ -6,6 +6,7 @@
 //! counted is cut at `shown`: a reversal the worker found ahead of the display is counted when
 //! the display gets there. The worker is asked for at most a short lead beyond the goal, so a
 //! pause or a change takes effect at once, however slow the integration.
+use crate::physics::numerics::elementary::Elementary;
 
 use crate::physics::plan::Resolved;
 use crate::physics::scene::Found;
@@ -469,7 +470,7 @@ impl RunState {
                 }
                 if let Some((Found::SlowAngleFalls, falls)) = self.second.as_mut() {
                     // `Θ = θ − ripple`; a fall is `cos Θ` going from positive to negative.
-                    let up = |p: &Point| (p.slow - p.fast).cos();
+                    let up = |p: &Point| (p.slow - p.fast).e_cos();
                     let mut prev = self.trail.last().copied();
                     for p in &full {
                         if let Some(q) = prev {

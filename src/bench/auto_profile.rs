@@ -9,6 +9,7 @@
 //! (the full model by long-double RK8 up to k = 1e8, good to about 1e-12; the note's own
 //! implementation of the averaged model at 1e10 and 1e12, model error below 1e-18), embedded
 //! in the binary at build time.
+use crate::physics::numerics::elementary::Elementary;
 
 use crate::physics::method::Asked;
 use crate::physics::rattleback::model::{ALPHA, ALPHA_DOT};
@@ -141,7 +142,7 @@ fn singles(problem: &Problem) -> Vec<(Method, f64, Option<f64>)> {
     let nu = crate::physics::rattleback::budget::fastest_rate(problem);
     let mut c = Vec::new();
     for i in 0..13 {
-        let tol = 1e-8 * 10f64.powf(-0.5 * f64::from(i));
+        let tol = 1e-8 * 10f64.e_powf(-0.5 * f64::from(i));
         c.push((Method::Dop853, tol, None));
         c.push((Method::Taylor, tol, None));
         c.push((Method::Averaged2, tol, None));
@@ -286,7 +287,7 @@ fn peer_within(
     use super::peer::{self, Peer};
     let first = from.max(if p.params().k >= 1e6 { 4 } else { 0 });
     for i in first..12 {
-        let tol = 1e-8 * 10f64.powf(-0.5 * f64::from(i));
+        let tol = 1e-8 * 10f64.e_powf(-0.5 * f64::from(i));
         if super::predicted_work(Method::Dop853, tol, None, p.params().omega_max(), T_END) > 1e8 {
             return None;
         }

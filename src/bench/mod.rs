@@ -2,6 +2,7 @@
 //! stability report. Wall time is the best of N runs after a warm-up, one thread; errors are
 //! against a reference whose source the output names (tight DOP853 for k ≤ 1e6, fine
 //! blanes-moan4 at 1e8, the second-order averaged model beyond), itself cross-checked.
+use crate::physics::numerics::elementary::Elementary;
 
 pub mod auto_profile;
 pub mod celt;
@@ -172,7 +173,7 @@ fn configurations(quick: bool) -> Vec<(Method, f64, Option<f64>)> {
 fn predicted_work(method: Method, tol: f64, step: Option<f64>, omega: f64, t_end: f64) -> f64 {
     let periods = omega * t_end / std::f64::consts::TAU;
     match (method, step) {
-        (Method::Dop853, _) => 155.0 * (1e-10 / tol).powf(0.125) * periods,
+        (Method::Dop853, _) => 155.0 * (1e-10 / tol).e_powf(0.125) * periods,
         // Twenty orders a step, about six steps a period at 1e-12.
         (Method::Taylor, _) => {
             20.0 * crate::physics::rattleback::budget::taylor_steps(tol, periods)

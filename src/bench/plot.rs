@@ -2,6 +2,7 @@
 //! and as text for the terminal. Rows are grouped by `k`, compared exactly: they are the
 //! constants of [`super::KS`].
 #![allow(clippy::float_cmp)]
+use crate::physics::numerics::elementary::Elementary;
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -146,7 +147,7 @@ pub fn terminal_diagram(rows: &[Row], k: f64, width: usize, height: usize) -> St
     let pts: Vec<(&str, f64, f64)> = rows
         .iter()
         .filter(|r| r.k == k)
-        .filter_map(|r| usable(r).map(|(t, e)| (r.method.as_str(), t.log10(), e.log10())))
+        .filter_map(|r| usable(r).map(|(t, e)| (r.method.as_str(), t.e_log10(), e.e_log10())))
         .collect();
     if pts.is_empty() {
         return String::new();
@@ -194,7 +195,7 @@ pub fn terminal_diagram(rows: &[Row], k: f64, width: usize, height: usize) -> St
 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
 fn significant(y: f64) -> String {
     if (1e-3..1e4).contains(&y) {
-        let decimals = (2 - y.log10().floor() as i32).clamp(0, 6) as usize;
+        let decimals = (2 - y.e_log10().floor() as i32).clamp(0, 6) as usize;
         let t = format!("{y:.decimals$}");
         if t.contains('.') {
             t.trim_end_matches('0').trim_end_matches('.').to_owned()

@@ -429,6 +429,10 @@ pub struct ServeArgs {
     /// address raises it).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100_000))]
     pub max_per_address: Option<u32>,
+    /// A site `rattleback web DIR` wrote: its module is served too, and `f` on the page forks
+    /// the lecture into the reader's browser (computed there, not here)
+    #[arg(long, value_name = "DIR")]
+    pub site: Option<std::path::PathBuf>,
     /// How the frames are drawn (`--fps`: frames a second, default 10).
     #[command(flatten)]
     pub look: LookArgs,

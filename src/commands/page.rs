@@ -222,36 +222,69 @@ fn recorded_page(
     shell(&title, &body, &script)
 }
 
+/// The served page's fork (issue 82): `f`, the button, the line that says how far the lecture
+/// has moved on, `Esc` back.
+const FORK_JS: &str = include_str!("../../web/fork.js");
+
 /// The page `rattleback serve` gives while the lecture is recorded: the player reads the
 /// frames from `events` (Server-Sent Events, asciinema-player's eventsource driver, no
 /// buffering) as they are drawn; when the stream says the recording ended, the page loads
-/// again and is then [`served_page`].
+/// again and is then [`served_page`]. `f` (or the fork button) forks the lecture into the
+/// reader's browser (issue 82): the page fetches the session so far and the explorer's module
+/// (`serve --site`), replays the lecture to its last line in a Web Worker and hands it over;
+/// `Esc` comes back to the live view, which played on meanwhile.
 #[must_use]
 pub fn live_page(title: &str, token: Option<&str>) -> String {
     let title = escape(&crate::scenario::text::clean(title));
     let body = format!(
         "<h1>{title}</h1>\n<p id=\"state\">Live: this page shows the lecturer's screen as it is \
-         recorded.</p>\n<div id=\"player\"></div>\n{}",
-        session_link(token)
+         recorded. <b>f</b> forks it into your browser, to explore on your own.</p>\n\
+         <div id=\"bar\"><button id=\"fork-button\">fork (f)</button>\
+         <button id=\"live-button\" hidden>back to the live view (Esc)</button></div>\n\
+         <div id=\"live\"><div id=\"player\"></div></div>\n\
+         <div id=\"fork\" hidden><div id=\"buttons\">\
+         <button data-key=\" \">play / pause</button><button data-key=\".\">step</button>\
+         <button data-key=\"-\">slower</button><button data-key=\"+\">faster</button>\
+         <button data-key=\"r\">reset</button><button data-key=\"R\">record</button>\
+         <button data-key=\"?\">help</button></div>\
+         <div id=\"wrap\"><pre id=\"screen\" tabindex=\"0\" aria-live=\"off\" \
+         aria-label=\"your fork of the lecture\"></pre></div></div>\n\
+         <script id=\"worker\" type=\"text/plain\">\n{worker}</script>\n{}",
+        session_link(token),
+        worker = crate::commands::web::WORKER_JS.replace("</script", "<\\/script"),
     );
     let events = script_json(&serde_json::Value::String(format!(
         "events{}",
         query(token)
     )));
+    let session = script_json(&serde_json::Value::String(format!(
+        "session.jsonl{}",
+        query(token)
+    )));
+    let module = script_json(&serde_json::Value::String(format!(
+        "rattleback.wasm{}",
+        query(token)
+    )));
     let script = format!(
-        r#"(function () {{
+        r#"{explorer}
+{fork}
+(function () {{
   var player = AsciinemaPlayer.create(
     {{ driver: "eventsource", url: {events}, bufferTime: 0 }},
     document.getElementById("player"),
     {{ fit: "width", autoPlay: true }}
   );
   window.rattlebackPlayer = player;
+  var fork = rattlebackFork({{ session: {session}, module: {module} }});
   player.addEventListener("ended", function () {{
+    if (fork.ended()) return;
     document.getElementById("state").textContent =
       "The lecture has ended: loading its recording, to play again chapter by chapter.";
     setTimeout(function () {{ location.reload(); }}, 500);
   }});
-}})();"#
+}})();"#,
+        explorer = crate::commands::web::EXPLORER_JS,
+        fork = FORK_JS,
     );
     shell(&title, &body, &script)
 }
@@ -271,6 +304,12 @@ fn shell(title: &str, body: &str, script: &str) -> String {
 {css}
 body {{ font-family: sans-serif; max-width: 1100px; margin: 1em auto; padding: 0 1em; }}
 nav ol {{ columns: 2; }}
+#screen {{ font-family: "DejaVu Sans Mono", "Menlo", "Consolas", monospace; font-size: 14px;
+          line-height: 1.2; margin: 0; white-space: pre; outline: none; display: inline-block;
+          background: #1e1e1e; color: #d4d4d4; }}
+#screen .cell {{ display: inline-block; width: 1ch; overflow: hidden; vertical-align: top; }}
+#wrap {{ overflow-x: auto; }}
+#buttons button, #bar button {{ font-size: 15px; margin: 2px; padding: 6px 10px; }}
 </style>
 </head>
 <body>

@@ -11,11 +11,26 @@ use super::{Outcome, not_written};
 /// The WebAssembly target the module is built for.
 pub const TARGET: &str = "wasm32-unknown-unknown";
 
-/// The page, as shipped.
-pub const PAGE: &str = include_str!("../../web/index.html");
+/// The page, as shipped: its scripts are put in where it says (`/*WORKER*/`, `/*EXPLORER*/`)
+/// by [`page`].
+const PAGE: &str = include_str!("../../web/index.html");
+
+/// The module's Web Worker (shared with the served lecture's fork).
+pub const WORKER_JS: &str = include_str!("../../web/worker.js");
+
+/// The explorer in a page: draws, keys, buttons, downloads (shared with the served lecture's
+/// fork).
+pub const EXPLORER_JS: &str = include_str!("../../web/explorer.js");
+
+/// The site's page, its scripts inlined (no outside request).
+#[must_use]
+pub fn page() -> String {
+    PAGE.replace("/*WORKER*/", WORKER_JS)
+        .replace("/*EXPLORER*/", EXPLORER_JS)
+}
 
 /// The largest module accepted from the build (a sanity bound: it is about 2 MB).
-const MAX_MODULE: u64 = 64 << 20;
+pub const MAX_MODULE: u64 = 64 << 20;
 
 /// The checkout this binary was built from, when it is still there.
 fn checkout() -> Option<std::path::PathBuf> {
@@ -112,7 +127,7 @@ pub fn web(args: &WebArgs) -> Outcome {
         .map_err(|e| Failure::input(format!("{}: {e}", args.dir.display())))?;
     crate::scenario::write::write_atomic(&module, &bytes, args.force)
         .map_err(|e| not_written(&module, &e))?;
-    crate::scenario::write::write_atomic(&page, PAGE.as_bytes(), args.force)
+    crate::scenario::write::write_atomic(&page, self::page().as_bytes(), args.force)
         .map_err(|e| not_written(&page, &e))?;
     crate::scenario::text::warn(&format!(
         "wrote {} and {} ({} KB); serve the folder with any static server, e.g. python3 -m http.server -d {}",

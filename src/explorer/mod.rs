@@ -4,8 +4,6 @@
 //! the app's fields. A frame is drawn only when something changed, at most `fps` times a
 //! second; paused and idle, it writes nothing.
 
-pub mod recording;
-pub mod replay;
 pub mod review;
 
 use std::collections::VecDeque;
@@ -17,13 +15,13 @@ use std::time::{Duration, Instant};
 use ratatui::crossterm::event;
 
 use crate::app::{App, Effect, Key, Options, Outcome, RecState};
+use crate::record::active::ActiveRecording;
+use crate::record::replayer::Replayer;
 use crate::scenario::Preset;
 use crate::scenario::shipped::{catalogue_in, resolve, user_preset_dir};
 use crate::sim::{SimEvent, Worker};
 use crate::terminal::{Input, Tty, translate};
 use crate::ui::{self, Cache, UiOptions};
-use recording::ActiveRecording;
-use replay::Replayer;
 
 /// Everything that wakes the loop.
 #[derive(Debug)]
@@ -297,6 +295,8 @@ struct Shell<'a> {
     worker: Worker,
     tty: Tty,
     recording: Option<ActiveRecording>,
+    /// The recording's clock: seconds from here.
+    clock: Instant,
     options: &'a ExplorerOptions,
     user_dir: Option<std::path::PathBuf>,
 }
@@ -371,6 +371,7 @@ impl Shell<'_> {
             size,
             self.options.fps,
             self.options.sign.as_deref(),
+            self.clock.elapsed().as_secs_f64(),
         ) {
             Ok(r) => {
                 let p = r.path();
@@ -387,14 +388,14 @@ impl Shell<'_> {
             return Ok(false);
         };
         if app.journal.state == RecState::On
-            && let Some(c) = rec.due(app)
+            && let Some(c) = rec.due(app, self.clock.elapsed().as_secs_f64())
         {
             self.execute(app, vec![c])?;
         }
         let Some(rec) = self.recording.as_mut() else {
             return Ok(false);
         };
-        match rec.flush(app) {
+        match rec.flush(app, self.clock.elapsed().as_secs_f64()) {
             Ok(None) => Ok(false),
             Ok(Some(done)) | Err(done) => {
                 self.recording = None;
@@ -409,6 +410,7 @@ impl Shell<'_> {
 /// Ends a recording with a checkpoint at the final time: ask, wait briefly, write.
 fn finish_recording(
     mut rec: ActiveRecording,
+    clock: Instant,
     worker: &Worker,
     app: &mut App,
     rx: &Receiver<AppEvent>,
@@ -448,7 +450,7 @@ fn finish_recording(
         }
     }
     rec.stopping = true;
-    if let Ok(Some(outcome)) = rec.flush(app) {
+    if let Ok(Some(outcome)) = rec.flush(app, clock.elapsed().as_secs_f64()) {
         app.on_outcome(outcome);
     }
 }
@@ -468,23 +470,10 @@ fn startup_dialogs(app: &mut App, options: &ExplorerOptions) {
 /// one (it grows) and its later segments awaited from the lecturer, unless it has ended.
 fn plan_book(options: &ExplorerOptions) -> crate::sim::PlanBook {
     match (&options.replay, &options.follow) {
-        (Some(rec), Some(_)) => follower_book(rec),
+        (Some(rec), Some(_)) => crate::record::replayer::follower_book(rec),
         (Some(rec), None) => crate::record::plan_book(rec),
         (None, _) => crate::sim::PlanBook::default(),
     }
-}
-
-/// A follower's plan book (`follow` and `serve`): the recording's plans so far, its runs
-/// bounded one by one (it grows), its later segments awaited from the lecturer unless it ended.
-#[must_use]
-pub fn follower_book(rec: &crate::record::Recording) -> crate::sim::PlanBook {
-    let mut book = crate::record::plan_book(rec);
-    book.total = f64::INFINITY;
-    book.awaits = !rec
-        .lines
-        .last()
-        .is_some_and(|(_, l)| matches!(l.event, crate::app::journal::Event::End { .. }));
-    book
 }
 
 /// Signals that end the explorer: the terminal is restored, then the process exits with
@@ -538,6 +527,7 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
         worker,
         tty,
         recording: None,
+        clock: Instant::now(),
         options,
         user_dir: user_preset_dir(),
     };
@@ -593,11 +583,12 @@ pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option
         worker,
         tty,
         recording,
+        clock,
         ..
     } = shell;
     drop(tty);
     if let Some(rec) = recording {
-        finish_recording(rec, &worker, &mut app, &rx);
+        finish_recording(rec, clock, &worker, &mut app, &rx);
     }
     // Where the files went, on the terminal the screen has given back (a terminal that hung
     // up takes nothing, and a failed write is no reason to panic).

@@ -18,6 +18,7 @@
 //!
 //! Then it meets the step's condition as a student would (the parameter set to its bound, the
 //! run played to its end at top speed) and presses `n`.
+use crate::physics::numerics::elementary::Elementary;
 
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
@@ -614,11 +615,11 @@ fn given_away(app: &App, q: &Question, screen: &[String], when: &str) -> Vec<Str
                             q.answer_text(),
                             row.trim()
                         ));
-                    } else if before == Some("slope") && near(10f64.powf(x.abs())) {
+                    } else if before == Some("slope") && near(10f64.e_powf(x.abs())) {
                         out.push(format!(
                             "{when}, the slope {t} on screen gives a tenfold factor of {:.3}, \
                              which is the answer ({}): \"{}\"",
-                            10f64.powf(x.abs()),
+                            10f64.e_powf(x.abs()),
                             q.answer_text(),
                             row.trim()
                         ));

@@ -11,6 +11,7 @@
 //! registry (`models.rs`, [`super::models::Chart`]) is the one dispatch to them; what is common
 //! to every chart (the grid's order, shards, the parallel loop, formats, progress) is the
 //! `study` layer's, above this one.
+use crate::physics::numerics::elementary::Elementary;
 
 use std::collections::BTreeMap;
 
@@ -42,7 +43,7 @@ impl Axis {
         #[allow(clippy::cast_precision_loss)]
         let f = (i as f64 + 0.5) / self.cells as f64;
         if self.log {
-            (self.min.ln() + f * (self.max / self.min).ln()).exp()
+            (self.min.e_ln() + f * (self.max / self.min).e_ln()).e_exp()
         } else {
             self.min + f * (self.max - self.min)
         }
@@ -52,7 +53,7 @@ impl Axis {
     #[must_use]
     pub fn fraction(&self, x: f64) -> f64 {
         if self.log {
-            (x / self.min).ln() / (self.max / self.min).ln()
+            (x / self.min).e_ln() / (self.max / self.min).e_ln()
         } else {
             (x - self.min) / (self.max - self.min)
         }

@@ -359,6 +359,8 @@ pub enum FastPhase {
     Rounded,
 }
 
+pub use super::numerics::elementary::Functions;
+
 /// The arithmetic rules that changed between session formats: a replay of an old file follows
 /// the ones it was recorded with, so its bits come back (`crate::record::plan_book`); everything
 /// else runs the current ones, [`Arithmetic::default`].
@@ -369,11 +371,15 @@ pub struct Arithmetic {
     pub time_sum: TimeSum,
     /// How a lift takes a fast phase `t/ε` (a driven scene's).
     pub fast_phase: FastPhase,
+    /// Whose elementary functions (sine, logarithm, …) the run takes: the portable ones since
+    /// format 15, the platform's before.
+    pub functions: Functions,
 }
 
 impl Arithmetic {
     /// The rules session files of format `version` were recorded with: the plain sum of the
-    /// time up to format 5, the rounded fast phase up to format 7.
+    /// time up to format 5, the rounded fast phase up to format 7, the platform's elementary
+    /// functions up to format 14.
     #[must_use]
     pub fn of_format(version: u32) -> Self {
         Self {
@@ -386,6 +392,11 @@ impl Arithmetic {
                 FastPhase::Rounded
             } else {
                 FastPhase::Exact
+            },
+            functions: if version < 15 {
+                Functions::Platform
+            } else {
+                Functions::Portable
             },
         }
     }

@@ -20,6 +20,7 @@
 //! randomness), so the same inputs and build give bit-identical results; replays depend on it.
 //! This layer depends on std, nalgebra and serde only. It must never import a terminal crate:
 //! a test fails if a file below `src/physics/` mentions one.
+use crate::physics::numerics::elementary::Elementary;
 
 pub mod budget;
 pub mod celt;
@@ -67,6 +68,11 @@ pub fn extreme(inputs: &[(&'static str, f64)]) -> (&'static str, f64) {
         .iter()
         .copied()
         .filter(|(_, v)| *v != 0.0)
-        .max_by(|a, b| a.1.abs().log10().abs().total_cmp(&b.1.abs().log10().abs()))
+        .max_by(|a, b| {
+            a.1.abs()
+                .e_log10()
+                .abs()
+                .total_cmp(&b.1.abs().e_log10().abs())
+        })
         .unwrap_or(inputs[0])
 }

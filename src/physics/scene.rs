@@ -8,6 +8,7 @@
 //!
 //! Neither trait has a default method for a model fact, so a model that forgets one does not
 //! compile. `Model` and `ModelKind` (in `models.rs`) are the one dispatch to them.
+use crate::physics::numerics::elementary::Elementary;
 
 use super::flow::Flow;
 use super::method::{Method, StepError};
@@ -290,7 +291,7 @@ impl Pivot {
     /// The pivot's height above its mean position at time `t`, in rod lengths.
     #[must_use]
     pub fn height(&self, t: f64) -> f64 {
-        -self.stroke * (t / self.epsilon).cos()
+        -self.stroke * (t / self.epsilon).e_cos()
     }
 }
 

@@ -9,7 +9,7 @@ use crate::app::journal::Event;
 
 /// Writes a session as it goes, one flushed line per event.
 pub struct Recorder {
-    out: BufWriter<File>,
+    out: Sink,
     path: String,
     /// The chain value of the last line written.
     chain: String,
@@ -47,9 +47,27 @@ impl Recorder {
                     }
                 }
             })?;
+        Self::around(Sink::File(BufWriter::new(file)), label, header, signer)
+    }
+
+    /// A recording kept in memory under the name `name` (the browser's: the page downloads
+    /// [`Recorder::bytes`]), its header written.
+    ///
+    /// # Errors
+    /// Never in practice (the header serializes).
+    pub fn in_memory(name: &str, header: &Header) -> Result<Self, RecordError> {
+        Self::around(Sink::Memory(Vec::new()), name.to_owned(), header, None)
+    }
+
+    fn around(
+        out: Sink,
+        path: String,
+        header: &Header,
+        signer: Option<super::sign::Signer>,
+    ) -> Result<Self, RecordError> {
         let mut me = Self {
-            out: BufWriter::new(file),
-            path: label,
+            out,
+            path,
             chain: String::new(),
             lines: 0,
             signer,
@@ -59,6 +77,15 @@ impl Recorder {
         me.write_text(&text)?;
         me.chain = text;
         Ok(me)
+    }
+
+    /// What a recording in memory holds so far; `None` for a file.
+    #[must_use]
+    pub fn bytes(&self) -> Option<&[u8]> {
+        match &self.out {
+            Sink::File(_) => None,
+            Sink::Memory(bytes) => Some(bytes),
+        }
     }
 
     fn to_json<T: serde::Serialize>(&self, value: &T) -> Result<String, RecordError> {
@@ -142,6 +169,30 @@ impl Recorder {
     }
 }
 
+/// Where a recording's lines go.
+enum Sink {
+    /// A file, each line flushed.
+    File(BufWriter<File>),
+    /// Memory (the browser's recording).
+    Memory(Vec<u8>),
+}
+
+impl Write for Sink {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        match self {
+            Self::File(f) => f.write(buf),
+            Self::Memory(m) => m.write(buf),
+        }
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        match self {
+            Self::File(f) => f.flush(),
+            Self::Memory(_) => Ok(()),
+        }
+    }
+}
+
 /// A session read back.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Recording {
@@ -191,13 +242,29 @@ pub fn read_with(
             message: "not valid UTF-8; a session file is UTF-8 JSON lines".to_owned(),
         }
     })?;
+    parse(&text, &label)
+}
+
+/// A session from its text, named `label` in errors (the browser's fork reads the served
+/// lecture's lines so).
+///
+/// # Errors
+/// As [`read`], but for reading.
+pub fn parse(text: &str, label: &str) -> Result<Recording, RecordError> {
+    if text.len() > MAX_SESSION_BYTES as usize {
+        return Err(RecordError::Corrupt {
+            path: label.to_owned(),
+            line: 1,
+            message: format!("over {MAX_SESSION_BYTES} bytes"),
+        });
+    }
     let corrupt = |line: usize, message: String| RecordError::Corrupt {
-        path: label.clone(),
+        path: label.to_owned(),
         line,
         message,
     };
     // A byte-order mark (some editors write one) is not part of the header, as for presets.
-    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut rows = text.split_inclusive('\n').enumerate();
     let Some((_, first)) = rows.next() else {
         return Err(corrupt(

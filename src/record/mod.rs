@@ -14,12 +14,14 @@
 //!
 //! Nothing here draws: the cast export, which renders, lives above both (`crate::cast`).
 
+pub mod active;
 mod file;
+pub mod replayer;
 pub mod sign;
 pub mod tail;
 mod verify;
 
-pub use file::{Recorder, Recording, read, read_with};
+pub use file::{Recorder, Recording, parse, read, read_with};
 pub use verify::{Divergence, Report, VerifyError, plan_book, start, verify, verify_watched};
 
 use serde::{Deserialize, Serialize};
@@ -46,8 +48,10 @@ pub const FORMAT: &str = "rattleback-session";
 /// line names its key's model (`docs/session-format.md`), so no model's key reads as another's.
 /// 14: `terminal` lines (a resize while recording) and numbers that are not finite written as
 /// the strings `"inf"`, `"-inf"`, `"nan"` (`physics::json`), where 13 wrote `null` and failed
-/// its own `--verify`.
-pub const VERSION: u32 = 14;
+/// its own `--verify`. 15: nothing new in the lines; the runs take the portable elementary
+/// functions (`physics::numerics::elementary`: the same bits natively and in the browser's
+/// module), so a file of 14 or older replays with the platform's, as it was recorded.
+pub const VERSION: u32 = 15;
 
 /// The largest terminal side a session may say it had (columns or rows).
 pub const MAX_TERMINAL: u16 = 1000;

@@ -134,6 +134,17 @@ impl Engine {
         go_on: fn() -> bool,
         sink: &mut dyn FnMut(SimEvent) -> bool,
     ) -> bool {
+        let functions = self.planner.functions();
+        crate::physics::numerics::elementary::following(functions, || {
+            self.settle_jobs_here(go_on, sink)
+        })
+    }
+
+    fn settle_jobs_here(
+        &mut self,
+        go_on: fn() -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+    ) -> bool {
         let mut spent = 0.0;
         let jobs = std::mem::take(&mut self.jobs);
         let mut settled = true;
@@ -180,6 +191,11 @@ impl Engine {
     /// Waits for the verification ahead's next report and takes it; `false` means stop. Gives
     /// up waiting when [`Engine::stopping_on`]'s question says stop.
     pub fn wait(&mut self, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
+        let functions = self.planner.functions();
+        crate::physics::numerics::elementary::following(functions, || self.wait_here(sink))
+    }
+
+    fn wait_here(&mut self, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
         loop {
             let Some(ahead) = self.ahead.as_ref() else {
                 return true;
@@ -282,6 +298,13 @@ impl Engine {
 
     /// Takes a command; `false` means stop (quit, or nobody listens any more).
     pub fn handle(&mut self, command: &Command, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
+        let functions = self.planner.functions();
+        crate::physics::numerics::elementary::following(functions, || {
+            self.handle_here(command, sink)
+        })
+    }
+
+    fn handle_here(&mut self, command: &Command, sink: &mut dyn FnMut(SimEvent) -> bool) -> bool {
         match *command {
             Command::Quit => return false,
             Command::Job {
@@ -430,6 +453,18 @@ impl Engine {
     /// Works one slice (at most `max_steps` steps, or one planning) towards the next target or
     /// checkpoint; `false` means stop.
     pub fn work(
+        &mut self,
+        max_steps: usize,
+        go_on: &mut dyn FnMut(f64) -> bool,
+        sink: &mut dyn FnMut(SimEvent) -> bool,
+    ) -> bool {
+        let functions = self.planner.functions();
+        crate::physics::numerics::elementary::following(functions, || {
+            self.work_here(max_steps, go_on, sink)
+        })
+    }
+
+    fn work_here(
         &mut self,
         max_steps: usize,
         go_on: &mut dyn FnMut(f64) -> bool,

@@ -696,6 +696,49 @@ pub struct Running {
     messages: Receiver<Message>,
     cancel: Arc<AtomicBool>,
     thread: Option<std::thread::JoinHandle<()>>,
+    /// The browser's module starts no thread: the job is worked a slice at each look
+    /// ([`Running::take`]) on the caller's.
+    #[cfg(target_arch = "wasm32")]
+    inline: std::cell::RefCell<Option<Inline>>,
+}
+
+/// A job worked on the caller's thread (the browser's module).
+#[cfg(target_arch = "wasm32")]
+struct Inline {
+    job: Box<dyn Job>,
+    planner: Planner,
+    before: f64,
+    go_on: fn() -> bool,
+    tx: mpsc::Sender<Message>,
+}
+
+#[cfg(target_arch = "wasm32")]
+impl Inline {
+    /// One slice; whether the job goes on.
+    fn slice(&mut self, cancel: &AtomicBool) -> bool {
+        let functions = self.planner.functions();
+        let go_on = self.go_on;
+        let tx = &self.tx;
+        let mut keep_on = |_t: f64| !cancel.load(Ordering::Relaxed) && go_on();
+        let mut sink = |e| tx.send(Message::Event(e)).is_ok();
+        let mut work = Work {
+            planner: &mut self.planner,
+            max_steps: JOB_STEPS,
+            go_on: &mut keep_on,
+            sink: &mut sink,
+        };
+        let job = &mut self.job;
+        let more = crate::physics::numerics::elementary::following(functions, || {
+            matches!(job.slice(&mut work), Slice::More)
+        });
+        if more && !cancel.load(Ordering::Relaxed) && go_on() {
+            return true;
+        }
+        let _ = self
+            .tx
+            .send(Message::Spent(self.planner.spent() - self.before));
+        false
+    }
 }
 
 impl Running {
@@ -705,6 +748,7 @@ impl Running {
     /// # Panics
     /// When the OS cannot spawn a thread.
     #[must_use]
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn spawn(mut job: Box<dyn Job>, mut planner: Planner, go_on: fn() -> bool) -> Self {
         let kind = job.kind();
         let (tx, messages) = mpsc::channel();
@@ -713,22 +757,25 @@ impl Running {
         let thread = std::thread::Builder::new()
             .name(format!("rattleback-{kind:?}").to_lowercase())
             .spawn(move || {
-                let before = planner.spent();
-                let mut keep_on = |_t: f64| !stop.load(Ordering::Relaxed) && go_on();
-                let mut sink = |e| tx.send(Message::Event(e)).is_ok();
-                loop {
-                    let mut work = Work {
-                        planner: &mut planner,
-                        max_steps: JOB_STEPS,
-                        go_on: &mut keep_on,
-                        sink: &mut sink,
-                    };
-                    match job.slice(&mut work) {
-                        Slice::More if !stop.load(Ordering::Relaxed) && go_on() => {}
-                        _ => break,
+                let functions = planner.functions();
+                crate::physics::numerics::elementary::following(functions, || {
+                    let before = planner.spent();
+                    let mut keep_on = |_t: f64| !stop.load(Ordering::Relaxed) && go_on();
+                    let mut sink = |e| tx.send(Message::Event(e)).is_ok();
+                    loop {
+                        let mut work = Work {
+                            planner: &mut planner,
+                            max_steps: JOB_STEPS,
+                            go_on: &mut keep_on,
+                            sink: &mut sink,
+                        };
+                        match job.slice(&mut work) {
+                            Slice::More if !stop.load(Ordering::Relaxed) && go_on() => {}
+                            _ => break,
+                        }
                     }
-                }
-                let _ = tx.send(Message::Spent(planner.spent() - before));
+                    let _ = tx.send(Message::Spent(planner.spent() - before));
+                });
             })
             .expect("spawn a pane's job");
         Self {
@@ -736,6 +783,28 @@ impl Running {
             messages,
             cancel,
             thread: Some(thread),
+        }
+    }
+
+    /// As the native [`Running::spawn`], worked on the caller's thread a slice at each look.
+    #[must_use]
+    #[cfg(target_arch = "wasm32")]
+    pub fn spawn(job: Box<dyn Job>, planner: Planner, go_on: fn() -> bool) -> Self {
+        let kind = job.kind();
+        let (tx, messages) = mpsc::channel();
+        let before = planner.spent();
+        Self {
+            kind,
+            messages,
+            cancel: Arc::new(AtomicBool::new(false)),
+            thread: None,
+            inline: std::cell::RefCell::new(Some(Inline {
+                job,
+                planner,
+                before,
+                go_on,
+                tx,
+            })),
         }
     }
 
@@ -767,6 +836,19 @@ impl Running {
         sink: &mut dyn FnMut(SimEvent) -> bool,
         spent: &mut dyn FnMut(f64),
     ) -> Taken {
+        #[cfg(target_arch = "wasm32")]
+        {
+            let mut inline = self.inline.borrow_mut();
+            if let Some(job) = inline.as_mut()
+                && !job.slice(&self.cancel)
+            {
+                *inline = None;
+            }
+        }
+        // No waiting there: the slice above was the work.
+        #[cfg(target_arch = "wasm32")]
+        let mut first: Option<Duration> = wait.and(None);
+        #[cfg(not(target_arch = "wasm32"))]
         let mut first = wait;
         loop {
             let message = match first.take() {

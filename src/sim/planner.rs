@@ -152,6 +152,12 @@ pub struct Planner {
 }
 
 impl Planner {
+    /// Whose elementary functions the runs take (the book's arithmetic).
+    #[must_use]
+    pub fn functions(&self) -> crate::physics::method::Functions {
+        self.book.arithmetic.functions
+    }
+
     /// A planner with `book`, nothing charged yet.
     #[must_use]
     pub fn new(book: PlanBook) -> Self {

@@ -120,7 +120,8 @@ impl Ahead {
     /// are those within the budget ([`super::PlanBook::check_auto`]).
     ///
     /// # Panics
-    /// When the OS cannot spawn a thread.
+    /// When the OS cannot spawn a thread (the browser's module spawns none: it verifies them
+    /// here, before returning).
     #[must_use]
     pub fn spawn(book: PlanBook, spec: SessionSpec, horizons: &[f64]) -> Self {
         let (tx, reports) = mpsc::channel();
@@ -128,15 +129,32 @@ impl Ahead {
         let cancel = Arc::new(AtomicBool::new(false));
         let stop = Arc::clone(&cancel);
         let pairs: Vec<(f64, f64)> = horizons.windows(2).map(|w| (w[0], w[1])).collect();
+        #[cfg(not(target_arch = "wasm32"))]
         std::thread::Builder::new()
             .name("rattleback-verify".to_owned())
             .spawn(move || {
                 let mut book = book;
-                check_segments(&mut book, &plans, &spec, &pairs, &stop, &mut |r| {
-                    tx.send(r).is_ok()
+                let functions = book.arithmetic.functions;
+                crate::physics::numerics::elementary::following(functions, || {
+                    check_segments(&mut book, &plans, &spec, &pairs, &stop, &mut |r| {
+                        tx.send(r).is_ok()
+                    });
                 });
             })
             .expect("spawn the verifying thread");
+        // The browser's module starts no thread: the later segments are verified here, at once,
+        // on their own (nothing is awaited from a lecturer: the fork has released its book).
+        #[cfg(target_arch = "wasm32")]
+        {
+            let mut book = book;
+            book.awaits = false;
+            let functions = book.arithmetic.functions;
+            crate::physics::numerics::elementary::following(functions, || {
+                check_segments(&mut book, &plans, &spec, &pairs, &stop, &mut |r| {
+                    tx.send(r).is_ok()
+                });
+            });
+        }
         Self {
             reports,
             cancel,

@@ -11,8 +11,6 @@ mod oscillator;
 mod rattleback;
 mod render;
 
-use std::time::Instant;
-
 use serde::Serialize;
 
 use crate::physics::StepError;
@@ -55,6 +53,26 @@ pub struct Request {
     pub samples: u32,
     /// Run even when the work is predicted over [`BUDGET_SECONDS`].
     pub force: bool,
+}
+
+/// The wall clock of a report's `wall_seconds`: none in the browser's module
+/// (`wasm32-unknown-unknown` has no clock; its reports say 0).
+pub(crate) struct Stopwatch(#[cfg(not(target_arch = "wasm32"))] std::time::Instant);
+
+impl Stopwatch {
+    pub(crate) fn start() -> Self {
+        Self(
+            #[cfg(not(target_arch = "wasm32"))]
+            std::time::Instant::now(),
+        )
+    }
+
+    pub(crate) fn seconds(&self) -> f64 {
+        #[cfg(not(target_arch = "wasm32"))]
+        return self.0.elapsed().as_secs_f64();
+        #[cfg(target_arch = "wasm32")]
+        0.0
+    }
 }
 
 /// The resolved settings of one run.
@@ -253,14 +271,14 @@ impl Ask<'_> {
         let missed = auto
             .as_ref()
             .and_then(|a| a.missed(self.resolved.spec.tolerance));
-        let clock = Instant::now();
+        let clock = Stopwatch::start();
         let result = run(problem, &spec, self.progress).and_then(Finite::finite)?;
         Ok(Ran {
             spec,
             auto,
             missed,
             result,
-            wall_seconds: clock.elapsed().as_secs_f64(),
+            wall_seconds: clock.seconds(),
         })
     }
 

@@ -22,7 +22,6 @@ use crate::physics::rattleback::model::{ALPHA, ALPHA_DOT, GAMMA, GAMMA_DOT, ener
 use crate::physics::rattleback::run::{RunResult, run_cancellable, run_streaming};
 use crate::physics::rattleback::{Problem, plan};
 use crate::scenario::Preset;
-use std::time::Instant;
 
 /// Predicted seconds of the run `spec` asks for, and of the limit's run the report compares it
 /// with (the streamed CSV of `auto` skips its verification's share).
@@ -207,7 +206,7 @@ pub(super) fn simulate_to(
 ) -> Result<Option<Missed>, Failure> {
     let (preset, resolved) = (ask.preset, ask.resolved);
     let spec = resolved.spec;
-    let clock = Instant::now();
+    let clock = super::Stopwatch::start();
     if ask.format == Format::Csv {
         let (result, shortfall) = csv(preset, problem, resolved, ask.out, ask.progress)?;
         result.finite()?;
@@ -216,7 +215,7 @@ pub(super) fn simulate_to(
     }
     let (result, auto) = requested_run(problem, resolved, ask.progress)?;
     let result = result.finite()?;
-    let wall_seconds = clock.elapsed().as_secs_f64();
+    let wall_seconds = clock.seconds();
     // The limit's own trajectory at t_end, for comparison (cheap: cost independent of k).
     let eff_spec = RunSpec {
         method: Method::Effective,

@@ -316,6 +316,26 @@ impl Chart {
         indices: &[usize],
         go_on: &mut dyn FnMut(f64) -> bool,
     ) -> Result<Vec<Verdict>, StepError> {
+        // The browser's module starts no thread: the cells run here, `go_on` asked before
+        // them (the job's slices are a cell or a row).
+        #[cfg(target_arch = "wasm32")]
+        {
+            if !go_on(0.0) {
+                return Err(StepError::Cancelled { t: 0.0 });
+            }
+            self.cells(indices, &|_| true, &|| ())
+        }
+        #[cfg(not(target_arch = "wasm32"))]
+        self.cells_beside(indices, go_on)
+    }
+
+    /// [`Chart::cells_polled`] on a thread beside the caller's, which polls `go_on`.
+    #[cfg(not(target_arch = "wasm32"))]
+    fn cells_beside(
+        &self,
+        indices: &[usize],
+        go_on: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<Vec<Verdict>, StepError> {
         use std::sync::atomic::{AtomicBool, Ordering};
         let stop = AtomicBool::new(false);
         let keep_on = |_t: f64| !stop.load(Ordering::Relaxed);

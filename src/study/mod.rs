@@ -12,6 +12,7 @@
 //! This layer sits above `physics` (it may use threads: the map spreads over all cores with
 //! rayon) and below the commands and the explorer; it never draws on a terminal. Every
 //! computation is deterministic: parallel cells are independent and collected in order.
+use crate::physics::numerics::elementary::Elementary;
 
 pub mod ask;
 pub mod chart;
@@ -34,7 +35,7 @@ pub fn log_log_slope(points: &[(f64, f64)]) -> Option<f64> {
     let pts: Vec<(f64, f64)> = points
         .iter()
         .filter(|(x, y)| x.is_finite() && y.is_finite() && *x > 0.0 && *y > 0.0)
-        .map(|&(x, y)| (x.log10(), y.log10()))
+        .map(|&(x, y)| (x.e_log10(), y.e_log10()))
         .collect();
     if pts.len() < 2 {
         return None;

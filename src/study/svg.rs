@@ -1,4 +1,5 @@
 //! SVG files of the studies (plotters), the same plots the explorer's panes show.
+use crate::physics::numerics::elementary::Elementary;
 
 use plotters::prelude::*;
 
@@ -173,7 +174,7 @@ pub fn chart_svg(out: &ChartOutput) -> Fallible {
             #[allow(clippy::cast_precision_loss)]
             let f = (i as f64 + side) / a.cells as f64;
             if a.log {
-                (a.min.ln() + f * (a.max / a.min).ln()).exp()
+                (a.min.e_ln() + f * (a.max / a.min).e_ln()).e_exp()
             } else {
                 a.min + f * (a.max - a.min)
             }

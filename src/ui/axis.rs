@@ -2,6 +2,7 @@
 //! centred on their columns, never cut at an edge and never touching each other. The time
 //! series, the comparison and the portrait share it, so every axis reads the same way. The
 //! drawings' exaggerations are round factors too ([`round_gain`]).
+use crate::physics::numerics::elementary::Elementary;
 
 /// Seconds of the recent past a drawing of the body traces (the body's ring, the bob's arc).
 pub const TRACE_SECONDS: f64 = 6.0;
@@ -14,7 +15,7 @@ pub fn round_gain(biggest: f64, drawn: f64) -> f64 {
         return 1.0;
     }
     let want = drawn / biggest;
-    let decade = 10f64.powf(want.log10().floor());
+    let decade = 10f64.e_powf(want.e_log10().floor());
     [5.0, 2.0, 1.0]
         .into_iter()
         .map(|m| m * decade)
@@ -40,7 +41,7 @@ pub fn ticks(lo: f64, hi: f64, most: usize) -> (Vec<f64>, f64) {
         return (Vec::new(), 0.0);
     }
     let raw = span / most as f64;
-    let mut power = 10f64.powf(raw.log10().floor());
+    let mut power = 10f64.e_powf(raw.e_log10().floor());
     let step = loop {
         if let Some(m) = [1.0, 2.0, 5.0]
             .into_iter()
@@ -78,7 +79,7 @@ pub fn label(v: f64, step: f64) -> String {
     let decimals = if step >= 1.0 {
         0
     } else {
-        (-step.log10().floor()) as usize
+        (-step.e_log10().floor()) as usize
     };
     format!("{v:.decimals$}")
 }

@@ -5,6 +5,7 @@
 //! trace of the long axis's tip over the last seconds, `+` while the spin is counter-clockwise
 //! (`alpha_dot > 0`) and `-` while clockwise, so a reversal is a change of sign on the ring. It
 //! reads the same in Braille, half blocks and under `NO_COLOR` (shapes and signs, not colours).
+use crate::physics::numerics::elementary::Elementary;
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -136,7 +137,7 @@ fn trace(run: &RunState, along_x: bool) -> Vec<(f64, f64, bool)> {
         .take_while(|p| t_now - p.t <= TRACE_SECONDS)
         .step_by(2)
         .map(|p| {
-            let (c, s) = (p.slow.cos(), p.slow.sin());
+            let (c, s) = (p.slow.e_cos(), p.slow.e_sin());
             (x * c - y * s, x * s + y * c, p.rate >= 0.0)
         })
         .collect()
@@ -199,12 +200,12 @@ impl BodyPane<'_> {
         } else {
             (0.42, 1.0)
         };
-        let (c, s) = (alpha.cos(), alpha.sin());
+        let (c, s) = (alpha.e_cos(), alpha.e_sin());
         let rot = |x: f64, y: f64| (x * c - y * s, x * s + y * c);
         let outline: Vec<(f64, f64)> = (0..=96)
             .map(|i| {
                 let u = f64::from(i) / 96.0 * std::f64::consts::TAU;
-                rot(a * u.cos(), b * u.sin())
+                rot(a * u.e_cos(), b * u.e_sin())
             })
             .collect();
         // The cross bar: its half-length is the envelope, scaled so the largest rocking of the
@@ -320,13 +321,13 @@ impl Profile<'_> {
     /// tipped by `theta`, its lowest point at height 0).
     fn shape(&self, theta: f64) -> (Vec<(f64, f64)>, (f64, f64), f64) {
         let (a, c) = (self.half_width, self.depth);
-        let (ct, st) = (theta.cos(), theta.sin());
+        let (ct, st) = (theta.e_cos(), theta.e_sin());
         let lift = (a * a * st * st + c * c * ct * ct).sqrt();
         let place = |x: f64, z: f64| (x * ct - z * st, x * st + z * ct + lift);
         let mut outline: Vec<(f64, f64)> = (0..=48)
             .map(|i| {
                 let u = std::f64::consts::PI * (1.0 + f64::from(i) / 48.0);
-                place(a * u.cos(), c * u.sin())
+                place(a * u.e_cos(), c * u.e_sin())
             })
             .collect();
         outline.push(outline[0]);
@@ -435,9 +436,9 @@ mod tests {
                 "{theta}: {contact}"
             );
             // G is 1 below the centre (height `lift`), along the body's tipped z axis.
-            let lift = (400.0 * theta.sin().powi(2) + 4.0 * theta.cos().powi(2)).sqrt();
-            assert!((centre.0 - theta.sin()).abs() < 1e-12, "{theta}");
-            assert!((centre.1 - (lift - theta.cos())).abs() < 1e-12, "{theta}");
+            let lift = (400.0 * theta.e_sin().powi(2) + 4.0 * theta.e_cos().powi(2)).sqrt();
+            assert!((centre.0 - theta.e_sin()).abs() < 1e-12, "{theta}");
+            assert!((centre.1 - (lift - theta.e_cos())).abs() < 1e-12, "{theta}");
         }
     }
 

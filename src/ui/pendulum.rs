@@ -9,6 +9,7 @@
 //! angle grows and `-` while it shrinks, so a swing (a turning point of the slow motion) turns
 //! one into the other, as a reversal does on the rattleback's ring. Shapes, not colours: it
 //! reads the same under `NO_COLOR`, in Braille, half blocks and one point per cell.
+use crate::physics::numerics::elementary::Elementary;
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -144,7 +145,7 @@ impl Pose {
 
 /// The end of a rod of unit length at angle `theta` from the upright, hung at height `y0`.
 fn tip(theta: f64, y0: f64) -> (f64, f64) {
-    (theta.sin(), y0 + theta.cos())
+    (theta.e_sin(), y0 + theta.e_cos())
 }
 
 /// The bob's trace over the last [`TRACE_SECONDS`] (from the mean pivot, at the averaged
@@ -290,7 +291,7 @@ mod tests {
         for t in [0.0, 0.3, 1.7, 4.2] {
             let h = 1e-4;
             let acc = (pivot.height(t + h) - 2.0 * pivot.height(t) + pivot.height(t - h)) / (h * h);
-            let want = b / eps * (t / eps).cos();
+            let want = b / eps * (t / eps).e_cos();
             assert!(
                 (acc - want).abs() < 1e-3 * want.abs().max(1.0),
                 "{t}: {acc} {want}"

@@ -3,6 +3,7 @@
 //! plot of `log10 |ΔE/E|`, and a time axis with round ticks. Not drawn, so not computed, when
 //! hidden. With one point per cell (the console, ASCII, `--marker dot`) the zero axis, the
 //! trace, the ticks and the energy error each have their own character ([`MARKS`]).
+use crate::physics::numerics::elementary::Elementary;
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -226,7 +227,7 @@ fn energy_strip(
     let [e_axis, e_plot] =
         Layout::horizontal([Constraint::Length(8), Constraint::Min(0)]).areas(area);
     let errors = thin(run.trail_shown(), t0, cols, |p| {
-        p.energy_error.abs().max(1e-16).log10()
+        p.energy_error.abs().max(1e-16).e_log10()
     });
     let hi = errors.iter().fold(-12.0f64, |m, p| m.max(p.1)).ceil() + 1.0;
     let lo = -16.0;

@@ -2,6 +2,7 @@
 //! `sup |θ_ε − θ|` against `ε`), log–log, one `●` per rung as the worker delivers it, joined by
 //! a line, with the fitted slope in the title (the paper's uniform convergence: O(1/k), slope
 //! −1, on trapped starts; the pendulum's positions: O(ε), slope 1). Not computed while hidden.
+use crate::physics::numerics::elementary::Elementary;
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -75,14 +76,14 @@ impl Widget for SweepPane<'_> {
         let (lo_x, hi_x) = ladder
             .iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                (a.min(x.log10()), b.max(x.log10()))
+                (a.min(x.e_log10()), b.max(x.e_log10()))
             });
         let (x0, x1) = (lo_x - 0.3, hi_x + 0.3);
         let pts: Vec<(f64, f64)> = sweep
             .points
             .iter()
             .filter(|p| p.sup_error > 0.0 && p.sup_error.is_finite())
-            .map(|p| (p.parameter.log10(), p.sup_error.log10()))
+            .map(|p| (p.parameter.e_log10(), p.sup_error.e_log10()))
             .collect();
         let (lo, hi) = pts
             .iter()

@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 
 use common::Headless;
 use rattleback::app::journal::Event;
-use rattleback::explorer::replay::Replayer;
+use rattleback::record::replayer::Replayer;
 use rattleback::record::tail::{Tail, TailEvent};
 use rattleback::record::{FORMAT, Header, Line, Recorder, Size, ThemeRef, VERSION};
 

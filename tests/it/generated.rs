@@ -61,7 +61,7 @@ fn random_lecture(g: &mut Seeded, preset: &rattleback::scenario::Preset) -> Lect
         lines: Vec::new(),
         frames: Vec::new(),
     };
-    let header = rattleback::explorer::recording::header(&l.h.app, (80, 24), 30.0);
+    let header = rattleback::record::active::header(&l.h.app, (80, 24), 30.0);
     let effects =
         l.h.app
             .on_outcome(Outcome::Recording(Ok("generated.jsonl".into())));
@@ -202,7 +202,7 @@ fn a_run_started_over_that_ends_again_at_once_replays_as_shown() {
         lines: Vec::new(),
         frames: Vec::new(),
     };
-    let header = rattleback::explorer::recording::header(&l.h.app, (80, 24), 30.0);
+    let header = rattleback::record::active::header(&l.h.app, (80, 24), 30.0);
     let effects =
         l.h.app
             .on_outcome(Outcome::Recording(Ok("again.jsonl".into())));

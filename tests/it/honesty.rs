@@ -231,7 +231,10 @@ fn the_pendulum_keeps_its_claims_on_the_held_out_starts() {
 /// Issue 66: 41 random pendulums and starts (`scripts/kapitza_random.py`, seeded; the audit's own
 /// case first, whose estimate at 1e-10 was 9.9e-11 for an error of 1.58e-10), against the
 /// long-double Taylor reference: at 1e-10, 1e-9 and 1e-8 no estimate is below its error, and
-/// at most 3 runs in 100 decline with an error under a tenth of their tolerance.
+/// at most 6 runs in 100 decline with an error under a tenth of their tolerance. (3 in 100
+/// before issue 82: the portable sine and cosine, the browser's too, round within 1 ulp where
+/// glibc's round to nearest, and the shifted twin that witnesses the rounding sees up to 10×
+/// more of it on a few starts: 6 of 123 runs decline needlessly, 5 of them at 1e-10.)
 #[test]
 fn the_pendulums_estimates_count_their_rounding_on_random_starts() {
     let fixture = include_str!("../fixtures/reference/kapitza_random.toml");
@@ -243,7 +246,7 @@ fn the_pendulums_estimates_count_their_rounding_on_random_starts() {
         needless += tally.needless;
     }
     assert!(
-        100 * needless <= 3 * runs,
+        100 * needless <= 6 * runs,
         "{needless} of {runs} runs declined with an error under a tenth of the tolerance"
     );
 }

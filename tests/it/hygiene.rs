@@ -298,3 +298,56 @@ fn over_ssh_without_a_terminal_the_refusal_names_ssh_t() {
     let out = run(&[], false);
     assert!(!String::from_utf8_lossy(&out.stderr).contains("ssh"));
 }
+
+/// Issue 82: the program takes its elementary functions from one implementation on every
+/// platform (`physics::numerics::elementary`), so the native build and the browser's module
+/// compute the same bits; a call of the platform's `sin`, `ln`, `powf`, … anywhere else in the
+/// program's code (tests aside) would part them again.
+#[test]
+fn elementary_functions_come_from_one_implementation() {
+    const NAMES: &[&str] = &[
+        "sin_cos", "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh",
+        "asinh", "acosh", "atanh", "exp", "exp2", "exp_m1", "ln", "ln_1p", "log", "log2", "log10",
+        "powf", "hypot", "cbrt",
+    ];
+    let root = std::path::Path::new(root!());
+    let mut found = Vec::new();
+    for dir in ["src", "web/src"] {
+        for file in rust_files(&root.join(dir)) {
+            if file.ends_with("numerics/elementary.rs") {
+                continue;
+            }
+            let text = std::fs::read_to_string(&file).unwrap();
+            // The program's code: what comes before a file's test module.
+            let program = text.split("#[cfg(test)]").next().unwrap_or("");
+            for (n, line) in program.lines().enumerate() {
+                let code = line.split("//").next().unwrap_or("");
+                for name in NAMES {
+                    let call = format!(".{name}(");
+                    let path = format!("f64::{name}");
+                    let named_call = code.match_indices(&call).any(|(i, _)| {
+                        // `self.log(…)` is the app's journal, not a logarithm.
+                        !(*name == "log" && code[..i].ends_with("self"))
+                    });
+                    let as_path = code.match_indices(&path).any(|(i, _)| {
+                        !code[i + path.len()..]
+                            .starts_with(|c: char| c.is_alphanumeric() || c == '_')
+                    });
+                    if named_call || as_path {
+                        found.push(format!(
+                            "{}:{}: {}",
+                            file.strip_prefix(root).unwrap().display(),
+                            n + 1,
+                            code.trim()
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "the platform's elementary functions called:\n{}",
+        found.join("\n")
+    );
+}

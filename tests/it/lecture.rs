@@ -15,7 +15,7 @@ use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use rattleback::app::journal::{Event, Shown};
 use rattleback::app::{App, Key, Outcome};
-use rattleback::explorer::replay::Replayer;
+use rattleback::record::replayer::Replayer;
 use rattleback::record::{self, Line, Recorder};
 use rattleback::ui::{self, Cache, UiOptions};
 
@@ -159,7 +159,7 @@ fn lecture_with(preset: &str, speed: f64, field: &str, compare: bool) -> Lecture
         lines: Vec::new(),
         frames: Vec::new(),
     };
-    let header = rattleback::explorer::recording::header(&l.h.app, (80, 24), 30.0);
+    let header = rattleback::record::active::header(&l.h.app, (80, 24), 30.0);
     let effects =
         l.h.app
             .on_outcome(Outcome::Recording(Ok("lecture.jsonl".into())));
@@ -735,7 +735,7 @@ fn a_recording_begun_small_exports_each_moment_at_the_lecturers_size() {
         lines: Vec::new(),
         frames: Vec::new(),
     };
-    let header = rattleback::explorer::recording::header(&l.h.app, (80, 20), 30.0);
+    let header = rattleback::record::active::header(&l.h.app, (80, 20), 30.0);
     let effects =
         l.h.app
             .on_outcome(Outcome::Recording(Ok("small.jsonl".into())));
@@ -782,7 +782,7 @@ fn a_recording_begun_small_exports_each_moment_at_the_lecturers_size() {
     );
     // A file of format 13 cannot hold a terminal line.
     let mut older = std::fs::read_to_string(&path).unwrap();
-    older = older.replacen("\"version\":14", "\"version\":13", 1);
+    older = older.replacen("\"version\":15", "\"version\":13", 1);
     let older_path = temp("small-13.jsonl");
     std::fs::write(&older_path, older).unwrap();
     let (code, _, err) = crate::common::bin(&["replay", older_path.to_str().unwrap(), "--verify"]);

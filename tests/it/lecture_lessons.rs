@@ -32,7 +32,7 @@ fn lesson_lecture(name: &str, speed: f64, wrong: bool) -> Lecture {
     };
     let effects = l.h.app.start_lesson(lesson.clone());
     l.h.exec(effects);
-    let header = rattleback::explorer::recording::header(&l.h.app, (80, 24), 30.0);
+    let header = rattleback::record::active::header(&l.h.app, (80, 24), 30.0);
     assert!(header.lesson.is_some(), "the header carries the lesson");
     let effects =
         l.h.app

@@ -176,7 +176,7 @@ fn a_lessons_steps_are_its_pages_chapters() {
     };
     h.exec(effects);
     let lines: Vec<_> = rec.lines.iter().map(|(_, l)| l.clone()).collect();
-    let mut r = rattleback::explorer::replay::Replayer::new(lines);
+    let mut r = rattleback::record::replayer::Replayer::new(lines);
     let e = r.catch_up(&mut h.app);
     h.exec(e);
     let preset = rattleback::scenario::shipped::resolve("kapitza-upright", &[]).unwrap();

@@ -420,7 +420,7 @@ fn outputs_are_never_clobbered_and_verify_exports_too() {
 #[test]
 fn replay_teaches_notes_chapters_and_its_end() {
     use rattleback::app::Mode;
-    use rattleback::explorer::replay::Replayer;
+    use rattleback::record::replayer::Replayer;
 
     // A recording with three chapters and a note, made through the app.
     let mut h = Headless::new("subcritical");
@@ -712,7 +712,7 @@ fn replay_chapters_lists_the_chapters_with_their_times() {
 /// journaled, and a replay averages over the lecturer's window, not the default one.
 #[test]
 fn the_weak_window_the_lecturer_chose_is_replayed() {
-    use rattleback::explorer::replay::Replayer;
+    use rattleback::record::replayer::Replayer;
     let mut h = Headless::new("subcritical");
     h.app
         .on_outcome(Outcome::Recording(Ok("window.jsonl".to_owned())));

@@ -108,7 +108,7 @@ fn status(answer: &str) -> u16 {
 }
 
 #[test]
-fn the_first_line_is_the_address_and_only_three_paths_answer() {
+fn the_first_line_is_the_address_and_only_its_paths_answer() {
     let s = Served::start(&fixture("lecture.jsonl"), &[]);
     assert!(
         s.url.starts_with("http://127.0.0.1:") && s.url.ends_with('/'),
@@ -807,4 +807,84 @@ fn a_lecture_ended_by_a_signal_still_ends_in_every_page() {
         );
         std::thread::sleep(Duration::from_millis(100));
     }
+}
+
+/// Issue 82: `serve --site DIR` serves the browser explorer's module (read once; a fork
+/// computes in the reader's browser, so the server gives the module and the session and
+/// nothing more), and its page carries the fork (`f`, the worker, Esc back). Without `--site`
+/// the module's address says why there is none and how to add it. A site that is not one (no
+/// module, a link, a FIFO, a file that is not WebAssembly) is refused before serving, naming
+/// the file.
+#[test]
+fn a_site_is_served_for_forks_and_refused_when_it_is_not_one() {
+    let dir = temp("site");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let module = dir.join("rattleback.wasm");
+    // The smallest valid module: its magic and version.
+    let bytes = b"\0asm\x01\0\0\0".to_vec();
+    std::fs::write(&module, &bytes).unwrap();
+    let s = Served::start(
+        &fixture("lecture.jsonl"),
+        &["--site", dir.to_str().unwrap()],
+    );
+    let got = get(s.addr, "/rattleback.wasm");
+    assert_eq!(status(&got), 200, "{got}");
+    assert!(
+        got.to_ascii_lowercase()
+            .contains("content-type: application/wasm"),
+        "{got}"
+    );
+    assert!(got.ends_with("\0asm\u{1}\0\0\0"), "{got:?}");
+    let page = get(s.addr, "/");
+    for part in [
+        "fork (f)",
+        "rattlebackExplorer",
+        "rb_fork",
+        "worker-src blob:",
+        "Escape",
+    ] {
+        assert!(page.contains(part), "the page has {part}");
+    }
+    drop(s);
+    let bare = Served::start(&fixture("lecture.jsonl"), &[]);
+    let none = get(bare.addr, "/rattleback.wasm");
+    assert_eq!(status(&none), 404, "{none}");
+    assert!(none.contains("--site DIR"), "{none}");
+    drop(bare);
+    // Not a site.
+    std::fs::write(&module, b"<html>not a module</html>").unwrap();
+    let lecture = fixture("lecture.jsonl");
+    let serve = |site: &Path| {
+        crate::common::bin(&[
+            "serve",
+            lecture.to_str().unwrap(),
+            "--site",
+            site.to_str().unwrap(),
+        ])
+    };
+    let (code, _, err) = serve(&dir);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("not a WebAssembly module") && err.contains("rattleback web"),
+        "{err}"
+    );
+    std::fs::remove_file(&module).unwrap();
+    let (code, _, err) = serve(&dir);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("rattleback.wasm"), "{err}");
+    std::os::unix::fs::symlink("/etc/passwd", &module).unwrap();
+    let (code, _, err) = serve(&dir);
+    assert_eq!(code, 2, "a link is not followed: {err}");
+    std::fs::remove_file(&module).unwrap();
+    assert!(
+        crate::common::detached("mkfifo")
+            .arg(&module)
+            .status()
+            .unwrap()
+            .success()
+    );
+    let (code, _, err) = serve(&dir);
+    assert_eq!(code, 2, "a FIFO is refused without blocking: {err}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -10,11 +10,17 @@
 
 use std::cell::RefCell;
 
+pub mod trajectory;
+
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
 use ratatui::style::{Color, Modifier};
 use rattleback::app::{App, Effect, Key, Options, Outcome};
+use rattleback::record::active::ActiveRecording;
+
+/// The page's frame rate, as a recording's header says it.
+const FPS: f64 = 30.0;
 
 /// Where what the page cannot do yet is planned.
 const NOT_YET: &str = "issue 82";
@@ -34,6 +40,14 @@ pub struct Explorer {
     screen: Buffer,
     width: u16,
     height: u16,
+    /// Seconds of frames so far: the recording's clock (the module has no other).
+    wall: f64,
+    /// The recording in progress (`R`), in memory.
+    recording: Option<ActiveRecording>,
+    /// A finished recording for the page to download: its name and its bytes.
+    download: Option<(String, Vec<u8>)>,
+    /// The app's first effects, until they run.
+    pending: Vec<Effect>,
 }
 
 impl Explorer {
@@ -66,17 +80,60 @@ impl Explorer {
         Ok(Self::opened(&preset, Some(lesson), width, height))
     }
 
-    fn opened(
-        preset: &rattleback::scenario::Preset,
-        lesson: Option<rattleback::scenario::lesson::Lesson>,
-        width: u16,
-        height: u16,
-    ) -> Self {
-        let (mut app, mut effects) = App::new(preset, Options::at(30.0));
-        if let Some(lesson) = lesson {
-            effects.extend(app.start_lesson(lesson));
+    /// The explorer forked from a served lecture (`f` on `rattleback serve`'s page): `session`
+    /// is the lecture's file so far (its complete lines); the lecture is replayed up to its last
+    /// line, as `follow` shows it, then forked there, as `follow`'s `f` does. Gives the
+    /// lecture's time it forked at too.
+    ///
+    /// # Errors
+    /// The lines are not a session file, or its header's preset is not valid.
+    pub fn forked(session: &str, width: u16, height: u16) -> Result<(Self, f64), String> {
+        let rec = rattleback::record::parse(session, "the lecture").map_err(|e| e.to_string())?;
+        let preset = rattleback::scenario::Preset::parse(
+            &rec.header.preset,
+            "the lecture's header",
+            "lecture",
+            &[],
+        )
+        .map_err(|e| e.to_string())?;
+        let mut explorer = Self::blank(&preset, width, height);
+        explorer.engine = Engine::new(rattleback::record::replayer::follower_book(&rec));
+        let mut effects = std::mem::take(&mut explorer.pending);
+        if let Some(lesson) = rec
+            .header
+            .lesson
+            .as_ref()
+            .and_then(rattleback::scenario::lesson::RecordedLesson::lesson)
+        {
+            explorer.app.replay_lesson(lesson);
         }
-        let mut explorer = Self {
+        let lines: Vec<_> = rec.lines.iter().map(|(_, l)| l.clone()).collect();
+        let now = lines.last().map_or(0.0, |l| l.wall);
+        // Played frame by frame, as a follower saw it (each line applied where the display
+        // had got to), to the last line.
+        let mut replayer = rattleback::record::replayer::Replayer::new(lines);
+        effects.extend(replayer.catch_up(&mut explorer.app));
+        explorer.exec(effects);
+        let mut clock = rattleback::record::replayer::FrameClock::new(FPS);
+        while clock.now() <= now {
+            let effects = clock.show(&mut replayer, &mut explorer.app);
+            explorer.exec(effects);
+            clock.next(&replayer, &explorer.app);
+        }
+        let effects = clock.show(&mut replayer, &mut explorer.app);
+        explorer.exec(effects);
+        let at = explorer.app.run.shown;
+        explorer.app.fork();
+        explorer.exec(vec![Effect::Sim(rattleback::sim::Command::Release)]);
+        explorer.draw();
+        Ok((explorer, at))
+    }
+
+    /// The explorer on `preset` with nothing run yet: the app's first effects wait in
+    /// `pending`.
+    fn blank(preset: &rattleback::scenario::Preset, width: u16, height: u16) -> Self {
+        let (app, effects) = App::new(preset, Options::at(FPS));
+        Self {
             app,
             engine: Engine::new(PlanBook::default()),
             cache: Cache::default(),
@@ -84,7 +141,24 @@ impl Explorer {
             screen: Buffer::empty(ratatui::layout::Rect::new(0, 0, width, height)),
             width,
             height,
-        };
+            wall: 0.0,
+            recording: None,
+            download: None,
+            pending: effects,
+        }
+    }
+
+    fn opened(
+        preset: &rattleback::scenario::Preset,
+        lesson: Option<rattleback::scenario::lesson::Lesson>,
+        width: u16,
+        height: u16,
+    ) -> Self {
+        let mut explorer = Self::blank(preset, width, height);
+        let mut effects = std::mem::take(&mut explorer.pending);
+        if let Some(lesson) = lesson {
+            effects.extend(explorer.app.start_lesson(lesson));
+        }
         explorer.exec(effects);
         explorer.draw();
         explorer
@@ -112,9 +186,13 @@ impl Explorer {
                 Effect::LoadPreset(name) => Some(Outcome::Loaded(Box::new(
                     rattleback::scenario::shipped::resolve(&name, &[]).map_err(|e| e.to_string()),
                 ))),
-                Effect::StartRecording => Some(Outcome::Recording(Err(format!(
-                    "recording is not in the browser yet ({NOT_YET}): record in the terminal, rattleback --record FILE"
-                )))),
+                Effect::StartRecording => Some(self.start_recording()),
+                Effect::StopRecording => {
+                    if let Some(r) = self.recording.as_mut() {
+                        r.stopping = true;
+                    }
+                    None
+                }
                 Effect::Export { .. } => Some(Outcome::Exported(Err(format!(
                     "exporting files is not in the browser yet ({NOT_YET}): the terminal's x writes them"
                 )))),
@@ -134,17 +212,68 @@ impl Explorer {
         }
     }
 
+    /// `R`: a recording in memory, named after the scenario; the page downloads it when `R`
+    /// ends it ([`Explorer::take_download`]).
+    fn start_recording(&mut self) -> Outcome {
+        let name = format!("{}.jsonl", rattleback::app::slug(&self.app.scenario.name));
+        let size = (self.width, self.height);
+        match ActiveRecording::in_memory(&self.app, &name, size, FPS, self.wall) {
+            Ok(r) => {
+                self.recording = Some(r);
+                Outcome::Recording(Ok(name))
+            }
+            Err(e) => Outcome::Recording(Err(e)),
+        }
+    }
+
+    /// Checkpoints and writes the recording, as the terminal's explorer does after each
+    /// event; a finished one waits for the page.
+    fn keep_recording(&mut self) {
+        let Some(rec) = self.recording.as_mut() else {
+            return;
+        };
+        if self.app.journal.state == rattleback::app::RecState::On
+            && let Some(c) = rec.due(&self.app, self.wall)
+        {
+            self.exec(vec![c]);
+        }
+        let Some(rec) = self.recording.as_mut() else {
+            return;
+        };
+        match rec.flush(&mut self.app, self.wall) {
+            Ok(None) => {}
+            Ok(Some(done)) | Err(done) => {
+                if let Some(r) = self.recording.take()
+                    && let (Outcome::RecordingSaved(name), Some(bytes)) = (&done, r.bytes())
+                {
+                    self.download = Some((name.clone(), bytes.to_vec()));
+                }
+                let effects = self.app.on_outcome(done);
+                self.exec(effects);
+            }
+        }
+    }
+
+    /// A finished recording, once: its file name and its bytes.
+    pub fn take_download(&mut self) -> Option<(String, Vec<u8>)> {
+        self.download.take()
+    }
+
     /// A key, as the terminal's explorer takes it; whether the app asked to quit.
     pub fn key(&mut self, key: Key) -> bool {
         let effects = self.app.on_key(key);
         self.exec(effects);
+        self.keep_recording();
         self.app.quit
     }
 
     /// One frame of `wall` seconds.
     pub fn tick(&mut self, wall: f64) {
-        let effects = self.app.tick(wall.clamp(0.0, 0.25));
+        let wall = wall.clamp(0.0, 0.25);
+        self.wall += wall;
+        let effects = self.app.tick(wall);
         self.exec(effects);
+        self.keep_recording();
     }
 
     /// A new screen size (at least [`MIN_SIZE`]).
@@ -289,7 +418,13 @@ thread_local! {
     static EXPLORER: RefCell<Option<Explorer>> = const { RefCell::new(None) };
     static NAME: RefCell<String> = const { RefCell::new(String::new()) };
     static ERROR: RefCell<Vec<char>> = const { RefCell::new(Vec::new()) };
+    static TEXT: RefCell<String> = const { RefCell::new(String::new()) };
+    static OUT: RefCell<Vec<char>> = const { RefCell::new(Vec::new()) };
+    static FORKED_AT: std::cell::Cell<f64> = const { std::cell::Cell::new(0.0) };
 }
+
+/// Longest text pushed to the module (a lecture's file so far): 64 MiB.
+pub const MAX_TEXT: usize = 64 << 20;
 
 fn with<T>(f: impl FnOnce(&mut Explorer) -> T) -> Option<T> {
     EXPLORER.with(|e| e.borrow_mut().as_mut().map(f))
@@ -303,7 +438,9 @@ fn clamp_u16(v: u32) -> u16 {
 /// but the attribute that exports each function under its name.
 #[allow(unsafe_code)]
 mod exports {
-    use super::{ERROR, EXPLORER, Explorer, NAME, clamp_u16, key_of, rgb, with};
+    use super::{
+        ERROR, EXPLORER, Explorer, FORKED_AT, NAME, OUT, TEXT, clamp_u16, key_of, rgb, with,
+    };
 
     /// Adds a character to the name of the preset to open.
     #[unsafe(no_mangle)]
@@ -357,6 +494,95 @@ mod exports {
                 0
             }
         }
+    }
+
+    /// Adds a character to the text the next [`rb_trajectory`] or [`rb_fork`] reads (a preset's
+    /// TOML, a lecture's lines); past [`super::MAX_TEXT`] bytes the rest is dropped (and the
+    /// text refused as cut).
+    #[unsafe(no_mangle)]
+    pub extern "C" fn rb_text_push(code: u32) {
+        if let Some(c) = char::from_u32(code) {
+            TEXT.with(|t| {
+                let mut t = t.borrow_mut();
+                if t.len() < super::MAX_TEXT {
+                    t.push(c);
+                }
+            });
+        }
+    }
+
+    /// Runs the preset pushed so far ([`super::trajectory::csv`]) at `samples` samples; the
+    /// CSV (or the refusal) is the output, [`rb_out_char`]; gives its length.
+    #[unsafe(no_mangle)]
+    pub extern "C" fn rb_trajectory(samples: u32) -> u32 {
+        let toml = TEXT.with(|t| std::mem::take(&mut *t.borrow_mut()));
+        out(&super::trajectory::csv(&toml, samples))
+    }
+
+    /// Character `i` of the last output.
+    #[unsafe(no_mangle)]
+    pub extern "C" fn rb_out_char(i: u32) -> u32 {
+        OUT.with(|o| o.borrow().get(i as usize).map_or(0, |&c| u32::from(c)))
+    }
+
+    /// A finished recording (`R` pressed again): its file name becomes the output
+    /// ([`rb_out_char`]) and its length is given, then [`rb_download_text`] gives its text;
+    /// 0 when there is none. The page asks after every key and frame.
+    #[unsafe(no_mangle)]
+    pub extern "C" fn rb_download_name() -> u32 {
+        let name = with(|e| e.download.as_ref().map(|(n, _)| n.clone())).flatten();
+        name.map_or(0, |n| out(&n))
+    }
+
+    /// The finished recording's text as the output (and no longer held); its length.
+    #[unsafe(no_mangle)]
+    pub extern "C" fn rb_download_text() -> u32 {
+        with(Explorer::take_download)
+            .flatten()
+            .map_or(0, |(_, bytes)| out(&String::from_utf8_lossy(&bytes)))
+    }
+
+    fn out(text: &str) -> u32 {
+        OUT.with(|o| {
+            *o.borrow_mut() = text.chars().collect();
+            u32::try_from(o.borrow().len()).unwrap_or(0)
+        })
+    }
+
+    /// Opens the explorer forked from the lecture whose lines were pushed ([`rb_text_push`]):
+    /// 1, or 0 with the reason in [`rb_error_char`]. [`rb_forked_at`] gives the lecture's time.
+    #[unsafe(no_mangle)]
+    pub extern "C" fn rb_fork(width: u32, height: u32) -> u32 {
+        let text = TEXT.with(|t| std::mem::take(&mut *t.borrow_mut()));
+        let (w, h) = (
+            clamp_u16(width).max(super::MIN_SIZE.0),
+            clamp_u16(height).max(super::MIN_SIZE.1),
+        );
+        let opened = if text.len() >= super::MAX_TEXT {
+            Err(format!(
+                "the lecture's file is over {} bytes",
+                super::MAX_TEXT
+            ))
+        } else {
+            Explorer::forked(&text, w, h)
+        };
+        match opened {
+            Ok((e, at)) => {
+                FORKED_AT.with(|f| f.set(at));
+                EXPLORER.with(|x| *x.borrow_mut() = Some(e));
+                1
+            }
+            Err(e) => {
+                ERROR.with(|x| *x.borrow_mut() = e.chars().collect());
+                0
+            }
+        }
+    }
+
+    /// The lecture's time the last [`rb_fork`] forked at.
+    #[unsafe(no_mangle)]
+    pub extern "C" fn rb_forked_at() -> f64 {
+        FORKED_AT.with(std::cell::Cell::get)
     }
 
     /// The length of the last error, in characters.

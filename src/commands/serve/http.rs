@@ -282,9 +282,10 @@ impl Server {
             "/events" if head => event_stream(Response::new(Reply::Whole(None))),
             "/events" => self.events(peer, kill),
             "/session.jsonl" => self.session().await,
+            "/rattleback.wasm" => self.module(),
             _ => text(
                 StatusCode::NOT_FOUND,
-                "not found: this server has /, /events and /session.jsonl",
+                "not found: this server has /, /events, /session.jsonl and /rattleback.wasm",
             ),
         }
     }
@@ -313,7 +314,7 @@ impl Server {
                 (
                     header::CONTENT_SECURITY_POLICY,
                     "default-src 'none'; script-src 'unsafe-inline' 'wasm-unsafe-eval'; style-src 'unsafe-inline'; \
-                     connect-src 'self'; img-src data:; font-src data:; base-uri 'none'; form-action 'none'",
+                     worker-src blob:; connect-src 'self'; img-src data:; font-src data:; base-uri 'none'; form-action 'none'",
                 ),
             ],
         )
@@ -397,6 +398,23 @@ impl Server {
             }
         });
         event_stream(Response::new(Reply::Events(rx, permit, slot)))
+    }
+
+    /// The browser explorer's module, for forks (`--site`); without it, why not.
+    fn module(&self) -> Response<Reply> {
+        let Some(module) = &self.config.module else {
+            return text(
+                StatusCode::NOT_FOUND,
+                "this lecture is served without the explorer's module, so it cannot be forked in the browser: the lecturer adds --site DIR to serve (rattleback web DIR writes it); rattleback follow and f fork it in a terminal",
+            );
+        };
+        with(
+            Response::new(Reply::Whole(Some(module.clone()))),
+            &[
+                (header::CONTENT_TYPE, "application/wasm"),
+                (header::CACHE_CONTROL, "private, max-age=3600"),
+            ],
+        )
     }
 
     /// The session file's complete lines so far: only a regular file, by its name, opened

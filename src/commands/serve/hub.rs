@@ -37,6 +37,9 @@ pub struct Config {
     pub fps: f64,
     /// How the frames are drawn (as `--export-cast`: no key footer).
     pub ui: crate::ui::UiOptions,
+    /// The browser explorer's module (`--site`), read once: forks compute in the readers'
+    /// browsers, and this is all the server gives them.
+    pub module: Option<Bytes>,
 }
 
 /// Whether `serve` may listen at `addr` without a token: loopback only (a reader there is a

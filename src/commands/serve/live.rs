@@ -14,7 +14,7 @@ use ratatui::layout::Rect;
 use super::hub::{Config, Hub};
 use crate::app::effects::commands;
 use crate::cast::MemoryScreen;
-use crate::explorer::replay::Replayer;
+use crate::record::replayer::Replayer;
 use crate::record::tail::{Tail, TailEvent};
 use crate::sim::Worker;
 
@@ -241,7 +241,7 @@ fn follow(
         return Next::Again;
     };
     let (tx, events) = sync_channel(256);
-    let worker = Worker::spawn_with(crate::explorer::follower_book(rec), move |e| {
+    let worker = Worker::spawn_with(crate::record::replayer::follower_book(rec), move |e| {
         tx.send(e).is_ok()
     });
     let lines: Vec<_> = rec.lines.iter().map(|(_, l)| l.clone()).collect();

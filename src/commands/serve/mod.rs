@@ -107,6 +107,7 @@ pub fn serve(args: &ServeArgs, ui: crate::ui::UiOptions) -> Outcome {
         ),
         fps: f64::from(fps),
         ui,
+        module: args.site.as_deref().map(site_module).transpose()?,
     };
     let url = hub::url(local, config.token.as_deref());
     // The first line, alone: scripts and the explorer read it.
@@ -118,6 +119,32 @@ pub fn serve(args: &ServeArgs, ui: crate::ui::UiOptions) -> Outcome {
         config.max_readers
     ));
     run(config, listener, args.with_parent)
+}
+
+/// The module of the site in `dir` (`rattleback web DIR`): a regular file, by its name, of at
+/// most [`crate::commands::web::MAX_MODULE`] bytes, that is a WebAssembly module.
+fn site_module(dir: &std::path::Path) -> Result<bytes::Bytes, Failure> {
+    let path = dir.join("rattleback.wasm");
+    let refuse = |why: String| {
+        Failure::input(format!(
+            "--site {}: {why}; rattleback web {} writes the site",
+            dir.display(),
+            dir.display()
+        ))
+    };
+    let bytes = crate::scenario::write::read_bounded_bytes_with(
+        &path,
+        crate::commands::web::MAX_MODULE,
+        crate::scenario::write::Links::Refuse,
+    )
+    .map_err(|e| refuse(format!("{}: {e}", path.display())))?;
+    if !bytes.starts_with(b"\0asm") {
+        return Err(refuse(format!(
+            "{} is not a WebAssembly module",
+            path.display()
+        )));
+    }
+    Ok(bytes::Bytes::from(bytes))
 }
 
 /// The renderer and the server, until a signal (or, `with_parent`, until the explorer that

@@ -2,6 +2,7 @@
 //! steps follow the fastest oscillation (the pitching, about 107 rad/s for the Kane–Levinson
 //! body, faster with spin) and the tolerance (`tol^{-1/8}`). Seconds are on the calibration
 //! machine (release build); `simulate`, the explorer and every replay ask it first.
+use crate::physics::numerics::elementary::Elementary;
 
 use super::{Params, Problem};
 use crate::physics::method::Asked;
@@ -55,7 +56,7 @@ pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
         ..
     } = *ask;
     let one = |tol: f64| {
-        let per_tol = tol.clamp(1e-16, 1.0).powf(-0.125);
+        let per_tol = tol.clamp(1e-16, 1.0).e_powf(-0.125);
         EVALUATIONS_PER_RADIAN
             * fastest_rate(problem)
             * t_end.max(0.0)
@@ -112,7 +113,7 @@ mod tests {
             let r = run(&p, &spec, &mut |_| true).unwrap();
             #[allow(clippy::cast_precision_loss)]
             let per_radian =
-                r.stats.rhs_evaluations as f64 / (fastest_rate(&p) * 10.0 * tol.powf(-0.125));
+                r.stats.rhs_evaluations as f64 / (fastest_rate(&p) * 10.0 * tol.e_powf(-0.125));
             println!(
                 "w={w} tol={tol:e}: {} evaluations, {per_radian:.2} per radian",
                 r.stats.rhs_evaluations

@@ -2,6 +2,7 @@
 //! one's time over the initial spin `ω_z` (both senses) and the product of inertia `D`, from the
 //! preset's tilt, against the spin rates where steady spin turns from decaying to growing
 //! ([`super::linear`]).
+use crate::physics::numerics::elementary::Elementary;
 
 use std::collections::BTreeMap;
 
@@ -104,7 +105,7 @@ impl CeltChart {
     #[must_use]
     pub fn reversal_growth(&self) -> Option<f64> {
         let tilt = super::tilt(&self.problem.initial_state());
-        (tilt > 0.0 && tilt < 1.0).then(|| (1.0 / tilt).ln() / self.t_end)
+        (tilt > 0.0 && tilt < 1.0).then(|| (1.0 / tilt).e_ln() / self.t_end)
     }
 }
 

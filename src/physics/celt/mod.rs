@@ -23,6 +23,7 @@
 //! and their events (`flows`), the headless runner (`run`), `auto` (`plan`, verifying by the one
 //! loop `physics::verify` as `policy` says), the cost model (`budget`) and what the layers above
 //! see (`scene`).
+use crate::physics::numerics::elementary::Elementary;
 
 pub mod budget;
 pub mod chart;
@@ -130,7 +131,7 @@ impl Params {
         // `hypot`, not the square root of a sum of squares: `ix = 1e155` squared overflows, and
         // an infinite spread made every comparison below false (issue 66, H2).
         let mean = 0.5 * (self.ix + self.iy);
-        let spread = (0.5 * (self.ix - self.iy)).hypot(self.product);
+        let spread = (0.5 * (self.ix - self.iy)).e_hypot(self.product);
         let principal = [mean - spread, mean + spread, self.iz];
         let total: f64 = principal.iter().sum();
         check_derived(
@@ -217,7 +218,7 @@ impl Params {
         if (self.ix - self.iy).abs() <= f64::EPSILON * self.ix.max(self.iy) {
             std::f64::consts::FRAC_PI_4 * self.product.signum()
         } else {
-            0.5 * (2.0 * self.product / (self.ix - self.iy)).atan()
+            0.5 * (2.0 * self.product / (self.ix - self.iy)).e_atan()
         }
     }
 
@@ -364,7 +365,7 @@ fn quat_mul(p: [f64; 4], q: [f64; 4]) -> [f64; 4] {
 #[must_use]
 pub fn heading(y: &State) -> f64 {
     let r = rotation(quaternion(y));
-    r[(1, 0)].atan2(r[(0, 0)])
+    r[(1, 0)].e_atan2(r[(0, 0)])
 }
 
 /// The body's lean: the angles (rad) by which the `+x` end of its long axis and the `+y` end
@@ -374,8 +375,8 @@ pub fn lean(y: &State) -> [f64; 2] {
     let g = gamma(y);
     let n = g.norm();
     [
-        (g.x / n).clamp(-1.0, 1.0).asin(),
-        (g.y / n).clamp(-1.0, 1.0).asin(),
+        (g.x / n).clamp(-1.0, 1.0).e_asin(),
+        (g.y / n).clamp(-1.0, 1.0).e_asin(),
     ]
 }
 
@@ -383,7 +384,7 @@ pub fn lean(y: &State) -> [f64; 2] {
 #[must_use]
 pub fn tilt(y: &State) -> f64 {
     let g = gamma(y);
-    (g.x * g.x + g.y * g.y).sqrt().atan2(g.z)
+    (g.x * g.x + g.y * g.y).sqrt().e_atan2(g.z)
 }
 
 /// What the body looks like at a state: G and the contact point in space, the rotation.
@@ -445,7 +446,7 @@ impl Problem {
     #[must_use]
     pub fn initial_state(&self) -> State {
         let s = &self.start;
-        let half = |x: f64| (0.5 * x).sin_cos();
+        let half = |x: f64| (0.5 * x).e_sin_cos();
         let (sz, cz) = half(s.yaw);
         let (sx, cx) = half(s.roll);
         let (sy, cy) = half(s.pitch);
@@ -454,9 +455,9 @@ impl Problem {
             [cy, 0.0, sy, 0.0],
         );
         let g = Vector3::new(
-            -s.pitch.sin() * s.roll.cos(),
-            s.roll.sin(),
-            s.pitch.cos() * s.roll.cos(),
+            -s.pitch.e_sin() * s.roll.e_cos(),
+            s.roll.e_sin(),
+            s.pitch.e_cos() * s.roll.e_cos(),
         );
         let r = self.params.contact(&g);
         let xg = -(rotation(q) * r);

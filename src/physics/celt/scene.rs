@@ -6,6 +6,7 @@
 //! about the vertical `φ = ∫ ω·γ dt` as the slow coordinate, the spin `ω·γ` as its rate, the
 //! tilt from upright as the fast coordinate. Events are spin reversals (with the band) and
 //! raw crossings.
+use crate::physics::numerics::elementary::Elementary;
 
 use super::{Params, Problem, Start, TILT_MAX};
 use crate::physics::chart::{Column, MapFlag};
@@ -299,7 +300,7 @@ impl Posed for Problem {
     }
     fn default_step(&self, _method: Method, tolerance: f64, _t_end: f64) -> f64 {
         // Adaptive methods only; the size of the first step DOP853 would take, about.
-        tolerance.clamp(1e-16, 1.0).powf(0.125) / super::budget::fastest_rate(self)
+        tolerance.clamp(1e-16, 1.0).e_powf(0.125) / super::budget::fastest_rate(self)
     }
     fn drawing(&self) -> Drawing {
         let p = self.params();

@@ -19,6 +19,7 @@
 //!
 //! **Accuracy**, against resolved DOP853 at 1e-13: `tests/it/kapitza.rs`
 //! (`the_second_order_averaged_model_is_fourth_order`) measures the error fall like ε⁴.
+use crate::physics::numerics::elementary::Elementary;
 
 use super::averaged3_terms;
 use super::{FastPhase, Params};
@@ -27,7 +28,7 @@ use super::{FastPhase, Params};
 #[must_use]
 #[inline]
 pub fn f2(params: &Params, theta_s: f64, p: f64) -> f64 {
-    let (st, ct) = theta_s.sin_cos();
+    let (st, ct) = theta_s.e_sin_cos();
     f2_of(params, st, ct, p)
 }
 
@@ -51,7 +52,7 @@ fn f2_of(params: &Params, st: f64, ct: f64, p: f64) -> f64 {
 pub fn to_full(params: &Params, phase: FastPhase, t: f64, slow: (f64, f64)) -> (f64, f64) {
     let (theta_s, p) = slow;
     let (a, b, epsilon) = (params.a, params.b, params.epsilon);
-    let (st, ct) = theta_s.sin_cos();
+    let (st, ct) = theta_s.e_sin_cos();
     let [(s1, c1), (s2, c2), (s3, c3), (s4, c4)] = phase.harmonics(t, epsilon);
     let x0 = b * st;
     let x1 = c1 * x0;
@@ -175,7 +176,7 @@ fn invert(
 #[must_use]
 #[inline]
 pub fn f2_f4(params: &Params, theta_s: f64, p: f64) -> (f64, f64) {
-    let (st, ct) = theta_s.sin_cos();
+    let (st, ct) = theta_s.e_sin_cos();
     (
         f2_of(params, st, ct, p),
         averaged3_terms::f4(params.a, params.b, st, ct, p),
@@ -187,7 +188,7 @@ pub fn f2_f4(params: &Params, theta_s: f64, p: f64) -> (f64, f64) {
 #[must_use]
 pub fn to_full3(params: &Params, phase: FastPhase, t: f64, slow: (f64, f64)) -> (f64, f64) {
     let (theta_s, p) = slow;
-    let (st, ct) = theta_s.sin_cos();
+    let (st, ct) = theta_s.e_sin_cos();
     averaged3_terms::lift(
         params.a,
         params.b,

@@ -3,6 +3,7 @@
 //! period), `b` (the forcing's strength `b/ε` and the ripple's velocity `b sin θ`), `a`, the
 //! start's `θ̇`, the tolerance and the step. Seconds are on the calibration machine (release
 //! build); `simulate`, the explorer and every replay ask it before a run starts.
+use crate::physics::numerics::elementary::Elementary;
 
 use super::{Problem, flows};
 use crate::physics::method::Asked;
@@ -39,7 +40,7 @@ pub fn slow_rate(problem: &Problem) -> f64 {
 #[must_use]
 pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
     let (method, tolerance, step, t_end) = (ask.method, ask.tolerance, ask.step, ask.t_end);
-    let per_tol = tolerance.max(1e-16).powf(-0.125);
+    let per_tol = tolerance.max(1e-16).e_powf(-0.125);
     let evaluations = match method {
         Method::Effective | Method::EffectiveCorrected | Method::Averaged2 | Method::Averaged3 => {
             12.0 * t_end * slow_rate(problem) * per_tol
@@ -48,7 +49,7 @@ pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
         // Measured 29–48 µs over ε = 1e-1, T = 5 (tolerance 1e-9 … 1e-14) and 185–344 µs at
         // 1e-2 (`cargo run --release --example taylor_against_dop853`): about 5 evaluations'
         // time per unit of `rate · t` times `tol^(-1/20)` (28–50 µs and 280–500 µs).
-        Method::Taylor => 5.0 * fastest_rate(problem) * t_end * tolerance.max(1e-16).powf(-0.05),
+        Method::Taylor => 5.0 * fastest_rate(problem) * t_end * tolerance.max(1e-16).e_powf(-0.05),
         m => {
             let h = step.unwrap_or_else(|| flows::default_step(m, problem, tolerance, t_end));
             let stages = match m {

@@ -16,6 +16,7 @@
 //! Kapitza's criterion `b² > 2a` is the limit `ε → 0` of this chart's lower boundary
 //! `δ = −q²/2 + 7q⁴/32 + …`; at larger `ε b` the resonance tongues (leaving `δ = n²/4`) bring
 //! instability back.
+use crate::physics::numerics::elementary::Elementary;
 
 use nalgebra::SVector;
 
@@ -67,7 +68,7 @@ impl Mathieu {
     pub fn price_steps(&self, tolerance: f64) -> f64 {
         let w = (self.delta.abs() + self.q.abs()).sqrt();
         let first = (tolerance * FIRST).clamp(POLICY.tightest, 1e-3);
-        let radians = 2.0 * std::f64::consts::PI * w * first.powf(-0.125);
+        let radians = 2.0 * std::f64::consts::PI * w * first.e_powf(-0.125);
         price_factor(w, tolerance) * (radians + PRICE_FIXED_STEPS)
     }
 
@@ -94,7 +95,7 @@ impl Mathieu {
         let (delta, q) = (self.delta, self.q);
         // (y1, y1', y2, y2', τ): the two fundamental solutions side by side.
         let field = move |y: &S| {
-            let c = -(delta + q * y[4].cos());
+            let c = -(delta + q * y[4].e_cos());
             S::new(y[1], c * y[0], y[3], c * y[2], 1.0)
         };
         let period = 2.0 * std::f64::consts::PI;
@@ -131,13 +132,13 @@ pub fn certainty(trace: f64) -> Option<crate::physics::chart::Certainty> {
         return None;
     }
     Some(if h.abs() < 1.0 {
-        let theta = h.acos();
+        let theta = h.e_acos();
         Certainty {
             value: theta,
             margin: theta.min(std::f64::consts::PI - theta),
         }
     } else {
-        let mu = h.abs().acosh();
+        let mu = h.abs().e_acosh();
         Certainty {
             value: mu.copysign(h),
             margin: mu,
@@ -196,8 +197,8 @@ fn price_factor(w: f64, tolerance: f64) -> f64 {
         #[allow(clippy::cast_precision_loss)]
         (i, x - i as f64)
     };
-    let (i, fi) = at(w.max(1e-300).log10(), -1.0, 6);
-    let (j, fj) = at(0.5 * tolerance.max(1e-300).log10(), -6.0, 4);
+    let (i, fi) = at(w.max(1e-300).e_log10(), -1.0, 6);
+    let (j, fj) = at(0.5 * tolerance.max(1e-300).e_log10(), -6.0, 4);
     let f = |i: usize, j: usize| PRICE_FACTORS[i][j];
     let lo = f(i, j) * (1.0 - fj) + f(i, j + 1) * fj;
     let hi = f(i + 1, j) * (1.0 - fj) + f(i + 1, j + 1) * fj;
@@ -272,7 +273,7 @@ impl AtTolerance for Trace {
         // About 2 µs a step; DOP853's steps grow as local^(-1/8) with the fastest frequency;
         // the second companion's run beside it.
         let w = (self.0.delta.abs() + self.0.q.abs()).sqrt().max(1.0);
-        let one = |l: f64| 2e-6 * 8.0 * w * l.powf(-0.125);
+        let one = |l: f64| 2e-6 * 8.0 * w * l.e_powf(-0.125);
         one(local) + one(local * SECOND_LOOSER)
     }
 }
@@ -314,9 +315,9 @@ mod tests {
         for delta in [0.1, 0.3, 2.0, -0.05, -0.5] {
             let f = floquet(Mathieu { delta, q: 0.0 }, 1e-11).unwrap();
             let exact = if delta > 0.0 {
-                2.0 * (2.0 * std::f64::consts::PI * f64::sqrt(delta)).cos()
+                2.0 * (2.0 * std::f64::consts::PI * f64::sqrt(delta)).e_cos()
             } else {
-                2.0 * (2.0 * std::f64::consts::PI * f64::sqrt(-delta)).cosh()
+                2.0 * (2.0 * std::f64::consts::PI * f64::sqrt(-delta)).e_cosh()
             };
             assert!(
                 (f.trace - exact).abs() <= f.error.max(1e-13) * 2.0 + 1e-12,

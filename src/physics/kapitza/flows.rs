@@ -20,6 +20,7 @@
 //! of `(θ, θ̇, θ̈)` at both ends. Events are sign changes of the averaged rate `Θ̇`
 //! ([`limit::to_slow`]); the full flows keep an O(ε) ripple in it, which the event hysteresis
 //! covers.
+use crate::physics::numerics::elementary::Elementary;
 
 use nalgebra::Vector2;
 
@@ -64,7 +65,7 @@ pub fn default_step(method: Method, problem: &Problem, tolerance: f64, t_end: f6
         Method::Yoshida6 => (1.0, 6.0),
         _ => (1.5, 8.0),
     };
-    (c * tolerance.powf(1.0 / order) / rate(problem)).max(t_end / DEFAULT_STEP_BUDGET)
+    (c * tolerance.e_powf(1.0 / order) / rate(problem)).max(t_end / DEFAULT_STEP_BUDGET)
 }
 
 /// Builds a ready-to-step integrator at `t = 0`, its lifts taking the fast phase as `phase`
@@ -139,7 +140,7 @@ impl Field<2> for FullField {
     }
     #[inline]
     fn eval_at(&self, t: f64, y: &Vector2<f64>) -> Vector2<f64> {
-        Vector2::new(y[1], self.0.forcing(t) * y[0].sin())
+        Vector2::new(y[1], self.0.forcing(t) * y[0].e_sin())
     }
     fn is_angle(&self, i: usize) -> bool {
         i == 0
@@ -257,7 +258,7 @@ impl Split for PendulumSplit<'_> {
     }
     #[inline]
     fn kick(&mut self, c: f64, h: f64) {
-        self.p += self.params.forcing_integral(self.t, c * h) * self.theta.sin();
+        self.p += self.params.forcing_integral(self.t, c * h) * self.theta.e_sin();
         self.t += c * h;
     }
 }
@@ -307,7 +308,7 @@ impl Fixed {
     }
 
     fn accel(&self, t: f64, theta: f64) -> f64 {
-        self.params.forcing(t) * theta.sin()
+        self.params.forcing(t) * theta.e_sin()
     }
 
     /// `(θ, θ̇)` at `t` inside the last step: quintic Hermite of `(θ, θ̇, θ̈)` at its ends.
@@ -379,7 +380,7 @@ impl Flow for Fixed {
         let (mut th, mut p) = self.y;
         match &self.scheme {
             Scheme::Rk4 => {
-                let f = |t: f64, th: f64, p: f64| (p, self.params.forcing(t) * th.sin());
+                let f = |t: f64, th: f64, p: f64| (p, self.params.forcing(t) * th.e_sin());
                 let k1 = f(t0, th, p);
                 let k2 = f(t0 + 0.5 * h, th + 0.5 * h * k1.0, p + 0.5 * h * k1.1);
                 let k3 = f(t0 + 0.5 * h, th + 0.5 * h * k2.0, p + 0.5 * h * k2.1);

@@ -18,6 +18,7 @@
 //! inverse map at `τ = 0`) is within O(ε²) of the full motion in `θ` and `θ̇` once the ripple is
 //! added back; started from `θ0` itself it is within O(ε). `tests/it/kapitza.rs` measures both
 //! orders against the Taylor-series references.
+use crate::physics::numerics::elementary::Elementary;
 
 use std::f64::consts::PI;
 
@@ -53,14 +54,14 @@ impl Limit {
     #[must_use]
     #[inline]
     pub fn potential(&self, theta: f64) -> f64 {
-        self.a * theta.cos() - self.b * self.b / 8.0 * (2.0 * theta).cos()
+        self.a * theta.e_cos() - self.b * self.b / 8.0 * (2.0 * theta).e_cos()
     }
 
     /// `θ̈ = −V'(θ) = a sin θ − (b²/4) sin 2θ`.
     #[must_use]
     #[inline]
     pub fn acceleration(&self, theta: f64) -> f64 {
-        self.a * theta.sin() - self.b * self.b / 4.0 * (2.0 * theta).sin()
+        self.a * theta.e_sin() - self.b * self.b / 4.0 * (2.0 * theta).e_sin()
     }
 
     /// `E_eff = ½ θ̇² + V(θ)`.
@@ -76,13 +77,13 @@ impl Limit {
     pub fn equilibria(&self) -> Vec<Equilibrium> {
         let b2 = self.b * self.b;
         // V''(θ) = −a cos θ + (b²/2) cos 2θ.
-        let curvature = |t: f64| -self.a * t.cos() + b2 / 2.0 * (2.0 * t).cos();
+        let curvature = |t: f64| -self.a * t.e_cos() + b2 / 2.0 * (2.0 * t).e_cos();
         let mut out = vec![Equilibrium {
             theta: 0.0,
             stable: curvature(0.0) > 0.0,
         }];
         if b2 > 0.0 && (2.0 * self.a / b2).abs() < 1.0 {
-            let t = (2.0 * self.a / b2).acos();
+            let t = (2.0 * self.a / b2).e_acos();
             out.push(Equilibrium {
                 theta: t,
                 stable: curvature(t) > 0.0,
@@ -140,7 +141,7 @@ pub fn to_full(p: &Params, phase: FastPhase, t: f64, slow: (f64, f64)) -> (f64, 
     let (theta, theta_dot) = slow;
     let (e, b) = (p.epsilon, p.b);
     let [(s, c), (s2, c2)] = phase.harmonics(t, p.epsilon);
-    let (st, ct) = theta.sin_cos();
+    let (st, ct) = theta.e_sin_cos();
     let sin2 = 2.0 * st * ct;
     let xi2 = b * b / 16.0 * c2 * sin2 + 2.0 * b * s * ct * theta_dot;
     (
@@ -157,9 +158,9 @@ pub fn to_slow(p: &Params, phase: FastPhase, t: f64, full: (f64, f64)) -> (f64, 
     let (theta, theta_dot) = full;
     let (e, b) = (p.epsilon, p.b);
     let [(s, c), (s2, c2)] = phase.harmonics(t, p.epsilon);
-    let mut slow = (theta, theta_dot - b * s * theta.sin());
+    let mut slow = (theta, theta_dot - b * s * theta.e_sin());
     for _ in 0..3 {
-        let (st, ct) = slow.0.sin_cos();
+        let (st, ct) = slow.0.e_sin_cos();
         let sin2 = 2.0 * st * ct;
         let xi2 = b * b / 16.0 * c2 * sin2 + 2.0 * b * s * ct * slow.1;
         let angle = theta + e * b * c * st - e * e * xi2;

@@ -14,6 +14,7 @@
 //! limit and its ripple (`limit`), the integrators (`flows`), the runner with its events
 //! (`run`) and `auto` (`plan`). The state vector of the full model is `(θ, θ̇)` at time `t`;
 //! no code outside this folder indexes it.
+use crate::physics::numerics::elementary::Elementary;
 
 pub mod averaged;
 #[rustfmt::skip]
@@ -80,14 +81,14 @@ impl Params {
     #[must_use]
     #[inline]
     pub fn forcing(&self, t: f64) -> f64 {
-        self.a + self.b / self.epsilon * (t / self.epsilon).cos()
+        self.a + self.b / self.epsilon * (t / self.epsilon).e_cos()
     }
 
     /// `∫_t^{t+τ} forcing`: the exact kick over `τ` with `θ` frozen.
     #[must_use]
     #[inline]
     pub fn forcing_integral(&self, t: f64, tau: f64) -> f64 {
-        self.a * tau + self.b * (((t + tau) / self.epsilon).sin() - (t / self.epsilon).sin())
+        self.a * tau + self.b * (((t + tau) / self.epsilon).e_sin() - (t / self.epsilon).e_sin())
     }
 }
 

@@ -15,10 +15,11 @@
 //! exact to an ulp whatever `p`: the C library reduces large arguments exactly.
 //!
 //! [`FastPhase::Rounded`] is the phase as it was computed up to session format 7: `τ` rounded,
-//! `(k τ).sin_cos()`. A replay of such a file uses it, so the file's bits come back
+//! `(k τ).e_sin_cos()`. A replay of such a file uses it, so the file's bits come back
 //! (`crate::physics::method::Arithmetic`). The full model's own right-hand side keeps the rounded
 //! phase: its runs are resolved only where `t/ε` is small enough for the rounding to sit far
 //! below their tolerance, and their estimates count it (`super::plan::rounding_floor`).
+use crate::physics::numerics::elementary::Elementary;
 
 /// How the lifts take the fast phase `t/ε`: a rule of the arithmetic, declared with the
 /// others (`physics::method`); its harmonics are the pendulum's, here.
@@ -35,7 +36,7 @@ impl FastPhase {
             Self::Rounded => {
                 // `1.0 * q` is `q`: the first harmonic is the phase's own, as before.
                 for (k, h) in (1_u32..).zip(out.iter_mut()) {
-                    *h = (f64::from(k) * q).sin_cos();
+                    *h = (f64::from(k) * q).e_sin_cos();
                 }
             }
             Self::Exact => {
@@ -45,7 +46,7 @@ impl FastPhase {
                     let k = f64::from(k);
                     let p = k * q;
                     let d = k.mul_add(q, -p) + k * lo;
-                    let (s, c) = p.sin_cos();
+                    let (s, c) = p.e_sin_cos();
                     let half_d2 = 0.5 * d * d;
                     *h = (
                         c.mul_add(d, s - s * half_d2),
@@ -69,10 +70,10 @@ mod tests {
         for (t, e) in [(0.37, 1e-3), (5.0, 1e-9), (17.25, 0.013)] {
             let h = FastPhase::Rounded.harmonics::<4>(t, e);
             let phase = t / e;
-            assert_eq!(h[0], phase.sin_cos());
-            assert_eq!(h[1], (2.0 * t / e).sin_cos());
-            assert_eq!(h[2], (3.0 * phase).sin_cos());
-            assert_eq!(h[3], (4.0 * phase).sin_cos());
+            assert_eq!(h[0], phase.e_sin_cos());
+            assert_eq!(h[1], (2.0 * t / e).e_sin_cos());
+            assert_eq!(h[2], (3.0 * phase).e_sin_cos());
+            assert_eq!(h[3], (4.0 * phase).e_sin_cos());
         }
     }
 
@@ -137,7 +138,7 @@ mod tests {
         let n = (w / two_pi_hi).floor();
         // w − n 2π, in two parts (w and n exact in double below 2^53).
         let r = (-n).mul_add(two_pi_hi, w) - n * two_pi_lo + frac;
-        r.sin_cos()
+        r.e_sin_cos()
     }
 
     fn split(x: f64) -> (u64, i32) {

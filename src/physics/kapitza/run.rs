@@ -6,6 +6,7 @@
 //!   (the full `θ̇` changes sign twice per fast period; `Θ̇` only where the pendulum turns);
 //! - **falls**: the slow angle leaving the upper half, `cos Θ` going from positive to negative
 //!   (the pendulum passes the horizontal on its way down).
+use crate::physics::numerics::elementary::Elementary;
 
 use crate::physics::method::RunSpec;
 use serde::Serialize;
@@ -112,7 +113,7 @@ pub fn run(problem: &Problem, spec: &RunSpec, go_on: GoOn) -> Result<RunResult, 
 /// `cos Θ` with `Θ = θ − ripple`, as the explorer counts falls from its samples.
 fn slow_up(flow: &mut dyn Flow, t: f64) -> f64 {
     let y = flow.sample(t);
-    (y.q - y.fast).cos()
+    (y.q - y.fast).e_cos()
 }
 
 /// What the pendulum's run watches: the samples, the falls and the limit's energy drift.

@@ -24,6 +24,7 @@
 //! series' radius. The order is fixed ([`ORDER`]). Between step ends the series itself
 //! interpolates (dense output to the tolerance). No step is rejected; a step lands exactly on
 //! `t_limit` when it would pass it.
+use crate::physics::numerics::elementary::Elementary;
 
 use nalgebra::Vector2;
 
@@ -82,7 +83,7 @@ impl Taylor {
         let n_max = ORDER;
         let eps = self.epsilon;
         let (mut u, mut v) = ([0.0; ORDER + 1], [0.0; ORDER + 1]);
-        let (sp, cp) = (self.clock.t / eps).sin_cos();
+        let (sp, cp) = (self.clock.t / eps).e_sin_cos();
         u[0] = cp;
         v[0] = sp;
         let amplitude = self.b / eps;
@@ -98,7 +99,7 @@ impl Taylor {
         th[0] = self.y[0];
         om[0] = self.y[1];
         let (mut s, mut c) = ([0.0; ORDER + 1], [0.0; ORDER + 1]);
-        (s[0], c[0]) = th[0].sin_cos();
+        (s[0], c[0]) = th[0].e_sin_cos();
         // `j θ_j`, kept so each convolution is one pass.
         let mut jth = [0.0; ORDER + 1];
         for n in 0..n_max {

@@ -6,6 +6,7 @@
 pub mod compositions;
 pub mod dop853;
 mod dop853_tableau;
+pub mod elementary;
 pub mod quadrature;
 pub mod roots;
 pub mod stepper;

@@ -8,6 +8,7 @@
 //! coefficient that happens to be small, between a sine's and a cosine's, read as a wide radius
 //! let an occasional step err far more than the rest). The first neglected term is then about
 //! the tolerance times the step over the series' radius.
+use crate::physics::numerics::elementary::Elementary;
 
 use nalgebra::SVector;
 
@@ -21,11 +22,11 @@ use crate::physics::numerics::dop853::Stats;
 pub fn natural_step(order: usize, size: impl Fn(usize) -> f64) -> f64 {
     // `min (1/m_n)^{1/n}` as `exp(min −ln(m_n)/n)`: three logarithms and one exponential cost
     // less than three powers.
-    let exponent = |n: usize| -size(n).ln() / n as f64;
+    let exponent = |n: usize| -size(n).e_ln() / n as f64;
     exponent(order - 2)
         .min(exponent(order - 1))
         .min(exponent(order))
-        .exp()
+        .e_exp()
 }
 
 /// The step to take from `t` towards `t_limit` (which must exceed `t`) when the series allows
@@ -143,7 +144,7 @@ mod tests {
     #[test]
     fn the_step_is_the_smallest_radius_of_the_last_three_orders() {
         let sizes = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 3.0, 0.5, 2.0];
-        let expected = 3f64.powf(-1.0 / 8.0).min(2f64.powf(-0.1));
+        let expected = 3f64.e_powf(-1.0 / 8.0).min(2f64.e_powf(-0.1));
         let got = natural_step(10, |n| sizes[n]);
         assert!(
             (got / expected - 1.0).abs() < 1e-14,

@@ -1,5 +1,6 @@
 //! The oscillator's chart: the crossings of `x = 0` in `(0, T]` over `(ω, v0)`, each cell a
 //! DOP853 run, against the exact count's boundaries.
+use crate::physics::numerics::elementary::Elementary;
 
 use std::collections::BTreeMap;
 
@@ -122,7 +123,7 @@ impl SceneChart for CrossingChart {
             .problem_at((x.at(n % x.cells), y.at(n / x.cells)))
             .ok()?;
         let (w, s) = (problem.params().omega, problem.start());
-        let phi = (s.v / w).atan2(s.x);
+        let phi = (s.v / w).e_atan2(s.x);
         let u0 = (-phi - PI / 2.0) / PI;
         let ut = u0 + w * self.t_end / PI;
         let off = |u: f64| (u - u.round()).abs();

@@ -1,5 +1,6 @@
 //! The oscillator's one method, DOP853, as a [`Flow`], and its run through the one runner
 //! ([`crate::physics::drive`]); its `auto` through the one loop ([`crate::physics::verify`]).
+use crate::physics::numerics::elementary::Elementary;
 
 use nalgebra::SVector;
 
@@ -173,7 +174,7 @@ pub fn cost_seconds(problem: &Problem, ask: &Asked) -> f64 {
     let one = |tol: f64| {
         3.0 * problem.params().omega
             * ask.t_end.max(0.0)
-            * tol.clamp(1e-16, 1.0).powf(-0.125)
+            * tol.clamp(1e-16, 1.0).e_powf(-0.125)
             * 5e-8
     };
     match ask.method {

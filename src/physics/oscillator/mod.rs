@@ -8,6 +8,7 @@
 //! Outside this folder it needs the registry (`physics/models.rs`, which also declares this
 //! module), the one dispatch of `simulate` (`simulate/mod.rs`) and its report
 //! (`simulate/oscillator.rs`).
+use crate::physics::numerics::elementary::Elementary;
 
 pub mod chart;
 pub mod flows;
@@ -67,7 +68,7 @@ impl Problem {
     #[must_use]
     pub fn exact(&self, t: f64) -> (f64, f64) {
         let (w, s) = (self.params.omega, self.start);
-        let (sin, cos) = (w * t).sin_cos();
+        let (sin, cos) = (w * t).e_sin_cos();
         (s.x * cos + s.v / w * sin, -s.x * w * sin + s.v * cos)
     }
 
@@ -82,7 +83,7 @@ impl Problem {
     pub fn exact_crossings(&self, t_end: f64) -> usize {
         // x = A cos(ωt − φ): zero where ωt − φ = π/2 + nπ.
         let (w, s) = (self.params.omega, self.start);
-        let phi = (s.v / w).atan2(s.x);
+        let phi = (s.v / w).e_atan2(s.x);
         let first = (std::f64::consts::FRAC_PI_2 + phi).rem_euclid(std::f64::consts::PI);
         let first = if first == 0.0 && s.x == 0.0 {
             std::f64::consts::PI

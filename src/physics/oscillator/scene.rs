@@ -1,4 +1,5 @@
 //! The oscillator as every layer above `physics/` sees it ([`Scene`], [`Posed`]).
+use crate::physics::numerics::elementary::Elementary;
 
 use super::{Params, Problem, Start};
 use crate::physics::chart::{Column, MapFlag};
@@ -117,7 +118,7 @@ impl Posed for Problem {
         (self.start().x, self.start().v)
     }
     fn default_step(&self, _method: Method, tolerance: f64, _t_end: f64) -> f64 {
-        tolerance.clamp(1e-16, 1.0).powf(0.125) / self.params().omega
+        tolerance.clamp(1e-16, 1.0).e_powf(0.125) / self.params().omega
     }
     fn drawing(&self) -> Drawing {
         Drawing::Body {

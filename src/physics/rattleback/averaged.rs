@@ -15,6 +15,7 @@
 //! averaged point). Every series is truncated at `ε³`; dropping any term brings back an O(1/k)
 //! error (note §5.4). Spin reversals are zeros of the *reconstructed* `α̇`, not of `ᾱ'`: the
 //! two differ by the O(ε) ripple `Ī c sin 2φ̄ / iz`.
+use crate::physics::numerics::elementary::Elementary;
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -36,7 +37,7 @@ struct CFun {
 impl CFun {
     #[inline]
     fn at(p: &Params, alpha: f64) -> (f64, Self) {
-        let (s2, k2) = (2.0 * alpha).sin_cos();
+        let (s2, k2) = (2.0 * alpha).e_sin_cos();
         Self::of_double_angle(p, s2, k2)
     }
 
@@ -79,9 +80,9 @@ impl Averaged2 {
         let (g, cf) = CFun::at(&p, s.alpha);
         let omega = (p.k / g).sqrt();
         let i0 = transverse_energy(&p, &y0) / omega;
-        let phi0 = (omega * s.gamma).atan2(s.gamma_dot);
-        let (s2, k2) = (2.0 * phi0).sin_cos();
-        let (s4, k4) = (4.0 * phi0).sin_cos();
+        let phi0 = (omega * s.gamma).e_atan2(s.gamma_dot);
+        let (s2, k2) = (2.0 * phi0).e_sin_cos();
+        let (s4, k4) = (4.0 * phi0).e_sin_cos();
         let p0 = p.iz * s.alpha_dot - i0 * cf.c * s2;
         let (c, c1, c2) = (cf.c, cf.c1, cf.c2);
         let cc = c * c;
@@ -137,7 +138,7 @@ impl Averaged2 {
     #[inline]
     #[must_use]
     pub fn rhs(&self, y: &SlowState) -> SlowState {
-        self.rhs_turned(y, (2.0 * y[0]).sin_cos())
+        self.rhs_turned(y, (2.0 * y[0]).e_sin_cos())
     }
 
     /// [`Averaged2::rhs`] given `(sin 2ᾱ, cos 2ᾱ)` (from a nearby state's, [`turned`]).
@@ -203,8 +204,8 @@ impl Averaged2 {
         let ib = self.ibar;
         let pb = y[1];
         let phi_bar = y[2] * self.sqrt_k;
-        let (s2, k2) = (2.0 * phi_bar).sin_cos();
-        let (s4, k4) = (4.0 * phi_bar).sin_cos();
+        let (s2, k2) = (2.0 * phi_bar).e_sin_cos();
+        let (s4, k4) = (4.0 * phi_bar).e_sin_cos();
         let u = ib / (p.iz * omega);
         let v = pb / (p.iz * omega);
         let alpha = y[0] - 0.5 * c * u * k2 + 0.5 * (2.0 * cc + c1) * u * v * s2;
@@ -280,13 +281,13 @@ impl Averaged2 {
             return None;
         }
         let mut integrand = |phi: f64| {
-            let alpha = centre + half_width * phi.sin();
+            let alpha = centre + half_width * phi.e_sin();
             let (g, cf) = CFun::at(p, alpha);
             let omega = (p.k / g).sqrt();
             let m = cf.c * cf.c * self.ibar / (p.iz * omega);
             let rate_sq = 2.0 / p.iz * (k_bar - self.potential(alpha)).max(0.0) * (1.0 - m);
             if rate_sq > 0.0 {
-                half_width * phi.cos() / rate_sq.sqrt()
+                half_width * phi.e_cos() / rate_sq.sqrt()
             } else {
                 0.0
             }
@@ -315,7 +316,7 @@ pub const VALIDITY_LIMIT: f64 = 0.5;
 pub fn turned(near: (f64, f64), alpha0: f64, alpha: f64) -> (f64, f64) {
     let d = 2.0 * (alpha - alpha0);
     if d.abs() > 1e-2 {
-        return (2.0 * alpha).sin_cos();
+        return (2.0 * alpha).e_sin_cos();
     }
     let d2 = d * d;
     let sd = d * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0 * (1.0 - d2 / 42.0)));
@@ -336,7 +337,7 @@ pub fn potential_max(p: &Params, ibar: f64) -> f64 {
 pub fn full_state(p: &Params, alpha: f64, alpha_dot: f64, action: f64, phase: f64) -> State {
     let g = p.g(alpha);
     let omega = (p.k / g).sqrt();
-    let (s, c) = phase.sin_cos();
+    let (s, c) = phase.e_sin_cos();
     let action = action.max(0.0);
     State::new(
         (2.0 * action / (g * omega)).sqrt() * s,
@@ -416,12 +417,12 @@ mod tests {
             2.9,
             41.0,
         ] {
-            let near = (2.0_f64 * alpha0).sin_cos();
+            let near = (2.0_f64 * alpha0).e_sin_cos();
             assert_eq!(super::turned(near, alpha0, alpha0), near);
             for d in [-5e-3, -1e-4, -3e-9, 1e-13, 2e-7, 4.9e-3, 6e-3, 0.3] {
                 let alpha = alpha0 + d;
                 let (s, c) = super::turned(near, alpha0, alpha);
-                let (s_ref, c_ref) = (2.0 * alpha).sin_cos();
+                let (s_ref, c_ref) = (2.0 * alpha).e_sin_cos();
                 assert!(
                     (s - s_ref).abs() <= 4e-16 && (c - c_ref).abs() <= 4e-16,
                     "α0 {alpha0}, d {d}: ({s}, {c}) against ({s_ref}, {c_ref})"

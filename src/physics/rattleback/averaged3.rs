@@ -14,6 +14,7 @@
 //! A run is `averaged2`'s: map the start, integrate the slow flow on `(ᾱ, P̄, ψ̄ = φ̄/√k)`
 //! (ψ̄ keeps the step control independent of `k`), reconstruct `α`, `α̇`; spin reversals are
 //! zeros of the reconstructed `α̇`.
+use crate::physics::numerics::elementary::Elementary;
 
 use super::averaged::SlowState;
 use super::averaged3_terms::{self as terms, NC};
@@ -43,7 +44,7 @@ const BINOMIAL: [[f64; NC]; NC] = {
 /// `g⁽ʲ⁾ = −B 2ʲ cos(2α + jπ/2)`.
 #[inline]
 fn c_derivatives(p: &Params, alpha: f64) -> (f64, [f64; NC]) {
-    let (s2, k2) = (2.0 * alpha).sin_cos();
+    let (s2, k2) = (2.0 * alpha).e_sin_cos();
     let b = 0.5 * (p.iy - p.ix);
     let g = 0.5 * (p.ix + p.iy) - b * k2;
     // g⁽ʲ⁾ for j = 1 … NC: the cycle cos, −sin, −cos, sin of (2α) times −B 2ʲ.
@@ -94,8 +95,8 @@ impl Averaged3 {
         let (g, c) = c_derivatives(&p, s.alpha);
         let omega = (p.k / g).sqrt();
         let i0 = transverse_energy(&p, &y0) / omega;
-        let phi0 = (omega * s.gamma).atan2(s.gamma_dot);
-        let p0 = p.iz * s.alpha_dot - i0 * c[0] * (2.0 * phi0).sin();
+        let phi0 = (omega * s.gamma).e_atan2(s.gamma_dot);
+        let p0 = p.iz * s.alpha_dot - i0 * c[0] * (2.0 * phi0).e_sin();
         let [ibar, d_alpha, p_bar, d_phi] = terms::inv(phi0, i0, p0, omega, p.iz, &c);
         let sqrt_k = p.k.sqrt();
         (
@@ -205,7 +206,7 @@ mod tests {
             }
         }
         let g = p.g(0.3);
-        let gp = (p.iy - p.ix) * (0.6f64).sin();
+        let gp = (p.iy - p.ix) * (0.6f64).e_sin();
         assert!((c_derivatives(p, 0.3).1[0] - gp / (4.0 * g)).abs() < 1e-15);
     }
 

@@ -6,6 +6,7 @@
 // `c = [c, c', c'', ...]` the function c = g'/(4g) and its derivatives in alpha, all at the point
 // the map or flow is evaluated at.
 #![allow(clippy::all, clippy::pedantic, unused_parens)]
+use crate::physics::numerics::elementary::Elementary;
 
 /// How many of `c, c', c'', ...` the terms take.
 pub(super) const NC: usize = 5;
@@ -62,11 +63,11 @@ pub(super) fn flow(i: f64, p: f64, w: f64, i_z: f64, c: &[f64; NC]) -> [f64; 4] 
 #[inline]
 pub(super) fn inv(phase: f64, i: f64, p: f64, w: f64, i_z: f64, c: &[f64; NC]) -> [f64; 4] {
     let [c0, c1, c2, c3, c4] = *c;
-    let (s2, k2) = (2.0 * phase).sin_cos();
-    let (s4, k4) = (4.0 * phase).sin_cos();
-    let (s6, k6) = (6.0 * phase).sin_cos();
-    let (s8, k8) = (8.0 * phase).sin_cos();
-    let (_, k10) = (10.0 * phase).sin_cos();
+    let (s2, k2) = (2.0 * phase).e_sin_cos();
+    let (s4, k4) = (4.0 * phase).e_sin_cos();
+    let (s6, k6) = (6.0 * phase).e_sin_cos();
+    let (s8, k8) = (8.0 * phase).e_sin_cos();
+    let (_, k10) = (10.0 * phase).e_sin_cos();
     let x0 = i_z.recip()*w.recip();
     let x1 = s2*x0;
     let x2 = c0*p;
@@ -265,11 +266,11 @@ pub(super) fn inv(phase: f64, i: f64, p: f64, w: f64, i_z: f64, c: &[f64; NC]) -
 #[inline]
 pub(super) fn fwd(phase: f64, i: f64, p: f64, w: f64, i_z: f64, c: &[f64; NC]) -> [f64; 4] {
     let [c0, c1, c2, c3, c4] = *c;
-    let (s2, k2) = (2.0 * phase).sin_cos();
-    let (s4, k4) = (4.0 * phase).sin_cos();
-    let (s6, k6) = (6.0 * phase).sin_cos();
-    let (s8, k8) = (8.0 * phase).sin_cos();
-    let (_, k10) = (10.0 * phase).sin_cos();
+    let (s2, k2) = (2.0 * phase).e_sin_cos();
+    let (s4, k4) = (4.0 * phase).e_sin_cos();
+    let (s6, k6) = (6.0 * phase).e_sin_cos();
+    let (s8, k8) = (8.0 * phase).e_sin_cos();
+    let (_, k10) = (10.0 * phase).e_sin_cos();
     let x0 = w.recip();
     let x1 = i_z.recip();
     let x2 = x0*x1;

@@ -9,6 +9,7 @@
 //! `cargo run --release --example budget_check` compares it with measured runs (concrete
 //! methods within 0.8–3× on every shipped preset; `auto` as planned within 3×, its
 //! refinements are checked one by one as they come). Pure: no clock.
+use crate::physics::numerics::elementary::Elementary;
 
 use super::integrators::default_step;
 
@@ -65,7 +66,7 @@ pub fn fastest_rate(problem: &Problem) -> f64 {
 /// `periods` periods of the fastest rate.
 #[must_use]
 pub fn dop853_evaluations(tol: f64, periods: f64) -> f64 {
-    155.0 * (1e-10 / tol.max(1e-14)).powf(0.125) * periods.max(1.0)
+    155.0 * (1e-10 / tol.max(1e-14)).e_powf(0.125) * periods.max(1.0)
 }
 
 /// Steps the Taylor series is predicted to take at local tolerance `tol` over `periods`
@@ -73,7 +74,7 @@ pub fn dop853_evaluations(tol: f64, periods: f64) -> f64 {
 /// k = 1e2 … 1e5), its step growing like `tol^{1/20}`.
 #[must_use]
 pub fn taylor_steps(tol: f64, periods: f64) -> f64 {
-    6.0 * (1e-12 / tol.max(1e-16)).powf(0.05) * periods.max(1.0)
+    6.0 * (1e-12 / tol.max(1e-16)).e_powf(0.05) * periods.max(1.0)
 }
 
 /// Predicted seconds of one run of a concrete `method` with these settings over `[0, t_end]`

@@ -3,6 +3,7 @@
 //! the limit's spin-reversal times by quadrature, and the tapping acceleration.
 //!
 //! Symbols follow the paper: `V(α) = θ g(α)^{−1/2}`, `E_eff = ½ iz α̇² + V(α)`.
+use crate::physics::numerics::elementary::Elementary;
 
 use serde::Serialize;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -89,7 +90,7 @@ impl Effective {
         let theta = transverse_energy(&p, &y0) * g0.sqrt();
         let energy = 0.5 * p.iz * s.alpha_dot * s.alpha_dot + theta / g0.sqrt();
         // Phase of the fast oscillation: γ = a sin φ, γ̇ = a ω cos φ.
-        let phase0 = (s.gamma * p.omega(s.alpha)).atan2(s.gamma_dot);
+        let phase0 = (s.gamma * p.omega(s.alpha)).e_atan2(s.gamma_dot);
         Self {
             params: p,
             theta,
@@ -220,7 +221,7 @@ impl Effective {
         let centre = minimum + PI * ((self.alpha0 - minimum) / PI).round();
         let g_turn = (self.theta / self.energy).powi(2);
         let sin_sq = ((g_centre - g_turn) / (g_centre - g_other)).clamp(0.0, 1.0);
-        let half_width = sin_sq.sqrt().asin();
+        let half_width = sin_sq.sqrt().e_asin();
         Some(Well {
             centre,
             half_width,
@@ -323,7 +324,7 @@ impl Effective {
         }
         let half = self.time_between(&w, -FRAC_PI_2, FRAC_PI_2);
         let u0 = (self.alpha0 - w.centre).clamp(-w.half_width, w.half_width);
-        let phi0 = (u0 / w.half_width).clamp(-1.0, 1.0).asin();
+        let phi0 = (u0 / w.half_width).clamp(-1.0, 1.0).e_asin();
         let first = if self.alpha_dot0 > 0.0 {
             self.time_between(&w, phi0, FRAC_PI_2)
         } else if self.alpha_dot0 < 0.0 {
@@ -345,15 +346,15 @@ impl Effective {
     /// `dt/dφ = [ (2/iz) θ (g_c − g_o) sinc x sinc y / D ]^{−1/2}`,
     /// `D = sqrt(g g*) (sqrt g + sqrt g*)`.
     fn time_between(&self, w: &Well, a: f64, b: f64) -> f64 {
-        let sin_sq_star = w.half_width.sin().powi(2);
+        let sin_sq_star = w.half_width.e_sin().powi(2);
         let g_star = w.g_centre - (w.g_centre - w.g_other) * sin_sq_star;
         let scale = 2.0 / self.params.iz * self.theta * (w.g_centre - w.g_other);
         let mut integrand = |phi: f64| {
-            let s = phi.sin();
+            let s = phi.e_sin();
             let u = w.half_width * s;
             let x = w.half_width * (1.0 - s);
             let y = w.half_width * (1.0 + s);
-            let g = w.g_centre - (w.g_centre - w.g_other) * u.sin().powi(2);
+            let g = w.g_centre - (w.g_centre - w.g_other) * u.e_sin().powi(2);
             let d = (g * g_star).sqrt() * (g.sqrt() + g_star.sqrt());
             (d / (scale * sinc(x) * sinc(y))).sqrt()
         };
@@ -368,7 +369,7 @@ impl Effective {
         let p = &self.params;
         let e_perp = self.potential(alpha);
         let amplitude = (2.0 * e_perp / p.k).sqrt();
-        let (s, c) = phase.sin_cos();
+        let (s, c) = phase.e_sin_cos();
         State::new(
             amplitude * s,
             alpha,
@@ -390,7 +391,7 @@ fn sinc(x: f64) -> f64 {
     if x.abs() < 1e-4 {
         1.0 - x * x / 6.0
     } else {
-        x.sin() / x
+        x.e_sin() / x
     }
 }
 
@@ -441,7 +442,7 @@ mod tests {
         let eff = Effective::new(&pr);
         let paper = 2.0 * (2f64.sqrt() - 1.0);
         assert!((eff.critical_ratio(&pr).unwrap() - paper).abs() < 1e-14);
-        assert!((eff.theta() - 0.5 * 2f64.powf(1.5)).abs() < 1e-15);
+        assert!((eff.theta() - 0.5 * 2f64.e_powf(1.5)).abs() < 1e-15);
         assert_eq!(eff.regime(), Regime::Trapped);
         assert_eq!(Effective::new(&problem(1.0)).regime(), Regime::Rotating);
     }

@@ -7,6 +7,7 @@
 //! From the limit each cell is two quadratures (its first reversal time and half period); at a
 //! finite `k` each cell is a verified `auto` run, to show where finite `k` departs from the
 //! theorem. The map over all cores is `study::map`'s; a cell is computed here.
+use crate::physics::numerics::elementary::Elementary;
 
 use serde::Serialize;
 
@@ -87,7 +88,7 @@ impl Grid {
         #[allow(clippy::cast_precision_loss)]
         let f = (j as f64 + 0.5) / self.rows as f64;
         let (lo, hi) = self.inertia;
-        (lo.ln() + f * (hi / lo).ln()).exp()
+        (lo.e_ln() + f * (hi / lo).e_ln()).e_exp()
     }
 
     /// The start of a cell at stiffness `k`.

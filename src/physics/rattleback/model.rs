@@ -2,6 +2,7 @@
 //!
 //! The state is `(γ, α, γ̇, α̇)` as a `nalgebra` vector; the Hamiltonian form with
 //! `pγ = g(α) γ̇`, `pα = iz α̇` is used by the splitting integrators.
+use crate::physics::numerics::elementary::Elementary;
 
 use nalgebra::Vector4;
 
@@ -31,7 +32,7 @@ pub fn initial_state(start: &Start) -> State {
 #[inline]
 pub fn rhs(p: &Params, y: &State) -> State {
     let (gamma, alpha, gamma_dot, alpha_dot) = (y[0], y[1], y[2], y[3]);
-    let (s, c) = alpha.sin_cos();
+    let (s, c) = alpha.e_sin_cos();
     let g = p.ix * c * c + p.iy * s * s;
     let g_prime = 2.0 * (p.iy - p.ix) * s * c;
     let gamma_ddot = -(g_prime * alpha_dot * gamma_dot + p.k * gamma) / g;

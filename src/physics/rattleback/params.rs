@@ -3,6 +3,7 @@
 //! Raw numbers come from presets or the command line; `Problem::new` is the only way to obtain
 //! a `Problem`, so every integrator can assume finite values, strictly positive inertia moments
 //! and a strictly positive Hooke constant.
+use crate::physics::numerics::elementary::Elementary;
 
 use serde::Serialize;
 
@@ -39,7 +40,7 @@ impl Params {
     #[must_use]
     #[inline]
     pub fn g(&self, alpha: f64) -> f64 {
-        let (s, c) = alpha.sin_cos();
+        let (s, c) = alpha.e_sin_cos();
         self.ix * c * c + self.iy * s * s
     }
 
@@ -47,7 +48,7 @@ impl Params {
     #[must_use]
     #[inline]
     pub fn g_prime(&self, alpha: f64) -> f64 {
-        (self.iy - self.ix) * (2.0 * alpha).sin()
+        (self.iy - self.ix) * (2.0 * alpha).e_sin()
     }
 
     /// Fast frequency `ω(α) = sqrt(k / g(α))`.
@@ -200,10 +201,10 @@ pub(crate) fn varied_starts(k: f64) -> impl Iterator<Item = Problem> {
         paper_body(
             k,
             [
-                (0.7 * x).sin() / k.sqrt(),
-                (1.3 * x).sin(),
-                1.0 + 0.3 * (0.9 * x).cos(),
-                0.8 * (0.4 * x).cos(),
+                (0.7 * x).e_sin() / k.sqrt(),
+                (1.3 * x).e_sin(),
+                1.0 + 0.3 * (0.9 * x).e_cos(),
+                0.8 * (0.4 * x).e_cos(),
             ],
         )
     })

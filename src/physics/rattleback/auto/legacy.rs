@@ -8,6 +8,7 @@
 //! resolved blanes-moan4, phase-locked Strang and, past k = 1e7, the first-order corrected limit
 //! (its O(1/k) error probed at k = 1e4 and 1e5), and take the cheapest predicted to meet the
 //! tolerance.
+use crate::physics::numerics::elementary::Elementary;
 
 use super::Plan;
 use crate::physics::method::Method;
@@ -60,7 +61,7 @@ fn resolved_candidates(problem: &Problem, tolerance: f64, t_end: f64) -> Vec<Pla
 
     // Resolved Blanes–Moan at ν h ≤ 2.4.
     let nu_h = (tolerance / (C_BLANES_MOAN * t_end))
-        .powf(0.25)
+        .e_powf(0.25)
         .min(BLANES_MOAN_MAX_NU_H);
     let steps = nu * t_end / nu_h;
     candidates.push(Plan {
@@ -77,7 +78,7 @@ fn resolved_candidates(problem: &Problem, tolerance: f64, t_end: f64) -> Vec<Pla
     let spin_max = (2.0 * (eff.energy() - eff.potential_min()) / p.iz)
         .max(0.0)
         .sqrt();
-    let c_locked = C_LOCKED * (spin_max / 0.5).max(1.0).powf(LOCKED_SPIN_EXPONENT);
+    let c_locked = C_LOCKED * (spin_max / 0.5).max(1.0).e_powf(LOCKED_SPIN_EXPONENT);
     let h = (tolerance / (c_locked * t_end)).sqrt();
     let omega_min = (p.k / p.ix.max(p.iy)).sqrt();
     if omega_min * h >= std::f64::consts::FRAC_PI_2 {

@@ -1,6 +1,7 @@
 //! What a plan is and what it costs: the [`Plan`] `auto` chooses, the local error models of
 //! the resolved methods, the round-off a run of so many steps gathers, the difference of two
 //! runs and the budget check.
+use crate::physics::numerics::elementary::Elementary;
 
 use super::super::policy::{POLICY, TAYLOR};
 use crate::physics::method::Asked;
@@ -94,7 +95,7 @@ pub fn round_off(problem: &Problem, steps: f64, t_end: f64) -> f64 {
     ROUND_OFF_GAIN
         * f64::EPSILON
         * steps.max(1.0).sqrt()
-        * (slow_rate(problem) * t_end).max(1.0).powf(1.5)
+        * (slow_rate(problem) * t_end).max(1.0).e_powf(1.5)
 }
 
 /// The round-off floor of a run of `steps` steps from a start of condition number `kappa`
@@ -139,7 +140,7 @@ pub(super) fn blanes_moan_rate(problem: &Problem) -> f64 {
     let nu = fastest_rate(problem);
     let g_min = p.ix.min(p.iy);
     let c_max = (p.iy - p.ix).abs() / (4.0 * g_min);
-    C_BM * Effective::new(problem).spin_scale().powf(2.5) * c_max.powi(4) * nu * nu / g_min
+    C_BM * Effective::new(problem).spin_scale().e_powf(2.5) * c_max.powi(4) * nu * nu / g_min
         + C_FAST * nu.powi(4)
 }
 

@@ -1,5 +1,6 @@
 //! The averaged model's probes: its error measured at two soft stiffnesses and scaled to the
 //! asked one, and when it is worth probing at all.
+use crate::physics::numerics::elementary::Elementary;
 
 use super::memo;
 use crate::physics::method::Asked;
@@ -44,7 +45,7 @@ impl ModelProbe {
         if hi < 1e-12 {
             return MODEL_ORDER;
         }
-        let s = (lo / hi).ln() / (self.k[1] / self.k[0]).ln();
+        let s = (lo / hi).e_ln() / (self.k[1] / self.k[0]).e_ln();
         if s.is_finite() {
             s.clamp(0.5, MODEL_ORDER)
         } else {
@@ -55,7 +56,7 @@ impl ModelProbe {
     /// The measured slope, unclamped (NaN or infinite when a gap is not finite).
     #[must_use]
     pub fn raw_slope(&self) -> f64 {
-        (self.gap[0] / self.gap[1]).ln() / (self.k[1] / self.k[0]).ln()
+        (self.gap[0] / self.gap[1]).e_ln() / (self.k[1] / self.k[0]).e_ln()
     }
 
     /// The model error predicted at `k ≥ k_hi`, with the safety factor.
@@ -64,7 +65,7 @@ impl ModelProbe {
         if !self.gap[1].is_finite() {
             return f64::INFINITY;
         }
-        PROBE_SAFETY * self.gap[1] * (self.k[1] / k).min(1.0).powf(self.slope())
+        PROBE_SAFETY * self.gap[1] * (self.k[1] / k).min(1.0).e_powf(self.slope())
     }
 
     /// `averaged2`'s measured slope, clamped to `[0.5, 2]` (its order; 2 where the gaps are at
@@ -75,7 +76,7 @@ impl ModelProbe {
         if hi < 1e-12 {
             return 2.0;
         }
-        let s = (lo / hi).ln() / (self.k[1] / self.k[0]).ln();
+        let s = (lo / hi).e_ln() / (self.k[1] / self.k[0]).e_ln();
         if s.is_finite() {
             s.clamp(0.5, 2.0)
         } else {
@@ -90,7 +91,7 @@ impl ModelProbe {
         if !self.gap2[1].is_finite() {
             return f64::INFINITY;
         }
-        PROBE_SAFETY * self.gap2[1] * (self.k[1] / k).min(1.0).powf(self.slope2())
+        PROBE_SAFETY * self.gap2[1] * (self.k[1] / k).min(1.0).e_powf(self.slope2())
     }
 }
 

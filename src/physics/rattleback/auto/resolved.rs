@@ -1,5 +1,6 @@
 //! The resolved plans (DOP853, the series, the Blanes–Moan splitting) at a tolerance, the
 //! cheapest of them, and the refinement of a plan whose verification missed.
+use crate::physics::numerics::elementary::Elementary;
 
 use super::super::policy::POLICY;
 use crate::physics::method::Asked;
@@ -65,7 +66,7 @@ pub(super) fn resolved_plans(problem: &Problem, tolerance: f64, t_end: f64) -> [
     };
     // The companion at 2h should meet the tolerance: error(2h) ≤ tolerance / 2.
     let per_time = tolerance / (2.0 * t_end.max(1e-300));
-    let h_companion = (per_time / blanes_moan_rate(problem)).powf(0.25);
+    let h_companion = (per_time / blanes_moan_rate(problem)).e_powf(0.25);
     let h = (0.5 * h_companion).min(BLANES_MOAN_MAX_NU_H / nu);
     let bm = Plan {
         method: Method::BlanesMoan4,
@@ -134,7 +135,7 @@ pub(super) fn refine(
     let mut next = plan.clone();
     if let Some(h) = plan.step {
         let p = f64::from(plan.method.order().max(1));
-        next.step = Some(h / (POLICY.step_safety * excess.powf(1.0 / p)));
+        next.step = Some(h / (POLICY.step_safety * excess.e_powf(1.0 / p)));
     } else {
         // Twice the excess (at least 4: the excess is at least 2), at least the series' least
         // refinement for the series.

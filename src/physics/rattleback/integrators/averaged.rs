@@ -8,6 +8,7 @@
 //! (`tests/it/averaged.rs`), plus the integration error of the slow flow, which the tolerance
 //! controls. The reported state is reconstructed (the fast ripple included); reversals are
 //! zeros of the reconstructed `α̇`, located on the dense output.
+use crate::physics::numerics::elementary::Elementary;
 
 use nalgebra::SVector;
 
@@ -234,7 +235,7 @@ impl<M: SlowModel> Field<9> for Three<M> {
         // A model that takes them turns the start's sine and cosine through each copy's small
         // angle apart (`averaged::turned`): the start's flow is evaluated as its own run's is.
         let start = slow(y, 0);
-        let turn = M::TURNS.then(|| (2.0 * start[0]).sin_cos());
+        let turn = M::TURNS.then(|| (2.0 * start[0]).e_sin_cos());
         for (c, model) in self.models.iter().enumerate() {
             let here = slow(y, c);
             let d = match turn {

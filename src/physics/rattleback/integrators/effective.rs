@@ -9,6 +9,7 @@
 //! started from `α̇0` minus the same term at `φ0`. The action itself oscillates: each drift of
 //! `α` changes it by `δI/I = −(g'/2g) cos 2φ δα`, so `I(t) = Ī − I c α̇ sin 2φ / ω`, and the
 //! averaged motion starts from `θ̄ = θ (1 + c α̇0 sin 2φ0 / ω0)` (zero shift when `γ0 = 0`).
+use crate::physics::numerics::elementary::Elementary;
 
 use nalgebra::Vector3;
 
@@ -52,7 +53,7 @@ impl EffectiveDop853 {
         let p = problem.params();
         let ripple_action = if corrected {
             let c = p.g_prime(s.alpha) / (4.0 * p.g(s.alpha));
-            let shift = c * s.alpha_dot * (2.0 * model.phase0()).sin() / p.omega(s.alpha);
+            let shift = c * s.alpha_dot * (2.0 * model.phase0()).e_sin() / p.omega(s.alpha);
             model = model.with_theta(model.theta() * (1.0 + shift));
             model.theta() / p.k.sqrt()
         } else {
@@ -83,7 +84,7 @@ fn ripple(model: &Effective, action: f64, alpha: f64, phase: f64) -> f64 {
         return 0.0;
     }
     let p = model.params();
-    p.g_prime(alpha) / (4.0 * p.g(alpha)) * action * (2.0 * phase).sin() / p.iz
+    p.g_prime(alpha) / (4.0 * p.g(alpha)) * action * (2.0 * phase).e_sin() / p.iz
 }
 
 impl EffectiveDop853 {

@@ -32,6 +32,7 @@
 //! its component's error scale, which is DOP853's here (`tol (u + |γ|)` for `γ` with `u = 1/ω_max`,
 //! `tol` for the angle `α`, `tol (1 + |y_i|)` for the rates). The order is fixed ([`ORDER`]);
 //! the series itself is the dense output; no step is rejected.
+use crate::physics::numerics::elementary::Elementary;
 
 use crate::physics::method::StepError;
 use crate::physics::numerics::dop853::Stats;
@@ -112,7 +113,7 @@ impl TaylorCore {
         w[0] = self.y[2];
         v[0] = self.y[3];
         let (mut s, mut c) = ([0.0; N1], [0.0; N1]);
-        (s[0], c[0]) = (2.0 * al[0]).sin_cos();
+        (s[0], c[0]) = (2.0 * al[0]).e_sin_cos();
         let (mut p, mut q) = ([0.0; N1], [0.0; N1]);
         // `j β_j = 2 j α_j`, kept so the sine and cosine are one pass.
         let mut jb = [0.0; N1];

@@ -4,6 +4,7 @@
 //! results. Each file holds one method and states its order, whether it is symplectic and its
 //! cost per step. Reversals (sign changes of `α̇`) are located inside a step by each method's
 //! own interpolant or closed-form sub-flow (`Flow::locate_event`).
+use crate::physics::numerics::elementary::Elementary;
 
 mod averaged;
 mod effective;
@@ -86,7 +87,7 @@ pub fn default_step(method: Method, problem: &Problem, tolerance: f64, t_end: f6
         | Method::Averaged3
         | Method::Auto => (1.0, 8.0),
     };
-    (c * tolerance.powf(1.0 / order) / rate).max(t_end / DEFAULT_STEP_BUDGET)
+    (c * tolerance.e_powf(1.0 / order) / rate).max(t_end / DEFAULT_STEP_BUDGET)
 }
 
 /// Builds a ready-to-step integrator at `t = 0`; `t_end` is the horizon a default step is

@@ -23,6 +23,7 @@
 //! Reversals: only `H2` changes `pα`, and inside one `H2` sub-flow `pα(s)` is monotone (its
 //! derivative is `g' pγ²/(2g²)`, of fixed sign), so the crossing inside a sub-flow is unique and
 //! is found on the closed form itself.
+use crate::physics::numerics::elementary::Elementary;
 
 use crate::physics::flow::Flow;
 use crate::physics::method::TimeSum;
@@ -112,7 +113,7 @@ impl Canonical {
 #[inline]
 pub fn fast_flow(p: &Params, y: &Canonical, tau: f64) -> Canonical {
     let fast = FastFlow::new(p, y);
-    let (s, c) = (fast.omega * tau).sin_cos();
+    let (s, c) = (fast.omega * tau).e_sin_cos();
     Canonical {
         gamma: y.gamma * c + y.p_gamma / fast.g_omega * s,
         alpha: y.alpha,
@@ -130,7 +131,7 @@ struct FastFlow {
 
 impl FastFlow {
     fn new(p: &Params, y: &Canonical) -> Self {
-        let (sa, ca) = y.alpha.sin_cos();
+        let (sa, ca) = y.alpha.e_sin_cos();
         let g = p.ix * ca * ca + p.iy * sa * sa;
         let g_prime = 2.0 * (p.iy - p.ix) * sa * ca;
         let omega = (p.k / g).sqrt();
@@ -268,7 +269,7 @@ impl Splitting {
             let mut w = omega;
             for _ in 0..iterations {
                 let mid = y.alpha + 0.5 * h * drift;
-                let (s, c) = mid.sin_cos();
+                let (s, c) = mid.e_sin_cos();
                 let g = p.ix * c * c + p.iy * s * s;
                 let g_prime = 2.0 * (p.iy - p.ix) * s * c;
                 w = (p.k / g).sqrt();
@@ -280,7 +281,7 @@ impl Splitting {
         let iterations = if omega_mid > 0.0 { 1 } else { 2 };
         if !aligned {
             let g = p.g(y.alpha);
-            let phase = (g * omega * y.gamma).atan2(y.p_gamma);
+            let phase = (g * omega * y.gamma).e_atan2(y.p_gamma);
             let to_quarter = (phase / FRAC_PI_2).ceil() * FRAC_PI_2 - phase;
             self.rule = StepRule::PhaseLocked {
                 aligned: true,
@@ -389,7 +390,7 @@ impl Flow for Splitting {
                 let before = y;
                 let fast = FastFlow::new(&p, &before);
                 let p_alpha_at = |s: f64| {
-                    let (sn, cs) = (fast.omega * s).sin_cos();
+                    let (sn, cs) = (fast.omega * s).e_sin_cos();
                     before.p_alpha + fast.kick(&before, s, sn, cs)
                 };
                 let s = find_root(p_alpha_at, 0.0, tau);

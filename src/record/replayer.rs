@@ -1,5 +1,6 @@
-//! Replay in the explorer: the recording drives the app at its own pace; keys (from the
-//! replay keymap) pause, change the pace and jump between chapters.
+//! Replay of a recording, in the terminal's explorer, `follow`, the served page and the
+//! browser's fork: the recording drives the app at its own pace; keys (from the replay keymap)
+//! pause, change the pace and jump between chapters.
 
 use crate::app::keys::{ReplayAction, replay_action_for};
 use crate::app::{App, Effect, Key, ReplayInfo};
@@ -222,4 +223,67 @@ impl Replayer {
         app.set_replay(self.info());
         effects
     }
+}
+
+/// A replay's clock counted in frames of `1/fps` (no drift from adding `1/fps` again and
+/// again), for what plays a recording without a person watching: the cast export draws a
+/// frame at each, the browser's fork plays the lecture to its last line. Idle stretches
+/// (paused, nothing due) are jumped to the next line on the frame grid.
+pub struct FrameClock {
+    fps: f64,
+    frame: u64,
+    shown_until: f64,
+}
+
+impl FrameClock {
+    /// At the start, `fps` frames a second.
+    #[must_use]
+    pub fn new(fps: f64) -> Self {
+        Self {
+            fps,
+            frame: 0,
+            shown_until: 0.0,
+        }
+    }
+
+    /// The current frame's time.
+    #[must_use]
+    #[allow(clippy::cast_precision_loss)]
+    pub fn now(&self) -> f64 {
+        self.frame as f64 / self.fps
+    }
+
+    /// Brings `replay` and `app` to the current frame's time: the effects to run.
+    pub fn show(&mut self, replay: &mut Replayer, app: &mut App) -> Vec<Effect> {
+        let clock = self.now();
+        let effects = replay.advance(clock - self.shown_until, app);
+        self.shown_until = clock;
+        effects
+    }
+
+    /// On to the next frame; while nothing moves until the replay's next line, to the frame
+    /// of that line.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    pub fn next(&mut self, replay: &Replayer, app: &App) {
+        self.frame += 1;
+        if !app.run.playing
+            && let Some(l) = replay.lines.get(replay.next)
+            && l.wall > self.now()
+        {
+            self.frame = ((l.wall * self.fps).floor() as u64).max(self.frame);
+        }
+    }
+}
+
+/// A follower's plan book (`follow` and `serve`): the recording's plans so far, its runs
+/// bounded one by one (it grows), its later segments awaited from the lecturer unless it ended.
+#[must_use]
+pub fn follower_book(rec: &crate::record::Recording) -> crate::sim::PlanBook {
+    let mut book = crate::record::plan_book(rec);
+    book.total = f64::INFINITY;
+    book.awaits = !rec
+        .lines
+        .last()
+        .is_some_and(|(_, l)| matches!(l.event, crate::app::journal::Event::End { .. }));
+    book
 }

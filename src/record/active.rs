@@ -1,7 +1,7 @@
-//! The recording in progress: the file, its wall clock, periodic checkpoints, and closing it
-//! once the final checkpoint is written.
-
-use std::time::Instant;
+//! The recording in progress: its file (or, in the browser, its bytes), periodic checkpoints,
+//! and closing it once the final checkpoint is written. The clock is the caller's (the
+//! terminal's explorer reads the system's; the browser's page gives its frames' times), so the
+//! same code records in both.
 
 use crate::app::journal::Event;
 use crate::app::{App, Effect, Outcome};
@@ -13,8 +13,10 @@ pub const CHECKPOINT_EVERY: f64 = 2.0;
 /// A recording in progress.
 pub struct ActiveRecording {
     recorder: Recorder,
-    started: Instant,
-    last_checkpoint: Instant,
+    /// The caller's clock when it started (seconds).
+    started: f64,
+    /// The caller's clock at the last periodic checkpoint.
+    last_checkpoint: f64,
     /// Close once the final checkpoint is written.
     pub stopping: bool,
 }
@@ -46,16 +48,19 @@ pub fn header(app: &App, size: (u16, u16), fps: f64) -> Header {
 }
 
 impl ActiveRecording {
-    /// Opens `path` (never replacing a file) with the header of `app`.
+    /// Opens `path` (never replacing a file) with the header of `app`, at `now` on the
+    /// caller's clock (seconds).
     ///
     /// # Errors
     /// The file exists or cannot be written.
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn start(
         app: &App,
         path: &std::path::Path,
         size: (u16, u16),
         fps: f64,
         sign: Option<&std::path::Path>,
+        now: f64,
     ) -> Result<Self, String> {
         let signer = sign
             .map(crate::record::sign::Signer::read)
@@ -63,33 +68,60 @@ impl ActiveRecording {
             .map_err(|e| e.to_string())?;
         let recorder =
             Recorder::create(path, &header(app, size, fps), signer).map_err(|e| e.to_string())?;
-        let now = Instant::now();
-        Ok(Self {
+        Ok(Self::around(recorder, now))
+    }
+
+    /// A recording of `app` kept in memory under the name `name` (the browser's, which hands
+    /// the bytes to the page to download), at `now` on the caller's clock.
+    ///
+    /// # Errors
+    /// The header cannot be written (never in practice).
+    pub fn in_memory(
+        app: &App,
+        name: &str,
+        size: (u16, u16),
+        fps: f64,
+        now: f64,
+    ) -> Result<Self, String> {
+        let recorder =
+            Recorder::in_memory(name, &header(app, size, fps)).map_err(|e| e.to_string())?;
+        Ok(Self::around(recorder, now))
+    }
+
+    fn around(recorder: Recorder, now: f64) -> Self {
+        Self {
             recorder,
             started: now,
             last_checkpoint: now,
             stopping: false,
-        })
+        }
     }
 
-    /// The file.
+    /// The file (or the name of the recording in memory).
     #[must_use]
     pub fn path(&self) -> String {
         self.recorder.path().to_owned()
     }
 
-    /// A periodic checkpoint, when one is due.
-    pub fn due(&mut self, app: &App) -> Option<Effect> {
-        (self.last_checkpoint.elapsed().as_secs_f64() >= CHECKPOINT_EVERY).then(|| {
-            self.last_checkpoint = Instant::now();
+    /// What was written, for a recording in memory.
+    #[must_use]
+    pub fn bytes(&self) -> Option<&[u8]> {
+        self.recorder.bytes()
+    }
+
+    /// A periodic checkpoint, when one is due at `now`.
+    pub fn due(&mut self, app: &App, now: f64) -> Option<Effect> {
+        (now - self.last_checkpoint >= CHECKPOINT_EVERY).then(|| {
+            self.last_checkpoint = now;
             app.checkpoint()
         })
     }
 
-    /// Writes the journal. `Ok(Some(outcome))` when the recording is over (closed after its
-    /// final checkpoint); `Err` when writing failed (it stopped).
-    pub fn flush(&mut self, app: &mut App) -> Result<Option<Outcome>, Outcome> {
-        let wall = self.started.elapsed().as_secs_f64();
+    /// Writes the journal, stamped `now` on the caller's clock. `Ok(Some(outcome))` when the
+    /// recording is over (closed after its final checkpoint); `Err` when writing failed (it
+    /// stopped).
+    pub fn flush(&mut self, app: &mut App, now: f64) -> Result<Option<Outcome>, Outcome> {
+        let wall = (now - self.started).max(0.0);
         let mut checkpoint = false;
         let mut last = (app.run.shown, app.run.generation);
         for (t, generation, event) in app.take_journal() {
