@@ -5,7 +5,8 @@
 // DOM (drawn by a Web Worker that runs the module); no page error; no request leaves the site; at 400x800 the screen's text is at least
 // 10 CSS px high; a recording made in the page (R, play, R) downloads and passes
 // `RATTLEBACK replay FILE --verify`; on `RATTLEBACK serve LECTURE --site DIR`'s live page, f
-// forks the lecture into the page's explorer and Esc returns to the live view. Prints the
+// forks the lecture into the page's explorer and Esc returns to the live view, and at 400x800
+// that page's text is at least 10 px too. Prints the
 // module's size and the first screen's time on loopback.
 //   node scripts/check_web.mjs DIR "STATUS LINE" RATTLEBACK LECTURE.jsonl
 import { chromium } from "playwright-core";
@@ -125,6 +126,14 @@ await f.keyboard.press(" ");
 await f.keyboard.press("Escape");
 await f.waitForFunction(() => !document.getElementById("live").hidden && document.getElementById("fork").hidden,
   null, { timeout: 10000 }).catch(async () => fail("Esc did not return to the live view"));
+// The live page on a phone: the lecturer's screen at a readable size, scrolling sideways.
+const phone = await browser.newPage({ viewport: { width: 400, height: 800 } });
+await phone.goto(address);
+await phone.waitForFunction(() => /\bt \d+\.\d+\//.test(document.getElementById("player").textContent),
+  null, { timeout: 30000 }).catch(async () => fail("the live page on a phone showed no lecture"));
+const livePx = await phone.evaluate(() => parseFloat(getComputedStyle(document.querySelector("#player .ap-term")).fontSize));
+if (!(livePx >= 10)) await fail(`at 400x800 the live page's text is ${livePx} px`);
+console.log(`check_web: at 400x800 the live page's text is ${livePx} px (it scrolls sideways)`);
 serving.kill();
 if (fErrors.length) await fail(`served page errors: ${fErrors.join("; ")}`);
 console.log(`check_web: f forks a served lecture into the page (${forkState.split(":")[0]}); Esc returns to the live view`);

@@ -66,10 +66,11 @@ function rattlebackFork({ session, module }) {
   };
   forkButton.addEventListener("click", start);
   liveButton.addEventListener("click", () => back());
+  // Taken before the player sees it (its own `f` is full screen), in the capture phase.
   document.addEventListener("keydown", (e) => {
     if (!explorer && e.key === "f" && !e.ctrlKey && !e.metaKey && !e.altKey) {
-      e.preventDefault(); start();
+      e.preventDefault(); e.stopPropagation(); start();
     }
-  });
+  }, true);
   return { ended: () => { ended = true; return explorer !== null; } };
 }

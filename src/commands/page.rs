@@ -200,12 +200,11 @@ fn recorded_page(
     let script = format!(
         r##"(function () {{
   var cast = JSON.parse(document.getElementById("cast").textContent);
-  var player = AsciinemaPlayer.create({{ data: cast }}, document.getElementById("player"), {{
-    fit: "width",
+  var player = AsciinemaPlayer.create({{ data: cast }}, document.getElementById("player"), Object.assign({{
     idleTimeLimit: {idle},
     preload: true,
     poster: "npt:{poster:.6}"
-  }});
+  }}, {narrow}));
   window.rattlebackPlayer = player;
   var links = document.querySelectorAll("#chapters a");
   for (var i = 0; i < links.length; i++) {{
@@ -218,9 +217,15 @@ fn recorded_page(
 }})();"##,
         idle = crate::cast::IDLE_TIME_LIMIT,
         poster = poster_time(cast),
+        narrow = NARROW_FIT,
     );
     shell(&title, &body, &script)
 }
+
+/// How the player fits its screen: to the page's width, but on a narrow screen (a phone) at a
+/// 12 px font that scrolls sideways (issue 82: fitted, a phone's 400 px made the text 5 px).
+const NARROW_FIT: &str =
+    r#"(window.innerWidth < 700 ? { fit: false, terminalFontSize: "12px" } : { fit: "width" })"#;
 
 /// The served page's fork (issue 82): `f`, the button, the line that says how far the lecture
 /// has moved on, `Esc` back.
@@ -272,7 +277,7 @@ pub fn live_page(title: &str, token: Option<&str>) -> String {
   var player = AsciinemaPlayer.create(
     {{ driver: "eventsource", url: {events}, bufferTime: 0 }},
     document.getElementById("player"),
-    {{ fit: "width", autoPlay: true }}
+    Object.assign({{ autoPlay: true }}, {narrow})
   );
   window.rattlebackPlayer = player;
   var fork = rattlebackFork({{ session: {session}, module: {module} }});
@@ -285,6 +290,7 @@ pub fn live_page(title: &str, token: Option<&str>) -> String {
 }})();"#,
         explorer = crate::commands::web::EXPLORER_JS,
         fork = FORK_JS,
+        narrow = NARROW_FIT,
     );
     shell(&title, &body, &script)
 }
@@ -308,7 +314,7 @@ nav ol {{ columns: 2; }}
           line-height: 1.2; margin: 0; white-space: pre; outline: none; display: inline-block;
           background: #1e1e1e; color: #d4d4d4; }}
 #screen .cell {{ display: inline-block; width: 1ch; overflow: hidden; vertical-align: top; }}
-#wrap {{ overflow-x: auto; }}
+#wrap, #player {{ overflow-x: auto; }}
 #buttons button, #bar button {{ font-size: 15px; margin: 2px; padding: 6px 10px; }}
 </style>
 </head>
