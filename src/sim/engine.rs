@@ -134,17 +134,6 @@ impl Engine {
         go_on: fn() -> bool,
         sink: &mut dyn FnMut(SimEvent) -> bool,
     ) -> bool {
-        let functions = self.planner.functions();
-        crate::physics::numerics::elementary::following(functions, || {
-            self.settle_jobs_here(go_on, sink)
-        })
-    }
-
-    fn settle_jobs_here(
-        &mut self,
-        go_on: fn() -> bool,
-        sink: &mut dyn FnMut(SimEvent) -> bool,
-    ) -> bool {
         let mut spent = 0.0;
         let jobs = std::mem::take(&mut self.jobs);
         let mut settled = true;

@@ -695,26 +695,43 @@ pub struct Running {
     kind: JobKind,
     messages: Receiver<Message>,
     cancel: Arc<AtomicBool>,
+    #[cfg(not(target_arch = "wasm32"))]
     thread: Option<std::thread::JoinHandle<()>>,
-    /// The browser's module starts no thread: the job is worked a slice at each look
-    /// ([`Running::take`]) on the caller's.
+    /// The browser's module: the job, worked a slice at each look ([`Running::take`]).
     #[cfg(target_arch = "wasm32")]
-    inline: std::cell::RefCell<Option<Inline>>,
+    inline: std::cell::RefCell<Option<Worked>>,
 }
 
-/// A job worked on the caller's thread (the browser's module).
-#[cfg(target_arch = "wasm32")]
-struct Inline {
+/// A job and what it works with: one slice at a time, on its own thread
+/// ([`Running::spawn`]'s loop) or, in the browser's module, at each look ([`Running::take`]).
+struct Worked {
     job: Box<dyn Job>,
     planner: Planner,
+    /// The planner's charge when the job started.
     before: f64,
     go_on: fn() -> bool,
     tx: mpsc::Sender<Message>,
 }
 
-#[cfg(target_arch = "wasm32")]
-impl Inline {
-    /// One slice; whether the job goes on.
+impl Worked {
+    fn new(
+        job: Box<dyn Job>,
+        planner: Planner,
+        go_on: fn() -> bool,
+        tx: mpsc::Sender<Message>,
+    ) -> Self {
+        let before = planner.spent();
+        Self {
+            job,
+            planner,
+            before,
+            go_on,
+            tx,
+        }
+    }
+
+    /// One slice (with the planner's elementary functions); whether the job goes on. When it
+    /// does not, the charge is sent.
     fn slice(&mut self, cancel: &AtomicBool) -> bool {
         let functions = self.planner.functions();
         let go_on = self.go_on;
@@ -743,68 +760,38 @@ impl Inline {
 
 impl Running {
     /// Starts `job` on its own thread, planning (the partner) with `planner`; `go_on` is asked
-    /// too (a signal that interrupts a headless command).
+    /// too (a signal that interrupts a headless command). The browser's module starts no
+    /// thread: there the job is worked a slice at each look ([`Running::take`]).
     ///
     /// # Panics
     /// When the OS cannot spawn a thread.
     #[must_use]
-    #[cfg(not(target_arch = "wasm32"))]
-    pub fn spawn(mut job: Box<dyn Job>, mut planner: Planner, go_on: fn() -> bool) -> Self {
+    pub fn spawn(job: Box<dyn Job>, planner: Planner, go_on: fn() -> bool) -> Self {
         let kind = job.kind();
         let (tx, messages) = mpsc::channel();
         let cancel = Arc::new(AtomicBool::new(false));
-        let stop = Arc::clone(&cancel);
-        let thread = std::thread::Builder::new()
-            .name(format!("rattleback-{kind:?}").to_lowercase())
-            .spawn(move || {
-                let functions = planner.functions();
-                crate::physics::numerics::elementary::following(functions, || {
-                    let before = planner.spent();
-                    let mut keep_on = |_t: f64| !stop.load(Ordering::Relaxed) && go_on();
-                    let mut sink = |e| tx.send(Message::Event(e)).is_ok();
-                    loop {
-                        let mut work = Work {
-                            planner: &mut planner,
-                            max_steps: JOB_STEPS,
-                            go_on: &mut keep_on,
-                            sink: &mut sink,
-                        };
-                        match job.slice(&mut work) {
-                            Slice::More if !stop.load(Ordering::Relaxed) && go_on() => {}
-                            _ => break,
-                        }
-                    }
-                    let _ = tx.send(Message::Spent(planner.spent() - before));
-                });
-            })
-            .expect("spawn a pane's job");
+        let worked = Worked::new(job, planner, go_on, tx);
+        #[cfg(not(target_arch = "wasm32"))]
+        let thread = {
+            let stop = Arc::clone(&cancel);
+            Some(
+                std::thread::Builder::new()
+                    .name(format!("rattleback-{kind:?}").to_lowercase())
+                    .spawn(move || {
+                        let mut worked = worked;
+                        while worked.slice(&stop) {}
+                    })
+                    .expect("spawn a pane's job"),
+            )
+        };
         Self {
             kind,
             messages,
             cancel,
-            thread: Some(thread),
-        }
-    }
-
-    /// As the native [`Running::spawn`], worked on the caller's thread a slice at each look.
-    #[must_use]
-    #[cfg(target_arch = "wasm32")]
-    pub fn spawn(job: Box<dyn Job>, planner: Planner, go_on: fn() -> bool) -> Self {
-        let kind = job.kind();
-        let (tx, messages) = mpsc::channel();
-        let before = planner.spent();
-        Self {
-            kind,
-            messages,
-            cancel: Arc::new(AtomicBool::new(false)),
-            thread: None,
-            inline: std::cell::RefCell::new(Some(Inline {
-                job,
-                planner,
-                before,
-                go_on,
-                tx,
-            })),
+            #[cfg(not(target_arch = "wasm32"))]
+            thread,
+            #[cfg(target_arch = "wasm32")]
+            inline: std::cell::RefCell::new(Some(worked)),
         }
     }
 
@@ -812,6 +799,11 @@ impl Running {
     #[must_use]
     pub fn cancel_within(mut self, limit: Duration) -> bool {
         self.cancel.store(true, Ordering::Relaxed);
+        self.thread_ended_within(limit)
+    }
+
+    #[cfg(not(target_arch = "wasm32"))]
+    fn thread_ended_within(&mut self, limit: Duration) -> bool {
         let Some(thread) = self.thread.take() else {
             return true;
         };
@@ -820,6 +812,13 @@ impl Running {
             std::thread::sleep(Duration::from_millis(1));
         }
         thread.is_finished()
+    }
+
+    /// In the browser's module a cancelled job does no more (it works only when looked at).
+    #[cfg(target_arch = "wasm32")]
+    #[allow(clippy::unused_self)]
+    fn thread_ended_within(&mut self, _limit: Duration) -> bool {
+        true
     }
 
     /// Which job it is.

@@ -129,32 +129,27 @@ impl Ahead {
         let cancel = Arc::new(AtomicBool::new(false));
         let stop = Arc::clone(&cancel);
         let pairs: Vec<(f64, f64)> = horizons.windows(2).map(|w| (w[0], w[1])).collect();
-        #[cfg(not(target_arch = "wasm32"))]
-        std::thread::Builder::new()
-            .name("rattleback-verify".to_owned())
-            .spawn(move || {
-                let mut book = book;
-                let functions = book.arithmetic.functions;
-                crate::physics::numerics::elementary::following(functions, || {
-                    check_segments(&mut book, &plans, &spec, &pairs, &stop, &mut |r| {
-                        tx.send(r).is_ok()
-                    });
-                });
-            })
-            .expect("spawn the verifying thread");
-        // The browser's module starts no thread: the later segments are verified here, at once,
-        // on their own (nothing is awaited from a lecturer: the fork has released its book).
-        #[cfg(target_arch = "wasm32")]
-        {
+        let verify = move || {
             let mut book = book;
-            book.awaits = false;
+            // The browser's module starts no thread: it verifies them here, at once, on its
+            // own (a fork has released its book; nothing is awaited from a lecturer).
+            if cfg!(target_arch = "wasm32") {
+                book.awaits = false;
+            }
             let functions = book.arithmetic.functions;
             crate::physics::numerics::elementary::following(functions, || {
                 check_segments(&mut book, &plans, &spec, &pairs, &stop, &mut |r| {
                     tx.send(r).is_ok()
                 });
             });
-        }
+        };
+        #[cfg(not(target_arch = "wasm32"))]
+        std::thread::Builder::new()
+            .name("rattleback-verify".to_owned())
+            .spawn(verify)
+            .expect("spawn the verifying thread");
+        #[cfg(target_arch = "wasm32")]
+        verify();
         Self {
             reports,
             cancel,

@@ -471,19 +471,28 @@ mod exports {
     fn start(width: u32, height: u32, lesson: bool) -> u32 {
         let name = NAME.with(|n| std::mem::take(&mut *n.borrow_mut()));
         let name = if name.is_empty() {
-            "subcritical".to_owned()
+            rattleback::scenario::shipped::DEFAULT_PRESET.to_owned()
         } else {
             name
         };
-        let (w, h) = (
-            clamp_u16(width).max(super::MIN_SIZE.0),
-            clamp_u16(height).max(super::MIN_SIZE.1),
-        );
-        let opened = if lesson {
+        let (w, h) = screen_size(width, height);
+        install(if lesson {
             Explorer::lesson(&name, w, h)
         } else {
             Explorer::new(&name, w, h)
-        };
+        })
+    }
+
+    /// The screen asked, at least [`super::MIN_SIZE`].
+    fn screen_size(width: u32, height: u32) -> (u16, u16) {
+        (
+            clamp_u16(width).max(super::MIN_SIZE.0),
+            clamp_u16(height).max(super::MIN_SIZE.1),
+        )
+    }
+
+    /// The explorer opened, as the page's (1), or why not ([`rb_error_char`], 0).
+    fn install(opened: Result<Explorer, String>) -> u32 {
         match opened {
             Ok(e) => {
                 EXPLORER.with(|x| *x.borrow_mut() = Some(e));
@@ -554,29 +563,17 @@ mod exports {
     #[unsafe(no_mangle)]
     pub extern "C" fn rb_fork(width: u32, height: u32) -> u32 {
         let text = TEXT.with(|t| std::mem::take(&mut *t.borrow_mut()));
-        let (w, h) = (
-            clamp_u16(width).max(super::MIN_SIZE.0),
-            clamp_u16(height).max(super::MIN_SIZE.1),
-        );
-        let opened = if text.len() >= super::MAX_TEXT {
-            Err(format!(
+        let (w, h) = screen_size(width, height);
+        if text.len() >= super::MAX_TEXT {
+            return install(Err(format!(
                 "the lecture's file is over {} bytes",
                 super::MAX_TEXT
-            ))
-        } else {
-            Explorer::forked(&text, w, h)
-        };
-        match opened {
-            Ok((e, at)) => {
-                FORKED_AT.with(|f| f.set(at));
-                EXPLORER.with(|x| *x.borrow_mut() = Some(e));
-                1
-            }
-            Err(e) => {
-                ERROR.with(|x| *x.borrow_mut() = e.chars().collect());
-                0
-            }
+            )));
         }
+        install(Explorer::forked(&text, w, h).map(|(e, at)| {
+            FORKED_AT.with(|f| f.set(at));
+            e
+        }))
     }
 
     /// The lecture's time the last [`rb_fork`] forked at.

@@ -44,9 +44,9 @@ pub fn following<R>(functions: Functions, body: impl FnOnce() -> R) -> R {
     body()
 }
 
-/// The functions this thread follows now.
-#[must_use]
-pub fn current() -> Functions {
+/// The functions this thread follows now (for the tests).
+#[cfg(test)]
+fn current() -> Functions {
     if platform() {
         Functions::Platform
     } else {
