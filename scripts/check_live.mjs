@@ -118,6 +118,30 @@ const same = async (page, what) => {
   await fail(`${what}: the page shows\n  ${got}\nnot the lecturer's\n  ${want}`);
 };
 
+// A parameter changed (issue 82, L3): the keys are sent, then the lecturer's terminal and the
+// page are read side by side for 2 s; the lag is from the moment the lecturer first shows its
+// final status bar to the moment the page first shows the same (as the lecturer's review
+// measured it), and must stay under 1 s here (the measured figures are in docs/guide.md).
+const changeLags = [];
+const changed = async (page, keys, what) => {
+  for (const k of keys) tmux("send-keys", "-t", tmuxName, k);
+  const start = Date.now();
+  const seen = [];
+  while (Date.now() - start < 2000) {
+    seen.push([Date.now(), lecturer(), statusOf(await screen(page))]);
+    await sleep(5);
+  }
+  const want = seen[seen.length - 1][1];
+  const lecAt = seen.find(([, l]) => l === want)[0];
+  const pageAt = (seen.find(([, , p]) => p === want) || [null])[0];
+  if (pageAt === null) await fail(`${what}: the page never showed the lecturer's\n  ${want}`);
+  const lag = Math.max(0, pageAt - lecAt);
+  if (lag > 1000) await fail(`${what}: the page showed the lecturer's status bar ${lag} ms after it`);
+  changeLags.push(lag);
+  await follows(want, what);
+  return want;
+};
+
 // Opened before the lecture: it waits, saying so.
 const early = await open();
 await early.waitForFunction(
@@ -144,6 +168,10 @@ await key(".");
 await same(early, "a step");
 await key(".");
 await same(early, "a second step");
+// alpha_dot is the eighth row: three changes, each restarting the run at t 0.
+for (let i = 0; i < 7; i += 1) await key("j", 60);
+await sleep(300);
+for (let i = 0; i < 3; i += 1) await changed(early, ["l"], `parameter change ${i + 1}`);
 // A chapter, named as a lecturer types it (m: a chapter; n: a note).
 await key("m", 300);
 tmux("send-keys", "-t", tmuxName, "-l", "chapter one");
@@ -187,6 +215,7 @@ const t = await early.evaluate(async () => await window.rattlebackPlayer.getCurr
 if (!(t > 0)) await fail(`the chapter link did not play (${t} s)`);
 if (errors.length > 0) await fail(`page errors: ${errors.join("; ")}`);
 console.log(
-  `check_live: ${latencies.length} pauses and steps shown within 1 s (slowest ${Math.max(...latencies)} ms after the lecturer's frame); last: ${paused} … ${last}`,
+  `check_live: ${latencies.length} pauses and steps shown within 1 s (slowest ${Math.max(...latencies)} ms after the lecturer's frame); ` +
+    `${changeLags.length} parameter changes ${changeLags.join(", ")} ms behind the lecturer's screen; last: ${paused} … ${last}`,
 );
 await cleanup();

@@ -34,6 +34,102 @@ pub const GRACE: Duration = Duration::from_secs(5);
 /// draw a screen of billions of cells).
 const MAX_SIDE: u16 = 1000;
 
+/// After the lecturer acts (lines arrive), how long the screen is drawn as soon as it changes,
+/// [`PROMPT_GAP`] apart, rather than at `--fps`: the pause, the step, the parameter changed and
+/// the worker's first answers to it reach the readers at once (issue 82, L3), while an
+/// animation stays at `--fps`.
+const PROMPT: Duration = Duration::from_millis(400);
+/// The shortest time between two frames drawn promptly.
+const PROMPT_GAP: Duration = Duration::from_millis(15);
+
+/// When the served screen is drawn: at `--fps` while it animates, promptly for a while after
+/// the lecturer acts.
+struct Pace {
+    /// One frame at `--fps`.
+    frame: Duration,
+    /// When a frame was last drawn.
+    last_draw: Instant,
+    /// Until when frames are drawn promptly.
+    prompt_until: Instant,
+}
+
+impl Pace {
+    fn new(frame: Duration) -> Self {
+        let now = Instant::now();
+        Self {
+            frame,
+            last_draw: now.checked_sub(frame).unwrap_or(now),
+            prompt_until: now,
+        }
+    }
+
+    /// The lecturer acted: draw now, and promptly for [`PROMPT`].
+    fn acted(&mut self) {
+        let now = Instant::now();
+        self.prompt_until = now + PROMPT;
+        self.last_draw = now.checked_sub(self.frame).unwrap_or(now);
+    }
+
+    /// The gap between frames now.
+    fn gap(&self) -> Duration {
+        if Instant::now() < self.prompt_until {
+            PROMPT_GAP
+        } else {
+            self.frame
+        }
+    }
+
+    /// Whether a frame is due.
+    fn due(&self) -> bool {
+        self.last_draw.elapsed() >= self.gap()
+    }
+
+    fn drawn(&mut self) {
+        self.last_draw = Instant::now();
+    }
+
+    /// The worker's answers: waits for one until the next look at the file or the next frame,
+    /// whichever is first (an answer wakes the loop at once, drawn at once if the lecturer has
+    /// just acted), then takes every one waiting.
+    fn take_answers(
+        &self,
+        events: &std::sync::mpsc::Receiver<crate::sim::SimEvent>,
+        last_poll: Instant,
+        app: &mut crate::app::App,
+    ) {
+        match events.recv_timeout(self.wait(last_poll)) {
+            Ok(e) => {
+                app.on_sim(e);
+            }
+            Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
+            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => {
+                std::thread::sleep(self.wait(last_poll));
+            }
+        }
+        while let Ok(e) = events.try_recv() {
+            app.on_sim(e);
+        }
+    }
+
+    /// How long to wait for the worker before the next frame or the next look at the file
+    /// (last looked at `last_poll`).
+    fn wait(&self, last_poll: Instant) -> Duration {
+        let to_frame = self.gap().saturating_sub(self.last_draw.elapsed());
+        let to_poll = POLL.saturating_sub(last_poll.elapsed());
+        to_frame.min(to_poll).max(Duration::from_millis(1))
+    }
+}
+
+/// Whether a line is the lecturer acting (a key's effect), not the recorder's bookkeeping
+/// (clock, screen, plan, checkpoint lines come while a run plays and are drawn at `--fps`).
+fn acted(event: &crate::app::journal::Event) -> bool {
+    use crate::app::journal::Event;
+    !matches!(
+        event,
+        Event::Clock | Event::Screen(_) | Event::Plan { .. } | Event::Checkpoint { .. }
+    )
+}
+
 /// Why a lecture stopped being followed.
 enum Next {
     /// The file was truncated, replaced or is not readable: wait for it again.
@@ -254,6 +350,7 @@ fn follow(
     let frame = Duration::from_secs_f64(1.0 / config.fps);
     let mut last = Instant::now();
     let mut last_poll = Instant::now();
+    let mut pace = Pace::new(frame);
     let mut first = true;
     let next = loop {
         if stop.load(Ordering::Relaxed) || crate::interrupt::requested().is_some() {
@@ -265,14 +362,15 @@ fn follow(
         if ending.gone_at.is_none() && gone.load(Ordering::Relaxed) {
             effects.extend(ending.lecturer_gone());
         }
-        while let Ok(e) = events.try_recv() {
-            app.on_sim(e);
-        }
+        pace.take_answers(&events, last_poll, &mut app);
         if last_poll.elapsed() >= POLL || ending.unread() {
             last_poll = Instant::now();
             ending.read_after_gone = ending.gone_at.is_some();
             match tail.poll() {
                 Some(TailEvent::Lines(lines)) => {
+                    if lines.iter().any(|l| acted(&l.event)) {
+                        pace.acted();
+                    }
                     ending.lecturers = last_screen(&lines).or(ending.lecturers.take());
                     let (more, end) = crate::explorer::follow_lines(lines, &mut app, &mut replay);
                     effects.extend(more);
@@ -299,21 +397,65 @@ fn follow(
         {
             break Next::Again;
         }
-        match screen.frame(&mut app, &config.ui) {
-            // The first frame of a lecture sets every reader's terminal (its size may differ).
-            Ok(Some(_)) if first => {
-                first = false;
-                hub.restart(screen.last());
+        // The end is served after the screen it ends on.
+        let end = ending.due(replay.info().ended, &app);
+        if pace.due() || end {
+            pace.drawn();
+            match screen.frame(&mut app, &config.ui) {
+                // The first frame of a lecture sets every reader's terminal (its size may differ).
+                Ok(Some(_)) if first => {
+                    first = false;
+                    hub.restart(screen.last());
+                }
+                Ok(Some(bytes)) => hub.frame(&bytes, screen.last()),
+                Ok(None) => {}
+                Err(_) => break Next::Again,
             }
-            Ok(Some(bytes)) => hub.frame(&bytes, screen.last()),
-            Ok(None) => {}
-            Err(_) => break Next::Again,
         }
-        if ending.due(replay.info().ended, &app) {
+        if end {
             ending.finish(config, hub);
         }
-        std::thread::sleep(frame.saturating_sub(now.elapsed()));
     };
     worker.join_within(Duration::from_millis(100));
     next
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::app::journal::Event;
+
+    #[test]
+    fn frames_come_at_the_rate_until_the_lecturer_acts_then_promptly() {
+        let frame = Duration::from_millis(100);
+        let mut pace = Pace::new(frame);
+        assert!(pace.due(), "the first frame is drawn at once");
+        pace.drawn();
+        assert!(!pace.due(), "the next waits for --fps");
+        assert_eq!(pace.gap(), frame);
+        assert!(
+            pace.wait(Instant::now()) <= POLL,
+            "the file is looked at every POLL"
+        );
+        pace.acted();
+        assert!(pace.due(), "the lecturer's act is drawn at once");
+        pace.drawn();
+        assert_eq!(
+            pace.gap(),
+            PROMPT_GAP,
+            "and the worker's answers promptly after it"
+        );
+        assert!(pace.wait(Instant::now()) <= PROMPT_GAP);
+    }
+
+    #[test]
+    fn the_recorders_bookkeeping_is_not_an_act() {
+        assert!(acted(&Event::Pause));
+        assert!(acted(&Event::Step));
+        assert!(acted(&Event::Set {
+            field: "k".into(),
+            value: "1".into()
+        }));
+        assert!(!acted(&Event::Clock));
+    }
 }
