@@ -21,9 +21,7 @@ fn generator(mut seed: u64) -> impl FnMut() -> f64 {
         seed = seed
             .wrapping_mul(6_364_136_223_846_793_005)
             .wrapping_add(1_442_695_040_888_963_407);
-        #[allow(clippy::cast_precision_loss)]
-        let u = (seed >> 11) as f64 / (1u64 << 53) as f64;
-        u
+        (seed >> 11) as f64 / (1u64 << 53) as f64
     }
 }
 
@@ -55,7 +53,6 @@ fn pendulum(n: usize, seed: u64) {
         let start = std::time::Instant::now();
         let Ok(f) = floquet(m, tol) else { continue };
         let secs = start.elapsed().as_secs_f64();
-        #[allow(clippy::cast_precision_loss)]
         let steps = f.steps as f64;
         ratios.push(steps / m.price_steps(tol));
         if steps > 2000.0 {
@@ -63,7 +60,6 @@ fn pendulum(n: usize, seed: u64) {
         }
         let first = (tol * 0.1).clamp(1e-14, 1e-3);
         let x = 2.0 * std::f64::consts::PI * w * first.powf(-0.125) + 40.0;
-        #[allow(clippy::cast_possible_truncation)]
         let key = (
             w.max(1e-3).log10().round().clamp(-1.0, 4.0) as i32,
             (2.0 * (tol.log10() / 2.0).round()).clamp(-12.0, -6.0) as i32,
@@ -87,7 +83,6 @@ fn pendulum(n: usize, seed: u64) {
     );
     println!("steps over 2π ω l^(-1/8) + 40 by (log10 ω, log10 tolerance): mean (cells)");
     for ((lw, lt), v) in &table {
-        #[allow(clippy::cast_precision_loss)]
         let mean = v.iter().sum::<f64>() / v.len() as f64;
         println!("  ({lw:2}, {lt:3}): {mean:.2} ({})", v.len());
     }

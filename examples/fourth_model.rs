@@ -54,7 +54,6 @@ impl Oscillator {
         let mut d = Dop853::new(field, 0.0, State::new(self.x0, self.v0, 0.0), tol);
         let mut out = vec![(self.x0, self.v0)];
         while out.len() <= SAMPLES {
-            #[allow(clippy::cast_precision_loss)]
             let at = t_end * out.len() as f64 / SAMPLES as f64;
             while d.time() < at {
                 d.step(t_end)?;
@@ -100,7 +99,6 @@ impl AtTolerance for Auto {
         })
     }
     fn floor(&self, fine: &Self::Result) -> f64 {
-        #[allow(clippy::cast_precision_loss)]
         let steps = fine.1 as f64;
         f64::EPSILON * steps * (1.0 + self.problem.omega)
     }

@@ -173,7 +173,6 @@ fn companion(method: Method) {
             if e.is_nan() || e < 10.0 * case.floor {
                 continue;
             }
-            #[allow(clippy::cast_precision_loss)]
             let steps = r.stats.steps as f64;
             let floors = round_off(&case.problem, steps, case.t_end)
                 + conditioned_round_off(steps, case.kappa);
@@ -215,7 +214,6 @@ fn tighter() {
                 let r = case.run(Method::Taylor, tight);
                 let c = case.run(Method::Taylor, loose);
                 let e = case.error(&r);
-                #[allow(clippy::cast_precision_loss)]
                 let steps = r.stats.steps as f64;
                 let floors = round_off(&case.problem, steps, case.t_end)
                     + conditioned_round_off(steps, case.kappa);

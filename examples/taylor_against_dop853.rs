@@ -27,7 +27,6 @@ impl Case {
         let n = self.theta.len();
         let mut worst: f64 = 0.0;
         for i in 1..n {
-            #[allow(clippy::cast_precision_loss)]
             let t = self.t_end * i as f64 / (n - 1) as f64;
             while flow.time() < t {
                 flow.step(self.t_end).expect("a step");

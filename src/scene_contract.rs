@@ -57,7 +57,6 @@ fn write_session(
     let n = journal.len();
     // The end line as the explorer's recorder writes it: at the last line's time and run stamp.
     let last = journal.last().map_or((0.0, 0), |(t, g, _)| (*t, *g));
-    #[allow(clippy::cast_precision_loss)]
     for (i, (t, generation, event)) in journal.into_iter().enumerate() {
         rec.write(&Line {
             wall: i as f64 * 0.5,
@@ -68,7 +67,6 @@ fn write_session(
         })
         .unwrap();
     }
-    #[allow(clippy::cast_precision_loss)]
     rec.write(&Line {
         wall: n as f64 * 0.5 + 1.0,
         t: last.0,

@@ -192,7 +192,6 @@ pub fn terminal_diagram(rows: &[Row], k: f64, width: usize, height: usize) -> St
 
 /// A tick label with at most three significant digits (log axes put ticks at values such as
 /// 0.6000000000000001).
-#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
 fn significant(y: f64) -> String {
     if (1e-3..1e4).contains(&y) {
         let decimals = (2 - y.e_log10().floor() as i32).clamp(0, 6) as usize;

@@ -241,7 +241,6 @@ impl Watchdog {
     }
 
     fn with_slack(price: f64, force: bool, slack: f64) -> Self {
-        #[allow(clippy::cast_precision_loss)]
         let threads = rayon::current_num_threads().max(1) as f64;
         let price_cpu = price * threads;
         Self {

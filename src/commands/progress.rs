@@ -215,7 +215,6 @@ pub fn time_left(predicted: f64, elapsed: f64, fraction: f64) -> f64 {
 /// `12 s`, `3 min 05 s`, `2 h 10 min`: a time left, short.
 #[must_use]
 pub fn duration(seconds: f64) -> String {
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     let s = seconds.max(0.0).ceil().min(1e9) as u64;
     if s < 60 {
         format!("{s} s")

@@ -40,7 +40,6 @@ impl Axis {
     /// The value at the centre of cell `i`.
     #[must_use]
     pub fn at(&self, i: usize) -> f64 {
-        #[allow(clippy::cast_precision_loss)]
         let f = (i as f64 + 0.5) / self.cells as f64;
         if self.log {
             (self.min.e_ln() + f * (self.max / self.min).e_ln()).e_exp()
@@ -63,9 +62,7 @@ impl Axis {
     #[must_use]
     pub fn cell_of(&self, x: f64) -> Option<usize> {
         let f = self.fraction(x);
-        #[allow(clippy::cast_precision_loss)]
         let i = (f * self.cells as f64).floor();
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         (f.is_finite() && (0.0..1.0).contains(&f)).then(|| (i as usize).min(self.cells - 1))
     }
 }

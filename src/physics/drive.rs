@@ -72,7 +72,6 @@ impl Course {
         if self.samples <= 1 {
             0.0
         } else {
-            #[allow(clippy::cast_precision_loss)]
             let f = i as f64 / (self.samples - 1) as f64;
             self.t_end * f
         }

@@ -248,7 +248,6 @@ impl FrameClock {
 
     /// The current frame's time.
     #[must_use]
-    #[allow(clippy::cast_precision_loss)]
     pub fn now(&self) -> f64 {
         self.frame as f64 / self.fps
     }
@@ -263,7 +262,6 @@ impl FrameClock {
 
     /// On to the next frame; while nothing moves until the replay's next line, to the frame
     /// of that line.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     pub fn next(&mut self, replay: &Replayer, app: &App) {
         self.frame += 1;
         if !app.run.playing

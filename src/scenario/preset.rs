@@ -303,7 +303,6 @@ fn allowed_keys(schema: &[KeySpec], section: &str) -> String {
 fn number(v: &Value) -> Option<f64> {
     match v {
         Value::Float(f) => Some(*f),
-        #[allow(clippy::cast_precision_loss)]
         Value::Integer(i) => Some(*i as f64),
         _ => None,
     }

@@ -251,11 +251,6 @@ impl Chart {
         }
         let refine = self.refine();
         let first = refine.first_pass(&refine.blocks_of(shard));
-        #[allow(
-            clippy::cast_precision_loss,
-            clippy::cast_possible_truncation,
-            clippy::cast_sign_loss
-        )]
         let expected = (first as f64 * REFINED_OVER_FIRST).ceil() as usize;
         expected.min(owned).max(first.min(owned))
     }
@@ -292,11 +287,8 @@ impl Chart {
     /// Predicted wall-clock seconds of `count` cells drawn from `cells` at their average price,
     /// computed where the answer changes when `refined`.
     fn price_of(&self, cells: &[usize], count: usize, refined: bool) -> f64 {
-        #[allow(clippy::cast_precision_loss)]
         let mean = self.cpu_seconds(cells) / cells.len().max(1) as f64;
-        #[allow(clippy::cast_precision_loss)]
         let threads = rayon::current_num_threads().clamp(1, count.max(1)) as f64;
-        #[allow(clippy::cast_precision_loss)]
         let seconds = mean * count as f64 / threads;
         if refined {
             seconds * REFINED_CELL_COST
@@ -359,7 +351,6 @@ impl Chart {
     /// ([`Chart::cpu_seconds`]) spread over the threads that share them.
     #[must_use]
     pub fn predicted_seconds(&self, cells: &[usize]) -> f64 {
-        #[allow(clippy::cast_precision_loss)]
         let threads = rayon::current_num_threads().clamp(1, cells.len().max(1)) as f64;
         self.cpu_seconds(cells) / threads
     }
@@ -374,7 +365,6 @@ impl Chart {
         }
         let step = cells.len().div_ceil(PRICED_CELLS);
         let sampled: Vec<usize> = cells.iter().copied().step_by(step).collect();
-        #[allow(clippy::cast_precision_loss)]
         let scale = cells.len() as f64 / sampled.len() as f64;
         sampled.iter().map(|&n| self.cell_seconds(n)).sum::<f64>() * scale
     }

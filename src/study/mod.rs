@@ -40,7 +40,6 @@ pub fn log_log_slope(points: &[(f64, f64)]) -> Option<f64> {
     if pts.len() < 2 {
         return None;
     }
-    #[allow(clippy::cast_precision_loss)]
     let n = pts.len() as f64;
     let mx = pts.iter().map(|p| p.0).sum::<f64>() / n;
     let my = pts.iter().map(|p| p.1).sum::<f64>() / n;

@@ -174,7 +174,6 @@ impl ChartOutput {
         }
         match cell.reversals {
             Some(0) | None => '.',
-            #[allow(clippy::cast_possible_truncation)]
             Some(n @ 1..=9) => char::from_digit(n as u32, 10).unwrap_or('+'),
             Some(_) => '+',
         }

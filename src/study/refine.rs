@@ -236,7 +236,6 @@ impl<'a> Refine<'a> {
             let mut r = mix(self.seed ^ mix(key));
             for _ in 0..area.div_ceil(SAMPLE_EVERY) {
                 r = mix(r);
-                #[allow(clippy::cast_possible_truncation)]
                 let p = (r % area as u64) as usize;
                 cells.push(at(b.x0 + 1 + p % w, b.y0 + 1 + p / w));
             }
@@ -552,7 +551,6 @@ mod tests {
             .flat_map(|x| (17..31).map(move |y| (x, y)))
             .find(|&(x, y)| !first.contains(&(y * 96 + x)))
             .expect("a cell the first pass does not compute");
-        #[allow(clippy::cast_precision_loss)]
         let q = |x: usize, y: usize| {
             let (dx, dy) = (x as f64 - ix as f64, y as f64 - iy as f64);
             dx * dx + dy * dy - 0.2

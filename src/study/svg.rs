@@ -75,7 +75,6 @@ pub fn sweep_svg(sweep: &Sweep) -> Fallible {
             .draw()?;
         let n = sweep.rungs.len().max(1);
         for (i, r) in sweep.rungs.iter().enumerate() {
-            #[allow(clippy::cast_precision_loss)]
             let shade = 0.15 + 0.7 * i as f64 / n as f64;
             let colour = HSLColor(0.6, 0.7, 0.85 - 0.6 * shade);
             chart
@@ -171,7 +170,6 @@ pub fn chart_svg(out: &ChartOutput) -> Fallible {
             .unwrap_or(0)
             .max(1);
         let edge = |a: &super::chart::Axis, i: usize, side: f64| {
-            #[allow(clippy::cast_precision_loss)]
             let f = (i as f64 + side) / a.cells as f64;
             if a.log {
                 (a.min.e_ln() + f * (a.max / a.min).e_ln()).e_exp()
@@ -193,9 +191,7 @@ pub fn chart_svg(out: &ChartOutput) -> Fallible {
             match c.reversals.unwrap_or(0) {
                 0 => WHITE,
                 n => {
-                    #[allow(clippy::cast_precision_loss)]
                     let f = (n as f64 / top as f64).min(1.0);
-                    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
                     let v = (235.0 - 200.0 * f) as u8;
                     RGBColor(v, v, 255)
                 }

@@ -95,7 +95,6 @@ pub fn moving_average(t: &[f64], y: &[f64], window: f64) -> Vec<f64> {
             if i < half || i + half >= n {
                 f64::NAN
             } else {
-                #[allow(clippy::cast_precision_loss)]
                 let span = (2 * half) as f64 * dt;
                 (area[i + half] - area[i - half]) / span
             }

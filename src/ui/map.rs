@@ -121,7 +121,6 @@ impl MapPane<'_> {
             (None, true) => format!("{total} cells"),
             (None, false) => {
                 let left = map.seconds_left().map_or_else(String::new, |s| {
-                    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
                     let s = s.ceil().clamp(1.0, 99_999.0) as u64;
                     format!(" ~{s} s")
                 });

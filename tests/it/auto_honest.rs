@@ -439,7 +439,6 @@ fn the_series_companion_bounds_its_run_on_every_reference() {
             if v < 10.0 * floor {
                 continue;
             }
-            #[allow(clippy::cast_precision_loss)]
             let steps = r.stats.steps as f64;
             let estimate = difference(&r, &c)
                 + round_off(&case.problem, steps, case.t_end)

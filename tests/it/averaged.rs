@@ -70,7 +70,6 @@ fn exponent(points: &[(f64, f64)]) -> Option<f64> {
     if pts.len() < 2 {
         return None;
     }
-    #[allow(clippy::cast_precision_loss)]
     let n = pts.len() as f64;
     let (mx, my) = (
         pts.iter().map(|p| p.0).sum::<f64>() / n,

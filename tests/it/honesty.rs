@@ -485,7 +485,6 @@ fn near_the_separatrix_the_estimate_bounds_every_rounding_of_the_start() {
         let s = case.problem.start();
         for ulps in 1..=3_u64 {
             let alpha_dot = f64::from_bits(s.alpha_dot.to_bits() + ulps);
-            #[allow(clippy::cast_precision_loss)]
             let moved = case.condition.expect("stated") * (ulps as f64) * 2.0 * f64::EPSILON;
             for tol in [1e-8, 1e-10] {
                 let (r, err) = run_case(&case, alpha_dot, tol);

@@ -351,3 +351,47 @@ fn elementary_functions_come_from_one_implementation() {
         found.join("\n")
     );
 }
+
+/// Issue 83: an allowance of a lint the workspace already allows does nothing and hides what
+/// the file really allows; every `#[allow(…)]` in the project names a lint that would fire.
+#[test]
+fn no_allowance_repeats_the_workspaces() {
+    let root = std::path::Path::new(root!());
+    let manifest = std::fs::read_to_string(root.join("Cargo.toml")).unwrap();
+    let table: toml::Table = manifest.parse().unwrap();
+    let allowed: Vec<String> = table["workspace"]["lints"]["clippy"]
+        .as_table()
+        .unwrap()
+        .iter()
+        .filter(|(_, v)| v.as_str() == Some("allow"))
+        .map(|(k, _)| format!("clippy::{k}"))
+        .collect();
+    assert!(
+        allowed.iter().any(|l| l == "clippy::cast_precision_loss"),
+        "{allowed:?}"
+    );
+    let mut inert = Vec::new();
+    for dir in ["src", "tests", "examples", "benches", "web"] {
+        for file in rust_files(&root.join(dir)) {
+            let text = std::fs::read_to_string(&file).unwrap();
+            for (n, line) in text.lines().enumerate() {
+                let Some(at) = line.find("allow(") else {
+                    continue;
+                };
+                let names = line[at + 6..].split(')').next().unwrap_or("");
+                for name in names.split(',').map(str::trim) {
+                    if allowed.iter().any(|a| a == name) {
+                        let file = file.strip_prefix(root).unwrap().display();
+                        inert.push(format!("{file}:{}: {name}", n + 1));
+                    }
+                }
+            }
+        }
+    }
+    // This file names them in its own check only through the manifest.
+    assert!(
+        inert.is_empty(),
+        "allowances the workspace already gives:\n{}",
+        inert.join("\n")
+    );
+}

@@ -40,7 +40,6 @@ fn the_pendulums_cells_take_the_work_their_price_says_on_generated_windows() {
                 }
                 // A failed cell (a step size that underflowed) stops early: priced in full.
                 if let Ok(f) = floquet(m, tolerance) {
-                    #[allow(clippy::cast_precision_loss)]
                     {
                         taken += f.steps as f64;
                     }

@@ -30,7 +30,6 @@ fn check(label: &str, got_alpha: f64, got_alpha_dot: f64, got_times: &[f64], wan
         "{label}: alpha_dot {got_alpha_dot} vs {ad}"
     );
     let n = num(want, "reversals");
-    #[allow(clippy::cast_precision_loss)]
     let count = got_times.len() as f64;
     assert!(
         (count - n).abs() < 0.5,

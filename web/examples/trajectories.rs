@@ -33,7 +33,6 @@ impl Draw {
     }
 
     /// Uniform in `[-1, 1)`.
-    #[allow(clippy::cast_precision_loss)]
     fn signed(&mut self) -> f64 {
         (self.next() >> 11) as f64 / (1u64 << 52) as f64 - 1.0
     }

@@ -267,9 +267,7 @@ pub fn nearest(chart: &Chart, (px, py): (f64, f64)) -> (usize, usize) {
     let (x, y) = chart.axes();
     let clamp = |f: f64, n: usize| {
         if f.is_finite() {
-            #[allow(clippy::cast_precision_loss)]
             let v = (f * n as f64).floor();
-            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
             (v.max(0.0) as usize).min(n - 1)
         } else {
             0

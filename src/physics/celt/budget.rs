@@ -111,7 +111,6 @@ mod tests {
                 monitor_energy: true,
             };
             let r = run(&p, &spec, &mut |_| true).unwrap();
-            #[allow(clippy::cast_precision_loss)]
             let per_radian =
                 r.stats.rhs_evaluations as f64 / (fastest_rate(&p) * 10.0 * tol.e_powf(-0.125));
             println!(

@@ -67,7 +67,6 @@ pub const NEUTRAL: f64 = 1e-5;
 pub fn crossings(p: &Params, lo: f64, hi: f64, samples: usize, level: f64) -> Vec<f64> {
     let grows = |n: f64| growth_rate(p, n) > level;
     let samples = samples.max(2);
-    #[allow(clippy::cast_precision_loss)]
     let at = |i: usize| lo + (hi - lo) * i as f64 / (samples - 1) as f64;
     let mut out = Vec::new();
     let (mut x0, mut g0) = (at(0), grows(at(0)));

@@ -46,7 +46,6 @@ pub fn difference(a: &RunResult, b: &RunResult) -> f64 {
 
 fn floor(r: &RunResult) -> f64 {
     let w = super::omega(&r.state).amax().max(1.0);
-    #[allow(clippy::cast_precision_loss)]
     let steps = r.stats.steps as f64;
     f64::EPSILON * steps * w
 }

@@ -48,7 +48,7 @@ fn f2_of(params: &Params, st: f64, ct: f64, p: f64) -> f64 {
 /// The full state `(θ, θ̇)` of the averaged state `(Θ, Θ̇)` at time `t`: `θ` to O(ε⁴), `θ̇` to
 /// O(ε³) inclusive (generated; see the module's documentation).
 #[must_use]
-#[allow(clippy::many_single_char_names, clippy::unreadable_literal)]
+#[allow(clippy::unreadable_literal)]
 pub fn to_full(params: &Params, phase: FastPhase, t: f64, slow: (f64, f64)) -> (f64, f64) {
     let (theta_s, p) = slow;
     let (a, b, epsilon) = (params.a, params.b, params.epsilon);

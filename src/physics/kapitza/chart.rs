@@ -129,7 +129,6 @@ impl SceneChart for PendulumChart {
         let n = 4 * x.cells;
         (0..=n)
             .filter_map(|k| {
-                #[allow(clippy::cast_precision_loss)]
                 let a = x.min + (x.max - x.min) * k as f64 / n as f64;
                 let b = (2.0 * a).sqrt();
                 (a >= 0.0 && y.cell_of(b).is_some()).then_some((a, b))
@@ -184,7 +183,6 @@ impl SceneChart for PendulumChart {
         };
         let mut lines = Vec::new();
         for n in 0..=x.cells.max(1) {
-            #[allow(clippy::cast_precision_loss)]
             let a = sign * (n as f64).powi(2) / (4.0 * e2);
             let beyond = if sign > 0.0 {
                 a > x.max.max(x.min)

@@ -190,11 +190,8 @@ pub const PRICE_FACTORS: [[f64; 4]; 6] = [
 /// beyond the table's edges).
 fn price_factor(w: f64, tolerance: f64) -> f64 {
     let at = |x: f64, lo: f64, n: usize| {
-        #[allow(clippy::cast_precision_loss)]
         let x = (x - lo).clamp(0.0, (n - 1) as f64);
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let i = (x.floor() as usize).min(n - 2);
-        #[allow(clippy::cast_precision_loss)]
         (i, x - i as f64)
     };
     let (i, fi) = at(w.max(1e-300).e_log10(), -1.0, 6);
@@ -259,7 +256,6 @@ impl AtTolerance for Trace {
         (fine.0 - coarse.0).abs().max((fine.0 - fine.3).abs()) / scale(fine.0)
     }
     fn floor(&self, fine: &TraceRun) -> f64 {
-        #[allow(clippy::cast_precision_loss)]
         let steps = fine.1 as f64;
         // Each step rounds the four components once or twice: a few units of rounding a step,
         // each relative to the largest entry the matrix reaches, not to the trace (issue 66: near

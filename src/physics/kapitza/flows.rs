@@ -368,7 +368,6 @@ impl Flow for Fixed {
     fn time_prev(&self) -> f64 {
         self.t_prev
     }
-    #[allow(clippy::cast_precision_loss)]
     fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
         let t0 = self.t;
         let full = (self.n + 1) as f64 * self.h;

@@ -133,7 +133,6 @@ mod tests {
         let frac = (num % den) as f64 / den as f64;
         let two_pi_hi = std::f64::consts::TAU;
         let two_pi_lo = 2.449_293_598_294_706_4e-16;
-        #[allow(clippy::cast_precision_loss)]
         let w = whole as f64;
         let n = (w / two_pi_hi).floor();
         // w − n 2π, in two parts (w and n exact in double below 2^53).

@@ -793,7 +793,6 @@ impl AtTolerance for Resolved {
         let twin = Resolved { problem, ..*self };
         let other = twin.run(local, go_on)?;
         let amplification = difference(fine, &other) / nudge;
-        #[allow(clippy::cast_precision_loss)]
         let steps = fine.stats.steps as f64;
         // Each step rounds θ at its own size: a pendulum that winds up to 33 rad rounds 33× more
         // than one that stays near the upright.

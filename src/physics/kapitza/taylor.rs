@@ -78,7 +78,7 @@ impl Taylor {
     }
 
     /// Expands `θ` and `θ̇` about the current point into `self.theta`, `self.theta_dot`.
-    #[allow(clippy::cast_precision_loss, clippy::needless_range_loop)]
+    #[allow(clippy::needless_range_loop)]
     fn expand(&mut self) {
         let n_max = ORDER;
         let eps = self.epsilon;
@@ -206,7 +206,6 @@ mod tests {
         assert!(worst < 1e-10, "dense output {worst}");
         // A few steps a forcing period (2π ε ≈ 0.31), where DOP853 takes about twenty.
         let periods = t_end / (std::f64::consts::TAU * p.epsilon);
-        #[allow(clippy::cast_precision_loss)]
         let per_period = taylor.stats().steps as f64 / periods;
         assert!(per_period < 8.0, "{per_period} steps a period");
     }

@@ -35,7 +35,6 @@ pub fn pendulum_pointwise(
     go_on: &mut dyn FnMut(f64) -> bool,
 ) -> Result<PendulumView, StepError> {
     let periods = t_end / (std::f64::consts::TAU * problem.params().epsilon);
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     let samples = ((periods * PER_PERIOD).ceil() as usize).clamp(64, 2_000_000) + 1;
     let spec =
         |method, tolerance| RunSpec::new(Asked::new(method, tolerance, None, t_end), samples);

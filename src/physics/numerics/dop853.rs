@@ -147,7 +147,6 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         for i in 0..N {
             sum += (v[i] / self.scale(&self.y, &self.y, i)).powi(2);
         }
-        #[allow(clippy::cast_precision_loss)]
         let n = self.f.controlled() as f64;
         (sum / n).sqrt()
     }
@@ -258,7 +257,6 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
                 e5 += (err5[i] / sk).powi(2);
                 e3 += (err3[i] / sk).powi(2);
             }
-            #[allow(clippy::cast_precision_loss)]
             let n = self.f.controlled() as f64;
             let err = if e5 == 0.0 && e3 == 0.0 {
                 0.0

@@ -15,17 +15,14 @@ use crate::physics::numerics::elementary::Elementary;
 pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
     assert!(n > 0, "a quadrature rule needs at least one node");
     let mut rule = Vec::with_capacity(n);
-    #[allow(clippy::cast_precision_loss)]
     let nf = n as f64;
     for i in 0..n {
-        #[allow(clippy::cast_precision_loss)]
         let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (nf + 0.5)).e_cos();
         let mut dp = 1.0;
         for _ in 0..100 {
             // Three-term recurrence for P_n and its derivative.
             let (mut p0, mut p1) = (1.0, x);
             for j in 2..=n {
-                #[allow(clippy::cast_precision_loss)]
                 let jf = j as f64;
                 let p2 = ((2.0 * jf - 1.0) * x * p1 - (jf - 1.0) * p0) / jf;
                 p0 = p1;
@@ -161,7 +158,6 @@ mod tests {
             state ^= state << 13;
             state ^= state >> 7;
             state ^= state << 17;
-            #[allow(clippy::cast_precision_loss)]
             let u = (state >> 11) as f64 / (1u64 << 53) as f64;
             1.0 + 1e-3 * (u - 0.5)
         };

@@ -18,7 +18,6 @@ use crate::physics::numerics::dop853::Stats;
 /// The step the series of order `order` allows, `size(n)` being the largest coefficient of order
 /// `n` over its component's error scale.
 #[must_use]
-#[allow(clippy::cast_precision_loss)]
 pub fn natural_step(order: usize, size: impl Fn(usize) -> f64) -> f64 {
     // `min (1/m_n)^{1/n}` as `exp(min −ln(m_n)/n)`: three logarithms and one exponential cost
     // less than three powers.

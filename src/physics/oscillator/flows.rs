@@ -224,7 +224,6 @@ impl AtTolerance for Auto {
             })
     }
     fn floor(&self, fine: &RunResult) -> f64 {
-        #[allow(clippy::cast_precision_loss)]
         let steps = fine.stats.steps as f64;
         f64::EPSILON * steps * (1.0 + self.problem.params().omega)
     }

@@ -94,7 +94,6 @@ impl Problem {
         if span < first {
             0
         } else {
-            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
             let n = ((span - first) / std::f64::consts::PI).floor() as usize;
             n + 1
         }

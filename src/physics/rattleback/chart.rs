@@ -180,7 +180,6 @@ impl SceneChart for RegimeChart {
             1 => None,
             _ => {
                 let (first, last) = (first?, last?);
-                #[allow(clippy::cast_precision_loss)]
                 let h = (last - first) / (count - 1) as f64;
                 if !(h.is_finite() && h > 0.0) {
                     return None;
@@ -277,7 +276,6 @@ impl ChartOf for RegimeChart {
             Some(k) => {
                 // Every corner is a problem the model accepts (`--k 5e307` overflows the fast
                 // frequency): refused as any preset value would be, by the same validator.
-                #[allow(clippy::cast_precision_loss)]
                 let first_column = grid.ratio_max / grid.cols.max(1) as f64;
                 for (ratio, i) in [
                     (first_column, grid.inertia.0),

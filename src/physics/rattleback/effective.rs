@@ -255,7 +255,6 @@ impl Effective {
         let count = Self::count_in(first, half, t_end).min(MAX_REVERSAL_TIMES);
         (0..count)
             .map(|n| {
-                #[allow(clippy::cast_precision_loss)]
                 let n = n as f64;
                 first + n * half
             })
@@ -278,13 +277,11 @@ impl Effective {
             return (0, None, None);
         };
         let count = Self::count_in(first, half, t_end);
-        #[allow(clippy::cast_precision_loss)]
         if count == 0 || count as f64 >= MAX_REVERSALS {
             return (count, None, None);
         }
         // A reversal at t = 0 is not one of the window's.
         let skip = f64::from(u8::from(first <= 0.0));
-        #[allow(clippy::cast_precision_loss)]
         let last = first + (skip + count as f64 - 1.0) * half;
         (count, Some(first + skip * half), Some(last))
     }
@@ -299,7 +296,6 @@ impl Effective {
         // Beyond 2^53 reversals `n - 1.0 == n`: the loops below would never end (`study map
         // --t-end 1e18` spun forever, issue 56). Such a count saturates.
         if n.is_nan() || n >= MAX_REVERSALS {
-            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
             return MAX_REVERSALS as usize;
         }
         // Guard the rounding of the division at both ends.
@@ -310,7 +306,6 @@ impl Effective {
             n += 1.0;
         }
         let skip = usize::from(first <= 0.0);
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let total = (n + 1.0).min(MAX_REVERSALS) as usize;
         total.saturating_sub(skip)
     }
@@ -412,7 +407,6 @@ mod tests {
     /// --t-end 1e18` (or γ̇0 = 1e16) spun forever. Such counts saturate; exact ones stay exact.
     #[test]
     fn a_count_past_two_to_the_53_saturates_at_once() {
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let max = MAX_REVERSALS as usize;
         assert_eq!(Effective::count_in(0.5, 1.0, 1e18), max);
         assert_eq!(Effective::count_in(0.5, 1e-300, 1.0), max);

@@ -77,7 +77,6 @@ impl Grid {
     /// The ratio at the centre of column `i`.
     #[must_use]
     pub fn ratio(&self, i: usize) -> f64 {
-        #[allow(clippy::cast_precision_loss)]
         let f = (i as f64 + 0.5) / self.cols as f64;
         f * self.ratio_max
     }
@@ -85,7 +84,6 @@ impl Grid {
     /// The inertia ratio at the centre of row `j`.
     #[must_use]
     pub fn inertia_ratio(&self, j: usize) -> f64 {
-        #[allow(clippy::cast_precision_loss)]
         let f = (j as f64 + 0.5) / self.rows as f64;
         let (lo, hi) = self.inertia;
         (lo.e_ln() + f * (hi / lo).e_ln()).e_exp()

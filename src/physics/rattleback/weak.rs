@@ -17,7 +17,6 @@ pub const PER_PERIOD: f64 = 24.0;
 ///
 /// # Errors
 /// When the integration fails or `go_on` stops it.
-#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
 pub fn pointwise(
     problem: &Problem,
     t_end: f64,

@@ -455,7 +455,6 @@ const STEP_KEYS: [&str; 8] = [
 fn number(v: &Value) -> Option<f64> {
     match v {
         Value::Float(f) if f.is_finite() => Some(*f),
-        #[allow(clippy::cast_precision_loss)]
         Value::Integer(i) => Some(*i as f64),
         _ => None,
     }

@@ -95,7 +95,6 @@ pub fn reference_cases() -> toml::Table {
 pub fn num(t: &toml::Table, key: &str) -> f64 {
     match t.get(key) {
         Some(toml::Value::Float(f)) => *f,
-        #[allow(clippy::cast_precision_loss)]
         Some(toml::Value::Integer(i)) => *i as f64,
         other => panic!("reference key {key}: expected a number, got {other:?}"),
     }
@@ -287,7 +286,6 @@ pub fn cases_from(file: &str) -> Vec<AveragedCase> {
             let t_end = num(c, "t_end");
             let alpha = floats(c, "sample_alpha");
             let alpha_dot = floats(c, "sample_alpha_dot");
-            #[allow(clippy::cast_precision_loss)]
             let samples = alpha
                 .iter()
                 .zip(&alpha_dot)
@@ -502,7 +500,6 @@ impl Seeded {
 
     /// A number uniform in `[lo, hi)`.
     pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        #[allow(clippy::cast_precision_loss)]
         let u = (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
         lo + (hi - lo) * u
     }

@@ -53,7 +53,6 @@ const INVERSE: [f64; N1] = {
     let mut r = [0.0; N1];
     let mut m = 1;
     while m < N1 {
-        #[allow(clippy::cast_precision_loss)]
         {
             r[m] = 1.0 / m as f64;
         }
@@ -269,7 +268,6 @@ mod tests {
         assert!(end < 1e-9, "end {end}");
         assert!(worst < 1e-9, "dense output {worst}");
         let periods = t_end * p.omega_max() / std::f64::consts::TAU;
-        #[allow(clippy::cast_precision_loss)]
         let per_period = taylor.stats().steps as f64 / periods;
         assert!(per_period < 8.0, "{per_period} steps a period");
     }
