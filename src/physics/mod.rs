@@ -40,6 +40,8 @@ pub mod scene;
 pub mod verify;
 
 pub use method::{Method, StepError};
+#[cfg(test)]
+pub use models::oscillator;
 pub use models::{LimitView, Model, ModelKind};
 pub use params::ParamError;
 pub use plan::{DEFAULT_TOLERANCE, Resolved};

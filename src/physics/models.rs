@@ -2,10 +2,11 @@
 //! explorer (`app`, `ui`), presets (`scenario`) and `simulate` reach a model.
 //!
 //! Each model lives in its own folder and describes itself once there (`scene.rs`: a
-//! [`Scene`] of fixed facts, [`Posed`] for a validated problem). It is registered here: its
-//! [`ModelKind`] and [`Model`] variants, the two dispatch lines ([`ModelKind::scene`],
-//! [`Model::posed`]), [`ModelKind::problem`] and the [`LimitView`] the portrait draws (the slow
-//! coordinate's effective potential). The recipe is in docs/architecture.md.
+//! [`Scene`] of fixed facts, [`Posed`] for a validated problem). It is registered here by one
+//! line of the `registry!` list, which generates [`ModelKind`], [`Model`], [`Chart`],
+//! [`ModelKind::ALL`] and their dispatch; its [`PlanKey`] shape and the [`LimitView`] the
+//! portrait draws (the slow coordinate's effective potential) are still written here. The
+//! recipe is in docs/architecture.md.
 
 use serde::{Deserialize, Serialize};
 
@@ -22,157 +23,201 @@ use super::rattleback::Problem;
 use super::rattleback::effective::Effective;
 use super::scene::{Planned, Posed, Scene, SmallParameter, Studies, Words};
 
-/// Which model: names as in presets (`[preset] model = "kapitza"`; absent means the rattleback).
-#[derive(
-    Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, serde::Deserialize, schemars::JsonSchema,
-)]
-#[serde(rename_all = "kebab-case")]
-pub enum ModelKind {
-    /// The holonomic rattleback (a rigid body on a stiff spring).
-    Rattleback,
-    /// Kapitza's inverted pendulum (a pendulum on a fast-shaken pivot).
-    Kapitza,
-    /// The classical rattleback (an ellipsoidal bottom rolling without slipping).
-    Celt,
-    /// The scene contract's oscillator (the library's own tests only).
-    #[cfg(test)]
-    Oscillator,
-}
-
-/// A validated problem of one model.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-#[serde(untagged)]
-pub enum Model {
-    /// The rattleback: body, spring and start.
-    Rattleback(Problem),
-    /// The pendulum: `a`, `b`, `ε` and start.
-    Kapitza(kapitza::Problem),
-    /// The celt: body, start and reversal band.
-    Celt(celt::Problem),
-    /// The scene contract's oscillator.
-    #[cfg(test)]
-    Oscillator(oscillator::Problem),
-}
-
-/// A chart of one scene: each scene's own type, in its folder (`SCENE/chart.rs`, issue 69),
-/// reached through [`SceneChart`] (this type derefs to it).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Chart {
-    /// The rattleback's regime map.
-    Rattleback(super::rattleback::chart::RegimeChart),
-    /// The pendulum's stability chart.
-    Kapitza(kapitza::chart::PendulumChart),
-    /// The celt's reversal chart.
-    Celt(celt::chart::CeltChart),
-    /// The scene contract's crossing chart.
-    #[cfg(test)]
-    Oscillator(oscillator::chart::CrossingChart),
-}
-
-impl From<super::rattleback::chart::RegimeChart> for Chart {
-    fn from(c: super::rattleback::chart::RegimeChart) -> Self {
-        Self::Rattleback(c)
-    }
-}
-
-impl From<kapitza::chart::PendulumChart> for Chart {
-    fn from(c: kapitza::chart::PendulumChart) -> Self {
-        Self::Kapitza(c)
-    }
-}
-
-impl From<celt::chart::CeltChart> for Chart {
-    fn from(c: celt::chart::CeltChart) -> Self {
-        Self::Celt(c)
-    }
-}
-
-#[cfg(test)]
-impl From<oscillator::chart::CrossingChart> for Chart {
-    fn from(c: oscillator::chart::CrossingChart) -> Self {
-        Self::Oscillator(c)
-    }
-}
-
-impl std::ops::Deref for Chart {
-    type Target = dyn SceneChart;
-
-    fn deref(&self) -> &Self::Target {
-        match self {
-            Self::Rattleback(c) => c,
-            Self::Kapitza(c) => c,
-            Self::Celt(c) => c,
-            #[cfg(test)]
-            Self::Oscillator(c) => c,
+/// From the registry's list: the enums [`ModelKind`], [`Model`] and [`Chart`], their
+/// conversions, [`ModelKind::ALL`] (test scenes included by their `cfg`) and every dispatch on
+/// the kind. Each folder gives `Problem` (a [`Posed`]), `scene::SCENE` (a [`Scene`]) and its
+/// chart type (a [`ChartOf`]).
+macro_rules! registry {
+    ($(
+        $(#[doc = $doc:literal])*
+        $(#[cfg($cfg:meta)])?
+        $name:ident: $folder:ident, $chart:ident;
+    )*) => {
+        #[doc = "Which model: names as in presets (`[preset] model = \"kapitza\"`; absent means the rattleback)."]
+        #[derive(
+            Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, serde::Deserialize,
+            schemars::JsonSchema,
+        )]
+        #[serde(rename_all = "kebab-case")]
+        pub enum ModelKind {
+            $( $(#[doc = $doc])* $(#[cfg($cfg)])? $name, )*
         }
-    }
-}
 
-impl Chart {
-    /// The scene.
-    #[must_use]
-    pub fn model(&self) -> ModelKind {
-        match self {
-            Self::Rattleback(_) => ModelKind::Rattleback,
-            Self::Kapitza(_) => ModelKind::Kapitza,
-            Self::Celt(_) => ModelKind::Celt,
-            #[cfg(test)]
-            Self::Oscillator(_) => ModelKind::Oscillator,
+        /// A validated problem of one model.
+        #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+        #[serde(untagged)]
+        pub enum Model {
+            $( $(#[doc = $doc])* $(#[cfg($cfg)])? $name(crate::physics::$folder::Problem), )*
         }
-    }
 
-    /// The explorer's map pane's chart of `model`.
-    #[must_use]
-    pub fn for_pane(model: &Model, ask: PaneAsk) -> Self {
-        match model {
-            Model::Rattleback(p) => Self::Rattleback(ChartOf::for_pane(p, ask)),
-            Model::Kapitza(p) => Self::Kapitza(ChartOf::for_pane(p, ask)),
-            Model::Celt(p) => Self::Celt(ChartOf::for_pane(p, ask)),
-            #[cfg(test)]
-            Model::Oscillator(p) => Self::Oscillator(ChartOf::for_pane(p, ask)),
+        /// A chart of one scene: each scene's own type, in its folder (`SCENE/chart.rs`, issue
+        /// 69), reached through [`SceneChart`] (this type derefs to it).
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub enum Chart {
+            $( $(#[doc = $doc])* $(#[cfg($cfg)])? $name(crate::physics::$folder::chart::$chart), )*
         }
-    }
 
-    /// `study map`'s chart of `model` as `ask` says.
-    ///
-    /// # Errors
-    /// A flag of another scene's chart, a range out of order, or a corner the model refuses.
-    pub fn for_study(model: &Model, ask: &StudyAsk) -> Result<Self, String> {
-        let title = model.kind().title();
-        // Every flag the scene does not take, refused here for all (issue 80).
-        crate::physics::chart::refuse_flags(ask, model.kind().studies().chart.flags, title)?;
-        Ok(match model {
-            Model::Rattleback(p) => Self::Rattleback(ChartOf::for_study(p, ask, title)?),
-            Model::Kapitza(p) => Self::Kapitza(ChartOf::for_study(p, ask, title)?),
-            Model::Celt(p) => Self::Celt(ChartOf::for_study(p, ask, title)?),
-            #[cfg(test)]
-            Model::Oscillator(p) => Self::Oscillator(ChartOf::for_study(p, ask, title)?),
-        })
-    }
-
-    /// `model` moved to the point `(x, y)` of this chart's axes (the scene's [`ChartOf::load`]).
-    ///
-    /// # Errors
-    /// When the model is another scene's or the point is not a valid problem.
-    pub fn load(&self, model: &Model, point: (f64, f64)) -> Result<Model, String> {
-        let bad = |e: ParamError| format!("this cell: {e}");
-        match (self, model) {
-            (Self::Rattleback(c), Model::Rattleback(p)) => c.load(p, point).map(Model::from),
-            (Self::Kapitza(c), Model::Kapitza(p)) => c.load(p, point).map(Model::from),
-            (Self::Celt(c), Model::Celt(p)) => c.load(p, point).map(Model::from),
-            #[cfg(test)]
-            (Self::Oscillator(c), Model::Oscillator(p)) => c.load(p, point).map(Model::from),
-            // Each chart with another scene's model (each chart named: a new one must say what
-            // it loads).
-            (Self::Rattleback(_) | Self::Kapitza(_) | Self::Celt(_), _) => {
-                return Err("the map is of another scene".to_owned());
+        $(
+            $(#[cfg($cfg)])?
+            impl From<crate::physics::$folder::chart::$chart> for Chart {
+                fn from(c: crate::physics::$folder::chart::$chart) -> Self {
+                    Self::$name(c)
+                }
             }
-            #[cfg(test)]
-            (Self::Oscillator(_), _) => return Err("the map is of another scene".to_owned()),
+
+            $(#[cfg($cfg)])?
+            impl From<crate::physics::$folder::Problem> for Model {
+                fn from(p: crate::physics::$folder::Problem) -> Self {
+                    Self::$name(p)
+                }
+            }
+        )*
+
+        /// Every model, in the registry's order.
+        const LIST: &[ModelKind] = &[ $( $(#[cfg($cfg)])? ModelKind::$name, )* ];
+
+        /// [`LIST`] as an array.
+        const fn list<const N: usize>() -> [ModelKind; N] {
+            let mut out = [LIST[0]; N];
+            let mut i = 0;
+            while i < N {
+                out[i] = LIST[i];
+                i += 1;
+            }
+            out
         }
-        .map_err(bad)
-    }
+
+        impl ModelKind {
+            /// Every model, in the order lists show them (the scene contract's with the
+            /// library's own tests).
+            pub const ALL: [Self; LIST.len()] = list::<{ LIST.len() }>();
+
+            /// The model's own description (the one dispatch on the kind).
+            #[must_use]
+            pub fn scene(self) -> &'static Scene {
+                match self {
+                    $( $(#[cfg($cfg)])? Self::$name => &crate::physics::$folder::scene::SCENE, )*
+                }
+            }
+
+            /// A validated problem of this model from its parameter values, in the order of
+            /// [`Scene::params`].
+            ///
+            /// # Errors
+            /// The first value outside its range, or a derived quantity that overflows.
+            pub fn problem(self, values: &[f64]) -> Result<Model, ParamError> {
+                Ok(match self {
+                    $( $(#[cfg($cfg)])?
+                    Self::$name => Model::$name(crate::physics::$folder::Problem::from_values(values)?), )*
+                })
+            }
+        }
+
+        impl Model {
+            /// The facts of this problem (the one dispatch on the problem).
+            #[must_use]
+            pub fn posed(&self) -> &(dyn Posed + 'static) {
+                match self {
+                    $( $(#[cfg($cfg)])? Self::$name(p) => p, )*
+                }
+            }
+
+            /// Which model.
+            #[must_use]
+            pub fn kind(&self) -> ModelKind {
+                match self {
+                    $( $(#[cfg($cfg)])? Self::$name(_) => ModelKind::$name, )*
+                }
+            }
+        }
+
+        impl std::ops::Deref for Chart {
+            type Target = dyn SceneChart;
+
+            fn deref(&self) -> &Self::Target {
+                match self {
+                    $( $(#[cfg($cfg)])? Self::$name(c) => c, )*
+                }
+            }
+        }
+
+        impl Chart {
+            /// The scene.
+            #[must_use]
+            pub fn model(&self) -> ModelKind {
+                match self {
+                    $( $(#[cfg($cfg)])? Self::$name(_) => ModelKind::$name, )*
+                }
+            }
+
+            /// The explorer's map pane's chart of `model`.
+            #[must_use]
+            pub fn for_pane(model: &Model, ask: PaneAsk) -> Self {
+                match model {
+                    $( $(#[cfg($cfg)])?
+                    Model::$name(p) => Self::$name(ChartOf::for_pane(p, ask)), )*
+                }
+            }
+
+            /// `study map`'s chart of `model` as `ask` says.
+            ///
+            /// # Errors
+            /// A flag of another scene's chart, a range out of order, or a corner the model
+            /// refuses.
+            pub fn for_study(model: &Model, ask: &StudyAsk) -> Result<Self, String> {
+                let title = model.kind().title();
+                // Every flag the scene does not take, refused here for all (issue 80).
+                crate::physics::chart::refuse_flags(
+                    ask,
+                    model.kind().studies().chart.flags,
+                    title,
+                )?;
+                Ok(match model {
+                    $( $(#[cfg($cfg)])?
+                    Model::$name(p) => Self::$name(ChartOf::for_study(p, ask, title)?), )*
+                })
+            }
+
+            /// `model` moved to the point `(x, y)` of this chart's axes (the scene's
+            /// [`ChartOf::load`]).
+            ///
+            /// # Errors
+            /// When the model is another scene's or the point is not a valid problem.
+            pub fn load(&self, model: &Model, point: (f64, f64)) -> Result<Model, String> {
+                let bad = |e: ParamError| format!("this cell: {e}");
+                match (self, model) {
+                    $( $(#[cfg($cfg)])?
+                    (Self::$name(c), Model::$name(p)) => c.load(p, point).map(Model::from), )*
+                    _ => return Err("the map is of another scene".to_owned()),
+                }
+                .map_err(bad)
+            }
+        }
+    };
 }
+
+/// The registry: one line a scene (its name, its folder under `physics`, its chart type). Every
+/// dispatch over the scenes is generated from it: `with_scenes!(then)` calls the macro `then`
+/// with the list (here `registry`; `simulate`'s report dispatch; …). A test scene carries its
+/// `cfg` on its own line.
+macro_rules! with_scenes {
+    ($then:ident) => {
+        $then! {
+            /// The holonomic rattleback (a rigid body on a stiff spring).
+            Rattleback: rattleback, RegimeChart;
+            /// Kapitza's inverted pendulum (a pendulum on a fast-shaken pivot).
+            Kapitza: kapitza, PendulumChart;
+            #[doc = "The classical rattleback (an ellipsoidal bottom rolling without slipping)."]
+            Celt: celt, CeltChart;
+            /// The scene contract's oscillator (the library's own tests only).
+            #[cfg(test)]
+            Oscillator: oscillator, CrossingChart;
+        }
+    };
+}
+pub(crate) use with_scenes;
+
+with_scenes!(registry);
 
 /// What a plan was resolved for: `auto`'s choice depends on these only. One shape per model
 /// (told apart by their fields, so files written before the pendulum existed read as before).
@@ -275,71 +320,7 @@ impl PlanKey {
     }
 }
 
-impl From<celt::Problem> for Model {
-    fn from(p: celt::Problem) -> Self {
-        Self::Celt(p)
-    }
-}
-
-#[cfg(test)]
-impl From<oscillator::Problem> for Model {
-    fn from(p: oscillator::Problem) -> Self {
-        Self::Oscillator(p)
-    }
-}
-
-impl From<Problem> for Model {
-    fn from(p: Problem) -> Self {
-        Self::Rattleback(p)
-    }
-}
-
-impl From<kapitza::Problem> for Model {
-    fn from(p: kapitza::Problem) -> Self {
-        Self::Kapitza(p)
-    }
-}
-
 impl ModelKind {
-    /// Every model, in the order lists show them.
-    #[cfg(not(test))]
-    pub const ALL: [Self; 3] = [Self::Rattleback, Self::Kapitza, Self::Celt];
-    /// Every model, with the scene contract's (the library's own tests).
-    #[cfg(test)]
-    pub const ALL: [Self; 4] = [
-        Self::Rattleback,
-        Self::Kapitza,
-        Self::Celt,
-        Self::Oscillator,
-    ];
-
-    /// The model's own description (the one dispatch on the kind).
-    #[must_use]
-    pub fn scene(self) -> &'static Scene {
-        match self {
-            Self::Rattleback => &super::rattleback::scene::SCENE,
-            Self::Kapitza => &kapitza::scene::SCENE,
-            Self::Celt => &celt::scene::SCENE,
-            #[cfg(test)]
-            Self::Oscillator => &oscillator::scene::SCENE,
-        }
-    }
-
-    /// A validated problem of this model from its parameter values, in the order of
-    /// [`Scene::params`].
-    ///
-    /// # Errors
-    /// The first value outside its range, or a derived quantity that overflows.
-    pub fn problem(self, values: &[f64]) -> Result<Model, ParamError> {
-        Ok(match self {
-            Self::Rattleback => Model::Rattleback(Problem::from_values(values)?),
-            Self::Kapitza => Model::Kapitza(kapitza::Problem::from_values(values)?),
-            Self::Celt => Model::Celt(celt::Problem::from_values(values)?),
-            #[cfg(test)]
-            Self::Oscillator => Model::Oscillator(oscillator::Problem::from_values(values)?),
-        })
-    }
-
     /// The model a preset without `[preset] model` is of: the one whose scene does not require
     /// the key (the first model, so that every older file keeps its meaning).
     #[must_use]
@@ -439,60 +420,33 @@ impl std::ops::Deref for Model {
 }
 
 impl Model {
-    /// The facts of this problem (the one dispatch on the problem).
-    #[must_use]
-    pub fn posed(&self) -> &(dyn Posed + 'static) {
-        match self {
-            Self::Rattleback(p) => p,
-            Self::Kapitza(p) => p,
-            Self::Celt(p) => p,
-            #[cfg(test)]
-            Self::Oscillator(p) => p,
-        }
-    }
-
-    /// Which model.
-    #[must_use]
-    pub fn kind(&self) -> ModelKind {
-        match self {
-            Self::Rattleback(_) => ModelKind::Rattleback,
-            Self::Kapitza(_) => ModelKind::Kapitza,
-            Self::Celt(_) => ModelKind::Celt,
-            #[cfg(test)]
-            Self::Oscillator(_) => ModelKind::Oscillator,
-        }
-    }
-
     /// The rattleback's problem, when this is one.
     #[must_use]
     pub fn rattleback(&self) -> Option<&Problem> {
-        match self {
-            Self::Rattleback(p) => Some(p),
-            Self::Kapitza(_) | Self::Celt(_) => None,
-            #[cfg(test)]
-            Self::Oscillator(_) => None,
+        if let Self::Rattleback(p) = self {
+            Some(p)
+        } else {
+            None
         }
     }
 
     /// The pendulum's problem, when this is one.
     #[must_use]
     pub fn kapitza(&self) -> Option<&kapitza::Problem> {
-        match self {
-            Self::Kapitza(p) => Some(p),
-            Self::Rattleback(_) | Self::Celt(_) => None,
-            #[cfg(test)]
-            Self::Oscillator(_) => None,
+        if let Self::Kapitza(p) = self {
+            Some(p)
+        } else {
+            None
         }
     }
 
     /// The celt's problem, when this is one.
     #[must_use]
     pub fn celt(&self) -> Option<&celt::Problem> {
-        match self {
-            Self::Celt(p) => Some(p),
-            Self::Rattleback(_) | Self::Kapitza(_) => None,
-            #[cfg(test)]
-            Self::Oscillator(_) => None,
+        if let Self::Celt(p) = self {
+            Some(p)
+        } else {
+            None
         }
     }
 
@@ -743,5 +697,22 @@ impl LimitView {
             Self::Kapitza { q_dot0, .. } | Self::Free { q_dot0, .. } => q_dot0.abs(),
         };
         sep.max(top).max(q_dot0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 83: the registry's one list gives every generated part: each kind once, the test
+    /// scene among them in tests, each name leading back to its kind (each kind's problem and
+    /// chart: `tests/it/scenes.rs`, on the shipped presets).
+    #[test]
+    fn each_registered_scene_is_listed_once_with_the_test_scene_in_tests() {
+        assert!(ModelKind::ALL.contains(&ModelKind::Oscillator));
+        for (i, kind) in ModelKind::ALL.into_iter().enumerate() {
+            assert!(!ModelKind::ALL[..i].contains(&kind), "{kind:?} twice");
+            assert_eq!(ModelKind::from_name(kind.name()), Some(kind));
+        }
     }
 }

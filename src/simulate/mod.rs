@@ -155,16 +155,23 @@ trait Report {
     fn simulate_to(&self, ask: Ask<'_>) -> Result<Option<Missed>, Failure>;
 }
 
-/// The report of `model`'s scene (the one dispatch over the scenes in this layer).
-fn report_of(model: &crate::physics::Model) -> &dyn Report {
-    match model {
-        crate::physics::Model::Rattleback(p) => p,
-        crate::physics::Model::Kapitza(p) => p,
-        crate::physics::Model::Celt(p) => p,
-        #[cfg(test)]
-        crate::physics::Model::Oscillator(p) => p,
-    }
+/// The report of a scene's problem: the one dispatch over the scenes in this layer, generated
+/// from the registry (`physics::models::with_scenes`).
+macro_rules! report_dispatch {
+    ($(
+        $(#[doc = $doc:literal])*
+        $(#[cfg($cfg:meta)])?
+        $name:ident: $folder:ident, $chart:ident;
+    )*) => {
+        /// The report of `model`'s scene.
+        fn report_of(model: &crate::physics::Model) -> &dyn Report {
+            match model {
+                $( $(#[cfg($cfg)])? crate::physics::Model::$name(p) => p, )*
+            }
+        }
+    };
 }
+crate::physics::models::with_scenes!(report_dispatch);
 
 /// Why `simulate` produced no (complete) output.
 #[derive(Debug, thiserror::Error)]

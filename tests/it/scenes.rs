@@ -121,3 +121,27 @@ fn a_value_outside_the_table_is_refused_with_its_key_and_range() {
         assert!(model.with_value("no-such-key", 1.0).is_err());
     }
 }
+
+/// Issue 83: every part the registry generates leads back to the scene: its presets' problems,
+/// their charts, a chart refusing another scene's problem.
+#[test]
+fn every_generated_part_leads_back_to_its_scene() {
+    use rattleback::physics::models::Chart;
+    use rattleback::study::chart::PaneAsk;
+    for (i, kind) in ModelKind::ALL.into_iter().enumerate() {
+        let model = shipped_of(kind)[0].model;
+        assert_eq!(model.kind(), kind);
+        assert_eq!(kind.problem(&model.values()).unwrap(), model);
+        let ask = PaneAsk {
+            t_end: 1.0,
+            tolerance: 1e-6,
+            full: false,
+            axes_from: (0.0, 0.0),
+        };
+        let chart = Chart::for_pane(&model, ask);
+        assert_eq!(chart.model(), kind);
+        let other = ModelKind::ALL[(i + 1) % ModelKind::ALL.len()];
+        let theirs = shipped_of(other)[0].model;
+        assert!(chart.load(&theirs, (0.0, 0.0)).is_err(), "{kind:?}");
+    }
+}
