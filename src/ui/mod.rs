@@ -30,12 +30,12 @@ mod lesson;
 mod map;
 pub mod marks;
 mod options;
-mod params;
+pub mod params;
 mod pendulum;
 mod portrait;
 pub mod qr;
 mod series;
-mod status;
+pub mod status;
 mod sweep;
 mod weak;
 

@@ -90,6 +90,7 @@ fn derived_lines(p: &ParamsPanel<'_>, width: usize) -> Vec<Line<'static>> {
 }
 
 /// What the panel shows, for the legend: the scene's derived lines, each with its meaning.
+#[must_use]
 pub fn legend(f: &Facts<'_>, _look: &Look<'_>) -> Section {
     let mut s = Section::new("panel (left): the parameters, then what they give")
         .note("up and down select, left and right change (H L coarse), Enter types a value");

@@ -163,6 +163,7 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
 }
 
 /// What the bar shows, for the legend: the fields [`fields`] writes, in the scene's words.
+#[must_use]
 pub fn legend(f: &Facts<'_>, _look: &Look<'_>) -> Section {
     let words = f.kind.words();
     let mut s = Section::new("status bar")

@@ -561,7 +561,8 @@ fn the_explorer_stays_bounded_and_quits_at_once() {
         assert!(rss_kib(pid) < MEMORY_KIB / 4, "{} KiB", rss_kib(pid));
         pty.keys(b"q");
         let took = pty.ended_within(Duration::from_secs(5));
-        assert!(took < Duration::from_millis(500), "q took {took:?}");
+        // A hang guard, wide for a shared machine (issue 83): the run itself would take hours.
+        assert!(took < Duration::from_secs(2), "q took {took:?}");
         assert!(pty.restored(), "the terminal is restored");
     }
     for signal in ["USR2", "XCPU", "TERM"] {
@@ -590,7 +591,8 @@ fn following_a_hostile_session_stays_bounded() {
         assert!(rss_kib(pid) < MEMORY_KIB / 4, "{} KiB", rss_kib(pid));
         pty.keys(b"q");
         let took = pty.ended_within(Duration::from_secs(5));
-        assert!(took < Duration::from_millis(500), "q took {took:?}");
+        // A hang guard, wide for a shared machine (issue 83): the run itself would take hours.
+        assert!(took < Duration::from_secs(2), "q took {took:?}");
         assert!(pty.restored());
     }
 }

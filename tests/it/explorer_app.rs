@@ -639,13 +639,14 @@ fn worker_runs_on_command_and_a_restart_cancels_in_flight_work() {
         matches!(e, SimEvent::Started { generation: 5, .. })
     });
     assert!(
-        cut.elapsed() < Duration::from_secs(1),
+        // Wide for a shared machine (issue 83): an uncancelled plan runs to its end.
+        cut.elapsed() < Duration::from_secs(3),
         "planning was not cancelled: {:?}",
         cut.elapsed()
     );
     let joined = Instant::now();
     worker.join();
-    assert!(joined.elapsed() < Duration::from_secs(1));
+    assert!(joined.elapsed() < Duration::from_secs(3));
 }
 
 /// Item 3: on every shipped preset, consecutive samples of the ×1024 trail are at most two

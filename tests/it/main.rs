@@ -76,3 +76,4 @@ mod stress;
 mod studies;
 mod trust;
 mod user_folder;
+mod widgets;

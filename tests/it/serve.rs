@@ -382,7 +382,8 @@ fn a_thousand_half_open_connections_do_not_keep_a_new_reader_out() {
     let page = get(s.addr, "/");
     let took = start.elapsed();
     assert_eq!(status(&page), 200);
-    assert!(took < Duration::from_secs(2), "the page took {took:?}");
+    // Under the 5 s a half-open connection is kept (issue 83: wide for a shared machine).
+    assert!(took < Duration::from_secs(4), "the page took {took:?}");
     // A few seconds on, the server has closed them (header read time, 5 s).
     std::thread::sleep(Duration::from_secs(7));
     let closed = idle
