@@ -47,6 +47,14 @@ macro_rules! say_raw {
 }
 
 mod bench;
+pub mod compare;
+pub mod explore;
+pub mod follow;
+pub mod keygen;
+pub mod lesson;
+pub mod replay;
+pub mod shared;
+pub mod simulate;
 mod verify;
 pub use bench::bench;
 pub use verify::replay_verify;

@@ -57,6 +57,13 @@ pub fn token_for(
 ///
 /// # Errors
 /// A refused address or file (exit 2); the server failing (exit 1); a signal (128 + n).
+/// `rattleback serve` as the command line asks: drawn as the lecturer saw it, recording.
+pub fn command(args: &ServeArgs) -> Outcome {
+    let options = super::shared::cast_options(&args.look)?.as_recorded();
+    serve(args, options)
+}
+
+/// Serves `args.file`, drawn with `ui`.
 pub fn serve(args: &ServeArgs, ui: crate::ui::UiOptions) -> Outcome {
     if args.file.as_os_str() == "-" {
         return Err(Failure::input(
