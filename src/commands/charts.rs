@@ -1,11 +1,10 @@
 //! `study map` and `study merge`: a chart computed, priced and printed, or put back together
-//! from its parts (issue 59; provenance, issue 66). The command layer's helpers (`emit`,
-//! `counted`, the budget's refusal) are the parent's.
+//! from its parts (issue 59; provenance, issue 66). The study's helpers (`emit`, the
+//! set-up, the files) are `study.rs`'s.
 
 use super::progress::{Progress, counted, tallied};
-use super::{
-    Failure, Outcome, emit, finished, go_on, interrupted, json_text, study_setup, write_files,
-};
+use super::study::{emit, study_setup, write_files};
+use super::{Failure, Outcome, finished, go_on, interrupted, json_text};
 
 pub(super) fn study_map(args: &crate::commands::cli::MapArgs) -> Outcome {
     use crate::study::chart;

@@ -4,9 +4,10 @@
 //! binary. No argument reaches a shell: cargo and rustup are run with their arguments as
 //! given, and DIR is a path.
 
+use super::Outcome;
 use super::cli::WebArgs;
 use super::failure::Failure;
-use super::{Outcome, not_written};
+use super::study::not_written;
 
 /// The WebAssembly target the module is built for.
 pub const TARGET: &str = "wasm32-unknown-unknown";
