@@ -191,9 +191,19 @@ fn the_contract_scenes_chart_counts_as_the_exact_solution_and_merges_from_shards
         },
     )
     .unwrap_err();
+    // Typed (issue 83): the flag and the scene are the error's, and so is the message.
     assert!(
-        e.contains("--k") && e.contains("harmonic oscillator"),
-        "{e}"
+        matches!(
+            &e,
+            crate::physics::chart::ChartError::Flag(f)
+                if f.flag == crate::physics::chart::MapFlag::K
+        ),
+        "{e:?}"
+    );
+    let said = e.to_string();
+    assert!(
+        said.contains("--k") && said.contains("harmonic oscillator"),
+        "{said}"
     );
     // Table and CSV in the scene's words and columns.
     assert!(whole.table().starts_with("crossings over oscillator.omega"));

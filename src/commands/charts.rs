@@ -165,7 +165,7 @@ pub(super) fn study_merge(args: &crate::commands::cli::MergeArgs) -> Outcome {
             &[],
         )
         .map_err(|e| e.to_string())?;
-        crate::study::chart::Chart::for_study(&preset.model, &ask)
+        crate::study::chart::Chart::for_study(&preset.model, &ask).map_err(|e| e.to_string())
     };
     let chart = rebuilt().map_err(|e| {
         Failure::input(format!(

@@ -448,7 +448,7 @@ pub trait ChartOf: SceneChart + Sized {
     /// # Errors
     /// A flag of another scene's chart, a range out of order, or a corner the scene refuses
     /// (said as a preset value would be).
-    fn for_study(problem: &Self::Problem, ask: &StudyAsk, title: &str) -> Result<Self, String>;
+    fn for_study(problem: &Self::Problem, ask: &StudyAsk, title: &str) -> Result<Self, ChartError>;
     /// `problem` moved to the point `(x, y)` of this chart's axes.
     ///
     /// # Errors
@@ -744,10 +744,36 @@ fn takes_text(takes: &[MapFlag]) -> String {
     }
 }
 
-impl From<RefusedFlag> for String {
-    fn from(e: RefusedFlag) -> Self {
-        e.to_string()
-    }
+/// Why a chart was not made or a cell not loaded (issue 83: typed where callers match; each
+/// says itself to a person).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ChartError {
+    /// A flag of another scene's chart.
+    #[error(transparent)]
+    Flag(#[from] RefusedFlag),
+    /// A corner of the chart is not a problem the scene accepts.
+    #[error("the chart's corner {x_name} = {x}, {y_name} = {y}: {error}")]
+    Corner {
+        /// The across axis's parameter.
+        x_name: &'static str,
+        /// Its value at the corner.
+        x: f64,
+        /// The up axis's parameter.
+        y_name: &'static str,
+        /// Its value at the corner.
+        y: f64,
+        /// Why the scene refuses it.
+        error: ParamError,
+    },
+    /// A value of a flag the scene's chart refuses, with what it allows.
+    #[error("{0}")]
+    Refused(String),
+    /// The chart is of another scene than the problem.
+    #[error("the map is of another scene")]
+    OtherScene,
+    /// The cell's point is not a valid problem.
+    #[error("this cell: {0}")]
+    Cell(ParamError),
 }
 
 /// The first flag `ask` gives that a scene's chart does not take (it takes `takes`), refused

@@ -14,7 +14,7 @@ use super::celt;
 #[cfg(test)]
 #[path = "oscillator/mod.rs"]
 pub mod oscillator;
-use super::chart::{ChartOf, PaneAsk, SceneChart, StudyAsk};
+use super::chart::{ChartError, ChartOf, PaneAsk, SceneChart, StudyAsk};
 use super::kapitza;
 use super::method::{Method, StepError};
 use super::params::{ParamError, ParamSpec};
@@ -164,7 +164,7 @@ macro_rules! registry {
             /// # Errors
             /// A flag of another scene's chart, a range out of order, or a corner the model
             /// refuses.
-            pub fn for_study(model: &Model, ask: &StudyAsk) -> Result<Self, String> {
+            pub fn for_study(model: &Model, ask: &StudyAsk) -> Result<Self, ChartError> {
                 let title = model.kind().title();
                 // Every flag the scene does not take, refused here for all (issue 80).
                 crate::physics::chart::refuse_flags(
@@ -183,14 +183,13 @@ macro_rules! registry {
             ///
             /// # Errors
             /// When the model is another scene's or the point is not a valid problem.
-            pub fn load(&self, model: &Model, point: (f64, f64)) -> Result<Model, String> {
-                let bad = |e: ParamError| format!("this cell: {e}");
+            pub fn load(&self, model: &Model, point: (f64, f64)) -> Result<Model, ChartError> {
                 match (self, model) {
                     $( $(#[cfg($cfg)])?
                     (Self::$name(c), Model::$name(p)) => c.load(p, point).map(Model::from), )*
-                    _ => return Err("the map is of another scene".to_owned()),
+                    _ => return Err(ChartError::OtherScene),
                 }
-                .map_err(bad)
+                .map_err(ChartError::Cell)
             }
         }
     };

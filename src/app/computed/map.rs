@@ -252,7 +252,10 @@ impl MapState {
     pub fn load(&mut self, settings: &Settings) -> Result<Settings, String> {
         let spec = self.spec.ok_or("no map yet")?;
         let point = self.at_cursor().ok_or("no map yet")?;
-        let model = spec.chart.load(&settings.model, point)?;
+        let model = spec
+            .chart
+            .load(&settings.model, point)
+            .map_err(|e| e.to_string())?;
         if !spec.chart.words().sources {
             let from = self.axes_point(crate::study::chart::point_of(&settings.model));
             self.anchor = Some((from, point));

@@ -7,7 +7,9 @@ use crate::physics::numerics::elementary::Elementary;
 use std::collections::BTreeMap;
 
 use super::{Params, Problem};
-use crate::physics::chart::{Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick};
+use crate::physics::chart::{
+    Axis, ChartError, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick,
+};
 use crate::physics::{ParamError, StepError};
 
 /// The names of the axes, across and up (preset keys, or the rattleback's two ratios).
@@ -233,13 +235,18 @@ impl ChartOf for CeltChart {
         }
     }
 
-    fn for_study(problem: &Problem, ask: &StudyAsk, _title: &str) -> Result<Self, String> {
+    fn for_study(problem: &Problem, ask: &StudyAsk, _title: &str) -> Result<Self, ChartError> {
         let (columns, rows) = ask.ranged(Self::default_axes(problem, ask.grid.0, ask.grid.1));
         // Every corner is a body and start the scene accepts.
         for w in [columns.min, columns.max] {
             for d in [rows.min, rows.max] {
-                with_spin_and_product(problem, w, d)
-                    .map_err(|e| format!("the chart's corner omega_z = {w}, product = {d}: {e}"))?;
+                with_spin_and_product(problem, w, d).map_err(|error| ChartError::Corner {
+                    x_name: "omega_z",
+                    x: w,
+                    y_name: "product",
+                    y: d,
+                    error,
+                })?;
             }
         }
         Ok(Self {

@@ -6,7 +6,9 @@ use std::collections::BTreeMap;
 
 use super::floquet::{Mathieu, Position, floquet};
 use super::{Params, Problem};
-use crate::physics::chart::{Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick};
+use crate::physics::chart::{
+    Axis, ChartError, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick,
+};
 use crate::physics::{ParamError, StepError};
 
 /// The names of the axes, across and up (preset keys, or the rattleback's two ratios).
@@ -232,19 +234,26 @@ impl ChartOf for PendulumChart {
         }
     }
 
-    fn for_study(problem: &Problem, ask: &StudyAsk, _title: &str) -> Result<Self, String> {
+    fn for_study(problem: &Problem, ask: &StudyAsk, _title: &str) -> Result<Self, ChartError> {
         let params = *problem.params();
         if let Some((lo, hi)) = ask.rows.filter(|r| r.0 <= 0.0) {
-            return Err(format!(
+            return Err(ChartError::Refused(format!(
                 "--rows {lo},{hi}: the pendulum's b is log-spaced; both ends must be positive"
-            ));
+            )));
         }
         let (columns, rows) = ask.ranged(Self::default_axes(&params, ask.grid.0, ask.grid.1));
         // Every corner is a pendulum the scene accepts (the same validator as a preset's).
         for a in [columns.min, columns.max] {
             for b in [rows.min, rows.max] {
-                Problem::new(Params { a, b, ..params }, *problem.start())
-                    .map_err(|e| format!("the chart's corner a = {a}, b = {b}: {e}"))?;
+                Problem::new(Params { a, b, ..params }, *problem.start()).map_err(|error| {
+                    ChartError::Corner {
+                        x_name: "a",
+                        x: a,
+                        y_name: "b",
+                        y: b,
+                        error,
+                    }
+                })?;
             }
         }
         Ok(Self {

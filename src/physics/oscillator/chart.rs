@@ -5,7 +5,9 @@ use crate::physics::numerics::elementary::Elementary;
 use std::collections::BTreeMap;
 
 use super::{Params, Problem, Start};
-use crate::physics::chart::{Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick};
+use crate::physics::chart::{
+    Axis, ChartError, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick,
+};
 use crate::physics::method::{Asked, Method, RunSpec};
 use crate::physics::{ParamError, StepError};
 
@@ -158,7 +160,7 @@ impl ChartOf for CrossingChart {
         }
     }
 
-    fn for_study(problem: &Problem, ask: &StudyAsk, _title: &str) -> Result<Self, String> {
+    fn for_study(problem: &Problem, ask: &StudyAsk, _title: &str) -> Result<Self, ChartError> {
         let (columns, rows) = ask.ranged(Self::axes_of(problem, ask.grid.0, ask.grid.1));
         let chart = Self {
             problem: *problem,
@@ -170,7 +172,13 @@ impl ChartOf for CrossingChart {
             for v in [rows.min, rows.max] {
                 chart
                     .problem_at((w, v))
-                    .map_err(|e| format!("the chart's corner omega = {w}, v = {v}: {e}"))?;
+                    .map_err(|error| ChartError::Corner {
+                        x_name: "omega",
+                        x: w,
+                        y_name: "v",
+                        y: v,
+                        error,
+                    })?;
             }
         }
         Ok(chart)

@@ -6,7 +6,9 @@ use std::collections::BTreeMap;
 
 use super::map::{self, DEFAULT_INERTIA, DEFAULT_RATIO_MAX, Grid, Source};
 use super::{Params, Problem, Start};
-use crate::physics::chart::{Axis, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick};
+use crate::physics::chart::{
+    Axis, ChartError, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick,
+};
 use crate::physics::{ParamError, Posed as _, StepError};
 
 /// The names of the axes, across and up (preset keys, or the rattleback's two ratios).
@@ -242,22 +244,20 @@ impl ChartOf for RegimeChart {
         }
     }
 
-    fn for_study(problem: &Problem, ask: &StudyAsk, _title: &str) -> Result<Self, String> {
+    fn for_study(problem: &Problem, ask: &StudyAsk, _title: &str) -> Result<Self, ChartError> {
         if ask.k.is_none() && ask.asked_tolerance.is_some() {
-            return Err(
-                "--tolerance sets the full model's runs (with --k); the limit's cells are quadratures"
-                    .to_owned(),
-            );
+            return Err(ChartError::Refused("--tolerance sets the full model's runs (with --k); the limit's cells are quadratures"
+                    .to_owned()));
         }
         let inertia = (
             ask.inertia_min.unwrap_or(DEFAULT_INERTIA.0),
             ask.inertia_max.unwrap_or(DEFAULT_INERTIA.1),
         );
         if inertia.0 >= inertia.1 {
-            return Err(format!(
+            return Err(ChartError::Refused(format!(
                 "--inertia-min ({}) must be below --inertia-max ({})",
                 inertia.0, inertia.1
-            ));
+            )));
         }
         let (p, s) = (problem.params(), problem.start());
         let gamma_dot = if s.gamma_dot == 0.0 { 1.0 } else { s.gamma_dot };
@@ -283,8 +283,9 @@ impl ChartOf for RegimeChart {
                     (grid.ratio_max, grid.inertia.1),
                     (grid.ratio_max, grid.inertia.0),
                 ] {
-                    grid.params_of(ratio, i, k)
-                        .map_err(|e| format!("--k {}: {e}", crate::physics::Number(k)))?;
+                    grid.params_of(ratio, i, k).map_err(|e| {
+                        ChartError::Refused(format!("--k {}: {e}", crate::physics::Number(k)))
+                    })?;
                 }
                 Source::Full {
                     k,
