@@ -889,3 +889,66 @@ fn a_site_is_served_for_forks_and_refused_when_it_is_not_one() {
     assert_eq!(code, 2, "a FIFO is refused without blocking: {err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 82, L3: what the lecturer does is served without waiting for `--fps`'s next frame,
+/// yet a lecturer holding keys (a key line every few milliseconds) never makes the server send
+/// more than its ceiling of 30 frames a second to a reader: the frames' own times, in any
+/// second, number at most 30 (with the prompt frames 10 ms apart and the file read every 5 ms,
+/// this test counted more and failed).
+#[test]
+fn a_lecturer_holding_keys_is_served_promptly_under_the_frame_ceiling() {
+    let file = temp("held.jsonl");
+    let s = Served::start(&file, &[]);
+    let addr = s.addr;
+    let stream = std::thread::spawn(move || reader(addr, Duration::from_secs(12)));
+    let command = format!(
+        "stty rows 24 cols 80; exec {} --record {} --preset subcritical",
+        crate::common::program(),
+        file.display()
+    );
+    let mut child = Killed(
+        crate::common::in_pty(&command, &temp("held.pty"))
+            .env("TERM", "xterm-256color")
+            .stdin(Stdio::piped())
+            .spawn()
+            .unwrap(),
+    );
+    let mut keys = child.0.stdin.take().unwrap();
+    std::thread::sleep(Duration::from_millis(800));
+    // Playing (the time moves every frame), a selection moved up and down a few milliseconds
+    // apart: each a line the lecturer acted on, so the server draws promptly throughout.
+    keys.write_all(b"\x1b").unwrap();
+    std::thread::sleep(Duration::from_millis(200));
+    keys.write_all(b" ").unwrap();
+    let held = Instant::now();
+    while held.elapsed() < Duration::from_secs(3) {
+        keys.write_all(b"j").unwrap();
+        std::thread::sleep(Duration::from_millis(4));
+        keys.write_all(b"k").unwrap();
+        std::thread::sleep(Duration::from_millis(4));
+    }
+    keys.write_all(b"q").unwrap();
+    let _ = child.0.wait();
+    let (text, done) = stream.join().unwrap();
+    assert!(done.is_some(), "the reader saw the lecture end");
+    let times: Vec<f64> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("data: ["))
+        .filter_map(|l| l.split(',').next()?.parse().ok())
+        .collect();
+    assert!(times.len() > 10, "{} frames", times.len());
+    let most = (0..times.len())
+        .map(|i| {
+            times[i..]
+                .iter()
+                .take_while(|t| **t < times[i] + 1.0)
+                .count()
+        })
+        .max()
+        .unwrap();
+    eprintln!(
+        "frames served: {} in all, at most {most} in one second",
+        times.len()
+    );
+    assert!(most <= 30, "{most} frames in one second (ceiling 30)");
+}

@@ -39,8 +39,10 @@ const MAX_SIDE: u16 = 1000;
 /// the worker's first answers to it reach the readers at once (issue 82, L3), while an
 /// animation stays at `--fps`.
 const PROMPT: Duration = Duration::from_millis(400);
-/// The shortest time between two frames drawn promptly.
-const PROMPT_GAP: Duration = Duration::from_millis(15);
+/// The shortest time between two frames drawn promptly: `--fps`'s ceiling, so a lecturer who
+/// holds a key (or a forged file of key lines) never sends more than [`super::MAX_FPS`] frames
+/// a second to each reader.
+const PROMPT_GAP: Duration = Duration::from_millis(1000 / super::MAX_FPS as u64);
 
 /// When the served screen is drawn: at `--fps` while it animates, promptly for a while after
 /// the lecturer acts.
@@ -63,11 +65,10 @@ impl Pace {
         }
     }
 
-    /// The lecturer acted: draw now, and promptly for [`PROMPT`].
+    /// The lecturer acted: draw as soon as [`PROMPT_GAP`] allows, and promptly for
+    /// [`PROMPT`].
     fn acted(&mut self) {
-        let now = Instant::now();
-        self.prompt_until = now + PROMPT;
-        self.last_draw = now.checked_sub(self.frame).unwrap_or(now);
+        self.prompt_until = Instant::now() + PROMPT;
     }
 
     /// The gap between frames now.
@@ -438,14 +439,26 @@ mod tests {
             "the file is looked at every POLL"
         );
         pace.acted();
-        assert!(pace.due(), "the lecturer's act is drawn at once");
-        pace.drawn();
         assert_eq!(
             pace.gap(),
             PROMPT_GAP,
-            "and the worker's answers promptly after it"
+            "the act and the answers after it promptly"
         );
         assert!(pace.wait(Instant::now()) <= PROMPT_GAP);
+        std::thread::sleep(PROMPT_GAP);
+        assert!(pace.due(), "drawn within the gap");
+    }
+
+    #[test]
+    fn prompt_frames_keep_under_the_rate_ceiling() {
+        // However often the lecturer acts, frames stay MAX_FPS a second at most.
+        assert!(PROMPT_GAP.as_secs_f64() >= 1.0 / f64::from(super::super::MAX_FPS) - 1e-3);
+        let mut pace = Pace::new(Duration::from_millis(100));
+        pace.acted();
+        pace.drawn();
+        pace.acted();
+        // Acting again right after a frame waits the gap.
+        assert!(!pace.due());
     }
 
     #[test]
