@@ -346,26 +346,3 @@ impl Diagnosis {
             .collect()
     }
 }
-
-/// `rattleback doctor`.
-pub fn doctor(args: &crate::commands::cli::DoctorArgs) -> crate::commands::failure::Outcome {
-    let look = &args.look;
-    let asked = crate::commands::doctor::Asked {
-        ascii: look.ascii,
-        colours_off: look.color.colours_off_here(),
-        color_flag: look.color.name(),
-        marker: look.marker.map(crate::commands::cli::MarkerChoice::name),
-    };
-    let d = crate::commands::doctor::diagnose(
-        &asked,
-        super::load_config().map(|(c, _)| c),
-        crate::commands::outputs::SCHEMA_VERSION,
-    );
-    let text = match args.format {
-        crate::commands::cli::ListFormat::Json => super::json_text(&d),
-        crate::commands::cli::ListFormat::Table => {
-            crate::commands::wrap::for_stdout(&crate::scenario::text::shown(&d.table()))
-        }
-    };
-    super::write_stdout(text.as_bytes())
-}

@@ -13,8 +13,6 @@ pub mod serve;
 pub mod web;
 pub mod wrap;
 
-mod charts;
-
 use crate::commands::failure::{Failure, Outcome};
 
 use crate::commands::cli::ListFormat;
@@ -65,7 +63,6 @@ pub use completions::command_with_completers;
 pub use completions::completions;
 pub use config::config;
 pub use config::load_config;
-pub use doctor::doctor;
 pub use lessons::lesson_new;
 pub use lessons::lessons;
 pub use man::man;
@@ -142,4 +139,28 @@ fn print_list<T>(
     };
     say_raw!("{out}");
     check::report(problems)
+}
+
+/// `rattleback doctor`: the diagnosis (`doctor.rs`, which knows nothing of the outputs: their
+/// list names its schema) with the outputs' version, printed.
+pub fn doctor(args: &crate::commands::cli::DoctorArgs) -> Outcome {
+    let look = &args.look;
+    let asked = crate::commands::doctor::Asked {
+        ascii: look.ascii,
+        colours_off: look.color.colours_off_here(),
+        color_flag: look.color.name(),
+        marker: look.marker.map(crate::commands::cli::MarkerChoice::name),
+    };
+    let d = crate::commands::doctor::diagnose(
+        &asked,
+        load_config().map(|(c, _)| c),
+        crate::commands::outputs::SCHEMA_VERSION,
+    );
+    let text = match args.format {
+        crate::commands::cli::ListFormat::Json => json_text(&d),
+        crate::commands::cli::ListFormat::Table => {
+            crate::commands::wrap::for_stdout(&crate::scenario::text::shown(&d.table()))
+        }
+    };
+    write_stdout(text.as_bytes())
 }

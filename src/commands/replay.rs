@@ -2,13 +2,22 @@
 //! exported as a cast or a page.
 
 use super::explore::{Setup, explore};
-use super::shared::{
-    Export, cast_options, check_output, config_or_exit, refuse_stdin, with_config,
-};
+use super::shared::{cast_options, check_output, config_or_exit, refuse_stdin, with_config};
 use crate::commands;
 use crate::commands::cli::{LookArgs, ReplayArgs};
 use crate::commands::failure::{Failure, Outcome};
 use crate::record;
+
+/// `cast::export_cast` and `page::export_html`: a session written into a file.
+type Export = fn(
+    &record::Recording,
+    &str,
+    &std::path::Path,
+    &crate::ui::UiOptions,
+    crate::cast::CastSize,
+    bool,
+    &mut dyn FnMut(usize),
+) -> Result<usize, record::RecordError>;
 
 /// `replay --export-cast` and `--export-html`: the session drawn into an asciicast file and
 /// into a page that plays it, without the key footer.

@@ -5,7 +5,6 @@ use crate::app::user_keys::UserKeys;
 use crate::commands;
 use crate::commands::cli::{LookArgs, MarkerChoice};
 use crate::commands::failure::{Failure, Outcome};
-use crate::record;
 use crate::scenario::config::Config;
 use crate::terminal::Depth;
 use crate::ui::UiOptions;
@@ -41,17 +40,6 @@ pub(crate) fn check_output(
     }
     crate::scenario::write::replaceable(out).map_err(|e| format!("{flag} {e}"))
 }
-
-/// `cast::export_cast` and `page::export_html`: a session written into a file.
-pub(crate) type Export = fn(
-    &record::Recording,
-    &str,
-    &std::path::Path,
-    &UiOptions,
-    crate::cast::CastSize,
-    bool,
-    &mut dyn FnMut(usize),
-) -> Result<usize, record::RecordError>;
 
 /// How a cast, an exported page and `serve` draw: `--theme` or the default, no key footer, and
 /// ASCII only when asked (a cast is played elsewhere, not on this terminal).

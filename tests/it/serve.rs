@@ -422,7 +422,9 @@ fn a_reader_that_never_reads_slows_nobody() {
 
 /// The lecturer's explorer, playing at ×1 in a pseudo-terminal for 4 s while recording: the
 /// frames it drew (each begins a synchronised update).
-fn lecturer_frames(record: &Path, log: &Path) -> usize {
+/// The lecturer's explorer recording `subcritical` into `record` in an 80x24 pseudo-terminal
+/// (its output in `log`), and its keys.
+fn recording_lecturer(record: &Path, log: &Path) -> (Killed, std::process::ChildStdin) {
     let command = format!(
         "stty rows 24 cols 80; exec {} --record {} --preset subcritical",
         crate::common::program(),
@@ -435,7 +437,12 @@ fn lecturer_frames(record: &Path, log: &Path) -> usize {
             .spawn()
             .unwrap(),
     );
-    let mut keys = child.0.stdin.take().unwrap();
+    let keys = child.0.stdin.take().unwrap();
+    (child, keys)
+}
+
+fn lecturer_frames(record: &Path, log: &Path) -> usize {
+    let (mut child, mut keys) = recording_lecturer(record, log);
     std::thread::sleep(Duration::from_millis(800));
     let before = std::fs::read(log).map_or(0, |b| count_frames(&b));
     keys.write_all(b" ").unwrap();
@@ -901,19 +908,7 @@ fn a_lecturer_holding_keys_is_served_promptly_under_the_frame_ceiling() {
     let s = Served::start(&file, &[]);
     let addr = s.addr;
     let stream = std::thread::spawn(move || reader(addr, Duration::from_secs(12)));
-    let command = format!(
-        "stty rows 24 cols 80; exec {} --record {} --preset subcritical",
-        crate::common::program(),
-        file.display()
-    );
-    let mut child = Killed(
-        crate::common::in_pty(&command, &temp("held.pty"))
-            .env("TERM", "xterm-256color")
-            .stdin(Stdio::piped())
-            .spawn()
-            .unwrap(),
-    );
-    let mut keys = child.0.stdin.take().unwrap();
+    let (mut child, mut keys) = recording_lecturer(&file, &temp("held.pty"));
     std::thread::sleep(Duration::from_millis(800));
     // Playing (the time moves every frame), a selection moved up and down a few milliseconds
     // apart: each a line the lecturer acted on, so the server draws promptly throughout.

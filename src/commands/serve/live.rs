@@ -123,7 +123,7 @@ impl Pace {
 
 /// Whether a line is the lecturer acting (a key's effect), not the recorder's bookkeeping
 /// (clock, screen, plan, checkpoint lines come while a run plays and are drawn at `--fps`).
-fn acted(event: &crate::app::journal::Event) -> bool {
+fn is_act(event: &crate::app::journal::Event) -> bool {
     use crate::app::journal::Event;
     !matches!(
         event,
@@ -369,7 +369,7 @@ fn follow(
             ending.read_after_gone = ending.gone_at.is_some();
             match tail.poll() {
                 Some(TailEvent::Lines(lines)) => {
-                    if lines.iter().any(|l| acted(&l.event)) {
+                    if lines.iter().any(|l| is_act(&l.event)) {
                         pace.acted();
                     }
                     ending.lecturers = last_screen(&lines).or(ending.lecturers.take());
@@ -463,12 +463,12 @@ mod tests {
 
     #[test]
     fn the_recorders_bookkeeping_is_not_an_act() {
-        assert!(acted(&Event::Pause));
-        assert!(acted(&Event::Step));
-        assert!(acted(&Event::Set {
+        assert!(is_act(&Event::Pause));
+        assert!(is_act(&Event::Step));
+        assert!(is_act(&Event::Set {
             field: "k".into(),
             value: "1".into()
         }));
-        assert!(!acted(&Event::Clock));
+        assert!(!is_act(&Event::Clock));
     }
 }

@@ -2,9 +2,9 @@
 //! from its parts (issue 59; provenance, issue 66). The study's helpers (`emit`, the
 //! set-up, the files) are `study.rs`'s.
 
-use super::progress::{Progress, counted, tallied};
-use super::study::{emit, study_setup, write_files};
-use super::{Failure, Outcome, finished, go_on, interrupted, json_text};
+use super::{emit, study_setup, write_files};
+use crate::commands::progress::{Progress, counted, tallied};
+use crate::commands::{Failure, Outcome, finished, go_on, interrupted, json_text};
 
 pub(super) fn study_map(args: &crate::commands::cli::MapArgs) -> Outcome {
     use crate::study::chart;

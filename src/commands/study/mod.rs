@@ -1,5 +1,7 @@
 //! `rattleback study`: the set-up every study shares, its outputs, and `study sweep`
-//! (`study map` and `study merge` are in `charts.rs`).
+//! (`study map` and `study merge` are in `study/charts.rs`, which takes these helpers from here).
+
+mod charts;
 
 use std::fmt::Write as _;
 
@@ -15,8 +17,8 @@ pub fn study(command: &crate::commands::cli::StudyCommand) -> Outcome {
     // with 128 + the signal, the progress bar erased and no file written.
     match command {
         StudyCommand::Sweep(args) => study_sweep(args),
-        StudyCommand::Map(args) => super::charts::study_map(args),
-        StudyCommand::Merge(args) => super::charts::study_merge(args),
+        StudyCommand::Map(args) => charts::study_map(args),
+        StudyCommand::Merge(args) => charts::study_merge(args),
     }
 }
 
