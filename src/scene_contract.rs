@@ -1,47 +1,403 @@
-//! The scene contract (issue 69): a small scene registered only in this library's own test
-//! build (`physics::models::oscillator`, a harmonic oscillator with an exact solution) goes
-//! through every output a scene has — its preset, the explorer's screen and its chart pane,
-//! `simulate` in JSON, CSV and table, `study map`'s chart with its table and CSV, shards and
-//! their merge, a recording and its replay — so what a new scene costs outside its folder is
-//! measured here, not estimated in a review. Its numbers are checked against the exact
-//! solution, not against the code that computed them.
+//! The scene contract (issues 69 and 83): one generic check, [`contract`], that every scene in
+//! the registry passes, the shipped ones and the library's own test scene (the harmonic
+//! oscillator in `physics/oscillator/`). A scene implements [`Contract`] in its folder
+//! (`SCENE/contract.rs`): a preset, an independent reference for `simulate`'s numbers (an exact
+//! solution, a high-precision run, an independent implementation, a theorem) and for its chart's
+//! cells; the contract then takes the preset through every output a scene has — the preset read
+//! and written back, `simulate` in JSON, CSV and table, `study map`'s chart against the
+//! reference with its flags taken or refused and its shards merged, the explorer's screen
+//! against `simulate`, a recording with a pause, a change and the top speed that verifies.
+//!
+//! The tests are generated from the registry's one list (`with_scenes!(contract_tests)`): a
+//! scene's line registers it here too, and removing the line removes its test.
 
 use crate::app::Key;
 use crate::physics::ModelKind;
-use crate::physics::models::oscillator::{Params, Problem, Start};
+use crate::physics::chart::{ChartError, MapFlag};
+pub use crate::physics::contract::{Contract, Mismatch, PresetText};
 use crate::scenario::Preset;
 use crate::study::chart::{Chart, StudyAsk};
 
-const PRESET: &str = r#"
-[preset]
-name = "Oscillator: the contract's"
-model = "oscillator"
-
-[oscillator]
-omega = 2.0
-
-[initial]
-x = 1.0
-v = 0.5
-
-[run]
-t_end = 10.0
-tolerance = 1e-8
-"#;
-
-fn preset() -> Preset {
-    Preset::parse(PRESET, "oscillator.toml", "oscillator", &[]).expect("the contract's preset")
+/// Which step of the contract failed, and why.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Failure {
+    /// The step.
+    pub step: &'static str,
+    /// Why.
+    pub what: String,
 }
 
-fn problem() -> Problem {
-    Problem::new(Params { omega: 2.0 }, Start { x: 1.0, v: 0.5 }).unwrap()
+fn fail<T>(step: &'static str, what: impl Into<String>) -> Result<T, Failure> {
+    Err(Failure {
+        step,
+        what: what.into(),
+    })
 }
 
-/// The explorer, headless, its worker run in place (the lesson review's walk).
+/// Every step, for scene `S`.
+///
+/// # Errors
+/// The first step that fails.
+pub fn contract<S: Contract>() -> Result<(), Failure> {
+    let preset = preset_of::<S>()?;
+    preset_reads(&preset)?;
+    let json = run_matches_reference::<S>(&preset)?;
+    let ask = ask_of::<S>(&preset);
+    chart_matches_reference::<S>(&preset, &ask)?;
+    flags_taken_or_refused(&preset, &ask, &|a| Chart::for_study(&preset.model, a))?;
+    let shown = S::events(&json).ok_or(Failure {
+        step: "run",
+        what: "no event count in simulate's JSON".to_owned(),
+    })?;
+    explorer_shows_and_records(&preset, shown, &|_| {})
+}
+
+/// The scene's preset, read.
+fn preset_of<S: Contract>() -> Result<Preset, Failure> {
+    let read = match S::PRESET {
+        PresetText::Shipped(name) => crate::scenario::shipped::resolve(name, &[]),
+        PresetText::Toml(text) => Preset::parse(text, "contract.toml", "contract", &[]),
+    };
+    read.map_err(|e| Failure {
+        step: "preset",
+        what: format!("does not read: {e}"),
+    })
+}
+
+/// The scene's chart ask, from the preset's horizon and tolerance as `study map` takes them.
+fn ask_of<S: Contract>(p: &Preset) -> StudyAsk {
+    S::chart(StudyAsk {
+        t_end: p.run.t_end,
+        tolerance: p.run.tolerance.unwrap_or(crate::physics::DEFAULT_TOLERANCE),
+        ..StudyAsk::default()
+    })
+}
+
+/// The preset is of a registered scene, refuses a misspelt key of the scene's table naming it,
+/// and reads back as itself once written.
+fn preset_reads(p: &Preset) -> Result<(), Failure> {
+    let kind = p.model.kind();
+    if !ModelKind::ALL.contains(&kind) || ModelKind::from_name(kind.name()) != Some(kind) {
+        return fail("preset", format!("{kind:?} is not registered"));
+    }
+    let text = p.to_toml();
+    let again = Preset::parse(&text, "again.toml", "again", &[]).map_err(|e| Failure {
+        step: "preset",
+        what: format!("written back, it does not read: {e}"),
+    })?;
+    if again.model != p.model {
+        return fail("preset", "written back, it reads as another problem");
+    }
+    let Some(spec) = kind
+        .params()
+        .iter()
+        .find(|s| text.contains(&format!("\n{} = ", s.key)))
+    else {
+        return fail(
+            "preset",
+            "the written preset names none of the scene's parameters",
+        );
+    };
+    let typo = text.replacen(
+        &format!("\n{} = ", spec.key),
+        &format!("\n{}x = ", spec.key),
+        1,
+    );
+    match Preset::parse(&typo, "typo.toml", "typo", &[]) {
+        Ok(_) => fail("preset", format!("a misspelt `{}x` was accepted", spec.key)),
+        Err(e) if !e.to_string().contains(&format!("{}x", spec.key)) => {
+            fail("preset", format!("the refusal does not name the key: {e}"))
+        }
+        Err(_) => Ok(()),
+    }
+}
+
+/// `simulate` in JSON against the scene's reference; its CSV and table in the scene's words.
+fn run_matches_reference<S: Contract>(p: &Preset) -> Result<serde_json::Value, Failure> {
+    use crate::simulate::{Format, Request, resolve, simulate};
+    let request = Request {
+        method: None,
+        tolerance: None,
+        step: None,
+        t_end: None,
+        format: Format::Json,
+        samples: 51,
+        force: true,
+    };
+    let run = |format| {
+        simulate(p, &resolve(p, &Request { format, ..request }), format).map_err(|e| Failure {
+            step: "run",
+            what: format!("simulate failed: {e}"),
+        })
+    };
+    let json: serde_json::Value =
+        serde_json::from_str(&run(Format::Json)?).map_err(|e| Failure {
+            step: "run",
+            what: format!("simulate's JSON does not parse: {e}"),
+        })?;
+    let name = p.model.kind().name();
+    if json["model"] != name {
+        return fail("run", format!("JSON of model {}", json["model"]));
+    }
+    S::check_run(&json).map_err(|m| Failure {
+        step: "run",
+        what: m.0,
+    })?;
+    let csv = run(Format::Csv)?;
+    let mut rows = csv.lines().filter(|l| !l.starts_with('#'));
+    let head = rows.next().unwrap_or_default();
+    if !csv.contains(&format!("# model = {name}\n"))
+        || !head.starts_with("t,")
+        || rows.count() != 51
+    {
+        return fail(
+            "run",
+            format!("CSV not of the scene, or not 51 rows:\n{csv}"),
+        );
+    }
+    let table = run(Format::Table)?;
+    if !table.contains(&p.name) && !table.contains(name) {
+        return fail("run", "the table names neither the preset nor the scene");
+    }
+    Ok(json)
+}
+
+/// `study map`'s chart: every cell against the reference, three shards merged into the whole
+/// byte for byte, a cell loaded back at its coordinates.
+fn chart_matches_reference<S: Contract>(p: &Preset, ask: &StudyAsk) -> Result<(), Failure> {
+    use crate::study::chart::{Shard, Tally};
+    let chart = Chart::for_study(&p.model, ask).map_err(|e| Failure {
+        step: "chart",
+        what: format!("refused: {e}"),
+    })?;
+    if chart.model() != p.model.kind() {
+        return fail("chart", "a chart of another scene");
+    }
+    let computed = |shard| {
+        chart
+            .compute(false, shard, &|_| true, &Tally::QUIET)
+            .map_err(|e| Failure {
+                step: "chart",
+                what: format!("not computed: {e}"),
+            })
+    };
+    let c = computed(None)?;
+    let whole = chart.output(1, &p.name, &c.indices, &c.verdicts, None, false);
+    let value = serde_json::to_value(&whole).map_err(|e| Failure {
+        step: "chart",
+        what: e.to_string(),
+    })?;
+    let cells = value["cells"].as_array().cloned().unwrap_or_default();
+    if cells.len() != chart.len() {
+        return fail("chart", format!("{} cells of {}", cells.len(), chart.len()));
+    }
+    for cell in &cells {
+        S::check_cell(cell, &value).map_err(|m| Failure {
+            step: "chart",
+            what: format!("cell {}: {}", cell["coords"], m.0),
+        })?;
+    }
+    let description = crate::study::ask::Description::new(p.to_toml(), ask);
+    let mut parts = Vec::new();
+    for index in 1..=3 {
+        let s = Shard { index, count: 3 };
+        let c = computed(Some(s))?;
+        let mut out = chart.output(1, &p.name, &c.indices, &c.verdicts, Some(s), false);
+        out.description = Some(description.clone());
+        parts.push((format!("part{index}"), crate::study::part::sealed(out)));
+    }
+    let mut merged = crate::study::part::merge(&chart, 1, &parts).map_err(|e| Failure {
+        step: "shards",
+        what: e.to_string(),
+    })?;
+    merged.wall_seconds = whole.wall_seconds;
+    if serde_json::to_string(&merged).ok() != serde_json::to_string(&whole).ok() {
+        return fail("shards", "three shards merged differ from the whole");
+    }
+    let (x, y) = chart.axes();
+    let loaded = chart
+        .load(&p.model, (x.at(1), y.at(1)))
+        .map_err(|e| Failure {
+            step: "chart",
+            what: format!("a cell does not load: {e}"),
+        })?;
+    let at = Chart::for_study(&loaded, ask)
+        .map(|c| c.preset_point())
+        .map_err(|e| Failure {
+            step: "chart",
+            what: e.to_string(),
+        })?;
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(1e-300);
+    if !close(at.0, x.at(1)) || !close(at.1, y.at(1)) {
+        return fail("chart", format!("a cell loaded at {at:?}"));
+    }
+    Ok(())
+}
+
+/// Each `study map` flag: refused naming the scene when its chart does not take it (a
+/// [`ChartError::Flag`]), and when it does, changing the chart (a flag accepted and ignored
+/// fails). `build` makes the chart of an ask (the scene's, or a faulty one in the tests).
+fn flags_taken_or_refused(
+    p: &Preset,
+    ask: &StudyAsk,
+    build: &dyn Fn(&StudyAsk) -> Result<Chart, ChartError>,
+) -> Result<(), Failure> {
+    use strum::IntoEnumIterator as _;
+    let kind = p.model.kind();
+    let takes = kind.studies().chart.flags;
+    let plain = build(ask).map_err(|e| Failure {
+        step: "flags",
+        what: e.to_string(),
+    })?;
+    for flag in MapFlag::iter() {
+        let given = given_to(flag, ask, &plain);
+        if takes.contains(&flag) {
+            // Alone, or with another flag it needs (the rattleback's `--tolerance` sets the
+            // runs `--k` asks for): the chart with it differs from the chart without it.
+            let mut pairs: Vec<(StudyAsk, Chart)> = vec![(*ask, plain)];
+            for other in takes.iter().filter(|o| **o != flag) {
+                for base in given_to(*other, ask, &plain) {
+                    if let Ok(c) = build(&base) {
+                        pairs.push((base, c));
+                    }
+                }
+            }
+            let changed = pairs.iter().any(|(base, without)| {
+                given_to(flag, base, without)
+                    .iter()
+                    .any(|a| build(a).is_ok_and(|c| c != *without))
+            });
+            if !changed {
+                return fail(
+                    "flags",
+                    format!("{} is accepted and changes nothing", flag.name()),
+                );
+            }
+        } else {
+            for a in &given {
+                match build(a) {
+                    Err(ChartError::Flag(f))
+                        if f.flag == flag && f.to_string().contains(kind.title()) => {}
+                    Err(e) => {
+                        return fail("flags", format!("{} refused as {e}", flag.name()));
+                    }
+                    Ok(_) => return fail("flags", format!("{} is accepted", flag.name())),
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `ask` with `flag` given a valid value other than the chart's own (two for a choice).
+fn given_to(flag: MapFlag, ask: &StudyAsk, chart: &Chart) -> Vec<StudyAsk> {
+    let (x, y) = chart.axes();
+    let narrower = |lo: f64, hi: f64| (lo + 0.25 * (hi - lo), hi - 0.25 * (hi - lo));
+    let mut a = *ask;
+    match flag {
+        MapFlag::RatioMax => a.ratio_max = Some(0.5 * x.max),
+        MapFlag::InertiaMin => a.inertia_min = Some(narrower(y.min, y.max).0),
+        MapFlag::InertiaMax => a.inertia_max = Some(narrower(y.min, y.max).1),
+        MapFlag::K => a.k = Some(12_345.0),
+        MapFlag::Columns => a.columns = Some(narrower(x.min, x.max)),
+        MapFlag::Rows => a.rows = Some(narrower(y.min, y.max)),
+        MapFlag::TEnd => a.asked_t_end = Some(0.5 * ask.t_end),
+        MapFlag::Tolerance => a.asked_tolerance = Some(10.0 * ask.tolerance),
+        MapFlag::Position => {
+            let mut b = *ask;
+            a.hanging = Some(true);
+            b.hanging = Some(false);
+            return vec![a, b];
+        }
+    }
+    if flag == MapFlag::TEnd {
+        a.t_end *= 0.5;
+    }
+    if flag == MapFlag::Tolerance {
+        a.tolerance *= 10.0;
+    }
+    vec![a]
+}
+
+/// The explorer, headless, its worker run in place.
 type Headless = crate::explorer::review::Walk;
 
-fn screen(app: &Headless, width: u16, height: u16) -> String {
-    app.screen_at((width, height)).join("\n")
+/// The explorer on the preset: played to its end at the top speed, its status bar shows the
+/// count `simulate` gave (`shown`); recording, a change (the first parameter one step up),
+/// played at ×8, paused, a step, a checkpoint; the recording closed verifies. `tamper` edits
+/// the recording before the check (the contract's own tests).
+fn explorer_shows_and_records(
+    p: &Preset,
+    shown: u64,
+    tamper: &dyn Fn(&mut crate::record::Recording),
+) -> Result<(), Failure> {
+    let mut h = Headless::of(p);
+    let header = crate::record::active::header(&h.app, (80, 24), 30.0);
+    h.key(Key::Char('R'));
+    h.app.on_outcome(crate::app::Outcome::Recording(Ok(
+        "contract.jsonl".to_owned()
+    )));
+    while h.app.run.speed < 1024.0 {
+        h.key(Key::Char('+'));
+    }
+    h.key(Key::Char(' '));
+    let mut frames = 0;
+    while !h.app.run.done() && frames < 100_000 {
+        h.tick(1.0 / 30.0);
+        frames += 1;
+    }
+    let count = h.app.run.reversals_shown() as u64;
+    let events = p.model.kind().words().events;
+    let screen = h.screen_at((80, 24)).join("\n");
+    if count != shown || !screen.contains(&format!("{events} {shown}")) {
+        return fail(
+            "explorer",
+            format!("simulate counts {shown} {events}, the explorer {count}:\n{screen}"),
+        );
+    }
+    let c = vec![h.app.checkpoint()];
+    h.exec(c);
+    // A change: the first parameter of the panel one coarse step up restarts the run.
+    let before = h.app.scenario.settings.model;
+    h.key(Key::Char('L'));
+    if h.app.scenario.settings.model == before {
+        return fail("explorer", "`L` changed nothing");
+    }
+    while h.app.run.speed > 8.0 {
+        h.key(Key::Char('-'));
+    }
+    h.key(Key::Char(' '));
+    let half = 0.5 * h.app.run.t_end;
+    while h.app.run.shown < half && !h.app.run.done() && frames < 200_000 {
+        h.tick(1.0 / 30.0);
+        frames += 1;
+    }
+    h.key(Key::Char(' '));
+    h.key(Key::Char('.'));
+    let c = vec![h.app.checkpoint()];
+    h.exec(c);
+    let mut journal = h.app.take_journal();
+    h.key(Key::Char('R'));
+    for _ in 0..100 {
+        h.tick(0.0);
+        if h.app.journal.state != crate::app::RecState::On {
+            break;
+        }
+    }
+    journal.extend(h.app.take_journal());
+    let path = std::env::temp_dir().join(format!(
+        "contract-{}-{}.jsonl",
+        p.model.kind().name(),
+        std::process::id()
+    ));
+    let mut back = write_session(&path, &header, journal);
+    let _ = std::fs::remove_file(&path);
+    tamper(&mut back);
+    match crate::record::verify(&back, "contract", None) {
+        Ok(r) if r.checkpoints >= 2 => Ok(()),
+        Ok(r) => fail("recording", format!("{} checkpoints", r.checkpoints)),
+        Err(e) => fail("recording", format!("does not verify: {e}")),
+    }
 }
 
 /// `journal` written as a session file at `path`, a line every half second, then its end line;
@@ -79,244 +435,132 @@ fn write_session(
     crate::record::read(path).unwrap()
 }
 
-#[test]
-fn the_contract_scene_is_registered_and_its_preset_reads() {
-    let kind = ModelKind::from_name("oscillator").unwrap();
-    assert!(ModelKind::ALL.contains(&kind));
-    let p = preset();
-    assert_eq!(p.model.kind(), kind);
-    assert_eq!(p.model.value("omega"), Some(2.0));
-    // A typo and a value out of range are refused by the scene's own table.
-    let typo = Preset::parse(
-        &PRESET.replace("omega = 2.0", "omgea = 2.0"),
-        "typo.toml",
-        "t",
-        &[],
-    )
-    .unwrap_err()
-    .to_string();
-    assert!(typo.contains("omgea"), "{typo}");
-    let bad = Preset::parse(
-        &PRESET.replace("omega = 2.0", "omega = -1"),
-        "bad.toml",
-        "b",
-        &[],
-    )
-    .unwrap_err()
-    .to_string();
-    assert!(bad.contains("omega"), "{bad}");
-    // Written back, it reads as itself.
-    let again = Preset::parse(&p.to_toml(), "again.toml", "a", &[]).unwrap();
-    assert_eq!(again.model, p.model);
-}
+/// One test a registered scene, named after its folder: `scene_contract::celt::contract`…
+macro_rules! contract_tests {
+    ($(
+        $(#[doc = $doc:literal])*
+        $(#[cfg($cfg:meta)])?
+        $name:ident: $folder:ident, $chart:ident;
+    )*) => {
+        $(
+            mod $folder {
+                #[test]
+                fn contract() {
+                    if let Err(f) = super::contract::<crate::physics::$folder::contract::Case>() {
+                        panic!("the {} scene fails the contract at {}: {}", stringify!($folder), f.step, f.what);
+                    }
+                }
+            }
+        )*
 
-#[test]
-fn simulate_reports_the_contract_scene_in_every_format() {
-    use crate::simulate::{Format, Request, resolve, simulate};
-    let p = preset();
-    let exact = problem().exact(10.0);
-    let crossings = problem().exact_crossings(10.0);
-    for method in [crate::physics::Method::Auto, crate::physics::Method::Dop853] {
-        let request = Request {
-            method: Some(method),
-            tolerance: None,
-            step: None,
-            t_end: None,
-            format: Format::Json,
-            samples: 101,
-            force: false,
-        };
-        let resolved = resolve(&p, &request);
-        let json: serde_json::Value =
-            serde_json::from_str(&simulate(&p, &resolved, Format::Json).unwrap()).unwrap();
-        assert_eq!(json["model"], "oscillator");
-        let (x, v) = (
-            json["final"][0].as_f64().unwrap(),
-            json["final"][1].as_f64().unwrap(),
-        );
-        assert!(
-            (x - exact.0).abs() < 1e-6 && (v - exact.1).abs() < 1e-6,
-            "{method}: ({x}, {v}) against {exact:?}"
-        );
-        assert_eq!(json["events"]["count"], crossings, "{method}");
-        let csv = simulate(
-            &p,
-            &resolve(
-                &p,
-                &Request {
-                    format: Format::Csv,
-                    ..request
-                },
-            ),
-            Format::Csv,
-        )
-        .unwrap();
-        assert!(csv.contains("\nt,x,v\n"), "{csv}");
-        let rows = csv.lines().filter(|l| !l.starts_with('#')).count();
-        assert_eq!(rows, 1 + 101, "{method}");
-        let table = simulate(&p, &resolved, Format::Table).unwrap();
-        assert!(table.contains("oscillator to t = 10"), "{table}");
-    }
-}
-
-#[test]
-fn the_contract_scenes_chart_counts_as_the_exact_solution_and_merges_from_shards() {
-    let p = preset();
-    let ask = StudyAsk {
-        grid: (6, 4),
-        t_end: 10.0,
-        tolerance: 1e-8,
-        ..StudyAsk::default()
+        /// The scenes the generated tests cover, in the registry's order.
+        const COVERED: &[ModelKind] = &[ $( ModelKind::$name, )* ];
     };
-    let chart = Chart::for_study(&p.model, &ask).unwrap();
-    assert_eq!(chart.model(), p.model.kind());
-    let c = chart
-        .compute(false, None, &|_| true, &crate::study::chart::Tally::QUIET)
-        .unwrap();
-    let whole = chart.output(1, &p.name, &c.indices, &c.verdicts, None, false);
-    let (x, y) = chart.axes();
-    for cell in &whole.cells {
-        let (i, j) = (cell.index % x.cells, cell.index / x.cells);
-        let exact = Problem::new(Params { omega: x.at(i) }, Start { x: 1.0, v: y.at(j) })
-            .unwrap()
-            .exact_crossings(10.0);
-        assert_eq!(cell.reversals, Some(exact), "cell {}", cell.index);
-    }
-    // A flag of another scene's chart is refused by name.
-    let e = Chart::for_study(
-        &p.model,
-        &StudyAsk {
-            k: Some(1e4),
-            ..ask
-        },
-    )
-    .unwrap_err();
-    // Typed (issue 83): the flag and the scene are the error's, and so is the message.
-    assert!(
-        matches!(
-            &e,
-            crate::physics::chart::ChartError::Flag(f)
-                if f.flag == crate::physics::chart::MapFlag::K
-        ),
-        "{e:?}"
-    );
-    let said = e.to_string();
-    assert!(
-        said.contains("--k") && said.contains("harmonic oscillator"),
-        "{said}"
-    );
-    // Table and CSV in the scene's words and columns.
-    assert!(whole.table().starts_with("crossings over oscillator.omega"));
-    let csv = whole.csv();
-    assert!(
-        csv.starts_with("index,oscillator.omega,initial.v,reversals,mark\n"),
-        "{csv}"
-    );
-    assert_eq!(csv.lines().count(), 1 + chart.len());
-    // Three shards merge into the whole, byte for byte (but the wall time).
-    let description = crate::study::ask::Description::new(PRESET.to_owned(), &ask);
-    let parts: Vec<_> = (1..=3)
-        .map(|i| {
-            let s = crate::study::chart::Shard { index: i, count: 3 };
-            let c = chart
-                .compute(
-                    false,
-                    Some(s),
-                    &|_| true,
-                    &crate::study::chart::Tally::QUIET,
-                )
-                .unwrap();
-            let mut out = chart.output(1, &p.name, &c.indices, &c.verdicts, Some(s), false);
-            out.description = Some(description.clone());
-            (format!("part{i}"), crate::study::part::sealed(out))
-        })
-        .collect();
-    let mut merged = crate::study::part::merge(&chart, 1, &parts).unwrap();
-    merged.wall_seconds = whole.wall_seconds;
-    assert_eq!(
-        serde_json::to_string(&merged).unwrap(),
-        serde_json::to_string(&whole).unwrap()
-    );
-    // A cell loaded back is the problem at its coordinates.
-    let loaded = chart.load(&p.model, (x.at(2), y.at(1))).unwrap();
-    assert_eq!(loaded.value("omega"), Some(x.at(2)));
-    assert_eq!(loaded.value("v"), Some(y.at(1)));
 }
+crate::physics::models::with_scenes!(contract_tests);
 
-#[test]
-fn the_explorer_shows_records_and_replays_the_contract_scene() {
-    let mut h = Headless::of(&preset());
-    let header = crate::record::active::header(&h.app, (80, 24), 30.0);
-    h.app.on_key(Key::Char('R'));
-    h.app.on_outcome(crate::app::Outcome::Recording(Ok(
-        "oscillator.jsonl".to_owned()
-    )));
-    // Play at ×8 to t ≈ 4, pause, and compare the screen with the exact solution.
-    for _ in 0..3 {
-        h.key(Key::Char('+'));
+#[cfg(test)]
+mod own {
+    //! The contract's own tests: each check can fail, on the oscillator made faulty.
+    use super::*;
+    use crate::physics::oscillator::contract::Case;
+
+    #[test]
+    fn every_registered_scene_has_its_generated_contract_test() {
+        assert_eq!(COVERED, ModelKind::ALL.as_slice());
     }
-    h.key(Key::Char(' '));
-    while h.app.run.shown < 4.0 && !h.app.run.done() {
-        h.tick(1.0 / 30.0);
-    }
-    h.key(Key::Char(' '));
-    let t = h.app.run.shown;
-    let exact = Problem::new(Params { omega: 2.0 }, Start { x: 1.0, v: 0.5 })
-        .unwrap()
-        .exact_crossings(t);
-    assert_eq!(h.app.run.reversals_shown(), exact, "at t = {t}");
-    let text = screen(&h, 80, 24);
-    // The panel holds the scene's table; the status bar its words (events, monitor).
-    assert!(text.contains("Oscillator: the contract's"), "{text}");
-    assert!(
-        text.contains("omega") && text.contains("energy E"),
-        "{text}"
-    );
-    assert!(text.contains(&format!("crossings {exact} ")), "{text}");
-    assert!(text.contains("ΔE"), "{text}");
-    let c = vec![h.app.checkpoint()];
-    h.exec(c);
-    // The chart pane.
-    h.key(Key::Char('M'));
-    for _ in 0..200 {
-        h.tick(1.0 / 30.0);
-    }
-    let text = screen(&h, 120, 40);
-    assert!(
-        text.contains("crossing chart") || text.contains("crossings (T"),
-        "{text}"
-    );
-    // A change (ω one coarse step up, the first row) restarts the run; played to its end at
-    // the top speed; then the recording closes and replays as shown.
-    h.key(Key::Char('M'));
-    h.key(Key::Char('L'));
-    assert_eq!(h.app.scenario.settings.model.value("omega"), Some(3.0));
-    while h.app.run.speed < 1024.0 {
-        h.key(Key::Char('+'));
-    }
-    h.key(Key::Char(' '));
-    while !h.app.run.done() {
-        h.tick(1.0 / 30.0);
-    }
-    let at_end = Problem::new(Params { omega: 3.0 }, Start { x: 1.0, v: 0.5 })
-        .unwrap()
-        .exact_crossings(10.0);
-    assert_eq!(h.app.run.reversals_shown(), at_end);
-    let c = vec![h.app.checkpoint()];
-    h.exec(c);
-    let mut journal = h.app.take_journal();
-    h.key(Key::Char('R'));
-    for _ in 0..100 {
-        h.tick(0.0);
-        if h.app.journal.state != crate::app::RecState::On {
-            break;
+
+    /// A scene whose chart disagrees with its reference (each cell expected one more).
+    struct WrongChart;
+
+    impl Contract for WrongChart {
+        const PRESET: PresetText = Case::PRESET;
+        fn events(json: &serde_json::Value) -> Option<u64> {
+            Case::events(json)
+        }
+        fn check_run(json: &serde_json::Value) -> Result<(), Mismatch> {
+            Case::check_run(json)
+        }
+        fn chart(base: StudyAsk) -> StudyAsk {
+            Case::chart(base)
+        }
+        fn check_cell(cell: &serde_json::Value, chart: &serde_json::Value) -> Result<(), Mismatch> {
+            let mut shifted = cell.clone();
+            shifted["reversals"] = serde_json::json!(cell["reversals"].as_u64().unwrap_or(0) + 1);
+            Case::check_cell(&shifted, chart)
         }
     }
-    journal.extend(h.app.take_journal());
-    let path = std::env::temp_dir().join(format!("oscillator-{}.jsonl", std::process::id()));
-    let back = write_session(&path, &header, journal);
-    assert!(back.header.preset.contains("model = \"oscillator\""));
-    let report = crate::record::verify(&back, "oscillator", None).unwrap();
-    assert!(report.checkpoints >= 2, "{report:?}");
-    let _ = std::fs::remove_file(&path);
+
+    #[test]
+    fn the_contract_fails_a_chart_that_disagrees_with_its_reference() {
+        let p = preset_of::<Case>().unwrap();
+        let e = chart_matches_reference::<WrongChart>(&p, &ask_of::<WrongChart>(&p)).unwrap_err();
+        assert_eq!(e.step, "chart", "{e:?}");
+        chart_matches_reference::<Case>(&p, &ask_of::<Case>(&p)).unwrap();
+    }
+
+    #[test]
+    fn the_contract_fails_a_recording_that_does_not_verify() {
+        let p = preset_of::<Case>().unwrap();
+        let json = run_matches_reference::<Case>(&p).unwrap();
+        let shown = Case::events(&json).unwrap();
+        assert!(explorer_shows_and_records(&p, shown, &|_| {}).is_ok());
+        // The recording's last checkpoint says another point than the run reaches.
+        let forged = |r: &mut crate::record::Recording| {
+            use crate::app::journal::Event;
+            let at = r
+                .lines
+                .iter()
+                .rposition(|l| matches!(l.1.event, Event::Checkpoint { .. }))
+                .expect("a checkpoint");
+            if let Event::Checkpoint { state, .. } = &mut r.lines[at].1.event {
+                state[0] += 1e-3;
+            }
+        };
+        let e = explorer_shows_and_records(&p, shown, &forged).unwrap_err();
+        assert_eq!(e.step, "recording", "{e:?}");
+        // And a screen that shows another count than simulate's.
+        let e = explorer_shows_and_records(&p, shown + 1, &|_| {}).unwrap_err();
+        assert_eq!(e.step, "explorer", "{e:?}");
+    }
+
+    #[test]
+    fn the_contract_fails_a_flag_accepted_and_ignored() {
+        let p = preset_of::<Case>().unwrap();
+        let ask = ask_of::<Case>(&p);
+        assert!(flags_taken_or_refused(&p, &ask, &|a| Chart::for_study(&p.model, a)).is_ok());
+        // A chart that takes `--t-end` and drops it.
+        let ignoring = |a: &StudyAsk| {
+            let mut a = *a;
+            a.asked_t_end = None;
+            a.t_end = ask.t_end;
+            Chart::for_study(&p.model, &a)
+        };
+        let e = flags_taken_or_refused(&p, &ask, &ignoring).unwrap_err();
+        assert_eq!(e.step, "flags", "{e:?}");
+        assert!(e.what.contains("--t-end"), "{e:?}");
+        // A chart that takes what the scene refuses.
+        let lax = |a: &StudyAsk| {
+            let mut a = *a;
+            a.k = None;
+            Chart::for_study(&p.model, &a)
+        };
+        let e = flags_taken_or_refused(&p, &ask, &lax).unwrap_err();
+        assert!(e.what.contains("--k"), "{e:?}");
+    }
+
+    #[test]
+    fn the_contract_fails_a_run_that_disagrees_with_its_reference() {
+        let p = preset_of::<Case>().unwrap();
+        let moved = Preset::parse(
+            &p.to_toml().replace("omega = 2.0", "omega = 2.001"),
+            "m.toml",
+            "m",
+            &[],
+        )
+        .unwrap();
+        assert_ne!(moved.model, p.model);
+        let e = run_matches_reference::<Case>(&moved).unwrap_err();
+        assert_eq!(e.step, "run", "{e:?}");
+    }
 }

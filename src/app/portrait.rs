@@ -320,9 +320,11 @@ mod tests {
     use std::f64::consts::PI;
 
     fn eff() -> LimitView {
-        LimitView::Rattleback(crate::physics::rattleback::effective::Effective::new(
-            &crate::physics::rattleback::paper_body(1e4, [0.0, 0.0, 1.0, 0.5]),
+        crate::physics::Model::from(crate::physics::rattleback::paper_body(
+            1e4,
+            [0.0, 0.0, 1.0, 0.5],
         ))
+        .limit_view()
     }
 
     #[test]

@@ -23,25 +23,27 @@
 use crate::physics::numerics::elementary::Elementary;
 
 pub mod budget;
-pub mod celt;
 pub mod chart;
+#[cfg(test)]
+pub mod contract;
 pub mod drive;
 pub mod flow;
 pub mod fork;
 pub mod json;
-pub mod kapitza;
 pub mod method;
 pub mod models;
 pub mod numerics;
 pub mod params;
 pub mod plan;
-pub mod rattleback;
 pub mod scene;
 pub mod verify;
 
+// Each scene's folder (`celt`, `kapitza`, `rattleback`, the tests' `oscillator`), declared by
+// its registry line.
+models::with_scenes!(scene_modules);
+use models::scene_modules;
+
 pub use method::{Method, StepError};
-#[cfg(test)]
-pub use models::oscillator;
 pub use models::{LimitView, Model, ModelKind};
 pub use params::ParamError;
 pub use plan::{DEFAULT_TOLERANCE, Resolved};

@@ -4,24 +4,19 @@
 //! Each model lives in its own folder and describes itself once there (`scene.rs`: a
 //! [`Scene`] of fixed facts, [`Posed`] for a validated problem). It is registered here by one
 //! line of the `registry!` list, which generates [`ModelKind`], [`Model`], [`Chart`],
-//! [`ModelKind::ALL`] and their dispatch; its [`PlanKey`] shape and the [`LimitView`] the
+//! [`ModelKind::ALL`], [`PlanKey`] and their dispatch, and the folders as modules; the [`LimitView`] the
 //! portrait draws (the slow coordinate's effective potential) are still written here. The
 //! recipe is in docs/architecture.md.
 
 use serde::{Deserialize, Serialize};
 
-use super::celt;
-#[cfg(test)]
-#[path = "oscillator/mod.rs"]
-pub mod oscillator;
 use super::chart::{ChartError, ChartOf, PaneAsk, SceneChart, StudyAsk};
 use super::kapitza;
 use super::method::{Method, StepError};
 use super::params::{ParamError, ParamSpec};
 use super::plan::PlanRequest;
 use super::rattleback::Problem;
-use super::rattleback::effective::Effective;
-use super::scene::{Planned, Posed, Scene, SmallParameter, Studies, Words};
+use super::scene::{Planned, Posed, Scene, SlowLimit, SmallParameter, Studies, Words};
 
 /// From the registry's list: the enums [`ModelKind`], [`Model`] and [`Chart`], their
 /// conversions, [`ModelKind::ALL`] (test scenes included by their `cfg`) and every dispatch on
@@ -192,6 +187,36 @@ macro_rules! registry {
                 .map_err(ChartError::Cell)
             }
         }
+
+        /// What a plan was resolved for: `auto`'s choice depends on these only. Each scene's
+        /// own shape (`SCENE/scene.rs`'s `PlanKey`), told apart by their fields, so files
+        /// written before the pendulum existed read as before.
+        #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+        #[serde(untagged)]
+        pub enum PlanKey {
+            $( $(#[doc = $doc])* $(#[cfg($cfg)])? $name(crate::physics::$folder::scene::PlanKey), )*
+        }
+
+        impl PlanKey {
+            /// The model it is a key of.
+            #[must_use]
+            pub const fn model(&self) -> ModelKind {
+                match self {
+                    $( $(#[cfg($cfg)])? Self::$name(_) => ModelKind::$name, )*
+                }
+            }
+
+            /// The key of `model` run to `t_end` at `tolerance`.
+            #[must_use]
+            pub fn for_model(model: &Model, tolerance: f64, t_end: f64) -> Self {
+                match model {
+                    $( $(#[cfg($cfg)])?
+                    Model::$name(p) => Self::$name(
+                        crate::physics::$folder::scene::PlanKey::of(p, tolerance, t_end),
+                    ), )*
+                }
+            }
+        }
     };
 }
 
@@ -216,108 +241,20 @@ macro_rules! with_scenes {
 }
 pub(crate) use with_scenes;
 
+/// The scenes' folders as modules of `physics` (`with_scenes!(scene_modules)` in
+/// `physics/mod.rs`): a scene's registry line declares its folder too.
+macro_rules! scene_modules {
+    ($(
+        $(#[doc = $doc:literal])*
+        $(#[cfg($cfg:meta)])?
+        $name:ident: $folder:ident, $chart:ident;
+    )*) => {
+        $( $(#[cfg($cfg)])? pub mod $folder; )*
+    };
+}
+pub(crate) use scene_modules;
+
 with_scenes!(registry);
-
-/// What a plan was resolved for: `auto`'s choice depends on these only. One shape per model
-/// (told apart by their fields, so files written before the pendulum existed read as before).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
-#[serde(untagged)]
-pub enum PlanKey {
-    /// The rattleback's.
-    Rattleback {
-        /// Body and spring.
-        params: super::rattleback::Params,
-        /// Start.
-        start: super::rattleback::Start,
-        /// Tolerance asked.
-        tolerance: f64,
-        /// Horizon.
-        t_end: f64,
-    },
-    /// The pendulum's.
-    Kapitza {
-        /// `a`, `b`, `epsilon`.
-        pendulum: kapitza::Params,
-        /// `theta`, `theta_dot`.
-        initial: kapitza::Start,
-        /// Tolerance asked.
-        tolerance: f64,
-        /// Horizon.
-        t_end: f64,
-    },
-    /// The celt's (field names differ from the others': the untagged form stays unambiguous).
-    Celt {
-        /// The body.
-        celt: celt::Params,
-        /// Attitude and angular velocity.
-        celt_start: celt::Start,
-        /// The reversal band.
-        spin_band: f64,
-        /// Tolerance asked.
-        tolerance: f64,
-        /// Horizon.
-        t_end: f64,
-    },
-    /// The scene contract's oscillator's.
-    #[cfg(test)]
-    Oscillator {
-        /// `omega`.
-        oscillator: oscillator::Params,
-        /// `x`, `v`.
-        oscillator_start: oscillator::Start,
-        /// Tolerance asked.
-        tolerance: f64,
-        /// Horizon.
-        t_end: f64,
-    },
-}
-
-impl PlanKey {
-    /// The model it is a key of.
-    #[must_use]
-    pub const fn model(&self) -> ModelKind {
-        match self {
-            Self::Rattleback { .. } => ModelKind::Rattleback,
-            Self::Kapitza { .. } => ModelKind::Kapitza,
-            Self::Celt { .. } => ModelKind::Celt,
-            #[cfg(test)]
-            Self::Oscillator { .. } => ModelKind::Oscillator,
-        }
-    }
-
-    /// The key of `model` run to `t_end` at `tolerance`.
-    #[must_use]
-    pub fn for_model(model: &Model, tolerance: f64, t_end: f64) -> Self {
-        match model {
-            Model::Rattleback(p) => Self::Rattleback {
-                params: *p.params(),
-                start: *p.start(),
-                tolerance,
-                t_end,
-            },
-            Model::Kapitza(p) => Self::Kapitza {
-                pendulum: *p.params(),
-                initial: *p.start(),
-                tolerance,
-                t_end,
-            },
-            Model::Celt(p) => Self::Celt {
-                celt: *p.params(),
-                celt_start: *p.start(),
-                spin_band: p.band(),
-                tolerance,
-                t_end,
-            },
-            #[cfg(test)]
-            Model::Oscillator(p) => Self::Oscillator {
-                oscillator: *p.params(),
-                oscillator_start: *p.start(),
-                tolerance,
-                t_end,
-            },
-        }
-    }
-}
 
 impl ModelKind {
     /// The model a preset without `[preset] model` is of: the one whose scene does not require
@@ -441,7 +378,7 @@ impl Model {
 
     /// The celt's problem, when this is one.
     #[must_use]
-    pub fn celt(&self) -> Option<&celt::Problem> {
+    pub fn celt(&self) -> Option<&super::celt::Problem> {
         if let Self::Celt(p) = self {
             Some(p)
         } else {
@@ -490,194 +427,39 @@ impl Model {
         self.posed().resolve(ask, go_on)
     }
 
-    /// What the portrait draws of the limit.
+    /// What the portrait draws of the limit (the scene's [`Posed::slow_limit`]).
     #[must_use]
     pub fn limit_view(&self) -> LimitView {
-        match self {
-            Self::Rattleback(p) => LimitView::Rattleback(Effective::new(p)),
-            Self::Kapitza(p) => {
-                let limit = kapitza::limit::Limit::new(p.params());
-                let s = p.start();
-                LimitView::Kapitza {
-                    limit,
-                    // The limit as the theorem states it, from (θ0, θ̇0): the overlay's level.
-                    energy: limit.energy_of(s.theta, s.theta_dot),
-                    q_dot0: p.start().theta_dot,
-                    epsilon: p.params().epsilon,
-                }
-            }
-            Self::Celt(p) => {
-                let params = p.params();
-                let y0 = p.initial_state();
-                LimitView::Free {
-                    mass: params.iz,
-                    energy: params.energy(&y0) - params.gravity * params.rest_height(),
-                    q_dot0: celt::spin(&y0),
-                }
-            }
-            #[cfg(test)]
-            Self::Oscillator(p) => {
-                let s = p.start();
-                LimitView::Free {
-                    mass: 1.0,
-                    energy: p.energy(s.x, s.v),
-                    q_dot0: s.v,
-                }
-            }
+        LimitView {
+            of: *self,
+            view: self.posed().slow_limit(),
         }
     }
 }
 
-/// The limit of a model as the portrait sees it: `E = ½ m q̇² + V(q)` with a periodic `V`; for
-/// a model without a limit, the free rotor `V = 0` whose levels are the spins the energy
-/// would allow if none of it were in rocking.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum LimitView {
-    /// The rattleback's effective motion (`m = iz`, period π).
-    Rattleback(Effective),
-    /// The pendulum's limit (`m = 1`, period 2π).
-    Kapitza {
-        /// The limit.
-        limit: kapitza::limit::Limit,
-        /// `E_eff` of the averaged start.
-        energy: f64,
-        /// The start's rate.
-        q_dot0: f64,
-        /// The fast time scale.
-        epsilon: f64,
-    },
-    /// No limit: the free rotor about the vertical (the celt's `m = C`, period π), whose level
-    /// `½ C q̇² = E − E_rest` is the largest spin the energy allows, about.
-    Free {
-        /// The moment of inertia about the vertical at rest.
-        mass: f64,
-        /// The energy above rest.
-        energy: f64,
-        /// The start's spin.
-        q_dot0: f64,
-    },
+/// The limit of a problem as the portrait sees it (the scene's own [`SlowLimit`]), with the
+/// problem it is of: two are equal when their problems are.
+#[derive(Clone, Debug)]
+pub struct LimitView {
+    of: Model,
+    view: std::sync::Arc<dyn SlowLimit>,
+}
+
+impl PartialEq for LimitView {
+    fn eq(&self, other: &Self) -> bool {
+        self.of == other.of
+    }
+}
+
+impl std::ops::Deref for LimitView {
+    type Target = dyn SlowLimit;
+
+    fn deref(&self) -> &Self::Target {
+        &*self.view
+    }
 }
 
 impl LimitView {
-    /// The rattleback's effective motion, when this is one.
-    #[must_use]
-    pub fn effective(&self) -> Option<&Effective> {
-        match self {
-            Self::Rattleback(e) => Some(e),
-            Self::Kapitza { .. } | Self::Free { .. } => None,
-        }
-    }
-
-    /// The period of the fast motion, when the explorer's samples could miss it (the
-    /// pendulum's `2π ε`; the rattleback's fast tilt is drawn only as an envelope).
-    #[must_use]
-    pub fn fast_period(&self) -> Option<f64> {
-        match self {
-            Self::Rattleback(_) | Self::Free { .. } => None,
-            Self::Kapitza { epsilon, .. } => Some(2.0 * std::f64::consts::PI * epsilon),
-        }
-    }
-
-    /// The mass of the slow coordinate.
-    #[must_use]
-    pub fn mass(&self) -> f64 {
-        match self {
-            Self::Rattleback(e) => e.params().iz,
-            Self::Kapitza { .. } => 1.0,
-            Self::Free { mass, .. } => *mass,
-        }
-    }
-
-    /// The period of `V`.
-    #[must_use]
-    pub fn period(&self) -> f64 {
-        match self {
-            Self::Rattleback(_) | Self::Free { .. } => std::f64::consts::PI,
-            Self::Kapitza { .. } => 2.0 * std::f64::consts::PI,
-        }
-    }
-
-    /// The centre of the period a wrapped portrait shows: the rattleback's potential minimum,
-    /// the pendulum's upright.
-    #[must_use]
-    pub fn wrap_centre(&self) -> f64 {
-        match self {
-            Self::Rattleback(e) => {
-                let p = e.params();
-                if p.ix >= p.iy {
-                    0.0
-                } else {
-                    std::f64::consts::FRAC_PI_2
-                }
-            }
-            Self::Kapitza { .. } | Self::Free { .. } => 0.0,
-        }
-    }
-
-    /// A fact of the potential: the rattleback's effective one's or the pendulum's limit's
-    /// (the free rotor's is flat, 0).
-    fn of_potential(
-        &self,
-        rattleback: impl Fn(&Effective) -> f64,
-        pendulum: impl Fn(&kapitza::limit::Limit) -> f64,
-    ) -> f64 {
-        match self {
-            Self::Rattleback(e) => rattleback(e),
-            Self::Kapitza { limit, .. } => pendulum(limit),
-            Self::Free { .. } => 0.0,
-        }
-    }
-
-    /// `V(q)`.
-    #[must_use]
-    pub fn potential(&self, q: f64) -> f64 {
-        self.of_potential(|e| e.potential(q), |l| l.potential(q))
-    }
-
-    /// The highest separatrix level.
-    #[must_use]
-    pub fn potential_max(&self) -> f64 {
-        self.of_potential(
-            Effective::potential_max,
-            kapitza::limit::Limit::potential_max,
-        )
-    }
-
-    /// The lowest potential.
-    #[must_use]
-    pub fn potential_min(&self) -> f64 {
-        self.of_potential(
-            Effective::potential_min,
-            kapitza::limit::Limit::potential_min,
-        )
-    }
-
-    /// Every separatrix level (the rattleback has one; the pendulum one per unstable
-    /// equilibrium).
-    #[must_use]
-    pub fn separatrices(&self) -> Vec<f64> {
-        match self {
-            Self::Rattleback(e) => {
-                if e.potential_max() > e.potential_min() {
-                    vec![e.potential_max()]
-                } else {
-                    Vec::new()
-                }
-            }
-            Self::Kapitza { limit, .. } => limit.separatrices(),
-            Self::Free { .. } => Vec::new(),
-        }
-    }
-
-    /// `E_eff` of the start.
-    #[must_use]
-    pub fn energy(&self) -> f64 {
-        match self {
-            Self::Rattleback(e) => e.energy(),
-            Self::Kapitza { energy, .. } | Self::Free { energy, .. } => *energy,
-        }
-    }
-
     /// `E_eff` of any slow state.
     #[must_use]
     pub fn energy_of(&self, q: f64, q_dot: f64) -> f64 {
@@ -691,11 +473,7 @@ impl LimitView {
         let (lo, hi) = (self.potential_min(), self.potential_max());
         let sep = (2.0 * (hi - lo) / m).max(0.0).sqrt();
         let top = (2.0 * (self.energy() - lo) / m).max(0.0).sqrt();
-        let q_dot0 = match self {
-            Self::Rattleback(e) => e.spin_scale(),
-            Self::Kapitza { q_dot0, .. } | Self::Free { q_dot0, .. } => q_dot0.abs(),
-        };
-        sep.max(top).max(q_dot0)
+        sep.max(top).max(self.rate_hint())
     }
 }
 
@@ -708,7 +486,6 @@ mod tests {
     /// chart: `tests/it/scenes.rs`, on the shipped presets).
     #[test]
     fn each_registered_scene_is_listed_once_with_the_test_scene_in_tests() {
-        assert!(ModelKind::ALL.contains(&ModelKind::Oscillator));
         for (i, kind) in ModelKind::ALL.into_iter().enumerate() {
             assert!(!ModelKind::ALL[..i].contains(&kind), "{kind:?} twice");
             assert_eq!(ModelKind::from_name(kind.name()), Some(kind));

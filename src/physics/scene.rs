@@ -345,6 +345,9 @@ pub trait Posed {
     fn default_step(&self, method: Method, tolerance: f64, t_end: f64) -> f64;
     /// What the body pane (`B`) draws of it.
     fn drawing(&self) -> Drawing;
+    /// The slow coordinate's limit as the phase portrait draws it (issue 83: the scene's own,
+    /// a [`FreeRotor`] for a scene without a limit).
+    fn slow_limit(&self) -> std::sync::Arc<dyn SlowLimit>;
     /// Builds a concrete method's integration at `t = 0`, following `arithmetic` (a replay of
     /// an old file: the rules it was recorded with; each model follows the rules it has).
     ///
@@ -399,3 +402,74 @@ macro_rules! table_order {
     };
 }
 pub(crate) use table_order;
+
+/// The limit of a model as the phase portrait sees it: `E = ½ m q̇² + V(q)` with a periodic
+/// `V`. Each scene gives its own ([`Posed::slow_limit`]); a scene without a limit gives a
+/// [`FreeRotor`].
+pub trait SlowLimit: std::fmt::Debug + Send + Sync {
+    /// The mass of the slow coordinate.
+    fn mass(&self) -> f64;
+    /// The period of `V`.
+    fn period(&self) -> f64;
+    /// The centre of the period a wrapped portrait shows.
+    fn wrap_centre(&self) -> f64;
+    /// The period of the fast motion, when the explorer's samples could miss it.
+    fn fast_period(&self) -> Option<f64>;
+    /// `V(q)`.
+    fn potential(&self, q: f64) -> f64;
+    /// The highest separatrix level (the lowest potential when there is none).
+    fn potential_max(&self) -> f64;
+    /// The lowest potential.
+    fn potential_min(&self) -> f64;
+    /// Every separatrix level.
+    fn separatrices(&self) -> Vec<f64>;
+    /// `E_eff` of the start.
+    fn energy(&self) -> f64;
+    /// The start's slow rate, as a scale.
+    fn rate_hint(&self) -> f64;
+}
+
+/// No limit: the free rotor `V = 0` (period π), whose level `½ m q̇² = E − E_rest` is the
+/// largest rate the energy allows if none of it were in the fast motion.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FreeRotor {
+    /// The moment of inertia of the slow coordinate.
+    pub mass: f64,
+    /// The energy above rest.
+    pub energy: f64,
+    /// The start's rate.
+    pub q_dot0: f64,
+}
+
+impl SlowLimit for FreeRotor {
+    fn mass(&self) -> f64 {
+        self.mass
+    }
+    fn period(&self) -> f64 {
+        std::f64::consts::PI
+    }
+    fn wrap_centre(&self) -> f64 {
+        0.0
+    }
+    fn fast_period(&self) -> Option<f64> {
+        None
+    }
+    fn potential(&self, _: f64) -> f64 {
+        0.0
+    }
+    fn potential_max(&self) -> f64 {
+        0.0
+    }
+    fn potential_min(&self) -> f64 {
+        0.0
+    }
+    fn separatrices(&self) -> Vec<f64> {
+        Vec::new()
+    }
+    fn energy(&self) -> f64 {
+        self.energy
+    }
+    fn rate_hint(&self) -> f64 {
+        self.q_dot0.abs()
+    }
+}

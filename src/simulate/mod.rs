@@ -4,12 +4,19 @@
 //! The rattleback's report is here; each other model's is in its own file (`kapitza`), reached
 //! through the preset's [`crate::physics::Model`].
 
-mod celt;
-mod kapitza;
-#[cfg(test)]
-mod oscillator;
-mod rattleback;
 mod render;
+
+/// Each scene's report (`simulate/SCENE.rs`), declared by its registry line.
+macro_rules! report_modules {
+    ($(
+        $(#[doc = $doc:literal])*
+        $(#[cfg($cfg:meta)])?
+        $name:ident: $folder:ident, $chart:ident;
+    )*) => {
+        $( $(#[cfg($cfg)])? mod $folder; )*
+    };
+}
+crate::physics::models::with_scenes!(report_modules);
 
 use serde::Serialize;
 

@@ -9,8 +9,8 @@ use serde::Serialize;
 use super::render::StatsOut;
 use super::{Failure, Format, Missed, Resolved, Times};
 use crate::physics::method::{Asked, RunSpec};
-use crate::physics::models::oscillator::flows::{self, RunResult};
-use crate::physics::models::oscillator::{Params, Problem, Start};
+use crate::physics::oscillator::flows::{self, RunResult};
+use crate::physics::oscillator::{Params, Problem, Start};
 
 #[derive(Serialize)]
 struct Report {

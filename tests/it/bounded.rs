@@ -269,12 +269,11 @@ fn hostile_sessions(d: &std::path::Path) -> Vec<std::path::PathBuf> {
         .to_toml();
     let plan: rattleback::sim::PlanKey = {
         let p = rattleback::scenario::shipped::resolve("subcritical", &[]).unwrap();
-        rattleback::sim::PlanKey::Rattleback {
-            params: *p.problem().unwrap().params(),
-            start: *p.problem().unwrap().start(),
-            tolerance: 1e-9,
-            t_end: 30.0,
-        }
+        rattleback::sim::PlanKey::Rattleback(rattleback::physics::rattleback::scene::PlanKey::of(
+            p.problem().unwrap(),
+            1e-9,
+            30.0,
+        ))
     };
     let cases: Vec<(&str, String, Vec<Event>)> = vec![
         ("tiny-iz", tiny_iz, vec![Event::Play]),

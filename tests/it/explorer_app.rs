@@ -330,15 +330,11 @@ fn the_limit_hidden_then_shown_catches_up() {
     h.key(Key::Char('e'));
     h.tick(1.0 / 30.0);
     let run = &h.app.run;
-    let expected = h
-        .app
-        .scenario
-        .derived
-        .limit
-        .effective()
-        .unwrap()
-        .reversal_times(run.shown)
-        .len();
+    let expected = rattleback::physics::rattleback::effective::Effective::new(
+        h.app.scenario.settings.model.rattleback().unwrap(),
+    )
+    .reversal_times(run.shown)
+    .len();
     assert_eq!(run.effective_reversals_shown(), expected);
     assert!(run.effective_reversals_shown() > before);
     let first = run.effective_shown().first().expect("caught-up trail");

@@ -582,7 +582,10 @@ fn a_lecture_verified_in_segments_replays_and_follows_frame_for_frame() {
         .iter()
         .filter_map(|l| match &l.event {
             Event::Plan {
-                key: rattleback::sim::PlanKey::Rattleback { t_end, .. },
+                key:
+                    rattleback::sim::PlanKey::Rattleback(
+                        rattleback::physics::rattleback::scene::PlanKey { t_end, .. },
+                    ),
                 ..
             } => Some(*t_end),
             _ => None,

@@ -27,6 +27,8 @@ use crate::physics::numerics::elementary::Elementary;
 
 pub mod budget;
 pub mod chart;
+#[cfg(test)]
+pub mod contract;
 pub mod flows;
 pub mod linear;
 pub mod plan;

@@ -10,6 +10,7 @@ use crate::physics::numerics::elementary::Elementary;
 
 use super::{Params, Problem, Start, TILT_MAX};
 use crate::physics::chart::{Column, MapFlag};
+use crate::physics::scene::{FreeRotor, SlowLimit};
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
@@ -302,6 +303,17 @@ impl Posed for Problem {
         // Adaptive methods only; the size of the first step DOP853 would take, about.
         tolerance.clamp(1e-16, 1.0).e_powf(0.125) / super::budget::fastest_rate(self)
     }
+    fn slow_limit(&self) -> std::sync::Arc<dyn SlowLimit> {
+        // No limit: the free rotor about the vertical (`m = C`), whose level is the largest
+        // spin the energy allows, about.
+        let params = self.params();
+        let y0 = self.initial_state();
+        std::sync::Arc::new(FreeRotor {
+            mass: params.iz,
+            energy: params.energy(&y0) - params.gravity * params.rest_height(),
+            q_dot0: super::spin(&y0),
+        })
+    }
     fn drawing(&self) -> Drawing {
         let p = self.params();
         Drawing::Body {
@@ -353,5 +365,35 @@ impl Posed for Problem {
             method: run.method,
             estimate: r.estimate.unwrap_or(0.0),
         })
+    }
+}
+
+/// What a plan of this scene was resolved for (the registry's `PlanKey` holds it) (field names differ from the other scenes': the untagged form stays unambiguous).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[schemars(inline)]
+pub struct PlanKey {
+    /// The body.
+    pub celt: super::Params,
+    /// Attitude and angular velocity.
+    pub celt_start: super::Start,
+    /// The reversal band.
+    pub spin_band: f64,
+    /// Tolerance asked.
+    pub tolerance: f64,
+    /// Horizon.
+    pub t_end: f64,
+}
+
+impl PlanKey {
+    /// The key of `p` run to `t_end` at `tolerance`.
+    #[must_use]
+    pub fn of(p: &Problem, tolerance: f64, t_end: f64) -> Self {
+        Self {
+            celt: *p.params(),
+            celt_start: *p.start(),
+            spin_band: p.band(),
+            tolerance,
+            t_end,
+        }
     }
 }

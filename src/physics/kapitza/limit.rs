@@ -170,6 +170,54 @@ pub fn to_slow(p: &Params, phase: FastPhase, t: f64, full: (f64, f64)) -> (f64, 
     slow
 }
 
+/// The pendulum's limit as the phase portrait draws it (`m = 1`, period 2π).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SlowView {
+    /// The limit.
+    pub limit: Limit,
+    /// `E_eff` of the averaged start.
+    pub energy: f64,
+    /// The start's rate.
+    pub q_dot0: f64,
+    /// The fast time scale.
+    pub epsilon: f64,
+}
+
+impl crate::physics::scene::SlowLimit for SlowView {
+    fn mass(&self) -> f64 {
+        1.0
+    }
+    fn period(&self) -> f64 {
+        2.0 * std::f64::consts::PI
+    }
+    /// The upright.
+    fn wrap_centre(&self) -> f64 {
+        0.0
+    }
+    /// `2π ε`: the explorer's samples could miss it.
+    fn fast_period(&self) -> Option<f64> {
+        Some(2.0 * std::f64::consts::PI * self.epsilon)
+    }
+    fn potential(&self, q: f64) -> f64 {
+        self.limit.potential(q)
+    }
+    fn potential_max(&self) -> f64 {
+        self.limit.potential_max()
+    }
+    fn potential_min(&self) -> f64 {
+        self.limit.potential_min()
+    }
+    fn separatrices(&self) -> Vec<f64> {
+        self.limit.separatrices()
+    }
+    fn energy(&self) -> f64 {
+        self.energy
+    }
+    fn rate_hint(&self) -> f64 {
+        self.q_dot0.abs()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

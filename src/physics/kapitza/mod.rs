@@ -21,6 +21,8 @@ pub mod averaged;
 mod averaged3_terms;
 pub mod budget;
 pub mod chart;
+#[cfg(test)]
+pub mod contract;
 pub mod floquet;
 pub mod flows;
 pub mod limit;

@@ -5,6 +5,7 @@
 use super::limit::Limit;
 use super::{EPSILON_MAX, EPSILON_MIN, Params, Problem, Start};
 use crate::physics::chart::{Column, MapFlag};
+use crate::physics::scene::SlowLimit;
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
@@ -176,6 +177,17 @@ impl Posed for Problem {
     fn default_step(&self, method: Method, tolerance: f64, t_end: f64) -> f64 {
         super::flows::default_step(method, self, tolerance, t_end)
     }
+    fn slow_limit(&self) -> std::sync::Arc<dyn SlowLimit> {
+        let limit = Limit::new(self.params());
+        let s = self.start();
+        std::sync::Arc::new(super::limit::SlowView {
+            limit,
+            // The limit as the theorem states it, from (θ0, θ̇0): the overlay's level.
+            energy: limit.energy_of(s.theta, s.theta_dot),
+            q_dot0: s.theta_dot,
+            epsilon: self.params().epsilon,
+        })
+    }
     fn drawing(&self) -> Drawing {
         // The pivot's acceleration is (b/ε) cos(t/ε) in rod lengths: its travel is ±b ε.
         let p = self.params();
@@ -263,5 +275,32 @@ impl WeakStudy for Problem {
                 reference,
             }
         })
+    }
+}
+
+/// What a plan of this scene was resolved for (the registry's `PlanKey` holds it).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[schemars(inline)]
+pub struct PlanKey {
+    /// `a`, `b`, `epsilon`.
+    pub pendulum: super::Params,
+    /// `theta`, `theta_dot`.
+    pub initial: super::Start,
+    /// Tolerance asked.
+    pub tolerance: f64,
+    /// Horizon.
+    pub t_end: f64,
+}
+
+impl PlanKey {
+    /// The key of `p` run to `t_end` at `tolerance`.
+    #[must_use]
+    pub fn of(p: &Problem, tolerance: f64, t_end: f64) -> Self {
+        Self {
+            pendulum: *p.params(),
+            initial: *p.start(),
+            tolerance,
+            t_end,
+        }
     }
 }

@@ -11,6 +11,7 @@
 use crate::physics::numerics::elementary::Elementary;
 
 pub mod chart;
+pub mod contract;
 pub mod flows;
 pub mod scene;
 

@@ -3,6 +3,7 @@ use crate::physics::numerics::elementary::Elementary;
 
 use super::{Params, Problem, Start};
 use crate::physics::chart::{Column, MapFlag};
+use crate::physics::scene::{FreeRotor, SlowLimit};
 use crate::physics::flow::{Flow, GoOn};
 use crate::physics::method::{Arithmetic, Asked, Method, RunSpec, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
@@ -120,6 +121,14 @@ impl Posed for Problem {
     fn default_step(&self, _method: Method, tolerance: f64, _t_end: f64) -> f64 {
         tolerance.clamp(1e-16, 1.0).e_powf(0.125) / self.params().omega
     }
+    fn slow_limit(&self) -> std::sync::Arc<dyn SlowLimit> {
+        let s = self.start();
+        std::sync::Arc::new(FreeRotor {
+            mass: 1.0,
+            energy: self.energy(s.x, s.v),
+            q_dot0: s.v,
+        })
+    }
     fn drawing(&self) -> Drawing {
         Drawing::Body {
             plan: [1.0, 0.5],
@@ -152,5 +161,32 @@ impl Posed for Problem {
             method: r.plan.method,
             estimate: r.estimate.unwrap_or(0.0),
         })
+    }
+}
+
+/// What a plan of this scene was resolved for (the registry's `PlanKey` holds it) (field names differ from the other scenes': the untagged form stays unambiguous).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[schemars(inline)]
+pub struct PlanKey {
+    /// `omega`.
+    pub oscillator: super::Params,
+    /// `x`, `v`.
+    pub oscillator_start: super::Start,
+    /// Tolerance asked.
+    pub tolerance: f64,
+    /// Horizon.
+    pub t_end: f64,
+}
+
+impl PlanKey {
+    /// The key of `p` run to `t_end` at `tolerance`.
+    #[must_use]
+    pub fn of(p: &Problem, tolerance: f64, t_end: f64) -> Self {
+        Self {
+            oscillator: *p.params(),
+            oscillator_start: *p.start(),
+            tolerance,
+            t_end,
+        }
     }
 }

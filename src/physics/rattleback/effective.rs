@@ -399,6 +399,50 @@ pub fn tapping_acceleration(problem: &Problem) -> f64 {
     p.g_prime(s.alpha) * s.gamma_dot * s.gamma_dot / (2.0 * p.iz)
 }
 
+impl crate::physics::scene::SlowLimit for Effective {
+    fn mass(&self) -> f64 {
+        self.params().iz
+    }
+    fn period(&self) -> f64 {
+        std::f64::consts::PI
+    }
+    /// The potential's minimum.
+    fn wrap_centre(&self) -> f64 {
+        let p = self.params();
+        if p.ix >= p.iy {
+            0.0
+        } else {
+            std::f64::consts::FRAC_PI_2
+        }
+    }
+    /// The fast tilt is drawn only as an envelope.
+    fn fast_period(&self) -> Option<f64> {
+        None
+    }
+    fn potential(&self, q: f64) -> f64 {
+        Self::potential(self, q)
+    }
+    fn potential_max(&self) -> f64 {
+        Self::potential_max(self)
+    }
+    fn potential_min(&self) -> f64 {
+        Self::potential_min(self)
+    }
+    fn separatrices(&self) -> Vec<f64> {
+        if self.potential_max() > self.potential_min() {
+            vec![self.potential_max()]
+        } else {
+            Vec::new()
+        }
+    }
+    fn energy(&self) -> f64 {
+        Self::energy(self)
+    }
+    fn rate_hint(&self) -> f64 {
+        self.spin_scale()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -11,6 +11,8 @@ pub mod averaged3;
 mod averaged3_terms;
 pub mod budget;
 pub mod chart;
+#[cfg(test)]
+pub mod contract;
 pub mod effective;
 pub mod integrators;
 pub mod map;

@@ -7,6 +7,7 @@ use super::integrators;
 use super::model::ALPHA;
 use super::params::{Params, Problem, Start};
 use crate::physics::chart::{Column, MapFlag};
+use crate::physics::scene::SlowLimit;
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
@@ -157,6 +158,9 @@ impl Posed for Problem {
     fn default_step(&self, method: Method, tolerance: f64, t_end: f64) -> f64 {
         integrators::default_step(method, self, tolerance, t_end)
     }
+    fn slow_limit(&self) -> std::sync::Arc<dyn SlowLimit> {
+        std::sync::Arc::new(Effective::new(self))
+    }
     fn drawing(&self) -> Drawing {
         // The long axis is the body's x axis when ix > iy (the keel); the paper's body has no
         // shape beyond its inertia, so no side view (its tilt is the pane's cross bar).
@@ -248,5 +252,32 @@ impl WeakStudy for Problem {
             level: Effective::new(self).theta(),
             reference: Vec::new(),
         })
+    }
+}
+
+/// What a plan of this scene was resolved for (the registry's `PlanKey` holds it).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[schemars(inline)]
+pub struct PlanKey {
+    /// Body and spring.
+    pub params: super::params::Params,
+    /// Start.
+    pub start: super::params::Start,
+    /// Tolerance asked.
+    pub tolerance: f64,
+    /// Horizon.
+    pub t_end: f64,
+}
+
+impl PlanKey {
+    /// The key of `p` run to `t_end` at `tolerance`.
+    #[must_use]
+    pub fn of(p: &Problem, tolerance: f64, t_end: f64) -> Self {
+        Self {
+            params: *p.params(),
+            start: *p.start(),
+            tolerance,
+            t_end,
+        }
     }
 }
