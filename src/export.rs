@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use plotters::prelude::*;
 
-use crate::app::App;
+use crate::app::{App, ShellError};
 use crate::study::svg::tick;
 
 /// The model's physical parameters for a caption (the start left out; the small parameter by
@@ -340,15 +340,22 @@ pub fn trajectory_csv(app: &App) -> String {
 ///
 /// # Errors
 /// What went wrong, for the status line.
-pub fn export(app: &App, dir: &Path, stem: &str) -> Result<Vec<PathBuf>, String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let svg = portrait_svg(app).map_err(|e| format!("drawing the portrait: {e}"))?;
+pub fn export(app: &App, dir: &Path, stem: &str) -> Result<Vec<PathBuf>, ShellError> {
+    std::fs::create_dir_all(dir).map_err(|source| ShellError::Io {
+        path: dir.to_owned(),
+        source,
+    })?;
+    let svg = portrait_svg(app).map_err(|e| ShellError::Drawing(e.to_string()))?;
     let csv = trajectory_csv(app);
     let mut written = Vec::new();
     for (ext, text) in [("svg", svg), ("csv", csv)] {
         let path = crate::scenario::write::fresh_name(dir, stem, ext);
-        crate::scenario::write::write_atomic(&path, text.as_bytes(), false)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+        crate::scenario::write::write_atomic(&path, text.as_bytes(), false).map_err(|source| {
+            ShellError::Io {
+                path: path.clone(),
+                source,
+            }
+        })?;
         written.push(path);
     }
     Ok(written)

@@ -43,11 +43,43 @@ pub enum Effect {
     Suspend,
 }
 
+/// Why an effect the shell carried out failed (issue 83: typed; each says itself on the status
+/// line or in a dialog).
+#[derive(Debug, thiserror::Error)]
+pub enum ShellError {
+    /// A file or folder the system refused.
+    #[error("{}: {source}", .path.display())]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// What the system said.
+        source: std::io::Error,
+    },
+    /// No folder to write into, and where one comes from.
+    #[error("{0}")]
+    NoFolder(&'static str),
+    /// The recording's signing key.
+    #[error(transparent)]
+    Key(#[from] crate::record::sign::KeyError),
+    /// The session file.
+    #[error(transparent)]
+    Record(#[from] crate::record::RecordError),
+    /// A preset that does not load.
+    #[error(transparent)]
+    Preset(#[from] crate::scenario::PresetError),
+    /// The portrait's drawing.
+    #[error("drawing the portrait: {0}")]
+    Drawing(String),
+    /// What this build (the browser's) does not do yet.
+    #[error("{0}")]
+    NotInThisBuild(String),
+}
+
 /// What came of an effect.
 #[derive(Debug)]
 pub enum Outcome {
     /// The recording started (its path) or could not.
-    Recording(Result<String, String>),
+    Recording(Result<String, ShellError>),
     /// The recording was closed (its path).
     RecordingSaved(String),
     /// Writing the recording failed; it stopped.
@@ -57,9 +89,9 @@ pub enum Outcome {
     /// The catalogue: presets and the problems of broken user files (`(name, error)`).
     Catalogue(Vec<Entry>, Vec<(String, String)>),
     /// A preset to load, or why it did not load.
-    Loaded(Box<Result<Preset, String>>),
+    Loaded(Box<Result<Preset, ShellError>>),
     /// The files written by an export, or why not.
-    Exported(Result<Vec<PathBuf>, String>),
+    Exported(Result<Vec<PathBuf>, ShellError>),
     /// Where `y` put the command: `text` was sent as OSC 52 (no terminal answers it); `tmux`
     /// when tmux's buffer took it too; else the file it was saved to, or why not.
     Copied {
@@ -68,7 +100,7 @@ pub enum Outcome {
         /// tmux's `load-buffer` took it.
         tmux: bool,
         /// The file beside the sessions, when tmux did not take it.
-        file: Option<Result<PathBuf, String>>,
+        file: Option<Result<PathBuf, ShellError>>,
     },
 }
 

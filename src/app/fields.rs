@@ -171,43 +171,36 @@ impl Field {
     ///
     /// # Errors
     /// What is wrong and what is allowed, for display in place.
-    pub fn with_value(self, s: &Settings, value: f64) -> Result<Settings, String> {
+    pub fn with_value(self, s: &Settings, value: f64) -> Result<Settings, EditError> {
         if !self.belongs_to(s.model.kind()) {
-            return Err(format!(
-                "`{}` is not a parameter of the {} model",
-                self.label(),
-                s.model.kind().name()
-            ));
+            return Err(EditError::NotHere {
+                label: self.label().to_owned(),
+                model: s.model.kind().name(),
+            });
         }
         let mut n = *s;
         match self {
             Self::TEnd => {
                 if !(value.is_finite() && value > 0.0) {
-                    return Err(format!(
-                        "t_end = {} refused; allowed: a finite number > 0",
-                        crate::physics::Number(value)
-                    ));
+                    return Err(EditError::TEnd(value));
                 }
                 n.t_end = value;
             }
             Self::Tolerance => {
                 let (lo, hi) = TOLERANCE_RANGE;
                 if !(value.is_finite() && (lo..=hi).contains(&value)) {
-                    return Err(format!(
-                        "tolerance = {} refused; allowed: [{lo:e}, {hi:e}]",
-                        crate::physics::Number(value)
-                    ));
+                    return Err(EditError::Tolerance(value));
                 }
                 n.tolerance = value;
             }
             Self::Method => {
-                return Err("choose a method with ←/→ or type its name".to_owned());
+                return Err(EditError::MethodByName);
             }
             Self::Param(spec) => {
                 n.model = s
                     .model
                     .with_value(spec.key, value)
-                    .map_err(|e| format!("{e}; old value kept"))?;
+                    .map_err(EditError::Param)?;
             }
         }
         Ok(n)
@@ -217,7 +210,7 @@ impl Field {
     ///
     /// # Errors
     /// When the nudge would leave the allowed range.
-    pub fn nudge(self, s: &Settings, dir: f64, coarse: bool) -> Result<Settings, String> {
+    pub fn nudge(self, s: &Settings, dir: f64, coarse: bool) -> Result<Settings, EditError> {
         let v = self.value(s);
         let decades = || 10f64.e_powf(dir * if coarse { 1.0 } else { 0.1 });
         let next = match self {
@@ -262,31 +255,89 @@ impl Field {
     ///
     /// # Errors
     /// Not a number, or not allowed.
-    pub fn with_text(self, s: &Settings, text: &str) -> Result<Settings, String> {
+    pub fn with_text(self, s: &Settings, text: &str) -> Result<Settings, EditError> {
         let text = text.trim();
         if self == Self::Method {
             let kind = s.model.kind();
             return match Method::from_name(text) {
                 Some(method) if kind.offers(method) => Ok(Settings { method, ..*s }),
-                Some(method) => Err(format!(
-                    "method {method} is not offered for the {} model; allowed: {}",
-                    kind.name(),
-                    kind.method_names()
-                )),
-                None => Err(format!(
-                    "unknown method '{text}'; allowed: {}",
-                    kind.method_names()
-                )),
+                Some(method) => Err(EditError::NotOffered {
+                    method,
+                    model: kind.name(),
+                    offered: kind.method_names(),
+                }),
+                None => Err(EditError::UnknownMethod {
+                    text: text.to_owned(),
+                    offered: kind.method_names(),
+                }),
             };
         }
         let value: f64 = text
             .parse()
-            .map_err(|_| format!("'{text}' is not a number; old value kept"))?;
+            .map_err(|_| EditError::NotANumber(text.to_owned()))?;
         self.with_value(s, value)
     }
 }
 
 pub use crate::scenario::text::format_number;
+
+/// Why an edit of the panel was refused (issue 83: typed; each says itself in place, and the
+/// old value is kept).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum EditError {
+    /// A field of another scene.
+    #[error("`{label}` is not a parameter of the {model} model")]
+    NotHere {
+        /// The field.
+        label: String,
+        /// The scene's name.
+        model: &'static str,
+    },
+    /// A horizon that is not a finite number > 0.
+    #[error("t_end = {} refused; allowed: a finite number > 0", crate::physics::Number(*.0))]
+    TEnd(f64),
+    /// A tolerance out of its range.
+    #[error(
+        "tolerance = {} refused; allowed: [{:e}, {:e}]",
+        crate::physics::Number(*.0),
+        TOLERANCE_RANGE.0,
+        TOLERANCE_RANGE.1
+    )]
+    Tolerance(f64),
+    /// A number given to the method's row.
+    #[error("choose a method with ←/→ or type its name")]
+    MethodByName,
+    /// A parameter value the scene refuses.
+    #[error("{0}; old value kept")]
+    Param(crate::physics::ParamError),
+    /// A method the scene does not offer.
+    #[error("method {method} is not offered for the {model} model; allowed: {offered}")]
+    NotOffered {
+        /// The method.
+        method: Method,
+        /// The scene's name.
+        model: &'static str,
+        /// What it offers.
+        offered: String,
+    },
+    /// A name that is no method.
+    #[error("unknown method '{text}'; allowed: {offered}")]
+    UnknownMethod {
+        /// As typed.
+        text: String,
+        /// What the scene offers.
+        offered: String,
+    },
+    /// Text that is not a number.
+    #[error("'{0}' is not a number; old value kept")]
+    NotANumber(String),
+    /// A chart's cell loaded before the chart exists.
+    #[error("no map yet")]
+    NoMap,
+    /// A chart's cell that is not a problem of the scene.
+    #[error(transparent)]
+    Cell(#[from] crate::physics::chart::ChartError),
+}
 
 #[cfg(test)]
 mod tests {
@@ -323,12 +374,12 @@ mod tests {
     fn invalid_values_are_refused_with_the_reason() {
         let s = settings();
         let f = |name| Field::named(s.model.kind(), name).unwrap();
-        let err = f("iy").with_text(&s, "-1").unwrap_err();
+        let err = f("iy").with_text(&s, "-1").unwrap_err().to_string();
         assert!(
             err.contains("> 0") && err.contains("old value kept"),
             "{err}"
         );
-        let err = f("k").with_text(&s, "abc").unwrap_err();
+        let err = f("k").with_text(&s, "abc").unwrap_err().to_string();
         assert!(err.contains("not a number"), "{err}");
         let small = f("iz").with_value(&s, 0.05).unwrap();
         assert!(f("iz").nudge(&small, -1.0, false).is_err());
@@ -350,17 +401,43 @@ mod tests {
         assert_eq!(Field::rows(pendulum)[0].label(), "a");
         let e = f("epsilon").nudge(&s, -1.0, true).unwrap();
         assert!((e.model.kapitza().unwrap().params().epsilon - 1e-4).abs() < 1e-15);
+        // Typed (issue 83): each refusal is its own variant, and says itself.
         let err = f("epsilon").with_text(&s, "0").unwrap_err();
+        assert!(matches!(err, EditError::Param(_)), "{err:?}");
+        let said = err.to_string();
         assert!(
-            err.contains("epsilon") && err.contains("old value kept"),
-            "{err}"
+            said.contains("epsilon") && said.contains("old value kept"),
+            "{said}"
         );
         let err = Field::Method.with_text(&s, "locked").unwrap_err();
-        assert!(err.contains("not offered for the kapitza model"), "{err}");
+        assert!(
+            matches!(
+                err,
+                EditError::NotOffered {
+                    model: "kapitza",
+                    ..
+                }
+            ),
+            "{err:?}"
+        );
+        assert!(
+            err.to_string()
+                .contains("not offered for the kapitza model")
+        );
         let err = f("k").with_text(&s, "3").unwrap_err();
         assert!(
-            err.contains("not a parameter of the kapitza model"),
-            "{err}"
+            matches!(
+                err,
+                EditError::NotHere {
+                    model: "kapitza",
+                    ..
+                }
+            ),
+            "{err:?}"
+        );
+        assert!(
+            err.to_string()
+                .contains("not a parameter of the kapitza model")
         );
         // Nudging the method cycles through the pendulum's methods only.
         let mut m = s;

@@ -26,7 +26,7 @@ mod scenario;
 mod state;
 pub mod user_keys;
 
-pub use effects::{Effect, Outcome};
+pub use effects::{Effect, Outcome, ShellError};
 pub use keys::{Action, Key};
 pub use mode::Mode;
 pub use run::{Events, PlanState, RunState, TRAIL_CAP};
@@ -305,7 +305,7 @@ impl App {
         std::mem::take(&mut self.journal.entries)
     }
 
-    fn apply(&mut self, result: Result<fields::Settings, String>) -> Vec<Effect> {
+    fn apply(&mut self, result: Result<fields::Settings, fields::EditError>) -> Vec<Effect> {
         match result {
             Ok(s) => {
                 self.status = None;
@@ -322,7 +322,7 @@ impl App {
                 self.restart()
             }
             Err(reason) => {
-                self.status = Message::error(reason);
+                self.status = Message::error(reason.to_string());
                 Vec::new()
             }
         }

@@ -229,7 +229,12 @@ impl App {
 
     /// Where `y` put the command, said first (the message line shows its start); a file is
     /// also noted among what the session wrote.
-    fn copied(&mut self, text: &str, tmux: bool, file: Option<Result<std::path::PathBuf, String>>) {
+    fn copied(
+        &mut self,
+        text: &str,
+        tmux: bool,
+        file: Option<Result<std::path::PathBuf, super::ShellError>>,
+    ) {
         let said = match (tmux, file) {
             (true, _) => {
                 format!("command in tmux's buffer (prefix ] pastes; also sent as OSC 52): {text}")

@@ -150,7 +150,10 @@ impl App {
         let s = self.scenario.settings;
         let (kind, words) = (s.model.kind(), s.model.kind().words());
         let named = |name| {
-            Field::named(kind, name).ok_or_else(|| format!("the {} has no `{name}`", kind.title()))
+            Field::named(kind, name).ok_or_else(|| super::fields::EditError::NotHere {
+                label: name.to_owned(),
+                model: kind.name(),
+            })
         };
         let set = named(words.q_name).and_then(|q| {
             let q_dot = named(words.q_dot_name)?;

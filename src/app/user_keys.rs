@@ -81,7 +81,7 @@ pub fn action_name(action: Action) -> &'static str {
 ///
 /// # Errors
 /// What is allowed.
-pub fn parse_key(text: &str) -> Result<Key, String> {
+pub fn parse_key(text: &str) -> Result<Key, KeyBindError> {
     let lower = text.trim().to_lowercase();
     let one = |s: &str| {
         let mut c = s.chars();
@@ -119,11 +119,39 @@ pub fn parse_key(text: &str) -> Result<Key, String> {
             }
         }
     };
-    key.ok_or_else(|| {
-        format!(
-            "'{text}' is not a key; allowed: one character, space, enter, esc, backspace, tab, pgup, pgdn, home, end, up, down, left, right, shift-ARROW, ctrl-LETTER, alt-KEY"
-        )
-    })
+    key.ok_or_else(|| KeyBindError::NotAKey(text.to_owned()))
+}
+
+/// Why a key of `[keys]` was refused (issue 83: typed; each says itself).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum KeyBindError {
+    /// Not a key's name.
+    #[error(
+        "'{0}' is not a key; allowed: one character, space, enter, esc, backspace, tab, pgup, pgdn, home, end, up, down, left, right, shift-ARROW, ctrl-LETTER, alt-KEY"
+    )]
+    NotAKey(String),
+    /// Ctrl-C.
+    #[error("Ctrl-C always quits; choose another key")]
+    CtrlC,
+    /// Held by another action that keeps its defaults.
+    #[error(
+        "'{text}' is already bound to {}; choose a free key, or free it with {holder} = \"none\" (or {holder} = [\"none\", \"OTHER KEY\"])",
+        .holder.replace('_', " ")
+    )]
+    Held {
+        /// As written.
+        text: String,
+        /// The action holding it, as named in `[keys]`.
+        holder: &'static str,
+    },
+    /// Given to two actions.
+    #[error("'{text}' is given twice (also to `{other}`)")]
+    Twice {
+        /// As written.
+        text: String,
+        /// The other action, as named in `[keys]`.
+        other: &'static str,
+    },
 }
 
 /// How a key is written in help.
@@ -205,7 +233,7 @@ impl UserKeys {
                 match bind(text, action, &replaced, &bindings) {
                     Ok(Some(key)) => bindings.push((key, action)),
                     Ok(None) => {}
-                    Err(e) => errors.push((i, e)),
+                    Err(e) => errors.push((i, e.to_string())),
                 }
             }
         }
@@ -293,10 +321,10 @@ fn bind(
     action: Action,
     replaced: &[Action],
     bindings: &[(Key, Action)],
-) -> Result<Option<Key>, String> {
+) -> Result<Option<Key>, KeyBindError> {
     let key = parse_key(text)?;
     if key == Key::Ctrl('c') {
-        return Err("Ctrl-C always quits; choose another key".to_owned());
+        return Err(KeyBindError::CtrlC);
     }
     if let Some(b) = KEYMAP.iter().find(|b| b.keys.contains(&key)) {
         let free = replaced.contains(&b.action);
@@ -304,18 +332,17 @@ fn bind(
             return Ok(None);
         }
         if b.action != action && !free {
-            let holder = action_name(b.action);
-            return Err(format!(
-                "'{text}' is already bound to {}; choose a free key, or free it with {holder} = \"none\" (or {holder} = [\"none\", \"OTHER KEY\"])",
-                holder.replace('_', " ")
-            ));
+            return Err(KeyBindError::Held {
+                text: text.to_owned(),
+                holder: action_name(b.action),
+            });
         }
     }
     if let Some((_, other)) = bindings.iter().find(|(k, _)| *k == key) {
-        return Err(format!(
-            "'{text}' is given twice (also to `{}`)",
-            action_name(*other)
-        ));
+        return Err(KeyBindError::Twice {
+            text: text.to_owned(),
+            other: action_name(*other),
+        });
     }
     Ok(Some(key))
 }

@@ -581,28 +581,60 @@ pub struct MergeArgs {
     pub force: bool,
 }
 
-fn parse_range(s: &str) -> Result<(f64, f64), String> {
+/// Why a flag's value was refused (clap shows it after the flag's name).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum FlagValue {
+    /// Not of the flag's shape.
+    #[error("expected {0}")]
+    Shape(&'static str),
+    /// An end of a range that is not a finite number of magnitude at most 1e12.
+    #[error("`{0}`: a finite number of magnitude at most 1e12")]
+    RangeEnd(String),
+    /// A range whose ends are out of order.
+    #[error("MIN ({0}) must be below MAX ({1})")]
+    Order(f64, f64),
+    /// A shard out of its bounds.
+    #[error("`{0}`: I/N with N from 1 to 10000 and I from 1 to N (1-based)")]
+    Shard(String),
+    /// A side of the grid out of its bounds.
+    #[error("`{0}`: a whole number from 1 to 2000")]
+    GridSide(String),
+    /// Not a number.
+    #[error("not a number")]
+    NotANumber,
+    /// Infinite or NaN.
+    #[error("not a finite number")]
+    NotFinite,
+    /// Zero or negative.
+    #[error("allowed: a finite number > 0")]
+    NotPositive,
+    /// A tolerance out of its range.
+    #[error("allowed: a number in [{0:e}, {1:e}]")]
+    Tolerance(f64, f64),
+}
+
+fn parse_range(s: &str) -> Result<(f64, f64), FlagValue> {
     let (a, b) = s
         .split_once(',')
-        .ok_or_else(|| "expected MIN,MAX, e.g. 0,2".to_owned())?;
-    let n = |v: &str| -> Result<f64, String> {
+        .ok_or(FlagValue::Shape("MIN,MAX, e.g. 0,2"))?;
+    let n = |v: &str| {
         v.trim()
             .parse::<f64>()
             .ok()
             .filter(|x| x.is_finite() && x.abs() <= 1e12)
-            .ok_or_else(|| format!("`{v}`: a finite number of magnitude at most 1e12"))
+            .ok_or_else(|| FlagValue::RangeEnd(v.to_owned()))
     };
     let (a, b) = (n(a)?, n(b)?);
     if a >= b {
-        return Err(format!("MIN ({a}) must be below MAX ({b})"));
+        return Err(FlagValue::Order(a, b));
     }
     Ok((a, b))
 }
 
-fn parse_shard(s: &str) -> Result<crate::study::chart::Shard, String> {
-    let (i, n) = s
-        .split_once('/')
-        .ok_or_else(|| "expected I/N, e.g. 2/3 (the second of three slices)".to_owned())?;
+fn parse_shard(s: &str) -> Result<crate::study::chart::Shard, FlagValue> {
+    let (i, n) = s.split_once('/').ok_or(FlagValue::Shape(
+        "I/N, e.g. 2/3 (the second of three slices)",
+    ))?;
     let n_of = |v: &str| v.trim().parse::<usize>().ok();
     match (n_of(i), n_of(n)) {
         (Some(index), Some(count))
@@ -610,22 +642,20 @@ fn parse_shard(s: &str) -> Result<crate::study::chart::Shard, String> {
         {
             Ok(crate::study::chart::Shard { index, count })
         }
-        _ => Err(format!(
-            "`{s}`: I/N with N from 1 to 10000 and I from 1 to N (1-based)"
-        )),
+        _ => Err(FlagValue::Shard(s.to_owned())),
     }
 }
 
-fn parse_grid(s: &str) -> Result<(usize, usize), String> {
+fn parse_grid(s: &str) -> Result<(usize, usize), FlagValue> {
     let (c, r) = s
         .split_once(['x', 'X'])
-        .ok_or_else(|| "expected COLSxROWS, e.g. 200x100".to_owned())?;
-    let n = |v: &str| -> Result<usize, String> {
+        .ok_or(FlagValue::Shape("COLSxROWS, e.g. 200x100"))?;
+    let n = |v: &str| {
         v.trim()
             .parse::<usize>()
             .ok()
             .filter(|n| (1..=2000).contains(n))
-            .ok_or_else(|| format!("`{v}`: a whole number from 1 to 2000"))
+            .ok_or_else(|| FlagValue::GridSide(v.to_owned()))
     };
     Ok((n(c)?, n(r)?))
 }
@@ -883,31 +913,31 @@ fn method_parser() -> impl clap::builder::TypedValueParser<Value = Method> {
         .map(|name: String| Method::from_name(&name).unwrap_or(Method::Auto))
 }
 
-fn parse_finite(s: &str) -> Result<f64, String> {
-    let v: f64 = s.parse().map_err(|_| "not a number".to_owned())?;
+fn parse_finite(s: &str) -> Result<f64, FlagValue> {
+    let v: f64 = s.parse().map_err(|_| FlagValue::NotANumber)?;
     if v.is_finite() {
         Ok(v)
     } else {
-        Err("not a finite number".to_owned())
+        Err(FlagValue::NotFinite)
     }
 }
 
-fn parse_positive(s: &str) -> Result<f64, String> {
+fn parse_positive(s: &str) -> Result<f64, FlagValue> {
     let v = parse_finite(s)?;
     if v > 0.0 {
         Ok(v)
     } else {
-        Err("allowed: a finite number > 0".to_owned())
+        Err(FlagValue::NotPositive)
     }
 }
 
-fn parse_tolerance(s: &str) -> Result<f64, String> {
+fn parse_tolerance(s: &str) -> Result<f64, FlagValue> {
     let v = parse_finite(s)?;
     let (lo, hi) = TOLERANCE_RANGE;
     if (lo..=hi).contains(&v) {
         Ok(v)
     } else {
-        Err(format!("allowed: a number in [{lo:e}, {hi:e}]"))
+        Err(FlagValue::Tolerance(lo, hi))
     }
 }
 

@@ -26,10 +26,7 @@ pub fn run_explorer(cli: &Cli) -> Outcome {
         lesson: None,
         partner: None,
     };
-    let preset = cli
-        .preset
-        .as_deref()
-        .map(|name| resolve(name, &[]).map_err(|e| e.to_string()));
+    let preset = cli.preset.as_deref().map(|name| resolve(name, &[]));
     open_explorer(preset, opening)
 }
 
@@ -45,7 +42,7 @@ pub(crate) struct Opening<'a> {
 /// The one way the explorer opens from the command line: the configuration, the preset (`None`:
 /// the configured default, else the shipped one), the recording's file, then the loop.
 pub(crate) fn open_explorer(
-    preset: Option<Result<crate::scenario::Preset, String>>,
+    preset: Option<Result<crate::scenario::Preset, crate::scenario::PresetError>>,
     o: Opening<'_>,
 ) -> Outcome {
     let (config, keys) = config_or_exit()?;
@@ -55,7 +52,6 @@ pub(crate) fn open_explorer(
             name.unwrap_or(crate::scenario::shipped::DEFAULT_PRESET),
             &[],
         )
-        .map_err(|e| e.to_string())
     });
     let preset = match preset {
         Ok(p) => p,

@@ -36,5 +36,5 @@ pub fn run_lesson(args: &crate::commands::cli::LessonArgs) -> Outcome {
         lesson: Some(lesson),
         partner: None,
     };
-    open_explorer(Some(preset.map_err(|e| e.to_string())), opening)
+    open_explorer(Some(preset), opening)
 }

@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 
 use ratatui::crossterm::event;
 
-use crate::app::{App, Effect, Key, Options, Outcome, RecState};
+use crate::app::{App, Effect, Key, Options, Outcome, RecState, ShellError};
 use crate::record::active::ActiveRecording;
 use crate::record::replayer::Replayer;
 use crate::scenario::Preset;
@@ -284,7 +284,7 @@ pub fn file_outcome(effect: &Effect, user_dir: Option<&std::path::Path>) -> Opti
             Outcome::Catalogue(entries, broken)
         }
         Effect::LoadPreset(source) => {
-            Outcome::Loaded(Box::new(resolve(source, &[]).map_err(|e| e.to_string())))
+            Outcome::Loaded(Box::new(resolve(source, &[]).map_err(ShellError::from)))
         }
         _ => return None,
     })
@@ -321,10 +321,14 @@ impl Shell<'_> {
                 e @ (Effect::SavePreset { .. } | Effect::ReadCatalogue | Effect::LoadPreset(_)) => {
                     file_outcome(&e, self.user_dir.as_deref())
                 }
-                Effect::Export { stem } => Some(Outcome::Exported(match &self.options.sessions_dir {
-                    Some(dir) => crate::export::export(app, dir, &stem),
-                    None => Err("no folder to export into (no home folder); set `sessions` in config.toml".to_owned()),
-                })),
+                Effect::Export { stem } => {
+                    Some(Outcome::Exported(match &self.options.sessions_dir {
+                        Some(dir) => crate::export::export(app, dir, &stem),
+                        None => Err(ShellError::NoFolder(
+                            "no folder to export into (no home folder); set `sessions` in config.toml",
+                        )),
+                    }))
+                }
                 Effect::Copy(text) => {
                     self.tty.copy(&text)?;
                     Some(copied(text, self.options.sessions_dir.as_deref()))
@@ -350,7 +354,10 @@ impl Shell<'_> {
             (Some(p), _) => p.clone(),
             (None, Some(dir)) => {
                 if let Err(e) = std::fs::create_dir_all(dir) {
-                    return Outcome::Recording(Err(format!("{}: {e}", dir.display())));
+                    return Outcome::Recording(Err(ShellError::Io {
+                        path: dir.clone(),
+                        source: e,
+                    }));
                 }
                 crate::scenario::write::fresh_name(
                     dir,
@@ -636,10 +643,10 @@ fn copied(text: String, sessions: Option<&std::path::Path>) -> Outcome {
                         true,
                     )
                 })
-                .map(|()| path)
-                .map_err(|e| e.to_string())
+                .map(|()| path.clone())
+                .map_err(|source| ShellError::Io { path, source })
         }
-        None => Err("no sessions folder (no home folder)".to_owned()),
+        None => Err(ShellError::NoFolder("no sessions folder (no home folder)")),
     });
     Outcome::Copied { text, tmux, file }
 }

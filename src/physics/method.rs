@@ -504,16 +504,31 @@ pub const DEFAULT_STEP_BUDGET: f64 = 2e6;
 ///
 /// # Errors
 /// What is wrong and the smallest step allowed.
-pub fn check_step(step: f64, t_end: f64) -> Result<(), String> {
+pub fn check_step(step: f64, t_end: f64) -> Result<(), StepTooSmall> {
     let smallest = t_end * f64::EPSILON * 4.0;
     if step.is_finite() && step > 0.0 && step >= smallest {
         Ok(())
     } else {
-        Err(format!(
-            "a step of {step:e} cannot advance time to t_end = {t_end} (t + h == t); allowed: \
-             at least {smallest:.1e}"
-        ))
+        Err(StepTooSmall {
+            step,
+            t_end,
+            smallest,
+        })
     }
+}
+
+/// A fixed step that cannot advance time to the horizon.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[error(
+    "a step of {step:e} cannot advance time to t_end = {t_end} (t + h == t); allowed: at least {smallest:.1e}"
+)]
+pub struct StepTooSmall {
+    /// The step asked.
+    pub step: f64,
+    /// The horizon.
+    pub t_end: f64,
+    /// The smallest step allowed.
+    pub smallest: f64,
 }
 
 #[cfg(test)]

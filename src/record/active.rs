@@ -61,13 +61,9 @@ impl ActiveRecording {
         fps: f64,
         sign: Option<&std::path::Path>,
         now: f64,
-    ) -> Result<Self, String> {
-        let signer = sign
-            .map(crate::record::sign::Signer::read)
-            .transpose()
-            .map_err(|e| e.to_string())?;
-        let recorder =
-            Recorder::create(path, &header(app, size, fps), signer).map_err(|e| e.to_string())?;
+    ) -> Result<Self, crate::app::ShellError> {
+        let signer = sign.map(crate::record::sign::Signer::read).transpose()?;
+        let recorder = Recorder::create(path, &header(app, size, fps), signer)?;
         Ok(Self::around(recorder, now))
     }
 
@@ -82,9 +78,8 @@ impl ActiveRecording {
         size: (u16, u16),
         fps: f64,
         now: f64,
-    ) -> Result<Self, String> {
-        let recorder =
-            Recorder::in_memory(name, &header(app, size, fps)).map_err(|e| e.to_string())?;
+    ) -> Result<Self, crate::record::RecordError> {
+        let recorder = Recorder::in_memory(name, &header(app, size, fps))?;
         Ok(Self::around(recorder, now))
     }
 

@@ -292,7 +292,7 @@ pub fn parse(text: &str, label: &str) -> Result<Recording, RecordError> {
     }
     let header: Header =
         serde_json::from_value(probe).map_err(|e| corrupt(1, format!("bad header: {e}")))?;
-    let mut sense = super::Sense::of_header(&header).map_err(|e| corrupt(1, e))?;
+    let mut sense = super::Sense::of_header(&header).map_err(|e| corrupt(1, e.to_string()))?;
     let mut lines = Vec::new();
     let mut raw = Vec::new();
     let mut warnings = Vec::new();

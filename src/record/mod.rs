@@ -309,37 +309,78 @@ pub fn chain_sha256(previous: &str, text: &str) -> String {
     hex::encode(h.finalize())
 }
 
+/// What is wrong with a session file's header (issue 83: typed; each says itself to a person).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum HeaderError {
+    /// A terminal size out of bounds.
+    #[error("terminal {width}x{height}: allowed sizes are 1 to 1000 columns and rows")]
+    Terminal {
+        /// Columns.
+        width: u16,
+        /// Rows.
+        height: u16,
+    },
+    /// A frame rate out of bounds.
+    #[error("fps {0}: allowed 1 to 240")]
+    Fps(f64),
+    /// A tolerance that is not a finite number > 0.
+    #[error("tolerance {0}: must be a finite number > 0")]
+    Tolerance(f64),
+    /// A lesson in a header older than format 10.
+    #[error("a lesson in the header (format 10)")]
+    LessonBeforeFormat10,
+    /// A lesson's description in a header older than format 13.
+    #[error("a lesson description in the header (format 13)")]
+    DescriptionBeforeFormat13,
+    /// A lesson that is no lesson.
+    #[error("lesson: no step, or a choice's answer out of its choices")]
+    Lesson,
+    /// A preset that does not read.
+    #[error("its preset: {0}")]
+    Preset(String),
+    /// A method the scene does not offer.
+    #[error("method \"{method}\": not one of the {scene}'s ({offered})")]
+    Method {
+        /// The method, as written (cleaned, 60 characters at most).
+        method: String,
+        /// The scene, as titled.
+        scene: &'static str,
+        /// The methods it offers.
+        offered: String,
+    },
+    /// A theme given as an index from format 3 on.
+    #[error("a theme given as an index: from format 3 on a header names its theme")]
+    ThemeIndex,
+}
+
 /// Sane bounds on a header, checked before anything is built from it.
 ///
 /// # Errors
 /// Which field is out of range and what is allowed.
-pub fn check_header(h: &Header) -> Result<(), String> {
+pub fn check_header(h: &Header) -> Result<(), HeaderError> {
     if !(1..=MAX_TERMINAL).contains(&h.terminal.width)
         || !(1..=MAX_TERMINAL).contains(&h.terminal.height)
     {
-        return Err(format!(
-            "terminal {}x{}: allowed sizes are 1 to 1000 columns and rows",
-            h.terminal.width, h.terminal.height
-        ));
+        return Err(HeaderError::Terminal {
+            width: h.terminal.width,
+            height: h.terminal.height,
+        });
     }
     if !(h.fps.is_finite() && (1.0..=240.0).contains(&h.fps)) {
-        return Err(format!("fps {}: allowed 1 to 240", h.fps));
+        return Err(HeaderError::Fps(h.fps));
     }
     if !(h.tolerance.is_finite() && h.tolerance > 0.0) {
-        return Err(format!(
-            "tolerance {}: must be a finite number > 0",
-            h.tolerance
-        ));
+        return Err(HeaderError::Tolerance(h.tolerance));
     }
     if let Some(lesson) = &h.lesson {
         if h.version < 10 {
-            return Err("a lesson in the header (format 10)".to_owned());
+            return Err(HeaderError::LessonBeforeFormat10);
         }
         if h.version < 13 && !lesson.description.is_empty() {
-            return Err("a lesson description in the header (format 13)".to_owned());
+            return Err(HeaderError::DescriptionBeforeFormat13);
         }
         if lesson.lesson().is_none() {
-            return Err("lesson: no step, or a choice's answer out of its choices".to_owned());
+            return Err(HeaderError::Lesson);
         }
     }
     Ok(())
@@ -361,26 +402,24 @@ impl Sense {
     ///
     /// # Errors
     /// What is wrong with it, in words.
-    pub fn of_header(h: &Header) -> Result<Self, String> {
+    pub fn of_header(h: &Header) -> Result<Self, HeaderError> {
         check_header(h)?;
-        let scene = preset_scene(&h.preset).map_err(|e| format!("its preset: {e}"))?;
+        let scene = preset_scene(&h.preset)
+            .map_err(|e| HeaderError::Preset(crate::scenario::text::one_line(&e.to_string())))?;
         let shown =
             |t: &str| crate::scenario::text::one_line(&t.chars().take(60).collect::<String>());
         match crate::physics::Method::from_name(&h.method) {
             Some(m) if scene.methods().contains(&m) => {}
             _ => {
-                return Err(format!(
-                    "method \"{}\": not one of the {}'s ({})",
-                    shown(&h.method),
-                    scene.title(),
-                    scene.method_names()
-                ));
+                return Err(HeaderError::Method {
+                    method: shown(&h.method),
+                    scene: scene.title(),
+                    offered: scene.method_names(),
+                });
             }
         }
         if h.version >= 3 && matches!(h.theme, ThemeRef::Index(_)) {
-            return Err(
-                "a theme given as an index: from format 3 on a header names its theme".to_owned(),
-            );
+            return Err(HeaderError::ThemeIndex);
         }
         Ok(Self { scene })
     }
@@ -401,7 +440,12 @@ impl Sense {
         match &line.event {
             Event::Preset { toml } => match preset_scene(toml) {
                 Ok(scene) => self.scene = scene,
-                Err(e) => return Some(format!("a preset line that is no preset: {e}")),
+                Err(e) => {
+                    return Some(format!(
+                        "a preset line that is no preset: {}",
+                        crate::scenario::text::one_line(&e.to_string())
+                    ));
+                }
             },
             Event::Set { field, .. } | Event::Select { field }
                 if !crate::app::fields::Field::named(self.scene, field)
@@ -441,10 +485,8 @@ impl Sense {
 }
 
 /// The scene of a preset's TOML, read by the preset validator.
-fn preset_scene(toml: &str) -> Result<crate::physics::ModelKind, String> {
-    crate::scenario::Preset::parse(toml, "inline preset", "recorded", &[])
-        .map(|p| p.model.kind())
-        .map_err(|e| crate::scenario::text::one_line(&e.to_string()))
+fn preset_scene(toml: &str) -> Result<crate::physics::ModelKind, crate::scenario::PresetError> {
+    crate::scenario::Preset::parse(toml, "inline preset", "recorded", &[]).map(|p| p.model.kind())
 }
 
 /// Longest recording replayed or exported, in wall seconds (a week).

@@ -97,11 +97,11 @@ impl Tail {
             .last()
             .is_some_and(|(_, l)| matches!(l.event, Event::End { .. }));
         // `read` has checked every line with the same validator: this only finds the scene.
-        let mut sense = super::Sense::of_header(&recording.header).map_err(|message| {
+        let mut sense = super::Sense::of_header(&recording.header).map_err(|e| {
             super::RecordError::Corrupt {
                 path: path.display().to_string(),
                 line: 1,
-                message,
+                message: e.to_string(),
             }
         })?;
         for (_, l) in &recording.lines {

@@ -746,7 +746,7 @@ impl Preset {
         let (t_end, step) = (n("run", "t_end"), r.num("run", "step"));
         if let Some(h) = step {
             crate::physics::method::check_step(h, t_end)
-                .map_err(|message| located("run", "step", message))?;
+                .map_err(|e| located("run", "step", e.to_string()))?;
         }
         Ok(Self {
             name: r

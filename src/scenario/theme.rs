@@ -53,9 +53,34 @@ pub const ANSI_NAMES: [&str; 16] = [
     "white",
 ];
 
+/// Why a text is not a colour (issue 83: typed; each says itself, with what is allowed).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ColourError {
+    /// `#` and not six or three hex digits.
+    #[error("'{0}' is not a colour: hex colours are #rrggbb or #rgb")]
+    Hex(String),
+    /// A palette index over 255, written as text.
+    #[error("'{0}' is not a colour: a palette index is a whole number from 0 to 255")]
+    Index(String),
+    /// A bare palette index (a TOML integer) out of 0 to 255.
+    #[error("{0} is not a colour: a palette index is a whole number from 0 to 255")]
+    BareIndex(i64),
+    /// No colour of that name.
+    #[error(
+        "unknown colour '{text}'; allowed: {}, default, a palette index 0–255, or #rrggbb{hint}",
+        ANSI_NAMES.join(", ")
+    )]
+    Name {
+        /// As written.
+        text: String,
+        /// A near name, if any (`did_you_mean`).
+        hint: String,
+    },
+}
+
 impl std::str::FromStr for Colour {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = ColourError;
+    fn from_str(s: &str) -> Result<Self, ColourError> {
         let t = s
             .trim()
             .to_ascii_lowercase()
@@ -78,37 +103,35 @@ impl std::str::FromStr for Colour {
                 let d = |i: usize| u8::from_str_radix(&hex[i..=i], 16).unwrap_or(0) * 17;
                 return Ok(Self::Rgb(d(0), d(1), d(2)));
             }
-            return Err(format!(
-                "'{s}' is not a colour: hex colours are #rrggbb or #rgb"
-            ));
+            return Err(ColourError::Hex(s.to_owned()));
         }
         if !t.is_empty() && t.chars().all(|c| c.is_ascii_digit()) {
-            return t.parse::<u8>().map(Self::index).map_err(|_| {
-                format!("'{s}' is not a colour: a palette index is a whole number from 0 to 255")
-            });
+            return t
+                .parse::<u8>()
+                .map(Self::index)
+                .map_err(|_| ColourError::Index(s.to_owned()));
         }
         ANSI_NAMES
             .iter()
             .position(|n| *n == t)
             .map(|i| Self::Ansi(u8::try_from(i).unwrap_or(0)))
-            .ok_or_else(|| {
-                format!(
-                    "unknown colour '{s}'; allowed: {}, default, a palette index 0–255, or #rrggbb{}",
-                    ANSI_NAMES.join(", "),
-                    super::text::did_you_mean(&t, ANSI_NAMES)
-                )
+            .ok_or_else(|| ColourError::Name {
+                text: s.to_owned(),
+                hint: super::text::did_you_mean(&t, ANSI_NAMES),
             })
     }
 }
 
 /// A colour as a TOML value: text (a name, `#rrggbb`, `#rgb`, an index) or a bare palette
 /// index (`trail = 114`); `None` for any other type.
-fn colour_value(v: &toml::Value) -> Option<Result<Colour, String>> {
+fn colour_value(v: &toml::Value) -> Option<Result<Colour, ColourError>> {
     match v {
         toml::Value::String(text) => Some(text.parse::<Colour>()),
-        toml::Value::Integer(n) => Some(u8::try_from(*n).map(Colour::index).map_err(|_| {
-            format!("{n} is not a colour: a palette index is a whole number from 0 to 255")
-        })),
+        toml::Value::Integer(n) => Some(
+            u8::try_from(*n)
+                .map(Colour::index)
+                .map_err(|_| ColourError::BareIndex(*n)),
+        ),
         _ => None,
     }
 }
@@ -223,7 +246,7 @@ impl ThemeSpec {
                         let parsed = colour_value(v);
                         match parsed {
                             Some(Ok(c)) => colours[i] = c,
-                            Some(Err(e)) => problem(section, k, e),
+                            Some(Err(e)) => problem(section, k, e.to_string()),
                             None => problem(
                                 section,
                                 k,

@@ -96,64 +96,54 @@ impl Description {
     ///
     /// # Errors
     /// Another program's part, or a value no command line could give.
-    pub fn ask(&self, tolerance_range: (f64, f64)) -> Result<StudyAsk, String> {
+    pub fn ask(&self, tolerance_range: (f64, f64)) -> Result<StudyAsk, DescriptionError> {
+        use DescriptionError as E;
         if self.program != PROGRAM {
-            return Err(format!(
-                "written by `{}`, not by this {PROGRAM}: run every shard with one build",
-                printable(&self.program)
-            ));
+            return Err(E::Program(printable(&self.program)));
         }
         if self.preset.len() > PRESET_BYTES {
-            return Err(format!(
-                "its preset is {} bytes (at most {PRESET_BYTES})",
-                self.preset.len()
-            ));
+            return Err(E::PresetSize(self.preset.len()));
         }
         let [cols, rows] = self.grid;
         if !(1..=MAX_CELLS).contains(&cols) || !(1..=MAX_CELLS).contains(&rows) {
-            return Err(format!(
-                "grid {cols}x{rows}: each side a whole number from 1 to {MAX_CELLS}"
-            ));
+            return Err(E::Grid(cols, rows));
         }
-        let positive = |name: &str, v: f64| {
+        let positive = |name: &'static str, v: f64| {
             if v.is_finite() && v > 0.0 {
                 Ok(v)
             } else {
-                Err(format!("{name} {v}: a finite number > 0"))
+                Err(E::NotPositive(name, v))
             }
         };
         let (lo, hi) = tolerance_range;
-        let tolerance = |name: &str, v: f64| {
+        let tolerance = |name: &'static str, v: f64| {
             if (lo..=hi).contains(&v) {
                 Ok(v)
             } else {
-                Err(format!("{name} {v}: a number in [{lo:e}, {hi:e}]"))
+                Err(E::Tolerance { name, v, lo, hi })
             }
         };
-        let range = |name: &str, r: Option<[f64; 2]>| -> Result<Option<(f64, f64)>, String> {
-            match r {
-                None => Ok(None),
-                Some([a, b])
-                    if a.is_finite()
-                        && b.is_finite()
-                        && a.abs() <= 1e12
-                        && b.abs() <= 1e12
-                        && a < b =>
-                {
-                    Ok(Some((a, b)))
-                }
-                Some([a, b]) => Err(format!(
-                    "{name} {a},{b}: finite numbers of magnitude at most 1e12, MIN below MAX"
-                )),
+        let range = |name: &'static str, r: Option<[f64; 2]>| match r {
+            None => Ok(None),
+            Some([a, b])
+                if a.is_finite()
+                    && b.is_finite()
+                    && a.abs() <= 1e12
+                    && b.abs() <= 1e12
+                    && a < b =>
+            {
+                Ok(Some((a, b)))
             }
+            Some([a, b]) => Err(E::Range(name, a, b)),
         };
         // Upright is the default, as if not asked: a part says its position whatever its scene.
         let hanging = match self.position.as_str() {
             "upright" => None,
             "hanging" => Some(true),
-            _ => return Err("position: `upright` or `hanging`".to_owned()),
+            _ => return Err(E::Position),
         };
-        let optional = |name: &str, v: Option<f64>| v.map(|v| positive(name, v)).transpose();
+        let optional =
+            |name: &'static str, v: Option<f64>| v.map(|v| positive(name, v)).transpose();
         Ok(StudyAsk {
             grid: (cols, rows),
             t_end: positive("t_end", self.t_end)?,
@@ -178,4 +168,39 @@ impl Description {
 /// Text from a file, shown: control characters dropped, at most 200 characters.
 pub(super) fn printable(text: &str) -> String {
     text.chars().filter(|c| !c.is_control()).take(200).collect()
+}
+/// Why a part's description is not one a command line could give (issue 83: typed; each says
+/// itself, and the caller names the file).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum DescriptionError {
+    /// Written by another program or build.
+    #[error("written by `{0}`, not by this {PROGRAM}: run every shard with one build")]
+    Program(String),
+    /// A preset over the cap.
+    #[error("its preset is {0} bytes (at most {PRESET_BYTES})")]
+    PresetSize(usize),
+    /// A grid out of bounds.
+    #[error("grid {0}x{1}: each side a whole number from 1 to {MAX_CELLS}")]
+    Grid(usize, usize),
+    /// A value that must be a finite number > 0.
+    #[error("{0} {1}: a finite number > 0")]
+    NotPositive(&'static str, f64),
+    /// A tolerance out of its range.
+    #[error("{name} {v}: a number in [{lo:e}, {hi:e}]")]
+    Tolerance {
+        /// Which.
+        name: &'static str,
+        /// Its value.
+        v: f64,
+        /// The smallest allowed.
+        lo: f64,
+        /// The largest allowed.
+        hi: f64,
+    },
+    /// A range out of bounds or out of order.
+    #[error("{0} {1},{2}: finite numbers of magnitude at most 1e12, MIN below MAX")]
+    Range(&'static str, f64, f64),
+    /// A position that is neither.
+    #[error("position: `upright` or `hanging`")]
+    Position,
 }

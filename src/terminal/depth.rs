@@ -66,7 +66,7 @@ impl Depth {
     #[must_use]
     pub fn detect(
         var: &dyn Fn(&str) -> Option<String>,
-        lookup: &dyn Fn(&str) -> Result<Option<i32>, String>,
+        lookup: &dyn Fn(&str) -> Result<Option<i32>, NoTerminfo>,
     ) -> Detected {
         let found = |depth, reason: String| Detected { depth, reason };
         let term = var("TERM").unwrap_or_default();
@@ -98,11 +98,16 @@ impl Depth {
 ///
 /// # Errors
 /// No entry for `term` in the terminfo database.
-pub fn terminfo_colors(term: &str) -> Result<Option<i32>, String> {
+pub fn terminfo_colors(term: &str) -> Result<Option<i32>, NoTerminfo> {
     termini::TermInfo::from_name(term)
         .map(|t| t.number_cap(termini::NumberCapability::MaxColors))
-        .map_err(|_| "no terminfo entry".to_owned())
+        .map_err(|_| NoTerminfo)
 }
+
+/// No entry for a terminal in the terminfo database.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("no terminfo entry")]
+pub struct NoTerminfo;
 
 /// The 16 ANSI colours as xterm draws them, for the nearest match.
 const ANSI16: [(u8, u8, u8); 16] = [
@@ -348,7 +353,7 @@ mod tests {
             "vt100" | "vt220" => Ok(None),
             "xterm-256color" => Ok(Some(256)),
             "xterm-direct" => Ok(Some(1 << 24)),
-            _ => Err("no terminfo entry".to_owned()),
+            _ => Err(NoTerminfo),
         };
         let depth = |pairs| Depth::detect(&env(pairs), &db).depth;
         assert_eq!(depth(&[("TERM", "linux")]), Depth::Eight);

@@ -483,7 +483,10 @@ fn a_recording_that_cannot_start_says_why() {
     let mut h = Headless::new("subcritical");
     h.key(Key::Char('R'));
     let effects = h.app.on_outcome(rattleback::app::Outcome::Recording(Err(
-        "/dev/null: File exists (os error 17)".to_owned(),
+        rattleback::app::ShellError::Io {
+            path: "/dev/null".into(),
+            source: std::io::Error::from_raw_os_error(17),
+        },
     )));
     h.exec(effects);
     let Mode::Dialog(text) = &h.app.mode else {

@@ -417,7 +417,7 @@ fn string_errors_only_go_down() {
             }
         }
     }
-    assert!(count <= 45, "{count} Result<_, String> in src (at most 45)");
+    assert!(count <= 10, "{count} Result<_, String> in src (at most 10)");
 }
 
 /// Issue 83: a scene is one folder (`physics/NAME/`, its contract impl inside), its report

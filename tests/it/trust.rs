@@ -291,9 +291,12 @@ fn contradictory_lesson_conditions_are_refused() {
 fn a_recording_that_cannot_start_says_why_and_keeps_the_next_key() {
     use rattleback::app::{Key, Mode, Outcome};
     let mut h = crate::common::Headless::new("subcritical");
-    let effects = h.app.on_outcome(Outcome::Recording(Err(
-        "/dev/null: File exists (os error 17)".into(),
-    )));
+    let effects = h
+        .app
+        .on_outcome(Outcome::Recording(Err(rattleback::app::ShellError::Io {
+            path: "/dev/null".into(),
+            source: std::io::Error::from_raw_os_error(17),
+        })));
     h.exec(effects);
     let Mode::Dialog(text) = &h.app.mode else {
         panic!("a dialog says why: {:?}", h.app.mode)
@@ -309,7 +312,9 @@ fn a_recording_that_cannot_start_says_why_and_keeps_the_next_key() {
     );
     // Esc only closes it.
     let mut h = crate::common::Headless::new("subcritical");
-    let effects = h.app.on_outcome(Outcome::Recording(Err("no".into())));
+    let effects = h.app.on_outcome(Outcome::Recording(Err(
+        rattleback::app::ShellError::NoFolder("no"),
+    )));
     h.exec(effects);
     h.key(Key::Esc);
     assert_eq!(h.app.mode, Mode::Normal);

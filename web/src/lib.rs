@@ -16,7 +16,7 @@ use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
 use ratatui::style::{Color, Modifier};
-use rattleback::app::{App, Effect, Key, Options, Outcome};
+use rattleback::app::{App, Effect, Key, Options, Outcome, ShellError};
 use rattleback::record::active::ActiveRecording;
 
 /// The page's frame rate, as a recording's header says it.
@@ -184,7 +184,7 @@ impl Explorer {
                     Some(Outcome::Catalogue(entries, Vec::new()))
                 }
                 Effect::LoadPreset(name) => Some(Outcome::Loaded(Box::new(
-                    rattleback::scenario::shipped::resolve(&name, &[]).map_err(|e| e.to_string()),
+                    rattleback::scenario::shipped::resolve(&name, &[]).map_err(ShellError::from),
                 ))),
                 Effect::StartRecording => Some(self.start_recording()),
                 Effect::StopRecording => {
@@ -193,9 +193,11 @@ impl Explorer {
                     }
                     None
                 }
-                Effect::Export { .. } => Some(Outcome::Exported(Err(format!(
-                    "exporting files is not in the browser yet ({NOT_YET}): the terminal's x writes them"
-                )))),
+                Effect::Export { .. } => {
+                    Some(Outcome::Exported(Err(ShellError::NotInThisBuild(format!(
+                        "exporting files is not in the browser yet ({NOT_YET}): the terminal's x writes them"
+                    )))))
+                }
                 Effect::SavePreset { .. } => Some(Outcome::Saved(Err(
                     rattleback::scenario::store::SaveError::Io {
                         path: std::path::PathBuf::from("this page"),
@@ -222,7 +224,7 @@ impl Explorer {
                 self.recording = Some(r);
                 Outcome::Recording(Ok(name))
             }
-            Err(e) => Outcome::Recording(Err(e)),
+            Err(e) => Outcome::Recording(Err(e.into())),
         }
     }
 

@@ -12,6 +12,7 @@
 //!   inertia, with the linear theory's curve; a cell loads its `ω_z` and `D`.
 
 use super::{ComputedPane, Cx};
+use crate::app::fields::EditError;
 use crate::app::fields::Settings;
 use crate::sim::jobs::MapSpec;
 use crate::sim::{Command, JobData, JobKind, JobSpec};
@@ -249,13 +250,10 @@ impl MapState {
     ///
     /// # Errors
     /// When there is no map yet or the cell is not a valid problem.
-    pub fn load(&mut self, settings: &Settings) -> Result<Settings, String> {
-        let spec = self.spec.ok_or("no map yet")?;
-        let point = self.at_cursor().ok_or("no map yet")?;
-        let model = spec
-            .chart
-            .load(&settings.model, point)
-            .map_err(|e| e.to_string())?;
+    pub fn load(&mut self, settings: &Settings) -> Result<Settings, EditError> {
+        let spec = self.spec.ok_or(EditError::NoMap)?;
+        let point = self.at_cursor().ok_or(EditError::NoMap)?;
+        let model = spec.chart.load(&settings.model, point)?;
         if !spec.chart.words().sources {
             let from = self.axes_point(crate::study::chart::point_of(&settings.model));
             self.anchor = Some((from, point));

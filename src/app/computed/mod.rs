@@ -214,7 +214,7 @@ impl App {
                     effects
                 }
                 Err(why) => {
-                    self.status = Message::error(why);
+                    self.status = Message::error(why.to_string());
                     Vec::new()
                 }
             },

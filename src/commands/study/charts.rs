@@ -156,21 +156,20 @@ pub(super) fn study_merge(args: &crate::commands::cli::MergeArgs) -> Outcome {
         )));
     };
     // The chart rebuilt from the description alone, its preset read by the preset validator.
-    let rebuilt = || -> Result<crate::study::chart::Chart, String> {
+    let rebuilt = || -> Result<crate::study::chart::Chart, Box<dyn std::error::Error>> {
         let ask = description.ask(crate::scenario::preset::TOLERANCE_RANGE)?;
         let preset = crate::scenario::Preset::parse(
             &description.preset,
             "the part's description",
             "part",
             &[],
-        )
-        .map_err(|e| e.to_string())?;
-        crate::study::chart::Chart::for_study(&preset.model, &ask).map_err(|e| e.to_string())
+        )?;
+        Ok(crate::study::chart::Chart::for_study(&preset.model, &ask)?)
     };
     let chart = rebuilt().map_err(|e| {
         Failure::input(format!(
             "{first_name}: its description is not a chart this program makes: {}",
-            crate::scenario::text::one_line(&e)
+            crate::scenario::text::one_line(&e.to_string())
         ))
     })?;
     let merged = part::merge(&chart, crate::commands::outputs::SCHEMA_VERSION, &parts)
