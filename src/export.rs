@@ -307,11 +307,11 @@ pub fn trajectory_csv(app: &App) -> String {
     );
     let w = s.model.kind().words();
     let (q, q_dot) = (w.q_name, w.q_dot_name);
-    let _ = writeln!(
-        out,
-        "t,{q},{q_dot},{},limit_{q},limit_{q_dot}",
-        w.monitor_column
-    );
+    // The monitor's column when the scene has one.
+    let monitor = w
+        .monitor
+        .map_or_else(String::new, |m| format!(",{}", m.column));
+    let _ = writeln!(out, "t,{q},{q_dot}{monitor},limit_{q},limit_{q_dot}");
     let limit = if app.view.overlay {
         crate::app::run::upto(&app.run.effective_trail, app.run.shown)
     } else {
@@ -320,7 +320,10 @@ pub fn trajectory_csv(app: &App) -> String {
     // Both on one time grid: walk them together.
     let mut j = 0;
     for p in app.run.trail_shown() {
-        let _ = write!(out, "{},{},{},{}", p.t, p.slow, p.rate, p.energy_error);
+        let _ = write!(out, "{},{},{}", p.t, p.slow, p.rate);
+        if w.monitor.is_some() {
+            let _ = write!(out, ",{}", p.energy_error);
+        }
         while j < limit.len() && limit[j].t < p.t {
             j += 1;
         }

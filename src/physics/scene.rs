@@ -45,11 +45,21 @@ pub struct Words {
     /// The second kind of event the explorer counts (the pendulum's falls, the celt's
     /// crossings), if any.
     pub second_events: Option<SecondEvents>,
-    /// The energy monitor's CSV column (`energy_error`, `energy_drift`).
-    pub monitor_column: &'static str,
-    /// What the status bar's energy monitor shows (`ΔE/E` of a conserved energy, or `ΔE_eff`
-    /// of the limit's energy for a forced model).
-    pub monitor: &'static str,
+    /// What the status bar, the series pane and the export monitor of the run (issue 83: the
+    /// scene's own; `None`, a scene with no conserved quantity to watch, shows none).
+    pub monitor: Option<Monitor>,
+}
+
+/// A scene's monitor of its run: a quantity its motion conserves, whose error is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Monitor {
+    /// As the status bar shows it (`ΔE/E` of a conserved energy, `ΔE_eff` of the limit's
+    /// energy for a forced model).
+    pub label: &'static str,
+    /// Its CSV column (`energy_error`, `energy_drift`).
+    pub column: &'static str,
+    /// What it is, for the legend.
+    pub meaning: &'static str,
 }
 
 /// A model's second kind of event: its name and where it is found.
@@ -285,12 +295,18 @@ pub struct Pivot {
     pub stroke: f64,
     /// The fast time scale: the pivot's angular frequency is `1/ε`.
     pub epsilon: f64,
+    /// Whether the scene's fast coordinate is a ripple about an averaged angle `Θ` (Kapitza's),
+    /// drawn as the averaged rod; a pendulum without one draws its rod alone (issue 83).
+    pub averaged: bool,
 }
 
 impl Pivot {
     /// The pivot's height above its mean position at time `t`, in rod lengths.
     #[must_use]
     pub fn height(&self, t: f64) -> f64 {
+        if self.stroke == 0.0 {
+            return 0.0;
+        }
         -self.stroke * (t / self.epsilon).e_cos()
     }
 }

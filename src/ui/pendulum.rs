@@ -49,42 +49,66 @@ const AVERAGED_DOTS: u32 = 7;
 pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
     let t = look.theme;
     let words = f.kind.words();
-    Section::new("pendulum (B), on its shaken pivot")
-        .mark(
+    // The scene's pendulum: Kapitza's is averaged on a shaken pivot; another draws what it has.
+    let (averaged, shaken) = match f.drawing {
+        crate::physics::scene::Drawing::Pendulum(p) => (p.averaged, p.stroke != 0.0),
+        crate::physics::scene::Drawing::Body { .. } => (false, false),
+    };
+    let mut s = Section::new(if shaken {
+        "pendulum (B), on its shaken pivot"
+    } else {
+        "pendulum (B)"
+    });
+    if averaged {
+        s = s
+            .mark(
+                format!("{}{}", curve(look, ROD, "⠒⠒⠒", "▀▀▀"), printed(look, BOB)),
+                t.trail,
+                format!(
+                    "the rod and its bob, at {} with the ripple {} exaggerated ×G",
+                    words.q, words.fast
+                ),
+            )
+            .mark(
+                format!(
+                    "{}{}",
+                    curve(look, DOT, "⠂ ⠂", "▀ ▀"),
+                    printed(look, AVERAGED_BOB)
+                ),
+                t.effective,
+                "the averaged rod Θ = θ − ripple, hung from the pivot's mean position",
+            );
+    } else {
+        s = s.mark(
             format!("{}{}", curve(look, ROD, "⠒⠒⠒", "▀▀▀"), printed(look, BOB)),
             t.trail,
-            format!(
-                "the rod and its bob, at {} with the ripple {} exaggerated ×G",
-                words.q, words.fast
-            ),
-        )
-        .mark(
-            format!(
-                "{}{}",
-                curve(look, DOT, "⠂ ⠂", "▀ ▀"),
-                printed(look, AVERAGED_BOB)
-            ),
-            t.effective,
-            "the averaged rod Θ = θ − ripple, hung from the pivot's mean position",
-        )
-        .mark(
+            format!("the rod and its bob, at {}", words.q),
+        );
+    }
+    if shaken {
+        s = s.mark(
             format!("{}{}", curve(look, RAIL, "⡇", "█"), printed(look, PIVOT)),
             t.current,
             "the pivot on its travel ±b ε (drawn ×G: the pane prints G)",
-        )
-        .mark(
-            printed(look, GROWING),
-            t.trail,
-            "the bob's trace while the averaged angle grows",
-        )
-        .mark(
-            printed(look, SHRINKING),
-            t.reversal,
-            format!(
-                "the bob's trace while it shrinks (a {} turns + into -)",
-                words.event
-            ),
-        )
+        );
+    }
+    s.mark(
+        printed(look, GROWING),
+        t.trail,
+        if averaged {
+            "the bob's trace while the averaged angle grows"
+        } else {
+            "the bob's trace while the angle grows"
+        },
+    )
+    .mark(
+        printed(look, SHRINKING),
+        t.reversal,
+        format!(
+            "the bob's trace while it shrinks (a {} turns + into -)",
+            words.event
+        ),
+    )
 }
 
 /// The exaggeration of the pivot's travel and the ripple: a round factor (1, 2 or 5 times a
@@ -121,11 +145,13 @@ pub struct Pose {
 /// The pose of `p` drawn with exaggeration `gain`.
 #[must_use]
 pub fn pose(pivot: &Pivot, gain: f64, p: &Point) -> Pose {
-    let averaged = p.slow - p.fast;
+    // Without a ripple (a pendulum that is not averaged), the rod is at θ itself.
+    let fast = if pivot.averaged { p.fast } else { 0.0 };
+    let averaged = p.slow - fast;
     Pose {
         pivot: gain * pivot.height(p.t),
         averaged,
-        drawn: averaged + gain * p.fast,
+        drawn: averaged + gain * fast,
     }
 }
 
@@ -176,7 +202,11 @@ impl Widget for PendulumPane<'_> {
         let now = run.current().copied();
         let at = now.map(|p| pose(&pivot, gain, &p));
         let angles = now.map_or_else(String::new, |p| {
-            format!(": θ {:+.3}, Θ {:+.3}", p.slow, p.slow - p.fast)
+            if pivot.averaged {
+                format!(": θ {:+.3}, Θ {:+.3}", p.slow, p.slow - p.fast)
+            } else {
+                format!(": θ {:+.3}", p.slow)
+            }
         });
         let heading = format!(
             "pendulum (B){angles} │ {} {}",
@@ -193,7 +223,9 @@ impl Widget for PendulumPane<'_> {
         let travel = gain * pivot.stroke;
         let (sx, sy) = super::axis::round_bounds(inner, 1.0 + travel + 0.12);
         let theme = look.theme;
-        let label = if gain > 1.0 {
+        let label = if pivot.stroke == 0.0 {
+            "pivot fixed".to_owned()
+        } else if gain > 1.0 {
             format!("pivot ±{:.1e} drawn ×{gain}", pivot.stroke)
         } else {
             format!("pivot ±{:.2} to scale", pivot.stroke)
@@ -210,10 +242,12 @@ impl Widget for PendulumPane<'_> {
                 }
             };
             // The pivot's travel, a short rail.
-            part(ctx, RAIL);
-            ctx.draw(&Line::new(0.0, -travel, 0.0, travel, theme.current));
+            if travel > 0.0 {
+                part(ctx, RAIL);
+                ctx.draw(&Line::new(0.0, -travel, 0.0, travel, theme.current));
+            }
             ctx.layer();
-            if let Some(at) = at {
+            if let Some(at) = at.filter(|_| pivot.averaged) {
                 // The averaged rod: dots from the pivot's mean position.
                 let (xa, ya) = at.averaged_bob();
                 let dots: Vec<(f64, f64)> = (1..=AVERAGED_DOTS)
@@ -227,7 +261,9 @@ impl Widget for PendulumPane<'_> {
                     coords: &dots,
                     color: theme.effective,
                 });
-                ctx.layer();
+            }
+            ctx.layer();
+            if let Some(at) = at {
                 // The true rod, from the pivot where it is.
                 let (x1, y1) = at.bob();
                 part(ctx, ROD);
@@ -236,8 +272,10 @@ impl Widget for PendulumPane<'_> {
             ctx.layer();
             super::marks::print_signed(ctx, &trace, (GROWING, SHRINKING), theme);
             if let Some(at) = at {
-                let (xa, ya) = at.averaged_bob();
-                ctx.print(xa, ya, styled(AVERAGED_BOB, theme.effective, false));
+                if pivot.averaged {
+                    let (xa, ya) = at.averaged_bob();
+                    ctx.print(xa, ya, styled(AVERAGED_BOB, theme.effective, false));
+                }
                 let (x1, y1) = at.bob();
                 ctx.print(x1, y1, styled(BOB, theme.current, true));
                 ctx.print(0.0, at.pivot, styled(PIVOT, theme.current, true));
@@ -267,6 +305,7 @@ fn styled(c: char, colour: ratatui::style::Color, bold: bool) -> TextLine<'stati
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::scene::Drawing;
 
     fn point(t: f64, slow: f64, fast: f64) -> Point {
         Point {
@@ -287,6 +326,7 @@ mod tests {
         let pivot = Pivot {
             stroke: b * eps,
             epsilon: eps,
+            averaged: true,
         };
         for t in [0.0, 0.3, 1.7, 4.2] {
             let h = 1e-4;
@@ -306,6 +346,7 @@ mod tests {
         let pivot = Pivot {
             stroke: 2e-3,
             epsilon: 1e-3,
+            averaged: true,
         };
         let gain = exaggeration(pivot.stroke);
         assert!((gain - 50.0).abs() < 1e-12, "{gain}");
@@ -317,9 +358,60 @@ mod tests {
         let coarse = Pivot {
             stroke: 0.3,
             epsilon: 0.15,
+            averaged: true,
         };
         assert!((exaggeration(coarse.stroke) - 1.0).abs() < 1e-12);
         let at = pose(&coarse, 1.0, &p);
         assert!((at.drawn - 0.3).abs() < 1e-12);
+    }
+
+    /// Issue 83: a pendulum that is neither shaken nor averaged (a scene's own, such as a
+    /// damped driven pendulum) has no pivot travel, no averaged rod and no `Θ`: its rod is at
+    /// `θ`, and the legend speaks of what it draws.
+    #[test]
+    fn a_fixed_pendulum_draws_its_rod_alone() {
+        let fixed = Pivot {
+            stroke: 0.0,
+            epsilon: 1.0,
+            averaged: false,
+        };
+        let p = point(2.0, 0.4, 0.05);
+        let at = pose(&fixed, 1.0, &p);
+        assert!((at.drawn - 0.4).abs() < 1e-15 && (at.averaged - 0.4).abs() < 1e-15);
+        assert!(at.pivot.abs() < f64::MIN_POSITIVE, "{at:?}");
+        let theme = crate::ui::Theme::default();
+        let look = Look {
+            theme: &theme,
+            marker: Marker::Braille,
+            no_color: false,
+            charset: crate::ui::glyphs::Charset::Unicode,
+        };
+        let model = crate::physics::Model::from(crate::physics::rattleback::paper_body(
+            1e4,
+            [0.0, 0.0, 1.0, 0.5],
+        ));
+        let limit = model.limit_view();
+        let legend = |drawing| {
+            let f = Facts {
+                kind: crate::physics::ModelKind::Kapitza,
+                limit: &limit,
+                drawing,
+                summary: &[],
+            };
+            let s = legend(&f, &look);
+            let marks: Vec<String> = s.marks.iter().map(|m| m.what.clone()).collect();
+            (s.title, marks.join("\n"))
+        };
+        let (title, marks) = legend(Drawing::Pendulum(fixed));
+        assert_eq!(title, "pendulum (B)");
+        assert!(!marks.contains('Θ') && !marks.contains("pivot"), "{marks}");
+        let shaken = Pivot {
+            stroke: 0.1,
+            epsilon: 0.05,
+            averaged: true,
+        };
+        let (title, marks) = legend(Drawing::Pendulum(shaken));
+        assert_eq!(title, "pendulum (B), on its shaken pivot");
+        assert!(marks.contains("averaged rod Θ") && marks.contains("pivot on its travel"));
     }
 }

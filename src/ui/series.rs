@@ -73,21 +73,35 @@ pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
             format!("the limit {} (marks)", small.limit),
         );
     }
-    s.mark(curve(look, MARKS.axis, "⠤⠤⠤⠤", "▄▄▄▄"), t.contour, "zero")
+    s = s
+        .mark(curve(look, MARKS.axis, "⠤⠤⠤⠤", "▄▄▄▄"), t.contour, "zero")
         .mark(
             curve(look, MARKS.tick, "⡇", "█"),
             t.reversal,
             format!("a {} (tick from the bottom)", words.event),
-        )
-        .mark(
+        );
+    if let Some(m) = words.monitor {
+        s = s.mark(
             curve(look, MARKS.energy, "⠉⠉⠉⠉", "▀▀▀▀"),
             t.dim,
             format!(
                 "below: log10 |{}|, the energy monitor of the full motion",
-                words.monitor
+                m.label
             ),
-        )
-        .note("the time axis at the bottom; the window widens with the speed")
+        );
+    }
+    s.note("the time axis at the bottom; the window widens with the speed")
+}
+
+/// The pane's title: the rate, the events and the scene's monitor (if any).
+fn title(words: &crate::physics::Words, limit: &str) -> String {
+    let monitor = words
+        .monitor
+        .map_or_else(String::new, |m| format!(" │ log10|{}|", m.label));
+    format!(
+        "{}(t): {limit}, {}{monitor}",
+        words.q_dot_name, words.events
+    )
 }
 
 /// Wall seconds of motion the window shows (at least 10 simulated seconds).
@@ -122,14 +136,7 @@ fn pane(pane: &SeriesPane<'_>, area: Rect, buf: &mut Buffer) {
     } else {
         "full"
     };
-    let inner = super::framed_middle(
-        &format!(
-            "{}(t): {limit}, {} │ log10|ΔE/E|",
-            words.q_dot_name, words.events
-        ),
-        area,
-        buf,
-    );
+    let inner = super::framed_middle(&title(&words, limit), area, buf);
     let [top, energy_area, t_axis] = Layout::vertical([
         Constraint::Min(2),
         Constraint::Length(3),
@@ -203,7 +210,9 @@ fn pane(pane: &SeriesPane<'_>, area: Rect, buf: &mut Buffer) {
         });
     canvas.render(plot, buf);
     Paragraph::new(y_labels([-y, y], y_axis.height as usize, look.dim())).render(y_axis, buf);
-    energy_strip(run, (t0, t1), cols, energy_area, look, buf);
+    if words.monitor.is_some() {
+        energy_strip(run, (t0, t1), cols, energy_area, look, buf);
+    }
     // The time axis: round ticks under the plots.
     let row = super::axis::row(
         t0,

@@ -11,6 +11,7 @@ use super::Look;
 use super::marks::{Facts, Section};
 use crate::app::fields::Settings;
 use crate::app::{PlanState, ReplayInfo, RunState};
+use crate::physics::scene::Monitor;
 
 /// The status bar: what it shows, borrowed.
 pub struct StatusBar<'a> {
@@ -119,9 +120,8 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
     if let (Some(n), Some(second)) = (run.second_shown(), kind.words().second_events) {
         out.push(field(format!("{} {n}", second.name), 1));
     }
-    if let Some(p) = run.current() {
-        let label = kind.words().monitor;
-        out.push(field(format!("{label} {:.1e}", p.energy_error), 3));
+    if let Some(f) = monitor_field(kind.words().monitor, run.current().map(|p| p.energy_error)) {
+        out.push(f);
     }
     let method = match run.plan {
         PlanState::Running { plan, .. } if plan.method != s.method => {
@@ -186,18 +186,23 @@ pub fn legend(f: &Facts<'_>, _look: &Look<'_>) -> Section {
             second.name, second.meaning
         ));
     }
-    let monitor = if words.monitor_column == "energy_drift" {
-        "the drift of the limit's energy E_eff (the forced motion conserves none)"
-    } else {
-        "the relative error of the conserved energy"
-    };
-    s.note(format!(
-        "{}: {monitor}, at the displayed point",
-        words.monitor
-    ))
-    .note("method, or auto→the method auto chose")
-    .note("est E ✓: auto's verified error, within the tolerance (✗: missed)")
-    .note("N steps/s: the integration rate, while playing · ● REC: recording")
+    s.note(monitor_note(words.monitor))
+        .note("method, or auto→the method auto chose")
+        .note("est E ✓: auto's verified error, within the tolerance (✗: missed)")
+        .note("N steps/s: the integration rate, while playing · ● REC: recording")
+}
+
+/// The monitor's field at the displayed point's error (none for a scene that monitors nothing).
+fn monitor_field(monitor: Option<Monitor>, error: Option<f64>) -> Option<Field> {
+    Some(field(format!("{} {:.1e}", monitor?.label, error?), 3))
+}
+
+/// The legend's line of the monitor, in the scene's words.
+fn monitor_note(monitor: Option<Monitor>) -> String {
+    match monitor {
+        Some(m) => format!("{}: {}, at the displayed point", m.label, m.meaning),
+        None => "no monitor: the scene has no conserved quantity to watch".to_owned(),
+    }
 }
 
 /// Whether a replay has shown all there is: its recording's end, or a followed lecture that has
@@ -313,6 +318,19 @@ fn human(v: f64) -> String {
 
 #[cfg(test)]
 mod tests {
+
+    /// Issue 83: the monitor is the scene's; a scene with no conserved quantity shows none,
+    /// and the legend says so.
+    #[test]
+    fn a_scene_without_a_monitor_shows_none_and_says_so() {
+        let m = crate::physics::ModelKind::Kapitza.words().monitor;
+        let shown = monitor_field(m, Some(2.5e-9)).map(|f| f.text);
+        assert_eq!(shown.as_deref(), Some("ΔE_eff 2.5e-9"));
+        assert!(monitor_note(m).starts_with("ΔE_eff: the drift of the limit's energy"));
+        assert!(monitor_field(None, Some(2.5e-9)).is_none());
+        assert!(monitor_field(m, None).is_none());
+        assert!(monitor_note(None).contains("no conserved quantity"));
+    }
     use super::*;
 
     #[test]

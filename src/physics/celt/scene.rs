@@ -176,8 +176,11 @@ pub static SCENE: Scene = Scene {
             meaning: "any sign change of the spin",
             found: Found::Flow,
         }),
-        monitor: "ΔE/E",
-        monitor_column: "energy_error",
+        monitor: Some(crate::physics::scene::Monitor {
+            label: "ΔE/E",
+            column: "energy_error",
+            meaning: "the relative error of the conserved energy",
+        }),
     },
     params: &PARAMS,
     model_required: true,

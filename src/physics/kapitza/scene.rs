@@ -79,8 +79,11 @@ pub static SCENE: Scene = Scene {
             meaning: "the slow angle passing the horizontal on its way down",
             found: Found::SlowAngleFalls,
         }),
-        monitor: "ΔE_eff",
-        monitor_column: "energy_drift",
+        monitor: Some(crate::physics::scene::Monitor {
+            label: "ΔE_eff",
+            column: "energy_drift",
+            meaning: "the drift of the limit's energy E_eff (the forced motion conserves none)",
+        }),
     },
     params: &PARAMS,
     model_required: true,
@@ -194,6 +197,7 @@ impl Posed for Problem {
         Drawing::Pendulum(Pivot {
             stroke: p.b.abs() * p.epsilon,
             epsilon: p.epsilon,
+            averaged: true,
         })
     }
     // Its fixed-step methods take the time from the step count, (n + 1) h (flows.rs): no sum to

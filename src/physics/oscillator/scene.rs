@@ -64,8 +64,11 @@ pub static SCENE: Scene = Scene {
         events: "crossings",
         event_meaning: "the position changing sign",
         second_events: None,
-        monitor: "ΔE",
-        monitor_column: "energy_error",
+        monitor: Some(crate::physics::scene::Monitor {
+            label: "ΔE",
+            column: "energy_error",
+            meaning: "the error of the conserved energy",
+        }),
     },
     params: &PARAMS,
     model_required: true,

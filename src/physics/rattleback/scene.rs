@@ -42,8 +42,11 @@ pub static SCENE: Scene = Scene {
         events: "reversals",
         event_meaning: "a sign change of the spin rate (a spin reversal)",
         second_events: None,
-        monitor: "ΔE/E",
-        monitor_column: "energy_error",
+        monitor: Some(crate::physics::scene::Monitor {
+            label: "ΔE/E",
+            column: "energy_error",
+            meaning: "the relative error of the conserved energy",
+        }),
     },
     params: &PARAMS,
     model_required: false,
