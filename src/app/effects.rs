@@ -58,12 +58,10 @@ pub enum ShellError {
     /// No folder to write into, and where one comes from.
     #[error("{0}")]
     NoFolder(&'static str),
-    /// The recording's signing key.
+    /// The recording could not start: its signing key, its file (the recorder's own errors,
+    /// which live above the explorer's state).
     #[error(transparent)]
-    Key(#[from] crate::record::sign::KeyError),
-    /// The session file.
-    #[error(transparent)]
-    Record(#[from] crate::record::RecordError),
+    Recording(Box<dyn std::error::Error + Send + Sync>),
     /// A preset that does not load.
     #[error(transparent)]
     Preset(#[from] crate::scenario::PresetError),

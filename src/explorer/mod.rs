@@ -385,7 +385,7 @@ impl Shell<'_> {
                 self.recording = Some(r);
                 Outcome::Recording(Ok(p))
             }
-            Err(e) => Outcome::Recording(Err(e)),
+            Err(e) => Outcome::Recording(Err(ShellError::Recording(e))),
         }
     }
 

@@ -61,7 +61,7 @@ impl ActiveRecording {
         fps: f64,
         sign: Option<&std::path::Path>,
         now: f64,
-    ) -> Result<Self, crate::app::ShellError> {
+    ) -> Result<Self, Box<dyn std::error::Error + Send + Sync>> {
         let signer = sign.map(crate::record::sign::Signer::read).transpose()?;
         let recorder = Recorder::create(path, &header(app, size, fps), signer)?;
         Ok(Self::around(recorder, now))

@@ -224,7 +224,7 @@ impl Explorer {
                 self.recording = Some(r);
                 Outcome::Recording(Ok(name))
             }
-            Err(e) => Outcome::Recording(Err(e.into())),
+            Err(e) => Outcome::Recording(Err(ShellError::Recording(Box::new(e)))),
         }
     }
 
