@@ -51,6 +51,27 @@ pub trait Contract {
     fn check_cell(cell: &serde_json::Value, chart: &serde_json::Value) -> Result<(), Mismatch>;
 }
 
+/// The rows named `name` of the charts' high-precision references
+/// (`tests/fixtures/reference/charts.toml`, made by `scripts/chart_references.py`).
+#[must_use]
+pub fn chart_references(name: &str) -> Vec<toml::Table> {
+    let text = include_str!("../../tests/fixtures/reference/charts.toml");
+    let table: toml::Table = text.parse().unwrap_or_default();
+    table
+        .get(name)
+        .and_then(|v| v.as_array())
+        .map(|rows| rows.iter().filter_map(|r| r.as_table().cloned()).collect())
+        .unwrap_or_default()
+}
+
+/// A number of a reference row (`NaN` when absent, so that every comparison with it fails).
+#[must_use]
+pub fn float(row: &toml::Table, key: &str) -> f64 {
+    row.get(key)
+        .and_then(toml::Value::as_float)
+        .unwrap_or(f64::NAN)
+}
+
 /// A number of a JSON value (`NaN` when absent, so that every comparison with it fails).
 #[must_use]
 pub fn num(v: &serde_json::Value) -> f64 {

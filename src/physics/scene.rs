@@ -304,9 +304,6 @@ impl Pivot {
     /// The pivot's height above its mean position at time `t`, in rod lengths.
     #[must_use]
     pub fn height(&self, t: f64) -> f64 {
-        if self.stroke == 0.0 {
-            return 0.0;
-        }
         -self.stroke * (t / self.epsilon).e_cos()
     }
 }

@@ -2,7 +2,9 @@
 //! implementation (`scripts/celt_reference.py`, scipy's DOP853 on equations derived apart).
 
 use crate::physics::chart::StudyAsk;
-use crate::physics::contract::{Contract, Mismatch, PresetText, near, num};
+use crate::physics::contract::{
+    Contract, Mismatch, PresetText, chart_references, float as f, near, num,
+};
 
 /// The celt's case: `celt-clockwise`, as shipped.
 pub struct Case;
@@ -16,19 +18,7 @@ fn reference() -> serde_json::Value {
         .map_or(serde_json::Value::Null, |c| c["reference"].clone())
 }
 
-fn grid() -> Vec<toml::Table> {
-    let text = include_str!("../../../tests/fixtures/reference/charts.toml");
-    let table: toml::Table = text.parse().unwrap_or_default();
-    table
-        .get("celt_grid")
-        .and_then(|v| v.as_array())
-        .map(|rows| rows.iter().filter_map(|r| r.as_table().cloned()).collect())
-        .unwrap_or_default()
-}
 
-fn f(t: &toml::Table, key: &str) -> f64 {
-    t.get(key).and_then(toml::Value::as_float).unwrap_or(f64::NAN)
-}
 
 impl Contract for Case {
     const PRESET: PresetText = PresetText::Shipped("celt-clockwise");
@@ -74,7 +64,7 @@ impl Contract for Case {
             num(&cell["coords"]["initial.omega_z"]),
             num(&cell["coords"]["celt.product"]),
         );
-        let rows = grid();
+        let rows = chart_references("celt_grid");
         let Some(r) = rows
             .iter()
             .find(|r| (f(r, "omega_z") - w).abs() < 1e-12 && (f(r, "product") - d).abs() < 1e-12)

@@ -3,7 +3,9 @@
 //! against 30-digit Floquet traces (`scripts/chart_references.py`, mpmath).
 
 use crate::physics::chart::StudyAsk;
-use crate::physics::contract::{Contract, Mismatch, PresetText, near, num};
+use crate::physics::contract::{
+    Contract, Mismatch, PresetText, chart_references, float as f, near, num,
+};
 
 /// The pendulum's case: `kapitza.toml`'s `upright_eps1e-3`, charted as `kapitza-upright`.
 pub struct Case;
@@ -31,19 +33,7 @@ tolerance = 1e-9
 /// The Taylor reference's `(θ, θ̇)` at t = 5 (`tests/fixtures/reference/kapitza.toml`).
 const AT_END: (f64, f64) = (0.026_960_167_219_073_763, 0.238_242_026_069_604_37);
 
-fn references() -> Vec<toml::Table> {
-    let text = include_str!("../../../tests/fixtures/reference/charts.toml");
-    let table: toml::Table = text.parse().unwrap_or_default();
-    table
-        .get("pendulum_grid")
-        .and_then(|v| v.as_array())
-        .map(|rows| rows.iter().filter_map(|r| r.as_table().cloned()).collect())
-        .unwrap_or_default()
-}
 
-fn f(t: &toml::Table, key: &str) -> f64 {
-    t.get(key).and_then(toml::Value::as_float).unwrap_or(f64::NAN)
-}
 
 impl Contract for Case {
     const PRESET: PresetText = PresetText::Toml(PRESET);
@@ -74,7 +64,7 @@ impl Contract for Case {
             num(&cell["coords"]["pendulum.a"]),
             num(&cell["coords"]["pendulum.b"]),
         );
-        let rows = references();
+        let rows = chart_references("pendulum_grid");
         let Some(r) = rows.iter().find(|r| {
             (f(r, "a") - a).abs() <= 1e-12 * a.abs().max(1.0)
                 && (f(r, "b") - b).abs() <= 1e-12 * b
