@@ -297,10 +297,11 @@ impl Problem {
     }
 }
 
-/// Every output's schema file name and text.
+/// Every output's schema file name and text: one per command, and `study map`'s narrowed to
+/// each scene (`map-NAME`, [`scene_map`]).
 #[must_use]
-pub fn schemas() -> Vec<(&'static str, String)> {
-    fn text<T: JsonSchema>() -> String {
+pub fn schemas() -> Vec<(String, String)> {
+    fn value<T: JsonSchema>() -> serde_json::Value {
         let mut v = serde_json::to_value(schemars::schema_for!(T)).expect("schema serializes");
         // The version is a constant, so a reader can tell a shape it does not know.
         v["properties"]["schema_version"]["const"] = SCHEMA_VERSION.into();
@@ -311,19 +312,70 @@ pub fn schemas() -> Vec<(&'static str, String)> {
             required.insert(0, "model".into());
             required.insert(0, "schema_version".into());
         }
-        let mut s = serde_json::to_string_pretty(&v).expect("schema serializes");
+        v
+    }
+    fn text(v: &serde_json::Value) -> String {
+        let mut s = serde_json::to_string_pretty(v).expect("schema serializes");
         s.push('\n');
         s
     }
-    vec![
-        ("presets", text::<PresetList>()),
-        ("themes", text::<ThemeList>()),
-        ("lessons", text::<LessonList>()),
-        ("sweep", text::<Sweep>()),
-        ("map", text::<Map>()),
-        ("doctor", text::<crate::commands::doctor::Diagnosis>()),
-        ("chapters", text::<Chapters>()),
-        ("verify", text::<Verification>()),
-        ("check", text::<Check>()),
-    ]
+    let map = value::<Map>();
+    let mut all: Vec<(String, String)> = vec![
+        ("presets".to_owned(), text(&value::<PresetList>())),
+        ("themes".to_owned(), text(&value::<ThemeList>())),
+        ("lessons".to_owned(), text(&value::<LessonList>())),
+        ("sweep".to_owned(), text(&value::<Sweep>())),
+        ("map".to_owned(), text(&map)),
+        (
+            "doctor".to_owned(),
+            text(&value::<crate::commands::doctor::Diagnosis>()),
+        ),
+        ("chapters".to_owned(), text(&value::<Chapters>())),
+        ("verify".to_owned(), text(&value::<Verification>())),
+        ("check".to_owned(), text(&value::<Check>())),
+    ];
+    for kind in ModelKind::ALL {
+        all.push((format!("map-{}", kind.name()), text(&scene_map(kind, &map))));
+    }
+    all
+}
+
+/// `study map`'s schema narrowed to one scene's chart (issue 83: a scene's cell is its own
+/// shape, said by its folder's `ChartWords::csv`): `model` is that scene, and a cell holds its
+/// index and coordinates, the fields the scene's cells carry and nothing else, and either the
+/// scene's answer (`reversals` or `stable`) or a failed run's `error`.
+fn scene_map(kind: ModelKind, map: &serde_json::Value) -> serde_json::Value {
+    use crate::physics::chart::Column;
+    let mut v = map.clone();
+    let words = kind.studies().chart;
+    v["title"] = format!(
+        "{} ({} chart)",
+        map["title"].as_str().unwrap_or("map"),
+        kind.name()
+    )
+    .into();
+    v["properties"]["model"] = serde_json::json!({
+        "const": kind.name(),
+        "description": format!("The scene: always `{}` in this schema.", kind.name()),
+    });
+    // Every cell has these; a failed one also `decided: false` and its `error`.
+    let mut keep = vec!["index", "coords", "error", "decided"];
+    keep.extend(
+        words
+            .csv
+            .iter()
+            .filter(|c| !matches!(c, Column::Index | Column::X | Column::Y))
+            .map(|c| c.heading("", "")),
+    );
+    let cell = &mut v["$defs"]["CellOutput"];
+    if let Some(props) = cell["properties"].as_object_mut() {
+        props.retain(|k, _| keep.contains(&k.as_str()));
+    }
+    let answer = if words.stability {
+        "stable"
+    } else {
+        "reversals"
+    };
+    cell["anyOf"] = serde_json::json!([{ "required": [answer] }, { "required": ["error"] }]);
+    v
 }

@@ -409,7 +409,7 @@ fn every_other_json_output_has_its_version_model_and_schema() {
         ),
         ("check", &["check", LECTURE_PRESET, "--format", "json"]),
     ];
-    for (schema, args) in runs {
+    for &(schema, args) in runs {
         let (code, out, err) = crate::common::bin_in(&config, args);
         assert_eq!(code, 0, "{args:?}: {err}");
         // The first two keys, as printed.
@@ -431,6 +431,15 @@ fn every_other_json_output_has_its_version_model_and_schema() {
         );
         assert!(value.get("model").is_some(), "{args:?}: no model");
         check(&validators[schema], &format!("{args:?}"), &value);
+        if schema == "map" {
+            // Issue 83: and against its own scene's narrowed schema.
+            let own = format!("map-{}", scene(&value));
+            check(
+                &validators[own.as_str()],
+                &format!("{args:?} ({own})"),
+                &value,
+            );
+        }
         let mut bent = value.clone();
         bent["surprise"] = Value::from(1);
         assert!(
@@ -446,4 +455,71 @@ fn every_other_json_output_has_its_version_model_and_schema() {
         );
     }
     std::fs::remove_dir_all(&config).ok();
+}
+
+/// Issue 83: each scene's chart has its own schema (`docs/schemas/map-NAME.schema.json`): a
+/// real chart of every shipped scene validates against its own, is refused by every other
+/// scene's (another scene's name, another scene's fields), and is refused by its own when a
+/// cell loses its answer or gains another scene's field; the shared `map` schema takes all.
+#[test]
+fn each_scene_chart_validates_against_its_own_schema_and_no_other() {
+    let schemas: std::collections::BTreeMap<String, jsonschema::Validator> =
+        rattleback::commands::outputs::schemas()
+            .into_iter()
+            .filter(|(n, _)| n.starts_with("map"))
+            .map(|(n, t)| {
+                let v: Value = serde_json::from_str(&t).unwrap();
+                (n, jsonschema::draft202012::new(&v).unwrap())
+            })
+            .collect();
+    assert_eq!(
+        schemas.len(),
+        ModelKind::ALL.len() + 1,
+        "{:?}",
+        schemas.keys()
+    );
+    for kind in ModelKind::ALL {
+        let preset = rattleback::scenario::shipped::base_preset(kind);
+        let (code, out, err) = crate::common::bin(&[
+            "study", "map", "--preset", preset, "--format", "json", "--grid", "3x2", "--force",
+        ]);
+        assert_eq!(code, 0, "{preset}: {err}");
+        let chart: Value = serde_json::from_str(&out).unwrap();
+        let own = format!("map-{}", kind.name());
+        check(&schemas["map"], preset, &chart);
+        check(&schemas[own.as_str()], preset, &chart);
+        for other in ModelKind::ALL.iter().filter(|&&o| o != kind) {
+            let name = format!("map-{}", other.name());
+            assert!(
+                !schemas[name.as_str()].is_valid(&chart),
+                "{preset} passes {name}"
+            );
+        }
+        let answer = if kind.studies().chart.stability {
+            "stable"
+        } else {
+            "reversals"
+        };
+        let mut lost = chart.clone();
+        lost["cells"][0].as_object_mut().unwrap().remove(answer);
+        assert!(
+            !schemas[own.as_str()].is_valid(&lost),
+            "{preset}: a cell without {answer}"
+        );
+        let stray = if kind.studies().chart.stability {
+            "reversals"
+        } else {
+            "trace"
+        };
+        let mut gained = chart.clone();
+        gained["cells"][0][stray] = Value::from(1);
+        assert!(
+            !schemas[own.as_str()].is_valid(&gained),
+            "{preset}: a cell with {stray}"
+        );
+        assert!(
+            schemas["map"].is_valid(&gained),
+            "{preset}: the shared schema takes {stray}"
+        );
+    }
 }
