@@ -411,6 +411,15 @@ pub trait SceneChart: std::fmt::Debug + Send + Sync {
     /// # Errors
     /// A failed run, or [`StepError::Cancelled`].
     fn cell(&self, n: usize, go_on: &(dyn Fn(f64) -> bool + Sync)) -> Result<Verdict, StepError>;
+    /// Cells `ns`, each what [`SceneChart::cell`] gives, bit for bit; `each(k, …)` hears of
+    /// `ns[k]` as it is found, in any order. One by one ([`one_by_one`]), or side by side
+    /// where the scene integrates its cells in lanes (issue 84: the celt's).
+    fn cells(
+        &self,
+        ns: &[usize],
+        go_on: &(dyn Fn(f64) -> bool + Sync),
+        each: &mut dyn FnMut(usize, Result<Verdict, StepError>),
+    );
     /// The theory's curve in the axes' values, `(x, y)` points.
     fn curve(&self) -> Vec<(f64, f64)>;
     /// What the curve is, in words.
@@ -435,6 +444,18 @@ pub trait SceneChart: std::fmt::Debug + Send + Sync {
     fn lines(&self) -> Vec<usize>;
     /// The output's header fields.
     fn header(&self) -> Header;
+}
+
+/// [`SceneChart::cells`] for a scene whose cells are computed one by one.
+pub fn one_by_one(
+    chart: &dyn SceneChart,
+    ns: &[usize],
+    go_on: &(dyn Fn(f64) -> bool + Sync),
+    each: &mut dyn FnMut(usize, Result<Verdict, StepError>),
+) {
+    for (k, &n) in ns.iter().enumerate() {
+        each(k, chart.cell(n, go_on));
+    }
 }
 
 /// How a scene builds its chart from its problem, and loads a cell back.

@@ -108,32 +108,81 @@ pub fn drive<F: Flow + ?Sized>(
     go_on: &mut dyn FnMut(f64) -> bool,
     watch: &mut impl Watch<F>,
 ) -> Result<Driven, StepError> {
-    let mut tracker = EventTracker::new(course.event0);
-    let mut driven = Driven::default();
-    let mut next_sample = 0;
-    let mut steps: u64 = 0;
-    loop {
-        while next_sample < course.samples && course.sample_time(next_sample) <= flow.time() {
-            let t = course.sample_time(next_sample);
+    let mut driver = Driver::new(course);
+    while driver.before(flow, course, go_on, watch)? {
+        flow.step(course.t_end)?;
+        driver.after(flow, course, watch);
+    }
+    Ok(driver.driven)
+}
+
+/// The runner's state between two steps: [`drive`]'s loop, opened up so that a flow whose steps
+/// are taken elsewhere (a lane of a batched chart, issue 84) is driven by the same rules.
+#[derive(Clone, Debug)]
+pub struct Driver {
+    tracker: EventTracker,
+    /// What was counted so far.
+    pub driven: Driven,
+    next_sample: usize,
+    steps: u64,
+}
+
+impl Driver {
+    /// At the start of `course`.
+    #[must_use]
+    pub fn new(course: &Course) -> Self {
+        Self {
+            tracker: EventTracker::new(course.event0),
+            driven: Driven::default(),
+            next_sample: 0,
+            steps: 0,
+        }
+    }
+
+    /// Before a step: the samples reached, the end, `go_on` and the step cap. `Ok(true)`: take
+    /// a step; `Ok(false)`: the course is run.
+    ///
+    /// # Errors
+    /// The step cap, and [`StepError::Cancelled`] when `go_on` or the watcher says stop.
+    pub fn before<F: Flow + ?Sized>(
+        &mut self,
+        flow: &mut F,
+        course: &Course,
+        go_on: &mut dyn FnMut(f64) -> bool,
+        watch: &mut impl Watch<F>,
+    ) -> Result<bool, StepError> {
+        while self.next_sample < course.samples
+            && course.sample_time(self.next_sample) <= flow.time()
+        {
+            let t = course.sample_time(self.next_sample);
             if !watch.sample(flow, t) {
                 return Err(StepError::Cancelled { t });
             }
-            next_sample += 1;
+            self.next_sample += 1;
         }
         if flow.time() >= course.t_end {
-            return Ok(driven);
+            return Ok(false);
         }
-        steps += 1;
-        if steps.is_multiple_of(CHECK_EVERY) && !go_on(flow.time()) {
+        self.steps += 1;
+        if self.steps.is_multiple_of(CHECK_EVERY) && !go_on(flow.time()) {
             return Err(StepError::Cancelled { t: flow.time() });
         }
-        course.cap.check(steps, flow.time())?;
-        flow.step(course.t_end)?;
+        course.cap.check(self.steps, flow.time())?;
+        Ok(true)
+    }
+
+    /// After an accepted step: its marks and events counted, the watcher told.
+    pub fn after<F: Flow + ?Sized>(
+        &mut self,
+        flow: &mut F,
+        course: &Course,
+        watch: &mut impl Watch<F>,
+    ) {
         for &t in flow.marks() {
-            driven.marks.push(t, course.keep);
+            self.driven.marks.push(t, course.keep);
         }
-        if let Some(t) = tracker.after_step(flow) {
-            driven.events.push(t, course.keep);
+        if let Some(t) = self.tracker.after_step(flow) {
+            self.driven.events.push(t, course.keep);
         }
         watch.stepped(flow);
     }

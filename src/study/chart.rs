@@ -97,6 +97,11 @@ impl super::refine::Certifies for Chart {
     }
 }
 
+/// Most cells a chunk of [`Chart::cells`] hands a scene at once: enough that a scene computing
+/// its cells in lanes keeps them full (four lanes, two runs a cell and a round), few enough that
+/// a cancel or a progress line is not long in coming.
+pub const CHUNK: usize = 64;
+
 /// A cell the refinement left without a verdict: never, as its walk covers every cell.
 fn unsettled() -> Verdict {
     Verdict::Failed {
@@ -133,7 +138,9 @@ impl Chart {
     }
 
     /// Computes the cells `indices` in parallel, in the order given; `go_on` is asked between
-    /// cells and inside runs.
+    /// chunks of cells and inside runs. Each chunk is the scene's to compute as it can
+    /// ([`SceneChart::cells`]: the celt's side by side in lanes, issue 84), at most
+    /// [`CHUNK`] cells and few enough that every thread has several chunks.
     ///
     /// # Errors
     /// The first cell that fails, or [`StepError::Cancelled`].
@@ -143,23 +150,34 @@ impl Chart {
         go_on: &(dyn Fn(f64) -> bool + Sync),
         done: &(dyn Fn() + Sync),
     ) -> Result<Vec<Verdict>, StepError> {
-        indices
-            .par_iter()
-            .map(|&n| {
+        let threads = rayon::current_num_threads().max(1);
+        let chunk = (indices.len() / (8 * threads)).clamp(1, CHUNK);
+        let chunks: Vec<Vec<Verdict>> = indices
+            .par_chunks(chunk)
+            .map(|ns| {
                 if !go_on(0.0) {
                     return Err(StepError::Cancelled { t: 0.0 });
                 }
-                let v = match self.cell(n, go_on) {
-                    Err(StepError::Cancelled { t }) => Err(StepError::Cancelled { t }),
-                    Err(e) => Ok(Verdict::Failed {
-                        error: e.to_string(),
-                    }),
-                    Ok(v) => Ok(v),
-                };
-                done();
-                v
+                let mut found: Vec<Option<Result<Verdict, StepError>>> = vec![None; ns.len()];
+                SceneChart::cells(&**self, ns, go_on, &mut |k, v| {
+                    found[k] = Some(v);
+                    done();
+                });
+                found
+                    .into_iter()
+                    .map(
+                        |v| match v.unwrap_or(Err(StepError::Cancelled { t: 0.0 })) {
+                            Err(StepError::Cancelled { t }) => Err(StepError::Cancelled { t }),
+                            Err(e) => Ok(Verdict::Failed {
+                                error: e.to_string(),
+                            }),
+                            Ok(v) => Ok(v),
+                        },
+                    )
+                    .collect()
             })
-            .collect()
+            .collect::<Result<_, _>>()?;
+        Ok(chunks.into_iter().flatten().collect())
     }
 
     /// The refinement of this chart's grid (`study::refine`): certified by the scene where it

@@ -111,6 +111,31 @@ impl CeltChart {
     }
 }
 
+impl CeltChart {
+    /// The problem of cell `n`, refused as a run would refuse it.
+    fn problem_of(&self, n: usize) -> Result<Problem, StepError> {
+        let (i, j) = (n % self.columns.cells, n / self.columns.cells);
+        self.problem(i, j).map_err(|_| StepError::NotFinite {
+            what: "a cell's body",
+            t: 0.0,
+        })
+    }
+}
+
+/// A cell's verdict: its verified reversals and the growth rate of steady spin at its start.
+fn verdict(problem: &Problem, r: super::reversal::Reversals) -> Verdict {
+    Verdict::Reversals {
+        count: r.count,
+        first: r.first,
+        last: None,
+        decided: r.decided,
+        growth: Some(super::linear::growth_rate(
+            problem.params(),
+            problem.start().omega[2],
+        )),
+    }
+}
+
 /// The celt's `problem` spun at `omega_z` with the product of inertia `product`.
 ///
 /// # Errors
@@ -145,23 +170,38 @@ impl SceneChart for CeltChart {
     }
 
     fn cell(&self, n: usize, go_on: &(dyn Fn(f64) -> bool + Sync)) -> Result<Verdict, StepError> {
-        let (i, j) = (n % self.columns.cells, n / self.columns.cells);
-        let problem = self.problem(i, j).map_err(|_| StepError::NotFinite {
-            what: "a cell's body",
-            t: 0.0,
-        })?;
+        let problem = self.problem_of(n)?;
         let r =
             super::reversal::reversals(&problem, self.t_end, self.tolerance, &mut |t| go_on(t))?;
-        Ok(Verdict::Reversals {
-            count: r.count,
-            first: r.first,
-            last: None,
-            decided: r.decided,
-            growth: Some(super::linear::growth_rate(
-                problem.params(),
-                problem.start().omega[2],
-            )),
-        })
+        Ok(verdict(&problem, r))
+    }
+
+    /// Side by side, in lanes (issue 84): each cell's verification replayed over its runs as
+    /// they come back, so each verdict is [`SceneChart::cell`]'s, bit for bit.
+    fn cells(
+        &self,
+        ns: &[usize],
+        go_on: &(dyn Fn(f64) -> bool + Sync),
+        each: &mut dyn FnMut(usize, Result<Verdict, StepError>),
+    ) {
+        let mut problems = Vec::with_capacity(ns.len());
+        let mut at = Vec::with_capacity(ns.len());
+        for (k, &n) in ns.iter().enumerate() {
+            match self.problem_of(n) {
+                Ok(p) => {
+                    problems.push(p);
+                    at.push(k);
+                }
+                Err(e) => each(k, Err(e)),
+            }
+        }
+        super::reversal::reversals_in_lanes(
+            &problems,
+            self.t_end,
+            self.tolerance,
+            go_on,
+            &mut |i, r| each(at[i], r.map(|r| verdict(&problems[i], r))),
+        );
     }
 
     fn curve(&self) -> Vec<(f64, f64)> {

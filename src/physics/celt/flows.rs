@@ -19,7 +19,10 @@
 use super::{DIM, Params, Problem, State, lean, spin, tilt};
 use crate::physics::flow::{Flow, Sample};
 use crate::physics::method::{Method, Settings, StepError};
+use super::field::Coefficients;
 use crate::physics::numerics::dop853::{Dop853, Field};
+use crate::physics::numerics::dop853_lanes::Packs;
+use crate::physics::numerics::lanes::{F64x4, LANES};
 use crate::physics::numerics::roots::find_root;
 
 /// The methods this model offers (`auto` first).
@@ -28,8 +31,9 @@ pub const METHODS: [Method; 3] = [Method::Auto, Method::Dop853, Method::Dop853Pr
 /// Points per step at which the interpolant is searched for crossings.
 const SEARCH: usize = 32;
 
+/// The celt's field for the DOP853 core.
 #[derive(Clone)]
-struct CeltField(Params);
+pub struct CeltField(Params);
 
 impl Field<DIM> for CeltField {
     #[inline]
@@ -38,6 +42,17 @@ impl Field<DIM> for CeltField {
     }
     fn is_angle(&self, i: usize) -> bool {
         i == DIM - 1
+    }
+}
+
+impl Packs<DIM> for CeltField {
+    type Packed = Coefficients<F64x4>;
+    fn pack(fields: [&Self; LANES]) -> Self::Packed {
+        Coefficients::lanes(fields.map(|f| &f.0))
+    }
+    #[inline(always)]
+    fn eval_packed(packed: &Self::Packed, _t: F64x4, y: &[F64x4; DIM]) -> [F64x4; DIM] {
+        packed.field(y)
     }
 }
 
@@ -175,32 +190,8 @@ impl Flow for CeltFlow {
         }
     }
     fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
-        let s_prev = self.spin_now;
         self.core.step(t_limit)?;
-        if self.project {
-            self.core.project(project);
-        }
-        let s = spin(&self.core.state());
-        self.find_crossings(s_prev, s);
-        self.spin_now = s;
-        if s * self.sense < 0.0
-            && s.abs() >= self.band
-            && let Some(t) = self.last_crossing
-        {
-            {
-                let (t0, t1) = (self.core.time_prev(), self.core.time());
-                let (band, new) = (self.band, -self.sense);
-                let core = &mut self.core;
-                let mut beyond = |t: f64| spin(&core.interpolate(t)) * new - band;
-                self.confirmed = if beyond(t0) >= 0.0 {
-                    t0
-                } else {
-                    find_root(beyond, t0, t1)
-                };
-                self.sense = new;
-                self.reversal = t;
-            }
-        }
+        self.stepped();
         Ok(())
     }
     fn sample(&mut self, t: f64) -> Sample {
@@ -229,5 +220,48 @@ impl Flow for CeltFlow {
     }
     fn energy(&self) -> f64 {
         self.params.energy(&self.core.state())
+    }
+}
+
+impl CeltFlow {
+    /// The integrator, for a batched chart's lane (issue 84), which takes its steps; each
+    /// accepted one is then followed by [`CeltFlow::stepped`].
+    pub(super) fn core(&mut self) -> &mut Dop853<DIM, CeltField> {
+        &mut self.core
+    }
+
+    /// The field it integrates.
+    pub(super) fn field(&self) -> &CeltField {
+        self.core.field()
+    }
+
+    /// What follows an accepted step of the integrator: the projection, the crossings inside
+    /// the step and a reversal at its end.
+    pub(super) fn stepped(&mut self) {
+        let s_prev = self.spin_now;
+        if self.project {
+            self.core.project(project);
+        }
+        let s = spin(&self.core.state());
+        self.find_crossings(s_prev, s);
+        self.spin_now = s;
+        if s * self.sense < 0.0
+            && s.abs() >= self.band
+            && let Some(t) = self.last_crossing
+        {
+            {
+                let (t0, t1) = (self.core.time_prev(), self.core.time());
+                let (band, new) = (self.band, -self.sense);
+                let core = &mut self.core;
+                let mut beyond = |t: f64| spin(&core.interpolate(t)) * new - band;
+                self.confirmed = if beyond(t0) >= 0.0 {
+                    t0
+                } else {
+                    find_root(beyond, t0, t1)
+                };
+                self.sense = new;
+                self.reversal = t;
+            }
+        }
     }
 }

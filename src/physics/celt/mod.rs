@@ -29,6 +29,7 @@ pub mod budget;
 pub mod chart;
 #[cfg(test)]
 pub mod contract;
+pub mod field;
 pub mod flows;
 pub mod linear;
 pub mod plan;
@@ -243,61 +244,7 @@ impl Params {
     #[must_use]
     #[inline]
     pub fn field(&self, y: &State) -> State {
-        let w = Vector3::new(y[0], y[1], y[2]);
-        let g = Vector3::new(y[3], y[4], y[5]);
-        let (a2, b2, c2) = (self.a * self.a, self.b * self.b, self.c * self.c);
-        let qq = a2 * g.x * g.x + b2 * g.y * g.y + c2 * g.z * g.z;
-        let s = qq.sqrt();
-        let r = Vector3::new(-a2 * g.x / s, -b2 * g.y / s, -c2 * g.z / s + self.offset);
-        let dg = g.cross(&w);
-        let k = (a2 * g.x * dg.x + b2 * g.y * dg.y + c2 * g.z * dg.z) / (qq * s);
-        let dr = Vector3::new(
-            -a2 * dg.x / s + a2 * g.x * k,
-            -b2 * dg.y / s + b2 * g.y * k,
-            -c2 * dg.z / s + c2 * g.z * k,
-        );
-        let v = r.cross(&w);
-        let u = w.cross(&v) + dr.cross(&w) + g * self.gravity;
-        let l = Vector3::new(
-            self.ix * w.x + self.product * w.y,
-            self.product * w.x + self.iy * w.y,
-            self.iz * w.z,
-        );
-        let f = -w.cross(&l) + r.cross(&u);
-        let rr = r.dot(&r);
-        let m11 = self.ix + rr - r.x * r.x;
-        let m22 = self.iy + rr - r.y * r.y;
-        let m33 = self.iz + rr - r.z * r.z;
-        let m12 = self.product - r.x * r.y;
-        let m13 = -r.x * r.z;
-        let m23 = -r.y * r.z;
-        let c11 = m22 * m33 - m23 * m23;
-        let c12 = m13 * m23 - m12 * m33;
-        let c13 = m12 * m23 - m13 * m22;
-        let c22 = m11 * m33 - m13 * m13;
-        let c23 = m12 * m13 - m11 * m23;
-        let c33 = m11 * m22 - m12 * m12;
-        let det = m11 * c11 + m12 * c12 + m13 * c13;
-        let (q0, q1, q2, q3) = (y[6], y[7], y[8], y[9]);
-        let mut out = State::zeros();
-        out[0] = (c11 * f.x + c12 * f.y + c13 * f.z) / det;
-        out[1] = (c12 * f.x + c22 * f.y + c23 * f.z) / det;
-        out[2] = (c13 * f.x + c23 * f.y + c33 * f.z) / det;
-        out[3] = dg.x;
-        out[4] = dg.y;
-        out[5] = dg.z;
-        out[6] = 0.5 * (-q1 * w.x - q2 * w.y - q3 * w.z);
-        out[7] = 0.5 * (q0 * w.x + q2 * w.z - q3 * w.y);
-        out[8] = 0.5 * (q0 * w.y - q1 * w.z + q3 * w.x);
-        out[9] = 0.5 * (q0 * w.z + q1 * w.y - q2 * w.x);
-        out[10] = (1.0 - 2.0 * (q2 * q2 + q3 * q3)) * v.x
-            + 2.0 * (q1 * q2 - q0 * q3) * v.y
-            + 2.0 * (q1 * q3 + q0 * q2) * v.z;
-        out[11] = 2.0 * (q1 * q2 + q0 * q3) * v.x
-            + (1.0 - 2.0 * (q1 * q1 + q3 * q3)) * v.y
-            + 2.0 * (q2 * q3 - q0 * q1) * v.z;
-        out[12] = w.dot(&g);
-        out
+        State::from(field::Coefficients::of(self).field(&y.data.0[0]))
     }
 
     /// The energy per unit mass, `½ ωᵀIω + ½ |r × ω|² − g r·γ` (conserved).

@@ -6,13 +6,15 @@
 //! tolerance (seconds); a chaotic window, whose counts differ between any two tolerances, stops
 //! at the loop's stall rule and says it is not.
 
+use std::collections::{BTreeMap, VecDeque};
+
 use super::Problem;
 use super::policy::{FIRST, POLICY};
-use super::run::{RunResult, run};
+use super::run::{Counts, Jobs, count, count_in_lanes};
 use crate::physics::fork::GoOn;
-use crate::physics::method::{Asked, Method, RunSpec, StepError};
+use crate::physics::method::{Asked, Method, StepError};
 use crate::physics::plan::Shortfall;
-use crate::physics::verify::{Candidate, Policy, Round, Rounds, verify};
+use crate::physics::verify::{Candidate, Conclusion, Policy, Round, Rounds, verify};
 
 /// A cell's count.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -25,17 +27,19 @@ pub struct Reversals {
     pub decided: bool,
 }
 
-#[derive(Clone, Copy)]
-struct Counted {
+/// Runs already counted for one cell, by their tolerance's bits (a batched chart's, issue 84).
+type Known = BTreeMap<u64, Result<Counts, StepError>>;
+
+struct Counted<'a> {
     problem: Problem,
     t_end: f64,
+    /// A batched cell's runs so far (`None`: a lone cell, which runs its own).
+    known: Option<&'a Known>,
+    /// The tolerances of the runs a batched cell needs next and has not.
+    missing: Vec<f64>,
 }
 
-impl Counted {
-    fn run(&self, local: f64, go_on: GoOn<'_>) -> Result<RunResult, StepError> {
-        let spec = RunSpec::new(Asked::new(Method::Dop853, local, None, self.t_end), 0);
-        run(&self.problem, &spec, go_on)
-    }
+impl Counted<'_> {
     fn run_cost(&self, local: f64) -> f64 {
         super::budget::cost_seconds(
             &self.problem,
@@ -46,16 +50,30 @@ impl Counted {
 
 /// The run and its companion one after the other (a chart's cells already fill the cores),
 /// the run kept.
-impl Candidate for Counted {
+impl Candidate for Counted<'_> {
     type Plan = f64;
-    type Run = RunResult;
+    type Run = Counts;
     fn policy(&self) -> &'static Policy {
         &POLICY
     }
-    fn round(&mut self, local: &f64, go_on: GoOn<'_>) -> Result<Round<RunResult>, StepError> {
-        let fine = self.run(*local, go_on)?;
-        let coarse = self.run(POLICY.companion(*local), go_on)?;
-        let measured = if fine.reversal_count == coarse.reversal_count {
+    fn round(&mut self, local: &f64, go_on: GoOn<'_>) -> Result<Round<Counts>, StepError> {
+        let companion = POLICY.companion(*local);
+        let (fine, coarse) = if let Some(known) = self.known {
+            let (fine, coarse) = (known.get(&local.to_bits()), known.get(&companion.to_bits()));
+            let (Some(fine), Some(coarse)) = (fine, coarse) else {
+                self.missing = [*local, companion]
+                    .into_iter()
+                    .filter(|t| !known.contains_key(&t.to_bits()))
+                    .collect();
+                return Err(StepError::Cancelled { t: 0.0 });
+            };
+            // A lone cell's order: the run's error before its companion's.
+            (fine.clone()?, coarse.clone()?)
+        } else {
+            let fine = count(&self.problem, self.t_end, *local, go_on)?;
+            (fine, count(&self.problem, self.t_end, companion, go_on)?)
+        };
+        let measured = if fine.count == coarse.count {
             fine.reversals
                 .iter()
                 .zip(&coarse.reversals)
@@ -90,6 +108,8 @@ pub fn first_round_seconds(problem: &Problem, t_end: f64, tolerance: f64) -> f64
     let candidate = Counted {
         problem: *problem,
         t_end,
+        known: None,
+        missing: Vec::new(),
     };
     candidate.cost(&first_local(tolerance))
 }
@@ -107,13 +127,135 @@ pub fn reversals(
     let mut candidate = Counted {
         problem: *problem,
         t_end,
+        known: None,
+        missing: Vec::new(),
     };
     let first = first_local(tolerance);
-    let v = verify(&mut candidate, Rounds::unbudgeted(first, tolerance), go_on)?;
+    verify(&mut candidate, Rounds::unbudgeted(first, tolerance), go_on).map(concluded)
+}
+
+/// What a cell's verification concluded.
+fn concluded(v: Conclusion<f64, Counts>) -> Reversals {
     let best = v.best.1;
-    Ok(Reversals {
-        count: best.reversal_count,
+    Reversals {
+        count: best.count,
         first: best.reversals.first().copied(),
         decided: v.shortfall.is_none(),
-    })
+    }
+}
+
+/// A cell's verification replayed over its runs so far: its conclusion, or the runs it needs
+/// next (`Err`).
+fn replay(
+    problem: &Problem,
+    t_end: f64,
+    tolerance: f64,
+    known: &Known,
+    go_on: GoOn<'_>,
+) -> Result<Result<Reversals, StepError>, Vec<f64>> {
+    let mut candidate = Counted {
+        problem: *problem,
+        t_end,
+        known: Some(known),
+        missing: Vec::new(),
+    };
+    let v = verify(&mut candidate, Rounds::unbudgeted(first_local(tolerance), tolerance), go_on);
+    if candidate.missing.is_empty() {
+        Ok(v.map(concluded))
+    } else {
+        Err(candidate.missing)
+    }
+}
+
+/// One cell of [`reversals_in_lanes`]: its runs so far and how many of those asked are out.
+struct Cell {
+    problem: Problem,
+    known: Known,
+    out: usize,
+}
+
+/// The cells of [`reversals_in_lanes`] as [`Jobs`]: the runs asked, by id, the queue of those
+/// not yet handed out, and each cell replayed when its last run asked comes back.
+struct Cells<'a> {
+    cells: Vec<Cell>,
+    t_end: f64,
+    tolerance: f64,
+    runs: Vec<(usize, f64)>,
+    queue: VecDeque<usize>,
+    go_on: &'a (dyn Fn(f64) -> bool + Sync),
+    each: &'a mut dyn FnMut(usize, Result<Reversals, StepError>),
+}
+
+impl Cells<'_> {
+    /// Replays cell `i`: hands its conclusion on, or asks its next runs.
+    fn replay(&mut self, i: usize) {
+        let go_on = self.go_on;
+        let cell = &mut self.cells[i];
+        match replay(
+            &cell.problem,
+            self.t_end,
+            self.tolerance,
+            &cell.known,
+            &mut |t| go_on(t),
+        ) {
+            Ok(concluded) => (self.each)(i, concluded),
+            Err(missing) => {
+                cell.out = missing.len();
+                for local in missing {
+                    self.queue.push_back(self.runs.len());
+                    self.runs.push((i, local));
+                }
+            }
+        }
+    }
+}
+
+impl Jobs for Cells<'_> {
+    fn next(&mut self) -> Option<(usize, Problem, f64, f64)> {
+        let id = self.queue.pop_front()?;
+        let (i, local) = self.runs[id];
+        Some((id, self.cells[i].problem, self.t_end, local))
+    }
+    fn done(&mut self, id: usize, counted: Result<Counts, StepError>) {
+        let (i, local) = self.runs[id];
+        let cell = &mut self.cells[i];
+        cell.known.insert(local.to_bits(), counted);
+        cell.out -= 1;
+        if cell.out == 0 {
+            self.replay(i);
+        }
+    }
+}
+
+/// The reversals of each of `problems` as [`reversals`] finds them, bit for bit, their runs
+/// taken [`LANES`](crate::physics::numerics::lanes::LANES) at a time (issue 84): each cell's
+/// verification is replayed over the runs it has so far whenever the runs it asked come back,
+/// and asks its next ones until it concludes. `each(i, …)` hears of cell `i` as it concludes.
+pub fn reversals_in_lanes(
+    problems: &[Problem],
+    t_end: f64,
+    tolerance: f64,
+    go_on: &(dyn Fn(f64) -> bool + Sync),
+    each: &mut dyn FnMut(usize, Result<Reversals, StepError>),
+) {
+    let mut cells = Cells {
+        cells: problems
+            .iter()
+            .map(|&problem| Cell {
+                problem,
+                known: Known::new(),
+                out: 0,
+            })
+            .collect(),
+        t_end,
+        tolerance,
+        runs: Vec::new(),
+        queue: VecDeque::new(),
+        go_on,
+        each,
+    };
+    for i in 0..problems.len() {
+        cells.replay(i);
+    }
+    count_in_lanes(&mut cells, &mut |t| go_on(t));
 }

@@ -5,11 +5,13 @@
 use crate::physics::method::RunSpec;
 use serde::Serialize;
 
-use super::flows::{CeltFlow, build};
+use super::flows::{CeltField, CeltFlow, build};
 use super::{DIM, Problem, State, gamma, spin};
-use crate::physics::drive::{Course, Drift, Watch, drive};
+use crate::physics::drive::{Course, Drift, Driven, Driver, Watch, drive};
 use crate::physics::flow::{Flow, GoOn};
-use crate::physics::method::{Method, StepError};
+use crate::physics::method::{Asked, Method, StepError};
+use crate::physics::numerics::dop853_lanes::{Packs, Scratch, attempt};
+use crate::physics::numerics::lanes::LANES;
 use crate::physics::numerics::dop853::Stats;
 
 /// Most event times kept of each kind; later ones are counted only.
@@ -153,5 +155,145 @@ impl Watch<CeltFlow> for Watched<'_> {
         self.contact_height_max = self
             .contact_height_max
             .max(contact_height(self.problem, &y).abs());
+    }
+}
+
+/// What a count of reversals keeps of a run (issue 84: a chart's cells need no more, so their
+/// runs watch nothing else).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Counts {
+    /// Reversals with the hysteresis band (the first [`MAX_EVENT_TIMES`]).
+    pub reversals: Vec<f64>,
+    /// How many.
+    pub count: usize,
+}
+
+impl Counts {
+    fn of(driven: Driven) -> Self {
+        Self {
+            reversals: driven.events.times,
+            count: driven.events.count,
+        }
+    }
+}
+
+/// A watcher that watches nothing.
+struct Unwatched;
+
+impl Watch<CeltFlow> for Unwatched {
+    fn sample(&mut self, _: &mut CeltFlow, _: f64) -> bool {
+        true
+    }
+    fn stepped(&mut self, _: &mut CeltFlow) {}
+}
+
+/// A DOP853 run of `problem` over `[0, t_end]` at tolerance `local`, without samples, ready to
+/// drive: the flow and course [`run`] builds for it.
+fn counting(problem: &Problem, t_end: f64, local: f64) -> (CeltFlow, Course) {
+    let ask = Asked::new(Method::Dop853, local, None, t_end);
+    let flow = CeltFlow::new(problem, ask.settings().tolerance, false);
+    let cost = super::budget::cost_seconds(problem, &ask);
+    let course = Course::of(&flow, t_end, 0, cost);
+    (flow, course)
+}
+
+/// The reversals of a DOP853 run of `problem` over `[0, t_end]` at tolerance `local`: the
+/// reversals [`run`] finds, without what else it watches.
+///
+/// # Errors
+/// A failed step, the step cap, and [`StepError::Cancelled`] when `go_on` says stop.
+pub fn count(problem: &Problem, t_end: f64, local: f64, go_on: GoOn) -> Result<Counts, StepError> {
+    let (mut flow, course) = counting(problem, t_end, local);
+    drive(&mut flow, &course, go_on, &mut Unwatched).map(Counts::of)
+}
+
+/// Runs to count, handed out and taken back by [`count_in_lanes`].
+pub trait Jobs {
+    /// The next run: an id, the problem, its window and its tolerance (`None`: none now).
+    fn next(&mut self) -> Option<(usize, Problem, f64, f64)>;
+    /// Run `id` ended: what [`count`] gives it, bit for bit.
+    fn done(&mut self, id: usize, counted: Result<Counts, StepError>);
+}
+
+/// A run in a lane: its flow, its course and where its driver is.
+struct Lane {
+    id: usize,
+    flow: CeltFlow,
+    course: Course,
+    driver: Driver,
+}
+
+/// Counts the reversals of every run `jobs` hands out, [`LANES`] at a time (issue 84): each
+/// lane's attempts are taken side by side ([`attempt`]), and each lane is driven by the one
+/// [`Driver`] a lone run is driven by, so each run's counts are [`count`]'s; a lane whose run
+/// ends or fails is handed the next run at once. Ends when every run handed out has ended
+/// and `jobs` has no more. Compiled for AVX2 and AVX too, the best the machine has chosen
+/// when first called: the same operations at another width, so the same bits.
+#[multiversion::multiversion(targets("x86_64+avx2", "x86_64+avx"))]
+pub fn count_in_lanes(jobs: &mut dyn Jobs, go_on: GoOn) {
+    let mut lanes: [Option<Lane>; LANES] = [None, None, None, None];
+    let mut packed = None;
+    let mut scratch = Scratch::default();
+    loop {
+        let mut changed = false;
+        for slot in &mut lanes {
+            while slot.is_none() {
+                let Some((id, problem, t_end, local)) = jobs.next() else {
+                    break;
+                };
+                let (mut flow, course) = counting(&problem, t_end, local);
+                let mut driver = Driver::new(&course);
+                match driver.before(&mut flow, &course, go_on, &mut Unwatched) {
+                    Ok(true) => {
+                        *slot = Some(Lane {
+                            id,
+                            flow,
+                            course,
+                            driver,
+                        });
+                        changed = true;
+                    }
+                    Ok(false) => jobs.done(id, Ok(Counts::of(driver.driven))),
+                    Err(e) => jobs.done(id, Err(e)),
+                }
+            }
+        }
+        let Some(live) = lanes.iter().position(Option::is_some) else {
+            return;
+        };
+        if changed || packed.is_none() {
+            let field = |l: usize| {
+                let lane = lanes[l].as_ref().or(lanes[live].as_ref());
+                lane.expect("a live lane").flow.field()
+            };
+            packed = Some(CeltField::pack(std::array::from_fn(field)));
+        }
+        let t_limits = std::array::from_fn(|l| lanes[l].as_ref().map_or(0.0, |l| l.course.t_end));
+        let mut cores = lanes.each_mut().map(|l| l.as_mut().map(|l| l.flow.core()));
+        let verdicts = attempt(
+            &mut cores,
+            packed.as_ref().expect("packed"),
+            t_limits,
+            &mut scratch,
+        );
+        for (slot, verdict) in lanes.iter_mut().zip(verdicts) {
+            let ended = match verdict {
+                None | Some(Ok(false)) => continue,
+                Some(Err(e)) => Err(e),
+                Some(Ok(true)) => {
+                    let lane = slot.as_mut().expect("a live lane");
+                    lane.flow.stepped();
+                    lane.driver.after(&mut lane.flow, &lane.course, &mut Unwatched);
+                    match lane.driver.before(&mut lane.flow, &lane.course, go_on, &mut Unwatched) {
+                        Ok(true) => continue,
+                        Ok(false) => Ok(()),
+                        Err(e) => Err(e),
+                    }
+                }
+            };
+            let lane = slot.take().expect("a live lane");
+            jobs.done(lane.id, ended.map(|()| Counts::of(lane.driver.driven)));
+            packed = None;
+        }
     }
 }

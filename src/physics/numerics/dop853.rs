@@ -17,11 +17,13 @@ use crate::physics::numerics::elementary::Elementary;
 
 use nalgebra::SVector;
 
-use super::dop853_tableau::{A, B, D, E3, E5, STAGES, STAGES_DENSE};
+use super::dop853_tableau::{
+    A, A_TERMS, B_TERMS, D_TERMS, E3_TERMS, E5_TERMS, STAGES, STAGES_DENSE, Terms,
+};
 use crate::physics::method::StepError;
 
 /// The stage times `c_s` (row sums of `A`), for non-autonomous fields.
-const C: [f64; STAGES_DENSE] = {
+pub(super) const C: [f64; STAGES_DENSE] = {
     let mut c = [0.0; STAGES_DENSE];
     let mut s = 0;
     while s < STAGES_DENSE {
@@ -107,6 +109,16 @@ pub struct Dop853<const N: usize, F> {
     k: [SVector<f64, N>; STAGES_DENSE],
     dense: Option<[SVector<f64, N>; 7]>,
     stats: Stats,
+    /// Whether the step being taken had an attempt rejected (its growth is then held to 1).
+    rejected_once: bool,
+}
+
+/// What an attempt's stages give: the new state and the sums of squares of the 5th- and
+/// 3rd-order error estimates over their scales.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Attempt<const N: usize> {
+    pub(super) y_new: SVector<f64, N>,
+    pub(super) norms: (f64, f64),
 }
 
 impl<const N: usize, F: Field<N>> Dop853<N, F> {
@@ -129,6 +141,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
                 rhs_evaluations: 1,
                 ..Stats::default()
             },
+            rejected_once: false,
         };
         me.h_next = me.initial_step();
         me
@@ -211,105 +224,175 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         self.stats.rhs_evaluations += 1;
     }
 
-    // Butcher-tableau loops index several arrays by stage; iterators would obscure them.
-    #[allow(clippy::needless_range_loop)]
     /// Takes one accepted step, never past `t_limit` (which must exceed the current time).
     ///
     /// # Errors
     /// When the step size underflows or the solution stops being finite.
     pub fn step(&mut self, t_limit: f64) -> Result<(), StepError> {
-        let mut rejected_once = false;
         loop {
-            let remaining = t_limit - self.t;
-            let last = self.h_next >= remaining;
-            let h = if last { remaining } else { self.h_next };
-            // A step size that is not a positive number (a start whose derivative is not
-            // finite makes the first one NaN) would loop here for ever.
-            if h.is_nan() || h <= 0.0 || h.is_infinite() {
-                return Err(StepError::NonFinite { t: self.t });
-            }
-            if h <= 16.0 * f64::EPSILON * self.t.abs() && !last {
-                return Err(StepError::StepTooSmall { t: self.t, h });
-            }
-            self.k[0] = self.f_now;
-            for s in 1..STAGES {
-                let mut acc = SVector::<f64, N>::zeros();
-                for j in 0..s {
-                    if A[s][j] != 0.0 {
-                        acc += self.k[j] * A[s][j];
-                    }
-                }
-                self.k[s] = self.f.eval_at(self.t + C[s] * h, &(self.y + acc * h));
-            }
-            self.stats.rhs_evaluations += (STAGES - 1) as u64;
-            let mut incr = SVector::<f64, N>::zeros();
-            let mut err5 = SVector::<f64, N>::zeros();
-            let mut err3 = SVector::<f64, N>::zeros();
-            for j in 0..STAGES {
-                incr += self.k[j] * B[j];
-                err5 += self.k[j] * E5[j];
-                err3 += self.k[j] * E3[j];
-            }
-            let y_new = self.y + incr * h;
-            let (mut e5, mut e3) = (0.0, 0.0);
-            for i in 0..N {
-                let sk = self.scale(&self.y, &y_new, i);
-                e5 += (err5[i] / sk).powi(2);
-                e3 += (err3[i] / sk).powi(2);
-            }
-            let n = self.f.controlled() as f64;
-            let err = if e5 == 0.0 && e3 == 0.0 {
-                0.0
-            } else {
-                h.abs() * e5 / ((e5 + 0.01 * e3) * n).sqrt()
-            };
-            if !err.is_finite() || !y_new.iter().all(|v| v.is_finite()) {
-                self.stats.rejected += 1;
-                self.h_next = h * 0.1;
-                // Not greater (NaN included): the step cannot shrink any further.
-                if self
-                    .h_next
-                    .partial_cmp(&(f64::EPSILON * self.t.abs().max(1.0)))
-                    != Some(std::cmp::Ordering::Greater)
-                {
-                    return Err(StepError::NonFinite { t: self.t });
-                }
-                rejected_once = true;
-                continue;
-            }
-            if err <= 1.0 {
-                let t_new = if last { t_limit } else { self.t + h };
-                let f_new = self.f.eval_at(t_new, &y_new);
-                self.stats.rhs_evaluations += 1;
-                self.k[STAGES] = f_new;
-                self.t_prev = self.t;
-                self.y_prev = self.y;
-                self.t = t_new;
-                self.y = y_new;
-                self.f_now = f_new;
-                self.h_last = h;
-                self.dense = None;
-                self.stats.steps += 1;
-                let mut factor = if err == 0.0 {
-                    6.0
-                } else {
-                    (0.9 * err.e_powf(-0.125)).clamp(1.0 / 3.0, 6.0)
-                };
-                if rejected_once {
-                    factor = factor.min(1.0);
-                }
-                // A step shortened to land on `t_limit` says little about the natural size.
-                self.h_next = if last {
-                    self.h_next.max(h * factor)
-                } else {
-                    h * factor
-                };
+            let (h, last) = self.begin(t_limit)?;
+            let attempt = self.stages(h);
+            if self.judge(h, last, t_limit, attempt, None)? {
                 return Ok(());
             }
-            self.stats.rejected += 1;
-            rejected_once = true;
-            self.h_next = h * (0.9 * err.e_powf(-0.125)).max(0.2);
         }
+    }
+
+    /// The size of the next attempt towards `t_limit`, and whether it lands on it (issue 84:
+    /// one attempt of [`Dop853::step`] is this, the stages, and [`Dop853::judge`], so that
+    /// `super::dop853_lanes` takes the same attempt in lanes).
+    ///
+    /// # Errors
+    /// When the step size is not a positive number or has underflowed.
+    pub fn begin(&self, t_limit: f64) -> Result<(f64, bool), StepError> {
+        let remaining = t_limit - self.t;
+        let last = self.h_next >= remaining;
+        let h = if last { remaining } else { self.h_next };
+        // A step size that is not a positive number (a start whose derivative is not
+        // finite makes the first one NaN) would loop here for ever.
+        if h.is_nan() || h <= 0.0 || h.is_infinite() {
+            return Err(StepError::NonFinite { t: self.t });
+        }
+        if h <= 16.0 * f64::EPSILON * self.t.abs() && !last {
+            return Err(StepError::StepTooSmall { t: self.t, h });
+        }
+        Ok((h, last))
+    }
+
+    /// The stages of an attempt of size `h` from the current point, into `k`, and what they
+    /// give: the new state and the two error estimates.
+    fn stages(&mut self, h: f64) -> Attempt<N> {
+        self.k[0] = self.f_now;
+        for s in 1..STAGES {
+            let row = &A_TERMS[s];
+            let mut acc = SVector::<f64, N>::zeros();
+            for i in 0..row.len {
+                acc += self.k[row.j[i]] * row.w[i];
+            }
+            self.k[s] = self.f.eval_at(self.t + C[s] * h, &(self.y + acc * h));
+        }
+        let sum = |terms: &Terms, k: &[SVector<f64, N>; STAGES_DENSE]| {
+            let mut acc = SVector::<f64, N>::zeros();
+            for i in 0..terms.len {
+                acc += k[terms.j[i]] * terms.w[i];
+            }
+            acc
+        };
+        let y_new = self.y + sum(&B_TERMS, &self.k) * h;
+        let norms = self.norms(&y_new, &sum(&E5_TERMS, &self.k), &sum(&E3_TERMS, &self.k));
+        Attempt { y_new, norms }
+    }
+
+    /// The sums of squares of the 5th- and 3rd-order error estimates `err5`, `err3` of an
+    /// attempt ending at `y_new`, each component over its scale.
+    fn norms(
+        &self,
+        y_new: &SVector<f64, N>,
+        err5: &SVector<f64, N>,
+        err3: &SVector<f64, N>,
+    ) -> (f64, f64) {
+        let (mut e5, mut e3) = (0.0, 0.0);
+        for i in 0..N {
+            let sk = self.scale(&self.y, y_new, i);
+            let (q5, q3) = (err5[i] / sk, err3[i] / sk);
+            e5 += q5 * q5;
+            e3 += q3 * q3;
+        }
+        (e5, e3)
+    }
+
+    /// The tolerance, the scales' unit of component `i` and whether it is an angle: what a
+    /// batched attempt reads to compute [`Dop853::norms`] in lanes.
+    pub(super) fn scaled(&self, i: usize) -> (f64, f64, bool) {
+        (self.tol, self.f.unit(i), self.f.is_angle(i))
+    }
+
+    /// The current point and the field there: what a batched attempt starts from.
+    pub(super) fn point(&self) -> (f64, &SVector<f64, N>, &SVector<f64, N>) {
+        (self.t, &self.y, &self.f_now)
+    }
+
+    /// The stages of an attempt taken elsewhere (in lanes), which the dense output reads.
+    pub(super) fn stages_from(&mut self, k: impl Fn(usize) -> SVector<f64, N>) {
+        for s in 0..STAGES {
+            self.k[s] = k(s);
+        }
+    }
+
+    /// Accepts or rejects the attempt of size `h` whose stages are in `k` (where accepted) and
+    /// gave `attempt`;
+    /// `f_new` is the field at its end when already evaluated (the lanes evaluate it whatever
+    /// the verdict), else it is evaluated here when accepted. `Ok(true)`: the step is taken.
+    ///
+    /// # Errors
+    /// When the solution stops being finite and the step cannot shrink any further.
+    pub(super) fn judge(
+        &mut self,
+        h: f64,
+        last: bool,
+        t_limit: f64,
+        attempt: Attempt<N>,
+        f_new: Option<SVector<f64, N>>,
+    ) -> Result<bool, StepError> {
+        let Attempt {
+            y_new,
+            norms: (e5, e3),
+        } = attempt;
+        self.stats.rhs_evaluations += (STAGES - 1) as u64;
+        let n = self.f.controlled() as f64;
+        let err = if e5 == 0.0 && e3 == 0.0 {
+            0.0
+        } else {
+            h.abs() * e5 / ((e5 + 0.01 * e3) * n).sqrt()
+        };
+        if !err.is_finite() || !y_new.iter().all(|v| v.is_finite()) {
+            self.stats.rejected += 1;
+            self.h_next = h * 0.1;
+            // Not greater (NaN included): the step cannot shrink any further.
+            if self
+                .h_next
+                .partial_cmp(&(f64::EPSILON * self.t.abs().max(1.0)))
+                != Some(std::cmp::Ordering::Greater)
+            {
+                return Err(StepError::NonFinite { t: self.t });
+            }
+            self.rejected_once = true;
+            return Ok(false);
+        }
+        if err > 1.0 {
+            self.stats.rejected += 1;
+            self.rejected_once = true;
+            self.h_next = h * (0.9 * err.e_powf(-0.125)).max(0.2);
+            return Ok(false);
+        }
+        let t_new = if last { t_limit } else { self.t + h };
+        let f_new = f_new.unwrap_or_else(|| self.f.eval_at(t_new, &y_new));
+        self.stats.rhs_evaluations += 1;
+        self.k[STAGES] = f_new;
+        self.t_prev = self.t;
+        self.y_prev = self.y;
+        self.t = t_new;
+        self.y = y_new;
+        self.f_now = f_new;
+        self.h_last = h;
+        self.dense = None;
+        self.stats.steps += 1;
+        let mut factor = if err == 0.0 {
+            6.0
+        } else {
+            (0.9 * err.e_powf(-0.125)).clamp(1.0 / 3.0, 6.0)
+        };
+        if self.rejected_once {
+            factor = factor.min(1.0);
+        }
+        self.rejected_once = false;
+        // A step shortened to land on `t_limit` says little about the natural size.
+        self.h_next = if last {
+            self.h_next.max(h * factor)
+        } else {
+            h * factor
+        };
+        Ok(true)
     }
 
     #[allow(clippy::needless_range_loop)]
@@ -319,11 +402,10 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         }
         let h = self.h_last;
         for s in STAGES + 1..STAGES_DENSE {
+            let row = &A_TERMS[s];
             let mut acc = SVector::<f64, N>::zeros();
-            for j in 0..s {
-                if A[s][j] != 0.0 {
-                    acc += self.k[j] * A[s][j];
-                }
+            for i in 0..row.len {
+                acc += self.k[row.j[i]] * row.w[i];
             }
             self.k[s] = self
                 .f
@@ -335,12 +417,10 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         d[0] = dy;
         d[1] = self.k[0] * h - dy;
         d[2] = dy * 2.0 - (self.k[STAGES] + self.k[0]) * h;
-        for (row, coeffs) in D.iter().enumerate() {
+        for (row, terms) in D_TERMS.iter().enumerate() {
             let mut acc = SVector::<f64, N>::zeros();
-            for (j, &c) in coeffs.iter().enumerate() {
-                if c != 0.0 {
-                    acc += self.k[j] * c;
-                }
+            for i in 0..terms.len {
+                acc += self.k[terms.j[i]] * terms.w[i];
             }
             d[3 + row] = acc * h;
         }

@@ -183,3 +183,58 @@ pub const D: [[f64; 16]; 4] = {
     d[3][15] = -0.14972683625798562581422125276e3;
     d
 };
+
+/// The nonzero terms of a row of weights, in order: `(j[i], w[i])` for `i < len` (issue 84: the
+/// stage loops run over these alone, with no test for zero inside them; leaving out a term whose
+/// weight is zero changes no bit of a finite sum that starts at `+0`).
+#[derive(Clone, Copy, Debug)]
+pub struct Terms {
+    /// How many.
+    pub len: usize,
+    /// The stages they weigh.
+    pub j: [usize; STAGES_DENSE],
+    /// Their weights.
+    pub w: [f64; STAGES_DENSE],
+}
+
+const fn terms_of(row: &[f64]) -> Terms {
+    let mut t = Terms {
+        len: 0,
+        j: [0; STAGES_DENSE],
+        w: [0.0; STAGES_DENSE],
+    };
+    let mut i = 0;
+    while i < row.len() {
+        if row[i] != 0.0 {
+            t.j[t.len] = i;
+            t.w[t.len] = row[i];
+            t.len += 1;
+        }
+        i += 1;
+    }
+    t
+}
+
+/// The nonzero terms of each row of `A`.
+pub const A_TERMS: [Terms; STAGES_DENSE] = {
+    let mut rows = [terms_of(&[]); STAGES_DENSE];
+    let mut s = 0;
+    while s < STAGES_DENSE {
+        rows[s] = terms_of(&A[s]);
+        s += 1;
+    }
+    rows
+};
+/// The nonzero terms of [`B`].
+pub const B_TERMS: Terms = terms_of(&B);
+/// The nonzero terms of [`E5`].
+pub const E5_TERMS: Terms = terms_of(&E5);
+/// The nonzero terms of [`E3`].
+pub const E3_TERMS: Terms = terms_of(&E3);
+/// The nonzero terms of each row of [`D`].
+pub const D_TERMS: [Terms; 4] = [
+    terms_of(&D[0]),
+    terms_of(&D[1]),
+    terms_of(&D[2]),
+    terms_of(&D[3]),
+];

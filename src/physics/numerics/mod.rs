@@ -5,8 +5,10 @@
 
 pub mod compositions;
 pub mod dop853;
+pub mod dop853_lanes;
 mod dop853_tableau;
 pub mod elementary;
+pub mod lanes;
 pub mod quadrature;
 pub mod roots;
 pub mod stepper;

@@ -1,0 +1,151 @@
+//! DOP853 in lanes (issue 84): [`LANES`] integrations advanced side by side, one attempt each
+//! per call of [`attempt`], each with its own step size, verdict and events. Only the stages'
+//! arithmetic is shared: each lane's step size comes from [`Dop853::begin`], its stages are
+//! computed in a lane of [`F64x4`] with the operations, in the order, of the scalar
+//! `Dop853::stages` (the same nonzero terms of the same tableau), and its verdict is the scalar
+//! [`Dop853::judge`] on them. So a lane's every step is the step a lone run takes, bit for bit,
+//! and a lane that fails fails alone.
+//!
+//! The one difference in work: the field at an attempt's end is evaluated in every lane, also
+//! where the attempt is then rejected (a lone run evaluates it only when it accepts).
+
+use nalgebra::SVector;
+
+use super::dop853::{Attempt, C, Dop853, Field};
+use super::dop853_tableau::{A_TERMS, B_TERMS, E3_TERMS, E5_TERMS, STAGES, Terms};
+use super::lanes::{F64x4, LANES, Real};
+use crate::physics::method::StepError;
+
+/// A field that can be evaluated in lanes, each lane with its own constants.
+pub trait Packs<const N: usize>: Field<N> {
+    /// The constants of [`LANES`] fields, lane by lane.
+    type Packed;
+    /// `fields[l]`'s constants in lane `l`.
+    fn pack(fields: [&Self; LANES]) -> Self::Packed;
+    /// The field in every lane at time `t` and state `y`: lane by lane what
+    /// [`Field::eval_at`] gives, bit for bit.
+    fn eval_packed(packed: &Self::Packed, t: F64x4, y: &[F64x4; N]) -> [F64x4; N];
+}
+
+/// What one lane's attempt came to: `Ok(true)` its step is taken, `Ok(false)` rejected (the
+/// next call attempts it again, smaller), or its run's error.
+pub type Verdict = Result<bool, StepError>;
+
+/// The stages of a batched attempt, kept between attempts so that none starts by filling
+/// 5 KB.
+pub struct Scratch<const N: usize> {
+    k: [[F64x4; N]; STAGES + 1],
+}
+
+impl<const N: usize> Default for Scratch<N> {
+    fn default() -> Self {
+        Self {
+            k: [[F64x4::default(); N]; STAGES + 1],
+        }
+    }
+}
+
+/// One attempt of each lane's current step (`None`: an empty lane), `cores[l]` towards
+/// `t_limits[l]`, the fields' constants being `packed` (of the same lanes).
+#[inline(always)]
+pub fn attempt<const N: usize, F: Packs<N>>(
+    cores: &mut [Option<&mut Dop853<N, F>>; LANES],
+    packed: &F::Packed,
+    t_limits: [f64; LANES],
+    scratch: &mut Scratch<N>,
+) -> [Option<Verdict>; LANES] {
+    let mut out: [Option<Verdict>; LANES] = [None, None, None, None];
+    let mut steps = [(0.0, false); LANES];
+    let mut first = None;
+    for l in 0..LANES {
+        if let Some(core) = cores[l].as_deref() {
+            match core.begin(t_limits[l]) {
+                Ok(step) => {
+                    steps[l] = step;
+                    first.get_or_insert(l);
+                }
+                Err(e) => out[l] = Some(Err(e)),
+            }
+        }
+    }
+    let Some(first) = first else {
+        return out;
+    };
+    // An empty or failed lane computes the first live lane's attempt, and is not read.
+    let live: [bool; LANES] = std::array::from_fn(|l| cores[l].is_some() && out[l].is_none());
+    let from: [usize; LANES] = std::array::from_fn(|l| if live[l] { l } else { first });
+    let k = &mut scratch.k;
+    let mut t = [0.0; LANES];
+    let mut y = [F64x4::default(); N];
+    let (mut tol, mut unit) = ([0.0; LANES], [[0.0; LANES]; N]);
+    let mut angle = [false; N];
+    for l in 0..LANES {
+        let core = cores[from[l]].as_deref().expect("a live lane");
+        let (tl, yl, fl) = core.point();
+        t[l] = tl;
+        for i in 0..N {
+            y[i].0[l] = yl[i];
+            k[0][i].0[l] = fl[i];
+            (tol[l], unit[i][l], angle[i]) = core.scaled(i);
+        }
+    }
+    let h = F64x4(std::array::from_fn(|l| steps[from[l]].0));
+    let tv = F64x4(t);
+    for s in 1..STAGES {
+        let acc = sum(&A_TERMS[s], k);
+        let ys: [F64x4; N] = std::array::from_fn(|i| y[i] + acc[i] * h);
+        k[s] = F::eval_packed(packed, tv + F64x4::splat(C[s]) * h, &ys);
+    }
+    let incr = sum(&B_TERMS, k);
+    let y_new: [F64x4; N] = std::array::from_fn(|i| y[i] + incr[i] * h);
+    // The scalar core's `norms`, lane by lane.
+    let (err5, err3) = (sum(&E5_TERMS, k), sum(&E3_TERMS, k));
+    let tol = F64x4(tol);
+    let (mut e5, mut e3) = (F64x4::splat(0.0), F64x4::splat(0.0));
+    for i in 0..N {
+        let u = F64x4(unit[i]);
+        let sk = if angle[i] {
+            tol * u
+        } else {
+            tol * (u + y[i].abs().max(y_new[i].abs()))
+        };
+        let (q5, q3) = (err5[i] / sk, err3[i] / sk);
+        e5 = e5 + q5 * q5;
+        e3 = e3 + q3 * q3;
+    }
+    let t_new = F64x4(std::array::from_fn(|l| {
+        let (hl, last) = steps[from[l]];
+        if last { t_limits[from[l]] } else { t[l] + hl }
+    }));
+    k[STAGES] = F::eval_packed(packed, t_new, &y_new);
+    for l in (0..LANES).filter(|&l| live[l]) {
+        let lane = |v: &[F64x4; N]| SVector::<f64, N>::from_fn(|i, _| v[i].0[l]);
+        let core = cores[l].as_deref_mut().expect("a live lane");
+        let attempt = Attempt {
+            y_new: lane(&y_new),
+            norms: (e5.0[l], e3.0[l]),
+        };
+        let (hl, last) = steps[l];
+        let verdict = core.judge(hl, last, t_limits[l], attempt, Some(lane(&k[STAGES])));
+        if let Ok(true) = verdict {
+            // The dense output reads the taken step's stages.
+            core.stages_from(|s| lane(&k[s]));
+        }
+        out[l] = Some(verdict);
+    }
+    out
+}
+
+/// `Σ w_j k_j` over `terms`, from `+0`, in the scalar core's order.
+#[inline(always)]
+fn sum<const N: usize>(terms: &Terms, k: &[[F64x4; N]; STAGES + 1]) -> [F64x4; N] {
+    let mut acc = [F64x4::splat(0.0); N];
+    for i in 0..terms.len {
+        let w = F64x4::splat(terms.w[i]);
+        let kj = &k[terms.j[i]];
+        for c in 0..N {
+            acc[c] = acc[c] + kj[c] * w;
+        }
+    }
+    acc
+}
