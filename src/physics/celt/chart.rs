@@ -302,3 +302,106 @@ impl ChartOf for CeltChart {
         with_spin_and_product(problem, x, y)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::Model;
+
+    /// Every shipped celt preset's problem and window.
+    fn shipped() -> Vec<(&'static str, Problem, f64)> {
+        crate::scenario::shipped::SHIPPED
+            .iter()
+            .filter_map(|(name, text)| {
+                let p = crate::scenario::Preset::parse(text, name, name, &[]).ok()?;
+                match p.model {
+                    Model::Celt(c) => Some((*name, c, p.run.t_end)),
+                    _ => None,
+                }
+            })
+            .collect()
+    }
+
+    /// Every cell of `chart` computed in lanes and alone: the same verdicts, their numbers bit
+    /// for bit (`{:?}` prints the shortest text that reads back as the same bits, and `-0`).
+    fn lanes_are_lone_runs(chart: &CeltChart, what: &str) {
+        let n = chart.columns.cells * chart.rows.cells;
+        let ns: Vec<usize> = (0..n).collect();
+        let mut lanes = vec![None; n];
+        SceneChart::cells(chart, &ns, &|_| true, &mut |k, v| lanes[k] = Some(v));
+        for (k, batched) in lanes.into_iter().enumerate() {
+            let lone = chart.cell(k, &|_| true);
+            assert_eq!(
+                format!("{batched:?}"),
+                format!("{:?}", Some(lone)),
+                "{what}: cell {k}"
+            );
+        }
+    }
+
+    /// Issue 84: the cells of every shipped celt preset's chart (8×4 over its default axes, its
+    /// window and tolerance) are in lanes what they are alone, bit for bit.
+    #[test]
+    fn every_shipped_chart_in_lanes_is_its_lone_cells() {
+        let presets = shipped();
+        assert!(presets.len() >= 7, "{} celt presets", presets.len());
+        for (name, problem, t_end) in presets {
+            let (columns, rows) = CeltChart::default_axes(&problem, 8, 4);
+            let chart = CeltChart {
+                problem,
+                columns,
+                rows,
+                t_end,
+                tolerance: CELT_TOLERANCE,
+            };
+            lanes_are_lone_runs(&chart, name);
+        }
+    }
+
+    /// Issue 84: held-out windows, drawn from a printed seed over the shipped bodies and starts
+    /// (spin ranges, products, windows and tolerances nobody chose): in lanes as alone.
+    #[test]
+    fn held_out_windows_in_lanes_are_their_lone_cells() {
+        let seed: u64 = std::env::var("RATTLEBACK_SEED")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(0x84_84);
+        eprintln!("seed {seed} (RATTLEBACK_SEED to draw others)");
+        let mut x = seed | 1;
+        let mut uniform = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let presets = shipped();
+        for window in 0..6 {
+            let (name, problem, _) = presets[(uniform() * presets.len() as f64) as usize];
+            let p = problem.params();
+            let limit = 0.9 * (p.ix * p.iy).sqrt();
+            let w = 1.0 + 25.0 * uniform();
+            let d = limit * (0.05 + 0.9 * uniform());
+            let (lo, hi) = (-d * uniform(), d * uniform());
+            let chart = CeltChart {
+                problem,
+                columns: Axis {
+                    name: AXES[0],
+                    min: -w * uniform(),
+                    max: w,
+                    cells: 5,
+                    log: false,
+                },
+                rows: Axis {
+                    name: AXES[1],
+                    min: lo,
+                    max: hi.max(lo + 1e-3 * d),
+                    cells: 3,
+                    log: false,
+                },
+                t_end: 2.0 + 14.0 * uniform(),
+                tolerance: 10f64.e_powf(-2.0 - 4.0 * uniform()),
+            };
+            lanes_are_lone_runs(&chart, &format!("seed {seed} window {window} ({name}): {chart:?}"));
+        }
+    }
+}

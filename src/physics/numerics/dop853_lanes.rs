@@ -149,3 +149,109 @@ fn sum<const N: usize>(terms: &Terms, k: &[[F64x4; N]; STAGES + 1]) -> [F64x4; N
     }
     acc
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `y' = c (y_1, −y_0) + d y`: a rotation at rate `c` with growth `d`, each lane its own.
+    #[derive(Clone, Copy, Debug)]
+    struct Spiral {
+        c: f64,
+        d: f64,
+    }
+
+    impl Field<2> for Spiral {
+        fn eval(&self, y: &SVector<f64, 2>) -> SVector<f64, 2> {
+            SVector::<f64, 2>::new(self.c * y[1] + self.d * y[0], -self.c * y[0] + self.d * y[1])
+        }
+    }
+
+    impl Packs<2> for Spiral {
+        type Packed = (F64x4, F64x4);
+        fn pack(fields: [&Self; LANES]) -> Self::Packed {
+            (
+                F64x4(fields.map(|f| f.c)),
+                F64x4(fields.map(|f| f.d)),
+            )
+        }
+        fn eval_packed(p: &Self::Packed, _t: F64x4, y: &[F64x4; 2]) -> [F64x4; 2] {
+            let (c, d) = *p;
+            [c * y[1] + d * y[0], -c * y[0] + d * y[1]]
+        }
+    }
+
+    /// Every accepted step's `(t, y)` of a run to `t_end`, and how it ended.
+    type Trace = (Vec<(u64, u64, u64)>, Result<(), StepError>);
+
+    fn lone(f: Spiral, tol: f64, t_end: f64) -> Trace {
+        let mut core = Dop853::new(f, 0.0, SVector::<f64, 2>::new(1.0, 0.0), tol);
+        let mut steps = Vec::new();
+        while core.time() < t_end {
+            if let Err(e) = core.step(t_end) {
+                return (steps, Err(e));
+            }
+            let y = core.state();
+            steps.push((core.time().to_bits(), y[0].to_bits(), y[1].to_bits()));
+        }
+        (steps, Ok(()))
+    }
+
+    /// Issue 84: four runs in lanes, each with its own field, tolerance and window, one whose
+    /// field is not finite from the start and one that overflows on the way: each lane's steps
+    /// are its lone run's, bit for bit, and a lane that fails fails alone, with its lone run's
+    /// error, while the others go on to their ends.
+    #[test]
+    fn each_lane_is_its_lone_run_and_fails_alone() {
+        let runs = [
+            (Spiral { c: 3.0, d: -0.1 }, 1e-9, 10.0),
+            (Spiral { c: f64::NAN, d: 0.0 }, 1e-6, 10.0),
+            (Spiral { c: 40.0, d: 0.0 }, 1e-6, 3.0),
+            (Spiral { c: 1.0, d: 300.0 }, 1e-8, 10.0),
+        ];
+        let mut cores: [Dop853<2, Spiral>; LANES] = std::array::from_fn(|l| {
+            let (f, tol, _) = runs[l];
+            Dop853::new(f, 0.0, SVector::<f64, 2>::new(1.0, 0.0), tol)
+        });
+        let packed = Spiral::pack(std::array::from_fn(|l| &runs[l].0));
+        let mut traces: [Trace; LANES] = std::array::from_fn(|_| (Vec::new(), Ok(())));
+        let mut ended = [false; LANES];
+        let mut scratch = Scratch::default();
+        while ended.iter().any(|e| !e) {
+            let mut lanes: [Option<&mut Dop853<2, Spiral>>; LANES] = [None, None, None, None];
+            for (l, (slot, core)) in lanes.iter_mut().zip(cores.iter_mut()).enumerate() {
+                if !ended[l] {
+                    *slot = Some(core);
+                }
+            }
+            let verdicts = attempt(&mut lanes, &packed, runs.map(|r| r.2), &mut scratch);
+            for l in 0..LANES {
+                match verdicts[l] {
+                    None | Some(Ok(false)) => {}
+                    Some(Err(ref e)) => {
+                        traces[l].1 = Err(e.clone());
+                        ended[l] = true;
+                    }
+                    Some(Ok(true)) => {
+                        let y = cores[l].state();
+                        traces[l].0.push((cores[l].time().to_bits(), y[0].to_bits(), y[1].to_bits()));
+                        ended[l] = cores[l].time() >= runs[l].2;
+                    }
+                }
+            }
+        }
+        for l in 0..LANES {
+            let (f, tol, t_end) = runs[l];
+            assert_eq!(traces[l], lone(f, tol, t_end), "lane {l}");
+        }
+        assert!(traces[1].1.is_err() && traces[3].1.is_err(), "{:?}", traces.map(|t| t.1));
+        assert!(traces[0].0.len() > 10 && traces[2].0.len() > 10);
+        // Dense output after a step taken in lanes: the lone run's.
+        let mut alone = Dop853::new(runs[0].0, 0.0, SVector::<f64, 2>::new(1.0, 0.0), 1e-9);
+        for _ in 0..traces[0].0.len() {
+            alone.step(runs[0].2).unwrap();
+        }
+        let mid = 0.5 * (cores[0].time_prev() + cores[0].time());
+        assert_eq!(cores[0].interpolate(mid), alone.interpolate(mid));
+    }
+}
