@@ -93,6 +93,19 @@ pub struct CeltFlow {
     confirmed: f64,
 }
 
+/// The spin `ω·γ` of the state's first six components (as [`spin`] computes it).
+fn spin_of(w_g: &nalgebra::SVector<f64, 6>) -> f64 {
+    w_g[0] * w_g[3] + w_g[1] * w_g[4] + w_g[2] * w_g[5]
+}
+
+/// Whether the spin at a step's ends, `s_prev` and `s_new`, calls for a search inside it: they
+/// straddle zero or come near it.
+fn searched(s_prev: f64, s_new: f64) -> bool {
+    let near = s_prev.abs().min(s_new.abs()) < 4.0 * (s_new - s_prev).abs() + 1e-3;
+    let straddles = s_prev == 0.0 || s_new == 0.0 || (s_prev > 0.0) != (s_new > 0.0);
+    near || straddles
+}
+
 /// Puts a state back on its constraints: unit quaternion, `γ` its third row.
 pub fn project(y: &mut State) {
     let n = (y[6] * y[6] + y[7] * y[7] + y[8] * y[8] + y[9] * y[9]).sqrt();
@@ -144,9 +157,7 @@ impl CeltFlow {
     fn find_crossings(&mut self, s_prev: f64, s_new: f64) {
         self.marks.clear();
         let (t0, t1) = (self.core.time_prev(), self.core.time());
-        let near = s_prev.abs().min(s_new.abs()) < 4.0 * (s_new - s_prev).abs() + 1e-3;
-        let straddles = s_prev == 0.0 || s_new == 0.0 || (s_prev > 0.0) != (s_new > 0.0);
-        if !(near || straddles) {
+        if !searched(s_prev, s_new) {
             return;
         }
         let mut ts = [0.0; SEARCH + 1];
@@ -158,7 +169,7 @@ impl CeltFlow {
             } else if k == SEARCH {
                 s_new
             } else {
-                spin(&self.core.interpolate(ts[k]))
+                spin_of(&self.core.interpolate_first::<6>(ts[k]))
             };
         }
         // Exact comparisons: a sign change, and a start exactly on zero.
@@ -171,7 +182,7 @@ impl CeltFlow {
                     ts[k]
                 } else {
                     let core = &mut self.core;
-                    find_root(|t| spin(&core.interpolate(t)), ts[k], ts[k + 1])
+                    find_root(|t| spin_of(&core.interpolate_first::<6>(t)), ts[k], ts[k + 1])
                 };
                 self.marks.push(t);
                 self.last_crossing = Some(t);
@@ -235,6 +246,18 @@ impl CeltFlow {
         self.core.field()
     }
 
+    /// Whether a step ending at spin `s` ends a reversal (once a crossing has been found).
+    fn reverses(&self, s: f64) -> bool {
+        s * self.sense < 0.0 && s.abs() >= self.band && self.last_crossing.is_some()
+    }
+
+    /// Whether [`CeltFlow::stepped`] will read the accepted step's dense output: a lane hands
+    /// the integrator the step's stages first, and only then (issue 84).
+    pub(super) fn reads_inside(&self) -> bool {
+        let s = spin(&self.core.state());
+        self.project || searched(self.spin_now, s) || self.reverses(s)
+    }
+
     /// What follows an accepted step of the integrator: the projection, the crossings inside
     /// the step and a reversal at its end.
     pub(super) fn stepped(&mut self) {
@@ -245,15 +268,14 @@ impl CeltFlow {
         let s = spin(&self.core.state());
         self.find_crossings(s_prev, s);
         self.spin_now = s;
-        if s * self.sense < 0.0
-            && s.abs() >= self.band
+        if self.reverses(s)
             && let Some(t) = self.last_crossing
         {
             {
                 let (t0, t1) = (self.core.time_prev(), self.core.time());
                 let (band, new) = (self.band, -self.sense);
                 let core = &mut self.core;
-                let mut beyond = |t: f64| spin(&core.interpolate(t)) * new - band;
+                let mut beyond = |t: f64| spin_of(&core.interpolate_first::<6>(t)) * new - band;
                 self.confirmed = if beyond(t0) >= 0.0 {
                     t0
                 } else {

@@ -276,12 +276,15 @@ pub fn count_in_lanes(jobs: &mut dyn Jobs, go_on: GoOn) {
             t_limits,
             &mut scratch,
         );
-        for (slot, verdict) in lanes.iter_mut().zip(verdicts) {
+        for (l, (slot, verdict)) in lanes.iter_mut().zip(verdicts).enumerate() {
             let ended = match verdict {
                 None | Some(Ok(false)) => continue,
                 Some(Err(e)) => Err(e),
                 Some(Ok(true)) => {
                     let lane = slot.as_mut().expect("a live lane");
+                    if lane.flow.reads_inside() {
+                        scratch.hand_over(lane.flow.core(), l);
+                    }
                     lane.flow.stepped();
                     lane.driver.after(&mut lane.flow, &lane.course, &mut Unwatched);
                     match lane.driver.before(&mut lane.flow, &lane.course, go_on, &mut Unwatched) {

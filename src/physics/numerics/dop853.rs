@@ -111,6 +111,9 @@ pub struct Dop853<const N: usize, F> {
     stats: Stats,
     /// Whether the step being taken had an attempt rejected (its growth is then held to 1).
     rejected_once: bool,
+    /// Whether the last step's stages are still elsewhere (taken in lanes and not handed over:
+    /// its dense output cannot be computed until they are).
+    stages_away: bool,
 }
 
 /// What an attempt's stages give: the new state and the sums of squares of the 5th- and
@@ -142,6 +145,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
                 ..Stats::default()
             },
             rejected_once: false,
+            stages_away: false,
         };
         me.h_next = me.initial_step();
         me
@@ -317,6 +321,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         for s in 0..STAGES {
             self.k[s] = k(s);
         }
+        self.stages_away = false;
     }
 
     /// Accepts or rejects the attempt of size `h` whose stages are in `k` (where accepted) and
@@ -366,6 +371,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
             return Ok(false);
         }
         let t_new = if last { t_limit } else { self.t + h };
+        self.stages_away = f_new.is_some();
         let f_new = f_new.unwrap_or_else(|| self.f.eval_at(t_new, &y_new));
         self.stats.rhs_evaluations += 1;
         self.k[STAGES] = f_new;
@@ -400,6 +406,10 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         if let Some(d) = self.dense {
             return d;
         }
+        assert!(
+            !self.stages_away,
+            "a step taken in lanes was interpolated before its stages were handed back"
+        );
         let h = self.h_last;
         for s in STAGES + 1..STAGES_DENSE {
             let row = &A_TERMS[s];
@@ -438,6 +448,27 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         let x1 = 1.0 - x;
         let v = d[0] + (d[1] + (d[2] + (d[3] + (d[4] + (d[5] + d[6] * x) * x1) * x) * x1) * x) * x1;
         self.y_prev + v * x
+    }
+
+    /// The first `M` components of [`Dop853::interpolate`]`(t)`, the same bits, without the
+    /// others' work (issue 84: the celt's crossing search reads the spin, 6 of its 13).
+    pub fn interpolate_first<const M: usize>(&mut self, t: f64) -> SVector<f64, M> {
+        const { assert!(M <= N) };
+        if self.h_last == 0.0 {
+            return SVector::<f64, M>::from_fn(|i, _| self.y[i]);
+        }
+        let d = self.dense_coefficients();
+        let x = (t - self.t_prev) / self.h_last;
+        let x1 = 1.0 - x;
+        SVector::<f64, M>::from_fn(|i, _| {
+            let v = d[0][i]
+                + (d[1][i]
+                    + (d[2][i]
+                        + (d[3][i] + (d[4][i] + (d[5][i] + d[6][i] * x) * x1) * x) * x1)
+                        * x)
+                    * x1;
+            self.y_prev[i] + v * x
+        })
     }
 }
 

@@ -45,6 +45,15 @@ impl<const N: usize> Default for Scratch<N> {
     }
 }
 
+impl<const N: usize> Scratch<N> {
+    /// Hands lane `l`'s stages of the last attempt to `core`, whose step it took: what its
+    /// dense output reads. Only a step that will be interpolated needs them (issue 84: most
+    /// steps are not).
+    pub fn hand_over<F: Field<N>>(&self, core: &mut Dop853<N, F>, l: usize) {
+        core.stages_from(|s| SVector::<f64, N>::from_fn(|i, _| self.k[s][i].0[l]));
+    }
+}
+
 /// One attempt of each lane's current step (`None`: an empty lane), `cores[l]` towards
 /// `t_limits[l]`, the fields' constants being `packed` (of the same lanes).
 #[inline(always)]
@@ -126,12 +135,7 @@ pub fn attempt<const N: usize, F: Packs<N>>(
             norms: (e5.0[l], e3.0[l]),
         };
         let (hl, last) = steps[l];
-        let verdict = core.judge(hl, last, t_limits[l], attempt, Some(lane(&k[STAGES])));
-        if let Ok(true) = verdict {
-            // The dense output reads the taken step's stages.
-            core.stages_from(|s| lane(&k[s]));
-        }
-        out[l] = Some(verdict);
+        out[l] = Some(core.judge(hl, last, t_limits[l], attempt, Some(lane(&k[STAGES]))));
     }
     out
 }
@@ -233,6 +237,7 @@ mod tests {
                         ended[l] = true;
                     }
                     Some(Ok(true)) => {
+                        scratch.hand_over(&mut cores[l], l);
                         let y = cores[l].state();
                         traces[l].0.push((cores[l].time().to_bits(), y[0].to_bits(), y[1].to_bits()));
                         ended[l] = cores[l].time() >= runs[l].2;
