@@ -174,7 +174,7 @@ fn a_charts_progress_in_a_terminal_says_the_time_left() {
     std::fs::create_dir_all(&dir).unwrap();
     let (log, out) = (dir.join("pty.out"), dir.join("map.json"));
     let command = format!(
-        "stty rows 24 cols 80; exec {} study map --preset celt-clockwise --grid 60x30 --force --format json > {}",
+        "stty rows 24 cols 80; exec {} study map --preset celt-clockwise --grid 80x40 --force --format json > {}",
         crate::common::program(),
         out.display()
     );
@@ -192,7 +192,7 @@ fn a_charts_progress_in_a_terminal_says_the_time_left() {
         wall > 1.3,
         "the chart took {wall:.2} s: too short for the bar to show; enlarge it"
     );
-    assert!(seen.contains(" of 1800 cells computed, "), "{seen:?}");
+    assert!(seen.contains(" of 3200 cells computed, "), "{seen:?}");
     assert!(seen.contains(" s left"), "{seen:?}");
     assert!(chart["predicted_seconds"].as_f64().unwrap() > 0.0);
     let _ = std::fs::remove_dir_all(&dir);

@@ -32,6 +32,11 @@ const CELT_PAIRS_LONG: f64 = 11.9;
 /// The window (s) over which a cell goes from one to the other.
 const CELT_DECISION_TIME: f64 = 50.0;
 
+/// What a cell computed in lanes costs of its scalar price (issue 84): the CPU of
+/// `celt-clockwise`'s default chart in lanes over the same cells computed alone, measured on
+/// this project's 2-core machine (AVX2): 45–48 s of CPU against 94–100 s (docs/benchmarks.md).
+const LANES_SHARE: f64 = 0.48;
+
 /// A celt chart: reversals over `(ω_z, D)` from the preset's body and tilt.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CeltChart {
@@ -99,7 +104,9 @@ impl CeltChart {
         let problem = self.problem(i, j).unwrap_or(self.problem);
         let pairs = CELT_PAIRS_SHORT
             + (CELT_PAIRS_LONG - CELT_PAIRS_SHORT) * (self.t_end / CELT_DECISION_TIME).min(1.0);
-        pairs * super::reversal::first_round_seconds(&problem, self.t_end, self.tolerance)
+        LANES_SHARE
+            * pairs
+            * super::reversal::first_round_seconds(&problem, self.t_end, self.tolerance)
     }
 
     /// The growth rate (1/s) at which the start's tilt `θ0` reaches a radian within the window:

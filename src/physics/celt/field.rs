@@ -3,6 +3,9 @@
 //! [`Coefficients::field`] is model.md §5's right-hand side, each operation in the order the
 //! scalar field always took (`nalgebra`'s cross and dot products spelt out), so a lane of a
 //! batched chart gives the bits a lone run gives.
+// Inlined into the caller compiled for the machine's vector unit (`multiversion`): a call
+// that is not inlined runs at the baseline's width.
+#![allow(clippy::inline_always)]
 
 use super::{DIM, Params};
 use crate::physics::numerics::lanes::{F64x4, LANES, Real};
@@ -238,7 +241,7 @@ mod tests {
             let ys: [[f64; DIM]; LANES] = std::array::from_fn(|_| {
                 let mut y: [f64; DIM] = std::array::from_fn(|_| 40.0 * uniform() - 20.0);
                 // A unit up vector, so the contact is defined.
-                let (th, ph) = (3.0 * uniform(), 6.28 * uniform());
+                let (th, ph) = (3.0 * uniform(), std::f64::consts::TAU * uniform());
                 (y[3], y[4], y[5]) = (th.e_sin() * ph.e_cos(), th.e_sin() * ph.e_sin(), th.e_cos());
                 y
             });

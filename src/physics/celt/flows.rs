@@ -50,6 +50,8 @@ impl Packs<DIM> for CeltField {
     fn pack(fields: [&Self; LANES]) -> Self::Packed {
         Coefficients::lanes(fields.map(|f| &f.0))
     }
+    // Inlined into the lanes' caller, compiled for the machine's vector unit (`multiversion`).
+    #[allow(clippy::inline_always)]
     #[inline(always)]
     fn eval_packed(packed: &Self::Packed, _t: F64x4, y: &[F64x4; DIM]) -> [F64x4; DIM] {
         packed.field(y)

@@ -177,7 +177,7 @@ struct Cell {
 /// The cells of [`reversals_in_lanes`] as [`Jobs`]: the runs asked, by id, the queue of those
 /// not yet handed out, and each cell replayed when its last run asked comes back.
 struct Cells<'a> {
-    cells: Vec<Cell>,
+    each_cell: Vec<Cell>,
     t_end: f64,
     tolerance: f64,
     runs: Vec<(usize, f64)>,
@@ -190,7 +190,7 @@ impl Cells<'_> {
     /// Replays cell `i`: hands its conclusion on, or asks its next runs.
     fn replay(&mut self, i: usize) {
         let go_on = self.go_on;
-        let cell = &mut self.cells[i];
+        let cell = &mut self.each_cell[i];
         match replay(
             &cell.problem,
             self.t_end,
@@ -214,11 +214,11 @@ impl Jobs for Cells<'_> {
     fn next(&mut self) -> Option<(usize, Problem, f64, f64)> {
         let id = self.queue.pop_front()?;
         let (i, local) = self.runs[id];
-        Some((id, self.cells[i].problem, self.t_end, local))
+        Some((id, self.each_cell[i].problem, self.t_end, local))
     }
     fn done(&mut self, id: usize, counted: Result<Counts, StepError>) {
         let (i, local) = self.runs[id];
-        let cell = &mut self.cells[i];
+        let cell = &mut self.each_cell[i];
         cell.known.insert(local.to_bits(), counted);
         cell.out -= 1;
         if cell.out == 0 {
@@ -239,7 +239,7 @@ pub fn reversals_in_lanes(
     each: &mut dyn FnMut(usize, Result<Reversals, StepError>),
 ) {
     let mut cells = Cells {
-        cells: problems
+        each_cell: problems
             .iter()
             .map(|&problem| Cell {
                 problem,

@@ -385,6 +385,11 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         self.stats.steps += 1;
         let mut factor = if err == 0.0 {
             6.0
+        } else if self.rejected_once && err < 0.43 {
+            // Held to 1 below: `0.9 err^(−1/8)` exceeds 1.0001 here (0.9⁸ = 0.4305), far beyond
+            // the power's rounding, so the power is not computed (issue 84: it was an eighth
+            // of a chart's time).
+            1.0
         } else {
             (0.9 * err.e_powf(-0.125)).clamp(1.0 / 3.0, 6.0)
         };
@@ -463,8 +468,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         SVector::<f64, M>::from_fn(|i, _| {
             let v = d[0][i]
                 + (d[1][i]
-                    + (d[2][i]
-                        + (d[3][i] + (d[4][i] + (d[5][i] + d[6][i] * x) * x1) * x) * x1)
+                    + (d[2][i] + (d[3][i] + (d[4][i] + (d[5][i] + d[6][i] * x) * x1) * x) * x1)
                         * x)
                     * x1;
             self.y_prev[i] + v * x

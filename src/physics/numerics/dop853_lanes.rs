@@ -8,6 +8,9 @@
 //!
 //! The one difference in work: the field at an attempt's end is evaluated in every lane, also
 //! where the attempt is then rejected (a lone run evaluates it only when it accepts).
+// Inlined into the caller compiled for the machine's vector unit (`multiversion`): a call
+// that is not inlined runs at the baseline's width.
+#![allow(clippy::inline_always)]
 
 use nalgebra::SVector;
 
@@ -56,6 +59,9 @@ impl<const N: usize> Scratch<N> {
 
 /// One attempt of each lane's current step (`None`: an empty lane), `cores[l]` towards
 /// `t_limits[l]`, the fields' constants being `packed` (of the same lanes).
+///
+/// # Panics
+/// Never: a lane read is one found live.
 #[inline(always)]
 pub fn attempt<const N: usize, F: Packs<N>>(
     cores: &mut [Option<&mut Dop853<N, F>>; LANES],
@@ -167,17 +173,17 @@ mod tests {
 
     impl Field<2> for Spiral {
         fn eval(&self, y: &SVector<f64, 2>) -> SVector<f64, 2> {
-            SVector::<f64, 2>::new(self.c * y[1] + self.d * y[0], -self.c * y[0] + self.d * y[1])
+            SVector::<f64, 2>::new(
+                self.c * y[1] + self.d * y[0],
+                -self.c * y[0] + self.d * y[1],
+            )
         }
     }
 
     impl Packs<2> for Spiral {
         type Packed = (F64x4, F64x4);
         fn pack(fields: [&Self; LANES]) -> Self::Packed {
-            (
-                F64x4(fields.map(|f| f.c)),
-                F64x4(fields.map(|f| f.d)),
-            )
+            (F64x4(fields.map(|f| f.c)), F64x4(fields.map(|f| f.d)))
         }
         fn eval_packed(p: &Self::Packed, _t: F64x4, y: &[F64x4; 2]) -> [F64x4; 2] {
             let (c, d) = *p;
@@ -209,7 +215,14 @@ mod tests {
     fn each_lane_is_its_lone_run_and_fails_alone() {
         let runs = [
             (Spiral { c: 3.0, d: -0.1 }, 1e-9, 10.0),
-            (Spiral { c: f64::NAN, d: 0.0 }, 1e-6, 10.0),
+            (
+                Spiral {
+                    c: f64::NAN,
+                    d: 0.0,
+                },
+                1e-6,
+                10.0,
+            ),
             (Spiral { c: 40.0, d: 0.0 }, 1e-6, 3.0),
             (Spiral { c: 1.0, d: 300.0 }, 1e-8, 10.0),
         ];
@@ -239,7 +252,11 @@ mod tests {
                     Some(Ok(true)) => {
                         scratch.hand_over(&mut cores[l], l);
                         let y = cores[l].state();
-                        traces[l].0.push((cores[l].time().to_bits(), y[0].to_bits(), y[1].to_bits()));
+                        traces[l].0.push((
+                            cores[l].time().to_bits(),
+                            y[0].to_bits(),
+                            y[1].to_bits(),
+                        ));
                         ended[l] = cores[l].time() >= runs[l].2;
                     }
                 }
@@ -249,7 +266,11 @@ mod tests {
             let (f, tol, t_end) = runs[l];
             assert_eq!(traces[l], lone(f, tol, t_end), "lane {l}");
         }
-        assert!(traces[1].1.is_err() && traces[3].1.is_err(), "{:?}", traces.map(|t| t.1));
+        assert!(
+            traces[1].1.is_err() && traces[3].1.is_err(),
+            "{:?}",
+            traces.map(|t| t.1)
+        );
         assert!(traces[0].0.len() > 10 && traces[2].0.len() > 10);
         // Dense output after a step taken in lanes: the lone run's.
         let mut alone = Dop853::new(runs[0].0, 0.0, SVector::<f64, 2>::new(1.0, 0.0), 1e-9);

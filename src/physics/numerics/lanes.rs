@@ -4,6 +4,9 @@
 //! [`F64x4`] gives, operation for operation, the bits `f64` gives. Nothing here fuses a
 //! multiplication into an addition (Rust never contracts), so the same expression written once
 //! for `R: Real` is the same computation at either width, in every build.
+// Inlined into the caller compiled for the machine's vector unit (`multiversion`): a call
+// that is not inlined runs at the baseline's width.
+#![allow(clippy::inline_always)]
 
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -106,7 +109,7 @@ impl Real for F64x4 {
 mod tests {
     use super::*;
 
-    /// A 64-bit generator (SplitMix64) for the test's numbers, from a printed seed.
+    /// A 64-bit generator (`SplitMix64`) for the test's numbers, from a printed seed.
     fn next(state: &mut u64) -> u64 {
         *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = *state;
@@ -134,7 +137,7 @@ mod tests {
         ];
         let mut pick = || {
             let r = next(&mut rng);
-            if r % 5 == 0 {
+            if r.is_multiple_of(5) {
                 special[(r >> 8) as usize % special.len()]
             } else {
                 f64::from_bits(next(&mut rng))

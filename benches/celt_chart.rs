@@ -1,0 +1,53 @@
+//! Issue 84: the celt's chart in lanes against the same cells one by one (the scalar path each
+//! lane is held to, bit for bit), on one thread: a 16 × 8 corner of `celt-clockwise`'s default
+//! chart over its default window. Run: `cargo bench --bench celt_chart`; the ratio of the two
+//! is the chart's CPU per cell against the scalar code's.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use rattleback::physics::celt::chart::CeltChart;
+use rattleback::physics::chart::SceneChart;
+use rattleback::scenario::shipped::resolve;
+use std::hint::black_box;
+use std::time::Duration;
+
+fn celt_chart(c: &mut Criterion) {
+    let preset = resolve("celt-clockwise", &[]).unwrap();
+    let problem = *preset.model.celt().expect("a celt preset");
+    let (columns, rows) = CeltChart::default_axes(&problem, 200, 100);
+    let chart = CeltChart {
+        problem,
+        columns,
+        rows,
+        t_end: preset.run.t_end,
+        tolerance: rattleback::physics::celt::chart::CELT_TOLERANCE,
+    };
+    // A corner of 16 × 8 cells from the middle of the chart.
+    let ns: Vec<usize> = (46..54)
+        .flat_map(|j| (92..108).map(move |i| j * 200 + i))
+        .collect();
+    let mut group = c.benchmark_group("celt chart, 128 cells, one thread");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_millis(500));
+    group.measurement_time(Duration::from_secs(8));
+    group.bench_function("in lanes", |b| {
+        b.iter(|| {
+            let mut found = 0;
+            chart.cells(black_box(&ns), &|_| true, &mut |_, v| {
+                found += usize::from(v.is_ok());
+            });
+            found
+        });
+    });
+    group.bench_function("one by one", |b| {
+        b.iter(|| {
+            black_box(&ns)
+                .iter()
+                .filter(|&&n| chart.cell(n, &|_| true).is_ok())
+                .count()
+        });
+    });
+    group.finish();
+}
+
+criterion_group!(benches, celt_chart);
+criterion_main!(benches);
