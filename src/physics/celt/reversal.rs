@@ -5,6 +5,10 @@
 //! infinite when they count differently. A count is *decided* when the estimate met the
 //! tolerance (seconds); a chaotic window, whose counts differ between any two tolerances, stops
 //! at the loop's stall rule and says it is not.
+//!
+//! A chart computes its cells in lanes ([`reversals_in_lanes`], issue 84): the same loop,
+//! replayed over each cell's runs as they come back from `run::count_in_lanes`, so each cell
+//! concludes what [`reversals`] concludes, bit for bit.
 
 use std::collections::{BTreeMap, VecDeque};
 

@@ -1,6 +1,8 @@
 //! One headless run of the celt: integrate to `t_end`, find the crossings and reversals of the
 //! spin, follow the energy and the constraints, keep optional samples. Used by `simulate`,
 //! `auto`, the tests and the benchmarks; the explorer's worker drives the same [`CeltFlow`].
+//! A chart's cells need only the reversals: [`count`] runs watch nothing else, and
+//! [`count_in_lanes`] takes such runs four at a time (issue 84).
 
 use crate::physics::method::RunSpec;
 use serde::Serialize;
