@@ -34,8 +34,12 @@ const CELT_DECISION_TIME: f64 = 50.0;
 
 /// What a cell computed in lanes costs of its scalar price (issue 84): the CPU of
 /// `celt-clockwise`'s default chart in lanes over the same cells computed alone, measured on
-/// this project's 2-core machine (AVX2): 45–48 s of CPU against 94–100 s (docs/benchmarks.md).
+/// this project's 2-core machine (AVX2): 45.6 s of CPU against 100.1 s (docs/benchmarks.md).
 const LANES_SHARE: f64 = 0.48;
+/// The cells from which a chart's lanes are kept full: a smaller chart's chunks hold a few
+/// cells each, whose runs leave lanes empty (8×4 at T = 100: 0.58 of the scalar CPU, 4×3 at
+/// T = 200: 0.79), and it keeps the scalar price, which errs on the safe side of the watchdog.
+const LANES_FULL: usize = 1024;
 
 /// A celt chart: reversals over `(ω_z, D)` from the preset's body and tilt.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -104,9 +108,12 @@ impl CeltChart {
         let problem = self.problem(i, j).unwrap_or(self.problem);
         let pairs = CELT_PAIRS_SHORT
             + (CELT_PAIRS_LONG - CELT_PAIRS_SHORT) * (self.t_end / CELT_DECISION_TIME).min(1.0);
-        LANES_SHARE
-            * pairs
-            * super::reversal::first_round_seconds(&problem, self.t_end, self.tolerance)
+        let share = if self.columns.cells * self.rows.cells >= LANES_FULL {
+            LANES_SHARE
+        } else {
+            1.0
+        };
+        share * pairs * super::reversal::first_round_seconds(&problem, self.t_end, self.tolerance)
     }
 
     /// The growth rate (1/s) at which the start's tilt `θ0` reaches a radian within the window:
