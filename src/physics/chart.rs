@@ -7,7 +7,8 @@
 //! - [`ChartOf`], how the scene builds one from its problem (for the explorer's pane or for
 //!   `study map`) and loads a cell back into a problem.
 //!
-//! Neither trait has a default method, so a scene that forgets one does not compile. The
+//! Neither trait has a default method for a fact of the scene, so a scene that forgets one does
+//! not compile (`SceneChart::cells`, a way to compute the cells, defaults to one by one). The
 //! registry (`models.rs`, [`super::models::Chart`]) is the one dispatch to them; what is common
 //! to every chart (the grid's order, shards, the parallel loop, formats, progress) is the
 //! `study` layer's, above this one.
@@ -412,14 +413,20 @@ pub trait SceneChart: std::fmt::Debug + Send + Sync {
     /// A failed run, or [`StepError::Cancelled`].
     fn cell(&self, n: usize, go_on: &(dyn Fn(f64) -> bool + Sync)) -> Result<Verdict, StepError>;
     /// Cells `ns`, each what [`SceneChart::cell`] gives, bit for bit; `each(k, …)` hears of
-    /// `ns[k]` as it is found, in any order. One by one ([`one_by_one`]), or side by side
-    /// where the scene integrates its cells in lanes (issue 84: the celt's).
+    /// `ns[k]` as it is found, in any order. One by one, unless the scene integrates its cells
+    /// side by side in lanes (issue 84: the celt's). The one default method: it is not a fact
+    /// of the scene but a way to compute its facts, right by construction (a scene that
+    /// forgets to override it is only slower).
     fn cells(
         &self,
         ns: &[usize],
         go_on: &(dyn Fn(f64) -> bool + Sync),
         each: &mut dyn FnMut(usize, Result<Verdict, StepError>),
-    );
+    ) {
+        for (k, &n) in ns.iter().enumerate() {
+            each(k, self.cell(n, go_on));
+        }
+    }
     /// The theory's curve in the axes' values, `(x, y)` points.
     fn curve(&self) -> Vec<(f64, f64)>;
     /// What the curve is, in words.
@@ -444,18 +451,6 @@ pub trait SceneChart: std::fmt::Debug + Send + Sync {
     fn lines(&self) -> Vec<usize>;
     /// The output's header fields.
     fn header(&self) -> Header;
-}
-
-/// [`SceneChart::cells`] for a scene whose cells are computed one by one.
-pub fn one_by_one(
-    chart: &dyn SceneChart,
-    ns: &[usize],
-    go_on: &(dyn Fn(f64) -> bool + Sync),
-    each: &mut dyn FnMut(usize, Result<Verdict, StepError>),
-) {
-    for (k, &n) in ns.iter().enumerate() {
-        each(k, chart.cell(n, go_on));
-    }
 }
 
 /// How a scene builds its chart from its problem, and loads a cell back.

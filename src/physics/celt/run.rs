@@ -237,7 +237,6 @@ pub fn count_in_lanes(jobs: &mut dyn Jobs, go_on: GoOn) {
     let mut packed = None;
     let mut scratch = Scratch::default();
     loop {
-        let mut changed = false;
         for slot in &mut lanes {
             while slot.is_none() {
                 let Some((id, problem, t_end, local)) = jobs.next() else {
@@ -253,7 +252,7 @@ pub fn count_in_lanes(jobs: &mut dyn Jobs, go_on: GoOn) {
                             course,
                             driver,
                         });
-                        changed = true;
+                        packed = None;
                     }
                     Ok(false) => jobs.done(id, Ok(Counts::of(driver.driven))),
                     Err(e) => jobs.done(id, Err(e)),
@@ -263,7 +262,7 @@ pub fn count_in_lanes(jobs: &mut dyn Jobs, go_on: GoOn) {
         let Some(live) = lanes.iter().position(Option::is_some) else {
             return;
         };
-        if changed || packed.is_none() {
+        if packed.is_none() {
             let field = |l: usize| {
                 let lane = lanes[l].as_ref().or(lanes[live].as_ref());
                 lane.expect("a live lane").flow.field()

@@ -122,15 +122,6 @@ impl SceneChart for PendulumChart {
         })
     }
 
-    fn cells(
-        &self,
-        ns: &[usize],
-        go_on: &(dyn Fn(f64) -> bool + Sync),
-        each: &mut dyn FnMut(usize, Result<Verdict, StepError>),
-    ) {
-        crate::physics::chart::one_by_one(self, ns, go_on, each);
-    }
-
     fn curve(&self) -> Vec<(f64, f64)> {
         let (x, y) = (self.columns, self.rows);
         if self.position == Position::Hanging {

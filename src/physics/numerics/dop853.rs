@@ -445,18 +445,11 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
 
     /// The dense-output interpolant of the last step at `t` in `[time_prev, time]`.
     pub fn interpolate(&mut self, t: f64) -> SVector<f64, N> {
-        if self.h_last == 0.0 {
-            return self.y;
-        }
-        let d = self.dense_coefficients();
-        let x = (t - self.t_prev) / self.h_last;
-        let x1 = 1.0 - x;
-        let v = d[0] + (d[1] + (d[2] + (d[3] + (d[4] + (d[5] + d[6] * x) * x1) * x) * x1) * x) * x1;
-        self.y_prev + v * x
+        self.interpolate_first::<N>(t)
     }
 
-    /// The first `M` components of [`Dop853::interpolate`]`(t)`, the same bits, without the
-    /// others' work (issue 84: the celt's crossing search reads the spin, 6 of its 13).
+    /// The first `M` components of [`Dop853::interpolate`]`(t)`, without the others' work
+    /// (issue 84: the celt's crossing search reads the spin, 6 of its 13).
     pub fn interpolate_first<const M: usize>(&mut self, t: f64) -> SVector<f64, M> {
         const { assert!(M <= N) };
         if self.h_last == 0.0 {

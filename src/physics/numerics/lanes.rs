@@ -155,6 +155,8 @@ mod tests {
                 assert!(same((a / b).0[l], x[l] / y[l]), "seed {seed}");
                 assert!(same((-a).0[l], -x[l]), "seed {seed}");
                 assert!(same(a.sqrt().0[l], x[l].sqrt()), "seed {seed}");
+                assert!(same(a.abs().0[l], x[l].abs()), "seed {seed}");
+                assert!(same(a.max(b).0[l], x[l].max(y[l])), "seed {seed}");
             }
         }
     }

@@ -89,15 +89,6 @@ impl SceneChart for CrossingChart {
         let r = super::flows::run(&problem, &spec, &mut |t| go_on(t))?;
         Ok(Verdict::counted(r.crossing_count))
     }
-    fn cells(
-        &self,
-        ns: &[usize],
-        go_on: &(dyn Fn(f64) -> bool + Sync),
-        each: &mut dyn FnMut(usize, Result<Verdict, StepError>),
-    ) {
-        crate::physics::chart::one_by_one(self, ns, go_on, each);
-    }
-
     fn curve(&self) -> Vec<(f64, f64)> {
         Vec::new()
     }

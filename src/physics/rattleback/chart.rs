@@ -110,15 +110,6 @@ impl SceneChart for RegimeChart {
         })
     }
 
-    fn cells(
-        &self,
-        ns: &[usize],
-        go_on: &(dyn Fn(f64) -> bool + Sync),
-        each: &mut dyn FnMut(usize, Result<Verdict, StepError>),
-    ) {
-        crate::physics::chart::one_by_one(self, ns, go_on, each);
-    }
-
     fn curve(&self) -> Vec<(f64, f64)> {
         let grid = &self.grid;
         (0..grid.rows)
