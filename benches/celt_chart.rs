@@ -1,7 +1,8 @@
 //! Issue 84: the celt's chart in lanes against the same cells one by one (the scalar path each
 //! lane is held to, bit for bit), on one thread: a 16 × 8 corner of `celt-clockwise`'s default
-//! chart over its default window. Run: `cargo bench --bench celt_chart`; the ratio of the two
-//! is the chart's CPU per cell against the scalar code's.
+//! chart over its default window. Run: `cargo bench --bench celt_chart`; the ratio of the first
+//! and the last is the chart's CPU per cell against the scalar code's; the middle two are the
+//! explorer's map pane, a thread's slice one cell against `SceneChart::together`'s four.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use rattleback::physics::celt::chart::CeltChart;
@@ -38,6 +39,20 @@ fn celt_chart(c: &mut Criterion) {
             found
         });
     });
+    // The explorer's map pane hands a thread `together()` cells a slice (it was one).
+    for at_once in [1, chart.together()] {
+        group.bench_function(format!("in lanes, {at_once} cells a call"), |b| {
+            b.iter(|| {
+                let mut found = 0;
+                for slice in black_box(&ns).chunks(at_once) {
+                    chart.cells(slice, &|_| true, &mut |_, v| {
+                        found += usize::from(v.is_ok());
+                    });
+                }
+                found
+            });
+        });
+    }
     group.bench_function("one by one", |b| {
         b.iter(|| {
             black_box(&ns)

@@ -414,9 +414,9 @@ pub trait SceneChart: std::fmt::Debug + Send + Sync {
     fn cell(&self, n: usize, go_on: &(dyn Fn(f64) -> bool + Sync)) -> Result<Verdict, StepError>;
     /// Cells `ns`, each what [`SceneChart::cell`] gives, bit for bit; `each(k, …)` hears of
     /// `ns[k]` as it is found, in any order. One by one, unless the scene integrates its cells
-    /// side by side in lanes (issue 84: the celt's). The one default method: it is not a fact
-    /// of the scene but a way to compute its facts, right by construction (a scene that
-    /// forgets to override it is only slower).
+    /// side by side in lanes (issue 84: the celt's). One of the two default methods (with
+    /// [`SceneChart::together`]): not a fact of the scene but a way to compute its facts, right
+    /// by construction (a scene that forgets to override it is only slower).
     fn cells(
         &self,
         ns: &[usize],
@@ -426,6 +426,13 @@ pub trait SceneChart: std::fmt::Debug + Send + Sync {
         for (k, &n) in ns.iter().enumerate() {
             each(k, self.cell(n, go_on));
         }
+    }
+    /// How many cells one thread best takes at once through [`SceneChart::cells`]: 1, or as
+    /// many as keep a scene's lanes full (the celt's: its cells' runs four at a time). The
+    /// explorer's map pane hands each thread this many a slice, `study map` at least this many
+    /// a chunk.
+    fn together(&self) -> usize {
+        1
     }
     /// The theory's curve in the axes' values, `(x, y)` points.
     fn curve(&self) -> Vec<(f64, f64)>;

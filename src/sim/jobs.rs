@@ -562,8 +562,9 @@ impl Job for SweepJob {
 
 /// The regime map stamped `id`, refined (`study::refine`, as `study map` computes it): each
 /// slice computes a row of the cheap charts' pending cells (the rattleback's limit, the
-/// pendulum's one-period traces) or as many as the pool has threads of the ones that run the
-/// full motion, and sends them with the cells their blocks now infer.
+/// pendulum's one-period traces) or, of the ones that run the full motion, as many as the pool
+/// has threads times what a thread takes together (`SceneChart::together`: the celt's lanes),
+/// and sends them with the cells their blocks now infer.
 pub struct MapJob {
     id: u64,
     spec: MapSpec,
@@ -641,7 +642,7 @@ impl Job for MapJob {
         let chunk = if chart.cheap_cells() {
             chart.axes().0.cells
         } else {
-            rayon::current_num_threads().max(1)
+            rayon::current_num_threads().max(1) * chart.together().clamp(1, 64)
         };
         let batch = &pending[..chunk.min(pending.len())];
         let verdicts = match chart.cells_polled(batch, go_on) {

@@ -151,7 +151,7 @@ impl Chart {
         done: &(dyn Fn() + Sync),
     ) -> Result<Vec<Verdict>, StepError> {
         let threads = rayon::current_num_threads().max(1);
-        let chunk = (indices.len() / (8 * threads)).clamp(1, CHUNK);
+        let chunk = (indices.len() / (8 * threads)).clamp(self.together().clamp(1, CHUNK), CHUNK);
         let chunks: Vec<Vec<Verdict>> = indices
             .par_chunks(chunk)
             .map(|ns| {

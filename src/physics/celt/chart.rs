@@ -242,6 +242,12 @@ impl SceneChart for CeltChart {
         false
     }
 
+    /// Enough cells a thread to keep its lanes full: a cell's first round asks two runs (the
+    /// fine one and its companion), and later rounds one or two.
+    fn together(&self) -> usize {
+        crate::physics::numerics::lanes::LANES
+    }
+
     fn cell_seconds(&self, n: usize) -> f64 {
         self.seconds_of(n % self.columns.cells, n / self.columns.cells)
     }

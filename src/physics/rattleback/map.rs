@@ -152,7 +152,7 @@ pub fn cell_seconds(grid: &Grid, source: Source, i: usize, j: usize) -> f64 {
         Source::Full { k, tolerance } => grid
             .params_of(grid.ratio(i), grid.inertia_ratio(j), k)
             .map_or(f64::INFINITY, |cell| {
-                crate::physics::rattleback::plan::predicted_seconds(
+                crate::physics::rattleback::plan::expected_seconds(
                     &cell,
                     &crate::physics::method::Asked::new(
                         crate::physics::Method::Auto,
