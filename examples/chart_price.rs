@@ -207,7 +207,10 @@ fn chart(k: f64, step: usize) {
     }
     let cells: usize = by.values().map(|e| e.0).sum();
     let total: f64 = by.values().map(|e| e.2 + e.3).sum();
-    println!("k {k:e}: {cells} cells, {:.2} ms a cell", 1e3 * total / cells as f64);
+    println!(
+        "k {k:e}: {cells} cells, {:.2} ms a cell",
+        1e3 * total / cells as f64
+    );
     for (m, (n, probed, probing, running, price)) in &by {
         let c = *n as f64;
         println!(
