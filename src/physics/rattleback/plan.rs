@@ -129,7 +129,15 @@ fn priced(problem: &Problem, ask: &Asked, refused: f64) -> f64 {
             budget::cost_seconds(problem, &Asked::new(auto::AVERAGED, local, None, t_end))
                 * (1.0 + VERIFY_FRACTION);
         let kept = resolved.min(averaged);
-        auto::probes_cost(problem, t_end) + kept + refused * (resolved - kept)
+        // Nothing added where nothing is refused, where resolving is what is kept, or where it
+        // cannot be priced at all (`0 · ∞` and `∞ − ∞` are not prices; a run past every
+        // budget is refused when `auto` checks its own plan).
+        let refusal = if refused > 0.0 && resolved > kept && resolved.is_finite() {
+            refused * (resolved - kept)
+        } else {
+            0.0
+        };
+        auto::probes_cost(problem, t_end) + kept + refusal
     } else {
         resolved
     }
