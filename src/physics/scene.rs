@@ -276,6 +276,71 @@ pub enum Drawing {
     },
     /// A pendulum of unit length on a pivot shaken along the vertical (Kapitza's).
     Pendulum(Pivot),
+    /// A figure the scene draws itself (issue 83): a body of a new kind is drawn from its
+    /// folder, with no edit to the pane.
+    Figure(Figure),
+}
+
+/// A scene's own figure (see [`Drawing::Figure`]): its shapes at the point shown, in a square
+/// of half-side 1 about the origin (`y` up; the pane keeps it square and shows a margin), and
+/// its legend. Plain data, so a drawing stays `Copy`: the scene's numbers travel in `knobs`.
+#[derive(Clone, Copy, Debug)]
+pub struct Figure {
+    /// What the pane calls it ("a mass on a spring").
+    pub title: &'static str,
+    /// The scene's own numbers its `shapes` reads (a length, an amplitude).
+    pub knobs: [f64; 4],
+    /// The shapes at time `t` for the sample shown (its slow coordinate, rate and fast one).
+    pub shapes: fn(knobs: &[f64; 4], t: f64, now: &super::flow::Sample) -> Vec<Shape>,
+    /// The legend: each ink and what it marks.
+    pub legend: &'static [(Ink, &'static str)],
+}
+
+/// Two figures are the same when they say the same and read the same numbers (a function's
+/// address is not a fact to compare).
+impl PartialEq for Figure {
+    fn eq(&self, other: &Self) -> bool {
+        self.title == other.title && self.knobs == other.knobs && self.legend == other.legend
+    }
+}
+
+/// A mark of a scene's [`Figure`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// A straight line from `from` to `to`.
+    Line {
+        /// One end.
+        from: (f64, f64),
+        /// The other.
+        to: (f64, f64),
+        /// Its colour.
+        ink: Ink,
+    },
+    /// A character at a point (bold in [`Ink::Current`]).
+    Glyph {
+        /// Where.
+        at: (f64, f64),
+        /// Which.
+        glyph: char,
+        /// Its colour.
+        ink: Ink,
+    },
+}
+
+/// The colours a [`Figure`] draws with: the theme's own, so it follows the palette, `NO_COLOR`
+/// and the legend.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Ink {
+    /// The body itself.
+    Body,
+    /// A fixed reference (a wall, an axis).
+    Fixed,
+    /// Where the body is now.
+    Current,
+    /// A counted event.
+    Event,
+    /// Background detail.
+    Dim,
 }
 
 impl Drawing {

@@ -31,8 +31,10 @@ const GROUND: char = '─';
 
 /// What the pane draws, for the legend (the same marks as the pane).
 pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
-    if let Drawing::Pendulum(_) = f.drawing {
-        return super::pendulum::legend(f, look);
+    match f.drawing {
+        Drawing::Pendulum(_) => return super::pendulum::legend(f, look),
+        Drawing::Figure(figure) => return super::figure::legend(&figure, look),
+        Drawing::Body { .. } => {}
     }
     let t = look.theme;
     let words = f.kind.words();
@@ -89,8 +91,9 @@ pub const ENVELOPE_SAMPLES: usize = 96;
 pub struct BodyPane<'a> {
     /// The run (its displayed samples).
     pub run: &'a RunState,
-    /// What the scene draws: a body (from above, and from the side when it has a profile) or
-    /// the pendulum on its pivot ([`super::pendulum`]).
+    /// What the scene draws: a body (from above, and from the side when it has a profile),
+    /// the pendulum on its pivot ([`super::pendulum`]) or the scene's own figure
+    /// ([`super::figure`]).
     pub drawing: Drawing,
     /// The scene's words (the fast coordinate's name `gamma`, `tilt`; the event counted).
     pub words: crate::physics::Words,
@@ -154,6 +157,13 @@ impl Widget for BodyPane<'_> {
             }
             .render(area, buf),
             Drawing::Body { plan, side } => self.body(plan, side, area, buf),
+            Drawing::Figure(figure) => super::figure::FigurePane {
+                run: self.run,
+                figure,
+                events: self.words.events,
+                look: self.look,
+            }
+            .render(area, buf),
         }
     }
 }

@@ -23,6 +23,7 @@ mod axis;
 mod body;
 mod compare;
 mod dialogs;
+mod figure;
 pub mod glyphs;
 pub mod help;
 pub mod legend;

@@ -52,7 +52,9 @@ pub fn legend(f: &Facts<'_>, look: &Look<'_>) -> Section {
     // The scene's pendulum: Kapitza's is averaged on a shaken pivot; another draws what it has.
     let (averaged, shaken) = match f.drawing {
         crate::physics::scene::Drawing::Pendulum(p) => (p.averaged, p.stroke != 0.0),
-        crate::physics::scene::Drawing::Body { .. } => (false, false),
+        crate::physics::scene::Drawing::Body { .. } | crate::physics::scene::Drawing::Figure(_) => {
+            (false, false)
+        }
     };
     let mut s = Section::new(if shaken {
         "pendulum (B), on its shaken pivot"

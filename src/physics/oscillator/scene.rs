@@ -9,9 +9,53 @@ use crate::physics::method::{Arithmetic, Asked, Method, RunSpec, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::PlanRequest;
 use crate::physics::scene::{
-    ChartWords, Drawing, Planned, Posed, Scene, Shown, SlowCurve, Studies, SummaryLine, WeakStudy,
-    Words,
+    ChartWords, Drawing, Figure, Ink, Planned, Posed, Scene, Shape, Shown, SlowCurve, Studies,
+    SummaryLine, WeakStudy, Words,
 };
+
+/// The oscillator's figure (issue 83: a body of a new kind, drawn from its folder): a wall at
+/// the left, the spring as a zigzag to the mass at `x` (its amplitude `knobs[0]` reaching 0.8
+/// of the half-side), the spring's rest position.
+fn spring(knobs: &[f64; 4], _t: f64, now: &crate::physics::flow::Sample) -> Vec<Shape> {
+    let amplitude = if knobs[0] > 0.0 { knobs[0] } else { 1.0 };
+    let mass = (0.8 * now.q / amplitude).clamp(-0.95, 0.95);
+    let wall = -1.0;
+    let mut shapes = vec![
+        Shape::Line {
+            from: (wall, -0.5),
+            to: (wall, 0.5),
+            ink: Ink::Fixed,
+        },
+        Shape::Line {
+            from: (0.0, -0.3),
+            to: (0.0, 0.3),
+            ink: Ink::Dim,
+        },
+    ];
+    // Eight zigzag segments from the wall to the mass.
+    let turns = 8;
+    let point = |i: usize| {
+        let x = wall + (mass - wall) * i as f64 / turns as f64;
+        let y = match i {
+            0 => 0.0,
+            i if i == turns => 0.0,
+            i if i % 2 == 1 => 0.15,
+            _ => -0.15,
+        };
+        (x, y)
+    };
+    shapes.extend((0..turns).map(|i| Shape::Line {
+        from: point(i),
+        to: point(i + 1),
+        ink: Ink::Body,
+    }));
+    shapes.push(Shape::Glyph {
+        at: (mass, 0.0),
+        glyph: '●',
+        ink: Ink::Current,
+    });
+    shapes
+}
 
 /// Its parameter table: `[oscillator] omega`, `[initial] x`, `v`.
 pub const PARAMS: [ParamSpec; 3] = [
@@ -133,10 +177,20 @@ impl Posed for Problem {
         })
     }
     fn drawing(&self) -> Drawing {
-        Drawing::Body {
-            plan: [1.0, 0.5],
-            side: None,
-        }
+        let s = self.start();
+        let w = s.v / self.params().omega;
+        let amplitude = (s.x * s.x + w * w).sqrt();
+        Drawing::Figure(Figure {
+            title: "a mass on a spring",
+            knobs: [amplitude, 0.0, 0.0, 0.0],
+            shapes: spring,
+            legend: &[
+                (Ink::Fixed, "the wall"),
+                (Ink::Body, "the spring"),
+                (Ink::Dim, "where the spring is at rest"),
+                (Ink::Current, "the mass, at x"),
+            ],
+        })
     }
     fn build(&self, ask: &Asked, _: Arithmetic) -> Result<Box<dyn Flow>, StepError> {
         Ok(Box::new(super::flows::build(self, ask)?))
