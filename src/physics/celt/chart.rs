@@ -37,8 +37,10 @@ const CELT_DECISION_TIME: f64 = 50.0;
 /// this project's 2-core machine (AVX2): 45.6 s of CPU against 100.1 s (docs/benchmarks.md).
 const LANES_SHARE: f64 = 0.48;
 /// The cells from which a chart's lanes are kept full: a smaller chart's chunks hold a few
-/// cells each, whose runs leave lanes empty (8×4 at T = 100: 0.58 of the scalar CPU, 4×3 at
-/// T = 200: 0.79), and it keeps the scalar price, which errs on the safe side of the watchdog.
+/// cells each, whose runs leave lanes empty when a round asks one run a cell (8×4 at T = 100:
+/// 0.58 of the scalar CPU, 4×3 at T = 200: 0.79; with chunks of at least four cells,
+/// [`SceneChart::together`], 8×4 takes 2.7 s of CPU where it took 3.5–4.3 s), and it keeps the
+/// scalar price, which errs on the safe side of the watchdog.
 const LANES_FULL: usize = 1024;
 
 /// A celt chart: reversals over `(ω_z, D)` from the preset's body and tilt.
