@@ -193,4 +193,29 @@ mod tests {
             expected_seconds(&exact, &ask).to_bits()
         );
     }
+
+    proptest::proptest! {
+    /// A chart cell's price is a price wherever a chart can ask one (issue 84: `0 · ∞` once
+    /// gave NaN): never NaN, never below a lone run's optimistic price, and equal to it for a
+    /// named method; `k` over three hundred decades, tolerances, horizons and starts as
+    /// `study map` takes them.
+    #[test]
+    fn a_chart_cells_price_is_never_below_a_lone_runs_nor_nan(
+        log_k in 0.0f64..300.0, log_tol in -14.0f64..-2.0, log_t in 0.0f64..5.0,
+        log_ratio in -4.0f64..2.0, log_inertia in -3.0f64..3.0, named in proptest::bool::ANY,
+    ) {
+        let grid = Grid::new(1, 1, 2.0, 1.0, 1.0, 10f64.e_powf(log_t));
+        let cell = grid.problem(10f64.e_powf(log_ratio), 10f64.e_powf(log_inertia), 10f64.e_powf(log_k));
+        proptest::prop_assume!(cell.is_ok());
+        let cell = cell.unwrap();
+        let method = if named { Method::Dop853 } else { Method::Auto };
+        let ask = Asked::new(method, 10f64.e_powf(log_tol), None, grid.t_end);
+        let (lone, chart) = (predicted_seconds(&cell, &ask), expected_seconds(&cell, &ask));
+        proptest::prop_assert!(!chart.is_nan() && chart >= 0.0, "{chart}");
+        proptest::prop_assert!(chart >= lone, "{chart} {lone}");
+        if named {
+            proptest::prop_assert_eq!(chart.to_bits(), lone.to_bits());
+        }
+    }
+    }
 }
