@@ -112,7 +112,9 @@ impl Widget for FigurePane<'_> {
                     if ink == Ink::Current {
                         style = style.add_modifier(Modifier::BOLD);
                     }
-                    ctx.print(at.0, at.1, TextLine::styled(glyph.to_string(), style));
+                    // In the set in use (an ASCII terminal gets its likeness).
+                    let shown = self.look.charset.mark(glyph);
+                    ctx.print(at.0, at.1, TextLine::styled(shown.to_string(), style));
                 }
             }
         })
@@ -139,6 +141,23 @@ mod tests {
 
     /// `figure` drawn with the sample's slow coordinate at `q`, as text rows.
     fn drawn(figure: Figure, q: f64, width: u16, height: u16) -> Vec<String> {
+        drawn_in(
+            figure,
+            q,
+            width,
+            height,
+            crate::ui::glyphs::Charset::Unicode,
+        )
+    }
+
+    /// [`drawn`] in the character set `charset`.
+    fn drawn_in(
+        figure: Figure,
+        q: f64,
+        width: u16,
+        height: u16,
+        charset: crate::ui::glyphs::Charset,
+    ) -> Vec<String> {
         let mut run = RunState::new(10.0);
         run.trail = vec![Point {
             t: 1.0,
@@ -150,7 +169,10 @@ mod tests {
         }];
         run.shown = 1.0;
         let theme = Theme::default();
-        let look = look(&theme);
+        let look = Look {
+            charset,
+            ..look(&theme)
+        };
         let area = Rect::new(0, 0, width, height);
         let mut buf = Buffer::empty(area);
         FigurePane {
@@ -228,6 +250,12 @@ mod tests {
                 rows[0]
             );
             assert!(!drawn(figure, a, 5, 3).concat().contains(ga));
+            // An ASCII terminal gets the glyph's likeness, never the glyph itself.
+            let ascii = drawn_in(figure, a, width, height, crate::ui::glyphs::Charset::Ascii);
+            assert!(
+                ga.is_ascii() || !ascii.concat().contains(ga),
+                "{kind:?}: {ga}"
+            );
             let theme = Theme::default();
             let section = legend(&figure, &look(&theme));
             assert_eq!(section.title, format!("{} (B)", figure.title));
