@@ -642,7 +642,8 @@ impl Job for MapJob {
         let chunk = if chart.cheap_cells() {
             chart.axes().0.cells
         } else {
-            rayon::current_num_threads().max(1) * chart.together().clamp(1, 64)
+            rayon::current_num_threads().max(1)
+                * chart.together().clamp(1, crate::study::chart::CHUNK)
         };
         let batch = &pending[..chunk.min(pending.len())];
         let verdicts = match chart.cells_polled(batch, go_on) {

@@ -57,29 +57,15 @@ pub struct FigurePane<'a> {
 
 impl Widget for FigurePane<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
-        let now = self.run.current().copied();
-        let (t, sample) = now.map_or(
-            (
-                0.0,
-                Sample {
-                    q: 0.0,
-                    q_dot: 0.0,
-                    fast: 0.0,
-                    lean: None,
-                },
-            ),
-            |p| {
-                (
-                    p.t,
-                    Sample {
-                        q: p.slow,
-                        q_dot: p.rate,
-                        fast: p.fast,
-                        lean: p.lean,
-                    },
-                )
-            },
-        );
+        // The point shown, or the origin at rest before the first.
+        let now = self.run.current();
+        let t = now.map_or(0.0, |p| p.t);
+        let sample = Sample {
+            q: now.map_or(0.0, |p| p.slow),
+            q_dot: now.map_or(0.0, |p| p.rate),
+            fast: now.map_or(0.0, |p| p.fast),
+            lean: now.and_then(|p| p.lean),
+        };
         let heading = format!(
             "{} (B): {} {}",
             self.figure.title,
