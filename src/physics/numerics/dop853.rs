@@ -117,11 +117,14 @@ pub struct Dop853<const N: usize, F> {
 }
 
 /// What an attempt's stages give: the new state and the sums of squares of the 5th- and
-/// 3rd-order error estimates over their scales.
+/// 3rd-order error estimates over their scales; and, where the caller computed them beside the
+/// stages (in lanes), the attempt's [`Dop853::error`] and the controller's power of it,
+/// `error^(−1/8)` (`super::eighth_power`): the bits [`Dop853::judge`] would compute.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Attempt<const N: usize> {
     pub(super) y_new: SVector<f64, N>,
     pub(super) norms: (f64, f64),
+    pub(super) controller: Option<(f64, f64)>,
 }
 
 impl<const N: usize, F: Field<N>> Dop853<N, F> {
@@ -284,7 +287,11 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         };
         let y_new = self.y + sum(&B_TERMS, &self.k) * h;
         let norms = self.norms(&y_new, &sum(&E5_TERMS, &self.k), &sum(&E3_TERMS, &self.k));
-        Attempt { y_new, norms }
+        Attempt {
+            y_new,
+            norms,
+            controller: None,
+        }
     }
 
     /// The sums of squares of the 5th- and 3rd-order error estimates `err5`, `err3` of an
@@ -324,6 +331,21 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         self.stages_away = false;
     }
 
+    /// The error of an attempt of size `h` whose sums of squares are `norms` (Hairer's
+    /// DOP853 norm), which the step-size controller reads.
+    pub(super) fn error(&self, h: f64, (e5, e3): (f64, f64)) -> f64 {
+        if e5 == 0.0 && e3 == 0.0 {
+            0.0
+        } else {
+            h.abs() * e5 / ((e5 + 0.01 * e3) * self.controlled()).sqrt()
+        }
+    }
+
+    /// How many components the error norm counts, as the norm reads it.
+    pub(super) fn controlled(&self) -> f64 {
+        self.f.controlled() as f64
+    }
+
     /// Accepts or rejects the attempt of size `h` whose stages are in `k` (where accepted) and
     /// gave `attempt`;
     /// `f_new` is the field at its end when already evaluated (the lanes evaluate it whatever
@@ -341,15 +363,12 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
     ) -> Result<bool, StepError> {
         let Attempt {
             y_new,
-            norms: (e5, e3),
+            norms,
+            controller,
         } = attempt;
         self.stats.rhs_evaluations += (STAGES - 1) as u64;
-        let n = self.f.controlled() as f64;
-        let err = if e5 == 0.0 && e3 == 0.0 {
-            0.0
-        } else {
-            h.abs() * e5 / ((e5 + 0.01 * e3) * n).sqrt()
-        };
+        let err = controller.map_or_else(|| self.error(h, norms), |(err, _)| err);
+        let power = || controller.map_or_else(|| err.e_powf(-0.125), |(_, power)| power);
         if !err.is_finite() || !y_new.iter().all(|v| v.is_finite()) {
             self.stats.rejected += 1;
             self.h_next = h * 0.1;
@@ -367,7 +386,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         if err > 1.0 {
             self.stats.rejected += 1;
             self.rejected_once = true;
-            self.h_next = h * (0.9 * err.e_powf(-0.125)).max(0.2);
+            self.h_next = h * (0.9 * power()).max(0.2);
             return Ok(false);
         }
         let t_new = if last { t_limit } else { self.t + h };
@@ -391,7 +410,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
             // of a chart's time).
             1.0
         } else {
-            (0.9 * err.e_powf(-0.125)).clamp(1.0 / 3.0, 6.0)
+            (0.9 * power()).clamp(1.0 / 3.0, 6.0)
         };
         if self.rejected_once {
             factor = factor.min(1.0);

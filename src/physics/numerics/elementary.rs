@@ -44,9 +44,8 @@ pub fn following<R>(functions: Functions, body: impl FnOnce() -> R) -> R {
     body()
 }
 
-/// The functions this thread follows now (for the tests).
-#[cfg(test)]
-fn current() -> Functions {
+/// The functions this thread follows now.
+pub(super) fn current() -> Functions {
     if platform() {
         Functions::Platform
     } else {

@@ -7,6 +7,7 @@ pub mod compositions;
 pub mod dop853;
 pub mod dop853_lanes;
 mod dop853_tableau;
+pub mod eighth_power;
 pub mod elementary;
 pub mod lanes;
 pub mod quadrature;
