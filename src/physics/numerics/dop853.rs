@@ -17,6 +17,8 @@ use crate::physics::numerics::elementary::Elementary;
 
 use nalgebra::SVector;
 
+use super::lanes::Real;
+
 use super::dop853_tableau::{
     A, A_TERMS, B_TERMS, D_TERMS, E3_TERMS, E5_TERMS, STAGES, STAGES_DENSE, Terms,
 };
@@ -125,6 +127,14 @@ pub(super) struct Attempt<const N: usize> {
     pub(super) y_new: SVector<f64, N>,
     pub(super) norms: (f64, f64),
     pub(super) controller: Option<(f64, f64)>,
+}
+
+/// Hairer's DOP853 error of an attempt of size `h` over `n` components, from its sums of
+/// squares `e5`, `e3` (nonzero), in one number or in lanes: the same operations.
+#[inline(always)]
+#[allow(clippy::inline_always)] // inlined into the lanes' caller, compiled for AVX2
+pub(super) fn error_of<R: Real>(h: R, e5: R, e3: R, n: R) -> R {
+    h.abs() * e5 / ((e5 + R::splat(0.01) * e3) * n).sqrt()
 }
 
 impl<const N: usize, F: Field<N>> Dop853<N, F> {
@@ -331,13 +341,13 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         self.stages_away = false;
     }
 
-    /// The error of an attempt of size `h` whose sums of squares are `norms` (Hairer's
-    /// DOP853 norm), which the step-size controller reads.
-    pub(super) fn error(&self, h: f64, (e5, e3): (f64, f64)) -> f64 {
+    /// The error of an attempt of size `h` whose sums of squares are `norms`, which the
+    /// step-size controller reads.
+    fn error(&self, h: f64, (e5, e3): (f64, f64)) -> f64 {
         if e5 == 0.0 && e3 == 0.0 {
             0.0
         } else {
-            h.abs() * e5 / ((e5 + 0.01 * e3) * self.controlled()).sqrt()
+            error_of(h, e5, e3, self.controlled())
         }
     }
 

@@ -3,8 +3,8 @@
 //! arithmetic is shared: each lane's step size comes from [`Dop853::begin`], its stages are
 //! computed in a lane of [`F64x4`] with the operations, in the order, of the scalar
 //! `Dop853::stages` (the same nonzero terms of the same tableau), and its verdict is the scalar
-//! [`Dop853::judge`] on them, given the controller's power computed in lanes
-//! ([`eighth_power`], the scalar power's bits). So a lane's every step is the step a lone run
+//! [`Dop853::judge`] on them, given the attempt's error and the controller's power of it
+//! computed in lanes (the scalar core's `error_of`; [`eighth_power`], the scalar power's bits). So a lane's every step is the step a lone run
 //! takes, bit for bit, and a lane that fails fails alone.
 //!
 //! The one difference in work: the field at an attempt's end is evaluated in every lane, also
@@ -15,7 +15,7 @@
 
 use nalgebra::SVector;
 
-use super::dop853::{Attempt, C, Dop853, Field};
+use super::dop853::{Attempt, C, Dop853, Field, error_of};
 use super::dop853_tableau::{A_TERMS, B_TERMS, E3_TERMS, E5_TERMS, STAGES, Terms};
 use super::eighth_power::eighth_power;
 use super::lanes::{F64x4, LANES, Real};
@@ -135,10 +135,9 @@ pub fn attempt<const N: usize, F: Packs<N>>(
         if last { t_limits[from[l]] } else { t[l] + hl }
     }));
     k[STAGES] = F::eval_packed(packed, t_new, &y_new);
-    // Each lane's error (`Dop853::error`, operation for operation) and the controller's power
-    // of it, in lanes.
+    // Each lane's error (the scalar core's `error_of`) and the controller's power of it.
     let n = cores[first].as_deref().expect("a live lane").controlled();
-    let quotient = h.abs() * e5 / ((e5 + F64x4::splat(0.01) * e3) * F64x4::splat(n)).sqrt();
+    let quotient = error_of(h, e5, e3, F64x4::splat(n));
     let errors: [f64; LANES] = std::array::from_fn(|l| {
         if e5.0[l] == 0.0 && e3.0[l] == 0.0 {
             0.0

@@ -64,7 +64,7 @@ fn with_high(x: f64, high: u32) -> f64 {
 
 /// The high 32 bits of `x`, signed (`GET_HIGH_WORD`).
 #[inline(always)]
-#[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
+#[allow(clippy::cast_possible_wrap)]
 fn high(x: f64) -> i32 {
     (x.to_bits() >> 32) as u32 as i32
 }

@@ -28,6 +28,9 @@ pub trait Real:
     /// The square root, lane by lane.
     #[must_use]
     fn sqrt(self) -> Self;
+    /// `|x|`, lane by lane.
+    #[must_use]
+    fn abs(self) -> Self;
 }
 
 impl Real for f64 {
@@ -39,6 +42,10 @@ impl Real for f64 {
     fn sqrt(self) -> Self {
         f64::sqrt(self)
     }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        f64::abs(self)
+    }
 }
 
 /// [`LANES`] numbers operated on lane by lane.
@@ -46,12 +53,6 @@ impl Real for f64 {
 pub struct F64x4(pub [f64; LANES]);
 
 impl F64x4 {
-    /// `|x|`, lane by lane.
-    #[inline(always)]
-    #[must_use]
-    pub fn abs(self) -> Self {
-        self.map(f64::abs)
-    }
     /// [`f64::max`], lane by lane.
     #[inline(always)]
     #[must_use]
@@ -102,6 +103,10 @@ impl Real for F64x4 {
     #[inline(always)]
     fn sqrt(self) -> Self {
         self.map(f64::sqrt)
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        self.map(f64::abs)
     }
 }
 
