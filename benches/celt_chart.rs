@@ -2,7 +2,8 @@
 //! lane is held to, bit for bit), on one thread: a 16 × 8 corner of `celt-clockwise`'s default
 //! chart over its default window. Run: `cargo bench --bench celt_chart`; the ratio of the first
 //! and the last is the chart's CPU per cell against the scalar code's; the middle two are the
-//! explorer's map pane, a thread's slice one cell against `SceneChart::together`'s four.
+//! explorer's map pane, a thread's slice one cell against `SceneChart::together`'s four. The
+//! second group: the step controller's power for four lanes, in lanes and scalar.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use rattleback::physics::celt::chart::CeltChart;
@@ -64,5 +65,33 @@ fn celt_chart(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, celt_chart);
+/// The step controller's power for four lanes: `eighth_power` against the scalar `pow` four
+/// times (the same bits), on errors spread over the controller's range.
+fn controller_power(c: &mut Criterion) {
+    use rattleback::physics::numerics::eighth_power::eighth_power;
+    use rattleback::physics::numerics::elementary::Elementary;
+    let errors: Vec<[f64; 4]> = (0..256)
+        .map(|i| std::array::from_fn(|l| 1e-3 + f64::from(i * 4 + l as i32) * 7.3e-3))
+        .collect();
+    let mut group = c.benchmark_group("controller power, 256 × 4 errors");
+    group.bench_function("eighth_power (four lanes)", |b| {
+        b.iter(|| {
+            black_box(&errors)
+                .iter()
+                .map(|&x| eighth_power(x).iter().sum::<f64>())
+                .sum::<f64>()
+        });
+    });
+    group.bench_function("scalar pow, four times", |b| {
+        b.iter(|| {
+            black_box(&errors)
+                .iter()
+                .map(|&x| x.map(|v| v.e_powf(-0.125)).iter().sum::<f64>())
+                .sum::<f64>()
+        });
+    });
+    group.finish();
+}
+
+criterion_group!(benches, celt_chart, controller_power);
 criterion_main!(benches);
