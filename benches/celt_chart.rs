@@ -70,8 +70,8 @@ fn celt_chart(c: &mut Criterion) {
 fn controller_power(c: &mut Criterion) {
     use rattleback::physics::numerics::eighth_power::eighth_power;
     use rattleback::physics::numerics::elementary::Elementary;
-    let errors: Vec<[f64; 4]> = (0..256)
-        .map(|i| std::array::from_fn(|l| 1e-3 + f64::from(i * 4 + l as i32) * 7.3e-3))
+    let errors: Vec<[f64; 4]> = (0..256_u32)
+        .map(|i| std::array::from_fn(|l| 1e-3 + f64::from(i * 4) * 7.3e-3 + l as f64 * 7.3e-3))
         .collect();
     let mut group = c.benchmark_group("controller power, 256 × 4 errors");
     group.bench_function("eighth_power (four lanes)", |b| {
