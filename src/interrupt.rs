@@ -72,6 +72,28 @@ pub fn ending() -> Vec<i32> {
     all
 }
 
+/// Sets `flag` to a signal's number when it arrives, for each of `signals` the process may
+/// catch, and returns those. A signal the system or a supervisor keeps for itself (`sigaction`
+/// says EINVAL: under `valgrind`, the last realtime one) keeps its default action: before, every
+/// command stopped there with "Invalid argument (os error 22)".
+///
+/// # Errors
+/// When a handler cannot be registered for another reason.
+pub fn register(
+    signals: impl IntoIterator<Item = i32>,
+    flag: &Arc<AtomicUsize>,
+) -> std::io::Result<Vec<i32>> {
+    let mut caught = Vec::new();
+    for n in signals {
+        match signal_hook::flag::register_usize(n, Arc::clone(flag), n as usize) {
+            Ok(_) => caught.push(n),
+            Err(e) if e.raw_os_error() == Some(libc::EINVAL) => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(caught)
+}
+
 /// Catches [`ending`] signals from now on, with the watchdog (once per process), which calls
 /// `end` (the process's end: `Failure::end_now`) when the command has not stopped in time.
 ///
@@ -83,10 +105,7 @@ pub fn install(end: fn(i32) -> !) -> std::io::Result<()> {
     if WATCHDOG.get().is_some() {
         return Ok(());
     }
-    let signals = ending();
-    for &n in &signals {
-        signal_hook::flag::register_usize(n, Arc::clone(flag), n as usize)?;
-    }
+    let signals = register(ending(), flag)?;
     let mut arrivals = signal_hook::iterator::Signals::new(&signals)?;
     std::thread::Builder::new()
         .name("rattleback-signals".to_owned())
@@ -138,6 +157,17 @@ pub fn error() -> std::io::Error {
 
 #[cfg(test)]
 mod tests {
+    /// A signal the system refuses (here a number past the last one, which `sigaction` refuses
+    /// with EINVAL as it refuses one a supervisor keeps) is left out, and the others are
+    /// caught: before, the first refusal stopped every command.
+    #[test]
+    fn a_signal_the_system_keeps_is_left_out_not_fatal() {
+        let flag = std::sync::Arc::new(std::sync::atomic::AtomicUsize::new(0));
+        let past_the_last = libc::SIGRTMAX() + 1;
+        let caught = super::register([past_the_last, libc::SIGUSR2], &flag).unwrap();
+        assert_eq!(caught, vec![libc::SIGUSR2]);
+    }
+
     /// Issue 81: an interruption after a part was written names it (bench said "nothing was
     /// written" after writing its first CSV).
     #[test]

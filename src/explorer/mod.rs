@@ -503,12 +503,12 @@ pub fn ending_signals() -> Vec<i32> {
 /// When the terminal cannot be set up or written to.
 pub fn run(preset: &Preset, options: &ExplorerOptions) -> std::io::Result<Option<i32>> {
     let signal = Arc::new(AtomicUsize::new(0));
-    for n in ending_signals()
-        .into_iter()
-        .chain([signal_hook::consts::SIGTSTP])
-    {
-        signal_hook::flag::register_usize(n, Arc::clone(&signal), n as usize)?;
-    }
+    crate::interrupt::register(
+        ending_signals()
+            .into_iter()
+            .chain([signal_hook::consts::SIGTSTP]),
+        &signal,
+    )?;
     let hangup = &*signal;
     let tty = Tty::enter(options.mouse, options.depth)?;
     let (tx, rx) = sync_channel::<AppEvent>(INBOX);
