@@ -1,7 +1,8 @@
 //! Arithmetic on one number or on [`LANES`] of them at once (issue 84: a chart's cells advanced
-//! side by side). [`Real`] is what a right-hand side and the DOP853 stages need: the four
-//! operations, negation and the square root, each correctly rounded by IEEE 754, so a lane of
-//! [`F64x4`] gives, operation for operation, the bits `f64` gives. Nothing here fuses a
+//! side by side). [`Real`] is what a right-hand side and the DOP853 stages and error need: the
+//! four operations, negation, the square root and the absolute value, each exact or correctly
+//! rounded by IEEE 754, so a lane of [`F64x4`] gives, operation for operation, the bits `f64`
+//! gives. Nothing here fuses a
 //! multiplication into an addition (Rust never contracts), so the same expression written once
 //! for `R: Real` is the same computation at either width, in every build.
 // Inlined into the caller compiled for the machine's vector unit (`multiversion`): a call
