@@ -196,19 +196,7 @@ pub fn eighth_power(x: [f64; LANES]) -> [f64; LANES] {
 mod tests {
     use super::*;
     use crate::physics::numerics::elementary::following;
-
-    /// A 64-bit generator (`SplitMix64`) from a printed seed.
-    fn next(state: &mut u64) -> u64 {
-        *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = *state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    fn same(a: f64, b: f64) -> bool {
-        a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
-    }
+    use crate::physics::numerics::lanes::tests::{next, same};
 
     /// Numbers of every kind: log-uniform over the whole range and over the controller's
     /// (1e−12 to 1e6), random bit patterns, the table's two boundaries and the rounding's (x

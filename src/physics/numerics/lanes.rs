@@ -112,16 +112,21 @@ impl Real for F64x4 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
-    /// A 64-bit generator (`SplitMix64`) for the test's numbers, from a printed seed.
-    fn next(state: &mut u64) -> u64 {
+    /// A 64-bit generator (`SplitMix64`) for the lanes' tests' numbers, from a printed seed.
+    pub(in super::super) fn next(state: &mut u64) -> u64 {
         *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = *state;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
         z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
         z ^ (z >> 31)
+    }
+
+    /// The same bits, or both NaN.
+    pub(in super::super) fn same(a: f64, b: f64) -> bool {
+        a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
     }
 
     /// Each lane of every operation is the scalar operation's bits, on numbers of every size
@@ -149,7 +154,6 @@ mod tests {
                 f64::from_bits(next(&mut rng))
             }
         };
-        let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
         for _ in 0..10_000 {
             let x: [f64; LANES] = std::array::from_fn(|_| pick());
             let y: [f64; LANES] = std::array::from_fn(|_| pick());
