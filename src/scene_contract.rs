@@ -479,7 +479,7 @@ mod own {
         }
         fn check_cell(cell: &serde_json::Value, chart: &serde_json::Value) -> Result<(), Mismatch> {
             let mut shifted = cell.clone();
-            shifted["reversals"] = serde_json::json!(cell["reversals"].as_u64().unwrap_or(0) + 1);
+            shifted["crossings"] = serde_json::json!(cell["crossings"].as_u64().unwrap_or(0) + 1);
             Case::check_cell(&shifted, chart)
         }
     }

@@ -319,7 +319,8 @@ pub fn schemas() -> Vec<(String, String)> {
         s.push('\n');
         s
     }
-    let map = value::<Map>();
+    let mut map = value::<Map>();
+    scene_fields(&mut map);
     let mut all: Vec<(String, String)> = vec![
         ("presets".to_owned(), text(&value::<PresetList>())),
         ("themes".to_owned(), text(&value::<ThemeList>())),
@@ -338,6 +339,33 @@ pub fn schemas() -> Vec<(String, String)> {
         all.push((format!("map-{}", kind.name()), text(&scene_map(kind, &map))));
     }
     all
+}
+
+/// The fields of every registered scene's cells (issue 83: each declared in its folder, a
+/// [`Field`](crate::physics::chart::Field) of its columns) added to the cell's shared schema,
+/// which then takes no other field; a field two scenes share is described by the first.
+fn scene_fields(map: &mut serde_json::Value) {
+    use crate::physics::chart::Kind;
+    let cell = &mut map["$defs"]["CellOutput"];
+    cell["additionalProperties"] = false.into();
+    for kind in ModelKind::ALL {
+        for f in kind.studies().chart.csv.iter().filter_map(|c| c.field()) {
+            let mut p = match f.kind {
+                Kind::Count => {
+                    serde_json::json!({"type": "integer", "format": "uint", "minimum": 0})
+                }
+                Kind::Time => serde_json::json!({"type": ["number", "null"], "format": "double"}),
+                Kind::Number => serde_json::json!({
+                    "anyOf": [{"$ref": "#/$defs/Number"}, {"type": "null"}]
+                }),
+                Kind::Flag => serde_json::json!({"type": "boolean"}),
+            };
+            p["description"] = f.doc.into();
+            if let Some(props) = cell["properties"].as_object_mut() {
+                props.entry(f.name).or_insert(p);
+            }
+        }
+    }
 }
 
 /// `study map`'s schema narrowed to one scene's chart (issue 83: a scene's cell is its own
@@ -371,11 +399,7 @@ fn scene_map(kind: ModelKind, map: &serde_json::Value) -> serde_json::Value {
     if let Some(props) = cell["properties"].as_object_mut() {
         props.retain(|k, _| keep.contains(&k.as_str()));
     }
-    let answer = if words.stability {
-        "stable"
-    } else {
-        "reversals"
-    };
+    let answer = crate::physics::chart::answer_field(words.csv).map_or("error", |f| f.name);
     cell["anyOf"] = serde_json::json!([{ "required": [answer] }, { "required": ["error"] }]);
     v
 }

@@ -23,6 +23,7 @@
 use crate::physics::numerics::elementary::Elementary;
 
 pub mod budget;
+pub mod cell;
 pub mod chart;
 #[cfg(test)]
 pub mod contract;

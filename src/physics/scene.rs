@@ -124,8 +124,6 @@ pub struct Studies {
 pub struct ChartWords {
     /// The legend's heading.
     pub title: &'static str,
-    /// Whether a cell is a stability verdict (else a count of reversals).
-    pub stability: bool,
     /// What the curve is.
     pub curve: &'static str,
     /// The axes, in a line.
@@ -142,7 +140,9 @@ pub struct ChartWords {
     pub heading: &'static str,
     /// The text table's key to its glyphs.
     pub legend: &'static str,
-    /// The CSV's columns, in order.
+    /// The fields of its cells, in order: the CSV's columns, and the JSON cell's fields
+    /// (issue 83: the scene's own [`Field`](super::chart::Field)s among them, one its
+    /// answer, a count or a yes/no).
     pub csv: &'static [super::chart::Column],
     /// The `study map` flags its chart takes (every other is refused, naming the scene).
     pub flags: &'static [super::chart::MapFlag],

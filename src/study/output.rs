@@ -10,6 +10,7 @@ use super::ask::MAX_CELLS;
 use super::map;
 use crate::physics::ModelKind;
 
+use crate::physics::chart::{Answer, Column};
 pub use crate::physics::chart::{Axis, CellOutput};
 
 /// The name of an axis a chart has, as `name` spells it (a part file is read back into [`Axis`]):
@@ -165,17 +166,15 @@ impl ChartOutput {
     /// The verdict of cell `(i, j)` as one character: reversals `.` (none), `1`–`9`, `+` (10 or
     /// more); stability `#` (stable), `.` (unstable); `?` a cell not decided at the tolerance.
     #[must_use]
-    pub fn glyph(cell: &CellOutput) -> char {
+    pub fn glyph(columns: &[Column], cell: &CellOutput) -> char {
         if cell.decided == Some(false) {
             return '?';
         }
-        if let Some(stable) = cell.stable {
-            return if stable { '#' } else { '.' };
-        }
-        match cell.reversals {
-            Some(0) | None => '.',
-            Some(n @ 1..=9) => char::from_digit(n as u32, 10).unwrap_or('+'),
-            Some(_) => '+',
+        match cell.answer(columns) {
+            Some(Answer::Stable(true)) => '#',
+            Some(Answer::Stable(false) | Answer::Count(0)) | None => '.',
+            Some(Answer::Count(n @ 1..=9)) => char::from_digit(n as u32, 10).unwrap_or('+'),
+            Some(Answer::Count(_)) => '+',
         }
     }
 
@@ -227,7 +226,7 @@ impl ChartOutput {
                 } else {
                     by_index
                         .get(&(j * x.cells + i))
-                        .map_or(' ', |cell| Self::glyph(cell))
+                        .map_or(' ', |cell| Self::glyph(words.csv, cell))
                 };
                 o.push(ch);
             }

@@ -694,6 +694,15 @@ mod tests {
     use crate::study::ask::StudyAsk;
     use crate::study::chart::{Answer, Tally, Verdict};
 
+    /// A pendulum cell given the other verdict (its `stable` negated).
+    fn flip(cell: &mut CellOutput) {
+        for (name, v) in &mut cell.fields {
+            if name == "stable" {
+                *v = serde_json::Value::Bool(!v.as_bool().unwrap());
+            }
+        }
+    }
+
     /// A pendulum chart for tests.
     fn pendulum(cols: usize, rows: usize) -> Chart {
         crate::physics::kapitza::chart::tests::pendulum(cols, rows).into()
@@ -855,15 +864,18 @@ mod tests {
             "{e}"
         );
         // A field of another scene's cells.
-        let e = forged(0, &|p| p.cells[1].reversals = Some(3));
+        let e = forged(0, &|p| {
+            p.cells[1]
+                .fields
+                .push(("reversals".to_owned(), serde_json::json!(3)));
+        });
         assert!(
             matches!(e, MergeError::Cell { index: 2, ref field, .. } if field == "reversals"),
             "{e}"
         );
         // A flipped verdict passes the structure but not the recomputation of that cell.
         let mut parts = good();
-        let flipped = parts[1].1.cells[2].stable.map(|s| !s);
-        parts[1].1.cells[2].stable = flipped;
+        flip(&mut parts[1].1.cells[2]);
         parts[1].1 = sealed(parts[1].1.clone());
         merge(&chart, 1, &parts).unwrap();
         let every = choose(&parts, usize::MAX, &mut || 7);
@@ -919,8 +931,8 @@ mod tests {
         let every = whole(&chart, true);
         for (r, e) in one.cells.iter().zip(&every.cells) {
             assert_eq!(
-                (r.stable, r.decided),
-                (e.stable, e.decided),
+                (r.field("stable"), r.decided),
+                (e.field("stable"), e.decided),
                 "cell {}",
                 r.index
             );
@@ -940,8 +952,7 @@ mod tests {
             .iter()
             .position(|c| c.mark == Some(Mark::Inferred))
             .unwrap();
-        let flipped = parts[1].1.cells[k].stable.map(|s| !s);
-        parts[1].1.cells[k].stable = flipped;
+        flip(&mut parts[1].1.cells[k]);
         parts[1].1 = sealed(parts[1].1.clone());
         let e = merge(&chart, 1, &parts).unwrap_err();
         assert!(
@@ -957,7 +968,8 @@ mod tests {
             .position(|c| c.mark == Some(Mark::Computed) && c.decided == Some(true))
             .unwrap();
         let cell = &mut parts[0].1.cells[k];
-        let verdict = Verdict::Inferred(Answer::Stable(cell.stable.unwrap()));
+        let stable = cell.field("stable").and_then(serde_json::Value::as_bool);
+        let verdict = Verdict::Inferred(Answer::Stable(stable.unwrap()));
         *cell = chart.cell_output(cell.index, &verdict);
         parts[0].1 = sealed(parts[0].1.clone());
         let e = merge(&chart, 1, &parts).unwrap_err();

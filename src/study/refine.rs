@@ -465,13 +465,7 @@ mod tests {
     #[test]
     fn an_undecided_cell_is_never_inferred_and_is_computed_around() {
         let r = certified(64, 64);
-        let undecided = Verdict::Reversals {
-            count: 3,
-            first: None,
-            last: None,
-            decided: false,
-            growth: None,
-        };
+        let undecided = Verdict::found(Answer::Count(3), false, Vec::new());
         let f = |x: usize, y: usize| {
             if (x, y) == (16, 16) {
                 undecided.clone()
@@ -527,12 +521,11 @@ mod tests {
     /// the margin `|q|`.
     fn field(x: usize, y: usize, q: &dyn Fn(usize, usize) -> f64) -> Verdict {
         let v = q(x, y);
-        Verdict::Stability {
-            stable: v < 0.0,
-            trace: v,
-            error: 0.0,
-            decided: true,
-        }
+        Verdict::found(
+            Answer::Stable(v < 0.0),
+            true,
+            vec![("trace", crate::physics::chart::Value::Number(Some(v)))],
+        )
     }
 
     #[test]
@@ -555,12 +548,15 @@ mod tests {
             let (dx, dy) = (x as f64 - ix as f64, y as f64 - iy as f64);
             dx * dx + dy * dy - 0.2
         };
-        let certify = |_: usize, v: &Verdict| match *v {
-            Verdict::Stability { trace, .. } => Some(Certainty {
+        let certify = |_: usize, v: &Verdict| {
+            let trace = match v.computed()?.values.first()? {
+                (_, crate::physics::chart::Value::Number(trace)) => (*trace)?,
+                _ => return None,
+            };
+            Some(Certainty {
                 value: trace,
                 margin: trace.abs(),
-            }),
-            _ => None,
+            })
         };
         let r = Refine::new(96, 48).certified_by(Some(&certify));
         let (cells, computed) = refined(&r, &r.blocks(), &|x, y| field(x, y, &q));

@@ -5,6 +5,7 @@ use plotters::prelude::*;
 
 use super::chart::ChartOutput;
 use super::sweep::Sweep;
+use crate::physics::chart::Answer;
 
 type Fallible = Result<String, Box<dyn std::error::Error>>;
 
@@ -162,10 +163,14 @@ pub fn chart_svg(out: &ChartOutput) -> Fallible {
                 out.curve_meaning
             ),
         };
+        let columns = out.model.studies().chart.csv;
         let top = out
             .cells
             .iter()
-            .filter_map(|c| c.reversals)
+            .filter_map(|c| match c.answer(columns) {
+                Some(Answer::Count(n)) => Some(n),
+                Some(Answer::Stable(_)) | None => None,
+            })
             .max()
             .unwrap_or(0)
             .max(1);
@@ -181,16 +186,10 @@ pub fn chart_svg(out: &ChartOutput) -> Fallible {
             if c.decided == Some(false) {
                 return RGBColor(190, 190, 190);
             }
-            if let Some(stable) = c.stable {
-                return if stable {
-                    RGBColor(120, 200, 120)
-                } else {
-                    WHITE
-                };
-            }
-            match c.reversals.unwrap_or(0) {
-                0 => WHITE,
-                n => {
+            match c.answer(columns) {
+                Some(Answer::Stable(true)) => RGBColor(120, 200, 120),
+                Some(Answer::Stable(false) | Answer::Count(0)) | None => WHITE,
+                Some(Answer::Count(n)) => {
                     let f = (n as f64 / top as f64).min(1.0);
                     let v = (235.0 - 200.0 * f) as u8;
                     RGBColor(v, v, 255)

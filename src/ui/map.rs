@@ -60,7 +60,8 @@ pub fn legend(facts: &Facts<'_>, look: &Look<'_>) -> Section {
         .into_iter()
         .map(|n| look.charset.mark(glyph(Some(n))))
         .collect();
-    let section = if words.stability {
+    let answer = crate::physics::chart::answer_field(words.csv);
+    let section = if answer.is_some_and(|f| f.kind == crate::physics::chart::Kind::Flag) {
         Section::new(words.title)
             .mark(
                 printed(look, STABLE),
@@ -77,7 +78,10 @@ pub fn legend(facts: &Facts<'_>, look: &Look<'_>) -> Section {
             .mark(
                 ramp,
                 t.trail,
-                "reversals in [0, T]: 1, 2-3, 4-7, 8 or more (blank: none)",
+                format!(
+                    "{} in [0, T]: 1, 2-3, 4-7, 8 or more (blank: none)",
+                    words.heading
+                ),
             )
             .mark(
                 printed(look, UNDECIDED),

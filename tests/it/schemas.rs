@@ -5,6 +5,7 @@
 //! and a report bent out of shape is shown to fail the schema, so the check can fail.
 
 use rattleback::physics::ModelKind;
+use rattleback::physics::chart::{Kind, answer_field};
 use serde_json::Value;
 
 fn schema(name: &str) -> jsonschema::Validator {
@@ -496,11 +497,23 @@ fn each_scene_chart_validates_against_its_own_schema_and_no_other() {
             );
         }
         // The scene's answer, and a field of another scene's cells.
-        let (answer, stray) = if kind.studies().chart.stability {
-            ("stable", "reversals")
-        } else {
-            ("reversals", "trace")
+        let csv = kind.studies().chart.csv;
+        let answer = answer_field(csv).unwrap().name;
+        let fields: Vec<&str> = csv
+            .iter()
+            .filter_map(|c| c.field())
+            .map(|f| f.name)
+            .collect();
+        let stray = ModelKind::ALL
+            .iter()
+            .flat_map(|o| o.studies().chart.csv.iter().filter_map(|c| c.field()))
+            .find(|f| !fields.contains(&f.name))
+            .unwrap();
+        let stray_value = match stray.kind {
+            Kind::Flag => Value::from(true),
+            Kind::Count | Kind::Time | Kind::Number => Value::from(1),
         };
+        let stray = stray.name;
         let mut lost = chart.clone();
         lost["cells"][0].as_object_mut().unwrap().remove(answer);
         assert!(
@@ -508,7 +521,7 @@ fn each_scene_chart_validates_against_its_own_schema_and_no_other() {
             "{preset}: a cell without {answer}"
         );
         let mut gained = chart.clone();
-        gained["cells"][0][stray] = Value::from(1);
+        gained["cells"][0][stray] = stray_value;
         assert!(
             !schemas[own.as_str()].is_valid(&gained),
             "{preset}: a cell with {stray}"

@@ -344,13 +344,7 @@ mod tests {
         };
         assert!(known.iter().all(Option::is_none), "from nothing");
         let id = m.id;
-        let one = Verdict::Reversals {
-            count: 1,
-            first: None,
-            last: None,
-            decided: true,
-            growth: None,
-        };
+        let one = Verdict::counted(1);
         let first: Vec<_> = (0..48).map(|n| (n, one.clone())).collect();
         let inferred = (48, Verdict::Inferred(crate::study::chart::Answer::Count(1)));
         assert!(m.on_cells(id, [first, vec![inferred]].concat()));

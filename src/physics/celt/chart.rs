@@ -8,9 +8,39 @@ use std::collections::BTreeMap;
 
 use super::{Params, Problem};
 use crate::physics::chart::{
-    Axis, ChartError, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick,
+    Answer, Axis, ChartError, ChartOf, Column, Field, Header, Kind, PaneAsk, SceneChart, StudyAsk,
+    Value, Verdict, tick,
 };
 use crate::physics::{ParamError, StepError};
+
+/// The fields of its cells (issue 83: declared here, written and read back from this list).
+pub const COLUMNS: &[Column] = &[
+    Column::Index,
+    Column::X,
+    Column::Y,
+    Column::Answer(Field::new(
+        "reversals",
+        Kind::Count,
+        "Reversals in the window.",
+    )),
+    Column::Value(FIRST),
+    Column::Value(GROWTH),
+    Column::Decided,
+    Column::Mark,
+];
+
+/// The first reversal.
+const FIRST: Field = Field::new(
+    "first_reversal",
+    Kind::Time,
+    "The first reversal (s), `null` when none.",
+);
+/// The linear theory's rate at the cell.
+const GROWTH: Field = Field::new(
+    "growth_rate",
+    Kind::Number,
+    "The growth rate of steady spin at the cell's `ω_z` and `D` (1/s; positive: a small tilt grows).",
+);
 
 /// The names of the axes, across and up (preset keys, or the rattleback's two ratios).
 pub const AXES: [&str; 2] = ["initial.omega_z", "celt.product"];
@@ -140,16 +170,15 @@ impl CeltChart {
 
 /// A cell's verdict: its verified reversals and the growth rate of steady spin at its start.
 fn verdict(problem: &Problem, r: super::reversal::Reversals) -> Verdict {
-    Verdict::Reversals {
-        count: r.count,
-        first: r.first,
-        last: None,
-        decided: r.decided,
-        growth: Some(super::linear::growth_rate(
-            problem.params(),
-            problem.start().omega[2],
-        )),
-    }
+    let growth = super::linear::growth_rate(problem.params(), problem.start().omega[2]);
+    Verdict::found(
+        Answer::Count(r.count),
+        r.decided,
+        vec![
+            (FIRST.name, Value::Time(r.first)),
+            (GROWTH.name, Value::Number(Some(growth))),
+        ],
+    )
 }
 
 /// The celt's `problem` spun at `omega_z` with the product of inertia `product`.

@@ -9,7 +9,7 @@
 use crate::physics::numerics::elementary::Elementary;
 
 use super::{Params, Problem, Start, TILT_MAX};
-use crate::physics::chart::{Column, MapFlag};
+use crate::physics::chart::MapFlag;
 use crate::physics::scene::{FreeRotor, SlowLimit};
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
@@ -192,7 +192,6 @@ pub static SCENE: Scene = Scene {
         weak: None,
         chart: ChartWords {
             title: "reversal chart (M)",
-            stability: false,
             curve: "linear theory: the tilt reaches 1 rad within T at the steady spin's growth rate",
             note: "across: initial omega_z (both senses); up: product of inertia",
             axes: ("omega_z", "D"),
@@ -201,16 +200,7 @@ pub static SCENE: Scene = Scene {
             axis_keys: super::chart::AXES,
             heading: "reversals",
             legend: ". none, 1-9 reversals, + 10 or more, ? two tolerances disagree",
-            csv: &[
-                Column::Index,
-                Column::X,
-                Column::Y,
-                Column::Reversals,
-                Column::FirstReversal,
-                Column::GrowthRate,
-                Column::Decided,
-                Column::Mark,
-            ],
+            csv: super::chart::COLUMNS,
             flags: &[
                 MapFlag::Columns,
                 MapFlag::Rows,

@@ -7,9 +7,43 @@ use std::collections::BTreeMap;
 use super::floquet::{Mathieu, Position, floquet};
 use super::{Params, Problem};
 use crate::physics::chart::{
-    Axis, ChartError, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick,
+    Answer, Axis, ChartError, ChartOf, Column, Field, Header, Kind, PaneAsk, SceneChart, StudyAsk,
+    Value, Verdict, tick,
 };
 use crate::physics::{ParamError, StepError};
+
+/// The fields of its cells (issue 83: declared here, written and read back from this list).
+pub const COLUMNS: &[Column] = &[
+    Column::Index,
+    Column::X,
+    Column::Y,
+    Column::Answer(Field::new(
+        "stable",
+        Kind::Flag,
+        "The verdict: `|tr M| < 2`.",
+    )),
+    Column::Value(TRACE),
+    Column::Value(TRACE_ERROR),
+    Column::Decided,
+    Column::Mark,
+];
+
+/// The monodromy matrix's trace.
+const TRACE: Field = Field::new("trace", Kind::Number, "The monodromy trace.");
+/// Its estimated error.
+const TRACE_ERROR: Field = Field::new("trace_error", Kind::Number, "Its estimated error.");
+
+/// A cell's verdict from its Floquet computation.
+fn verdict(f: &super::floquet::Floquet) -> Verdict {
+    Verdict::found(
+        Answer::Stable(f.stable),
+        f.decided,
+        vec![
+            (TRACE.name, Value::Number(Some(f.trace))),
+            (TRACE_ERROR.name, Value::Number(Some(f.error))),
+        ],
+    )
+}
 
 /// The names of the axes, across and up (preset keys, or the rattleback's two ratios).
 pub const AXES: [&str; 2] = ["pendulum.a", "pendulum.b"];
@@ -114,12 +148,7 @@ impl SceneChart for PendulumChart {
                 self.tolerance,
             )
         })?;
-        Ok(Verdict::Stability {
-            stable: f.stable,
-            trace: f.trace,
-            error: f.error,
-            decided: f.decided,
-        })
+        Ok(verdict(&f))
     }
 
     fn curve(&self) -> Vec<(f64, f64)> {
@@ -163,14 +192,8 @@ impl SceneChart for PendulumChart {
     /// A decided trace: its Floquet angle inside the stable band, its exponent outside
     /// ([`super::floquet::certainty`]).
     fn certainty(&self, _: usize, v: &Verdict) -> Option<crate::physics::chart::Certainty> {
-        match *v {
-            Verdict::Stability {
-                trace,
-                decided: true,
-                ..
-            } => super::floquet::certainty(trace),
-            _ => None,
-        }
+        let found = v.computed().filter(|f| f.decided)?;
+        super::floquet::certainty(found.number(TRACE)?)
     }
 
     /// The columns where Mathieu's tongues leave the axis `q = 0`, `δ = n²/4` (`n = 0, 1, …`):
@@ -313,15 +336,7 @@ pub(crate) mod tests {
                     ..c.params
                 };
                 let f = floquet(Mathieu::of(&params, Position::Upright), c.tolerance).unwrap();
-                assert_eq!(
-                    c.cell(n, &|_| true).unwrap(),
-                    Verdict::Stability {
-                        stable: f.stable,
-                        trace: f.trace,
-                        error: f.error,
-                        decided: f.decided
-                    }
-                );
+                assert_eq!(c.cell(n, &|_| true).unwrap(), verdict(&f));
             }
         }
     }

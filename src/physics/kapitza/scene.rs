@@ -4,7 +4,7 @@
 
 use super::limit::Limit;
 use super::{EPSILON_MAX, EPSILON_MIN, Params, Problem, Start};
-use crate::physics::chart::{Column, MapFlag};
+use crate::physics::chart::MapFlag;
 use crate::physics::scene::SlowLimit;
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
@@ -106,7 +106,6 @@ pub static SCENE: Scene = Scene {
         }),
         chart: ChartWords {
             title: "stability chart (M)",
-            stability: true,
             curve: "Kapitza's criterion b^2 = 2a (the limit eps -> 0)",
             note: "across: a; up: b (log), at the current eps; Enter loads a and b",
             axes: ("a", "b"),
@@ -115,16 +114,7 @@ pub static SCENE: Scene = Scene {
             axis_keys: super::chart::AXES,
             heading: "stability of the pendulum",
             legend: "# stable, . unstable, ? too close to call",
-            csv: &[
-                Column::Index,
-                Column::X,
-                Column::Y,
-                Column::Stable,
-                Column::Trace,
-                Column::TraceError,
-                Column::Decided,
-                Column::Mark,
-            ],
+            csv: super::chart::COLUMNS,
             flags: &[
                 MapFlag::Columns,
                 MapFlag::Rows,

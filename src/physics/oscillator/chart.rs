@@ -6,10 +6,24 @@ use std::collections::BTreeMap;
 
 use super::{Params, Problem, Start};
 use crate::physics::chart::{
-    Axis, ChartError, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick,
+    Axis, ChartError, ChartOf, Column, Field, Header, Kind, PaneAsk, SceneChart, StudyAsk,
+    Verdict, tick,
 };
 use crate::physics::method::{Asked, Method, RunSpec};
 use crate::physics::{ParamError, StepError};
+
+/// The fields of its cells, its own (issue 83): a count of crossings, not of reversals.
+pub const COLUMNS: &[Column] = &[
+    Column::Index,
+    Column::X,
+    Column::Y,
+    Column::Answer(Field::new(
+        "crossings",
+        Kind::Count,
+        "Crossings of `x = 0` in the window.",
+    )),
+    Column::Mark,
+];
 
 /// The pane's grid.
 pub const GRID: (usize, usize) = (16, 8);

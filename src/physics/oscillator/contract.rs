@@ -59,7 +59,7 @@ impl Contract for Case {
     fn check_cell(cell: &serde_json::Value, _: &serde_json::Value) -> Result<(), Mismatch> {
         let c = &cell["coords"];
         let p = exact(num(&c["oscillator.omega"]), num(&c["initial.v"]))?;
-        let (got, want) = (cell["reversals"].as_u64(), p.exact_crossings(10.0) as u64);
+        let (got, want) = (cell["crossings"].as_u64(), p.exact_crossings(10.0) as u64);
         if got == Some(want) {
             Ok(())
         } else {

@@ -2,7 +2,7 @@
 use crate::physics::numerics::elementary::Elementary;
 
 use super::{Params, Problem, Start};
-use crate::physics::chart::{Column, MapFlag};
+use crate::physics::chart::MapFlag;
 use crate::physics::scene::{FreeRotor, SlowLimit};
 use crate::physics::flow::{Flow, GoOn};
 use crate::physics::method::{Arithmetic, Asked, Method, RunSpec, StepError};
@@ -123,7 +123,6 @@ pub static SCENE: Scene = Scene {
         weak: None,
         chart: ChartWords {
             title: "crossing chart (M)",
-            stability: false,
             curve: "none",
             note: "across: omega; up: v0",
             axes: ("omega", "v0"),
@@ -132,13 +131,7 @@ pub static SCENE: Scene = Scene {
             axis_keys: super::chart::AXES,
             heading: "crossings",
             legend: ". none, 1-9 crossings, + 10 or more",
-            csv: &[
-                Column::Index,
-                Column::X,
-                Column::Y,
-                Column::Reversals,
-                Column::Mark,
-            ],
+            csv: super::chart::COLUMNS,
             flags: &[MapFlag::Columns, MapFlag::Rows, MapFlag::TEnd],
         },
         counterpart: "subcritical",

@@ -7,9 +7,40 @@ use std::collections::BTreeMap;
 use super::map::{self, DEFAULT_INERTIA, DEFAULT_RATIO_MAX, Grid, Source};
 use super::{Params, Problem, Start};
 use crate::physics::chart::{
-    Axis, ChartError, ChartOf, Header, PaneAsk, SceneChart, StudyAsk, Verdict, tick,
+    Answer, Axis, ChartError, ChartOf, Column, Field, Header, Kind, PaneAsk, SceneChart, StudyAsk,
+    Value, Verdict, tick,
 };
 use crate::physics::{ParamError, Posed as _, StepError};
+
+/// The fields of its cells (issue 83: declared here, written and read back from this list):
+/// the two ratios at the cell's centre, its reversals and, since issue 80, the first and last.
+pub const COLUMNS: &[Column] = &[
+    Column::Across(Field::new("ratio", Kind::Number, "The rattleback's `α̇0²/γ̇0²`.")),
+    Column::Up(Field::new(
+        "inertia_ratio",
+        Kind::Number,
+        "The rattleback's `iy/ix`.",
+    )),
+    Column::Answer(REVERSALS),
+    Column::Mark,
+    Column::Value(FIRST),
+    Column::Value(LAST),
+];
+
+/// Reversals in `(0, T]`.
+const REVERSALS: Field = Field::new("reversals", Kind::Count, "Reversals in the window.");
+/// The first reversal.
+const FIRST: Field = Field::new(
+    "first_reversal",
+    Kind::Time,
+    "The first reversal (s), `null` when none (since issue 80).",
+);
+/// The last reversal in the window: the certificate of a refined chart.
+const LAST: Field = Field::new(
+    "last_reversal",
+    Kind::Time,
+    "The last reversal in the window (s), `null` when none (issue 80).",
+);
 
 /// The names of the axes, across and up (preset keys, or the rattleback's two ratios).
 pub const AXES: [&str; 2] = ["ratio", "inertia_ratio"];
@@ -101,13 +132,14 @@ impl SceneChart for RegimeChart {
     fn cell(&self, n: usize, go_on: &(dyn Fn(f64) -> bool + Sync)) -> Result<Verdict, StepError> {
         let (i, j) = (n % self.grid.cols, n / self.grid.cols);
         let r = map::cell_reversals(&self.grid, self.source, i, j, go_on)?;
-        Ok(Verdict::Reversals {
-            count: r.count,
-            first: r.first,
-            last: r.last,
-            decided: true,
-            growth: None,
-        })
+        Ok(Verdict::found(
+            Answer::Count(r.count),
+            true,
+            vec![
+                (FIRST.name, Value::Time(r.first)),
+                (LAST.name, Value::Time(r.last)),
+            ],
+        ))
     }
 
     fn curve(&self) -> Vec<(f64, f64)> {
@@ -155,16 +187,11 @@ impl SceneChart for RegimeChart {
         if self.source == Source::Limit {
             return None;
         }
-        let Verdict::Reversals {
-            count,
-            first,
-            last,
-            decided: true,
-            ..
-        } = *v
-        else {
+        let found = v.computed().filter(|f| f.decided)?;
+        let Answer::Count(count) = found.answer else {
             return None;
         };
+        let (first, last) = (found.time(FIRST)?, found.time(LAST)?);
         let g = &self.grid;
         match count {
             0 => {

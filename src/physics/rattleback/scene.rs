@@ -6,7 +6,7 @@ use super::effective::Effective;
 use super::integrators;
 use super::model::ALPHA;
 use super::params::{Params, Problem, Start};
-use crate::physics::chart::{Column, MapFlag};
+use crate::physics::chart::MapFlag;
 use crate::physics::scene::SlowLimit;
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
@@ -71,7 +71,6 @@ pub static SCENE: Scene = Scene {
         }),
         chart: ChartWords {
             title: "regime map (M)",
-            stability: false,
             curve: "the critical ratio of the paper's theorems",
             note: "across: alpha_dot0^2/gamma_dot0^2; up: iy/ix (log); f: limit or full model",
             axes: ("alpha_dot0^2/gamma_dot0^2", "iy/ix"),
@@ -80,14 +79,7 @@ pub static SCENE: Scene = Scene {
             axis_keys: super::chart::AXES,
             heading: "reversals",
             legend: ". none, 1-9 reversals, + 10 or more, ? two tolerances disagree",
-            csv: &[
-                Column::Ratio,
-                Column::InertiaRatio,
-                Column::Reversals,
-                Column::Mark,
-                Column::FirstReversal,
-                Column::LastReversal,
-            ],
+            csv: super::chart::COLUMNS,
             flags: &[
                 MapFlag::RatioMax,
                 MapFlag::InertiaMin,

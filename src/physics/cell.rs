@@ -1,0 +1,701 @@
+//! A chart's cell, in the words of its scene (issue 83): what a scene's cell found
+//! ([`Verdict`]: an [`Answer`], whether it is decided, and the scene's own named values), the
+//! fields it writes ([`Column`]s the scene lists in its folder, each of its own [`Field`]s a
+//! name, a [`Kind`] and a meaning), and the written cell ([`CellOutput`]) read back.
+//!
+//! Nothing here names a scene's field: `reversals`, `first_reversal`, `stable` or `trace` are
+//! declared in the folders that write them (`rattleback/scene.rs`, `celt/scene.rs`, …). A new
+//! scene with a new kind of value (a mean energy, a period) declares it there too, and its JSON,
+//! CSV, schema (`docs/schemas/map-NAME.schema.json`), merge and read-back follow, with no edit
+//! here. What is shared is what every chart's machinery needs of any cell: its answer, the one
+//! discrete thing regions are inferred from and the pane draws (a count, or a yes/no), whether
+//! it is decided, and how it was found.
+
+use std::collections::BTreeMap;
+
+use serde::de::{Error as _, MapAccess, Visitor};
+use serde::ser::SerializeMap as _;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+use super::json::Number;
+
+/// What a field of a scene's cells holds: its JSON type and its CSV text.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// A whole number (`0` in the CSV when absent).
+    Count,
+    /// A time in seconds, `null` when there is none (empty in the CSV).
+    Time,
+    /// A number that need not be finite (`"inf"`, `"-inf"`, `"nan"`), absent when the cell has
+    /// none (empty in the CSV).
+    Number,
+    /// Yes or no (`false` in the CSV when absent).
+    Flag,
+}
+
+/// One field a scene's cells carry, declared in its folder.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Field {
+    /// Its name in the JSON and the CSV's heading (a contract once shipped).
+    pub name: &'static str,
+    /// What it holds.
+    pub kind: Kind,
+    /// What it means (the schema's description).
+    pub doc: &'static str,
+}
+
+impl Field {
+    /// A field named `name` holding a `kind`, meaning `doc`.
+    #[must_use]
+    pub const fn new(name: &'static str, kind: Kind, doc: &'static str) -> Self {
+        Self { name, kind, doc }
+    }
+}
+
+/// One of a scene's values in a computed cell.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Value {
+    /// A whole number.
+    Count(usize),
+    /// A time, or none.
+    Time(Option<f64>),
+    /// A number, or none (then absent from the cell).
+    Number(Option<f64>),
+    /// Yes or no.
+    Flag(bool),
+}
+
+impl Value {
+    /// The value as written (`None`: absent).
+    fn json(self) -> Option<serde_json::Value> {
+        Some(match self {
+            Self::Count(n) => serde_json::Value::from(n),
+            Self::Time(t) => t.map_or(serde_json::Value::Null, serde_json::Value::from),
+            Self::Number(x) => serde_json::to_value(Number::from(x?)).ok()?,
+            Self::Flag(b) => serde_json::Value::Bool(b),
+        })
+    }
+
+    /// A value of `kind` read back from its JSON (`None`: absent where the kind may be; an
+    /// outer `None`: not a value of that kind).
+    fn read(kind: Kind, v: Option<&serde_json::Value>) -> Option<Self> {
+        match (kind, v) {
+            (Kind::Count, Some(v)) => Some(Self::Count(usize::try_from(v.as_u64()?).ok()?)),
+            (Kind::Time, Some(serde_json::Value::Null)) => Some(Self::Time(None)),
+            (Kind::Time, Some(serde_json::Value::Number(x))) => Some(Self::Time(Some(x.as_f64()?))),
+            (Kind::Number, None | Some(serde_json::Value::Null)) => Some(Self::Number(None)),
+            (Kind::Number, Some(v)) => {
+                Some(Self::Number(Some(f64::from(Number::deserialize(v).ok()?))))
+            }
+            (Kind::Flag, Some(v)) => Some(Self::Flag(v.as_bool()?)),
+            (Kind::Count | Kind::Time | Kind::Flag, _) => None,
+        }
+    }
+
+    /// The CSV text of a field of `kind` written as `v` (absent: `0`, `false` or empty).
+    fn csv(kind: Kind, v: Option<&serde_json::Value>) -> String {
+        match kind {
+            Kind::Count => v
+                .and_then(serde_json::Value::as_u64)
+                .unwrap_or(0)
+                .to_string(),
+            Kind::Flag => v
+                .and_then(serde_json::Value::as_bool)
+                .unwrap_or(false)
+                .to_string(),
+            Kind::Time | Kind::Number => v
+                .and_then(|v| Number::deserialize(v).ok())
+                .map_or_else(String::new, |x| f64::from(x).to_string()),
+        }
+    }
+}
+
+/// What a computed cell found: its answer, whether the chart's tolerance decides it, and the
+/// scene's own values by name (the fields its [`Column::Value`]s write).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Found {
+    /// The answer.
+    pub answer: Answer,
+    /// Whether it is certain at the chart's tolerance.
+    pub decided: bool,
+    /// The scene's values, by their fields' names.
+    pub values: Vec<(&'static str, Value)>,
+}
+
+impl Found {
+    /// The value of `field`, if the cell has one.
+    #[must_use]
+    pub fn value(&self, field: Field) -> Option<Value> {
+        self.values
+            .iter()
+            .find(|(name, _)| *name == field.name)
+            .map(|&(_, v)| v)
+    }
+
+    /// The time `field` holds (`None`: no such field; `Some(None)`: none in the window).
+    #[must_use]
+    pub fn time(&self, field: Field) -> Option<Option<f64>> {
+        match self.value(field)? {
+            Value::Time(t) => Some(t),
+            Value::Count(_) | Value::Number(_) | Value::Flag(_) => None,
+        }
+    }
+
+    /// The number `field` holds.
+    #[must_use]
+    pub fn number(&self, field: Field) -> Option<f64> {
+        match self.value(field)? {
+            Value::Number(x) => x,
+            Value::Count(_) | Value::Time(_) | Value::Flag(_) => None,
+        }
+    }
+}
+
+/// What one cell found.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Verdict {
+    /// The scene's routine ran at the cell: its answer and values.
+    Found(Found),
+    /// The cell's integration failed (a step size that underflowed, a state no longer finite):
+    /// the chart marks it undecided and says why, instead of failing whole (issue 66, H8).
+    Failed {
+        /// What went wrong, as the run said it.
+        error: String,
+    },
+    /// Not computed: its region's corners, edges and samples all gave this answer (issue 70,
+    /// `study::refine`).
+    Inferred(Answer),
+}
+
+/// The continuous quantity behind a decided cell's answer (issue 80): where the cell lies along
+/// it (`value`) and how far it is from changing the answer (`margin`, in the same units). A
+/// region is inferred only where every computed cell's margin exceeds twice the spread of the
+/// values across the region: the answer cannot change between cells that far from its boundary
+/// unless the quantity varies much faster inside than along the edges and samples.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Certainty {
+    /// The quantity at the cell.
+    pub value: f64,
+    /// Its distance from the nearest value where the answer changes (positive).
+    pub margin: f64,
+}
+
+/// A cell's answer, the one thing compared between neighbours (regions are inferred from it)
+/// and drawn: a count (of reversals, of crossings), or a yes/no (a stability verdict).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Answer {
+    /// How many in the window.
+    Count(usize),
+    /// Whether the equilibrium is stable.
+    Stable(bool),
+}
+
+impl Answer {
+    fn json(self) -> serde_json::Value {
+        match self {
+            Self::Count(n) => serde_json::Value::from(n),
+            Self::Stable(b) => serde_json::Value::Bool(b),
+        }
+    }
+
+    /// The answer written in a field of `kind` (a count, or a flag).
+    fn read(kind: Kind, v: &serde_json::Value) -> Option<Self> {
+        match kind {
+            Kind::Count => Some(Self::Count(usize::try_from(v.as_u64()?).ok()?)),
+            Kind::Flag => Some(Self::Stable(v.as_bool()?)),
+            Kind::Time | Kind::Number => None,
+        }
+    }
+}
+
+/// Whether a cell of a chart's output was computed or inferred from its region (issue 70).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum Mark {
+    /// The scene's verified routine ran at this cell.
+    Computed,
+    /// Its region's corners, edges and seeded interior samples all agreed on this answer.
+    Inferred,
+}
+
+impl Verdict {
+    /// A computed cell with `answer`, `decided`, and the scene's `values`.
+    #[must_use]
+    pub fn found(answer: Answer, decided: bool, values: Vec<(&'static str, Value)>) -> Self {
+        Self::Found(Found {
+            answer,
+            decided,
+            values,
+        })
+    }
+
+    /// A count alone, decided (a cell whose count is exact or verified by its run: the
+    /// rattleback's limit, the oscillator's).
+    #[must_use]
+    pub const fn counted(count: usize) -> Self {
+        Self::Found(Found {
+            answer: Answer::Count(count),
+            decided: true,
+            values: Vec::new(),
+        })
+    }
+
+    /// What the scene's routine found (`None`: failed or inferred).
+    #[must_use]
+    pub fn computed(&self) -> Option<&Found> {
+        match self {
+            Self::Found(found) => Some(found),
+            Self::Failed { .. } | Self::Inferred(_) => None,
+        }
+    }
+
+    /// The count (`None` for a yes/no answer or a failed cell), decided or not.
+    #[must_use]
+    pub fn count(&self) -> Option<usize> {
+        match *self {
+            Self::Found(Found {
+                answer: Answer::Count(count),
+                ..
+            })
+            | Self::Inferred(Answer::Count(count)) => Some(count),
+            Self::Found(_) | Self::Failed { .. } | Self::Inferred(Answer::Stable(_)) => None,
+        }
+    }
+
+    /// The answer a decided cell gives (`None`: undecided or failed), computed or inferred.
+    #[must_use]
+    pub fn answer(&self) -> Option<Answer> {
+        match *self {
+            Self::Found(Found {
+                answer,
+                decided: true,
+                ..
+            })
+            | Self::Inferred(answer) => Some(answer),
+            Self::Found(_) | Self::Failed { .. } => None,
+        }
+    }
+
+    /// How the cell's verdict was found.
+    #[must_use]
+    pub fn mark(&self) -> Mark {
+        match self {
+            Self::Inferred(_) => Mark::Inferred,
+            Self::Found(_) | Self::Failed { .. } => Mark::Computed,
+        }
+    }
+
+    /// Whether the cell's verdict is certain at the chart's tolerance.
+    #[must_use]
+    pub fn decided(&self) -> bool {
+        match self {
+            Self::Found(found) => found.decided,
+            Self::Failed { .. } => false,
+            Self::Inferred(_) => true,
+        }
+    }
+}
+
+/// One cell of `study map`'s JSON: its index and coordinates, the fields its scene's columns
+/// write (in their order), whether decided, a failed run's error, and how it was found. Read
+/// back, the scene's fields are kept as written and checked against the scene's columns
+/// ([`read_cell`]: a field not the scene's is refused there).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CellOutput {
+    /// The cell's place in the grid, row by row from the bottom-left (`row · columns + column`).
+    pub index: usize,
+    /// The preset keys the cell sets, and their values.
+    pub coords: BTreeMap<String, f64>,
+    /// The scene's fields, by name, as written (its [`Column`]s' order).
+    pub fields: Vec<(String, serde_json::Value)>,
+    /// Whether the verdict is certain at the chart's tolerance (where the scene writes it);
+    /// `false` on a failed cell.
+    pub decided: Option<bool>,
+    /// Why the cell's integration failed (a failed cell has this, `decided: false` and no
+    /// verdict).
+    pub error: Option<String>,
+    /// `computed` (the scene's routine ran here) or `inferred` (its region agreed: the cell
+    /// carries the answer alone, without the computed cell's times, rates or traces).
+    pub mark: Option<Mark>,
+}
+
+impl CellOutput {
+    /// The field `name` as written.
+    #[must_use]
+    pub fn field(&self, name: &str) -> Option<&serde_json::Value> {
+        self.fields.iter().find(|(n, _)| n == name).map(|(_, v)| v)
+    }
+
+    /// The answer written in the answer field of a scene whose cells carry `columns`, decided
+    /// or not (`None`: none written, a failed cell's).
+    #[must_use]
+    pub fn answer(&self, columns: &[Column]) -> Option<Answer> {
+        let f = answer_field(columns)?;
+        Answer::read(f.kind, self.field(f.name)?)
+    }
+
+    fn set(&mut self, name: &str, v: serde_json::Value) {
+        self.fields.push((name.to_owned(), v));
+    }
+}
+
+impl Serialize for CellOutput {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut m = s.serialize_map(None)?;
+        m.serialize_entry("index", &self.index)?;
+        m.serialize_entry("coords", &self.coords)?;
+        for (name, v) in &self.fields {
+            m.serialize_entry(name, v)?;
+        }
+        if let Some(decided) = self.decided {
+            m.serialize_entry("decided", &decided)?;
+        }
+        if let Some(error) = &self.error {
+            m.serialize_entry("error", error)?;
+        }
+        if let Some(mark) = self.mark {
+            m.serialize_entry("mark", &mark)?;
+        }
+        m.end()
+    }
+}
+
+impl<'de> Deserialize<'de> for CellOutput {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct CellVisitor;
+        impl<'de> Visitor<'de> for CellVisitor {
+            type Value = CellOutput;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a chart's cell: an object with `index` and `coords`")
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<CellOutput, A::Error> {
+                let mut index = None;
+                let mut coords = None;
+                let mut out = CellOutput::default();
+                let mut seen = std::collections::BTreeSet::new();
+                while let Some(key) = map.next_key::<String>()? {
+                    if !seen.insert(key.clone()) {
+                        return Err(A::Error::custom(format!("the field `{key}` twice")));
+                    }
+                    match key.as_str() {
+                        "index" => index = Some(map.next_value()?),
+                        "coords" => coords = Some(map.next_value()?),
+                        "decided" => out.decided = map.next_value()?,
+                        "error" => out.error = map.next_value()?,
+                        "mark" => out.mark = map.next_value()?,
+                        _ => {
+                            let v = map.next_value()?;
+                            out.fields.push((key, v));
+                        }
+                    }
+                }
+                out.index = index.ok_or_else(|| A::Error::missing_field("index"))?;
+                out.coords = coords.ok_or_else(|| A::Error::missing_field("coords"))?;
+                Ok(out)
+            }
+        }
+        d.deserialize_map(CellVisitor)
+    }
+}
+
+// The part of a cell's schema every scene shares; the scene's own fields are added from its
+// columns where the schemas are written (`commands/outputs.rs`).
+/// One cell of `study map`'s JSON. Every cell has `index` and `coords`; its other fields are
+/// its scene's (`map-NAME.schema.json` lists each scene's).
+#[derive(schemars::JsonSchema)]
+#[schemars(rename = "CellOutput")]
+#[allow(dead_code)] // only its schema is used
+struct SharedCell {
+    /// The cell's place in the grid, row by row from the bottom-left (`row · columns + column`).
+    index: usize,
+    /// The preset keys the cell sets, and their values.
+    coords: BTreeMap<String, f64>,
+    /// Whether the verdict is certain at the chart's tolerance (where the scene writes it).
+    /// `false` on a failed cell.
+    decided: Option<bool>,
+    /// Why the cell's integration failed (a failed cell has this, `decided: false` and no
+    /// verdict).
+    error: Option<String>,
+    /// `computed` (the scene's routine ran here) or `inferred` (its region agreed: the cell
+    /// carries the answer alone, without the computed cell's times, rates or traces).
+    mark: Option<Mark>,
+}
+
+impl schemars::JsonSchema for CellOutput {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        SharedCell::schema_name()
+    }
+
+    fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        // The number's words, for the scenes' `Number` fields.
+        let _ = generator.subschema_for::<Number>();
+        SharedCell::json_schema(generator)
+    }
+}
+
+/// A cell read back whose fields are not its scene's (`study merge`): which cell.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("cell {index}: not the fields of a {scene} chart's cell")]
+pub struct NotItsFields {
+    /// The cell's index.
+    pub index: usize,
+    /// The scene's name.
+    pub scene: &'static str,
+}
+
+/// A column of a chart's cells (a scene lists its own, in order: `ChartWords::csv`; the JSON
+/// cell holds the same fields).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Column {
+    /// The cell's index (the CSV's; every JSON cell has it).
+    Index,
+    /// The value across, named after the axis (the CSV's; the JSON's `coords`).
+    X,
+    /// The value up, named after the axis (the CSV's; the JSON's `coords`).
+    Y,
+    /// The cell's centre across, under a name of the scene's (the rattleback's `ratio`).
+    Across(Field),
+    /// The cell's centre up, under a name of the scene's (the rattleback's `inertia_ratio`).
+    Up(Field),
+    /// The cell's answer under the scene's name: a [`Kind::Count`] field for a count, a
+    /// [`Kind::Flag`] for a yes/no.
+    Answer(Field),
+    /// One of the scene's values ([`Found::values`]).
+    Value(Field),
+    /// Whether decided (`false` when absent).
+    Decided,
+    /// `computed` or `inferred` (issue 70).
+    Mark,
+}
+
+impl Column {
+    /// The column's heading on a chart whose axes are named `x` and `y`.
+    #[must_use]
+    pub fn heading<'a>(self, x: &'a str, y: &'a str) -> &'a str {
+        match self {
+            Self::Index => "index",
+            Self::X => x,
+            Self::Y => y,
+            Self::Across(f) | Self::Up(f) | Self::Answer(f) | Self::Value(f) => f.name,
+            Self::Decided => "decided",
+            Self::Mark => "mark",
+        }
+    }
+
+    /// The scene's own field the column writes (`None`: a column every chart has).
+    #[must_use]
+    pub fn field(self) -> Option<Field> {
+        match self {
+            Self::Across(f) | Self::Up(f) | Self::Answer(f) | Self::Value(f) => Some(f),
+            Self::Index | Self::X | Self::Y | Self::Decided | Self::Mark => None,
+        }
+    }
+
+    /// The column's value in cell `c` of a chart whose axes are named `x` and `y`.
+    #[must_use]
+    pub fn value(self, c: &CellOutput, x: &str, y: &str) -> String {
+        let coord = |name: &str| c.coords.get(name).copied().unwrap_or(f64::NAN).to_string();
+        match self {
+            Self::Index => c.index.to_string(),
+            Self::X => coord(x),
+            Self::Y => coord(y),
+            Self::Across(f) | Self::Up(f) | Self::Answer(f) | Self::Value(f) => {
+                Value::csv(f.kind, c.field(f.name))
+            }
+            Self::Decided => c.decided.unwrap_or(false).to_string(),
+            Self::Mark => match c.mark {
+                Some(Mark::Computed) => "computed".to_owned(),
+                Some(Mark::Inferred) => "inferred".to_owned(),
+                None => String::new(),
+            },
+        }
+    }
+}
+
+/// The answer column among a scene's `columns`.
+#[must_use]
+pub fn answer_field(columns: &[Column]) -> Option<Field> {
+    columns.iter().find_map(|c| match *c {
+        Column::Answer(f) => Some(f),
+        _ => None,
+    })
+}
+
+/// The answer a written cell of a scene whose cells carry `columns` gives, if decided (a
+/// failed or undecided cell: `None`).
+#[must_use]
+pub fn written_answer(columns: &[Column], c: &CellOutput) -> Option<Answer> {
+    if c.decided == Some(false) || c.error.is_some() {
+        return None;
+    }
+    c.answer(columns)
+}
+
+/// Writes into `out` the fields of verdict `v` that a scene's cells carry, its `columns`
+/// (`ChartWords::csv`: the JSON cell and the CSV row hold the same fields), the cell's centre
+/// being `at`.
+pub fn fill_cell(columns: &[Column], v: &Verdict, at: (f64, f64), out: &mut CellOutput) {
+    let number = |x: f64| Value::Number(Some(x)).json().unwrap_or_default();
+    for &column in columns {
+        match (column, v) {
+            (Column::Across(f), _) => out.set(f.name, number(at.0)),
+            (Column::Up(f), _) => out.set(f.name, number(at.1)),
+            (
+                Column::Answer(f),
+                Verdict::Found(Found { answer, .. }) | Verdict::Inferred(answer),
+            ) => {
+                out.set(f.name, answer.json());
+            }
+            (Column::Value(f), Verdict::Found(found)) => {
+                if let Some(v) = found.value(f).and_then(Value::json) {
+                    out.set(f.name, v);
+                }
+            }
+            (Column::Decided, Verdict::Found(found)) => out.decided = Some(found.decided),
+            (Column::Decided, Verdict::Inferred(_)) => out.decided = Some(true),
+            (Column::Mark, v) => out.mark = Some(v.mark()),
+            // The index and coordinates every cell has; what a failed cell or an inferred one
+            // does not carry: nothing (every column named, so a new one must say).
+            (
+                Column::Index
+                | Column::X
+                | Column::Y
+                | Column::Answer(_)
+                | Column::Value(_)
+                | Column::Decided,
+                _,
+            ) => {}
+        }
+    }
+}
+
+/// The verdict a (not failed) cell of a scene whose cells carry `columns` says, read back
+/// (`None` when a field it must have is missing or not of its kind, or the cell has a field
+/// that is not the scene's).
+#[must_use]
+pub fn read_cell(columns: &[Column], c: &CellOutput) -> Option<Verdict> {
+    let has = |column| columns.contains(&column);
+    let own: Vec<Field> = columns.iter().filter_map(|c| c.field()).collect();
+    if c.fields
+        .iter()
+        .any(|(n, _)| !own.iter().any(|f| f.name == n))
+    {
+        return None;
+    }
+    let f = answer_field(columns)?;
+    let answer = Answer::read(f.kind, c.field(f.name)?)?;
+    if c.mark == Some(Mark::Inferred) {
+        return Some(Verdict::Inferred(answer));
+    }
+    let mut values = Vec::new();
+    for column in columns {
+        if let Column::Value(f) = *column {
+            values.push((f.name, Value::read(f.kind, c.field(f.name))?));
+        }
+    }
+    // A number a cell does not have is absent, not a value.
+    values.retain(|(_, v)| *v != Value::Number(None));
+    Some(Verdict::found(
+        answer,
+        if has(Column::Decided) {
+            c.decided?
+        } else {
+            true
+        },
+        values,
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const COUNT: Field = Field::new("count", Kind::Count, "how many");
+    const WHEN: Field = Field::new("when", Kind::Time, "the first");
+    const RATE: Field = Field::new("rate", Kind::Number, "a rate");
+    const FLAG: Field = Field::new("flag", Kind::Flag, "a flag");
+    const COLUMNS: &[Column] = &[
+        Column::Index,
+        Column::X,
+        Column::Y,
+        Column::Answer(COUNT),
+        Column::Value(WHEN),
+        Column::Value(RATE),
+        Column::Value(FLAG),
+        Column::Decided,
+        Column::Mark,
+    ];
+
+    fn written(v: &Verdict) -> CellOutput {
+        let mut out = CellOutput {
+            index: 7,
+            coords: BTreeMap::from([("a".to_owned(), 0.5)]),
+            ..CellOutput::default()
+        };
+        fill_cell(COLUMNS, v, (0.5, 2.0), &mut out);
+        out
+    }
+
+    /// A scene's own fields, of every kind, go out and come back as they were, through the
+    /// JSON text; a field not the scene's, or of another kind, is refused.
+    #[test]
+    fn a_scenes_own_fields_read_back_as_written() {
+        for v in [
+            Verdict::found(
+                Answer::Count(3),
+                false,
+                vec![
+                    ("when", Value::Time(Some(1.25))),
+                    ("rate", Value::Number(Some(f64::INFINITY))),
+                    ("flag", Value::Flag(true)),
+                ],
+            ),
+            Verdict::found(
+                Answer::Count(0),
+                true,
+                vec![("when", Value::Time(None)), ("flag", Value::Flag(false))],
+            ),
+            Verdict::Inferred(Answer::Count(2)),
+        ] {
+            let text = serde_json::to_string(&written(&v)).unwrap();
+            let back: CellOutput = serde_json::from_str(&text).unwrap();
+            assert_eq!(back, written(&v), "{text}");
+            assert_eq!(read_cell(COLUMNS, &back), Some(v), "{text}");
+        }
+        let good = serde_json::to_value(written(&Verdict::counted(1))).unwrap();
+        for (key, bad) in [
+            ("stable", serde_json::json!(true)),
+            ("count", serde_json::json!(1.5)),
+            ("when", serde_json::json!("soon")),
+            ("flag", serde_json::json!(1)),
+        ] {
+            let mut v = good.clone();
+            v[key] = bad;
+            let cell: CellOutput = serde_json::from_value(v).unwrap();
+            assert_eq!(read_cell(COLUMNS, &cell), None, "{key}");
+        }
+    }
+
+    /// The JSON's order is the columns': index, coords, the scene's fields, then decided,
+    /// error and mark; the CSV's absent values are `0`, empty, `false`.
+    #[test]
+    fn a_cell_is_written_in_its_columns_order() {
+        let v = Verdict::found(
+            Answer::Count(1),
+            true,
+            vec![("flag", Value::Flag(true)), ("when", Value::Time(None))],
+        );
+        assert_eq!(
+            serde_json::to_string(&written(&v)).unwrap(),
+            r#"{"index":7,"coords":{"a":0.5},"count":1,"when":null,"flag":true,"decided":true,"mark":"computed"}"#
+        );
+        let failed = written(&Verdict::Failed {
+            error: "x".to_owned(),
+        });
+        let row: Vec<String> = COLUMNS.iter().map(|c| c.value(&failed, "a", "b")).collect();
+        assert_eq!(
+            row,
+            ["7", "0.5", "NaN", "0", "", "", "false", "false", "computed"]
+        );
+    }
+}
