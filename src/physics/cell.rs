@@ -433,14 +433,33 @@ impl schemars::JsonSchema for CellOutput {
     }
 }
 
-/// A cell read back whose fields are not its scene's (`study merge`): which cell.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("cell {index}: not the fields of a {scene} chart's cell")]
+/// A cell read back whose fields are not its scene's (`study merge`): which cell, which field
+/// and what is wrong with it.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("cell {index}: `{field}` {fault} a {scene} chart's cell")]
 pub struct NotItsFields {
     /// The cell's index.
     pub index: usize,
     /// The scene's name.
     pub scene: &'static str,
+    /// The field.
+    pub field: String,
+    /// What is wrong with it.
+    pub fault: FieldFault,
+}
+
+/// What is wrong with a field of a cell read back.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum FieldFault {
+    /// The scene's cells have no such field.
+    #[error("is not a field of")]
+    NotIts,
+    /// A field the scene's cells must have.
+    #[error("is missing from")]
+    Missing,
+    /// Not the kind of value the scene's field holds.
+    #[error("is not of its kind in")]
+    OtherKind,
 }
 
 /// A column of a chart's cells (a scene lists its own, in order: `ChartWords::csv`; the JSON
@@ -569,41 +588,55 @@ pub fn fill_cell(columns: &[Column], v: &Verdict, at: (f64, f64), out: &mut Cell
     }
 }
 
-/// The verdict a (not failed) cell of a scene whose cells carry `columns` says, read back
-/// (`None` when a field it must have is missing or not of its kind, or the cell has a field
-/// that is not the scene's).
-#[must_use]
-pub fn read_cell(columns: &[Column], c: &CellOutput) -> Option<Verdict> {
-    let has = |column| columns.contains(&column);
+/// The verdict a (not failed) cell of a scene whose cells carry `columns` says, read back.
+///
+/// # Errors
+/// The first field the cell has that is not the scene's, or that it must have and lacks, or
+/// that holds another kind of value.
+pub fn read_cell(columns: &[Column], c: &CellOutput) -> Result<Verdict, (String, FieldFault)> {
     let own: Vec<Field> = columns.iter().filter_map(|c| c.field()).collect();
-    if c.fields
+    if let Some((name, _)) = c
+        .fields
         .iter()
-        .any(|(n, _)| !own.iter().any(|f| f.name == n))
+        .find(|(n, _)| !own.iter().any(|f| f.name == n))
     {
-        return None;
+        return Err((name.clone(), FieldFault::NotIts));
     }
-    let f = answer_field(columns)?;
-    let answer = Answer::read(f.kind, c.field(f.name)?)?;
+    let fault = |f: Field| {
+        let why = if c.field(f.name).is_some() {
+            FieldFault::OtherKind
+        } else {
+            FieldFault::Missing
+        };
+        (f.name.to_owned(), why)
+    };
+    let Some(f) = answer_field(columns) else {
+        return Err(("the answer".to_owned(), FieldFault::Missing));
+    };
+    let answer = c
+        .field(f.name)
+        .and_then(|v| Answer::read(f.kind, v))
+        .ok_or_else(|| fault(f))?;
     if c.mark == Some(Mark::Inferred) {
-        return Some(Verdict::Inferred(answer));
+        return Ok(Verdict::Inferred(answer));
     }
     let mut values = Vec::new();
     for column in columns {
         if let Column::Value(f) = *column {
-            values.push((f.name, Value::read(f.kind, c.field(f.name))?));
+            let v = Value::read(f.kind, c.field(f.name)).ok_or_else(|| fault(f))?;
+            // A number a cell does not have is absent, not a value.
+            if v != Value::Number(None) {
+                values.push((f.name, v));
+            }
         }
     }
-    // A number a cell does not have is absent, not a value.
-    values.retain(|(_, v)| *v != Value::Number(None));
-    Some(Verdict::found(
-        answer,
-        if has(Column::Decided) {
-            c.decided?
-        } else {
-            true
-        },
-        values,
-    ))
+    let decided = if columns.contains(&Column::Decided) {
+        c.decided
+            .ok_or_else(|| ("decided".to_owned(), FieldFault::Missing))?
+    } else {
+        true
+    };
+    Ok(Verdict::found(answer, decided, values))
 }
 
 #[cfg(test)]
@@ -660,20 +693,27 @@ mod tests {
             let text = serde_json::to_string(&written(&v)).unwrap();
             let back: CellOutput = serde_json::from_str(&text).unwrap();
             assert_eq!(back, written(&v), "{text}");
-            assert_eq!(read_cell(COLUMNS, &back), Some(v), "{text}");
+            assert_eq!(read_cell(COLUMNS, &back), Ok(v), "{text}");
         }
         let good = serde_json::to_value(written(&Verdict::counted(1))).unwrap();
-        for (key, bad) in [
-            ("stable", serde_json::json!(true)),
-            ("count", serde_json::json!(1.5)),
-            ("when", serde_json::json!("soon")),
-            ("flag", serde_json::json!(1)),
+        for (key, bad, fault) in [
+            ("stable", serde_json::json!(true), FieldFault::NotIts),
+            ("count", serde_json::json!(1.5), FieldFault::OtherKind),
+            ("when", serde_json::json!("soon"), FieldFault::OtherKind),
+            ("flag", serde_json::json!(1), FieldFault::OtherKind),
         ] {
             let mut v = good.clone();
             v[key] = bad;
             let cell: CellOutput = serde_json::from_value(v).unwrap();
-            assert_eq!(read_cell(COLUMNS, &cell), None, "{key}");
+            assert_eq!(read_cell(COLUMNS, &cell), Err((key.to_owned(), fault)));
         }
+        let mut v = good.clone();
+        v.as_object_mut().unwrap().remove("when");
+        let cell: CellOutput = serde_json::from_value(v).unwrap();
+        assert_eq!(
+            read_cell(COLUMNS, &cell),
+            Err(("when".to_owned(), FieldFault::Missing))
+        );
     }
 
     /// The JSON's order is the columns': index, coords, the scene's fields, then decided,

@@ -19,8 +19,8 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 pub use super::cell::{
-    Answer, CellOutput, Certainty, Column, Field, Found, Kind, Mark, NotItsFields, Value, Verdict,
-    answer_field, fill_cell, read_cell, written_answer,
+    Answer, CellOutput, Certainty, Column, Field, FieldFault, Found, Kind, Mark, NotItsFields,
+    Value, Verdict, answer_field, fill_cell, read_cell, written_answer,
 };
 use super::method::StepError;
 use super::params::ParamError;

@@ -470,16 +470,20 @@ impl Chart {
     /// cell's, or the scene's (its columns).
     ///
     /// # Errors
-    /// A field this scene's cells carry is missing.
+    /// A field that is not this scene's, or one its cells carry missing or of another kind.
     pub fn verdict_of(&self, cell: &CellOutput) -> Result<Verdict, NotItsFields> {
         if let Some(error) = &cell.error {
             return Ok(Verdict::Failed {
                 error: error.clone(),
             });
         }
-        crate::physics::chart::read_cell(self.words().csv, cell).ok_or(NotItsFields {
-            index: cell.index,
-            scene: self.model().name(),
+        crate::physics::chart::read_cell(self.words().csv, cell).map_err(|(field, fault)| {
+            NotItsFields {
+                index: cell.index,
+                scene: self.model().name(),
+                field,
+                fault,
+            }
         })
     }
 }

@@ -870,7 +870,13 @@ mod tests {
                 .push(("reversals".to_owned(), serde_json::json!(3)));
         });
         assert!(
-            matches!(e, MergeError::Cell { index: 2, ref field, .. } if field == "reversals"),
+            matches!(e, MergeError::Fields { ref fields, .. } if fields.field == "reversals"
+                && fields.index == 2 && fields.fault == crate::physics::chart::FieldFault::NotIts),
+            "{e}"
+        );
+        assert!(
+            e.to_string()
+                .contains("cell 2: `reversals` is not a field of a kapitza chart's cell"),
             "{e}"
         );
         // A flipped verdict passes the structure but not the recomputation of that cell.
