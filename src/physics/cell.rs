@@ -113,7 +113,7 @@ impl Value {
 /// What a computed cell found: its answer, whether the chart's tolerance decides it, and the
 /// scene's own values by name (the fields its [`Column::Value`]s write).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Found {
+pub struct Findings {
     /// The answer.
     pub answer: Answer,
     /// Whether it is certain at the chart's tolerance.
@@ -122,7 +122,7 @@ pub struct Found {
     pub values: Vec<(&'static str, Value)>,
 }
 
-impl Found {
+impl Findings {
     /// The value of `field`, if the cell has one.
     #[must_use]
     pub fn value(&self, field: Field) -> Option<Value> {
@@ -155,7 +155,7 @@ impl Found {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Verdict {
     /// The scene's routine ran at the cell: its answer and values.
-    Found(Found),
+    Computed(Findings),
     /// The cell's integration failed (a step size that underflowed, a state no longer finite):
     /// the chart marks it undecided and says why, instead of failing whole (issue 66, H8).
     Failed {
@@ -222,7 +222,7 @@ impl Verdict {
     /// A computed cell with `answer`, `decided`, and the scene's `values`.
     #[must_use]
     pub fn found(answer: Answer, decided: bool, values: Vec<(&'static str, Value)>) -> Self {
-        Self::Found(Found {
+        Self::Computed(Findings {
             answer,
             decided,
             values,
@@ -233,7 +233,7 @@ impl Verdict {
     /// rattleback's limit, the oscillator's).
     #[must_use]
     pub const fn counted(count: usize) -> Self {
-        Self::Found(Found {
+        Self::Computed(Findings {
             answer: Answer::Count(count),
             decided: true,
             values: Vec::new(),
@@ -242,9 +242,9 @@ impl Verdict {
 
     /// What the scene's routine found (`None`: failed or inferred).
     #[must_use]
-    pub fn computed(&self) -> Option<&Found> {
+    pub fn computed(&self) -> Option<&Findings> {
         match self {
-            Self::Found(found) => Some(found),
+            Self::Computed(found) => Some(found),
             Self::Failed { .. } | Self::Inferred(_) => None,
         }
     }
@@ -253,12 +253,12 @@ impl Verdict {
     #[must_use]
     pub fn count(&self) -> Option<usize> {
         match *self {
-            Self::Found(Found {
+            Self::Computed(Findings {
                 answer: Answer::Count(count),
                 ..
             })
             | Self::Inferred(Answer::Count(count)) => Some(count),
-            Self::Found(_) | Self::Failed { .. } | Self::Inferred(Answer::Stable(_)) => None,
+            Self::Computed(_) | Self::Failed { .. } | Self::Inferred(Answer::Stable(_)) => None,
         }
     }
 
@@ -266,13 +266,13 @@ impl Verdict {
     #[must_use]
     pub fn answer(&self) -> Option<Answer> {
         match *self {
-            Self::Found(Found {
+            Self::Computed(Findings {
                 answer,
                 decided: true,
                 ..
             })
             | Self::Inferred(answer) => Some(answer),
-            Self::Found(_) | Self::Failed { .. } => None,
+            Self::Computed(_) | Self::Failed { .. } => None,
         }
     }
 
@@ -281,7 +281,7 @@ impl Verdict {
     pub fn mark(&self) -> Mark {
         match self {
             Self::Inferred(_) => Mark::Inferred,
-            Self::Found(_) | Self::Failed { .. } => Mark::Computed,
+            Self::Computed(_) | Self::Failed { .. } => Mark::Computed,
         }
     }
 
@@ -289,7 +289,7 @@ impl Verdict {
     #[must_use]
     pub fn decided(&self) -> bool {
         match self {
-            Self::Found(found) => found.decided,
+            Self::Computed(found) => found.decided,
             Self::Failed { .. } => false,
             Self::Inferred(_) => true,
         }
@@ -479,7 +479,7 @@ pub enum Column {
     /// The cell's answer under the scene's name: a [`Kind::Count`] field for a count, a
     /// [`Kind::Flag`] for a yes/no.
     Answer(Field),
-    /// One of the scene's values ([`Found::values`]).
+    /// One of the scene's values ([`Findings::values`]).
     Value(Field),
     /// Whether decided (`false` when absent).
     Decided,
@@ -561,16 +561,16 @@ pub fn fill_cell(columns: &[Column], v: &Verdict, at: (f64, f64), out: &mut Cell
             (Column::Up(f), _) => out.set(f.name, number(at.1)),
             (
                 Column::Answer(f),
-                Verdict::Found(Found { answer, .. }) | Verdict::Inferred(answer),
+                Verdict::Computed(Findings { answer, .. }) | Verdict::Inferred(answer),
             ) => {
                 out.set(f.name, answer.json());
             }
-            (Column::Value(f), Verdict::Found(found)) => {
+            (Column::Value(f), Verdict::Computed(found)) => {
                 if let Some(v) = found.value(f).and_then(Value::json) {
                     out.set(f.name, v);
                 }
             }
-            (Column::Decided, Verdict::Found(found)) => out.decided = Some(found.decided),
+            (Column::Decided, Verdict::Computed(found)) => out.decided = Some(found.decided),
             (Column::Decided, Verdict::Inferred(_)) => out.decided = Some(true),
             (Column::Mark, v) => out.mark = Some(v.mark()),
             // The index and coordinates every cell has; what a failed cell or an inferred one
@@ -695,7 +695,12 @@ mod tests {
             assert_eq!(back, written(&v), "{text}");
             assert_eq!(read_cell(COLUMNS, &back), Ok(v), "{text}");
         }
-        let good = serde_json::to_value(written(&Verdict::counted(1))).unwrap();
+        let good = serde_json::to_value(written(&Verdict::found(
+            Answer::Count(1),
+            true,
+            vec![("when", Value::Time(None)), ("flag", Value::Flag(false))],
+        )))
+        .unwrap();
         for (key, bad, fault) in [
             ("stable", serde_json::json!(true), FieldFault::NotIts),
             ("count", serde_json::json!(1.5), FieldFault::OtherKind),

@@ -19,7 +19,7 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 pub use super::cell::{
-    Answer, CellOutput, Certainty, Column, Field, FieldFault, Found, Kind, Mark, NotItsFields,
+    Answer, CellOutput, Certainty, Column, Field, FieldFault, Findings, Kind, Mark, NotItsFields,
     Value, Verdict, answer_field, fill_cell, read_cell, written_answer,
 };
 use super::method::StepError;
