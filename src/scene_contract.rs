@@ -162,8 +162,9 @@ fn run_matches_reference<S: Contract>(p: &Preset) -> Result<serde_json::Value, F
     Ok(json)
 }
 
-/// `study map`'s chart: every cell against the reference, three shards merged into the whole
-/// byte for byte, a cell loaded back at its coordinates.
+/// `study map`'s chart: its cells' columns (one answer, no field named twice), every cell
+/// against the reference, three shards merged into the whole byte for byte, a cell loaded back
+/// at its coordinates.
 fn chart_matches_reference<S: Contract>(p: &Preset, ask: &StudyAsk) -> Result<(), Failure> {
     use crate::study::chart::{Shard, Tally};
     let chart = Chart::for_study(&p.model, ask).map_err(|e| Failure {
@@ -173,6 +174,10 @@ fn chart_matches_reference<S: Contract>(p: &Preset, ask: &StudyAsk) -> Result<()
     if chart.model() != p.model.kind() {
         return fail("chart", "a chart of another scene");
     }
+    crate::physics::chart::check_columns(chart.words().csv).map_err(|e| Failure {
+        step: "chart",
+        what: format!("its cells' columns: {e}"),
+    })?;
     let computed = |shard| {
         chart
             .compute(false, shard, &|_| true, &Tally::QUIET)

@@ -531,6 +531,51 @@ impl Column {
     }
 }
 
+/// Why a scene's columns would not make cells that read back as written.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ColumnsError {
+    /// No answer, or more than one.
+    #[error("{0} answer columns: a chart's cells have one (a count or a yes/no)")]
+    Answers(usize),
+    /// An answer of a kind that is neither a count nor a yes/no.
+    #[error("the answer `{0}` is neither a count nor a flag")]
+    AnswerKind(&'static str),
+    /// A field named twice, or named as a field every cell has.
+    #[error(
+        "the field `{0}` is named twice, or as one every cell has (index, coords, decided, error, mark)"
+    )]
+    Name(&'static str),
+}
+
+/// Whether a scene's `columns` make cells that read back as written: one answer, a count or a
+/// flag; every field of its own named once, and none named as a field every cell has (the
+/// scene contract holds every registered scene to it).
+///
+/// # Errors
+/// The first thing wrong.
+pub fn check_columns(columns: &[Column]) -> Result<(), ColumnsError> {
+    let answers: Vec<Field> = columns
+        .iter()
+        .filter_map(|c| match *c {
+            Column::Answer(f) => Some(f),
+            _ => None,
+        })
+        .collect();
+    match answers.as_slice() {
+        [f] if matches!(f.kind, Kind::Count | Kind::Flag) => {}
+        [f] => return Err(ColumnsError::AnswerKind(f.name)),
+        _ => return Err(ColumnsError::Answers(answers.len())),
+    }
+    let mut seen = vec!["index", "coords", "decided", "error", "mark"];
+    for f in columns.iter().filter_map(|c| c.field()) {
+        if seen.contains(&f.name) {
+            return Err(ColumnsError::Name(f.name));
+        }
+        seen.push(f.name);
+    }
+    Ok(())
+}
+
 /// The answer column among a scene's `columns`.
 #[must_use]
 pub fn answer_field(columns: &[Column]) -> Option<Field> {
@@ -538,16 +583,6 @@ pub fn answer_field(columns: &[Column]) -> Option<Field> {
         Column::Answer(f) => Some(f),
         _ => None,
     })
-}
-
-/// The answer a written cell of a scene whose cells carry `columns` gives, if decided (a
-/// failed or undecided cell: `None`).
-#[must_use]
-pub fn written_answer(columns: &[Column], c: &CellOutput) -> Option<Answer> {
-    if c.decided == Some(false) || c.error.is_some() {
-        return None;
-    }
-    c.answer(columns)
 }
 
 /// Writes into `out` the fields of verdict `v` that a scene's cells carry, its `columns`
@@ -719,6 +754,35 @@ mod tests {
             read_cell(COLUMNS, &cell),
             Err(("when".to_owned(), FieldFault::Missing))
         );
+    }
+
+    /// A scene's columns with no answer, two, an answer that is a time, a field named twice or
+    /// as a shared one are refused; the test scene's are taken.
+    #[test]
+    fn columns_that_would_not_read_back_are_refused() {
+        check_columns(COLUMNS).unwrap();
+        let time = Field::new("t", Kind::Time, "");
+        for (bad, want) in [
+            (vec![Column::Value(WHEN)], ColumnsError::Answers(0)),
+            (
+                vec![Column::Answer(COUNT), Column::Answer(FLAG)],
+                ColumnsError::Answers(2),
+            ),
+            (vec![Column::Answer(time)], ColumnsError::AnswerKind("t")),
+            (
+                vec![Column::Answer(COUNT), Column::Value(COUNT)],
+                ColumnsError::Name("count"),
+            ),
+            (
+                vec![
+                    Column::Answer(COUNT),
+                    Column::Value(Field::new("mark", Kind::Flag, "")),
+                ],
+                ColumnsError::Name("mark"),
+            ),
+        ] {
+            assert_eq!(check_columns(&bad), Err(want));
+        }
     }
 
     /// The JSON's order is the columns': index, coords, the scene's fields, then decided,

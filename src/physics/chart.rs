@@ -20,7 +20,7 @@ use serde::Serialize;
 
 pub use super::cell::{
     Answer, CellOutput, Certainty, Column, Field, FieldFault, Findings, Kind, Mark, NotItsFields,
-    Value, Verdict, answer_field, fill_cell, read_cell, written_answer,
+    Value, Verdict, answer_field, check_columns, fill_cell, read_cell,
 };
 use super::method::StepError;
 use super::params::ParamError;
