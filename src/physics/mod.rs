@@ -36,6 +36,7 @@ pub mod models;
 pub mod numerics;
 pub mod params;
 pub mod plan;
+pub mod report;
 pub mod scene;
 pub mod verify;
 

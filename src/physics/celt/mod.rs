@@ -33,6 +33,7 @@ pub mod field;
 pub mod flows;
 pub mod linear;
 pub mod plan;
+pub mod report;
 pub mod policy;
 pub mod reversal;
 pub mod run;

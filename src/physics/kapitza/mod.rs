@@ -28,6 +28,7 @@ pub mod flows;
 pub mod limit;
 pub mod phase;
 pub mod plan;
+pub mod report;
 pub mod policy;
 pub mod run;
 pub mod scene;

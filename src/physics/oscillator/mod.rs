@@ -13,6 +13,7 @@ use crate::physics::numerics::elementary::Elementary;
 pub mod chart;
 pub mod contract;
 pub mod flows;
+pub mod report;
 pub mod scene;
 
 use serde::{Deserialize, Serialize};

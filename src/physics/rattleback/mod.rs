@@ -19,6 +19,7 @@ pub mod map;
 pub mod model;
 pub mod params;
 pub mod plan;
+pub mod report;
 pub mod policy;
 pub mod run;
 pub mod scene;

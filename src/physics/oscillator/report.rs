@@ -6,8 +6,8 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use super::render::StatsOut;
-use super::{Failure, Format, Missed, Resolved, Times};
+use crate::physics::report::render::StatsOut;
+use crate::physics::report::{Failure, Format, Missed, Resolved, Times};
 use crate::physics::method::{Asked, RunSpec};
 use crate::physics::oscillator::flows::{self, RunResult};
 use crate::physics::oscillator::{Params, Problem, Start};
@@ -15,7 +15,7 @@ use crate::physics::oscillator::{Params, Problem, Start};
 #[derive(Serialize)]
 struct Report {
     #[serde(flatten)]
-    head: super::Head<Params, Start, AutoOut>,
+    head: crate::physics::report::Head<Params, Start, AutoOut>,
     t_end: f64,
     #[serde(rename = "final")]
     final_: [f64; 2],
@@ -26,12 +26,12 @@ struct Report {
     stats: StatsOut,
 }
 
-type AutoOut = super::PlannedOut<NoExtra>;
+type AutoOut = crate::physics::report::PlannedOut<NoExtra>;
 
 #[derive(Serialize)]
 struct NoExtra {}
 
-impl super::Finite for RunResult {
+impl crate::physics::report::Finite for RunResult {
     fn named_numbers(&self) -> (f64, Vec<(&'static str, f64)>) {
         (
             self.t,
@@ -51,7 +51,7 @@ fn plan_auto(
     Ok(AutoOut::of(&r, run, reason, NoExtra {}))
 }
 
-fn simulate_to(problem: &Problem, mut ask: super::Ask<'_>) -> Result<Option<Missed>, Failure> {
+fn simulate_to(problem: &Problem, mut ask: crate::physics::report::Ask<'_>) -> Result<Option<Missed>, Failure> {
     let ran = ask.plan_and_run((problem, ask.resolved.spec), plan_auto, flows::run)?;
     let (spec, result) = (ran.spec, ran.result);
     if ask.format == Format::Csv {
@@ -87,7 +87,7 @@ fn table(r: &Report) -> String {
     o
 }
 
-impl super::Report for Problem {
+impl crate::physics::report::Report for Problem {
     fn predicted_seconds(&self, spec: &RunSpec, _format: Format) -> f64 {
         flows::cost_seconds(
             self,
@@ -95,7 +95,7 @@ impl super::Report for Problem {
         )
     }
 
-    fn simulate_to(&self, ask: super::Ask<'_>) -> Result<Option<Missed>, Failure> {
+    fn simulate_to(&self, ask: crate::physics::report::Ask<'_>) -> Result<Option<Missed>, Failure> {
         simulate_to(self, ask)
     }
 }

@@ -6,10 +6,10 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use super::render::{self, StatsOut};
-use super::{
-    Account, Ask, Failure, Finite, Format, Head, Missed, Resolved, Times, csv_head, energy_bound,
-    opt, times, warn_drift,
+use crate::physics::report::render::{self, StatsOut};
+use crate::physics::report::{
+    Account, Ask, Failure, Finite, Format, Head, Missed, Resolved, Times, energy_bound,
+    opt, times, warn_drift, Host,
 };
 use crate::physics::StepError;
 use crate::physics::method::RunSpec;
@@ -21,7 +21,6 @@ use crate::physics::rattleback::effective::{Effective, tapping_acceleration};
 use crate::physics::rattleback::model::{ALPHA, ALPHA_DOT, GAMMA, GAMMA_DOT, energy};
 use crate::physics::rattleback::run::{RunResult, run_cancellable, run_streaming};
 use crate::physics::rattleback::{Problem, plan};
-use crate::scenario::Preset;
 
 /// Predicted seconds of the run `spec` asks for, and of the limit's run the report compares it
 /// with (the streamed CSV of `auto` skips its verification's share).
@@ -168,9 +167,10 @@ impl EnergyOut {
 }
 
 /// Says on stderr that a run's energy drifted past [`energy_bound`].
-fn warn_energy(energy: &EnergyOut, tolerance: f64) {
+fn warn_energy(host: &dyn Host, energy: &EnergyOut, tolerance: f64) {
     if energy.exceeds_bound {
         warn_drift(
+            host,
             "the energy",
             energy.max_relative_error,
             energy_bound(tolerance),
@@ -204,18 +204,18 @@ pub(super) fn simulate_to(
     problem: &crate::physics::rattleback::Problem,
     mut ask: Ask<'_>,
 ) -> Result<Option<Missed>, Failure> {
-    let (preset, resolved) = (ask.preset, ask.resolved);
+    let resolved = ask.resolved;
     let spec = resolved.spec;
-    let clock = super::Stopwatch::start();
+    let start = ask.host.seconds();
     if ask.format == Format::Csv {
-        let (result, shortfall) = csv(preset, problem, resolved, ask.out, ask.progress)?;
+        let (result, shortfall) = csv(ask.host, problem, resolved, ask.out, ask.progress)?;
         result.finite()?;
         ask.out.flush()?;
         return Ok(shortfall);
     }
     let (result, auto) = requested_run(problem, resolved, ask.progress)?;
     let result = result.finite()?;
-    let wall_seconds = clock.seconds();
+    let wall_seconds = ask.host.seconds() - start;
     // The limit's own trajectory at t_end, for comparison (cheap: cost independent of k).
     let eff_spec = RunSpec {
         method: Method::Effective,
@@ -273,7 +273,7 @@ pub(super) fn simulate_to(
         averaged,
         stats: StatsOut::of(&result.stats, wall_seconds),
     };
-    warn_energy(&report.energy, spec.tolerance);
+    warn_energy(ask.host, &report.energy, spec.tolerance);
     ask.write(&report, table)?;
     Ok(shortfall)
 }
@@ -309,7 +309,7 @@ fn requested_run(
 /// Streams the CSV: `auto` is planned and verified first (no samples), then its plan is run
 /// again with the samples, which gives the verified run bit for bit.
 fn csv(
-    preset: &Preset,
+    host: &dyn Host,
     problem: &crate::physics::rattleback::Problem,
     resolved: &Resolved,
     out: &mut dyn std::io::Write,
@@ -339,7 +339,7 @@ fn csv(
         spec.step = plan.step;
     }
     let p = problem.params();
-    out.write_all(csv_head(preset, resolved, spec.method, spec.t_end).as_bytes())?;
+    out.write_all(host.csv_head(spec.method, spec.t_end).as_bytes())?;
     out.write_all(b"t,gamma,alpha,gamma_dot,alpha_dot,energy\n")?;
     let mut failure: Option<Failure> = None;
     let result = run_streaming(problem, &spec, progress, &mut |s| {
@@ -379,7 +379,7 @@ fn table(r: &Report) -> String {
     let _ = writeln!(
         o,
         "preset        {}",
-        crate::scenario::text::one_line(&r.head.preset)
+        r.head.preset_line
     );
     let _ = writeln!(
         o,
@@ -444,12 +444,12 @@ impl Finite for RunResult {
     }
 }
 
-impl super::Report for Problem {
+impl crate::physics::report::Report for Problem {
     fn predicted_seconds(&self, spec: &RunSpec, format: Format) -> f64 {
         predicted_seconds(self, spec, format)
     }
 
-    fn simulate_to(&self, ask: super::Ask<'_>) -> Result<Option<Missed>, Failure> {
+    fn simulate_to(&self, ask: crate::physics::report::Ask<'_>) -> Result<Option<Missed>, Failure> {
         simulate_to(self, ask)
     }
 }

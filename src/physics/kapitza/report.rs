@@ -8,8 +8,8 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use super::render::StatsOut;
-use super::{Failure, Format, Missed, Resolved, Times, compact, times};
+use crate::physics::report::render::StatsOut;
+use crate::physics::report::{Host, Failure, Format, Missed, Resolved, Times, compact, times};
 use crate::physics::Method;
 use crate::physics::StepError;
 use crate::physics::kapitza::limit::Limit;
@@ -38,7 +38,7 @@ pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::method::RunSp
 #[derive(Serialize)]
 struct Report {
     #[serde(flatten)]
-    head: super::Head<kapitza::Params, kapitza::Start, AutoOut>,
+    head: crate::physics::report::Head<kapitza::Params, kapitza::Start, AutoOut>,
     step: Option<f64>,
     t_end: f64,
     #[serde(rename = "final")]
@@ -50,7 +50,7 @@ struct Report {
 }
 
 /// `auto`'s account, with the limit's predicted model error over the run.
-type AutoOut = super::PlannedOut<ModelErrorOut>;
+type AutoOut = crate::physics::report::PlannedOut<ModelErrorOut>;
 
 #[derive(Serialize)]
 struct ModelErrorOut {
@@ -76,7 +76,7 @@ struct EventsOut {
 /// `E_eff` of the averaged start and at the end; `max_drift` the largest `|E_eff − E_eff(0)|`
 /// over the run: the limit's energy drift along the full motion (O(ε²) for a resolved run; the
 /// tolerance for the limit itself). No relative drift.
-type EnergyOut = super::render::DriftOut;
+type EnergyOut = crate::physics::report::render::DriftOut;
 
 #[derive(Serialize)]
 struct EffectiveOut {
@@ -108,7 +108,7 @@ struct EquilibriumOut {
     stable: bool,
 }
 
-impl super::Finite for RunResult {
+impl crate::physics::report::Finite for RunResult {
     fn named_numbers(&self) -> (f64, Vec<(&'static str, f64)>) {
         let numbers = vec![
             ("theta", self.theta),
@@ -181,14 +181,14 @@ fn plan_auto(
 /// Runs the pendulum's preset and writes the report.
 ///
 /// # Errors
-/// As [`super::simulate_to`].
+/// The pendulum's report (`simulate`).
 pub(super) fn simulate_to(
     problem: &Problem,
-    mut ask: super::Ask<'_>,
+    mut ask: crate::physics::report::Ask<'_>,
 ) -> Result<Option<Missed>, Failure> {
     let ran = ask.plan_and_run((problem, ask.resolved.spec), plan_auto, run::run)?;
     let (spec, result) = (ran.spec, ran.result);
-    warn_inaccurate(problem, &result, spec.tolerance);
+    warn_inaccurate(ask.host, problem, &result, spec.tolerance);
     if ask.format == Format::Csv {
         let head = ask.csv_head(spec.method, spec.t_end);
         return write_csv(problem, &head, &result, ask.out).map(|()| ran.missed);
@@ -201,7 +201,7 @@ pub(super) fn simulate_to(
         samples: 0,
         monitor_energy: true,
     };
-    let limit_run = run::run(problem, &limit_spec, ask.progress).and_then(super::Finite::finite);
+    let limit_run = run::run(problem, &limit_spec, ask.progress).and_then(crate::physics::report::Finite::finite);
     let p = problem.params();
     let s = problem.start();
     let report = Report {
@@ -239,13 +239,13 @@ pub(super) fn simulate_to(
 /// about ε² of itself in an accurate run (the averaging's own error: at most 6ε² on the shipped
 /// presets); a drift more than a hundred times that, and past what the tolerance promises, is
 /// the integration's.
-fn warn_inaccurate(problem: &Problem, result: &RunResult, tolerance: f64) {
+fn warn_inaccurate(host: &dyn Host, problem: &Problem, result: &RunResult, tolerance: f64) {
     let eps = problem.params().epsilon;
     let scale = result.energy_initial.abs().max(1.0);
     let drift = result.max_energy_drift / scale;
-    let bound = super::energy_bound(tolerance).max(100.0 * eps * eps);
+    let bound = crate::physics::report::energy_bound(tolerance).max(100.0 * eps * eps);
     if drift.is_nan() || drift > bound {
-        super::warn_drift("the limit's energy E_eff", drift, bound, tolerance);
+        crate::physics::report::warn_drift(host, "the limit's energy E_eff", drift, bound, tolerance);
     }
 }
 
@@ -323,7 +323,7 @@ fn table(r: &Report) -> String {
     let _ = writeln!(
         o,
         "preset        {} (Kapitza's pendulum)",
-        crate::scenario::text::one_line(&r.head.preset)
+        r.head.preset_line
     );
     let _ = writeln!(
         o,
@@ -336,7 +336,7 @@ fn table(r: &Report) -> String {
         r.head.initial.theta, r.head.initial.theta_dot
     );
     r.head.method_lines(&mut o, r.step, &compact(r.t_end));
-    super::render::compare_rows(
+    crate::physics::report::render::compare_rows(
         &mut o,
         "limit (ε → 0)",
         crate::physics::ModelKind::Kapitza.words(),
@@ -372,7 +372,7 @@ fn table(r: &Report) -> String {
         "E_eff         {:.12} (drift along the run {:.2e})",
         r.energy.initial, r.energy.max_drift
     );
-    super::render::work_line(&mut o, &r.stats);
+    crate::physics::report::render::work_line(&mut o, &r.stats);
     o
 }
 
@@ -387,12 +387,12 @@ fn event_times(o: &mut String, full: &[f64], limit: &[f64]) {
     }
 }
 
-impl super::Report for Problem {
+impl crate::physics::report::Report for Problem {
     fn predicted_seconds(&self, spec: &RunSpec, _format: Format) -> f64 {
         predicted_seconds(self, spec)
     }
 
-    fn simulate_to(&self, ask: super::Ask<'_>) -> Result<Option<Missed>, Failure> {
+    fn simulate_to(&self, ask: crate::physics::report::Ask<'_>) -> Result<Option<Missed>, Failure> {
         simulate_to(self, ask)
     }
 }

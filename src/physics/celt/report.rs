@@ -10,8 +10,8 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use super::render::StatsOut;
-use super::{Failure, Format, Missed, Resolved, Times, compact, times};
+use crate::physics::report::render::StatsOut;
+use crate::physics::report::{Failure, Format, Missed, Resolved, Times, compact, times};
 use crate::physics::celt::run::{self, RunResult};
 use crate::physics::celt::{self, Problem};
 use crate::physics::method::RunSpec;
@@ -29,7 +29,7 @@ pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::method::RunSp
 #[derive(Serialize)]
 struct Report {
     #[serde(flatten)]
-    head: super::Head<celt::Params, celt::Start, AutoOut>,
+    head: crate::physics::report::Head<celt::Params, celt::Start, AutoOut>,
     t_end: f64,
     /// The chirality of the body: the turn of the principal axes from the long axis (degrees).
     skew_degrees: f64,
@@ -43,7 +43,7 @@ struct Report {
 
 /// `auto`'s account: the celt adds nothing of its own (`error_estimate` is the verified error of
 /// the spin and the final ω, rad/s).
-type AutoOut = super::PlannedOut<NoExtra>;
+type AutoOut = crate::physics::report::PlannedOut<NoExtra>;
 
 #[derive(Serialize)]
 struct NoExtra {}
@@ -77,7 +77,7 @@ struct EventsOut {
 
 /// The energy: `max_drift` the largest `|E − E(0)|` over accepted steps, `rel_drift` that over
 /// `|E(0)|`.
-type EnergyOut = super::render::DriftOut;
+type EnergyOut = crate::physics::report::render::DriftOut;
 
 #[derive(Serialize)]
 struct ConstraintOut {
@@ -86,7 +86,7 @@ struct ConstraintOut {
     contact_height_max: f64,
 }
 
-impl super::Finite for RunResult {
+impl crate::physics::report::Finite for RunResult {
     fn named_numbers(&self) -> (f64, Vec<(&'static str, f64)>) {
         let state = self.state.iter().map(|&x| ("the state", x));
         let energy = [self.energy_final, self.max_energy_drift].map(|e| ("the energy", e));
@@ -119,10 +119,10 @@ fn plan_auto(
 /// Runs the celt's preset and writes the report.
 ///
 /// # Errors
-/// As [`super::simulate_to`].
+/// The celt's report (`simulate`).
 pub(super) fn simulate_to(
     problem: &Problem,
-    mut ask: super::Ask<'_>,
+    mut ask: crate::physics::report::Ask<'_>,
 ) -> Result<Option<Missed>, Failure> {
     let ran = ask.plan_and_run(
         (
@@ -139,9 +139,9 @@ pub(super) fn simulate_to(
     // Nothing dissipates: the energy is conserved, and its drift says what the rattleback's
     // says (issue 56).
     let drift = result.max_energy_drift / result.energy_initial.abs().max(f64::MIN_POSITIVE);
-    let bound = super::energy_bound(spec.tolerance);
+    let bound = crate::physics::report::energy_bound(spec.tolerance);
     if drift.is_nan() || drift > bound {
-        super::warn_drift("the energy", drift, bound, spec.tolerance);
+        crate::physics::report::warn_drift(ask.host, "the energy", drift, bound, spec.tolerance);
     }
     if ask.format == Format::Csv {
         let head = ask.csv_head(spec.method, spec.t_end);
@@ -206,7 +206,7 @@ fn table(r: &Report) -> String {
     let _ = writeln!(
         o,
         "preset        {} (classical rattleback, celt)",
-        crate::scenario::text::one_line(&r.head.preset)
+        r.head.preset_line
     );
     let _ = writeln!(
         o,
@@ -260,16 +260,16 @@ fn table(r: &Report) -> String {
         "constraints   |gamma| - 1 {:.1e}, |q| - 1 {:.1e}, contact height {:.1e} cm",
         c.gamma_norm_error, c.quat_norm_error, c.contact_height_max
     );
-    super::render::work_line(&mut o, &r.stats);
+    crate::physics::report::render::work_line(&mut o, &r.stats);
     o
 }
 
-impl super::Report for Problem {
+impl crate::physics::report::Report for Problem {
     fn predicted_seconds(&self, spec: &RunSpec, _format: Format) -> f64 {
         predicted_seconds(self, spec)
     }
 
-    fn simulate_to(&self, ask: super::Ask<'_>) -> Result<Option<Missed>, Failure> {
+    fn simulate_to(&self, ask: crate::physics::report::Ask<'_>) -> Result<Option<Missed>, Failure> {
         simulate_to(self, ask)
     }
 }

@@ -1,4 +1,4 @@
-//! What every model's report shares: the work counters, the JSON rendering, and the table's
+//! What every model's report shares: the work counters and the table's
 //! method, comparison and work lines (each model's report keeps only its own sections, whose
 //! names are a contract).
 
@@ -6,7 +6,6 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use super::Format;
 use crate::physics::Method;
 use crate::physics::numerics::dop853::Stats;
 use crate::physics::scene::Words;
@@ -29,24 +28,6 @@ impl StatsOut {
             rhs_evaluations: stats.rhs_evaluations,
             wall_seconds,
         }
-    }
-}
-
-/// `report` as `format` says: pretty JSON (control characters escaped), else `table()`.
-pub(crate) fn text(
-    format: Format,
-    report: &impl Serialize,
-    table: impl FnOnce() -> String,
-) -> String {
-    match format {
-        Format::Json => {
-            let mut s = crate::scenario::text::json_safe(
-                &serde_json::to_string_pretty(report).expect("report serializes"),
-            );
-            s.push('\n');
-            s
-        }
-        Format::Table | Format::Csv => table(),
     }
 }
 
@@ -136,7 +117,7 @@ pub(crate) fn work_line(o: &mut String, s: &StatsOut) {
 /// both ends, the largest drift over the run, and where the scene says it, that drift relative
 /// to the start (issue 69: one struct, not one per report).
 #[derive(Serialize)]
-pub(super) struct DriftOut {
+pub(crate) struct DriftOut {
     pub initial: f64,
     #[serde(rename = "final")]
     pub final_: f64,
