@@ -222,7 +222,7 @@ macro_rules! registry {
 
 /// The registry: one line a scene (its name, its folder under `physics`, its chart type). Every
 /// dispatch over the scenes is generated from it: `with_scenes!(then)` calls the macro `then`
-/// with the list (here `registry`; `simulate`'s report dispatch; …). A test scene carries its
+/// with the list (here `registry`; `simulate`'s dispatch to each folder's `report.rs`; …). A test scene carries its
 /// `cfg` on its own line.
 macro_rules! with_scenes {
     ($then:ident) => {

@@ -66,6 +66,53 @@ fn physics_is_headless() {
     );
 }
 
+/// Issue 83: a scene's report is its folder's (`physics/NAME/report.rs`), written with what every
+/// report shares (`physics::report`, which names no scene) and hosted by `simulate` (the
+/// preset, the clock, the warnings): `simulate/` holds no scene's file, and neither
+/// `physics::report` nor a scene's report reaches a layer above `physics`.
+#[test]
+fn a_scenes_report_is_in_its_folder_and_reaches_nothing_above() {
+    for kind in rattleback::physics::ModelKind::ALL {
+        let folder = kind.name();
+        assert!(
+            src().join(format!("physics/{folder}/report.rs")).is_file(),
+            "{folder}: no report in its folder"
+        );
+        assert!(
+            !src().join(format!("simulate/{folder}.rs")).exists(),
+            "{folder}: a report outside its folder"
+        );
+    }
+    let above = [
+        "crate::simulate",
+        "crate::scenario",
+        "crate::study",
+        "crate::commands",
+        "crate::record",
+        "std::io::stderr",
+        "eprintln!",
+    ];
+    let mut files = layer("physics/report");
+    for kind in rattleback::physics::ModelKind::ALL {
+        files.extend(layer(&format!("physics/{}/report", kind.name())));
+    }
+    for (file, text) in &files {
+        for b in above {
+            assert!(!text.contains(b), "{} mentions {b}", file.display());
+        }
+    }
+    for (file, text) in layer("physics/report") {
+        for kind in rattleback::physics::ModelKind::ALL {
+            let name = kind.name();
+            assert!(
+                !text.contains(&format!("physics::{name}")),
+                "{} names the {name} scene",
+                file.display()
+            );
+        }
+    }
+}
+
 #[test]
 fn each_layer_imports_only_below_it() {
     let above_physics = ["crate::sim", "crate::app", "crate::ui", "crate::record"];
@@ -322,8 +369,8 @@ fn no_old_paths_and_no_model_reexports() {
 /// file (`#[cfg(test)]`) are left out.
 #[test]
 fn a_model_is_dispatched_in_few_places() {
-    // Issue 69: outside its folder, the registry (`physics/models.rs`) and files named after it
-    // (`simulate/celt.rs`), each scene's variant is named in at most two files, tests included.
+    // Issue 69: outside its folder, the registry (`physics/models.rs`) and files named after it,
+    // each scene's variant is named in at most two files, tests included.
     // Generated from the registry (a guard listing scenes by hand missed the third).
     let mut files = Vec::new();
     rust_files(&src(), &mut files);

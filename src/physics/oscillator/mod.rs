@@ -5,9 +5,8 @@
 //! `auto` is the one verification loop with DOP853 against a companion; its chart counts the
 //! crossings over `(ω, v0)`.
 //!
-//! Outside this folder it needs the registry (`physics/models.rs`, which also declares this
-//! module), the one dispatch of `simulate` (`simulate/mod.rs`) and its report
-//! (`simulate/oscillator.rs`).
+//! Outside this folder it needs its registry line (`physics/models.rs`, which also declares
+//! this module and generates `simulate`'s dispatch to its report, `report.rs`).
 use crate::physics::numerics::elementary::Elementary;
 
 pub mod chart;

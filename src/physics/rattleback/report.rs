@@ -1,6 +1,6 @@
 //! The rattleback's report: its JSON sections (a contract), its CSV and its table, on top of
-//! the shared head and accounts (`simulate/mod.rs`), as the other scenes' (`kapitza.rs`,
-//! `celt.rs`).
+//! the shared head and accounts (`physics::report`), as the other scenes' (`kapitza/report.rs`,
+//! `celt/report.rs`).
 
 use std::fmt::Write as _;
 
