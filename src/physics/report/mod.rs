@@ -49,7 +49,7 @@ pub enum Format {
 pub struct Resolved {
     /// Run settings.
     pub spec: RunSpec,
-    /// Work budget in predicted seconds ([`BUDGET_SECONDS`], or infinite when forced).
+    /// Work budget in predicted seconds ([`BUDGET_SECONDS`](super::budget::BUDGET_SECONDS), or infinite when forced).
     pub budget: f64,
 }
 
