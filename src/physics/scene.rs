@@ -140,6 +140,9 @@ pub struct ChartWords {
     pub heading: &'static str,
     /// The text table's key to its glyphs.
     pub legend: &'static str,
+    /// What the map pane's cells mean, for its legend: a cell with an answer (its count's
+    /// shades, or a yes), and an undecided one.
+    pub pane_legend: [&'static str; 2],
     /// The fields of its cells, in order: the CSV's columns, and the JSON cell's fields
     /// (issue 83: the scene's own [`Field`](super::chart::Field)s among them, one its
     /// answer, a count or a yes/no).

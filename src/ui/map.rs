@@ -63,31 +63,12 @@ pub fn legend(facts: &Facts<'_>, look: &Look<'_>) -> Section {
     let answer = crate::physics::chart::answer_field(words.csv);
     let section = if answer.is_some_and(|f| f.kind == crate::physics::chart::Kind::Flag) {
         Section::new(words.title)
-            .mark(
-                printed(look, STABLE),
-                t.trail,
-                "stable (|tr M| < 2 over one period; blank: unstable)",
-            )
-            .mark(
-                printed(look, UNDECIDED),
-                t.dim,
-                "too close to call (| |tr| - 2 | within its error)",
-            )
+            .mark(printed(look, STABLE), t.trail, words.pane_legend[0])
+            .mark(printed(look, UNDECIDED), t.dim, words.pane_legend[1])
     } else {
         Section::new(words.title)
-            .mark(
-                ramp,
-                t.trail,
-                format!(
-                    "{} in [0, T]: 1, 2-3, 4-7, 8 or more (blank: none)",
-                    words.heading
-                ),
-            )
-            .mark(
-                printed(look, UNDECIDED),
-                t.dim,
-                "undecided: two tolerances count differently (a chaotic window)",
-            )
+            .mark(ramp, t.trail, words.pane_legend[0])
+            .mark(printed(look, UNDECIDED), t.dim, words.pane_legend[1])
     };
     section
         .mark(printed(look, glyph(None)), t.dim, "a cell not computed yet")

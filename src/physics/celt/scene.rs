@@ -200,6 +200,10 @@ pub static SCENE: Scene = Scene {
             axis_keys: super::chart::AXES,
             heading: "reversals",
             legend: ". none, 1-9 reversals, + 10 or more, ? two tolerances disagree",
+            pane_legend: [
+                "reversals in [0, T]: 1, 2-3, 4-7, 8 or more (blank: none)",
+                "undecided: two tolerances count differently (a chaotic window)",
+            ],
             csv: super::chart::COLUMNS,
             flags: &[
                 MapFlag::Columns,

@@ -114,6 +114,10 @@ pub static SCENE: Scene = Scene {
             axis_keys: super::chart::AXES,
             heading: "stability of the pendulum",
             legend: "# stable, . unstable, ? too close to call",
+            pane_legend: [
+                "stable (|tr M| < 2 over one period; blank: unstable)",
+                "too close to call (| |tr| - 2 | within its error)",
+            ],
             csv: super::chart::COLUMNS,
             flags: &[
                 MapFlag::Columns,

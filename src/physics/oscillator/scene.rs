@@ -131,6 +131,10 @@ pub static SCENE: Scene = Scene {
             axis_keys: super::chart::AXES,
             heading: "crossings",
             legend: ". none, 1-9 crossings, + 10 or more",
+            pane_legend: [
+                "crossings in [0, T]: 1, 2-3, 4-7, 8 or more (blank: none)",
+                "undecided (never: each count is exact or verified)",
+            ],
             csv: super::chart::COLUMNS,
             flags: &[MapFlag::Columns, MapFlag::Rows, MapFlag::TEnd],
         },
