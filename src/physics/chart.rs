@@ -1,9 +1,10 @@
-//! What every scene's chart is made of (issue 69): its axes, a cell's verdict and output, what
-//! `study map` asks, and the two traits a scene implements in its own folder
-//! (`rattleback/chart.rs`, `kapitza/chart.rs`, `celt/chart.rs`):
+//! What every scene's chart is made of (issue 69): its axes, what `study map` asks, and the
+//! two traits a scene implements in its own folder (`rattleback/chart.rs`, `kapitza/chart.rs`,
+//! `celt/chart.rs`); a cell's verdict and its written fields are the scene's own words
+//! ([`super::cell`], re-exported here):
 //!
 //! - [`SceneChart`], a built chart's facts: its title, axes, the cell at an index, the theory's
-//!   curve, its cost, the fields its cells carry out and read back;
+//!   curve, its cost;
 //! - [`ChartOf`], how the scene builds one from its problem (for the explorer's pane or for
 //!   `study map`) and loads a cell back into a problem.
 //!
