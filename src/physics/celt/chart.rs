@@ -452,7 +452,10 @@ mod tests {
                 t_end: 2.0 + 14.0 * uniform(),
                 tolerance: 10f64.e_powf(-2.0 - 4.0 * uniform()),
             };
-            lanes_are_lone_runs(&chart, &format!("seed {seed} window {window} ({name}): {chart:?}"));
+            lanes_are_lone_runs(
+                &chart,
+                &format!("seed {seed} window {window} ({name}): {chart:?}"),
+            );
         }
     }
 }

@@ -18,8 +18,6 @@ fn reference() -> serde_json::Value {
         .map_or(serde_json::Value::Null, |c| c["reference"].clone())
 }
 
-
-
 impl Contract for Case {
     const PRESET: PresetText = PresetText::Shipped("celt-clockwise");
 

@@ -211,7 +211,7 @@ mod tests {
             + 2.0 * (q2 * q3 - q0 * q1) * v.z;
         out[12] = w.dot(&g);
         out
-        }
+    }
 
     /// On states drawn from a printed seed around every shipped celt body: the scalar form is
     /// the `nalgebra` form's bits, and each lane of the batched form is the scalar form's.
@@ -246,14 +246,23 @@ mod tests {
                 y
             });
             let packed = Coefficients::lanes(std::array::from_fn(|l| &lanes[l]));
-            let y4: [F64x4; DIM] = std::array::from_fn(|i| F64x4(std::array::from_fn(|l| ys[l][i])));
+            let y4: [F64x4; DIM] =
+                std::array::from_fn(|i| F64x4(std::array::from_fn(|l| ys[l][i])));
             let out4 = packed.field(&y4);
             for l in 0..LANES {
                 let reference = written_with_nalgebra(&lanes[l], &super::super::State::from(ys[l]));
                 let scalar = Coefficients::of(&lanes[l]).field(&ys[l]);
                 for i in 0..DIM {
-                    assert_eq!(scalar[i].to_bits(), reference[i].to_bits(), "seed {seed} round {round} component {i}");
-                    assert_eq!(out4[i].0[l].to_bits(), scalar[i].to_bits(), "seed {seed} round {round} lane {l}");
+                    assert_eq!(
+                        scalar[i].to_bits(),
+                        reference[i].to_bits(),
+                        "seed {seed} round {round} component {i}"
+                    );
+                    assert_eq!(
+                        out4[i].0[l].to_bits(),
+                        scalar[i].to_bits(),
+                        "seed {seed} round {round} lane {l}"
+                    );
                 }
             }
         }

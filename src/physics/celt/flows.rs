@@ -16,10 +16,10 @@
 //! [`crate::physics::flow::EventTracker`] counts reversals and asks [`Flow::locate_event`] for
 //! that crossing.
 
+use super::field::Coefficients;
 use super::{DIM, Params, Problem, State, lean, spin, tilt};
 use crate::physics::flow::{Flow, Sample};
 use crate::physics::method::{Method, Settings, StepError};
-use super::field::Coefficients;
 use crate::physics::numerics::dop853::{Dop853, Field};
 use crate::physics::numerics::dop853_lanes::Packs;
 use crate::physics::numerics::lanes::{F64x4, LANES};
@@ -184,7 +184,11 @@ impl CeltFlow {
                     ts[k]
                 } else {
                     let core = &mut self.core;
-                    find_root(|t| spin_of(&core.interpolate_first::<6>(t)), ts[k], ts[k + 1])
+                    find_root(
+                        |t| spin_of(&core.interpolate_first::<6>(t)),
+                        ts[k],
+                        ts[k + 1],
+                    )
                 };
                 self.marks.push(t);
                 self.last_crossing = Some(t);

@@ -10,12 +10,12 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use crate::physics::report::render::StatsOut;
-use crate::physics::report::{Failure, Format, Missed, Resolved, Times, compact, times};
 use crate::physics::celt::run::{self, RunResult};
 use crate::physics::celt::{self, Problem};
 use crate::physics::method::RunSpec;
 use crate::physics::plan::Shortfall;
+use crate::physics::report::render::StatsOut;
+use crate::physics::report::{Failure, Format, Missed, Resolved, Times, compact, times};
 
 /// Predicted seconds of the run `spec` asks for (the celt's cost model, [`celt::budget`]).
 #[must_use]

@@ -163,7 +163,11 @@ fn replay(
         known: Some(known),
         missing: Vec::new(),
     };
-    let v = verify(&mut candidate, Rounds::unbudgeted(first_local(tolerance), tolerance), go_on);
+    let v = verify(
+        &mut candidate,
+        Rounds::unbudgeted(first_local(tolerance), tolerance),
+        go_on,
+    );
     if candidate.missing.is_empty() {
         Ok(v.map(concluded))
     } else {

@@ -12,9 +12,9 @@ use super::{DIM, Problem, State, gamma, spin};
 use crate::physics::drive::{Course, Drift, Driven, Driver, Watch, drive};
 use crate::physics::flow::{Flow, GoOn};
 use crate::physics::method::{Asked, Method, StepError};
+use crate::physics::numerics::dop853::Stats;
 use crate::physics::numerics::dop853_lanes::{Packs, Scratch, attempt};
 use crate::physics::numerics::lanes::LANES;
-use crate::physics::numerics::dop853::Stats;
 
 /// Most event times kept of each kind; later ones are counted only.
 pub const MAX_EVENT_TIMES: usize = crate::physics::drive::KEPT;
@@ -287,8 +287,12 @@ pub fn count_in_lanes(jobs: &mut dyn Jobs, go_on: GoOn) {
                         scratch.hand_over(lane.flow.core(), l);
                     }
                     lane.flow.stepped();
-                    lane.driver.after(&mut lane.flow, &lane.course, &mut Unwatched);
-                    match lane.driver.before(&mut lane.flow, &lane.course, go_on, &mut Unwatched) {
+                    lane.driver
+                        .after(&mut lane.flow, &lane.course, &mut Unwatched);
+                    match lane
+                        .driver
+                        .before(&mut lane.flow, &lane.course, go_on, &mut Unwatched)
+                    {
                         Ok(true) => continue,
                         Ok(false) => Ok(()),
                         Err(e) => Err(e),

@@ -10,7 +10,6 @@ use crate::physics::numerics::elementary::Elementary;
 
 use super::{Params, Problem, Start, TILT_MAX};
 use crate::physics::chart::MapFlag;
-use crate::physics::scene::{FreeRotor, SlowLimit};
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
@@ -23,6 +22,7 @@ use crate::physics::scene::{
     ChartWords, Drawing, Found, Planned, Posed, Scene, SecondEvents, Shown, SideView, SlowCurve,
     Studies, SummaryLine, WeakStudy, Words,
 };
+use crate::physics::scene::{FreeRotor, SlowLimit};
 
 const LENGTH: Scale = Scale::linear(0.1, 1.0);
 const INERTIA: Scale = Scale::linear(0.1, 1.0);
@@ -366,7 +366,9 @@ impl Posed for Problem {
 }
 
 /// What a plan of this scene was resolved for (the registry's `PlanKey` holds it) (field names differ from the other scenes': the untagged form stays unambiguous).
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[schemars(inline)]
 pub struct PlanKey {
     /// The body.

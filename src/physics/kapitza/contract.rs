@@ -33,8 +33,6 @@ tolerance = 1e-9
 /// The Taylor reference's `(θ, θ̇)` at t = 5 (`tests/fixtures/reference/kapitza.toml`).
 const AT_END: (f64, f64) = (0.026_960_167_219_073_763, 0.238_242_026_069_604_37);
 
-
-
 impl Contract for Case {
     const PRESET: PresetText = PresetText::Toml(PRESET);
 

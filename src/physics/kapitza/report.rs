@@ -8,14 +8,14 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use crate::physics::report::render::StatsOut;
-use crate::physics::report::{Host, Failure, Format, Missed, Resolved, Times, compact, times};
 use crate::physics::Method;
 use crate::physics::StepError;
 use crate::physics::kapitza::limit::Limit;
 use crate::physics::kapitza::run::{self, RunResult};
 use crate::physics::kapitza::{self, FastPhase, Problem, plan};
 use crate::physics::method::RunSpec;
+use crate::physics::report::render::StatsOut;
+use crate::physics::report::{Failure, Format, Host, Missed, Resolved, Times, compact, times};
 
 /// Predicted seconds of the run `spec` asks for (the pendulum's cost model,
 /// [`kapitza::budget`]).
@@ -201,7 +201,8 @@ pub(super) fn simulate_to(
         samples: 0,
         monitor_energy: true,
     };
-    let limit_run = run::run(problem, &limit_spec, ask.progress).and_then(crate::physics::report::Finite::finite);
+    let limit_run = run::run(problem, &limit_spec, ask.progress)
+        .and_then(crate::physics::report::Finite::finite);
     let p = problem.params();
     let s = problem.start();
     let report = Report {
@@ -245,7 +246,13 @@ fn warn_inaccurate(host: &dyn Host, problem: &Problem, result: &RunResult, toler
     let drift = result.max_energy_drift / scale;
     let bound = crate::physics::report::energy_bound(tolerance).max(100.0 * eps * eps);
     if drift.is_nan() || drift > bound {
-        crate::physics::report::warn_drift(host, "the limit's energy E_eff", drift, bound, tolerance);
+        crate::physics::report::warn_drift(
+            host,
+            "the limit's energy E_eff",
+            drift,
+            bound,
+            tolerance,
+        );
     }
 }
 

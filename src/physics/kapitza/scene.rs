@@ -5,7 +5,6 @@
 use super::limit::Limit;
 use super::{EPSILON_MAX, EPSILON_MIN, Params, Problem, Start};
 use crate::physics::chart::MapFlag;
-use crate::physics::scene::SlowLimit;
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
@@ -14,6 +13,7 @@ use crate::physics::method::RunSpec;
 use crate::physics::method::{Method, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
 use crate::physics::plan::{PlanRequest, Resolution, Resolved};
+use crate::physics::scene::SlowLimit;
 use crate::physics::scene::{
     ChartWords, Drawing, Found, Pivot, Planned, Posed, Scene, SecondEvents, Shown, SlowCurve,
     SmallParameter, Studies, SummaryLine, WeakStudy, WeakView, WeakWords, Words,
@@ -277,7 +277,9 @@ impl WeakStudy for Problem {
 }
 
 /// What a plan of this scene was resolved for (the registry's `PlanKey` holds it).
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[schemars(inline)]
 pub struct PlanKey {
     /// `a`, `b`, `epsilon`.

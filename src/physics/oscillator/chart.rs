@@ -6,8 +6,8 @@ use std::collections::BTreeMap;
 
 use super::{Params, Problem, Start};
 use crate::physics::chart::{
-    Axis, ChartError, ChartOf, Column, Field, Header, Kind, PaneAsk, SceneChart, StudyAsk,
-    Verdict, tick,
+    Axis, ChartError, ChartOf, Column, Field, Header, Kind, PaneAsk, SceneChart, StudyAsk, Verdict,
+    tick,
 };
 use crate::physics::method::{Asked, Method, RunSpec};
 use crate::physics::{ParamError, StepError};

@@ -6,11 +6,11 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use crate::physics::report::render::StatsOut;
-use crate::physics::report::{Failure, Format, Missed, Resolved, Times};
 use crate::physics::method::{Asked, RunSpec};
 use crate::physics::oscillator::flows::{self, RunResult};
 use crate::physics::oscillator::{Params, Problem, Start};
+use crate::physics::report::render::StatsOut;
+use crate::physics::report::{Failure, Format, Missed, Resolved, Times};
 
 #[derive(Serialize)]
 struct Report {
@@ -51,7 +51,10 @@ fn plan_auto(
     Ok(AutoOut::of(&r, run, reason, NoExtra {}))
 }
 
-fn simulate_to(problem: &Problem, mut ask: crate::physics::report::Ask<'_>) -> Result<Option<Missed>, Failure> {
+fn simulate_to(
+    problem: &Problem,
+    mut ask: crate::physics::report::Ask<'_>,
+) -> Result<Option<Missed>, Failure> {
     let ran = ask.plan_and_run((problem, ask.resolved.spec), plan_auto, flows::run)?;
     let (spec, result) = (ran.spec, ran.result);
     if ask.format == Format::Csv {

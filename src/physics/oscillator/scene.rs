@@ -3,7 +3,6 @@ use crate::physics::numerics::elementary::Elementary;
 
 use super::{Params, Problem, Start};
 use crate::physics::chart::MapFlag;
-use crate::physics::scene::{FreeRotor, SlowLimit};
 use crate::physics::flow::{Flow, GoOn};
 use crate::physics::method::{Arithmetic, Asked, Method, RunSpec, StepError};
 use crate::physics::params::{Allowed, ParamError, ParamSpec, Scale};
@@ -12,6 +11,7 @@ use crate::physics::scene::{
     ChartWords, Drawing, Figure, Ink, Planned, Posed, Scene, Shape, Shown, SlowCurve, Studies,
     SummaryLine, WeakStudy, Words,
 };
+use crate::physics::scene::{FreeRotor, SlowLimit};
 
 /// The oscillator's figure (issue 83: a body of a new kind, drawn from its folder): a wall at
 /// the left, the spring as a zigzag to the mass at `x` (its amplitude `knobs[0]` reaching 0.8
@@ -219,7 +219,9 @@ impl Posed for Problem {
 }
 
 /// What a plan of this scene was resolved for (the registry's `PlanKey` holds it) (field names differ from the other scenes': the untagged form stays unambiguous).
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[schemars(inline)]
 pub struct PlanKey {
     /// `omega`.

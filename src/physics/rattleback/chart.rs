@@ -15,7 +15,11 @@ use crate::physics::{ParamError, Posed as _, StepError};
 /// The fields of its cells (issue 83: declared here, written and read back from this list):
 /// the two ratios at the cell's centre, its reversals and, since issue 80, the first and last.
 pub const COLUMNS: &[Column] = &[
-    Column::Across(Field::new("ratio", Kind::Number, "The rattleback's `α̇0²/γ̇0²`.")),
+    Column::Across(Field::new(
+        "ratio",
+        Kind::Number,
+        "The rattleback's `α̇0²/γ̇0²`.",
+    )),
     Column::Up(Field::new(
         "inertia_ratio",
         Kind::Number,

@@ -60,7 +60,10 @@ impl Contract for Case {
     fn check_run(json: &serde_json::Value) -> Result<(), Mismatch> {
         near("α(30)", num(&json["final"]["alpha"]), ALPHA, 1e-6)?;
         near("α̇(30)", num(&json["final"]["alpha_dot"]), ALPHA_DOT, 1e-6)?;
-        let times = json["reversals"]["times"].as_array().cloned().unwrap_or_default();
+        let times = json["reversals"]["times"]
+            .as_array()
+            .cloned()
+            .unwrap_or_default();
         if times.len() != TIMES.len() {
             return Mismatch::err(format!("{} reversals against {}", times.len(), TIMES.len()));
         }
@@ -89,7 +92,9 @@ impl Contract for Case {
         let trapped = iy < ix && w * w < (ix / iz) * ((ix / iy).sqrt() - 1.0);
         let got = cell["reversals"].as_u64();
         if trapped != got.is_some_and(|n| n > 0) {
-            return Mismatch::err(format!("{got:?} reversals, theorem 1.1 says trapped {trapped}"));
+            return Mismatch::err(format!(
+                "{got:?} reversals, theorem 1.1 says trapped {trapped}"
+            ));
         }
         let times = effective_reversals(ix, iy, iz, w, 30.0);
         if times.last().is_some_and(|t| 30.0 - t < 1e-6) {

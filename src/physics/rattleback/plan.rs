@@ -7,7 +7,6 @@
 //! integrates the recorded plan, so a later change of `auto` never breaks an old session.
 
 use super::auto;
-use crate::physics::numerics::elementary::Elementary as _;
 use super::budget;
 use super::params::Problem;
 use super::policy::POLICY;
@@ -15,6 +14,7 @@ use crate::physics::method::Asked;
 use crate::physics::method::Method;
 use crate::physics::method::RunSpec;
 use crate::physics::method::StepError;
+use crate::physics::numerics::elementary::Elementary as _;
 use crate::physics::plan::{AutoRules, Resolution, Resolved};
 
 /// Resolves `method` for `problem` over `[0, t_end]` at `tolerance`; `go_on(t)` is asked every
@@ -166,7 +166,9 @@ mod tests {
             inertia: (0.1, 10.0),
             ..Grid::new(100, 50, 2.0, 1.0, 1.0, 30.0)
         };
-        let cell = grid.problem(grid.ratio(82), grid.inertia_ratio(4), k).unwrap();
+        let cell = grid
+            .problem(grid.ratio(82), grid.inertia_ratio(4), k)
+            .unwrap();
         let ask = Asked::new(Method::Auto, tolerance, None, 30.0);
         assert!(auto::considers_averaged(&cell, tolerance, 30.0));
         let decision = auto::plan_cancellable(&cell, tolerance, 30.0, &mut |_| true).unwrap();

@@ -6,11 +6,6 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use crate::physics::report::render::{self, StatsOut};
-use crate::physics::report::{
-    Account, Ask, Failure, Finite, Format, Head, Missed, Resolved, Times, energy_bound,
-    opt, times, warn_drift, Host,
-};
 use crate::physics::StepError;
 use crate::physics::method::RunSpec;
 use crate::physics::method::{Asked, Method};
@@ -21,6 +16,11 @@ use crate::physics::rattleback::effective::{Effective, tapping_acceleration};
 use crate::physics::rattleback::model::{ALPHA, ALPHA_DOT, GAMMA, GAMMA_DOT, energy};
 use crate::physics::rattleback::run::{RunResult, run_cancellable, run_streaming};
 use crate::physics::rattleback::{Problem, plan};
+use crate::physics::report::render::{self, StatsOut};
+use crate::physics::report::{
+    Account, Ask, Failure, Finite, Format, Head, Host, Missed, Resolved, Times, energy_bound, opt,
+    times, warn_drift,
+};
 
 /// Predicted seconds of the run `spec` asks for, and of the limit's run the report compares it
 /// with (the streamed CSV of `auto` skips its verification's share).
@@ -376,11 +376,7 @@ fn csv(
 fn table(r: &Report) -> String {
     let mut o = String::new();
     let e = &r.effective;
-    let _ = writeln!(
-        o,
-        "preset        {}",
-        r.head.preset_line
-    );
+    let _ = writeln!(o, "preset        {}", r.head.preset_line);
     let _ = writeln!(
         o,
         "body          ix = {}, iy = {}, iz = {}, k = {:e}",

@@ -7,7 +7,6 @@ use super::integrators;
 use super::model::ALPHA;
 use super::params::{Params, Problem, Start};
 use crate::physics::chart::MapFlag;
-use crate::physics::scene::SlowLimit;
 use crate::physics::flow::Flow;
 use crate::physics::flow::GoOn;
 use crate::physics::method::Arithmetic;
@@ -16,6 +15,7 @@ use crate::physics::method::RunSpec;
 use crate::physics::method::{Method, StepError};
 use crate::physics::params::ParamError;
 use crate::physics::plan::PlanRequest;
+use crate::physics::scene::SlowLimit;
 use crate::physics::scene::{
     ChartWords, Drawing, Planned, Posed, Scene, Shown, SlowCurve, SmallParameter, Studies,
     SummaryLine, WeakStudy, WeakView, WeakWords, Words,
@@ -255,7 +255,9 @@ impl WeakStudy for Problem {
 }
 
 /// What a plan of this scene was resolved for (the registry's `PlanKey` holds it).
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[schemars(inline)]
 pub struct PlanKey {
     /// Body and spring.
