@@ -14,8 +14,10 @@ use crate::physics::celt::run::{self, RunResult};
 use crate::physics::celt::{self, Problem};
 use crate::physics::method::RunSpec;
 use crate::physics::plan::Shortfall;
-use crate::physics::report::render::StatsOut;
-use crate::physics::report::{Failure, Format, Missed, Resolved, Times, compact, times};
+use crate::physics::report::{
+    Ask, Failure, Finite, Format, Head, Missed, PlannedOut, Resolved, Times, compact, energy_bound,
+    render, times, warn_drift,
+};
 
 /// Predicted seconds of the run `spec` asks for (the celt's cost model, [`celt::budget`]).
 #[must_use]
@@ -29,7 +31,7 @@ pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::method::RunSp
 #[derive(Serialize)]
 struct Report {
     #[serde(flatten)]
-    head: crate::physics::report::Head<celt::Params, celt::Start, AutoOut>,
+    head: Head<celt::Params, celt::Start, AutoOut>,
     t_end: f64,
     /// The chirality of the body: the turn of the principal axes from the long axis (degrees).
     skew_degrees: f64,
@@ -38,12 +40,12 @@ struct Report {
     events: EventsOut,
     energy: EnergyOut,
     constraint: ConstraintOut,
-    stats: StatsOut,
+    stats: render::StatsOut,
 }
 
 /// `auto`'s account: the celt adds nothing of its own (`error_estimate` is the verified error of
 /// the spin and the final ω, rad/s).
-type AutoOut = crate::physics::report::PlannedOut<NoExtra>;
+type AutoOut = PlannedOut<NoExtra>;
 
 #[derive(Serialize)]
 struct NoExtra {}
@@ -77,7 +79,7 @@ struct EventsOut {
 
 /// The energy: `max_drift` the largest `|E − E(0)|` over accepted steps, `rel_drift` that over
 /// `|E(0)|`.
-type EnergyOut = crate::physics::report::render::DriftOut;
+type EnergyOut = render::DriftOut;
 
 #[derive(Serialize)]
 struct ConstraintOut {
@@ -86,7 +88,7 @@ struct ConstraintOut {
     contact_height_max: f64,
 }
 
-impl crate::physics::report::Finite for RunResult {
+impl Finite for RunResult {
     fn named_numbers(&self) -> (f64, Vec<(&'static str, f64)>) {
         let state = self.state.iter().map(|&x| ("the state", x));
         let energy = [self.energy_final, self.max_energy_drift].map(|e| ("the energy", e));
@@ -120,10 +122,7 @@ fn plan_auto(
 ///
 /// # Errors
 /// The celt's report (`simulate`).
-pub(super) fn simulate_to(
-    problem: &Problem,
-    mut ask: crate::physics::report::Ask<'_>,
-) -> Result<Option<Missed>, Failure> {
+pub(super) fn simulate_to(problem: &Problem, mut ask: Ask<'_>) -> Result<Option<Missed>, Failure> {
     let ran = ask.plan_and_run(
         (
             problem,
@@ -139,9 +138,9 @@ pub(super) fn simulate_to(
     // Nothing dissipates: the energy is conserved, and its drift says what the rattleback's
     // says (issue 56).
     let drift = result.max_energy_drift / result.energy_initial.abs().max(f64::MIN_POSITIVE);
-    let bound = crate::physics::report::energy_bound(spec.tolerance);
+    let bound = energy_bound(spec.tolerance);
     if drift.is_nan() || drift > bound {
-        crate::physics::report::warn_drift(ask.host, "the energy", drift, bound, spec.tolerance);
+        warn_drift(ask.host, "the energy", drift, bound, spec.tolerance);
     }
     if ask.format == Format::Csv {
         let head = ask.csv_head(spec.method, spec.t_end);
@@ -186,7 +185,7 @@ pub(super) fn simulate_to(
             quat_norm_error: result.quat_norm_error,
             contact_height_max: result.contact_height_max,
         },
-        stats: StatsOut::of(&result.stats, ran.wall_seconds),
+        stats: render::StatsOut::of(&result.stats, ran.wall_seconds),
     };
     ask.write(&report, table)?;
     Ok(ran.missed)
@@ -260,7 +259,7 @@ fn table(r: &Report) -> String {
         "constraints   |gamma| - 1 {:.1e}, |q| - 1 {:.1e}, contact height {:.1e} cm",
         c.gamma_norm_error, c.quat_norm_error, c.contact_height_max
     );
-    crate::physics::report::render::work_line(&mut o, &r.stats);
+    render::work_line(&mut o, &r.stats);
     o
 }
 
@@ -269,7 +268,7 @@ impl crate::physics::report::Report for Problem {
         predicted_seconds(self, spec)
     }
 
-    fn simulate_to(&self, ask: crate::physics::report::Ask<'_>) -> Result<Option<Missed>, Failure> {
+    fn simulate_to(&self, ask: Ask<'_>) -> Result<Option<Missed>, Failure> {
         simulate_to(self, ask)
     }
 }

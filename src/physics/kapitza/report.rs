@@ -14,8 +14,10 @@ use crate::physics::kapitza::limit::Limit;
 use crate::physics::kapitza::run::{self, RunResult};
 use crate::physics::kapitza::{self, FastPhase, Problem, plan};
 use crate::physics::method::RunSpec;
-use crate::physics::report::render::StatsOut;
-use crate::physics::report::{Failure, Format, Host, Missed, Resolved, Times, compact, times};
+use crate::physics::report::{
+    Ask, Failure, Finite, Format, Head, Host, Missed, PlannedOut, Resolved, Times, compact,
+    energy_bound, render, times, warn_drift,
+};
 
 /// Predicted seconds of the run `spec` asks for (the pendulum's cost model,
 /// [`kapitza::budget`]).
@@ -38,7 +40,7 @@ pub fn predicted_seconds(problem: &Problem, spec: &crate::physics::method::RunSp
 #[derive(Serialize)]
 struct Report {
     #[serde(flatten)]
-    head: crate::physics::report::Head<kapitza::Params, kapitza::Start, AutoOut>,
+    head: Head<kapitza::Params, kapitza::Start, AutoOut>,
     step: Option<f64>,
     t_end: f64,
     #[serde(rename = "final")]
@@ -46,11 +48,11 @@ struct Report {
     events: EventsOut,
     energy: EnergyOut,
     effective: EffectiveOut,
-    stats: StatsOut,
+    stats: render::StatsOut,
 }
 
 /// `auto`'s account, with the limit's predicted model error over the run.
-type AutoOut = crate::physics::report::PlannedOut<ModelErrorOut>;
+type AutoOut = PlannedOut<ModelErrorOut>;
 
 #[derive(Serialize)]
 struct ModelErrorOut {
@@ -76,7 +78,7 @@ struct EventsOut {
 /// `E_eff` of the averaged start and at the end; `max_drift` the largest `|E_eff − E_eff(0)|`
 /// over the run: the limit's energy drift along the full motion (O(ε²) for a resolved run; the
 /// tolerance for the limit itself). No relative drift.
-type EnergyOut = crate::physics::report::render::DriftOut;
+type EnergyOut = render::DriftOut;
 
 #[derive(Serialize)]
 struct EffectiveOut {
@@ -108,7 +110,7 @@ struct EquilibriumOut {
     stable: bool,
 }
 
-impl crate::physics::report::Finite for RunResult {
+impl Finite for RunResult {
     fn named_numbers(&self) -> (f64, Vec<(&'static str, f64)>) {
         let numbers = vec![
             ("theta", self.theta),
@@ -182,10 +184,7 @@ fn plan_auto(
 ///
 /// # Errors
 /// The pendulum's report (`simulate`).
-pub(super) fn simulate_to(
-    problem: &Problem,
-    mut ask: crate::physics::report::Ask<'_>,
-) -> Result<Option<Missed>, Failure> {
+pub(super) fn simulate_to(problem: &Problem, mut ask: Ask<'_>) -> Result<Option<Missed>, Failure> {
     let ran = ask.plan_and_run((problem, ask.resolved.spec), plan_auto, run::run)?;
     let (spec, result) = (ran.spec, ran.result);
     warn_inaccurate(ask.host, problem, &result, spec.tolerance);
@@ -201,8 +200,7 @@ pub(super) fn simulate_to(
         samples: 0,
         monitor_energy: true,
     };
-    let limit_run = run::run(problem, &limit_spec, ask.progress)
-        .and_then(crate::physics::report::Finite::finite);
+    let limit_run = run::run(problem, &limit_spec, ask.progress).and_then(Finite::finite);
     let p = problem.params();
     let s = problem.start();
     let report = Report {
@@ -229,7 +227,7 @@ pub(super) fn simulate_to(
             rel_drift: None,
         },
         effective: effective_out(problem, &limit_run),
-        stats: StatsOut::of(&result.stats, ran.wall_seconds),
+        stats: render::StatsOut::of(&result.stats, ran.wall_seconds),
     };
     ask.write(&report, table)?;
     Ok(ran.missed)
@@ -244,15 +242,9 @@ fn warn_inaccurate(host: &dyn Host, problem: &Problem, result: &RunResult, toler
     let eps = problem.params().epsilon;
     let scale = result.energy_initial.abs().max(1.0);
     let drift = result.max_energy_drift / scale;
-    let bound = crate::physics::report::energy_bound(tolerance).max(100.0 * eps * eps);
+    let bound = energy_bound(tolerance).max(100.0 * eps * eps);
     if drift.is_nan() || drift > bound {
-        crate::physics::report::warn_drift(
-            host,
-            "the limit's energy E_eff",
-            drift,
-            bound,
-            tolerance,
-        );
+        warn_drift(host, "the limit's energy E_eff", drift, bound, tolerance);
     }
 }
 
@@ -343,7 +335,7 @@ fn table(r: &Report) -> String {
         r.head.initial.theta, r.head.initial.theta_dot
     );
     r.head.method_lines(&mut o, r.step, &compact(r.t_end));
-    crate::physics::report::render::compare_rows(
+    render::compare_rows(
         &mut o,
         "limit (ε → 0)",
         crate::physics::ModelKind::Kapitza.words(),
@@ -379,7 +371,7 @@ fn table(r: &Report) -> String {
         "E_eff         {:.12} (drift along the run {:.2e})",
         r.energy.initial, r.energy.max_drift
     );
-    crate::physics::report::render::work_line(&mut o, &r.stats);
+    render::work_line(&mut o, &r.stats);
     o
 }
 
@@ -399,7 +391,7 @@ impl crate::physics::report::Report for Problem {
         predicted_seconds(self, spec)
     }
 
-    fn simulate_to(&self, ask: crate::physics::report::Ask<'_>) -> Result<Option<Missed>, Failure> {
+    fn simulate_to(&self, ask: Ask<'_>) -> Result<Option<Missed>, Failure> {
         simulate_to(self, ask)
     }
 }

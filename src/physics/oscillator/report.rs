@@ -9,13 +9,14 @@ use serde::Serialize;
 use crate::physics::method::{Asked, RunSpec};
 use crate::physics::oscillator::flows::{self, RunResult};
 use crate::physics::oscillator::{Params, Problem, Start};
-use crate::physics::report::render::StatsOut;
-use crate::physics::report::{Failure, Format, Missed, Resolved, Times};
+use crate::physics::report::{
+    Ask, Failure, Finite, Format, Head, Missed, PlannedOut, Resolved, Times, render,
+};
 
 #[derive(Serialize)]
 struct Report {
     #[serde(flatten)]
-    head: crate::physics::report::Head<Params, Start, AutoOut>,
+    head: Head<Params, Start, AutoOut>,
     t_end: f64,
     #[serde(rename = "final")]
     final_: [f64; 2],
@@ -23,15 +24,15 @@ struct Report {
     error: f64,
     events: Times,
     max_energy_drift: f64,
-    stats: StatsOut,
+    stats: render::StatsOut,
 }
 
-type AutoOut = crate::physics::report::PlannedOut<NoExtra>;
+type AutoOut = PlannedOut<NoExtra>;
 
 #[derive(Serialize)]
 struct NoExtra {}
 
-impl crate::physics::report::Finite for RunResult {
+impl Finite for RunResult {
     fn named_numbers(&self) -> (f64, Vec<(&'static str, f64)>) {
         (
             self.t,
@@ -51,10 +52,7 @@ fn plan_auto(
     Ok(AutoOut::of(&r, run, reason, NoExtra {}))
 }
 
-fn simulate_to(
-    problem: &Problem,
-    mut ask: crate::physics::report::Ask<'_>,
-) -> Result<Option<Missed>, Failure> {
+fn simulate_to(problem: &Problem, mut ask: Ask<'_>) -> Result<Option<Missed>, Failure> {
     let ran = ask.plan_and_run((problem, ask.resolved.spec), plan_auto, flows::run)?;
     let (spec, result) = (ran.spec, ran.result);
     if ask.format == Format::Csv {
@@ -76,7 +74,7 @@ fn simulate_to(
         error: (result.state[0] - x).abs().max((result.state[1] - v).abs()),
         events: Times::of(&result.crossings, result.crossing_count),
         max_energy_drift: result.max_energy_drift,
-        stats: StatsOut::of(&result.stats, ran.wall_seconds),
+        stats: render::StatsOut::of(&result.stats, ran.wall_seconds),
     };
     ask.write(&report, table)?;
     Ok(ran.missed)
@@ -98,7 +96,7 @@ impl crate::physics::report::Report for Problem {
         )
     }
 
-    fn simulate_to(&self, ask: crate::physics::report::Ask<'_>) -> Result<Option<Missed>, Failure> {
+    fn simulate_to(&self, ask: Ask<'_>) -> Result<Option<Missed>, Failure> {
         simulate_to(self, ask)
     }
 }

@@ -16,10 +16,9 @@ use crate::physics::rattleback::effective::{Effective, tapping_acceleration};
 use crate::physics::rattleback::model::{ALPHA, ALPHA_DOT, GAMMA, GAMMA_DOT, energy};
 use crate::physics::rattleback::run::{RunResult, run_cancellable, run_streaming};
 use crate::physics::rattleback::{Problem, plan};
-use crate::physics::report::render::{self, StatsOut};
 use crate::physics::report::{
     Account, Ask, Failure, Finite, Format, Head, Host, Missed, Resolved, Times, energy_bound, opt,
-    times, warn_drift,
+    render, times, warn_drift,
 };
 
 /// Predicted seconds of the run `spec` asks for, and of the limit's run the report compares it
@@ -50,7 +49,7 @@ struct Report {
     effective: EffectiveOut,
     #[serde(skip_serializing_if = "Option::is_none")]
     averaged: Option<AveragedOut>,
-    stats: StatsOut,
+    stats: render::StatsOut,
 }
 
 #[derive(Serialize)]
@@ -271,7 +270,7 @@ pub(super) fn simulate_to(
             ),
         },
         averaged,
-        stats: StatsOut::of(&result.stats, wall_seconds),
+        stats: render::StatsOut::of(&result.stats, wall_seconds),
     };
     warn_energy(ask.host, &report.energy, spec.tolerance);
     ask.write(&report, table)?;
@@ -445,7 +444,7 @@ impl crate::physics::report::Report for Problem {
         predicted_seconds(self, spec, format)
     }
 
-    fn simulate_to(&self, ask: crate::physics::report::Ask<'_>) -> Result<Option<Missed>, Failure> {
+    fn simulate_to(&self, ask: Ask<'_>) -> Result<Option<Missed>, Failure> {
         simulate_to(self, ask)
     }
 }
