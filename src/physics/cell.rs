@@ -52,6 +52,11 @@ impl Field {
     }
 }
 
+/// A whole number as written (`None`: not one, or too large for this machine).
+fn count(v: &serde_json::Value) -> Option<usize> {
+    usize::try_from(v.as_u64()?).ok()
+}
+
 /// One of a scene's values in a computed cell.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Value {
@@ -80,7 +85,7 @@ impl Value {
     /// outer `None`: not a value of that kind).
     fn read(kind: Kind, v: Option<&serde_json::Value>) -> Option<Self> {
         match (kind, v) {
-            (Kind::Count, Some(v)) => Some(Self::Count(usize::try_from(v.as_u64()?).ok()?)),
+            (Kind::Count, Some(v)) => Some(Self::Count(count(v)?)),
             (Kind::Time, Some(serde_json::Value::Null)) => Some(Self::Time(None)),
             (Kind::Time, Some(serde_json::Value::Number(x))) => Some(Self::Time(Some(x.as_f64()?))),
             (Kind::Number, None | Some(serde_json::Value::Null)) => Some(Self::Number(None)),
@@ -201,7 +206,7 @@ impl Answer {
     /// The answer written in a field of `kind` (a count, or a flag).
     fn read(kind: Kind, v: &serde_json::Value) -> Option<Self> {
         match kind {
-            Kind::Count => Some(Self::Count(usize::try_from(v.as_u64()?).ok()?)),
+            Kind::Count => Some(Self::Count(count(v)?)),
             Kind::Flag => Some(Self::Stable(v.as_bool()?)),
             Kind::Time | Kind::Number => None,
         }
@@ -371,24 +376,30 @@ impl<'de> Deserialize<'de> for CellOutput {
             fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<CellOutput, A::Error> {
                 let mut index = None;
                 let mut coords = None;
+                let (mut decided, mut error, mut mark) = (None, None, None);
                 let mut out = CellOutput::default();
-                let mut seen = std::collections::BTreeSet::new();
                 while let Some(key) = map.next_key::<String>()? {
-                    if !seen.insert(key.clone()) {
-                        return Err(A::Error::custom(format!("the field `{key}` twice")));
-                    }
-                    match key.as_str() {
-                        "index" => index = Some(map.next_value()?),
-                        "coords" => coords = Some(map.next_value()?),
-                        "decided" => out.decided = map.next_value()?,
-                        "error" => out.error = map.next_value()?,
-                        "mark" => out.mark = map.next_value()?,
+                    let twice = |key: &str| A::Error::custom(format!("the field `{key}` twice"));
+                    // Each field once: the shared ones by their slot, the scene's by name.
+                    let again = match key.as_str() {
+                        "index" => index.replace(map.next_value::<usize>()?).is_some(),
+                        "coords" => coords.replace(map.next_value()?).is_some(),
+                        "decided" => decided.replace(map.next_value()?).is_some(),
+                        "error" => error.replace(map.next_value()?).is_some(),
+                        "mark" => mark.replace(map.next_value()?).is_some(),
+                        _ if out.field(&key).is_some() => true,
                         _ => {
                             let v = map.next_value()?;
                             out.fields.push((key, v));
+                            continue;
                         }
+                    };
+                    if again {
+                        return Err(twice(&key));
                     }
                 }
+                (out.decided, out.error, out.mark) =
+                    (decided.flatten(), error.flatten(), mark.flatten());
                 out.index = index.ok_or_else(|| A::Error::missing_field("index"))?;
                 out.coords = coords.ok_or_else(|| A::Error::missing_field("coords"))?;
                 Ok(out)
@@ -510,6 +521,14 @@ impl Column {
         }
     }
 
+    /// The answer's field, if this column is the answer.
+    fn answer(&self) -> Option<Field> {
+        match *self {
+            Self::Answer(f) => Some(f),
+            _ => None,
+        }
+    }
+
     /// The column's value in cell `c` of a chart whose axes are named `x` and `y`.
     #[must_use]
     pub fn value(self, c: &CellOutput, x: &str, y: &str) -> String {
@@ -554,13 +573,7 @@ pub enum ColumnsError {
 /// # Errors
 /// The first thing wrong.
 pub fn check_columns(columns: &[Column]) -> Result<(), ColumnsError> {
-    let answers: Vec<Field> = columns
-        .iter()
-        .filter_map(|c| match *c {
-            Column::Answer(f) => Some(f),
-            _ => None,
-        })
-        .collect();
+    let answers: Vec<Field> = columns.iter().filter_map(Column::answer).collect();
     match answers.as_slice() {
         [f] if matches!(f.kind, Kind::Count | Kind::Flag) => {}
         [f] => return Err(ColumnsError::AnswerKind(f.name)),
@@ -579,10 +592,7 @@ pub fn check_columns(columns: &[Column]) -> Result<(), ColumnsError> {
 /// The answer column among a scene's `columns`.
 #[must_use]
 pub fn answer_field(columns: &[Column]) -> Option<Field> {
-    columns.iter().find_map(|c| match *c {
-        Column::Answer(f) => Some(f),
-        _ => None,
-    })
+    columns.iter().find_map(Column::answer)
 }
 
 /// Writes into `out` the fields of verdict `v` that a scene's cells carry, its `columns`
@@ -746,6 +756,15 @@ mod tests {
             v[key] = bad;
             let cell: CellOutput = serde_json::from_value(v).unwrap();
             assert_eq!(read_cell(COLUMNS, &cell), Err((key.to_owned(), fault)));
+        }
+        // A field twice, shared or the scene's, is refused as it is read.
+        for text in [
+            r#"{"index":1,"coords":{},"index":2}"#,
+            r#"{"index":1,"coords":{},"count":1,"count":2}"#,
+            r#"{"index":1,"coords":{},"mark":"computed","mark":"inferred"}"#,
+        ] {
+            let e = serde_json::from_str::<CellOutput>(text).unwrap_err();
+            assert!(e.to_string().contains("twice"), "{text}: {e}");
         }
         let mut v = good.clone();
         v.as_object_mut().unwrap().remove("when");

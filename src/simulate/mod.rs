@@ -41,17 +41,17 @@ pub struct Request {
 
 /// The wall clock of a report's `wall_seconds`: none in the browser's module
 /// (`wasm32-unknown-unknown` has no clock; its reports say 0).
-pub(crate) struct Stopwatch(#[cfg(not(target_arch = "wasm32"))] std::time::Instant);
+struct Stopwatch(#[cfg(not(target_arch = "wasm32"))] std::time::Instant);
 
 impl Stopwatch {
-    pub(crate) fn start() -> Self {
+    fn start() -> Self {
         Self(
             #[cfg(not(target_arch = "wasm32"))]
             std::time::Instant::now(),
         )
     }
 
-    pub(crate) fn seconds(&self) -> f64 {
+    fn seconds(&self) -> f64 {
         #[cfg(not(target_arch = "wasm32"))]
         return self.0.elapsed().as_secs_f64();
         #[cfg(target_arch = "wasm32")]
@@ -193,8 +193,8 @@ impl Host for Hosted<'_> {
         &self.preset.name
     }
 
-    fn one_line(&self, text: &str) -> String {
-        crate::scenario::text::one_line(text)
+    fn preset_line(&self) -> String {
+        crate::scenario::text::one_line(&self.preset.name)
     }
 
     fn json_safe(&self, json: &str) -> String {
@@ -202,7 +202,14 @@ impl Host for Hosted<'_> {
     }
 
     fn csv_head(&self, ran: Method, t_end: f64) -> String {
-        csv_head(self.preset, self.resolved, ran, t_end)
+        csv_metadata_of(
+            &self.preset.name,
+            &self.preset.model,
+            self.resolved.spec.method,
+            Some(ran),
+            self.resolved.spec.tolerance,
+            t_end,
+        )
     }
 
     fn seconds(&self) -> f64 {
@@ -257,18 +264,6 @@ pub fn csv_metadata_of(
         method,
         ran,
         &numbers,
-    )
-}
-
-/// [`csv_metadata_of`] for `preset` run as `resolved` asks, by `ran` to `t_end`.
-fn csv_head(preset: &Preset, resolved: &Resolved, ran: Method, t_end: f64) -> String {
-    csv_metadata_of(
-        &preset.name,
-        &preset.model,
-        resolved.spec.method,
-        Some(ran),
-        resolved.spec.tolerance,
-        t_end,
     )
 }
 

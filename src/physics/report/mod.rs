@@ -21,8 +21,8 @@ pub trait Host {
     fn model(&self) -> &'static str;
     /// The preset's name, as read.
     fn preset(&self) -> &str;
-    /// `text` on one line, cleaned of control characters (for a table).
-    fn one_line(&self, text: &str) -> String;
+    /// The preset's name on one line, cleaned of control characters (for a table).
+    fn preset_line(&self) -> String;
     /// JSON text with every control character escaped.
     fn json_safe(&self, json: &str) -> String;
     /// The CSV's metadata lines for a run by `ran` to `t_end`.
@@ -126,7 +126,7 @@ impl<P, S, A: Account> Head<P, S, A> {
             schema_version: SCHEMA_VERSION,
             model: host.model(),
             preset: host.preset().to_owned(),
-            preset_line: host.one_line(host.preset()),
+            preset_line: host.preset_line(),
             params,
             initial,
             method: resolved.spec.method,
