@@ -4,8 +4,9 @@
 //! computed in a lane of [`F64x4`] with the operations, in the order, of the scalar
 //! `Dop853::stages` (the same nonzero terms of the same tableau), and its verdict is the scalar
 //! [`Dop853::judge`] on them, given the attempt's error and the controller's power of it
-//! computed in lanes (the scalar core's `error_of`; [`eighth_power`], the scalar power's bits). So a lane's every step is the step a lone run
-//! takes, bit for bit, and a lane that fails fails alone.
+//! computed in lanes (the scalar core's `error_of`; [`eighth_power`], the scalar power's
+//! bits). So a lane's every step is the step a lone run takes, bit for bit, and a lane that
+//! fails fails alone.
 //!
 //! The one difference in work: the field at an attempt's end is evaluated in every lane, also
 //! where the attempt is then rejected (a lone run evaluates it only when it accepts).
