@@ -109,7 +109,9 @@ pub struct Dop853<const N: usize, F> {
     y_prev: SVector<f64, N>,
     h_last: f64,
     k: [SVector<f64, N>; STAGES_DENSE],
-    dense: Option<[SVector<f64, N>; 7]>,
+    /// The last step's dense-output coefficients, when `dense_ready`.
+    dense: [SVector<f64, N>; 7],
+    dense_ready: bool,
     stats: Stats,
     /// Whether the step being taken had an attempt rejected (its growth is then held to 1).
     rejected_once: bool,
@@ -152,7 +154,8 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
             y_prev: y0,
             h_last: 0.0,
             k: [SVector::zeros(); STAGES_DENSE],
-            dense: None,
+            dense: [SVector::zeros(); 7],
+            dense_ready: false,
             stats: Stats {
                 rhs_evaluations: 1,
                 ..Stats::default()
@@ -410,7 +413,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         self.y = y_new;
         self.f_now = f_new;
         self.h_last = h;
-        self.dense = None;
+        self.dense_ready = false;
         self.stats.steps += 1;
         let mut factor = if err == 0.0 {
             6.0
@@ -435,10 +438,13 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         Ok(true)
     }
 
+    /// Computes the last step's dense-output coefficients into `dense`, at its first
+    /// interpolation; later ones read them in place (issue 84: a copy of them for each of the
+    /// crossing search's 31 points was a twentieth of a chart's time).
     #[allow(clippy::needless_range_loop)]
-    fn dense_coefficients(&mut self) -> [SVector<f64, N>; 7] {
-        if let Some(d) = self.dense {
-            return d;
+    fn dense_coefficients(&mut self) {
+        if self.dense_ready {
+            return;
         }
         assert!(
             !self.stages_away,
@@ -468,8 +474,8 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
             }
             d[3 + row] = acc * h;
         }
-        self.dense = Some(d);
-        d
+        self.dense = d;
+        self.dense_ready = true;
     }
 
     /// The dense-output interpolant of the last step at `t` in `[time_prev, time]`.
@@ -484,7 +490,8 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         if self.h_last == 0.0 {
             return SVector::<f64, M>::from_fn(|i, _| self.y[i]);
         }
-        let d = self.dense_coefficients();
+        self.dense_coefficients();
+        let d = &self.dense;
         let x = (t - self.t_prev) / self.h_last;
         let x1 = 1.0 - x;
         SVector::<f64, M>::from_fn(|i, _| {
