@@ -65,6 +65,9 @@ const CELT_DECISION_TIME: f64 = 50.0;
 /// What a cell computed in lanes costs of its scalar price (issue 84): the CPU of
 /// `celt-clockwise`'s default chart in lanes over the same cells computed alone, measured on
 /// this project's 2-core machine (AVX2): 45.6 s of CPU against 100.1 s (docs/benchmarks.md).
+/// Kept when the chart came to 0.37 of the scalar CPU (stop 94): a machine without AVX runs the
+/// lanes at the baseline's width (0.81 of the scalar time), and the watchdog stops a chart at
+/// twice its price, so the price errs on the long side.
 const LANES_SHARE: f64 = 0.48;
 /// The cells from which a chart's lanes are kept full: a smaller chart's chunks hold a few
 /// cells each, whose runs leave lanes empty when a round asks one run a cell (8×4 at T = 100:
