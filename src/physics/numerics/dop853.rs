@@ -442,7 +442,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
     /// interpolation; later ones read them in place (issue 84: a copy of them for each of the
     /// crossing search's 31 points was a twentieth of a chart's time).
     #[allow(clippy::needless_range_loop)]
-    fn dense_coefficients(&mut self) {
+    fn compute_dense(&mut self) {
         if self.dense_ready {
             return;
         }
@@ -490,7 +490,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
         if self.h_last == 0.0 {
             return SVector::<f64, M>::from_fn(|i, _| self.y[i]);
         }
-        self.dense_coefficients();
+        self.compute_dense();
         let d = &self.dense;
         let x = (t - self.t_prev) / self.h_last;
         let x1 = 1.0 - x;
