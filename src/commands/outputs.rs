@@ -298,7 +298,7 @@ impl Problem {
 }
 
 /// Every output's schema file name and text: one per command, and `study map`'s narrowed to
-/// each scene (`map-NAME`, [`scene_map`]).
+/// each scene (`map-NAME`, `scene_map`).
 #[must_use]
 pub fn schemas() -> Vec<(String, String)> {
     fn value<T: JsonSchema>() -> serde_json::Value {

@@ -167,6 +167,8 @@ pub(crate) fn depth(choice: crate::commands::cli::ColorChoice) -> Depth {
 }
 
 /// Whether colours are off: `--color`, then the environment ([`ColorChoice::colours_off`]).
+///
+/// [`ColorChoice::colours_off`]: crate::commands::cli::ColorChoice::colours_off
 pub(crate) fn no_color(choice: crate::commands::cli::ColorChoice) -> bool {
     if choice == crate::commands::cli::ColorChoice::Always {
         // crossterm itself leaves colours out under NO_COLOR unless told otherwise.

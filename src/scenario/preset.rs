@@ -898,7 +898,7 @@ pub fn reference() -> String {
     o
 }
 
-/// What a key shared by every model holds, for [`reference`].
+/// What a key shared by every model holds, for [`reference`](fn@reference).
 fn common_doc(key: &str) -> &'static str {
     match key {
         "name" => "display name (default: the file's stem)",

@@ -171,7 +171,7 @@ const SPELLING: &[(char, &str)] = &[
     ('Ω', "Omega"),
 ];
 
-/// How `c` is spelled in ASCII: itself when it is ASCII, else [`SPELLING`]'s words, else `?`.
+/// How `c` is spelled in ASCII: itself when it is ASCII, else `SPELLING`'s words, else `?`.
 #[must_use]
 pub fn spell(c: char) -> std::borrow::Cow<'static, str> {
     if c.is_ascii() {
@@ -184,7 +184,7 @@ pub fn spell(c: char) -> std::borrow::Cow<'static, str> {
     }
 }
 
-/// `text` spelled in ASCII ([`SPELLING`]): `k → ∞` is `k -> inf`, `≥ 8` is `>= 8`; a combining
+/// `text` spelled in ASCII (`SPELLING`): `k → ∞` is `k -> inf`, `≥ 8` is `>= 8`; a combining
 /// dot above is `_dot` after its letter (`α̇` is `alpha_dot`), two dots `_ddot`; other
 /// combining marks are dropped; what has no spelling is `?`.
 #[must_use]

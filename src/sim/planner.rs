@@ -209,11 +209,11 @@ impl Planner {
         Ok((plan, estimate))
     }
 
-    /// A session of `spec` stamped `generation`, on the plan [`Planner::resolve`] gives, with
+    /// A session of `spec` stamped `generation`, on the plan `Planner::resolve` gives, with
     /// `auto`'s estimate.
     ///
     /// # Errors
-    /// As [`Planner::resolve`], and a plan the model cannot build.
+    /// As `Planner::resolve`, and a plan the model cannot build.
     pub fn start(
         &mut self,
         generation: u64,

@@ -162,7 +162,7 @@ fn fields(bar: &StatusBar<'_>) -> Vec<Field> {
     out
 }
 
-/// What the bar shows, for the legend: the fields [`fields`] writes, in the scene's words.
+/// What the bar shows, for the legend: the fields `fields` writes, in the scene's words.
 #[must_use]
 pub fn legend(f: &Facts<'_>, _look: &Look<'_>) -> Section {
     let words = f.kind.words();

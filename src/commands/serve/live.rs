@@ -143,7 +143,7 @@ enum Next {
 
 /// Follows `config.file` until `stop`: each frame to `hub`. Once `gone` (the explorer that
 /// started this `serve` has ended, however: issue 80, L1), the lecture ends: what the file
-/// holds is the whole lecture, its end is served to every reader (within [`GONE_SETTLE`]),
+/// holds is the whole lecture, its end is served to every reader (within `GONE_SETTLE`),
 /// the server goes on [`GRACE`] more for the pages to load the finished lecture, then `stop`
 /// is set.
 pub fn run(config: &Config, hub: &Hub, stop: &AtomicBool, gone: &AtomicBool) {

@@ -3,7 +3,7 @@
 //! ([`http`]) until Ctrl-C or another ending signal; they meet in a [`Hub`].
 //!
 //! The renderer follows the session file as `follow` does (the same tail, replay and worker)
-//! and draws each frame into memory as `--export-cast` does ([`crate::cast::MemoryScreen`]):
+//! and draws each frame into memory as `--export-cast` does (`cast::MemoryScreen`):
 //! the frames served are the replay's, which `replay --verify` checks. The server is hyper on
 //! a small tokio runtime: `/` the page, `/events` a Server-Sent Events stream of the frames,
 //! `/session.jsonl` the file so far; nothing else, and no path reaches the file system.

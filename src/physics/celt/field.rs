@@ -1,4 +1,4 @@
-//! The celt's field written once for one state or for [`LANES`](crate::physics::numerics::lanes::LANES)
+//! The celt's field written once for one state or for [`LANES`]
 //! states side by side (issue 84): [`Coefficients`] holds the body in `R`'s lanes, and
 //! [`Coefficients::field`] is model.md §5's right-hand side, each operation in the order the
 //! scalar field always took (`nalgebra`'s cross and dot products spelt out), so a lane of a

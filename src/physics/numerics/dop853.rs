@@ -259,7 +259,7 @@ impl<const N: usize, F: Field<N>> Dop853<N, F> {
     }
 
     /// The size of the next attempt towards `t_limit`, and whether it lands on it (issue 84:
-    /// one attempt of [`Dop853::step`] is this, the stages, and [`Dop853::judge`], so that
+    /// one attempt of [`Dop853::step`] is this, the stages, and `Dop853::judge`, so that
     /// `super::dop853_lanes` takes the same attempt in lanes).
     ///
     /// # Errors

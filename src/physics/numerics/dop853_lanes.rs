@@ -3,7 +3,7 @@
 //! arithmetic is shared: each lane's step size comes from [`Dop853::begin`], its stages are
 //! computed in a lane of [`F64x4`] with the operations, in the order, of the scalar
 //! `Dop853::stages` (the same nonzero terms of the same tableau), and its verdict is the scalar
-//! [`Dop853::judge`] on them, given the attempt's error and the controller's power of it
+//! `Dop853::judge` on them, given the attempt's error and the controller's power of it
 //! computed in lanes (the scalar core's `error_of`; [`eighth_power`], the scalar power's
 //! bits). So a lane's every step is the step a lone run takes, bit for bit, and a lane that
 //! fails fails alone.

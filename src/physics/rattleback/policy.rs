@@ -148,7 +148,7 @@ pub const PROBE_TOLERANCE: f64 = 1e-12;
 /// `averaged3`'s errors already fall like k^-2.7 … k^-3: docs/averaging/third-order.md).
 pub const PROBE_VALIDITY: f64 = 0.2;
 
-/// Most rungs of probes ([`probe_averaged`]).
+/// Most rungs of probes ([`probe_averaged`](super::auto::probe_averaged)).
 pub const PROBE_RUNGS: u32 = 3;
 
 /// The averaged model is considered from `k ≥ AVERAGED_MIN_RATIO · k_hi` on (where probing
@@ -169,13 +169,17 @@ pub const AUTO_SECONDS: f64 = 10.0;
 /// sum it compensated (4.3e-11 → 1.2e-12 on `lib_b1_a015_k1e06`'s reversal times:
 /// docs/benchmarks.md, "Issue 29"), so only the adaptive methods keep it, in their predicted
 /// errors and their estimates (`phase_round_off`); the splitting's prediction counts one
-/// rounding per step ([`conditioned_round_off`] at κ = 1).
+/// rounding per step ([`conditioned_round_off`](super::auto::conditioned_round_off) at κ = 1).
+///
+/// [`round_off`]: super::auto::round_off
 pub const ROUND_OFF_GAIN: f64 = 5.0;
 
 /// Relative nudge of the rates, and absolute nudge of the angle (radians), by which
 /// [`conditioning`] measures how much the start's rounding is amplified by `T` (small enough
 /// to stay linear at condition numbers of 1e7, large enough to stand far above the rounding of
 /// the runs it compares).
+///
+/// [`conditioning`]: fn@super::auto::conditioning
 pub const NUDGE: f64 = 1e-10;
 
 /// Largest expansion parameter ([`super::averaged::expansion_parameter`]) at which a plan's
@@ -196,6 +200,8 @@ pub const CONDITIONING_AVERAGED_LIMIT: f64 = 0.25;
 /// start). It replaced `averaged3` here in issue 27: on the held-out starts of
 /// `rattleback_honesty.toml` (k = 1e2 … 1e12) the condition numbers `auto` measures stay within
 /// 0.9–1.7 of the long-double references' (`honesty::auto_measures_the_conditioning_the_references_report`).
+///
+/// [`conditioning`]: fn@super::auto::conditioning
 pub const CONDITIONING_MODEL: Method = Method::Averaged2;
 
 /// Condition number above which a measurement on the averaged model
@@ -210,6 +216,9 @@ pub const CONDITIONING_RECHECK: f64 = 100.0;
 /// start's reading at that one stiffness instead of measured at its own `k` (issue 27, stop 51):
 /// that reading is kept ([`memo`]) and serves every larger `k` (the explorer's `k` slider, a sweep's
 /// rungs), so `auto`'s verification is its companion alone.
+///
+/// [`conditioning_stiffness`]: super::auto::conditioning_stiffness
+/// [`memo`]: super::auto::memo
 pub const CONDITIONING_KEPT_X: f64 = 0.01;
 
 /// How much a reading at the conditioning stiffness is widened into a bound on the start's
@@ -228,6 +237,8 @@ pub const CONDITIONING_KEPT_MARGIN: f64 = 50.0;
 pub const CONDITIONING_KEPT_SHARE: f64 = 0.1;
 
 /// Local tolerance of [`conditioning`]'s runs (at least; the companion's when looser).
+///
+/// [`conditioning`]: fn@super::auto::conditioning
 pub const CONDITIONING_TOLERANCE: f64 = 1e-9;
 
 /// Local tolerance of [`conditioning`]'s first measurement on [`CONDITIONING_MODEL`]: the nudged
@@ -239,6 +250,9 @@ pub const CONDITIONING_TOLERANCE: f64 = 1e-9;
 /// `auto`'s time at k ≥ 1e5 with the probes kept; at 1e-7 side by side the reading costs
 /// 0.06 ms (trapped start) and 0.10 ms (rotating), against 0.09 and 0.18 ms for three separate
 /// runs at 1e-7 (`cargo run --release --example conditioning_check all`).
+///
+/// [`conditioning`]: fn@super::auto::conditioning
+/// [`slow_condition_numbers`]: super::auto::slow_condition_numbers
 pub const CONDITIONING_LOOSE_TOLERANCE: f64 = 1e-7;
 
 /// Gain of the conditioned round-off floor `CONDITIONED_GAIN · ε · √steps · κ`: a step rounds

@@ -203,6 +203,8 @@ pub(super) fn conditioning_cost(problem: &Problem, t_end: f64, plan: &Plan) -> f
 /// and its verification waits for a second core, [`fork::dearer_here`]): on the slow model, the
 /// three starts side by side cost about twice one run (0.057 against 0.027 ms, trapped start,
 /// k = 1e6 … 1e12); on the plan's own method, its runs.
+///
+/// [`fork::dearer_here`]: crate::physics::fork::dearer_here
 pub(super) fn measuring_cost(problem: &Problem, t_end: f64, plan: &Plan) -> f64 {
     let first = conditioning_spec(problem, t_end, plan, Stage::Loose);
     if first.method.is_averaged() {

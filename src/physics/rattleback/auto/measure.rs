@@ -101,6 +101,8 @@ pub fn round_off(problem: &Problem, steps: f64, t_end: f64) -> f64 {
 /// The round-off floor of a run of `steps` steps from a start of condition number `kappa`
 /// ([`Conditioning::of_run`]): a few roundings per step, each amplified by at most `κ` by the
 /// end, adding up like a random walk, `CONDITIONED_GAIN · ε · √steps · max(κ, 1)`.
+///
+/// [`Conditioning::of_run`]: super::Conditioning::of_run
 #[must_use]
 pub fn conditioned_round_off(steps: f64, kappa: f64) -> f64 {
     CONDITIONED_GAIN * f64::EPSILON * steps.max(1.0).sqrt() * kappa.max(1.0)

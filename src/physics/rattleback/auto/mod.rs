@@ -72,6 +72,9 @@
 //!
 //! The first planner is kept, frozen, in [`legacy`] for the replay of old session files.
 //! Pure: no clock; a caller's `go_on` decides about cancellation.
+//!
+//! [`conditioning`]: fn@conditioning
+//! [`fork::both`]: crate::physics::fork::both
 
 pub mod legacy;
 pub mod memo;

@@ -33,6 +33,8 @@ pub struct ModelProbe {
     /// The same against `averaged2`, from the same full runs: at large `k` its O(k⁻²) error is
     /// far below the tolerance ([`SECOND_ORDER_MODEL_SHARE`]), and a run costs half of
     /// `averaged3`'s.
+    ///
+    /// [`SECOND_ORDER_MODEL_SHARE`]: super::SECOND_ORDER_MODEL_SHARE
     pub gap2: [f64; 2],
 }
 

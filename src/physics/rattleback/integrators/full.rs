@@ -1,7 +1,9 @@
 //! The full model `(γ, α, γ̇, α̇)` behind one [`Flow`], on either core: `dop853` (the generic
-//! core of [`super::dop853`] with the Euler–Lagrange right-hand side; order 8, not symplectic,
+//! core of [`dop853`] with the Euler–Lagrange right-hand side; order 8, not symplectic,
 //! 12 evaluations per step) or `taylor` ([`super::full_taylor`]). Samples, reversals and the
 //! energy are the same code for both.
+//!
+//! [`dop853`]: crate::physics::numerics::dop853
 
 use super::full_taylor::TaylorCore;
 use crate::physics::flow::Flow;
