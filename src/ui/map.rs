@@ -56,21 +56,19 @@ const UNDECIDED: char = '×';
 pub fn legend(facts: &Facts<'_>, look: &Look<'_>) -> Section {
     let t = look.theme;
     let words = crate::study::chart::words(facts.kind);
-    let ramp: String = [1, 2, 4, 8]
-        .into_iter()
-        .map(|n| look.charset.mark(glyph(Some(n))))
-        .collect();
     let answer = crate::physics::chart::answer_field(words.csv);
-    let section = if answer.is_some_and(|f| f.kind == crate::physics::chart::Kind::Flag) {
-        Section::new(words.title)
-            .mark(printed(look, STABLE), t.trail, words.pane_legend[0])
-            .mark(printed(look, UNDECIDED), t.dim, words.pane_legend[1])
+    // A yes/no chart draws its stable cells, a count's its ramp of counts.
+    let answers: String = if answer.is_some_and(|f| f.kind == crate::physics::chart::Kind::Flag) {
+        printed(look, STABLE)
     } else {
-        Section::new(words.title)
-            .mark(ramp, t.trail, words.pane_legend[0])
-            .mark(printed(look, UNDECIDED), t.dim, words.pane_legend[1])
+        [1, 2, 4, 8]
+            .into_iter()
+            .map(|n| look.charset.mark(glyph(Some(n))))
+            .collect()
     };
-    section
+    Section::new(words.title)
+        .mark(answers, t.trail, words.pane_legend[0])
+        .mark(printed(look, UNDECIDED), t.dim, words.pane_legend[1])
         .mark(printed(look, glyph(None)), t.dim, "a cell not computed yet")
         .mark(printed(look, CRITICAL), t.separatrix, words.curve)
         .mark(
